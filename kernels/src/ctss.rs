@@ -1,0 +1,594 @@
+//! The hit-group logic of CTSS (Algorithm 1, §3.3, §3.6) as a pure stepper, plus
+//! [`trace`], which drives it with closures, and [`sphere_trace`], the NoAA
+//! baseline with the same cone-based hit threshold.
+//!
+//! The caller owns the SDF and the shading. It asks the [`ConeStepper`] where to
+//! evaluate ([`ConeStepper::t`]), feeds the distance back ([`ConeStepper::advance`])
+//! and gets an [`Event`]: march on, sample a hit group, or stop. For a sample it
+//! computes the normal at the sample point and hands the projected normal to
+//! [`ConeStepper::record`], which makes the visibility mask, correlates it with
+//! the pixel's global mask `M` and returns the sample's weight.
+//!
+//! ```
+//! use glam::Vec3;
+//! use subcone_kernels::ctss::{trace, CtssParams};
+//!
+//! // A unit sphere 5 units in front of the camera, seen by a pixel whose ray
+//! // grazes its silhouette.
+//! let sphere = |p: Vec3| (p - Vec3::new(0.0, 0.0, 5.0)).length() - 1.0;
+//! let normal = |p: Vec3| (p - Vec3::new(0.0, 0.0, 5.0)).normalize();
+//! let params = CtssParams::new(0.02);
+//! let dir = Vec3::new(0.2, 0.0, 1.0).normalize();
+//! let r = trace(&params, Vec3::ZERO, dir, Vec3::X, Vec3::Y, sphere, normal, |_, _| Vec3::ONE, Vec3::ZERO);
+//! // The pixel is partly sphere (white), partly background (black).
+//! assert!(r.color.x > 0.0 && r.color.x < 1.0, "{:?}", r);
+//! ```
+
+use glam::{Vec2, Vec3};
+
+use crate::aggregate::{sample_weight, Aggregate, Weighting};
+use crate::cone::{
+    advance, backtrace_cone_entry, backtrace_hard_hit, cone_occlusion, cone_radius,
+    OcclusionThresholds, OCCLUSION_EPS,
+};
+use crate::mask::{project_normal, visibility_mask, MaskPlacement, VisibilityAccumulator};
+
+/// `flags` bit: CTSS-R, stop at the first hard hit instead of full occlusion (§4).
+pub const FLAG_RELAXED: u32 = 1;
+
+/// Parameters of a CTSS trace.
+///
+/// `#[repr(C)]`, 48 bytes, only `f32`/`u32` fields (explicit padding): uploaded
+/// unchanged as a uniform by GPU backends.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "bytemuck", derive(bytemuck::Pod, bytemuck::Zeroable))]
+pub struct CtssParams {
+    /// `tan θ` of the pixel's cone (eq. 3, [`cone_tan_theta`](crate::cone::cone_tan_theta)).
+    pub tan_theta: f32,
+    /// Minimum step factor α of `s_min = α·R_c` (§3.1; paper: 0.5).
+    pub alpha: f32,
+    /// ε of the occlusion thresholds (§3.2; authors: 0.01).
+    pub eps: f32,
+    /// First depth evaluated.
+    pub t_min: f32,
+    /// Depth at which the ray leaves the scene.
+    pub t_max: f32,
+    /// The authors' minimum sample weight (0.01); ours is 0, see
+    /// [`sample_weight`](crate::aggregate::sample_weight).
+    pub min_sample_weight: f32,
+    /// Step budget: no trace takes more SDF evaluations than this.
+    pub max_steps: u32,
+    /// Sample cap (the authors use 8, `CTSS_NUM_SAMPLES`).
+    pub max_samples: u32,
+    /// Visibility threshold k (§5.1): stop once `bitCount(M) ≥ k`. 32 = off.
+    pub visibility_k: u32,
+    /// Bit 0: [`FLAG_RELAXED`]. Bits 8..16: [`MaskPlacement`]. Bits 16..24: [`Weighting`].
+    pub flags: u32,
+    /// Padding to a multiple of 16 bytes (WGSL uniform layout).
+    pub _pad: [u32; 2],
+}
+
+impl CtssParams {
+    /// The paper's configuration for a cone of `tan_theta`: α = 0.5, ε = 0.01, up
+    /// to 8 samples, k = 32, visibility weights, the derived mask placement, no
+    /// minimum sample weight, `t` in `[0, 10⁴]`, 1024 steps.
+    pub const fn new(tan_theta: f32) -> Self {
+        Self {
+            tan_theta,
+            alpha: 0.5,
+            eps: OCCLUSION_EPS,
+            t_min: 0.0,
+            t_max: 1.0e4,
+            min_sample_weight: 0.0,
+            max_steps: 1024,
+            max_samples: 8,
+            visibility_k: 32,
+            flags: 0,
+            _pad: [0; 2],
+        }
+    }
+
+    /// CTSS-R (§4): terminate at the first hard hit (half cone occlusion).
+    pub const fn relaxed(mut self, on: bool) -> Self {
+        self.flags = if on {
+            self.flags | FLAG_RELAXED
+        } else {
+            self.flags & !FLAG_RELAXED
+        };
+        self
+    }
+
+    /// Choose the mask placement.
+    pub const fn with_placement(mut self, p: MaskPlacement) -> Self {
+        self.flags = (self.flags & !0xff00) | ((p as u32) << 8);
+        self
+    }
+
+    /// Choose the sample weighting.
+    pub const fn with_weighting(mut self, w: Weighting) -> Self {
+        self.flags = (self.flags & !0xff0000) | ((w as u32) << 16);
+        self
+    }
+
+    /// Set the visibility threshold k (clamped to 1..=32).
+    pub const fn with_visibility_k(mut self, k: u32) -> Self {
+        self.visibility_k = if k == 0 {
+            1
+        } else if k > 32 {
+            32
+        } else {
+            k
+        };
+        self
+    }
+
+    /// Set the depth range.
+    pub const fn with_range(mut self, t_min: f32, t_max: f32) -> Self {
+        self.t_min = t_min;
+        self.t_max = t_max;
+        self
+    }
+
+    /// Set the step budget.
+    pub const fn with_max_steps(mut self, n: u32) -> Self {
+        self.max_steps = n;
+        self
+    }
+
+    /// The authors' code's choices where they differ from the paper: the 0.01
+    /// minimum sample weight and their mask placement. (Their narrower cone is a
+    /// [`PixelFootprint`](crate::cone::PixelFootprint) of the tangent.)
+    pub const fn authors_code(self) -> Self {
+        let mut s = self.with_placement(MaskPlacement::AuthorsCode);
+        s.min_sample_weight = 0.01;
+        s
+    }
+
+    /// Whether CTSS-R is on.
+    pub const fn is_relaxed(&self) -> bool {
+        self.flags & FLAG_RELAXED != 0
+    }
+
+    /// The mask placement.
+    pub const fn placement(&self) -> MaskPlacement {
+        MaskPlacement::from_u32((self.flags >> 8) & 0xff)
+    }
+
+    /// The weighting.
+    pub const fn weighting(&self) -> Weighting {
+        Weighting::from_u32((self.flags >> 16) & 0xff)
+    }
+
+    /// The thresholds for this ε.
+    pub const fn thresholds(&self) -> OcclusionThresholds {
+        OcclusionThresholds::with_eps(self.eps)
+    }
+}
+
+/// Why a trace ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum StopReason {
+    /// `ω > 1 − ε`: the cone is fully inside a surface.
+    FullOcclusion,
+    /// CTSS-R or NoAA: `ω > 0.5 − ε`.
+    HardHit,
+    /// `bitCount(M) ≥ k`.
+    VisibilityThreshold,
+    /// The sample cap was reached.
+    SampleCap,
+    /// `t ≥ t_max`: the ray left the scene.
+    MaxDistance,
+    /// The step budget ran out.
+    StepBudget,
+    /// The SDF returned NaN.
+    InvalidDistance,
+}
+
+impl StopReason {
+    /// Whether the pixel is covered by hits alone, so the background gets no
+    /// weight: the trace ended on its occlusion rule, or on the visibility
+    /// threshold (whose uncovered remainder is unknown, so eq. 6 renormalises
+    /// over the hits instead of guessing sky).
+    pub const fn covers_pixel(self) -> bool {
+        matches!(
+            self,
+            StopReason::FullOcclusion | StopReason::HardHit | StopReason::VisibilityThreshold
+        )
+    }
+}
+
+/// A hit group to sample (Algorithm 1, lines 15–22).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GroupSample {
+    /// Where to shade: the backtraced entry (eq. 10) of a soft-only group, or the
+    /// backtraced first hard hit (§3.6).
+    pub t: f32,
+    /// Backtraced entry depth (eq. 10).
+    pub t_entry: f32,
+    /// Backtraced exit depth (eq. 10 applied to the exit, §3.6), or the depth at
+    /// which the group was cut short.
+    pub t_exit: f32,
+    /// The group's maximum cone occlusion `ω_max` (Algorithm 1, line 12): the
+    /// input of the visibility mask.
+    pub occlusion: f32,
+    /// Whether the group contains a hard hit.
+    pub hard: bool,
+}
+
+/// What the caller does next.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Event {
+    /// Evaluate the SDF at the new [`ConeStepper::t`] and call `advance` again.
+    March,
+    /// Shade this group at `sample.t`, call [`ConeStepper::record`], then call
+    /// `advance` again (it may answer [`Event::Stop`]).
+    Sample(GroupSample),
+    /// The trace is over.
+    Stop(StopReason),
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Group {
+    t_entry: f32,
+    t_sample: f32,
+    occlusion: f32,
+    hard: bool,
+}
+
+/// Algorithm 1 as a state machine, generic over nobody's SDF.
+///
+/// Every trace ends: `t` strictly increases each step ([`advance`]), and after
+/// `max_steps` evaluations the stepper stops with [`StopReason::StepBudget`].
+#[derive(Clone, Debug)]
+pub struct ConeStepper {
+    params: CtssParams,
+    thresholds: OcclusionThresholds,
+    t: f32,
+    t_prev: f32,
+    d_prev: f32,
+    have_prev: bool,
+    prev_soft: bool,
+    prev_hard: bool,
+    group: Option<Group>,
+    steps: u32,
+    samples: u32,
+    mask: VisibilityAccumulator,
+    stop: Option<StopReason>,
+}
+
+impl ConeStepper {
+    /// Start a trace at `params.t_min`.
+    pub fn new(params: &CtssParams) -> Self {
+        let t0 = if params.t_min > 0.0 {
+            params.t_min
+        } else {
+            0.0
+        };
+        Self {
+            params: *params,
+            thresholds: params.thresholds(),
+            t: t0,
+            t_prev: t0,
+            d_prev: 0.0,
+            have_prev: false,
+            prev_soft: false,
+            prev_hard: false,
+            group: None,
+            steps: 0,
+            samples: 0,
+            mask: VisibilityAccumulator::new(),
+            stop: None,
+        }
+    }
+
+    /// The depth at which to evaluate the SDF next.
+    #[inline]
+    pub fn t(&self) -> f32 {
+        self.t
+    }
+
+    /// SDF evaluations so far.
+    pub fn steps(&self) -> u32 {
+        self.steps
+    }
+
+    /// Groups sampled so far.
+    pub fn samples(&self) -> u32 {
+        self.samples
+    }
+
+    /// The pixel's global visibility mask `M`.
+    pub fn coverage(&self) -> u32 {
+        self.mask.covered()
+    }
+
+    /// The stop reason, once the trace is over (or decided to end).
+    pub fn stop_reason(&self) -> Option<StopReason> {
+        self.stop
+    }
+
+    fn end(&mut self, reason: StopReason, t_exit: f32) -> Event {
+        self.stop = Some(reason);
+        // A group still open when the ray leaves (or the budget runs out) is a
+        // surface seen, exit unknown: sample it rather than drop it as the
+        // authors' loop does.
+        match self.group.take() {
+            Some(g) => {
+                self.samples += 1;
+                Event::Sample(GroupSample {
+                    t: g.t_sample,
+                    t_entry: g.t_entry,
+                    t_exit,
+                    occlusion: g.occlusion,
+                    hard: g.hard,
+                })
+            }
+            None => Event::Stop(reason),
+        }
+    }
+
+    /// Feed `d = SDF(o + t·dir)` at `t = self.t()` (Algorithm 1, lines 7–26).
+    pub fn advance(&mut self, d: f32) -> Event {
+        if let Some(r) = self.stop {
+            return Event::Stop(r);
+        }
+        let t = self.t;
+        if self.steps >= self.params.max_steps {
+            return self.end(StopReason::StepBudget, t);
+        }
+        if !(t < self.params.t_max) {
+            return self.end(StopReason::MaxDistance, t);
+        }
+        if d != d {
+            return self.end(StopReason::InvalidDistance, t);
+        }
+        self.steps += 1;
+
+        let tan = self.params.tan_theta;
+        let rc = cone_radius(t, tan);
+        let omega = cone_occlusion(d, rc);
+        let th = self.thresholds;
+        let soft = omega > th.soft;
+        let hard = omega > th.hard;
+        let stop_at = if self.params.is_relaxed() {
+            th.hard
+        } else {
+            th.full
+        };
+        let stop = omega > stop_at;
+
+        if soft && !self.prev_soft {
+            let te = backtrace_cone_entry(t, tan);
+            self.group = Some(Group {
+                t_entry: te,
+                t_sample: te,
+                occlusion: omega,
+                hard: false,
+            });
+        }
+        if soft {
+            if let Some(g) = self.group.as_mut() {
+                g.occlusion = g.occlusion.max(omega);
+                if hard && !self.prev_hard && !g.hard {
+                    g.hard = true;
+                    g.t_sample = if self.have_prev {
+                        backtrace_hard_hit(self.t_prev, self.d_prev, t)
+                    } else {
+                        t
+                    };
+                }
+            }
+        }
+        let exit = !soft && self.prev_soft;
+        self.prev_soft = soft;
+        self.prev_hard = hard;
+
+        let mut event = Event::March;
+        if exit || stop {
+            if let Some(g) = self.group.take() {
+                self.samples += 1;
+                event = Event::Sample(GroupSample {
+                    t: g.t_sample,
+                    t_entry: g.t_entry,
+                    t_exit: backtrace_cone_entry(t, tan),
+                    occlusion: g.occlusion,
+                    hard: g.hard,
+                });
+            }
+            if stop {
+                self.stop = Some(if self.params.is_relaxed() {
+                    StopReason::HardHit
+                } else {
+                    StopReason::FullOcclusion
+                });
+            } else if self.samples >= self.params.max_samples {
+                self.stop = Some(StopReason::SampleCap);
+            }
+        }
+
+        self.t_prev = t;
+        self.d_prev = d;
+        self.have_prev = true;
+        if self.stop.is_none() {
+            self.t = advance(t, d, self.params.alpha, rc);
+        }
+        event
+    }
+
+    /// Make the sample's visibility mask from its projected normal, correlate it
+    /// with `M` (`m_i & !M`, `M |= m_i`) and return `(visible mask, weight)`.
+    ///
+    /// Trips the visibility threshold k when `bitCount(M) ≥ k`.
+    pub fn record(&mut self, sample: &GroupSample, projected_normal: Vec2) -> (u32, f32) {
+        let m = visibility_mask(sample.occlusion, projected_normal, self.params.placement());
+        let visible = self.mask.add(m);
+        if self.stop.is_none() && self.mask.covered_bits() >= self.params.visibility_k {
+            self.stop = Some(StopReason::VisibilityThreshold);
+        }
+        let w = sample_weight(
+            visible,
+            self.params.weighting(),
+            self.params.min_sample_weight,
+        );
+        (visible, w)
+    }
+
+    /// The background's weight once the trace is over: 0 when the hits cover the
+    /// pixel ([`StopReason::covers_pixel`]), else `1 − bitCount(M)/32` (or 1 with
+    /// uniform weights), as in the authors' code.
+    pub fn background_weight(&self) -> f32 {
+        match self.stop {
+            Some(r) if r.covers_pixel() => 0.0,
+            _ => match self.params.weighting() {
+                Weighting::Uniform => 1.0,
+                Weighting::Visibility => self.mask.uncovered_weight(),
+            },
+        }
+    }
+}
+
+/// Orthonormal axes `(right, up)` of the cone's cross-section for a ray `dir`,
+/// from the camera's up vector (the authors take `cross(rd, world_up)`).
+///
+/// Falls back to another axis when `dir ∥ up_hint`; returns `(X, Y)` for a zero
+/// or non-finite `dir`.
+pub fn cross_section_frame(dir: Vec3, up_hint: Vec3) -> (Vec3, Vec3) {
+    let d = dir.normalize_or_zero();
+    if d == Vec3::ZERO {
+        return (Vec3::X, Vec3::Y);
+    }
+    let mut right = d.cross(up_hint).normalize_or_zero();
+    if right == Vec3::ZERO {
+        right = d.any_orthonormal_vector();
+    }
+    // For a camera looking down −z with +y up this gives right = +x, up = +y.
+    (right, right.cross(d))
+}
+
+/// Result of [`trace`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TraceResult {
+    /// The antialiased pixel colour (eq. 6 with the background as a sample).
+    pub color: Vec3,
+    /// Shaded samples taken.
+    pub samples: u32,
+    /// SDF evaluations.
+    pub steps: u32,
+    /// The final global mask `M`.
+    pub coverage: u32,
+    /// Why the trace ended.
+    pub stop: StopReason,
+}
+
+/// Trace one pixel's cone with CTSS (Algorithm 1) through closures.
+///
+/// `sdf(p)` is the signed distance, `normal(p)` the surface normal, `shade(p, n)`
+/// the colour of a surface point, `background` the colour of a miss. `right`/`up`
+/// span the cone's cross-section ([`cross_section_frame`]). Shading is ASAP (§5.1).
+#[allow(clippy::too_many_arguments)]
+pub fn trace<S, N, C>(
+    params: &CtssParams,
+    origin: Vec3,
+    dir: Vec3,
+    right: Vec3,
+    up: Vec3,
+    mut sdf: S,
+    mut normal: N,
+    mut shade: C,
+    background: Vec3,
+) -> TraceResult
+where
+    S: FnMut(Vec3) -> f32,
+    N: FnMut(Vec3) -> Vec3,
+    C: FnMut(Vec3, Vec3) -> Vec3,
+{
+    let mut stepper = ConeStepper::new(params);
+    let mut agg = Aggregate::new();
+    let stop = loop {
+        let t = stepper.t();
+        let d = sdf(origin + t * dir);
+        match stepper.advance(d) {
+            Event::March => {}
+            Event::Sample(s) => {
+                let p = origin + s.t * dir;
+                let n = normal(p);
+                let (_, w) = stepper.record(&s, project_normal(n, right, up));
+                agg.add(w, shade(p, n));
+            }
+            Event::Stop(r) => break r,
+        }
+    };
+    TraceResult {
+        color: agg.resolve(background, stepper.background_weight()),
+        samples: stepper.samples(),
+        steps: stepper.steps(),
+        coverage: stepper.coverage(),
+        stop,
+    }
+}
+
+/// Result of [`sphere_trace`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SphereHit {
+    /// Depth of the hit, if any.
+    pub t: Option<f32>,
+    /// SDF evaluations.
+    pub steps: u32,
+    /// Why the trace ended ([`StopReason::HardHit`] on a hit).
+    pub stop: StopReason,
+}
+
+/// Plain sphere tracing (eq. 1–2) with the adaptive cone-based hit threshold of
+/// §4: stop at `ω > 0.5 − ε`, i.e. `d < 2ε·R_c`, with the same ε, cone, range and
+/// step budget as CTSS, so that NoAA-vs-CTSS ratios compare like with like. The
+/// authors' NoAA (`sphereTrace`) does the same.
+///
+/// Steps are `t += d` with no minimum step (a step that would not change `t`
+/// advances one ulp instead), so every trace ends within `max_steps`.
+pub fn sphere_trace<S>(params: &CtssParams, origin: Vec3, dir: Vec3, mut sdf: S) -> SphereHit
+where
+    S: FnMut(Vec3) -> f32,
+{
+    let hard = params.thresholds().hard;
+    let mut t = if params.t_min > 0.0 {
+        params.t_min
+    } else {
+        0.0
+    };
+    let mut steps = 0;
+    loop {
+        if steps >= params.max_steps {
+            return SphereHit {
+                t: None,
+                steps,
+                stop: StopReason::StepBudget,
+            };
+        }
+        if !(t < params.t_max) {
+            return SphereHit {
+                t: None,
+                steps,
+                stop: StopReason::MaxDistance,
+            };
+        }
+        let d = sdf(origin + t * dir);
+        steps += 1;
+        if d != d {
+            return SphereHit {
+                t: None,
+                steps,
+                stop: StopReason::InvalidDistance,
+            };
+        }
+        let rc = cone_radius(t, params.tan_theta);
+        if cone_occlusion(d, rc) > hard {
+            return SphereHit {
+                t: Some(t),
+                steps,
+                stop: StopReason::HardHit,
+            };
+        }
+        t = advance(t, d, 0.0, rc);
+    }
+}

@@ -1,0 +1,207 @@
+//! Which passes (and the buffers they write) a frame needs, derived from the
+//! technique and what the scene contains.
+//!
+//! This is where "leave out what a given scene does not need" is decided: a scene
+//! without reflective materials gets no secondary pass and no secondary buffers,
+//! a scene without lights no shadow pass. Backends allocate and run exactly
+//! [`required_passes`], nothing more.
+//!
+//! ```
+//! use subcone_kernels::passes::{required_passes, Passes, SceneFeatures, Technique};
+//!
+//! let p = required_passes(Technique::SraaRt, SceneFeatures::HAS_LIGHTS).unwrap();
+//! assert!(p.contains(Passes::SUBPIXEL_SHADOW));
+//! assert!(!p.intersects(Passes::SECONDARY | Passes::SUBPIXEL_SECONDARY_GEOMETRY));
+//! ```
+
+use bitflags::bitflags;
+
+/// An antialiasing technique, with nothing beyond what decides its passes.
+/// (The scene crate's `Method` wraps it with its parameters: sample counts, cone
+/// coverage, k, …)
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Technique {
+    /// One sample per pixel.
+    NoAa = 0,
+    /// N×N samples per pixel, box-filtered.
+    Ssaa = 1,
+    /// Original SRAA (Chajdas et al.): subpixel primary geometry, final colour
+    /// reconstructed with eq. 1 only.
+    Sraa = 2,
+    /// SRAA for ray tracing (Chiu et al.): plus subpixel shadow rays (eq. 2) and
+    /// separately reconstructed secondary shading (§3.3).
+    SraaRt = 3,
+    /// Cone-traced supersampling, to full occlusion.
+    Ctss = 4,
+    /// CTSS-R: stop at the first hard hit.
+    CtssR = 5,
+    /// N×N supersampling with CTSS on every sample (§4.2).
+    SsaaCtss = 6,
+}
+
+impl Technique {
+    /// Every technique.
+    pub const ALL: [Technique; 7] = [
+        Technique::NoAa,
+        Technique::Ssaa,
+        Technique::Sraa,
+        Technique::SraaRt,
+        Technique::Ctss,
+        Technique::CtssR,
+        Technique::SsaaCtss,
+    ];
+
+    /// Whether this is one of the CTSS family (needs an SDF).
+    pub const fn is_cone_traced(self) -> bool {
+        matches!(
+            self,
+            Technique::Ctss | Technique::CtssR | Technique::SsaaCtss
+        )
+    }
+
+    /// Whether this is one of the SRAA family (needs subpixel geometry).
+    pub const fn is_subpixel_reconstruction(self) -> bool {
+        matches!(self, Technique::Sraa | Technique::SraaRt)
+    }
+}
+
+bitflags! {
+    /// What a scene contains, as far as passes are concerned.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+    pub struct SceneFeatures: u32 {
+        /// At least one light that casts shadows.
+        const HAS_LIGHTS = 1 << 0;
+        /// At least one material with non-zero mirror reflectance.
+        const HAS_REFLECTIONS = 1 << 1;
+        /// The geometry is a signed distance field (sphere traced), not triangles.
+        const IS_SDF = 1 << 2;
+        /// Some albedo varies over a surface (checker, texture).
+        const HAS_TEXTURES = 1 << 3;
+    }
+}
+
+bitflags! {
+    /// Every pass (with the buffers it writes) a frame can need.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+    pub struct Passes: u32 {
+        /// Primary visibility of the shaded samples (BVH rays or sphere tracing):
+        /// position, normal, depth, material per shaded sample.
+        const PRIMARY = 1 << 0;
+        /// The four geometric subsamples per pixel (§3.1; raster or geometry-only
+        /// rays): normal and depth, and position when a subpixel pass follows.
+        const SUBPIXEL_GEOMETRY = 1 << 1;
+        /// Direct shading of the shaded samples: one colour buffer.
+        const SHADING = 1 << 2;
+        /// Shadow rays from the shaded samples: one shadow state per light.
+        const SHADOW = 1 << 3;
+        /// Shadow rays from every geometric subsample (§3.2, eq. 2's gate).
+        const SUBPIXEL_SHADOW = 1 << 4;
+        /// Reflection rays from the shaded samples and the shading of their hits.
+        const SECONDARY = 1 << 5;
+        /// Shadow rays from secondary hits.
+        const SECONDARY_SHADOW = 1 << 6;
+        /// Reflection rays from every geometric subsample, geometry only (§3.3):
+        /// secondary normal and depth per subsample.
+        const SUBPIXEL_SECONDARY_GEOMETRY = 1 << 7;
+        /// Bilateral reconstruction of the primary shading (eq. 1/2).
+        const RECONSTRUCTION = 1 << 8;
+        /// Bilateral reconstruction of the secondary shading on secondary geometry (§3.3).
+        const SECONDARY_RECONSTRUCTION = 1 << 9;
+        /// Filter the four reconstructed subsamples into the pixel.
+        const RESOLVE = 1 << 10;
+        /// Cone tracing with hit groups and visibility masks (CTSS, Algorithm 1).
+        const CONE_TRACE = 1 << 11;
+        /// Several samples per pixel, box-filtered (SSAA, SSAA+CTSS).
+        const SUPERSAMPLE = 1 << 12;
+    }
+}
+
+/// A technique that cannot render a scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Unsupported {
+    /// The technique asked for.
+    pub technique: Technique,
+    /// Why not.
+    pub reason: &'static str,
+}
+
+impl core::fmt::Display for Unsupported {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(
+            f,
+            "{:?} cannot render this scene: {}",
+            self.technique, self.reason
+        )
+    }
+}
+
+/// The passes a frame of `technique` needs on a scene with `features`.
+///
+/// Shadow passes exist only with [`SceneFeatures::HAS_LIGHTS`], secondary passes
+/// only with [`SceneFeatures::HAS_REFLECTIONS`], secondary shadows only with both.
+/// The CTSS family needs an SDF; the SRAA family needs triangles (the kernels
+/// accept any geometry, but no backend produces subpixel SDF geometry yet).
+/// Textures change no pass.
+pub fn required_passes(
+    technique: Technique,
+    features: SceneFeatures,
+) -> Result<Passes, Unsupported> {
+    let lights = features.contains(SceneFeatures::HAS_LIGHTS);
+    let reflections = features.contains(SceneFeatures::HAS_REFLECTIONS);
+    let sdf = features.contains(SceneFeatures::IS_SDF);
+
+    if technique.is_cone_traced() && !sdf {
+        return Err(Unsupported {
+            technique,
+            reason: "cone tracing needs a signed distance field",
+        });
+    }
+    if technique.is_subpixel_reconstruction() && sdf {
+        return Err(Unsupported {
+            technique,
+            reason: "subpixel geometry is produced for triangle scenes only",
+        });
+    }
+
+    // What shading one sample costs, whatever the technique.
+    let mut shading = Passes::SHADING;
+    if lights {
+        shading |= Passes::SHADOW;
+    }
+    if reflections {
+        shading |= Passes::SECONDARY;
+        if lights {
+            shading |= Passes::SECONDARY_SHADOW;
+        }
+    }
+
+    let passes = match technique {
+        Technique::NoAa => Passes::PRIMARY | shading,
+        Technique::Ssaa => Passes::PRIMARY | Passes::SUPERSAMPLE | shading,
+        Technique::Sraa => {
+            Passes::PRIMARY
+                | Passes::SUBPIXEL_GEOMETRY
+                | shading
+                | Passes::RECONSTRUCTION
+                | Passes::RESOLVE
+        }
+        Technique::SraaRt => {
+            let mut p = Passes::PRIMARY
+                | Passes::SUBPIXEL_GEOMETRY
+                | shading
+                | Passes::RECONSTRUCTION
+                | Passes::RESOLVE;
+            if lights {
+                p |= Passes::SUBPIXEL_SHADOW;
+            }
+            if reflections {
+                p |= Passes::SUBPIXEL_SECONDARY_GEOMETRY | Passes::SECONDARY_RECONSTRUCTION;
+            }
+            p
+        }
+        Technique::Ctss | Technique::CtssR => Passes::CONE_TRACE | shading,
+        Technique::SsaaCtss => Passes::CONE_TRACE | Passes::SUPERSAMPLE | shading,
+    };
+    Ok(passes)
+}

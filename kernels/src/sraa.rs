@@ -1,0 +1,432 @@
+//! Subpixel Reconstruction Antialiasing for ray tracing (Chiu et al., §3).
+//!
+//! One shaded sample and four geometric subsamples per pixel. The colour of each
+//! geometric subsample is reconstructed from the shaded samples of the
+//! neighbouring pixels with bilateral weights ([`bilateral_weight`], eq. 1),
+//! gated by shadow state ([`shadow_gated_weight`], eq. 2), and the four
+//! reconstructed subsamples are filtered into the pixel ([`resolve_pixel`]).
+//!
+//! The API takes any geometry: a backend calls it once on primary-hit geometry
+//! and, separately, on secondary-hit geometry (§3.3), so reflections are
+//! reconstructed from the geometry they show.
+
+use glam::{Vec2, Vec3};
+
+/// The four subpixel offsets of the 4x rotated grid on a 4×4 grid (§3.1, Fig. 2),
+/// relative to the pixel's centre, in pixels.
+///
+/// Cell `(col, row)` of the 4×4 grid holds a sample for `(1,0)`, `(3,1)`,
+/// `(0,2)`, `(2,3)`: every row and every column of the grid holds exactly one
+/// sample, which is what makes a rotated grid resolve near-horizontal and
+/// near-vertical edges at four levels each.
+pub const SUBPIXEL_OFFSETS: [Vec2; 4] = [
+    Vec2::new(-0.125, -0.375),
+    Vec2::new(0.375, -0.125),
+    Vec2::new(-0.375, 0.125),
+    Vec2::new(0.125, 0.375),
+];
+
+/// Which of [`SUBPIXEL_OFFSETS`] is also the shaded sample.
+///
+/// All four lie at the same distance from the pixel centre, so any one serves;
+/// a fixed index makes the shaded samples a regular lattice across the image,
+/// which the reconstruction's fixed-radius neighbourhood relies on.
+pub const SHADED_SUBSAMPLE: usize = 0;
+
+/// Which functional form the bilateral weight takes.
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum WeightForm {
+    /// Eq. 1 of the paper: `G(σz·Δz) · G(σn·(1 − sat(nj·ni)))`, `G(x) = exp(−x²)`.
+    Product = 0,
+    /// The original SRAA (Chajdas et al. 2011): `exp(−s · max(1 − sat(n·n), k·Δz))`,
+    /// one exponential of the larger of the two dissimilarities.
+    ChajdasMax = 1,
+}
+
+/// How the depth difference `zj − zi` is measured.
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DepthMetric {
+    /// `|zj − zi| / mean(|zi|, |zj|)`: scale-free, so σz = 10 means "a 10 %
+    /// depth step costs `e⁻¹`" whether the scene is modelled in metres or in
+    /// millimetres. Symmetric in `i` and `j` (the mean, not `zi`, is the scale).
+    /// This is the default.
+    Relative = 0,
+    /// `|zj − zi|` in scene units, the paper's literal eq. 1. σz then carries a
+    /// unit, and the paper's σz = 10 is only right for the scale it was tuned on.
+    Absolute = 1,
+}
+
+/// Parameters of the bilateral weights (eq. 1 and eq. 2) and the reconstruction.
+///
+/// `#[repr(C)]`, 16 bytes, only `f32`/`u32` fields: it is uploaded unchanged as
+/// a uniform by GPU backends.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "bytemuck", derive(bytemuck::Pod, bytemuck::Zeroable))]
+pub struct SraaParams {
+    /// σz of eq. 1; for [`WeightForm::ChajdasMax`], the depth factor `k`.
+    pub sigma_z: f32,
+    /// σn of eq. 1 (for [`WeightForm::ChajdasMax`]: unused).
+    pub sigma_n: f32,
+    /// `s` of the Chajdas form; ignored by [`WeightForm::Product`].
+    pub scale: f32,
+    /// Bits 0..8: [`WeightForm`]; bits 8..16: [`DepthMetric`]; bits 16..32: the
+    /// reconstruction radius in pixels (1 = the 3×3 neighbourhood).
+    pub packed: u32,
+}
+
+impl SraaParams {
+    /// The paper's values (§3.1): σz = 10, σn = 0.25, eq. 1, a 3×3 neighbourhood,
+    /// with the scale-free depth metric.
+    ///
+    /// With σn = 0.25 the normal term is nearly inert: perpendicular normals still
+    /// weigh `exp(−0.0625) ≈ 0.94`, and opposite normals the same (sat clamps the
+    /// dot product at 0). The preset is kept as published; tuned presets must be
+    /// measured against a reference before they become defaults.
+    pub const PAPER: Self = Self::new(
+        10.0,
+        0.25,
+        1.0,
+        WeightForm::Product,
+        DepthMetric::Relative,
+        1,
+    );
+
+    /// The original SRAA form for comparison: `exp(−s·max(1 − n·n, k·Δz))` with
+    /// `s = 10`, `k = 1` on the relative depth metric (so a 10 % depth step and a
+    /// 0.1 drop of the normal cosine both cost `e⁻¹`, as in [`Self::PAPER`]'s depth term).
+    /// These constants are ours, not Chajdas et al.'s, chosen to match eq. 1's depth falloff.
+    pub const CHAJDAS: Self = Self::new(
+        1.0,
+        0.0,
+        10.0,
+        WeightForm::ChajdasMax,
+        DepthMetric::Relative,
+        1,
+    );
+
+    /// Build a parameter block.
+    pub const fn new(
+        sigma_z: f32,
+        sigma_n: f32,
+        scale: f32,
+        form: WeightForm,
+        depth: DepthMetric,
+        radius: u16,
+    ) -> Self {
+        Self {
+            sigma_z,
+            sigma_n,
+            scale,
+            packed: (form as u32) | ((depth as u32) << 8) | ((radius as u32) << 16),
+        }
+    }
+
+    /// The weight form. Unknown codes read as [`WeightForm::Product`].
+    pub const fn form(&self) -> WeightForm {
+        match self.packed & 0xff {
+            1 => WeightForm::ChajdasMax,
+            _ => WeightForm::Product,
+        }
+    }
+
+    /// The depth metric. Unknown codes read as [`DepthMetric::Relative`].
+    pub const fn depth_metric(&self) -> DepthMetric {
+        match (self.packed >> 8) & 0xff {
+            1 => DepthMetric::Absolute,
+            _ => DepthMetric::Relative,
+        }
+    }
+
+    /// Reconstruction radius in pixels: the neighbourhood is `(2r+1)²` pixels.
+    /// The paper's "fixed radius" is 1 (3×3, as in Chajdas' kernel).
+    pub const fn radius(&self) -> u32 {
+        self.packed >> 16
+    }
+
+    /// The same parameters with another weight form.
+    pub const fn with_form(self, form: WeightForm) -> Self {
+        Self {
+            packed: (self.packed & !0xff) | form as u32,
+            ..self
+        }
+    }
+
+    /// The same parameters with another depth metric.
+    pub const fn with_depth_metric(self, depth: DepthMetric) -> Self {
+        Self {
+            packed: (self.packed & !0xff00) | ((depth as u32) << 8),
+            ..self
+        }
+    }
+
+    /// The same parameters with another neighbourhood radius.
+    pub const fn with_radius(self, radius: u16) -> Self {
+        Self {
+            packed: (self.packed & 0xffff) | ((radius as u32) << 16),
+            ..self
+        }
+    }
+}
+
+impl Default for SraaParams {
+    fn default() -> Self {
+        Self::PAPER
+    }
+}
+
+/// Geometry of one sample: a unit normal and a view depth.
+///
+/// `#[repr(C)]`, 16 bytes: `normal` at offset 0 and `depth` at offset 12. A WGSL
+/// `struct { normal: vec3<f32>, depth: f32 }` has the same offsets, because WGSL
+/// packs a scalar into the 4-byte tail of a 16-byte-aligned `vec3`; keep the
+/// scalar after the vector or the layouts drift apart.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "bytemuck", derive(bytemuck::Pod, bytemuck::Zeroable))]
+pub struct Geometry {
+    /// Unit surface normal. Any length is accepted (the dot product is saturated),
+    /// NaN excludes the sample.
+    pub normal: Vec3,
+    /// Distance along the view axis, `≥ 0`. `+∞` marks a miss (background):
+    /// two misses match each other and nothing else.
+    pub depth: f32,
+}
+
+impl Geometry {
+    /// A geometry sample.
+    pub const fn new(normal: Vec3, depth: f32) -> Self {
+        Self { normal, depth }
+    }
+
+    /// The geometry of a ray that hit nothing.
+    pub const MISS: Self = Self {
+        normal: Vec3::ZERO,
+        depth: f32::INFINITY,
+    };
+}
+
+/// `G(x) = exp(−x²)`, the Gaussian of eq. 1. `G(±∞) = 0`, `G(NaN) = 0`.
+#[inline]
+pub fn gaussian(x: f32) -> f32 {
+    let e = libm::expf(-(x * x));
+    // NaN must exclude, never propagate: `e == e` is false only for NaN.
+    if e == e {
+        e
+    } else {
+        0.0
+    }
+}
+
+/// `sat(x) = max(0, min(1, x))` (§3.1). `sat(NaN) = 0`.
+#[inline]
+pub fn saturate(x: f32) -> f32 {
+    if x > 0.0 {
+        if x < 1.0 {
+            x
+        } else {
+            1.0
+        }
+    } else {
+        0.0
+    }
+}
+
+/// The depth dissimilarity `Δz` of eq. 1 under `metric`, always `≥ 0`.
+///
+/// Domain: depths `≥ 0`, finite or `+∞` (a miss). Equal depths (including two
+/// misses) give 0. A miss against a hit, or a NaN, gives `+∞`, so the weight is 0.
+#[inline]
+pub fn depth_difference(zi: f32, zj: f32, metric: DepthMetric) -> f32 {
+    if zi == zj {
+        return 0.0;
+    }
+    let diff = libm::fabsf(zj - zi);
+    let r = match metric {
+        DepthMetric::Absolute => diff,
+        DepthMetric::Relative => {
+            // Halve before adding so two depths near f32::MAX do not overflow.
+            let mean = 0.5 * libm::fabsf(zi) + 0.5 * libm::fabsf(zj);
+            diff / mean.max(f32::MIN_POSITIVE)
+        }
+    };
+    // ∞/∞ and anything involving NaN: the samples cannot be matched.
+    if r == r {
+        r
+    } else {
+        f32::INFINITY
+    }
+}
+
+/// Bilateral weight `w_ij` of sample `j` when reconstructing sample `i` (eq. 1).
+///
+/// `w_ij = G(σz·Δz) · G(σn·(1 − sat(nj·ni)))` for [`WeightForm::Product`] (the
+/// paper), or `exp(−s·max(1 − sat(nj·ni), σz·Δz))` for [`WeightForm::ChajdasMax`].
+///
+/// Domain: unit normals, depths in `[0, ∞]`, finite non-negative parameters.
+/// Returns a value in `[0, 1]`; `w_ii = 1`; symmetric in `i` and `j`;
+/// non-increasing in `|Δz|` and in the angle between the normals.
+/// Outside the domain: a NaN anywhere gives 0 (the neighbour is excluded, never
+/// blended); non-unit normals are accepted (the cosine is saturated to `[0, 1]`);
+/// weights that underflow are 0, and [`reconstruct`] falls back.
+#[inline]
+pub fn bilateral_weight(params: &SraaParams, gi: &Geometry, gj: &Geometry) -> f32 {
+    let dz = depth_difference(gi.depth, gj.depth, params.depth_metric());
+    let dn = 1.0 - saturate(gj.normal.dot(gi.normal));
+    let normals_nan = gi.normal.is_nan() || gj.normal.is_nan();
+    if normals_nan {
+        return 0.0;
+    }
+    let w = match params.form() {
+        WeightForm::Product => gaussian(params.sigma_z * dz) * gaussian(params.sigma_n * dn),
+        WeightForm::ChajdasMax => {
+            let x = params.scale * dn.max(params.sigma_z * dz);
+            let e = libm::expf(-x);
+            if e == e {
+                e
+            } else {
+                0.0
+            }
+        }
+    };
+    saturate(w)
+}
+
+/// Shadow-gated weight (eq. 2): 0 when the shadow states of `i` and `j` differ,
+/// eq. 1 ([`bilateral_weight`]) when they agree.
+///
+/// `si`/`sj` are one light's states (`true` = in shadow). With several lights the
+/// faithful extension reconstructs each light's direct contribution with its own
+/// gate; which combination a backend uses is its choice.
+///
+/// Domain and out-of-domain behaviour are those of [`bilateral_weight`].
+#[inline]
+pub fn shadow_gated_weight(
+    params: &SraaParams,
+    gi: &Geometry,
+    gj: &Geometry,
+    si: bool,
+    sj: bool,
+) -> f32 {
+    if si != sj {
+        0.0
+    } else {
+        bilateral_weight(params, gi, gj)
+    }
+}
+
+/// One shaded sample offered to [`reconstruct`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShadedSample {
+    /// Geometry at the shaded sample.
+    pub geometry: Geometry,
+    /// Its shaded colour (linear RGB). Non-finite colours are excluded.
+    pub color: Vec3,
+    /// Its shadow state for the light being reconstructed (ignored when the
+    /// target has no gate).
+    pub shadowed: bool,
+    /// Squared screen distance, in pixels², from the target subsample. Only
+    /// used to choose the fallback sample.
+    pub distance2: f32,
+}
+
+/// Result of reconstructing one geometric subsample.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Reconstruction {
+    /// The reconstructed colour.
+    pub color: Vec3,
+    /// Sum of the weights used (0 when the fallback applied).
+    pub weight_sum: f32,
+    /// `true` when every weight was 0 or underflowed and the nearest shaded
+    /// sample was taken instead.
+    pub fell_back: bool,
+}
+
+/// Reconstruct the colour of a geometric subsample from shaded neighbours (§3.1–3.3).
+///
+/// `C_i = Σ_j w_ij C_j / Σ_j w_ij`, with `w_ij` from [`shadow_gated_weight`] when
+/// `target_shadow` is `Some` (eq. 2), else from [`bilateral_weight`] (eq. 1).
+/// The caller chooses the neighbourhood (by default the shaded samples of the
+/// 3×3 pixels around, [`SraaParams::radius`]).
+///
+/// When every weight is 0 or their sum is subnormal (e.g. `σz·Δz = 1e20` for every
+/// neighbour), returns the nearest shaded sample with a finite colour (smallest
+/// `distance2`, first on ties) with `fell_back = true`; with no usable neighbour
+/// at all, returns black. Never NaN: non-finite neighbour colours are excluded.
+/// The result lies in the convex hull of the neighbours' colours, up to f32 rounding.
+pub fn reconstruct<I>(
+    params: &SraaParams,
+    target: &Geometry,
+    target_shadow: Option<bool>,
+    neighbours: I,
+) -> Reconstruction
+where
+    I: IntoIterator<Item = ShadedSample>,
+{
+    let mut sum = Vec3::ZERO;
+    let mut wsum = 0.0f32;
+    let mut nearest = Vec3::ZERO;
+    let mut nearest_d2 = f32::INFINITY;
+    let mut any = false;
+    for s in neighbours {
+        if !s.color.is_finite() {
+            continue;
+        }
+        let d2 = if s.distance2 == s.distance2 {
+            s.distance2
+        } else {
+            f32::INFINITY
+        };
+        if !any || d2 < nearest_d2 {
+            nearest = s.color;
+            nearest_d2 = d2;
+            any = true;
+        }
+        let w = match target_shadow {
+            Some(si) => shadow_gated_weight(params, target, &s.geometry, si, s.shadowed),
+            None => bilateral_weight(params, target, &s.geometry),
+        };
+        sum += w * s.color;
+        wsum += w;
+    }
+    if wsum >= f32::MIN_POSITIVE {
+        let c = sum / wsum;
+        if c.is_finite() {
+            return Reconstruction {
+                color: c,
+                weight_sum: wsum,
+                fell_back: false,
+            };
+        }
+    }
+    Reconstruction {
+        color: nearest,
+        weight_sum: 0.0,
+        fell_back: true,
+    }
+}
+
+/// The pixel resolve (§3, "the subpixel shading values are filtered into an
+/// antialiased screen-resolution image"): a box filter over the four
+/// reconstructed subsamples, each of which covers a quarter of the pixel.
+///
+/// Domain: finite colours. A non-finite subsample is dropped and the others are
+/// averaged; with none finite, returns black.
+#[inline]
+pub fn resolve_pixel(subsamples: &[Vec3; 4]) -> Vec3 {
+    let mut sum = Vec3::ZERO;
+    let mut n = 0u32;
+    for c in subsamples {
+        if c.is_finite() {
+            sum += *c;
+            n += 1;
+        }
+    }
+    if n == 0 {
+        Vec3::ZERO
+    } else {
+        sum / n as f32
+    }
+}

@@ -1,0 +1,16 @@
+//! `subcone`: geometry-aware antialiasing for ray tracing and sphere tracing.
+//!
+//! This crate will hold the CLI (`subcone render`, `subcone report`) and the
+//! report. For now it re-exports the kernels, [`subcone_kernels`], which engine
+//! developers can also depend on directly in `no_std` code.
+//!
+//! ```
+//! use subcone::kernels::cone::{cone_occlusion, cone_radius};
+//! let rc = cone_radius(10.0, 0.001);
+//! assert_eq!(cone_occlusion(0.0, rc), 0.5); // the ray touches the surface
+//! ```
+#![forbid(unsafe_code)]
+#![deny(missing_docs)]
+
+pub use subcone_kernels as kernels;
+pub use subcone_kernels::{aggregate, cone, ctss, mask, passes, sraa};
