@@ -238,6 +238,8 @@ pub fn saturate(x: f32) -> f32 {
 ///
 /// Domain: depths `≥ 0`, finite or `+∞` (a miss). Equal depths (including two
 /// misses) give 0. A miss against a hit, or a NaN, gives `+∞`, so the weight is 0.
+/// Under the relative metric a step away from depth 0 is total (`2`), and
+/// subnormal depths are compared like any others.
 #[inline]
 pub fn depth_difference(zi: f32, zj: f32, metric: DepthMetric) -> f32 {
     if zi == zj {
@@ -248,8 +250,9 @@ pub fn depth_difference(zi: f32, zj: f32, metric: DepthMetric) -> f32 {
         DepthMetric::Absolute => diff,
         DepthMetric::Relative => {
             // Halve before adding so two depths near f32::MAX do not overflow.
+            // Subnormal means divide fine; a mean that underflows to 0 gives ∞.
             let mean = 0.5 * libm::fabsf(zi) + 0.5 * libm::fabsf(zj);
-            diff / mean.max(f32::MIN_POSITIVE)
+            diff / mean
         }
     };
     // ∞/∞ and anything involving NaN: the samples cannot be matched.
@@ -269,14 +272,17 @@ pub fn depth_difference(zi: f32, zj: f32, metric: DepthMetric) -> f32 {
 /// Returns a value in `[0, 1]`; `w_ii = 1`; symmetric in `i` and `j`;
 /// non-increasing in `|Δz|` and in the angle between the normals.
 /// Outside the domain: a NaN anywhere gives 0 (the neighbour is excluded, never
-/// blended); non-unit normals are accepted (the cosine is saturated to `[0, 1]`);
+/// blended); two misses (`depth = +∞`) give 1 whatever their normals; non-unit normals are accepted (the cosine is saturated to `[0, 1]`);
 /// weights that underflow are 0, and [`reconstruct`] falls back.
 #[inline]
 pub fn bilateral_weight(params: &SraaParams, gi: &Geometry, gj: &Geometry) -> f32 {
     let dz = depth_difference(gi.depth, gj.depth, params.depth_metric());
     let dn = 1.0 - saturate(gj.normal.dot(gi.normal));
-    let normals_nan = gi.normal.is_nan() || gj.normal.is_nan();
-    if normals_nan {
+    if gi.depth == f32::INFINITY && gj.depth == f32::INFINITY {
+        // Two misses: both are background, whatever their (meaningless) normals.
+        return 1.0;
+    }
+    if gi.normal.is_nan() || gj.normal.is_nan() {
         return 0.0;
     }
     let w = match params.form() {
