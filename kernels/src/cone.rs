@@ -20,8 +20,9 @@ pub enum PixelFootprint {
     /// coverage"). Radius = half the pixel diagonal. The default.
     Circumscribed = 0,
     /// The authors' code (`PIXEL_SIZE_MULT_BALANCED`): radius = pixel size ·
-    /// `1/((2+√2)/2) / 2`, half way between inscribed and circumscribed, about 17 %
-    /// narrower than eq. 3. Kept for comparison.
+    /// `2/(2+√2) ≈ 0.586`, "half way between inscribed and circumscribed", about
+    /// 17 % narrower than eq. 3 (`2·0.586/(I_y·F)` against `√2/(I_y·F)`). Kept for
+    /// comparison.
     Balanced = 1,
     /// The cone's base is inscribed in the pixel: radius = half the pixel size.
     Inscribed = 2,
@@ -32,7 +33,7 @@ impl PixelFootprint {
     pub fn radius_in_pixels(self) -> f32 {
         match self {
             PixelFootprint::Circumscribed => core::f32::consts::FRAC_1_SQRT_2,
-            PixelFootprint::Balanced => 1.0 / (2.0 + core::f32::consts::SQRT_2),
+            PixelFootprint::Balanced => 2.0 / (2.0 + core::f32::consts::SQRT_2),
             PixelFootprint::Inscribed => 0.5,
         }
     }
@@ -102,7 +103,7 @@ pub fn cone_radius(t: f32, tan_theta: f32) -> f32 {
 /// Monotone non-increasing in `d` for any fixed `R_c`.
 #[inline]
 pub fn cone_occlusion(d: f32, rc: f32) -> f32 {
-    if d != d {
+    if d.is_nan() {
         return OCCLUSION_MIN;
     }
     let thin = !(rc > 0.0);
@@ -203,7 +204,7 @@ pub fn advance(t: f32, d: f32, alpha: f32, rc: f32) -> f32 {
 #[inline]
 pub fn backtrace_cone_entry(t_i: f32, tan_theta: f32) -> f32 {
     if !(t_i > 0.0) {
-        return if t_i == t_i { t_i.max(0.0) } else { 0.0 };
+        return if !t_i.is_nan() { t_i.max(0.0) } else { 0.0 };
     }
     if !(tan_theta > 0.0) {
         return t_i;
@@ -225,7 +226,7 @@ pub fn backtrace_cone_entry(t_i: f32, tan_theta: f32) -> f32 {
 #[inline]
 pub fn backtrace_hard_hit(t_prev: f32, d_prev: f32, t_i: f32) -> f32 {
     let ts = t_prev + d_prev;
-    if ts != ts {
+    if ts.is_nan() {
         return t_prev;
     }
     ts.max(t_prev).min(t_i)

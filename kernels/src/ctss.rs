@@ -340,7 +340,7 @@ impl ConeStepper {
         if !(t < self.params.t_max) {
             return self.end(StopReason::MaxDistance, t);
         }
-        if d != d {
+        if d.is_nan() {
             return self.end(StopReason::InvalidDistance, t);
         }
         self.steps += 1;
@@ -574,7 +574,7 @@ where
         }
         let d = sdf(origin + t * dir);
         steps += 1;
-        if d != d {
+        if d.is_nan() {
             return SphereHit {
                 t: None,
                 steps,

@@ -150,7 +150,11 @@ pub fn half_plane(
         MaskPlacement::AuthorsCode => -delta,
         MaskPlacement::PaperEq8 => delta * len.min(1.0),
     };
-    let h = if h == h { h.clamp(-2.0, 2.0) } else { -2.0 };
+    let h = if !h.is_nan() {
+        h.clamp(-2.0, 2.0)
+    } else {
+        -2.0
+    };
     Some((dir, h))
 }
 
@@ -228,7 +232,7 @@ pub fn half_plane_mask(dir: Vec2, h: f32) -> u32 {
 /// (`ω > 1 − ε`) is always fully covered. Both limits are property-tested.
 #[inline]
 pub fn visibility_mask(occlusion: f32, projected_normal: Vec2, placement: MaskPlacement) -> u32 {
-    if occlusion != occlusion {
+    if occlusion.is_nan() {
         return 0;
     }
     match half_plane(occlusion, projected_normal, placement) {

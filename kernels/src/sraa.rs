@@ -208,12 +208,16 @@ impl Geometry {
     };
 }
 
+/// Cosines within this of 1 count as equal normals in [`bilateral_weight`]
+/// (`2⁻²¹ ≈ 4.8·10⁻⁷`, eight ulps of 1): rounding noise of f32 normalisation.
+pub const NORMAL_COS_SNAP: f32 = 1.0 / 2_097_152.0;
+
 /// `G(x) = exp(−x²)`, the Gaussian of eq. 1. `G(±∞) = 0`, `G(NaN) = 0`.
 #[inline]
 pub fn gaussian(x: f32) -> f32 {
     let e = libm::expf(-(x * x));
-    // NaN must exclude, never propagate: `e == e` is false only for NaN.
-    if e == e {
+    // NaN must exclude, never propagate.
+    if !e.is_nan() {
         e
     } else {
         0.0
@@ -256,7 +260,7 @@ pub fn depth_difference(zi: f32, zj: f32, metric: DepthMetric) -> f32 {
         }
     };
     // ∞/∞ and anything involving NaN: the samples cannot be matched.
-    if r == r {
+    if !r.is_nan() {
         r
     } else {
         f32::INFINITY
@@ -277,7 +281,15 @@ pub fn depth_difference(zi: f32, zj: f32, metric: DepthMetric) -> f32 {
 #[inline]
 pub fn bilateral_weight(params: &SraaParams, gi: &Geometry, gj: &Geometry) -> f32 {
     let dz = depth_difference(gi.depth, gj.depth, params.depth_metric());
-    let dn = 1.0 - saturate(gj.normal.dot(gi.normal));
+    // A unit vector normalised in f32 has |n|² within a few ulps of 1, so its
+    // cosine with itself may be 1 − 2⁻²³·k; count cosines that close to 1 as 1,
+    // or w_ii = 1 fails for the (linear) Chajdas form.
+    let cos = saturate(gj.normal.dot(gi.normal));
+    let dn = if cos >= 1.0 - NORMAL_COS_SNAP {
+        0.0
+    } else {
+        1.0 - cos
+    };
     if gi.depth == f32::INFINITY && gj.depth == f32::INFINITY {
         // Two misses: both are background, whatever their (meaningless) normals.
         return 1.0;
@@ -290,7 +302,7 @@ pub fn bilateral_weight(params: &SraaParams, gi: &Geometry, gj: &Geometry) -> f3
         WeightForm::ChajdasMax => {
             let x = params.scale * dn.max(params.sigma_z * dz);
             let e = libm::expf(-x);
-            if e == e {
+            if !e.is_nan() {
                 e
             } else {
                 0.0
@@ -320,6 +332,88 @@ pub fn shadow_gated_weight(
         0.0
     } else {
         bilateral_weight(params, gi, gj)
+    }
+}
+
+/// A pixel of a reconstruction neighbourhood, with the squared screen distance
+/// from the target subsample to that pixel's shaded sample.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NeighbourPixel {
+    /// Column.
+    pub x: u32,
+    /// Row.
+    pub y: u32,
+    /// Squared distance in pixels² (what [`ShadedSample::distance2`] wants).
+    pub distance2: f32,
+}
+
+/// The pixels whose shaded samples reconstruct subsample `sub` of pixel `(x, y)`:
+/// the `(2r+1)²` pixels around it (the paper's "fixed radius"; `r = 1` is the 3×3
+/// neighbourhood), clipped to a `width × height` image, in row-major order.
+///
+/// Domain: `sub < 4`, `(x, y)` inside the image. A `sub ≥ 4` reads as
+/// [`SHADED_SUBSAMPLE`]; a pixel outside the image yields only the in-image
+/// part of its neighbourhood (possibly nothing).
+pub fn neighbourhood(
+    x: u32,
+    y: u32,
+    sub: usize,
+    radius: u32,
+    width: u32,
+    height: u32,
+) -> Neighbourhood {
+    let sub = if sub < 4 { sub } else { SHADED_SUBSAMPLE };
+    let offset = SUBPIXEL_OFFSETS[sub] - SUBPIXEL_OFFSETS[SHADED_SUBSAMPLE];
+    let x0 = x.saturating_sub(radius);
+    let y0 = y.saturating_sub(radius);
+    let x1 = x.saturating_add(radius).saturating_add(1).min(width);
+    let y1 = y.saturating_add(radius).saturating_add(1).min(height);
+    Neighbourhood {
+        x,
+        y,
+        offset,
+        x0,
+        x1,
+        y1,
+        cx: x0,
+        cy: y0,
+    }
+}
+
+/// Iterator returned by [`neighbourhood`].
+#[derive(Clone, Debug)]
+pub struct Neighbourhood {
+    x: u32,
+    y: u32,
+    /// Target subsample position minus the shaded sample position, within a pixel.
+    offset: Vec2,
+    x0: u32,
+    x1: u32,
+    y1: u32,
+    cx: u32,
+    cy: u32,
+}
+
+impl Iterator for Neighbourhood {
+    type Item = NeighbourPixel;
+
+    fn next(&mut self) -> Option<NeighbourPixel> {
+        if self.cx >= self.x1 {
+            self.cx = self.x0;
+            self.cy += 1;
+        }
+        if self.cy >= self.y1 || self.x0 >= self.x1 {
+            return None;
+        }
+        let (px, py) = (self.cx, self.cy);
+        self.cx += 1;
+        // Shaded sample of (px, py) minus target subsample of (x, y).
+        let d = Vec2::new(px as f32 - self.x as f32, py as f32 - self.y as f32) - self.offset;
+        Some(NeighbourPixel {
+            x: px,
+            y: py,
+            distance2: d.length_squared(),
+        })
     }
 }
 
@@ -380,7 +474,7 @@ where
         if !s.color.is_finite() {
             continue;
         }
-        let d2 = if s.distance2 == s.distance2 {
+        let d2 = if !s.distance2.is_nan() {
             s.distance2
         } else {
             f32::INFINITY

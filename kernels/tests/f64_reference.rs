@@ -9,6 +9,9 @@ use subcone_kernels::cone::{backtrace_cone_entry, cone_occlusion, cone_tan_theta
 use subcone_kernels::mask::{visibility_mask, MaskPlacement};
 use subcone_kernels::sraa::{bilateral_weight, reconstruct, Geometry, ShadedSample, SraaParams};
 
+/// Target normal and depth, and neighbours as (normal, depth, colour, distance²).
+type ReconstructCase = (Vec3, f32, Vec<(Vec3, f32, Vec3, f32)>);
+
 fn v3(a: [f64; 3]) -> Vec3 {
     Vec3::new(a[0] as f32, a[1] as f32, a[2] as f32)
 }
@@ -99,7 +102,7 @@ bound_against_f64!(
         }
         (target.0, target.1, n)
     },
-    f32 = |(tn, tz, n): &(Vec3, f32, Vec<(Vec3, f32, Vec3, f32)>)| {
+    f32 = |(tn, tz, n): &ReconstructCase| {
         let r = reconstruct(
             &SraaParams::PAPER,
             &Geometry::new(*tn, *tz),
@@ -113,7 +116,7 @@ bound_against_f64!(
         );
         r.color
     },
-    f64 = |(tn, tz, n): &(Vec3, f32, Vec<(Vec3, f32, Vec3, f32)>)| {
+    f64 = |(tn, tz, n): &ReconstructCase| {
         let mut s = [0.0f64; 3];
         let mut ws = 0.0;
         for &(nn, z, c, _) in n {

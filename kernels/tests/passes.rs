@@ -20,7 +20,13 @@ fn expected(t: Technique, f: SceneFeatures) -> Option<Passes> {
     Some(match t {
         Technique::NoAa => Passes::PRIMARY | shade,
         Technique::Ssaa => Passes::PRIMARY | Passes::SUPERSAMPLE | shade,
-        Technique::Sraa if !sdf => Passes::PRIMARY | Passes::SUBPIXEL_GEOMETRY | Passes::RECONSTRUCTION | Passes::RESOLVE | shade,
+        Technique::Sraa if !sdf => {
+            Passes::PRIMARY
+                | Passes::SUBPIXEL_GEOMETRY
+                | Passes::RECONSTRUCTION
+                | Passes::RESOLVE
+                | shade
+        }
         Technique::SraaRt if !sdf => {
             Passes::PRIMARY
                 | Passes::SUBPIXEL_GEOMETRY
@@ -28,7 +34,10 @@ fn expected(t: Technique, f: SceneFeatures) -> Option<Passes> {
                 | Passes::RESOLVE
                 | shade
                 | opt(lights, Passes::SUBPIXEL_SHADOW)
-                | opt(refl, Passes::SUBPIXEL_SECONDARY_GEOMETRY | Passes::SECONDARY_RECONSTRUCTION)
+                | opt(
+                    refl,
+                    Passes::SUBPIXEL_SECONDARY_GEOMETRY | Passes::SECONDARY_RECONSTRUCTION,
+                )
         }
         Technique::Ctss | Technique::CtssR if sdf => Passes::CONE_TRACE | shade,
         Technique::SsaaCtss if sdf => Passes::CONE_TRACE | Passes::SUPERSAMPLE | shade,
@@ -44,7 +53,10 @@ fn every_technique_on_every_feature_combination() {
             let got = required_passes(t, f);
             match expected(t, f) {
                 Some(want) => assert_eq!(got, Ok(want), "{t:?} on {f:?}"),
-                None => assert!(got.is_err(), "{t:?} on {f:?} should be unsupported, got {got:?}"),
+                None => assert!(
+                    got.is_err(),
+                    "{t:?} on {f:?} should be unsupported, got {got:?}"
+                ),
             }
             checked += 1;
         }
@@ -61,12 +73,20 @@ fn unneeded_passes_are_left_out() {
         | Passes::SECONDARY_RECONSTRUCTION;
     for t in Technique::ALL {
         for f in all_features() {
-            let Ok(p) = required_passes(t, f) else { continue };
+            let Ok(p) = required_passes(t, f) else {
+                continue;
+            };
             if !f.contains(SceneFeatures::HAS_LIGHTS) {
-                assert!(!p.intersects(shadow), "{t:?} on {f:?} runs a shadow pass: {p:?}");
+                assert!(
+                    !p.intersects(shadow),
+                    "{t:?} on {f:?} runs a shadow pass: {p:?}"
+                );
             }
             if !f.contains(SceneFeatures::HAS_REFLECTIONS) {
-                assert!(!p.intersects(secondary), "{t:?} on {f:?} runs a secondary pass: {p:?}");
+                assert!(
+                    !p.intersects(secondary),
+                    "{t:?} on {f:?} runs a secondary pass: {p:?}"
+                );
             }
             // Textures never change the passes.
             assert_eq!(required_passes(t, f ^ SceneFeatures::HAS_TEXTURES), Ok(p));
