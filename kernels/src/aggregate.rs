@@ -74,16 +74,17 @@ impl Aggregate {
 
     /// Add a shaded sample with weight `w`.
     ///
-    /// A non-finite colour is not added (shading failed; it must not poison the
-    /// pixel). A negative or NaN weight counts as 0. The sample still counts as
-    /// taken and as the last surface.
+    /// Domain: `w` in `[0, 1]` (mask weights and uniform weights are). A negative
+    /// or NaN weight counts as 0, a weight above 1 as 1 (so the sum of a pixel's
+    /// weights cannot overflow). A non-finite colour is not added (shading
+    /// failed; it must not poison the pixel), but the sample still counts.
     #[inline]
     pub fn add(&mut self, w: f32, color: Vec3) {
         self.samples += 1;
         if !color.is_finite() {
             return;
         }
-        let w = if w > 0.0 && w.is_finite() { w } else { 0.0 };
+        let w = if w > 0.0 { w.min(1.0) } else { 0.0 };
         self.color += w * color;
         self.weight += w;
         self.last = Some(color);
@@ -106,8 +107,11 @@ impl Aggregate {
     /// Eq. 6 and Algorithm 1 average over hits only: an edge pixel against the sky
     /// would take all of the object's colour, and a pixel with no hit would
     /// compute 0/0. Here a pixel with no hit is pure background, and when every
-    /// weight is 0 (e.g. a full-occlusion surface whose mask was entirely hidden)
-    /// the last surface's colour is returned, or the background, or black.
+    /// weight is 0 or the total is negligible (below
+    /// [`NEGLIGIBLE_WEIGHT`](crate::sraa::NEGLIGIBLE_WEIGHT), e.g. a full-occlusion
+    /// surface whose mask was entirely hidden) the last surface's colour is
+    /// returned, or the background, or black. If the weighted sum overflows
+    /// (colours near `f32::MAX`), the last surface's colour is returned too.
     /// The result lies in the convex hull of the added colours and the background.
     pub fn resolve(&self, background: Vec3, bg_weight: f32) -> Vec3 {
         let bgw = if bg_weight > 0.0 && background.is_finite() {
@@ -116,7 +120,7 @@ impl Aggregate {
             0.0
         };
         let total = self.weight + bgw;
-        if total >= f32::MIN_POSITIVE {
+        if total >= crate::sraa::NEGLIGIBLE_WEIGHT {
             let c = (self.color + bgw * background) / total;
             if c.is_finite() {
                 return c;

@@ -103,17 +103,22 @@ impl MaskPlacement {
 /// Project a surface normal onto the cone's cross-section: `n_p = (n̂·r, n̂·u)`
 /// with `n̂ = n/|n|`.
 ///
-/// Domain: any non-zero `normal`; `right`, `up` orthonormal and perpendicular to
-/// the ray. The 3D normal is normalised first, so `|n_p| ≤ 1` (up to rounding).
+/// Domain: any finite non-zero `normal`, however long or short; `right`, `up`
+/// orthonormal and perpendicular to the ray. The 3D normal is normalised first
+/// (after scaling by its largest component, so no square overflows), so
+/// `|n_p| ≤ 1` up to rounding.
 /// A zero, NaN or infinite normal returns `(0, 0)`, which [`visibility_mask`]
 /// treats as a fronto-parallel surface.
 #[inline]
 pub fn project_normal(normal: Vec3, right: Vec3, up: Vec3) -> Vec2 {
-    let len2 = normal.length_squared();
-    if !(len2 > 0.0) || !len2.is_finite() {
+    // Scale by the largest component first: squaring 1e20 or 1e-23 directly
+    // would overflow or underflow f32.
+    let m = normal.abs().max_element();
+    if !(m > 0.0) || !m.is_finite() {
         return Vec2::ZERO;
     }
-    let n = normal * (1.0 / libm::sqrtf(len2));
+    let n = normal / m;
+    let n = n * (1.0 / libm::sqrtf(n.length_squared()));
     let p = Vec2::new(n.dot(right), n.dot(up));
     if p.is_finite() {
         p

@@ -212,6 +212,11 @@ impl Geometry {
 /// (`2⁻²¹ ≈ 4.8·10⁻⁷`, eight ulps of 1): rounding noise of f32 normalisation.
 pub const NORMAL_COS_SNAP: f32 = 1.0 / 2_097_152.0;
 
+/// Weight sums below this (`2⁻⁶⁴ ≈ 5.4·10⁻²⁰`) count as underflowed: products
+/// `w·C` of such weights with ordinary colours approach f32's subnormal range,
+/// where the normalised result would lose its precision.
+pub const NEGLIGIBLE_WEIGHT: f32 = 5.421_011e-20;
+
 /// `G(x) = exp(−x²)`, the Gaussian of eq. 1. `G(±∞) = 0`, `G(NaN) = 0`.
 #[inline]
 pub fn gaussian(x: f32) -> f32 {
@@ -451,8 +456,8 @@ pub struct Reconstruction {
 /// The caller chooses the neighbourhood (by default the shaded samples of the
 /// 3×3 pixels around, [`SraaParams::radius`]).
 ///
-/// When every weight is 0 or their sum is subnormal (e.g. `σz·Δz = 1e20` for every
-/// neighbour), returns the nearest shaded sample with a finite colour (smallest
+/// When every weight is 0 or their sum is negligible, below
+/// [`NEGLIGIBLE_WEIGHT`] (e.g. `σz·Δz = 1e20` for every neighbour), returns the nearest shaded sample with a finite colour (smallest
 /// `distance2`, first on ties) with `fell_back = true`; with no usable neighbour
 /// at all, returns black. Never NaN: non-finite neighbour colours are excluded.
 /// The result lies in the convex hull of the neighbours' colours, up to f32 rounding.
@@ -491,7 +496,7 @@ where
         sum += w * s.color;
         wsum += w;
     }
-    if wsum >= f32::MIN_POSITIVE {
+    if wsum >= NEGLIGIBLE_WEIGHT {
         let c = sum / wsum;
         if c.is_finite() {
             return Reconstruction {
@@ -516,17 +521,14 @@ where
 /// averaged; with none finite, returns black.
 #[inline]
 pub fn resolve_pixel(subsamples: &[Vec3; 4]) -> Vec3 {
-    let mut sum = Vec3::ZERO;
-    let mut n = 0u32;
-    for c in subsamples {
-        if c.is_finite() {
-            sum += *c;
-            n += 1;
-        }
-    }
+    let n = subsamples.iter().filter(|c| c.is_finite()).count();
     if n == 0 {
-        Vec3::ZERO
-    } else {
-        sum / n as f32
+        return Vec3::ZERO;
     }
+    // Scale before summing, so four colours near f32::MAX do not overflow.
+    let inv = 1.0 / n as f32;
+    subsamples
+        .iter()
+        .filter(|c| c.is_finite())
+        .fold(Vec3::ZERO, |s, c| s + *c * inv)
 }

@@ -370,3 +370,51 @@ fn non_eikonal_distances() {
         }
     }
 }
+
+/// Inputs the fuzz targets found; each was a bug, kept as a regression test.
+#[test]
+fn fuzz_regressions() {
+    // 1. w_ii < 1 for a normal whose f32 normalisation leaves n·n = 1 − 2⁻²⁴.
+    let g = Geometry::new(Vec3::ONE.normalize(), 5.0);
+    assert_eq!(bilateral_weight(&SraaParams::CHAJDAS, &g, &g), 1.0);
+    // 2. Weights so small that w·C underflows: fall back instead of returning 0.
+    let mut a = Aggregate::new();
+    a.add(2e-38, Vec3::splat(1e-10));
+    assert_eq!(a.resolve(Vec3::ZERO, 0.0), Vec3::splat(1e-10));
+    let p = SraaParams::new(1.0, 0.0, 1.0, WeightForm::Product, DepthMetric::Absolute, 1);
+    let n = [ShadedSample {
+        geometry: Geometry::new(Vec3::Y, 9.3),
+        color: Vec3::splat(1e-10),
+        shadowed: false,
+        distance2: 0.0,
+    }];
+    let r = reconstruct(&p, &Geometry::new(Vec3::Y, 0.0), None, n);
+    assert_eq!((r.color, r.fell_back), (Vec3::splat(1e-10), true));
+    // 3. The pixel resolve of finite colours near f32::MAX stays finite.
+    let big = Vec3::splat(2e38);
+    assert_eq!(
+        resolve_pixel(&[big, big, Vec3::ZERO, Vec3::ZERO]),
+        Vec3::splat(1e38)
+    );
+    // 4. Weights above 1 cannot overflow the weight sum.
+    let mut a = Aggregate::new();
+    a.add(3e38, Vec3::splat(0.1));
+    a.add(3e38, Vec3::splat(0.1));
+    assert_eq!(a.resolve(Vec3::ZERO, 0.0), Vec3::splat(0.1));
+    // 5. Normals whose squared length leaves f32's range still project.
+    for n in [
+        Vec3::new(1e20, 0.0, 0.0),
+        Vec3::new(1e-23, 0.0, 0.0),
+        Vec3::new(4.5e-23, 0.0, 0.0),
+    ] {
+        assert_eq!(project_normal(n, Vec3::X, Vec3::Y), Vec2::X, "{n}");
+    }
+    assert_eq!(
+        visibility_mask(
+            0.3,
+            project_normal(Vec3::new(1e20, 0.0, 0.0), Vec3::X, Vec3::Y),
+            MaskPlacement::Derived
+        ),
+        visibility_mask(0.3, Vec2::X, MaskPlacement::Derived)
+    );
+}
