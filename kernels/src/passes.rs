@@ -68,7 +68,7 @@ impl Technique {
 
 bitflags! {
     /// What a scene contains, as far as passes are concerned.
-    #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
     pub struct SceneFeatures: u32 {
         /// At least one light that casts shadows.
         const HAS_LIGHTS = 1 << 0;
@@ -83,7 +83,7 @@ bitflags! {
 
 bitflags! {
     /// Every pass (with the buffers it writes) a frame can need.
-    #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
     pub struct Passes: u32 {
         /// Primary visibility of the shaded samples (BVH rays or sphere tracing):
         /// position, normal, depth, material per shaded sample.
@@ -135,6 +135,8 @@ impl core::fmt::Display for Unsupported {
         )
     }
 }
+
+impl core::error::Error for Unsupported {}
 
 /// The passes a frame of `technique` needs on a scene with `features`.
 ///

@@ -1,0 +1,192 @@
+//! The measured Cornell box (Cornell University Program of Computer Graphics),
+//! in millimetres, with a mirror on the tall block and a point light just below
+//! the light quad, so that shadows are hard and reflections exist.
+
+use glam::Vec3;
+
+use crate::camera::Camera;
+use crate::light::Light;
+use crate::material::Material;
+use crate::mesh::TriangleMesh;
+use crate::scene::Scene;
+
+const WHITE: Vec3 = Vec3::new(0.725, 0.71, 0.68);
+const RED: Vec3 = Vec3::new(0.63, 0.065, 0.05);
+const GREEN: Vec3 = Vec3::new(0.14, 0.45, 0.091);
+
+fn v(x: f32, y: f32, z: f32) -> Vec3 {
+    Vec3::new(x, y, z)
+}
+
+/// The Cornell box. With `mirror`, the tall block is a mirror (reflectance 0.8);
+/// without, it is white like the short one.
+pub fn cornell(mirror: bool) -> Scene {
+    let (white, red, green, light, tall) = (0, 1, 2, 3, 4);
+    let materials = vec![
+        Material::diffuse("white", WHITE),
+        Material::diffuse("red", RED),
+        Material::diffuse("green", GREEN),
+        Material {
+            emission: Vec3::splat(1.0),
+            ..Material::diffuse("light", Vec3::splat(0.78))
+        },
+        if mirror {
+            Material::mirror("mirror", WHITE * 0.2, 0.8)
+        } else {
+            Material::diffuse("white", WHITE)
+        },
+    ];
+    let mut m = TriangleMesh::default();
+    let quads: [([Vec3; 4], u32); 6] = [
+        (
+            [
+                v(552.8, 0.0, 0.0),
+                v(0.0, 0.0, 0.0),
+                v(0.0, 0.0, 559.2),
+                v(549.6, 0.0, 559.2),
+            ],
+            white,
+        ),
+        // The light quad is coplanar with the ceiling in the measured data: lowered 0.1 mm.
+        (
+            [
+                v(343.0, 548.7, 227.0),
+                v(343.0, 548.7, 332.0),
+                v(213.0, 548.7, 332.0),
+                v(213.0, 548.7, 227.0),
+            ],
+            light,
+        ),
+        (
+            [
+                v(556.0, 548.8, 0.0),
+                v(556.0, 548.8, 559.2),
+                v(0.0, 548.8, 559.2),
+                v(0.0, 548.8, 0.0),
+            ],
+            white,
+        ),
+        (
+            [
+                v(549.6, 0.0, 559.2),
+                v(0.0, 0.0, 559.2),
+                v(0.0, 548.8, 559.2),
+                v(556.0, 548.8, 559.2),
+            ],
+            white,
+        ),
+        (
+            [
+                v(0.0, 0.0, 559.2),
+                v(0.0, 0.0, 0.0),
+                v(0.0, 548.8, 0.0),
+                v(0.0, 548.8, 559.2),
+            ],
+            green,
+        ),
+        (
+            [
+                v(552.8, 0.0, 0.0),
+                v(549.6, 0.0, 559.2),
+                v(556.0, 548.8, 559.2),
+                v(556.0, 548.8, 0.0),
+            ],
+            red,
+        ),
+    ];
+    for (q, mat) in quads {
+        m.push_quad(q, mat);
+    }
+    let short = [
+        [
+            v(130.0, 165.0, 65.0),
+            v(82.0, 165.0, 225.0),
+            v(240.0, 165.0, 272.0),
+            v(290.0, 165.0, 114.0),
+        ],
+        [
+            v(290.0, 0.0, 114.0),
+            v(290.0, 165.0, 114.0),
+            v(240.0, 165.0, 272.0),
+            v(240.0, 0.0, 272.0),
+        ],
+        [
+            v(130.0, 0.0, 65.0),
+            v(130.0, 165.0, 65.0),
+            v(290.0, 165.0, 114.0),
+            v(290.0, 0.0, 114.0),
+        ],
+        [
+            v(82.0, 0.0, 225.0),
+            v(82.0, 165.0, 225.0),
+            v(130.0, 165.0, 65.0),
+            v(130.0, 0.0, 65.0),
+        ],
+        [
+            v(240.0, 0.0, 272.0),
+            v(240.0, 165.0, 272.0),
+            v(82.0, 165.0, 225.0),
+            v(82.0, 0.0, 225.0),
+        ],
+    ];
+    for q in short {
+        m.push_quad(q, white);
+    }
+    let tall_quads = [
+        [
+            v(423.0, 330.0, 247.0),
+            v(265.0, 330.0, 296.0),
+            v(314.0, 330.0, 456.0),
+            v(472.0, 330.0, 406.0),
+        ],
+        [
+            v(423.0, 0.0, 247.0),
+            v(423.0, 330.0, 247.0),
+            v(472.0, 330.0, 406.0),
+            v(472.0, 0.0, 406.0),
+        ],
+        [
+            v(472.0, 0.0, 406.0),
+            v(472.0, 330.0, 406.0),
+            v(314.0, 330.0, 456.0),
+            v(314.0, 0.0, 456.0),
+        ],
+        [
+            v(314.0, 0.0, 456.0),
+            v(314.0, 330.0, 456.0),
+            v(265.0, 330.0, 296.0),
+            v(265.0, 0.0, 296.0),
+        ],
+        [
+            v(265.0, 0.0, 296.0),
+            v(265.0, 330.0, 296.0),
+            v(423.0, 330.0, 247.0),
+            v(423.0, 0.0, 247.0),
+        ],
+    ];
+    for q in tall_quads {
+        m.push_quad(q, tall);
+    }
+    // A point light 10 mm below the centre of the light quad: hard shadows.
+    // Intensity so that the floor below receives about 4.5 (π·1.4) irradiance.
+    let lights = vec![Light::Point {
+        position: v(278.0, 538.8, 279.5),
+        intensity: Vec3::new(1.0, 0.9, 0.75) * 1.3e6,
+    }];
+    let camera = Camera {
+        position: v(278.0, 273.0, -800.0),
+        forward: Vec3::Z,
+        up: Vec3::Y,
+        fov_y: 39.31f32.to_radians(),
+    };
+    let name = if mirror {
+        "cornell"
+    } else {
+        "cornell-nomirror"
+    };
+    let mut s =
+        Scene::triangles(name, m, materials, lights, camera).expect("the Cornell box is valid");
+    s.background = Vec3::ZERO;
+    s.ambient = Vec3::splat(0.04);
+    s
+}

@@ -1,0 +1,109 @@
+//! A pinhole camera.
+
+use glam::{Vec2, Vec3};
+use subcone_kernels::cone::{cone_tan_theta, PixelFootprint};
+
+use crate::error::SceneError;
+
+/// A pinhole camera: position, orthonormal frame and vertical field of view.
+///
+/// Image coordinates are in pixels with `(0, 0)` at the top-left corner of the
+/// image and `y` growing downwards; pixel `(i, j)` covers `[i, i+1) × [j, j+1)`,
+/// so its centre is `(i + 0.5, j + 0.5)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    /// Eye position.
+    pub position: Vec3,
+    /// Unit view direction.
+    pub forward: Vec3,
+    /// Unit up vector, orthogonal to `forward`.
+    pub up: Vec3,
+    /// Vertical field of view in radians, in `(0, π)`.
+    pub fov_y: f32,
+}
+
+impl Camera {
+    /// A camera at `position` looking at `target`, with `up_hint` roughly up.
+    ///
+    /// Errors when the field of view is not in `(0°, 180°)`, when any input is
+    /// not finite, when `target == position`, or when `up_hint` is parallel to
+    /// the view direction.
+    pub fn look_at(
+        position: Vec3,
+        target: Vec3,
+        up_hint: Vec3,
+        fov_y: f32,
+    ) -> Result<Self, SceneError> {
+        if !(position.is_finite() && target.is_finite() && up_hint.is_finite()) {
+            return Err(SceneError::Camera(
+                "position, target and up must be finite".into(),
+            ));
+        }
+        let forward = (target - position).normalize_or_zero();
+        if forward == Vec3::ZERO {
+            return Err(SceneError::Camera("target equals position".into()));
+        }
+        let right = forward.cross(up_hint).normalize_or_zero();
+        if right == Vec3::ZERO {
+            return Err(SceneError::Camera(
+                "up vector is parallel to the view direction".into(),
+            ));
+        }
+        let cam = Camera {
+            position,
+            forward,
+            up: right.cross(forward),
+            fov_y,
+        };
+        cam.validate()?;
+        Ok(cam)
+    }
+
+    /// Check the camera: finite, unit orthogonal frame, field of view in `(0, π)`.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        if !(self.fov_y > 0.0 && self.fov_y < std::f32::consts::PI) {
+            return Err(SceneError::Camera(format!(
+                "field of view {:.3}° is outside (0°, 180°)",
+                self.fov_y.to_degrees()
+            )));
+        }
+        if !(self.position.is_finite() && self.forward.is_finite() && self.up.is_finite()) {
+            return Err(SceneError::Camera("camera frame is not finite".into()));
+        }
+        if (self.forward.length() - 1.0).abs() > 1e-3
+            || (self.up.length() - 1.0).abs() > 1e-3
+            || self.forward.dot(self.up).abs() > 1e-3
+        {
+            return Err(SceneError::Camera(
+                "forward and up must be orthogonal unit vectors".into(),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The unit right vector.
+    pub fn right(&self) -> Vec3 {
+        self.forward.cross(self.up)
+    }
+
+    /// The ray through image point `p` (pixels, see the type docs) of a
+    /// `width × height` image: `(origin, unit direction)`.
+    pub fn ray(&self, p: Vec2, width: u32, height: u32) -> (Vec3, Vec3) {
+        let half = (0.5 * self.fov_y).tan();
+        let (w, h) = (width.max(1) as f32, height.max(1) as f32);
+        let u = (2.0 * p.x / w - 1.0) * half * (w / h);
+        let v = (1.0 - 2.0 * p.y / h) * half;
+        let d = (self.forward + u * self.right() + v * self.up).normalize();
+        (self.position, d)
+    }
+
+    /// Depth of a point along the view axis (what SRAA's `z` is).
+    pub fn view_depth(&self, p: Vec3) -> f32 {
+        (p - self.position).dot(self.forward)
+    }
+
+    /// `tan θ` of a pixel's cone at `height` pixels (CTSS eq. 3, §3.1).
+    pub fn cone_tan_theta(&self, height: u32, coverage: f32) -> f32 {
+        cone_tan_theta(self.fov_y, height, coverage, PixelFootprint::Circumscribed)
+    }
+}

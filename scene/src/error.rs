@@ -1,0 +1,83 @@
+//! Errors as values, with messages that say what to fix.
+
+use std::path::PathBuf;
+
+use subcone_kernels::passes::Unsupported;
+
+/// A scene could not be built or loaded.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    /// A file could not be read or parsed.
+    #[error("cannot load scene {path}: {reason}")]
+    Load {
+        /// The file.
+        path: PathBuf,
+        /// What went wrong.
+        reason: String,
+    },
+    /// The file format is not one we read.
+    #[error("cannot load scene {path}: unknown format (expected .obj, .gltf or .glb)")]
+    UnknownFormat {
+        /// The file.
+        path: PathBuf,
+    },
+    /// No built-in scene has that name.
+    #[error("no built-in scene named {name:?} (built-in: {known})")]
+    UnknownScene {
+        /// The name asked for.
+        name: String,
+        /// The names that exist.
+        known: String,
+    },
+    /// The scene has no usable triangles (or SDF objects).
+    #[error("scene {name:?} has no usable geometry{detail}")]
+    Empty {
+        /// The scene.
+        name: String,
+        /// What was dropped, if anything.
+        detail: String,
+    },
+    /// The camera is unusable.
+    #[error("invalid camera: {0}")]
+    Camera(String),
+}
+
+/// A frame could not be rendered or written.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    /// The technique cannot render this scene.
+    #[error(transparent)]
+    Unsupported(#[from] Unsupported),
+    /// The resolution is zero or beyond the limit.
+    #[error("invalid resolution {width}x{height}: {reason}")]
+    Resolution {
+        /// Width asked for.
+        width: u32,
+        /// Height asked for.
+        height: u32,
+        /// Why it is refused.
+        reason: String,
+    },
+    /// The scene or camera is unusable.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    /// The method's parameters are unusable.
+    #[error("invalid method: {0}")]
+    Method(String),
+    /// The backend failed (e.g. no GPU adapter).
+    #[error("{backend} backend: {reason}")]
+    Backend {
+        /// Backend name.
+        backend: &'static str,
+        /// What went wrong.
+        reason: String,
+    },
+    /// Writing the output failed.
+    #[error("cannot write {path}: {reason}")]
+    Output {
+        /// The output path.
+        path: PathBuf,
+        /// What went wrong.
+        reason: String,
+    },
+}

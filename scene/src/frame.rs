@@ -1,0 +1,176 @@
+//! A rendered frame: linear RGB plus optional AOVs and the statistics of the
+//! passes that made it; PNG (8-bit sRGB) and EXR output.
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use glam::Vec3;
+use subcone_kernels::passes::Passes;
+
+use crate::error::RenderError;
+
+/// Wall time of one pass.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PassTiming {
+    /// Pass name, e.g. `"geometry"` (SRAA-RT's pass 1) or `"antialiasing"` (pass 2).
+    pub name: &'static str,
+    /// Wall time.
+    pub time: Duration,
+}
+
+/// Rays cast, by kind.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RayCounts {
+    /// Primary rays that are shaded.
+    pub primary: u64,
+    /// Geometry-only rays (SRAA subsamples, primary and secondary).
+    pub geometry: u64,
+    /// Shadow rays.
+    pub shadow: u64,
+    /// Reflection rays that are shaded.
+    pub secondary: u64,
+}
+
+impl RayCounts {
+    /// All rays.
+    pub fn total(&self) -> u64 {
+        self.primary + self.geometry + self.shadow + self.secondary
+    }
+}
+
+/// What it took to render a frame.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FrameStats {
+    /// The passes run (from `subcone_kernels::passes::required_passes`).
+    pub passes: Passes,
+    /// Wall time per pass, in the order run.
+    pub timings: Vec<PassTiming>,
+    /// Bytes of each buffer allocated for the frame, by name.
+    pub buffers: Vec<(&'static str, usize)>,
+    /// Rays cast.
+    pub rays: RayCounts,
+    /// Shaded samples (shading evaluations at primary hits or CTSS groups).
+    pub shaded_samples: u64,
+}
+
+impl FrameStats {
+    /// Total bytes of frame buffers.
+    pub fn buffer_bytes(&self) -> usize {
+        self.buffers.iter().map(|b| b.1).sum()
+    }
+
+    /// Total wall time of all passes.
+    pub fn total_time(&self) -> Duration {
+        self.timings.iter().map(|t| t.time).sum()
+    }
+}
+
+/// A rendered image, linear RGB, row-major from the top-left pixel.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Linear RGB per pixel.
+    pub color: Vec<Vec3>,
+    /// View depth per pixel (∞ for misses), when the backend records it.
+    pub depth: Option<Vec<f32>>,
+    /// Shading normal per pixel, when the backend records it.
+    pub normal: Option<Vec<Vec3>>,
+    /// Shaded samples per pixel, when the backend records it.
+    pub samples_per_pixel: Option<Vec<f32>>,
+    /// Statistics.
+    pub stats: FrameStats,
+}
+
+/// Linear to sRGB transfer, for one channel in `[0, 1]`.
+pub fn linear_to_srgb(c: f32) -> f32 {
+    let c = if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) };
+    if c <= 0.003_130_8 {
+        12.92 * c
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+impl Frame {
+    /// A black frame.
+    pub fn new(width: u32, height: u32) -> Self {
+        Frame {
+            width,
+            height,
+            color: vec![Vec3::ZERO; (width as usize) * (height as usize)],
+            depth: None,
+            normal: None,
+            samples_per_pixel: None,
+            stats: FrameStats::default(),
+        }
+    }
+
+    /// Colour of pixel `(x, y)`.
+    pub fn pixel(&self, x: u32, y: u32) -> Vec3 {
+        self.color[(y * self.width + x) as usize]
+    }
+
+    /// The image a user would look at: clamped to `[0, 1]`, sRGB-encoded, 8-bit RGB.
+    pub fn to_srgb8(&self) -> Vec<u8> {
+        let q = |c: f32| (linear_to_srgb(c) * 255.0 + 0.5) as u8;
+        self.color
+            .iter()
+            .flat_map(|c| [q(c.x), q(c.y), q(c.z)])
+            .collect()
+    }
+
+    /// Write the frame to `path`: `.png` (8-bit sRGB) or `.exr` (linear f32).
+    ///
+    /// The file is written to a temporary file beside it and renamed into place,
+    /// so a failure never leaves a half-written output. Errors name the path and
+    /// the cause (e.g. a directory that does not exist).
+    pub fn save(&self, path: &Path) -> Result<(), RenderError> {
+        let err = |reason: String| RenderError::Output {
+            path: path.to_path_buf(),
+            reason,
+        };
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(|e| e.to_ascii_lowercase())
+            .unwrap_or_default();
+        let format = match ext.as_str() {
+            "png" => image::ImageFormat::Png,
+            "exr" => image::ImageFormat::OpenExr,
+            _ => return Err(err("unknown image format (expected .png or .exr)".into())),
+        };
+        let dir = match path.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        if !dir.is_dir() {
+            return Err(err(format!("directory {} does not exist", dir.display())));
+        }
+        let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("frame");
+        let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+        let written = match format {
+            image::ImageFormat::Png => {
+                let img = image::RgbImage::from_raw(self.width, self.height, self.to_srgb8())
+                    .ok_or_else(|| err("frame size does not match its pixels".into()))?;
+                img.save_with_format(&tmp, format)
+            }
+            _ => {
+                let data: Vec<f32> = self.color.iter().flat_map(|c| [c.x, c.y, c.z]).collect();
+                let img = image::Rgb32FImage::from_raw(self.width, self.height, data)
+                    .ok_or_else(|| err("frame size does not match its pixels".into()))?;
+                image::DynamicImage::ImageRgb32F(img).save_with_format(&tmp, format)
+            }
+        };
+        if let Err(e) = written {
+            let _ = std::fs::remove_file(&tmp);
+            return Err(err(e.to_string()));
+        }
+        std::fs::rename(&tmp, path).map_err(|e| {
+            let _ = std::fs::remove_file(&tmp);
+            err(e.to_string())
+        })
+    }
+}

@@ -1,0 +1,69 @@
+//! Lights that cast hard shadows.
+
+use glam::Vec3;
+
+/// A light. Both kinds cast hard shadows.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Light {
+    /// A point light with radiant intensity `intensity` (falls off with 1/r²).
+    Point {
+        /// Position.
+        position: Vec3,
+        /// Intensity (RGB).
+        intensity: Vec3,
+    },
+    /// A distant light arriving from `direction` (unit, pointing towards the light).
+    Directional {
+        /// Unit direction towards the light.
+        direction: Vec3,
+        /// Irradiance on a surface facing it (RGB).
+        irradiance: Vec3,
+    },
+}
+
+/// What a light delivers to a point: unit direction towards the light, distance
+/// to it (∞ for directional lights) and irradiance on a surface facing it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Incident {
+    /// Unit direction from the point towards the light.
+    pub direction: Vec3,
+    /// Distance to the light.
+    pub distance: f32,
+    /// Irradiance at normal incidence.
+    pub irradiance: Vec3,
+}
+
+impl Light {
+    /// The light arriving at `p`, or `None` when `p` is at the light.
+    pub fn incident(&self, p: Vec3) -> Option<Incident> {
+        match *self {
+            Light::Point {
+                position,
+                intensity,
+            } => {
+                let to = position - p;
+                let d2 = to.length_squared();
+                if !(d2 > 0.0) || !d2.is_finite() {
+                    return None;
+                }
+                let d = d2.sqrt();
+                Some(Incident {
+                    direction: to / d,
+                    distance: d,
+                    irradiance: intensity / d2,
+                })
+            }
+            Light::Directional {
+                direction,
+                irradiance,
+            } => {
+                let dir = direction.normalize_or_zero();
+                (dir != Vec3::ZERO).then_some(Incident {
+                    direction: dir,
+                    distance: f32::INFINITY,
+                    irradiance,
+                })
+            }
+        }
+    }
+}

@@ -1,0 +1,127 @@
+//! A renderable scene: geometry, materials, lights, a default camera.
+
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use glam::Vec3;
+use subcone_kernels::passes::SceneFeatures;
+
+use crate::camera::Camera;
+use crate::error::SceneError;
+use crate::light::Light;
+use crate::material::Material;
+use crate::mesh::TriangleMesh;
+
+static NEXT_ID: AtomicU64 = AtomicU64::new(1);
+
+/// The geometry of a scene.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Geometry {
+    /// Triangles, ray traced through a BVH.
+    Triangles(TriangleMesh),
+}
+
+/// A scene.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// Name, for messages and reports.
+    pub name: String,
+    /// The geometry.
+    pub geometry: Geometry,
+    /// Materials, indexed by the geometry.
+    pub materials: Vec<Material>,
+    /// Lights that cast hard shadows.
+    pub lights: Vec<Light>,
+    /// The default camera.
+    pub camera: Camera,
+    /// Colour of rays that hit nothing.
+    pub background: Vec3,
+    /// Ambient light, so that unlit surfaces are not black.
+    pub ambient: Vec3,
+    id: u64,
+}
+
+impl Scene {
+    /// A triangle scene. Fails when no usable triangle is left, or when a
+    /// material index points past `materials` (it is clamped with a message).
+    pub fn triangles(
+        name: &str,
+        mesh: TriangleMesh,
+        materials: Vec<Material>,
+        lights: Vec<Light>,
+        camera: Camera,
+    ) -> Result<Self, SceneError> {
+        if mesh.is_empty() {
+            return Err(SceneError::Empty {
+                name: name.into(),
+                detail: String::new(),
+            });
+        }
+        let materials = if materials.is_empty() {
+            vec![Material::diffuse("default", Vec3::splat(0.7))]
+        } else {
+            materials
+        };
+        let mut mesh = mesh;
+        let last = materials.len() as u32 - 1;
+        for m in &mut mesh.materials {
+            *m = (*m).min(last);
+        }
+        camera.validate()?;
+        Ok(Scene {
+            name: name.into(),
+            geometry: Geometry::Triangles(mesh),
+            materials,
+            lights,
+            camera,
+            background: Vec3::new(0.05, 0.05, 0.06),
+            ambient: Vec3::splat(0.03),
+            id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
+        })
+    }
+
+    /// A process-unique identity, for backends that cache per-scene data (a
+    /// BVH). Clones share it; any `*_mut` change must call [`Scene::touch`].
+    pub fn id(&self) -> u64 {
+        self.id
+    }
+
+    /// Give the scene a new identity after changing it, so caches rebuild.
+    pub fn touch(&mut self) {
+        self.id = NEXT_ID.fetch_add(1, Ordering::Relaxed);
+    }
+
+    /// The triangles, if this is a triangle scene.
+    pub fn mesh(&self) -> Option<&TriangleMesh> {
+        match &self.geometry {
+            Geometry::Triangles(m) => Some(m),
+        }
+    }
+
+    /// What the scene contains, as far as passes are concerned.
+    pub fn features(&self) -> SceneFeatures {
+        let mut f = SceneFeatures::empty();
+        if !self.lights.is_empty() {
+            f |= SceneFeatures::HAS_LIGHTS;
+        }
+        let used = |i: usize| match &self.geometry {
+            Geometry::Triangles(m) => m.materials.iter().any(|&k| k as usize == i),
+        };
+        if self
+            .materials
+            .iter()
+            .enumerate()
+            .any(|(i, m)| m.is_reflective() && used(i))
+        {
+            f |= SceneFeatures::HAS_REFLECTIONS;
+        }
+        if self
+            .materials
+            .iter()
+            .enumerate()
+            .any(|(i, m)| m.is_textured() && used(i))
+        {
+            f |= SceneFeatures::HAS_TEXTURES;
+        }
+        f
+    }
+}
