@@ -34,8 +34,8 @@ use subcone::mask::{
     mask_weight, project_normal, visibility_mask, MaskPlacement, VisibilityAccumulator,
 };
 use subcone::sraa::{
-    bilateral_weight, reconstruct, resolve_pixel, shadow_gated_weight, Geometry, ShadedSample,
-    SraaParams, SHADED_SUBSAMPLE, SUBPIXEL_OFFSETS,
+    bilateral_weight, neighbourhood, reconstruct, resolve_pixel, shadow_gated_weight, Geometry,
+    ShadedSample, SraaParams, SHADED_SUBSAMPLE, SUBPIXEL_OFFSETS,
 };
 
 /// Inputs per iteration of the cheap kernels.
@@ -196,10 +196,45 @@ impl SraaScene {
 
 /// One reconstruction problem: a geometric subsample and its 3×3 shaded neighbours.
 #[derive(Clone, Copy)]
-struct Neighbourhood {
+struct ReconstructInput {
     target: Geometry,
     target_shadow: bool,
     neighbours: [ShadedSample; 9],
+}
+
+/// Inputs of `sraa::neighbourhood`: a pixel of a 1080p image and a subsample.
+#[derive(Clone, Copy)]
+struct PixelInput {
+    x: u32,
+    y: u32,
+    sub: usize,
+}
+
+const IMAGE: (u32, u32) = (1920, 1080);
+
+/// [`N`] pixels, one in eight on the image border (a clipped neighbourhood).
+fn pixel_inputs() -> Vec<PixelInput> {
+    let (w, h) = IMAGE;
+    let mut rng = Lcg::new(0x5eed_0009);
+    (0..N)
+        .map(|i| {
+            let mut x = rng.below(w as usize) as u32;
+            let mut y = rng.below(h as usize) as u32;
+            if i % 8 == 0 {
+                match rng.below(4) {
+                    0 => x = 0,
+                    1 => x = w - 1,
+                    2 => y = 0,
+                    _ => y = h - 1,
+                }
+            }
+            PixelInput {
+                x,
+                y,
+                sub: rng.below(4),
+            }
+        })
+        .collect()
 }
 
 /// Whether two samples would be told apart by an edge-aware filter.
@@ -214,7 +249,7 @@ fn is_edge(a: &Hit, b: &Hit) -> bool {
 }
 
 /// [`N`] neighbourhoods of the SRAA scene: half from anywhere, half from edges.
-fn sraa_inputs() -> Vec<Neighbourhood> {
+fn sraa_inputs() -> Vec<ReconstructInput> {
     let scene = SraaScene::new();
     let (w, h) = (scene.width, scene.height);
     let shaded: Vec<Hit> = (0..w * h)
@@ -243,20 +278,20 @@ fn sraa_inputs() -> Vec<Neighbourhood> {
             };
             let sub = rng.below(4);
             let target = scene.shoot(x, y, SUBPIXEL_OFFSETS[sub]);
-            let from = SUBPIXEL_OFFSETS[sub];
-            let to = SUBPIXEL_OFFSETS[SHADED_SUBSAMPLE];
-            let neighbours = core::array::from_fn(|k| {
-                let (dx, dy) = (k % 3, k / 3);
-                let s = at(x + dx - 1, y + dy - 1);
-                let delta = Vec2::new(dx as f32 - 1.0, dy as f32 - 1.0) + to - from;
+            // The 3×3 gather a backend does, with the crate's own distances.
+            let mut pixels = neighbourhood(x as u32, y as u32, sub, 1, w as u32, h as u32);
+            let neighbours = core::array::from_fn(|_| {
+                let q = pixels.next().expect("an interior pixel has 9 neighbours");
+                let s = at(q.x as usize, q.y as usize);
                 ShadedSample {
                     geometry: s.geometry,
                     color: s.color,
                     shadowed: s.shadowed,
-                    distance2: delta.length_squared(),
+                    distance2: q.distance2,
                 }
             });
-            Neighbourhood {
+            assert!(pixels.next().is_none());
+            ReconstructInput {
                 target: target.geometry,
                 target_shadow: target.shadowed,
                 neighbours,
@@ -274,7 +309,7 @@ struct WeightPair {
     sj: bool,
 }
 
-fn weight_pairs(hoods: &[Neighbourhood]) -> Vec<WeightPair> {
+fn weight_pairs(hoods: &[ReconstructInput]) -> Vec<WeightPair> {
     let mut rng = Lcg::new(0x5eed_0002);
     hoods
         .iter()
@@ -429,6 +464,19 @@ fn bench_sraa(c: &mut Criterion) {
         b.iter(|| {
             map_into(&pairs, &mut w, |q| {
                 shadow_gated_weight(&p, &q.gi, &q.gj, q.si, q.sj)
+            })
+        })
+    });
+
+    // The gather alone: one call walks the (clipped) 3×3 neighbourhood.
+    let pixels = pixel_inputs();
+    g.bench_function("neighbourhood_3x3", |b| {
+        let (width, height) = black_box(IMAGE);
+        b.iter(|| {
+            map_into(&pixels, &mut w, |q| {
+                neighbourhood(q.x, q.y, q.sub, 1, width, height)
+                    .map(|n| n.distance2 + (n.x ^ n.y) as f32)
+                    .sum::<f32>()
             })
         })
     });
