@@ -1,7 +1,7 @@
 //! `subcone`: geometry-aware antialiasing for ray tracing and sphere tracing.
 //!
-//! This crate will hold the CLI (`subcone render`, `subcone report`) and the
-//! report. For now it re-exports the kernels, [`subcone_kernels`], which engine
+//! This crate holds the CLI (`subcone render`; `subcone report` comes with the
+//! report) and re-exports the kernels, [`subcone_kernels`], which engine
 //! developers can also depend on directly in `no_std` code.
 //!
 //! ```
@@ -11,6 +11,8 @@
 //! ```
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
+
+pub mod cli;
 
 pub use subcone_kernels as kernels;
 pub use subcone_kernels::{aggregate, cone, ctss, mask, passes, sraa};

@@ -1,5 +1,5 @@
 //! The measured Cornell box (Cornell University Program of Computer Graphics),
-//! in millimetres, with a mirror on the tall block and a point light just below
+//! in millimetres, with a mirror sphere on the floor and a point light just below
 //! the light quad, so that shadows are hard and reflections exist.
 
 use glam::Vec3;
@@ -18,10 +18,12 @@ fn v(x: f32, y: f32, z: f32) -> Vec3 {
     Vec3::new(x, y, z)
 }
 
-/// The Cornell box. With `mirror`, the tall block is a mirror (reflectance 0.8);
-/// without, it is white like the short one.
+/// The Cornell box. With `mirror`, a mirror sphere (reflectance 0.8, radius
+/// 90 mm) stands on the floor in the free front-left corner, where it reflects
+/// the red wall, both blocks, the floor's shadows and the light; without, the
+/// box is the measured one alone.
 pub fn cornell(mirror: bool) -> Scene {
-    let (white, red, green, light, tall) = (0, 1, 2, 3, 4);
+    let (white, red, green, light, sphere) = (0, 1, 2, 3, 4);
     let materials = vec![
         Material::diffuse("white", WHITE),
         Material::diffuse("red", RED),
@@ -165,7 +167,10 @@ pub fn cornell(mirror: bool) -> Scene {
         ],
     ];
     for q in tall_quads {
-        m.push_quad(q, tall);
+        m.push_quad(q, white);
+    }
+    if mirror {
+        m.push_sphere(v(420.0, 90.0, 150.0), 90.0, 48, 96, sphere);
     }
     // A point light 10 mm below the centre of the light quad: hard shadows.
     // Intensity so that the floor below receives about 4.5 (π·1.4) irradiance.

@@ -1,0 +1,531 @@
+//! The methods of the SRAA family on the CPU: NoAA, SSAA, SRAA and SRAA-RT.
+
+use std::time::Instant;
+
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+use subcone_kernels::passes::{Passes, Technique};
+use subcone_kernels::sraa::{
+    neighbourhood, reconstruct, resolve_pixel, Geometry, ShadedSample, SraaParams,
+    SHADED_SUBSAMPLE, SUBPIXEL_OFFSETS,
+};
+use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderSettings};
+
+use crate::shade::{Counts, Tracer, MAX_LIGHTS};
+
+/// Rows per rayon task: a band of the image, so neighbouring rays stay coherent.
+const BAND: usize = 4;
+
+/// "No secondary geometry here" (the surface is not a mirror): NaN depth, which
+/// the bilateral weight excludes.
+const NO_SECONDARY: Geometry = Geometry {
+    normal: Vec3::ZERO,
+    depth: f32::NAN,
+};
+
+fn pixel_centre(x: usize, y: usize) -> Vec2 {
+    Vec2::new(x as f32 + 0.5, y as f32 + 0.5)
+}
+
+fn to_ray_counts(c: Counts) -> RayCounts {
+    RayCounts {
+        primary: c.primary,
+        geometry: c.geometry,
+        shadow: c.shadow,
+        secondary: c.secondary,
+    }
+}
+
+/// NoAA (one ray through each pixel centre) and SSAA (a regular n×n grid).
+pub fn supersample(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes) -> Frame {
+    let (w, h) = (s.width as usize, s.height as usize);
+    let n = if method.technique == Technique::Ssaa {
+        method.ssaa_side.max(1)
+    } else {
+        1
+    };
+    let mut frame = Frame::new(s.width, s.height);
+    let start = Instant::now();
+    let counts = frame
+        .color
+        .par_chunks_mut(w * BAND)
+        .enumerate()
+        .map(|(band, rows)| {
+            let mut c = Counts::default();
+            for (i, out) in rows.iter_mut().enumerate() {
+                let (x, y) = (i % w, band * BAND + i / w);
+                let mut sum = Vec3::ZERO;
+                for sy in 0..n {
+                    for sx in 0..n {
+                        let off =
+                            Vec2::new((sx as f32 + 0.5) / n as f32, (sy as f32 + 0.5) / n as f32);
+                        let (o, d) =
+                            t.camera
+                                .ray(Vec2::new(x as f32, y as f32) + off, s.width, s.height);
+                        c.primary += 1;
+                        sum += t.radiance(o, d, 0, &mut c);
+                    }
+                }
+                *out = sum / (n * n) as f32;
+            }
+            c
+        })
+        .reduce(Counts::default, |a, b| a + b);
+    frame.stats = FrameStats {
+        passes,
+        timings: vec![PassTiming {
+            name: "shading",
+            time: start.elapsed(),
+        }],
+        buffers: vec![("color", frame.color.len() * std::mem::size_of::<Vec3>())],
+        rays: to_ray_counts(counts),
+        shaded_samples: counts.shaded,
+    };
+    if s.aovs {
+        frame.samples_per_pixel = Some(vec![(n * n) as f32; w * h]);
+    }
+    frame
+}
+
+/// Which value layers a shaded sample carries (see [`subpixel`]).
+#[derive(Clone, Copy, Debug)]
+struct Layout {
+    /// Lights whose direct part is its own layer, gated by its shadow state.
+    lights: usize,
+    /// Secondary layers exist (reflective scene or forced).
+    secondary: bool,
+    /// Original SRAA: one layer, the final colour.
+    single: bool,
+}
+
+impl Layout {
+    fn len(&self) -> usize {
+        if self.single {
+            1
+        } else {
+            (1 + self.lights) * if self.secondary { 2 } else { 1 }
+        }
+    }
+    fn secondary_base(&self) -> usize {
+        1 + self.lights
+    }
+}
+
+/// Buffers of one frame, allocated only for the passes it runs.
+struct Buffers {
+    geo: Vec<Geometry>,
+    values: Vec<Vec3>,
+    shadow: Vec<u32>,
+    geo2: Vec<Geometry>,
+    shadow2: Vec<u32>,
+    sub_geo: Vec<[Geometry; 4]>,
+    sub_shadow: Vec<[u32; 4]>,
+    sub_geo2: Vec<[Geometry; 4]>,
+    sub_shadow2: Vec<[u32; 4]>,
+}
+
+fn bytes<T>(v: &[T]) -> usize {
+    std::mem::size_of_val(v)
+}
+
+/// SRAA (Chajdas et al.) and SRAA for ray tracing (Chiu et al., §3).
+///
+/// Pass "shading": one shaded sample per pixel, at subsample
+/// [`SHADED_SUBSAMPLE`] of the rotated grid. For SRAA-RT its shading is kept in
+/// layers that are reconstructed separately: the shadow-independent part; each
+/// light's direct part (gated by eq. 2 with that light's shadow state); and, on
+/// mirrors, the same split of the reflected radiance, reconstructed on the
+/// geometry of the secondary hits (§3.3) and gated by the secondary hits' shadow
+/// states ("reflected shadow", Fig. 5). Every layer already carries its mirror
+/// factor, `(1 − m)` or `m`, so the subsample's colour is the sum of its layers.
+/// SRAA keeps one layer, the final colour, reconstructed with eq. 1 on primary
+/// geometry.
+///
+/// Pass "geometry" (the paper's pass 1): the other three subsamples, traced for
+/// geometry only (normal and view depth); for SRAA-RT also their shadow states
+/// (subpixel shadow rays) and, on mirrors, the geometry and shadow states of
+/// their reflection rays. The shaded subsample's are reused, not traced again.
+///
+/// Pass "antialiasing" (pass 2): every layer of every subsample reconstructed
+/// from the 3×3 neighbourhood's shaded samples by the kernels, then the box
+/// resolve of the four subsamples.
+pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes) -> Frame {
+    let (w, h) = (s.width as usize, s.height as usize);
+    let n = w * h;
+    let rt = method.technique == Technique::SraaRt;
+    let lights = t.scene.lights.len().min(MAX_LIGHTS);
+    let layout = Layout {
+        lights: if rt && passes.contains(Passes::SHADOW) {
+            lights
+        } else {
+            0
+        },
+        secondary: rt && passes.contains(Passes::SECONDARY_RECONSTRUCTION),
+        single: !rt,
+    };
+    let shadows = passes.contains(Passes::SHADOW);
+    let sub_shadows = rt && passes.contains(Passes::SUBPIXEL_SHADOW);
+    let sub_secondary = rt && passes.contains(Passes::SUBPIXEL_SECONDARY_GEOMETRY);
+    let secondary_shading = passes.contains(Passes::SECONDARY);
+    let nl = layout.len();
+    let mut b = Buffers {
+        geo: vec![Geometry::MISS; n],
+        values: vec![Vec3::ZERO; n * nl],
+        shadow: if layout.lights > 0 {
+            vec![0; n]
+        } else {
+            Vec::new()
+        },
+        geo2: if layout.secondary {
+            vec![NO_SECONDARY; n]
+        } else {
+            Vec::new()
+        },
+        shadow2: if layout.secondary && layout.lights > 0 {
+            vec![0; n]
+        } else {
+            Vec::new()
+        },
+        sub_geo: vec![[Geometry::MISS; 4]; n],
+        sub_shadow: if sub_shadows && layout.lights > 0 {
+            vec![[0; 4]; n]
+        } else {
+            Vec::new()
+        },
+        sub_geo2: if sub_secondary {
+            vec![[NO_SECONDARY; 4]; n]
+        } else {
+            Vec::new()
+        },
+        sub_shadow2: if sub_secondary && layout.lights > 0 {
+            vec![[0; 4]; n]
+        } else {
+            Vec::new()
+        },
+    };
+    let mut timings = Vec::new();
+
+    // Pass: shading of one sample per pixel.
+    let start = Instant::now();
+    let nb = h.div_ceil(BAND);
+    let band = w * BAND;
+    let shaded_counts = {
+        bands(&mut b.geo, band, nb)
+            .into_par_iter()
+            .zip(bands(&mut b.values, band * nl, nb))
+            .zip(bands(&mut b.shadow, band, nb))
+            .zip(bands(&mut b.geo2, band, nb))
+            .zip(bands(&mut b.shadow2, band, nb))
+            .enumerate()
+            .map(|(bi, ((((geo, values), shadow), geo2), shadow2))| {
+                let mut c = Counts::default();
+                for i in 0..geo.len() {
+                    let (x, y) = (i % w, bi * BAND + i / w);
+                    let p = pixel_centre(x, y) + SUBPIXEL_OFFSETS[SHADED_SUBSAMPLE];
+                    let (o, d) = t.camera.ray(p, s.width, s.height);
+                    c.primary += 1;
+                    let v = &mut values[i * nl..(i + 1) * nl];
+                    let Some(sf) = t.intersect(o, d, 0.0) else {
+                        geo[i] = Geometry::MISS;
+                        v[0] = t.scene.background;
+                        if let Some(g2) = geo2.get_mut(i) {
+                            *g2 = NO_SECONDARY;
+                        }
+                        continue;
+                    };
+                    c.shaded += 1;
+                    geo[i] = t.primary_geometry(Some(&sf));
+                    let sh = if shadows {
+                        t.shadow_states(&sf, &mut c)
+                    } else {
+                        0
+                    };
+                    let parts = t.parts(&sf, sh);
+                    let m = parts.mirror;
+                    let reflects = m > 0.0 && secondary_shading && t.reflection_depth > 0;
+                    if layout.single {
+                        let diffuse = parts.diffuse(lights);
+                        v[0] = if reflects {
+                            c.secondary += 1;
+                            let r = t.radiance(
+                                sf.p + sf.ng * t.eps,
+                                Tracer::reflect(d, sf.n),
+                                1,
+                                &mut c,
+                            );
+                            (1.0 - m) * diffuse + m * r
+                        } else if m > 0.0 {
+                            (1.0 - m) * diffuse
+                        } else {
+                            diffuse
+                        };
+                        continue;
+                    }
+                    // SRAA-RT layers: primary base, then one per light.
+                    if layout.lights > 0 {
+                        shadow[i] = sh;
+                        v[0] = (1.0 - m) * parts.base;
+                        for l in 0..layout.lights {
+                            v[1 + l] = (1.0 - m) * parts.direct[l];
+                        }
+                    } else {
+                        v[0] = (1.0 - m) * parts.diffuse(lights);
+                    }
+                    if !reflects {
+                        continue;
+                    }
+                    c.secondary += 1;
+                    let rd = Tracer::reflect(d, sf.n);
+                    let sb = layout.secondary_base();
+                    match t.intersect(sf.p + sf.ng * t.eps, rd, 0.0) {
+                        None => {
+                            if let Some(g2) = geo2.get_mut(i) {
+                                *g2 = Geometry::MISS;
+                            }
+                            let bg = m * t.scene.background;
+                            if layout.secondary {
+                                v[sb] = bg;
+                            } else {
+                                v[0] += bg;
+                            }
+                        }
+                        Some(s2) => {
+                            c.shaded += 1;
+                            let sh2 = if shadows {
+                                t.shadow_states(&s2, &mut c)
+                            } else {
+                                0
+                            };
+                            let p2 = t.parts(&s2, sh2);
+                            let m2 = p2.mirror;
+                            let deeper = if m2 > 0.0 && t.reflection_depth > 1 {
+                                c.secondary += 1;
+                                t.radiance(
+                                    s2.p + s2.ng * t.eps,
+                                    Tracer::reflect(rd, s2.n),
+                                    2,
+                                    &mut c,
+                                )
+                            } else {
+                                Vec3::ZERO
+                            };
+                            if layout.secondary {
+                                geo2[i] = Geometry::new(s2.n, sf.t + s2.t);
+                                if layout.lights > 0 {
+                                    shadow2[i] = sh2;
+                                    v[sb] = m * ((1.0 - m2) * p2.base + m2 * deeper);
+                                    for l in 0..layout.lights {
+                                        v[sb + 1 + l] = m * (1.0 - m2) * p2.direct[l];
+                                    }
+                                } else {
+                                    v[sb] = m * ((1.0 - m2) * p2.diffuse(lights) + m2 * deeper);
+                                }
+                            } else {
+                                // Reflections forced off: fold them into the primary base.
+                                v[0] += m * ((1.0 - m2) * p2.diffuse(lights) + m2 * deeper);
+                            }
+                        }
+                    }
+                }
+                c
+            })
+            .reduce(Counts::default, |a, b| a + b)
+    };
+    timings.push(PassTiming {
+        name: "shading",
+        time: start.elapsed(),
+    });
+
+    // Pass 1 of the paper: subpixel geometry.
+    let start = Instant::now();
+    let geo_counts = {
+        let (geo, shadow, geo2, shadow2) = (&b.geo, &b.shadow, &b.geo2, &b.shadow2);
+        bands(&mut b.sub_geo, band, nb)
+            .into_par_iter()
+            .zip(bands(&mut b.sub_shadow, band, nb))
+            .zip(bands(&mut b.sub_geo2, band, nb))
+            .zip(bands(&mut b.sub_shadow2, band, nb))
+            .enumerate()
+            .map(|(bi, (((sub_geo, sub_shadow), sub_geo2), sub_shadow2))| {
+                let mut c = Counts::default();
+                for i in 0..sub_geo.len() {
+                    let (x, y) = (i % w, bi * BAND + i / w);
+                    let j = bi * band + i;
+                    for k in 0..4 {
+                        if k == SHADED_SUBSAMPLE {
+                            sub_geo[i][k] = geo[j];
+                            if let Some(ss) = sub_shadow.get_mut(i) {
+                                ss[k] = shadow[j];
+                            }
+                            if let Some(g2) = sub_geo2.get_mut(i) {
+                                g2[k] = geo2.get(j).copied().unwrap_or(NO_SECONDARY);
+                            }
+                            if let Some(s2) = sub_shadow2.get_mut(i) {
+                                s2[k] = shadow2.get(j).copied().unwrap_or(0);
+                            }
+                            continue;
+                        }
+                        let p = pixel_centre(x, y) + SUBPIXEL_OFFSETS[k];
+                        let (o, d) = t.camera.ray(p, s.width, s.height);
+                        c.geometry += 1;
+                        let sf = t.intersect(o, d, 0.0);
+                        sub_geo[i][k] = t.primary_geometry(sf.as_ref());
+                        let Some(sf) = sf else { continue };
+                        if let Some(ss) = sub_shadow.get_mut(i) {
+                            ss[k] = t.shadow_states(&sf, &mut c);
+                        }
+                        if let Some(g2) = sub_geo2.get_mut(i) {
+                            let mat = &t.scene.materials[sf.material as usize];
+                            if mat.mirror > 0.0 && t.reflection_depth > 0 {
+                                c.geometry += 1;
+                                let rd = Tracer::reflect(d, sf.n);
+                                g2[k] = match t.intersect(sf.p + sf.ng * t.eps, rd, 0.0) {
+                                    None => Geometry::MISS,
+                                    Some(s2) => {
+                                        if let Some(sh2) = sub_shadow2.get_mut(i) {
+                                            sh2[k] = t.shadow_states(&s2, &mut c);
+                                        }
+                                        Geometry::new(s2.n, sf.t + s2.t)
+                                    }
+                                };
+                            }
+                        }
+                    }
+                }
+                c
+            })
+            .reduce(Counts::default, |a, b| a + b)
+    };
+    timings.push(PassTiming {
+        name: "geometry",
+        time: start.elapsed(),
+    });
+
+    // Pass 2 of the paper: reconstruction and resolve.
+    let start = Instant::now();
+    let mut frame = Frame::new(s.width, s.height);
+    let params = method.sraa;
+    let radius = params.radius();
+    {
+        let bref = &b;
+        frame
+            .color
+            .par_chunks_mut(w * BAND)
+            .enumerate()
+            .for_each(|(band, rows)| {
+                for (i, out) in rows.iter_mut().enumerate() {
+                    let (x, y) = (i % w, band * BAND + i / w);
+                    let mut subs = [Vec3::ZERO; 4];
+                    for (k, sub) in subs.iter_mut().enumerate() {
+                        *sub = reconstruct_subsample(
+                            bref, &layout, &params, radius, x, y, k, w, h, nl,
+                        );
+                    }
+                    *out = resolve_pixel(&subs);
+                }
+            });
+    }
+    timings.push(PassTiming {
+        name: "antialiasing",
+        time: start.elapsed(),
+    });
+
+    let counts = shaded_counts + geo_counts;
+    let mut buffers = vec![
+        ("color", bytes(&frame.color)),
+        ("geometry", bytes(&b.geo)),
+        ("shading layers", bytes(&b.values)),
+        ("subpixel geometry", bytes(&b.sub_geo)),
+    ];
+    for (name, size) in [
+        ("shadow states", bytes(&b.shadow)),
+        ("secondary geometry", bytes(&b.geo2)),
+        ("secondary shadow states", bytes(&b.shadow2)),
+        ("subpixel shadow states", bytes(&b.sub_shadow)),
+        ("subpixel secondary geometry", bytes(&b.sub_geo2)),
+        ("subpixel secondary shadow states", bytes(&b.sub_shadow2)),
+    ] {
+        if size > 0 {
+            buffers.push((name, size));
+        }
+    }
+    frame.stats = FrameStats {
+        passes,
+        timings,
+        buffers,
+        rays: to_ray_counts(counts),
+        shaded_samples: counts.shaded,
+    };
+    if s.aovs {
+        frame.depth = Some(b.geo.iter().map(|g| g.depth).collect());
+        frame.normal = Some(b.geo.iter().map(|g| g.normal).collect());
+        frame.samples_per_pixel = Some(vec![1.0; n]);
+    }
+    frame
+}
+
+/// Split a per-pixel buffer into bands of `band` elements; a buffer that was not
+/// allocated (its pass does not run) yields `nb` empty bands, so it zips with the
+/// others and costs nothing.
+fn bands<T: Send>(v: &mut [T], band: usize, nb: usize) -> Vec<&mut [T]> {
+    if v.is_empty() {
+        (0..nb).map(|_| <&mut [T]>::default()).collect()
+    } else {
+        v.chunks_mut(band).collect()
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn reconstruct_subsample(
+    b: &Buffers,
+    layout: &Layout,
+    params: &SraaParams,
+    radius: u32,
+    x: usize,
+    y: usize,
+    k: usize,
+    w: usize,
+    h: usize,
+    nl: usize,
+) -> Vec3 {
+    let j = y * w + x;
+    let target = b.sub_geo[j][k];
+    let hood = || neighbourhood(x as u32, y as u32, k, radius, w as u32, h as u32);
+    let layer = |target: &Geometry,
+                 gate: Option<bool>,
+                 geo: &[Geometry],
+                 bits: &[u32],
+                 l: usize,
+                 bit: u32| {
+        let samples = hood().map(|np| {
+            let jj = np.y as usize * w + np.x as usize;
+            ShadedSample {
+                geometry: geo[jj],
+                color: b.values[jj * nl + l],
+                shadowed: bits.get(jj).is_some_and(|s| s & (1 << bit) != 0),
+                distance2: np.distance2,
+            }
+        });
+        reconstruct(params, target, gate, samples).color
+    };
+    if layout.single {
+        return layer(&target, None, &b.geo, &[], 0, 0);
+    }
+    let mut c = layer(&target, None, &b.geo, &[], 0, 0);
+    for l in 0..layout.lights {
+        let gate = b.sub_shadow.get(j).map(|s| s[k] & (1 << l) != 0);
+        c += layer(&target, gate, &b.geo, &b.shadow, 1 + l, l as u32);
+    }
+    if layout.secondary {
+        let target2 = b.sub_geo2.get(j).map(|g| g[k]).unwrap_or(NO_SECONDARY);
+        if !target2.depth.is_nan() {
+            let sb = layout.secondary_base();
+            c += layer(&target2, None, &b.geo2, &[], sb, 0);
+            for l in 0..layout.lights {
+                let gate = b.sub_shadow2.get(j).map(|s| s[k] & (1 << l) != 0);
+                c += layer(&target2, gate, &b.geo2, &b.shadow2, sb + 1 + l, l as u32);
+            }
+        }
+    }
+    c
+}

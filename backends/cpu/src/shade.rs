@@ -1,0 +1,230 @@
+//! Whitted shading on top of the BVH: direct light with hard shadows and mirror
+//! reflection, split into the parts SRAA-RT reconstructs separately.
+
+use glam::{Vec2, Vec3};
+use subcone_kernels::sraa::Geometry;
+use subcone_scene::{Camera, Scene, TriangleMesh};
+
+use crate::bvh::SceneBvh;
+
+/// Most lights a scene may have: shadow states are bits of a `u32`, and the
+/// per-light parts live in fixed arrays.
+pub const MAX_LIGHTS: usize = 8;
+
+/// A surface point seen by a ray.
+#[derive(Clone, Copy, Debug)]
+pub struct Surface {
+    /// Position.
+    pub p: Vec3,
+    /// Shading normal, facing the incoming ray.
+    pub n: Vec3,
+    /// Geometric normal, facing the incoming ray (for ray offsets).
+    pub ng: Vec3,
+    /// Texture coordinates.
+    pub uv: Vec2,
+    /// Material index.
+    pub material: u32,
+    /// Distance along the ray.
+    pub t: f32,
+}
+
+/// Ray counters of one worker, summed at the end of a pass.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Counts {
+    /// Shaded primary rays.
+    pub primary: u64,
+    /// Geometry-only rays.
+    pub geometry: u64,
+    /// Shadow rays.
+    pub shadow: u64,
+    /// Shaded reflection rays.
+    pub secondary: u64,
+    /// Shading evaluations.
+    pub shaded: u64,
+}
+
+impl std::ops::Add for Counts {
+    type Output = Counts;
+    fn add(self, o: Counts) -> Counts {
+        Counts {
+            primary: self.primary + o.primary,
+            geometry: self.geometry + o.geometry,
+            shadow: self.shadow + o.shadow,
+            secondary: self.secondary + o.secondary,
+            shaded: self.shaded + o.shaded,
+        }
+    }
+}
+
+/// The shading of one surface point, split into what SRAA-RT reconstructs
+/// separately: the shadow-independent part, one part per light with its shadow
+/// state, and the mirror share.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Parts {
+    /// Emission plus ambient: no shadow ray decides it.
+    pub base: Vec3,
+    /// Each light's direct contribution (0 when shadowed).
+    pub direct: [Vec3; MAX_LIGHTS],
+    /// Bit `l` set: the point is in light `l`'s shadow.
+    pub shadowed: u32,
+    /// Mirror reflectance of the material.
+    pub mirror: f32,
+}
+
+impl Parts {
+    /// The diffuse (non-mirror) radiance.
+    pub fn diffuse(&self, lights: usize) -> Vec3 {
+        self.direct[..lights].iter().fold(self.base, |a, d| a + *d)
+    }
+}
+
+/// Everything a pass needs to trace and shade.
+pub struct Tracer<'a> {
+    /// The scene's BVH.
+    pub bvh: &'a SceneBvh,
+    /// The scene.
+    pub scene: &'a Scene,
+    /// Its triangles.
+    pub mesh: &'a TriangleMesh,
+    /// The camera.
+    pub camera: &'a Camera,
+    /// Mirror bounces.
+    pub reflection_depth: u32,
+    /// Offset of secondary ray origins, in scene units.
+    pub eps: f32,
+}
+
+impl<'a> Tracer<'a> {
+    /// A tracer over a scene's BVH.
+    pub fn new(
+        bvh: &'a SceneBvh,
+        scene: &'a Scene,
+        mesh: &'a TriangleMesh,
+        camera: &'a Camera,
+        reflection_depth: u32,
+    ) -> Self {
+        Tracer {
+            bvh,
+            scene,
+            mesh,
+            camera,
+            reflection_depth,
+            eps: bvh.scale * 2e-5,
+        }
+    }
+
+    /// Closest surface along a ray.
+    #[inline]
+    pub fn intersect(&self, o: Vec3, d: Vec3, tmin: f32) -> Option<Surface> {
+        let hit = self.bvh.closest(o, d, tmin, f32::INFINITY)?;
+        let i = hit.triangle as usize;
+        let v = self.mesh.positions[i];
+        let p = o + hit.t * d;
+        // Barycentrics from areas (independent of the intersector's convention).
+        let (e1, e2) = (v[1] - v[0], v[2] - v[0]);
+        let ng = e1.cross(e2);
+        let area2 = ng.length_squared().max(f32::MIN_POSITIVE);
+        let b1 = (p - v[0]).cross(e2).dot(ng) / area2;
+        let b2 = e1.cross(p - v[0]).dot(ng) / area2;
+        let b0 = 1.0 - b1 - b2;
+        let nv = self.mesh.normals[i];
+        let uv = self.mesh.uvs[i];
+        let mut ng = ng.normalize_or_zero();
+        if ng.dot(d) > 0.0 {
+            ng = -ng;
+        }
+        let mut n = (b0 * nv[0] + b1 * nv[1] + b2 * nv[2]).normalize_or_zero();
+        if n == Vec3::ZERO {
+            n = ng;
+        } else if n.dot(d) > 0.0 {
+            n = -n;
+        }
+        Some(Surface {
+            p,
+            n,
+            ng,
+            uv: b0 * uv[0] + b1 * uv[1] + b2 * uv[2],
+            material: self.mesh.materials[i],
+            t: hit.t,
+        })
+    }
+
+    /// The SRAA geometry (normal and view depth) of a primary surface.
+    pub fn primary_geometry(&self, s: Option<&Surface>) -> Geometry {
+        match s {
+            Some(s) => Geometry::new(s.n, self.camera.view_depth(s.p)),
+            None => Geometry::MISS,
+        }
+    }
+
+    /// Shadow states of `s` for every light (bit set = shadowed), casting one
+    /// shadow ray per light that faces the surface.
+    #[inline]
+    pub fn shadow_states(&self, s: &Surface, c: &mut Counts) -> u32 {
+        let mut bits = 0;
+        let origin = s.p + s.ng * self.eps;
+        for (l, light) in self.scene.lights.iter().enumerate().take(MAX_LIGHTS) {
+            let Some(inc) = light.incident(s.p) else {
+                continue;
+            };
+            if inc.direction.dot(s.ng) <= 0.0 {
+                bits |= 1 << l; // facing away: self-shadowed, no ray needed
+                continue;
+            }
+            c.shadow += 1;
+            if self
+                .bvh
+                .occluded(origin, inc.direction, 0.0, inc.distance - self.eps)
+            {
+                bits |= 1 << l;
+            }
+        }
+        bits
+    }
+
+    /// Shade a surface seen along `d`: the split parts (without the reflection).
+    pub fn parts(&self, s: &Surface, shadowed: u32) -> Parts {
+        let mat = &self.scene.materials[s.material as usize];
+        let albedo = mat.albedo_at(s.p, s.uv);
+        let mut parts = Parts {
+            base: mat.emission + self.scene.ambient * albedo,
+            shadowed,
+            mirror: mat.mirror,
+            ..Default::default()
+        };
+        for (l, light) in self.scene.lights.iter().enumerate().take(MAX_LIGHTS) {
+            if shadowed & (1 << l) != 0 {
+                continue;
+            }
+            if let Some(inc) = light.incident(s.p) {
+                let cos = inc.direction.dot(s.n).max(0.0);
+                parts.direct[l] = albedo * std::f32::consts::FRAC_1_PI * cos * inc.irradiance;
+            }
+        }
+        parts
+    }
+
+    /// Mirror direction of `d` about `n`.
+    #[inline]
+    pub fn reflect(d: Vec3, n: Vec3) -> Vec3 {
+        (d - 2.0 * d.dot(n) * n).normalize()
+    }
+
+    /// Full Whitted radiance along a ray, `depth` bounces already taken.
+    pub fn radiance(&self, o: Vec3, d: Vec3, depth: u32, c: &mut Counts) -> Vec3 {
+        let Some(s) = self.intersect(o, d, 0.0) else {
+            return self.scene.background;
+        };
+        c.shaded += 1;
+        let shadow = self.shadow_states(&s, c);
+        let parts = self.parts(&s, shadow);
+        let diffuse = parts.diffuse(self.scene.lights.len().min(MAX_LIGHTS));
+        if parts.mirror > 0.0 && depth < self.reflection_depth {
+            c.secondary += 1;
+            let r = self.radiance(s.p + s.ng * self.eps, Self::reflect(d, s.n), depth + 1, c);
+            (1.0 - parts.mirror) * diffuse + parts.mirror * r
+        } else {
+            diffuse
+        }
+    }
+}
