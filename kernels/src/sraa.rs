@@ -229,6 +229,17 @@ pub fn gaussian(x: f32) -> f32 {
     }
 }
 
+/// `exp(−s)` for `s = a² + b² ≥ 0`; 0 for `s = ∞` or NaN.
+#[inline]
+fn gaussian_sum(s: f32) -> f32 {
+    let e = libm::expf(-s);
+    if !e.is_nan() {
+        e
+    } else {
+        0.0
+    }
+}
+
 /// `sat(x) = max(0, min(1, x))` (§3.1). `sat(NaN) = 0`.
 #[inline]
 pub fn saturate(x: f32) -> f32 {
@@ -303,7 +314,12 @@ pub fn bilateral_weight(params: &SraaParams, gi: &Geometry, gj: &Geometry) -> f3
         return 0.0;
     }
     let w = match params.form() {
-        WeightForm::Product => gaussian(params.sigma_z * dz) * gaussian(params.sigma_n * dn),
+        // G(a)·G(b) = exp(−(a² + b²)): one exponential instead of two, the
+        // same value up to rounding (bounded against f64 in the tests).
+        WeightForm::Product => {
+            let (a, b) = (params.sigma_z * dz, params.sigma_n * dn);
+            gaussian_sum(a * a + b * b)
+        }
         WeightForm::ChajdasMax => {
             let x = params.scale * dn.max(params.sigma_z * dz);
             let e = libm::expf(-x);
@@ -531,4 +547,86 @@ pub fn resolve_pixel(subsamples: &[Vec3; 4]) -> Vec3 {
         .iter()
         .filter(|c| c.is_finite())
         .fold(Vec3::ZERO, |s, c| s + *c * inv)
+}
+
+/// Most layers [`reconstruct_layers`] handles at once.
+pub const MAX_LAYERS: usize = 16;
+
+/// One shaded neighbour offered to [`reconstruct_layers`]: its geometry, its
+/// shadow states (bit `b` = in light `b`'s shadow) and one colour per layer.
+#[derive(Clone, Copy, Debug)]
+pub struct LayeredSample<'a> {
+    /// Geometry at the shaded sample.
+    pub geometry: Geometry,
+    /// Shadow states, one bit per light.
+    pub shadow: u32,
+    /// Squared screen distance to the target subsample (for the fallback).
+    pub distance2: f32,
+    /// One colour per layer.
+    pub colors: &'a [Vec3],
+}
+
+/// [`reconstruct`] for several layers that share the target's geometry, in one
+/// pass over the neighbours: the bilateral weight (eq. 1) is computed once per
+/// neighbour, and layer `i` applies eq. 2's gate on shadow bit `gates[i]` (or no
+/// gate for `None`). This is how SRAA-RT reconstructs a subsample's
+/// shadow-independent part and each light's direct part (§3.1–3.2).
+///
+/// Writes `min(gates.len(), out.len(), MAX_LAYERS)` layers to `out`; each equals,
+/// bit for bit, what [`reconstruct`] returns for that layer alone (same
+/// weights, same order of summation, same fallback). A neighbour with fewer
+/// colours than layers contributes black to the missing ones.
+pub fn reconstruct_layers<'a, I>(
+    params: &SraaParams,
+    target: &Geometry,
+    target_shadow: u32,
+    gates: &[Option<u8>],
+    neighbours: I,
+    out: &mut [Vec3],
+) where
+    I: IntoIterator<Item = LayeredSample<'a>>,
+{
+    let n = gates.len().min(out.len()).min(MAX_LAYERS);
+    let mut sum = [Vec3::ZERO; MAX_LAYERS];
+    let mut wsum = [0.0f32; MAX_LAYERS];
+    let mut nearest = [Vec3::ZERO; MAX_LAYERS];
+    let mut nearest_d2 = [f32::INFINITY; MAX_LAYERS];
+    let mut any = [false; MAX_LAYERS];
+    for s in neighbours {
+        let d2 = if !s.distance2.is_nan() {
+            s.distance2
+        } else {
+            f32::INFINITY
+        };
+        let w = bilateral_weight(params, target, &s.geometry);
+        for i in 0..n {
+            let c = s.colors.get(i).copied().unwrap_or(Vec3::ZERO);
+            if !c.is_finite() {
+                continue;
+            }
+            if !any[i] || d2 < nearest_d2[i] {
+                nearest[i] = c;
+                nearest_d2[i] = d2;
+                any[i] = true;
+            }
+            let wi = match gates[i] {
+                Some(bit) if bit < 32 && ((target_shadow ^ s.shadow) >> bit) & 1 != 0 => 0.0,
+                _ => w,
+            };
+            sum[i] += wi * c;
+            wsum[i] += wi;
+        }
+    }
+    for i in 0..n {
+        out[i] = if wsum[i] >= NEGLIGIBLE_WEIGHT {
+            let c = sum[i] / wsum[i];
+            if c.is_finite() {
+                c
+            } else {
+                nearest[i]
+            }
+        } else {
+            nearest[i]
+        };
+    }
 }

@@ -245,3 +245,27 @@ fn check_entry_is_safe(
         first = false;
     }
 }
+
+proptest! {
+    #![proptest_config(config())]
+
+    /// The one-pass multi-layer reconstruction equals per-layer reconstruction,
+    /// bit for bit.
+    #[test]
+    fn layered_reconstruction_equals_per_layer(p in params(), tn in unit(), tz in depth(), ts in 0u32..4,
+        ns in prop::collection::vec((unit(), 0.8f32..1.25, 0u32..4, prop::collection::vec((0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0), 3)), 1..10)) {
+        let gates = [None, Some(0u8), Some(1u8)];
+        let colors: Vec<Vec<Vec3>> = ns.iter().map(|n| n.3.iter().map(|&(r, g, b)| Vec3::new(r, g, b)).collect()).collect();
+        let target = Geometry::new(tn, tz);
+        let mut out = [Vec3::ZERO; 3];
+        reconstruct_layers(&p, &target, ts, &gates, ns.iter().enumerate().map(|(k, n)| LayeredSample {
+            geometry: Geometry::new(n.0, tz * n.1), shadow: n.2, distance2: k as f32, colors: &colors[k],
+        }), &mut out);
+        for (i, gate) in gates.iter().enumerate() {
+            let single = reconstruct(&p, &target, gate.map(|b| ts >> b & 1 != 0), ns.iter().enumerate().map(|(k, n)| ShadedSample {
+                geometry: Geometry::new(n.0, tz * n.1), color: colors[k][i], shadowed: gate.is_some_and(|b| n.2 >> b & 1 != 0), distance2: k as f32,
+            }));
+            prop_assert_eq!(out[i], single.color, "layer {}", i);
+        }
+    }
+}

@@ -6,7 +6,7 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use subcone_kernels::passes::{Passes, Technique};
 use subcone_kernels::sraa::{
-    neighbourhood, reconstruct, resolve_pixel, Geometry, ShadedSample, SraaParams,
+    neighbourhood, reconstruct_layers, resolve_pixel, Geometry, LayeredSample, SraaParams,
     SHADED_SUBSAMPLE, SUBPIXEL_OFFSETS,
 };
 use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderSettings};
@@ -475,6 +475,10 @@ fn bands<T: Send>(v: &mut [T], band: usize, nb: usize) -> Vec<&mut [T]> {
     }
 }
 
+/// Reconstruct one subsample: the primary layers on primary geometry (one pass,
+/// layer 0 ungated, layer `1 + l` gated by light `l`), then, on mirrors, the
+/// secondary layers on secondary geometry, gated by the secondary hits' shadow
+/// states. Returns the sum of the layers.
 #[allow(clippy::too_many_arguments)]
 fn reconstruct_subsample(
     b: &Buffers,
@@ -489,42 +493,51 @@ fn reconstruct_subsample(
     nl: usize,
 ) -> Vec3 {
     let j = y * w + x;
-    let target = b.sub_geo[j][k];
+    let group = 1 + layout.lights;
+    let mut gates = [None; MAX_LIGHTS + 1];
+    for (l, g) in gates.iter_mut().enumerate().skip(1).take(layout.lights) {
+        *g = Some((l - 1) as u8);
+    }
+    let gates = if layout.single {
+        &gates[..1]
+    } else {
+        &gates[..group]
+    };
+    let mut out = [Vec3::ZERO; MAX_LIGHTS + 1];
     let hood = || neighbourhood(x as u32, y as u32, k, radius, w as u32, h as u32);
-    let layer = |target: &Geometry,
-                 gate: Option<bool>,
-                 geo: &[Geometry],
-                 bits: &[u32],
-                 l: usize,
-                 bit: u32| {
+    let run = |target: &Geometry,
+               target_shadow: u32,
+               geo: &[Geometry],
+               bits: &[u32],
+               first: usize,
+               out: &mut [Vec3]| {
         let samples = hood().map(|np| {
             let jj = np.y as usize * w + np.x as usize;
-            ShadedSample {
+            LayeredSample {
                 geometry: geo[jj],
-                color: b.values[jj * nl + l],
-                shadowed: bits.get(jj).is_some_and(|s| s & (1 << bit) != 0),
+                shadow: bits.get(jj).copied().unwrap_or(0),
                 distance2: np.distance2,
+                colors: &b.values[jj * nl + first..jj * nl + first + gates.len()],
             }
         });
-        reconstruct(params, target, gate, samples).color
+        reconstruct_layers(params, target, target_shadow, gates, samples, out);
+        out[..gates.len()].iter().fold(Vec3::ZERO, |a, c| a + *c)
     };
-    if layout.single {
-        return layer(&target, None, &b.geo, &[], 0, 0);
-    }
-    let mut c = layer(&target, None, &b.geo, &[], 0, 0);
-    for l in 0..layout.lights {
-        let gate = b.sub_shadow.get(j).map(|s| s[k] & (1 << l) != 0);
-        c += layer(&target, gate, &b.geo, &b.shadow, 1 + l, l as u32);
-    }
+    let target = b.sub_geo[j][k];
+    let shadow = b.sub_shadow.get(j).map(|s| s[k]).unwrap_or(0);
+    let mut c = run(&target, shadow, &b.geo, &b.shadow, 0, &mut out);
     if layout.secondary {
         let target2 = b.sub_geo2.get(j).map(|g| g[k]).unwrap_or(NO_SECONDARY);
         if !target2.depth.is_nan() {
-            let sb = layout.secondary_base();
-            c += layer(&target2, None, &b.geo2, &[], sb, 0);
-            for l in 0..layout.lights {
-                let gate = b.sub_shadow2.get(j).map(|s| s[k] & (1 << l) != 0);
-                c += layer(&target2, gate, &b.geo2, &b.shadow2, sb + 1 + l, l as u32);
-            }
+            let shadow2 = b.sub_shadow2.get(j).map(|s| s[k]).unwrap_or(0);
+            c += run(
+                &target2,
+                shadow2,
+                &b.geo2,
+                &b.shadow2,
+                layout.secondary_base(),
+                &mut out,
+            );
         }
     }
     c
