@@ -20,6 +20,14 @@ pub fn parse_size(s: &str) -> Result<(u32, u32)> {
     Ok((p(w)?, p(h)?))
 }
 
+/// A backend by name (`cpu`).
+pub fn backend(name: &str) -> Result<Box<dyn Backend + Send + Sync>> {
+    match name {
+        "cpu" => Ok(Box::new(CpuBackend::new())),
+        other => Err(anyhow!("unknown backend {other:?}: expected cpu")),
+    }
+}
+
 /// Load a scene by name or path.
 pub fn scene(arg: &str) -> Result<Scene> {
     Ok(builtin::builtin(arg)?)

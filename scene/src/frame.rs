@@ -51,6 +51,10 @@ pub struct FrameStats {
     pub rays: RayCounts,
     /// Shaded samples (shading evaluations at primary hits or CTSS groups).
     pub shaded_samples: u64,
+    /// SDF evaluations of primary tracing (sphere or cone tracing), for SDF scenes.
+    pub sdf_evaluations: u64,
+    /// Pixels that took more than one shaded sample (the CTSS paper's Fig. 9).
+    pub multi_sample_pixels: u64,
 }
 
 impl FrameStats {

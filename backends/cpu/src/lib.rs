@@ -21,6 +21,7 @@
 pub mod bvh;
 mod render;
 pub mod shade;
+pub mod sphere;
 
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};

@@ -80,11 +80,31 @@ pub fn supersample(t: &Tracer, method: &Method, s: &RenderSettings, passes: Pass
         buffers: vec![("color", frame.color.len() * std::mem::size_of::<Vec3>())],
         rays: to_ray_counts(counts),
         shaded_samples: counts.shaded,
+        ..Default::default()
     };
     if s.aovs {
         frame.samples_per_pixel = Some(vec![(n * n) as f32; w * h]);
+        let (depth, normal) = centre_geometry(t, s);
+        frame.depth = Some(depth);
+        frame.normal = Some(normal);
     }
     frame
+}
+
+/// Depth and normal of the ray through each pixel centre (AOVs; not timed).
+fn centre_geometry(t: &Tracer, s: &RenderSettings) -> (Vec<f32>, Vec<Vec3>) {
+    let w = s.width as usize;
+    let g: Vec<Geometry> = (0..w * s.height as usize)
+        .into_par_iter()
+        .map(|i| {
+            let (o, d) = t.camera.ray(pixel_centre(i % w, i / w), s.width, s.height);
+            t.primary_geometry(t.intersect(o, d, 0.0).as_ref())
+        })
+        .collect();
+    (
+        g.iter().map(|g| g.depth).collect(),
+        g.iter().map(|g| g.normal).collect(),
+    )
 }
 
 /// Which value layers a shaded sample carries (see [`subpixel`]).
@@ -455,10 +475,12 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
         buffers,
         rays: to_ray_counts(counts),
         shaded_samples: counts.shaded,
+        ..Default::default()
     };
     if s.aovs {
-        frame.depth = Some(b.geo.iter().map(|g| g.depth).collect());
-        frame.normal = Some(b.geo.iter().map(|g| g.normal).collect());
+        let (depth, normal) = centre_geometry(t, s);
+        frame.depth = Some(depth);
+        frame.normal = Some(normal);
         frame.samples_per_pixel = Some(vec![1.0; n]);
     }
     frame
