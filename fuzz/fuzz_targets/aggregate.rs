@@ -4,11 +4,12 @@
 mod common;
 
 use arbitrary::Arbitrary;
-use common::{known_bug, product_underflows, v3, Hull, SUBNORMAL_ULP};
+use common::{v3, Hull};
 use glam::Vec3;
 use libfuzzer_sys::fuzz_target;
 use subcone_kernels::aggregate::{sample_weight, Aggregate, Weighting};
 use subcone_kernels::mask::mask_weight;
+use subcone_kernels::sraa::NEGLIGIBLE_WEIGHT;
 
 #[derive(Arbitrary, Debug)]
 struct Input {
@@ -49,51 +50,68 @@ fuzz_target!(|x: Input| {
         agg.add(w, c);
     }
     assert!(agg.samples() as usize == samples.len());
-    assert!(agg.weight() >= 0.0, "weight sum {}", agg.weight());
-    let c = agg.resolve(background, x.bg_weight);
-    assert!(c.is_finite(), "resolve = {c:?} is not finite ({samples:?}, {background:?}, {})", x.bg_weight);
-    // The same aggregate after a full occlusion (bg weight 0), and with the
-    // background at full weight.
-    for bw in [0.0, 1.0, f32::NAN, f32::INFINITY] {
-        assert!(agg.resolve(background, bw).is_finite());
+
+    // Replay the documented sums: non-finite colours are not added (but still
+    // count as samples), weights are clamped to [0, 1] (NaN and negative read
+    // as 0), so Σw ≤ the number of finite colours and never overflows.
+    let mut wsum = 0.0f32;
+    let mut added = 0usize;
+    let mut last = None;
+    let mut hull = Hull::new();
+    for &(w, c) in &samples {
+        if !c.is_finite() {
+            continue;
+        }
+        wsum += if w > 0.0 { w.min(1.0) } else { 0.0 };
+        added += 1;
+        last = Some(c);
+        hull.add(c);
     }
-
-    let all_finite = samples.iter().all(|(w, c)| w.is_finite() && c.is_finite())
-        && background.is_finite()
-        && x.bg_weight.is_finite();
-    if all_finite {
-        let mut hull = Hull::new();
-        for &(_, c) in &samples {
-            hull.add(c);
-        }
+    assert!(
+        agg.weight() >= 0.0 && agg.weight() <= added as f32 && agg.weight().to_bits() == wsum.to_bits(),
+        "weight sum {} (replayed {wsum}, {added} finite colours) of {samples:?}",
+        agg.weight()
+    );
+    if background.is_finite() {
         hull.add(background);
+    }
+    // The fallback: the last surface's colour, else the background, else black.
+    let fallback = last.unwrap_or(if background.is_finite() {
+        background
+    } else {
+        Vec3::ZERO
+    });
 
-        // Replay the kernel's sums to recognise the known bugs' inputs.
-        let bgw = if x.bg_weight > 0.0 { x.bg_weight.min(1.0) } else { 0.0 };
-        let mut wsum = 0.0f32;
-        let mut underflow = false;
-        for &(w, c) in &samples {
-            let w = if w > 0.0 { w } else { 0.0 };
-            wsum += w;
-            underflow |= product_underflows(w, c);
-        }
-        underflow |= product_underflows(bgw, background);
-        let total = wsum + bgw;
-        // Known bug 4: Σw overflows to +∞ while Σw·C stays finite, so the quotient
-        // is 0 (or tiny), wherever the colours are.
-        let overflow = !total.is_finite();
-        // Known bug 2 (as in sraa::reconstruct): w·C underflows while
-        // Σw ≥ f32::MIN_POSITIVE.
-        let extra = if total.is_finite() && total > 0.0 && known_bug(underflow) {
-            (samples.len() + 1) as f64 * SUBNORMAL_ULP / total as f64
+    // The given background weight, then a full occlusion (0), full weight, and
+    // out-of-domain weights.
+    for bw in [x.bg_weight, 0.0, 1.0, f32::NAN, f32::INFINITY] {
+        let c = agg.resolve(background, bw);
+        assert!(
+            c.is_finite(),
+            "resolve = {c:?} is not finite ({samples:?}, {background:?}, {bw})"
+        );
+        let bgw = if bw > 0.0 && background.is_finite() {
+            bw.min(1.0)
         } else {
             0.0
         };
-        if !known_bug(overflow) {
+        let total = wsum + bgw;
+        // A negligible total (Σw·C may have lost its precision to underflow)
+        // falls back.
+        if !(total >= NEGLIGIBLE_WEIGHT) {
             assert!(
-                hull.contains(c, extra),
-                "resolve = {c:?} outside the hull {hull:?} of {samples:?} and {background:?} (bg weight {})",
-                x.bg_weight
+                c == fallback,
+                "resolve = {c:?} with negligible total weight {total:e}, expected the fallback \
+                 {fallback:?} ({samples:?}, {background:?}, bg weight {bw})"
+            );
+        }
+        if hull.is_empty() {
+            assert!(c == Vec3::ZERO, "resolve = {c:?} with nothing finite");
+        } else {
+            assert!(
+                hull.contains(c),
+                "resolve = {c:?} outside the hull {hull:?} of {samples:?} and {background:?} \
+                 (bg weight {bw}, total weight {total:e})"
             );
         }
     }

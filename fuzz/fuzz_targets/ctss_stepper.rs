@@ -283,7 +283,7 @@ fuzz_target!(|x: Input| {
         assert!(r.color == Vec3::ZERO, "trace colour {r:?} with nothing finite");
     } else {
         assert!(
-            hull.contains(r.color, 0.0),
+            hull.contains(r.color),
             "trace colour {r:?} outside the hull {hull:?} of {used:?} and {background:?}"
         );
     }

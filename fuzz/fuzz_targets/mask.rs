@@ -4,12 +4,12 @@
 mod common;
 
 use arbitrary::Arbitrary;
-use common::{known_bug, unit, v2, v3};
+use common::{unit, v2, v3};
 use glam::{Vec2, Vec3};
 use libfuzzer_sys::fuzz_target;
 use subcone_kernels::mask::{
-    cell_centre, half_plane, half_plane_mask, mask_weight, project_normal, visibility_mask,
-    MaskPlacement, VisibilityAccumulator, FULL_MASK,
+    cell_centre, half_plane, half_plane_mask, mask_weight, occlusion_to_distance, project_normal,
+    visibility_mask, MaskPlacement, VisibilityAccumulator, FULL_MASK,
 };
 
 const PLACEMENTS: [MaskPlacement; 3] = [
@@ -73,23 +73,17 @@ fuzz_target!(|x: Input| {
     match unit(n3) {
         None => assert!(np3 == Vec2::ZERO, "project_normal({n3:?}) = {np3:?}"),
         Some(u) => {
-            // Known bug 5: |n|² is computed in f32, so a finite non-zero normal
-            // with |n|² outside the normal range (|n| ≳ 1.8e19 overflows, |n| ≲
-            // 1.1e-19 goes subnormal or 0) is either taken for "no normal" (0, 0)
-            // or normalised with a wrong length (|n_p| up to ~1.22).
-            let len2 = n3.length_squared();
-            let badly_scaled = !(len2 >= f32::MIN_POSITIVE) || !len2.is_finite();
-            if !known_bug(badly_scaled) {
-                let expect = Vec2::new(u.x, u.y);
-                assert!(
-                    (np3 - expect).abs().max_element() <= 1e-6,
-                    "project_normal({n3:?}) = {np3:?}, expected {expect:?}"
-                );
-                assert!(
-                    np3.length() <= 1.0 + 1e-6,
-                    "project_normal({n3:?}) = {np3:?} longer than 1"
-                );
-            }
+            // However long or short the normal: the kernel scales by its
+            // largest component before normalising.
+            let expect = Vec2::new(u.x, u.y);
+            assert!(
+                (np3 - expect).abs().max_element() <= 1e-6,
+                "project_normal({n3:?}) = {np3:?}, expected {expect:?}"
+            );
+            assert!(
+                np3.length() <= 1.0 + 1e-6,
+                "project_normal({n3:?}) = {np3:?} longer than 1"
+            );
         }
     }
 
@@ -114,8 +108,19 @@ fuzz_target!(|x: Input| {
     // Complement symmetry: (ω, n) and (1 − ω, −n) split the disk along the same
     // line, so they differ from complements only by ties at cell centres, at most
     // one cell per row (a whole row when the boundary is horizontal): 6 bits.
-    if x.occlusion.is_finite() {
-        let w = x.occlusion;
+    // The pair is a complement only if f32 keeps it one: `1 − ω` rounds for
+    // some ω < 0.5 (ω = 0.5 − 2⁻²⁵ gives exactly 0.5), and the derived
+    // placement divides the resulting `d/R_c` mismatch by `|n_p|`, so a tiny
+    // projected normal turns an ulp into the whole disk. So the pair is taken
+    // from ω or, failing that, from ω' = 1 − ω (exact for ω' in [0.5, 1]), and
+    // checked only when `d/R_c = 1 − 2ω` of its two halves is exactly mirrored.
+    let exact_pair = |w: f32| occlusion_to_distance(1.0 - w) == -occlusion_to_distance(w);
+    let w = if exact_pair(x.occlusion) {
+        x.occlusion
+    } else {
+        1.0 - x.occlusion
+    };
+    if w.is_finite() && exact_pair(w) {
         for np in normals(&x) {
             if !np.is_finite() {
                 continue;

@@ -4,12 +4,12 @@
 mod common;
 
 use arbitrary::Arbitrary;
-use common::{finite_nonneg, known_bug, product_underflows, unit, v3, Hull, SUBNORMAL_ULP};
+use common::{finite_nonneg, unit, v3, Hull};
 use glam::Vec3;
 use libfuzzer_sys::fuzz_target;
 use subcone_kernels::sraa::{
     bilateral_weight, reconstruct, resolve_pixel, shadow_gated_weight, DepthMetric, Geometry,
-    ShadedSample, SraaParams, WeightForm,
+    ShadedSample, SraaParams, WeightForm, NEGLIGIBLE_WEIGHT,
 };
 
 #[derive(Arbitrary, Debug)]
@@ -156,17 +156,13 @@ fuzz_target!(|input: Input| {
             let uj = Geometry::new(nj, zj);
             if !zi.is_nan() {
                 let wii = bilateral_weight(&p, &ui, &ui);
-                // Known bug 1: an f32-normalised normal can have n·n = 1 − 2⁻²⁴,
-                // so 1 − sat(n·n) = 6e-8 and, scaled by σn (Product) or s
-                // (ChajdasMax, s = 10 in the CHAJDAS preset), w_ii < 1.
-                let self_dot_below_one = ni.dot(ni) < 1.0;
-                if !known_bug(self_dot_below_one) {
-                    assert!(
-                        wii == 1.0,
-                        "w(i,i) = {wii} != 1 for {p:?}, {ui:?} (n·n = {})",
-                        ni.dot(ni)
-                    );
-                }
+                // f32 normalisation can leave n·n = 1 − 2⁻²⁴ (or − 2⁻²³); the
+                // kernel snaps cosines within NORMAL_COS_SNAP of 1 to 1.
+                assert!(
+                    wii == 1.0,
+                    "w(i,i) = {wii} != 1 for {p:?}, {ui:?} (n·n = {})",
+                    ni.dot(ni)
+                );
             }
             if !zi.is_nan() && !zj.is_nan() {
                 let a = bilateral_weight(&p, &ui, &uj);
@@ -198,13 +194,15 @@ fuzz_target!(|input: Input| {
         "reconstruct returned a non-finite colour {r:?}"
     );
 
+    // Replay the kernel's sums over the finite neighbours, in the same order:
+    // the fallback applies exactly when Σw is below NEGLIGIBLE_WEIGHT or the
+    // quotient is not finite.
     let mut hull = Hull::new();
-    let mut all_finite = true;
-    let mut underflow = false;
+    let mut wsum = 0.0f32;
+    let mut sum = Vec3::ZERO;
     let mut nearest: Option<(f32, Vec3)> = None;
     for s in &neighbours {
         if !s.color.is_finite() {
-            all_finite = false;
             continue;
         }
         hull.add(s.color);
@@ -212,7 +210,8 @@ fuzz_target!(|input: Input| {
             Some(si) => shadow_gated_weight(&p, &gi, &s.geometry, si, s.shadowed),
             None => bilateral_weight(&p, &gi, &s.geometry),
         };
-        underflow |= product_underflows(w, s.color);
+        sum += w * s.color;
+        wsum += w;
         let d2 = if s.distance2.is_nan() {
             f32::INFINITY
         } else {
@@ -223,6 +222,11 @@ fuzz_target!(|input: Input| {
             _ => nearest = Some((d2, s.color)),
         }
     }
+    let expect_fallback = !(wsum >= NEGLIGIBLE_WEIGHT) || !(sum / wsum).is_finite();
+    assert!(
+        r.fell_back == expect_fallback,
+        "reconstruct {r:?}: fell_back should be {expect_fallback} (Σw = {wsum:e}, Σw·C = {sum:?})"
+    );
     if r.fell_back {
         let expect = nearest.map_or(Vec3::ZERO, |(_, c)| c);
         assert!(
@@ -231,28 +235,20 @@ fuzz_target!(|input: Input| {
         );
     } else {
         assert!(
-            r.weight_sum >= f32::MIN_POSITIVE,
-            "no fallback with weight sum {}",
+            r.weight_sum.to_bits() == wsum.to_bits() && r.weight_sum >= NEGLIGIBLE_WEIGHT,
+            "no fallback with weight sum {:e} (replayed {wsum:e})",
             r.weight_sum
         );
     }
-    if all_finite {
-        if hull.is_empty() {
-            assert!(r.color == Vec3::ZERO && r.fell_back, "no neighbour: {r:?}");
-        } else {
-            // Known bug 2: `w·C_j` underflows (gradual underflow, absolute error
-            // up to 2⁻¹⁵⁰ per product) while Σw ≥ f32::MIN_POSITIVE, so the
-            // quotient can be off by 2⁻¹⁵⁰·n/Σw, far beyond relative rounding.
-            let extra = if !r.fell_back && known_bug(underflow) {
-                neighbours.len() as f64 * SUBNORMAL_ULP / r.weight_sum as f64
-            } else {
-                0.0
-            };
-            assert!(
-                hull.contains(r.color, extra),
-                "reconstruct {r:?} outside the neighbours' hull {hull:?}"
-            );
-        }
+    // Non-finite neighbours are excluded, so the result lies in the hull of the
+    // finite ones (black with none).
+    if hull.is_empty() {
+        assert!(r.color == Vec3::ZERO && r.fell_back, "no usable neighbour: {r:?}");
+    } else {
+        assert!(
+            hull.contains(r.color),
+            "reconstruct {r:?} outside the finite neighbours' hull {hull:?} (Σw = {wsum:e})"
+        );
     }
 
     // The pixel resolve.
@@ -260,24 +256,15 @@ fuzz_target!(|input: Input| {
     let c = resolve_pixel(&subs);
     assert!(!c.is_nan(), "resolve_pixel({subs:?}) = {c:?} is NaN");
     let mut hull = Hull::new();
-    let mut sums = [0.0f32; 3];
     for s in subs.iter().filter(|s| s.is_finite()) {
         hull.add(*s);
-        for k in 0..3 {
-            sums[k] += s[k];
-        }
     }
     if hull.is_empty() {
         assert!(c == Vec3::ZERO, "resolve_pixel with no finite subsample: {c:?}");
     } else {
-        // Known bug 3: the running sum of finite subsamples overflows to ±∞,
-        // and ∞/n is returned for an average of finite colours.
-        let overflow = sums.iter().any(|s| !s.is_finite());
-        if !known_bug(overflow) {
-            assert!(
-                hull.contains(c, 0.0),
-                "resolve_pixel({subs:?}) = {c:?} outside the subsamples' hull"
-            );
-        }
+        assert!(
+            hull.contains(c),
+            "resolve_pixel({subs:?}) = {c:?} outside the finite subsamples' hull"
+        );
     }
 });

@@ -3,14 +3,6 @@
 
 use glam::{Vec2, Vec3};
 
-/// Whether an assertion that a *known kernel bug* violates is skipped for this
-/// input. `triggered` must describe the input class of the bug exactly (see
-/// README.md, "Known kernel bugs"); with `--features strict` nothing is skipped.
-#[inline]
-pub fn known_bug(triggered: bool) -> bool {
-    !cfg!(feature = "strict") && triggered
-}
-
 pub fn v3(a: [f32; 3]) -> Vec3 {
     Vec3::from_array(a)
 }
@@ -77,26 +69,16 @@ impl Hull {
     }
 
     /// Whether `c` lies in the per-channel `[min, max]`, with the tolerance
-    /// `1e-5 · max|channel| + 1e-30 + extra_abs` on each side.
-    pub fn contains(&self, c: Vec3, extra_abs: f64) -> bool {
+    /// `1e-5 · max|channel| + 1e-30` on each side.
+    pub fn contains(&self, c: Vec3) -> bool {
         if self.is_empty() || !c.is_finite() {
             return false;
         }
         (0..3).all(|k| {
             let (lo, hi, x) = (self.min[k] as f64, self.max[k] as f64, c[k] as f64);
             let mag = lo.abs().max(hi.abs());
-            let tol = 1e-5 * mag + 1e-30 + extra_abs;
+            let tol = 1e-5 * mag + 1e-30;
             x >= lo - tol && x <= hi + tol
         })
     }
-}
-
-/// `2⁻¹⁴⁹`, the spacing of f32 subnormals: the absolute rounding error of one
-/// product that underflows is at most half of it.
-pub const SUBNORMAL_ULP: f64 = 1.401298464324817e-45;
-
-/// Whether `w · c` underflows below the normal range for some channel (with
-/// `w` and that channel non-zero), i.e. loses relative precision.
-pub fn product_underflows(w: f32, c: Vec3) -> bool {
-    w != 0.0 && (0..3).any(|k| c[k] != 0.0 && (w * c[k]).abs() < f32::MIN_POSITIVE)
 }
