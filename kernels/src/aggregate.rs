@@ -4,6 +4,7 @@
 use glam::Vec3;
 
 use crate::mask::mask_weight;
+use crate::sum::WeightedSum;
 
 /// How a hit group's sample is weighted.
 #[repr(u32)]
@@ -55,8 +56,7 @@ pub fn sample_weight(visible: u32, weighting: Weighting, min_weight: f32) -> f32
 /// Running sums of eq. 6: `C = Σ w_i C_i / Σ w_i`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Aggregate {
-    color: Vec3,
-    weight: f32,
+    acc: WeightedSum,
     last: Option<Vec3>,
     samples: u32,
 }
@@ -65,8 +65,7 @@ impl Aggregate {
     /// An empty aggregate.
     pub const fn new() -> Self {
         Self {
-            color: Vec3::ZERO,
-            weight: 0.0,
+            acc: WeightedSum::ZERO,
             last: None,
             samples: 0,
         }
@@ -85,8 +84,7 @@ impl Aggregate {
             return;
         }
         let w = if w > 0.0 { w.min(1.0) } else { 0.0 };
-        self.color += w * color;
-        self.weight += w;
+        self.acc.add(w, color);
         self.last = Some(color);
     }
 
@@ -96,8 +94,8 @@ impl Aggregate {
     }
 
     /// Sum of the weights added so far.
-    pub const fn weight(&self) -> f32 {
-        self.weight
+    pub fn weight(&self) -> f32 {
+        self.acc.weight()
     }
 
     /// The pixel colour (eq. 6), with `background` given weight `bg_weight` when
@@ -119,12 +117,12 @@ impl Aggregate {
         } else {
             0.0
         };
-        let total = self.weight + bgw;
-        if total >= crate::sraa::NEGLIGIBLE_WEIGHT {
-            let c = (self.color + bgw * background) / total;
-            if c.is_finite() {
-                return c;
-            }
+        let mut all = self.acc;
+        if bgw > 0.0 {
+            all.add(bgw, background);
+        }
+        if let Some(c) = all.mean() {
+            return c;
         }
         match self.last {
             Some(c) => c,

@@ -43,5 +43,6 @@ pub mod ctss;
 pub mod mask;
 pub mod passes;
 pub mod sraa;
+mod sum;
 
 pub use glam;

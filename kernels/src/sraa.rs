@@ -12,6 +12,8 @@
 
 use glam::{Vec2, Vec3};
 
+use crate::sum::WeightedSum;
+
 /// The four subpixel offsets of the 4x rotated grid on a 4×4 grid (§3.1, Fig. 2),
 /// relative to the pixel's centre, in pixels.
 ///
@@ -486,8 +488,7 @@ pub fn reconstruct<I>(
 where
     I: IntoIterator<Item = ShadedSample>,
 {
-    let mut sum = Vec3::ZERO;
-    let mut wsum = 0.0f32;
+    let mut acc = WeightedSum::ZERO;
     let mut nearest = Vec3::ZERO;
     let mut nearest_d2 = f32::INFINITY;
     let mut any = false;
@@ -509,18 +510,14 @@ where
             Some(si) => shadow_gated_weight(params, target, &s.geometry, si, s.shadowed),
             None => bilateral_weight(params, target, &s.geometry),
         };
-        sum += w * s.color;
-        wsum += w;
+        acc.add(w, s.color);
     }
-    if wsum >= NEGLIGIBLE_WEIGHT {
-        let c = sum / wsum;
-        if c.is_finite() {
-            return Reconstruction {
-                color: c,
-                weight_sum: wsum,
-                fell_back: false,
-            };
-        }
+    if let Some(c) = acc.mean() {
+        return Reconstruction {
+            color: c,
+            weight_sum: acc.weight(),
+            fell_back: false,
+        };
     }
     Reconstruction {
         color: nearest,
@@ -587,8 +584,7 @@ pub fn reconstruct_layers<'a, I>(
     I: IntoIterator<Item = LayeredSample<'a>>,
 {
     let n = gates.len().min(out.len()).min(MAX_LAYERS);
-    let mut sum = [Vec3::ZERO; MAX_LAYERS];
-    let mut wsum = [0.0f32; MAX_LAYERS];
+    let mut acc = [WeightedSum::ZERO; MAX_LAYERS];
     let mut nearest = [Vec3::ZERO; MAX_LAYERS];
     let mut nearest_d2 = [f32::INFINITY; MAX_LAYERS];
     let mut any = [false; MAX_LAYERS];
@@ -613,20 +609,10 @@ pub fn reconstruct_layers<'a, I>(
                 Some(bit) if bit < 32 && ((target_shadow ^ s.shadow) >> bit) & 1 != 0 => 0.0,
                 _ => w,
             };
-            sum[i] += wi * c;
-            wsum[i] += wi;
+            acc[i].add(wi, c);
         }
     }
     for i in 0..n {
-        out[i] = if wsum[i] >= NEGLIGIBLE_WEIGHT {
-            let c = sum[i] / wsum[i];
-            if c.is_finite() {
-                c
-            } else {
-                nearest[i]
-            }
-        } else {
-            nearest[i]
-        };
+        out[i] = acc[i].mean().unwrap_or(nearest[i]);
     }
 }

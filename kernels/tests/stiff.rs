@@ -418,3 +418,30 @@ fn fuzz_regressions() {
         visibility_mask(0.3, Vec2::X, MaskPlacement::Derived)
     );
 }
+
+/// Fuzzing found these after the first fix: products `w·C` of a small weight
+/// and a tiny colour left f32's normal range. Sums are now accumulated in f64.
+#[test]
+fn fuzz_regressions_tiny_products() {
+    assert_eq!(
+        Aggregate::new().resolve(Vec3::splat(1e-28), 1e-18),
+        Vec3::splat(1e-28)
+    );
+    let mut a = Aggregate::new();
+    a.add(1e-18, Vec3::splat(1e-28));
+    assert_eq!(a.resolve(Vec3::ZERO, 0.0), Vec3::splat(1e-28));
+    let p = SraaParams::new(1.0, 0.0, 1.0, WeightForm::Product, DepthMetric::Absolute, 1);
+    let n = [ShadedSample {
+        geometry: Geometry::new(Vec3::Y, 6.6),
+        color: Vec3::splat(1e-28),
+        shadowed: false,
+        distance2: 0.0,
+    }];
+    let r = reconstruct(&p, &Geometry::new(Vec3::Y, 0.0), None, n);
+    assert_eq!((r.color, r.fell_back), (Vec3::splat(1e-28), false));
+    // The aggregate fuzzer's input: a NaN-weight sample and a background alone.
+    let bg = Vec3::new(1.1368807e-13, 1.4356219e-28, 6.7498003e-21);
+    let mut a = Aggregate::new();
+    a.add(f32::NAN, Vec3::ONE);
+    assert_eq!(a.resolve(bg, 6.938894e-18), bg);
+}

@@ -1,0 +1,55 @@
+//! A weighted colour sum accumulated in f64.
+//!
+//! Products `w·C` of f32 weights and colours leave f32's normal range when both
+//! are small (a weight of 1e-18 times a colour of 1e-28), and the normalised
+//! result then drifts outside the convex hull of the inputs. In f64 every such
+//! product of f32 values is exact enough (f64's exponent range covers the
+//! square of f32's), so `Σ w·C / Σ w` stays inside the hull. The cost is nil on
+//! CPUs; GPU ports without f64 document the difference in the subnormal range.
+
+use glam::Vec3;
+
+use crate::sraa::NEGLIGIBLE_WEIGHT;
+
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct WeightedSum {
+    sum: [f64; 3],
+    weight: f64,
+}
+
+impl WeightedSum {
+    pub(crate) const ZERO: Self = Self {
+        sum: [0.0; 3],
+        weight: 0.0,
+    };
+
+    #[inline]
+    pub(crate) fn add(&mut self, w: f32, c: Vec3) {
+        let w64 = w as f64;
+        self.sum[0] += w64 * c.x as f64;
+        self.sum[1] += w64 * c.y as f64;
+        self.sum[2] += w64 * c.z as f64;
+        self.weight += w64;
+    }
+
+    #[inline]
+    pub(crate) fn weight(&self) -> f32 {
+        self.weight as f32
+    }
+
+    /// `Σ w·C / Σ w`, or `None` when the weight is negligible or the mean is not
+    /// finite in f32.
+    #[inline]
+    pub(crate) fn mean(&self) -> Option<Vec3> {
+        if !(self.weight >= NEGLIGIBLE_WEIGHT as f64) {
+            return None;
+        }
+        let inv = 1.0 / self.weight;
+        let c = Vec3::new(
+            (self.sum[0] * inv) as f32,
+            (self.sum[1] * inv) as f32,
+            (self.sum[2] * inv) as f32,
+        );
+        c.is_finite().then_some(c)
+    }
+}
