@@ -43,7 +43,7 @@ impl Light {
             } => {
                 let to = position - p;
                 let d2 = to.length_squared();
-                if !(d2 > 0.0) || !d2.is_finite() {
+                if !(d2.is_finite() && d2 > 0.0) {
                     return None;
                 }
                 let d = d2.sqrt();

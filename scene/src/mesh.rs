@@ -100,6 +100,14 @@ impl TriangleMesh {
         material: u32,
     ) {
         let p = |i: u32, j: u32| {
+            // Exact poles, so that the zero-area triangles there are skipped
+            // (sin π is not 0 in f32: the pole would be a ring of slivers).
+            if i == 0 {
+                return Vec3::Y;
+            }
+            if i >= rings {
+                return Vec3::NEG_Y;
+            }
             let th = std::f32::consts::PI * i as f32 / rings as f32;
             let ph = std::f32::consts::TAU * j as f32 / segments as f32;
             Vec3::new(th.sin() * ph.cos(), th.cos(), th.sin() * ph.sin())
@@ -142,7 +150,8 @@ impl TriangleMesh {
                 .length_squared()
                 .max((v[2] - v[0]).length_squared());
             // Zero area, or area below f32 resolution relative to the edges.
-            if !(cross.length_squared() > scale * scale * 1e-14) {
+            let area2 = cross.length_squared();
+            if area2.is_nan() || area2 <= scale * scale * 1e-14 {
                 s.degenerate += 1;
                 continue;
             }
