@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use anyhow::{anyhow, Result};
 use subcone_cpu::CpuBackend;
-use subcone_scene::{builtin, Backend, Frame, Method, RenderSettings, Scene};
+use subcone_scene::{Backend, Frame, Method, RenderSettings, Scene};
 
 /// Parse `WxH` (e.g. `1024x768`).
 pub fn parse_size(s: &str) -> Result<(u32, u32)> {
@@ -28,9 +28,10 @@ pub fn backend(name: &str) -> Result<Box<dyn Backend + Send + Sync>> {
     }
 }
 
-/// Load a scene by name or path.
+/// Load a scene by name (built-in, or `sponza`/`sponza-mirror` from the data
+/// directory) or by path (`.obj`, `.gltf`, `.glb`).
 pub fn scene(arg: &str) -> Result<Scene> {
-    Ok(builtin::builtin(arg)?)
+    Ok(subcone_scene::load::scene_from_arg(arg)?)
 }
 
 /// What a render did.

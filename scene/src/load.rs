@@ -700,9 +700,15 @@ pub fn sponza(data_dir: &Path, reflective_floor: bool) -> Result<Scene, SceneErr
     } else {
         "sponza"
     };
-    let mut s = Scene::triangles(name, mesh, materials, vec![sun], camera)?;
+    // A weaker fill from the other side, so the +z arcade (in the sun's shadow)
+    // shows its edges and casts shadows of its own instead of a flat ambient grey.
+    let fill = Light::Directional {
+        direction: Vec3::new(0.1, 1.0, -0.3).normalize(),
+        irradiance: Vec3::new(0.75, 0.8, 0.95) * 2.0,
+    };
+    let mut s = Scene::triangles(name, mesh, materials, vec![sun, fill], camera)?;
     s.background = Vec3::new(0.55, 0.7, 0.9);
-    s.ambient = Vec3::new(0.18, 0.19, 0.22);
+    s.ambient = Vec3::new(0.08, 0.085, 0.1);
     Ok(s)
 }
 

@@ -166,8 +166,12 @@ fn sponza_scene_with_and_without_mirror_floor() {
     assert!(cam.position.x < lo.x + 0.3 * (hi.x - lo.x));
     assert!(cam.forward.x > 0.95);
     assert!((cam.fov_y.to_degrees() - 60.0).abs() < 1e-3);
+    // A sun and a weaker fill, both directional.
     assert!(matches!(
         mirror.lights[..],
-        [subcone_scene::Light::Directional { .. }]
+        [
+            subcone_scene::Light::Directional { .. },
+            subcone_scene::Light::Directional { .. }
+        ]
     ));
 }
