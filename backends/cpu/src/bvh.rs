@@ -109,6 +109,16 @@ impl SceneBvh {
         })
     }
 
+    /// obvhs' raw `ray_traverse_miss`, for throughput comparisons: every
+    /// triangle blocks, nothing else is done.
+    pub fn raw_occluded(&self, origin: Vec3, dir: Vec3, tmax: f32) -> bool {
+        let ray = Ray::new(Vec3A::from(origin), Vec3A::from(dir), 0.0, tmax);
+        let tris = &self.triangles;
+        !self
+            .bvh
+            .ray_traverse_miss(ray, |r, id| tris[id].intersect(r))
+    }
+
     /// The raw traversal, for throughput comparisons: closest hit of each ray,
     /// nothing else.
     pub fn raw_closest_t(&self, origin: Vec3, dir: Vec3) -> f32 {
