@@ -169,6 +169,8 @@ fn bytes<T>(v: &[T]) -> usize {
 /// Pass "antialiasing" (pass 2): every layer of every subsample reconstructed
 /// from the 3×3 neighbourhood's shaded samples by the kernels, then the box
 /// resolve of the four subsamples.
+// Each band indexes several parallel buffers by the same pixel index.
+#[allow(clippy::needless_range_loop)]
 pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes) -> Frame {
     let (w, h) = (s.width as usize, s.height as usize);
     let n = w * h;
