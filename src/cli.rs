@@ -62,6 +62,19 @@ impl RenderReport {
         )
     }
 
+    /// SDF evaluations, samples per pixel and the share of pixels with more than
+    /// one sample (the CTSS paper's Fig. 9).
+    pub fn stats(&self) -> String {
+        let s = &self.frame.stats;
+        let px = self.frame.width as f64 * self.frame.height as f64;
+        format!(
+            "stats: {:.2} SDF evaluations/pixel, {:.3} samples/pixel, {:.2}% of pixels with more than one sample",
+            s.sdf_evaluations as f64 / px,
+            s.shaded_samples as f64 / px,
+            100.0 * s.multi_sample_pixels as f64 / px
+        )
+    }
+
     /// Passes, timings, rays and buffers.
     pub fn details(&self) -> String {
         let s = &self.frame.stats;
@@ -90,26 +103,121 @@ impl RenderReport {
     }
 }
 
-/// Render `scene_arg` with `method` on the CPU and write the image to `output`.
-pub fn render(
-    scene_arg: &str,
-    method: Method,
-    width: u32,
-    height: u32,
-    reflection_depth: u32,
-    output: &Path,
-) -> Result<RenderReport> {
-    let scene = scene(scene_arg)?;
-    let mut settings = RenderSettings::new(width, height);
-    settings.reflection_depth = reflection_depth;
+/// An AOV image written beside the output.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Aov {
+    /// Shaded samples per pixel, black = 0, white = the frame's maximum.
+    Samples,
+    /// View depth, near = white.
+    Depth,
+    /// Shading normal, `0.5 + 0.5·n` as RGB.
+    Normal,
+}
+
+/// What `subcone render` was asked to do.
+#[derive(Clone, Debug)]
+pub struct RenderOptions {
+    /// Scene name or path.
+    pub scene: String,
+    /// Method with its parameters.
+    pub method: Method,
+    /// Backend name.
+    pub backend: String,
+    /// Width.
+    pub width: u32,
+    /// Height.
+    pub height: u32,
+    /// Mirror bounces.
+    pub reflection_depth: u32,
+    /// SDF step budget override.
+    pub max_steps: Option<u32>,
+    /// SDF distance override.
+    pub max_distance: Option<f32>,
+    /// AOV to write beside the output.
+    pub aov: Option<Aov>,
+    /// Output path.
+    pub output: std::path::PathBuf,
+}
+
+/// Check a method's parameters.
+pub fn validate_method(m: &Method) -> Result<()> {
+    if !(m.cone_coverage > 0.0 && m.cone_coverage.is_finite()) {
+        return Err(anyhow!(
+            "--cone-coverage {} must be positive and finite",
+            m.cone_coverage
+        ));
+    }
+    if !(1..=32).contains(&m.visibility_k) {
+        return Err(anyhow!(
+            "--visibility-k {} must be in 1..=32",
+            m.visibility_k
+        ));
+    }
+    Ok(())
+}
+
+/// The path of an AOV image beside `output`: `out.png` → `out.samples.png`.
+pub fn aov_path(output: &Path, aov: Aov) -> std::path::PathBuf {
+    let stem = output.file_stem().and_then(|s| s.to_str()).unwrap_or("out");
+    let name = format!("{stem}.{}.png", format!("{aov:?}").to_ascii_lowercase());
+    output.with_file_name(name)
+}
+
+fn aov_frame(frame: &Frame, aov: Aov) -> Result<Frame> {
+    let mut out = Frame::new(frame.width, frame.height);
+    let missing = || anyhow!("the backend did not record the {aov:?} AOV");
+    match aov {
+        Aov::Samples => {
+            let spp = frame.samples_per_pixel.as_ref().ok_or_else(missing)?;
+            let max = spp.iter().copied().fold(0.0f32, f32::max).max(1.0);
+            for (o, s) in out.color.iter_mut().zip(spp) {
+                *o = glam::Vec3::splat(s / max);
+            }
+        }
+        Aov::Depth => {
+            let depth = frame.depth.as_ref().ok_or_else(missing)?;
+            let finite = depth.iter().copied().filter(|d| d.is_finite());
+            let (lo, hi) = finite.fold((f32::INFINITY, 0.0f32), |(l, h), d| (l.min(d), h.max(d)));
+            for (o, d) in out.color.iter_mut().zip(depth) {
+                let v = if d.is_finite() && hi > lo {
+                    1.0 - (d - lo) / (hi - lo)
+                } else {
+                    0.0
+                };
+                *o = glam::Vec3::splat(v);
+            }
+        }
+        Aov::Normal => {
+            let normal = frame.normal.as_ref().ok_or_else(missing)?;
+            for (o, n) in out.color.iter_mut().zip(normal) {
+                *o = 0.5 + 0.5 * *n;
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Render a scene and write the image (and an AOV image if asked).
+pub fn render(opts: &RenderOptions) -> Result<RenderReport> {
+    validate_method(&opts.method)?;
+    let backend = backend(&opts.backend)?;
+    let scene = scene(&opts.scene)?;
+    let mut settings = RenderSettings::new(opts.width, opts.height);
+    settings.reflection_depth = opts.reflection_depth;
+    settings.max_steps = opts.max_steps;
+    settings.max_distance = opts.max_distance;
+    settings.aovs = opts.aov.is_some();
     settings.validate()?;
     let start = Instant::now();
-    let frame = CpuBackend::new().render(&scene, &scene.camera, &method, &settings)?;
+    let frame = backend.render(&scene, &scene.camera, &opts.method, &settings)?;
     let wall_ms = start.elapsed().as_secs_f64() * 1e3;
-    frame.save(output)?;
+    frame.save(&opts.output)?;
+    if let Some(aov) = opts.aov {
+        aov_frame(&frame, aov)?.save(&aov_path(&opts.output, aov))?;
+    }
     Ok(RenderReport {
         scene: scene.name.clone(),
-        method,
+        method: opts.method,
         frame,
         wall_ms,
     })

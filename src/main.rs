@@ -1,11 +1,11 @@
-//! The `subcone` command line: `subcone render`.
+//! The `subcone` command line: `subcone render` and `subcone report`.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::{bail, Context, Result};
+use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
-use subcone::cli;
+use subcone::cli::{self, Aov, RenderOptions};
 
 #[derive(Parser)]
 #[command(
@@ -22,7 +22,7 @@ struct Cli {
 enum Command {
     /// Render one scene with one method.
     Render {
-        /// A built-in scene name, or a path to an .obj, .gltf or .glb file.
+        /// A built-in scene name, `sponza`/`sponza-mirror`, or a path to an .obj, .gltf or .glb file.
         #[arg(long, default_value = "cornell")]
         scene: String,
         /// noaa, ssaaN (N = 4, 9, 16, 64, 256), sraa, sraa-rt, ctss, ctss-r, ssaaN+ctss.
@@ -40,6 +40,24 @@ enum Command {
         /// Mirror bounces.
         #[arg(long, default_value_t = 1)]
         reflection_depth: u32,
+        /// CTSS cone coverage in pixels (§5.1).
+        #[arg(long, default_value_t = 1.0)]
+        cone_coverage: f32,
+        /// CTSS visibility threshold k, 1..=32 (§5.1).
+        #[arg(long, default_value_t = 32)]
+        visibility_k: u32,
+        /// SDF scenes: step budget per ray (default: the scene's).
+        #[arg(long)]
+        max_steps: Option<u32>,
+        /// SDF scenes: maximum ray distance (default: the scene's).
+        #[arg(long)]
+        max_distance: Option<f32>,
+        /// Also write an AOV image beside the output: samples, depth or normal.
+        #[arg(long)]
+        aov: Option<Aov>,
+        /// Print per-frame statistics (SDF evaluations, samples, multi-sample pixels).
+        #[arg(long)]
+        stats: bool,
         /// List the passes run, their times, the rays cast and the buffers allocated.
         #[arg(long)]
         verbose: bool,
@@ -55,15 +73,35 @@ fn run() -> Result<()> {
             size,
             output,
             reflection_depth,
+            cone_coverage,
+            visibility_k,
+            max_steps,
+            max_distance,
+            aov,
+            stats,
             verbose,
         } => {
             let (width, height) = cli::parse_size(&size)?;
-            let method = method.parse().with_context(|| "--method")?;
-            if backend != "cpu" {
-                bail!("unknown backend {backend:?}: expected cpu");
-            }
-            let report = cli::render(&scene, method, width, height, reflection_depth, &output)?;
+            let mut method: subcone_scene::Method = method.parse().with_context(|| "--method")?;
+            method.cone_coverage = cone_coverage;
+            method.visibility_k = visibility_k;
+            let opts = RenderOptions {
+                scene,
+                method,
+                backend,
+                width,
+                height,
+                reflection_depth,
+                max_steps,
+                max_distance,
+                aov,
+                output,
+            };
+            let report = cli::render(&opts)?;
             println!("{}", report.summary());
+            if stats {
+                println!("{}", report.stats());
+            }
             if verbose {
                 println!("{}", report.details());
             }

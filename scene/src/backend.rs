@@ -27,6 +27,10 @@ pub struct RenderSettings {
     pub force_passes: Passes,
     /// Record depth, normal and samples-per-pixel AOVs.
     pub aovs: bool,
+    /// SDF scenes: step budget per ray, overriding the scene's.
+    pub max_steps: Option<u32>,
+    /// SDF scenes: maximum ray distance, overriding the scene's.
+    pub max_distance: Option<f32>,
 }
 
 impl RenderSettings {
@@ -38,6 +42,8 @@ impl RenderSettings {
             reflection_depth: 1,
             force_passes: Passes::empty(),
             aovs: false,
+            max_steps: None,
+            max_distance: None,
         }
     }
 
@@ -57,6 +63,16 @@ impl RenderSettings {
         }
         if self.width as u64 * self.height as u64 > MAX_PIXELS {
             return Err(err(format!("at most {MAX_PIXELS} pixels")));
+        }
+        if self.max_steps == Some(0) {
+            return Err(RenderError::Method("max steps must be at least 1".into()));
+        }
+        if let Some(d) = self.max_distance {
+            if !(d > 0.0 && d.is_finite()) {
+                return Err(RenderError::Method(format!(
+                    "max distance {d} must be positive and finite"
+                )));
+            }
         }
         Ok(())
     }
