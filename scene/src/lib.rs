@@ -25,6 +25,7 @@ pub mod material;
 pub mod mesh;
 pub mod method;
 pub mod scene;
+pub mod sdf;
 
 pub use backend::{Backend, RenderSettings};
 pub use camera::Camera;

@@ -1,0 +1,550 @@
+//! Primitive shapes in canonical position: centred on the origin, axis along
+//! `y` where there is one. Place them with [`SdfNode::translate`],
+//! [`SdfNode::rotate`] and [`SdfNode::scale`](crate::sdf::SdfNode::scale).
+//!
+//! Formulas follow Inigo Quilez's list of distance functions
+//! (<https://iquilezles.org/articles/distfunctions/>), reparametrised where his
+//! parameters are awkward (outer sizes everywhere, half extents for boxes).
+//!
+//! [`SdfNode::translate`]: crate::sdf::SdfNode::translate
+//! [`SdfNode::rotate`]: crate::sdf::SdfNode::rotate
+
+use glam::{Vec2, Vec3};
+
+use super::bounds::Aabb;
+use super::{Exactness, SdfError};
+
+/// A primitive shape. Build a node from it with
+/// [`SdfNode::shape`](crate::sdf::SdfNode::shape) (which validates it) or the
+/// per-shape constructors of [`SdfNode`](crate::sdf::SdfNode).
+///
+/// Sizes are non-negative and finite; zero sizes give degenerate but valid
+/// shapes (a sphere of radius 0 is a point). All shapes are exact distances
+/// except [`Shape::Ellipsoid`] (a bound).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shape {
+    /// Sphere. Exact.
+    Sphere {
+        /// Radius.
+        radius: f32,
+    },
+    /// Axis-aligned box. Exact.
+    Box {
+        /// Half extents.
+        half: Vec3,
+    },
+    /// Box with rounded edges; `half` is the outer half extent. Exact.
+    RoundBox {
+        /// Outer half extents.
+        half: Vec3,
+        /// Edge radius, at most the smallest half extent.
+        radius: f32,
+    },
+    /// The twelve edges of a box, as square bars. Exact.
+    BoxFrame {
+        /// Outer half extents.
+        half: Vec3,
+        /// Bar thickness (full width of a bar's square section), at most the
+        /// smallest half extent.
+        thickness: f32,
+    },
+    /// Torus in the `xz` plane. Exact (outside; a spindle torus with
+    /// `minor > major` is exact outside too).
+    Torus {
+        /// Radius of the centre circle.
+        major: f32,
+        /// Radius of the tube.
+        minor: f32,
+    },
+    /// A chain link: a torus of `major` radius stretched by `half_length`
+    /// along `y`, tube radius `minor`. Exact.
+    Link {
+        /// Half length of the straight parts.
+        half_length: f32,
+        /// Radius of the centre line's round ends.
+        major: f32,
+        /// Radius of the tube.
+        minor: f32,
+    },
+    /// Capsule along `y`: a segment from `-half_height` to `half_height`
+    /// thickened by `radius`. Exact.
+    Capsule {
+        /// Half length of the segment.
+        half_height: f32,
+        /// Radius.
+        radius: f32,
+    },
+    /// Capped cylinder along `y`. Exact.
+    Cylinder {
+        /// Radius.
+        radius: f32,
+        /// Half height.
+        half_height: f32,
+    },
+    /// Capped cylinder along `y` with rounded rims; outer dimensions. Exact.
+    RoundedCylinder {
+        /// Outer radius.
+        radius: f32,
+        /// Outer half height.
+        half_height: f32,
+        /// Rim radius, at most `radius` and `half_height`.
+        rounding: f32,
+    },
+    /// Capped cone along `y`: radius `bottom` at `y = -half_height`, `top` at
+    /// `y = half_height`. Exact.
+    CappedCone {
+        /// Half height.
+        half_height: f32,
+        /// Radius at the bottom.
+        bottom: f32,
+        /// Radius at the top.
+        top: f32,
+    },
+    /// Regular octahedron `|x| + |y| + |z| = size`. Exact (Quilez's exact
+    /// version, not the `(|x|+|y|+|z|-s)/√3` bound).
+    Octahedron {
+        /// Distance from the centre to a vertex.
+        size: f32,
+    },
+    /// Hexagonal prism along `y`. Exact.
+    HexPrism {
+        /// Distance from the axis to a flat side.
+        apothem: f32,
+        /// Half height.
+        half_height: f32,
+    },
+    /// Ellipsoid with semi-axes `radii`. A **bound**: Quilez's
+    /// `k0 (k0 − 1) / k1`, which never overestimates outside but whose gradient
+    /// is far from unit length near the flat sides of thin ellipsoids.
+    Ellipsoid {
+        /// Semi-axes, all strictly positive.
+        radii: Vec3,
+    },
+    /// Half-space `dot(p, normal) + offset ≤ 0`. Exact. Unbounded.
+    Plane {
+        /// Outward normal (normalised on construction).
+        normal: Vec3,
+        /// Signed offset: the plane is `dot(p, normal) = -offset`.
+        offset: f32,
+    },
+}
+
+fn finite_nonneg(shape: &'static str, param: &'static str, v: f32) -> Result<(), SdfError> {
+    if !v.is_finite() {
+        Err(SdfError::NonFinite { node: shape, param })
+    } else if v < 0.0 {
+        Err(SdfError::Negative {
+            node: shape,
+            param,
+            value: v,
+        })
+    } else {
+        Ok(())
+    }
+}
+
+fn finite_nonneg3(shape: &'static str, param: &'static str, v: Vec3) -> Result<(), SdfError> {
+    for c in v.to_array() {
+        finite_nonneg(shape, param, c)?;
+    }
+    Ok(())
+}
+
+fn at_most(
+    shape: &'static str,
+    param: &'static str,
+    v: f32,
+    limit: f32,
+    what: &'static str,
+) -> Result<(), SdfError> {
+    if v > limit {
+        Err(SdfError::Invalid {
+            node: shape,
+            reason: format!("{param} {v} exceeds {what} {limit}"),
+        })
+    } else {
+        Ok(())
+    }
+}
+
+impl Shape {
+    /// The shape's name, for messages.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Shape::Sphere { .. } => "sphere",
+            Shape::Box { .. } => "box",
+            Shape::RoundBox { .. } => "round box",
+            Shape::BoxFrame { .. } => "box frame",
+            Shape::Torus { .. } => "torus",
+            Shape::Link { .. } => "link",
+            Shape::Capsule { .. } => "capsule",
+            Shape::Cylinder { .. } => "cylinder",
+            Shape::RoundedCylinder { .. } => "rounded cylinder",
+            Shape::CappedCone { .. } => "capped cone",
+            Shape::Octahedron { .. } => "octahedron",
+            Shape::HexPrism { .. } => "hex prism",
+            Shape::Ellipsoid { .. } => "ellipsoid",
+            Shape::Plane { .. } => "plane",
+        }
+    }
+
+    /// Check the parameters and bring the shape to canonical form (the
+    /// plane's normal normalised).
+    pub fn validated(self) -> Result<Shape, SdfError> {
+        let n = self.name();
+        match self {
+            Shape::Sphere { radius } => finite_nonneg(n, "radius", radius)?,
+            Shape::Box { half } => finite_nonneg3(n, "half extents", half)?,
+            Shape::RoundBox { half, radius } => {
+                finite_nonneg3(n, "half extents", half)?;
+                finite_nonneg(n, "radius", radius)?;
+                at_most(
+                    n,
+                    "radius",
+                    radius,
+                    half.min_element(),
+                    "the smallest half extent",
+                )?;
+            }
+            Shape::BoxFrame { half, thickness } => {
+                finite_nonneg3(n, "half extents", half)?;
+                finite_nonneg(n, "thickness", thickness)?;
+                at_most(
+                    n,
+                    "thickness",
+                    thickness,
+                    half.min_element(),
+                    "the smallest half extent",
+                )?;
+            }
+            Shape::Torus { major, minor } => {
+                finite_nonneg(n, "major radius", major)?;
+                finite_nonneg(n, "minor radius", minor)?;
+            }
+            Shape::Link {
+                half_length,
+                major,
+                minor,
+            } => {
+                finite_nonneg(n, "half length", half_length)?;
+                finite_nonneg(n, "major radius", major)?;
+                finite_nonneg(n, "minor radius", minor)?;
+            }
+            Shape::Capsule {
+                half_height,
+                radius,
+            } => {
+                finite_nonneg(n, "half height", half_height)?;
+                finite_nonneg(n, "radius", radius)?;
+            }
+            Shape::Cylinder {
+                radius,
+                half_height,
+            } => {
+                finite_nonneg(n, "radius", radius)?;
+                finite_nonneg(n, "half height", half_height)?;
+            }
+            Shape::RoundedCylinder {
+                radius,
+                half_height,
+                rounding,
+            } => {
+                finite_nonneg(n, "radius", radius)?;
+                finite_nonneg(n, "half height", half_height)?;
+                finite_nonneg(n, "rounding", rounding)?;
+                at_most(
+                    n,
+                    "rounding",
+                    rounding,
+                    radius.min(half_height),
+                    "the radius or half height",
+                )?;
+            }
+            Shape::CappedCone {
+                half_height,
+                bottom,
+                top,
+            } => {
+                finite_nonneg(n, "half height", half_height)?;
+                finite_nonneg(n, "bottom radius", bottom)?;
+                finite_nonneg(n, "top radius", top)?;
+            }
+            Shape::Octahedron { size } => finite_nonneg(n, "size", size)?,
+            Shape::HexPrism {
+                apothem,
+                half_height,
+            } => {
+                finite_nonneg(n, "apothem", apothem)?;
+                finite_nonneg(n, "half height", half_height)?;
+            }
+            Shape::Ellipsoid { radii } => {
+                finite_nonneg3(n, "radii", radii)?;
+                if radii.min_element() <= 0.0 {
+                    return Err(SdfError::Invalid {
+                        node: n,
+                        reason: format!("radii must be strictly positive, got {radii}"),
+                    });
+                }
+            }
+            Shape::Plane { normal, offset } => {
+                if !normal.is_finite() {
+                    return Err(SdfError::NonFinite {
+                        node: n,
+                        param: "normal",
+                    });
+                }
+                if !offset.is_finite() {
+                    return Err(SdfError::NonFinite {
+                        node: n,
+                        param: "offset",
+                    });
+                }
+                let len = normal.length();
+                if len <= 1e-12 || !len.is_finite() {
+                    return Err(SdfError::Invalid {
+                        node: n,
+                        reason: format!("normal {normal} has no usable direction"),
+                    });
+                }
+                return Ok(Shape::Plane {
+                    normal: normal / len,
+                    offset,
+                });
+            }
+        }
+        Ok(self)
+    }
+
+    /// Whether the formula is an exact distance or a bound.
+    pub fn exactness(&self) -> Exactness {
+        match self {
+            Shape::Ellipsoid { .. } => Exactness::Bound,
+            _ => Exactness::Exact,
+        }
+    }
+
+    /// A box containing the shape (infinite for the plane unless it is
+    /// axis-aligned, where one side is bounded).
+    pub(crate) fn bounds(&self) -> Aabb {
+        let b = |h: Vec3| Aabb::new(-h, h);
+        match *self {
+            Shape::Sphere { radius } => b(Vec3::splat(radius)),
+            Shape::Box { half } | Shape::RoundBox { half, .. } | Shape::BoxFrame { half, .. } => {
+                b(half)
+            }
+            Shape::Torus { major, minor } => b(Vec3::new(major + minor, minor, major + minor)),
+            Shape::Link {
+                half_length,
+                major,
+                minor,
+            } => b(Vec3::new(major + minor, half_length + major + minor, minor)),
+            Shape::Capsule {
+                half_height,
+                radius,
+            } => b(Vec3::new(radius, half_height + radius, radius)),
+            Shape::Cylinder {
+                radius,
+                half_height,
+            }
+            | Shape::RoundedCylinder {
+                radius,
+                half_height,
+                ..
+            } => b(Vec3::new(radius, half_height, radius)),
+            Shape::CappedCone {
+                half_height,
+                bottom,
+                top,
+            } => {
+                let r = bottom.max(top);
+                b(Vec3::new(r, half_height, r))
+            }
+            Shape::Octahedron { size } => b(Vec3::splat(size)),
+            Shape::HexPrism {
+                apothem,
+                half_height,
+            } => {
+                // Corner radius of the hexagon: apothem / cos 30°.
+                let r = apothem * 1.154_700_6;
+                b(Vec3::new(r, half_height, r))
+            }
+            Shape::Ellipsoid { radii } => b(radii),
+            Shape::Plane { normal, offset } => {
+                let mut min = Vec3::NEG_INFINITY;
+                let mut max = Vec3::INFINITY;
+                // An axis-aligned plane bounds one side.
+                for k in 0..3 {
+                    let others = (0..3).filter(|&j| j != k).all(|j| normal[j] == 0.0);
+                    if others {
+                        if normal[k] > 0.0 {
+                            max[k] = -offset / normal[k];
+                        } else if normal[k] < 0.0 {
+                            min[k] = -offset / normal[k];
+                        }
+                    }
+                }
+                Aabb::new(min, max)
+            }
+        }
+    }
+
+    /// Whether the shape is its own mirror image about the planes `x = 0`,
+    /// `y = 0`, `z = 0`.
+    pub(crate) fn symmetry(&self) -> [bool; 3] {
+        match *self {
+            Shape::CappedCone { bottom, top, .. } => [true, bottom == top, true],
+            Shape::Plane { normal, .. } => [normal.x == 0.0, normal.y == 0.0, normal.z == 0.0],
+            _ => [true; 3],
+        }
+    }
+
+    /// Signed distance at `p` (a bound for the ellipsoid).
+    #[inline]
+    pub fn distance(&self, p: Vec3) -> f32 {
+        self.distance_xyz(p.x, p.y, p.z)
+    }
+
+    /// [`Shape::distance`] with the point as scalars: they travel in registers,
+    /// where a `Vec3` argument goes through memory and its reload can miss
+    /// store forwarding (a stall of a dozen cycles per call).
+    #[inline(never)]
+    fn distance_xyz(&self, x: f32, y: f32, z: f32) -> f32 {
+        let p = Vec3::new(x, y, z);
+        match *self {
+            Shape::Sphere { radius } => p.length() - radius,
+            Shape::Box { half } => sd_box(p, half),
+            Shape::RoundBox { half, radius } => sd_box(p, half - Vec3::splat(radius)) - radius,
+            Shape::BoxFrame { half, thickness } => sd_box_frame(p, half, 0.5 * thickness),
+            Shape::Torus { major, minor } => {
+                Vec2::new(Vec2::new(p.x, p.z).length() - major, p.y).length() - minor
+            }
+            Shape::Link {
+                half_length,
+                major,
+                minor,
+            } => {
+                let q = Vec3::new(p.x, (p.y.abs() - half_length).max(0.0), p.z);
+                Vec2::new(Vec2::new(q.x, q.y).length() - major, q.z).length() - minor
+            }
+            Shape::Capsule {
+                half_height,
+                radius,
+            } => {
+                let y = p.y - p.y.clamp(-half_height, half_height);
+                Vec3::new(p.x, y, p.z).length() - radius
+            }
+            Shape::Cylinder {
+                radius,
+                half_height,
+            } => sd_cylinder(p, radius, half_height),
+            Shape::RoundedCylinder {
+                radius,
+                half_height,
+                rounding,
+            } => sd_cylinder(p, radius - rounding, half_height - rounding) - rounding,
+            Shape::CappedCone {
+                half_height,
+                bottom,
+                top,
+            } => sd_capped_cone(p, half_height, bottom, top),
+            Shape::Octahedron { size } => sd_octahedron(p, size),
+            Shape::HexPrism {
+                apothem,
+                half_height,
+            } => sd_hex_prism(Vec3::new(p.x, p.z, p.y), apothem, half_height),
+            Shape::Ellipsoid { radii } => {
+                let k0 = (p / radii).length();
+                let k1 = (p / (radii * radii)).length();
+                if k1 == 0.0 {
+                    // The centre: the exact depth is the smallest semi-axis.
+                    -radii.min_element()
+                } else if k0.is_finite() && k1.is_finite() {
+                    k0 * ((k0 - 1.0) / k1)
+                } else {
+                    // Radii so small that `r²` underflows: the bounding
+                    // sphere's distance, still a bound.
+                    p.length() - radii.max_element()
+                }
+            }
+            Shape::Plane { normal, offset } => p.dot(normal) + offset,
+        }
+    }
+}
+
+#[inline]
+fn sd_box(p: Vec3, half: Vec3) -> f32 {
+    let q = p.abs() - half;
+    q.max(Vec3::ZERO).length() + q.max_element().min(0.0)
+}
+
+#[inline]
+fn sd_box_frame(p: Vec3, half: Vec3, e: f32) -> f32 {
+    let p = p.abs() - half;
+    let q = (p + Vec3::splat(e)).abs() - Vec3::splat(e);
+    let part = |v: Vec3| v.max(Vec3::ZERO).length() + v.max_element().min(0.0);
+    part(Vec3::new(p.x, q.y, q.z))
+        .min(part(Vec3::new(q.x, p.y, q.z)))
+        .min(part(Vec3::new(q.x, q.y, p.z)))
+}
+
+#[inline]
+fn sd_cylinder(p: Vec3, radius: f32, half_height: f32) -> f32 {
+    let d = Vec2::new(Vec2::new(p.x, p.z).length(), p.y).abs() - Vec2::new(radius, half_height);
+    d.x.max(d.y).min(0.0) + d.max(Vec2::ZERO).length()
+}
+
+#[inline]
+fn sd_capped_cone(p: Vec3, h: f32, r1: f32, r2: f32) -> f32 {
+    let q = Vec2::new(Vec2::new(p.x, p.z).length(), p.y);
+    let k1 = Vec2::new(r2, h);
+    let k2 = Vec2::new(r2 - r1, 2.0 * h);
+    let ca = Vec2::new(
+        q.x - q.x.min(if q.y < 0.0 { r1 } else { r2 }),
+        q.y.abs() - h,
+    );
+    let k2k2 = k2.length_squared();
+    // Degenerate cone (h = 0 and r1 = r2): k2 = 0, the clamp's value is moot.
+    let s = if k2k2 > 0.0 {
+        ((k1 - q).dot(k2) / k2k2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let cb = q - k1 + k2 * s;
+    let sign = if cb.x < 0.0 && ca.y < 0.0 { -1.0 } else { 1.0 };
+    sign * ca.length_squared().min(cb.length_squared()).sqrt()
+}
+
+#[inline]
+fn sd_octahedron(p: Vec3, s: f32) -> f32 {
+    let p = p.abs();
+    let m = p.x + p.y + p.z - s;
+    let q = if 3.0 * p.x < m {
+        p
+    } else if 3.0 * p.y < m {
+        Vec3::new(p.y, p.z, p.x)
+    } else if 3.0 * p.z < m {
+        Vec3::new(p.z, p.x, p.y)
+    } else {
+        return m * 0.577_350_26;
+    };
+    let k = (0.5 * (q.z - q.y + s)).clamp(0.0, s);
+    Vec3::new(q.x, q.y - s + k, q.z - k).length()
+}
+
+/// Quilez's hexagonal prism with its axis along `z`.
+#[inline]
+fn sd_hex_prism(p: Vec3, apothem: f32, half_height: f32) -> f32 {
+    const K: Vec3 = Vec3::new(-0.866_025_4, 0.5, 0.577_350_26);
+    let mut p = p.abs();
+    let kxy = Vec2::new(K.x, K.y);
+    let f = 2.0 * kxy.dot(Vec2::new(p.x, p.y)).min(0.0);
+    p.x -= f * kxy.x;
+    p.y -= f * kxy.y;
+    let edge = Vec2::new(
+        p.x - p.x.clamp(-K.z * apothem, K.z * apothem),
+        p.y - apothem,
+    );
+    let sign = if p.y - apothem < 0.0 { -1.0 } else { 1.0 };
+    let d = Vec2::new(edge.length() * sign, p.z - half_height);
+    d.x.max(d.y).min(0.0) + d.max(Vec2::ZERO).length()
+}
