@@ -13,6 +13,7 @@
 #![deny(missing_docs)]
 
 pub mod cli;
+pub mod report;
 
 pub use subcone_kernels as kernels;
 pub use subcone_kernels::{aggregate, cone, ctss, mask, passes, sraa};

@@ -1,0 +1,344 @@
+//! Image metrics on tone-mapped 8-bit sRGB images: FLIP, PSNR, and the edge
+//! mask that edge FLIP is averaged over.
+//!
+//! Every function checks its sizes and returns an error instead of panicking
+//! (nv-flip asserts equal sizes; we check first).
+
+use anyhow::{bail, Result};
+use subcone_scene::Frame;
+
+/// An 8-bit sRGB RGB image, row-major from the top-left pixel.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Rgb8 {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// `3 · width · height` bytes.
+    pub data: Vec<u8>,
+}
+
+impl Rgb8 {
+    /// The image a user sees of `frame` ([`Frame::to_srgb8`]); fails when the
+    /// frame's pixels do not match its size.
+    pub fn from_frame(frame: &Frame) -> Result<Self> {
+        let n = frame.width as usize * frame.height as usize;
+        if frame.color.len() != n {
+            bail!(
+                "frame of {}x{} has {} pixels, expected {n}",
+                frame.width,
+                frame.height,
+                frame.color.len()
+            );
+        }
+        Ok(Rgb8 {
+            width: frame.width,
+            height: frame.height,
+            data: frame.to_srgb8(),
+        })
+    }
+
+    /// Number of pixels.
+    pub fn pixels(&self) -> usize {
+        self.width as usize * self.height as usize
+    }
+
+    /// Relative luminance in `[0, 1]` of the sRGB-encoded values (Rec. 709
+    /// weights on the encoded values: a perceptual, not a physical, luminance).
+    pub fn luma(&self) -> Vec<f32> {
+        self.data
+            .chunks_exact(3)
+            .map(|p| (0.2126 * p[0] as f32 + 0.7152 * p[1] as f32 + 0.0722 * p[2] as f32) / 255.0)
+            .collect()
+    }
+}
+
+fn same_size(a: &Rgb8, b: &Rgb8) -> Result<()> {
+    if a.width != b.width || a.height != b.height {
+        bail!(
+            "images differ in size: {}x{} against {}x{}",
+            a.width,
+            a.height,
+            b.width,
+            b.height
+        );
+    }
+    if a.data.len() != a.pixels() * 3 || b.data.len() != b.pixels() * 3 {
+        bail!("image data does not match the image size");
+    }
+    if a.pixels() == 0 {
+        bail!("empty image");
+    }
+    Ok(())
+}
+
+/// A FLIP comparison: the per-pixel error map in `[0, 1]` and its mean.
+pub struct Flip {
+    /// Per-pixel FLIP error, row-major.
+    pub map: Vec<f32>,
+    /// Mean FLIP over all pixels (the number the FLIP authors recommend).
+    pub mean: f64,
+    /// The error map through FLIP's magma colour map, 8-bit RGB.
+    pub magma: Rgb8,
+}
+
+/// LDR-FLIP of `test` against `reference` at the default 67 pixels per degree.
+pub fn flip(reference: &Rgb8, test: &Rgb8) -> Result<Flip> {
+    same_size(reference, test)?;
+    let (w, h) = (reference.width, reference.height);
+    let r = nv_flip::FlipImageRgb8::with_data(w, h, &reference.data);
+    let t = nv_flip::FlipImageRgb8::with_data(w, h, &test.data);
+    let error = nv_flip::flip(r, t, nv_flip::DEFAULT_PIXELS_PER_DEGREE);
+    let map = error.to_vec();
+    if map.len() != reference.pixels() {
+        bail!(
+            "FLIP returned {} values for {} pixels",
+            map.len(),
+            reference.pixels()
+        );
+    }
+    let mean = map.iter().map(|&v| v as f64).sum::<f64>() / map.len() as f64;
+    let magma = Rgb8 {
+        width: w,
+        height: h,
+        data: error.apply_color_lut(&nv_flip::magma_lut()).to_vec(),
+    };
+    Ok(Flip { map, mean, magma })
+}
+
+/// PSNR in dB over the three 8-bit channels; `+∞` for identical images.
+pub fn psnr(reference: &Rgb8, test: &Rgb8) -> Result<f64> {
+    same_size(reference, test)?;
+    let se: f64 = reference
+        .data
+        .iter()
+        .zip(&test.data)
+        .map(|(&a, &b)| {
+            let d = a as f64 - b as f64;
+            d * d
+        })
+        .sum();
+    let mse = se / reference.data.len() as f64;
+    Ok(if mse == 0.0 {
+        f64::INFINITY
+    } else {
+        10.0 * (255.0f64 * 255.0 / mse).log10()
+    })
+}
+
+/// Mean of `values` where `mask` is set; `None` when the mask is empty or the
+/// lengths differ.
+pub fn masked_mean(values: &[f32], mask: &[bool]) -> Option<f64> {
+    if values.len() != mask.len() {
+        return None;
+    }
+    let (sum, n) = values
+        .iter()
+        .zip(mask)
+        .filter(|(_, &m)| m)
+        .fold((0.0f64, 0usize), |(s, n), (&v, _)| (s + v as f64, n + 1));
+    (n > 0).then(|| sum / n as f64)
+}
+
+/// Relative depth difference above which two neighbouring pixels straddle a
+/// depth discontinuity.
+pub const DEPTH_EDGE: f32 = 0.02;
+/// Normal cosine below which two neighbouring pixels straddle a crease.
+pub const NORMAL_EDGE: f32 = 0.9;
+/// Sobel magnitude of the sRGB luminance (normalised so that a step of height
+/// `h` gives `h`) above which a pixel is on a strong image gradient.
+pub const GRADIENT_EDGE: f32 = 0.1;
+
+/// Pixels on a geometric discontinuity of a frame with depth and normal AOVs:
+/// a 4-neighbour whose view depth differs by more than [`DEPTH_EDGE`]
+/// relatively, or whose normal's cosine is below [`NORMAL_EDGE`], or where one
+/// of the two is a miss (∞ depth) and the other is not. Both pixels of such a
+/// pair are marked.
+pub fn geometric_edges(aov: &Frame) -> Result<Vec<bool>> {
+    let (w, h) = (aov.width as usize, aov.height as usize);
+    let (Some(depth), Some(normal)) = (&aov.depth, &aov.normal) else {
+        bail!("the frame has no depth and normal AOVs (render with aovs = true)");
+    };
+    if depth.len() != w * h || normal.len() != w * h {
+        bail!("AOVs do not match the frame size {w}x{h}");
+    }
+    let mut mask = vec![false; w * h];
+    let differs = |a: usize, b: usize| -> bool {
+        let (da, db) = (depth[a], depth[b]);
+        let (fa, fb) = (da.is_finite(), db.is_finite());
+        if fa != fb {
+            return true;
+        }
+        if !fa {
+            return false;
+        }
+        let scale = da.abs().min(db.abs()).max(1e-6);
+        if (da - db).abs() / scale > DEPTH_EDGE {
+            return true;
+        }
+        let (na, nb) = (normal[a], normal[b]);
+        na.is_finite()
+            && nb.is_finite()
+            && na.length_squared() > 0.25
+            && nb.length_squared() > 0.25
+            && na.normalize().dot(nb.normalize()) < NORMAL_EDGE
+    };
+    for y in 0..h {
+        for x in 0..w {
+            let i = y * w + x;
+            if x + 1 < w && differs(i, i + 1) {
+                mask[i] = true;
+                mask[i + 1] = true;
+            }
+            if y + 1 < h && differs(i, i + w) {
+                mask[i] = true;
+                mask[i + w] = true;
+            }
+        }
+    }
+    Ok(mask)
+}
+
+/// Sobel gradient magnitude of a `w × h` scalar image, normalised so that a
+/// step of height `s` gives `s` next to the step (borders clamp).
+pub fn sobel(values: &[f32], w: usize, h: usize) -> Vec<f32> {
+    if values.len() != w * h || w == 0 || h == 0 {
+        return vec![0.0; values.len()];
+    }
+    let at = |x: isize, y: isize| {
+        let x = x.clamp(0, w as isize - 1) as usize;
+        let y = y.clamp(0, h as isize - 1) as usize;
+        values[y * w + x]
+    };
+    let mut out = vec![0.0; w * h];
+    for y in 0..h as isize {
+        for x in 0..w as isize {
+            let gx = (at(x + 1, y - 1) + 2.0 * at(x + 1, y) + at(x + 1, y + 1))
+                - (at(x - 1, y - 1) + 2.0 * at(x - 1, y) + at(x - 1, y + 1));
+            let gy = (at(x - 1, y + 1) + 2.0 * at(x, y + 1) + at(x + 1, y + 1))
+                - (at(x - 1, y - 1) + 2.0 * at(x, y - 1) + at(x + 1, y - 1));
+            out[y as usize * w + x as usize] = (gx * gx + gy * gy).sqrt() / 4.0;
+        }
+    }
+    out
+}
+
+/// Pixels on a strong gradient of `image`'s luminance ([`GRADIENT_EDGE`]).
+pub fn gradient_edges(image: &Rgb8) -> Vec<bool> {
+    sobel(&image.luma(), image.width as usize, image.height as usize)
+        .into_iter()
+        .map(|g| g > GRADIENT_EDGE)
+        .collect()
+}
+
+/// The edge mask: geometric edges of the NoAA AOV frame or strong gradients
+/// of the reference image.
+pub fn edge_mask(aov: &Frame, reference: &Rgb8) -> Result<Vec<bool>> {
+    if aov.width != reference.width || aov.height != reference.height {
+        bail!(
+            "AOV frame {}x{} and reference {}x{} differ in size",
+            aov.width,
+            aov.height,
+            reference.width,
+            reference.height
+        );
+    }
+    let geo = geometric_edges(aov)?;
+    Ok(geo
+        .iter()
+        .zip(gradient_edges(reference))
+        .map(|(&a, b)| a || b)
+        .collect())
+}
+
+/// Per-pixel absolute luminance difference of two images of the same size.
+pub fn luma_difference(a: &Rgb8, b: &Rgb8) -> Result<Vec<f32>> {
+    same_size(a, b)?;
+    Ok(a.luma()
+        .iter()
+        .zip(b.luma())
+        .map(|(x, y)| (x - y).abs())
+        .collect())
+}
+
+/// Pixels where two images differ by more than `tolerance` (0–255) in any channel.
+pub fn differing_pixels(a: &Rgb8, b: &Rgb8, tolerance: u8) -> Result<Vec<bool>> {
+    same_size(a, b)?;
+    Ok(a.data
+        .chunks_exact(3)
+        .zip(b.data.chunks_exact(3))
+        .map(|(p, q)| p.iter().zip(q).any(|(&u, &v)| u.abs_diff(v) > tolerance))
+        .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    fn img(w: u32, h: u32, f: impl Fn(u32, u32) -> u8) -> Rgb8 {
+        let mut data = Vec::new();
+        for y in 0..h {
+            for x in 0..w {
+                let v = f(x, y);
+                data.extend([v, v, v]);
+            }
+        }
+        Rgb8 {
+            width: w,
+            height: h,
+            data,
+        }
+    }
+
+    #[test]
+    fn identical_images_have_zero_flip_and_infinite_psnr() {
+        let a = img(16, 8, |x, _| (x * 10) as u8);
+        let f = flip(&a, &a).unwrap();
+        assert!(f.mean < 1e-6);
+        assert_eq!(f.magma.data.len(), 16 * 8 * 3);
+        assert_eq!(psnr(&a, &a).unwrap(), f64::INFINITY);
+    }
+
+    #[test]
+    fn different_sizes_are_an_error() {
+        let a = img(4, 4, |_, _| 0);
+        let b = img(4, 5, |_, _| 0);
+        assert!(flip(&a, &b).is_err());
+        assert!(psnr(&a, &b).is_err());
+    }
+
+    #[test]
+    fn psnr_of_a_known_error() {
+        let a = img(4, 4, |_, _| 100);
+        let b = img(4, 4, |_, _| 110);
+        let p = psnr(&a, &b).unwrap();
+        assert!((p - 10.0 * (255.0f64 * 255.0 / 100.0).log10()).abs() < 1e-9);
+    }
+
+    #[test]
+    fn step_is_a_gradient_edge_and_flat_is_not() {
+        let a = img(8, 8, |x, _| if x < 4 { 0 } else { 255 });
+        let m = gradient_edges(&a);
+        assert!(m[3] && m[4]);
+        assert!(!m[0] && !m[7]);
+    }
+
+    #[test]
+    fn depth_and_miss_discontinuities() {
+        let mut f = Frame::new(4, 1);
+        f.depth = Some(vec![1.0, 1.001, 2.0, f32::INFINITY]);
+        f.normal = Some(vec![Vec3::Y; 4]);
+        let m = geometric_edges(&f).unwrap();
+        assert_eq!(m, vec![false, true, true, true]);
+        f.depth = None;
+        assert!(geometric_edges(&f).is_err());
+    }
+
+    #[test]
+    fn masked_mean_of_empty_mask_is_none() {
+        assert_eq!(masked_mean(&[1.0, 2.0], &[false, false]), None);
+        assert_eq!(masked_mean(&[1.0, 3.0], &[true, true]), Some(2.0));
+        assert_eq!(masked_mean(&[1.0], &[true, true]), None);
+    }
+}

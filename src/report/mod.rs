@@ -1,0 +1,1095 @@
+//! `subcone report`: image error against run time for every method, scene and
+//! backend, with plots, zoomed crops and a comparison with the papers' numbers.
+//!
+//! For each scene (the built-in paper scenes by default, plus `--scene`), each
+//! backend and each method that applies to the scene (decided by
+//! [`required_passes`]), the report
+//!
+//! 1. times the method: one warm-up, then `runs` timed calls of
+//!    [`Backend::render`](subcone_scene::Backend::render) at the *timing size*;
+//!    median and range of the wall time, and the median of every pass of
+//!    [`FrameStats::timings`](subcone_scene::FrameStats);
+//! 2. measures its error at the *quality size* against a supersampled reference
+//!    (SSAA256; cached on disk, see [`reference`]): mean FLIP, PSNR and mean FLIP
+//!    on the edge mask, all on the tone-mapped 8-bit sRGB images;
+//! 3. writes `report.md`, `results.csv`, `results.json`, plots (FLIP against
+//!    time with the Pareto front, stacked pass times) and images (every method,
+//!    the reference, FLIP maps, zoomed crops of an edge, a shadow and a
+//!    reflection region).
+//!
+//! Sizes: the default run times at the papers' sizes (1024×1024 for triangle
+//! scenes, SRAA Table 1's largest; 1280×720 for SDF scenes, CTSS Table 1) and
+//! measures error at half of that per side (512×512, 640×360), where a 256-sample
+//! reference per scene is affordable on a CPU. `--size` sets both; `--quick`
+//! uses 96×64 for both with an SSAA64 reference and 3 runs; `--timing-only`
+//! skips references and errors.
+//!
+//! ```no_run
+//! let args = subcone::report::ReportArgs { quick: true, ..Default::default() };
+//! let summary = subcone::report::run(&args).unwrap();
+//! println!("{summary}");
+//! ```
+
+pub mod crops;
+pub mod metrics;
+pub mod output;
+pub mod plot;
+pub mod reference;
+pub mod timing;
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use anyhow::{anyhow, bail, Context, Result};
+use glam::Vec3;
+use indicatif::{ProgressBar, ProgressStyle};
+use subcone_kernels::passes::{required_passes, SceneFeatures};
+use subcone_scene::{Albedo, Backend, Frame, Method, RenderSettings, Scene};
+
+use crate::cli;
+use metrics::Rgb8;
+use timing::Timings;
+
+/// The built-in scenes of the papers: triangle scenes (SRAA) then SDF scenes
+/// (CTSS). Names that do not load are skipped with a note.
+pub const PAPER_SCENES: [&str; 8] = [
+    "cornell",
+    "checker",
+    "atrium",
+    "primitives",
+    "random-box",
+    "random-shape",
+    "sparse-shape",
+    "sdf-atrium",
+];
+
+/// The methods compared, in table order.
+pub const METHODS: [&str; 8] = [
+    "noaa",
+    "ssaa4",
+    "ssaa16",
+    "sraa",
+    "sraa-rt",
+    "ctss",
+    "ctss-r",
+    "ssaa4+ctss",
+];
+
+/// Timing size of triangle scenes: SRAA Table 1's largest.
+pub const TRIANGLE_TIMING_SIZE: (u32, u32) = (1024, 1024);
+/// Timing size of SDF scenes: CTSS Table 1's 720p.
+pub const SDF_TIMING_SIZE: (u32, u32) = (1280, 720);
+/// Quality (reference) size of triangle scenes.
+pub const TRIANGLE_QUALITY_SIZE: (u32, u32) = (512, 512);
+/// Quality (reference) size of SDF scenes.
+pub const SDF_QUALITY_SIZE: (u32, u32) = (640, 360);
+/// Both sizes in `--quick` mode.
+pub const QUICK_SIZE: (u32, u32) = (96, 64);
+/// Sizes of the SRAA Table 1 sweep (square).
+pub const SWEEP_SIZES: [u32; 4] = [256, 512, 768, 1024];
+/// The scene of the SRAA Table 1 sweep: our Sponza-like atrium.
+pub const SWEEP_SCENE: &str = "atrium";
+
+/// Arguments of `subcone report`.
+#[derive(clap::Args, Clone, Debug, PartialEq)]
+pub struct ReportArgs {
+    /// Add a scene: a built-in name or a path to a mesh file (repeatable).
+    #[arg(long = "scene", value_name = "NAME|PATH")]
+    pub scenes: Vec<String>,
+    /// Leave out the built-in paper scenes: report only the --scene scenes.
+    #[arg(long)]
+    pub no_paper_scenes: bool,
+    /// Methods to compare, comma-separated (default: noaa, ssaa4, ssaa16, sraa,
+    /// sraa-rt, ctss, ctss-r, ssaa4+ctss; each where it applies).
+    #[arg(long = "method", value_delimiter = ',', value_name = "METHOD")]
+    pub methods: Vec<String>,
+    /// Output directory.
+    #[arg(long, default_value = "report")]
+    pub out: PathBuf,
+    /// Backends, comma-separated (cpu, wgpu).
+    #[arg(long, default_value = "cpu")]
+    pub backend: String,
+    /// Image size WxH for both timing and error, overriding the defaults.
+    #[arg(long, value_name = "WxH")]
+    pub size: Option<String>,
+    /// Small, fast run (CI): 96x64, 1 warm-up + 3 runs, SSAA64 reference.
+    #[arg(long)]
+    pub quick: bool,
+    /// Only time: skip references and errors.
+    #[arg(long)]
+    pub timing_only: bool,
+    /// Timed runs per method after one warm-up (default 5; 3 with --quick).
+    #[arg(long)]
+    pub runs: Option<u32>,
+    /// Reference method (default ssaa256; ssaa64 with --quick).
+    #[arg(long, value_name = "METHOD")]
+    pub reference: Option<String>,
+    /// Reference cache directory (default OUT/cache).
+    #[arg(long, value_name = "DIR")]
+    pub cache: Option<PathBuf>,
+    /// Re-render references even when cached.
+    #[arg(long)]
+    pub refresh_references: bool,
+    /// Skip the SRAA Table 1 resolution sweep (256² to 1024² on the atrium).
+    #[arg(long)]
+    pub no_sweep: bool,
+}
+
+impl Default for ReportArgs {
+    /// The same defaults as the command line.
+    fn default() -> Self {
+        ReportArgs {
+            scenes: Vec::new(),
+            no_paper_scenes: false,
+            methods: Vec::new(),
+            out: PathBuf::from("report"),
+            backend: "cpu".into(),
+            size: None,
+            quick: false,
+            timing_only: false,
+            runs: None,
+            reference: None,
+            cache: None,
+            refresh_references: false,
+            no_sweep: false,
+        }
+    }
+}
+
+/// One method on one scene with one backend: a row of `results.csv`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ResultRow {
+    /// Scene name (as used in file names).
+    pub scene: String,
+    /// Method, e.g. `sraa-rt`.
+    pub method: String,
+    /// Backend, e.g. `cpu`.
+    pub backend: String,
+    /// Timing width.
+    pub width: u32,
+    /// Timing height.
+    pub height: u32,
+    /// Timed runs.
+    pub runs: u32,
+    /// Median wall time of `Backend::render`, ms.
+    pub ms_median: f64,
+    /// Fastest run, ms.
+    pub ms_min: f64,
+    /// Slowest run, ms.
+    pub ms_max: f64,
+    /// `ms_median` over NoAA's on the same scene and backend.
+    pub ratio_to_noaa: Option<f64>,
+    /// Mean FLIP against the reference (quality size).
+    pub flip_mean: Option<f64>,
+    /// PSNR in dB against the reference; `+∞` when identical.
+    pub psnr_db: Option<f64>,
+    /// Mean FLIP over the edge mask.
+    pub edge_flip_mean: Option<f64>,
+    /// Shaded samples per pixel: the mean of the samples-per-pixel AOV of the
+    /// quality render, or, without one, shading evaluations per pixel.
+    pub samples_per_pixel: f64,
+    /// Rays of every kind per pixel (timing frame).
+    pub rays_per_pixel: f64,
+    /// Width the error was measured at.
+    pub quality_width: Option<u32>,
+    /// Height the error was measured at.
+    pub quality_height: Option<u32>,
+    /// Reference method the error is against.
+    pub reference: Option<String>,
+    /// Median ms of each pass (column-safe name without `ms_`), in run order.
+    pub pass_ms: Vec<(String, f64)>,
+}
+
+impl ResultRow {
+    /// Median ms of pass `name` (column-safe), if the method has it.
+    pub fn pass(&self, name: &str) -> Option<f64> {
+        self.pass_ms.iter().find(|p| p.0 == name).map(|p| p.1)
+    }
+}
+
+/// A method that was not run on a scene, and why.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Skipped {
+    /// Scene.
+    pub scene: String,
+    /// Method.
+    pub method: String,
+    /// Backend (`"*"` when the method does not apply to the scene at all).
+    pub backend: String,
+    /// Why.
+    pub reason: String,
+}
+
+/// A chosen crop region of a scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneCrops {
+    /// Scene.
+    pub scene: String,
+    /// The regions.
+    pub regions: Vec<crops::Region>,
+}
+
+/// What a report run did and wrote.
+#[derive(Clone, Debug)]
+pub struct ReportSummary {
+    /// Output directory.
+    pub out_dir: PathBuf,
+    /// `report.md`.
+    pub report_md: PathBuf,
+    /// `results.csv`.
+    pub results_csv: PathBuf,
+    /// `results.json`.
+    pub results_json: PathBuf,
+    /// Plots written (PNG and SVG).
+    pub plots: Vec<PathBuf>,
+    /// One row per scene, backend and method run.
+    pub rows: Vec<ResultRow>,
+    /// The SRAA Table 1 sweep (empty when not run).
+    pub sweep: Vec<ResultRow>,
+    /// Methods not run, with the reason.
+    pub skipped: Vec<Skipped>,
+    /// Scenes that could not be loaded, with the reason.
+    pub unavailable_scenes: Unavailable,
+    /// Crop regions chosen per scene.
+    pub crops: Vec<SceneCrops>,
+    /// References rendered in this run.
+    pub references_rendered: usize,
+    /// References read from the cache.
+    pub references_cached: usize,
+    /// Wall time of the whole run.
+    pub elapsed: Duration,
+}
+
+impl fmt::Display for ReportSummary {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let scenes: std::collections::BTreeSet<&str> =
+            self.rows.iter().map(|r| r.scene.as_str()).collect();
+        writeln!(
+            f,
+            "report: {} results on {} scenes ({} skipped, {} scenes unavailable) in {:.1} s; references: {} rendered, {} cached",
+            self.rows.len(),
+            scenes.len(),
+            self.skipped.len(),
+            self.unavailable_scenes.len(),
+            self.elapsed.as_secs_f64(),
+            self.references_rendered,
+            self.references_cached
+        )?;
+        writeln!(f, "  {}", self.report_md.display())?;
+        writeln!(f, "  {}", self.results_csv.display())?;
+        write!(f, "  {}", self.results_json.display())
+    }
+}
+
+/// The run mode.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mode {
+    /// Timing at the papers' sizes, error at the quality sizes.
+    Full,
+    /// Small sizes, few runs.
+    Quick,
+    /// No references, no errors.
+    TimingOnly,
+}
+
+impl Mode {
+    /// Name for the report.
+    pub fn name(self) -> &'static str {
+        match self {
+            Mode::Full => "full",
+            Mode::Quick => "quick",
+            Mode::TimingOnly => "timing-only",
+        }
+    }
+}
+
+/// Scenes that could not be loaded: (name, reason).
+pub type Unavailable = Vec<(String, String)>;
+
+/// A scene to report on.
+pub struct SceneJob {
+    /// The argument it was loaded from.
+    pub arg: String,
+    /// Unique, file-name-safe name.
+    pub name: String,
+    /// The scene.
+    pub scene: Scene,
+    /// Whether it is an SDF scene.
+    pub sdf: bool,
+    /// Timing size.
+    pub timing_size: (u32, u32),
+    /// Quality size.
+    pub quality_size: (u32, u32),
+}
+
+/// Load the built-in paper scenes that exist ([`PAPER_SCENES`]), printing a
+/// note for each name that does not load. Returns the loaded scenes and the
+/// names that failed with the reason.
+pub fn paper_scenes() -> (Vec<(String, Scene)>, Unavailable) {
+    let mut ok = Vec::new();
+    let mut missing = Vec::new();
+    for name in PAPER_SCENES {
+        match cli::scene(name) {
+            Ok(s) => ok.push((name.to_string(), s)),
+            Err(e) => {
+                eprintln!("note: scene {name} is not available, skipped: {e:#}");
+                missing.push((name.to_string(), format!("{e:#}")));
+            }
+        }
+    }
+    (ok, missing)
+}
+
+/// A name safe for a file or directory: ASCII letters, digits, `-`, `_`, `.`.
+pub fn file_safe(name: &str) -> String {
+    let s: String = name
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.') {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    let s = s.trim_matches('.').to_string();
+    if s.is_empty() {
+        "scene".into()
+    } else {
+        s
+    }
+}
+
+/// Everything a run needs, resolved and validated from [`ReportArgs`].
+struct Plan {
+    mode: Mode,
+    out: PathBuf,
+    cache: PathBuf,
+    backends: Vec<(String, Box<dyn Backend + Send + Sync>)>,
+    methods: Vec<Method>,
+    runs: u32,
+    reference: Method,
+    size: Option<(u32, u32)>,
+    sweep: bool,
+    refresh: bool,
+}
+
+fn parse_backends(list: &str) -> Result<Vec<(String, Box<dyn Backend + Send + Sync>)>> {
+    let mut out: Vec<(String, Box<dyn Backend + Send + Sync>)> = Vec::new();
+    for name in list.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        if out.iter().any(|(n, _)| n == name) {
+            continue;
+        }
+        let b = cli::backend(name).with_context(|| format!("--backend {list:?}"))?;
+        out.push((name.to_string(), b));
+    }
+    if out.is_empty() {
+        bail!("--backend {list:?} names no backend (expected e.g. cpu or cpu,wgpu)");
+    }
+    Ok(out)
+}
+
+fn parse_method(s: &str, what: &str) -> Result<Method> {
+    s.parse::<Method>().map_err(|e| anyhow!("{what}: {e}"))
+}
+
+impl Plan {
+    fn new(args: &ReportArgs) -> Result<Plan> {
+        let mode = match (args.quick, args.timing_only) {
+            (_, true) => Mode::TimingOnly,
+            (true, false) => Mode::Quick,
+            (false, false) => Mode::Full,
+        };
+        let backends = parse_backends(&args.backend)?;
+        let names: Vec<String> = if args.methods.is_empty() {
+            METHODS.iter().map(|s| s.to_string()).collect()
+        } else {
+            args.methods
+                .iter()
+                .map(|s| s.trim().to_string())
+                .filter(|s| !s.is_empty())
+                .collect()
+        };
+        if names.is_empty() {
+            bail!("--method names no method");
+        }
+        let mut methods: Vec<Method> = Vec::new();
+        for n in &names {
+            let m = parse_method(n, "--method")?;
+            if !methods.iter().any(|x| x.to_string() == m.to_string()) {
+                methods.push(m);
+            }
+        }
+        let runs = match args.runs {
+            Some(0) => bail!("--runs must be at least 1"),
+            Some(n) if n > 1000 => bail!("--runs {n} is more than 1000"),
+            Some(n) => n,
+            None if args.quick => 3,
+            None => 5,
+        };
+        let reference = match &args.reference {
+            Some(r) => parse_method(r, "--reference")?,
+            None if args.quick => Method::ssaa(8),
+            None => Method::ssaa(16),
+        };
+        let size = match &args.size {
+            Some(s) => {
+                let (w, h) = cli::parse_size(s)?;
+                RenderSettings::new(w, h)
+                    .validate()
+                    .map_err(|e| anyhow!("--size {s}: {e}"))?;
+                Some((w, h))
+            }
+            None => None,
+        };
+        if args.no_paper_scenes && args.scenes.is_empty() {
+            bail!("--no-paper-scenes leaves no scene: add at least one --scene");
+        }
+        let cache = args.cache.clone().unwrap_or_else(|| args.out.join("cache"));
+        let sweep = mode != Mode::Quick
+            && size.is_none()
+            && !args.no_sweep
+            && methods.iter().any(|m| m.to_string() == "sraa-rt");
+        Ok(Plan {
+            mode,
+            out: args.out.clone(),
+            cache,
+            backends,
+            methods,
+            runs,
+            reference,
+            size,
+            sweep,
+            refresh: args.refresh_references,
+        })
+    }
+
+    fn sizes(&self, sdf: bool) -> ((u32, u32), (u32, u32)) {
+        if let Some(s) = self.size {
+            return (s, s);
+        }
+        match (self.mode, sdf) {
+            (Mode::Quick, _) => (QUICK_SIZE, QUICK_SIZE),
+            (_, false) => (TRIANGLE_TIMING_SIZE, TRIANGLE_QUALITY_SIZE),
+            (_, true) => (SDF_TIMING_SIZE, SDF_QUALITY_SIZE),
+        }
+    }
+}
+
+fn load_scenes(args: &ReportArgs, plan: &Plan) -> Result<(Vec<SceneJob>, Unavailable)> {
+    let mut loaded: Vec<(String, Scene)> = Vec::new();
+    let mut unavailable = Vec::new();
+    if !args.no_paper_scenes {
+        let (ok, missing) = paper_scenes();
+        loaded = ok;
+        unavailable = missing;
+    }
+    for arg in &args.scenes {
+        if loaded.iter().any(|(a, _)| a == arg) {
+            continue;
+        }
+        let s = cli::scene(arg).with_context(|| format!("--scene {arg}"))?;
+        loaded.push((arg.clone(), s));
+    }
+    if loaded.is_empty() {
+        bail!("no scene could be loaded");
+    }
+    let mut jobs: Vec<SceneJob> = Vec::new();
+    for (arg, scene) in loaded {
+        let base = file_safe(if scene.name.is_empty() {
+            &arg
+        } else {
+            &scene.name
+        });
+        let mut name = base.clone();
+        let mut k = 2;
+        while jobs.iter().any(|j| j.name == name) {
+            name = format!("{base}-{k}");
+            k += 1;
+        }
+        let sdf = scene.features().contains(SceneFeatures::IS_SDF);
+        let (timing_size, quality_size) = plan.sizes(sdf);
+        jobs.push(SceneJob {
+            arg,
+            name,
+            scene,
+            sdf,
+            timing_size,
+            quality_size,
+        });
+    }
+    Ok((jobs, unavailable))
+}
+
+fn render(
+    backend: &dyn Backend,
+    scene: &Scene,
+    method: &Method,
+    settings: &RenderSettings,
+) -> Result<(Frame, Duration)> {
+    let start = Instant::now();
+    let frame = backend
+        .render(scene, &scene.camera, method, settings)
+        .map_err(|e| anyhow!("{} {} {}: {e}", backend.name(), scene.name, method))?;
+    let wall = start.elapsed();
+    let n = settings.width as usize * settings.height as usize;
+    if frame.width != settings.width || frame.height != settings.height || frame.color.len() != n {
+        bail!(
+            "{} {} {}: the backend returned a {}x{} frame with {} pixels for {}x{}",
+            backend.name(),
+            scene.name,
+            method,
+            frame.width,
+            frame.height,
+            frame.color.len(),
+            settings.width,
+            settings.height
+        );
+    }
+    Ok((frame, wall))
+}
+
+/// What the quality phase knows about a scene.
+struct SceneQuality {
+    reference: Rgb8,
+    edges: Vec<bool>,
+    geometric: Vec<bool>,
+    noaa_error_base: Rgb8,
+    shadow: Option<Vec<bool>>,
+    reflective: Option<Vec<bool>>,
+}
+
+struct Progress {
+    bar: ProgressBar,
+}
+
+impl Progress {
+    fn new(len: u64) -> Self {
+        let bar = ProgressBar::new(len);
+        if let Ok(style) = ProgressStyle::with_template(
+            "{elapsed_precise} [{bar:30}] {pos}/{len} renders, eta {eta} {wide_msg}",
+        ) {
+            bar.set_style(style.progress_chars("=> "));
+        }
+        Progress { bar }
+    }
+
+    fn note(&self, msg: &str) {
+        self.bar.suspend(|| eprintln!("report: {msg}"));
+    }
+}
+
+struct Runner<'a> {
+    plan: &'a Plan,
+    progress: Progress,
+    references_rendered: usize,
+    references_cached: usize,
+}
+
+impl Runner<'_> {
+    fn reference(&mut self, job: &SceneJob) -> Result<Frame> {
+        let (w, h) = job.quality_size;
+        let settings = RenderSettings::new(w, h);
+        let key = reference::ReferenceKey {
+            scene: reference::scene_identity(&job.arg),
+            width: w,
+            height: h,
+            method: self.plan.reference.to_string(),
+            reflection_depth: settings.reflection_depth,
+            backend: "cpu".into(),
+            version: reference::code_version(),
+        };
+        let path = key.path(&self.plan.cache);
+        if !self.plan.refresh {
+            if let Some(f) = reference::load(&path, w, h)? {
+                self.references_cached += 1;
+                self.progress.bar.inc(1);
+                return Ok(f);
+            }
+        }
+        self.progress.bar.set_message(format!(
+            "{}: reference {} at {w}x{h}",
+            job.name, self.plan.reference
+        ));
+        let cpu = cli::backend("cpu")?;
+        let (frame, wall) = render(cpu.as_ref(), &job.scene, &self.plan.reference, &settings)?;
+        self.progress.note(&format!(
+            "{}: rendered reference {} at {w}x{h} in {:.1} s",
+            job.name,
+            self.plan.reference,
+            wall.as_secs_f64()
+        ));
+        reference::store(&path, &key, &frame)?;
+        self.references_rendered += 1;
+        self.progress.bar.inc(1);
+        Ok(frame)
+    }
+
+    /// Reference, edge mask and the masks the crop heuristics need.
+    fn quality(&mut self, job: &SceneJob) -> Result<SceneQuality> {
+        let reference = Rgb8::from_frame(&self.reference(job)?)?;
+        let (w, h) = job.quality_size;
+        let cpu = cli::backend("cpu")?;
+        let noaa = parse_method("noaa", "noaa")?;
+        let mut aov_settings = RenderSettings::new(w, h);
+        aov_settings.aovs = true;
+        self.progress
+            .bar
+            .set_message(format!("{}: edge mask and region masks", job.name));
+        let (aov, _) = render(cpu.as_ref(), &job.scene, &noaa, &aov_settings)?;
+        let geometric = metrics::geometric_edges(&aov)?;
+        let edges = metrics::edge_mask(&aov, &reference)?;
+        let noaa8 = Rgb8::from_frame(&aov)?;
+        let features = job.scene.features();
+        let mut flat = RenderSettings::new(w, h);
+        flat.reflection_depth = 0;
+        let reflective = if features.contains(SceneFeatures::HAS_REFLECTIONS) {
+            let (f, _) = render(cpu.as_ref(), &job.scene, &noaa, &flat)?;
+            Some(metrics::differing_pixels(
+                &noaa8,
+                &Rgb8::from_frame(&f)?,
+                2,
+            )?)
+        } else {
+            None
+        };
+        let shadow = if features.contains(SceneFeatures::HAS_LIGHTS) {
+            let mut grey = job.scene.clone();
+            for m in &mut grey.materials {
+                m.albedo = Albedo::Solid(Vec3::splat(0.6));
+            }
+            match render(cpu.as_ref(), &grey, &noaa, &flat) {
+                Ok((f, _)) => {
+                    let g = metrics::gradient_edges(&Rgb8::from_frame(&f)?);
+                    Some(g.iter().zip(&geometric).map(|(&g, &e)| g && !e).collect())
+                }
+                Err(e) => {
+                    self.progress.note(&format!(
+                        "{}: no untextured render for the shadow crop: {e:#}",
+                        job.name
+                    ));
+                    None
+                }
+            }
+        } else {
+            None
+        };
+        self.progress.bar.inc(1);
+        Ok(SceneQuality {
+            reference,
+            edges,
+            geometric,
+            noaa_error_base: noaa8,
+            shadow,
+            reflective,
+        })
+    }
+}
+
+/// The file name of a method's image for `backend` (the first backend gets the
+/// plain name).
+fn image_name(prefix: &str, method: &str, backend: &str, first: bool) -> String {
+    let m = file_safe(method);
+    if first {
+        format!("{prefix}{m}.png")
+    } else {
+        format!("{prefix}{m}-{}.png", file_safe(backend))
+    }
+}
+
+/// Run the report.
+pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
+    let start = Instant::now();
+    let plan = Plan::new(args)?;
+    std::fs::create_dir_all(&plan.out)
+        .with_context(|| format!("cannot create output directory {}", plan.out.display()))?;
+    let (jobs, unavailable) = load_scenes(args, &plan)?;
+    plot::register_fonts()?;
+
+    // Applicability first, so the progress bar knows its length.
+    let mut skipped = Vec::new();
+    let mut work: Vec<(usize, Vec<Method>)> = Vec::new();
+    for (i, job) in jobs.iter().enumerate() {
+        let mut ms = Vec::new();
+        for m in &plan.methods {
+            match required_passes(m.technique, job.scene.features()) {
+                Ok(_) => ms.push(*m),
+                Err(u) => skipped.push(Skipped {
+                    scene: job.name.clone(),
+                    method: m.to_string(),
+                    backend: "*".into(),
+                    reason: u.reason.to_string(),
+                }),
+            }
+        }
+        work.push((i, ms));
+    }
+    let quality = plan.mode != Mode::TimingOnly;
+    let per_method = 1 + plan.runs as u64;
+    let mut total: u64 = 0;
+    for (i, ms) in &work {
+        let job = &jobs[*i];
+        let separate = quality && job.timing_size != job.quality_size;
+        total += ms.len() as u64 * plan.backends.len() as u64 * (per_method + separate as u64);
+        if quality && !ms.is_empty() {
+            total += 2;
+        }
+    }
+    let sweep_job = jobs
+        .iter()
+        .find(|j| j.arg == SWEEP_SCENE && !j.sdf)
+        .filter(|_| plan.sweep);
+    let sweep_methods: Vec<Method> = ["noaa", "sraa-rt", "ssaa16"]
+        .iter()
+        .filter_map(|m| m.parse().ok())
+        .collect();
+    if sweep_job.is_some() {
+        total +=
+            (SWEEP_SIZES.len() * sweep_methods.len() * plan.backends.len()) as u64 * per_method;
+    }
+
+    let mut runner = Runner {
+        plan: &plan,
+        progress: Progress::new(total),
+        references_rendered: 0,
+        references_cached: 0,
+    };
+    let mut rows: Vec<ResultRow> = Vec::new();
+    let mut all_crops: Vec<SceneCrops> = Vec::new();
+    let mut plots = Vec::new();
+
+    for (i, methods) in &work {
+        let job = &jobs[*i];
+        if methods.is_empty() {
+            runner
+                .progress
+                .note(&format!("{}: no method applies, skipped", job.name));
+            continue;
+        }
+        runner.progress.note(&format!(
+            "{}: {} methods, timing at {}x{}{}",
+            job.name,
+            methods.len(),
+            job.timing_size.0,
+            job.timing_size.1,
+            if quality {
+                format!(
+                    ", error at {}x{} against {}",
+                    job.quality_size.0, job.quality_size.1, plan.reference
+                )
+            } else {
+                String::new()
+            }
+        ));
+        let img_dir = plan.out.join("images").join(&job.name);
+        let sq = if quality {
+            std::fs::create_dir_all(&img_dir)
+                .with_context(|| format!("cannot create {}", img_dir.display()))?;
+            match runner.quality(job) {
+                Ok(q) => {
+                    output::save_png(&img_dir.join("reference.png"), &q.reference)?;
+                    output::save_png(
+                        &img_dir.join("edge_mask.png"),
+                        &output::mask_image(q.reference.width, q.reference.height, &q.edges),
+                    )?;
+                    Some(q)
+                }
+                Err(e) => {
+                    runner.progress.note(&format!(
+                        "{}: no reference, errors not measured: {e:#}",
+                        job.name
+                    ));
+                    None
+                }
+            }
+        } else {
+            None
+        };
+
+        // Quality images of the first backend, for the crops.
+        let mut crop_images: Vec<(String, Rgb8)> = Vec::new();
+        let scene_first = rows.len();
+        for (bi, (bname, backend)) in plan.backends.iter().enumerate() {
+            for m in methods {
+                let mname = m.to_string();
+                runner
+                    .progress
+                    .bar
+                    .set_message(format!("{}: {mname} on {bname}", job.name));
+                let (tw, th) = job.timing_size;
+                let same = job.timing_size == job.quality_size;
+                let mut settings = RenderSettings::new(tw, th);
+                // The warm-up doubles as the quality render when the sizes agree.
+                settings.aovs = sq.is_some() && same;
+                let warm = render(backend.as_ref(), &job.scene, m, &settings);
+                runner.progress.bar.inc(1);
+                let warm = match warm {
+                    Ok((f, _)) => f,
+                    Err(e) => {
+                        runner.progress.note(&format!("{e:#}"));
+                        skipped.push(Skipped {
+                            scene: job.name.clone(),
+                            method: mname,
+                            backend: bname.clone(),
+                            reason: format!("render failed: {e:#}"),
+                        });
+                        runner
+                            .progress
+                            .bar
+                            .inc(plan.runs as u64 + (!same && sq.is_some()) as u64);
+                        continue;
+                    }
+                };
+                settings.aovs = false;
+                let mut t = Timings::default();
+                let mut last = None;
+                let mut failed = None;
+                for _ in 0..plan.runs {
+                    match render(backend.as_ref(), &job.scene, m, &settings) {
+                        Ok((f, wall)) => {
+                            t.push(wall, &f);
+                            last = Some(f);
+                        }
+                        Err(e) => {
+                            failed = Some(e);
+                            break;
+                        }
+                    }
+                    runner.progress.bar.inc(1);
+                }
+                if let Some(e) = failed {
+                    skipped.push(Skipped {
+                        scene: job.name.clone(),
+                        method: mname,
+                        backend: bname.clone(),
+                        reason: format!("render failed: {e:#}"),
+                    });
+                    continue;
+                }
+                let last = last.unwrap_or_else(|| warm.clone());
+                let px = (tw as f64 * th as f64).max(1.0);
+                let mut row = ResultRow {
+                    scene: job.name.clone(),
+                    method: mname.clone(),
+                    backend: bname.clone(),
+                    width: tw,
+                    height: th,
+                    runs: plan.runs,
+                    ms_median: t.median(),
+                    ms_min: t.min(),
+                    ms_max: t.max(),
+                    ratio_to_noaa: None,
+                    flip_mean: None,
+                    psnr_db: None,
+                    edge_flip_mean: None,
+                    samples_per_pixel: last.stats.shaded_samples as f64 / px,
+                    rays_per_pixel: last.stats.rays.total() as f64 / px,
+                    quality_width: None,
+                    quality_height: None,
+                    reference: None,
+                    pass_ms: t.pass_medians(),
+                };
+                if let Some(q) = &sq {
+                    let qframe = if same {
+                        Ok(warm)
+                    } else {
+                        let (qw, qh) = job.quality_size;
+                        let mut qs = RenderSettings::new(qw, qh);
+                        qs.aovs = true;
+                        let r = render(backend.as_ref(), &job.scene, m, &qs).map(|r| r.0);
+                        runner.progress.bar.inc(1);
+                        r
+                    };
+                    match qframe {
+                        Ok(qf) => {
+                            if let Some(spp) = &qf.samples_per_pixel {
+                                if !spp.is_empty() {
+                                    row.samples_per_pixel =
+                                        spp.iter().map(|&v| v as f64).sum::<f64>()
+                                            / spp.len() as f64;
+                                }
+                            }
+                            let img = Rgb8::from_frame(&qf)?;
+                            let fl = metrics::flip(&q.reference, &img)?;
+                            row.flip_mean = Some(fl.mean);
+                            row.psnr_db = Some(metrics::psnr(&q.reference, &img)?);
+                            row.edge_flip_mean = metrics::masked_mean(&fl.map, &q.edges);
+                            row.quality_width = Some(img.width);
+                            row.quality_height = Some(img.height);
+                            row.reference = Some(plan.reference.to_string());
+                            let first = bi == 0;
+                            output::save_png(
+                                &img_dir.join(image_name("", &mname, bname, first)),
+                                &img,
+                            )?;
+                            output::save_png(
+                                &img_dir.join(image_name("flip_", &mname, bname, first)),
+                                &fl.magma,
+                            )?;
+                            if first {
+                                crop_images.push((mname.clone(), img));
+                            }
+                        }
+                        Err(e) => runner.progress.note(&format!("{e:#}")),
+                    }
+                }
+                rows.push(row);
+            }
+        }
+        // Ratios to NoAA per backend.
+        for b in &plan.backends {
+            let noaa = rows[scene_first..]
+                .iter()
+                .find(|r| r.backend == b.0 && r.method == "noaa")
+                .map(|r| r.ms_median);
+            if let Some(n) = noaa.filter(|n| *n > 0.0) {
+                for r in rows[scene_first..].iter_mut().filter(|r| r.backend == b.0) {
+                    r.ratio_to_noaa = Some(r.ms_median / n);
+                }
+            }
+        }
+        // Crops.
+        if let Some(q) = &sq {
+            let noaa_err = metrics::luma_difference(&q.noaa_error_base, &q.reference)?;
+            let regions = crops::choose_regions(&crops::RegionInputs {
+                width: q.reference.width,
+                height: q.reference.height,
+                edges: &q.edges,
+                geometric: &q.geometric,
+                noaa_error: &noaa_err,
+                shadow: q.shadow.as_deref(),
+                reflective: q.reflective.as_deref(),
+            })?;
+            let mut tiles: Vec<(String, &Rgb8)> = Vec::new();
+            if let Some((n, img)) = crop_images.iter().find(|(n, _)| n == "noaa") {
+                tiles.push((n.clone(), img));
+            }
+            for (n, img) in crop_images.iter().filter(|(n, _)| n != "noaa") {
+                tiles.push((n.clone(), img));
+            }
+            tiles.push((format!("reference ({})", plan.reference), &q.reference));
+            for r in &regions {
+                let zoomed: Vec<(String, Rgb8)> = tiles
+                    .iter()
+                    .map(|(n, img)| Ok((n.clone(), crops::zoom(img, &r.window)?)))
+                    .collect::<Result<_>>()?;
+                let panel = plot::label_panel(&zoomed)?;
+                output::save_png(&img_dir.join(format!("crops_{}.png", r.kind)), &panel)?;
+            }
+            output::save_png(
+                &img_dir.join("crops_overview.png"),
+                &crops::outline(&q.reference, &regions),
+            )?;
+            all_crops.push(SceneCrops {
+                scene: job.name.clone(),
+                regions,
+            });
+        }
+        let scene_rows: Vec<&ResultRow> = rows[scene_first..].iter().collect();
+        plots.extend(plot::scene_plots(
+            &plan.out.join("plots"),
+            &job.name,
+            &scene_rows,
+        )?);
+    }
+
+    // The SRAA Table 1 sweep.
+    let mut sweep = Vec::new();
+    if let Some(job) = sweep_job {
+        runner.progress.note(&format!(
+            "{}: SRAA Table 1 sweep (noaa, sraa-rt, ssaa16 at 256² to 1024²)",
+            job.name
+        ));
+        for (bname, backend) in &plan.backends {
+            for side in SWEEP_SIZES {
+                for m in &sweep_methods {
+                    runner.progress.bar.set_message(format!(
+                        "sweep {}: {m} at {side}x{side} on {bname}",
+                        job.name
+                    ));
+                    let settings = RenderSettings::new(side, side);
+                    let mut t = Timings::default();
+                    let mut ok = true;
+                    for k in 0..=plan.runs {
+                        match render(backend.as_ref(), &job.scene, m, &settings) {
+                            Ok((f, wall)) if k > 0 => t.push(wall, &f),
+                            Ok(_) => {}
+                            Err(e) => {
+                                runner.progress.note(&format!("sweep: {e:#}"));
+                                ok = false;
+                            }
+                        }
+                        runner.progress.bar.inc(1);
+                        if !ok {
+                            break;
+                        }
+                    }
+                    if ok {
+                        sweep.push(ResultRow {
+                            scene: job.name.clone(),
+                            method: m.to_string(),
+                            backend: bname.clone(),
+                            width: side,
+                            height: side,
+                            runs: plan.runs,
+                            ms_median: t.median(),
+                            ms_min: t.min(),
+                            ms_max: t.max(),
+                            ratio_to_noaa: None,
+                            flip_mean: None,
+                            psnr_db: None,
+                            edge_flip_mean: None,
+                            samples_per_pixel: f64::NAN,
+                            rays_per_pixel: f64::NAN,
+                            quality_width: None,
+                            quality_height: None,
+                            reference: None,
+                            pass_ms: t.pass_medians(),
+                        });
+                    }
+                }
+            }
+        }
+    }
+    runner.progress.bar.finish_and_clear();
+
+    let summary = ReportSummary {
+        out_dir: plan.out.clone(),
+        report_md: plan.out.join("report.md"),
+        results_csv: plan.out.join("results.csv"),
+        results_json: plan.out.join("results.json"),
+        plots,
+        rows,
+        sweep,
+        skipped,
+        unavailable_scenes: unavailable,
+        crops: all_crops,
+        references_rendered: runner.references_rendered,
+        references_cached: runner.references_cached,
+        elapsed: start.elapsed(),
+    };
+    let ctx = output::Context {
+        mode: plan.mode,
+        backends: plan.backends.iter().map(|b| b.0.clone()).collect(),
+        runs: plan.runs,
+        reference: plan.reference.to_string(),
+        scenes: jobs
+            .iter()
+            .map(|j| output::SceneInfo {
+                name: j.name.clone(),
+                arg: j.arg.clone(),
+                sdf: j.sdf,
+                timing_size: j.timing_size,
+                quality_size: (plan.mode != Mode::TimingOnly).then_some(j.quality_size),
+            })
+            .collect(),
+    };
+    output::write_all(&summary, &ctx)?;
+    Ok(summary)
+}
+
+/// The directory of a scene's images.
+pub fn image_dir(out: &Path, scene: &str) -> PathBuf {
+    out.join("images").join(file_safe(scene))
+}

@@ -1,0 +1,657 @@
+//! The report's files: `results.csv`, `results.json`, `report.md`, and PNG
+//! images.
+//!
+//! Columns are stable: [`BASE_COLUMNS`] always, in that order, then one
+//! `ms_<pass>` column per pass seen in the run, sorted by name, empty where a
+//! method has no such pass. Missing values are empty in CSV and `null` in
+//! JSON; an infinite PSNR (identical images) is `inf` in CSV and `null` in
+//! JSON.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use anyhow::{anyhow, Result};
+use image::ImageEncoder;
+use serde_json::{json, Map, Value};
+
+use super::metrics::Rgb8;
+use super::reference::{code_version, write_atomic};
+use super::{crops, file_safe, Mode, ReportSummary, ResultRow};
+
+/// The columns every results file has, in order.
+pub const BASE_COLUMNS: [&str; 18] = [
+    "scene",
+    "method",
+    "backend",
+    "width",
+    "height",
+    "runs",
+    "ms_median",
+    "ms_min",
+    "ms_max",
+    "ratio_to_noaa",
+    "flip_mean",
+    "psnr_db",
+    "edge_flip_mean",
+    "samples_per_pixel",
+    "rays_per_pixel",
+    "quality_width",
+    "quality_height",
+    "reference",
+];
+
+/// SRAA for ray tracing, Table 1: Sponza, (side, pass 1 ms, pass 2 ms, total ms).
+pub const SRAA_TABLE1: [(u32, f64, f64, f64); 4] = [
+    (256, 18.0, 5.0, 23.0),
+    (512, 35.0, 14.0, 49.0),
+    (768, 69.0, 28.0, 97.0),
+    (1024, 116.0, 49.0, 165.0),
+];
+/// SRAA for ray tracing, Fig. 3: speed-up over 16× SSAA with the GPU hybrid.
+pub const SRAA_SPEEDUP_OVER_SSAA16: f64 = 6.0;
+/// CTSS Table 1: average frame-time ratio to NoAA, (paper's name, our method, ratio).
+pub const CTSS_TABLE1: [(&str, &str, f64); 3] = [
+    ("4x SS", "ssaa4", 4.16),
+    ("CTSS", "ctss", 1.30),
+    ("CTSS-R", "ctss-r", 1.16),
+];
+
+/// What the report files say about the run besides the rows.
+pub struct Context {
+    /// Mode.
+    pub mode: Mode,
+    /// Backends.
+    pub backends: Vec<String>,
+    /// Timed runs per method.
+    pub runs: u32,
+    /// Reference method.
+    pub reference: String,
+    /// Scenes.
+    pub scenes: Vec<SceneInfo>,
+}
+
+/// A scene in the report.
+pub struct SceneInfo {
+    /// File-safe name.
+    pub name: String,
+    /// Argument it was loaded from.
+    pub arg: String,
+    /// SDF scene.
+    pub sdf: bool,
+    /// Timing size.
+    pub timing_size: (u32, u32),
+    /// Quality size, when errors were measured.
+    pub quality_size: Option<(u32, u32)>,
+}
+
+/// Save an 8-bit RGB image as PNG (atomically), creating its directory.
+pub fn save_png(path: &Path, img: &Rgb8) -> Result<()> {
+    if img.data.len() != img.pixels() * 3 {
+        return Err(anyhow!(
+            "image for {} does not match its size",
+            path.display()
+        ));
+    }
+    if let Some(d) = path.parent() {
+        std::fs::create_dir_all(d).map_err(|e| anyhow!("cannot create {}: {e}", d.display()))?;
+    }
+    let mut bytes = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut bytes)
+        .write_image(
+            &img.data,
+            img.width,
+            img.height,
+            image::ExtendedColorType::Rgb8,
+        )
+        .map_err(|e| anyhow!("cannot encode {}: {e}", path.display()))?;
+    write_atomic(path, &bytes)
+}
+
+/// A mask as a black-and-white image.
+pub fn mask_image(width: u32, height: u32, mask: &[bool]) -> Rgb8 {
+    Rgb8 {
+        width,
+        height,
+        data: mask
+            .iter()
+            .flat_map(|&m| if m { [255u8; 3] } else { [0u8; 3] })
+            .collect(),
+    }
+}
+
+/// Every `ms_<pass>` column of `rows`, sorted.
+pub fn pass_columns(rows: &[ResultRow]) -> Vec<String> {
+    let mut p: Vec<String> = rows
+        .iter()
+        .flat_map(|r| r.pass_ms.iter().map(|(n, _)| format!("ms_{n}")))
+        .collect();
+    p.sort();
+    p.dedup();
+    p
+}
+
+/// A cell value: text, a number, or nothing.
+enum Cell {
+    Text(String),
+    Num(f64),
+    Int(u64),
+    Empty,
+}
+
+fn opt(v: Option<f64>) -> Cell {
+    v.map(Cell::Num).unwrap_or(Cell::Empty)
+}
+
+fn row_cells(r: &ResultRow, passes: &[String]) -> Vec<Cell> {
+    let mut c = vec![
+        Cell::Text(r.scene.clone()),
+        Cell::Text(r.method.clone()),
+        Cell::Text(r.backend.clone()),
+        Cell::Int(r.width as u64),
+        Cell::Int(r.height as u64),
+        Cell::Int(r.runs as u64),
+        Cell::Num(r.ms_median),
+        Cell::Num(r.ms_min),
+        Cell::Num(r.ms_max),
+        opt(r.ratio_to_noaa),
+        opt(r.flip_mean),
+        opt(r.psnr_db),
+        opt(r.edge_flip_mean),
+        Cell::Num(r.samples_per_pixel),
+        Cell::Num(r.rays_per_pixel),
+        r.quality_width
+            .map(|v| Cell::Int(v as u64))
+            .unwrap_or(Cell::Empty),
+        r.quality_height
+            .map(|v| Cell::Int(v as u64))
+            .unwrap_or(Cell::Empty),
+        r.reference.clone().map(Cell::Text).unwrap_or(Cell::Empty),
+    ];
+    for p in passes {
+        c.push(opt(r.pass(p.trim_start_matches("ms_"))));
+    }
+    c
+}
+
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+fn csv_num(v: f64) -> String {
+    if v.is_nan() {
+        String::new()
+    } else if v.is_infinite() {
+        if v > 0.0 { "inf" } else { "-inf" }.into()
+    } else {
+        // Round-trippable and short.
+        let s = format!("{v:.6}");
+        let s = s.trim_end_matches('0').trim_end_matches('.');
+        if s.is_empty() || s == "-" {
+            "0".into()
+        } else {
+            s.to_string()
+        }
+    }
+}
+
+/// `results.csv` of `rows`.
+pub fn csv(rows: &[ResultRow]) -> String {
+    let passes = pass_columns(rows);
+    let mut out = BASE_COLUMNS.join(",");
+    for p in &passes {
+        out.push(',');
+        out.push_str(p);
+    }
+    out.push('\n');
+    for r in rows {
+        let cells: Vec<String> = row_cells(r, &passes)
+            .into_iter()
+            .map(|c| match c {
+                Cell::Text(s) => csv_field(&s),
+                Cell::Num(v) => csv_num(v),
+                Cell::Int(v) => v.to_string(),
+                Cell::Empty => String::new(),
+            })
+            .collect();
+        out.push_str(&cells.join(","));
+        out.push('\n');
+    }
+    out
+}
+
+fn json_rows(rows: &[ResultRow]) -> (Vec<String>, Vec<Value>) {
+    let passes = pass_columns(rows);
+    let mut cols: Vec<String> = BASE_COLUMNS.iter().map(|s| s.to_string()).collect();
+    cols.extend(passes.iter().cloned());
+    let values = rows
+        .iter()
+        .map(|r| {
+            let mut m = Map::new();
+            for (k, c) in cols.iter().zip(row_cells(r, &passes)) {
+                let v = match c {
+                    Cell::Text(s) => Value::String(s),
+                    Cell::Num(v) if v.is_finite() => json!(v),
+                    Cell::Int(v) => json!(v),
+                    _ => Value::Null,
+                };
+                m.insert(k.clone(), v);
+            }
+            Value::Object(m)
+        })
+        .collect();
+    (cols, values)
+}
+
+/// `results.json`: the run, the columns, the rows, the sweep, what was skipped.
+pub fn json(s: &ReportSummary, ctx: &Context) -> Value {
+    let (columns, results) = json_rows(&s.rows);
+    let (_, sweep) = json_rows(&s.sweep);
+    json!({
+        "version": code_version(),
+        "mode": ctx.mode.name(),
+        "backends": ctx.backends,
+        "runs": ctx.runs,
+        "reference": if ctx.mode == Mode::TimingOnly { Value::Null } else { json!(ctx.reference) },
+        "scenes": ctx.scenes.iter().map(|sc| json!({
+            "name": sc.name,
+            "arg": sc.arg,
+            "kind": if sc.sdf { "sdf" } else { "triangles" },
+            "timing_size": [sc.timing_size.0, sc.timing_size.1],
+            "quality_size": sc.quality_size.map(|q| json!([q.0, q.1])),
+        })).collect::<Vec<_>>(),
+        "columns": columns,
+        "results": results,
+        "sweep": sweep,
+        "skipped": s.skipped.iter().map(|k| json!({
+            "scene": k.scene, "method": k.method, "backend": k.backend, "reason": k.reason,
+        })).collect::<Vec<_>>(),
+        "unavailable_scenes": s.unavailable_scenes.iter().map(|(n, r)| json!({
+            "scene": n, "reason": r,
+        })).collect::<Vec<_>>(),
+        "crops": s.crops.iter().map(|c| json!({
+            "scene": c.scene,
+            "regions": c.regions.iter().map(|r| json!({
+                "kind": r.kind, "x": r.window.x, "y": r.window.y, "side": r.window.side, "rule": r.rule,
+            })).collect::<Vec<_>>(),
+        })).collect::<Vec<_>>(),
+        "elapsed_s": s.elapsed.as_secs_f64(),
+    })
+}
+
+fn f(v: Option<f64>, digits: usize) -> String {
+    match v {
+        Some(x) if x.is_infinite() => "∞".into(),
+        Some(x) if x.is_finite() => format!("{x:.digits$}"),
+        _ => "–".into(),
+    }
+}
+
+fn ms(v: f64) -> String {
+    if !v.is_finite() {
+        "–".into()
+    } else if v >= 100.0 {
+        format!("{v:.0}")
+    } else if v >= 10.0 {
+        format!("{v:.1}")
+    } else {
+        format!("{v:.2}")
+    }
+}
+
+/// `report.md`.
+pub fn markdown(s: &ReportSummary, ctx: &Context) -> String {
+    let mut md = String::new();
+    let threads = std::thread::available_parallelism()
+        .map(|n| n.get())
+        .unwrap_or(1);
+    let _ = writeln!(md, "# subcone report\n");
+    let _ = writeln!(
+        md,
+        "Mode **{}**, backends {}, {} timed runs after one warm-up, code {}, {} hardware threads.{}\n",
+        ctx.mode.name(),
+        ctx.backends.join(", "),
+        ctx.runs,
+        code_version(),
+        threads,
+        if ctx.mode == Mode::TimingOnly {
+            " No references and no errors (timing only).".to_string()
+        } else {
+            format!(" Errors against a {} reference.", ctx.reference)
+        }
+    );
+    let _ = writeln!(
+        md,
+        "Times are the median (and range) of the wall time of `Backend::render` at the timing size; \
+errors are measured on the tone-mapped 8-bit sRGB images at the quality size: mean FLIP (LDR-FLIP, \
+67 pixels per degree), PSNR, and *edge FLIP*, the mean FLIP over the edge mask (pixels where the \
+NoAA depth or normal changes across a 4-neighbour by more than 2 % or a cosine of 0.9, where a \
+surface meets the background, or where the reference's luminance Sobel gradient exceeds 0.1). \
+*spp* is shaded samples per pixel (the mean of the samples-per-pixel AOV of the quality render, \
+or shading evaluations per pixel without one); *rays/px* counts every ray cast (primary, \
+geometry, shadow, secondary). Lower FLIP is better; the Pareto front joins the methods that no \
+faster method beats.\n"
+    );
+
+    for sc in &ctx.scenes {
+        let rows: Vec<&ResultRow> = s.rows.iter().filter(|r| r.scene == sc.name).collect();
+        let _ = writeln!(md, "## {}\n", sc.name);
+        let _ = writeln!(
+            md,
+            "{} scene (`{}`); timing at {}x{}{}.\n",
+            if sc.sdf { "SDF" } else { "Triangle" },
+            sc.arg,
+            sc.timing_size.0,
+            sc.timing_size.1,
+            match sc.quality_size {
+                Some(q) => format!(", error at {}x{}", q.0, q.1),
+                None => String::new(),
+            }
+        );
+        if rows.is_empty() {
+            let _ = writeln!(md, "No method ran on this scene.\n");
+        } else {
+            let _ = writeln!(
+                md,
+                "| method | backend | median ms | min–max ms | × NoAA | FLIP | PSNR dB | edge FLIP | spp | rays/px |"
+            );
+            let _ = writeln!(md, "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|");
+            for r in &rows {
+                let _ = writeln!(
+                    md,
+                    "| {} | {} | {} | {}–{} | {} | {} | {} | {} | {} | {} |",
+                    r.method,
+                    r.backend,
+                    ms(r.ms_median),
+                    ms(r.ms_min),
+                    ms(r.ms_max),
+                    f(r.ratio_to_noaa, 2),
+                    f(r.flip_mean, 4),
+                    f(r.psnr_db, 2),
+                    f(r.edge_flip_mean, 4),
+                    f(Some(r.samples_per_pixel), 2),
+                    f(Some(r.rays_per_pixel), 2),
+                );
+            }
+            let _ = writeln!(md);
+            let stem = file_safe(&sc.name);
+            if rows.iter().any(|r| r.flip_mean.is_some()) {
+                let _ = writeln!(
+                    md,
+                    "![{0}: FLIP against time](plots/{1}_flip_vs_time.png)\n",
+                    sc.name, stem
+                );
+            }
+            let _ = writeln!(
+                md,
+                "![{0}: time per pass](plots/{1}_passes.png)\n",
+                sc.name, stem
+            );
+        }
+        let skipped: Vec<_> = s.skipped.iter().filter(|k| k.scene == sc.name).collect();
+        if !skipped.is_empty() {
+            let list: Vec<String> = skipped
+                .iter()
+                .map(|k| {
+                    if k.backend == "*" {
+                        format!("{} ({})", k.method, k.reason)
+                    } else {
+                        format!("{} on {} ({})", k.method, k.backend, k.reason)
+                    }
+                })
+                .collect();
+            let _ = writeln!(md, "Skipped: {}.\n", list.join("; "));
+        }
+        if let Some(c) = s.crops.iter().find(|c| c.scene == sc.name) {
+            let _ = writeln!(
+                md,
+                "Zoomed crops ({}×, NoAA | methods | reference; regions outlined in \
+[crops_overview.png](images/{}/crops_overview.png): edge red, shadow green, reflection blue):\n",
+                crops::ZOOM,
+                file_safe(&sc.name)
+            );
+            for r in &c.regions {
+                let _ = writeln!(
+                    md,
+                    "- {} at ({}, {}), {}×{} px: {}\n\n  ![{} crop](images/{}/crops_{}.png)\n",
+                    r.kind,
+                    r.window.x,
+                    r.window.y,
+                    r.window.side,
+                    r.window.side,
+                    r.rule,
+                    r.kind,
+                    file_safe(&sc.name),
+                    r.kind
+                );
+            }
+        }
+    }
+
+    let _ = writeln!(md, "## Skipped\n");
+    if s.skipped.is_empty() && s.unavailable_scenes.is_empty() {
+        let _ = writeln!(md, "Nothing was skipped.\n");
+    } else {
+        for k in &s.skipped {
+            let _ = writeln!(
+                md,
+                "- {} / {}{}: {}",
+                k.scene,
+                k.method,
+                if k.backend == "*" {
+                    String::new()
+                } else {
+                    format!(" on {}", k.backend)
+                },
+                k.reason
+            );
+        }
+        for (n, r) in &s.unavailable_scenes {
+            let _ = writeln!(md, "- scene {n} is not available: {r}");
+        }
+        let _ = writeln!(md);
+    }
+
+    md.push_str(&paper_comparison(s, ctx));
+
+    let _ = writeln!(
+        md,
+        "## How the crops are chosen\n\n\
+Each region is the square window (a quarter of the image's short side, 8 to 32 px) that scores \
+highest over every position. **Edge**: most edge-mask pixels. **Shadow**: most NoAA error \
+(|NoAA − reference| luminance) on pixels that are geometrically smooth but on a strong gradient of \
+an untextured (all albedos grey), reflection-free NoAA render, i.e. light and shadow boundaries; \
+without lights, the most NoAA error on smooth, non-reflective pixels. **Reflection**: most NoAA \
+error on reflective pixels (those whose NoAA colour changes when reflections are turned off), \
+leaving out geometric edges; without reflective pixels, the most NoAA error off the edge mask, \
+away from the shadow window.\n"
+    );
+    md
+}
+
+fn rows_for<'a>(s: &'a [ResultRow], method: &str, backend: &str) -> Vec<&'a ResultRow> {
+    s.iter()
+        .filter(|r| r.method == method && r.backend == backend)
+        .collect()
+}
+
+/// The block comparing our numbers with the papers' published ones.
+pub fn paper_comparison(s: &ReportSummary, ctx: &Context) -> String {
+    let mut md = String::new();
+    let _ = writeln!(md, "## Against the papers' numbers\n");
+    let _ = writeln!(
+        md,
+        "The papers time GPU implementations; ours are {} wall times, so absolute milliseconds \
+do not compare, but the split between passes and the ratios between methods do.\n",
+        ctx.backends.join(" and ")
+    );
+    let _ = writeln!(md, "### SRAA for ray tracing, Table 1 (Sponza)\n");
+    let _ = writeln!(
+        md,
+        "Paper: pass 1 (geometric information, ray tracer) and pass 2 (antialiasing), ms; about \
+{SRAA_SPEEDUP_OVER_SSAA16}× faster than 16× SSAA with the GPU hybrid (Fig. 3). Ours: the passes \
+`geometry` and `antialiasing` of sraa-rt (`shading` is the one shaded sample per pixel), and \
+ssaa16's median time over sraa-rt's.\n"
+    );
+    for b in &ctx.backends {
+        let sweep: Vec<&ResultRow> = rows_for(&s.sweep, "sraa-rt", b);
+        let (source, rows): (&[ResultRow], Vec<&ResultRow>) = if sweep.is_empty() {
+            (&s.rows, rows_for(&s.rows, "sraa-rt", b))
+        } else {
+            (&s.sweep, sweep)
+        };
+        if rows.is_empty() {
+            let _ = writeln!(md, "No sraa-rt results on {b}.\n");
+            continue;
+        }
+        let _ = writeln!(
+            md,
+            "| scene | size | paper pass 1 | paper pass 2 | paper total | ours geometry | ours antialiasing | ours shading | ours sraa-rt | ours ssaa16 / sraa-rt |"
+        );
+        let _ = writeln!(md, "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|");
+        for r in rows {
+            let paper = SRAA_TABLE1
+                .iter()
+                .find(|p| p.0 == r.width && p.0 == r.height);
+            let ss = source.iter().find(|x| {
+                x.method == "ssaa16"
+                    && x.backend == r.backend
+                    && x.scene == r.scene
+                    && x.width == r.width
+                    && x.height == r.height
+            });
+            let p = |i: usize| {
+                paper
+                    .map(|p| format!("{:.0}", [p.1, p.2, p.3][i]))
+                    .unwrap_or_else(|| "–".into())
+            };
+            let _ = writeln!(
+                md,
+                "| {} ({b}) | {}x{} | {} | {} | {} | {} | {} | {} | {} | {} |",
+                r.scene,
+                r.width,
+                r.height,
+                p(0),
+                p(1),
+                p(2),
+                f(r.pass("geometry"), 1),
+                f(r.pass("antialiasing"), 1),
+                f(r.pass("shading"), 1),
+                ms(r.ms_median),
+                f(ss.map(|x| x.ms_median / r.ms_median), 2),
+            );
+        }
+        let _ = writeln!(
+            md,
+            "\nPaper: ssaa16 / SRAA ≈ {SRAA_SPEEDUP_OVER_SSAA16:.0} (GPU hybrid, Fig. 3).\n"
+        );
+    }
+
+    let _ = writeln!(md, "### CTSS, Table 1 (average frame-time ratio to NoAA)\n");
+    let sdf: Vec<&str> = ctx
+        .scenes
+        .iter()
+        .filter(|sc| sc.sdf)
+        .map(|sc| sc.name.as_str())
+        .collect();
+    if sdf.is_empty() {
+        let _ = writeln!(md, "No SDF scene was reported on.\n");
+        return md;
+    }
+    for b in &ctx.backends {
+        let _ = writeln!(
+            md,
+            "| method | paper avg ratio | ours avg ratio ({b}, {}) | scenes |",
+            sdf.join(", ")
+        );
+        let _ = writeln!(md, "|---|--:|--:|--:|");
+        let mut lines = CTSS_TABLE1
+            .iter()
+            .map(|(paper, ours, ratio)| (format!("{paper} / {ours}"), Some(*ratio), *ours))
+            .collect::<Vec<_>>();
+        lines.push(("4x SS + CTSS / ssaa4+ctss".into(), None, "ssaa4+ctss"));
+        for (name, paper, ours) in lines {
+            let rs: Vec<f64> = s
+                .rows
+                .iter()
+                .filter(|r| r.backend == *b && r.method == ours && sdf.contains(&r.scene.as_str()))
+                .filter_map(|r| r.ratio_to_noaa)
+                .collect();
+            let avg = (!rs.is_empty()).then(|| rs.iter().sum::<f64>() / rs.len() as f64);
+            let _ = writeln!(
+                md,
+                "| {name} | {} | {} | {} |",
+                f(paper, 2),
+                f(avg, 2),
+                rs.len()
+            );
+        }
+        let _ = writeln!(md);
+    }
+    md
+}
+
+/// Write `results.csv`, `results.json` and `report.md`.
+pub fn write_all(s: &ReportSummary, ctx: &Context) -> Result<()> {
+    write_atomic(&s.results_csv, csv(&s.rows).as_bytes())?;
+    let j = serde_json::to_string_pretty(&json(s, ctx))
+        .map_err(|e| anyhow!("cannot encode results.json: {e}"))?;
+    write_atomic(&s.results_json, j.as_bytes())?;
+    write_atomic(&s.report_md, markdown(s, ctx).as_bytes())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(method: &str, passes: &[(&str, f64)]) -> ResultRow {
+        ResultRow {
+            scene: "s,1".into(),
+            method: method.into(),
+            backend: "cpu".into(),
+            width: 4,
+            height: 2,
+            runs: 3,
+            ms_median: 2.5,
+            ms_min: 2.0,
+            ms_max: 3.0,
+            ratio_to_noaa: None,
+            flip_mean: Some(0.125),
+            psnr_db: Some(f64::INFINITY),
+            edge_flip_mean: None,
+            samples_per_pixel: 1.0,
+            rays_per_pixel: 2.0,
+            quality_width: Some(4),
+            quality_height: Some(2),
+            reference: Some("ssaa64".into()),
+            pass_ms: passes.iter().map(|(n, v)| (n.to_string(), *v)).collect(),
+        }
+    }
+
+    #[test]
+    fn csv_columns_are_stable_and_passes_sorted() {
+        let rows = vec![
+            row("noaa", &[("shading", 1.0)]),
+            row("sraa", &[("shading", 1.0), ("geometry", 0.5)]),
+        ];
+        let text = csv(&rows);
+        let mut lines = text.lines();
+        let header = lines.next().unwrap();
+        assert!(header.starts_with("scene,method,backend,width,height,runs,ms_median"));
+        assert!(header.ends_with(",reference,ms_geometry,ms_shading"));
+        let first = lines.next().unwrap();
+        assert!(first.starts_with("\"s,1\",noaa,cpu,4,2,3,2.5,2,3,,0.125,inf,,1,2,4,2,ssaa64,,1"));
+    }
+
+    #[test]
+    fn json_has_nulls_for_missing_and_infinite() {
+        let (cols, vals) = json_rows(&[row("noaa", &[("shading", 1.0)])]);
+        assert_eq!(cols.last().unwrap(), "ms_shading");
+        assert_eq!(vals[0]["psnr_db"], Value::Null);
+        assert_eq!(vals[0]["edge_flip_mean"], Value::Null);
+        assert_eq!(vals[0]["flip_mean"], json!(0.125));
+    }
+}

@@ -1,0 +1,467 @@
+//! Plots (PNG and SVG through plotters) and labelled image panels.
+//!
+//! Text is drawn with DejaVu Sans, embedded in the binary and registered with
+//! plotters' `ab_glyph` font backend, so no system font or fontconfig is used.
+
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+
+use anyhow::{anyhow, Context, Result};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::{register_font, FontStyle};
+
+use super::metrics::Rgb8;
+use super::{file_safe, output, ResultRow};
+
+/// DejaVu Sans (licence: `assets/fonts/DejaVuSans-LICENSE.txt`).
+pub static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+
+/// The family name plots use.
+pub const FAMILY: &str = "sans-serif";
+
+/// Register the embedded font for [`FAMILY`] (once per process).
+pub fn register_fonts() -> Result<()> {
+    static DONE: OnceLock<bool> = OnceLock::new();
+    let ok = *DONE.get_or_init(|| {
+        [FontStyle::Normal, FontStyle::Bold]
+            .into_iter()
+            .all(|s| register_font(FAMILY, s, FONT).is_ok())
+    });
+    if ok {
+        Ok(())
+    } else {
+        Err(anyhow!(
+            "the embedded DejaVu Sans font could not be registered"
+        ))
+    }
+}
+
+fn pe<E: std::fmt::Debug>(what: &str) -> impl FnOnce(E) -> anyhow::Error + '_ {
+    move |e| anyhow!("{what}: {e:?}")
+}
+
+/// Plot size in pixels.
+pub const PLOT_SIZE: (u32, u32) = (960, 640);
+
+/// A fixed colour per method, so every plot agrees.
+pub fn method_colour(method: &str) -> RGBColor {
+    match method {
+        "noaa" => RGBColor(90, 90, 90),
+        "ssaa4" => RGBColor(31, 119, 180),
+        "ssaa16" => RGBColor(23, 75, 140),
+        "sraa" => RGBColor(255, 127, 14),
+        "sraa-rt" => RGBColor(214, 39, 40),
+        "ctss" => RGBColor(44, 160, 44),
+        "ctss-r" => RGBColor(148, 103, 189),
+        "ssaa4+ctss" => RGBColor(140, 86, 75),
+        other => {
+            let h = other
+                .bytes()
+                .fold(7u32, |a, b| a.wrapping_mul(31).wrapping_add(b as u32));
+            let c = Palette99::pick(h as usize % 99).to_rgba();
+            RGBColor(c.0, c.1, c.2)
+        }
+    }
+}
+
+/// A fixed colour per pass name (column-safe).
+pub fn pass_colour(pass: &str, i: usize) -> RGBColor {
+    match pass {
+        "shading" => RGBColor(31, 119, 180),
+        "geometry" => RGBColor(255, 127, 14),
+        "antialiasing" => RGBColor(44, 160, 44),
+        "sphere_tracing" => RGBColor(148, 103, 189),
+        "cone_tracing" => RGBColor(214, 39, 40),
+        "other" => RGBColor(200, 200, 200),
+        _ => {
+            let c = Palette99::pick(i + 10).to_rgba();
+            RGBColor(c.0, c.1, c.2)
+        }
+    }
+}
+
+/// The points on the Pareto front of (time, error): sorted by time, each with
+/// less error than every faster point.
+pub fn pareto_front(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    let mut p: Vec<(f64, f64)> = points
+        .iter()
+        .copied()
+        .filter(|(t, e)| t.is_finite() && e.is_finite())
+        .collect();
+    p.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    let mut front: Vec<(f64, f64)> = Vec::new();
+    for q in p {
+        if front.last().is_none_or(|l| q.1 < l.1) {
+            front.push(q);
+        }
+    }
+    front
+}
+
+fn label(r: &ResultRow, backends: usize) -> String {
+    if backends > 1 {
+        format!("{} ({})", r.method, r.backend)
+    } else {
+        r.method.clone()
+    }
+}
+
+fn draw_error_time<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    scene: &str,
+    rows: &[&ResultRow],
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let e = "error-against-time plot";
+    root.fill(&WHITE).map_err(pe(e))?;
+    let pts: Vec<(&ResultRow, f64, f64)> = rows
+        .iter()
+        .filter_map(|r| {
+            let f = r.flip_mean?;
+            (r.ms_median.is_finite() && r.ms_median > 0.0 && f.is_finite()).then_some((
+                *r,
+                r.ms_median,
+                f,
+            ))
+        })
+        .collect();
+    let backends = {
+        let mut b: Vec<&str> = rows.iter().map(|r| r.backend.as_str()).collect();
+        b.sort();
+        b.dedup();
+        b.len()
+    };
+    let tmin = pts.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+    let tmax = pts.iter().map(|p| p.1).fold(0.0, f64::max);
+    let fmax = pts.iter().map(|p| p.2).fold(0.0, f64::max);
+    let (x0, x1) = if pts.is_empty() {
+        (1.0, 10.0)
+    } else {
+        (tmin / 1.6, tmax * 1.6)
+    };
+    let y1 = if fmax > 0.0 { fmax * 1.2 } else { 0.1 };
+    let size = (PLOT_SIZE.1 / 32) as i32;
+    let mut chart = ChartBuilder::on(root)
+        .caption(
+            format!("{scene}: mean FLIP against median time"),
+            (FAMILY, size + 4),
+        )
+        .margin(16)
+        .x_label_area_size(50)
+        .y_label_area_size(70)
+        .build_cartesian_2d((x0..x1).log_scale(), 0.0..y1)
+        .map_err(pe(e))?;
+    chart
+        .configure_mesh()
+        .x_desc("median time per frame (ms, log scale)")
+        .y_desc("mean FLIP against the reference")
+        .label_style((FAMILY, size - 4))
+        .axis_desc_style((FAMILY, size - 2))
+        .x_label_formatter(&|v| format_ms(*v))
+        .draw()
+        .map_err(pe(e))?;
+    let front = pareto_front(&pts.iter().map(|p| (p.1, p.2)).collect::<Vec<_>>());
+    if front.len() > 1 {
+        // A staircase: no method is better than the front between its points.
+        let mut stairs = Vec::new();
+        for w in front.windows(2) {
+            stairs.push(w[0]);
+            stairs.push((w[1].0, w[0].1));
+        }
+        stairs.extend(front.last().copied());
+        chart
+            .draw_series(LineSeries::new(stairs, BLACK.mix(0.6).stroke_width(2)))
+            .map_err(pe(e))?
+            .label("Pareto front")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
+    }
+    for (r, t, f) in &pts {
+        let c = method_colour(&r.method);
+        let on_front = front.iter().any(|p| p.0 == *t && p.1 == *f);
+        let text = label(r, backends);
+        chart
+            .draw_series(std::iter::once(
+                EmptyElement::at((*t, *f))
+                    + Circle::new((0, 0), if on_front { 7 } else { 5 }, c.filled())
+                    + Text::new(text, (9, -16), (FAMILY, size - 4).into_font().color(&c)),
+            ))
+            .map_err(pe(e))?;
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.4))
+        .label_font((FAMILY, size - 4))
+        .draw()
+        .map_err(pe(e))?;
+    root.present().map_err(pe(e))?;
+    Ok(())
+}
+
+/// `12.3` → `"12"`, `0.5` → `"0.5"`: short tick labels.
+fn format_ms(v: f64) -> String {
+    if v >= 10.0 {
+        format!("{v:.0}")
+    } else if v >= 1.0 {
+        format!("{v:.1}")
+    } else {
+        format!("{v:.2}")
+    }
+}
+
+fn draw_passes<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    scene: &str,
+    rows: &[&ResultRow],
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let e = "pass-time plot";
+    root.fill(&WHITE).map_err(pe(e))?;
+    let backends = {
+        let mut b: Vec<&str> = rows.iter().map(|r| r.backend.as_str()).collect();
+        b.sort();
+        b.dedup();
+        b.len()
+    };
+    // Segments per bar: the passes in run order, then what no pass covers.
+    let bars: Vec<(String, Vec<(String, f64)>)> = rows
+        .iter()
+        .map(|r| {
+            let mut segs = r.pass_ms.clone();
+            let covered: f64 = segs.iter().map(|s| s.1).sum();
+            if r.ms_median - covered > 0.02 * r.ms_median {
+                segs.push(("other".into(), r.ms_median - covered));
+            }
+            (label(r, backends), segs)
+        })
+        .collect();
+    let mut passes: Vec<String> = Vec::new();
+    for (_, segs) in &bars {
+        for (p, _) in segs {
+            if !passes.contains(p) && p != "other" {
+                passes.push(p.clone());
+            }
+        }
+    }
+    if bars.iter().any(|b| b.1.iter().any(|s| s.0 == "other")) {
+        passes.push("other".into());
+    }
+    let ymax = bars
+        .iter()
+        .map(|b| b.1.iter().map(|s| s.1).sum::<f64>())
+        .fold(0.0, f64::max);
+    let n = bars.len().max(1) as u32;
+    let size = (PLOT_SIZE.1 / 32) as i32;
+    let names: Vec<String> = bars.iter().map(|b| b.0.clone()).collect();
+    let mut chart = ChartBuilder::on(root)
+        .caption(format!("{scene}: median time per pass"), (FAMILY, size + 4))
+        .margin(16)
+        .x_label_area_size(50)
+        .y_label_area_size(70)
+        .build_cartesian_2d((0..n - 1).into_segmented(), 0.0..(ymax * 1.15).max(1e-3))
+        .map_err(pe(e))?;
+    chart
+        .configure_mesh()
+        .disable_x_mesh()
+        .x_labels(n as usize)
+        .x_label_formatter(&|v| match v {
+            SegmentValue::CenterOf(i) => names.get(*i as usize).cloned().unwrap_or_default(),
+            _ => String::new(),
+        })
+        .y_desc("median time (ms)")
+        .label_style((FAMILY, size - 5))
+        .axis_desc_style((FAMILY, size - 2))
+        .draw()
+        .map_err(pe(e))?;
+    for (pi, pass) in passes.iter().enumerate() {
+        let c = pass_colour(pass, pi);
+        let mut rects = Vec::new();
+        for (bi, (_, segs)) in bars.iter().enumerate() {
+            let mut y0 = 0.0;
+            for (p, ms) in segs {
+                if p == pass {
+                    let mut r = Rectangle::new(
+                        [
+                            (SegmentValue::Exact(bi as u32), y0),
+                            (SegmentValue::Exact(bi as u32 + 1), y0 + ms),
+                        ],
+                        c.filled(),
+                    );
+                    r.set_margin(0, 0, 12, 12);
+                    rects.push(r);
+                }
+                y0 += ms;
+            }
+        }
+        let name = pass.replace('_', " ");
+        chart
+            .draw_series(rects)
+            .map_err(pe(e))?
+            .label(name)
+            .legend(move |(x, y)| Rectangle::new([(x, y - 6), (x + 14, y + 6)], c.filled()));
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperLeft)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.4))
+        .label_font((FAMILY, size - 4))
+        .draw()
+        .map_err(pe(e))?;
+    root.present().map_err(pe(e))?;
+    Ok(())
+}
+
+#[derive(Clone, Copy)]
+enum Kind {
+    ErrorTime,
+    Passes,
+}
+
+fn draw<DB: DrawingBackend>(
+    kind: Kind,
+    root: &DrawingArea<DB, Shift>,
+    scene: &str,
+    rows: &[&ResultRow],
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    match kind {
+        Kind::ErrorTime => draw_error_time(root, scene, rows),
+        Kind::Passes => draw_passes(root, scene, rows),
+    }
+}
+
+fn both(
+    dir: &Path,
+    stem: &str,
+    scene: &str,
+    rows: &[&ResultRow],
+    kind: Kind,
+) -> Result<Vec<PathBuf>> {
+    let (w, h) = PLOT_SIZE;
+    let mut buf = vec![255u8; (w * h * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
+        draw(kind, &root, scene, rows)?;
+    }
+    let png_path = dir.join(format!("{stem}.png"));
+    output::save_png(
+        &png_path,
+        &Rgb8 {
+            width: w,
+            height: h,
+            data: buf,
+        },
+    )?;
+    let mut svg_text = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg_text, (w, h)).into_drawing_area();
+        draw(kind, &root, scene, rows)?;
+    }
+    let svg_path = dir.join(format!("{stem}.svg"));
+    super::reference::write_atomic(&svg_path, svg_text.as_bytes())?;
+    Ok(vec![png_path, svg_path])
+}
+
+/// The two plots of a scene, as PNG and SVG in `dir`:
+/// `<scene>_flip_vs_time` (only when errors were measured) and
+/// `<scene>_passes`.
+pub fn scene_plots(dir: &Path, scene: &str, rows: &[&ResultRow]) -> Result<Vec<PathBuf>> {
+    if rows.is_empty() {
+        return Ok(Vec::new());
+    }
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let stem = file_safe(scene);
+    let mut out = Vec::new();
+    if rows.iter().any(|r| r.flip_mean.is_some()) {
+        out.extend(both(
+            dir,
+            &format!("{stem}_flip_vs_time"),
+            scene,
+            rows,
+            Kind::ErrorTime,
+        )?);
+    }
+    out.extend(both(
+        dir,
+        &format!("{stem}_passes"),
+        scene,
+        rows,
+        Kind::Passes,
+    )?);
+    Ok(out)
+}
+
+/// Tiles side by side with a label above each, on white.
+pub fn label_panel(tiles: &[(String, Rgb8)]) -> Result<Rgb8> {
+    const GAP: u32 = 8;
+    const LABEL: u32 = 28;
+    let tw: u32 = tiles.iter().map(|t| t.1.width).sum::<u32>() + GAP * (tiles.len() as u32 + 1);
+    let th: u32 = tiles.iter().map(|t| t.1.height).max().unwrap_or(0) + LABEL + GAP;
+    let (w, h) = (tw.max(1), th.max(1));
+    let mut data = vec![255u8; (w * h * 3) as usize];
+    let mut x0 = GAP;
+    for (_, img) in tiles {
+        for y in 0..img.height {
+            let src = (y * img.width * 3) as usize;
+            let dst = (((LABEL + y) * w + x0) * 3) as usize;
+            let len = (img.width * 3) as usize;
+            data[dst..dst + len].copy_from_slice(&img.data[src..src + len]);
+        }
+        x0 += img.width + GAP;
+    }
+    {
+        let root = BitMapBackend::with_buffer(&mut data, (w, h)).into_drawing_area();
+        let mut x0 = GAP as i32;
+        for (name, img) in tiles {
+            let font = (FAMILY, 16).into_font().color(&BLACK);
+            root.draw(&Text::new(name.clone(), (x0, 6), font))
+                .map_err(pe("crop labels"))?;
+            x0 += (img.width + GAP) as i32;
+        }
+        root.present().map_err(pe("crop labels"))?;
+    }
+    Ok(Rgb8 {
+        width: w,
+        height: h,
+        data,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pareto_front_keeps_only_improvements() {
+        let f = pareto_front(&[(10.0, 0.2), (1.0, 0.5), (5.0, 0.6), (20.0, 0.1), (2.0, 0.3)]);
+        assert_eq!(f, vec![(1.0, 0.5), (2.0, 0.3), (10.0, 0.2), (20.0, 0.1)]);
+        assert!(pareto_front(&[(f64::NAN, 0.1)]).is_empty());
+    }
+
+    #[test]
+    fn font_registers() {
+        register_fonts().unwrap();
+        let panel = label_panel(&[(
+            "noaa".into(),
+            Rgb8 {
+                width: 16,
+                height: 16,
+                data: vec![0; 16 * 16 * 3],
+            },
+        )])
+        .unwrap();
+        // Some label pixel is dark.
+        assert!(panel.data[..(panel.width * 28 * 3) as usize]
+            .iter()
+            .any(|&v| v < 128));
+    }
+}

@@ -1,0 +1,141 @@
+//! Timing statistics: median and range of wall times, per-pass medians.
+
+use std::time::Duration;
+
+use subcone_scene::Frame;
+
+/// Median of `v` (mean of the two middle values for an even count); `None`
+/// when empty. NaNs sort last.
+pub fn median(v: &[f64]) -> Option<f64> {
+    if v.is_empty() {
+        return None;
+    }
+    let mut s = v.to_vec();
+    s.sort_by(|a, b| a.total_cmp(b));
+    let m = s.len() / 2;
+    Some(if s.len() % 2 == 1 {
+        s[m]
+    } else {
+        (s[m - 1] + s[m]) / 2.0
+    })
+}
+
+/// A pass name made safe for a column: lower case, runs of anything but ASCII
+/// letters and digits turned into one `_`, no leading or trailing `_`
+/// (`"cone tracing"` → `"cone_tracing"`); `"unnamed"` when nothing is left.
+pub fn column_safe(name: &str) -> String {
+    let mut out = String::new();
+    for c in name.chars() {
+        if c.is_ascii_alphanumeric() {
+            out.push(c.to_ascii_lowercase());
+        } else if !out.ends_with('_') {
+            out.push('_');
+        }
+    }
+    let out = out.trim_matches('_').to_string();
+    if out.is_empty() {
+        "unnamed".into()
+    } else {
+        out
+    }
+}
+
+/// The timings of several runs of one method.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Timings {
+    /// Wall time of each timed `Backend::render` call, in ms.
+    pub wall_ms: Vec<f64>,
+    /// Per pass (column-safe name, in the order first seen): the pass's time
+    /// in each run that had it, in ms. Passes of the same name in one frame
+    /// are added up.
+    pub passes: Vec<(String, Vec<f64>)>,
+}
+
+impl Timings {
+    /// Record one run.
+    pub fn push(&mut self, wall: Duration, frame: &Frame) {
+        self.wall_ms.push(wall.as_secs_f64() * 1e3);
+        let mut this: Vec<(String, f64)> = Vec::new();
+        for t in &frame.stats.timings {
+            let name = column_safe(t.name);
+            let ms = t.time.as_secs_f64() * 1e3;
+            match this.iter_mut().find(|(n, _)| *n == name) {
+                Some(e) => e.1 += ms,
+                None => this.push((name, ms)),
+            }
+        }
+        for (name, ms) in this {
+            match self.passes.iter_mut().find(|(n, _)| *n == name) {
+                Some(e) => e.1.push(ms),
+                None => self.passes.push((name, vec![ms])),
+            }
+        }
+    }
+
+    /// Median wall time, ms.
+    pub fn median(&self) -> f64 {
+        median(&self.wall_ms).unwrap_or(f64::NAN)
+    }
+
+    /// Fastest run, ms.
+    pub fn min(&self) -> f64 {
+        self.wall_ms.iter().copied().fold(f64::INFINITY, f64::min)
+    }
+
+    /// Slowest run, ms.
+    pub fn max(&self) -> f64 {
+        self.wall_ms
+            .iter()
+            .copied()
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    /// Median time of each pass, ms, in the order first seen.
+    pub fn pass_medians(&self) -> Vec<(String, f64)> {
+        self.passes
+            .iter()
+            .filter_map(|(n, v)| median(v).map(|m| (n.clone(), m)))
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use subcone_scene::PassTiming;
+
+    #[test]
+    fn medians() {
+        assert_eq!(median(&[]), None);
+        assert_eq!(median(&[3.0, 1.0, 2.0]), Some(2.0));
+        assert_eq!(median(&[4.0, 1.0, 2.0, 3.0]), Some(2.5));
+    }
+
+    #[test]
+    fn column_names() {
+        assert_eq!(column_safe("cone tracing"), "cone_tracing");
+        assert_eq!(column_safe("Sphere-Tracing (2)"), "sphere_tracing_2");
+        assert_eq!(column_safe("  "), "unnamed");
+    }
+
+    #[test]
+    fn pass_medians_add_repeated_names() {
+        let mut t = Timings::default();
+        for ms in [1u64, 3, 2] {
+            let mut f = Frame::new(1, 1);
+            f.stats.timings = vec![
+                PassTiming {
+                    name: "shading",
+                    time: Duration::from_millis(ms),
+                },
+                PassTiming {
+                    name: "shading",
+                    time: Duration::from_millis(1),
+                },
+            ];
+            t.push(Duration::from_millis(10 * ms), &f);
+        }
+        assert_eq!(t.pass_medians(), vec![("shading".to_string(), 3.0)]);
+        assert_eq!((t.median(), t.min(), t.max()), (20.0, 10.0, 30.0));
+    }
+}

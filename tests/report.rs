@@ -1,0 +1,225 @@
+//! The quick report end to end: every method on every built-in paper scene at
+//! 96x64, into a temporary directory.
+
+use std::path::Path;
+use std::time::Instant;
+
+use subcone::report::{self, ReportArgs};
+
+const REQUIRED: [&str; 15] = [
+    "scene",
+    "method",
+    "backend",
+    "width",
+    "height",
+    "runs",
+    "ms_median",
+    "ms_min",
+    "ms_max",
+    "ratio_to_noaa",
+    "flip_mean",
+    "psnr_db",
+    "edge_flip_mean",
+    "samples_per_pixel",
+    "rays_per_pixel",
+];
+
+fn csv_rows(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
+    let text = std::fs::read_to_string(path).expect("results.csv");
+    let mut lines = text.lines();
+    let header: Vec<String> = lines
+        .next()
+        .expect("header")
+        .split(',')
+        .map(String::from)
+        .collect();
+    // Scene and method names hold no commas, so a plain split is enough here.
+    let rows = lines
+        .map(|l| l.split(',').map(String::from).collect())
+        .collect();
+    (header, rows)
+}
+
+fn nonempty(path: &Path) {
+    let len = std::fs::metadata(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .len();
+    assert!(len > 0, "{} is empty", path.display());
+}
+
+#[test]
+fn quick_report_on_every_paper_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("report");
+    let args = ReportArgs {
+        quick: true,
+        out: out.clone(),
+        ..Default::default()
+    };
+    let start = Instant::now();
+    let summary = report::run(&args).expect("quick report");
+    println!(
+        "quick report: {:.1} s\n{summary}",
+        start.elapsed().as_secs_f64()
+    );
+
+    // Every paper scene that loads has rows; the triangle scenes always load.
+    let (loaded, _) = report::paper_scenes();
+    assert!(loaded.len() >= 3, "cornell, checker and atrium must load");
+    for (name, _) in &loaded {
+        assert!(
+            summary.rows.iter().any(|r| &r.scene == name),
+            "no results for scene {name}"
+        );
+    }
+
+    // results.csv: required columns, a pass column, one row per result.
+    let (header, rows) = csv_rows(&out.join("results.csv"));
+    for c in REQUIRED {
+        assert!(
+            header.iter().any(|h| h == c),
+            "results.csv lacks column {c}"
+        );
+    }
+    assert!(
+        header
+            .iter()
+            .any(|h| h.starts_with("ms_") && h != "ms_median" && h != "ms_min" && h != "ms_max"),
+        "results.csv has no per-pass column: {header:?}"
+    );
+    assert_eq!(rows.len(), summary.rows.len());
+    let col = |name: &str| header.iter().position(|h| h == name).unwrap();
+    let (scene, method, flip) = (col("scene"), col("method"), col("flip_mean"));
+    for r in &rows {
+        assert_eq!(r.len(), header.len(), "ragged row {r:?}");
+    }
+
+    // FLIP falls from NoAA to SSAA16 on every scene (as written in the CSV).
+    for (name, _) in &loaded {
+        let get = |m: &str| -> f64 {
+            rows.iter()
+                .find(|r| &r[scene] == name && r[method] == m)
+                .unwrap_or_else(|| panic!("no {m} row for {name}"))[flip]
+                .parse()
+                .unwrap_or_else(|_| panic!("no FLIP for {m} on {name}"))
+        };
+        let (noaa, ssaa16) = (get("noaa"), get("ssaa16"));
+        assert!(
+            ssaa16 < noaa,
+            "{name}: FLIP of ssaa16 ({ssaa16}) is not below noaa's ({noaa})"
+        );
+    }
+
+    // Methods that do not apply are listed as skipped in report.md.
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(md.contains("## Skipped"));
+    assert!(md.contains("cone tracing needs a signed distance field"));
+    assert!(md.contains("SRAA for ray tracing, Table 1"));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
+    assert_eq!(json["results"].as_array().unwrap().len(), rows.len());
+
+    // Plots and images.
+    for (name, _) in &loaded {
+        for stem in ["flip_vs_time", "passes"] {
+            for ext in ["png", "svg"] {
+                nonempty(&out.join("plots").join(format!("{name}_{stem}.{ext}")));
+            }
+        }
+        let img = out.join("images").join(name);
+        for f in [
+            "reference.png",
+            "noaa.png",
+            "ssaa16.png",
+            "flip_noaa.png",
+            "flip_ssaa16.png",
+            "crops_edge.png",
+            "crops_shadow.png",
+            "crops_reflection.png",
+            "crops_overview.png",
+        ] {
+            nonempty(&img.join(f));
+        }
+        let png = image::open(img.join("noaa.png")).unwrap();
+        assert_eq!((png.width(), png.height()), report::QUICK_SIZE);
+    }
+
+    // A second run reads every reference from the cache.
+    let again = report::run(&ReportArgs {
+        methods: vec!["noaa".into()],
+        ..args
+    })
+    .expect("second quick report");
+    assert_eq!(again.references_rendered, 0);
+    assert_eq!(again.references_cached, loaded.len());
+}
+
+#[test]
+fn bad_arguments_are_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let base = ReportArgs {
+        quick: true,
+        out: dir.path().join("r"),
+        no_paper_scenes: true,
+        scenes: vec!["cornell".into()],
+        methods: vec!["noaa".into()],
+        ..Default::default()
+    };
+    let err = |a: ReportArgs| format!("{:#}", report::run(&a).unwrap_err());
+    assert!(err(ReportArgs {
+        backend: "cpu,vulkan9".into(),
+        ..base.clone()
+    })
+    .contains("vulkan9"));
+    assert!(err(ReportArgs {
+        size: Some("0x10".into()),
+        ..base.clone()
+    })
+    .contains("--size"));
+    assert!(err(ReportArgs {
+        methods: vec!["ssaa5".into()],
+        ..base.clone()
+    })
+    .contains("ssaa5"));
+    assert!(err(ReportArgs {
+        runs: Some(0),
+        ..base.clone()
+    })
+    .contains("--runs"));
+    assert!(err(ReportArgs {
+        scenes: vec!["no-such-scene".into()],
+        ..base.clone()
+    })
+    .contains("no-such-scene"));
+    assert!(err(ReportArgs {
+        scenes: vec![],
+        ..base.clone()
+    })
+    .contains("--no-paper-scenes"));
+}
+
+#[test]
+fn timing_only_writes_no_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("t");
+    let s = report::run(&ReportArgs {
+        timing_only: true,
+        out: out.clone(),
+        no_paper_scenes: true,
+        scenes: vec!["cornell".into()],
+        methods: vec!["noaa".into(), "sraa-rt".into()],
+        size: Some("64x48".into()),
+        runs: Some(1),
+        ..Default::default()
+    })
+    .unwrap();
+    assert_eq!(s.rows.len(), 2);
+    assert!(s.rows.iter().all(|r| r.flip_mean.is_none()));
+    assert!(s.rows.iter().all(|r| (r.width, r.height) == (64, 48)));
+    assert_eq!(s.references_rendered + s.references_cached, 0);
+    let sraa = s.rows.iter().find(|r| r.method == "sraa-rt").unwrap();
+    assert!(sraa.pass("geometry").is_some() && sraa.pass("antialiasing").is_some());
+    nonempty(&out.join("plots/cornell_passes.svg"));
+    assert!(!out.join("plots/cornell_flip_vs_time.png").exists());
+    assert!(!out.join("cache").exists());
+}
