@@ -330,6 +330,15 @@ impl ConeStepper {
 
     /// Feed `d = SDF(o + t·dir)` at `t = self.t()` (Algorithm 1, lines 7–26).
     pub fn advance(&mut self, d: f32) -> Event {
+        self.advance_split(d, d)
+    }
+
+    /// [`advance`](Self::advance) for fields whose surface distance and safe step
+    /// differ: `d` decides occlusion and hit groups, `step` (a bound `≤ d`, e.g.
+    /// capped at a repetition cell's walls, the authors' `GRID_TRACE`) decides
+    /// how far to march: `t ← t + max(step, α·R_c)`. Guarded fields used for
+    /// occlusion make fake soft hits near cell walls; this keeps them out.
+    pub fn advance_split(&mut self, d: f32, step: f32) -> Event {
         if let Some(r) = self.stop {
             return Event::Stop(r);
         }
@@ -411,7 +420,7 @@ impl ConeStepper {
         self.d_prev = d;
         self.have_prev = true;
         if self.stop.is_none() {
-            self.t = advance(t, d, self.params.alpha, rc);
+            self.t = advance(t, step.min(d), self.params.alpha, rc);
         }
         event
     }
@@ -550,6 +559,19 @@ pub fn sphere_trace<S>(params: &CtssParams, origin: Vec3, dir: Vec3, mut sdf: S)
 where
     S: FnMut(Vec3) -> f32,
 {
+    sphere_trace_split(params, origin, dir, |p| {
+        let d = sdf(p);
+        (d, d)
+    })
+}
+
+/// [`sphere_trace`] for fields whose surface distance (first value, decides the
+/// hit) and safe step (second value, `≤` the first) differ, as in
+/// [`ConeStepper::advance_split`].
+pub fn sphere_trace_split<S>(params: &CtssParams, origin: Vec3, dir: Vec3, mut sdf: S) -> SphereHit
+where
+    S: FnMut(Vec3) -> (f32, f32),
+{
     let hard = params.thresholds().hard;
     let mut t = if params.t_min > 0.0 {
         params.t_min
@@ -572,7 +594,7 @@ where
                 stop: StopReason::MaxDistance,
             };
         }
-        let d = sdf(origin + t * dir);
+        let (d, step) = sdf(origin + t * dir);
         steps += 1;
         if d.is_nan() {
             return SphereHit {
@@ -589,6 +611,6 @@ where
                 stop: StopReason::HardHit,
             };
         }
-        t = advance(t, d, 0.0, rc);
+        t = advance(t, step.min(d), 0.0, rc);
     }
 }

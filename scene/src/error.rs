@@ -40,6 +40,9 @@ pub enum SceneError {
     /// The camera is unusable.
     #[error("invalid camera: {0}")]
     Camera(String),
+    /// An SDF scene is invalid.
+    #[error(transparent)]
+    Sdf(#[from] crate::sdf::SdfError),
 }
 
 /// A frame could not be rendered or written.

@@ -716,7 +716,7 @@ pub fn sponza(data_dir: &Path, reflective_floor: bool) -> Result<Scene, SceneErr
 /// ([`builtin::TRIANGLE_SCENES`]), `sponza` or `sponza-mirror` (loaded from
 /// [`data_dir`]), or a path to a `.obj`, `.gltf` or `.glb` file.
 pub fn scene_from_arg(arg: &str) -> Result<Scene, SceneError> {
-    if builtin::TRIANGLE_SCENES.contains(&arg) {
+    if builtin::TRIANGLE_SCENES.contains(&arg) || crate::sdf::sdf_builtin(arg).is_some() {
         return builtin::builtin(arg);
     }
     match arg {
@@ -734,6 +734,8 @@ pub fn scene_from_arg(arg: &str) -> Result<Scene, SceneError> {
     }
     let mut known: Vec<&str> = builtin::TRIANGLE_SCENES.to_vec();
     known.extend(DATA_SCENES);
+    known.extend(crate::sdf::SDF_SCENES);
+    known.extend(crate::sdf::STIFF_SCENES);
     Err(SceneError::UnknownScene {
         name: arg.into(),
         known: format!(

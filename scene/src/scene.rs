@@ -10,14 +10,28 @@ use crate::error::SceneError;
 use crate::light::Light;
 use crate::material::Material;
 use crate::mesh::TriangleMesh;
+use crate::sdf::{SdfNode, SdfScene};
 
 static NEXT_ID: AtomicU64 = AtomicU64::new(1);
 
 /// The geometry of a scene.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub enum Geometry {
     /// Triangles, ray traced through a BVH.
     Triangles(TriangleMesh),
+    /// A signed distance field, sphere traced.
+    Sdf(SdfGeometry),
+}
+
+/// An SDF scene's field and its tracing limits.
+#[derive(Clone, Debug)]
+pub struct SdfGeometry {
+    /// The field.
+    pub root: SdfNode,
+    /// Distance at which a ray leaves the scene.
+    pub max_distance: f32,
+    /// Step budget per ray.
+    pub max_steps: u32,
 }
 
 /// A scene.
@@ -79,6 +93,44 @@ impl Scene {
         })
     }
 
+    /// A scene from an SDF scene description.
+    pub fn sdf(scene: SdfScene) -> Result<Self, SceneError> {
+        scene.validate()?;
+        let SdfScene {
+            name,
+            root,
+            materials,
+            lights,
+            camera,
+            background,
+            ambient,
+            max_distance,
+            max_steps,
+        } = scene;
+        Ok(Scene {
+            name,
+            geometry: Geometry::Sdf(SdfGeometry {
+                root,
+                max_distance,
+                max_steps,
+            }),
+            materials,
+            lights,
+            camera,
+            background,
+            ambient,
+            id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
+        })
+    }
+
+    /// The SDF, if this is an SDF scene.
+    pub fn sdf_geometry(&self) -> Option<&SdfGeometry> {
+        match &self.geometry {
+            Geometry::Sdf(g) => Some(g),
+            Geometry::Triangles(_) => None,
+        }
+    }
+
     /// A process-unique identity, for backends that cache per-scene data (a
     /// BVH). Clones share it; any `*_mut` change must call [`Scene::touch`].
     pub fn id(&self) -> u64 {
@@ -94,6 +146,7 @@ impl Scene {
     pub fn mesh(&self) -> Option<&TriangleMesh> {
         match &self.geometry {
             Geometry::Triangles(m) => Some(m),
+            Geometry::Sdf(_) => None,
         }
     }
 
@@ -103,8 +156,16 @@ impl Scene {
         if !self.lights.is_empty() {
             f |= SceneFeatures::HAS_LIGHTS;
         }
+        if let Geometry::Sdf(_) = self.geometry {
+            f |= SceneFeatures::IS_SDF;
+        }
+        let sdf_used: Vec<u32> = match &self.geometry {
+            Geometry::Sdf(g) => g.root.materials_used().into_iter().collect(),
+            Geometry::Triangles(_) => Vec::new(),
+        };
         let used = |i: usize| match &self.geometry {
             Geometry::Triangles(m) => m.materials.iter().any(|&k| k as usize == i),
+            Geometry::Sdf(_) => sdf_used.contains(&(i as u32)),
         };
         if self
             .materials

@@ -26,11 +26,29 @@ pub mod sphere;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
-use subcone_kernels::passes::{required_passes, Technique};
+use subcone_kernels::passes::{required_passes, Passes, Technique};
 use subcone_scene::{Backend, Camera, Frame, Method, RenderError, RenderSettings, Scene};
 
 pub use bvh::SceneBvh;
 use shade::{Tracer, MAX_LIGHTS};
+use sphere::{SdfField, SdfView};
+
+impl SdfField for subcone_scene::sdf::SdfNode {
+    #[inline]
+    fn eval(&self, p: glam::Vec3) -> (f32, u32) {
+        subcone_scene::sdf::SdfNode::eval(self, p)
+    }
+
+    #[inline]
+    fn eval_split(&self, p: glam::Vec3) -> (f32, f32, u32) {
+        subcone_scene::sdf::SdfNode::eval_split(self, p)
+    }
+
+    #[inline]
+    fn normal(&self, p: glam::Vec3, h: f32) -> glam::Vec3 {
+        subcone_scene::sdf::SdfNode::normal_surface(self, p, h)
+    }
+}
 
 /// The CPU backend. Cheap to create; it caches one BVH per scene.
 #[derive(Default)]
@@ -89,6 +107,25 @@ impl Backend for CpuBackend {
             });
         }
         let passes = required_passes(method.technique, scene.features())? | settings.force_passes;
+        if let Some(g) = scene.sdf_geometry() {
+            if passes.intersects(Passes::SECONDARY) {
+                return Err(RenderError::Backend {
+                    backend: "cpu",
+                    reason: "mirror reflections in SDF scenes are not implemented".into(),
+                });
+            }
+            let view = SdfView {
+                field: &g.root,
+                materials: &scene.materials,
+                lights: &scene.lights,
+                ambient: scene.ambient,
+                background: scene.background,
+                camera,
+                max_distance: settings.max_distance.unwrap_or(g.max_distance),
+                max_steps: settings.max_steps.unwrap_or(g.max_steps),
+            };
+            return Ok(view.render(method, settings, passes));
+        }
         let bvh = self.bvh(scene)?;
         let mesh = scene.mesh().expect("checked by bvh()");
         let tracer = Tracer::new(&bvh, scene, mesh, camera, settings.reflection_depth);

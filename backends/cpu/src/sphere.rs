@@ -11,7 +11,9 @@ use std::time::Instant;
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use subcone_kernels::aggregate::Aggregate;
-use subcone_kernels::ctss::{cross_section_frame, sphere_trace, ConeStepper, CtssParams, Event};
+use subcone_kernels::ctss::{
+    cross_section_frame, sphere_trace_split, ConeStepper, CtssParams, Event,
+};
 use subcone_kernels::mask::project_normal;
 use subcone_kernels::passes::{Passes, Technique};
 use subcone_scene::{
@@ -22,6 +24,15 @@ use subcone_scene::{
 pub trait SdfField: Sync {
     /// Signed distance at `p` and the material of the nearest object.
     fn eval(&self, p: Vec3) -> (f32, u32);
+
+    /// `(safe step, surface distance, material)`: fields that cap their
+    /// distance at repetition cell walls return the capped bound first and the
+    /// distance to the surface second (occlusion and hits use the second,
+    /// marching the first). The default: both are [`eval`](SdfField::eval)'s.
+    fn eval_split(&self, p: Vec3) -> (f32, f32, u32) {
+        let (d, m) = self.eval(p);
+        (d, d, m)
+    }
 
     /// Unit surface normal at `p` from differences of step `h`. The default is
     /// tetrahedral differences (4 evaluations, Quilez).
@@ -99,14 +110,14 @@ impl<F: SdfField> SdfView<'_, F> {
             if t >= limit {
                 return false;
             }
-            let d = self.field.eval(o + l * t).0;
+            let (safe, d, _) = self.field.eval_split(o + l * t);
             if d.is_nan() {
                 return false;
             }
             if d < eps * (1.0 + t * 1e-3) {
                 return true;
             }
-            let next = t + d;
+            let next = t + safe.min(d);
             t = if next > t { next } else { t.next_up() };
         }
         false
@@ -114,7 +125,7 @@ impl<F: SdfField> SdfView<'_, F> {
 
     /// Lambert shading with hard shadows and ambient light.
     fn shade(&self, p: Vec3, n: Vec3, dir: Vec3, tally: &mut Tally) -> Vec3 {
-        let (_, m) = self.field.eval(p);
+        let (_, _, m) = self.field.eval_split(p);
         let mat = &self.materials[(m as usize).min(self.materials.len().saturating_sub(1))];
         let albedo = mat.albedo_at(p, Vec2::ZERO);
         // Shade the side facing the ray.
@@ -143,7 +154,10 @@ impl<F: SdfField> SdfView<'_, F> {
 
     /// One NoAA sample.
     fn noaa(&self, o: Vec3, d: Vec3, p: &CtssParams, tally: &mut Tally) -> Vec3 {
-        let hit = sphere_trace(p, o, d, |q| self.field.eval(q).0);
+        let hit = sphere_trace_split(p, o, d, |q| {
+            let (safe, surface, _) = self.field.eval_split(q);
+            (surface, safe)
+        });
         tally.steps += hit.steps as u64;
         match hit.t {
             Some(t) => {
@@ -162,8 +176,8 @@ impl<F: SdfField> SdfView<'_, F> {
         let mut agg = Aggregate::new();
         loop {
             let t = stepper.t();
-            let dist = self.field.eval(o + t * d).0;
-            match stepper.advance(dist) {
+            let (safe, surface, _) = self.field.eval_split(o + t * d);
+            match stepper.advance_split(surface, safe) {
                 Event::March => {}
                 Event::Sample(s) => {
                     let q = o + s.t * d;
@@ -276,7 +290,11 @@ impl<F: SdfField> SdfView<'_, F> {
                         s.width,
                         s.height,
                     );
-                    match sphere_trace(&plain, o, d, |q| self.field.eval(q).0).t {
+                    let split = |q| {
+                        let (safe, surface, _) = self.field.eval_split(q);
+                        (surface, safe)
+                    };
+                    match sphere_trace_split(&plain, o, d, split).t {
                         Some(t) => {
                             let q = o + t * d;
                             (

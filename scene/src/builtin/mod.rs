@@ -14,16 +14,39 @@ use crate::scene::Scene;
 /// Names of the built-in triangle scenes.
 pub const TRIANGLE_SCENES: [&str; 4] = ["cornell", "cornell-nomirror", "checker", "atrium"];
 
-/// A built-in scene by name.
+/// The paper scenes of both papers, as the report runs them by default:
+/// triangle scenes for the SRAA family, SDF scenes for the CTSS family.
+pub const PAPER_SCENES: [&str; 8] = [
+    "cornell",
+    "checker",
+    "atrium",
+    "primitives",
+    "random-box",
+    "random-shape",
+    "sparse-shape",
+    "sdf-atrium",
+];
+
+/// A built-in scene by name: a triangle scene ([`TRIANGLE_SCENES`]) or an SDF
+/// scene ([`crate::sdf::SDF_SCENES`], [`crate::sdf::STIFF_SCENES`]).
 pub fn builtin(name: &str) -> Result<Scene, SceneError> {
     match name {
         "cornell" => Ok(cornell(true)),
         "cornell-nomirror" => Ok(cornell(false)),
         "checker" => Ok(checker()),
         "atrium" => Ok(atrium()),
-        _ => Err(SceneError::UnknownScene {
-            name: name.into(),
-            known: TRIANGLE_SCENES.join(", "),
-        }),
+        _ => match crate::sdf::sdf_builtin(name) {
+            Some(s) => Scene::sdf(s?),
+            None => Err(SceneError::UnknownScene {
+                name: name.into(),
+                known: TRIANGLE_SCENES
+                    .iter()
+                    .chain(crate::sdf::SDF_SCENES.iter())
+                    .chain(crate::sdf::STIFF_SCENES.iter())
+                    .copied()
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            }),
+        },
     }
 }

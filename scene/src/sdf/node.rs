@@ -1104,6 +1104,95 @@ impl SdfNode {
         }
     }
 
+    /// `(safe step, surface distance, material)`: for guarded repetition and
+    /// scatter, the field [`eval`](SdfNode::eval) returns is capped at the
+    /// cell walls (`min(d_object, wall + margin)`), a bound that is right for
+    /// stepping but puts fake near-surfaces on every wall. Cone tracing must
+    /// measure occlusion on the surface itself, so this splits the two: the
+    /// first value is `eval`'s bound (march by it), the second is the distance
+    /// to the objects that are evaluated (the cell's own; occlusion and normals
+    /// use it), as the CTSS authors' `GRID_TRACE` does. Both are equal for every
+    /// other node. The first never exceeds the second.
+    pub fn eval_split(&self, p: Vec3) -> (f32, f32, u32) {
+        match &self.op {
+            Op::Shape { shape, material } => {
+                let d = shape.distance(p);
+                (d, d, *material)
+            }
+            Op::Transform(t) => {
+                let mut q = (p - t.translation) * t.inv_scale;
+                if t.rotated {
+                    q = t.inv_rotation * q;
+                }
+                let (a, b, m) = t.child.eval_split(q);
+                (a * t.scale, b * t.scale, m)
+            }
+            Op::Union { children, spheres } => {
+                let (mut safe, mut surf, mut mat) =
+                    (f32::INFINITY, f32::INFINITY, self.info.material);
+                for (c, s) in children.iter().zip(spheres) {
+                    let reach = surf + s.w;
+                    let d2 = (p - s.truncate()).length_squared();
+                    if reach >= 0.0 && d2 >= reach * reach {
+                        // Not nearer than the best surface; its bounding sphere
+                        // bounds its distance from below.
+                        safe = safe.min(d2.sqrt() - s.w);
+                        continue;
+                    }
+                    let (a, b, m) = c.eval_split(p);
+                    safe = safe.min(a);
+                    if b < surf {
+                        surf = b;
+                        mat = m;
+                    }
+                }
+                (safe.min(surf), surf, mat)
+            }
+            Op::Repeat(r) if r.guard => {
+                let mut q = p;
+                let mut wall = f32::INFINITY;
+                for k in 0..3 {
+                    let c = r.period[k];
+                    if c > 0.0 {
+                        let i = round_cell(p[k] / c).clamp(r.lo[k], r.hi[k]);
+                        q[k] = p[k] - c * i;
+                        if i < r.hi[k] {
+                            wall = wall.min(0.5 * c - q[k]);
+                        }
+                        if i > r.lo[k] {
+                            wall = wall.min(0.5 * c + q[k]);
+                        }
+                    }
+                }
+                let (a, b, m) = r.child.eval_split(q);
+                (a.min(wall + r.margin), b, m)
+            }
+            Op::Scatter(s) => s.eval_split(p),
+            _ => {
+                let (d, m) = self.eval(p);
+                (d, d, m)
+            }
+        }
+    }
+
+    /// Unit normal of the surface distance of [`eval_split`](SdfNode::eval_split)
+    /// (tetrahedral differences, as [`normal`](SdfNode::normal)), so guarded
+    /// cells do not bend normals towards their walls.
+    pub fn normal_surface(&self, p: Vec3, h: f32) -> Vec3 {
+        const K: [Vec3; 4] = [
+            Vec3::new(1.0, -1.0, -1.0),
+            Vec3::new(-1.0, -1.0, 1.0),
+            Vec3::new(-1.0, 1.0, -1.0),
+            Vec3::new(1.0, 1.0, 1.0),
+        ];
+        let h = step(p, h);
+        let mut n = Vec3::ZERO;
+        for k in K {
+            n += k * self.eval_split(p + k * h).1;
+        }
+        unit_or_up(n)
+    }
+
     /// The distance alone.
     #[inline]
     pub fn distance(&self, p: Vec3) -> f32 {

@@ -370,6 +370,53 @@ impl Scatter {
         self.eval_xyz(p.x, p.y, p.z)
     }
 
+    /// `(guarded bound, own object's distance, material)`; see
+    /// `SdfNode::eval_split`. An empty cell has no surface (`∞`); far from the
+    /// object, its bounding sphere's distance stands in for the surface.
+    pub(crate) fn eval_split(&self, p: Vec3) -> (f32, f32, u32) {
+        let rel = p - self.origin;
+        let f = rel * self.inv_cell;
+        let f =
+            Vec3::new(round_cell(f.x), round_cell(f.y), round_cell(f.z)).clamp(self.lo, self.hi);
+        let q = rel - f * self.cell;
+        let mut wall = f32::INFINITY;
+        for k in 0..3 {
+            if f[k] < self.hi[k] {
+                wall = wall.min(0.5 * self.cell[k] - q[k]);
+            }
+            if f[k] > self.lo[k] {
+                wall = wall.min(0.5 * self.cell[k] + q[k]);
+            }
+        }
+        let guard = wall + self.margin;
+        let i = f - self.lo;
+        let idx = i.x as usize + self.dims[0] * (i.y as usize + self.dims[1] * i.z as usize);
+        let Some(inst) = self.instances.get(idx) else {
+            return (guard, f32::INFINITY, self.default_material);
+        };
+        let Some(template) = self.templates.get(inst.template as usize) else {
+            return (guard, f32::INFINITY, self.default_material);
+        };
+        let local = q - inst.offset;
+        let own = if inst.material == EMPTY {
+            self.default_material
+        } else {
+            inst.material
+        };
+        let sphere = local.length() - inst.radius;
+        if sphere >= guard {
+            return (guard, sphere, own);
+        }
+        let (d, m) = template.eval(inst.inv_rotation * local * inst.inv_scale);
+        let d = d * inst.scale;
+        let m = if inst.material == EMPTY {
+            m
+        } else {
+            inst.material
+        };
+        (guard.min(d), d, m)
+    }
+
     #[inline(never)]
     fn eval_xyz(&self, x: f32, y: f32, z: f32) -> (f32, u32) {
         let p = Vec3::new(x, y, z);
