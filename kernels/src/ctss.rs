@@ -212,6 +212,9 @@ pub struct GroupSample {
     /// The group's maximum cone occlusion `ω_max` (Algorithm 1, line 12): the
     /// input of the visibility mask.
     pub occlusion: f32,
+    /// Depth at which the group's occlusion peaked (where `occlusion` was
+    /// measured): where the planar-surface model of the mask holds.
+    pub t_occlusion: f32,
     /// Whether the group contains a hard hit.
     pub hard: bool,
 }
@@ -233,6 +236,7 @@ struct Group {
     t_entry: f32,
     t_sample: f32,
     occlusion: f32,
+    t_occlusion: f32,
     hard: bool,
 }
 
@@ -321,6 +325,7 @@ impl ConeStepper {
                     t_entry: g.t_entry,
                     t_exit,
                     occlusion: g.occlusion,
+                    t_occlusion: g.t_occlusion,
                     hard: g.hard,
                 })
             }
@@ -373,12 +378,16 @@ impl ConeStepper {
                 t_entry: te,
                 t_sample: te,
                 occlusion: omega,
+                t_occlusion: t,
                 hard: false,
             });
         }
         if soft {
             if let Some(g) = self.group.as_mut() {
-                g.occlusion = g.occlusion.max(omega);
+                if omega > g.occlusion {
+                    g.occlusion = omega;
+                    g.t_occlusion = t;
+                }
                 if hard && !self.prev_hard && !g.hard {
                     g.hard = true;
                     g.t_sample = if self.have_prev {
@@ -402,6 +411,7 @@ impl ConeStepper {
                     t_entry: g.t_entry,
                     t_exit: backtrace_cone_entry(t, tan),
                     occlusion: g.occlusion,
+                    t_occlusion: g.t_occlusion,
                     hard: g.hard,
                 });
             }

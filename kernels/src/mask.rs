@@ -252,6 +252,28 @@ pub fn visibility_mask(occlusion: f32, projected_normal: Vec2, placement: MaskPl
     }
 }
 
+/// Distance of the farthest cell centre from the middle of the grid,
+/// `s·√34/6`: beyond it a half-plane covers all cells or none.
+pub const FARTHEST_CENTRE: f32 = GRID_SCALE * 0.971_825_3;
+
+/// Whether [`visibility_mask`] depends on the projected normal at this
+/// occlusion. For [`MaskPlacement::Derived`] and [`MaskPlacement::AuthorsCode`]
+/// it does not when `|d/R_c| ≥` [`FARTHEST_CENTRE`] (the mask is then empty or
+/// full for every normal), which lets a renderer skip a normal evaluation for
+/// most samples (every full-occlusion one). Always `true` for
+/// [`MaskPlacement::PaperEq8`]; `false` for NaN.
+#[inline]
+pub fn needs_normal(occlusion: f32, placement: MaskPlacement) -> bool {
+    if occlusion.is_nan() {
+        return false;
+    }
+    let delta = occlusion_to_distance(occlusion);
+    match placement {
+        MaskPlacement::PaperEq8 => true,
+        _ => delta.abs() < FARTHEST_CENTRE,
+    }
+}
+
 /// Centre of the cell held by `bit` (0..32), in the unit square `[−1, 1]²`.
 /// For tests and visualisation.
 pub fn cell_centre(bit: u32) -> Vec2 {

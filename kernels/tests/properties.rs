@@ -269,3 +269,18 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(config())]
+
+    /// Where `needs_normal` says the normal does not matter, every normal gives
+    /// the same mask.
+    #[test]
+    fn masks_that_need_no_normal_ignore_it(omega in -1.0f32..2.0, a in unit(), b in unit(),
+        placement in prop_oneof![Just(MaskPlacement::Derived), Just(MaskPlacement::AuthorsCode)]) {
+        if !needs_normal(omega, placement) {
+            let (na, nb) = (project_normal(a, Vec3::X, Vec3::Y), project_normal(b, Vec3::X, Vec3::Y));
+            prop_assert_eq!(visibility_mask(omega, na, placement), visibility_mask(omega, nb, placement));
+        }
+    }
+}

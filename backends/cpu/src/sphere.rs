@@ -14,7 +14,7 @@ use subcone_kernels::aggregate::Aggregate;
 use subcone_kernels::ctss::{
     cross_section_frame, sphere_trace_split, ConeStepper, CtssParams, Event,
 };
-use subcone_kernels::mask::project_normal;
+use subcone_kernels::mask::{needs_normal, project_normal};
 use subcone_kernels::passes::{Passes, Technique};
 use subcone_scene::{
     Camera, Frame, FrameStats, Light, Material, Method, PassTiming, RayCounts, RenderSettings,
@@ -182,7 +182,16 @@ impl<F: SdfField> SdfView<'_, F> {
                 Event::Sample(s) => {
                     let q = o + s.t * d;
                     let n = self.normal_at(q, s.t, p.tan_theta);
-                    let (_, w) = stepper.record(&s, project_normal(n, right, up));
+                    // The mask's plane model relates the group's peak occlusion to
+                    // the surface normal where that peak was measured; shading
+                    // uses the sample point. The second normal is only computed
+                    // when the mask depends on it (partial coverage).
+                    let nm = if s.t_occlusion != s.t && needs_normal(s.occlusion, p.placement()) {
+                        self.normal_at(o + s.t_occlusion * d, s.t_occlusion, p.tan_theta)
+                    } else {
+                        n
+                    };
+                    let (_, w) = stepper.record(&s, project_normal(nm, right, up));
                     agg.add(w, self.shade(q, n, d, tally));
                 }
                 Event::Stop(_) => break,

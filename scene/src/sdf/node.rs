@@ -1168,6 +1168,14 @@ impl SdfNode {
                 (a.min(wall + r.margin), b, m)
             }
             Op::Scatter(s) => s.eval_split(p),
+            // `bounded` answers with its box's distance far from the box: a
+            // bound for stepping, but no surface, so the surface distance must
+            // come from the child (a wide cone can reach past the padding).
+            Op::Bounded { pad, child } => {
+                let b = child.info.bounds.distance(p);
+                let (a, surface, m) = child.eval_split(p);
+                (if b > *pad { a.max(b).min(surface) } else { a }, surface, m)
+            }
             _ => {
                 let (d, m) = self.eval(p);
                 (d, d, m)

@@ -1,0 +1,261 @@
+//! The CPU backend on SDF scenes: CTSS edge profiles against supersampling,
+//! CTSS-R's termination, the stiff scenes, and CTSS against NoAA on every paper
+//! scene.
+use glam::{Quat, Vec3};
+use subcone_cpu::CpuBackend;
+use subcone_kernels::ctss::{sphere_trace, CtssParams, StopReason};
+use subcone_kernels::passes::Passes;
+use subcone_scene::sdf::{SdfNode, SdfScene, SDF_SCENES, STIFF_SCENES};
+use subcone_scene::{
+    builtin::builtin, Backend, Camera, Frame, Material, Method, RenderSettings, Scene,
+};
+
+fn render(scene: &Scene, method: &str, w: u32, h: u32) -> Frame {
+    let m: Method = method.parse().unwrap();
+    let mut s = RenderSettings::new(w, h);
+    s.aovs = true;
+    CpuBackend::new()
+        .render(scene, &scene.camera, &m, &s)
+        .unwrap()
+}
+
+/// A flat white object (ambient 1, no lights) on black: the contrast is 1 and
+/// every pixel's value is its coverage.
+fn silhouette(root: SdfNode) -> Scene {
+    let white = Material {
+        emission: Vec3::ZERO,
+        ..Material::diffuse("white", Vec3::ONE)
+    };
+    let cam = Camera::look_at(
+        Vec3::new(0.0, 0.0, 6.0),
+        Vec3::ZERO,
+        Vec3::Y,
+        30f32.to_radians(),
+    )
+    .unwrap();
+    let mut s = SdfScene::new("silhouette", root, vec![white], vec![], cam).unwrap();
+    s.ambient = Vec3::ONE;
+    s.background = Vec3::ZERO;
+    Scene::sdf(s).unwrap()
+}
+
+/// Mean |a − b| (red channel, linear) over the pixels where the reference is a
+/// partial coverage (strictly between 2 % and 98 %): the edge pixels.
+fn edge_profile_error(a: &Frame, reference: &Frame) -> (f64, usize) {
+    let (mut sum, mut n) = (0.0, 0);
+    for (p, r) in a.color.iter().zip(&reference.color) {
+        if r.x > 0.02 && r.x < 0.98 {
+            sum += (p.x - r.x).abs() as f64;
+            n += 1;
+        }
+    }
+    (sum / n.max(1) as f64, n)
+}
+
+/// CTSS on a sphere's silhouette and a box's straight edge against the sky
+/// matches the ssaa256 edge profile: mean |Δ| over the edge pixels ≤ 10 % of
+/// the edge's contrast (here 1).
+#[test]
+fn ctss_edge_profiles_match_supersampling() {
+    let sphere = SdfNode::sphere(1.0).unwrap();
+    let cube = SdfNode::cuboid(Vec3::splat(0.9))
+        .unwrap()
+        .rotate(Quat::from_rotation_z(0.3))
+        .unwrap();
+    for (name, root) in [("sphere", sphere), ("box", cube)] {
+        let scene = silhouette(root);
+        let reference = render(&scene, "ssaa256", 64, 64);
+        for method in ["ctss", "noaa"] {
+            let (e, n) = edge_profile_error(&render(&scene, method, 64, 64), &reference);
+            println!("[{name} silhouette 64x64] {method}: mean |Δ| over {n} edge pixels = {e:.4} (contrast 1)");
+            assert!(n > 50, "{name}: only {n} edge pixels");
+            if method == "ctss" {
+                assert!(
+                    e <= 0.10,
+                    "{name}: CTSS edge error {e} > 10 % of the contrast"
+                );
+            }
+        }
+    }
+}
+
+/// CTSS-R stops at the first hard hit: a sphere in front of a wall never gets
+/// the wall's colour where the ray hits the sphere.
+#[test]
+fn ctss_r_stops_at_the_first_hard_hit() {
+    let front = SdfNode::sphere(1.0).unwrap().with_material(0);
+    let wall = SdfNode::cuboid(Vec3::new(5.0, 5.0, 0.1))
+        .unwrap()
+        .translate(Vec3::new(0.0, 0.0, -3.0))
+        .unwrap()
+        .with_material(1);
+    let scene = {
+        let white = Material {
+            emission: Vec3::ZERO,
+            ..Material::diffuse("white", Vec3::ONE)
+        };
+        let cam = Camera::look_at(
+            Vec3::new(0.0, 0.0, 6.0),
+            Vec3::ZERO,
+            Vec3::Y,
+            30f32.to_radians(),
+        )
+        .unwrap();
+        let root = SdfNode::union(vec![front, wall]).unwrap();
+        let mut s = SdfScene::new(
+            "two",
+            root,
+            vec![white, Material::diffuse("red", Vec3::X)],
+            vec![],
+            cam,
+        )
+        .unwrap();
+        s.ambient = Vec3::ONE;
+        Scene::sdf(s).unwrap()
+    };
+    let f = render(&scene, "ctss-r", 32, 32);
+    let centre = f.pixel(16, 16);
+    assert_eq!(
+        centre,
+        Vec3::ONE,
+        "the sphere's centre pixel must be pure sphere: {centre}"
+    );
+    // Full CTSS traces on past the first hard hit until full occlusion, and
+    // still sees only the sphere there.
+    assert_eq!(render(&scene, "ctss", 32, 32).pixel(16, 16), Vec3::ONE);
+    // The kernel-level stop reason on the same ray.
+    let p = CtssParams::new(scene.camera.cone_tan_theta(32, 1.0)).relaxed(true);
+    let d = |q: Vec3| (q.length() - 1.0).min((q.z + 3.0).abs() - 0.1);
+    let r = subcone_kernels::ctss::trace(
+        &p,
+        scene.camera.position,
+        -Vec3::Z,
+        Vec3::X,
+        Vec3::Y,
+        d,
+        |q| q.normalize(),
+        |_, _| Vec3::ONE,
+        Vec3::ZERO,
+    );
+    assert_eq!((r.stop, r.samples), (StopReason::HardHit, 1));
+}
+
+/// NoAA uses the kernels' sphere tracing with the cone-based threshold, the
+/// same ε and step budget as CTSS: its depth equals the kernel's.
+#[test]
+fn noaa_uses_the_cone_based_threshold() {
+    let scene = silhouette(SdfNode::sphere(1.0).unwrap());
+    let f = render(&scene, "noaa", 33, 33);
+    let depth = f.depth.as_ref().unwrap()[16 * 33 + 16];
+    let tan = scene.camera.cone_tan_theta(33, 1.0);
+    let g = scene.sdf_geometry().unwrap();
+    let p = CtssParams::new(tan)
+        .with_range(0.0, g.max_distance)
+        .with_max_steps(g.max_steps);
+    let hit = sphere_trace(&p, scene.camera.position, -Vec3::Z, |q| q.length() - 1.0);
+    assert_eq!(hit.stop, StopReason::HardHit);
+    assert!(
+        (depth - hit.t.unwrap()).abs() < 1e-5,
+        "render {depth} vs kernel {:?}",
+        hit.t
+    );
+}
+
+/// Every stiff scene renders with every SDF method: no NaN, no panic, no
+/// endless loop, and within its step budget.
+#[test]
+fn stiff_scenes_render_cleanly() {
+    for name in STIFF_SCENES {
+        let scene = builtin(name).unwrap();
+        let budget = scene.sdf_geometry().unwrap().max_steps as u64;
+        for method in ["noaa", "ctss", "ctss-r", "ssaa4+ctss"] {
+            let f = render(&scene, method, 48, 27);
+            assert!(
+                f.color.iter().all(|c| c.is_finite()),
+                "{name} {method}: NaN"
+            );
+            let rays = 48 * 27 * Method::supersamples(&method.parse().unwrap()) as u64;
+            assert!(
+                f.stats.sdf_evaluations <= budget * rays,
+                "{name} {method}: over budget"
+            );
+            println!(
+                "[stiff {name:<11} {method:<10}] {:.1} SDF evaluations/pixel, {:.2} samples/pixel",
+                f.stats.sdf_evaluations as f64 / (48.0 * 27.0),
+                f.stats.shaded_samples as f64 / (48.0 * 27.0)
+            );
+        }
+    }
+}
+
+/// No lights, no shadow rays.
+#[test]
+fn sdf_scene_without_lights_traces_no_shadows() {
+    let scene = builtin("thin").unwrap();
+    assert!(scene.lights.is_empty());
+    let f = render(&scene, "ctss", 32, 18);
+    assert!(!f.stats.passes.intersects(Passes::SHADOW));
+    assert_eq!(f.stats.rays.shadow, 0);
+}
+
+/// Depth or normal discontinuities of the reference's AOVs: the edge pixels.
+fn edge_mask(f: &Frame) -> Vec<bool> {
+    let (w, h) = (f.width as usize, f.height as usize);
+    let (d, n) = (f.depth.as_ref().unwrap(), f.normal.as_ref().unwrap());
+    let mut m = vec![false; w * h];
+    for y in 0..h {
+        for x in 0..w {
+            let i = y * w + x;
+            for (dx, dy) in [(1, 0), (0, 1)] {
+                let (xx, yy) = (x + dx, y + dy);
+                if xx >= w || yy >= h {
+                    continue;
+                }
+                let j = yy * w + xx;
+                let (a, b) = (d[i], d[j]);
+                let depth_edge = a.is_finite() != b.is_finite()
+                    || (a.is_finite() && (a - b).abs() > 0.05 * a.min(b));
+                let normal_edge = a.is_finite() && b.is_finite() && n[i].dot(n[j]) < 0.8;
+                if depth_edge || normal_edge {
+                    m[i] = true;
+                    m[j] = true;
+                }
+            }
+        }
+    }
+    m
+}
+
+fn masked_error(a: &Frame, r: &Frame, mask: &[bool]) -> f64 {
+    let (sa, sr) = (a.to_srgb8(), r.to_srgb8());
+    let (mut sum, mut n) = (0.0, 0);
+    for (i, &m) in mask.iter().enumerate() {
+        if m {
+            for c in 0..3 {
+                sum += (sa[3 * i + c] as f64 - sr[3 * i + c] as f64).abs() / 255.0;
+            }
+            n += 3;
+        }
+    }
+    sum / n.max(1) as f64
+}
+
+/// CTSS has a lower edge error than NoAA on every paper scene (against ssaa16
+/// at 240×135, over the reference's depth/normal edges). Below this size the
+/// atrium's banners (3 cm thick) are thinner than a pixel's cone a few metres
+/// away, where CTSS's half-space model does not hold (§5.2) and blends them
+/// with the wall behind: measured at 96×54, CTSS 0.0304 against NoAA 0.0276.
+#[test]
+fn ctss_beats_noaa_on_edges_of_every_paper_scene() {
+    for name in SDF_SCENES {
+        let scene = builtin(name).unwrap();
+        let (w, h) = (240, 135);
+        let reference = render(&scene, "ssaa16", w, h);
+        let mask = edge_mask(&render(&scene, "noaa", w, h));
+        let noaa = masked_error(&render(&scene, "noaa", w, h), &reference, &mask);
+        let ctss = masked_error(&render(&scene, "ctss", w, h), &reference, &mask);
+        let edges = mask.iter().filter(|&&m| m).count();
+        println!("[{name:<12} {w}x{h}, {edges} edge pixels] mean |Δ| sRGB vs ssaa16: noaa {noaa:.4}, ctss {ctss:.4}");
+        assert!(ctss < noaa, "{name}: CTSS {ctss} is not below NoAA {noaa}");
+    }
+}
