@@ -5,8 +5,12 @@ use std::path::Path;
 use std::process::Command;
 
 fn subcone(args: &[&str]) -> (bool, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_subcone")).args(args).output().expect("run subcone");
-    let text = String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
+    let out = Command::new(env!("CARGO_BIN_EXE_subcone"))
+        .args(args)
+        .output()
+        .expect("run subcone");
+    let text =
+        String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
     assert!(!text.contains("panicked"), "subcone panicked: {text}");
     (out.status.success(), text)
 }
@@ -17,7 +21,18 @@ fn render_writes_png_and_exr_for_every_triangle_method() {
     for method in ["noaa", "ssaa4", "sraa", "sraa-rt"] {
         for ext in ["png", "exr"] {
             let out = dir.path().join(format!("{method}.{ext}"));
-            let (ok, text) = subcone(&["render", "--scene", "cornell", "--method", method, "--size", "24x16", "-o", out.to_str().unwrap(), "--verbose"]);
+            let (ok, text) = subcone(&[
+                "render",
+                "--scene",
+                "cornell",
+                "--method",
+                method,
+                "--size",
+                "24x16",
+                "-o",
+                out.to_str().unwrap(),
+                "--verbose",
+            ]);
             assert!(ok, "{method}: {text}");
             assert!(text.contains("pass "), "--verbose lists the passes: {text}");
             let img = image::open(&out).unwrap();
@@ -33,19 +48,43 @@ fn bad_input_is_a_clear_error() {
     let o = out.to_str().unwrap();
     let cases: [(&[&str], &str); 8] = [
         (&["render", "--size", "0x0", "-o", o], "resolution"),
-        (&["render", "--size", "100000x100000", "-o", o], "resolution"),
+        (
+            &["render", "--size", "100000x100000", "-o", o],
+            "resolution",
+        ),
         (&["render", "--size", "abc", "-o", o], "--size"),
         (&["render", "--method", "ssaa5", "-o", o], "unknown method"),
         (&["render", "--scene", "nope", "-o", o], "no built-in scene"),
-        (&["render", "--scene", "/does/not/exist.obj", "-o", o], "cannot load"),
-        (&["render", "--size", "8x8", "-o", "/does/not/exist/x.png"], "does not exist"),
-        (&["render", "--size", "8x8", "--method", "ctss", "--scene", "cornell", "-o", o], "signed distance field"),
+        (
+            &["render", "--scene", "/does/not/exist.obj", "-o", o],
+            "cannot load",
+        ),
+        (
+            &["render", "--size", "8x8", "-o", "/does/not/exist/x.png"],
+            "does not exist",
+        ),
+        (
+            &[
+                "render", "--size", "8x8", "--method", "ctss", "--scene", "cornell", "-o", o,
+            ],
+            "signed distance field",
+        ),
     ];
     for (args, needle) in cases {
         let (ok, text) = subcone(args);
         assert!(!ok, "{args:?} succeeded");
-        assert!(text.contains(needle), "{args:?}: expected {needle:?} in {text:?}");
+        assert!(
+            text.contains(needle),
+            "{args:?}: expected {needle:?} in {text:?}"
+        );
     }
-    assert!(!Path::new(&out).exists(), "a failed render left an output file");
-    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "a failed render left a temporary file");
+    assert!(
+        !Path::new(&out).exists(),
+        "a failed render left an output file"
+    );
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        0,
+        "a failed render left a temporary file"
+    );
 }
