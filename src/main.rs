@@ -20,6 +20,9 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// The main job: every method on every scene, image error against run time,
+    /// as tables (report.md, results.csv, results.json), plots and images.
+    Report(subcone::report::ReportArgs),
     /// Render one scene with one method.
     Render {
         /// A built-in scene name, `sponza`/`sponza-mirror`, or a path to an .obj, .gltf or .glb file.
@@ -66,6 +69,11 @@ enum Command {
 
 fn run() -> Result<()> {
     match Cli::parse().command {
+        Command::Report(args) => {
+            let summary = subcone::report::run(&args)?;
+            println!("report written to {}", summary.report_md.display());
+            Ok(())
+        }
         Command::Render {
             scene,
             method,
