@@ -22,6 +22,12 @@ fn render(scene: &Scene, method: &str, w: u32, h: u32) -> Frame {
 /// A flat white object (ambient 1, no lights) on black: the contrast is 1 and
 /// every pixel's value is its coverage.
 fn silhouette(root: SdfNode) -> Scene {
+    lit_by_ambient(root, vec![])
+}
+
+/// `root` with a white material 0 and `extra` materials after it, lit by an
+/// ambient light of 1 only, on a black background, seen from +z.
+fn lit_by_ambient(root: SdfNode, extra: Vec<Material>) -> Scene {
     let white = Material {
         emission: Vec3::ZERO,
         ..Material::diffuse("white", Vec3::ONE)
@@ -33,7 +39,8 @@ fn silhouette(root: SdfNode) -> Scene {
         30f32.to_radians(),
     )
     .unwrap();
-    let mut s = SdfScene::new("silhouette", root, vec![white], vec![], cam).unwrap();
+    let materials = std::iter::once(white).chain(extra).collect();
+    let mut s = SdfScene::new("silhouette", root, materials, vec![], cam).unwrap();
     s.ambient = Vec3::ONE;
     s.background = Vec3::ZERO;
     Scene::sdf(s).unwrap()
@@ -89,30 +96,8 @@ fn ctss_r_stops_at_the_first_hard_hit() {
         .translate(Vec3::new(0.0, 0.0, -3.0))
         .unwrap()
         .with_material(1);
-    let scene = {
-        let white = Material {
-            emission: Vec3::ZERO,
-            ..Material::diffuse("white", Vec3::ONE)
-        };
-        let cam = Camera::look_at(
-            Vec3::new(0.0, 0.0, 6.0),
-            Vec3::ZERO,
-            Vec3::Y,
-            30f32.to_radians(),
-        )
-        .unwrap();
-        let root = SdfNode::union(vec![front, wall]).unwrap();
-        let mut s = SdfScene::new(
-            "two",
-            root,
-            vec![white, Material::diffuse("red", Vec3::X)],
-            vec![],
-            cam,
-        )
-        .unwrap();
-        s.ambient = Vec3::ONE;
-        Scene::sdf(s).unwrap()
-    };
+    let root = SdfNode::union(vec![front, wall]).unwrap();
+    let scene = lit_by_ambient(root, vec![Material::diffuse("red", Vec3::X)]);
     let f = render(&scene, "ctss-r", 32, 32);
     let centre = f.pixel(16, 16);
     assert_eq!(

@@ -121,6 +121,32 @@ struct Repeat {
     child: SdfNode,
 }
 
+impl Repeat {
+    /// The point in its cell's frame, and (for guarded repetition) the distance
+    /// to the walls that have a neighbouring cell; `∞` otherwise.
+    #[inline]
+    fn cell(&self, p: Vec3) -> (Vec3, f32) {
+        let mut q = p;
+        let mut wall = f32::INFINITY;
+        for k in 0..3 {
+            let c = self.period[k];
+            if c > 0.0 {
+                let i = round_cell(p[k] / c).clamp(self.lo[k], self.hi[k]);
+                q[k] = p[k] - c * i;
+                if self.guard {
+                    if i < self.hi[k] {
+                        wall = wall.min(0.5 * c - q[k]);
+                    }
+                    if i > self.lo[k] {
+                        wall = wall.min(0.5 * c + q[k]);
+                    }
+                }
+            }
+        }
+        (q, wall)
+    }
+}
+
 fn finite(node: &'static str, param: &'static str, v: f32) -> Result<f32, SdfError> {
     if v.is_finite() {
         Ok(v)
@@ -1050,23 +1076,7 @@ impl SdfNode {
                 child.eval(q)
             }
             Op::Repeat(r) => {
-                let mut q = p;
-                let mut wall = f32::INFINITY;
-                for k in 0..3 {
-                    let c = r.period[k];
-                    if c > 0.0 {
-                        let i = round_cell(p[k] / c).clamp(r.lo[k], r.hi[k]);
-                        q[k] = p[k] - c * i;
-                        if r.guard {
-                            if i < r.hi[k] {
-                                wall = wall.min(0.5 * c - q[k]);
-                            }
-                            if i > r.lo[k] {
-                                wall = wall.min(0.5 * c + q[k]);
-                            }
-                        }
-                    }
-                }
+                let (q, wall) = r.cell(p);
                 let (d, m) = r.child.eval(q);
                 let guard = wall + r.margin;
                 (if guard < d { guard } else { d }, m)
@@ -1149,21 +1159,7 @@ impl SdfNode {
                 (safe.min(surf), surf, mat)
             }
             Op::Repeat(r) if r.guard => {
-                let mut q = p;
-                let mut wall = f32::INFINITY;
-                for k in 0..3 {
-                    let c = r.period[k];
-                    if c > 0.0 {
-                        let i = round_cell(p[k] / c).clamp(r.lo[k], r.hi[k]);
-                        q[k] = p[k] - c * i;
-                        if i < r.hi[k] {
-                            wall = wall.min(0.5 * c - q[k]);
-                        }
-                        if i > r.lo[k] {
-                            wall = wall.min(0.5 * c + q[k]);
-                        }
-                    }
-                }
+                let (q, wall) = r.cell(p);
                 let (a, b, m) = r.child.eval_split(q);
                 (a.min(wall + r.margin), b, m)
             }

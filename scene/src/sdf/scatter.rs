@@ -419,49 +419,8 @@ impl Scatter {
 
     #[inline(never)]
     fn eval_xyz(&self, x: f32, y: f32, z: f32) -> (f32, u32) {
-        let p = Vec3::new(x, y, z);
-        let rel = p - self.origin;
-        let f = rel * self.inv_cell;
-        let f =
-            Vec3::new(round_cell(f.x), round_cell(f.y), round_cell(f.z)).clamp(self.lo, self.hi);
-        let q = rel - f * self.cell;
-        let mut wall = f32::INFINITY;
-        for k in 0..3 {
-            if f[k] < self.hi[k] {
-                wall = wall.min(0.5 * self.cell[k] - q[k]);
-            }
-            if f[k] > self.lo[k] {
-                wall = wall.min(0.5 * self.cell[k] + q[k]);
-            }
-        }
-        let guard = wall + self.margin;
-        let i = f - self.lo;
-        let idx = i.x as usize + self.dims[0] * (i.y as usize + self.dims[1] * i.z as usize);
-        let Some(inst) = self.instances.get(idx) else {
-            return (guard, self.default_material);
-        };
-        let Some(template) = self.templates.get(inst.template as usize) else {
-            return (guard, self.default_material);
-        };
-        let local = q - inst.offset;
-        let own = if inst.material == EMPTY {
-            self.default_material
-        } else {
-            inst.material
-        };
-        // The object lies in its bounding sphere: when the sphere is beyond the
-        // walls' guard, the guard is the answer (and still a bound).
-        if local.length() - inst.radius >= guard {
-            return (guard, own);
-        }
-        let (d, m) = template.eval(inst.inv_rotation * local * inst.inv_scale);
-        let d = d * inst.scale;
-        let m = if inst.material == EMPTY {
-            m
-        } else {
-            inst.material
-        };
-        (if guard < d { guard } else { d }, m)
+        let (bound, _, m) = self.eval_split(Vec3::new(x, y, z));
+        (bound, m)
     }
 }
 
