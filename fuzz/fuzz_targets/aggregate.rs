@@ -51,10 +51,11 @@ fuzz_target!(|x: Input| {
     }
     assert!(agg.samples() as usize == samples.len());
 
-    // Replay the documented sums: non-finite colours are not added (but still
-    // count as samples), weights are clamped to [0, 1] (NaN and negative read
-    // as 0), so Σw ≤ the number of finite colours and never overflows.
-    let mut wsum = 0.0f32;
+    // Replay the documented sums (accumulated in f64, as the kernel does):
+    // non-finite colours are not added (but still count as samples), weights
+    // are clamped to [0, 1] (NaN and negative read as 0), so Σw ≤ the number of
+    // finite colours and never overflows.
+    let mut wsum = 0.0f64;
     let mut added = 0usize;
     let mut last = None;
     let mut hull = Hull::new();
@@ -62,13 +63,13 @@ fuzz_target!(|x: Input| {
         if !c.is_finite() {
             continue;
         }
-        wsum += if w > 0.0 { w.min(1.0) } else { 0.0 };
+        wsum += if w > 0.0 { w.min(1.0) as f64 } else { 0.0 };
         added += 1;
         last = Some(c);
         hull.add(c);
     }
     assert!(
-        agg.weight() >= 0.0 && agg.weight() <= added as f32 && agg.weight().to_bits() == wsum.to_bits(),
+        agg.weight() >= 0.0 && agg.weight() <= added as f32 && agg.weight().to_bits() == (wsum as f32).to_bits(),
         "weight sum {} (replayed {wsum}, {added} finite colours) of {samples:?}",
         agg.weight()
     );
@@ -95,10 +96,10 @@ fuzz_target!(|x: Input| {
         } else {
             0.0
         };
-        let total = wsum + bgw;
+        let total = wsum + bgw as f64;
         // A negligible total (Σw·C may have lost its precision to underflow)
         // falls back.
-        if !(total >= NEGLIGIBLE_WEIGHT) {
+        if !(total >= NEGLIGIBLE_WEIGHT as f64) {
             assert!(
                 c == fallback,
                 "resolve = {c:?} with negligible total weight {total:e}, expected the fallback \

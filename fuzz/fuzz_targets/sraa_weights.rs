@@ -194,12 +194,12 @@ fuzz_target!(|input: Input| {
         "reconstruct returned a non-finite colour {r:?}"
     );
 
-    // Replay the kernel's sums over the finite neighbours, in the same order:
-    // the fallback applies exactly when Σw is below NEGLIGIBLE_WEIGHT or the
-    // quotient is not finite.
+    // Replay the kernel's sums over the finite neighbours, in the same order
+    // and, as the kernel does, in f64: the fallback applies exactly when Σw is
+    // below NEGLIGIBLE_WEIGHT or the quotient is not finite in f32.
     let mut hull = Hull::new();
-    let mut wsum = 0.0f32;
-    let mut sum = Vec3::ZERO;
+    let mut wsum = 0.0f64;
+    let mut sum = [0.0f64; 3];
     let mut nearest: Option<(f32, Vec3)> = None;
     for s in &neighbours {
         if !s.color.is_finite() {
@@ -210,8 +210,10 @@ fuzz_target!(|input: Input| {
             Some(si) => shadow_gated_weight(&p, &gi, &s.geometry, si, s.shadowed),
             None => bilateral_weight(&p, &gi, &s.geometry),
         };
-        sum += w * s.color;
-        wsum += w;
+        for k in 0..3 {
+            sum[k] += w as f64 * s.color[k] as f64;
+        }
+        wsum += w as f64;
         let d2 = if s.distance2.is_nan() {
             f32::INFINITY
         } else {
@@ -222,7 +224,9 @@ fuzz_target!(|input: Input| {
             _ => nearest = Some((d2, s.color)),
         }
     }
-    let expect_fallback = !(wsum >= NEGLIGIBLE_WEIGHT) || !(sum / wsum).is_finite();
+    let inv = 1.0 / wsum;
+    let mean = Vec3::new((sum[0] * inv) as f32, (sum[1] * inv) as f32, (sum[2] * inv) as f32);
+    let expect_fallback = !(wsum >= NEGLIGIBLE_WEIGHT as f64) || !mean.is_finite();
     assert!(
         r.fell_back == expect_fallback,
         "reconstruct {r:?}: fell_back should be {expect_fallback} (Σw = {wsum:e}, Σw·C = {sum:?})"
@@ -235,7 +239,7 @@ fuzz_target!(|input: Input| {
         );
     } else {
         assert!(
-            r.weight_sum.to_bits() == wsum.to_bits() && r.weight_sum >= NEGLIGIBLE_WEIGHT,
+            r.weight_sum.to_bits() == (wsum as f32).to_bits() && wsum >= NEGLIGIBLE_WEIGHT as f64,
             "no fallback with weight sum {:e} (replayed {wsum:e})",
             r.weight_sum
         );
