@@ -178,15 +178,41 @@ where
             .label("Pareto front")
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
     }
+    // Labels go beside their point, at the first of four places that does not
+    // collide with a label already placed (boxes estimated from the font size).
+    let font_px = size - 4;
+    let mut placed: Vec<(i32, i32, i32, i32)> = Vec::new();
     for (r, t, f) in &pts {
         let c = method_colour(&r.method);
         let on_front = front.iter().any(|p| p.0 == *t && p.1 == *f);
         let text = label(r, backends);
+        let (px, py) = chart.backend_coord(&(*t, *f));
+        let w = (text.chars().count() as i32 * font_px * 6) / 10 + 2;
+        let h = font_px + 2;
+        let candidates = [
+            (9, -h - 2),
+            (9, 4),
+            (-w - 9, -h - 2),
+            (-w - 9, 4),
+            (9, -2 * h - 6),
+        ];
+        let collides = |dx: i32, dy: i32| {
+            let (x0, y0) = (px + dx, py + dy);
+            placed
+                .iter()
+                .any(|&(a, b, c, d)| x0 < c && a < x0 + w && y0 < d && b < y0 + h)
+        };
+        let (dx, dy) = candidates
+            .iter()
+            .copied()
+            .find(|&(dx, dy)| !collides(dx, dy))
+            .unwrap_or(candidates[0]);
+        placed.push((px + dx, py + dy, px + dx + w, py + dy + h));
         chart
             .draw_series(std::iter::once(
                 EmptyElement::at((*t, *f))
                     + Circle::new((0, 0), if on_front { 7 } else { 5 }, c.filled())
-                    + Text::new(text, (9, -16), (FAMILY, size - 4).into_font().color(&c)),
+                    + Text::new(text, (dx, dy), (FAMILY, font_px).into_font().color(&c)),
             ))
             .map_err(pe(e))?;
     }
