@@ -7,8 +7,9 @@
 //! the image size):
 //!
 //! - **edge**: the window with the most edge-mask pixels (geometric
-//!   discontinuities of the NoAA AOVs or strong reference gradients), ties
-//!   broken by the NoAA error in it;
+//!   discontinuities of the NoAA AOVs count 1, strong reference gradients
+//!   only 1/4, so silhouettes win over minified textures), ties broken by the
+//!   NoAA error in it;
 //! - **shadow**: the window with the most NoAA error (|NoAA − reference|
 //!   luminance) on *shadow-boundary pixels*: pixels that are geometrically
 //!   smooth but where an untextured, reflection-free NoAA render of the scene
@@ -149,14 +150,25 @@ pub fn choose_regions(r: &RegionInputs<'_>) -> Result<Vec<Region>> {
     let none = |_: &Window| false;
     let mut out = Vec::new();
 
+    // Geometric edges count 4× gradient-only ones (texture, shadow edges), so
+    // the window shows silhouettes rather than a minified texture.
     let score: Vec<f64> = (0..n)
-        .map(|i| if r.edges[i] { 1.0 } else { 0.0 } + 1e-3 * err(i))
+        .map(|i| {
+            let e = if r.geometric[i] {
+                1.0
+            } else if r.edges[i] {
+                0.25
+            } else {
+                0.0
+            };
+            e + 1e-3 * err(i)
+        })
         .collect();
     if let Some((w, _)) = best_window(&score, r.width, r.height, side, none) {
         out.push(Region {
             kind: "edge",
             window: w,
-            rule: "most edge-mask pixels",
+            rule: "most edge-mask pixels (geometric edges count 4× gradient-only ones)",
         });
     }
 

@@ -151,9 +151,10 @@ pub const GRADIENT_EDGE: f32 = 0.1;
 
 /// Pixels on a geometric discontinuity of a frame with depth and normal AOVs:
 /// a 4-neighbour whose view depth differs by more than [`DEPTH_EDGE`]
-/// relatively, or whose normal's cosine is below [`NORMAL_EDGE`], or where one
-/// of the two is a miss (∞ depth) and the other is not. Both pixels of such a
-/// pair are marked.
+/// relatively (unless the inverse depth continues linearly from one side, as
+/// it does across a plane, however grazing), or whose normal's cosine is
+/// below [`NORMAL_EDGE`], or where one of the two is a miss (∞ depth) and the
+/// other is not. Both pixels of such a pair are marked.
 pub fn geometric_edges(aov: &Frame) -> Result<Vec<bool>> {
     let (w, h) = (aov.width as usize, aov.height as usize);
     let (Some(depth), Some(normal)) = (&aov.depth, &aov.normal) else {
@@ -163,7 +164,21 @@ pub fn geometric_edges(aov: &Frame) -> Result<Vec<bool>> {
         bail!("AOVs do not match the frame size {w}x{h}");
     }
     let mut mask = vec![false; w * h];
-    let differs = |a: usize, b: usize| -> bool {
+    // `a` and `b` are neighbours; `oa` is `a`'s other neighbour on the same
+    // line (away from `b`), `ob` is `b`'s. Inverse view depth is affine in
+    // screen space on a plane, so a plane seen at a grazing angle (whose depth
+    // changes by more than 2 % per pixel towards the horizon) extrapolates
+    // exactly from either side; a true discontinuity from neither.
+    let inv = |i: usize| 1.0 / depth[i];
+    let planar = |p: usize, o: Option<usize>, q: usize| -> bool {
+        let Some(o) = o else { return false };
+        if !depth[o].is_finite() {
+            return false;
+        }
+        let pred = 2.0 * inv(p) - inv(o);
+        (pred - inv(q)).abs() <= DEPTH_EDGE * inv(p).max(inv(q))
+    };
+    let differs = |a: usize, b: usize, oa: Option<usize>, ob: Option<usize>| -> bool {
         let (da, db) = (depth[a], depth[b]);
         let (fa, fb) = (da.is_finite(), db.is_finite());
         if fa != fb {
@@ -173,7 +188,7 @@ pub fn geometric_edges(aov: &Frame) -> Result<Vec<bool>> {
             return false;
         }
         let scale = da.abs().min(db.abs()).max(1e-6);
-        if (da - db).abs() / scale > DEPTH_EDGE {
+        if (da - db).abs() / scale > DEPTH_EDGE && !planar(a, oa, b) && !planar(b, ob, a) {
             return true;
         }
         let (na, nb) = (normal[a], normal[b]);
@@ -186,13 +201,21 @@ pub fn geometric_edges(aov: &Frame) -> Result<Vec<bool>> {
     for y in 0..h {
         for x in 0..w {
             let i = y * w + x;
-            if x + 1 < w && differs(i, i + 1) {
-                mask[i] = true;
-                mask[i + 1] = true;
+            if x + 1 < w {
+                let oa = (x > 0).then(|| i - 1);
+                let ob = (x + 2 < w).then(|| i + 2);
+                if differs(i, i + 1, oa, ob) {
+                    mask[i] = true;
+                    mask[i + 1] = true;
+                }
             }
-            if y + 1 < h && differs(i, i + w) {
-                mask[i] = true;
-                mask[i + w] = true;
+            if y + 1 < h {
+                let oa = (y > 0).then(|| i - w);
+                let ob = (y + 2 < h).then(|| i + 2 * w);
+                if differs(i, i + w, oa, ob) {
+                    mask[i] = true;
+                    mask[i + w] = true;
+                }
             }
         }
     }
@@ -333,6 +356,24 @@ mod tests {
         assert_eq!(m, vec![false, true, true, true]);
         f.depth = None;
         assert!(geometric_edges(&f).is_err());
+    }
+
+    #[test]
+    fn a_grazing_plane_is_not_an_edge() {
+        // Inverse depth affine along the row: a plane receding to the horizon,
+        // depth growing by far more than 2 % per pixel.
+        let mut f = Frame::new(6, 1);
+        f.depth = Some((0..6).map(|x| 1.0 / (1.0 - 0.15 * x as f32)).collect());
+        f.normal = Some(vec![Vec3::Y; 6]);
+        assert_eq!(geometric_edges(&f).unwrap(), vec![false; 6]);
+        // A step in the middle of it is.
+        let mut d = f.depth.clone().unwrap();
+        for v in &mut d[3..] {
+            *v *= 1.5;
+        }
+        f.depth = Some(d);
+        let m = geometric_edges(&f).unwrap();
+        assert!(m[2] && m[3]);
     }
 
     #[test]

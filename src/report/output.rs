@@ -328,8 +328,8 @@ pub fn markdown(s: &ReportSummary, ctx: &Context) -> String {
         "Times are the median (and range) of the wall time of `Backend::render` at the timing size; \
 errors are measured on the tone-mapped 8-bit sRGB images at the quality size: mean FLIP (LDR-FLIP, \
 67 pixels per degree), PSNR, and *edge FLIP*, the mean FLIP over the edge mask (pixels where the \
-NoAA depth or normal changes across a 4-neighbour by more than 2 % or a cosine of 0.9, where a \
-surface meets the background, or where the reference's luminance Sobel gradient exceeds 0.1). \
+NoAA depth or normal changes across a 4-neighbour by more than 2 % (unless the inverse depth \
+continues linearly, as across a plane) or a cosine of 0.9, where a surface meets the background, or where the reference's luminance Sobel gradient exceeds 0.1). \
 *spp* is shaded samples per pixel (the mean of the samples-per-pixel AOV of the quality render, \
 or shading evaluations per pixel without one); *rays/px* counts every ray cast (primary, \
 geometry, shadow, secondary). Lower FLIP is better; the Pareto front joins the methods that no \
@@ -461,7 +461,8 @@ faster method beats.\n"
         md,
         "## How the crops are chosen\n\n\
 Each region is the square window (a quarter of the image's short side, 8 to 32 px) that scores \
-highest over every position. **Edge**: most edge-mask pixels. **Shadow**: most NoAA error \
+highest over every position. **Edge**: most edge-mask pixels, geometric edges counting 4× \
+gradient-only ones. **Shadow**: most NoAA error \
 (|NoAA − reference| luminance) on pixels that are geometrically smooth but on a strong gradient of \
 an untextured (all albedos grey), reflection-free NoAA render, i.e. light and shadow boundaries; \
 without lights, the most NoAA error on smooth, non-reflective pixels. **Reflection**: most NoAA \
