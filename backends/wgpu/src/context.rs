@@ -1,0 +1,298 @@
+//! The device: adapter choice, limits, error capture, read-back and pass timing.
+//!
+//! Every GPU failure becomes a [`RenderError::Backend`] with a message that
+//! says what to do, never a panic or a hang: validation and out-of-memory
+//! errors are caught by error scopes around each pass, device loss is recorded
+//! by a callback, and every wait on the GPU has a timeout.
+
+use std::sync::{Arc, Mutex, OnceLock};
+use std::time::{Duration, Instant};
+
+use subcone_scene::{PassTiming, RenderError};
+
+/// Longest a single pass may run before the render is abandoned. Lavapipe
+/// renders a 1280×720 SSAA16 frame in seconds; a minute means a hang.
+pub const PASS_TIMEOUT: Duration = Duration::from_secs(300);
+
+const BACKEND: &str = "wgpu";
+
+/// The error for no adapter: names the fix.
+pub const NO_ADAPTER: &str = "no GPU adapter found. Install a Vulkan driver \
+    (on Debian or Ubuntu: `apt-get install libvulkan1 mesa-vulkan-drivers` for the \
+    software driver, lavapipe) or select another API with WGPU_BACKEND=vulkan|metal|dx12";
+
+pub(crate) fn err(reason: impl Into<String>) -> RenderError {
+    RenderError::Backend {
+        backend: BACKEND,
+        reason: reason.into(),
+    }
+}
+
+/// A wgpu device and queue with what subcone needs to know about them.
+pub struct GpuContext {
+    /// The device.
+    pub device: wgpu::Device,
+    /// Its queue.
+    pub queue: wgpu::Queue,
+    /// The adapter's name, driver and API.
+    pub info: wgpu::AdapterInfo,
+    /// GPU timestamps inside encoders are available (else passes are timed
+    /// on the CPU from submission to completion).
+    pub timestamps: bool,
+    lost: Arc<Mutex<Option<String>>>,
+}
+
+impl std::fmt::Debug for GpuContext {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("GpuContext")
+            .field("adapter", &self.info.name)
+            .field("backend", &self.info.backend)
+            .field("timestamps", &self.timestamps)
+            .finish()
+    }
+}
+
+impl GpuContext {
+    /// Open the first adapter of the APIs in `WGPU_BACKEND`, or of Vulkan,
+    /// Metal and DX12 when it is unset. GL is never picked implicitly: wgpu
+    /// would fall back to it silently, and GL cannot render to `Rgba32Float`.
+    pub fn new() -> Result<Self, RenderError> {
+        let backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::PRIMARY);
+        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+        desc.backends = backends;
+        desc.flags = wgpu::InstanceFlags::default().with_env();
+        let instance = wgpu::Instance::new(desc);
+        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            force_fallback_adapter: false,
+            compatible_surface: None,
+            apply_limit_buckets: false,
+        }))
+        .map_err(|e| err(format!("{NO_ADAPTER} ({e})")))?;
+        let info = adapter.get_info();
+        let want =
+            wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS;
+        let features = adapter.features() & want;
+        let timestamps = features.contains(want);
+        // The defaults (e.g. 128 MiB storage bindings, 8 storage buffers per
+        // stage) are too small for fat G-buffers and large BVHs: ask for all
+        // the adapter has.
+        let limits = adapter.limits();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("subcone"),
+            required_features: features,
+            required_limits: limits,
+            experimental_features: wgpu::ExperimentalFeatures::disabled(),
+            memory_hints: wgpu::MemoryHints::Performance,
+            trace: wgpu::Trace::Off,
+        }))
+        .map_err(|e| err(format!("cannot open a device on {}: {e}", info.name)))?;
+        let lost = Arc::new(Mutex::new(None));
+        let sink = lost.clone();
+        device.set_device_lost_callback(move |reason, message| {
+            *sink.lock().unwrap_or_else(|e| e.into_inner()) =
+                Some(format!("device lost ({reason:?}): {message}"));
+        });
+        // Errors outside our scopes must not abort the process (wgpu's
+        // default handler panics); they are reported by the next check.
+        let uncaptured = lost.clone();
+        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+            let mut slot = uncaptured.lock().unwrap_or_else(|e| e.into_inner());
+            if slot.is_none() {
+                *slot = Some(format!("uncaptured GPU error: {e}"));
+            }
+        }));
+        Ok(GpuContext {
+            device,
+            queue,
+            info,
+            timestamps,
+            lost,
+        })
+    }
+
+    /// One context per process, opened on first use. Tests and the CLI share
+    /// it: opening a device costs far more than a small render.
+    pub fn shared() -> Result<Arc<GpuContext>, RenderError> {
+        static SHARED: OnceLock<Result<Arc<GpuContext>, String>> = OnceLock::new();
+        SHARED
+            .get_or_init(|| GpuContext::new().map(Arc::new).map_err(|e| e.to_string()))
+            .clone()
+            .map_err(|reason| match reason.strip_prefix("wgpu backend: ") {
+                Some(r) => err(r),
+                None => err(reason),
+            })
+    }
+
+    /// A one-line description, e.g. `llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan, Mesa 22.3.6)`.
+    pub fn describe(&self) -> String {
+        format!(
+            "{} ({:?}, {} {})",
+            self.info.name, self.info.backend, self.info.driver, self.info.driver_info
+        )
+    }
+
+    /// The error recorded by device loss or an uncaptured error, if any.
+    pub fn check_lost(&self) -> Result<(), RenderError> {
+        match self.lost.lock().unwrap_or_else(|e| e.into_inner()).as_ref() {
+            Some(m) => Err(err(m.clone())),
+            None => Ok(()),
+        }
+    }
+
+    /// Refuse a texture (or storage image) of `width × height` beyond the
+    /// device's limits, with a message naming the limit.
+    pub fn check_texture_size(&self, width: u32, height: u32) -> Result<(), RenderError> {
+        let max = self.device.limits().max_texture_dimension_2d;
+        if width > max || height > max {
+            return Err(err(format!(
+                "{width}x{height} exceeds this adapter's largest 2D texture ({max}x{max})"
+            )));
+        }
+        Ok(())
+    }
+
+    /// Refuse a storage buffer of `bytes` beyond the device's limits.
+    pub fn check_buffer_size(&self, what: &str, bytes: u64) -> Result<(), RenderError> {
+        let l = self.device.limits();
+        let max = l.max_storage_buffer_binding_size.min(l.max_buffer_size);
+        if bytes > max {
+            return Err(err(format!(
+                "{what} needs {bytes} bytes, over this adapter's storage buffer limit of {max}"
+            )));
+        }
+        Ok(())
+    }
+
+    /// Run `f`, which records and submits GPU work, inside validation and
+    /// out-of-memory error scopes; any error becomes a `RenderError`.
+    pub fn scoped<T>(&self, what: &str, f: impl FnOnce() -> T) -> Result<T, RenderError> {
+        self.check_lost()?;
+        let oom = self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let out = f();
+        let v = pollster::block_on(validation.pop());
+        let o = pollster::block_on(oom.pop());
+        if let Some(e) = o {
+            return Err(err(format!("{what}: out of GPU memory: {e}")));
+        }
+        if let Some(e) = v {
+            return Err(err(format!("{what}: {e}")));
+        }
+        self.check_lost()?;
+        Ok(out)
+    }
+
+    /// Wait for all submitted work, at most [`PASS_TIMEOUT`].
+    pub fn wait(&self, what: &str) -> Result<(), RenderError> {
+        self.device
+            .poll(wgpu::PollType::Wait {
+                submission_index: None,
+                timeout: Some(PASS_TIMEOUT),
+            })
+            .map_err(|e| err(format!("{what}: waiting for the GPU failed: {e}")))?;
+        self.check_lost()
+    }
+
+    /// Record one pass with `record`, submit it, wait for it and time it: on
+    /// the GPU with timestamps where the adapter has them, else on the CPU
+    /// from submission to completion. The timing is pushed onto `timings`.
+    pub fn timed_pass(
+        &self,
+        name: &'static str,
+        timings: &mut Vec<PassTiming>,
+        record: impl FnOnce(&mut wgpu::CommandEncoder),
+    ) -> Result<(), RenderError> {
+        let queries = self.timestamps.then(|| {
+            let set = self.device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("pass timestamps"),
+                ty: wgpu::QueryType::Timestamp,
+                count: 2,
+            });
+            let resolve = self.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("timestamp resolve"),
+                size: 16,
+                usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            });
+            (set, resolve)
+        });
+        let start = Instant::now();
+        let resolve = self.scoped(name, || {
+            let mut encoder = self
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(name) });
+            if let Some((set, _)) = &queries {
+                encoder.write_timestamp(set, 0);
+            }
+            record(&mut encoder);
+            if let Some((set, resolve)) = &queries {
+                encoder.write_timestamp(set, 1);
+                encoder.resolve_query_set(set, 0..2, resolve, 0);
+            }
+            self.queue.submit([encoder.finish()]);
+            queries.as_ref().map(|q| &q.1)
+        })?;
+        self.wait(name)?;
+        let wall = start.elapsed();
+        let time = match resolve {
+            Some(buf) => {
+                let bytes = self.read_buffer(buf, 0, 16)?;
+                let t: &[u64] = bytemuck::cast_slice(&bytes);
+                let ns =
+                    t[1].saturating_sub(t[0]) as f64 * self.queue.get_timestamp_period() as f64;
+                // Some drivers report zeros; the wall time is then the honest figure.
+                if ns > 0.0 {
+                    Duration::from_nanos(ns as u64)
+                } else {
+                    wall
+                }
+            }
+            None => wall,
+        };
+        timings.push(PassTiming { name, time });
+        Ok(())
+    }
+
+    /// Copy `size` bytes at `offset` of `buffer` (which needs `COPY_SRC`) to
+    /// the CPU.
+    pub fn read_buffer(
+        &self,
+        buffer: &wgpu::Buffer,
+        offset: u64,
+        size: u64,
+    ) -> Result<Vec<u8>, RenderError> {
+        let staging = self.scoped("read-back", || {
+            let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("read-back"),
+                size,
+                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            let mut encoder = self
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("read-back"),
+                });
+            encoder.copy_buffer_to_buffer(buffer, offset, &staging, 0, size);
+            self.queue.submit([encoder.finish()]);
+            staging
+        })?;
+        let (tx, rx) = std::sync::mpsc::channel();
+        staging.map_async(wgpu::MapMode::Read, .., move |r| {
+            let _ = tx.send(r);
+        });
+        self.wait("read-back")?;
+        match rx.recv_timeout(Duration::from_secs(1)) {
+            Ok(Ok(())) => {}
+            Ok(Err(e)) => return Err(err(format!("read-back failed: {e}"))),
+            Err(_) => return Err(err("read-back did not complete")),
+        }
+        let data = staging
+            .get_mapped_range(..)
+            .map_err(|e| err(format!("read-back failed: {e}")))?
+            .to_vec();
+        staging.unmap();
+        Ok(data)
+    }
+}
