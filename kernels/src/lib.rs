@@ -44,5 +44,6 @@ pub mod mask;
 pub mod passes;
 pub mod sraa;
 mod sum;
+pub mod wgsl;
 
 pub use glam;

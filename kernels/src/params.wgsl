@@ -1,0 +1,47 @@
+// The `#[repr(C)]` parameter structs of subcone-kernels, in WGSL.
+//
+// Each struct here has exactly the field offsets of its Rust twin (checked by
+// kernels/tests/wgsl_layout.rs through naga's layouter). WGSL aligns vec3 to
+// 16 bytes while glam's Vec3 aligns to 4: a scalar after a vec3 fills its
+// 4-byte tail in both languages, which is why `Geometry` puts `depth` last.
+// Arrays in the uniform address space have a 16-byte stride, so padding is
+// spelled as scalars (`_pad0`, `_pad1` are Rust's `_pad: [u32; 2]`).
+
+// subcone_kernels::sraa::SraaParams (16 bytes).
+struct SraaParams {
+    sigma_z: f32,
+    sigma_n: f32,
+    scale: f32,
+    // Bits 0..8: WeightForm; 8..16: DepthMetric; 16..32: reconstruction radius.
+    packed: u32,
+}
+
+// subcone_kernels::sraa::Geometry (16 bytes). depth = +inf marks a miss; WGSL
+// cannot spell infinity as a literal, so shaders use SUBCONE_MISS_DEPTH.
+struct Geometry {
+    normal: vec3<f32>,
+    depth: f32,
+}
+
+// subcone_kernels::ctss::CtssParams (48 bytes).
+struct CtssParams {
+    tan_theta: f32,
+    alpha: f32,
+    eps: f32,
+    t_min: f32,
+    t_max: f32,
+    min_sample_weight: f32,
+    max_steps: u32,
+    max_samples: u32,
+    visibility_k: u32,
+    // Bit 0: FLAG_RELAXED. Bits 8..16: MaskPlacement. Bits 16..24: Weighting.
+    flags: u32,
+    _pad0: u32,
+    _pad1: u32,
+}
+
+// +inf as a bit pattern (WGSL has no infinity literal; a constant-folded 1/0
+// is a shader-creation error).
+fn subcone_miss_depth() -> f32 {
+    return bitcast<f32>(0x7f800000u);
+}
