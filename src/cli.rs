@@ -20,11 +20,13 @@ pub fn parse_size(s: &str) -> Result<(u32, u32)> {
     Ok((p(w)?, p(h)?))
 }
 
-/// A backend by name (`cpu`).
+/// A backend by name (`cpu` or `wgpu`). Opening `wgpu` fails with a message
+/// naming the fix when no GPU adapter exists.
 pub fn backend(name: &str) -> Result<Box<dyn Backend + Send + Sync>> {
-    match name {
+    match name.trim() {
         "cpu" => Ok(Box::new(CpuBackend::new())),
-        other => Err(anyhow!("unknown backend {other:?}: expected cpu")),
+        "wgpu" => Ok(Box::new(subcone_wgpu::WgpuBackend::new()?)),
+        other => Err(anyhow!("unknown backend {other:?}: expected cpu or wgpu")),
     }
 }
 
