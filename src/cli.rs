@@ -46,6 +46,8 @@ pub struct RenderReport {
     pub frame: Frame,
     /// Wall time including setup (BVH build).
     pub wall_ms: f64,
+    /// What the backend ran on (for `wgpu`, the adapter and driver).
+    pub backend: String,
 }
 
 impl RenderReport {
@@ -53,11 +55,12 @@ impl RenderReport {
     pub fn summary(&self) -> String {
         let f = &self.frame;
         format!(
-            "{} {} {}x{}: {:.1} ms ({:.1} ms in passes), {:.2} rays/pixel",
+            "{} {} {}x{} on {}: {:.1} ms ({:.1} ms in passes), {:.2} rays/pixel",
             self.scene,
             self.method,
             f.width,
             f.height,
+            self.backend,
             self.wall_ms,
             f.stats.total_time().as_secs_f64() * 1e3,
             f.stats.rays.total() as f64 / (f.width as f64 * f.height as f64)
@@ -218,6 +221,7 @@ pub fn render(opts: &RenderOptions) -> Result<RenderReport> {
         aov_frame(&frame, aov)?.save(&aov_path(&opts.output, aov))?;
     }
     Ok(RenderReport {
+        backend: backend.describe(),
         scene: scene.name.clone(),
         method: opts.method,
         frame,

@@ -88,3 +88,25 @@ fn bad_input_is_a_clear_error() {
         "a failed render left a temporary file"
     );
 }
+
+/// Without an adapter for the requested API, `--backend wgpu` fails with a
+/// message naming the driver to install, not a panic. DX12 never exists on
+/// Linux; on Windows, Metal never does.
+#[test]
+fn wgpu_without_an_adapter_names_the_fix() {
+    let missing = if cfg!(windows) { "metal" } else { "dx12" };
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("x.png");
+    let run = Command::new(env!("CARGO_BIN_EXE_subcone"))
+        .args(["render", "--backend", "wgpu", "--size", "8x8", "-o"])
+        .arg(&out)
+        .env("WGPU_BACKEND", missing)
+        .output()
+        .expect("run subcone");
+    let text = String::from_utf8_lossy(&run.stderr);
+    assert!(!run.status.success(), "no adapter must fail: {text}");
+    assert!(!text.contains("panicked"), "{text}");
+    assert!(text.contains("no GPU adapter"), "{text}");
+    assert!(text.contains("mesa-vulkan-drivers"), "{text}");
+    assert!(!out.exists(), "no image is written on failure");
+}

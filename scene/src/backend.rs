@@ -83,6 +83,11 @@ pub trait Backend {
     /// Short name (`"cpu"`, `"wgpu"`).
     fn name(&self) -> &'static str;
 
+    /// What the backend runs on, for reports (e.g. the GPU adapter and driver).
+    fn describe(&self) -> String {
+        self.name().to_string()
+    }
+
     /// Render `scene` through `camera` with `method`.
     fn render(
         &self,

@@ -1088,6 +1088,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
     let ctx = output::Context {
         mode: plan.mode,
         backends: plan.backends.iter().map(|b| b.0.clone()).collect(),
+        backend_descriptions: plan.backends.iter().map(|b| b.1.describe()).collect(),
         runs: plan.runs,
         reference: plan.reference.to_string(),
         scenes: jobs

@@ -62,6 +62,8 @@ pub struct Context {
     pub mode: Mode,
     /// Backends.
     pub backends: Vec<String>,
+    /// What each backend runs on (e.g. the GPU adapter), in the same order.
+    pub backend_descriptions: Vec<String>,
     /// Timed runs per method.
     pub runs: u32,
     /// Reference method.
@@ -254,6 +256,7 @@ pub fn json(s: &ReportSummary, ctx: &Context) -> Value {
         "version": code_version(),
         "mode": ctx.mode.name(),
         "backends": ctx.backends,
+        "backend_descriptions": ctx.backend_descriptions,
         "runs": ctx.runs,
         "reference": if ctx.mode == Mode::TimingOnly { Value::Null } else { json!(ctx.reference) },
         "scenes": ctx.scenes.iter().map(|sc| json!({
@@ -313,7 +316,7 @@ pub fn markdown(s: &ReportSummary, ctx: &Context) -> String {
         md,
         "Mode **{}**, backends {}, {} timed runs after one warm-up, code {}, {} hardware threads.{}\n",
         ctx.mode.name(),
-        ctx.backends.join(", "),
+        ctx.backend_descriptions.join(", "),
         ctx.runs,
         code_version(),
         threads,

@@ -70,6 +70,10 @@ impl Backend for WgpuBackend {
         "wgpu"
     }
 
+    fn describe(&self) -> String {
+        format!("wgpu on {}", self.ctx.describe())
+    }
+
     fn render(
         &self,
         scene: &Scene,
