@@ -267,7 +267,8 @@ impl Report {
         if rust != gpu {
             self.worst = 1.0;
             if self.failures.len() < 5 {
-                self.failures.push(format!("input {input:?}: rust {rust}, wgsl {gpu}"));
+                self.failures
+                    .push(format!("input {input:?}: rust {rust}, wgsl {gpu}"));
             }
         }
     }
@@ -312,7 +313,10 @@ impl Report {
         if self.failures.is_empty() {
             Ok(line)
         } else {
-            Err(format!("{line}\n  failures:\n  {}", self.failures.join("\n  ")))
+            Err(format!(
+                "{line}\n  failures:\n  {}",
+                self.failures.join("\n  ")
+            ))
         }
     }
 }
@@ -368,11 +372,21 @@ fn geometry() -> BoxedStrategy<Geometry> {
 }
 
 fn params_words(p: &SraaParams) -> [u32; 4] {
-    [p.sigma_z.to_bits(), p.sigma_n.to_bits(), p.scale.to_bits(), p.packed]
+    [
+        p.sigma_z.to_bits(),
+        p.sigma_n.to_bits(),
+        p.scale.to_bits(),
+        p.packed,
+    ]
 }
 
 fn geometry_words(g: &Geometry) -> [u32; 4] {
-    [g.normal.x.to_bits(), g.normal.y.to_bits(), g.normal.z.to_bits(), g.depth.to_bits()]
+    [
+        g.normal.x.to_bits(),
+        g.normal.y.to_bits(),
+        g.normal.z.to_bits(),
+        g.depth.to_bits(),
+    ]
 }
 
 /// Eq. 1 and eq. 2. Weights are in [0, 1]: the Rust kernel is within 2e-6 of
@@ -382,7 +396,13 @@ fn geometry_words(g: &Geometry) -> [u32; 4] {
 /// states) must be exactly 0 on both.
 fn check_weights(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
     let cases = generate(
-        (sraa_params(), geometry(), geometry(), any::<bool>(), any::<bool>()),
+        (
+            sraa_params(),
+            geometry(),
+            geometry(),
+            any::<bool>(),
+            any::<bool>(),
+        ),
         1,
     );
     let mut input = Vec::new();
@@ -441,7 +461,10 @@ fn check_resolve(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
     let cases = generate([colour.clone(), colour.clone(), colour.clone(), colour], 2);
     let input: Vec<u32> = cases
         .iter()
-        .flat_map(|s| s.iter().flat_map(|c| words(&c.to_array()).collect::<Vec<_>>()))
+        .flat_map(|s| {
+            s.iter()
+                .flat_map(|c| words(&c.to_array()).collect::<Vec<_>>())
+        })
         .collect();
     let out = run_wgsl(
         ctx,
@@ -535,10 +558,7 @@ fn check_cone(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
 /// 1e-6) and `needs_normal` (exact, except where |d/R_c| lies within 1e-5 of
 /// the farthest cell centre, where one rounding decides it).
 fn check_mask(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
-    let cases = generate(
-        (any_f32(-0.2, 1.2), unit_vec(), unit_vec(), 0u32..3),
-        4,
-    );
+    let cases = generate((any_f32(-0.2, 1.2), unit_vec(), unit_vec(), 0u32..3), 4);
     let input: Vec<u32> = cases
         .iter()
         .flat_map(|&(omega, n, r, placement)| {
@@ -667,7 +687,10 @@ fn wgsl_kernels_match_the_rust_kernels() {
             }
         }
     }
-    assert!(failed.is_empty(), "WGSL kernels disagree with Rust: {failed:?}");
+    assert!(
+        failed.is_empty(),
+        "WGSL kernels disagree with Rust: {failed:?}"
+    );
 }
 
 /// The suite must notice a broken kernel: each perturbation below is a

@@ -223,3 +223,47 @@ fn timing_only_writes_no_errors() {
     assert!(!out.join("plots/cornell_flip_vs_time.png").exists());
     assert!(!out.join("cache").exists());
 }
+
+/// `--backend cpu,wgpu` puts both backends in one table: every method that
+/// applies has a row per backend, with a time and an error, and the report
+/// names the adapter.
+#[test]
+fn report_with_both_backends() {
+    if subcone_wgpu::WgpuBackend::new().is_err() && !subcone_wgpu::gpu_required() {
+        eprintln!("SKIPPED: no GPU adapter and SUBCONE_REQUIRE_GPU unset");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("report");
+    let summary = report::run(&ReportArgs {
+        quick: true,
+        no_paper_scenes: true,
+        scenes: vec!["cornell".into(), "primitives".into()],
+        methods: vec!["noaa".into(), "sraa".into(), "ctss".into()],
+        backend: "cpu,wgpu".into(),
+        size: Some("48x32".into()),
+        out: out.clone(),
+        ..Default::default()
+    })
+    .expect("report on both backends");
+    for (scene, method) in [
+        ("cornell", "noaa"),
+        ("cornell", "sraa"),
+        ("primitives", "ctss"),
+    ] {
+        for backend in ["cpu", "wgpu"] {
+            let row = summary
+                .rows
+                .iter()
+                .find(|r| r.scene == scene && r.method == method && r.backend == backend)
+                .unwrap_or_else(|| panic!("no {backend} row for {scene} {method}"));
+            assert!(row.ms_median > 0.0, "{backend} {scene} {method}: no time");
+            assert!(
+                row.flip_mean.is_some_and(|f| (0.0..1.0).contains(&f)),
+                "{backend} {scene} {method}: no error"
+            );
+        }
+    }
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(md.contains("wgpu on "), "the report names the adapter");
+}
