@@ -395,8 +395,9 @@ mod tests {
     use crate::context::GpuContext;
 
     /// Hybrid SRAA's premise: the rasterised subsamples are the ray-traced
-    /// ones. At every subsample whose 3×3 neighbourhood of pixels agrees on
-    /// covering geometry (interior, not silhouettes), the raster and the ray
+    /// ones. At every interior subsample (its 3×3 neighbourhood of pixels hits
+    /// one smooth surface: depths within 5 %, normals within a dot of 0.999;
+    /// no silhouette or crease nearby), the raster and the ray
     /// give the same view depth within 1e-4 relative and normals within
     /// 1e-3 (dot > 0.999); at least 97 % of all subsamples agree that well.
     #[test]
@@ -456,7 +457,7 @@ mod tests {
             eprintln!(
                 "{name}: {good}/{total} subsamples agree, {interior} interior, worst interior depth error {worst:e}"
             );
-            assert!(interior > total / 2, "{name}: too few interior subsamples");
+            assert!(interior > total / 10, "{name}: too few interior subsamples");
             assert!(
                 good as f64 >= 0.97 * total as f64,
                 "{name}: {good}/{total} agree"
