@@ -50,7 +50,7 @@ fn compare(a: &Frame, b: &Frame) -> (f64, f64) {
     (sum / n, bad as f64 / n)
 }
 
-/// wgpu against the CPU on cornell, cornell-nomirror and checker, for NoAA,
+/// wgpu against the CPU on cornell, cornell-nomirror, checker and atrium, for NoAA,
 /// SSAA4, SRAA and SRAA-RT at 48×40. Both trace the same rays through
 /// the same BVH leaves with the same shading, so NoAA, SSAA and SRAA-RT
 /// differ only by f32 rounding (GPU `exp`/`normalize`, fused multiply-adds)
@@ -62,7 +62,7 @@ fn compare(a: &Frame, b: &Frame) -> (f64, f64) {
 fn wgpu_matches_cpu_on_builtin_scenes() {
     let Some(gpu) = gpu() else { return };
     let cpu = CpuBackend::new();
-    for scene_name in ["cornell", "cornell-nomirror", "checker"] {
+    for scene_name in ["cornell", "cornell-nomirror", "checker", "atrium"] {
         let scene = builtin(scene_name).unwrap();
         for method in ["noaa", "ssaa4", "sraa-rt", "sraa"] {
             let t = Instant::now();
