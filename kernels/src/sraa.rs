@@ -14,6 +14,11 @@ use glam::{Vec2, Vec3};
 
 use crate::sum::WeightedSum;
 
+/// The WGSL mirror of this module's functions (same names; functions only, no
+/// bindings). Concatenate after [`crate::wgsl::PARAMS`]. Its header lists the
+/// differences in rounding (GPU `exp`, compensated f32 sums instead of f64).
+pub const WGSL: &str = include_str!("sraa.wgsl");
+
 /// The four subpixel offsets of the 4x rotated grid on a 4×4 grid (§3.1, Fig. 2),
 /// relative to the pixel's centre, in pixels.
 ///

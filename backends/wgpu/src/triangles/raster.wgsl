@@ -1,0 +1,93 @@
+// Hybrid SRAA's pass 1 (§3.1): the four geometric subsamples rasterised, one
+// layer of an Rgba32Float array per subsample: shading normal (facing the
+// eye) in .xyz and view depth in .w (-1 where nothing was drawn). Follows
+// subcone_kernels::wgsl::PARAMS and sraa::WGSL (for subpixel_offset).
+//
+// The projection is Camera::ray inverted: a point at view-space (x, y, z)
+// (right, up, forward) lies on the ray through image point p with
+// 2·p.x/W − 1 = x / (z·tan(fov/2)·aspect) and 1 − 2·p.y/H = y / (z·tan(fov/2)).
+// Subsample k is put at the pixel centre by shifting the image by
+// −SUBPIXEL_OFFSETS[k] in clip space, so the fragment at pixel (i, j) shows
+// image point (i + 0.5, j + 0.5) + offset: the ray-traced subsample's point.
+// Depth is reversed (near / z, compare greater) for precision.
+
+struct RasterUniform {
+    cam_pos: vec3<f32>,
+    half: f32,
+    forward: vec3<f32>,
+    aspect: f32,
+    right: vec3<f32>,
+    near: f32,
+    up: vec3<f32>,
+    width_f: f32,
+    height_f: f32,
+    _pad0: f32,
+    _pad1: f32,
+    _pad2: f32,
+}
+
+@group(0) @binding(0) var<uniform> cam: RasterUniform;
+@group(0) @binding(1) var<storage, read> tris: array<vec4<f32>>;
+@group(0) @binding(2) var<storage, read> attrs: array<vec4<f32>>;
+
+struct VsOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) @interpolate(flat) face: vec3<f32>,
+}
+
+@vertex
+fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) k: u32) -> VsOut {
+    let tri = vi / 3u;
+    let corner = vi % 3u;
+    let v0 = tris[3u * tri].xyz;
+    let v1 = tris[3u * tri + 1u].xyz;
+    let v2 = tris[3u * tri + 2u].xyz;
+    let p = tris[3u * tri + corner].xyz;
+    let rel = p - cam.cam_pos;
+    let z = dot(rel, cam.forward);
+    let x = dot(rel, cam.right);
+    let y = dot(rel, cam.up);
+    let o = subpixel_offset(k);
+    var out: VsOut;
+    out.clip = vec4<f32>(
+        x / (cam.half * cam.aspect) - (2.0 * o.x / cam.width_f) * z,
+        y / cam.half + (2.0 * o.y / cam.height_f) * z,
+        cam.near,
+        z,
+    );
+    out.world = p;
+    out.normal = attrs[4u * tri + corner].xyz;
+    out.face = cross(v1 - v0, v2 - v0);
+    return out;
+}
+
+fn raster_normalize_or_zero(v: vec3<f32>) -> vec3<f32> {
+    let l2 = dot(v, v);
+    if l2 > 0.0 && sraa_is_finite(l2) {
+        let n = v * (1.0 / sqrt(l2));
+        if sraa_is_finite3(n) {
+            return n;
+        }
+    }
+    return vec3<f32>(0.0);
+}
+
+// Tracer::intersect's normals and Camera::view_depth at the interpolated
+// (perspective-correct, i.e. barycentric) surface point.
+@fragment
+fn fs_main(in: VsOut) -> @location(0) vec4<f32> {
+    let d = in.world - cam.cam_pos;
+    var ng = raster_normalize_or_zero(in.face);
+    if dot(ng, d) > 0.0 {
+        ng = -ng;
+    }
+    var n = raster_normalize_or_zero(in.normal);
+    if all(n == vec3<f32>(0.0)) {
+        n = ng;
+    } else if dot(n, d) > 0.0 {
+        n = -n;
+    }
+    return vec4<f32>(n, dot(d, cam.forward));
+}

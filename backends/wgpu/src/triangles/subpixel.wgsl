@@ -1,0 +1,189 @@
+// SRAA and SRAA-RT, passes "shading" and "geometry": subcone-cpu render.rs
+// `subpixel`, one invocation per pixel. Follows trace.wgsl and the generated
+// frame header (layout constants NL, LAYER_LIGHTS, SINGLE, SECONDARY_LAYERS,
+// SHADOWS, SECONDARY_SHADING, and accessors get_/put_ for the optional
+// buffers: absent buffers read as the CPU's initial values and ignore writes).
+
+fn geometry_miss() -> Geometry {
+    return Geometry(vec3<f32>(0.0), subcone_miss_depth());
+}
+
+// render.rs NO_SECONDARY: NaN depth, which the bilateral weight excludes.
+fn no_secondary() -> Geometry {
+    return Geometry(vec3<f32>(0.0), bitcast<f32>(0x7fc00000u));
+}
+
+fn put_value(j: u32, l: u32, v: vec3<f32>) {
+    values[j * NL + l] = vec4<f32>(v, 0.0);
+}
+
+fn get_value(j: u32, l: u32) -> vec3<f32> {
+    return values[j * NL + l].xyz;
+}
+
+fn pixel_centre(x: u32, y: u32) -> vec2<f32> {
+    return vec2<f32>(f32(x) + 0.5, f32(y) + 0.5);
+}
+
+// Pass "shading" (render.rs `subpixel`, first pass): one shaded sample per pixel
+// at subsample SHADED_SUBSAMPLE. SRAA keeps one layer (the final colour);
+// SRAA-RT keeps the shadow-independent part, one layer per light (gated by its
+// shadow state, eq. 2) and, on mirrors, the same split of the reflected
+// radiance with the secondary hit's geometry and shadow states (§3.3). Every
+// layer carries its mirror factor.
+fn shade_pixel(x: u32, y: u32, j: u32, c: ptr<function, Counts>) {
+    for (var l = 0u; l < NL; l++) {
+        put_value(j, l, vec3<f32>(0.0));
+    }
+    put_geo2(j, no_secondary());
+    let p = pixel_centre(x, y) + subpixel_offset(SHADED_SUBSAMPLE);
+    let d = camera_ray(p);
+    (*c).primary += 1u;
+    let sf = intersect(frame.cam_pos, d, 0.0);
+    if !sf.hit {
+        geo[j] = geometry_miss();
+        put_value(j, 0u, frame.background);
+        return;
+    }
+    (*c).shaded += 1u;
+    geo[j] = primary_geometry(sf);
+    var sh = 0u;
+    if SHADOWS {
+        sh = shadow_states(sf, c);
+    }
+    let pa = parts(sf, sh);
+    let m = pa.mirror;
+    let reflects = m > 0.0 && SECONDARY_SHADING && frame.reflection_depth > 0u;
+    if SINGLE {
+        let dif = diffuse(pa);
+        if reflects {
+            (*c).secondary += 1u;
+            let r = radiance(sf.p + sf.ng * frame.eps, reflect_dir(d, sf.n), 1u, c);
+            put_value(j, 0u, (1.0 - m) * dif + m * r);
+        } else if m > 0.0 {
+            put_value(j, 0u, (1.0 - m) * dif);
+        } else {
+            put_value(j, 0u, dif);
+        }
+        return;
+    }
+    if LAYER_LIGHTS > 0u {
+        put_shadow(j, sh);
+        put_value(j, 0u, (1.0 - m) * pa.base);
+        for (var l = 0u; l < LAYER_LIGHTS; l++) {
+            put_value(j, 1u + l, (1.0 - m) * pa.direct[l]);
+        }
+    } else {
+        put_value(j, 0u, (1.0 - m) * diffuse(pa));
+    }
+    if !reflects {
+        return;
+    }
+    (*c).secondary += 1u;
+    let rd = reflect_dir(d, sf.n);
+    let sb = 1u + LAYER_LIGHTS;
+    let s2 = intersect(sf.p + sf.ng * frame.eps, rd, 0.0);
+    if !s2.hit {
+        put_geo2(j, geometry_miss());
+        let bg = m * frame.background;
+        if SECONDARY_LAYERS {
+            put_value(j, sb, bg);
+        } else {
+            put_value(j, 0u, get_value(j, 0u) + bg);
+        }
+        return;
+    }
+    (*c).shaded += 1u;
+    var sh2 = 0u;
+    if SHADOWS {
+        sh2 = shadow_states(s2, c);
+    }
+    let p2 = parts(s2, sh2);
+    let m2 = p2.mirror;
+    var deeper = vec3<f32>(0.0);
+    if m2 > 0.0 && frame.reflection_depth > 1u {
+        (*c).secondary += 1u;
+        deeper = radiance(s2.p + s2.ng * frame.eps, reflect_dir(rd, s2.n), 2u, c);
+    }
+    if SECONDARY_LAYERS {
+        put_geo2(j, Geometry(s2.n, sf.t + s2.t));
+        if LAYER_LIGHTS > 0u {
+            put_shadow2(j, sh2);
+            put_value(j, sb, m * ((1.0 - m2) * p2.base + m2 * deeper));
+            for (var l = 0u; l < LAYER_LIGHTS; l++) {
+                put_value(j, sb + 1u + l, m * (1.0 - m2) * p2.direct[l]);
+            }
+        } else {
+            put_value(j, sb, m * ((1.0 - m2) * diffuse(p2) + m2 * deeper));
+        }
+    } else {
+        // Reflections forced off: fold them into the primary base.
+        put_value(j, 0u, get_value(j, 0u) + m * ((1.0 - m2) * diffuse(p2) + m2 * deeper));
+    }
+}
+
+@compute @workgroup_size(8, 8)
+fn shade_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= frame.width || id.y >= frame.height {
+        return;
+    }
+    var c = counts_zero();
+    shade_pixel(id.x, id.y, id.y * frame.width + id.x, &c);
+    counts_flush(c);
+}
+
+// Pass "geometry" (the paper's pass 1, ray traced): the other three subsamples,
+// geometry only; their shadow states (subpixel shadow rays) and, on mirrors,
+// the geometry and shadow states of their reflection rays. The shaded
+// subsample's are copied, not traced again.
+fn geometry_pixel(x: u32, y: u32, j: u32, c: ptr<function, Counts>) {
+    for (var k = 0u; k < 4u; k++) {
+        if k == SHADED_SUBSAMPLE {
+            put_sub_geo(j, k, geo[j]);
+            put_sub_shadow(j, k, get_shadow(j));
+            put_sub_geo2(j, k, get_geo2(j));
+            put_sub_shadow2(j, k, get_shadow2(j));
+            continue;
+        }
+        put_sub_shadow(j, k, 0u);
+        put_sub_geo2(j, k, no_secondary());
+        put_sub_shadow2(j, k, 0u);
+        let p = pixel_centre(x, y) + subpixel_offset(k);
+        let d = camera_ray(p);
+        (*c).geometry += 1u;
+        let sf = intersect(frame.cam_pos, d, 0.0);
+        put_sub_geo(j, k, primary_geometry(sf));
+        if !sf.hit {
+            continue;
+        }
+        if HAS_SUB_SHADOW {
+            put_sub_shadow(j, k, shadow_states(sf, c));
+        }
+        if HAS_SUB_GEO2 {
+            let mirror = materials[sf.material].mirror;
+            if mirror > 0.0 && frame.reflection_depth > 0u {
+                (*c).geometry += 1u;
+                let rd = reflect_dir(d, sf.n);
+                let s2 = intersect(sf.p + sf.ng * frame.eps, rd, 0.0);
+                if !s2.hit {
+                    put_sub_geo2(j, k, geometry_miss());
+                } else {
+                    if HAS_SUB_SHADOW2 {
+                        put_sub_shadow2(j, k, shadow_states(s2, c));
+                    }
+                    put_sub_geo2(j, k, Geometry(s2.n, sf.t + s2.t));
+                }
+            }
+        }
+    }
+}
+
+@compute @workgroup_size(8, 8)
+fn geometry_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= frame.width || id.y >= frame.height {
+        return;
+    }
+    var c = counts_zero();
+    geometry_pixel(id.x, id.y, id.y * frame.width + id.x, &c);
+    counts_flush(c);
+}

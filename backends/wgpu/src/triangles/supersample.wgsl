@@ -1,0 +1,39 @@
+// NoAA and SSAA: subcone-cpu render.rs `supersample`, one invocation per pixel.
+// Also the AOV pass (`centre_geometry`). Follows trace.wgsl and the generated
+// frame bindings (`color`, optional `aov`).
+
+// render.rs `supersample`: a regular n×n grid of rays through the pixel
+// (n = 1 for NoAA), Whitted radiance, box filter.
+@compute @workgroup_size(8, 8)
+fn supersample_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= frame.width || id.y >= frame.height {
+        return;
+    }
+    let j = id.y * frame.width + id.x;
+    var c = counts_zero();
+    let n = max(frame.ssaa_side, 1u);
+    var sum = vec3<f32>(0.0);
+    for (var sy = 0u; sy < n; sy++) {
+        for (var sx = 0u; sx < n; sx++) {
+            let off = vec2<f32>((f32(sx) + 0.5) / f32(n), (f32(sy) + 0.5) / f32(n));
+            let p = vec2<f32>(f32(id.x), f32(id.y)) + off;
+            let d = camera_ray(p);
+            c.primary += 1u;
+            sum = sum + radiance(frame.cam_pos, d, 0u, &c);
+        }
+    }
+    color[j] = vec4<f32>(sum / f32(n * n), 0.0);
+    counts_flush(c);
+}
+
+// render.rs `centre_geometry`: depth and normal of the ray through each pixel
+// centre (AOVs; not counted).
+@compute @workgroup_size(8, 8)
+fn centre_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= frame.width || id.y >= frame.height {
+        return;
+    }
+    let j = id.y * frame.width + id.x;
+    let p = vec2<f32>(f32(id.x) + 0.5, f32(id.y) + 0.5);
+    put_aov(j, primary_geometry(intersect(frame.cam_pos, camera_ray(p), 0.0)));
+}

@@ -1,0 +1,452 @@
+//! The wgpu backend on triangle scenes against the CPU reference: per-pixel
+//! agreement for every built-in triangle scene and method, the passes left
+//! out, the statistics, and errors instead of panics.
+use std::time::Instant;
+
+use glam::Vec3;
+use subcone_cpu::CpuBackend;
+use subcone_kernels::passes::Passes;
+use subcone_kernels::sraa::{
+    bilateral_weight, shadow_gated_weight, DepthMetric, Geometry, SraaParams, WeightForm,
+};
+use subcone_scene::{
+    builtin::builtin, Backend, Frame, Material, Method, RenderError, RenderSettings, Scene,
+    TriangleMesh,
+};
+use subcone_wgpu::{gpu_required, WgpuBackend};
+
+/// The backend, or `None` (skip, with the reason printed) when no adapter
+/// exists and a GPU is not required.
+fn gpu() -> Option<WgpuBackend> {
+    match WgpuBackend::new() {
+        Ok(b) => Some(b),
+        Err(e) if !gpu_required() => {
+            eprintln!("skipped: {e}");
+            None
+        }
+        Err(e) => panic!("SUBCONE_REQUIRE_GPU is set but: {e}"),
+    }
+}
+
+fn render(b: &dyn Backend, scene: &Scene, method: &str, w: u32, h: u32) -> Frame {
+    let m: Method = method.parse().unwrap();
+    b.render(scene, &scene.camera, &m, &RenderSettings::new(w, h))
+        .unwrap_or_else(|e| panic!("{} {method}: {e}", b.name()))
+}
+
+/// Mean absolute difference per channel of the clamped linear colours, and the
+/// fraction of pixels where any channel differs by more than 0.05.
+fn compare(a: &Frame, b: &Frame) -> (f64, f64) {
+    let mut sum = 0.0;
+    let mut bad = 0;
+    for (p, q) in a.color.iter().zip(&b.color) {
+        let d = (p.clamp(Vec3::ZERO, Vec3::ONE) - q.clamp(Vec3::ZERO, Vec3::ONE)).abs();
+        sum += (d.x + d.y + d.z) as f64 / 3.0;
+        if d.max_element() > 0.05 {
+            bad += 1;
+        }
+    }
+    let n = a.color.len() as f64;
+    (sum / n, bad as f64 / n)
+}
+
+/// wgpu against the CPU on cornell, cornell-nomirror, checker and atrium, for NoAA,
+/// SSAA4, SRAA and SRAA-RT at 48×40. Both trace the same rays through
+/// the same BVH leaves with the same shading, so NoAA, SSAA and SRAA-RT
+/// differ only by f32 rounding (GPU `exp`/`normalize`, fused multiply-adds)
+/// where a ray grazes an edge or a shadow boundary: mean error below 0.002,
+/// at most 1 % of pixels off by more than 0.05. Hybrid SRAA rasterises its
+/// subsamples, whose coverage at silhouettes follows the rasteriser's
+/// tie-breaking rules, not the ray's: mean error below 0.01, at most 5 %.
+#[test]
+fn wgpu_matches_cpu_on_builtin_scenes() {
+    let Some(gpu) = gpu() else { return };
+    let cpu = CpuBackend::new();
+    for scene_name in ["cornell", "cornell-nomirror", "checker", "atrium"] {
+        let scene = builtin(scene_name).unwrap();
+        for method in ["noaa", "ssaa4", "sraa-rt", "sraa"] {
+            let t = Instant::now();
+            let g = render(&gpu, &scene, method, 48, 40);
+            let gpu_time = t.elapsed();
+            let c = render(&cpu, &scene, method, 48, 40);
+            let (mean, frac) = compare(&g, &c);
+            eprintln!(
+                "{scene_name} {method}: mean {mean:.5}, >0.05 on {:.2} % ({gpu_time:?} on the GPU)",
+                frac * 100.0
+            );
+            assert!(
+                g.color.iter().all(|c| c.is_finite()),
+                "{scene_name} {method}: NaN"
+            );
+            let (max_mean, max_frac) = if method == "sraa" {
+                (0.01, 0.05)
+            } else {
+                (0.002, 0.01)
+            };
+            assert!(
+                mean < max_mean && frac <= max_frac,
+                "{scene_name} {method}: mean {mean}, fraction {frac}"
+            );
+            // The same work, counted the same way (sraa's geometry is rasterised).
+            assert_eq!(
+                g.stats.rays.primary, c.stats.rays.primary,
+                "{scene_name} {method}"
+            );
+            if method != "sraa" {
+                let close = |a: u64, b: u64| a.abs_diff(b) as f64 <= 0.01 * b as f64 + 2.0;
+                assert!(
+                    close(g.stats.rays.shadow, c.stats.rays.shadow)
+                        && close(g.stats.rays.geometry, c.stats.rays.geometry)
+                        && close(g.stats.rays.secondary, c.stats.rays.secondary)
+                        && close(g.stats.shaded_samples, c.stats.shaded_samples),
+                    "{scene_name} {method}: rays {:?} vs {:?}",
+                    g.stats.rays,
+                    c.stats.rays
+                );
+            } else {
+                assert_eq!(
+                    g.stats.rays.geometry, 0,
+                    "hybrid SRAA traces no geometry rays"
+                );
+            }
+            assert_eq!(g.stats.passes, c.stats.passes);
+            let names: Vec<_> = g.stats.timings.iter().map(|t| t.name).collect();
+            let cpu_names: Vec<_> = c.stats.timings.iter().map(|t| t.name).collect();
+            assert_eq!(names, cpu_names, "{scene_name} {method}");
+        }
+    }
+}
+
+/// Buffers follow the plan: a scene without mirrors gets no secondary
+/// buffer, one with mirrors and lights gets every SRAA-RT buffer, and the
+/// reported sizes are the real ones.
+#[test]
+fn passes_left_out_allocate_nothing() {
+    let Some(gpu) = gpu() else { return };
+    let (w, h) = (24u32, 16u32);
+    let n = (w * h) as usize;
+    let names = |f: &Frame| -> Vec<&'static str> { f.stats.buffers.iter().map(|b| b.0).collect() };
+
+    let plain = builtin("cornell-nomirror").unwrap();
+    let f = render(&gpu, &plain, "sraa-rt", w, h);
+    assert!(!f
+        .stats
+        .passes
+        .intersects(Passes::SECONDARY | Passes::SUBPIXEL_SECONDARY_GEOMETRY));
+    for b in names(&f) {
+        assert!(!b.contains("secondary"), "cornell-nomirror allocated {b:?}");
+    }
+    assert!(names(&f).contains(&"subpixel shadow states"));
+
+    let mirror = builtin("cornell").unwrap();
+    let f = render(&gpu, &mirror, "sraa-rt", w, h);
+    for b in [
+        "secondary geometry",
+        "secondary shadow states",
+        "subpixel secondary geometry",
+        "subpixel secondary shadow states",
+        "subpixel shadow states",
+        "shadow states",
+    ] {
+        assert!(
+            names(&f).contains(&b),
+            "cornell lacks {b:?}: {:?}",
+            names(&f)
+        );
+    }
+    let size = |name: &str| f.stats.buffers.iter().find(|b| b.0 == name).unwrap().1;
+    assert_eq!(size("subpixel geometry"), n * 4 * 16);
+    assert_eq!(size("color"), n * 16);
+    let lights = mirror.lights.len();
+    assert_eq!(size("shading layers"), n * 2 * (1 + lights) * 16);
+
+    // Hybrid SRAA: one layer, raster targets, no shadow or secondary buffers.
+    let f = render(&gpu, &mirror, "sraa", w, h);
+    for b in names(&f) {
+        assert!(
+            !b.contains("shadow") && !b.contains("secondary"),
+            "sraa allocated {b:?}"
+        );
+    }
+    assert!(names(&f).contains(&"raster depth"));
+
+    // A scene without lights: no shadow buffers, no shadow rays.
+    let mut dark = builtin("cornell-nomirror").unwrap();
+    dark.lights.clear();
+    dark.touch();
+    let f = render(&gpu, &dark, "sraa-rt", w, h);
+    assert!(!f.stats.passes.contains(Passes::SHADOW));
+    assert_eq!(f.stats.rays.shadow, 0);
+    for b in names(&f) {
+        assert!(
+            !b.contains("shadow"),
+            "a scene without lights allocated {b:?}"
+        );
+    }
+}
+
+/// Timings per pass, ray counts that follow from the image size, AOVs.
+#[test]
+fn stats_and_aovs() {
+    let Some(gpu) = gpu() else { return };
+    let scene = builtin("cornell").unwrap();
+    let m: Method = "ssaa4".parse().unwrap();
+    let mut s = RenderSettings::new(20, 12);
+    s.aovs = true;
+    let f = gpu.render(&scene, &scene.camera, &m, &s).unwrap();
+    assert_eq!(f.stats.rays.primary, 20 * 12 * 4);
+    assert_eq!(f.stats.timings.len(), 1);
+    let cpu = CpuBackend::new()
+        .render(&scene, &scene.camera, &m, &s)
+        .unwrap();
+    let (d, dc) = (f.depth.as_ref().unwrap(), cpu.depth.as_ref().unwrap());
+    let agree = d
+        .iter()
+        .zip(dc)
+        .filter(|(a, b)| a == b || (*a - *b).abs() <= 1e-4 * a.abs())
+        .count();
+    assert!(
+        agree >= d.len() * 95 / 100,
+        "{agree}/{} AOV depths agree",
+        d.len()
+    );
+    assert_eq!(f.samples_per_pixel.as_ref().unwrap()[0], 4.0);
+    let m: Method = "sraa-rt".parse().unwrap();
+    let f = gpu.render(&scene, &scene.camera, &m, &s).unwrap();
+    let names: Vec<_> = f.stats.timings.iter().map(|t| t.name).collect();
+    assert_eq!(names, ["shading", "geometry", "antialiasing"]);
+    assert!(f.stats.rays.geometry >= 20 * 12 * 3);
+    assert!(f.normal.is_some());
+}
+
+/// Bad input is an error, never a panic.
+#[test]
+fn errors_not_panics() {
+    let Some(gpu) = gpu() else { return };
+    let cornell = builtin("cornell").unwrap();
+    // No triangles.
+    let mut empty = cornell.clone();
+    if let subcone_scene::Geometry::Triangles(m) = &mut empty.geometry {
+        *m = TriangleMesh::default();
+    }
+    empty.touch();
+    let m: Method = "noaa".parse().unwrap();
+    let r = gpu.render(&empty, &empty.camera, &m, &RenderSettings::new(8, 8));
+    assert!(
+        matches!(
+            r,
+            Err(RenderError::Backend { .. }) | Err(RenderError::Scene(_))
+        ),
+        "{r:?}"
+    );
+
+    // A texture larger than any storage buffer.
+    let mut big = cornell.clone();
+    let side = 1u32 << 16;
+    big.materials[0] = Material {
+        albedo: subcone_scene::Albedo::Texture(std::sync::Arc::new(
+            subcone_scene::material::Texture {
+                width: side,
+                height: side,
+                texels: vec![Vec3::ONE; 1],
+            },
+        )),
+        ..big.materials[0].clone()
+    };
+    big.touch();
+    let r = gpu.render(&big, &big.camera, &m, &RenderSettings::new(8, 8));
+    assert!(r.is_err(), "an inconsistent texture was accepted");
+
+    // CTSS needs an SDF.
+    let ctss: Result<Method, _> = "ctss".parse();
+    if let Ok(ctss) = ctss {
+        assert!(gpu
+            .render(&cornell, &cornell.camera, &ctss, &RenderSettings::new(8, 8))
+            .is_err());
+    }
+}
+
+/// Lavapipe time of each method at 128×128 on cornell against the CPU
+/// backend (printed; run with `--ignored --nocapture`).
+#[test]
+#[ignore]
+fn timings_128() {
+    let Some(gpu) = gpu() else { return };
+    let cpu = CpuBackend::new();
+    let scene = builtin("cornell").unwrap();
+    for method in ["noaa", "ssaa4", "ssaa16", "ssaa64", "sraa", "sraa-rt"] {
+        render(&gpu, &scene, method, 128, 128);
+        let t = Instant::now();
+        let g = render(&gpu, &scene, method, 128, 128);
+        let tg = t.elapsed();
+        let t = Instant::now();
+        let c = render(&cpu, &scene, method, 128, 128);
+        let tc = t.elapsed();
+        let (mean, _) = compare(&g, &c);
+        eprintln!(
+            "{method}: wgpu {tg:?} (passes {:?}), cpu {tc:?}, mean diff {mean:.5}",
+            g.stats
+                .timings
+                .iter()
+                .map(|t| (t.name, t.time))
+                .collect::<Vec<_>>()
+        );
+    }
+}
+
+/// One weight evaluation for the WGSL kernels.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct WeightCase {
+    gi: Geometry,
+    gj: Geometry,
+    params: SraaParams,
+    si: u32,
+    sj: u32,
+    _pad: [u32; 2],
+}
+
+/// kernels/src/sraa.wgsl against the Rust kernels it mirrors: eq. 1 and eq. 2
+/// on ordinary and stiff inputs (misses, NaN normals and depths, zero and huge
+/// depths, both weight forms and depth metrics). Special cases (0, 1, NaN
+/// exclusion) must match exactly; elsewhere the GPU's `exp` may differ from
+/// libm's by a few ulps: |Δw| ≤ 2e-6 + 1e-5·w.
+#[test]
+fn sraa_wgsl_matches_kernels() {
+    use wgpu::util::DeviceExt;
+    let Some(gpu) = gpu() else { return };
+    let ctx = gpu.context();
+    let nan = f32::NAN;
+    let inf = f32::INFINITY;
+    let normals = [
+        Vec3::Z,
+        Vec3::new(0.0, 0.6, 0.8),
+        Vec3::X,
+        -Vec3::Z,
+        Vec3::new(nan, 0.0, 1.0),
+        Vec3::ZERO,
+    ];
+    let depths = [1.0, 1.05, 2.0, 0.0, 1e-40, 3e38, inf, nan, 1e6];
+    let params = [
+        SraaParams::PAPER,
+        SraaParams::CHAJDAS,
+        SraaParams::PAPER.with_depth_metric(DepthMetric::Absolute),
+        SraaParams::new(
+            1e20,
+            1e20,
+            1.0,
+            WeightForm::Product,
+            DepthMetric::Relative,
+            1,
+        ),
+    ];
+    let mut cases = Vec::new();
+    for (a, na) in normals.iter().enumerate() {
+        for nb in &normals {
+            for (i, za) in depths.iter().enumerate() {
+                for zb in &depths {
+                    for (k, p) in params.iter().enumerate() {
+                        cases.push(WeightCase {
+                            gi: Geometry::new(*na, *za),
+                            gj: Geometry::new(*nb, *zb),
+                            params: *p,
+                            si: ((a + i) % 2) as u32,
+                            sj: (k % 2) as u32,
+                            _pad: [0; 2],
+                        });
+                    }
+                }
+            }
+        }
+    }
+    let source = [
+        subcone_kernels::wgsl::PARAMS,
+        subcone_kernels::sraa::WGSL,
+        "struct WeightCase { gi: Geometry, gj: Geometry, params: SraaParams, si: u32, sj: u32, p0: u32, p1: u32 }
+@group(0) @binding(0) var<storage, read> cases: array<WeightCase>;
+@group(0) @binding(1) var<storage, read_write> out: array<vec2<f32>>;
+@compute @workgroup_size(64)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= arrayLength(&cases) { return; }
+    let c = cases[id.x];
+    out[id.x] = vec2<f32>(bilateral_weight(c.params, c.gi, c.gj),
+        shadow_gated_weight(c.params, c.gi, c.gj, c.si != 0u, c.sj != 0u));
+}
+",
+    ]
+    .concat();
+    let n = cases.len();
+    let (pipeline, group, out) = ctx
+        .scoped("kernel test", || {
+            let module = ctx
+                .device
+                .create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: None,
+                    source: wgpu::ShaderSource::Wgsl(source.as_str().into()),
+                });
+            let pipeline = ctx
+                .device
+                .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: None,
+                    layout: None,
+                    module: &module,
+                    entry_point: Some("main"),
+                    compilation_options: Default::default(),
+                    cache: None,
+                });
+            let input = ctx
+                .device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: None,
+                    contents: bytemuck::cast_slice(&cases),
+                    usage: wgpu::BufferUsages::STORAGE,
+                });
+            let out = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: None,
+                size: (n * 8) as u64,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            });
+            let group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: None,
+                layout: &pipeline.get_bind_group_layout(0),
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: input.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: out.as_entire_binding(),
+                    },
+                ],
+            });
+            (pipeline, group, out)
+        })
+        .unwrap();
+    let mut t = Vec::new();
+    ctx.timed_pass("kernels", &mut t, |enc| {
+        let mut pass = enc.begin_compute_pass(&Default::default());
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &group, &[]);
+        pass.dispatch_workgroups((n as u32).div_ceil(64), 1, 1);
+    })
+    .unwrap();
+    let bytes = ctx.read_buffer(&out, 0, (n * 8) as u64).unwrap();
+    let got: &[[f32; 2]] = bytemuck::cast_slice(&bytes);
+    let close = |g: f32, r: f32| g == r || (g - r).abs() <= 2e-6 + 1e-5 * r;
+    for (c, g) in cases.iter().zip(got) {
+        let w = bilateral_weight(&c.params, &c.gi, &c.gj);
+        let ws = shadow_gated_weight(&c.params, &c.gi, &c.gj, c.si != 0, c.sj != 0);
+        assert!(
+            close(g[0], w) && close(g[1], ws),
+            "{:?} {:?} {:?}: GPU ({}, {}), kernels ({w}, {ws})",
+            c.gi,
+            c.gj,
+            c.params,
+            g[0],
+            g[1]
+        );
+    }
+    eprintln!("{n} weight cases agree");
+}
