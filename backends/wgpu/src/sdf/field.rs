@@ -36,8 +36,8 @@ pub fn evaluate_field(
         return Err(err(format!("{n} points are too many for one dispatch")));
     }
     ctx.check_buffer_size("the evaluation points", n * 32)?;
-    let field = super::upload_field(ctx, root)?;
-    let source = [field.source.as_str(), FIELD_WGSL].concat();
+    let (source, field) = super::upload_field(ctx, &root.to_wgsl())?;
+    let source = [source.as_str(), FIELD_WGSL].concat();
     let pts: Vec<[f32; 4]> = points.iter().map(|p| [p.x, p.y, p.z, 0.0]).collect();
     let (pipeline, pts_buf, out) = ctx.scoped("compiling the SDF field", || {
         let module = ctx

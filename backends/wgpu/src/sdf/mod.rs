@@ -20,10 +20,12 @@ mod field;
 mod shading;
 
 use std::collections::HashMap;
+use std::hash::{Hash, Hasher};
 use std::sync::{Arc, Mutex, OnceLock};
 
 use subcone_kernels::ctss::CtssParams;
 use subcone_kernels::passes::{Passes, Technique};
+use subcone_scene::sdf::wgsl::WgslField;
 use subcone_scene::sdf::SdfNode;
 use subcone_scene::{
     Camera, Frame, FrameStats, Method, RayCounts, RenderError, RenderSettings, Scene,
@@ -54,14 +56,14 @@ fn kernels_wgsl() -> String {
 
 /// The field's WGSL and its scatter table on the device (none when empty).
 struct GpuField {
-    source: String,
     data: Option<wgpu::Buffer>,
     data_bytes: usize,
 }
 
-fn upload_field(ctx: &GpuContext, root: &SdfNode) -> Result<GpuField, RenderError> {
-    let f = root.to_wgsl();
-    let mut source = f.source;
+/// Upload a compiled field's scatter table; returns the field's WGSL with
+/// the table's binding declared when there is one.
+fn upload_field(ctx: &GpuContext, f: &WgslField) -> Result<(String, GpuField), RenderError> {
+    let mut source = f.source.clone();
     let data = if f.data.is_empty() {
         None
     } else {
@@ -77,11 +79,13 @@ fn upload_field(ctx: &GpuContext, root: &SdfNode) -> Result<GpuField, RenderErro
                 })
         })?)
     };
-    Ok(GpuField {
+    Ok((
         source,
-        data,
-        data_bytes: f.data.len() * 16,
-    })
+        GpuField {
+            data,
+            data_bytes: f.data.len() * 16,
+        },
+    ))
 }
 
 /// Compiled pipelines of one scene (and variant), reused across frames.
@@ -91,11 +95,19 @@ struct Pipelines {
     field: GpuField,
 }
 
-type Key = (usize, u64, bool, bool);
+/// Device (the context's address), hash of the shader source and of the
+/// scatter table: a scene changed in any way compiles anew.
+type Key = (usize, u64, u64);
 
 fn cache() -> &'static Mutex<HashMap<Key, Arc<Pipelines>>> {
     static CACHE: OnceLock<Mutex<HashMap<Key, Arc<Pipelines>>>> = OnceLock::new();
     CACHE.get_or_init(|| Mutex::new(HashMap::new()))
+}
+
+fn hash_of(x: impl Hash) -> u64 {
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    x.hash(&mut h);
+    h.finish()
 }
 
 fn pipelines(
@@ -105,14 +117,12 @@ fn pipelines(
     shadows: bool,
     aovs: bool,
 ) -> Result<Arc<Pipelines>, RenderError> {
-    // Keyed by device (the context's address), scene identity and variant.
-    let key = (ctx as *const GpuContext as usize, scene.id(), shadows, aovs);
-    if let Some(p) = cache().lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
-        return Ok(p.clone());
-    }
-    let field = upload_field(ctx, root)?;
+    let field = root.to_wgsl();
     let mut source = kernels_wgsl();
     source.push_str(&field.source);
+    if !field.data.is_empty() {
+        source.push_str(DATA_BINDING);
+    }
     source.push_str(&shading::shading_wgsl(
         &scene.materials,
         &scene.lights,
@@ -122,6 +132,16 @@ fn pipelines(
     if aovs {
         source.push_str(AOVS_WGSL);
     }
+    let data_bits: Vec<u32> = field.data.iter().flatten().map(|x| x.to_bits()).collect();
+    let key = (
+        ctx as *const GpuContext as usize,
+        hash_of(&source),
+        hash_of(&data_bits),
+    );
+    if let Some(p) = cache().lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
+        return Ok(p.clone());
+    }
+    let (_, gpu_field) = upload_field(ctx, &field)?;
     let (render, aov) = ctx.scoped("compiling the SDF shader", || {
         let module = ctx
             .device
@@ -145,7 +165,7 @@ fn pipelines(
     let p = Arc::new(Pipelines {
         render,
         aovs: aov,
-        field,
+        field: gpu_field,
     });
     let mut c = cache().lock().unwrap_or_else(|e| e.into_inner());
     // Scenes are few; a long-running process rendering many would otherwise grow it.
