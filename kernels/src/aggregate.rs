@@ -1,6 +1,10 @@
 //! Weighted aggregation of a pixel's CTSS samples (§3.4, eq. 6), with the
 //! background as a sample of its own.
 
+/// The WGSL mirror of this module (sample_weight and Aggregate (f32 sums, see the file)): same names, the parameter structs of
+/// [`crate::wgsl::PARAMS`]; concatenate after `PARAMS` (see [`crate::wgsl`]).
+pub const WGSL: &str = include_str!("aggregate.wgsl");
+
 use glam::Vec3;
 
 use crate::mask::mask_weight;

@@ -3,6 +3,10 @@
 //! The cone of a pixel, its radius at depth `t`, the cone occlusion `ω` of an SDF
 //! value, the minimum step, and the backtracing of hit positions.
 
+/// The WGSL mirror of this module (cone_radius, cone_occlusion, advance, backtrace_cone_entry, …): same names, the parameter structs of
+/// [`crate::wgsl::PARAMS`]; concatenate after `PARAMS` (see [`crate::wgsl`]).
+pub const WGSL: &str = include_str!("cone.wgsl");
+
 /// Paper's ε for the occlusion thresholds (the authors use 0.01, `render_defs.cginc`).
 pub const OCCLUSION_EPS: f32 = 0.01;
 

@@ -24,6 +24,10 @@
 //! assert!(r.color.x > 0.0 && r.color.x < 1.0, "{:?}", r);
 //! ```
 
+/// The WGSL mirror of this module (ConeStepper and sphere_trace_split): same names, the parameter structs of
+/// [`crate::wgsl::PARAMS`]; concatenate after `PARAMS` (see [`crate::wgsl`]).
+pub const WGSL: &str = include_str!("ctss.wgsl");
+
 use glam::{Vec2, Vec3};
 
 use crate::aggregate::{sample_weight, Aggregate, Weighting};

@@ -51,6 +51,10 @@
 //! The mask's orientation (which bit is where) only has to be the same for all
 //! masks of one pixel: correlation and weights use `&`, `!` and popcount.
 
+/// The WGSL mirror of this module (project_normal, visibility_mask, needs_normal, …): same names, the parameter structs of
+/// [`crate::wgsl::PARAMS`]; concatenate after `PARAMS` (see [`crate::wgsl`]).
+pub const WGSL: &str = include_str!("mask.wgsl");
+
 use glam::{Vec2, Vec3};
 
 /// All 32 cells covered.

@@ -24,7 +24,7 @@
 #![deny(missing_docs)]
 
 pub mod context;
-mod sdf;
+pub mod sdf;
 mod triangles;
 
 use std::sync::Arc;

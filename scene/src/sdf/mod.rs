@@ -55,6 +55,7 @@ mod scatter;
 mod scenes;
 mod shape;
 mod stiff;
+pub mod wgsl;
 
 pub use bounds::Aabb;
 pub use node::{SdfNode, MAX_DEPTH};

@@ -28,13 +28,13 @@ pub const MAX_DEPTH: u32 = 64;
 /// depth and its object count.
 #[derive(Clone, Debug)]
 pub struct SdfNode {
-    op: Op,
-    info: Info,
+    pub(super) op: Op,
+    pub(super) info: Info,
 }
 
 #[derive(Clone, Copy, Debug)]
-struct Info {
-    bounds: Aabb,
+pub(super) struct Info {
+    pub(super) bounds: Aabb,
     exactness: Exactness,
     /// `f ≤` the true distance outside (and `|f| ≤` depth inside).
     conservative: bool,
@@ -45,11 +45,11 @@ struct Info {
     objects: u64,
     max_material: u32,
     /// A material of the subtree, returned where no object decides.
-    material: u32,
+    pub(super) material: u32,
 }
 
 #[derive(Clone, Debug)]
-enum Op {
+pub(super) enum Op {
     Shape {
         shape: Shape,
         material: u32,
@@ -97,28 +97,28 @@ enum Op {
 }
 
 #[derive(Clone, Debug)]
-struct Transform {
+pub(super) struct Transform {
     /// Child space to world: `p = translation + rotation · (scale · q)`.
-    translation: Vec3,
-    rotation: Quat,
-    scale: f32,
-    inv_rotation: Quat,
-    inv_scale: f32,
-    rotated: bool,
-    child: SdfNode,
+    pub(super) translation: Vec3,
+    pub(super) rotation: Quat,
+    pub(super) scale: f32,
+    pub(super) inv_rotation: Quat,
+    pub(super) inv_scale: f32,
+    pub(super) rotated: bool,
+    pub(super) child: SdfNode,
 }
 
 #[derive(Clone, Debug)]
-struct Repeat {
+pub(super) struct Repeat {
     /// Period per axis; 0 = not repeated along that axis.
-    period: Vec3,
+    pub(super) period: Vec3,
     /// Cell index limits (inclusive), ±∞ when unlimited.
-    lo: Vec3,
-    hi: Vec3,
+    pub(super) lo: Vec3,
+    pub(super) hi: Vec3,
     /// Take `min(d, distance to the cell's walls + margin)` (asymmetric child).
-    guard: bool,
-    margin: f32,
-    child: SdfNode,
+    pub(super) guard: bool,
+    pub(super) margin: f32,
+    pub(super) child: SdfNode,
 }
 
 impl Repeat {

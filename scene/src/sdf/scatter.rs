@@ -83,16 +83,16 @@ impl ScatterConfig {
 }
 
 #[derive(Clone, Copy, Debug)]
-struct Instance {
-    template: u32,
+pub(crate) struct Instance {
+    pub(crate) template: u32,
     /// Palette material, or `EMPTY` for the template's own.
-    material: u32,
-    inv_rotation: Quat,
-    offset: Vec3,
-    scale: f32,
-    inv_scale: f32,
+    pub(crate) material: u32,
+    pub(crate) inv_rotation: Quat,
+    pub(crate) offset: Vec3,
+    pub(crate) scale: f32,
+    pub(crate) inv_scale: f32,
     /// Bounding-sphere radius around `offset`.
-    radius: f32,
+    pub(crate) radius: f32,
 }
 
 /// A validated scatter with its per-cell table.
@@ -333,6 +333,23 @@ impl Scatter {
             default_material,
             bounds,
         })
+    }
+
+    pub(crate) fn instances(&self) -> &[Instance] {
+        &self.instances
+    }
+
+    /// `(origin, cell, 1 / cell, lo, hi)` of the grid.
+    pub(crate) fn grid(&self) -> (Vec3, Vec3, Vec3, Vec3, Vec3) {
+        (self.origin, self.cell, self.inv_cell, self.lo, self.hi)
+    }
+
+    pub(crate) fn dims(&self) -> [usize; 3] {
+        self.dims
+    }
+
+    pub(crate) fn margin(&self) -> f32 {
+        self.margin
     }
 
     pub(crate) fn templates(&self) -> &[SdfNode] {

@@ -1,0 +1,172 @@
+//! The scene's materials and lights as WGSL: `material_albedo`,
+//! `material_emission`, `MATERIAL_COUNT` and `shade_lights`, with the same
+//! formulas as `Material::albedo_at` and `Light::incident` and the light loop
+//! of `SdfView::shade` (subcone-cpu).
+
+use std::fmt::Write;
+
+use glam::{Vec2, Vec3};
+use subcone_scene::{Albedo, Light, Material, RenderError};
+
+use crate::context::err;
+
+fn f(x: f32) -> String {
+    if x.is_nan() {
+        "bitcast<f32>(0x7fc00000u)".into()
+    } else if x.is_infinite() {
+        if x > 0.0 {
+            "subcone_inf()".into()
+        } else {
+            "(-subcone_inf())".into()
+        }
+    } else if x.is_sign_negative() {
+        format!("(-{:?}f)", -x)
+    } else {
+        format!("{x:?}f")
+    }
+}
+
+fn v3(v: Vec3) -> String {
+    format!("vec3<f32>({}, {}, {})", f(v.x), f(v.y), f(v.z))
+}
+
+/// Materials and lights as WGSL. Errors on no materials.
+pub(crate) fn shading_wgsl(
+    materials: &[Material],
+    lights: &[Light],
+    shadows: bool,
+) -> Result<String, RenderError> {
+    if materials.is_empty() {
+        return Err(err("the scene has no materials"));
+    }
+    let mut s = format!(
+        "const MATERIAL_COUNT: u32 = {}u;\n\n\
+         // Material::albedo_at's cell: (floor(x / size), floor(z / size)).\n\
+         fn material_cell(p: vec3<f32>, size: f32) -> vec2<i32> {{\n    \
+         return vec2<i32>(i32(floor(p.x / size)), i32(floor(p.z / size)));\n}}\n\n\
+         // Material::albedo_at (SDF scenes have no texture coordinates: uv = 0).\n\
+         fn material_albedo(m: u32, p: vec3<f32>) -> vec3<f32> {{\n    switch m {{\n",
+        materials.len()
+    );
+    for (i, m) in materials.iter().enumerate() {
+        let body = match &m.albedo {
+            Albedo::Solid(c) => format!("return {};", v3(*c)),
+            Albedo::Checker { a, b, size } => {
+                let size = if *size > 0.0 && size.is_finite() {
+                    *size
+                } else {
+                    1.0
+                };
+                format!(
+                    "let c = material_cell(p, {}); if ((c.x + c.y) & 1) == 0 {{ return {}; }} return {};",
+                    f(size),
+                    v3(*a),
+                    v3(*b)
+                )
+            }
+            Albedo::Patches { palette, size } => {
+                if palette.is_empty() {
+                    "return vec3<f32>(0.5);".to_string()
+                } else {
+                    let size = if *size > 0.0 && size.is_finite() {
+                        *size
+                    } else {
+                        1.0
+                    };
+                    let mut b = format!(
+                        "let c = bitcast<vec2<u32>>(material_cell(p, {}));\n            \
+                         var h = (c.x * 0x9E3779B1u) ^ (c.y * 0x85EBCA77u);\n            \
+                         h = (h ^ (h >> 15u)) * 0x2C1B3C6Du;\n            \
+                         switch (h >> 7u) % {}u {{\n",
+                        f(size),
+                        palette.len()
+                    );
+                    for (j, c) in palette.iter().enumerate() {
+                        let _ = writeln!(b, "                case {j}u: {{ return {}; }}", v3(*c));
+                    }
+                    b.push_str(
+                        "                default: { return vec3<f32>(0.5); }\n            }",
+                    );
+                    b
+                }
+            }
+            // Without texture coordinates every point samples uv = (0, 0).
+            Albedo::Texture(t) => format!("return {};", v3(t.sample(Vec2::ZERO))),
+        };
+        let _ = writeln!(s, "        case {i}u: {{\n            {body}\n        }}");
+    }
+    s.push_str("        default: { return vec3<f32>(0.5); }\n    }\n}\n\n");
+    s.push_str("fn material_emission(m: u32) -> vec3<f32> {\n    switch m {\n");
+    for (i, m) in materials.iter().enumerate() {
+        let _ = writeln!(s, "        case {i}u: {{ return {}; }}", v3(m.emission));
+    }
+    s.push_str("        default: { return vec3<f32>(0.0); }\n    }\n}\n\n");
+
+    // Lights: (position or unit direction, kind 0 = point / 1 = directional),
+    // (intensity or irradiance, 0). Directions are normalised here as
+    // Light::incident does (normalize_or_zero); zero ones never light anything.
+    let mut rows = Vec::new();
+    for l in lights {
+        match *l {
+            Light::Point {
+                position,
+                intensity,
+            } => rows.push((position, 0.0, intensity)),
+            Light::Directional {
+                direction,
+                irradiance,
+            } => {
+                let d = direction.normalize_or_zero();
+                if d != Vec3::ZERO {
+                    rows.push((d, 1.0, irradiance));
+                }
+            }
+        }
+    }
+    s.push_str(
+        "// SdfView::shade's light loop: Lambert, hard shadows by sphere tracing.\n\
+         fn shade_lights(p: vec3<f32>, n: vec3<f32>, albedo: vec3<f32>, c: ptr<function, vec3<f32>>, count: ptr<function, u32>) {\n",
+    );
+    if shadows && !rows.is_empty() {
+        let _ = writeln!(
+            s,
+            "    for (var i = 0u; i < {}u; i++) {{\n        \
+             let a = LIGHTS[2u * i];\n        let e = LIGHTS[2u * i + 1u].xyz;\n        \
+             var dir = a.xyz;\n        var dist = subcone_inf();\n        var irr = e;\n        \
+             if a.w == 0.0 {{\n            // Light::incident of a point light.\n            \
+             let to = a.xyz - p;\n            let d2 = dot(to, to);\n            \
+             if !(subcone_is_finite(d2) && d2 > 0.0) {{ continue; }}\n            \
+             dist = sqrt(d2);\n            dir = to / dist;\n            irr = e / d2;\n        }}\n        \
+             let cos = dot(dir, n);\n        \
+             if cos <= 0.0 || shadowed(p, n, dir, dist, count) {{ continue; }}\n        \
+             *c += albedo * 0.31830987f * cos * irr;\n    }}",
+            rows.len()
+        );
+    } else {
+        s.push_str("    // No lights: no shadow rays.\n");
+    }
+    s.push_str("}\n");
+    if shadows && !rows.is_empty() {
+        let _ = writeln!(
+            s,
+            "var<private> LIGHTS: array<vec4<f32>, {}> = array<vec4<f32>, {}>(",
+            2 * rows.len(),
+            2 * rows.len()
+        );
+        for (a, kind, e) in &rows {
+            let _ = writeln!(
+                s,
+                "    vec4<f32>({}, {}, {}, {}), vec4<f32>({}, {}, {}, 0.0),",
+                f(a.x),
+                f(a.y),
+                f(a.z),
+                f(*kind),
+                f(e.x),
+                f(e.y),
+                f(e.z)
+            );
+        }
+        s.push_str(");\n");
+    }
+    Ok(s)
+}
