@@ -424,7 +424,7 @@ impl Bound {
                 });
             let counters = ctx.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("ray counters"),
-                size: 40,
+                size: 48,
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
                 mapped_at_creation: false,
             });
@@ -470,10 +470,19 @@ impl Bound {
         pass.dispatch_workgroups(self.groups.0, self.groups.1, 1);
     }
 
-    /// (primary, geometry, shadow, secondary, shaded).
+    /// (primary, geometry, shadow, secondary, shaded); an error when a
+    /// traversal was cut short (the image would be wrong).
     fn counts(&self, ctx: &GpuContext) -> Result<[u64; 5], RenderError> {
-        let bytes = ctx.read_buffer(&self.counters, 0, 40)?;
+        let bytes = ctx.read_buffer(&self.counters, 0, 48)?;
         let v: &[u32] = bytemuck::cast_slice(&bytes);
+        if v[10] > 0 {
+            return Err(err(format!(
+                "{} BVH traversals stopped before finishing (the driver limits the \
+                 loop iterations of one shader invocation; llvmpipe allows 65 535): \
+                 the frame would be wrong. Use fewer mirror bounces or a smaller mesh",
+                v[10]
+            )));
+        }
         Ok(std::array::from_fn(|k| {
             v[2 * k] as u64 | ((v[2 * k + 1] as u64) << 32)
         }))
@@ -615,7 +624,7 @@ fn supersample(
     let c = bound.counts(ctx)?;
     let mut buffers = fb.stats.clone();
     buffers.push(("sample rows", side as usize * 4));
-    buffers.push(("ray counters", 40));
+    buffers.push(("ray counters", 48));
     frame.stats = FrameStats {
         passes,
         timings,
@@ -801,7 +810,7 @@ fn subpixel(
     frame.color = read_vec4(ctx, fb.buffer("color").expect("allocated above"), n)?;
     let c = bound.counts(ctx)?;
     let mut buffers = fb.stats.clone();
-    buffers.push(("ray counters", 40));
+    buffers.push(("ray counters", 48));
     frame.stats = FrameStats {
         passes,
         timings,
