@@ -810,6 +810,7 @@ fn subpixel(
     frame.color = read_vec4(ctx, fb.buffer("color").expect("allocated above"), n)?;
     let c = bound.counts(ctx)?;
     let mut buffers = fb.stats.clone();
+    buffers.push(("subsample indices", 16));
     buffers.push(("ray counters", 48));
     frame.stats = FrameStats {
         passes,
