@@ -517,3 +517,36 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     eprintln!("{n} weight cases agree");
 }
+
+/// The SRAA kernels' WGSL parses and validates on its own (no GPU needed).
+#[test]
+fn sraa_wgsl_validates() {
+    let source = [subcone_kernels::wgsl::PARAMS, subcone_kernels::sraa::WGSL].concat();
+    let module = naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| panic!("{e}"));
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::empty(),
+    )
+    .validate(&module)
+    .unwrap_or_else(|e| panic!("{e:?}"));
+    for f in [
+        "bilateral_weight",
+        "shadow_gated_weight",
+        "depth_difference",
+        "gaussian",
+        "saturate",
+        "neighbourhood",
+        "reconstruct_layers_begin",
+        "reconstruct_layers_add",
+        "reconstruct_layers_end",
+        "resolve_pixel",
+    ] {
+        assert!(
+            module
+                .functions
+                .iter()
+                .any(|(_, g)| g.name.as_deref() == Some(f)),
+            "{f} missing"
+        );
+    }
+}
