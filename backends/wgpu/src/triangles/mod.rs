@@ -424,7 +424,7 @@ impl Bound {
                 });
             let counters = ctx.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("ray counters"),
-                size: 40,
+                size: 48,
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
                 mapped_at_creation: false,
             });
@@ -470,10 +470,19 @@ impl Bound {
         pass.dispatch_workgroups(self.groups.0, self.groups.1, 1);
     }
 
-    /// (primary, geometry, shadow, secondary, shaded).
+    /// (primary, geometry, shadow, secondary, shaded); an error when a
+    /// traversal was cut short (the image would be wrong).
     fn counts(&self, ctx: &GpuContext) -> Result<[u64; 5], RenderError> {
-        let bytes = ctx.read_buffer(&self.counters, 0, 40)?;
+        let bytes = ctx.read_buffer(&self.counters, 0, 48)?;
         let v: &[u32] = bytemuck::cast_slice(&bytes);
+        if v[10] > 0 {
+            return Err(err(format!(
+                "{} BVH traversals stopped before finishing (the driver limits the \
+                 loop iterations of one shader invocation; llvmpipe allows 65 535): \
+                 the frame would be wrong. Use fewer mirror bounces or a smaller mesh",
+                v[10]
+            )));
+        }
         Ok(std::array::from_fn(|k| {
             v[2 * k] as u64 | ((v[2 * k + 1] as u64) << 32)
         }))
@@ -557,7 +566,8 @@ fn centre_geometry(
     // `color` belongs to supersample_main, which this program does not run.
     let header = fb.declarations()
         + "fn put_aov(j: u32, g: Geometry) { aov[j] = g; }\n"
-        + "var<private> color: array<vec4<f32>, 1>;\n";
+        + "var<private> color: array<vec4<f32>, 1>;\n"
+        + "var<private> sample_row: array<u32, 1>;\n";
     let layout = fb.layout(ctx);
     let source = shader(&header, &[SUPERSAMPLE_WGSL]);
     let mut prog = Program::new(ctx, source, &layout);
@@ -583,18 +593,38 @@ fn supersample(
     let n = s.width as usize * s.height as usize;
     let mut fb = FrameBuffers::default();
     fb.storage(ctx, "color", "color", "array<vec4<f32>>", n as u64 * 16)?;
+    fb.storage(ctx, "sample row", "sample_row", "array<u32>", 4)?;
     let header = fb.declarations() + "fn put_aov(j: u32, g: Geometry) { }\n";
     let layout = fb.layout(ctx);
     let mut prog = Program::new(ctx, shader(&header, &[SUPERSAMPLE_WGSL]), &layout);
     let p = prog.pipeline("supersample_main")?;
     let bound = Bound::new(ctx, sg, uniform, &fb, &layout, s.width, s.height)?;
+    // The grid rows 0..n, copied into `sample_row` before each row's dispatch.
+    let side = uniform.ssaa_side.max(1);
+    let rows: Vec<u32> = (0..side).collect();
+    let rows = ctx.scoped("sample rows", || {
+        use wgpu::util::DeviceExt;
+        ctx.device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("sample rows"),
+                contents: bytemuck::cast_slice(&rows),
+                usage: wgpu::BufferUsages::COPY_SRC,
+            })
+    })?;
+    let row = fb.buffer("sample_row").expect("allocated above");
     let mut timings = Vec::new();
-    ctx.timed_pass("shading", &mut timings, |enc| bound.dispatch(enc, &p))?;
+    ctx.timed_pass("shading", &mut timings, |enc| {
+        for sy in 0..side as u64 {
+            enc.copy_buffer_to_buffer(&rows, 4 * sy, row, 0, 4);
+            bound.dispatch(enc, &p);
+        }
+    })?;
     let mut frame = Frame::new(s.width, s.height);
     frame.color = read_vec4(ctx, fb.buffer("color").expect("allocated above"), n)?;
     let c = bound.counts(ctx)?;
     let mut buffers = fb.stats.clone();
-    buffers.push(("ray counters", 40));
+    buffers.push(("sample rows", side as usize * 4));
+    buffers.push(("ray counters", 48));
     frame.stats = FrameStats {
         passes,
         timings,
@@ -682,6 +712,7 @@ fn subpixel(
             "array<Geometry>",
             n64 * 64,
         )?;
+        fb.storage(ctx, "subsample index", "subsample", "array<u32>", 4)?;
         None
     } else {
         let r = raster::Raster::new(ctx, sg, uniform, s.width, s.height)?;
@@ -743,6 +774,7 @@ fn subpixel(
         );
     } else {
         header += raster::SUB_GEO_ACCESSORS;
+        header += "var<private> subsample: array<u32, 1>;\n";
     }
     let frame_layout = fb.layout(ctx);
     let source = shader(&header, &[SUBPIXEL_WGSL, SRAA_WGSL]);
@@ -756,10 +788,17 @@ fn subpixel(
     let resolve = prog.pipeline("resolve_main")?;
     let bound = Bound::new(ctx, sg, uniform, &fb, &frame_layout, s.width, s.height)?;
 
+    let indices = subsample_indices(ctx)?;
     let mut timings = Vec::new();
     ctx.timed_pass("shading", &mut timings, |enc| bound.dispatch(enc, &shade))?;
     match (&geometry, &raster) {
-        (Some(p), _) => ctx.timed_pass("geometry", &mut timings, |enc| bound.dispatch(enc, p))?,
+        (Some(p), _) => ctx.timed_pass("geometry", &mut timings, |enc| {
+            let k = fb.buffer("subsample").expect("allocated above");
+            for i in 0..4 {
+                enc.copy_buffer_to_buffer(&indices, 4 * i, k, 0, 4);
+                bound.dispatch(enc, p);
+            }
+        })?,
         (None, Some(r)) => ctx.timed_pass("geometry", &mut timings, |enc| r.record(enc))?,
         (None, None) => unreachable!("one of the two is set above"),
     }
@@ -771,7 +810,8 @@ fn subpixel(
     frame.color = read_vec4(ctx, fb.buffer("color").expect("allocated above"), n)?;
     let c = bound.counts(ctx)?;
     let mut buffers = fb.stats.clone();
-    buffers.push(("ray counters", 40));
+    buffers.push(("subsample indices", 16));
+    buffers.push(("ray counters", 48));
     frame.stats = FrameStats {
         passes,
         timings,
@@ -792,6 +832,20 @@ fn subpixel(
 /// Four subsample geometries per pixel.
 #[cfg(test)]
 pub(crate) type SubGeometry = Vec<[Geometry; 4]>;
+
+/// The subsample indices 0..4, copied one at a time into `subsample` before
+/// each of the geometry pass's dispatches.
+fn subsample_indices(ctx: &GpuContext) -> Result<wgpu::Buffer, RenderError> {
+    use wgpu::util::DeviceExt;
+    ctx.scoped("subsample indices", || {
+        ctx.device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("subsample indices"),
+                contents: bytemuck::cast_slice(&[0u32, 1, 2, 3]),
+                usage: wgpu::BufferUsages::COPY_SRC,
+            })
+    })
+}
 
 /// For tests: the four subpixel geometries of every pixel, from the raster
 /// pass and from ray tracing (`geometry_main`), `[pixel][subsample]`.
@@ -829,6 +883,7 @@ pub(crate) fn subpixel_geometry_both(
         "array<Geometry>",
         n as u64 * 64,
     )?;
+    fb.storage(ctx, "subsample index", "subsample", "array<u32>", 4)?;
     let mut header = fb.declarations();
     header += "const NL: u32 = 1u;\nconst LAYER_LIGHTS: u32 = 0u;\nconst SINGLE: bool = true;\n\
                const SECONDARY_LAYERS: bool = false;\nconst SHADOWS: bool = false;\n\
@@ -848,7 +903,14 @@ pub(crate) fn subpixel_geometry_both(
     let bound = Bound::new(ctx, &sg, &uniform, &fb, &layout, width, height)?;
     let mut t = Vec::new();
     ctx.timed_pass("shading", &mut t, |enc| bound.dispatch(enc, &shade))?;
-    ctx.timed_pass("geometry", &mut t, |enc| bound.dispatch(enc, &geometry))?;
+    let indices = subsample_indices(ctx)?;
+    ctx.timed_pass("geometry", &mut t, |enc| {
+        let k = fb.buffer("subsample").expect("allocated");
+        for i in 0..4 {
+            enc.copy_buffer_to_buffer(&indices, 4 * i, k, 0, 4);
+            bound.dispatch(enc, &geometry);
+        }
+    })?;
     let traced = read_geometry(ctx, fb.buffer("sub_geo_buf").expect("allocated"), 4 * n)?;
     let _ = passes;
     // Rasterised.

@@ -132,47 +132,48 @@ fn shade_main(@builtin(global_invocation_id) id: vec3<u32>) {
     counts_flush(c);
 }
 
-// Pass "geometry" (the paper's pass 1, ray traced): the other three subsamples,
-// geometry only; their shadow states (subpixel shadow rays) and, on mirrors,
-// the geometry and shadow states of their reflection rays. The shaded
-// subsample's are copied, not traced again.
-fn geometry_pixel(x: u32, y: u32, j: u32, c: ptr<function, Counts>) {
-    for (var k = 0u; k < 4u; k++) {
-        if k == SHADED_SUBSAMPLE {
-            put_sub_geo(j, k, geo[j]);
-            put_sub_shadow(j, k, get_shadow(j));
-            put_sub_geo2(j, k, get_geo2(j));
-            put_sub_shadow2(j, k, get_shadow2(j));
-            continue;
-        }
-        put_sub_shadow(j, k, 0u);
-        put_sub_geo2(j, k, no_secondary());
-        put_sub_shadow2(j, k, 0u);
-        let p = pixel_centre(x, y) + subpixel_offset(k);
-        let d = camera_ray(p);
-        (*c).geometry += 1u;
-        let sf = intersect(frame.cam_pos, d, 0.0);
-        put_sub_geo(j, k, primary_geometry(sf));
-        if !sf.hit {
-            continue;
-        }
-        if HAS_SUB_SHADOW {
-            put_sub_shadow(j, k, shadow_states(sf, c));
-        }
-        if HAS_SUB_GEO2 {
-            let mirror = materials[sf.material].mirror;
-            if mirror > 0.0 && frame.reflection_depth > 0u {
-                (*c).geometry += 1u;
-                let rd = reflect_dir(d, sf.n);
-                let s2 = intersect(sf.p + sf.ng * frame.eps, rd, 0.0);
-                if !s2.hit {
-                    put_sub_geo2(j, k, geometry_miss());
-                } else {
-                    if HAS_SUB_SHADOW2 {
-                        put_sub_shadow2(j, k, shadow_states(s2, c));
-                    }
-                    put_sub_geo2(j, k, Geometry(s2.n, sf.t + s2.t));
+// Pass "geometry" (the paper's pass 1, ray traced): subsample `k` of every
+// pixel, one dispatch per subsample (`subsample[0]`, which bounds the loop
+// iterations of one invocation: llvmpipe stops a shader invocation's loops
+// after 65 535 iterations in total). The three subsamples other than the shaded
+// one are traced for geometry only, with their shadow states (subpixel shadow
+// rays) and, on mirrors, the geometry and shadow states of their reflection
+// rays. The shaded subsample's are copied, not traced again.
+fn geometry_pixel(x: u32, y: u32, j: u32, k: u32, c: ptr<function, Counts>) {
+    if k == SHADED_SUBSAMPLE {
+        put_sub_geo(j, k, geo[j]);
+        put_sub_shadow(j, k, get_shadow(j));
+        put_sub_geo2(j, k, get_geo2(j));
+        put_sub_shadow2(j, k, get_shadow2(j));
+        return;
+    }
+    put_sub_shadow(j, k, 0u);
+    put_sub_geo2(j, k, no_secondary());
+    put_sub_shadow2(j, k, 0u);
+    let p = pixel_centre(x, y) + subpixel_offset(k);
+    let d = camera_ray(p);
+    (*c).geometry += 1u;
+    let sf = intersect(frame.cam_pos, d, 0.0);
+    put_sub_geo(j, k, primary_geometry(sf));
+    if !sf.hit {
+        return;
+    }
+    if HAS_SUB_SHADOW {
+        put_sub_shadow(j, k, shadow_states(sf, c));
+    }
+    if HAS_SUB_GEO2 {
+        let mirror = materials[sf.material].mirror;
+        if mirror > 0.0 && frame.reflection_depth > 0u {
+            (*c).geometry += 1u;
+            let rd = reflect_dir(d, sf.n);
+            let s2 = intersect(sf.p + sf.ng * frame.eps, rd, 0.0);
+            if !s2.hit {
+                put_sub_geo2(j, k, geometry_miss());
+            } else {
+                if HAS_SUB_SHADOW2 {
+                    put_sub_shadow2(j, k, shadow_states(s2, c));
                 }
+                put_sub_geo2(j, k, Geometry(s2.n, sf.t + s2.t));
             }
         }
     }
@@ -184,6 +185,6 @@ fn geometry_main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     var c = counts_zero();
-    geometry_pixel(id.x, id.y, id.y * frame.width + id.x, &c);
+    geometry_pixel(id.x, id.y, id.y * frame.width + id.x, min(subsample[0], 3u), &c);
     counts_flush(c);
 }

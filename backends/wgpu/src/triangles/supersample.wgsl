@@ -3,7 +3,12 @@
 // frame bindings (`color`, optional `aov`).
 
 // render.rs `supersample`: a regular n×n grid of rays through the pixel
-// (n = 1 for NoAA), Whitted radiance, box filter.
+// (n = 1 for NoAA), Whitted radiance, box filter. One dispatch per row `sy`
+// of the grid (`sample_row[0]`), accumulating into `color` in the CPU's order
+// (rows, then columns); the last row divides by n². Splitting bounds the loop
+// iterations of one invocation: llvmpipe (lavapipe) stops any loop of a shader
+// invocation after 65 535 iterations in total, which 256 samples of BVH
+// traversal exceed.
 @compute @workgroup_size(8, 8)
 fn supersample_main(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= frame.width || id.y >= frame.height {
@@ -12,17 +17,23 @@ fn supersample_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let j = id.y * frame.width + id.x;
     var c = counts_zero();
     let n = max(frame.ssaa_side, 1u);
+    let sy = sample_row[0];
     var sum = vec3<f32>(0.0);
-    for (var sy = 0u; sy < n; sy++) {
-        for (var sx = 0u; sx < n; sx++) {
-            let off = vec2<f32>((f32(sx) + 0.5) / f32(n), (f32(sy) + 0.5) / f32(n));
-            let p = vec2<f32>(f32(id.x), f32(id.y)) + off;
-            let d = camera_ray(p);
-            c.primary += 1u;
-            sum = sum + radiance(frame.cam_pos, d, 0u, &c);
-        }
+    if sy > 0u {
+        sum = color[j].xyz;
     }
-    color[j] = vec4<f32>(sum / f32(n * n), 0.0);
+    for (var sx = 0u; sx < n; sx++) {
+        let off = vec2<f32>((f32(sx) + 0.5) / f32(n), (f32(sy) + 0.5) / f32(n));
+        let p = vec2<f32>(f32(id.x), f32(id.y)) + off;
+        let d = camera_ray(p);
+        c.primary += 1u;
+        sum = sum + radiance(frame.cam_pos, d, 0u, &c);
+    }
+    if sy + 1u >= n {
+        color[j] = vec4<f32>(sum / f32(n * n), 0.0);
+    } else {
+        color[j] = vec4<f32>(sum, 0.0);
+    }
     counts_flush(c);
 }
 

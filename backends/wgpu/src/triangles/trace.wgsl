@@ -61,8 +61,9 @@ struct LightGpu {
 @group(0) @binding(4) var<storage, read> materials: array<MaterialGpu>;
 @group(0) @binding(5) var<storage, read> texels: array<vec4<f32>>;
 @group(0) @binding(6) var<storage, read> lights: array<LightGpu>;
-// Ray counters, 64-bit as (lo, hi) pairs: primary, geometry, shadow, secondary, shaded.
-@group(0) @binding(7) var<storage, read_write> counters: array<atomic<u32>, 10>;
+// Ray counters, 64-bit as (lo, hi) pairs: primary, geometry, shadow, secondary,
+// shaded; then [10] traversals that ended before their stack emptied.
+@group(0) @binding(7) var<storage, read_write> counters: array<atomic<u32>, 12>;
 
 const STACK_SIZE: u32 = __STACK_SIZE__u;
 const MAX_LIGHTS: u32 = 8u;
@@ -91,6 +92,13 @@ fn counter_add(k: u32, v: u32) {
     if old > 0xffffffffu - v {
         atomicAdd(&counters[2u * k + 1u], 1u);
     }
+}
+
+// A traversal's loop ended without finishing: its iteration bound, or a
+// driver's loop limiter (llvmpipe stops all loops of an invocation after
+// 65 535 iterations in total). The frame is then refused, not returned wrong.
+fn traversal_cut() {
+    atomicAdd(&counters[10], 1u);
 }
 
 fn counts_flush(c: Counts) {
@@ -170,6 +178,7 @@ fn closest(o: vec3<f32>, d: vec3<f32>, tmin: f32) -> Hit {
     var stack: array<u32, STACK_SIZE>;
     var sp = 0u;
     var node = 0u;
+    var done = false;
     if intersect_box(o, inv_d, 0u, tmin, best.t) == inf() {
         return best;
     }
@@ -222,8 +231,12 @@ fn closest(o: vec3<f32>, d: vec3<f32>, tmin: f32) -> Hit {
             }
         }
         if !found {
+            done = true;
             break;
         }
+    }
+    if !done {
+        traversal_cut();
     }
     return best;
 }
@@ -235,6 +248,7 @@ fn occluded(o: vec3<f32>, d: vec3<f32>, tmin: f32, tmax: f32) -> bool {
     var stack: array<u32, STACK_SIZE>;
     var sp = 0u;
     var node = 0u;
+    var done = false;
     if intersect_box(o, inv_d, 0u, tmin, tmax) == inf() {
         return false;
     }
@@ -270,10 +284,14 @@ fn occluded(o: vec3<f32>, d: vec3<f32>, tmin: f32, tmax: f32) -> bool {
             }
         }
         if sp == 0u {
+            done = true;
             break;
         }
         sp--;
         node = stack[sp];
+    }
+    if !done {
+        traversal_cut();
     }
     return false;
 }
