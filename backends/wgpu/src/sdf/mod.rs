@@ -3,7 +3,7 @@
 //! (`subcone_cpu::sphere::SdfView`).
 //!
 //! The scene's tree is compiled to WGSL ([`SdfNode::to_wgsl`]), its materials
-//! and lights to WGSL constants ([`shading`]), and concatenated with the
+//! and lights to WGSL constants (`shading.rs`), and concatenated with the
 //! kernels' WGSL (`cone`, `mask`, `aggregate`, `ctss`: Algorithm 1 of CTSS,
 //! eq. 3–10) and this module's entry points (`trace.wgsl`): one invocation per
 //! pixel traces its `side × side` samples exactly as the CPU does (same rays,
