@@ -348,3 +348,227 @@ fn bad_input_is_an_error() {
         }
     }
 }
+
+/// Run `body` (WGSL statements reading `x: vec4<f32>`, writing `y: vec4<u32>`)
+/// for every input on the GPU, after PARAMS and the kernels' WGSL.
+fn run_kernels(gpu: &WgpuBackend, body: &str, inputs: &[[f32; 4]]) -> Vec<[u32; 4]> {
+    use wgpu::util::DeviceExt;
+    let ctx = gpu.context();
+    let source = [
+        subcone_kernels::wgsl::PARAMS,
+        subcone_kernels::cone::WGSL,
+        subcone_kernels::mask::WGSL,
+        subcone_kernels::aggregate::WGSL,
+        subcone_kernels::ctss::WGSL,
+        "fn ctss_field(p: vec3<f32>) -> vec2<f32> { return vec2<f32>(length(p) - 1.0); }\n",
+        "@group(0) @binding(0) var<storage, read> xs: array<vec4<f32>>;\n",
+        "@group(0) @binding(1) var<storage, read_write> ys: array<vec4<u32>>;\n",
+        "@compute @workgroup_size(64) fn main(@builtin(global_invocation_id) gid: vec3<u32>) {\n",
+        "    if gid.x >= arrayLength(&xs) { return; }\n    let x = xs[gid.x];\n    var y = vec4<u32>(0u);\n",
+        body,
+        "\n    ys[gid.x] = y;\n}\n",
+    ]
+    .concat();
+    let n = inputs.len() as u64;
+    let (pipeline, xs, ys) = ctx
+        .scoped("kernel test", || {
+            let module = ctx
+                .device
+                .create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: None,
+                    source: wgpu::ShaderSource::Wgsl(source.into()),
+                });
+            let pipeline = ctx
+                .device
+                .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: None,
+                    layout: None,
+                    module: &module,
+                    entry_point: Some("main"),
+                    compilation_options: Default::default(),
+                    cache: None,
+                });
+            let xs = ctx
+                .device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: None,
+                    contents: bytemuck::cast_slice(inputs),
+                    usage: wgpu::BufferUsages::STORAGE,
+                });
+            let ys = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: None,
+                size: n * 16,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            });
+            (pipeline, xs, ys)
+        })
+        .unwrap();
+    let group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: None,
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: xs.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: ys.as_entire_binding(),
+            },
+        ],
+    });
+    let mut t = Vec::new();
+    ctx.timed_pass("kernel test", &mut t, |enc| {
+        let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor::default());
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &group, &[]);
+        pass.dispatch_workgroups(n.div_ceil(64) as u32, 1, 1);
+    })
+    .unwrap();
+    bytemuck::pod_collect_to_vec(&ctx.read_buffer(&ys, 0, n * 16).unwrap())
+}
+
+/// Awkward f32s: signed zeros, infinities, NaN, tiny and huge values, and
+/// ordinary ones.
+fn awkward(i: usize, unit: &mut impl FnMut() -> f32) -> f32 {
+    const SPECIAL: [f32; 10] = [
+        0.0,
+        -0.0,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        f32::NAN,
+        1e-30,
+        -1e30,
+        1.0,
+        0.5,
+        f32::MAX,
+    ];
+    if i % 5 == 0 {
+        SPECIAL[(unit() * 10.0) as usize % 10]
+    } else {
+        (unit() * 2.0 - 1.0) * 10f32.powf(unit() * 6.0 - 3.0)
+    }
+}
+
+/// Floats equal, or both NaN, or within `ulps` units in the last place.
+fn close_bits(a: f32, b: u32, ulps: u32) -> bool {
+    let b = f32::from_bits(b);
+    if a.is_nan() || b.is_nan() {
+        return a.is_nan() && b.is_nan();
+    }
+    if a == b {
+        return true;
+    }
+    a.is_finite()
+        && b.is_finite()
+        && a.signum() == b.signum()
+        && a.to_bits().abs_diff(b.to_bits()) <= ulps
+}
+
+/// The kernels' WGSL mirrors compute what the Rust functions compute, on
+/// ordinary and awkward inputs (NaN, ±∞, ±0, extremes): cone_occlusion,
+/// advance, backtrace_cone_entry, backtrace_hard_hit within 2 ulps (WGSL
+/// allows 2.5 ulps for division); visibility_mask, needs_normal and
+/// sample_weight exactly on ≥ 99.9 % of random half-planes (a cell centre
+/// within an ulp of the line may flip).
+#[test]
+fn kernel_wgsl_mirrors_the_rust_kernels() {
+    use glam::Vec2;
+    use subcone_kernels::aggregate::{sample_weight, Weighting};
+    use subcone_kernels::cone::{
+        advance, backtrace_cone_entry, backtrace_hard_hit, cone_occlusion,
+    };
+    use subcone_kernels::mask::{needs_normal, visibility_mask, MaskPlacement};
+    let Some(gpu) = gpu() else { return };
+    let mut state = 0x9e37_79b9u32;
+    let mut unit = move || {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        (state >> 8) as f32 / (1u32 << 24) as f32
+    };
+    let inputs: Vec<[f32; 4]> = (0..20_000)
+        .map(|i| {
+            [
+                awkward(i, &mut unit),
+                awkward(i + 1, &mut unit),
+                awkward(i + 2, &mut unit).abs(),
+                awkward(i + 3, &mut unit),
+            ]
+        })
+        .collect();
+    let got = run_kernels(
+        &gpu,
+        "y = vec4<u32>(bitcast<u32>(cone_occlusion(x.x, x.z)), bitcast<u32>(advance(x.x, x.y, 0.5, x.z)), \
+         bitcast<u32>(backtrace_cone_entry(x.x, x.z)), bitcast<u32>(backtrace_hard_hit(x.x, x.y, x.w)));",
+        &inputs,
+    );
+    for (x, y) in inputs.iter().zip(&got) {
+        let want = [
+            cone_occlusion(x[0], x[2]),
+            advance(x[0], x[1], 0.5, x[2]),
+            backtrace_cone_entry(x[0], x[2]),
+            backtrace_hard_hit(x[0], x[1], x[3]),
+        ];
+        for k in 0..4 {
+            // Subnormal results may be flushed to zero on GPUs.
+            let flushed =
+                want[k] != 0.0 && want[k].abs() < f32::MIN_POSITIVE && f32::from_bits(y[k]) == 0.0;
+            assert!(
+                close_bits(want[k], y[k], 2) || flushed,
+                "function {k} at {x:?}: cpu {} gpu {}",
+                want[k],
+                f32::from_bits(y[k])
+            );
+        }
+    }
+
+    // Masks: occlusion in [−0.2, 1.2] (and awkward), unit and non-unit normals.
+    let inputs: Vec<[f32; 4]> = (0..20_000)
+        .map(|i| {
+            let occ = if i % 50 == 0 {
+                awkward(i, &mut unit)
+            } else {
+                unit() * 1.4 - 0.2
+            };
+            let a = unit() * std::f32::consts::TAU;
+            let len = if i % 3 == 0 { unit() } else { 1.0 };
+            [occ, a.cos() * len, a.sin() * len, (i % 3) as f32]
+        })
+        .collect();
+    let got = run_kernels(
+        &gpu,
+        "let m = visibility_mask(x.x, x.yz, u32(x.w));\n    \
+         y = vec4<u32>(m, select(0u, 1u, needs_normal(x.x, u32(x.w))), \
+         bitcast<u32>(sample_weight(m, WEIGHTING_VISIBILITY, 0.0)), bitcast<u32>(sample_weight(m, WEIGHTING_VISIBILITY, 0.01)));",
+        &inputs,
+    );
+    let mut differ = 0;
+    for (x, y) in inputs.iter().zip(&got) {
+        let placement = MaskPlacement::from_u32(x[3] as u32);
+        let m = visibility_mask(x[0], Vec2::new(x[1], x[2]), placement);
+        if m != y[0] {
+            differ += 1;
+            assert!(
+                (m ^ y[0]).count_ones() <= 6,
+                "mask at {x:?}: {m:#x} vs {:#x}",
+                y[0]
+            );
+            continue;
+        }
+        assert_eq!(needs_normal(x[0], placement), y[1] == 1, "{x:?}");
+        assert_eq!(
+            sample_weight(m, Weighting::Visibility, 0.0).to_bits(),
+            y[2],
+            "{x:?}"
+        );
+        assert_eq!(
+            sample_weight(m, Weighting::Visibility, 0.01).to_bits(),
+            y[3],
+            "{x:?}"
+        );
+    }
+    assert!(differ * 1000 <= inputs.len(), "{differ} masks differ");
+    eprintln!("{differ} of {} masks differ", inputs.len());
+}

@@ -3,7 +3,7 @@
 //! (`subcone_cpu::sphere::SdfView`).
 //!
 //! The scene's tree is compiled to WGSL ([`SdfNode::to_wgsl`]), its materials
-//! and lights to WGSL constants ([`shading`]), and concatenated with the
+//! and lights to WGSL constants (`shading.rs`), and concatenated with the
 //! kernels' WGSL (`cone`, `mask`, `aggregate`, `ctss`: Algorithm 1 of CTSS,
 //! eq. 3–10) and this module's entry points (`trace.wgsl`): one invocation per
 //! pixel traces its `side × side` samples exactly as the CPU does (same rays,
@@ -16,8 +16,10 @@
 //! f64); they can flip a hit near a threshold, so pixel agreement is
 //! statistical, not bitwise (see `tests/sdf.rs`).
 
+mod aovs;
 mod field;
 mod shading;
+mod trace;
 
 use std::collections::HashMap;
 use std::hash::{Hash, Hasher};
@@ -265,61 +267,13 @@ pub(crate) fn render(
     let pipes = pipelines(ctx, scene, &g.root, shadows, settings.aovs)?;
 
     let frame_words = frame_uniform(camera, settings, scene, max_distance, max_steps, side, cone);
-    let (frame_buf, params_buf, color, counts) = ctx.scoped("SDF frame buffers", || {
-        let uniform = |label, contents: &[u8]| {
-            ctx.device
-                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some(label),
-                    contents,
-                    usage: wgpu::BufferUsages::UNIFORM,
-                })
-        };
-        let storage = |label| {
-            ctx.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: px_bytes,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-                mapped_at_creation: false,
+    let frame_buf = ctx.scoped("SDF frame uniform", || {
+        ctx.device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("sdf frame"),
+                contents: bytemuck::cast_slice(&frame_words),
+                usage: wgpu::BufferUsages::UNIFORM,
             })
-        };
-        (
-            uniform("sdf frame", bytemuck::cast_slice(&frame_words)),
-            uniform("ctss params", bytemuck::bytes_of(&params)),
-            storage("color"),
-            storage("counts"),
-        )
-    })?;
-    let bind = |pipeline: &wgpu::ComputePipeline, extra: &[(u32, &wgpu::Buffer)]| {
-        let mut entries = vec![
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: frame_buf.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: params_buf.as_entire_binding(),
-            },
-        ];
-        for (b, buf) in extra {
-            entries.push(wgpu::BindGroupEntry {
-                binding: *b,
-                resource: buf.as_entire_binding(),
-            });
-        }
-        if let Some(d) = &pipes.field.data {
-            entries.push(wgpu::BindGroupEntry {
-                binding: 4,
-                resource: d.as_entire_binding(),
-            });
-        }
-        ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("sdf"),
-            layout: &pipeline.get_bind_group_layout(0),
-            entries: &entries,
-        })
-    };
-    let group = ctx.scoped("SDF bind group", || {
-        bind(&pipes.render, &[(2, &color), (3, &counts)])
     })?;
     let name = if cone {
         "cone tracing"
@@ -327,19 +281,17 @@ pub(crate) fn render(
         "sphere tracing"
     };
     let mut timings = Vec::new();
-    ctx.timed_pass(name, &mut timings, |enc| {
-        let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some(name),
-            timestamp_writes: None,
-        });
-        pass.set_pipeline(&pipes.render);
-        pass.set_bind_group(0, &group, &[]);
-        pass.dispatch_workgroups(groups.0, groups.1, 1);
-    })?;
-    let color_px: Vec<[f32; 4]> =
-        bytemuck::pod_collect_to_vec(&ctx.read_buffer(&color, 0, px_bytes)?);
-    let count_px: Vec<[u32; 4]> =
-        bytemuck::pod_collect_to_vec(&ctx.read_buffer(&counts, 0, px_bytes)?);
+    let (color_px, count_px) = trace::run(
+        ctx,
+        &pipes.render,
+        pipes.field.data.as_ref(),
+        &frame_buf,
+        &params,
+        groups,
+        px_bytes,
+        name,
+        &mut timings,
+    )?;
 
     let mut frame = Frame::new(w, h);
     for (c, p) in frame.color.iter_mut().zip(&color_px) {
@@ -372,60 +324,15 @@ pub(crate) fn render(
             max_distance,
             max_steps,
         );
-        let (plain_buf, aov) = ctx.scoped("SDF AOV buffers", || {
-            (
-                ctx.device
-                    .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some("aov params"),
-                        contents: bytemuck::bytes_of(&plain),
-                        usage: wgpu::BufferUsages::UNIFORM,
-                    }),
-                ctx.device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("aovs"),
-                    size: px_bytes,
-                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-                    mapped_at_creation: false,
-                }),
-            )
-        })?;
-        let aov_group = ctx.scoped("SDF AOV bind group", || {
-            let mut entries = vec![
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: frame_buf.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 5,
-                    resource: plain_buf.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 6,
-                    resource: aov.as_entire_binding(),
-                },
-            ];
-            if let Some(d) = &pipes.field.data {
-                entries.push(wgpu::BindGroupEntry {
-                    binding: 4,
-                    resource: d.as_entire_binding(),
-                });
-            }
-            ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("sdf aovs"),
-                layout: &aov_pipe.get_bind_group_layout(0),
-                entries: &entries,
-            })
-        })?;
-        let mut untimed = Vec::new();
-        ctx.timed_pass("aovs", &mut untimed, |enc| {
-            let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("aovs"),
-                timestamp_writes: None,
-            });
-            pass.set_pipeline(aov_pipe);
-            pass.set_bind_group(0, &aov_group, &[]);
-            pass.dispatch_workgroups(groups.0, groups.1, 1);
-        })?;
-        let g: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&ctx.read_buffer(&aov, 0, px_bytes)?);
+        let g = aovs::run(
+            ctx,
+            aov_pipe,
+            pipes.field.data.as_ref(),
+            &frame_buf,
+            &plain,
+            groups,
+            px_bytes,
+        )?;
         frame.depth = Some(g.iter().map(|a| a[3]).collect());
         frame.normal = Some(
             g.iter()

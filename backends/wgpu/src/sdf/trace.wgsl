@@ -142,6 +142,9 @@ fn noaa_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: p
     return frame.background;
 }
 
+// Samples shaded together in ctss_sample (the authors' CTSS_NUM_SAMPLES).
+const PENDING: u32 = 8u;
+
 // SdfView::ctss: one cone-traced sample (Algorithm 1 through ConeStepper).
 fn ctss_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: ptr<function, u32>, shadow: ptr<function, u32>) -> vec3<f32> {
     let axes = cross_section_frame(d, frame.up);
@@ -149,36 +152,56 @@ fn ctss_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: p
     var agg = aggregate_new();
     let placement = ctss_placement(ctss);
     // advance_split evaluates at most max_steps times and stops within two
-    // more calls: the bound never cuts a trace short.
+    // more calls: the bounds never cut a trace short.
     let budget = min(ctss.max_steps, 0x7fffffffu) + 4u;
-    for (var i = 0u; i < budget; i++) {
-        let f = scene_sdf_split(o + st.t * d);
-        let ev = cone_stepper_advance_split(&st, f.y, f.x);
-        if ev.kind == EVENT_STOP {
-            break;
-        }
-        if ev.kind == EVENT_SAMPLE {
-            let s = ev.sample;
-            // Shading normal at the sample point; the mask's normal where the
-            // group's peak occlusion was measured, only when the mask needs it.
-            var n = vec3<f32>(0.0);
-            var nm = vec3<f32>(0.0);
-            for (var j = 0u; j < 2u; j++) {
-                let tt = select(s.t, s.t_occlusion, j == 1u);
-                if j == 1u && !(s.t_occlusion != s.t && needs_normal(s.occlusion, placement)) {
-                    nm = n;
+    // Samples wait here, in order, and are shaded together when the march
+    // ends or PENDING of them wait: the lanes of a SIMD group march together
+    // and shade together, instead of idling while one lane traces shadows.
+    // Eq. 6 adds them in the same order as the CPU, so the result is the same.
+    var pending: array<vec4<f32>, PENDING>;
+    var pending_w: array<f32, PENDING>;
+    var done = false;
+    for (var round_i = 0u; round_i < budget && !done; round_i++) {
+        var k = 0u;
+        for (var i = 0u; i < budget; i++) {
+            let f = scene_sdf_split(o + st.t * d);
+            let ev = cone_stepper_advance_split(&st, f.y, f.x);
+            if ev.kind == EVENT_STOP {
+                done = true;
+                break;
+            }
+            if ev.kind == EVENT_SAMPLE {
+                let s = ev.sample;
+                // Shading normal at the sample point; the mask's normal where
+                // the group's peak occlusion was measured, only when the mask
+                // needs it.
+                var n = vec3<f32>(0.0);
+                var nm = vec3<f32>(0.0);
+                for (var j = 0u; j < 2u; j++) {
+                    let tt = select(s.t, s.t_occlusion, j == 1u);
+                    if j == 1u && !(s.t_occlusion != s.t && needs_normal(s.occlusion, placement)) {
+                        nm = n;
+                        break;
+                    }
+                    let nn = normal_at(o + tt * d, tt, ctss.tan_theta);
+                    if j == 0u {
+                        n = nn;
+                    } else {
+                        nm = nn;
+                    }
+                }
+                let rec = cone_stepper_record(&st, s, project_normal(nm, axes[0], axes[1]));
+                pending[k] = vec4<f32>(n, s.t);
+                pending_w[k] = bitcast<f32>(rec.y);
+                k += 1u;
+                if k == PENDING {
                     break;
                 }
-                let nn = normal_at(o + tt * d, tt, ctss.tan_theta);
-                if j == 0u {
-                    n = nn;
-                } else {
-                    nm = nn;
-                }
             }
-            let rec = cone_stepper_record(&st, s, project_normal(nm, axes[0], axes[1]));
-            let q = o + s.t * d;
-            aggregate_add(&agg, bitcast<f32>(rec.y), shade(q, n, d, shadow));
+        }
+        for (var j = 0u; j < k; j++) {
+            let q = o + pending[j].w * d;
+            aggregate_add(&agg, pending_w[j], shade(q, pending[j].xyz, d, shadow));
         }
     }
     *steps += st.steps;
