@@ -127,17 +127,31 @@ fn guarded<T>(path: &Path, f: impl FnOnce() -> Result<T, SceneError>) -> Result<
 /// [`SceneError::Load`] for a file that cannot be read or parsed or that has no
 /// triangle, [`SceneError::Empty`] when every triangle was dropped.
 pub fn load_mesh_file(path: &Path) -> Result<(TriangleMesh, Vec<Material>, Sanitized), SceneError> {
-    let format = format_of(path)?;
+    format_of(path)?;
     let meta = std::fs::metadata(path).map_err(|e| load_err(path, e.to_string()))?;
     if !meta.is_file() {
         return Err(load_err(path, "not a regular file"));
     }
-    if meta.len() == 0 {
+    let bytes = std::fs::read(path).map_err(|e| load_err(path, e.to_string()))?;
+    load_mesh_bytes(path, &bytes)
+}
+
+/// [`load_mesh_file`] on the contents of a file already in memory.
+///
+/// `path` is not read: its extension names the format and its directory is
+/// where an OBJ's `mtllib` and a `.gltf`'s relative buffer URIs are looked up.
+/// Same results and errors as [`load_mesh_file`] on a file holding `bytes`.
+pub fn load_mesh_bytes(
+    path: &Path,
+    bytes: &[u8],
+) -> Result<(TriangleMesh, Vec<Material>, Sanitized), SceneError> {
+    let format = format_of(path)?;
+    if bytes.is_empty() {
         return Err(load_err(path, "the file is empty"));
     }
     let (mut mesh, materials) = guarded(path, || match format {
-        Format::Obj => read_obj(path),
-        Format::Gltf => read_gltf(path),
+        Format::Obj => read_obj(path, bytes),
+        Format::Gltf => read_gltf(path, bytes),
     })?;
     if mesh.is_empty() {
         return Err(load_err(
@@ -175,14 +189,18 @@ fn tobj_material(m: &tobj::Material) -> Material {
     mat
 }
 
-fn read_obj(path: &Path) -> Result<(TriangleMesh, Vec<Material>), SceneError> {
+fn read_obj(path: &Path, bytes: &[u8]) -> Result<(TriangleMesh, Vec<Material>), SceneError> {
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: false,
         ignore_points: true,
         ignore_lines: true,
     };
-    let (models, mtl) = tobj::load_obj(path, &options).map_err(|e| match e {
+    // As `tobj::load_obj` does: the MTL file is looked up beside the OBJ.
+    let base = path.parent().unwrap_or(Path::new(""));
+    let mut reader = bytes;
+    let loaded = tobj::load_obj_buf(&mut reader, &options, |mtl| tobj::load_mtl(base.join(mtl)));
+    let (models, mtl) = loaded.map_err(|e| match e {
         tobj::LoadError::OpenFileFailed => load_err(path, "cannot open the file"),
         tobj::LoadError::ReadError => {
             load_err(path, "read error (is it a text OBJ file in UTF-8?)")
@@ -257,8 +275,7 @@ fn read_obj(path: &Path) -> Result<(TriangleMesh, Vec<Material>), SceneError> {
 /// come before `gltf`'s own: its GLB reader trusts the declared length (it
 /// allocates it, and underflows below 12), and its validation indexes the
 /// accessor a POSITION attribute names without a bounds check.
-fn parse_gltf(path: &Path) -> Result<(gltf::Document, Option<Vec<u8>>), SceneError> {
-    let bytes = std::fs::read(path).map_err(|e| load_err(path, e.to_string()))?;
+fn parse_gltf(path: &Path, bytes: &[u8]) -> Result<(gltf::Document, Option<Vec<u8>>), SceneError> {
     let (json, blob): (&[u8], Option<Vec<u8>>);
     let glb;
     if bytes.starts_with(b"glTF") {
@@ -278,12 +295,12 @@ fn parse_gltf(path: &Path) -> Result<(gltf::Document, Option<Vec<u8>>), SceneErr
             }
             Some(_) => {}
         }
-        glb = gltf::binary::Glb::from_slice(&bytes)
+        glb = gltf::binary::Glb::from_slice(bytes)
             .map_err(|e| load_err(path, format!("malformed GLB: {e}")))?;
         json = &glb.json;
         blob = glb.bin.as_ref().map(|b| b.to_vec());
     } else {
-        json = &bytes;
+        json = bytes;
         blob = None;
     }
     let root: gltf::json::Root = gltf::json::deserialize::from_slice(json)
@@ -311,8 +328,8 @@ fn parse_gltf(path: &Path) -> Result<(gltf::Document, Option<Vec<u8>>), SceneErr
     Ok((doc, blob))
 }
 
-fn read_gltf(path: &Path) -> Result<(TriangleMesh, Vec<Material>), SceneError> {
-    let (doc, blob) = parse_gltf(path)?;
+fn read_gltf(path: &Path, bytes: &[u8]) -> Result<(TriangleMesh, Vec<Material>), SceneError> {
+    let (doc, blob) = parse_gltf(path, bytes)?;
     let base = path.parent().unwrap_or(Path::new("."));
     let buffers = gltf::import_buffers(&doc, Some(base), blob)
         .map_err(|e| load_err(path, format!("cannot read the glTF buffers: {e}")))?;
@@ -604,6 +621,21 @@ pub fn framing_camera(mesh: &TriangleMesh) -> Result<Camera, SceneError> {
 /// at the model's centre whatever its size).
 pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
     let (mesh, materials, _dropped) = load_mesh_file(path)?;
+    scene_from_mesh(path, mesh, materials)
+}
+
+/// [`load_scene`] on the contents of a file already in memory; `path` as in
+/// [`load_mesh_bytes`] (not read; it also names the scene).
+pub fn load_scene_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, SceneError> {
+    let (mesh, materials, _dropped) = load_mesh_bytes(path, bytes)?;
+    scene_from_mesh(path, mesh, materials)
+}
+
+fn scene_from_mesh(
+    path: &Path,
+    mesh: TriangleMesh,
+    materials: Vec<Material>,
+) -> Result<Scene, SceneError> {
     let camera = framing_camera(&mesh)?;
     let (centre, r) = bounding_sphere(&mesh);
     let offset = Vec3::new(0.6, 2.0, 1.2) * r;
