@@ -189,6 +189,32 @@ fn tobj_material(m: &tobj::Material) -> Material {
     mat
 }
 
+/// An MTL file with every colour statement (`Ka`, `Kd`, `Ks`, `Ke`) given
+/// three components, which `tobj` requires (it panics on fewer): one value
+/// `r` means `r r r`, as the MTL format defines; a statement with two or no
+/// values is removed (the colour stays unset). Other lines are unchanged.
+fn mtl_colours_completed(text: &[u8]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(text.len() + 16);
+    for (i, line) in text.split(|&b| b == b'\n').enumerate() {
+        if i > 0 {
+            out.push(b'\n');
+        }
+        // `tobj` splits lines on `\n` and words as `str::split_whitespace`.
+        let words: Vec<&str> = match std::str::from_utf8(line) {
+            Ok(l) => l.split_whitespace().collect(),
+            Err(_) => Vec::new(),
+        };
+        match words.as_slice() {
+            [key @ ("Ka" | "Kd" | "Ks" | "Ke"), r] => {
+                out.extend_from_slice(format!("{key} {r} {r} {r}").as_bytes());
+            }
+            ["Ka" | "Kd" | "Ks" | "Ke"] | ["Ka" | "Kd" | "Ks" | "Ke", _, _] => {}
+            _ => out.extend_from_slice(line),
+        }
+    }
+    out
+}
+
 fn read_obj(path: &Path, bytes: &[u8]) -> Result<(TriangleMesh, Vec<Material>), SceneError> {
     let options = tobj::LoadOptions {
         triangulate: true,
@@ -199,7 +225,10 @@ fn read_obj(path: &Path, bytes: &[u8]) -> Result<(TriangleMesh, Vec<Material>), 
     // As `tobj::load_obj` does: the MTL file is looked up beside the OBJ.
     let base = path.parent().unwrap_or(Path::new(""));
     let mut reader = bytes;
-    let loaded = tobj::load_obj_buf(&mut reader, &options, |mtl| tobj::load_mtl(base.join(mtl)));
+    let loaded = tobj::load_obj_buf(&mut reader, &options, |mtl| {
+        let text = std::fs::read(base.join(mtl)).map_err(|_| tobj::LoadError::OpenFileFailed)?;
+        tobj::load_mtl_buf(&mut mtl_colours_completed(&text).as_slice())
+    });
     let (models, mtl) = loaded.map_err(|e| match e {
         tobj::LoadError::OpenFileFailed => load_err(path, "cannot open the file"),
         tobj::LoadError::ReadError => {

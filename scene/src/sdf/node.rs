@@ -1270,7 +1270,16 @@ fn step(p: Vec3, h: f32) -> f32 {
     }
 }
 
+/// `n / |n|`, or `+y` for a zero or non-finite `n`. Divided by its largest
+/// component first: differences of tiny distances (near the origin, where the
+/// step is tiny) square into subnormals, and of huge ones overflow, either of
+/// which would make `n / |n|` miss unit length or vanish.
 #[inline]
 fn unit_or_up(n: Vec3) -> Vec3 {
-    n.try_normalize().unwrap_or(Vec3::Y)
+    let m = n.abs().max_element();
+    if m > 0.0 && m.is_finite() {
+        (n / m).normalize()
+    } else {
+        Vec3::Y
+    }
 }
