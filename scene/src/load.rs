@@ -215,6 +215,52 @@ fn mtl_colours_completed(text: &[u8]) -> Vec<u8> {
     out
 }
 
+/// Check what `tobj` does not: that every index of a face, line or point
+/// statement is non-zero, at most the file's length, and (when negative,
+/// i.e. relative) no further back than the vertices, texture coordinates or
+/// normals defined above it. `tobj` computes `3·i` or `count + i` for them
+/// unchecked and overflows (a panic with overflow checks, else a wrong
+/// vertex). Lines are split and parsed as `tobj` does; lines it rejects itself
+/// are left to it.
+fn obj_indices_in_range(bytes: &[u8]) -> Result<(), String> {
+    // Vertices, texture coordinates, normals defined so far.
+    let mut counts = [0usize; 3];
+    for (n, line) in bytes.split(|&b| b == b'\n').enumerate() {
+        let Ok(line) = std::str::from_utf8(line) else {
+            continue;
+        };
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("v") => counts[0] += 1,
+            Some("vt") => counts[1] += 1,
+            Some("vn") => counts[2] += 1,
+            Some("f" | "l" | "p") => {
+                for vertex in words {
+                    for (k, part) in vertex.split('/').enumerate().take(3) {
+                        let Ok(i) = part.parse::<isize>() else {
+                            continue;
+                        };
+                        let ok = if i < 0 {
+                            i.unsigned_abs() <= counts[k]
+                        } else {
+                            i > 0 && i.unsigned_abs() <= bytes.len()
+                        };
+                        if !ok {
+                            let what = ["vertex", "texture coordinate", "normal"][k];
+                            return Err(format!(
+                                "line {}: {what} index {i} is out of range",
+                                n + 1
+                            ));
+                        }
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
 fn read_obj(path: &Path, bytes: &[u8]) -> Result<(TriangleMesh, Vec<Material>), SceneError> {
     let options = tobj::LoadOptions {
         triangulate: true,
@@ -222,6 +268,9 @@ fn read_obj(path: &Path, bytes: &[u8]) -> Result<(TriangleMesh, Vec<Material>), 
         ignore_points: true,
         ignore_lines: true,
     };
+    if let Err(reason) = obj_indices_in_range(bytes) {
+        return Err(load_err(path, reason));
+    }
     // As `tobj::load_obj` does: the MTL file is looked up beside the OBJ.
     let base = path.parent().unwrap_or(Path::new(""));
     let mut reader = bytes;
@@ -334,6 +383,19 @@ fn parse_gltf(path: &Path, bytes: &[u8]) -> Result<(gltf::Document, Option<Vec<u
     }
     let root: gltf::json::Root = gltf::json::deserialize::from_slice(json)
         .map_err(|e| load_err(path, format!("malformed glTF JSON: {e}")))?;
+    for (i, buffer) in root.buffers.iter().enumerate() {
+        // `gltf` percent-decodes relative URIs and unwraps the UTF-8 result.
+        if let Some(uri) = buffer.uri.as_deref().filter(|u| !u.contains(':')) {
+            if std::str::from_utf8(&percent_decoded(uri.as_bytes())).is_err() {
+                return Err(load_err(
+                    path,
+                    format!(
+                        "invalid glTF: the URI of buffer {i} is not UTF-8 once percent-decoded"
+                    ),
+                ));
+            }
+        }
+    }
     for (i, mesh) in root.meshes.iter().enumerate() {
         for prim in &mesh.primitives {
             let bad = prim
@@ -355,6 +417,29 @@ fn parse_gltf(path: &Path, bytes: &[u8]) -> Result<(gltf::Document, Option<Vec<u
     let doc = gltf::Document::from_json(root)
         .map_err(|e| load_err(path, format!("invalid glTF: {e}")))?;
     Ok((doc, blob))
+}
+
+/// `%XX` (two hex digits) decoded to the byte `XX`, everything else kept, as
+/// `gltf` decodes relative buffer URIs (with the `urlencoding` crate).
+fn percent_decoded(uri: &[u8]) -> Vec<u8> {
+    let hex = |b: u8| (b as char).to_digit(16).map(|d| d as u8);
+    let mut out = Vec::with_capacity(uri.len());
+    let mut i = 0;
+    while i < uri.len() {
+        if uri[i] == b'%' {
+            if let (Some(h), Some(l)) = (
+                uri.get(i + 1).copied().and_then(hex),
+                uri.get(i + 2).copied().and_then(hex),
+            ) {
+                out.push(h << 4 | l);
+                i += 3;
+                continue;
+            }
+        }
+        out.push(uri[i]);
+        i += 1;
+    }
+    out
 }
 
 fn read_gltf(path: &Path, bytes: &[u8]) -> Result<(TriangleMesh, Vec<Material>), SceneError> {

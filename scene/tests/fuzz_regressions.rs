@@ -83,6 +83,68 @@ fn short_mtl_colours_do_not_panic() {
     assert_eq!(albedo("b"), Vec3::splat(0.25));
 }
 
+/// Face indices `tobj` multiplies or offsets unchecked: huge ones overflowed
+/// (a panic with overflow checks, as in tests), as did relative ones reaching
+/// before the first vertex and index 0.
+#[test]
+fn out_of_range_face_indices_are_errors() {
+    let head = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n";
+    for face in [
+        "f 1/9223372036854775807 2 3",
+        "f 1 2 9223372036854775807",
+        "f 1//4611686018427387904 2 3",
+        "f -4 -2 -1",
+        "f 1/-2 2 3",
+        "f 0 1 2",
+        "l 1 99999",
+    ] {
+        let obj = format!("{head}{face}\n");
+        match load_mesh_bytes(Path::new("i.obj"), obj.as_bytes()) {
+            Err(subcone_scene::SceneError::Load { reason, .. }) => {
+                assert!(reason.contains("out of range"), "{face}: {reason}")
+            }
+            other => panic!("{face}: {other:?}"),
+        }
+    }
+    // Valid relative and absolute indices still load.
+    let obj = format!("{head}f -3/-1/-1 -2/1/1 -1/1/-1\n");
+    let (mesh, _, _) = load_mesh_bytes(Path::new("i.obj"), obj.as_bytes()).unwrap();
+    assert_eq!(mesh.len(), 1);
+}
+
+/// A relative buffer URI that percent-decodes to invalid UTF-8 (`%AA`):
+/// `gltf` unwrapped the decoding and panicked.
+#[test]
+fn gltf_buffer_uri_of_invalid_utf8_is_an_error() {
+    for uri in ["b%AA.bin", "%c3%28", "%ff"] {
+        let json = format!(
+            r#"{{"asset":{{"version":"2.0"}},"buffers":[{{"byteLength":4,"uri":"{uri}"}}]}}"#
+        );
+        match load_mesh_bytes(Path::new("u.gltf"), json.as_bytes()) {
+            Err(subcone_scene::SceneError::Load { reason, .. }) => {
+                assert!(reason.contains("not UTF-8"), "{uri}: {reason}")
+            }
+            other => panic!("{uri}: {other:?}"),
+        }
+    }
+    // Valid escapes and lone percent signs are left to the loader (a missing
+    // file here), not refused.
+    for uri in ["b%20x.bin", "100%.bin", "%e2%82%ac.bin"] {
+        let json = format!(
+            r#"{{"asset":{{"version":"2.0"}},"buffers":[{{"byteLength":4,"uri":"{uri}"}}]}}"#
+        );
+        match load_mesh_bytes(Path::new("/nonexistent/u.gltf"), json.as_bytes()) {
+            Err(subcone_scene::SceneError::Load { reason, .. }) => {
+                assert!(
+                    reason.contains("cannot read the glTF buffers"),
+                    "{uri}: {reason}"
+                )
+            }
+            other => panic!("{uri}: {other:?}"),
+        }
+    }
+}
+
 /// `load_mesh_bytes` is `load_mesh_file` without the read.
 #[test]
 fn bytes_and_file_agree() {
