@@ -30,6 +30,21 @@ fn sdf_normal_of_tiny_differences_is_unit() {
     }
 }
 
+/// A central difference that is NaN along `y` only (the point at
+/// `y = f32::MAX` steps to `∞`, and the plane's `0 · ∞` is NaN): the
+/// largest-component scale skipped the NaN and the normal came out NaN; it
+/// must fall back to `+y`.
+#[test]
+fn sdf_normal_with_a_nan_difference_falls_back() {
+    let plane = SdfNode::plane(Vec3::new(3.003_921_5, 0.0, 7.344_15e-40), -2.007_134_3e38).unwrap();
+    let p = Vec3::new(1e-30, f32::MAX, 0.0);
+    for h in [0.0, 1.0, f32::MAX] {
+        assert_unit(plane.normal(p, h), "normal");
+        assert_unit(plane.normal_central(p, h), "normal_central");
+        assert_unit(plane.normal_surface(p, h), "normal_surface");
+    }
+}
+
 /// A file normal of `(10³⁰, 0, 0)`: its squared length overflowed and
 /// `sanitize` normalised it to zero.
 #[test]

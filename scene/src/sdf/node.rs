@@ -1277,7 +1277,7 @@ fn step(p: Vec3, h: f32) -> f32 {
 #[inline]
 fn unit_or_up(n: Vec3) -> Vec3 {
     let m = n.abs().max_element();
-    if m > 0.0 && m.is_finite() {
+    if n.is_finite() && m > 0.0 {
         (n / m).normalize()
     } else {
         Vec3::Y
