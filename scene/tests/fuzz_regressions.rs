@@ -45,6 +45,28 @@ fn sdf_normal_with_a_nan_difference_falls_back() {
     }
 }
 
+/// A rotation quaternion with a component of 10³⁰: its squared length
+/// overflowed f32, "normalising" it gave the zero quaternion, and the rotated
+/// sphere evaluated to `−radius` everywhere inside a zero bounding box.
+#[test]
+fn huge_rotation_quaternions_are_normalised() {
+    let r = 22873.0 / 256.0;
+    let q = glam::Quat::from_xyzw(3.2052e-41, 1e30, r, 0.348);
+    let ball = SdfNode::sphere(r).unwrap().rotate(q).unwrap();
+    let p = Vec3::new(r, 0.0, 0.5);
+    let d = ball.distance(p);
+    let expect = p.length() - r;
+    assert!((d - expect).abs() < 1e-3, "{d} vs {expect}");
+    let b = ball.bounds();
+    assert!(b.min.x <= -r && b.max.x >= r, "{b:?}");
+    // The same rotation given at unit scale agrees.
+    let unit = SdfNode::sphere(r)
+        .unwrap()
+        .rotate(glam::Quat::from_xyzw(0.0, 1.0, 0.0, 0.0))
+        .unwrap();
+    assert!((unit.distance(p) - d).abs() < 1e-3);
+}
+
 /// A file normal of `(10³⁰, 0, 0)`: its squared length overflowed and
 /// `sanitize` normalised it to zero.
 #[test]

@@ -497,14 +497,17 @@ impl SdfNode {
                 param: "rotation",
             });
         }
-        let len = rotation.length();
+        // In f64: the squared length of a finite f32 quaternion can overflow
+        // f32 (then `rotation / len` would be the zero quaternion).
+        let q = rotation.to_array().map(f64::from);
+        let len = q.iter().map(|c| c * c).sum::<f64>().sqrt();
         if len <= 1e-6 {
             return Err(SdfError::Invalid {
                 node: NAME,
                 reason: format!("rotation quaternion {rotation} has zero length"),
             });
         }
-        let rotation = rotation / len;
+        let rotation = Quat::from_array(q.map(|c| (c / len) as f32));
         let scale = positive(NAME, "scale", scale)?;
         // Merge with a transform below: outer ∘ inner.
         let (translation, rotation, scale, child) = match self.op {
