@@ -340,7 +340,11 @@ fn run(op: &Op, stack: &mut Vec<Item>, dom: &mut Domain) -> Result<(), SdfError>
             unary(stack, &mut |n| n.repeat(v3(*c)))?;
         }
         Op::RepeatLimited(c, lo, hi) => {
-            dom.lengths(v3(*c));
+            // Instances sit at up to `period · max(|lo|, |hi|)`.
+            let reach = Vec3::from_array(std::array::from_fn(|k| {
+                (lo[k] as f32).abs().max((hi[k] as f32).abs()) + 1.0
+            }));
+            dom.lengths(v3(*c) * reach);
             dom.factor(2.0);
             unary(stack, &mut |n| n.repeat_limited(v3(*c), *lo, *hi))?;
         }
