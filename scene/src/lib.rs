@@ -32,7 +32,9 @@ pub use camera::Camera;
 pub use error::{RenderError, SceneError};
 pub use frame::{Frame, FrameStats, PassTiming, RayCounts};
 pub use light::Light;
-pub use load::{data_dir, load_mesh_file, load_scene, scene_from_arg, sponza};
+pub use load::{
+    data_dir, load_mesh_bytes, load_mesh_file, load_scene, load_scene_bytes, scene_from_arg, sponza,
+};
 pub use material::{Albedo, Material};
 pub use mesh::{Sanitized, TriangleMesh};
 pub use method::Method;

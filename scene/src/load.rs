@@ -127,17 +127,31 @@ fn guarded<T>(path: &Path, f: impl FnOnce() -> Result<T, SceneError>) -> Result<
 /// [`SceneError::Load`] for a file that cannot be read or parsed or that has no
 /// triangle, [`SceneError::Empty`] when every triangle was dropped.
 pub fn load_mesh_file(path: &Path) -> Result<(TriangleMesh, Vec<Material>, Sanitized), SceneError> {
-    let format = format_of(path)?;
+    format_of(path)?;
     let meta = std::fs::metadata(path).map_err(|e| load_err(path, e.to_string()))?;
     if !meta.is_file() {
         return Err(load_err(path, "not a regular file"));
     }
-    if meta.len() == 0 {
+    let bytes = std::fs::read(path).map_err(|e| load_err(path, e.to_string()))?;
+    load_mesh_bytes(path, &bytes)
+}
+
+/// [`load_mesh_file`] on the contents of a file already in memory.
+///
+/// `path` is not read: its extension names the format and its directory is
+/// where an OBJ's `mtllib` and a `.gltf`'s relative buffer URIs are looked up.
+/// Same results and errors as [`load_mesh_file`] on a file holding `bytes`.
+pub fn load_mesh_bytes(
+    path: &Path,
+    bytes: &[u8],
+) -> Result<(TriangleMesh, Vec<Material>, Sanitized), SceneError> {
+    let format = format_of(path)?;
+    if bytes.is_empty() {
         return Err(load_err(path, "the file is empty"));
     }
     let (mut mesh, materials) = guarded(path, || match format {
-        Format::Obj => read_obj(path),
-        Format::Gltf => read_gltf(path),
+        Format::Obj => read_obj(path, bytes),
+        Format::Gltf => read_gltf(path, bytes),
     })?;
     if mesh.is_empty() {
         return Err(load_err(
@@ -175,14 +189,96 @@ fn tobj_material(m: &tobj::Material) -> Material {
     mat
 }
 
-fn read_obj(path: &Path) -> Result<(TriangleMesh, Vec<Material>), SceneError> {
+/// An MTL file with every colour statement (`Ka`, `Kd`, `Ks`, `Ke`) given
+/// three components, which `tobj` requires (it panics on fewer): one value
+/// `r` means `r r r`, as the MTL format defines; a statement with two or no
+/// values is removed (the colour stays unset). Other lines are unchanged.
+fn mtl_colours_completed(text: &[u8]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(text.len() + 16);
+    for (i, line) in text.split(|&b| b == b'\n').enumerate() {
+        if i > 0 {
+            out.push(b'\n');
+        }
+        // `tobj` splits lines on `\n` and words as `str::split_whitespace`.
+        let words: Vec<&str> = match std::str::from_utf8(line) {
+            Ok(l) => l.split_whitespace().collect(),
+            Err(_) => Vec::new(),
+        };
+        match words.as_slice() {
+            [key @ ("Ka" | "Kd" | "Ks" | "Ke"), r] => {
+                out.extend_from_slice(format!("{key} {r} {r} {r}").as_bytes());
+            }
+            ["Ka" | "Kd" | "Ks" | "Ke"] | ["Ka" | "Kd" | "Ks" | "Ke", _, _] => {}
+            _ => out.extend_from_slice(line),
+        }
+    }
+    out
+}
+
+/// Check what `tobj` does not: that every index of a face, line or point
+/// statement is non-zero, at most the file's length, and (when negative,
+/// i.e. relative) no further back than the vertices, texture coordinates or
+/// normals defined above it. `tobj` computes `3·i` or `count + i` for them
+/// unchecked and overflows (a panic with overflow checks, else a wrong
+/// vertex). Lines are split and parsed as `tobj` does; lines it rejects itself
+/// are left to it.
+fn obj_indices_in_range(bytes: &[u8]) -> Result<(), String> {
+    // Vertices, texture coordinates, normals defined so far.
+    let mut counts = [0usize; 3];
+    for (n, line) in bytes.split(|&b| b == b'\n').enumerate() {
+        let Ok(line) = std::str::from_utf8(line) else {
+            continue;
+        };
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("v") => counts[0] += 1,
+            Some("vt") => counts[1] += 1,
+            Some("vn") => counts[2] += 1,
+            Some("f" | "l" | "p") => {
+                for vertex in words {
+                    for (k, part) in vertex.split('/').enumerate().take(3) {
+                        let Ok(i) = part.parse::<isize>() else {
+                            continue;
+                        };
+                        let ok = if i < 0 {
+                            i.unsigned_abs() <= counts[k]
+                        } else {
+                            i > 0 && i.unsigned_abs() <= bytes.len()
+                        };
+                        if !ok {
+                            let what = ["vertex", "texture coordinate", "normal"][k];
+                            return Err(format!(
+                                "line {}: {what} index {i} is out of range",
+                                n + 1
+                            ));
+                        }
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+fn read_obj(path: &Path, bytes: &[u8]) -> Result<(TriangleMesh, Vec<Material>), SceneError> {
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: false,
         ignore_points: true,
         ignore_lines: true,
     };
-    let (models, mtl) = tobj::load_obj(path, &options).map_err(|e| match e {
+    if let Err(reason) = obj_indices_in_range(bytes) {
+        return Err(load_err(path, reason));
+    }
+    // As `tobj::load_obj` does: the MTL file is looked up beside the OBJ.
+    let base = path.parent().unwrap_or(Path::new(""));
+    let mut reader = bytes;
+    let loaded = tobj::load_obj_buf(&mut reader, &options, |mtl| {
+        let text = std::fs::read(base.join(mtl)).map_err(|_| tobj::LoadError::OpenFileFailed)?;
+        tobj::load_mtl_buf(&mut mtl_colours_completed(&text).as_slice())
+    });
+    let (models, mtl) = loaded.map_err(|e| match e {
         tobj::LoadError::OpenFileFailed => load_err(path, "cannot open the file"),
         tobj::LoadError::ReadError => {
             load_err(path, "read error (is it a text OBJ file in UTF-8?)")
@@ -257,8 +353,7 @@ fn read_obj(path: &Path) -> Result<(TriangleMesh, Vec<Material>), SceneError> {
 /// come before `gltf`'s own: its GLB reader trusts the declared length (it
 /// allocates it, and underflows below 12), and its validation indexes the
 /// accessor a POSITION attribute names without a bounds check.
-fn parse_gltf(path: &Path) -> Result<(gltf::Document, Option<Vec<u8>>), SceneError> {
-    let bytes = std::fs::read(path).map_err(|e| load_err(path, e.to_string()))?;
+fn parse_gltf(path: &Path, bytes: &[u8]) -> Result<(gltf::Document, Option<Vec<u8>>), SceneError> {
     let (json, blob): (&[u8], Option<Vec<u8>>);
     let glb;
     if bytes.starts_with(b"glTF") {
@@ -278,16 +373,29 @@ fn parse_gltf(path: &Path) -> Result<(gltf::Document, Option<Vec<u8>>), SceneErr
             }
             Some(_) => {}
         }
-        glb = gltf::binary::Glb::from_slice(&bytes)
+        glb = gltf::binary::Glb::from_slice(bytes)
             .map_err(|e| load_err(path, format!("malformed GLB: {e}")))?;
         json = &glb.json;
         blob = glb.bin.as_ref().map(|b| b.to_vec());
     } else {
-        json = &bytes;
+        json = bytes;
         blob = None;
     }
     let root: gltf::json::Root = gltf::json::deserialize::from_slice(json)
         .map_err(|e| load_err(path, format!("malformed glTF JSON: {e}")))?;
+    for (i, buffer) in root.buffers.iter().enumerate() {
+        // `gltf` percent-decodes relative URIs and unwraps the UTF-8 result.
+        if let Some(uri) = buffer.uri.as_deref().filter(|u| !u.contains(':')) {
+            if std::str::from_utf8(&percent_decoded(uri.as_bytes())).is_err() {
+                return Err(load_err(
+                    path,
+                    format!(
+                        "invalid glTF: the URI of buffer {i} is not UTF-8 once percent-decoded"
+                    ),
+                ));
+            }
+        }
+    }
     for (i, mesh) in root.meshes.iter().enumerate() {
         for prim in &mesh.primitives {
             let bad = prim
@@ -311,8 +419,31 @@ fn parse_gltf(path: &Path) -> Result<(gltf::Document, Option<Vec<u8>>), SceneErr
     Ok((doc, blob))
 }
 
-fn read_gltf(path: &Path) -> Result<(TriangleMesh, Vec<Material>), SceneError> {
-    let (doc, blob) = parse_gltf(path)?;
+/// `%XX` (two hex digits) decoded to the byte `XX`, everything else kept, as
+/// `gltf` decodes relative buffer URIs (with the `urlencoding` crate).
+fn percent_decoded(uri: &[u8]) -> Vec<u8> {
+    let hex = |b: u8| (b as char).to_digit(16).map(|d| d as u8);
+    let mut out = Vec::with_capacity(uri.len());
+    let mut i = 0;
+    while i < uri.len() {
+        if uri[i] == b'%' {
+            if let (Some(h), Some(l)) = (
+                uri.get(i + 1).copied().and_then(hex),
+                uri.get(i + 2).copied().and_then(hex),
+            ) {
+                out.push(h << 4 | l);
+                i += 3;
+                continue;
+            }
+        }
+        out.push(uri[i]);
+        i += 1;
+    }
+    out
+}
+
+fn read_gltf(path: &Path, bytes: &[u8]) -> Result<(TriangleMesh, Vec<Material>), SceneError> {
+    let (doc, blob) = parse_gltf(path, bytes)?;
     let base = path.parent().unwrap_or(Path::new("."));
     let buffers = gltf::import_buffers(&doc, Some(base), blob)
         .map_err(|e| load_err(path, format!("cannot read the glTF buffers: {e}")))?;
@@ -604,6 +735,21 @@ pub fn framing_camera(mesh: &TriangleMesh) -> Result<Camera, SceneError> {
 /// at the model's centre whatever its size).
 pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
     let (mesh, materials, _dropped) = load_mesh_file(path)?;
+    scene_from_mesh(path, mesh, materials)
+}
+
+/// [`load_scene`] on the contents of a file already in memory; `path` as in
+/// [`load_mesh_bytes`] (not read; it also names the scene).
+pub fn load_scene_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, SceneError> {
+    let (mesh, materials, _dropped) = load_mesh_bytes(path, bytes)?;
+    scene_from_mesh(path, mesh, materials)
+}
+
+fn scene_from_mesh(
+    path: &Path,
+    mesh: TriangleMesh,
+    materials: Vec<Material>,
+) -> Result<Scene, SceneError> {
     let camera = framing_camera(&mesh)?;
     let (centre, r) = bounding_sphere(&mesh);
     let offset = Vec3::new(0.6, 2.0, 1.2) * r;

@@ -134,7 +134,8 @@ impl TriangleMesh {
     }
 
     /// Drop triangles that would poison a BVH or a hit: NaN/Inf coordinates and
-    /// zero-area triangles. Non-finite or zero normals are replaced by the
+    /// zero-area triangles (including those whose squared doubled area is not a
+    /// normal f32, which the renderers divide by). Non-finite or zero normals are replaced by the
     /// geometric normal, non-finite uvs by zero. Returns what was dropped.
     pub fn sanitize(&mut self) -> Sanitized {
         let mut s = Sanitized::default();
@@ -149,9 +150,12 @@ impl TriangleMesh {
             let scale = (v[1] - v[0])
                 .length_squared()
                 .max((v[2] - v[0]).length_squared());
-            // Zero area, or area below f32 resolution relative to the edges.
+            // Zero area, area below f32 resolution relative to the edges, or
+            // a squared area outside f32's normal range (renderers divide by
+            // it to get barycentrics).
             let area2 = cross.length_squared();
-            if area2.is_nan() || area2 <= scale * scale * 1e-14 {
+            if !(area2.is_finite() && area2 >= f32::MIN_POSITIVE) || area2 <= scale * scale * 1e-14
+            {
                 s.degenerate += 1;
                 continue;
             }
@@ -161,7 +165,9 @@ impl TriangleMesh {
                 if !k.is_finite() || k.length_squared() < 1e-12 {
                     *k = geo;
                 } else {
-                    *k = k.normalize();
+                    // By the largest component first, so that huge normals
+                    // (whose squared length overflows) stay unit.
+                    *k = (*k / k.abs().max_element()).normalize();
                 }
             }
             let mut uv = self.uvs[i];

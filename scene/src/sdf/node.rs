@@ -497,14 +497,17 @@ impl SdfNode {
                 param: "rotation",
             });
         }
-        let len = rotation.length();
+        // In f64: the squared length of a finite f32 quaternion can overflow
+        // f32 (then `rotation / len` would be the zero quaternion).
+        let q = rotation.to_array().map(f64::from);
+        let len = q.iter().map(|c| c * c).sum::<f64>().sqrt();
         if len <= 1e-6 {
             return Err(SdfError::Invalid {
                 node: NAME,
                 reason: format!("rotation quaternion {rotation} has zero length"),
             });
         }
-        let rotation = rotation / len;
+        let rotation = Quat::from_array(q.map(|c| (c / len) as f32));
         let scale = positive(NAME, "scale", scale)?;
         // Merge with a transform below: outer ∘ inner.
         let (translation, rotation, scale, child) = match self.op {
@@ -1270,7 +1273,16 @@ fn step(p: Vec3, h: f32) -> f32 {
     }
 }
 
+/// `n / |n|`, or `+y` for a zero or non-finite `n`. Divided by its largest
+/// component first: differences of tiny distances (near the origin, where the
+/// step is tiny) square into subnormals, and of huge ones overflow, either of
+/// which would make `n / |n|` miss unit length or vanish.
 #[inline]
 fn unit_or_up(n: Vec3) -> Vec3 {
-    n.try_normalize().unwrap_or(Vec3::Y)
+    let m = n.abs().max_element();
+    if n.is_finite() && m > 0.0 {
+        (n / m).normalize()
+    } else {
+        Vec3::Y
+    }
 }

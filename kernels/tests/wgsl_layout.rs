@@ -1,0 +1,243 @@
+//! The WGSL the crate ships against its Rust twins, through naga (the WGSL
+//! front end wgpu uses):
+//!
+//! - every shared parameter struct of `params.wgsl` ([`wgsl::PARAMS`]) has, member
+//!   by member, the offset and size of the `#[repr(C)]` Rust field it mirrors,
+//!   and the same total size (naga's `Layouter`, i.e. WGSL's layout rules);
+//! - [`wgsl::PARAMS`] and every kernel source, concatenated the way backends
+//!   concatenate them, parse and pass naga's validator with no optional
+//!   capability (WGSL core only).
+
+use core::mem::{offset_of, size_of};
+
+use naga::valid::{Capabilities, ValidationFlags, Validator};
+use subcone_kernels::ctss::CtssParams;
+use subcone_kernels::sraa::{Geometry, SraaParams};
+use subcone_kernels::wgsl;
+
+/// The kernel WGSL sources, in dependency order: each is validated
+/// concatenated after [`wgsl::PARAMS`] and every source above it. One line
+/// per kernel module.
+const KERNELS: &[(&str, &str)] = &[
+    // ("sraa::WGSL", subcone_kernels::sraa::WGSL),
+    // ("cone::WGSL", subcone_kernels::cone::WGSL),
+    // ("mask::WGSL", subcone_kernels::mask::WGSL),
+    // ("aggregate::WGSL", subcone_kernels::aggregate::WGSL),
+    // ("ctss::WGSL", subcone_kernels::ctss::WGSL),
+];
+
+/// One WGSL member expected at a Rust offset with a Rust size.
+#[derive(Debug)]
+struct Member {
+    wgsl: String,
+    offset: usize,
+    size: usize,
+}
+
+/// A Rust struct shared with WGSL.
+struct Shared {
+    name: &'static str,
+    size: usize,
+    members: Vec<Member>,
+}
+
+fn field_size<S, T>(_: impl Fn(&S) -> &T) -> usize {
+    size_of::<T>()
+}
+
+fn element_size<S, T, const N: usize>(_: impl Fn(&S) -> &[T; N]) -> (usize, usize) {
+    (size_of::<T>(), N)
+}
+
+/// `shared!(Struct: field, field, array[N], …)`: a scalar or vector field is
+/// the WGSL member of the same name; an array field `array[N]` is the N
+/// WGSL members `array0` … `array{N-1}` (uniform arrays have a 16-byte
+/// stride, so padding is spelled as scalars in WGSL).
+macro_rules! shared {
+    ($ty:ident: $($field:ident $([$n:literal])?),+ $(,)?) => {
+        Shared {
+            name: stringify!($ty),
+            size: size_of::<$ty>(),
+            members: {
+                let mut m = Vec::new();
+                $( shared!(@field m, $ty, $field $([$n])?); )+
+                m
+            },
+        }
+    };
+    (@field $m:ident, $ty:ident, $field:ident) => {
+        $m.push(Member {
+            wgsl: stringify!($field).to_string(),
+            offset: offset_of!($ty, $field),
+            size: field_size(|s: &$ty| &s.$field),
+        });
+    };
+    (@field $m:ident, $ty:ident, $field:ident [$n:literal]) => {
+        let (size, n) = element_size(|s: &$ty| &s.$field);
+        assert_eq!(n, $n, "{}::{} has {n} elements", stringify!($ty), stringify!($field));
+        for i in 0..n {
+            $m.push(Member {
+                wgsl: format!("{}{i}", stringify!($field)),
+                offset: offset_of!($ty, $field) + i * size,
+                size,
+            });
+        }
+    };
+}
+
+/// Every struct `params.wgsl` shares with Rust: one line each.
+fn shared_structs() -> Vec<Shared> {
+    vec![
+        shared!(SraaParams: sigma_z, sigma_n, scale, packed),
+        shared!(Geometry: normal, depth),
+        shared!(CtssParams: tan_theta, alpha, eps, t_min, t_max, min_sample_weight,
+            max_steps, max_samples, visibility_k, flags, _pad[2]),
+    ]
+}
+
+fn parse(name: &str, source: &str) -> naga::Module {
+    naga::front::wgsl::parse_str(source)
+        .unwrap_or_else(|e| panic!("{name} does not parse:\n{}", e.emit_to_string(source)))
+}
+
+fn validate(name: &str, source: &str) -> naga::Module {
+    let module = parse(name, source);
+    Validator::new(ValidationFlags::all(), Capabilities::empty())
+        .validate(&module)
+        .unwrap_or_else(|e| panic!("{name} is invalid:\n{}", e.emit_to_string(source)));
+    module
+}
+
+/// Compare every shared struct of `source` with its Rust twin: the first
+/// difference, or `Ok`.
+fn compare_layouts(source: &str) -> Result<(), String> {
+    let module = parse("wgsl::PARAMS", source);
+    let mut layouter = naga::proc::Layouter::default();
+    layouter
+        .update(module.to_ctx())
+        .map_err(|e| e.to_string())?;
+    for s in shared_structs() {
+        let (handle, ty) = module
+            .types
+            .iter()
+            .find(|(_, t)| t.name.as_deref() == Some(s.name))
+            .ok_or_else(|| format!("no WGSL struct {}", s.name))?;
+        let naga::TypeInner::Struct { members, span } = &ty.inner else {
+            return Err(format!("{} is not a struct in WGSL", s.name));
+        };
+        let wgsl_members: Vec<&str> = members
+            .iter()
+            .map(|m| m.name.as_deref().unwrap_or("?"))
+            .collect();
+        let rust_members: Vec<&str> = s.members.iter().map(|m| m.wgsl.as_str()).collect();
+        if wgsl_members != rust_members {
+            return Err(format!(
+                "{}: WGSL members {wgsl_members:?}, Rust fields {rust_members:?}",
+                s.name
+            ));
+        }
+        for (w, r) in members.iter().zip(&s.members) {
+            if w.offset as usize != r.offset {
+                return Err(format!(
+                    "{}.{}: WGSL offset {} but Rust offset {}",
+                    s.name, r.wgsl, w.offset, r.offset
+                ));
+            }
+            let size = layouter[w.ty].size as usize;
+            if size != r.size {
+                return Err(format!(
+                    "{}.{}: WGSL size {size} but Rust size {}",
+                    s.name, r.wgsl, r.size
+                ));
+            }
+        }
+        let size = layouter[handle].size as usize;
+        if *span as usize != s.size || size != s.size {
+            return Err(format!(
+                "{}: WGSL size {span} (layouter {size}) but Rust size {}",
+                s.name, s.size
+            ));
+        }
+    }
+    Ok(())
+}
+
+#[test]
+fn shared_structs_have_the_rust_layout() {
+    if let Err(e) = compare_layouts(wgsl::PARAMS) {
+        panic!("{e}");
+    }
+}
+
+/// The comparison catches what it is for: `PARAMS` with a member moved, a
+/// padding member dropped, or a type changed each fail it.
+#[test]
+fn layout_mismatches_are_detected() {
+    for (edit, from, to) in [
+        (
+            "Geometry with depth first (WGSL pads normal to offset 16)",
+            "    normal: vec3<f32>,\n    depth: f32,",
+            "    depth: f32,\n    normal: vec3<f32>,",
+        ),
+        ("CtssParams without _pad1", "    _pad1: u32,\n", ""),
+        (
+            "SraaParams.packed as a vec2",
+            "    packed: u32,",
+            "    packed: vec2<u32>,",
+        ),
+        (
+            "Geometry.normal as a vec4",
+            "normal: vec3<f32>",
+            "normal: vec4<f32>",
+        ),
+    ] {
+        assert!(
+            wgsl::PARAMS.contains(from),
+            "{edit}: PARAMS has no {from:?}"
+        );
+        let source = wgsl::PARAMS.replacen(from, to, 1);
+        let result = compare_layouts(&source);
+        assert!(result.is_err(), "{edit}: not detected");
+    }
+}
+
+/// Every struct `params.wgsl` declares is in the table above, so a struct added
+/// there cannot go unchecked.
+#[test]
+fn every_wgsl_struct_is_checked() {
+    let module = parse("wgsl::PARAMS", wgsl::PARAMS);
+    let checked: Vec<&str> = shared_structs().iter().map(|s| s.name).collect();
+    for (_, ty) in module.types.iter() {
+        if let (naga::TypeInner::Struct { .. }, Some(name)) = (&ty.inner, ty.name.as_deref()) {
+            assert!(
+                checked.contains(&name),
+                "struct {name} of params.wgsl is not in shared_structs()"
+            );
+        }
+    }
+}
+
+#[test]
+fn params_and_kernels_validate() {
+    validate("wgsl::PARAMS", wgsl::PARAMS);
+    let mut source = wgsl::PARAMS.to_string();
+    let mut names = vec!["wgsl::PARAMS"];
+    for &(name, kernel) in KERNELS {
+        source.push('\n');
+        source.push_str(kernel);
+        names.push(name);
+        validate(&names.join(" + "), &source);
+    }
+}
+
+/// A kernel source that parses but does not validate fails the check.
+#[test]
+#[should_panic(expected = "is invalid")]
+fn an_invalid_kernel_fails_validation() {
+    let source = [
+        wgsl::PARAMS,
+        "fn bad(p: SraaParams) -> f32 { return p.packed; }",
+    ]
+    .concat();
+    validate("wgsl::PARAMS + bad", &source);
+}
