@@ -8,8 +8,6 @@
 // subcone_kernels::aggregate::Weighting codes.
 const WEIGHTING_VISIBILITY: u32 = 0u;
 const WEIGHTING_UNIFORM: u32 = 1u;
-// subcone_kernels::sraa::NEGLIGIBLE_WEIGHT
-const NEGLIGIBLE_WEIGHT: f32 = 5.421011e-20;
 
 // subcone_kernels::aggregate::sample_weight — w_i = bitCount(visible)/32 (eq. 6).
 fn sample_weight(visible: u32, weighting: u32, min_weight: f32) -> f32 {

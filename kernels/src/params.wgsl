@@ -40,6 +40,10 @@ struct CtssParams {
     _pad1: u32,
 }
 
+// subcone_kernels::sraa::NEGLIGIBLE_WEIGHT (2^-64): weight sums below it are
+// treated as empty by the SRAA reconstruction and the CTSS aggregation alike.
+const NEGLIGIBLE_WEIGHT: f32 = 5.421011e-20;
+
 // +inf as a bit pattern (WGSL has no infinity literal; a constant-folded 1/0
 // is a shader-creation error).
 fn subcone_miss_depth() -> f32 {

@@ -22,8 +22,6 @@
 
 // Mirrors sraa::NORMAL_COS_SNAP (2^-21).
 const NORMAL_COS_SNAP: f32 = 4.76837158203125e-7;
-// Mirrors sraa::NEGLIGIBLE_WEIGHT (2^-64).
-const NEGLIGIBLE_WEIGHT: f32 = 5.421011e-20;
 // Mirrors sraa::SHADED_SUBSAMPLE.
 const SHADED_SUBSAMPLE: u32 = 0u;
 

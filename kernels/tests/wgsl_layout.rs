@@ -19,12 +19,18 @@ use subcone_kernels::wgsl;
 /// concatenated after [`wgsl::PARAMS`] and every source above it. One line
 /// per kernel module.
 const KERNELS: &[(&str, &str)] = &[
-    // ("sraa::WGSL", subcone_kernels::sraa::WGSL),
-    // ("cone::WGSL", subcone_kernels::cone::WGSL),
-    // ("mask::WGSL", subcone_kernels::mask::WGSL),
-    // ("aggregate::WGSL", subcone_kernels::aggregate::WGSL),
-    // ("ctss::WGSL", subcone_kernels::ctss::WGSL),
+    ("sraa::WGSL", subcone_kernels::sraa::WGSL),
+    ("cone::WGSL", subcone_kernels::cone::WGSL),
+    ("mask::WGSL", subcone_kernels::mask::WGSL),
+    ("aggregate::WGSL", subcone_kernels::aggregate::WGSL),
+    // The stepper's SDF is the including shader's: a sphere stands in for it.
+    ("the caller's ctss_field", CTSS_FIELD),
+    ("ctss::WGSL", subcone_kernels::ctss::WGSL),
 ];
+
+/// The hook `ctss.wgsl` expects its including shader to define.
+const CTSS_FIELD: &str =
+    "fn ctss_field(p: vec3<f32>) -> vec2<f32> { let d = length(p) - 1.0; return vec2<f32>(d, d); }";
 
 /// One WGSL member expected at a Rust offset with a Rust size.
 #[derive(Debug)]
