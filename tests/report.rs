@@ -115,6 +115,22 @@ fn quick_report_on_every_paper_scene() {
     assert!(md.contains("## Skipped"));
     assert!(md.contains("cone tracing needs a signed distance field"));
     assert!(md.contains("SRAA for ray tracing, Table 1"));
+    // Every performance target is stated with its figure, met or not.
+    assert!(md.contains("## Performance targets"));
+    for target in [
+        "| ctss ≤ 1.20x NoAA",
+        "| ctss-r ≤ 1.08x NoAA",
+        "| sraa-rt ≤ 1/6 of ssaa16's time",
+    ] {
+        let line = md
+            .lines()
+            .find(|l| l.starts_with(target))
+            .unwrap_or_else(|| panic!("no target line {target:?} in report.md"));
+        assert!(
+            line.ends_with("| met |") || line.ends_with("| **not met** |"),
+            "{line}"
+        );
+    }
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
     assert_eq!(json["results"].as_array().unwrap().len(), rows.len());

@@ -459,6 +459,7 @@ faster method beats.\n"
     }
 
     md.push_str(&paper_comparison(s, ctx));
+    md.push_str(&targets(s, ctx));
 
     let _ = writeln!(
         md,
@@ -480,6 +481,84 @@ fn rows_for<'a>(s: &'a [ResultRow], method: &str, backend: &str) -> Vec<&'a Resu
     s.iter()
         .filter(|r| r.method == method && r.backend == backend)
         .collect()
+}
+
+/// CTSS overhead targets: average time ratio to NoAA over the SDF scenes.
+pub const CTSS_TARGETS: [(&str, f64); 2] = [("ctss", 1.20), ("ctss-r", 1.08)];
+/// SRAA-RT target: at most this share of `ssaa16`'s time...
+pub const SRAA_RT_TIME_SHARE: f64 = 1.0 / 6.0;
+/// ...with an edge FLIP at most this factor above `ssaa16`'s.
+pub const SRAA_RT_EDGE_FACTOR: f64 = 1.25;
+
+/// The performance targets, each met or not met, with its figure.
+pub fn targets(s: &ReportSummary, ctx: &Context) -> String {
+    let mut md = String::new();
+    let _ = writeln!(md, "## Performance targets\n");
+    let _ = writeln!(
+        md,
+        "Each target as measured by this run (its sizes and runs; the targets are stated for \
+1280x720 on the CTSS scenes and 1024x1024 on `cornell` and Sponza). Ray throughput and ns per \
+kernel call are measured by the benches: `cargo bench -p subcone-cpu --bench rays`, \
+`cargo bench --bench kernels`.\n"
+    );
+    let _ = writeln!(md, "| target | backend | scenes | figure | met |");
+    let _ = writeln!(md, "|---|---|---|--:|---|");
+    let sdf: Vec<&str> = ctx
+        .scenes
+        .iter()
+        .filter(|sc| sc.sdf)
+        .map(|sc| sc.name.as_str())
+        .collect();
+    let yes = |ok: bool| if ok { "met" } else { "**not met**" };
+    for b in &ctx.backends {
+        for (method, limit) in CTSS_TARGETS {
+            let rs: Vec<f64> = s
+                .rows
+                .iter()
+                .filter(|r| {
+                    &r.backend == b && r.method == method && sdf.contains(&r.scene.as_str())
+                })
+                .filter_map(|r| r.ratio_to_noaa)
+                .collect();
+            if rs.is_empty() {
+                continue;
+            }
+            let avg = rs.iter().sum::<f64>() / rs.len() as f64;
+            let _ = writeln!(
+                md,
+                "| {method} ≤ {limit:.2}x NoAA (mean time ratio) | {b} | {} SDF scenes | {avg:.3}x | {} |",
+                rs.len(),
+                yes(avg <= limit)
+            );
+        }
+        for rt in rows_for(&s.rows, "sraa-rt", b) {
+            let Some(ss) = s
+                .rows
+                .iter()
+                .find(|x| x.method == "ssaa16" && &x.backend == b && x.scene == rt.scene)
+            else {
+                continue;
+            };
+            let share = rt.ms_median / ss.ms_median;
+            let edge = match (rt.edge_flip_mean, ss.edge_flip_mean) {
+                (Some(a), Some(e)) if e > 0.0 => Some(a / e),
+                _ => None,
+            };
+            let met = share <= SRAA_RT_TIME_SHARE && edge.is_some_and(|e| e <= SRAA_RT_EDGE_FACTOR);
+            let _ = writeln!(
+                md,
+                "| sraa-rt ≤ 1/6 of ssaa16's time, edge FLIP ≤ {SRAA_RT_EDGE_FACTOR}x ssaa16's | {b} | {} ({}x{}) | 1/{:.2} of the time, edge FLIP {}x | {} |",
+                rt.scene,
+                rt.width,
+                rt.height,
+                1.0 / share,
+                f(edge, 2),
+                yes(met)
+            );
+        }
+    }
+    let _ = writeln!(md);
+    md
 }
 
 /// The block comparing our numbers with the papers' published ones.
