@@ -21,9 +21,8 @@ mod field;
 mod shading;
 mod trace;
 
-use std::collections::HashMap;
 use std::hash::{Hash, Hasher};
-use std::sync::{Arc, Mutex, OnceLock};
+use std::sync::Arc;
 
 use subcone_kernels::ctss::CtssParams;
 use subcone_kernels::passes::{Passes, Technique};
@@ -97,15 +96,6 @@ struct Pipelines {
     field: GpuField,
 }
 
-/// Device (the context's address), hash of the shader source and of the
-/// scatter table: a scene changed in any way compiles anew.
-type Key = (usize, u64, u64);
-
-fn cache() -> &'static Mutex<HashMap<Key, Arc<Pipelines>>> {
-    static CACHE: OnceLock<Mutex<HashMap<Key, Arc<Pipelines>>>> = OnceLock::new();
-    CACHE.get_or_init(|| Mutex::new(HashMap::new()))
-}
-
 fn hash_of(x: impl Hash) -> u64 {
     let mut h = std::collections::hash_map::DefaultHasher::new();
     x.hash(&mut h);
@@ -135,13 +125,17 @@ fn pipelines(
         source.push_str(AOVS_WGSL);
     }
     let data_bits: Vec<u32> = field.data.iter().flatten().map(|x| x.to_bits()).collect();
-    let key = (
-        ctx as *const GpuContext as usize,
-        hash_of(&source),
-        hash_of(&data_bits),
-    );
-    if let Some(p) = cache().lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
-        return Ok(p.clone());
+    // Per device, by the shader source and the scatter table: a scene changed
+    // in any way compiles anew.
+    let key = hash_of(("sdf", &source, &data_bits));
+    let cached = ctx
+        .cache
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .get(&key)
+        .cloned();
+    if let Some(p) = cached.and_then(|p| p.downcast::<Pipelines>().ok()) {
+        return Ok(p);
     }
     let (_, gpu_field) = upload_field(ctx, &field)?;
     let (render, aov) = ctx.scoped("compiling the SDF shader", || {
@@ -169,7 +163,7 @@ fn pipelines(
         aovs: aov,
         field: gpu_field,
     });
-    let mut c = cache().lock().unwrap_or_else(|e| e.into_inner());
+    let mut c = ctx.cache.lock().unwrap_or_else(|e| e.into_inner());
     // Scenes are few; a long-running process rendering many would otherwise grow it.
     if c.len() > 64 {
         c.clear();
