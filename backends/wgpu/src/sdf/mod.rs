@@ -11,10 +11,16 @@
 //! the passes need is built: no light loop without [`Passes::SHADOW`], no AOV
 //! pipeline or buffer unless AOVs are asked for.
 //!
+//! CTSS marches each pixel's cone up to 8 samples ahead of shading them (in
+//! order, so eq. 6 sums the same terms in the same order): the SIMD lanes of
+//! a software or hardware GPU march together and trace shadows together.
+//!
 //! Differences from the CPU come from GPU arithmetic alone (a few ulps in
 //! `sqrt`, `sin`, fused multiply-adds, and eq. 6's sums in f32 instead of
-//! f64); they can flip a hit near a threshold, so pixel agreement is
-//! statistical, not bitwise (see `tests/sdf.rs`).
+//! f64); they could flip a hit near a threshold. On lavapipe no decision
+//! flips on any built-in SDF scene: every method gives the CPU's SDF
+//! evaluation and sample counts exactly and colours within 1e-4 (`tests/sdf.rs`
+//! bounds them more loosely, for other GPUs).
 
 mod aovs;
 mod field;
