@@ -5,6 +5,8 @@
 //! errors are caught by error scopes around each pass, device loss is recorded
 //! by a callback, and every wait on the GPU has a timeout.
 
+use std::any::Any;
+use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
@@ -40,6 +42,9 @@ pub struct GpuContext {
     /// to completion).
     pub timestamps: bool,
     lost: Arc<Mutex<Option<String>>>,
+    /// Objects built for this device and reused across frames (compiled
+    /// pipelines), by a key of the pass's choosing.
+    pub(crate) cache: Mutex<HashMap<u64, Arc<dyn Any + Send + Sync>>>,
 }
 
 impl std::fmt::Debug for GpuContext {
@@ -114,6 +119,7 @@ impl GpuContext {
             info,
             timestamps,
             lost,
+            cache: Mutex::new(HashMap::new()),
         })
     }
 

@@ -572,3 +572,31 @@ fn kernel_wgsl_mirrors_the_rust_kernels() {
     assert!(differ * 1000 <= inputs.len(), "{differ} masks differ");
     eprintln!("{differ} of {} masks differ", inputs.len());
 }
+
+/// Pipelines are cached per device: a second device renders the same image,
+/// and a scene changed in place (its lights) is compiled anew.
+#[test]
+fn pipelines_follow_the_device_and_the_scene() {
+    let Some(gpu) = gpu() else { return };
+    let other = WgpuBackend::with_context(std::sync::Arc::new(
+        subcone_wgpu::GpuContext::new().unwrap(),
+    ));
+    let mut scene = builtin("sparse-shape").unwrap();
+    let method: Method = "ctss".parse().unwrap();
+    let s = RenderSettings::new(32, 24);
+    let a = gpu.render(&scene, &scene.camera, &method, &s).unwrap();
+    let b = other.render(&scene, &scene.camera, &method, &s).unwrap();
+    assert_eq!(a.color, b.color);
+    for l in scene.lights.iter_mut() {
+        if let subcone_scene::Light::Directional { irradiance, .. } = l {
+            *irradiance *= 0.25;
+        }
+    }
+    let c = gpu.render(&scene, &scene.camera, &method, &s).unwrap();
+    let want = CpuBackend::new()
+        .render(&scene, &scene.camera, &method, &s)
+        .unwrap();
+    assert_ne!(a.color, c.color);
+    let (mean, _) = compare(&want, &c);
+    assert!(mean < 1e-4, "{mean}");
+}
