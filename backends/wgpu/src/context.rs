@@ -123,6 +123,26 @@ impl GpuContext {
         })
     }
 
+    /// The object cached under `key` on this device, if it has type `T`.
+    pub(crate) fn cached<T: std::any::Any + Send + Sync>(&self, key: u64) -> Option<Arc<T>> {
+        let cache = self.cache.lock().unwrap_or_else(|e| e.into_inner());
+        cache
+            .get(&key)
+            .cloned()
+            .and_then(|a| a.downcast::<T>().ok())
+    }
+
+    /// Keep `value` for this device under `key`. The cache is bounded: past
+    /// 64 entries it starts afresh (scenes and pipelines are few in practice,
+    /// and a long-running process rendering many would otherwise grow it).
+    pub(crate) fn cache_insert<T: std::any::Any + Send + Sync>(&self, key: u64, value: Arc<T>) {
+        let mut cache = self.cache.lock().unwrap_or_else(|e| e.into_inner());
+        if cache.len() > 64 {
+            cache.clear();
+        }
+        cache.insert(key, value);
+    }
+
     /// One context per process, opened on first use. Tests and the CLI share
     /// it: opening a device costs far more than a small render.
     pub fn shared() -> Result<Arc<GpuContext>, RenderError> {

@@ -552,3 +552,20 @@ fn sraa_wgsl_validates() {
         );
     }
 }
+
+/// Uploaded scenes and pipelines are cached per device: a second device
+/// (its own wgpu instance, whose ids repeat the first's) renders the same
+/// image from its own buffers.
+#[test]
+fn a_second_device_renders_the_same_image() {
+    let Some(gpu) = gpu() else { return };
+    let other = WgpuBackend::with_context(std::sync::Arc::new(
+        subcone_wgpu::GpuContext::new().expect("a second device"),
+    ));
+    let scene = builtin("cornell").unwrap();
+    for method in ["noaa", "sraa", "sraa-rt"] {
+        let a = render(&gpu, &scene, method, 24, 20);
+        let b = render(&other, &scene, method, 24, 20);
+        assert_eq!(a.color, b.color, "{method}");
+    }
+}

@@ -169,12 +169,7 @@ fn pipelines(
         aovs: aov,
         field: gpu_field,
     });
-    let mut c = ctx.cache.lock().unwrap_or_else(|e| e.into_inner());
-    // Scenes are few; a long-running process rendering many would otherwise grow it.
-    if c.len() > 64 {
-        c.clear();
-    }
-    c.insert(key, p.clone());
+    ctx.cache_insert(key, p.clone());
     Ok(p)
 }
 

@@ -3,7 +3,7 @@
 //! `subcone_scene::material`), their palettes and texels, and the lights.
 //! Traversed by `trace.wgsl` (closest hit and any hit, bounded stack).
 
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 use std::time::Duration;
 
 use bytemuck::{Pod, Zeroable};
@@ -80,29 +80,19 @@ pub(crate) struct SceneGpu {
     pub scale: f32,
 }
 
-type Cache = Vec<(wgpu::Device, u64, Arc<SceneGpu>)>;
-
-/// Scenes kept per device; older ones are dropped first.
-const CACHED_SCENES: usize = 4;
-
-static CACHE: Mutex<Cache> = Mutex::new(Vec::new());
-
-/// The uploaded scene, built on first use per device and `scene.id()`.
+/// The uploaded scene, built on first use per device and `scene.id()`, kept
+/// in the device's own cache (device ids repeat across wgpu instances, so a
+/// process-wide cache keyed by device could hand one device another's buffers).
 pub(crate) fn scene_gpu(ctx: &GpuContext, scene: &Scene) -> Result<Arc<SceneGpu>, RenderError> {
-    let id = scene.id();
-    {
-        let cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some((_, _, s)) = cache.iter().find(|(d, i, _)| *i == id && *d == ctx.device) {
-            return Ok(s.clone());
-        }
+    use std::hash::{DefaultHasher, Hash, Hasher};
+    let mut h = DefaultHasher::new();
+    ("triangle scene", scene.id()).hash(&mut h);
+    let key = h.finish();
+    if let Some(s) = ctx.cached::<SceneGpu>(key) {
+        return Ok(s);
     }
     let s = Arc::new(upload(ctx, scene)?);
-    let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
-    cache.retain(|(d, i, _)| !(*i == id && *d == ctx.device));
-    if cache.len() >= CACHED_SCENES {
-        cache.remove(0);
-    }
-    cache.push((ctx.device.clone(), id, s.clone()));
+    ctx.cache_insert(key, s.clone());
     Ok(s)
 }
 

@@ -14,7 +14,7 @@ pub(crate) mod raster;
 
 use std::collections::hash_map::DefaultHasher;
 use std::hash::{Hash, Hasher};
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
@@ -317,11 +317,6 @@ fn scene_layout(ctx: &GpuContext) -> wgpu::BindGroupLayout {
         })
 }
 
-type PipelineCache = Vec<(wgpu::Device, u64, &'static str, Arc<wgpu::ComputePipeline>)>;
-static PIPELINES: Mutex<PipelineCache> = Mutex::new(Vec::new());
-/// Compiled pipelines kept; older ones are dropped first.
-const CACHED_PIPELINES: usize = 48;
-
 /// A compiled shader: its source hash and (lazily) its module.
 struct Program<'a> {
     ctx: &'a GpuContext,
@@ -354,14 +349,13 @@ impl<'a> Program<'a> {
 
     fn pipeline(&mut self, entry: &'static str) -> Result<Arc<wgpu::ComputePipeline>, RenderError> {
         let ctx = self.ctx;
-        {
-            let cache = PIPELINES.lock().unwrap_or_else(|e| e.into_inner());
-            if let Some(p) = cache
-                .iter()
-                .find(|(d, h, e, _)| *h == self.hash && *e == entry && *d == ctx.device)
-            {
-                return Ok(p.3.clone());
-            }
+        let key = {
+            let mut h = DefaultHasher::new();
+            ("triangle pipeline", self.hash, entry).hash(&mut h);
+            h.finish()
+        };
+        if let Some(p) = ctx.cached::<wgpu::ComputePipeline>(key) {
+            return Ok(p);
         }
         if self.module.is_none() {
             let source = &self.source;
@@ -386,11 +380,7 @@ impl<'a> Program<'a> {
                     cache: None,
                 })
         })?);
-        let mut cache = PIPELINES.lock().unwrap_or_else(|e| e.into_inner());
-        if cache.len() >= CACHED_PIPELINES {
-            cache.remove(0);
-        }
-        cache.push((ctx.device.clone(), self.hash, entry, p.clone()));
+        ctx.cache_insert(key, p.clone());
         Ok(p)
     }
 }

@@ -5,8 +5,6 @@
 //! an `Rgba32Float` array (normal, view depth) with a reversed-Z
 //! `Depth32Float` buffer.
 
-use std::sync::Mutex;
-
 use bytemuck::{Pod, Zeroable};
 #[cfg(test)]
 use subcone_kernels::sraa::Geometry;
@@ -52,15 +50,12 @@ struct RasterUniform {
     _pad: [f32; 3],
 }
 
-type Cache = Vec<(wgpu::Device, wgpu::RenderPipeline)>;
-static PIPELINE: Mutex<Cache> = Mutex::new(Vec::new());
-
+/// The G-buffer pipeline, compiled once per device (in the device's own
+/// cache: device ids repeat across wgpu instances).
 fn pipeline(ctx: &GpuContext) -> Result<wgpu::RenderPipeline, RenderError> {
-    {
-        let cache = PIPELINE.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some((_, p)) = cache.iter().find(|(d, _)| *d == ctx.device) {
-            return Ok(p.clone());
-        }
+    const KEY: u64 = 0x5261_7374_6572_4762; // "RasterGb"
+    if let Some(p) = ctx.cached::<wgpu::RenderPipeline>(KEY) {
+        return Ok((*p).clone());
     }
     let source = [
         subcone_kernels::wgsl::PARAMS,
@@ -138,11 +133,7 @@ fn pipeline(ctx: &GpuContext) -> Result<wgpu::RenderPipeline, RenderError> {
                 cache: None,
             })
     })?;
-    let mut cache = PIPELINE.lock().unwrap_or_else(|e| e.into_inner());
-    if cache.len() >= 4 {
-        cache.remove(0);
-    }
-    cache.push((ctx.device.clone(), p.clone()));
+    ctx.cache_insert(KEY, std::sync::Arc::new(p.clone()));
     Ok(p)
 }
 
