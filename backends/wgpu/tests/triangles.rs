@@ -569,3 +569,31 @@ fn a_second_device_renders_the_same_image() {
         assert_eq!(a.color, b.color, "{method}");
     }
 }
+
+/// A frame whose buffers exceed the adapter's storage binding limit is an
+/// error that names the limit, not a panic or a device loss. SRAA-RT keeps
+/// 64 bytes of subpixel geometry per pixel (4 subsamples × 16 bytes).
+#[test]
+fn buffers_over_the_adapter_limit_are_an_error() {
+    let Some(gpu) = gpu() else { return };
+    let limit = gpu
+        .context()
+        .device
+        .limits()
+        .max_storage_buffer_binding_size;
+    let side = ((limit as f64 / 64.0).sqrt().ceil() as u32 + 1).max(2);
+    let settings = RenderSettings::new(side, side);
+    if settings.validate().is_err() {
+        // This adapter binds more than the largest frame subcone accepts.
+        println!("storage binding limit {limit} bytes: no valid frame exceeds it");
+        return;
+    }
+    let scene = builtin("cornell").unwrap();
+    let method: Method = "sraa-rt".parse().unwrap();
+    let err = gpu
+        .render(&scene, &scene.camera, &method, &settings)
+        .expect_err("over the limit");
+    let msg = err.to_string();
+    assert!(msg.contains("storage buffer limit"), "{msg}");
+    println!("{side}x{side}: {msg}");
+}
