@@ -67,6 +67,35 @@ fn huge_rotation_quaternions_are_normalised() {
     assert!((unit.distance(p) - d).abs() < 1e-3);
 }
 
+/// A smooth union of n children lowers the field by up to `k/4` per child
+/// after the first (the `smin` is applied child by child), but its bounding
+/// box grew by `k/4` only: with four equal spheres a point outside the box
+/// was inside the surface (and unions above could skip the node there).
+#[test]
+fn smooth_union_bounds_cover_every_child_step() {
+    let k = 4.0;
+    let ball = SdfNode::sphere(1.0).unwrap();
+    let blend =
+        SdfNode::smooth_union(k, vec![ball.clone(), ball.clone(), ball.clone(), ball]).unwrap();
+    let p = Vec3::new(0.0, 0.0, 2.5);
+    let d = blend.distance(p);
+    // Below the surface (the first blend step alone leaves 0.5), no lower
+    // than three full steps.
+    assert!(d < -0.4 && d >= 1.5 - 3.0 * 0.25 * k, "{d}");
+    let b = blend.bounds();
+    assert!(
+        b.distance(p) == 0.0,
+        "{p} is inside the surface (f = {d}) but outside {b:?}"
+    );
+    // Outside the box the field is positive, on a ray out to 10.
+    for i in 0..100 {
+        let q = Vec3::new(0.0, 0.0, 0.1 * i as f32);
+        if b.distance(q) > 0.0 {
+            assert!(blend.distance(q) > 0.0, "{q}");
+        }
+    }
+}
+
 /// A file normal of `(10³⁰, 0, 0)`: its squared length overflowed and
 /// `sanitize` normalised it to zero.
 #[test]

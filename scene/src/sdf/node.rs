@@ -356,8 +356,10 @@ impl SdfNode {
     /// Smooth union with Quilez's quadratic polynomial `smin` of width `k`
     /// (`k = 0` is a plain union). A bound: `smin ≤ min`, and it is 1-Lipschitz
     /// (its gradient is a convex combination of the children's), so it never
-    /// overestimates the distance to its own (grown) zero set. The surface grows
-    /// by at most `k/4`. Material: the nearest child's.
+    /// overestimates the distance to its own (grown) zero set. The `smin` is
+    /// applied child by child, each step lowering the value by at most `k/4`,
+    /// so with `n` children the surface grows by at most `(n − 1)·k/4` (and the
+    /// bounding box by as much). Material: the nearest child's.
     pub fn smooth_union(k: f32, children: Vec<SdfNode>) -> Result<SdfNode, SdfError> {
         let k = nonneg("smooth union", "k", k)?;
         if k == 0.0 {
@@ -369,8 +371,9 @@ impl SdfNode {
             |children| Op::SmoothUnion { k, children },
             |e: Exactness| e.max(Exactness::Bound),
         )?;
-        if matches!(node.op, Op::SmoothUnion { .. }) {
-            node.info.bounds = node.info.bounds.expand(0.25 * k);
+        if let Op::SmoothUnion { children, .. } = &node.op {
+            let steps = (children.len() - 1) as f32;
+            node.info.bounds = node.info.bounds.expand(0.25 * k * steps);
         }
         Ok(node)
     }
