@@ -59,7 +59,7 @@ pub struct CtssParams {
     /// Depth at which the ray leaves the scene.
     pub t_max: f32,
     /// The authors' minimum sample weight (0.01); ours is 0, see
-    /// [`sample_weight`](crate::aggregate::sample_weight).
+    /// [`sample_weight`].
     pub min_sample_weight: f32,
     /// Step budget: no trace takes more SDF evaluations than this.
     pub max_steps: u32,

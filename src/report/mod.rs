@@ -6,11 +6,11 @@
 //! [`required_passes`]), the report
 //!
 //! 1. times the method: one warm-up, then `runs` timed calls of
-//!    [`Backend::render`](subcone_scene::Backend::render) at the *timing size*;
+//!    [`Backend::render`] at the *timing size*;
 //!    median and range of the wall time, and the median of every pass of
 //!    [`FrameStats::timings`](subcone_scene::FrameStats);
 //! 2. measures its error at the *quality size* against a supersampled reference
-//!    (SSAA256; cached on disk, see [`reference`]): mean FLIP, PSNR and mean FLIP
+//!    (SSAA256; cached on disk, see [`reference`](mod@reference)): mean FLIP, PSNR and mean FLIP
 //!    on the edge mask, all on the tone-mapped 8-bit sRGB images;
 //! 3. writes `report.md`, `results.csv`, `results.json`, plots (FLIP against
 //!    time with the Pareto front, stacked pass times) and images (every method,

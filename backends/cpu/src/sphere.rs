@@ -2,7 +2,7 @@
 //!
 //! CTSS runs through the kernels' [`ConeStepper`]; this module owns only the SDF
 //! evaluation, the normals and the shading. NoAA uses the kernels'
-//! [`sphere_trace`], whose hit threshold is the same cone-based `ω > 0.5 − ε`
+//! [`sphere_trace`](subcone_kernels::ctss::sphere_trace), whose hit threshold is the same cone-based `ω > 0.5 − ε`
 //! with the same ε, step budget and maximum distance (§4), so no CTSS/NoAA ratio
 //! can be bought by loosening NoAA.
 
