@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use subcone::report::{self, ReportArgs};
 
-const REQUIRED: [&str; 15] = [
+const REQUIRED: [&str; 16] = [
     "scene",
     "method",
     "backend",
@@ -22,6 +22,7 @@ const REQUIRED: [&str; 15] = [
     "edge_flip_mean",
     "samples_per_pixel",
     "rays_per_pixel",
+    "buffer_mib",
 ];
 
 fn csv_rows(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {

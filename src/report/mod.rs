@@ -195,6 +195,9 @@ pub struct ResultRow {
     pub samples_per_pixel: f64,
     /// Rays of every kind per pixel (timing frame).
     pub rays_per_pixel: f64,
+    /// MiB of frame buffers the backend allocated (timing frame): what leaving
+    /// out passes a scene does not need saves shows here.
+    pub buffer_mib: f64,
     /// Width the error was measured at.
     pub quality_width: Option<u32>,
     /// Height the error was measured at.
@@ -901,6 +904,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                     edge_flip_mean: None,
                     samples_per_pixel: last.stats.shaded_samples as f64 / px,
                     rays_per_pixel: last.stats.rays.total() as f64 / px,
+                    buffer_mib: last.stats.buffer_bytes() as f64 / (1u64 << 20) as f64,
                     quality_width: None,
                     quality_height: None,
                     reference: None,
@@ -1058,6 +1062,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                             edge_flip_mean: None,
                             samples_per_pixel: f64::NAN,
                             rays_per_pixel: f64::NAN,
+                            buffer_mib: f64::NAN,
                             quality_width: None,
                             quality_height: None,
                             reference: None,

@@ -19,7 +19,7 @@ use super::reference::{code_version, write_atomic};
 use super::{crops, file_safe, Mode, ReportSummary, ResultRow};
 
 /// The columns every results file has, in order.
-pub const BASE_COLUMNS: [&str; 18] = [
+pub const BASE_COLUMNS: [&str; 19] = [
     "scene",
     "method",
     "backend",
@@ -35,6 +35,7 @@ pub const BASE_COLUMNS: [&str; 18] = [
     "edge_flip_mean",
     "samples_per_pixel",
     "rays_per_pixel",
+    "buffer_mib",
     "quality_width",
     "quality_height",
     "reference",
@@ -161,6 +162,7 @@ fn row_cells(r: &ResultRow, passes: &[String]) -> Vec<Cell> {
         opt(r.edge_flip_mean),
         Cell::Num(r.samples_per_pixel),
         Cell::Num(r.rays_per_pixel),
+        Cell::Num(r.buffer_mib),
         r.quality_width
             .map(|v| Cell::Int(v as u64))
             .unwrap_or(Cell::Empty),
@@ -335,7 +337,8 @@ NoAA depth or normal changes across a 4-neighbour by more than 2 % (unless the i
 continues linearly, as across a plane) or a cosine of 0.9, where a surface meets the background, or where the reference's luminance Sobel gradient exceeds 0.1). \
 *spp* is shaded samples per pixel (the mean of the samples-per-pixel AOV of the quality render, \
 or shading evaluations per pixel without one); *rays/px* counts every ray cast (primary, \
-geometry, shadow, secondary). Lower FLIP is better; the Pareto front joins the methods that no \
+geometry, shadow, secondary); *buffers MiB* is what the backend allocated for the frame, \
+which leaving out passes a scene does not need (shadows, reflections) keeps down. Lower FLIP is better; the Pareto front joins the methods that no \
 faster method beats.\n"
     );
 
@@ -359,13 +362,13 @@ faster method beats.\n"
         } else {
             let _ = writeln!(
                 md,
-                "| method | backend | median ms | min–max ms | × NoAA | FLIP | PSNR dB | edge FLIP | spp | rays/px |"
+                "| method | backend | median ms | min–max ms | × NoAA | FLIP | PSNR dB | edge FLIP | spp | rays/px | buffers MiB |"
             );
-            let _ = writeln!(md, "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|");
+            let _ = writeln!(md, "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
             for r in &rows {
                 let _ = writeln!(
                     md,
-                    "| {} | {} | {} | {}–{} | {} | {} | {} | {} | {} | {} |",
+                    "| {} | {} | {} | {}–{} | {} | {} | {} | {} | {} | {} | {} |",
                     r.method,
                     r.backend,
                     ms(r.ms_median),
@@ -377,6 +380,7 @@ faster method beats.\n"
                     f(r.edge_flip_mean, 4),
                     f(Some(r.samples_per_pixel), 2),
                     f(Some(r.rays_per_pixel), 2),
+                    f(Some(r.buffer_mib), 2),
                 );
             }
             let _ = writeln!(md);
@@ -707,6 +711,7 @@ mod tests {
             edge_flip_mean: None,
             samples_per_pixel: 1.0,
             rays_per_pixel: 2.0,
+            buffer_mib: 0.5,
             quality_width: Some(4),
             quality_height: Some(2),
             reference: Some("ssaa64".into()),
@@ -726,7 +731,9 @@ mod tests {
         assert!(header.starts_with("scene,method,backend,width,height,runs,ms_median"));
         assert!(header.ends_with(",reference,ms_geometry,ms_shading"));
         let first = lines.next().unwrap();
-        assert!(first.starts_with("\"s,1\",noaa,cpu,4,2,3,2.5,2,3,,0.125,inf,,1,2,4,2,ssaa64,,1"));
+        assert!(
+            first.starts_with("\"s,1\",noaa,cpu,4,2,3,2.5,2,3,,0.125,inf,,1,2,0.5,4,2,ssaa64,,1")
+        );
     }
 
     #[test]
