@@ -55,7 +55,7 @@
 /// [`crate::wgsl::PARAMS`]; concatenate after `PARAMS` (see [`crate::wgsl`]).
 pub const WGSL: &str = include_str!("mask.wgsl");
 
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 
 /// All 32 cells covered.
 pub const FULL_MASK: u32 = u32::MAX;
@@ -167,52 +167,61 @@ pub fn half_plane(
     Some((dir, h))
 }
 
-/// Number of cell centres `x_c = s·((2c+1)/6 − 1)`, `c = 0..6`, with `x_c < x`.
-#[inline]
-fn centres_below(x: f32) -> u32 {
-    // x_c < x  ⇔  c < 3x/s + 2.5; clamp first so the cast never sees ∞.
-    let v = libm::ceilf((3.0 / GRID_SCALE) * x.clamp(-2.0, 2.0) + 2.5);
-    v.clamp(0.0, 6.0) as u32
-}
+/// Cell centres in units of `s/3`, in bit order: `(c − 2.5, r − 2.5)` for the
+/// cell of column `c`, row `r` (exact halves). Built from [`ROW_WIDTH`] and
+/// [`ROW_SHIFT`].
+const CELL_XY: ([f32; 32], [f32; 32]) = {
+    let (mut xs, mut ys) = ([0.0f32; 32], [0.0f32; 32]);
+    let mut r = 0;
+    while r < 6 {
+        let first = if ROW_WIDTH[r as usize] == 4 { 1 } else { 0 };
+        let mut i = 0;
+        while i < ROW_WIDTH[r as usize] {
+            let bit = (ROW_SHIFT[r as usize] + i) as usize;
+            xs[bit] = (first + i) as f32 - 2.5;
+            ys[bit] = r as f32 - 2.5;
+            i += 1;
+        }
+        r += 1;
+    }
+    (xs, ys)
+};
 
 /// Rasterise the half-plane `{q : q·dir < h}` (unit `dir`) into the 32-bit mask.
 ///
 /// A cell is set when its centre is strictly inside. For `|dir.x| < 10⁻⁶` (a
-/// horizontal boundary) rows are all-or-nothing, which is the clamp of
-/// near-zero normal components that §3.5 asks for, without a division.
+/// horizontal boundary) `dir.x` is taken as 0, so rows are all-or-nothing,
+/// which is the clamp of near-zero normal components that §3.5 asks for.
+///
+/// # Arithmetic
+/// With centres `(x_c, y_r) = (s/3)·(c − 2.5, r − 2.5)`, cell `(r, c)` is
+/// covered when `(c − 2.5)·dx + (r − 2.5)·dy < (3/s)·h`: one multiply-add and
+/// one compare per cell, no division and no rounding to integers, so the 32
+/// cells go four at a time through SIMD lanes (a compare's lane mask is four
+/// bits of the result). A NaN anywhere fails every compare: the mask is empty.
+/// Infinite inputs give the compare's IEEE result. The test is the `f64`
+/// reference's up to the rounding of `(3/s)·h` and of the two products, i.e.
+/// only centres within rounding of the line can differ (bounded in the
+/// `f64_reference` test).
 #[inline]
 pub fn half_plane_mask(dir: Vec2, h: f32) -> u32 {
+    let dx = if libm::fabsf(dir.x) < 1e-6 {
+        0.0
+    } else {
+        dir.x
+    };
+    let dx4 = Vec4::splat(dx);
+    let dy4 = Vec4::splat(dir.y);
+    let h4 = Vec4::splat((3.0 / GRID_SCALE) * h);
+    let (xs, ys) = (&CELL_XY.0, &CELL_XY.1);
     let mut mask = 0u32;
-    let mut r = 0;
-    while r < 6 {
-        let y = ROW_Y[r];
-        let rhs = h - y * dir.y;
-        let row6: u32 = if libm::fabsf(dir.x) < 1e-6 {
-            // q·dir = y·dir.y for the whole row.
-            if 0.0 < rhs {
-                0x3f
-            } else {
-                0
-            }
-        } else {
-            let x = rhs / dir.x;
-            if dir.x > 0.0 {
-                // covered: x_c < x, counted from the left.
-                let k = centres_below(x);
-                (1u32 << k) - 1
-            } else {
-                // covered: x_c > x; by symmetry of the centres, count from the right.
-                let k = centres_below(-x);
-                0x3f & !((1u32 << (6 - k)) - 1)
-            }
-        };
-        let row = if ROW_WIDTH[r] == 4 {
-            (row6 >> 1) & 0xf
-        } else {
-            row6
-        };
-        mask |= row << ROW_SHIFT[r];
-        r += 1;
+    let mut g = 0;
+    while g < 8 {
+        let x = Vec4::from_slice(&xs[4 * g..4 * g + 4]);
+        let y = Vec4::from_slice(&ys[4 * g..4 * g + 4]);
+        let inside = (x * dx4 + y * dy4).cmplt(h4);
+        mask |= inside.bitmask() << (4 * g);
+        g += 1;
     }
     mask
 }

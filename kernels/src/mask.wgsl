@@ -57,53 +57,37 @@ fn half_plane(occlusion: f32, projected_normal: vec2<f32>, placement: u32) -> ve
     return vec4<f32>(dir, h, 1.0);
 }
 
-// subcone_kernels::mask::centres_below — cell centres of a 6-wide row left of x.
-fn centres_below(x: f32) -> u32 {
-    let v = ceil((3.0f / GRID_SCALE) * clamp(x, -2.0, 2.0) + 2.5);
-    return u32(clamp(v, 0.0, 6.0));
+// subcone_kernels::mask::CELL_XY — centre of the cell held by `bit`, in units
+// of s/3: (c − 2.5, r − 2.5) (Fig. 6b layout: rows 0 and 5 hold columns 1–4).
+fn mask_cell_xy(bit: u32) -> vec2<f32> {
+    var r: u32;
+    var c: u32;
+    if bit < 4u {
+        r = 0u;
+        c = bit + 1u;
+    } else if bit < 28u {
+        r = 1u + (bit - 4u) / 6u;
+        c = (bit - 4u) % 6u;
+    } else {
+        r = 5u;
+        c = bit - 27u;
+    }
+    return vec2<f32>(f32(c) - 2.5, f32(r) - 2.5);
 }
 
 // subcone_kernels::mask::half_plane_mask — rasterise q·dir < h on the 32-cell grid.
+// Cell (r, c) is covered when (c − 2.5)·dx + (r − 2.5)·dy < (3/s)·h (centres
+// (s/3)·(c − 2.5, r − 2.5)); no division. |dx| < 1e-6 counts as 0 (rows all
+// or nothing, §3.5).
 fn half_plane_mask(dir: vec2<f32>, h: f32) -> u32 {
+    let dx = select(dir.x, 0.0, abs(dir.x) < 1e-6);
+    let hs = (3.0 / GRID_SCALE) * h;
     var mask = 0u;
-    for (var r = 0u; r < 6u; r++) {
-        var y: f32;
-        switch r {
-            case 0u: { y = (-5.0f / 6.0f) * GRID_SCALE; }
-            case 1u: { y = -0.5f * GRID_SCALE; }
-            case 2u: { y = (-1.0f / 6.0f) * GRID_SCALE; }
-            case 3u: { y = (1.0f / 6.0f) * GRID_SCALE; }
-            case 4u: { y = 0.5f * GRID_SCALE; }
-            default: { y = (5.0f / 6.0f) * GRID_SCALE; }
+    for (var bit = 0u; bit < 32u; bit++) {
+        let q = mask_cell_xy(bit);
+        if q.x * dx + q.y * dir.y < hs {
+            mask |= 1u << bit;
         }
-        let rhs = h - y * dir.y;
-        var row6: u32;
-        if abs(dir.x) < 1e-6 {
-            row6 = select(0u, 0x3fu, 0.0 < rhs);
-        } else {
-            let x = rhs / dir.x;
-            if dir.x > 0.0 {
-                let k = centres_below(x);
-                row6 = (1u << k) - 1u;
-            } else {
-                let k = centres_below(-x);
-                row6 = 0x3fu & ~((1u << (6u - k)) - 1u);
-            }
-        }
-        var row = row6;
-        var shift: u32;
-        switch r {
-            case 0u: { shift = 0u; }
-            case 1u: { shift = 4u; }
-            case 2u: { shift = 10u; }
-            case 3u: { shift = 16u; }
-            case 4u: { shift = 22u; }
-            default: { shift = 28u; }
-        }
-        if r == 0u || r == 5u {
-            row = (row6 >> 1u) & 0xfu;
-        }
-        mask |= row << shift;
     }
     return mask;
 }

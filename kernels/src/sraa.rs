@@ -236,12 +236,20 @@ pub fn gaussian(x: f32) -> f32 {
     }
 }
 
+/// Beyond this `s`, `exp(−s) < 2⁻¹⁵¹` rounds to 0 in f32 (`e⁻¹⁰⁵ ≈ 2.5·10⁻⁴⁶`).
+const EXP_UNDERFLOW: f32 = 105.0;
+
 /// `exp(−s)` for `s = a² + b² ≥ 0`; 0 for `s = ∞` or NaN.
+///
+/// The two ends skip the exponential and return what it would: `s = 0`
+/// (same depth, same normal: the common case inside a surface, and `w_ii`)
+/// gives exactly 1, and `s ≥ 105`, ∞ or NaN gives 0.
 #[inline]
 fn gaussian_sum(s: f32) -> f32 {
-    let e = libm::expf(-s);
-    if !e.is_nan() {
-        e
+    if s == 0.0 {
+        1.0
+    } else if s < EXP_UNDERFLOW {
+        libm::expf(-s)
     } else {
         0.0
     }

@@ -82,12 +82,13 @@ fn gaussian(x: f32) -> f32 {
     return e;
 }
 
-// Mirrors sraa::gaussian_sum: exp(-s), 0 for s = inf or NaN.
+// Mirrors sraa::gaussian_sum: exp(-s); exactly 1 for s = 0, 0 for s ≥ 105
+// (sraa::EXP_UNDERFLOW, where exp(-s) rounds to 0), s = inf or NaN.
 fn gaussian_sum(s: f32) -> f32 {
-    if sraa_is_nan(s) {
-        return 0.0;
+    if s == 0.0 {
+        return 1.0;
     }
-    if !sraa_is_finite(s) {
+    if sraa_is_nan(s) || !(s < 105.0) {
         return 0.0;
     }
     let e = exp(-s);

@@ -89,12 +89,23 @@ impl Camera {
     /// The ray through image point `p` (pixels, see the type docs) of a
     /// `width × height` image: `(origin, unit direction)`.
     pub fn ray(&self, p: Vec2, width: u32, height: u32) -> (Vec3, Vec3) {
-        let half = (0.5 * self.fov_y).tan();
+        self.rays(width, height).ray(p)
+    }
+
+    /// The per-image constants of [`Camera::ray`] (the `tan` of the half field
+    /// of view, the right vector), for generating many rays: its
+    /// [`CameraRays::ray`] is [`Camera::ray`], bit for bit.
+    pub fn rays(&self, width: u32, height: u32) -> CameraRays {
         let (w, h) = (width.max(1) as f32, height.max(1) as f32);
-        let u = (2.0 * p.x / w - 1.0) * half * (w / h);
-        let v = (1.0 - 2.0 * p.y / h) * half;
-        let d = (self.forward + u * self.right() + v * self.up).normalize();
-        (self.position, d)
+        CameraRays {
+            position: self.position,
+            forward: self.forward,
+            right: self.right(),
+            up: self.up,
+            half: (0.5 * self.fov_y).tan(),
+            w,
+            h,
+        }
     }
 
     /// Depth of a point along the view axis (what SRAA's `z` is).
@@ -105,5 +116,31 @@ impl Camera {
     /// `tan θ` of a pixel's cone at `height` pixels (CTSS eq. 3, §3.1).
     pub fn cone_tan_theta(&self, height: u32, coverage: f32) -> f32 {
         cone_tan_theta(self.fov_y, height, coverage, PixelFootprint::Circumscribed)
+    }
+}
+
+/// Ray generation for one `width × height` image of a camera (see
+/// [`Camera::rays`]).
+#[derive(Clone, Copy, Debug)]
+pub struct CameraRays {
+    position: Vec3,
+    forward: Vec3,
+    right: Vec3,
+    up: Vec3,
+    half: f32,
+    w: f32,
+    h: f32,
+}
+
+impl CameraRays {
+    /// The ray through image point `p`: `(origin, unit direction)`, the same
+    /// as [`Camera::ray`].
+    #[inline]
+    pub fn ray(&self, p: Vec2) -> (Vec3, Vec3) {
+        let (w, h, half) = (self.w, self.h, self.half);
+        let u = (2.0 * p.x / w - 1.0) * half * (w / h);
+        let v = (1.0 - 2.0 * p.y / h) * half;
+        let d = (self.forward + u * self.right + v * self.up).normalize();
+        (self.position, d)
     }
 }

@@ -46,22 +46,25 @@ pub fn supersample(t: &Tracer, method: &Method, s: &RenderSettings, passes: Pass
     };
     let mut frame = Frame::new(s.width, s.height);
     let start = Instant::now();
+    let rays = t.camera.rays(s.width, s.height);
     let counts = frame
         .color
         .par_chunks_mut(w * BAND)
         .enumerate()
         .map(|(band, rows)| {
             let mut c = Counts::default();
-            for (i, out) in rows.iter_mut().enumerate() {
-                let (x, y) = (i % w, band * BAND + i / w);
+            // Row by row: no integer division per pixel.
+            let pixels = rows.chunks_mut(w).enumerate().flat_map(|(r, row)| {
+                let y = band * BAND + r;
+                row.iter_mut().enumerate().map(move |(x, out)| (x, y, out))
+            });
+            for (x, y, out) in pixels {
                 let mut sum = Vec3::ZERO;
                 for sy in 0..n {
                     for sx in 0..n {
                         let off =
                             Vec2::new((sx as f32 + 0.5) / n as f32, (sy as f32 + 0.5) / n as f32);
-                        let (o, d) =
-                            t.camera
-                                .ray(Vec2::new(x as f32, y as f32) + off, s.width, s.height);
+                        let (o, d) = rays.ray(Vec2::new(x as f32, y as f32) + off);
                         c.primary += 1;
                         sum += t.radiance(o, d, 0, &mut c);
                     }
