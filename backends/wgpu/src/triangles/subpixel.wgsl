@@ -133,10 +133,10 @@ fn shade_main(@builtin(global_invocation_id) id: vec3<u32>) {
 }
 
 // shade::Tracer::shadow_states_masked: trace.wgsl `shadow_states`, casting a
-// shadow ray only for the lights in `cast`; the others keep the free answers
+// shadow ray only for the lights in `cast_mask`; the others keep the free answers
 // (no incident light: lit; facing away: shadowed) and otherwise take their bit
 // from `inherited`.
-fn shadow_states_masked(s: Surface, cast: u32, inherited: u32, c: ptr<function, Counts>) -> u32 {
+fn shadow_states_masked(s: Surface, cast_mask: u32, inherited: u32, c: ptr<function, Counts>) -> u32 {
     var bits = 0u;
     let origin = s.p + s.ng * frame.eps;
     for (var l = 0u; l < min(frame.lights, MAX_LIGHTS); l++) {
@@ -148,7 +148,7 @@ fn shadow_states_masked(s: Surface, cast: u32, inherited: u32, c: ptr<function, 
             bits |= 1u << l;
             continue;
         }
-        if (cast & (1u << l)) == 0u {
+        if (cast_mask & (1u << l)) == 0u {
             bits |= inherited & (1u << l);
             continue;
         }
