@@ -54,12 +54,21 @@ impl SdfField for subcone_scene::sdf::SdfNode {
 #[derive(Default)]
 pub struct CpuBackend {
     cache: Mutex<HashMap<u64, Arc<SceneBvh>>>,
+    exhaustive_subpixel_shadows: bool,
 }
 
 impl CpuBackend {
     /// A backend with an empty BVH cache.
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// SRAA-RT casts every subsample's shadow rays (the paper's pass 1 as
+    /// written) when `on`; by default it casts them only where the shaded
+    /// samples around a subsample disagree about a light's shadow.
+    pub fn with_exhaustive_subpixel_shadows(mut self, on: bool) -> Self {
+        self.exhaustive_subpixel_shadows = on;
+        self
     }
 
     /// The BVH of `scene`, built on first use.
@@ -128,7 +137,8 @@ impl Backend for CpuBackend {
         }
         let bvh = self.bvh(scene)?;
         let mesh = scene.mesh().expect("checked by bvh()");
-        let tracer = Tracer::new(&bvh, scene, mesh, camera, settings.reflection_depth);
+        let mut tracer = Tracer::new(&bvh, scene, mesh, camera, settings.reflection_depth);
+        tracer.exhaustive_subpixel_shadows = self.exhaustive_subpixel_shadows;
         Ok(match method.technique {
             Technique::NoAa | Technique::Ssaa => {
                 render::supersample(&tracer, method, settings, passes)

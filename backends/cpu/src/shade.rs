@@ -92,6 +92,10 @@ pub struct Tracer<'a> {
     pub reflection_depth: u32,
     /// Offset of secondary ray origins, in scene units.
     pub eps: f32,
+    /// SRAA-RT: cast every subsample's shadow rays, instead of only where the
+    /// shaded samples around it disagree about a light (the default; see
+    /// `render::shadow_agreement`).
+    pub exhaustive_subpixel_shadows: bool,
 }
 
 impl<'a> Tracer<'a> {
@@ -110,6 +114,7 @@ impl<'a> Tracer<'a> {
             camera,
             reflection_depth,
             eps: bvh.scale * 2e-5,
+            exhaustive_subpixel_shadows: false,
         }
     }
 
@@ -161,6 +166,21 @@ impl<'a> Tracer<'a> {
     /// shadow ray per light that faces the surface.
     #[inline]
     pub fn shadow_states(&self, s: &Surface, c: &mut Counts) -> u32 {
+        self.shadow_states_masked(s, u32::MAX, 0, c)
+    }
+
+    /// [`Self::shadow_states`], casting a shadow ray only for the lights whose
+    /// bit is set in `cast`. A light outside `cast` still gets the free answers
+    /// (no incident light: lit; facing away: shadowed); where a ray would have
+    /// decided, it takes its bit from `inherited` instead.
+    #[inline]
+    pub fn shadow_states_masked(
+        &self,
+        s: &Surface,
+        cast: u32,
+        inherited: u32,
+        c: &mut Counts,
+    ) -> u32 {
         let mut bits = 0;
         let origin = s.p + s.ng * self.eps;
         for (l, light) in self.scene.lights.iter().enumerate().take(MAX_LIGHTS) {
@@ -169,6 +189,10 @@ impl<'a> Tracer<'a> {
             };
             if inc.direction.dot(s.ng) <= 0.0 {
                 bits |= 1 << l; // facing away: self-shadowed, no ray needed
+                continue;
+            }
+            if cast & (1 << l) == 0 {
+                bits |= inherited & (1 << l);
                 continue;
             }
             c.shadow += 1;

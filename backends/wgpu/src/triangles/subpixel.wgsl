@@ -132,13 +132,77 @@ fn shade_main(@builtin(global_invocation_id) id: vec3<u32>) {
     counts_flush(c);
 }
 
+// shade::Tracer::shadow_states_masked: trace.wgsl `shadow_states`, casting a
+// shadow ray only for the lights in `cast_mask`; the others keep the free answers
+// (no incident light: lit; facing away: shadowed) and otherwise take their bit
+// from `inherited`.
+fn shadow_states_masked(s: Surface, cast_mask: u32, inherited: u32, c: ptr<function, Counts>) -> u32 {
+    var bits = 0u;
+    let origin = s.p + s.ng * frame.eps;
+    for (var l = 0u; l < min(frame.lights, MAX_LIGHTS); l++) {
+        let inc = incident(lights[l], s.p);
+        if !inc.ok {
+            continue;
+        }
+        if dot(inc.direction, s.ng) <= 0.0 {
+            bits |= 1u << l;
+            continue;
+        }
+        if (cast_mask & (1u << l)) == 0u {
+            bits |= inherited & (1u << l);
+            continue;
+        }
+        (*c).shadow += 1u;
+        if occluded(origin, inc.direction, 0.0, inc.distance - frame.eps) {
+            bits |= 1u << l;
+        }
+    }
+    return bits;
+}
+
+// render.rs `shadow_agreement` (adaptive subpixel shadow rays): from the shaded
+// samples of the neighbourhood the pixel's subsamples are reconstructed from,
+// the lights whose subpixel shadow rays must be cast (x) and the states the
+// others inherit (y). A light is skipped when every neighbour's layer of it is
+// black (the layer reconstructs to 0 whatever the gate: exact) or every
+// neighbour agrees on its shadow state (inherited; differs from the exhaustive
+// ray only inside a shadow no shaded sample around sees, where eq. 2 would gate
+// every neighbour out and fall back to the nearest one). `secondary` reads the
+// secondary hits' states; `first` is the group's base layer.
+fn shadow_agreement(x: u32, y: u32, secondary: bool, first: u32) -> vec2<u32> {
+    let all_lights = (1u << LAYER_LIGHTS) - 1u;
+    var all_shadowed = 0xffffffffu;
+    var any_shadowed = 0u;
+    var dark = all_lights;
+    let nb = neighbourhood(x, y, SHADED_SUBSAMPLE, sraa_radius(frame.sraa), frame.width, frame.height);
+    for (var py = nb.y0; py < nb.y1; py++) {
+        for (var px = nb.x0; px < nb.x1; px++) {
+            let jj = py * frame.width + px;
+            var b = get_shadow(jj);
+            if secondary {
+                b = get_shadow2(jj);
+            }
+            all_shadowed &= b;
+            any_shadowed |= b;
+            for (var l = 0u; l < LAYER_LIGHTS; l++) {
+                if any(get_value(jj, first + 1u + l) != vec3<f32>(0.0)) {
+                    dark &= ~(1u << l);
+                }
+            }
+        }
+    }
+    let agreed = (all_shadowed | ~any_shadowed | dark) & all_lights;
+    return vec2<u32>(all_lights & ~agreed, all_shadowed & all_lights);
+}
+
 // Pass "geometry" (the paper's pass 1, ray traced): subsample `k` of every
 // pixel, one dispatch per subsample (`subsample[0]`, which bounds the loop
 // iterations of one invocation: llvmpipe stops a shader invocation's loops
 // after 65 535 iterations in total). The three subsamples other than the shaded
 // one are traced for geometry only, with their shadow states (subpixel shadow
-// rays) and, on mirrors, the geometry and shadow states of their reflection
-// rays. The shaded subsample's are copied, not traced again.
+// rays, cast only where `shadow_agreement` finds the neighbourhood disagreeing)
+// and, on mirrors, the geometry and shadow states of their reflection rays. The
+// shaded subsample's are copied, not traced again.
 fn geometry_pixel(x: u32, y: u32, j: u32, k: u32, c: ptr<function, Counts>) {
     if k == SHADED_SUBSAMPLE {
         put_sub_geo(j, k, geo[j]);
@@ -159,7 +223,11 @@ fn geometry_pixel(x: u32, y: u32, j: u32, k: u32, c: ptr<function, Counts>) {
         return;
     }
     if HAS_SUB_SHADOW {
-        put_sub_shadow(j, k, shadow_states(sf, c));
+        var a = vec2<u32>(0xffffffffu, 0u);
+        if HAS_SHADOW {
+            a = shadow_agreement(x, y, false, 0u);
+        }
+        put_sub_shadow(j, k, shadow_states_masked(sf, a.x, a.y, c));
     }
     if HAS_SUB_GEO2 {
         let mirror = materials[sf.material].mirror;
@@ -171,7 +239,11 @@ fn geometry_pixel(x: u32, y: u32, j: u32, k: u32, c: ptr<function, Counts>) {
                 put_sub_geo2(j, k, geometry_miss());
             } else {
                 if HAS_SUB_SHADOW2 {
-                    put_sub_shadow2(j, k, shadow_states(s2, c));
+                    var a = vec2<u32>(0xffffffffu, 0u);
+                    if HAS_SHADOW2 {
+                        a = shadow_agreement(x, y, true, 1u + LAYER_LIGHTS);
+                    }
+                    put_sub_shadow2(j, k, shadow_states_masked(s2, a.x, a.y, c));
                 }
                 put_sub_geo2(j, k, Geometry(s2.n, sf.t + s2.t));
             }
