@@ -207,3 +207,58 @@ pub fn required_passes(
     };
     Ok(passes)
 }
+
+/// The shading layers an SRAA frame reconstructs separately (§3.2–3.3): the
+/// shadow-independent part, one layer per light gated by that light's shadow
+/// state (eq. 2), and the same again for secondary (reflected) shading. Plain
+/// SRAA reconstructs one layer, the final colour.
+///
+/// Derived from the planned passes, so a scene without lights has no
+/// per-light layers and one without mirrors no secondary layers; every
+/// backend sizes its buffers from it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LayerLayout {
+    /// Lights whose direct part is a layer of its own.
+    pub lights: usize,
+    /// Secondary layers exist.
+    pub secondary: bool,
+    /// One layer only (plain SRAA).
+    pub single: bool,
+}
+
+impl LayerLayout {
+    /// The layers of a `technique` frame running `passes` with `lights` lights
+    /// (already capped at what the backend supports). Only SRAA-RT splits
+    /// shading into layers; every other technique gets the single layer.
+    pub const fn new(technique: Technique, passes: Passes, lights: usize) -> Self {
+        let rt = matches!(technique, Technique::SraaRt);
+        LayerLayout {
+            lights: if rt && passes.contains(Passes::SHADOW) {
+                lights
+            } else {
+                0
+            },
+            secondary: rt && passes.contains(Passes::SECONDARY_RECONSTRUCTION),
+            single: !rt,
+        }
+    }
+
+    /// Number of layers.
+    pub const fn len(&self) -> usize {
+        if self.single {
+            1
+        } else {
+            (1 + self.lights) * if self.secondary { 2 } else { 1 }
+        }
+    }
+
+    /// Never empty: at least the one layer.
+    pub const fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// Index of the first secondary layer.
+    pub const fn secondary_base(&self) -> usize {
+        1 + self.lights
+    }
+}

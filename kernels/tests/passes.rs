@@ -101,3 +101,29 @@ fn unsupported_combinations_explain_themselves() {
     let e = required_passes(Technique::SraaRt, SceneFeatures::IS_SDF).unwrap_err();
     assert!(e.to_string().contains("triangle"), "{e}");
 }
+
+/// SRAA-RT's shading layers follow the planned passes: per-light layers only
+/// with a shadow pass, secondary layers only with secondary reconstruction;
+/// every other technique reconstructs the one final colour.
+#[test]
+fn layer_layout_follows_the_passes() {
+    use subcone_kernels::passes::LayerLayout;
+    let all = Passes::SHADOW | Passes::SECONDARY_RECONSTRUCTION;
+    let rt = LayerLayout::new(Technique::SraaRt, all, 2);
+    assert_eq!((rt.len(), rt.secondary_base()), (6, 3));
+    assert_eq!(
+        LayerLayout::new(Technique::SraaRt, Passes::SHADOW, 2).len(),
+        3
+    );
+    assert_eq!(
+        LayerLayout::new(Technique::SraaRt, Passes::SECONDARY_RECONSTRUCTION, 2).len(),
+        2
+    );
+    assert_eq!(
+        LayerLayout::new(Technique::SraaRt, Passes::empty(), 2).len(),
+        1
+    );
+    let plain = LayerLayout::new(Technique::Sraa, all, 2);
+    assert!(plain.single);
+    assert_eq!((plain.len(), plain.lights, plain.secondary), (1, 0, false));
+}

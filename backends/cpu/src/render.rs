@@ -4,7 +4,7 @@ use std::time::Instant;
 
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
-use subcone_kernels::passes::{Passes, Technique};
+use subcone_kernels::passes::{LayerLayout, Passes, Technique};
 use subcone_kernels::sraa::{
     neighbourhood, reconstruct_layers, resolve_pixel, Geometry, LayeredSample, SraaParams,
     SHADED_SUBSAMPLE, SUBPIXEL_OFFSETS,
@@ -110,30 +110,6 @@ fn centre_geometry(t: &Tracer, s: &RenderSettings) -> (Vec<f32>, Vec<Vec3>) {
     )
 }
 
-/// Which value layers a shaded sample carries (see [`subpixel`]).
-#[derive(Clone, Copy, Debug)]
-struct Layout {
-    /// Lights whose direct part is its own layer, gated by its shadow state.
-    lights: usize,
-    /// Secondary layers exist (reflective scene or forced).
-    secondary: bool,
-    /// Original SRAA: one layer, the final colour.
-    single: bool,
-}
-
-impl Layout {
-    fn len(&self) -> usize {
-        if self.single {
-            1
-        } else {
-            (1 + self.lights) * if self.secondary { 2 } else { 1 }
-        }
-    }
-    fn secondary_base(&self) -> usize {
-        1 + self.lights
-    }
-}
-
 /// Buffers of one frame, allocated only for the passes it runs.
 struct Buffers {
     geo: Vec<Geometry>,
@@ -179,15 +155,7 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
     let n = w * h;
     let rt = method.technique == Technique::SraaRt;
     let lights = t.scene.lights.len().min(MAX_LIGHTS);
-    let layout = Layout {
-        lights: if rt && passes.contains(Passes::SHADOW) {
-            lights
-        } else {
-            0
-        },
-        secondary: rt && passes.contains(Passes::SECONDARY_RECONSTRUCTION),
-        single: !rt,
-    };
+    let layout = LayerLayout::new(method.technique, passes, lights);
     let shadows = passes.contains(Passes::SHADOW);
     let sub_shadows = rt && passes.contains(Passes::SUBPIXEL_SHADOW);
     let sub_secondary = rt && passes.contains(Passes::SUBPIXEL_SECONDARY_GEOMETRY);
@@ -531,7 +499,7 @@ fn bands<T: Send>(v: &mut [T], band: usize, nb: usize) -> Vec<&mut [T]> {
 #[allow(clippy::too_many_arguments)]
 fn reconstruct_subsample(
     b: &Buffers,
-    layout: &Layout,
+    layout: &LayerLayout,
     params: &SraaParams,
     radius: u32,
     x: usize,

@@ -18,7 +18,7 @@ use std::sync::Arc;
 
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
-use subcone_kernels::passes::{Passes, Technique};
+use subcone_kernels::passes::{LayerLayout, Passes, Technique};
 use subcone_kernels::sraa::{Geometry, SraaParams};
 use subcone_scene::{
     Camera, Frame, FrameStats, Method, RayCounts, RenderError, RenderSettings, Scene,
@@ -263,24 +263,6 @@ fn accessors(
              fn get_{name}({args}) -> {ty} {{ return {default}; }}\n\
              fn put_{name}({args}, v: {ty}) {{ }}\n"
         )
-    }
-}
-
-/// Which value layers a shaded sample carries (render.rs `Layout`).
-#[derive(Clone, Copy, Debug)]
-struct Layout {
-    lights: usize,
-    secondary: bool,
-    single: bool,
-}
-
-impl Layout {
-    fn len(&self) -> usize {
-        if self.single {
-            1
-        } else {
-            (1 + self.lights) * if self.secondary { 2 } else { 1 }
-        }
     }
 }
 
@@ -647,15 +629,7 @@ fn subpixel(
     let n = s.width as usize * s.height as usize;
     let rt = method.technique == Technique::SraaRt;
     let lights = scene.lights.len().min(MAX_LIGHTS);
-    let layout = Layout {
-        lights: if rt && passes.contains(Passes::SHADOW) {
-            lights
-        } else {
-            0
-        },
-        secondary: rt && passes.contains(Passes::SECONDARY_RECONSTRUCTION),
-        single: !rt,
-    };
+    let layout = LayerLayout::new(method.technique, passes, lights);
     let shadows = passes.contains(Passes::SHADOW);
     let sub_shadows = rt && passes.contains(Passes::SUBPIXEL_SHADOW);
     let sub_secondary = rt && passes.contains(Passes::SUBPIXEL_SECONDARY_GEOMETRY);
