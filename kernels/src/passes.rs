@@ -208,6 +208,10 @@ pub fn required_passes(
     Ok(passes)
 }
 
+/// Most lights a frame may have on any backend: shadow states are bits of a
+/// `u32`, and per-light shading parts live in fixed arrays.
+pub const MAX_LIGHTS: usize = 8;
+
 /// The shading layers an SRAA frame reconstructs separately (§3.2–3.3): the
 /// shadow-independent part, one layer per light gated by that light's shadow
 /// state (eq. 2), and the same again for secondary (reflected) shading. Plain

@@ -7,9 +7,7 @@ use subcone_scene::{Camera, Scene, TriangleMesh};
 
 use crate::bvh::SceneBvh;
 
-/// Most lights a scene may have: shadow states are bits of a `u32`, and the
-/// per-light parts live in fixed arrays.
-pub const MAX_LIGHTS: usize = 8;
+pub use subcone_kernels::passes::MAX_LIGHTS;
 
 /// A surface point seen by a ray.
 #[derive(Clone, Copy, Debug)]

@@ -20,9 +20,7 @@ use crate::context::{err, GpuContext};
 /// refused at upload (obvhs' builds stay far below it).
 pub(crate) const STACK_SIZE: usize = 48;
 
-/// Most lights: shadow states are bits of a `u32` and per-light parts live in
-/// fixed arrays (the CPU backend's `MAX_LIGHTS`).
-pub(crate) const MAX_LIGHTS: usize = 8;
+pub(crate) use subcone_kernels::passes::MAX_LIGHTS;
 
 /// A BVH2 node: inner (`count == 0`, children at `index` and `index + 1`) or
 /// leaf (`count` triangles from `index` in BVH order).
@@ -246,12 +244,7 @@ fn upload(ctx: &GpuContext, scene: &Scene) -> Result<SceneGpu, RenderError> {
     if texels.is_empty() {
         texels.push([0.0; 4]);
     }
-    if scene.lights.len() > MAX_LIGHTS {
-        return Err(err(format!(
-            "{} lights; at most {MAX_LIGHTS} are supported",
-            scene.lights.len()
-        )));
-    }
+    // `render` has refused more than MAX_LIGHTS lights before uploading.
     let mut lights: Vec<GpuLight> = scene
         .lights
         .iter()

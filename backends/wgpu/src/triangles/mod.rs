@@ -482,7 +482,9 @@ fn shader(header: &str, entries: &[&str]) -> String {
     let mut s = String::new();
     s += subcone_kernels::wgsl::PARAMS;
     s += subcone_kernels::sraa::WGSL;
-    s += &TRACE_WGSL.replace("__STACK_SIZE__", &STACK_SIZE.to_string());
+    s += &TRACE_WGSL
+        .replace("__STACK_SIZE__", &STACK_SIZE.to_string())
+        .replace("__MAX_LIGHTS__", &MAX_LIGHTS.to_string());
     s += header;
     for e in entries {
         s += e;

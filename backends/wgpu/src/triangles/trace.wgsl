@@ -66,7 +66,7 @@ struct LightGpu {
 @group(0) @binding(7) var<storage, read_write> counters: array<atomic<u32>, 12>;
 
 const STACK_SIZE: u32 = __STACK_SIZE__u;
-const MAX_LIGHTS: u32 = 8u;
+const MAX_LIGHTS: u32 = __MAX_LIGHTS__u;
 // Mirror bounces a shader follows at most (reflection_depth is clamped to it).
 const MAX_BOUNCES: u32 = 64u;
 const FRAC_1_PI: f32 = 0.31830987;
