@@ -122,6 +122,10 @@ fn quick_report_on_every_paper_scene() {
         "| ctss ≤ 1.20x NoAA",
         "| ctss-r ≤ 1.08x NoAA",
         "| sraa-rt ≤ 1/6 of ssaa16's time",
+        "| primary rays ≥ 70.0% of raw traversal",
+        "| shadow rays ≥ 70.0% of raw traversal",
+        "| bilateral_weight (SRAA eq. 1) ≤ 5 ns per call",
+        "| visibility_mask (CTSS eq. 7-8) ≤ 5 ns per call",
     ] {
         let line = md
             .lines()

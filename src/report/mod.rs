@@ -35,6 +35,7 @@
 //! ```
 
 pub mod crops;
+pub mod kernel_timing;
 pub mod metrics;
 pub mod output;
 pub mod plot;
@@ -264,8 +265,27 @@ pub struct ReportSummary {
     pub references_rendered: usize,
     /// References read from the cache.
     pub references_cached: usize,
+    /// Ray throughput of the CPU pipeline against raw traversal, per triangle
+    /// scene (empty when the CPU backend is not in the run).
+    pub throughput: Vec<ThroughputRow>,
+    /// ns per call of the hot kernels (empty when the CPU backend is not in the
+    /// run: they are CPU figures).
+    pub kernels: Vec<kernel_timing::KernelTiming>,
     /// Wall time of the whole run.
     pub elapsed: Duration,
+}
+
+/// The ray throughput of one triangle scene on the CPU backend.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ThroughputRow {
+    /// Scene.
+    pub scene: String,
+    /// Frame size the rays cover (the scene's timing size).
+    pub width: u32,
+    /// Frame height.
+    pub height: u32,
+    /// The measured rates.
+    pub rates: subcone_cpu::throughput::RayThroughput,
 }
 
 impl fmt::Display for ReportSummary {
@@ -1073,6 +1093,32 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
             }
         }
     }
+    // The CPU-side performance targets: ray throughput on every triangle
+    // scene at its timing size, and ns per kernel call.
+    let mut throughput = Vec::new();
+    let mut kernels = Vec::new();
+    if plan.backends.iter().any(|b| b.0 == "cpu") {
+        let cpu = subcone_cpu::CpuBackend::new();
+        for job in jobs.iter().filter(|j| !j.sdf) {
+            runner
+                .progress
+                .note(&format!("{}: ray throughput", job.name));
+            let (w, h) = job.timing_size;
+            match subcone_cpu::throughput::RayWorkload::new(&cpu, &job.scene, w, h) {
+                Ok(work) => throughput.push(ThroughputRow {
+                    scene: job.name.clone(),
+                    width: w,
+                    height: h,
+                    rates: work.measure(plan.runs as usize),
+                }),
+                Err(e) => runner
+                    .progress
+                    .note(&format!("{}: no ray throughput: {e}", job.name)),
+            }
+        }
+        runner.progress.note("kernels: ns per call");
+        kernels = kernel_timing::measure();
+    }
     runner.progress.bar.finish_and_clear();
 
     let summary = ReportSummary {
@@ -1088,6 +1134,8 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
         crops: all_crops,
         references_rendered: runner.references_rendered,
         references_cached: runner.references_cached,
+        throughput,
+        kernels,
         elapsed: start.elapsed(),
     };
     let ctx = output::Context {

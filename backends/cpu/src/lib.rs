@@ -22,6 +22,7 @@ pub mod bvh;
 mod render;
 pub mod shade;
 pub mod sphere;
+pub mod throughput;
 
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
