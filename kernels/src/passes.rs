@@ -142,8 +142,10 @@ impl core::error::Error for Unsupported {}
 ///
 /// Shadow passes exist only with [`SceneFeatures::HAS_LIGHTS`], secondary passes
 /// only with [`SceneFeatures::HAS_REFLECTIONS`], secondary shadows only with both.
-/// The CTSS family needs an SDF; the SRAA family needs triangles (the kernels
-/// accept any geometry, but no backend produces subpixel SDF geometry yet).
+/// The CTSS family needs an SDF. Plain SRAA needs triangles (its subpixel
+/// G-buffer is rasterised); SRAA-RT takes its samples by ray casting and so
+/// also runs on SDFs, sphere tracing them (the passes are the same; SDF
+/// backends refuse reflections).
 /// Textures change no pass.
 pub fn required_passes(
     technique: Technique,
@@ -159,10 +161,10 @@ pub fn required_passes(
             reason: "cone tracing needs a signed distance field",
         });
     }
-    if technique.is_subpixel_reconstruction() && sdf {
+    if technique == Technique::Sraa && sdf {
         return Err(Unsupported {
             technique,
-            reason: "subpixel geometry is produced for triangle scenes only",
+            reason: "plain SRAA runs on triangle scenes only (sraa-rt renders SDF scenes)",
         });
     }
 

@@ -27,7 +27,7 @@ fn expected(t: Technique, f: SceneFeatures) -> Option<Passes> {
                 | Passes::RESOLVE
                 | shade
         }
-        Technique::SraaRt if !sdf => {
+        Technique::SraaRt => {
             Passes::PRIMARY
                 | Passes::SUBPIXEL_GEOMETRY
                 | Passes::RECONSTRUCTION
@@ -98,8 +98,13 @@ fn unneeded_passes_are_left_out() {
 fn unsupported_combinations_explain_themselves() {
     let e = required_passes(Technique::Ctss, SceneFeatures::empty()).unwrap_err();
     assert!(e.to_string().contains("signed distance field"), "{e}");
-    let e = required_passes(Technique::SraaRt, SceneFeatures::IS_SDF).unwrap_err();
+    let e = required_passes(Technique::Sraa, SceneFeatures::IS_SDF).unwrap_err();
     assert!(e.to_string().contains("triangle"), "{e}");
+    // SRAA-RT samples by ray casting: it runs on SDFs (sphere traced), with
+    // its shadow passes only where there are lights.
+    let p = required_passes(Technique::SraaRt, SceneFeatures::IS_SDF).unwrap();
+    assert!(p.contains(Passes::SUBPIXEL_GEOMETRY | Passes::RECONSTRUCTION));
+    assert!(!p.intersects(Passes::SHADOW | Passes::SUBPIXEL_SHADOW));
 }
 
 /// SRAA-RT's shading layers follow the planned passes: per-light layers only

@@ -22,6 +22,14 @@ pub struct Method {
     pub cone_coverage: f32,
     /// CTSS visibility threshold k (§5.1).
     pub visibility_k: u32,
+    /// Delayed shading (CTSS §5.1, a variant the authors name but did not
+    /// implement): trace every cone's coverage first, recording its hit-group
+    /// samples, then shade the recorded samples in a batch; otherwise each
+    /// sample is shaded as soon as its group closes (ASAP). The image is the
+    /// same (eq. 6 adds the same terms in the same order); only the order of
+    /// the work changes. Only the cone-traced techniques read it; named with a
+    /// `-delayed` suffix (`ctss-delayed`).
+    pub delayed_shading: bool,
 }
 
 impl Method {
@@ -38,6 +46,7 @@ impl Method {
             sraa: SraaParams::PAPER,
             cone_coverage: 1.0,
             visibility_k: 32,
+            delayed_shading: false,
         }
     }
 
@@ -60,21 +69,23 @@ impl Method {
 
 impl fmt::Display for Method {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let delayed = self.delayed_shading && self.technique.is_cone_traced();
+        let suffix = if delayed { "-delayed" } else { "" };
         match self.technique {
             Technique::NoAa => write!(f, "noaa"),
             Technique::Ssaa => write!(f, "ssaa{}", self.supersamples()),
             Technique::Sraa => write!(f, "sraa"),
             Technique::SraaRt => write!(f, "sraa-rt"),
-            Technique::Ctss => write!(f, "ctss"),
-            Technique::CtssR => write!(f, "ctss-r"),
-            Technique::SsaaCtss => write!(f, "ssaa{}+ctss", self.supersamples()),
+            Technique::Ctss => write!(f, "ctss{suffix}"),
+            Technique::CtssR => write!(f, "ctss-r{suffix}"),
+            Technique::SsaaCtss => write!(f, "ssaa{}+ctss{suffix}", self.supersamples()),
         }
     }
 }
 
 /// A method name that does not parse.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("unknown method {0:?}: expected noaa, ssaaN (N in 4, 9, 16, 64, 256), sraa, sraa-rt, ctss, ctss-r or ssaaN+ctss")]
+#[error("unknown method {0:?}: expected noaa, ssaaN (N in 4, 9, 16, 64, 256), sraa, sraa-rt, ctss, ctss-r or ssaaN+ctss, the last three optionally with -delayed")]
 pub struct ParseMethodError(pub String);
 
 fn parse_ssaa(n: &str) -> Option<u32> {
@@ -88,6 +99,16 @@ impl FromStr for Method {
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         let lower = s.trim().to_ascii_lowercase();
         let err = || ParseMethodError(s.to_string());
+        if let Some(base) = lower.strip_suffix("-delayed") {
+            let m: Method = base.parse().map_err(|_| err())?;
+            if !m.technique.is_cone_traced() || base.ends_with("-delayed") {
+                return Err(err());
+            }
+            return Ok(Method {
+                delayed_shading: true,
+                ..m
+            });
+        }
         Ok(match lower.as_str() {
             "noaa" => Method::new(Technique::NoAa),
             "sraa" => Method::new(Technique::Sraa),

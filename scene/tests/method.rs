@@ -5,7 +5,7 @@ use subcone_kernels::passes::Technique;
 use subcone_scene::method::ParseMethodError;
 use subcone_scene::Method;
 
-const WORDS: [&str; 11] = [
+const WORDS: [&str; 14] = [
     "noaa",
     "ssaa4",
     "ssaa9",
@@ -17,6 +17,9 @@ const WORDS: [&str; 11] = [
     "ctss",
     "ctss-r",
     "ssaa4+ctss",
+    "ctss-delayed",
+    "ctss-r-delayed",
+    "ssaa4+ctss-delayed",
 ];
 
 #[test]
@@ -50,6 +53,12 @@ fn parsed_methods_have_the_right_technique_and_samples() {
         assert_eq!(m.technique, technique, "{word}");
         assert_eq!(m.supersamples(), samples, "{word}");
     }
+    // Delayed shading is a flag on the cone-traced techniques.
+    let d: Method = "ctss-delayed".parse().unwrap();
+    assert_eq!(d.technique, Technique::Ctss);
+    assert!(d.delayed_shading);
+    assert!(!"ctss".parse::<Method>().unwrap().delayed_shading);
+    assert_ne!(d, "ctss".parse::<Method>().unwrap());
     // Case and surrounding blanks are forgiven.
     assert_eq!(
         "  SRAA-RT ".parse::<Method>().unwrap().to_string(),
@@ -69,6 +78,10 @@ fn bad_words_list_the_valid_ones() {
         "ssaa5+ctss",
         "ctss+ssaa4",
         "sraa rt",
+        "noaa-delayed",
+        "sraa-rt-delayed",
+        "ctss-delayed-delayed",
+        "-delayed",
     ] {
         let err: ParseMethodError = bad.parse::<Method>().unwrap_err();
         assert_eq!(err.0, bad);

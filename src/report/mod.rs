@@ -70,13 +70,14 @@ pub const PAPER_SCENES: [&str; 8] = [
 ];
 
 /// The methods compared, in table order.
-pub const METHODS: [&str; 8] = [
+pub const METHODS: &[&str] = &[
     "noaa",
     "ssaa4",
     "ssaa16",
     "sraa",
     "sraa-rt",
     "ctss",
+    "ctss-delayed",
     "ctss-r",
     "ssaa4+ctss",
 ];
@@ -106,7 +107,7 @@ pub struct ReportArgs {
     #[arg(long)]
     pub no_paper_scenes: bool,
     /// Methods to compare, comma-separated (default: noaa, ssaa4, ssaa16, sraa,
-    /// sraa-rt, ctss, ctss-r, ssaa4+ctss; each where it applies).
+    /// sraa-rt, ctss, ctss-delayed, ctss-r, ssaa4+ctss, …; each where it applies).
     #[arg(long = "method", value_delimiter = ',', value_name = "METHOD")]
     pub methods: Vec<String>,
     /// Output directory.

@@ -462,6 +462,7 @@ faster method beats.\n"
         let _ = writeln!(md);
     }
 
+    md.push_str(&sdf_pick(s, ctx));
     md.push_str(&paper_comparison(s, ctx));
     md.push_str(&targets(s, ctx));
 
@@ -541,6 +542,7 @@ has the full set).\n",
                 yes(avg <= limit)
             );
         }
+        // The SRAA-RT target is the paper's, on triangle scenes.
         for rt in rows_for(&s.rows, "sraa-rt", b)
             .into_iter()
             .filter(|r| !sdf.contains(&r.scene.as_str()))
@@ -641,10 +643,16 @@ do not compare, but the split between passes and the ratios between methods do.\
 `geometry` and `antialiasing` of sraa-rt (`shading` is the one shaded sample per pixel), and \
 ssaa16's median time over sraa-rt's.\n"
     );
+    let sdf_scene = |name: &str| ctx.scenes.iter().any(|sc| sc.sdf && sc.name == name);
     for b in &ctx.backends {
         let sweep: Vec<&ResultRow> = rows_for(&s.sweep, "sraa-rt", b);
         let (source, rows): (&[ResultRow], Vec<&ResultRow>) = if sweep.is_empty() {
-            (&s.rows, rows_for(&s.rows, "sraa-rt", b))
+            // Table 1 is about triangle scenes: SDF rows are in `sdf_pick`.
+            let rows = rows_for(&s.rows, "sraa-rt", b)
+                .into_iter()
+                .filter(|r| !sdf_scene(&r.scene))
+                .collect();
+            (&s.rows, rows)
         } else {
             (&s.sweep, sweep)
         };
@@ -735,6 +743,110 @@ ssaa16's median time over sraa-rt's.\n"
             );
         }
         let _ = writeln!(md);
+    }
+    md
+}
+
+/// SRAA-RT (sphere-traced samples) against CTSS on the SDF scenes: error and
+/// time side by side, and which to pick, as measured by this run.
+pub fn sdf_pick(s: &ReportSummary, ctx: &Context) -> String {
+    let mut md = String::new();
+    let sdf: Vec<&str> = ctx
+        .scenes
+        .iter()
+        .filter(|sc| sc.sdf)
+        .map(|sc| sc.name.as_str())
+        .collect();
+    if sdf.is_empty() {
+        return md;
+    }
+    let _ = writeln!(
+        md,
+        "## SRAA-RT or CTSS on SDF content
+"
+    );
+    let _ = writeln!(
+        md,
+        "SRAA-RT here takes its one shaded sample and four geometric subsamples per pixel by \
+sphere tracing; CTSS cone traces one ray per pixel. Error: mean FLIP against the reference (whole \
+image and edge mask); time: median ms at the timing size.\n"
+    );
+    for b in &ctx.backends {
+        let find = |scene: &str, method: &str| {
+            s.rows
+                .iter()
+                .find(|r| r.backend == *b && r.scene == scene && r.method == method)
+        };
+        let mut lines = Vec::new();
+        // (scenes where each has the lower FLIP, where each is faster)
+        let (mut sraa_better, mut ctss_better, mut sraa_faster, mut ctss_faster) = (0, 0, 0, 0);
+        for sc in &sdf {
+            let (Some(rt), Some(ct)) = (find(sc, "sraa-rt"), find(sc, "ctss")) else {
+                continue;
+            };
+            let (Some(er), Some(ec)) = (rt.flip_mean, ct.flip_mean) else {
+                continue;
+            };
+            let rt_q = er < ec;
+            let rt_t = rt.ms_median < ct.ms_median;
+            if rt_q {
+                sraa_better += 1;
+            } else {
+                ctss_better += 1;
+            }
+            if rt_t {
+                sraa_faster += 1;
+            } else {
+                ctss_faster += 1;
+            }
+            let pick = match (rt_q, rt_t) {
+                (true, true) => "sraa-rt (lower error, faster)".to_string(),
+                (false, false) => "ctss (lower error, faster)".to_string(),
+                (true, false) => format!(
+                    "sraa-rt for quality, ctss for speed ({:.2}× faster)",
+                    rt.ms_median / ct.ms_median
+                ),
+                (false, true) => format!(
+                    "ctss for quality, sraa-rt for speed ({:.2}× faster)",
+                    ct.ms_median / rt.ms_median
+                ),
+            };
+            let noaa = find(sc, "noaa").and_then(|r| r.flip_mean);
+            lines.push(format!(
+                "| {sc} | {} | {} | {} | {} | {} | {} | {} | {pick} |",
+                f(noaa, 4),
+                f(rt.flip_mean, 4),
+                f(ct.flip_mean, 4),
+                f(rt.edge_flip_mean, 4),
+                f(ct.edge_flip_mean, 4),
+                ms(rt.ms_median),
+                ms(ct.ms_median),
+            ));
+        }
+        if lines.is_empty() {
+            let _ = writeln!(md, "No sraa-rt and ctss errors on {b} to compare.\n");
+            continue;
+        }
+        let _ = writeln!(
+            md,
+            "| scene ({b}) | noaa FLIP | sraa-rt FLIP | ctss FLIP | sraa-rt edge FLIP | ctss edge FLIP | sraa-rt ms | ctss ms | pick |"
+        );
+        let _ = writeln!(md, "|---|--:|--:|--:|--:|--:|--:|--:|---|");
+        for l in &lines {
+            let _ = writeln!(md, "{l}");
+        }
+        let n = lines.len();
+        let _ = writeln!(
+            md,
+            "\n**Which to pick ({b}):** ctss has the lower FLIP on {ctss_better} of {n} SDF scenes \
+(sraa-rt on {sraa_better}); ctss is faster on {ctss_faster} of {n} (sraa-rt on {sraa_faster}). {}\n",
+            match (ctss_better >= sraa_better, ctss_faster >= sraa_faster) {
+                (true, true) => "On this run's SDF content, pick CTSS.",
+                (false, false) => "On this run's SDF content, pick SRAA-RT.",
+                (true, false) => "Pick CTSS for quality, SRAA-RT for speed.",
+                (false, true) => "Pick SRAA-RT for quality, CTSS for speed.",
+            }
+        );
     }
     md
 }

@@ -3,7 +3,8 @@
 //! Triangle scenes are ray traced through an obvhs CWBVH (built once per scene
 //! and cached), in parallel over image bands with rayon, with Whitted shading:
 //! direct light with hard shadows and mirror reflection. Methods: NoAA, SSAA,
-//! SRAA and SRAA-RT. All weight and reconstruction maths is the kernels'.
+//! SRAA and SRAA-RT. SDF scenes are sphere traced (`sphere`): NoAA, SSAA, the
+//! CTSS family and SRAA-RT. All weight and reconstruction maths is the kernels'.
 //!
 //! ```
 //! use subcone_cpu::CpuBackend;
@@ -133,6 +134,7 @@ impl Backend for CpuBackend {
                 camera,
                 max_distance: settings.max_distance.unwrap_or(g.max_distance),
                 max_steps: settings.max_steps.unwrap_or(g.max_steps),
+                exhaustive_subpixel_shadows: self.exhaustive_subpixel_shadows,
             };
             return Ok(view.render(method, settings, passes));
         }

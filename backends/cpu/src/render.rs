@@ -14,7 +14,7 @@ use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderSett
 use crate::shade::{Counts, Tracer, MAX_LIGHTS};
 
 /// Rows per rayon task: a band of the image, so neighbouring rays stay coherent.
-const BAND: usize = 4;
+pub(crate) const BAND: usize = 4;
 
 /// "No secondary geometry here" (the surface is not a mirror): NaN depth, which
 /// the bilateral weight excludes.
@@ -23,7 +23,7 @@ const NO_SECONDARY: Geometry = Geometry {
     depth: f32::NAN,
 };
 
-fn pixel_centre(x: usize, y: usize) -> Vec2 {
+pub(crate) fn pixel_centre(x: usize, y: usize) -> Vec2 {
     Vec2::new(x as f32 + 0.5, y as f32 + 0.5)
 }
 
@@ -110,17 +110,72 @@ fn centre_geometry(t: &Tracer, s: &RenderSettings) -> (Vec<f32>, Vec<Vec3>) {
     )
 }
 
-/// Buffers of one frame, allocated only for the passes it runs.
-struct Buffers {
-    geo: Vec<Geometry>,
-    values: Vec<Vec3>,
-    shadow: Vec<u32>,
-    geo2: Vec<Geometry>,
-    shadow2: Vec<u32>,
-    sub_geo: Vec<[Geometry; 4]>,
-    sub_shadow: Vec<[u32; 4]>,
-    sub_geo2: Vec<[Geometry; 4]>,
-    sub_shadow2: Vec<[u32; 4]>,
+/// Buffers of one frame, allocated only for the passes it runs (shared with
+/// SRAA-RT on SDF scenes, `sphere.rs`, which leaves the secondary ones empty).
+pub(crate) struct Buffers {
+    pub(crate) geo: Vec<Geometry>,
+    pub(crate) values: Vec<Vec3>,
+    pub(crate) shadow: Vec<u32>,
+    pub(crate) geo2: Vec<Geometry>,
+    pub(crate) shadow2: Vec<u32>,
+    pub(crate) sub_geo: Vec<[Geometry; 4]>,
+    pub(crate) sub_shadow: Vec<[u32; 4]>,
+    pub(crate) sub_geo2: Vec<[Geometry; 4]>,
+    pub(crate) sub_shadow2: Vec<[u32; 4]>,
+}
+
+impl Buffers {
+    /// The frame's buffers by name, the allocated ones only, after `color`.
+    pub(crate) fn list(&self, color: &[Vec3]) -> Vec<(&'static str, usize)> {
+        let mut buffers = vec![
+            ("color", bytes(color)),
+            ("geometry", bytes(&self.geo)),
+            ("shading layers", bytes(&self.values)),
+            ("subpixel geometry", bytes(&self.sub_geo)),
+        ];
+        for (name, size) in [
+            ("shadow states", bytes(&self.shadow)),
+            ("secondary geometry", bytes(&self.geo2)),
+            ("secondary shadow states", bytes(&self.shadow2)),
+            ("subpixel shadow states", bytes(&self.sub_shadow)),
+            ("subpixel secondary geometry", bytes(&self.sub_geo2)),
+            ("subpixel secondary shadow states", bytes(&self.sub_shadow2)),
+        ] {
+            if size > 0 {
+                buffers.push((name, size));
+            }
+        }
+        buffers
+    }
+}
+
+/// Pass 2 of SRAA (the paper's antialiasing pass): every layer of every
+/// subsample reconstructed from the neighbourhood's shaded samples (eq. 1,
+/// gated by eq. 2 per light), then the box resolve of the four subsamples
+/// into the frame's colours.
+pub(crate) fn reconstruct_frame(
+    b: &Buffers,
+    layout: &LayerLayout,
+    params: &SraaParams,
+    color: &mut [Vec3],
+    w: usize,
+    h: usize,
+) {
+    let radius = params.radius();
+    let nl = layout.len();
+    color
+        .par_chunks_mut(w * BAND)
+        .enumerate()
+        .for_each(|(band, rows)| {
+            for (i, out) in rows.iter_mut().enumerate() {
+                let (x, y) = (i % w, band * BAND + i / w);
+                let mut subs = [Vec3::ZERO; 4];
+                for (k, sub) in subs.iter_mut().enumerate() {
+                    *sub = reconstruct_subsample(b, layout, params, radius, x, y, k, w, h, nl);
+                }
+                *out = resolve_pixel(&subs);
+            }
+        });
 }
 
 fn bytes<T>(v: &[T]) -> usize {
@@ -420,50 +475,14 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
     // Pass 2 of the paper: reconstruction and resolve.
     let start = Instant::now();
     let mut frame = Frame::new(s.width, s.height);
-    let params = method.sraa;
-    {
-        let bref = &b;
-        frame
-            .color
-            .par_chunks_mut(w * BAND)
-            .enumerate()
-            .for_each(|(band, rows)| {
-                for (i, out) in rows.iter_mut().enumerate() {
-                    let (x, y) = (i % w, band * BAND + i / w);
-                    let mut subs = [Vec3::ZERO; 4];
-                    for (k, sub) in subs.iter_mut().enumerate() {
-                        *sub = reconstruct_subsample(
-                            bref, &layout, &params, radius, x, y, k, w, h, nl,
-                        );
-                    }
-                    *out = resolve_pixel(&subs);
-                }
-            });
-    }
+    reconstruct_frame(&b, &layout, &method.sraa, &mut frame.color, w, h);
     timings.push(PassTiming {
         name: "antialiasing",
         time: start.elapsed(),
     });
 
     let counts = shaded_counts + geo_counts;
-    let mut buffers = vec![
-        ("color", bytes(&frame.color)),
-        ("geometry", bytes(&b.geo)),
-        ("shading layers", bytes(&b.values)),
-        ("subpixel geometry", bytes(&b.sub_geo)),
-    ];
-    for (name, size) in [
-        ("shadow states", bytes(&b.shadow)),
-        ("secondary geometry", bytes(&b.geo2)),
-        ("secondary shadow states", bytes(&b.shadow2)),
-        ("subpixel shadow states", bytes(&b.sub_shadow)),
-        ("subpixel secondary geometry", bytes(&b.sub_geo2)),
-        ("subpixel secondary shadow states", bytes(&b.sub_shadow2)),
-    ] {
-        if size > 0 {
-            buffers.push((name, size));
-        }
-    }
+    let buffers = b.list(&frame.color);
     frame.stats = FrameStats {
         passes,
         timings,
@@ -484,7 +503,7 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
 /// Split a per-pixel buffer into bands of `band` elements; a buffer that was not
 /// allocated (its pass does not run) yields `nb` empty bands, so it zips with the
 /// others and costs nothing.
-fn bands<T: Send>(v: &mut [T], band: usize, nb: usize) -> Vec<&mut [T]> {
+pub(crate) fn bands<T: Send>(v: &mut [T], band: usize, nb: usize) -> Vec<&mut [T]> {
     if v.is_empty() {
         (0..nb).map(|_| <&mut [T]>::default()).collect()
     } else {
@@ -581,7 +600,7 @@ fn reconstruct_subsample(
 /// The free answers ([`Tracer::shadow_states_masked`]: no incident light,
 /// facing away) are still taken from the subsample's own surface.
 #[allow(clippy::too_many_arguments)]
-fn shadow_agreement(
+pub(crate) fn shadow_agreement(
     bits: &[u32],
     values: &[Vec3],
     nl: usize,

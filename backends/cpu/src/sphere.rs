@@ -1,4 +1,6 @@
-//! Sphere tracing of SDF scenes: NoAA, SSAA, CTSS, CTSS-R and SSAA+CTSS.
+//! Sphere tracing of SDF scenes: NoAA, SSAA, CTSS, CTSS-R and SSAA+CTSS (each
+//! CTSS variant with ASAP or delayed shading), and SRAA-RT with its samples
+//! taken by sphere tracing.
 //!
 //! CTSS runs through the kernels' [`ConeStepper`]; this module owns only the SDF
 //! evaluation, the normals and the shading. NoAA uses the kernels'
@@ -8,6 +10,7 @@
 
 use std::time::Instant;
 
+use crate::render::{bands, pixel_centre, reconstruct_frame, shadow_agreement, Buffers, BAND};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use subcone_kernels::aggregate::Aggregate;
@@ -15,7 +18,8 @@ use subcone_kernels::ctss::{
     cross_section_frame, sphere_trace_split, ConeStepper, CtssParams, Event,
 };
 use subcone_kernels::mask::{needs_normal, project_normal};
-use subcone_kernels::passes::{Passes, Technique};
+use subcone_kernels::passes::{LayerLayout, Passes, Technique, MAX_LIGHTS};
+use subcone_kernels::sraa::{Geometry, SHADED_SUBSAMPLE, SUBPIXEL_OFFSETS};
 use subcone_scene::{
     Camera, Frame, FrameStats, Light, Material, Method, PassTiming, RayCounts, RenderSettings,
 };
@@ -68,6 +72,25 @@ pub struct SdfView<'a, F: SdfField> {
     pub max_distance: f32,
     /// Step budget per ray.
     pub max_steps: u32,
+    /// SRAA-RT: cast every subsample's shadow rays instead of only where the
+    /// shaded samples around it disagree about a light (as the triangle path's
+    /// `CpuBackend::with_exhaustive_subpixel_shadows`).
+    pub exhaustive_subpixel_shadows: bool,
+}
+
+/// A hit-group sample waiting to be shaded (delayed shading).
+struct PendingSample {
+    q: Vec3,
+    n: Vec3,
+    w: f32,
+}
+
+/// A traced cone whose samples wait in the batch up to index `end`.
+struct PendingRay {
+    d: Vec3,
+    background_weight: f32,
+    end: usize,
+    samples: u32,
 }
 
 #[derive(Clone, Copy, Default)]
@@ -169,11 +192,19 @@ impl<F: SdfField> SdfView<'_, F> {
         }
     }
 
-    /// One CTSS sample (Algorithm 1 through the kernels' stepper).
-    fn ctss(&self, o: Vec3, d: Vec3, p: &CtssParams, tally: &mut Tally) -> (Vec3, u32) {
+    /// Algorithm 1 through the kernels' stepper for the ray `o + t·d`: calls
+    /// `on_sample(q, n, w)` with each hit group's sample point, shading normal
+    /// and eq. 6 weight as the group closes. Returns the stepper (its counters
+    /// and background weight).
+    fn ctss_march(
+        &self,
+        o: Vec3,
+        d: Vec3,
+        p: &CtssParams,
+        mut on_sample: impl FnMut(Vec3, Vec3, f32),
+    ) -> ConeStepper {
         let (right, up) = cross_section_frame(d, self.camera.up);
         let mut stepper = ConeStepper::new(p);
-        let mut agg = Aggregate::new();
         loop {
             let t = stepper.t();
             let (safe, surface, _) = self.field.eval_split(o + t * d);
@@ -192,11 +223,19 @@ impl<F: SdfField> SdfView<'_, F> {
                         n
                     };
                     let (_, w) = stepper.record(&s, project_normal(nm, right, up));
-                    agg.add(w, self.shade(q, n, d, tally));
+                    on_sample(q, n, w);
                 }
                 Event::Stop(_) => break,
             }
         }
+        stepper
+    }
+
+    /// One CTSS sample, shading each hit group's sample as soon as the group
+    /// closes (ASAP).
+    fn ctss(&self, o: Vec3, d: Vec3, p: &CtssParams, tally: &mut Tally) -> (Vec3, u32) {
+        let mut agg = Aggregate::new();
+        let stepper = self.ctss_march(o, d, p, |q, n, w| agg.add(w, self.shade(q, n, d, tally)));
         tally.steps += stepper.steps() as u64;
         tally.samples += stepper.samples() as u64;
         (
@@ -205,8 +244,359 @@ impl<F: SdfField> SdfView<'_, F> {
         )
     }
 
+    /// One row of CTSS with delayed shading (CTSS §5.1): every cone of the row
+    /// is traced first, its samples recorded in `batch` (point, normal,
+    /// weight) and its background weight in `rays`; then the recorded samples
+    /// are shaded in one loop, in the order they were found, so eq. 6 sums the
+    /// same terms in the same order as [`ctss`](Self::ctss) and the row is
+    /// bit for bit the ASAP row. Writes the row's colours and samples per
+    /// pixel; returns the number of pixels with more samples than rays.
+    #[allow(clippy::too_many_arguments)]
+    fn ctss_delayed_row(
+        &self,
+        y: usize,
+        side: usize,
+        p: &CtssParams,
+        s: &RenderSettings,
+        (batch, rays): &mut (Vec<PendingSample>, Vec<PendingRay>),
+        row: &mut [Vec3],
+        spp_row: &mut [f32],
+        tally: &mut Tally,
+    ) -> u64 {
+        batch.clear();
+        rays.clear();
+        // Pass 1: coverage.
+        for x in 0..row.len() {
+            for sy in 0..side {
+                for sx in 0..side {
+                    let off = Vec2::new(
+                        (sx as f32 + 0.5) / side as f32,
+                        (sy as f32 + 0.5) / side as f32,
+                    );
+                    let (o, d) =
+                        self.camera
+                            .ray(Vec2::new(x as f32, y as f32) + off, s.width, s.height);
+                    let stepper = self.ctss_march(o, d, p, |q, n, w| {
+                        batch.push(PendingSample { q, n, w });
+                    });
+                    tally.steps += stepper.steps() as u64;
+                    tally.samples += stepper.samples() as u64;
+                    rays.push(PendingRay {
+                        d,
+                        background_weight: stepper.background_weight(),
+                        end: batch.len(),
+                        samples: stepper.samples(),
+                    });
+                }
+            }
+        }
+        // Pass 2: shading, ray by ray in trace order.
+        let mut multi = 0;
+        let per_pixel = side * side;
+        let mut first = 0;
+        for (x, pixel_rays) in rays.chunks(per_pixel).enumerate() {
+            let mut sum = Vec3::ZERO;
+            let mut samples = 0;
+            for r in pixel_rays {
+                let mut agg = Aggregate::new();
+                for b in &batch[first..r.end] {
+                    agg.add(b.w, self.shade(b.q, b.n, r.d, tally));
+                }
+                first = r.end;
+                sum += agg.resolve(self.background, r.background_weight);
+                samples += r.samples;
+            }
+            row[x] = sum / per_pixel as f32;
+            spp_row[x] = samples as f32;
+            if samples as usize > per_pixel {
+                multi += 1;
+            }
+        }
+        multi
+    }
+
+    /// The surface hit by sphere tracing `o + t·d` (the NoAA trace): point,
+    /// normal facing the ray, distance along the ray.
+    fn hit(&self, o: Vec3, d: Vec3, p: &CtssParams, tally: &mut Tally) -> Option<(Vec3, Vec3)> {
+        let hit = sphere_trace_split(p, o, d, |q| {
+            let (safe, surface, _) = self.field.eval_split(q);
+            (surface, safe)
+        });
+        tally.steps += hit.steps as u64;
+        let t = hit.t?;
+        let q = o + t * d;
+        let n = self.normal_at(q, t, p.tan_theta);
+        Some((q, if n.dot(d) > 0.0 { -n } else { n }))
+    }
+
+    /// Shadow states of the point `q` with normal `n` (facing the ray) for
+    /// every light, bit set = shadowed, as [`shade`](Self::shade) decides them:
+    /// a light facing away shadows without a ray, a light that does not reach
+    /// `q` leaves it lit, and only the lights in `cast` are traced; the others
+    /// take their bit from `inherited` (SRAA-RT's adaptive subpixel shadows).
+    fn shadow_states(&self, q: Vec3, n: Vec3, cast: u32, inherited: u32, tally: &mut Tally) -> u32 {
+        let mut bits = 0;
+        for (l, light) in self.lights.iter().enumerate().take(MAX_LIGHTS) {
+            let Some(inc) = light.incident(q) else {
+                continue;
+            };
+            if inc.direction.dot(n) <= 0.0 {
+                bits |= 1 << l;
+            } else if cast & (1 << l) == 0 {
+                bits |= inherited & (1 << l);
+            } else if self.shadowed(q, n, inc.direction, inc.distance, tally) {
+                bits |= 1 << l;
+            }
+        }
+        bits
+    }
+
+    /// The shading of [`shade`](Self::shade) split into SRAA-RT's layers
+    /// (§3.2): `out[0]` the shadow-independent part (emission and ambient),
+    /// `out[1 + l]` light `l`'s direct part where `bits` says it is lit. With
+    /// `split` false, everything goes to `out[0]`; the sum is `shade`'s colour
+    /// in the same order.
+    fn shade_layers(&self, q: Vec3, n: Vec3, bits: u32, split: bool, out: &mut [Vec3]) {
+        let (_, _, m) = self.field.eval_split(q);
+        let mat = &self.materials[(m as usize).min(self.materials.len().saturating_sub(1))];
+        let albedo = mat.albedo_at(q, Vec2::ZERO);
+        out[0] = mat.emission + self.ambient * albedo;
+        for (l, light) in self.lights.iter().enumerate().take(MAX_LIGHTS) {
+            let mut direct = Vec3::ZERO;
+            if bits & (1 << l) == 0 {
+                if let Some(inc) = light.incident(q) {
+                    let cos = inc.direction.dot(n);
+                    if cos > 0.0 {
+                        direct = albedo * std::f32::consts::FRAC_1_PI * cos * inc.irradiance;
+                    }
+                }
+            }
+            if split {
+                out[1 + l] = direct;
+            } else {
+                out[0] += direct;
+            }
+        }
+    }
+
+    /// SRAA for ray tracing (Chiu et al., §3) on an SDF: the triangle path's
+    /// passes (`render::subpixel`) with sphere tracing for every ray.
+    ///
+    /// Pass "shading": one sample per pixel at subsample
+    /// [`SHADED_SUBSAMPLE`], sphere traced and shaded as NoAA shades (hard
+    /// shadows through the field), kept in layers: the shadow-independent part
+    /// and one per light with its shadow state. Pass "geometry" (the paper's
+    /// pass 1): the other three subsamples sphere traced for geometry (normal
+    /// facing the ray, view depth) and, with lights, their shadow states by
+    /// subpixel shadow rays (eq. 2's gate; cast only where the shaded samples
+    /// around disagree, unless exhaustive). Pass "antialiasing" (pass 2): the
+    /// kernels' reconstruction and resolve, shared with the triangle path.
+    /// SDF scenes have no mirrors, so there are no secondary passes; a scene
+    /// without lights gets no shadow pass and no shadow buffers.
+    #[allow(clippy::needless_range_loop)]
+    fn sraa_rt(&self, method: &Method, s: &RenderSettings, passes: Passes) -> Frame {
+        let (w, h) = (s.width as usize, s.height as usize);
+        let n = w * h;
+        let lights = self.lights.len().min(MAX_LIGHTS);
+        let layout = LayerLayout::new(Technique::SraaRt, passes, lights);
+        let shadows = passes.contains(Passes::SHADOW);
+        let sub_shadows = passes.contains(Passes::SUBPIXEL_SHADOW) && layout.lights > 0;
+        let nl = layout.len();
+        let split = layout.lights > 0;
+        let params = self.params(
+            self.camera.cone_tan_theta(s.height, method.cone_coverage),
+            method,
+        );
+        let mut b = Buffers {
+            geo: vec![Geometry::MISS; n],
+            values: vec![Vec3::ZERO; n * nl],
+            shadow: if split { vec![0; n] } else { Vec::new() },
+            geo2: Vec::new(),
+            shadow2: Vec::new(),
+            sub_geo: vec![[Geometry::MISS; 4]; n],
+            sub_shadow: if sub_shadows {
+                vec![[0; 4]; n]
+            } else {
+                Vec::new()
+            },
+            sub_geo2: Vec::new(),
+            sub_shadow2: Vec::new(),
+        };
+        let mut timings = Vec::new();
+        let nb = h.div_ceil(BAND);
+        let band = w * BAND;
+
+        // Pass: shading of one sample per pixel.
+        let start = Instant::now();
+        let shaded = bands(&mut b.geo, band, nb)
+            .into_par_iter()
+            .zip(bands(&mut b.values, band * nl, nb))
+            .zip(bands(&mut b.shadow, band, nb))
+            .enumerate()
+            .map(|(bi, ((geo, values), shadow))| {
+                let mut t = Tally::default();
+                for i in 0..geo.len() {
+                    let (x, y) = (i % w, bi * BAND + i / w);
+                    let px = pixel_centre(x, y) + SUBPIXEL_OFFSETS[SHADED_SUBSAMPLE];
+                    let (o, d) = self.camera.ray(px, s.width, s.height);
+                    let v = &mut values[i * nl..(i + 1) * nl];
+                    let Some((q, nrm)) = self.hit(o, d, &params, &mut t) else {
+                        v[0] = self.background;
+                        continue;
+                    };
+                    t.samples += 1;
+                    geo[i] = Geometry::new(nrm, self.camera.view_depth(q));
+                    let bits = if shadows {
+                        self.shadow_states(q, nrm, u32::MAX, 0, &mut t)
+                    } else {
+                        0
+                    };
+                    if let Some(sh) = shadow.get_mut(i) {
+                        *sh = bits;
+                    }
+                    self.shade_layers(q, nrm, bits, split, v);
+                }
+                t
+            })
+            .reduce(Tally::default, |a, b| a + b);
+        timings.push(PassTiming {
+            name: "shading",
+            time: start.elapsed(),
+        });
+
+        // Pass 1 of the paper: subpixel geometry (and shadow states).
+        let start = Instant::now();
+        let radius = method.sraa.radius();
+        let adaptive = !self.exhaustive_subpixel_shadows;
+        let geometry = {
+            let (geo, shadow, values) = (&b.geo, &b.shadow, &b.values);
+            bands(&mut b.sub_geo, band, nb)
+                .into_par_iter()
+                .zip(bands(&mut b.sub_shadow, band, nb))
+                .enumerate()
+                .map(|(bi, (sub_geo, sub_shadow))| {
+                    let mut t = Tally::default();
+                    for i in 0..sub_geo.len() {
+                        let (x, y) = (i % w, bi * BAND + i / w);
+                        let j = bi * band + i;
+                        let mut agree = None;
+                        for k in 0..4 {
+                            if k == SHADED_SUBSAMPLE {
+                                sub_geo[i][k] = geo[j];
+                                if let Some(ss) = sub_shadow.get_mut(i) {
+                                    ss[k] = shadow[j];
+                                }
+                                continue;
+                            }
+                            let px = pixel_centre(x, y) + SUBPIXEL_OFFSETS[k];
+                            let (o, d) = self.camera.ray(px, s.width, s.height);
+                            let Some((q, nrm)) = self.hit(o, d, &params, &mut t) else {
+                                continue;
+                            };
+                            sub_geo[i][k] = Geometry::new(nrm, self.camera.view_depth(q));
+                            if let Some(ss) = sub_shadow.get_mut(i) {
+                                let (cast, inherited) = *agree.get_or_insert_with(|| {
+                                    if adaptive {
+                                        shadow_agreement(
+                                            shadow,
+                                            values,
+                                            nl,
+                                            0,
+                                            layout.lights,
+                                            x,
+                                            y,
+                                            radius,
+                                            w,
+                                            h,
+                                        )
+                                    } else {
+                                        (u32::MAX, 0)
+                                    }
+                                });
+                                ss[k] = self.shadow_states(q, nrm, cast, inherited, &mut t);
+                            }
+                        }
+                    }
+                    t
+                })
+                .reduce(Tally::default, |a, b| a + b)
+        };
+        timings.push(PassTiming {
+            name: "geometry",
+            time: start.elapsed(),
+        });
+
+        // Pass 2 of the paper: reconstruction and resolve.
+        let start = Instant::now();
+        let mut frame = Frame::new(s.width, s.height);
+        reconstruct_frame(&b, &layout, &method.sraa, &mut frame.color, w, h);
+        timings.push(PassTiming {
+            name: "antialiasing",
+            time: start.elapsed(),
+        });
+
+        let tally = shaded + geometry;
+        frame.stats = FrameStats {
+            passes,
+            timings,
+            buffers: b.list(&frame.color),
+            rays: RayCounts {
+                primary: n as u64,
+                geometry: 3 * n as u64,
+                shadow: tally.shadow,
+                ..Default::default()
+            },
+            shaded_samples: tally.samples,
+            sdf_evaluations: tally.steps,
+            multi_sample_pixels: 0,
+        };
+        if s.aovs {
+            self.centre_aovs(&mut frame, s);
+            frame.samples_per_pixel = Some(vec![1.0; n]);
+        }
+        frame
+    }
+
+    /// Depth and normal through each pixel centre (AOVs; not timed).
+    fn centre_aovs(&self, frame: &mut Frame, s: &RenderSettings) {
+        let w = s.width as usize;
+        let plain = self.params(
+            self.camera.cone_tan_theta(s.height, 1.0),
+            &Method::new(Technique::NoAa),
+        );
+        let g: Vec<(f32, Vec3)> = (0..w * s.height as usize)
+            .into_par_iter()
+            .map(|i| {
+                let (o, d) = self.camera.ray(
+                    Vec2::new((i % w) as f32 + 0.5, (i / w) as f32 + 0.5),
+                    s.width,
+                    s.height,
+                );
+                let split = |q| {
+                    let (safe, surface, _) = self.field.eval_split(q);
+                    (surface, safe)
+                };
+                match sphere_trace_split(&plain, o, d, split).t {
+                    Some(t) => {
+                        let q = o + t * d;
+                        (
+                            self.camera.view_depth(q),
+                            self.normal_at(q, t, plain.tan_theta),
+                        )
+                    }
+                    None => (f32::INFINITY, Vec3::ZERO),
+                }
+            })
+            .collect();
+        frame.depth = Some(g.iter().map(|g| g.0).collect());
+        frame.normal = Some(g.iter().map(|g| g.1).collect());
+    }
+
     /// Render a frame.
     pub fn render(&self, method: &Method, s: &RenderSettings, passes: Passes) -> Frame {
+        if method.technique == Technique::SraaRt {
+            return self.sraa_rt(method, s, passes);
+        }
         let (w, h) = (s.width as usize, s.height as usize);
         let side = match method.technique {
             Technique::Ssaa | Technique::SsaaCtss => method.ssaa_side.max(1),
@@ -227,41 +617,57 @@ impl<F: SdfField> SdfView<'_, F> {
             .par_chunks_mut(w)
             .zip(spp.par_chunks_mut(w))
             .enumerate()
-            .map(|(y, (row, spp_row))| {
-                let mut t = Tally::default();
-                for x in 0..w {
-                    let mut sum = Vec3::ZERO;
-                    let mut samples = 0;
-                    for sy in 0..side {
-                        for sx in 0..side {
-                            let off = Vec2::new(
-                                (sx as f32 + 0.5) / side as f32,
-                                (sy as f32 + 0.5) / side as f32,
-                            );
-                            let (o, d) = self.camera.ray(
-                                Vec2::new(x as f32, y as f32) + off,
-                                s.width,
-                                s.height,
-                            );
-                            if cone {
-                                let (c, n) = self.ctss(o, d, &params, &mut t);
-                                sum += c;
-                                samples += n;
-                            } else {
-                                let before = t.samples;
-                                sum += self.noaa(o, d, &params, &mut t);
-                                samples += (t.samples - before) as u32;
+            .map_init(
+                || (Vec::new(), Vec::new()),
+                |buffers, (y, (row, spp_row))| {
+                    let mut t = Tally::default();
+                    if cone && method.delayed_shading {
+                        t.multi += self.ctss_delayed_row(
+                            y,
+                            side as usize,
+                            &params,
+                            s,
+                            buffers,
+                            row,
+                            spp_row,
+                            &mut t,
+                        );
+                        return t;
+                    }
+                    for x in 0..w {
+                        let mut sum = Vec3::ZERO;
+                        let mut samples = 0;
+                        for sy in 0..side {
+                            for sx in 0..side {
+                                let off = Vec2::new(
+                                    (sx as f32 + 0.5) / side as f32,
+                                    (sy as f32 + 0.5) / side as f32,
+                                );
+                                let (o, d) = self.camera.ray(
+                                    Vec2::new(x as f32, y as f32) + off,
+                                    s.width,
+                                    s.height,
+                                );
+                                if cone {
+                                    let (c, n) = self.ctss(o, d, &params, &mut t);
+                                    sum += c;
+                                    samples += n;
+                                } else {
+                                    let before = t.samples;
+                                    sum += self.noaa(o, d, &params, &mut t);
+                                    samples += (t.samples - before) as u32;
+                                }
                             }
                         }
+                        row[x] = sum / (side * side) as f32;
+                        spp_row[x] = samples as f32;
+                        if samples > side * side {
+                            t.multi += 1;
+                        }
                     }
-                    row[x] = sum / (side * side) as f32;
-                    spp_row[x] = samples as f32;
-                    if samples > side * side {
-                        t.multi += 1;
-                    }
-                }
-                t
-            })
+                    t
+                },
+            )
             .reduce(Tally::default, |a, b| a + b);
         let name = if cone {
             "cone tracing"
@@ -286,37 +692,7 @@ impl<F: SdfField> SdfView<'_, F> {
         };
         if s.aovs {
             frame.samples_per_pixel = Some(spp);
-            // Depth and normal through each pixel centre (not timed).
-            let plain = self.params(
-                self.camera.cone_tan_theta(s.height, 1.0),
-                &Method::new(Technique::NoAa),
-            );
-            let g: Vec<(f32, Vec3)> = (0..w * h)
-                .into_par_iter()
-                .map(|i| {
-                    let (o, d) = self.camera.ray(
-                        Vec2::new((i % w) as f32 + 0.5, (i / w) as f32 + 0.5),
-                        s.width,
-                        s.height,
-                    );
-                    let split = |q| {
-                        let (safe, surface, _) = self.field.eval_split(q);
-                        (surface, safe)
-                    };
-                    match sphere_trace_split(&plain, o, d, split).t {
-                        Some(t) => {
-                            let q = o + t * d;
-                            (
-                                self.camera.view_depth(q),
-                                self.normal_at(q, t, plain.tan_theta),
-                            )
-                        }
-                        None => (f32::INFINITY, Vec3::ZERO),
-                    }
-                })
-                .collect();
-            frame.depth = Some(g.iter().map(|g| g.0).collect());
-            frame.normal = Some(g.iter().map(|g| g.1).collect());
+            self.centre_aovs(&mut frame, s);
         }
         frame
     }

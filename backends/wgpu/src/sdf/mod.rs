@@ -1,6 +1,7 @@
 //! SDF scenes on the GPU: NoAA, SSAA, CTSS, CTSS-R and SSAA+CTSS as one compute
 //! pass each, producing the images of the CPU reference
-//! (`subcone_cpu::sphere::SdfView`).
+//! (`subcone_cpu::sphere::SdfView`). SRAA-RT on SDF scenes is CPU-only
+//! ([`SRAA_RT_CPU_ONLY`]).
 //!
 //! The scene's tree is compiled to WGSL ([`SdfNode::to_wgsl`]), its materials
 //! and lights to WGSL constants (`shading.rs`), and concatenated with the
@@ -14,6 +15,14 @@
 //! CTSS marches each pixel's cone up to 8 samples ahead of shading them (in
 //! order, so eq. 6 sums the same terms in the same order): the SIMD lanes of
 //! a software or hardware GPU march together and trace shadows together.
+//! This is already a bounded form of CTSS §5.1's delayed shading, for the
+//! reason §5.1 gives (divergence between lanes), applied to every cone-traced
+//! method. `ctss-delayed` ([`Method::delayed_shading`]) compiles the same
+//! shader with a batch of [`DELAYED_BATCH`] samples instead: the whole
+//! coverage of a cone is traced before any of it is shaded unless the cone
+//! finds more groups than that (the CPU's `ctss-delayed` batches a whole
+//! row). The image is the same either way; only the order of the work
+//! changes.
 //!
 //! Differences from the CPU come from GPU arithmetic alone (a few ulps in
 //! `sqrt`, `sin`, fused multiply-adds, and eq. 6's sums in f32 instead of
@@ -46,8 +55,20 @@ pub use field::{evaluate_field, FieldSample};
 const TRACE_WGSL: &str = include_str!("trace.wgsl");
 const AOVS_WGSL: &str = include_str!("aovs.wgsl");
 const WORKGROUP: u32 = 8;
+/// Samples a cone marches ahead of shading them (the `PENDING` of
+/// trace.wgsl) for ASAP methods.
+const ASAP_BATCH: u32 = 8;
+/// The same for delayed shading (`ctss-delayed`): enough for every cone of
+/// the built-in SDF scenes to be traced completely before it is shaded.
+pub const DELAYED_BATCH: u32 = 32;
 /// Where generated fields find their scatter tables.
 const DATA_BINDING: &str = "@group(0) @binding(4) var<storage, read> sdf_data: array<vec4<f32>>;\n";
+
+/// Why SRAA-RT is refused on SDF scenes: its sphere-traced subsamples and
+/// their reconstruction exist on the CPU only (`subcone_cpu::sphere`); this
+/// backend would need a subpixel geometry pass in the generated SDF shader
+/// feeding the triangle path's reconstruction pass.
+pub const SRAA_RT_CPU_ONLY: &str = "sraa-rt on SDF scenes runs on the CPU backend only";
 
 /// The kernels' WGSL every SDF shader starts with.
 fn kernels_wgsl() -> String {
@@ -114,6 +135,7 @@ fn pipelines(
     root: &SdfNode,
     shadows: bool,
     aovs: bool,
+    batch: u32,
 ) -> Result<Arc<Pipelines>, RenderError> {
     let field = root.to_wgsl();
     let mut source = kernels_wgsl();
@@ -126,6 +148,7 @@ fn pipelines(
         &scene.lights,
         shadows,
     )?);
+    source.push_str(&format!("const PENDING: u32 = {batch}u;\n"));
     source.push_str(TRACE_WGSL);
     if aovs {
         source.push_str(AOVS_WGSL);
@@ -226,6 +249,9 @@ pub(crate) fn render(
     if passes.intersects(Passes::SECONDARY) {
         return Err(err("mirror reflections in SDF scenes are not implemented"));
     }
+    if method.technique.is_subpixel_reconstruction() {
+        return Err(err(SRAA_RT_CPU_ONLY));
+    }
     let max_distance = settings.max_distance.unwrap_or(g.max_distance);
     let max_steps = settings.max_steps.unwrap_or(g.max_steps);
     if max_distance.is_nan() {
@@ -259,7 +285,12 @@ pub(crate) fn render(
     ctx.check_buffer_size("the colour buffer", px_bytes)?;
 
     let shadows = passes.contains(Passes::SHADOW) && !scene.lights.is_empty();
-    let pipes = pipelines(ctx, scene, &g.root, shadows, settings.aovs)?;
+    let batch = if cone && method.delayed_shading {
+        DELAYED_BATCH
+    } else {
+        ASAP_BATCH
+    };
+    let pipes = pipelines(ctx, scene, &g.root, shadows, settings.aovs, batch)?;
 
     let frame_words = frame_uniform(camera, settings, scene, max_distance, max_steps, side, cone);
     let frame_buf = ctx.scoped("SDF frame uniform", || {

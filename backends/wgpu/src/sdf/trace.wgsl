@@ -142,8 +142,9 @@ fn noaa_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: p
     return frame.background;
 }
 
-// Samples shaded together in ctss_sample (the authors' CTSS_NUM_SAMPLES).
-const PENDING: u32 = 8u;
+// PENDING, the samples shaded together in ctss_sample (the authors'
+// CTSS_NUM_SAMPLES), is declared by sdf/mod.rs before this file: 8 for ASAP
+// methods, DELAYED_BATCH for delayed shading.
 
 // SdfView::ctss: one cone-traced sample (Algorithm 1 through ConeStepper).
 fn ctss_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: ptr<function, u32>, shadow: ptr<function, u32>) -> vec3<f32> {
