@@ -33,6 +33,14 @@ const H: u32 = 48;
 const TRIANGLE_METHODS: [&str; 5] = ["noaa", "ssaa4", "ssaa16", "sraa", "sraa-rt"];
 /// Methods run on SDF scenes.
 const SDF_METHODS: [&str; 5] = ["noaa", "ssaa4", "ctss", "ctss-r", "ssaa4+ctss"];
+/// Methods on SDF scenes that only the CPU reference runs, with the reason.
+/// Not skipped: `cpu_only_methods` renders them on the CPU (every SDF scene,
+/// frame invariants) and requires every other backend to refuse them with an
+/// error that says "CPU backend only".
+const CPU_ONLY_SDF_METHODS: [(&str, &str); 1] = [(
+    "ctss+edges",
+    "hit group subdivision (CTSS §5.3) has no WGSL twin",
+)];
 
 /// How close a backend's frame must be to the CPU reference, in LDR-FLIP.
 ///
@@ -229,6 +237,38 @@ fn check_extreme_settings(backend: &dyn Backend) {
     }
 }
 
+/// [`CPU_ONLY_SDF_METHODS`]: finite, invariant-abiding frames on the CPU on
+/// every SDF scene; a clear error on any other backend.
+fn check_cpu_only(backend: &dyn Backend) {
+    let settings = RenderSettings::new(W, H);
+    for (m, why) in CPU_ONLY_SDF_METHODS {
+        let method: Method = m.parse().expect("method name");
+        for name in SDF_SCENES.iter().chain(&STIFF_SCENES) {
+            let scene = builtin(name).expect("built-in scene");
+            match backend.render(&scene, &scene.camera, &method, &settings) {
+                Ok(frame) => {
+                    assert_eq!(
+                        backend.name(),
+                        "cpu",
+                        "{m} is CPU-only ({why}) but {} rendered it",
+                        backend.name()
+                    );
+                    check_invariants(backend.name(), &scene, &method, &frame);
+                }
+                Err(e) => {
+                    assert_ne!(backend.name(), "cpu", "cpu: {name} {m}: {e}");
+                    assert!(
+                        e.to_string().contains("CPU backend only"),
+                        "{}: {name} {m} refused without saying why: {e}",
+                        backend.name()
+                    );
+                    break;
+                }
+            }
+        }
+    }
+}
+
 /// Bad input is an error value on every backend.
 fn check_errors(backend: &dyn Backend) {
     let name = backend.name();
@@ -330,6 +370,13 @@ macro_rules! conformance_suite {
             fn extreme_settings() {
                 if let Some(b) = backend() {
                     check_extreme_settings(b.as_ref());
+                }
+            }
+
+            #[test]
+            fn cpu_only_methods() {
+                if let Some(b) = backend() {
+                    check_cpu_only(b.as_ref());
                 }
             }
 

@@ -22,6 +22,8 @@ pub struct Method {
     pub cone_coverage: f32,
     /// CTSS visibility threshold k (§5.1).
     pub visibility_k: u32,
+    /// CTSS: subdivide hit groups at internal edges (§5.3, `ctss+edges`).
+    pub split_groups: bool,
 }
 
 impl Method {
@@ -38,6 +40,7 @@ impl Method {
             sraa: SraaParams::PAPER,
             cone_coverage: 1.0,
             visibility_k: 32,
+            split_groups: false,
         }
     }
 
@@ -65,6 +68,7 @@ impl fmt::Display for Method {
             Technique::Ssaa => write!(f, "ssaa{}", self.supersamples()),
             Technique::Sraa => write!(f, "sraa"),
             Technique::SraaRt => write!(f, "sraa-rt"),
+            Technique::Ctss if self.split_groups => write!(f, "ctss+edges"),
             Technique::Ctss => write!(f, "ctss"),
             Technique::CtssR => write!(f, "ctss-r"),
             Technique::SsaaCtss => write!(f, "ssaa{}+ctss", self.supersamples()),
@@ -74,7 +78,7 @@ impl fmt::Display for Method {
 
 /// A method name that does not parse.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("unknown method {0:?}: expected noaa, ssaaN (N in 4, 9, 16, 64, 256), sraa, sraa-rt, ctss, ctss-r or ssaaN+ctss")]
+#[error("unknown method {0:?}: expected noaa, ssaaN (N in 4, 9, 16, 64, 256), sraa, sraa-rt, ctss, ctss+edges, ctss-r or ssaaN+ctss")]
 pub struct ParseMethodError(pub String);
 
 fn parse_ssaa(n: &str) -> Option<u32> {
@@ -93,6 +97,10 @@ impl FromStr for Method {
             "sraa" => Method::new(Technique::Sraa),
             "sraa-rt" => Method::new(Technique::SraaRt),
             "ctss" => Method::new(Technique::Ctss),
+            "ctss+edges" => Method {
+                split_groups: true,
+                ..Method::new(Technique::Ctss)
+            },
             "ctss-r" => Method::new(Technique::CtssR),
             other => {
                 if let Some(rest) = other.strip_prefix("ssaa") {

@@ -69,13 +69,14 @@ pub const PAPER_SCENES: [&str; 8] = [
 ];
 
 /// The methods compared, in table order.
-pub const METHODS: [&str; 8] = [
+pub const METHODS: [&str; 9] = [
     "noaa",
     "ssaa4",
     "ssaa16",
     "sraa",
     "sraa-rt",
     "ctss",
+    "ctss+edges",
     "ctss-r",
     "ssaa4+ctss",
 ];

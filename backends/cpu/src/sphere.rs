@@ -6,13 +6,15 @@
 //! with the same ε, step budget and maximum distance (§4), so no CTSS/NoAA ratio
 //! can be bought by loosening NoAA.
 
+mod edges;
+
 use std::time::Instant;
 
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use subcone_kernels::aggregate::Aggregate;
 use subcone_kernels::ctss::{
-    cross_section_frame, sphere_trace_split, ConeStepper, CtssParams, Event,
+    cross_section_frame, sphere_trace_split, ConeStepper, CtssParams, Event, SplitRay,
 };
 use subcone_kernels::mask::{needs_normal, project_normal};
 use subcone_kernels::passes::{Passes, Technique};
@@ -150,6 +152,7 @@ impl<F: SdfField> SdfView<'_, F> {
             .with_max_steps(self.max_steps)
             .relaxed(method.technique == Technique::CtssR)
             .with_visibility_k(method.visibility_k)
+            .with_split_groups(method.split_groups)
     }
 
     /// One NoAA sample.
@@ -174,6 +177,8 @@ impl<F: SdfField> SdfView<'_, F> {
         let (right, up) = cross_section_frame(d, self.camera.up);
         let mut stepper = ConeStepper::new(p);
         let mut agg = Aggregate::new();
+        // Shaded samples beyond one per group (`ctss+edges`, §5.3).
+        let mut extra = 0u32;
         loop {
             let t = stepper.t();
             let (safe, surface, _) = self.field.eval_split(o + t * d);
@@ -191,17 +196,31 @@ impl<F: SdfField> SdfView<'_, F> {
                     } else {
                         n
                     };
-                    let (_, w) = stepper.record(&s, project_normal(nm, right, up));
+                    let (visible, w) = stepper.record(&s, project_normal(nm, right, up));
+                    if p.splits_groups() {
+                        let ray = SplitRay {
+                            origin: o,
+                            dir: d,
+                            right,
+                            up,
+                        };
+                        if let Some(k) =
+                            self.split_sample(&ray, p, &s, n, visible, w, &mut agg, tally)
+                        {
+                            extra += k;
+                            continue;
+                        }
+                    }
                     agg.add(w, self.shade(q, n, d, tally));
                 }
                 Event::Stop(_) => break,
             }
         }
         tally.steps += stepper.steps() as u64;
-        tally.samples += stepper.samples() as u64;
+        tally.samples += (stepper.samples() + extra) as u64;
         (
             agg.resolve(self.background, stepper.background_weight()),
-            stepper.samples(),
+            stepper.samples() + extra,
         )
     }
 

@@ -226,6 +226,11 @@ pub(crate) fn render(
     if passes.intersects(Passes::SECONDARY) {
         return Err(err("mirror reflections in SDF scenes are not implemented"));
     }
+    if method.split_groups {
+        return Err(err(
+            "ctss+edges runs on the CPU backend only (hit group subdivision, CTSS §5.3, has no WGSL twin)",
+        ));
+    }
     let max_distance = settings.max_distance.unwrap_or(g.max_distance);
     let max_steps = settings.max_steps.unwrap_or(g.max_steps);
     if max_distance.is_nan() {
