@@ -528,6 +528,12 @@ pub struct TraceResult {
 /// `sdf(p)` is the signed distance, `normal(p)` the surface normal, `shade(p, n)`
 /// the colour of a surface point, `background` the colour of a miss. `right`/`up`
 /// span the cone's cross-section ([`cross_section_frame`]). Shading is ASAP (§5.1).
+///
+/// With [`FLAG_SPLIT_GROUPS`] every group's coarse normal is taken from `sdf`
+/// ([`tetra_normal`], step [`coarse_normal_step`]) and a group that
+/// [`group_needs_split`] is shaded at its [`split_group`] parts instead of
+/// once; `steps` and `samples` then include the extra evaluations (coarse
+/// normals and sub-traces) and shaded parts.
 #[allow(clippy::too_many_arguments)]
 pub fn trace<S, N, C>(
     params: &CtssParams,
