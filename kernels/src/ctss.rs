@@ -710,12 +710,13 @@ where
 
 /// Smallest cosine between a group's fine and coarse normal that keeps the
 /// group whole: `cos 20°`. Two faces of a box meet at 90°; a coarse normal
-/// straddling the edge is bent towards the other face by a share of that, and
-/// 20° is reached when roughly a quarter of the coarse differences' taps see
-/// the other face. Curved surfaces bend the coarse normal by about
-/// `R_c/(radius of curvature)` radians: a surface whose curvature radius is
-/// below ~3 cone radii is shaded with extra samples too, which is where one
-/// normal per pixel is also wrong.
+/// whose taps straddle the edge is bent towards the other face by a share of
+/// that, the larger the nearer the edge is to the sample point (the kernel
+/// test `split_on_a_box_edge` pins a point a fifth of a cone radius away).
+/// On a sphere of radius `ρ` the tetrahedral differences' second-order error
+/// bends the coarse normal by at most about `0.6·R_c/ρ` radians, so only
+/// surfaces curved within about two cone radii split for their curvature,
+/// where one normal per pixel is wrong as well.
 pub const SPLIT_MIN_COS: f32 = 0.939_692_6;
 
 /// Largest group length, in cone radii at the sample depth, that keeps the
