@@ -790,7 +790,8 @@ pub fn tetra_normal<S: FnMut(Vec3) -> f32>(mut sdf: S, p: Vec3, h: f32) -> Vec3 
 ///
 /// Domain: any. A zero or non-finite normal does not take part in the angle
 /// test; a NaN or infinite length, a non-positive or non-finite cone radius
-/// does not take part in the length test; so non-finite input never splits.
+/// does not take part in the length test: a test whose inputs are not finite
+/// never votes for a split (and nothing panics).
 #[inline]
 pub fn group_needs_split(
     n_fine: Vec3,
