@@ -42,15 +42,21 @@ const SDF_METHODS: [&str; 7] = [
     "sraa-rt",
 ];
 
-/// Methods only the CPU reference renders on SDF scenes, with the reason. Every
-/// other backend must refuse them with an error saying so (checked, not
-/// skipped): SRAA-RT's sphere-traced subsamples and their reconstruction are
-/// implemented on the CPU only; the wgpu SDF shader has no subpixel geometry
-/// pass yet.
-const CPU_ONLY_ON_SDF: [(&str, &str); 1] = [(
-    "sraa-rt",
-    "sphere-traced subpixel geometry and its reconstruction exist on the CPU only",
-)];
+/// Methods only the CPU reference renders on SDF scenes, with the reason. Not
+/// skipped: `cpu_only_methods` renders them on the CPU (every SDF and stiff
+/// scene, frame invariants) and requires every other backend to refuse them
+/// with an error that says "CPU backend only"; where they are also in
+/// [`SDF_METHODS`], the per-scene cases check the refusal too.
+const CPU_ONLY_ON_SDF: [(&str, &str); 2] = [
+    (
+        "sraa-rt",
+        "sphere-traced subpixel geometry and its reconstruction exist on the CPU only",
+    ),
+    (
+        "ctss+edges",
+        "hit group subdivision (CTSS §5.3) has no WGSL twin",
+    ),
+];
 
 /// How close a backend's frame must be to the CPU reference, in LDR-FLIP.
 ///
@@ -271,6 +277,38 @@ fn check_extreme_settings(backend: &dyn Backend) {
     }
 }
 
+/// [`CPU_ONLY_ON_SDF`]: finite, invariant-abiding frames on the CPU on
+/// every SDF scene; a clear error on any other backend.
+fn check_cpu_only(backend: &dyn Backend) {
+    let settings = RenderSettings::new(W, H);
+    for (m, why) in CPU_ONLY_ON_SDF {
+        let method: Method = m.parse().expect("method name");
+        for name in SDF_SCENES.iter().chain(&STIFF_SCENES) {
+            let scene = builtin(name).expect("built-in scene");
+            match backend.render(&scene, &scene.camera, &method, &settings) {
+                Ok(frame) => {
+                    assert_eq!(
+                        backend.name(),
+                        "cpu",
+                        "{m} is CPU-only ({why}) but {} rendered it",
+                        backend.name()
+                    );
+                    check_invariants(backend.name(), &scene, &method, &frame);
+                }
+                Err(e) => {
+                    assert_ne!(backend.name(), "cpu", "cpu: {name} {m}: {e}");
+                    assert!(
+                        e.to_string().contains("CPU backend only"),
+                        "{}: {name} {m} refused without saying why: {e}",
+                        backend.name()
+                    );
+                    break;
+                }
+            }
+        }
+    }
+}
+
 /// Bad input is an error value on every backend.
 fn check_errors(backend: &dyn Backend) {
     let name = backend.name();
@@ -372,6 +410,13 @@ macro_rules! conformance_suite {
             fn extreme_settings() {
                 if let Some(b) = backend() {
                     check_extreme_settings(b.as_ref());
+                }
+            }
+
+            #[test]
+            fn cpu_only_methods() {
+                if let Some(b) = backend() {
+                    check_cpu_only(b.as_ref());
                 }
             }
 

@@ -30,6 +30,8 @@ pub struct Method {
     /// the work changes. Only the cone-traced techniques read it; named with a
     /// `-delayed` suffix (`ctss-delayed`).
     pub delayed_shading: bool,
+    /// CTSS: subdivide hit groups at internal edges (§5.3, `ctss+edges`).
+    pub split_groups: bool,
 }
 
 impl Method {
@@ -47,6 +49,7 @@ impl Method {
             cone_coverage: 1.0,
             visibility_k: 32,
             delayed_shading: false,
+            split_groups: false,
         }
     }
 
@@ -76,6 +79,7 @@ impl fmt::Display for Method {
             Technique::Ssaa => write!(f, "ssaa{}", self.supersamples()),
             Technique::Sraa => write!(f, "sraa"),
             Technique::SraaRt => write!(f, "sraa-rt"),
+            Technique::Ctss if self.split_groups => write!(f, "ctss+edges{suffix}"),
             Technique::Ctss => write!(f, "ctss{suffix}"),
             Technique::CtssR => write!(f, "ctss-r{suffix}"),
             Technique::SsaaCtss => write!(f, "ssaa{}+ctss{suffix}", self.supersamples()),
@@ -85,7 +89,7 @@ impl fmt::Display for Method {
 
 /// A method name that does not parse.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("unknown method {0:?}: expected noaa, ssaaN (N in 4, 9, 16, 64, 256), sraa, sraa-rt, ctss, ctss-r or ssaaN+ctss, the last three optionally with -delayed")]
+#[error("unknown method {0:?}: expected noaa, ssaaN (N in 4, 9, 16, 64, 256), sraa, sraa-rt, ctss, ctss+edges, ctss-r or ssaaN+ctss; ctss, ctss-r and ssaaN+ctss optionally with -delayed")]
 pub struct ParseMethodError(pub String);
 
 fn parse_ssaa(n: &str) -> Option<u32> {
@@ -101,7 +105,9 @@ impl FromStr for Method {
         let err = || ParseMethodError(s.to_string());
         if let Some(base) = lower.strip_suffix("-delayed") {
             let m: Method = base.parse().map_err(|_| err())?;
-            if !m.technique.is_cone_traced() || base.ends_with("-delayed") {
+            // Delayed shading records one sample per hit group; split groups
+            // (`ctss+edges`) shade several, so the two do not combine.
+            if !m.technique.is_cone_traced() || base.ends_with("-delayed") || m.split_groups {
                 return Err(err());
             }
             return Ok(Method {
@@ -114,6 +120,10 @@ impl FromStr for Method {
             "sraa" => Method::new(Technique::Sraa),
             "sraa-rt" => Method::new(Technique::SraaRt),
             "ctss" => Method::new(Technique::Ctss),
+            "ctss+edges" => Method {
+                split_groups: true,
+                ..Method::new(Technique::Ctss)
+            },
             "ctss-r" => Method::new(Technique::CtssR),
             other => {
                 if let Some(rest) = other.strip_prefix("ssaa") {

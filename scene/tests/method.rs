@@ -5,7 +5,7 @@ use subcone_kernels::passes::Technique;
 use subcone_scene::method::ParseMethodError;
 use subcone_scene::Method;
 
-const WORDS: [&str; 14] = [
+const WORDS: [&str; 15] = [
     "noaa",
     "ssaa4",
     "ssaa9",
@@ -15,6 +15,7 @@ const WORDS: [&str; 14] = [
     "sraa",
     "sraa-rt",
     "ctss",
+    "ctss+edges",
     "ctss-r",
     "ssaa4+ctss",
     "ctss-delayed",
@@ -44,6 +45,7 @@ fn parsed_methods_have_the_right_technique_and_samples() {
         ("sraa", Technique::Sraa, 1),
         ("sraa-rt", Technique::SraaRt, 1),
         ("ctss", Technique::Ctss, 1),
+        ("ctss+edges", Technique::Ctss, 1),
         ("ctss-r", Technique::CtssR, 1),
         ("ssaa4+ctss", Technique::SsaaCtss, 4),
         ("ssaa16+ctss", Technique::SsaaCtss, 16),
@@ -80,6 +82,7 @@ fn bad_words_list_the_valid_ones() {
         "sraa rt",
         "noaa-delayed",
         "sraa-rt-delayed",
+        "ctss+edges-delayed",
         "ctss-delayed-delayed",
         "-delayed",
     ] {
@@ -94,10 +97,21 @@ fn bad_words_list_the_valid_ones() {
             "sraa",
             "sraa-rt",
             "ctss",
+            "ctss+edges",
             "ctss-r",
             "ssaaN+ctss",
         ] {
             assert!(msg.contains(valid), "{bad:?}: {msg} lacks {valid}");
         }
+    }
+}
+
+/// `ctss+edges` is CTSS with hit group subdivision (§5.3); no other word
+/// turns it on.
+#[test]
+fn only_ctss_edges_splits_groups() {
+    for word in WORDS {
+        let m: Method = word.parse().unwrap();
+        assert_eq!(m.split_groups, word == "ctss+edges", "{word}");
     }
 }

@@ -78,6 +78,7 @@ pub const METHODS: &[&str] = &[
     "sraa-rt",
     "ctss",
     "ctss-delayed",
+    "ctss+edges",
     "ctss-r",
     "ssaa4+ctss",
 ];
@@ -107,7 +108,7 @@ pub struct ReportArgs {
     #[arg(long)]
     pub no_paper_scenes: bool,
     /// Methods to compare, comma-separated (default: noaa, ssaa4, ssaa16, sraa,
-    /// sraa-rt, ctss, ctss-delayed, ctss-r, ssaa4+ctss, …; each where it applies).
+    /// sraa-rt, ctss, ctss-delayed, ctss+edges, ctss-r, ssaa4+ctss, …; each where it applies).
     #[arg(long = "method", value_delimiter = ',', value_name = "METHOD")]
     pub methods: Vec<String>,
     /// Output directory.

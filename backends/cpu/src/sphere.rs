@@ -8,6 +8,8 @@
 //! with the same ε, step budget and maximum distance (§4), so no CTSS/NoAA ratio
 //! can be bought by loosening NoAA.
 
+mod edges;
+
 use std::time::Instant;
 
 use crate::render::{bands, pixel_centre, reconstruct_frame, shadow_agreement, Buffers, BAND};
@@ -15,7 +17,7 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use subcone_kernels::aggregate::Aggregate;
 use subcone_kernels::ctss::{
-    cross_section_frame, sphere_trace_split, ConeStepper, CtssParams, Event,
+    cross_section_frame, sphere_trace_split, ConeStepper, CtssParams, Event, GroupSample, SplitRay,
 };
 use subcone_kernels::mask::{needs_normal, project_normal};
 use subcone_kernels::passes::{LayerLayout, Passes, Technique, MAX_LIGHTS};
@@ -79,6 +81,22 @@ pub struct SdfView<'a, F: SdfField> {
 }
 
 /// A hit-group sample waiting to be shaded (delayed shading).
+/// A closed hit group, as [`SdfView::ctss_march`] hands it on.
+struct GroupHit<'s> {
+    /// Sample point.
+    q: Vec3,
+    /// Shading normal there.
+    n: Vec3,
+    /// Eq. 6 weight.
+    w: f32,
+    /// Newly visible mask cells.
+    visible: u32,
+    /// The group, for a split.
+    sample: &'s GroupSample,
+    /// The ray and its cross-section frame, for a split.
+    ray: SplitRay,
+}
+
 struct PendingSample {
     q: Vec3,
     n: Vec3,
@@ -173,6 +191,7 @@ impl<F: SdfField> SdfView<'_, F> {
             .with_max_steps(self.max_steps)
             .relaxed(method.technique == Technique::CtssR)
             .with_visibility_k(method.visibility_k)
+            .with_split_groups(method.split_groups)
     }
 
     /// One NoAA sample.
@@ -193,15 +212,15 @@ impl<F: SdfField> SdfView<'_, F> {
     }
 
     /// Algorithm 1 through the kernels' stepper for the ray `o + t·d`: calls
-    /// `on_sample(q, n, w)` with each hit group's sample point, shading normal
-    /// and eq. 6 weight as the group closes. Returns the stepper (its counters
-    /// and background weight).
+    /// `on_sample` with each hit group's sample point, shading normal, eq. 6
+    /// weight and what a split (`ctss+edges`) needs, as the group closes.
+    /// Returns the stepper (its counters and background weight).
     fn ctss_march(
         &self,
         o: Vec3,
         d: Vec3,
         p: &CtssParams,
-        mut on_sample: impl FnMut(Vec3, Vec3, f32),
+        mut on_sample: impl FnMut(GroupHit<'_>),
     ) -> ConeStepper {
         let (right, up) = cross_section_frame(d, self.camera.up);
         let mut stepper = ConeStepper::new(p);
@@ -222,8 +241,20 @@ impl<F: SdfField> SdfView<'_, F> {
                     } else {
                         n
                     };
-                    let (_, w) = stepper.record(&s, project_normal(nm, right, up));
-                    on_sample(q, n, w);
+                    let (visible, w) = stepper.record(&s, project_normal(nm, right, up));
+                    on_sample(GroupHit {
+                        q,
+                        n,
+                        w,
+                        visible,
+                        sample: &s,
+                        ray: SplitRay {
+                            origin: o,
+                            dir: d,
+                            right,
+                            up,
+                        },
+                    });
                 }
                 Event::Stop(_) => break,
             }
@@ -235,12 +266,24 @@ impl<F: SdfField> SdfView<'_, F> {
     /// closes (ASAP).
     fn ctss(&self, o: Vec3, d: Vec3, p: &CtssParams, tally: &mut Tally) -> (Vec3, u32) {
         let mut agg = Aggregate::new();
-        let stepper = self.ctss_march(o, d, p, |q, n, w| agg.add(w, self.shade(q, n, d, tally)));
+        // Shaded samples beyond one per group (`ctss+edges`, §5.3).
+        let mut extra = 0u32;
+        let stepper = self.ctss_march(o, d, p, |g| {
+            if p.splits_groups() {
+                if let Some(k) =
+                    self.split_sample(&g.ray, p, g.sample, g.n, g.visible, g.w, &mut agg, tally)
+                {
+                    extra += k;
+                    return;
+                }
+            }
+            agg.add(g.w, self.shade(g.q, g.n, d, tally));
+        });
         tally.steps += stepper.steps() as u64;
-        tally.samples += stepper.samples() as u64;
+        tally.samples += (stepper.samples() + extra) as u64;
         (
             agg.resolve(self.background, stepper.background_weight()),
-            stepper.samples(),
+            stepper.samples() + extra,
         )
     }
 
@@ -276,8 +319,12 @@ impl<F: SdfField> SdfView<'_, F> {
                     let (o, d) =
                         self.camera
                             .ray(Vec2::new(x as f32, y as f32) + off, s.width, s.height);
-                    let stepper = self.ctss_march(o, d, p, |q, n, w| {
-                        batch.push(PendingSample { q, n, w });
+                    let stepper = self.ctss_march(o, d, p, |g| {
+                        batch.push(PendingSample {
+                            q: g.q,
+                            n: g.n,
+                            w: g.w,
+                        });
                     });
                     tally.steps += stepper.steps() as u64;
                     tally.samples += stepper.samples() as u64;
@@ -621,7 +668,9 @@ impl<F: SdfField> SdfView<'_, F> {
                 || (Vec::new(), Vec::new()),
                 |buffers, (y, (row, spp_row))| {
                     let mut t = Tally::default();
-                    if cone && method.delayed_shading {
+                    // Split groups shade several samples per group, which
+                    // the delayed path does not record: they run ASAP.
+                    if cone && method.delayed_shading && !params.splits_groups() {
                         t.multi += self.ctss_delayed_row(
                             y,
                             side as usize,

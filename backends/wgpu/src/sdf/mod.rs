@@ -252,6 +252,11 @@ pub(crate) fn render(
     if method.technique.is_subpixel_reconstruction() {
         return Err(err(SRAA_RT_CPU_ONLY));
     }
+    if method.split_groups {
+        return Err(err(
+            "ctss+edges runs on the CPU backend only (hit group subdivision, CTSS §5.3, has no WGSL twin)",
+        ));
+    }
     let max_distance = settings.max_distance.unwrap_or(g.max_distance);
     let max_steps = settings.max_steps.unwrap_or(g.max_steps);
     if max_distance.is_nan() {
