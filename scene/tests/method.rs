@@ -5,7 +5,7 @@ use subcone_kernels::passes::Technique;
 use subcone_scene::method::ParseMethodError;
 use subcone_scene::Method;
 
-const WORDS: [&str; 11] = [
+const WORDS: [&str; 13] = [
     "noaa",
     "ssaa4",
     "ssaa9",
@@ -14,6 +14,8 @@ const WORDS: [&str; 11] = [
     "ssaa256",
     "sraa",
     "sraa-rt",
+    "sraa+mat",
+    "sraa-rt+mat",
     "ctss",
     "ctss-r",
     "ssaa4+ctss",
@@ -40,6 +42,8 @@ fn parsed_methods_have_the_right_technique_and_samples() {
         ("ssaa256", Technique::Ssaa, 256),
         ("sraa", Technique::Sraa, 1),
         ("sraa-rt", Technique::SraaRt, 1),
+        ("sraa+mat", Technique::Sraa, 1),
+        ("sraa-rt+mat", Technique::SraaRt, 1),
         ("ctss", Technique::Ctss, 1),
         ("ctss-r", Technique::CtssR, 1),
         ("ssaa4+ctss", Technique::SsaaCtss, 4),
@@ -49,6 +53,12 @@ fn parsed_methods_have_the_right_technique_and_samples() {
         let m: Method = word.parse().unwrap();
         assert_eq!(m.technique, technique, "{word}");
         assert_eq!(m.supersamples(), samples, "{word}");
+    }
+    // Only the `+mat` words gate by albedo.
+    for (word, gated) in [("sraa", false), ("sraa+mat", true), ("sraa-rt+mat", true)] {
+        let m: Method = word.parse().unwrap();
+        assert_eq!(m.material_aware, gated, "{word}");
+        assert_eq!(m.gates_material(), gated, "{word}");
     }
     // Case and surrounding blanks are forgiven.
     assert_eq!(
@@ -69,6 +79,8 @@ fn bad_words_list_the_valid_ones() {
         "ssaa5+ctss",
         "ctss+ssaa4",
         "sraa rt",
+        "noaa+mat",
+        "ctss+mat",
     ] {
         let err: ParseMethodError = bad.parse::<Method>().unwrap_err();
         assert_eq!(err.0, bad);
@@ -80,6 +92,8 @@ fn bad_words_list_the_valid_ones() {
             "4, 9, 16, 64, 256",
             "sraa",
             "sraa-rt",
+            "sraa+mat",
+            "sraa-rt+mat",
             "ctss",
             "ctss-r",
             "ssaaN+ctss",
