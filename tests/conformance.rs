@@ -30,7 +30,15 @@ const W: u32 = 64;
 const H: u32 = 48;
 
 /// Methods run on triangle scenes.
-const TRIANGLE_METHODS: [&str; 5] = ["noaa", "ssaa4", "ssaa16", "sraa", "sraa-rt"];
+const TRIANGLE_METHODS: [&str; 7] = [
+    "noaa",
+    "ssaa4",
+    "ssaa16",
+    "sraa",
+    "sraa-rt",
+    "sraa+mat",
+    "sraa-rt+mat",
+];
 /// Methods run on SDF scenes.
 const SDF_METHODS: [&str; 7] = [
     "noaa",

@@ -32,8 +32,8 @@ use subcone_kernels::cone::{
 };
 use subcone_kernels::mask::{needs_normal, project_normal, visibility_mask, MaskPlacement};
 use subcone_kernels::sraa::{
-    bilateral_weight, resolve_pixel, shadow_gated_weight, DepthMetric, Geometry, SraaParams,
-    WeightForm,
+    albedo_difference, bilateral_weight, material_gated_weight, resolve_pixel, shadow_gated_weight,
+    DepthMetric, Geometry, SraaParams, WeightForm, ALBEDO_TOLERANCE,
 };
 use subcone_wgpu::GpuContext;
 
@@ -465,6 +465,88 @@ fn check_weights(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
     join(a, b)
 }
 
+/// An albedo: mostly in `[0, 1]` (the domain), sometimes anything
+/// (`any_f32`'s extremes: huge, negative, infinite, NaN).
+fn albedo() -> BoxedStrategy<Vec3> {
+    prop_oneof![
+        4 => (0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0).prop_map(|(r, g, b)| Vec3::new(r, g, b)),
+        1 => (any_f32(0.0, 1.0), any_f32(0.0, 1.0), any_f32(0.0, 1.0))
+            .prop_map(|(r, g, b)| Vec3::new(r, g, b)),
+    ]
+    .boxed()
+}
+
+/// The material gate (§4.1, Fig. 6; eq. 2's gate on albedo). The pair of
+/// albedos is equal, close (a step of up to 0.2 per channel, so the sum
+/// straddles the tolerance) or independent. `albedo_difference` is a
+/// difference of square roots: WGSL's `sqrt` is within a few ulps, so on the
+/// domain (components in `[0, 4]`, differences ≤ 2) the two agree within
+/// 1e-6; outside it (huge components, where the difference cancels) only its
+/// class is compared: infinite (a non-finite component) or not. The gate's
+/// decision must agree exactly (weight exactly 0 on both when gated) except
+/// where the difference lies within 1e-5 of the tolerance, where a few ulps
+/// of `sqrt` may decide; those cases are skipped and counted. Ungated, the
+/// weight is eq. 1's: within 4e-6, as in `check_weights`.
+fn check_material(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
+    let pair = prop_oneof![
+        2 => albedo().prop_map(|a| (a, a)),
+        3 => (albedo(), (-0.2f32..0.2, -0.2f32..0.2, -0.2f32..0.2))
+            .prop_map(|(a, (x, y, z))| (a, a + Vec3::new(x, y, z))),
+        2 => (albedo(), albedo()),
+    ];
+    let tolerance = prop_oneof![6 => Just(ALBEDO_TOLERANCE), 2 => any_f32(0.0, 1.0)];
+    let cases = generate((sraa_params(), geometry(), geometry(), pair, tolerance), 9);
+    let mut input = Vec::new();
+    for (p, gi, gj, (ai, aj), tol) in &cases {
+        input.extend(params_words(p));
+        input.extend(geometry_words(gi));
+        input.extend(geometry_words(gj));
+        input.extend(words(&ai.to_array()));
+        input.extend(words(&aj.to_array()));
+        input.push(tol.to_bits());
+    }
+    let out = run_wgsl(
+        ctx,
+        &lib.sraa,
+        "let p = SraaParams(f(0u), f(1u), f(2u), u(3u));
+         let gi = Geometry(v3(4u), f(7u));
+         let gj = Geometry(v3(8u), f(11u));
+         out[o] = bitcast<u32>(albedo_difference(v3(12u), v3(15u)));
+         out[o + 1u] = bitcast<u32>(material_gated_weight(p, gi, gj, v3(12u), v3(15u), f(18u)));",
+        19,
+        2,
+        &input,
+    )?;
+    let mut diff = Report::new("albedo_difference");
+    let mut gated = Report::new("material_gated_weight");
+    let mut near = 0;
+    for (i, c) in cases.iter().enumerate() {
+        let (p, gi, gj, (ai, aj), tol) = c;
+        let g = floats(&out[2 * i..2 * i + 2]);
+        let d = albedo_difference(*ai, *aj);
+        let domain = |a: &Vec3| a.is_finite() && a.max_element() <= 4.0;
+        if domain(ai) && domain(aj) {
+            diff.floats(Tol::Abs(1e-6), c, &[d], &g[..1]);
+        } else {
+            diff.exact(c, d.is_infinite() as u32, g[0].is_infinite() as u32);
+        }
+        if d.is_finite() && tol.is_finite() && (d - tol).abs() <= 1e-5 {
+            near += 1;
+            continue;
+        }
+        let r = material_gated_weight(p, gi, gj, *ai, *aj, *tol);
+        if !(d <= *tol && d.is_finite()) {
+            gated.exact(c, r.to_bits(), g[1].to_bits());
+        } else {
+            gated.floats(Tol::Abs(4e-6), c, &[r], &g[1..]);
+        }
+    }
+    let b = gated
+        .finish()
+        .map(|s| format!("{s} ({near} cases within 1e-5 of the tolerance skipped)"));
+    join(diff.finish(), b)
+}
+
 fn join(a: Result<String, String>, b: Result<String, String>) -> Result<String, String> {
     match (a, b) {
         (Ok(a), Ok(b)) => Ok(format!("{a}\n{b}")),
@@ -698,8 +780,9 @@ fn check_aggregate(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
     join(weights.finish(), agg_r.finish())
 }
 
-const CHECKS: [(&str, Check); 5] = [
+const CHECKS: [(&str, Check); 6] = [
     ("weights", check_weights),
+    ("material", check_material),
     ("resolve", check_resolve),
     ("cone", check_cone),
     ("mask", check_mask),
@@ -732,7 +815,7 @@ fn wgsl_kernels_match_the_rust_kernels() {
 #[test]
 fn perturbed_kernels_are_caught() {
     let Some(ctx) = gpu() else { return };
-    let perturbations: [(&str, &str, &str, Check); 3] = [
+    let perturbations: [(&str, &str, &str, Check); 4] = [
         (
             "mask intercept sign flipped (the paper's eq. 8 slip)",
             "h = -delta / min(len, 1.0);",
@@ -750,6 +833,12 @@ fn perturbed_kernels_are_caught() {
             "if si != sj {",
             "if false {",
             check_weights,
+        ),
+        (
+            "material gate ignored",
+            "if d <= tolerance && d < subcone_miss_depth() {",
+            "if true {",
+            check_material,
         ),
     ];
     for (what, from, to, check) in perturbations {

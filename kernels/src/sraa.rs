@@ -371,6 +371,76 @@ pub fn shadow_gated_weight(
     }
 }
 
+/// Default tolerance of the albedo gate ([`material_gated_weight`]), in the
+/// square-root encoding of [`albedo_difference`].
+///
+/// `0.1` is a tenth of the encoded range, about 25 of 255 sRGB codes: slow
+/// texture variation and noise below it is blended by eq. 1 as before (gating
+/// it would turn the reconstruction into nearest-sample lookup on every
+/// textured surface), while the edges between differently coloured patches or
+/// texels that SRAA cannot see (§4.1, Fig. 6) lie far above it: the closest
+/// two colours of the `checker` palette differ by 0.42.
+pub const ALBEDO_TOLERANCE: f32 = 0.1;
+
+/// Dissimilarity of two diffuse albedos for the material gate: the largest
+/// per-channel difference of their square roots, `max_c |√a_c − √b_c|`.
+///
+/// The square root is a cheap perceptual encoding (gamma 2, close to sRGB's
+/// transfer curve), so one tolerance means about the same visible step on
+/// dark and on bright albedos; the maximum over channels sees a hue change at
+/// constant luminance (red against green) that a luminance difference would
+/// miss.
+///
+/// Domain: albedos with finite components, nominally in `[0, 1]`. Negative
+/// components count as 0; components above 1 are compared as they are.
+/// Outside the domain: a NaN or infinite component in either albedo gives
+/// `+∞` (the samples never match). Symmetric; 0 for equal albedos.
+#[inline]
+pub fn albedo_difference(a: Vec3, b: Vec3) -> f32 {
+    if !(a.is_finite() && b.is_finite()) {
+        return f32::INFINITY;
+    }
+    let e = |x: f32| libm::sqrtf(if x > 0.0 { x } else { 0.0 });
+    let d = |x: f32, y: f32| libm::fabsf(e(x) - e(y));
+    d(a.x, b.x).max(d(a.y, b.y)).max(d(a.z, b.z))
+}
+
+/// Material-gated weight: eq. 2's gate applied to albedo instead of shadow
+/// state. 0 when the albedos of `i` (the geometric subsample) and `j` (the
+/// shaded sample) differ by more than `tolerance` ([`albedo_difference`]),
+/// eq. 1 ([`bilateral_weight`]) when they match.
+///
+/// This is the fix for the failure case of §4.1 (Fig. 6): edges between
+/// patches of different colour on one flat surface are invisible to depth and
+/// normal, so eq. 1 blends the colours of both patches into every subsample
+/// near the edge and the edge stays as jagged as the shaded samples. With the
+/// albedo of each geometric subsample (a texture lookup at its hit; the
+/// material's constant albedo elsewhere), a subsample only takes colour from
+/// shaded samples of its own patch. As with eq. 2, when the gate removes every
+/// neighbour the reconstruction falls back to the nearest shaded sample
+/// ([`reconstruct`]).
+///
+/// Domain: that of [`bilateral_weight`] for the geometry, finite albedos, a
+/// tolerance `≥ 0`. Outside it: a non-finite albedo, or a NaN or negative
+/// tolerance, gates (weight 0); the result is always in `[0, 1]`, never NaN.
+#[inline]
+pub fn material_gated_weight(
+    params: &SraaParams,
+    gi: &Geometry,
+    gj: &Geometry,
+    ai: Vec3,
+    aj: Vec3,
+    tolerance: f32,
+) -> f32 {
+    let d = albedo_difference(ai, aj);
+    // d = ∞ (a non-finite albedo) gates even under an infinite tolerance.
+    if d <= tolerance && d < f32::INFINITY {
+        bilateral_weight(params, gi, gj)
+    } else {
+        0.0
+    }
+}
+
 /// A pixel of a reconstruction neighbourhood, with the squared screen distance
 /// from the target subsample to that pixel's shaded sample.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -596,18 +666,66 @@ pub fn reconstruct_layers<'a, I>(
 ) where
     I: IntoIterator<Item = LayeredSample<'a>>,
 {
+    let weighted = neighbours
+        .into_iter()
+        .map(|s| (bilateral_weight(params, target, &s.geometry), s));
+    reconstruct_weighted_layers(target_shadow, gates, weighted, out);
+}
+
+/// [`reconstruct_layers`] with the material gate: each neighbour's weight is
+/// [`material_gated_weight`] of the target's albedo and the neighbour's (the
+/// second item of each pair) instead of [`bilateral_weight`], so every layer
+/// is gated by albedo (§4.1, Fig. 6) and, where `gates` says so, by shadow
+/// state (eq. 2). Same order of summation and fallback as
+/// [`reconstruct_layers`]; with all albedos equal, the same bits.
+#[allow(clippy::too_many_arguments)]
+pub fn reconstruct_layers_material<'a, I>(
+    params: &SraaParams,
+    target: &Geometry,
+    target_shadow: u32,
+    target_albedo: Vec3,
+    tolerance: f32,
+    gates: &[Option<u8>],
+    neighbours: I,
+    out: &mut [Vec3],
+) where
+    I: IntoIterator<Item = (LayeredSample<'a>, Vec3)>,
+{
+    let weighted = neighbours.into_iter().map(|(s, albedo)| {
+        let w = material_gated_weight(
+            params,
+            target,
+            &s.geometry,
+            target_albedo,
+            albedo,
+            tolerance,
+        );
+        (w, s)
+    });
+    reconstruct_weighted_layers(target_shadow, gates, weighted, out);
+}
+
+/// The loop of [`reconstruct_layers`] over neighbours whose ungated weight
+/// is already known.
+fn reconstruct_weighted_layers<'a, I>(
+    target_shadow: u32,
+    gates: &[Option<u8>],
+    neighbours: I,
+    out: &mut [Vec3],
+) where
+    I: Iterator<Item = (f32, LayeredSample<'a>)>,
+{
     let n = gates.len().min(out.len()).min(MAX_LAYERS);
     let mut acc = [WeightedSum::ZERO; MAX_LAYERS];
     let mut nearest = [Vec3::ZERO; MAX_LAYERS];
     let mut nearest_d2 = [f32::INFINITY; MAX_LAYERS];
     let mut any = [false; MAX_LAYERS];
-    for s in neighbours {
+    for (w, s) in neighbours {
         let d2 = if !s.distance2.is_nan() {
             s.distance2
         } else {
             f32::INFINITY
         };
-        let w = bilateral_weight(params, target, &s.geometry);
         for i in 0..n {
             let c = s.colors.get(i).copied().unwrap_or(Vec3::ZERO);
             if !c.is_finite() {

@@ -177,6 +177,31 @@ fn shadow_gated_weight(params: SraaParams, gi: Geometry, gj: Geometry, si: bool,
     return bilateral_weight(params, gi, gj);
 }
 
+// Mirrors sraa::ALBEDO_TOLERANCE: the material gate's default tolerance.
+const ALBEDO_TOLERANCE: f32 = 0.1;
+
+// Mirrors sraa::albedo_difference: max over channels of |sqrt(a) - sqrt(b)|,
+// negative components counted as 0; +inf when a component of either albedo is
+// NaN or infinite.
+fn albedo_difference(a: vec3<f32>, b: vec3<f32>) -> f32 {
+    if !sraa_is_finite3(a) || !sraa_is_finite3(b) {
+        return subcone_miss_depth();
+    }
+    let d = abs(sqrt(max(a, vec3<f32>(0.0))) - sqrt(max(b, vec3<f32>(0.0))));
+    return max(d.x, max(d.y, d.z));
+}
+
+// Mirrors sraa::material_gated_weight (§4.1, Fig. 6; the gate of eq. 2 on
+// albedo): 0 when the albedos differ by more than `tolerance` (or one is not
+// finite, or the tolerance is NaN), eq. 1 when they match.
+fn material_gated_weight(params: SraaParams, gi: Geometry, gj: Geometry, ai: vec3<f32>, aj: vec3<f32>, tolerance: f32) -> f32 {
+    let d = albedo_difference(ai, aj);
+    if d <= tolerance && d < subcone_miss_depth() {
+        return bilateral_weight(params, gi, gj);
+    }
+    return 0.0;
+}
+
 // Mirrors sraa::neighbourhood: the clipped (2r+1)² pixels around (x, y), as
 // bounds [x0, x1) × [y0, y1), and the target subsample's position minus the
 // shaded sample's within a pixel. Iterate rows y0..y1, columns x0..x1 (row-major,

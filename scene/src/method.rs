@@ -32,6 +32,13 @@ pub struct Method {
     pub delayed_shading: bool,
     /// CTSS: subdivide hit groups at internal edges (§5.3, `ctss+edges`).
     pub split_groups: bool,
+    /// SRAA and SRAA-RT: gate the reconstruction by albedo as well
+    /// (`sraa+mat`, `sraa-rt+mat`; `subcone_kernels::sraa::material_gated_weight`),
+    /// so edges between differently coloured patches of one surface (§4.1,
+    /// Fig. 6) are resolved. Adds an albedo per shaded sample and per
+    /// geometric subsample; only changes the image where albedo varies
+    /// (textures, patterned or several materials). Ignored by other techniques.
+    pub material_aware: bool,
 }
 
 impl Method {
@@ -50,6 +57,7 @@ impl Method {
             visibility_k: 32,
             delayed_shading: false,
             split_groups: false,
+            material_aware: false,
         }
     }
 
@@ -59,6 +67,19 @@ impl Method {
             ssaa_side: side.max(1),
             ..Method::new(Technique::Ssaa)
         }
+    }
+
+    /// `sraa+mat` or `sraa-rt+mat`: `technique` with the material gate.
+    pub fn material_aware(technique: Technique) -> Self {
+        Method {
+            material_aware: technique.is_subpixel_reconstruction(),
+            ..Method::new(technique)
+        }
+    }
+
+    /// Whether the SRAA reconstruction is gated by albedo (`+mat`).
+    pub fn gates_material(&self) -> bool {
+        self.material_aware && self.technique.is_subpixel_reconstruction()
     }
 
     /// Samples per pixel of the supersampling grid (1 without supersampling).
@@ -83,13 +104,17 @@ impl fmt::Display for Method {
             Technique::Ctss => write!(f, "ctss{suffix}"),
             Technique::CtssR => write!(f, "ctss-r{suffix}"),
             Technique::SsaaCtss => write!(f, "ssaa{}+ctss{suffix}", self.supersamples()),
+        }?;
+        if self.gates_material() {
+            write!(f, "+mat")?;
         }
+        Ok(())
     }
 }
 
 /// A method name that does not parse.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("unknown method {0:?}: expected noaa, ssaaN (N in 4, 9, 16, 64, 256), sraa, sraa-rt, ctss, ctss+edges, ctss-r or ssaaN+ctss; ctss, ctss-r and ssaaN+ctss optionally with -delayed")]
+#[error("unknown method {0:?}: expected noaa, ssaaN (N in 4, 9, 16, 64, 256), sraa, sraa-rt, sraa+mat, sraa-rt+mat, ctss, ctss+edges, ctss-r or ssaaN+ctss; ctss, ctss-r and ssaaN+ctss optionally with -delayed")]
 pub struct ParseMethodError(pub String);
 
 fn parse_ssaa(n: &str) -> Option<u32> {
@@ -119,6 +144,8 @@ impl FromStr for Method {
             "noaa" => Method::new(Technique::NoAa),
             "sraa" => Method::new(Technique::Sraa),
             "sraa-rt" => Method::new(Technique::SraaRt),
+            "sraa+mat" => Method::material_aware(Technique::Sraa),
+            "sraa-rt+mat" => Method::material_aware(Technique::SraaRt),
             "ctss" => Method::new(Technique::Ctss),
             "ctss+edges" => Method {
                 split_groups: true,

@@ -5,7 +5,7 @@ use subcone_kernels::passes::Technique;
 use subcone_scene::method::ParseMethodError;
 use subcone_scene::Method;
 
-const WORDS: [&str; 15] = [
+const WORDS: [&str; 17] = [
     "noaa",
     "ssaa4",
     "ssaa9",
@@ -14,6 +14,8 @@ const WORDS: [&str; 15] = [
     "ssaa256",
     "sraa",
     "sraa-rt",
+    "sraa+mat",
+    "sraa-rt+mat",
     "ctss",
     "ctss+edges",
     "ctss-r",
@@ -44,6 +46,8 @@ fn parsed_methods_have_the_right_technique_and_samples() {
         ("ssaa256", Technique::Ssaa, 256),
         ("sraa", Technique::Sraa, 1),
         ("sraa-rt", Technique::SraaRt, 1),
+        ("sraa+mat", Technique::Sraa, 1),
+        ("sraa-rt+mat", Technique::SraaRt, 1),
         ("ctss", Technique::Ctss, 1),
         ("ctss+edges", Technique::Ctss, 1),
         ("ctss-r", Technique::CtssR, 1),
@@ -61,6 +65,12 @@ fn parsed_methods_have_the_right_technique_and_samples() {
     assert!(d.delayed_shading);
     assert!(!"ctss".parse::<Method>().unwrap().delayed_shading);
     assert_ne!(d, "ctss".parse::<Method>().unwrap());
+    // Only the `+mat` words gate by albedo.
+    for (word, gated) in [("sraa", false), ("sraa+mat", true), ("sraa-rt+mat", true)] {
+        let m: Method = word.parse().unwrap();
+        assert_eq!(m.material_aware, gated, "{word}");
+        assert_eq!(m.gates_material(), gated, "{word}");
+    }
     // Case and surrounding blanks are forgiven.
     assert_eq!(
         "  SRAA-RT ".parse::<Method>().unwrap().to_string(),
@@ -85,6 +95,9 @@ fn bad_words_list_the_valid_ones() {
         "ctss+edges-delayed",
         "ctss-delayed-delayed",
         "-delayed",
+        "noaa+mat",
+        "ctss+mat",
+        "sraa-rt+mat-delayed",
     ] {
         let err: ParseMethodError = bad.parse::<Method>().unwrap_err();
         assert_eq!(err.0, bad);
@@ -96,6 +109,8 @@ fn bad_words_list_the_valid_ones() {
             "4, 9, 16, 64, 256",
             "sraa",
             "sraa-rt",
+            "sraa+mat",
+            "sraa-rt+mat",
             "ctss",
             "ctss+edges",
             "ctss-r",

@@ -125,6 +125,14 @@ impl Backend for CpuBackend {
                     reason: "mirror reflections in SDF scenes are not implemented".into(),
                 });
             }
+            if method.gates_material() {
+                return Err(RenderError::Backend {
+                    backend: "cpu",
+                    reason: format!(
+                        "{method} on SDF scenes is not implemented: the material gate runs on triangle scenes"
+                    ),
+                });
+            }
             let view = SdfView {
                 field: &g.root,
                 materials: &scene.materials,

@@ -6,8 +6,8 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use subcone_kernels::passes::{LayerLayout, Passes, Technique};
 use subcone_kernels::sraa::{
-    neighbourhood, reconstruct_layers, resolve_pixel, Geometry, LayeredSample, SraaParams,
-    SHADED_SUBSAMPLE, SUBPIXEL_OFFSETS,
+    neighbourhood, reconstruct_layers, reconstruct_layers_material, resolve_pixel, Geometry,
+    LayeredSample, SraaParams, ALBEDO_TOLERANCE, SHADED_SUBSAMPLE, SUBPIXEL_OFFSETS,
 };
 use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderSettings};
 
@@ -122,6 +122,9 @@ pub(crate) struct Buffers {
     pub(crate) sub_shadow: Vec<[u32; 4]>,
     pub(crate) sub_geo2: Vec<[Geometry; 4]>,
     pub(crate) sub_shadow2: Vec<[u32; 4]>,
+    /// `+mat` only: albedo of each shaded sample and of each subsample.
+    pub(crate) albedo: Vec<Vec3>,
+    pub(crate) sub_albedo: Vec<[Vec3; 4]>,
 }
 
 impl Buffers {
@@ -140,6 +143,8 @@ impl Buffers {
             ("subpixel shadow states", bytes(&self.sub_shadow)),
             ("subpixel secondary geometry", bytes(&self.sub_geo2)),
             ("subpixel secondary shadow states", bytes(&self.sub_shadow2)),
+            ("albedo", bytes(&self.albedo)),
+            ("subpixel albedo", bytes(&self.sub_albedo)),
         ] {
             if size > 0 {
                 buffers.push((name, size));
@@ -215,6 +220,7 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
     let sub_shadows = rt && passes.contains(Passes::SUBPIXEL_SHADOW);
     let sub_secondary = rt && passes.contains(Passes::SUBPIXEL_SECONDARY_GEOMETRY);
     let secondary_shading = passes.contains(Passes::SECONDARY);
+    let material = method.gates_material();
     let nl = layout.len();
     let mut b = Buffers {
         geo: vec![Geometry::MISS; n],
@@ -250,6 +256,16 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
         } else {
             Vec::new()
         },
+        albedo: if material {
+            vec![Vec3::ZERO; n]
+        } else {
+            Vec::new()
+        },
+        sub_albedo: if material {
+            vec![[Vec3::ZERO; 4]; n]
+        } else {
+            Vec::new()
+        },
     };
     let mut timings = Vec::new();
 
@@ -264,119 +280,125 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
             .zip(bands(&mut b.shadow, band, nb))
             .zip(bands(&mut b.geo2, band, nb))
             .zip(bands(&mut b.shadow2, band, nb))
+            .zip(bands(&mut b.albedo, band, nb))
             .enumerate()
-            .map(|(bi, ((((geo, values), shadow), geo2), shadow2))| {
-                let mut c = Counts::default();
-                for i in 0..geo.len() {
-                    let (x, y) = (i % w, bi * BAND + i / w);
-                    let p = pixel_centre(x, y) + SUBPIXEL_OFFSETS[SHADED_SUBSAMPLE];
-                    let (o, d) = t.camera.ray(p, s.width, s.height);
-                    c.primary += 1;
-                    let v = &mut values[i * nl..(i + 1) * nl];
-                    let Some(sf) = t.intersect(o, d, 0.0) else {
-                        geo[i] = Geometry::MISS;
-                        v[0] = t.scene.background;
-                        if let Some(g2) = geo2.get_mut(i) {
-                            *g2 = NO_SECONDARY;
-                        }
-                        continue;
-                    };
-                    c.shaded += 1;
-                    geo[i] = t.primary_geometry(Some(&sf));
-                    let sh = if shadows {
-                        t.shadow_states(&sf, &mut c)
-                    } else {
-                        0
-                    };
-                    let parts = t.parts(&sf, sh);
-                    let m = parts.mirror;
-                    let reflects = m > 0.0 && secondary_shading && t.reflection_depth > 0;
-                    if layout.single {
-                        let diffuse = parts.diffuse(lights);
-                        v[0] = if reflects {
-                            c.secondary += 1;
-                            let r = t.radiance(
-                                sf.p + sf.ng * t.eps,
-                                Tracer::reflect(d, sf.n),
-                                1,
-                                &mut c,
-                            );
-                            (1.0 - m) * diffuse + m * r
-                        } else if m > 0.0 {
-                            (1.0 - m) * diffuse
-                        } else {
-                            diffuse
-                        };
-                        continue;
-                    }
-                    // SRAA-RT layers: primary base, then one per light.
-                    if layout.lights > 0 {
-                        shadow[i] = sh;
-                        v[0] = (1.0 - m) * parts.base;
-                        for l in 0..layout.lights {
-                            v[1 + l] = (1.0 - m) * parts.direct[l];
-                        }
-                    } else {
-                        v[0] = (1.0 - m) * parts.diffuse(lights);
-                    }
-                    if !reflects {
-                        continue;
-                    }
-                    c.secondary += 1;
-                    let rd = Tracer::reflect(d, sf.n);
-                    let sb = layout.secondary_base();
-                    match t.intersect(sf.p + sf.ng * t.eps, rd, 0.0) {
-                        None => {
+            .map(
+                |(bi, (((((geo, values), shadow), geo2), shadow2), albedo))| {
+                    let mut c = Counts::default();
+                    for i in 0..geo.len() {
+                        let (x, y) = (i % w, bi * BAND + i / w);
+                        let p = pixel_centre(x, y) + SUBPIXEL_OFFSETS[SHADED_SUBSAMPLE];
+                        let (o, d) = t.camera.ray(p, s.width, s.height);
+                        c.primary += 1;
+                        let v = &mut values[i * nl..(i + 1) * nl];
+                        let Some(sf) = t.intersect(o, d, 0.0) else {
+                            geo[i] = Geometry::MISS;
+                            v[0] = t.scene.background;
                             if let Some(g2) = geo2.get_mut(i) {
-                                *g2 = Geometry::MISS;
+                                *g2 = NO_SECONDARY;
                             }
-                            let bg = m * t.scene.background;
-                            if layout.secondary {
-                                v[sb] = bg;
-                            } else {
-                                v[0] += bg;
-                            }
+                            continue;
+                        };
+                        c.shaded += 1;
+                        geo[i] = t.primary_geometry(Some(&sf));
+                        if let Some(a) = albedo.get_mut(i) {
+                            *a = t.primary_albedo(Some(&sf));
                         }
-                        Some(s2) => {
-                            c.shaded += 1;
-                            let sh2 = if shadows {
-                                t.shadow_states(&s2, &mut c)
-                            } else {
-                                0
-                            };
-                            let p2 = t.parts(&s2, sh2);
-                            let m2 = p2.mirror;
-                            let deeper = if m2 > 0.0 && t.reflection_depth > 1 {
+                        let sh = if shadows {
+                            t.shadow_states(&sf, &mut c)
+                        } else {
+                            0
+                        };
+                        let parts = t.parts(&sf, sh);
+                        let m = parts.mirror;
+                        let reflects = m > 0.0 && secondary_shading && t.reflection_depth > 0;
+                        if layout.single {
+                            let diffuse = parts.diffuse(lights);
+                            v[0] = if reflects {
                                 c.secondary += 1;
-                                t.radiance(
-                                    s2.p + s2.ng * t.eps,
-                                    Tracer::reflect(rd, s2.n),
-                                    2,
+                                let r = t.radiance(
+                                    sf.p + sf.ng * t.eps,
+                                    Tracer::reflect(d, sf.n),
+                                    1,
                                     &mut c,
-                                )
+                                );
+                                (1.0 - m) * diffuse + m * r
+                            } else if m > 0.0 {
+                                (1.0 - m) * diffuse
                             } else {
-                                Vec3::ZERO
+                                diffuse
                             };
-                            if layout.secondary {
-                                geo2[i] = Geometry::new(s2.n, sf.t + s2.t);
-                                if layout.lights > 0 {
-                                    shadow2[i] = sh2;
-                                    v[sb] = m * ((1.0 - m2) * p2.base + m2 * deeper);
-                                    for l in 0..layout.lights {
-                                        v[sb + 1 + l] = m * (1.0 - m2) * p2.direct[l];
+                            continue;
+                        }
+                        // SRAA-RT layers: primary base, then one per light.
+                        if layout.lights > 0 {
+                            shadow[i] = sh;
+                            v[0] = (1.0 - m) * parts.base;
+                            for l in 0..layout.lights {
+                                v[1 + l] = (1.0 - m) * parts.direct[l];
+                            }
+                        } else {
+                            v[0] = (1.0 - m) * parts.diffuse(lights);
+                        }
+                        if !reflects {
+                            continue;
+                        }
+                        c.secondary += 1;
+                        let rd = Tracer::reflect(d, sf.n);
+                        let sb = layout.secondary_base();
+                        match t.intersect(sf.p + sf.ng * t.eps, rd, 0.0) {
+                            None => {
+                                if let Some(g2) = geo2.get_mut(i) {
+                                    *g2 = Geometry::MISS;
+                                }
+                                let bg = m * t.scene.background;
+                                if layout.secondary {
+                                    v[sb] = bg;
+                                } else {
+                                    v[0] += bg;
+                                }
+                            }
+                            Some(s2) => {
+                                c.shaded += 1;
+                                let sh2 = if shadows {
+                                    t.shadow_states(&s2, &mut c)
+                                } else {
+                                    0
+                                };
+                                let p2 = t.parts(&s2, sh2);
+                                let m2 = p2.mirror;
+                                let deeper = if m2 > 0.0 && t.reflection_depth > 1 {
+                                    c.secondary += 1;
+                                    t.radiance(
+                                        s2.p + s2.ng * t.eps,
+                                        Tracer::reflect(rd, s2.n),
+                                        2,
+                                        &mut c,
+                                    )
+                                } else {
+                                    Vec3::ZERO
+                                };
+                                if layout.secondary {
+                                    geo2[i] = Geometry::new(s2.n, sf.t + s2.t);
+                                    if layout.lights > 0 {
+                                        shadow2[i] = sh2;
+                                        v[sb] = m * ((1.0 - m2) * p2.base + m2 * deeper);
+                                        for l in 0..layout.lights {
+                                            v[sb + 1 + l] = m * (1.0 - m2) * p2.direct[l];
+                                        }
+                                    } else {
+                                        v[sb] = m * ((1.0 - m2) * p2.diffuse(lights) + m2 * deeper);
                                     }
                                 } else {
-                                    v[sb] = m * ((1.0 - m2) * p2.diffuse(lights) + m2 * deeper);
+                                    // Reflections forced off: fold them into the primary base.
+                                    v[0] += m * ((1.0 - m2) * p2.diffuse(lights) + m2 * deeper);
                                 }
-                            } else {
-                                // Reflections forced off: fold them into the primary base.
-                                v[0] += m * ((1.0 - m2) * p2.diffuse(lights) + m2 * deeper);
                             }
                         }
                     }
-                }
-                c
-            })
+                    c
+                },
+            )
             .reduce(Counts::default, |a, b| a + b)
     };
     timings.push(PassTiming {
@@ -390,6 +412,7 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
     let adaptive = !t.exhaustive_subpixel_shadows;
     let geo_counts = {
         let (geo, shadow, geo2, shadow2) = (&b.geo, &b.shadow, &b.geo2, &b.shadow2);
+        let albedo = &b.albedo;
         let values = &b.values;
         // Which lights' subpixel shadow rays can change the image, from the
         // shaded samples the pixel's subsamples are reconstructed from (primary
@@ -405,66 +428,81 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
             .zip(bands(&mut b.sub_shadow, band, nb))
             .zip(bands(&mut b.sub_geo2, band, nb))
             .zip(bands(&mut b.sub_shadow2, band, nb))
+            .zip(bands(&mut b.sub_albedo, band, nb))
             .enumerate()
-            .map(|(bi, (((sub_geo, sub_shadow), sub_geo2), sub_shadow2))| {
-                let mut c = Counts::default();
-                for i in 0..sub_geo.len() {
-                    let (x, y) = (i % w, bi * BAND + i / w);
-                    let j = bi * band + i;
-                    // Computed on first use: a pixel whose subsamples all miss
-                    // needs neither.
-                    let mut primary_agree = None;
-                    let mut secondary_agree = None;
-                    for k in 0..4 {
-                        if k == SHADED_SUBSAMPLE {
-                            sub_geo[i][k] = geo[j];
+            .map(
+                |(bi, ((((sub_geo, sub_shadow), sub_geo2), sub_shadow2), sub_albedo))| {
+                    let mut c = Counts::default();
+                    for i in 0..sub_geo.len() {
+                        let (x, y) = (i % w, bi * BAND + i / w);
+                        let j = bi * band + i;
+                        // Computed on first use: a pixel whose subsamples all miss
+                        // needs neither.
+                        let mut primary_agree = None;
+                        let mut secondary_agree = None;
+                        for k in 0..4 {
+                            if k == SHADED_SUBSAMPLE {
+                                sub_geo[i][k] = geo[j];
+                                if let Some(ss) = sub_shadow.get_mut(i) {
+                                    ss[k] = shadow[j];
+                                }
+                                if let Some(g2) = sub_geo2.get_mut(i) {
+                                    g2[k] = geo2.get(j).copied().unwrap_or(NO_SECONDARY);
+                                }
+                                if let Some(s2) = sub_shadow2.get_mut(i) {
+                                    s2[k] = shadow2.get(j).copied().unwrap_or(0);
+                                }
+                                if let Some(a) = sub_albedo.get_mut(i) {
+                                    a[k] = albedo[j];
+                                }
+                                continue;
+                            }
+                            let p = pixel_centre(x, y) + SUBPIXEL_OFFSETS[k];
+                            let (o, d) = t.camera.ray(p, s.width, s.height);
+                            c.geometry += 1;
+                            let sf = t.intersect(o, d, 0.0);
+                            sub_geo[i][k] = t.primary_geometry(sf.as_ref());
+                            if let Some(a) = sub_albedo.get_mut(i) {
+                                a[k] = t.primary_albedo(sf.as_ref());
+                            }
+                            let Some(sf) = sf else { continue };
                             if let Some(ss) = sub_shadow.get_mut(i) {
-                                ss[k] = shadow[j];
+                                let (cast, inherited) =
+                                    *primary_agree.get_or_insert_with(|| agree(x, y, shadow, 0));
+                                ss[k] = t.shadow_states_masked(&sf, cast, inherited, &mut c);
                             }
                             if let Some(g2) = sub_geo2.get_mut(i) {
-                                g2[k] = geo2.get(j).copied().unwrap_or(NO_SECONDARY);
-                            }
-                            if let Some(s2) = sub_shadow2.get_mut(i) {
-                                s2[k] = shadow2.get(j).copied().unwrap_or(0);
-                            }
-                            continue;
-                        }
-                        let p = pixel_centre(x, y) + SUBPIXEL_OFFSETS[k];
-                        let (o, d) = t.camera.ray(p, s.width, s.height);
-                        c.geometry += 1;
-                        let sf = t.intersect(o, d, 0.0);
-                        sub_geo[i][k] = t.primary_geometry(sf.as_ref());
-                        let Some(sf) = sf else { continue };
-                        if let Some(ss) = sub_shadow.get_mut(i) {
-                            let (cast, inherited) =
-                                *primary_agree.get_or_insert_with(|| agree(x, y, shadow, 0));
-                            ss[k] = t.shadow_states_masked(&sf, cast, inherited, &mut c);
-                        }
-                        if let Some(g2) = sub_geo2.get_mut(i) {
-                            let mat = &t.scene.materials[sf.material as usize];
-                            if mat.mirror > 0.0 && t.reflection_depth > 0 {
-                                c.geometry += 1;
-                                let rd = Tracer::reflect(d, sf.n);
-                                g2[k] = match t.intersect(sf.p + sf.ng * t.eps, rd, 0.0) {
-                                    None => Geometry::MISS,
-                                    Some(s2) => {
-                                        if let Some(sh2) = sub_shadow2.get_mut(i) {
-                                            let (cast, inherited) = *secondary_agree
-                                                .get_or_insert_with(|| {
-                                                    agree(x, y, shadow2, layout.secondary_base())
-                                                });
-                                            sh2[k] = t
-                                                .shadow_states_masked(&s2, cast, inherited, &mut c);
+                                let mat = &t.scene.materials[sf.material as usize];
+                                if mat.mirror > 0.0 && t.reflection_depth > 0 {
+                                    c.geometry += 1;
+                                    let rd = Tracer::reflect(d, sf.n);
+                                    g2[k] = match t.intersect(sf.p + sf.ng * t.eps, rd, 0.0) {
+                                        None => Geometry::MISS,
+                                        Some(s2) => {
+                                            if let Some(sh2) = sub_shadow2.get_mut(i) {
+                                                let (cast, inherited) = *secondary_agree
+                                                    .get_or_insert_with(|| {
+                                                        agree(
+                                                            x,
+                                                            y,
+                                                            shadow2,
+                                                            layout.secondary_base(),
+                                                        )
+                                                    });
+                                                sh2[k] = t.shadow_states_masked(
+                                                    &s2, cast, inherited, &mut c,
+                                                );
+                                            }
+                                            Geometry::new(s2.n, sf.t + s2.t)
                                         }
-                                        Geometry::new(s2.n, sf.t + s2.t)
-                                    }
-                                };
+                                    };
+                                }
                             }
                         }
                     }
-                }
-                c
-            })
+                    c
+                },
+            )
             .reduce(Counts::default, |a, b| a + b)
     };
     timings.push(PassTiming {
@@ -541,27 +579,51 @@ fn reconstruct_subsample(
     };
     let mut out = [Vec3::ZERO; MAX_LIGHTS + 1];
     let hood = || neighbourhood(x as u32, y as u32, k, radius, w as u32, h as u32);
+    // `albedo`: the target's albedo when the primary layers are gated by
+    // material (`+mat`); the secondary layers never are.
     let run = |target: &Geometry,
                target_shadow: u32,
+               albedo: Option<Vec3>,
                geo: &[Geometry],
                bits: &[u32],
                first: usize,
                out: &mut [Vec3]| {
         let samples = hood().map(|np| {
             let jj = np.y as usize * w + np.x as usize;
-            LayeredSample {
+            let s = LayeredSample {
                 geometry: geo[jj],
                 shadow: bits.get(jj).copied().unwrap_or(0),
                 distance2: np.distance2,
                 colors: &b.values[jj * nl + first..jj * nl + first + gates.len()],
-            }
+            };
+            (s, b.albedo.get(jj).copied().unwrap_or(Vec3::ZERO))
         });
-        reconstruct_layers(params, target, target_shadow, gates, samples, out);
+        match albedo {
+            Some(a) => reconstruct_layers_material(
+                params,
+                target,
+                target_shadow,
+                a,
+                ALBEDO_TOLERANCE,
+                gates,
+                samples,
+                out,
+            ),
+            None => reconstruct_layers(
+                params,
+                target,
+                target_shadow,
+                gates,
+                samples.map(|(s, _)| s),
+                out,
+            ),
+        }
         out[..gates.len()].iter().fold(Vec3::ZERO, |a, c| a + *c)
     };
     let target = b.sub_geo[j][k];
     let shadow = b.sub_shadow.get(j).map(|s| s[k]).unwrap_or(0);
-    let mut c = run(&target, shadow, &b.geo, &b.shadow, 0, &mut out);
+    let albedo = b.sub_albedo.get(j).map(|a| a[k]);
+    let mut c = run(&target, shadow, albedo, &b.geo, &b.shadow, 0, &mut out);
     if layout.secondary {
         let target2 = b.sub_geo2.get(j).map(|g| g[k]).unwrap_or(NO_SECONDARY);
         if !target2.depth.is_nan() {
@@ -569,6 +631,7 @@ fn reconstruct_subsample(
             c += run(
                 &target2,
                 shadow2,
+                None,
                 &b.geo2,
                 &b.shadow2,
                 layout.secondary_base(),

@@ -163,6 +163,17 @@ impl<'a> Tracer<'a> {
         }
     }
 
+    /// The diffuse albedo of a primary surface, for the material gate
+    /// (`subcone_kernels::sraa::material_gated_weight`): the texture or
+    /// pattern at the hit, the material's constant elsewhere; black for a
+    /// miss (a miss never matches a hit anyway: its depth weight is 0).
+    pub fn primary_albedo(&self, s: Option<&Surface>) -> Vec3 {
+        match s {
+            Some(s) => self.scene.materials[s.material as usize].albedo_at(s.p, s.uv),
+            None => Vec3::ZERO,
+        }
+    }
+
     /// Shadow states of `s` for every light (bit set = shadowed), casting one
     /// shadow ray per light that faces the surface.
     #[inline]

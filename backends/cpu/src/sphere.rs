@@ -468,6 +468,9 @@ impl<F: SdfField> SdfView<'_, F> {
             },
             sub_geo2: Vec::new(),
             sub_shadow2: Vec::new(),
+            // `+mat` is refused on SDF scenes before this point.
+            albedo: Vec::new(),
+            sub_albedo: Vec::new(),
         };
         let mut timings = Vec::new();
         let nb = h.div_ceil(BAND);

@@ -534,6 +534,8 @@ fn sraa_wgsl_validates() {
     for f in [
         "bilateral_weight",
         "shadow_gated_weight",
+        "albedo_difference",
+        "material_gated_weight",
         "depth_difference",
         "gaussian",
         "saturate",

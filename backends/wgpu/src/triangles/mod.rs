@@ -28,6 +28,7 @@ use crate::context::{err, GpuContext};
 use bvh::{SceneGpu, MAX_LIGHTS, STACK_SIZE};
 
 const TRACE_WGSL: &str = include_str!("trace.wgsl");
+pub(crate) const ALBEDO_WGSL: &str = include_str!("albedo.wgsl");
 const SUPERSAMPLE_WGSL: &str = include_str!("supersample.wgsl");
 const SUBPIXEL_WGSL: &str = include_str!("subpixel.wgsl");
 const SRAA_WGSL: &str = include_str!("sraa.wgsl");
@@ -482,6 +483,7 @@ fn shader(header: &str, entries: &[&str]) -> String {
     let mut s = String::new();
     s += subcone_kernels::wgsl::PARAMS;
     s += subcone_kernels::sraa::WGSL;
+    s += ALBEDO_WGSL;
     s += &TRACE_WGSL
         .replace("__STACK_SIZE__", &STACK_SIZE.to_string())
         .replace("__MAX_LIGHTS__", &MAX_LIGHTS.to_string());
@@ -636,6 +638,7 @@ fn subpixel(
     let sub_shadows = rt && passes.contains(Passes::SUBPIXEL_SHADOW);
     let sub_secondary = rt && passes.contains(Passes::SUBPIXEL_SECONDARY_GEOMETRY);
     let secondary_shading = passes.contains(Passes::SECONDARY);
+    let material = method.gates_material();
     let nl = layout.len();
     let n64 = n as u64;
 
@@ -681,12 +684,28 @@ fn subpixel(
         fb.storage(ctx, "subsample index", "subsample", "array<u32>", 4)?;
         None
     } else {
-        let r = raster::Raster::new(ctx, sg, uniform, s.width, s.height)?;
+        let r = raster::Raster::new(ctx, sg, uniform, s.width, s.height, material)?;
         fb.texture("sub_tex", r.view());
         fb.stats.push(("subpixel geometry", r.target_bytes()));
         fb.stats.push(("raster depth", r.depth_bytes()));
+        if let Some(albedo) = r.albedo_view() {
+            fb.texture("sub_alb_tex", albedo);
+            fb.stats.push(("subpixel albedo", r.target_bytes()));
+        }
         Some(r)
     };
+    if material {
+        fb.storage(ctx, "albedo", "albedo_buf", "array<vec4<f32>>", n64 * 16)?;
+        if rt {
+            fb.storage(
+                ctx,
+                "subpixel albedo",
+                "sub_albedo_buf",
+                "array<vec4<f32>>",
+                n64 * 64,
+            )?;
+        }
+    }
     if sub_shadows && layout.lights > 0 {
         fb.storage(
             ctx,
@@ -720,7 +739,7 @@ fn subpixel(
     header += &format!(
         "const NL: u32 = {nl}u;\nconst LAYER_LIGHTS: u32 = {}u;\nconst SINGLE: bool = {};\n\
          const SECONDARY_LAYERS: bool = {};\nconst SHADOWS: bool = {shadows};\n\
-         const SECONDARY_SHADING: bool = {secondary_shading};\n",
+         const SECONDARY_SHADING: bool = {secondary_shading};\nconst MATERIAL: bool = {material};\n",
         layout.lights, layout.single, layout.secondary
     );
     header += &accessors(&fb, "shadow", "shadow_buf", "u32", 1, "0u");
@@ -729,6 +748,26 @@ fn subpixel(
     header += &accessors(&fb, "sub_shadow", "sub_shadow_buf", "u32", 4, "0u");
     header += &accessors(&fb, "sub_geo2", "sub_geo2_buf", "Geometry", 4, no_secondary);
     header += &accessors(&fb, "sub_shadow2", "sub_shadow2_buf", "u32", 4, "0u");
+    header += &accessors(
+        &fb,
+        "albedo",
+        "albedo_buf",
+        "vec4<f32>",
+        1,
+        "vec4<f32>(0.0)",
+    );
+    if !rt && material {
+        header += raster::SUB_ALBEDO_ACCESSORS;
+    } else {
+        header += &accessors(
+            &fb,
+            "sub_albedo",
+            "sub_albedo_buf",
+            "vec4<f32>",
+            4,
+            "vec4<f32>(0.0)",
+        );
+    }
     if rt {
         header += &accessors(
             &fb,
@@ -853,7 +892,7 @@ pub(crate) fn subpixel_geometry_both(
     let mut header = fb.declarations();
     header += "const NL: u32 = 1u;\nconst LAYER_LIGHTS: u32 = 0u;\nconst SINGLE: bool = true;\n\
                const SECONDARY_LAYERS: bool = false;\nconst SHADOWS: bool = false;\n\
-               const SECONDARY_SHADING: bool = false;\n";
+               const SECONDARY_SHADING: bool = false;\nconst MATERIAL: bool = false;\n";
     let no_secondary = "Geometry(vec3<f32>(0.0), bitcast<f32>(0x7fc00000u))";
     header += &accessors(&fb, "shadow", "shadow_buf", "u32", 1, "0u");
     header += &accessors(&fb, "geo2", "geo2_buf", "Geometry", 1, no_secondary);
@@ -862,6 +901,22 @@ pub(crate) fn subpixel_geometry_both(
     header += &accessors(&fb, "sub_geo2", "sub_geo2_buf", "Geometry", 4, no_secondary);
     header += &accessors(&fb, "sub_shadow2", "sub_shadow2_buf", "u32", 4, "0u");
     header += &accessors(&fb, "sub_geo", "sub_geo_buf", "Geometry", 4, "Geometry()");
+    header += &accessors(
+        &fb,
+        "albedo",
+        "albedo_buf",
+        "vec4<f32>",
+        1,
+        "vec4<f32>(0.0)",
+    );
+    header += &accessors(
+        &fb,
+        "sub_albedo",
+        "sub_albedo_buf",
+        "vec4<f32>",
+        4,
+        "vec4<f32>(0.0)",
+    );
     let layout = fb.layout(ctx);
     let mut prog = Program::new(ctx, shader(&header, &[SUBPIXEL_WGSL, SRAA_WGSL]), &layout);
     let shade = prog.pipeline("shade_main")?;
@@ -880,7 +935,7 @@ pub(crate) fn subpixel_geometry_both(
     let traced = read_geometry(ctx, fb.buffer("sub_geo_buf").expect("allocated"), 4 * n)?;
     let _ = passes;
     // Rasterised.
-    let r = raster::Raster::new(ctx, &sg, &uniform, width, height)?;
+    let r = raster::Raster::new(ctx, &sg, &uniform, width, height, false)?;
     ctx.timed_pass("geometry", &mut t, |enc| r.record(enc))?;
     let rastered = r.read(ctx)?;
     let group = |v: Vec<Geometry>| -> Vec<[Geometry; 4]> {

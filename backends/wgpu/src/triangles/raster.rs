@@ -3,7 +3,8 @@
 //! sample lies exactly where the ray-traced subsample does (pixel centre plus
 //! `SUBPIXEL_OFFSETS[k]`). One render pass per subsample, into layer `k` of
 //! an `Rgba32Float` array (normal, view depth) with a reversed-Z
-//! `Depth32Float` buffer.
+//! `Depth32Float` buffer. With the material gate (`+mat`), a second colour
+//! attachment of the same passes receives each subsample's albedo.
 
 use bytemuck::{Pod, Zeroable};
 #[cfg(test)]
@@ -34,6 +35,16 @@ fn get_sub_geo(j: u32, k: u32) -> Geometry {
 fn put_sub_geo(j: u32, k: u32, g: Geometry) { }
 ";
 
+/// `get_sub_albedo`/`put_sub_albedo` over the rasterised albedo layers (bound
+/// as `sub_alb_tex`, cleared to 0: a miss's albedo, as on the CPU).
+pub(crate) const SUB_ALBEDO_ACCESSORS: &str = "
+const HAS_SUB_ALBEDO: bool = true;
+fn get_sub_albedo(j: u32, k: u32) -> vec4<f32> {
+    return textureLoad(sub_alb_tex, vec2<i32>(i32(j % frame.width), i32(j / frame.width)), i32(k), 0);
+}
+fn put_sub_albedo(j: u32, k: u32, v: vec4<f32>) { }
+";
+
 /// `RasterUniform` in raster.wgsl (80 bytes).
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
@@ -51,18 +62,36 @@ struct RasterUniform {
 }
 
 /// The G-buffer pipeline, compiled once per device (in the device's own
-/// cache: device ids repeat across wgpu instances).
-fn pipeline(ctx: &GpuContext) -> Result<wgpu::RenderPipeline, RenderError> {
-    const KEY: u64 = 0x5261_7374_6572_4762; // "RasterGb"
-    if let Some(p) = ctx.cached::<wgpu::RenderPipeline>(KEY) {
+/// cache: device ids repeat across wgpu instances); with `albedo`, the
+/// variant with the albedo attachment.
+fn pipeline(ctx: &GpuContext, albedo: bool) -> Result<wgpu::RenderPipeline, RenderError> {
+    // "RasterGb", "RasterAl".
+    let key: u64 = if albedo {
+        0x5261_7374_6572_416c
+    } else {
+        0x5261_7374_6572_4762
+    };
+    if let Some(p) = ctx.cached::<wgpu::RenderPipeline>(key) {
         return Ok((*p).clone());
     }
     let source = [
         subcone_kernels::wgsl::PARAMS,
         subcone_kernels::sraa::WGSL,
+        super::ALBEDO_WGSL,
         RASTER_WGSL,
     ]
     .concat();
+    let target = Some(wgpu::ColorTargetState {
+        format: TARGET,
+        blend: None,
+        write_mask: wgpu::ColorWrites::ALL,
+    });
+    let targets = [target.clone(), target];
+    let (entry, targets) = if albedo {
+        ("fs_albedo", &targets[..])
+    } else {
+        ("fs_main", &targets[..1])
+    };
     let p = ctx.scoped("raster pipeline", || {
         let module = ctx
             .device
@@ -85,8 +114,10 @@ fn pipeline(ctx: &GpuContext) -> Result<wgpu::RenderPipeline, RenderError> {
                         },
                         count: None,
                     },
-                    storage_entry(1),
-                    storage_entry(2),
+                    storage_entry(1, wgpu::ShaderStages::VERTEX),
+                    storage_entry(2, wgpu::ShaderStages::VERTEX),
+                    storage_entry(3, wgpu::ShaderStages::FRAGMENT),
+                    storage_entry(4, wgpu::ShaderStages::FRAGMENT),
                 ],
             });
         let pl = ctx
@@ -121,26 +152,22 @@ fn pipeline(ctx: &GpuContext) -> Result<wgpu::RenderPipeline, RenderError> {
                 multisample: Default::default(),
                 fragment: Some(wgpu::FragmentState {
                     module: &module,
-                    entry_point: Some("fs_main"),
+                    entry_point: Some(entry),
                     compilation_options: Default::default(),
-                    targets: &[Some(wgpu::ColorTargetState {
-                        format: TARGET,
-                        blend: None,
-                        write_mask: wgpu::ColorWrites::ALL,
-                    })],
+                    targets,
                 }),
                 multiview_mask: None,
                 cache: None,
             })
     })?;
-    ctx.cache_insert(KEY, std::sync::Arc::new(p.clone()));
+    ctx.cache_insert(key, std::sync::Arc::new(p.clone()));
     Ok(p)
 }
 
-fn storage_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+fn storage_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
-        visibility: wgpu::ShaderStages::VERTEX,
+        visibility,
         ty: wgpu::BindingType::Buffer {
             ty: wgpu::BufferBindingType::Storage { read_only: true },
             has_dynamic_offset: false,
@@ -159,6 +186,8 @@ pub(crate) struct Raster {
     layers: [wgpu::TextureView; 4],
     array: wgpu::TextureView,
     depth: wgpu::TextureView,
+    /// `+mat`: the albedo layers and their array view.
+    albedo: Option<([wgpu::TextureView; 4], wgpu::TextureView)>,
     vertices: u32,
     width: u32,
     height: u32,
@@ -171,13 +200,14 @@ impl Raster {
         u: &FrameUniform,
         width: u32,
         height: u32,
+        albedo: bool,
     ) -> Result<Self, RenderError> {
         ctx.check_texture_size(width, height)?;
         let vertices = sg
             .triangle_count
             .checked_mul(3)
             .ok_or_else(|| err("too many triangles to rasterise in one draw"))?;
-        let pipeline = pipeline(ctx)?;
+        let pipeline = pipeline(ctx, albedo)?;
         let ru = RasterUniform {
             cam_pos: u.cam_pos,
             half: u.half,
@@ -215,6 +245,14 @@ impl Raster {
                         binding: 2,
                         resource: sg.attrs.as_entire_binding(),
                     },
+                    wgpu::BindGroupEntry {
+                        binding: 3,
+                        resource: sg.materials.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 4,
+                        resource: sg.texels.as_entire_binding(),
+                    },
                 ],
             });
             let size = wgpu::Extent3d {
@@ -222,18 +260,21 @@ impl Raster {
                 height,
                 depth_or_array_layers: 4,
             };
-            let target = ctx.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("subpixel geometry"),
-                size,
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: TARGET,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-                    | wgpu::TextureUsages::TEXTURE_BINDING
-                    | wgpu::TextureUsages::COPY_SRC,
-                view_formats: &[],
-            });
+            let layers = |label: &'static str| {
+                ctx.device.create_texture(&wgpu::TextureDescriptor {
+                    label: Some(label),
+                    size,
+                    mip_level_count: 1,
+                    sample_count: 1,
+                    dimension: wgpu::TextureDimension::D2,
+                    format: TARGET,
+                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                        | wgpu::TextureUsages::TEXTURE_BINDING
+                        | wgpu::TextureUsages::COPY_SRC,
+                    view_formats: &[],
+                })
+            };
+            let target = layers("subpixel geometry");
             let depth = ctx.device.create_texture(&wgpu::TextureDescriptor {
                 label: Some("raster depth"),
                 size: wgpu::Extent3d {
@@ -247,7 +288,7 @@ impl Raster {
                 usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
                 view_formats: &[],
             });
-            let layer = |k: u32| {
+            let layer_of = |target: &wgpu::Texture, k: u32| {
                 target.create_view(&wgpu::TextureViewDescriptor {
                     label: Some("subpixel geometry layer"),
                     dimension: Some(wgpu::TextureViewDimension::D2),
@@ -256,10 +297,19 @@ impl Raster {
                     ..Default::default()
                 })
             };
-            let array = target.create_view(&wgpu::TextureViewDescriptor {
-                label: Some("subpixel geometry"),
-                dimension: Some(wgpu::TextureViewDimension::D2Array),
-                ..Default::default()
+            let array_of = |target: &wgpu::Texture| {
+                target.create_view(&wgpu::TextureViewDescriptor {
+                    label: Some("subpixel geometry"),
+                    dimension: Some(wgpu::TextureViewDimension::D2Array),
+                    ..Default::default()
+                })
+            };
+            let layer = |k: u32| layer_of(&target, k);
+            let array = array_of(&target);
+            let albedo = albedo.then(|| {
+                let t = layers("subpixel albedo");
+                let l = |k: u32| layer_of(&t, k);
+                ([l(0), l(1), l(2), l(3)], array_of(&t))
             });
             Raster {
                 pipeline: pipeline.clone(),
@@ -267,6 +317,7 @@ impl Raster {
                 layers: [layer(0), layer(1), layer(2), layer(3)],
                 array,
                 depth: depth.create_view(&Default::default()),
+                albedo,
                 target,
                 vertices,
                 width,
@@ -280,6 +331,11 @@ impl Raster {
         self.array.clone()
     }
 
+    /// The four albedo layers (`+mat` only).
+    pub(crate) fn albedo_view(&self) -> Option<wgpu::TextureView> {
+        self.albedo.as_ref().map(|(_, a)| a.clone())
+    }
+
     pub(crate) fn target_bytes(&self) -> usize {
         self.width as usize * self.height as usize * 4 * 16
     }
@@ -291,9 +347,8 @@ impl Raster {
     /// One render pass per subsample `k`: instance `k` selects the jitter.
     pub(crate) fn record(&self, enc: &mut wgpu::CommandEncoder) {
         for (k, view) in self.layers.iter().enumerate() {
-            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("subpixel raster"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            let attachment = |view, a: f64| {
+                Some(wgpu::RenderPassColorAttachment {
                     view,
                     depth_slice: None,
                     resolve_target: None,
@@ -302,11 +357,19 @@ impl Raster {
                             r: 0.0,
                             g: 0.0,
                             b: 0.0,
-                            a: -1.0,
+                            a,
                         }),
                         store: wgpu::StoreOp::Store,
                     },
-                })],
+                })
+            };
+            let mut attachments = vec![attachment(view, -1.0)];
+            if let Some((albedo, _)) = &self.albedo {
+                attachments.push(attachment(&albedo[k], 0.0));
+            }
+            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("subpixel raster"),
+                color_attachments: &attachments,
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                     view: &self.depth,
                     depth_ops: Some(wgpu::Operations {

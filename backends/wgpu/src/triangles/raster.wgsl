@@ -10,6 +10,12 @@
 // −SUBPIXEL_OFFSETS[k] in clip space, so the fragment at pixel (i, j) shows
 // image point (i + 0.5, j + 0.5) + offset: the ray-traced subsample's point.
 // Depth is reversed (near / z, compare greater) for precision.
+//
+// `+mat` (the material gate, sraa::material_gated_weight) draws with
+// `fs_albedo` instead of `fs_main`: a second colour attachment, one more
+// Rgba32Float array, receives the diffuse albedo at the same point (albedo.wgsl
+// at the interpolated world position and uv): the G-buffer's albedo channel,
+// the same draw and the same rasterised fragments. Follows albedo.wgsl.
 
 struct RasterUniform {
     cam_pos: vec3<f32>,
@@ -29,12 +35,16 @@ struct RasterUniform {
 @group(0) @binding(0) var<uniform> cam: RasterUniform;
 @group(0) @binding(1) var<storage, read> tris: array<vec4<f32>>;
 @group(0) @binding(2) var<storage, read> attrs: array<vec4<f32>>;
+@group(0) @binding(3) var<storage, read> materials: array<MaterialGpu>;
+@group(0) @binding(4) var<storage, read> texels: array<vec4<f32>>;
 
 struct VsOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) world: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) @interpolate(flat) face: vec3<f32>,
+    @location(3) uv: vec2<f32>,
+    @location(4) @interpolate(flat) material: u32,
 }
 
 @vertex
@@ -60,6 +70,14 @@ fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) k: u32) -> V
     out.world = p;
     out.normal = attrs[4u * tri + corner].xyz;
     out.face = cross(v1 - v0, v2 - v0);
+    // bvh.rs attrs: n0.xyz uv0.x | n1.xyz uv0.y | n2.xyz uv1.x | uv1.y uv2.x uv2.y 0.
+    let a = attrs[4u * tri + 3u];
+    switch corner {
+        case 0u: { out.uv = vec2<f32>(attrs[4u * tri].w, attrs[4u * tri + 1u].w); }
+        case 1u: { out.uv = vec2<f32>(attrs[4u * tri + 2u].w, a.x); }
+        default: { out.uv = vec2<f32>(a.y, a.z); }
+    }
+    out.material = bitcast<u32>(tris[3u * tri].w);
     return out;
 }
 
@@ -76,8 +94,7 @@ fn raster_normalize_or_zero(v: vec3<f32>) -> vec3<f32> {
 
 // Tracer::intersect's normals and Camera::view_depth at the interpolated
 // (perspective-correct, i.e. barycentric) surface point.
-@fragment
-fn fs_main(in: VsOut) -> @location(0) vec4<f32> {
+fn raster_geometry(in: VsOut) -> vec4<f32> {
     let d = in.world - cam.cam_pos;
     var ng = raster_normalize_or_zero(in.face);
     if dot(ng, d) > 0.0 {
@@ -90,4 +107,23 @@ fn fs_main(in: VsOut) -> @location(0) vec4<f32> {
         n = -n;
     }
     return vec4<f32>(n, dot(d, cam.forward));
+}
+
+@fragment
+fn fs_main(in: VsOut) -> @location(0) vec4<f32> {
+    return raster_geometry(in);
+}
+
+struct GeometryAlbedo {
+    @location(0) geometry: vec4<f32>,
+    @location(1) albedo: vec4<f32>,
+}
+
+// fs_main plus Tracer::primary_albedo at the fragment (`+mat`).
+@fragment
+fn fs_albedo(in: VsOut) -> GeometryAlbedo {
+    var out: GeometryAlbedo;
+    out.geometry = raster_geometry(in);
+    out.albedo = vec4<f32>(albedo_at(materials[in.material], in.world, in.uv), 0.0);
+    return out;
 }

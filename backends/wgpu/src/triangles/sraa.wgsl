@@ -6,7 +6,9 @@
 // neighbourhood's shaded samples, `first` the first layer, on primary
 // (`secondary` false) or secondary geometry; returns the sum of the layers.
 // Layer 0 is ungated, layer 1 + l gated by light l's shadow bit (eq. 2).
-fn reconstruct_run(tgt: Geometry, target_shadow: u32, secondary: bool, first: u32, x: u32, y: u32, k: u32) -> vec3<f32> {
+// With MATERIAL (`+mat`) the primary layers are also gated by albedo
+// (sraa::reconstruct_layers_material): `ta` is the target's albedo.
+fn reconstruct_run(tgt: Geometry, target_shadow: u32, ta: vec3<f32>, secondary: bool, first: u32, x: u32, y: u32, k: u32) -> vec3<f32> {
     var gates = 1u + LAYER_LIGHTS;
     if SINGLE {
         gates = 1u;
@@ -26,7 +28,12 @@ fn reconstruct_run(tgt: Geometry, target_shadow: u32, secondary: bool, first: u3
                 g = get_geo2(jj);
                 s = get_shadow2(jj);
             }
-            let w = bilateral_weight(frame.sraa, tgt, g);
+            var w = 0.0;
+            if MATERIAL && !secondary {
+                w = material_gated_weight(frame.sraa, tgt, g, ta, get_albedo(jj).xyz, ALBEDO_TOLERANCE);
+            } else {
+                w = bilateral_weight(frame.sraa, tgt, g);
+            }
             for (var i = 0u; i < gates; i++) {
                 // Through a local: naga's SPIR-V writer cannot pass a pointer
                 // to an array element as an argument.
@@ -45,11 +52,11 @@ fn reconstruct_run(tgt: Geometry, target_shadow: u32, secondary: bool, first: u3
 
 fn reconstruct_subsample(x: u32, y: u32, j: u32, k: u32) -> vec3<f32> {
     let tgt = get_sub_geo(j, k);
-    var c = reconstruct_run(tgt, get_sub_shadow(j, k), false, 0u, x, y, k);
+    var c = reconstruct_run(tgt, get_sub_shadow(j, k), get_sub_albedo(j, k).xyz, false, 0u, x, y, k);
     if SECONDARY_LAYERS {
         let tgt2 = get_sub_geo2(j, k);
         if !sraa_is_nan(tgt2.depth) {
-            c = c + reconstruct_run(tgt2, get_sub_shadow2(j, k), true, 1u + LAYER_LIGHTS, x, y, k);
+            c = c + reconstruct_run(tgt2, get_sub_shadow2(j, k), vec3<f32>(0.0), true, 1u + LAYER_LIGHTS, x, y, k);
         }
     }
     return c;

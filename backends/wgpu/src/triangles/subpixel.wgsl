@@ -40,6 +40,9 @@ fn shade_pixel(x: u32, y: u32, j: u32, c: ptr<function, Counts>) {
     let d = camera_ray(p);
     (*c).primary += 1u;
     let sf = intersect(frame.cam_pos, d, 0.0);
+    if MATERIAL {
+        put_albedo(j, vec4<f32>(primary_albedo(sf), 0.0));
+    }
     if !sf.hit {
         geo[j] = geometry_miss();
         put_value(j, 0u, frame.background);
@@ -209,6 +212,7 @@ fn geometry_pixel(x: u32, y: u32, j: u32, k: u32, c: ptr<function, Counts>) {
         put_sub_shadow(j, k, get_shadow(j));
         put_sub_geo2(j, k, get_geo2(j));
         put_sub_shadow2(j, k, get_shadow2(j));
+        put_sub_albedo(j, k, get_albedo(j));
         return;
     }
     put_sub_shadow(j, k, 0u);
@@ -219,6 +223,9 @@ fn geometry_pixel(x: u32, y: u32, j: u32, k: u32, c: ptr<function, Counts>) {
     (*c).geometry += 1u;
     let sf = intersect(frame.cam_pos, d, 0.0);
     put_sub_geo(j, k, primary_geometry(sf));
+    if MATERIAL {
+        put_sub_albedo(j, k, vec4<f32>(primary_albedo(sf), 0.0));
+    }
     if !sf.hit {
         return;
     }
