@@ -135,6 +135,14 @@ impl Backend for CpuBackend {
             };
             return Ok(view.render(method, settings, passes));
         }
+        if scene.has_translucency() {
+            return Err(RenderError::Backend {
+                backend: "cpu",
+                reason:
+                    "semi-transparent materials (alpha < 1) are implemented for SDF scenes only"
+                        .into(),
+            });
+        }
         let bvh = self.bvh(scene)?;
         let mesh = scene.mesh().expect("checked by bvh()");
         let mut tracer = Tracer::new(&bvh, scene, mesh, camera, settings.reflection_depth);

@@ -5,6 +5,10 @@
 //! [`sphere_trace`](subcone_kernels::ctss::sphere_trace), whose hit threshold is the same cone-based `ω > 0.5 − ε`
 //! with the same ε, step budget and maximum distance (§4), so no CTSS/NoAA ratio
 //! can be bought by loosening NoAA.
+//!
+//! Scenes with semi-transparent materials (`alpha < 1`) take the paths of
+//! [`translucent`](self::translucent): CTSS with the `K` masks of §5.3, NoAA/SSAA
+//! with alpha blending along the ray.
 
 use std::time::Instant;
 
@@ -19,6 +23,8 @@ use subcone_kernels::passes::{Passes, Technique};
 use subcone_scene::{
     Camera, Frame, FrameStats, Light, Material, Method, PassTiming, RayCounts, RenderSettings,
 };
+
+mod translucent;
 
 /// A signed distance field with per-object materials.
 pub trait SdfField: Sync {
@@ -205,8 +211,21 @@ impl<F: SdfField> SdfView<'_, F> {
         )
     }
 
-    /// Render a frame.
+    /// Render a frame (the semi-transparent path when the scene has
+    /// [translucency](Self::has_translucency)).
     pub fn render(&self, method: &Method, s: &RenderSettings, passes: Passes) -> Frame {
+        self.render_with(method, s, passes, self.has_translucency())
+    }
+
+    /// Render a frame, on the semi-transparent path (CTSS §5.3) when
+    /// `translucent`; with every opacity 1 both paths give the same image.
+    pub fn render_with(
+        &self,
+        method: &Method,
+        s: &RenderSettings,
+        passes: Passes,
+        translucent: bool,
+    ) -> Frame {
         let (w, h) = (s.width as usize, s.height as usize);
         let side = match method.technique {
             Technique::Ssaa | Technique::SsaaCtss => method.ssaa_side.max(1),
@@ -244,12 +263,20 @@ impl<F: SdfField> SdfView<'_, F> {
                                 s.height,
                             );
                             if cone {
-                                let (c, n) = self.ctss(o, d, &params, &mut t);
+                                let (c, n) = if translucent {
+                                    self.ctss_translucent(o, d, &params, &mut t)
+                                } else {
+                                    self.ctss(o, d, &params, &mut t)
+                                };
                                 sum += c;
                                 samples += n;
                             } else {
                                 let before = t.samples;
-                                sum += self.noaa(o, d, &params, &mut t);
+                                sum += if translucent {
+                                    self.noaa_translucent(o, d, &params, &mut t)
+                                } else {
+                                    self.noaa(o, d, &params, &mut t)
+                                };
                                 samples += (t.samples - before) as u32;
                             }
                         }
