@@ -248,3 +248,30 @@ fn transparent_trace_ends_within_budget() {
     }
     assert!(st.steps() <= 300);
 }
+
+/// `split_group` closes the open group where the caller says the surface
+/// changes, and the next step near a surface opens a new one: two samples,
+/// the first with the occlusion seen before the split only.
+#[test]
+fn split_group_gives_each_surface_its_sample() {
+    let params = CtssParams::new(0.01);
+    let mut st = ConeStepper::new(&params);
+    assert!(st.split_group().is_none(), "no group open");
+    // Approach a surface at depth 5 (a plane facing the ray) until a group
+    // is open and partly occluded.
+    let d = |t: f32| 5.0 - t;
+    let mut guard = 0;
+    while !st.in_group() {
+        guard += 1;
+        assert!(guard < 10_000);
+        assert_eq!(st.advance(d(st.t())), Event::March);
+    }
+    let first = st.split_group().expect("an open group");
+    assert!(!st.in_group());
+    assert!(first.occlusion < 1.0 - params.eps);
+    // The next step is still near the surface: a new group opens there.
+    let t = st.t();
+    let _ = st.advance(d(t));
+    assert!(st.in_group(), "no new group after the split");
+    assert_eq!(st.samples(), 1);
+}
