@@ -21,7 +21,7 @@ use std::path::PathBuf;
 use subcone::report::metrics::{flip, Rgb8};
 use subcone_kernels::passes::{required_passes, Passes, SceneFeatures};
 use subcone_scene::builtin::{builtin, TRIANGLE_SCENES};
-use subcone_scene::sdf::{SDF_SCENES, STIFF_SCENES};
+use subcone_scene::sdf::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
 use subcone_scene::{Backend, Frame, Method, RenderError, RenderSettings, Scene};
 
 /// Frame size of the suite: small, because lavapipe runs shaders on the CPU,
@@ -469,5 +469,39 @@ fn suite_covers_every_builtin_scene() {
             covered.contains(s),
             "scene {s} is not in the conformance suite"
         );
+    }
+}
+
+/// The scenes with semi-transparent materials ([`TRANSPARENT_SCENES`]) are
+/// rendered by the CPU backend only (CTSS §5.3's K masks have no WGSL twin
+/// yet), so they are not in the suite: the wgpu backend must refuse them with
+/// an error, never draw them opaque, and the CPU backend must render them.
+#[test]
+fn transparent_scenes_are_refused_by_wgpu_and_rendered_by_cpu() {
+    let gpu = match subcone_wgpu::WgpuBackend::new() {
+        Ok(b) => Some(b),
+        Err(e) if !subcone_wgpu::gpu_required() => {
+            eprintln!("SKIPPED (wgpu part): no adapter and SUBCONE_REQUIRE_GPU unset: {e}");
+            None
+        }
+        Err(e) => panic!("wgpu unavailable (SUBCONE_REQUIRE_GPU is set): {e}"),
+    };
+    let settings = RenderSettings::new(W, H);
+    for name in TRANSPARENT_SCENES {
+        let scene = builtin(name).unwrap();
+        assert!(scene.has_translucency(), "{name}");
+        for m in SDF_METHODS {
+            let method: Method = m.parse().unwrap();
+            if let Some(gpu) = &gpu {
+                let r = gpu.render(&scene, &scene.camera, &method, &settings);
+                assert!(
+                    matches!(r, Err(RenderError::Backend { .. })),
+                    "{name} {m}: wgpu did not refuse a semi-transparent scene"
+                );
+            }
+            let cpu =
+                subcone_cpu::CpuBackend::new().render(&scene, &scene.camera, &method, &settings);
+            assert!(cpu.is_ok(), "{name} {m}: {:?}", cpu.err());
+        }
     }
 }

@@ -8,6 +8,9 @@
 //! computes the normal at the sample point and hands the projected normal to
 //! [`ConeStepper::record`], which makes the visibility mask, correlates it with
 //! the pixel's global mask `M` and returns the sample's weight.
+//! For semi-transparent surfaces, [`ConeStepper::record_alpha`] takes the
+//! surface's opacity and composites into the `K` masks of §5.3
+//! ([`crate::transparency`]) instead; [`trace_translucent`] drives it.
 //!
 //! ```
 //! use glam::Vec3;
@@ -36,6 +39,7 @@ use crate::cone::{
     OcclusionThresholds, OCCLUSION_EPS,
 };
 use crate::mask::{project_normal, visibility_mask, MaskPlacement, VisibilityAccumulator};
+use crate::transparency::{is_opaque, level_weight, TransparencyAccumulator};
 
 /// `flags` bit: CTSS-R, stop at the first hard hit instead of full occlusion (§4).
 pub const FLAG_RELAXED: u32 = 1;
@@ -282,6 +286,12 @@ pub struct ConeStepper {
     samples: u32,
     mask: VisibilityAccumulator,
     stop: Option<StopReason>,
+    /// The `K` masks of §5.3, used instead of `mask` once
+    /// [`record_alpha`](ConeStepper::record_alpha) is called.
+    layers: TransparencyAccumulator,
+    translucent: bool,
+    /// Marching through a semi-transparent object after its full occlusion.
+    passing: bool,
 }
 
 impl ConeStepper {
@@ -306,6 +316,9 @@ impl ConeStepper {
             samples: 0,
             mask: VisibilityAccumulator::new(),
             stop: None,
+            layers: TransparencyAccumulator::new(),
+            translucent: false,
+            passing: false,
         }
     }
 
@@ -327,7 +340,17 @@ impl ConeStepper {
 
     /// The pixel's global visibility mask `M`.
     pub fn coverage(&self) -> u32 {
-        self.mask.covered()
+        if self.translucent {
+            self.layers.opaque()
+        } else {
+            self.mask.covered()
+        }
+    }
+
+    /// The `K` transparency masks (§5.3) of a trace driven through
+    /// [`record_alpha`](Self::record_alpha).
+    pub fn layers(&self) -> &TransparencyAccumulator {
+        &self.layers
     }
 
     /// The stop reason, once the trace is over (or decided to end).
@@ -393,7 +416,21 @@ impl ConeStepper {
         } else {
             th.full
         };
-        let stop = omega > stop_at;
+        let mut stop = omega > stop_at;
+        if self.passing {
+            // Inside (or just behind) a semi-transparent object whose full
+            // occlusion did not end the trace (`record_alpha`): no stop and no
+            // new group until the cone leaves it, or until the distance, outside
+            // the object, shrinks again: another surface lies within the cone,
+            // and it starts a group of its own here.
+            if d > 0.0 && self.have_prev && d < self.d_prev {
+                self.passing = false;
+                self.prev_soft = false;
+                self.prev_hard = false;
+            } else {
+                stop = false;
+            }
+        }
 
         if soft && !self.prev_soft {
             let te = backtrace_cone_entry(t, tan);
@@ -422,6 +459,9 @@ impl ConeStepper {
             }
         }
         let exit = !soft && self.prev_soft;
+        if exit {
+            self.passing = false;
+        }
         self.prev_soft = soft;
         self.prev_hard = hard;
 
@@ -453,7 +493,13 @@ impl ConeStepper {
         self.d_prev = d;
         self.have_prev = true;
         if self.stop.is_none() {
-            self.t = advance(t, step.min(d), self.params.alpha, rc);
+            // Through a semi-transparent object's inside, `−d` is a safe step.
+            let s = if self.passing && d < 0.0 {
+                -d
+            } else {
+                step.min(d)
+            };
+            self.t = advance(t, s, self.params.alpha, rc);
         }
         event
     }
@@ -476,6 +522,124 @@ impl ConeStepper {
         (visible, w)
     }
 
+    /// Forget the previous step for grouping: the next step that touches a
+    /// surface opens a new group, whose hard hit (if that step is one) is
+    /// sampled at the step itself, not backtraced into the previous object.
+    fn restart_grouping(&mut self) {
+        self.prev_soft = false;
+        self.prev_hard = false;
+        self.have_prev = false;
+        self.passing = false;
+    }
+
+    /// Whether the trace is passing through a semi-transparent object
+    /// ([`record_alpha`](Self::record_alpha)).
+    pub fn is_passing(&self) -> bool {
+        self.passing
+    }
+
+    /// End a pass through a semi-transparent object here: the caller saw the
+    /// nearest object change (e.g. the glass touches the floor, whose inside
+    /// the ray has entered). The next step opens a group on that object.
+    pub fn end_pass(&mut self) {
+        if self.passing {
+            self.restart_grouping();
+        }
+    }
+
+    /// Whether a hit group is open: entered, not yet sampled.
+    pub fn in_group(&self) -> bool {
+        self.group.is_some()
+    }
+
+    /// Close the open hit group at the current depth and return its sample,
+    /// so that the next [`advance`](Self::advance_split) starts a new group if
+    /// the cone still touches a surface there. `None` when no group is open or
+    /// the trace is over.
+    ///
+    /// For semi-transparent scenes (§5.3): a group must hold one surface. When
+    /// the nearest object changes inside a group (e.g. a thin pane, then the
+    /// floor behind it within the cone), the caller splits it there; otherwise
+    /// the first surface's sample would take the weight of the whole group,
+    /// and the occlusion that ends the trace would belong to the second.
+    pub fn split_group(&mut self) -> Option<GroupSample> {
+        if self.stop.is_some() {
+            return None;
+        }
+        let g = self.group.take()?;
+        self.samples += 1;
+        self.restart_grouping();
+        if self.samples >= self.params.max_samples {
+            self.stop = Some(StopReason::SampleCap);
+        }
+        Some(GroupSample {
+            t: g.t_sample,
+            t_entry: g.t_entry,
+            t_exit: backtrace_cone_entry(self.t, self.params.tan_theta),
+            occlusion: g.occlusion,
+            t_occlusion: g.t_occlusion,
+            hard: g.hard,
+        })
+    }
+
+    /// [`record`](Self::record) for a surface of opacity `alpha` (CTSS §5.3,
+    /// [`crate::transparency`]): the mask is composited over the pixel's `K`
+    /// masks instead of the single `M`, and the weight is the transmittance
+    /// the sample took, [`level_weight`]. `alpha` is clamped to `[0, 1]`, NaN
+    /// is opaque.
+    ///
+    /// When the sample ended the trace on its occlusion rule (full occlusion,
+    /// or the hard hit of CTSS-R) but the surface is not opaque
+    /// ([`is_opaque`]), or semi-transparent cells lie in front of it, its mask
+    /// is taken as full (the rule says it covers the pixel) and, if the surface
+    /// is not opaque, the trace goes on: it marches through the object (steps of `max(−d, α·R_c)`) without
+    /// starting a group or stopping until the cone leaves it, so a ray takes
+    /// `alpha` of an object's entry surface and sees what lies behind with the
+    /// rest. (The exit surface is not sampled again: `alpha` is the object's
+    /// opacity along the ray.) With `alpha = 1` the weights, `M`
+    /// (= `M_K`, [`coverage`](Self::coverage)), the background weight and the
+    /// stop are exactly those of [`record`](Self::record). Use one of the two
+    /// for all samples of a trace.
+    pub fn record_alpha(
+        &mut self,
+        sample: &GroupSample,
+        projected_normal: Vec2,
+        alpha: f32,
+    ) -> (u32, f32) {
+        self.translucent = true;
+        let mut m = visibility_mask(sample.occlusion, projected_normal, self.params.placement());
+        let ended = matches!(
+            self.stop,
+            Some(StopReason::FullOcclusion | StopReason::HardHit)
+        );
+        if ended && (!is_opaque(alpha) || !self.layers.is_binary()) {
+            // The occlusion rule says this surface covers the pixel. CTSS-R's
+            // hard hit has a partial mask, which eq. 6's renormalisation
+            // stretches over the pixel when only opaque surfaces were seen; a
+            // trace that goes on, or one behind semi-transparent cells, cannot
+            // renormalise (it would scale the glass in front too), so the mask
+            // is made full instead.
+            m = crate::mask::FULL_MASK;
+        }
+        let (visible, gained) = self.layers.add(m, alpha);
+        if ended && !is_opaque(alpha) && self.layers.opaque() != crate::mask::FULL_MASK {
+            self.stop = None;
+            self.passing = true;
+        }
+        if self.stop.is_none() && self.layers.opaque().count_ones() >= self.params.visibility_k {
+            self.stop = Some(StopReason::VisibilityThreshold);
+        }
+        let w = match self.params.weighting() {
+            Weighting::Uniform => 1.0,
+            Weighting::Visibility => {
+                let floor = self.params.min_sample_weight;
+                let floor = if floor > 0.0 { floor.min(1.0) } else { 0.0 };
+                level_weight(gained).max(floor)
+            }
+        };
+        (visible, w)
+    }
+
     /// The background's weight once the trace is over: 0 when the hits cover the
     /// pixel ([`StopReason::covers_pixel`]), else `1 − bitCount(M)/32` (or 1 with
     /// uniform weights), as in the authors' code.
@@ -484,6 +648,7 @@ impl ConeStepper {
             Some(r) if r.covers_pixel() => 0.0,
             _ => match self.params.weighting() {
                 Weighting::Uniform => 1.0,
+                Weighting::Visibility if self.translucent => self.layers.uncovered_weight(),
                 Weighting::Visibility => self.mask.uncovered_weight(),
             },
         }
@@ -612,6 +777,53 @@ where
         color: agg.resolve(background, stepper.background_weight()),
         samples: stepper.samples() + extra_samples,
         steps: stepper.steps().saturating_add(extra_steps),
+        coverage: stepper.coverage(),
+        stop,
+    }
+}
+
+/// [`trace`] for scenes with semi-transparent surfaces (CTSS §5.3): `shade(p, n)`
+/// returns the colour and the opacity of the surface, and every sample goes
+/// through [`ConeStepper::record_alpha`]. With every opacity 1 the result is
+/// [`trace`]'s.
+#[allow(clippy::too_many_arguments)]
+pub fn trace_translucent<S, N, C>(
+    params: &CtssParams,
+    origin: Vec3,
+    dir: Vec3,
+    right: Vec3,
+    up: Vec3,
+    mut sdf: S,
+    mut normal: N,
+    mut shade: C,
+    background: Vec3,
+) -> TraceResult
+where
+    S: FnMut(Vec3) -> f32,
+    N: FnMut(Vec3) -> Vec3,
+    C: FnMut(Vec3, Vec3) -> (Vec3, f32),
+{
+    let mut stepper = ConeStepper::new(params);
+    let mut agg = Aggregate::new();
+    let stop = loop {
+        let t = stepper.t();
+        let d = sdf(origin + t * dir);
+        match stepper.advance(d) {
+            Event::March => {}
+            Event::Sample(s) => {
+                let p = origin + s.t * dir;
+                let n = normal(p);
+                let (c, a) = shade(p, n);
+                let (_, w) = stepper.record_alpha(&s, project_normal(n, right, up), a);
+                agg.add(w, c);
+            }
+            Event::Stop(r) => break r,
+        }
+    };
+    TraceResult {
+        color: agg.resolve(background, stepper.background_weight()),
+        samples: stepper.samples(),
+        steps: stepper.steps(),
         coverage: stepper.coverage(),
         stop,
     }

@@ -7,7 +7,8 @@
 //! - **Cone-traced supersampling** (Chubarau, Zhao, Rao, Kry, Nowrouzezahrai):
 //!   [`cone`] (eq. 3–5, 9–10), [`mask`] (eq. 7–8, §3.5), [`aggregate`] (eq. 6),
 //!   and [`ctss`], the hit-group logic of Algorithm 1 as a stepper any SDF and any
-//!   shading can drive.
+//!   shading can drive; [`transparency`], the `K` masks of §5.3 for
+//!   semi-transparent surfaces (CPU only: no WGSL twin yet).
 //! - [`passes`]: which passes a technique needs on a scene, so nothing a scene does
 //!   not need is computed or allocated.
 //!
@@ -44,6 +45,7 @@ pub mod mask;
 pub mod passes;
 pub mod sraa;
 mod sum;
+pub mod transparency;
 pub mod wgsl;
 
 pub use glam;

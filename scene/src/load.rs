@@ -882,6 +882,7 @@ pub fn scene_from_arg(arg: &str) -> Result<Scene, SceneError> {
     known.extend(DATA_SCENES);
     known.extend(crate::sdf::SDF_SCENES);
     known.extend(crate::sdf::STIFF_SCENES);
+    known.extend(crate::sdf::TRANSPARENT_SCENES);
     Err(SceneError::UnknownScene {
         name: arg.into(),
         known: format!(

@@ -66,6 +66,17 @@ pub struct Material {
     pub mirror: f32,
     /// Emitted radiance (area lights are drawn, not sampled).
     pub emission: Vec3,
+    /// Opacity in `[0, 1]`: the share of the light along a ray that a surface of
+    /// this material stops (1, the default, is opaque). A ray that enters a
+    /// semi-transparent object takes `alpha` of the entry surface's colour and
+    /// continues where it leaves the object with the remaining transmittance
+    /// `1 − alpha` (non-binary visibility, CTSS §5.3, see
+    /// `subcone_kernels::transparency`). Honoured by the CPU backend's SDF
+    /// renderer with every SDF method; the triangle renderers and the wgpu
+    /// backend refuse a scene that uses `alpha < 1` with an error rather than
+    /// draw it opaque. Read through [`Material::opacity`]: NaN is opaque, values
+    /// outside `[0, 1]` are clamped.
+    pub alpha: f32,
 }
 
 impl Material {
@@ -76,6 +87,16 @@ impl Material {
             albedo: Albedo::Solid(albedo),
             mirror: 0.0,
             emission: Vec3::ZERO,
+            alpha: 1.0,
+        }
+    }
+
+    /// A diffuse material of opacity `alpha` (clamped to `[0, 1]`, NaN reads
+    /// as 1): see [`Material::alpha`].
+    pub fn translucent(name: &str, albedo: Vec3, alpha: f32) -> Self {
+        Material {
+            alpha: crate::material::clamp_opacity(alpha),
+            ..Material::diffuse(name, albedo)
         }
     }
 
@@ -85,6 +106,16 @@ impl Material {
             mirror: reflectance.clamp(0.0, 1.0),
             ..Material::diffuse(name, albedo)
         }
+    }
+
+    /// The opacity in `[0, 1]`: [`Material::alpha`] clamped, NaN as 1 (opaque).
+    pub fn opacity(&self) -> f32 {
+        clamp_opacity(self.alpha)
+    }
+
+    /// Whether light passes through this material (`opacity() < 1`).
+    pub fn is_translucent(&self) -> bool {
+        self.opacity() < 1.0
     }
 
     /// Whether this material reflects.
@@ -120,6 +151,16 @@ impl Material {
             }
             Albedo::Texture(t) => t.sample(uv),
         }
+    }
+}
+
+/// `alpha` clamped to `[0, 1]`; NaN is opaque (1), so a broken value never lets
+/// hidden surfaces show through.
+pub fn clamp_opacity(alpha: f32) -> f32 {
+    if alpha.is_nan() {
+        1.0
+    } else {
+        alpha.clamp(0.0, 1.0)
     }
 }
 

@@ -150,6 +150,12 @@ impl Scene {
         }
     }
 
+    /// Whether any material is semi-transparent ([`Material::is_translucent`]),
+    /// so the renderer must take the non-binary visibility path (CTSS §5.3).
+    pub fn has_translucency(&self) -> bool {
+        self.materials.iter().any(Material::is_translucent)
+    }
+
     /// What the scene contains, as far as passes are concerned.
     pub fn features(&self) -> SceneFeatures {
         let mut f = SceneFeatures::empty();

@@ -69,6 +69,11 @@ pub const PAPER_SCENES: [&str; 8] = [
     "sdf-atrium",
 ];
 
+/// Built-in scenes the quick report adds after the paper scenes: not from the
+/// papers, cheap at the quick size. `glass` shows CTSS §5.3's semi-transparent
+/// materials (CPU only: the wgpu backend lists it as skipped).
+pub const QUICK_EXTRA_SCENES: [&str; 1] = ["glass"];
+
 /// The methods compared, in table order.
 pub const METHODS: &[&str] = &[
     "noaa",
@@ -512,6 +517,14 @@ fn load_scenes(args: &ReportArgs, plan: &Plan) -> Result<(Vec<SceneJob>, Unavail
         let (ok, missing) = paper_scenes();
         loaded = ok;
         unavailable = missing;
+        if plan.mode == Mode::Quick {
+            for name in QUICK_EXTRA_SCENES {
+                match cli::scene(name) {
+                    Ok(s) => loaded.push((name.to_string(), s)),
+                    Err(e) => unavailable.push((name.to_string(), format!("{e:#}"))),
+                }
+            }
+        }
     }
     for arg in &args.scenes {
         if loaded.iter().any(|(a, _)| a == arg) {

@@ -133,6 +133,24 @@ impl Backend for CpuBackend {
                     ),
                 });
             }
+            let unsupported = if method.technique == Technique::SraaRt {
+                Some("sraa-rt")
+            } else if method.split_groups {
+                Some("hit group subdivision (ctss+edges)")
+            } else if method.delayed_shading {
+                Some("delayed shading")
+            } else {
+                None
+            };
+            if let Some(what) = unsupported.filter(|_| scene.has_translucency()) {
+                return Err(RenderError::Backend {
+                    backend: "cpu",
+                    reason: format!(
+                        "{what} is not implemented for semi-transparent materials (alpha < 1); \
+                         ctss, ctss-r, ssaaN+ctss, noaa and ssaaN render them"
+                    ),
+                });
+            }
             let view = SdfView {
                 field: &g.root,
                 materials: &scene.materials,
@@ -145,6 +163,14 @@ impl Backend for CpuBackend {
                 exhaustive_subpixel_shadows: self.exhaustive_subpixel_shadows,
             };
             return Ok(view.render(method, settings, passes));
+        }
+        if scene.has_translucency() {
+            return Err(RenderError::Backend {
+                backend: "cpu",
+                reason:
+                    "semi-transparent materials (alpha < 1) are implemented for SDF scenes only"
+                        .into(),
+            });
         }
         let bvh = self.bvh(scene)?;
         let mesh = scene.mesh().expect("checked by bvh()");

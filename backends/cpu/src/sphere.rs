@@ -7,6 +7,10 @@
 //! [`sphere_trace`](subcone_kernels::ctss::sphere_trace), whose hit threshold is the same cone-based `ω > 0.5 − ε`
 //! with the same ε, step budget and maximum distance (§4), so no CTSS/NoAA ratio
 //! can be bought by loosening NoAA.
+//!
+//! Scenes with semi-transparent materials (`alpha < 1`) take the paths of
+//! [`translucent`](self::translucent): CTSS with the `K` masks of §5.3, NoAA/SSAA
+//! with alpha blending along the ray.
 
 mod edges;
 
@@ -25,6 +29,8 @@ use subcone_kernels::sraa::{Geometry, SHADED_SUBSAMPLE, SUBPIXEL_OFFSETS};
 use subcone_scene::{
     Camera, Frame, FrameStats, Light, Material, Method, PassTiming, RayCounts, RenderSettings,
 };
+
+mod translucent;
 
 /// A signed distance field with per-object materials.
 pub trait SdfField: Sync {
@@ -642,8 +648,21 @@ impl<F: SdfField> SdfView<'_, F> {
         frame.normal = Some(g.iter().map(|g| g.1).collect());
     }
 
-    /// Render a frame.
+    /// Render a frame (the semi-transparent path when the scene has
+    /// [translucency](Self::has_translucency)).
     pub fn render(&self, method: &Method, s: &RenderSettings, passes: Passes) -> Frame {
+        self.render_with(method, s, passes, self.has_translucency())
+    }
+
+    /// Render a frame, on the semi-transparent path (CTSS §5.3) when
+    /// `translucent`; with every opacity 1 both paths give the same image.
+    pub fn render_with(
+        &self,
+        method: &Method,
+        s: &RenderSettings,
+        passes: Passes,
+        translucent: bool,
+    ) -> Frame {
         if method.technique == Technique::SraaRt {
             return self.sraa_rt(method, s, passes);
         }
@@ -671,9 +690,10 @@ impl<F: SdfField> SdfView<'_, F> {
                 || (Vec::new(), Vec::new()),
                 |buffers, (y, (row, spp_row))| {
                     let mut t = Tally::default();
-                    // Split groups shade several samples per group, which
-                    // the delayed path does not record: they run ASAP.
-                    if cone && method.delayed_shading && !params.splits_groups() {
+                    // Split groups shade several samples per group, and the
+                    // semi-transparent path its own way: neither is recorded
+                    // by the delayed path (the backend refuses the latter).
+                    if cone && method.delayed_shading && !params.splits_groups() && !translucent {
                         t.multi += self.ctss_delayed_row(
                             y,
                             side as usize,
@@ -701,12 +721,20 @@ impl<F: SdfField> SdfView<'_, F> {
                                     s.height,
                                 );
                                 if cone {
-                                    let (c, n) = self.ctss(o, d, &params, &mut t);
+                                    let (c, n) = if translucent {
+                                        self.ctss_translucent(o, d, &params, &mut t)
+                                    } else {
+                                        self.ctss(o, d, &params, &mut t)
+                                    };
                                     sum += c;
                                     samples += n;
                                 } else {
                                     let before = t.samples;
-                                    sum += self.noaa(o, d, &params, &mut t);
+                                    sum += if translucent {
+                                        self.noaa_translucent(o, d, &params, &mut t)
+                                    } else {
+                                        self.noaa(o, d, &params, &mut t)
+                                    };
                                     samples += (t.samples - before) as u32;
                                 }
                             }

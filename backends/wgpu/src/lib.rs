@@ -85,6 +85,16 @@ impl Backend for WgpuBackend {
         camera.validate()?;
         let passes: Passes =
             required_passes(method.technique, scene.features())? | settings.force_passes;
+        if scene.has_translucency() {
+            // CTSS §5.3's K masks run on the CPU backend only: refuse rather
+            // than draw the scene opaque.
+            return Err(RenderError::Backend {
+                backend: "wgpu",
+                reason:
+                    "semi-transparent materials (alpha < 1) are rendered by the cpu backend only"
+                        .into(),
+            });
+        }
         if scene.sdf_geometry().is_some() {
             sdf::render(&self.ctx, scene, camera, method, settings, passes)
         } else {

@@ -43,6 +43,7 @@ pub fn builtin(name: &str) -> Result<Scene, SceneError> {
                     .iter()
                     .chain(crate::sdf::SDF_SCENES.iter())
                     .chain(crate::sdf::STIFF_SCENES.iter())
+                    .chain(crate::sdf::TRANSPARENT_SCENES.iter())
                     .copied()
                     .collect::<Vec<_>>()
                     .join(", "),

@@ -385,3 +385,49 @@ pub fn atrium() -> Result<SdfScene, SdfError> {
     s.max_steps = 768;
     Ok(s)
 }
+
+/// `glass`: semi-transparent objects in front of opaque ones (CTSS §5.3's
+/// non-binary visibility): a half-opaque pane (`alpha` 0.5) before a red box
+/// and a green capsule, a faint orange sphere (`alpha` 0.3) before a blue
+/// sphere, on a plain floor (a texture would put edges CTSS does not see, §5.2,
+/// into every comparison). Exact primitives, one sun. Shadows stay
+/// opaque (shadow rays do not blend). Rendered by the CPU backend only (see
+/// [`Material::alpha`]); not one of the paper's scenes.
+pub fn glass() -> Result<SdfScene, SdfError> {
+    let yaw = |deg: f32| Quat::from_rotation_y(deg.to_radians());
+    let objects = vec![
+        floor()?.with_material(0),
+        SdfNode::cuboid(Vec3::splat(0.6))?
+            .rotate(yaw(25.0))?
+            .translate(Vec3::new(-1.3, 0.6, -1.6))?
+            .with_material(1),
+        SdfNode::sphere(0.8)?
+            .translate(Vec3::new(1.4, 0.8, -1.4))?
+            .with_material(2),
+        SdfNode::capsule(0.6, 0.35)?
+            .translate(Vec3::new(-0.1, 0.95, -3.2))?
+            .with_material(3),
+        SdfNode::cuboid(Vec3::new(1.25, 0.8, 0.05))?
+            .rotate(yaw(12.0))?
+            .translate(Vec3::new(-0.75, 0.9, 0.5))?
+            .with_material(4),
+        SdfNode::sphere(0.6)?
+            .translate(Vec3::new(1.05, 0.6, 0.9))?
+            .with_material(5),
+    ];
+    let materials = vec![
+        Material::diffuse("floor", Vec3::new(0.7, 0.68, 0.62)),
+        Material::diffuse("red", Vec3::from_array(PALETTE[0].1)),
+        Material::diffuse("blue", Vec3::from_array(PALETTE[5].1)),
+        Material::diffuse("green", Vec3::from_array(PALETTE[3].1)),
+        Material::translucent("pane", Vec3::new(0.75, 0.9, 0.95), 0.5),
+        Material::translucent("orange-glass", Vec3::from_array(PALETTE[1].1), 0.3),
+    ];
+    let lights = vec![sun(Vec3::new(-0.4, 1.0, 0.5), 2.4)];
+    let cam = camera(Vec3::new(0.0, 1.7, 6.0), Vec3::new(0.0, 0.7, -0.8), 45.0)?;
+    let mut s = SdfScene::new("glass", SdfNode::union(objects)?, materials, lights, cam)?;
+    s.background = Vec3::new(0.55, 0.68, 0.85);
+    s.ambient = Vec3::splat(0.15);
+    s.max_distance = 60.0;
+    Ok(s)
+}
