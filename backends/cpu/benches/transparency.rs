@@ -27,6 +27,7 @@ fn frame(scene: &Scene, method: &Method, translucent: bool) -> f32 {
         camera: &scene.camera,
         max_distance: g.max_distance,
         max_steps: g.max_steps,
+        exhaustive_subpixel_shadows: false,
     };
     let passes = required_passes(method.technique, scene.features()).unwrap();
     let f = view.render_with(method, &RenderSettings::new(W, H), passes, translucent);

@@ -224,6 +224,7 @@ mod tests {
                 camera: &scene.camera,
                 max_distance: g.max_distance,
                 max_steps: g.max_steps,
+                exhaustive_subpixel_shadows: false,
             };
             let s = RenderSettings::new(32, 18);
             for m in &methods {
