@@ -17,18 +17,7 @@ const W: u32 = 320;
 const H: u32 = 180;
 
 fn frame(scene: &Scene, method: &Method, translucent: bool) -> f32 {
-    let g = scene.sdf_geometry().expect("an SDF scene");
-    let view = SdfView {
-        field: &g.root,
-        materials: &scene.materials,
-        lights: &scene.lights,
-        ambient: scene.ambient,
-        background: scene.background,
-        camera: &scene.camera,
-        max_distance: g.max_distance,
-        max_steps: g.max_steps,
-        exhaustive_subpixel_shadows: false,
-    };
+    let view = SdfView::of_scene(scene, &scene.camera).expect("an SDF scene");
     let passes = required_passes(method.technique, scene.features()).unwrap();
     let f = view.render_with(method, &RenderSettings::new(W, H), passes, translucent);
     f.color[f.color.len() / 2].x

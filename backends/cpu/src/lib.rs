@@ -152,15 +152,10 @@ impl Backend for CpuBackend {
                 });
             }
             let view = SdfView {
-                field: &g.root,
-                materials: &scene.materials,
-                lights: &scene.lights,
-                ambient: scene.ambient,
-                background: scene.background,
-                camera,
                 max_distance: settings.max_distance.unwrap_or(g.max_distance),
                 max_steps: settings.max_steps.unwrap_or(g.max_steps),
                 exhaustive_subpixel_shadows: self.exhaustive_subpixel_shadows,
+                ..SdfView::of_scene(scene, camera).expect("an SDF scene")
             };
             return Ok(view.render(method, settings, passes));
         }

@@ -87,6 +87,26 @@ pub struct SdfView<'a, F: SdfField> {
 }
 
 /// A hit-group sample waiting to be shaded (delayed shading).
+impl<'a> SdfView<'a, subcone_scene::sdf::SdfNode> {
+    /// The view of an SDF scene through `camera`, with the scene's own ray
+    /// reach and step budget and adaptive subpixel shadows; `None` for a
+    /// triangle scene.
+    pub fn of_scene(scene: &'a subcone_scene::Scene, camera: &'a Camera) -> Option<Self> {
+        let g = scene.sdf_geometry()?;
+        Some(SdfView {
+            field: &g.root,
+            materials: &scene.materials,
+            lights: &scene.lights,
+            ambient: scene.ambient,
+            background: scene.background,
+            camera,
+            max_distance: g.max_distance,
+            max_steps: g.max_steps,
+            exhaustive_subpixel_shadows: false,
+        })
+    }
+}
+
 /// A closed hit group, as [`SdfView::ctss_march`] hands it on.
 struct GroupHit<'s> {
     /// Sample point.

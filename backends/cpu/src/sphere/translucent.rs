@@ -213,19 +213,8 @@ mod tests {
         ];
         for name in SDF_SCENES.iter().chain(STIFF_SCENES.iter()) {
             let scene = builtin(name).unwrap();
-            let g = scene.sdf_geometry().unwrap();
             assert!(!scene.has_translucency(), "{name}");
-            let view = SdfView {
-                field: &g.root,
-                materials: &scene.materials,
-                lights: &scene.lights,
-                ambient: scene.ambient,
-                background: scene.background,
-                camera: &scene.camera,
-                max_distance: g.max_distance,
-                max_steps: g.max_steps,
-                exhaustive_subpixel_shadows: false,
-            };
+            let view = SdfView::of_scene(&scene, &scene.camera).expect("an SDF scene");
             let s = RenderSettings::new(32, 18);
             for m in &methods {
                 let passes = required_passes(m.technique, scene.features()).unwrap();
