@@ -30,9 +30,9 @@ const W: u32 = 64;
 const H: u32 = 48;
 
 /// Methods run on triangle scenes.
-const TRIANGLE_METHODS: [&str; 5] = ["noaa", "ssaa4", "ssaa16", "sraa", "sraa-rt"];
+const TRIANGLE_METHODS: [&str; 6] = ["noaa", "ssaa4", "ssaa16", "sraa", "sraa-rt", "fxaa"];
 /// Methods run on SDF scenes.
-const SDF_METHODS: [&str; 5] = ["noaa", "ssaa4", "ctss", "ctss-r", "ssaa4+ctss"];
+const SDF_METHODS: [&str; 6] = ["noaa", "ssaa4", "ctss", "ctss-r", "ssaa4+ctss", "fxaa"];
 
 /// How close a backend's frame must be to the CPU reference, in LDR-FLIP.
 ///
@@ -102,6 +102,13 @@ fn check_invariants(backend: &str, scene: &Scene, method: &Method, frame: &Frame
     assert_eq!(
         frame.stats.passes, required,
         "{what}: the backend ran other passes than the kernels require"
+    );
+    // A post-process pass (FXAA) is run and timed exactly when planned.
+    assert_eq!(
+        frame.stats.timings.iter().any(|t| t.name == "post-process"),
+        required.contains(Passes::POST_PROCESS),
+        "{what}: post-process pass timed {:?}",
+        frame.stats.timings
     );
     // Leave out what the scene does not need: no work and no memory.
     let shadow = Passes::SHADOW | Passes::SUBPIXEL_SHADOW | Passes::SECONDARY_SHADOW;

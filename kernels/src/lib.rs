@@ -8,6 +8,8 @@
 //!   [`cone`] (eq. 3–5, 9–10), [`mask`] (eq. 7–8, §3.5), [`aggregate`] (eq. 6),
 //!   and [`ctss`], the hit-group logic of Algorithm 1 as a stepper any SDF and any
 //!   shading can drive.
+//! - [`fxaa`]: FXAA 3.11 (Lottes), the post-process baseline the papers'
+//!   methods are compared with.
 //! - [`passes`]: which passes a technique needs on a scene, so nothing a scene does
 //!   not need is computed or allocated.
 //!
@@ -40,6 +42,7 @@
 pub mod aggregate;
 pub mod cone;
 pub mod ctss;
+pub mod fxaa;
 pub mod mask;
 pub mod passes;
 pub mod sraa;

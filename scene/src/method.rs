@@ -68,13 +68,14 @@ impl fmt::Display for Method {
             Technique::Ctss => write!(f, "ctss"),
             Technique::CtssR => write!(f, "ctss-r"),
             Technique::SsaaCtss => write!(f, "ssaa{}+ctss", self.supersamples()),
+            Technique::Fxaa => write!(f, "fxaa"),
         }
     }
 }
 
 /// A method name that does not parse.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("unknown method {0:?}: expected noaa, ssaaN (N in 4, 9, 16, 64, 256), sraa, sraa-rt, ctss, ctss-r or ssaaN+ctss")]
+#[error("unknown method {0:?}: expected noaa, ssaaN (N in 4, 9, 16, 64, 256), sraa, sraa-rt, ctss, ctss-r, ssaaN+ctss or fxaa")]
 pub struct ParseMethodError(pub String);
 
 fn parse_ssaa(n: &str) -> Option<u32> {
@@ -94,6 +95,7 @@ impl FromStr for Method {
             "sraa-rt" => Method::new(Technique::SraaRt),
             "ctss" => Method::new(Technique::Ctss),
             "ctss-r" => Method::new(Technique::CtssR),
+            "fxaa" => Method::new(Technique::Fxaa),
             other => {
                 if let Some(rest) = other.strip_prefix("ssaa") {
                     if let Some(n) = rest.strip_suffix("+ctss") {

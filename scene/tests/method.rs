@@ -5,7 +5,7 @@ use subcone_kernels::passes::Technique;
 use subcone_scene::method::ParseMethodError;
 use subcone_scene::Method;
 
-const WORDS: [&str; 11] = [
+const WORDS: [&str; 12] = [
     "noaa",
     "ssaa4",
     "ssaa9",
@@ -17,6 +17,7 @@ const WORDS: [&str; 11] = [
     "ctss",
     "ctss-r",
     "ssaa4+ctss",
+    "fxaa",
 ];
 
 #[test]
@@ -44,6 +45,7 @@ fn parsed_methods_have_the_right_technique_and_samples() {
         ("ctss-r", Technique::CtssR, 1),
         ("ssaa4+ctss", Technique::SsaaCtss, 4),
         ("ssaa16+ctss", Technique::SsaaCtss, 16),
+        ("fxaa", Technique::Fxaa, 1),
     ];
     for (word, technique, samples) in cases {
         let m: Method = word.parse().unwrap();
@@ -83,6 +85,7 @@ fn bad_words_list_the_valid_ones() {
             "ctss",
             "ctss-r",
             "ssaaN+ctss",
+            "fxaa",
         ] {
             assert!(msg.contains(valid), "{bad:?}: {msg} lacks {valid}");
         }

@@ -69,7 +69,7 @@ pub const PAPER_SCENES: [&str; 8] = [
 ];
 
 /// The methods compared, in table order.
-pub const METHODS: [&str; 8] = [
+pub const METHODS: [&str; 9] = [
     "noaa",
     "ssaa4",
     "ssaa16",
@@ -78,6 +78,7 @@ pub const METHODS: [&str; 8] = [
     "ctss",
     "ctss-r",
     "ssaa4+ctss",
+    "fxaa",
 ];
 
 /// Timing size of triangle scenes: SRAA Table 1's largest.
@@ -105,7 +106,7 @@ pub struct ReportArgs {
     #[arg(long)]
     pub no_paper_scenes: bool,
     /// Methods to compare, comma-separated (default: noaa, ssaa4, ssaa16, sraa,
-    /// sraa-rt, ctss, ctss-r, ssaa4+ctss; each where it applies).
+    /// sraa-rt, ctss, ctss-r, ssaa4+ctss, fxaa; each where it applies).
     #[arg(long = "method", value_delimiter = ',', value_name = "METHOD")]
     pub methods: Vec<String>,
     /// Output directory.

@@ -4,6 +4,7 @@
 //! and cached), in parallel over image bands with rayon, with Whitted shading:
 //! direct light with hard shadows and mirror reflection. Methods: NoAA, SSAA,
 //! SRAA and SRAA-RT. All weight and reconstruction maths is the kernels'.
+//! FXAA (every scene) is NoAA followed by [`post::fxaa`].
 //!
 //! ```
 //! use subcone_cpu::CpuBackend;
@@ -19,6 +20,7 @@
 #![deny(missing_docs)]
 
 pub mod bvh;
+pub mod post;
 mod render;
 pub mod shade;
 pub mod sphere;
@@ -133,20 +135,31 @@ impl Backend for CpuBackend {
                 max_distance: settings.max_distance.unwrap_or(g.max_distance),
                 max_steps: settings.max_steps.unwrap_or(g.max_steps),
             };
-            return Ok(view.render(method, settings, passes));
+            let mut frame = view.render(method, settings, passes);
+            post_process(&mut frame, passes);
+            return Ok(frame);
         }
         let bvh = self.bvh(scene)?;
         let mesh = scene.mesh().expect("checked by bvh()");
         let mut tracer = Tracer::new(&bvh, scene, mesh, camera, settings.reflection_depth);
         tracer.exhaustive_subpixel_shadows = self.exhaustive_subpixel_shadows;
-        Ok(match method.technique {
-            Technique::NoAa | Technique::Ssaa => {
+        let mut frame = match method.technique {
+            Technique::NoAa | Technique::Ssaa | Technique::Fxaa => {
                 render::supersample(&tracer, method, settings, passes)
             }
             Technique::Sraa | Technique::SraaRt => {
                 render::subpixel(&tracer, method, settings, passes)
             }
             t => return Err(RenderError::Method(format!("{t:?} needs an SDF scene"))),
-        })
+        };
+        post_process(&mut frame, passes);
+        Ok(frame)
+    }
+}
+
+/// The planned post-process pass (FXAA), after the frame is rendered.
+fn post_process(frame: &mut Frame, passes: Passes) {
+    if passes.contains(Passes::POST_PROCESS) {
+        post::fxaa(frame, &subcone_kernels::fxaa::FxaaParams::QUALITY);
     }
 }
