@@ -30,7 +30,7 @@ const W: u32 = 64;
 const H: u32 = 48;
 
 /// Methods run on triangle scenes.
-const TRIANGLE_METHODS: [&str; 7] = [
+const TRIANGLE_METHODS: [&str; 8] = [
     "noaa",
     "ssaa4",
     "ssaa16",
@@ -38,9 +38,10 @@ const TRIANGLE_METHODS: [&str; 7] = [
     "sraa-rt",
     "sraa+mat",
     "sraa-rt+mat",
+    "fxaa",
 ];
 /// Methods run on SDF scenes.
-const SDF_METHODS: [&str; 7] = [
+const SDF_METHODS: [&str; 8] = [
     "noaa",
     "ssaa4",
     "ctss",
@@ -48,6 +49,7 @@ const SDF_METHODS: [&str; 7] = [
     "ssaa4+ctss",
     "ctss-delayed",
     "sraa-rt",
+    "fxaa",
 ];
 
 /// Methods only the CPU reference renders on SDF scenes, with the reason. Not
@@ -134,6 +136,13 @@ fn check_invariants(backend: &str, scene: &Scene, method: &Method, frame: &Frame
     assert_eq!(
         frame.stats.passes, required,
         "{what}: the backend ran other passes than the kernels require"
+    );
+    // A post-process pass (FXAA) is run and timed exactly when planned.
+    assert_eq!(
+        frame.stats.timings.iter().any(|t| t.name == "post-process"),
+        required.contains(Passes::POST_PROCESS),
+        "{what}: post-process pass timed {:?}",
+        frame.stats.timings
     );
     // Leave out what the scene does not need: no work and no memory.
     let shadow = Passes::SHADOW | Passes::SUBPIXEL_SHADOW | Passes::SECONDARY_SHADOW;
@@ -503,7 +512,7 @@ fn transparent_scenes_are_refused_by_wgpu_and_rendered_by_cpu() {
                 subcone_cpu::CpuBackend::new().render(&scene, &scene.camera, &method, &settings);
             // The paths that carry opacity render it; the others (SRAA-RT,
             // delayed shading, split groups) refuse it rather than draw it opaque.
-            if ["noaa", "ssaa4", "ctss", "ctss-r", "ssaa4+ctss"].contains(&m) {
+            if ["noaa", "ssaa4", "ctss", "ctss-r", "ssaa4+ctss", "fxaa"].contains(&m) {
                 assert!(cpu.is_ok(), "{name} {m}: {:?}", cpu.err());
             } else {
                 let e = cpu.expect_err(m).to_string();

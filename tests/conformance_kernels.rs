@@ -356,6 +356,7 @@ fn floats(w: &[u32]) -> Vec<f32> {
 struct Library {
     sraa: String,
     ctss: String,
+    fxaa: String,
 }
 
 impl Library {
@@ -364,9 +365,21 @@ impl Library {
         Library {
             sraa: [wgsl::PARAMS, sraa::WGSL].concat(),
             ctss: [wgsl::PARAMS, cone::WGSL, mask::WGSL, aggregate::WGSL].concat(),
+            fxaa: [wgsl::PARAMS, FXAA_FETCH, fxaa::WGSL].concat(),
         }
     }
 }
+
+/// The pixel fetch `fxaa.wgsl` expects from its including shader: a 7×7
+/// patch of linear colours (the record's first 147 words, row-major),
+/// clamped to its edge and encoded as the backends encode frames.
+const FXAA_FETCH: &str = "
+fn fxaa_fetch(x: i32, y: i32) -> vec4<f32> {
+    let cx = u32(clamp(x, 0, 6));
+    let cy = u32(clamp(y, 0, 6));
+    return fxaa_encode(v3(3u * (cy * 7u + cx)));
+}
+";
 
 type Check = fn(&GpuContext, &Library) -> Result<String, String>;
 
@@ -780,13 +793,144 @@ fn check_aggregate(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
     join(weights.finish(), agg_r.finish())
 }
 
-const CHECKS: [(&str, Check); 6] = [
+/// FXAA (`fxaa_encode` and `fxaa_pixel` on the centre of a 7×7 patch,
+/// which the edge search leaves and re-enters through the clamp).
+///
+/// Continuous random patches and straight edges between two random colours
+/// at random angles compare within 1e-4 absolute (sRGB units; the WGSL `pow`
+/// of the encoding is not correctly rounded, and its error moves the luma
+/// by ~1e-6). An edge can put FXAA's end-of-edge test exactly on its
+/// threshold (`|lumaEnd| >= gradient/4` with a quarter-pixel mix), where an
+/// ulp decides the span: such inputs count as agreeing when the outputs still
+/// lie within the same centre-and-neighbour range, and are reported. Patches of
+/// any f32 bits (NaN, ±∞) must give a colour in [0, 1] on both sides.
+fn check_fxaa(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
+    use subcone_kernels::fxaa::{fxaa_encode, fxaa_pixel, FxaaParams};
+    let colour = (0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0).prop_map(|(r, g, b)| Vec3::new(r, g, b));
+    let patch = prop_oneof![
+        // Continuous random patches.
+        2 => prop::collection::vec(colour.clone(), 49).prop_map(|v| (v, 0u32)),
+        // A straight edge between two colours.
+        3 => (colour.clone(), colour, -1.0f32..1.0, -1.0f32..1.0, -3.0f32..3.0).prop_map(
+            |(a, b, nx, ny, c)| {
+                let v = (0..49)
+                    .map(|i| {
+                        let (x, y) = ((i % 7) as f32 - 3.0, (i / 7) as f32 - 3.0);
+                        if nx * x + ny * y > c { a } else { b }
+                    })
+                    .collect();
+                (v, 1u32)
+            }
+        ),
+        // Any bits.
+        1 => prop::collection::vec(
+            (any_f32(0.0, 2.0), any_f32(0.0, 2.0), any_f32(0.0, 2.0))
+                .prop_map(|(r, g, b)| Vec3::new(r, g, b)),
+            49,
+        )
+        .prop_map(|v| (v, 2u32)),
+    ];
+    let params = prop_oneof![
+        3 => Just(FxaaParams::QUALITY),
+        1 => (0.0f32..=1.0, 0.063f32..=0.333, 0.0312f32..=0.0833).prop_map(|(s, t, m)| FxaaParams {
+            subpix: s,
+            edge_threshold: t,
+            edge_threshold_min: m,
+            _pad: 0.0,
+        }),
+    ];
+    let cases = generate((patch, params), 6);
+    let mut input = Vec::new();
+    for ((px, _), p) in &cases {
+        for c in px {
+            input.extend(words(&c.to_array()));
+        }
+        input.extend(words(&[
+            p.subpix,
+            p.edge_threshold,
+            p.edge_threshold_min,
+            0.0,
+        ]));
+    }
+    let out = run_wgsl(
+        ctx,
+        &lib.fxaa,
+        "let p = FxaaParams(f(147u), f(148u), f(149u), 0.0);
+         let c = fxaa_pixel(3, 3, p);
+         let e = fxaa_fetch(3, 3);
+         out[o] = bitcast<u32>(c.x); out[o + 1u] = bitcast<u32>(c.y); out[o + 2u] = bitcast<u32>(c.z);
+         out[o + 3u] = bitcast<u32>(e.x); out[o + 4u] = bitcast<u32>(e.y);
+         out[o + 5u] = bitcast<u32>(e.z); out[o + 6u] = bitcast<u32>(e.w);",
+        151,
+        7,
+        &input,
+    )?;
+    let mut enc = Report::new("fxaa_encode");
+    let mut pix = Report::new("fxaa_pixel (FXAA 3.11)");
+    let mut ties = 0;
+    for (i, c) in cases.iter().enumerate() {
+        let ((px, kind), p) = c;
+        let g = floats(&out[7 * i..7 * i + 7]);
+        let fetch = |x: i32, y: i32| fxaa_encode(px[(y.clamp(0, 6) * 7 + x.clamp(0, 6)) as usize]);
+        let rust = fxaa_pixel(&fetch, 3, 3, p).to_array();
+        let input = format!("kind {kind}, centre {:?}, params {p:?}", px[24]);
+        if *kind == 2 {
+            let ok = |v: &[f32]| v.iter().all(|x| (0.0..=1.0).contains(x));
+            enc.exact(&input, 1, ok(&g[3..7]) as u32);
+            pix.exact(&input, ok(&rust) as u32, ok(&g[..3]) as u32);
+            continue;
+        }
+        // 8-bit levels: equal, or one level apart where the sRGB value lies
+        // within an ulp of a rounding boundary.
+        enc.floats(
+            Tol::Abs(1.0 / 255.0 + 1e-6),
+            &input,
+            &fetch(3, 3).to_array(),
+            &g[3..7],
+        );
+        let close = rust.iter().zip(&g[..3]).all(|(a, b)| (a - b).abs() <= 1e-4);
+        if !close && *kind == 1 {
+            // A threshold tie: both must still blend the centre with a
+            // direct neighbour.
+            let cross = [
+                fetch(3, 3),
+                fetch(2, 3),
+                fetch(4, 3),
+                fetch(3, 2),
+                fetch(3, 4),
+            ];
+            let lo = cross
+                .iter()
+                .fold(Vec3::splat(f32::MAX), |a, c| a.min(c.truncate()));
+            let hi = cross
+                .iter()
+                .fold(Vec3::splat(f32::MIN), |a, c| a.max(c.truncate()));
+            let gv = Vec3::from_slice(&g[..3]);
+            if gv.cmpge(lo - 1e-4).all() && gv.cmple(hi + 1e-4).all() {
+                ties += 1;
+                continue;
+            }
+        }
+        pix.floats(Tol::Abs(1e-4), &input, &rust, &g[..3]);
+    }
+    let limit = CASES / 100;
+    let ties_line = format!("fxaa edge-threshold ties: {ties} of {CASES} (at most {limit})");
+    let ties_ok = if ties <= limit {
+        Ok(ties_line)
+    } else {
+        Err(ties_line)
+    };
+    join(join(enc.finish(), pix.finish()), ties_ok)
+}
+
+const CHECKS: [(&str, Check); 7] = [
     ("weights", check_weights),
     ("material", check_material),
     ("resolve", check_resolve),
     ("cone", check_cone),
     ("mask", check_mask),
     ("aggregate", check_aggregate),
+    ("fxaa", check_fxaa),
 ];
 
 #[test]
@@ -815,7 +959,7 @@ fn wgsl_kernels_match_the_rust_kernels() {
 #[test]
 fn perturbed_kernels_are_caught() {
     let Some(ctx) = gpu() else { return };
-    let perturbations: [(&str, &str, &str, Check); 4] = [
+    let perturbations: [(&str, &str, &str, Check); 5] = [
         (
             "mask intercept sign flipped (the paper's eq. 8 slip)",
             "h = -delta / min(len, 1.0);",
@@ -840,16 +984,25 @@ fn perturbed_kernels_are_caught() {
             "if true {",
             check_material,
         ),
+        (
+            "FXAA's sub-pixel low-pass over 8 instead of 12 weights",
+            "subpix_a * (1.0 / 12.0)",
+            "subpix_a * (1.0 / 8.0)",
+            check_fxaa,
+        ),
     ];
     for (what, from, to, check) in perturbations {
         let shipped = Library::shipped();
         assert!(
-            shipped.sraa.contains(from) || shipped.ctss.contains(from),
+            shipped.sraa.contains(from)
+                || shipped.ctss.contains(from)
+                || shipped.fxaa.contains(from),
             "perturbation {what:?}: {from:?} is not in the shipped WGSL any more; update the test"
         );
         let lib = Library {
             sraa: shipped.sraa.replacen(from, to, 1),
             ctss: shipped.ctss.replacen(from, to, 1),
+            fxaa: shipped.fxaa.replacen(from, to, 1),
         };
         match check(&ctx, &lib) {
             Ok(_) => panic!("perturbation {what:?} went unnoticed"),

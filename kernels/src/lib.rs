@@ -9,6 +9,8 @@
 //!   and [`ctss`], the hit-group logic of Algorithm 1 as a stepper any SDF and any
 //!   shading can drive; [`transparency`], the `K` masks of §5.3 for
 //!   semi-transparent surfaces (CPU only: no WGSL twin yet).
+//! - [`fxaa`]: FXAA 3.11 (Lottes), the post-process baseline the papers'
+//!   methods are compared with.
 //! - [`passes`]: which passes a technique needs on a scene, so nothing a scene does
 //!   not need is computed or allocated.
 //!
@@ -41,6 +43,7 @@
 pub mod aggregate;
 pub mod cone;
 pub mod ctss;
+pub mod fxaa;
 pub mod mask;
 pub mod passes;
 pub mod sraa;

@@ -40,6 +40,14 @@ struct CtssParams {
     _pad1: u32,
 }
 
+// subcone_kernels::fxaa::FxaaParams (16 bytes).
+struct FxaaParams {
+    subpix: f32,
+    edge_threshold: f32,
+    edge_threshold_min: f32,
+    _pad: f32,
+}
+
 // subcone_kernels::sraa::NEGLIGIBLE_WEIGHT (2^-64): weight sums below it are
 // treated as empty by the SRAA reconstruction and the CTSS aggregation alike.
 const NEGLIGIBLE_WEIGHT: f32 = 5.421011e-20;

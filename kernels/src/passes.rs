@@ -38,11 +38,14 @@ pub enum Technique {
     CtssR = 5,
     /// N×N supersampling with CTSS on every sample (§4.2).
     SsaaCtss = 6,
+    /// One sample per pixel, then FXAA 3.11 on the displayed image (the
+    /// post-process baseline, [`crate::fxaa`]).
+    Fxaa = 7,
 }
 
 impl Technique {
     /// Every technique.
-    pub const ALL: [Technique; 7] = [
+    pub const ALL: [Technique; 8] = [
         Technique::NoAa,
         Technique::Ssaa,
         Technique::Sraa,
@@ -50,6 +53,7 @@ impl Technique {
         Technique::Ctss,
         Technique::CtssR,
         Technique::SsaaCtss,
+        Technique::Fxaa,
     ];
 
     /// Whether this is one of the CTSS family (needs an SDF).
@@ -114,6 +118,8 @@ bitflags! {
         const CONE_TRACE = 1 << 11;
         /// Several samples per pixel, box-filtered (SSAA, SSAA+CTSS).
         const SUPERSAMPLE = 1 << 12;
+        /// A filter over the finished image (FXAA): one more colour buffer.
+        const POST_PROCESS = 1 << 13;
     }
 }
 
@@ -182,6 +188,7 @@ pub fn required_passes(
 
     let passes = match technique {
         Technique::NoAa => Passes::PRIMARY | shading,
+        Technique::Fxaa => Passes::PRIMARY | shading | Passes::POST_PROCESS,
         Technique::Ssaa => Passes::PRIMARY | Passes::SUPERSAMPLE | shading,
         Technique::Sraa => {
             Passes::PRIMARY

@@ -15,6 +15,7 @@
 //! WebGPU implementation, software ones included.
 
 /// The `#[repr(C)]` parameter structs ([`crate::sraa::SraaParams`],
-/// [`crate::sraa::Geometry`], [`crate::ctss::CtssParams`]) in WGSL, with
+/// [`crate::sraa::Geometry`], [`crate::ctss::CtssParams`],
+/// [`crate::fxaa::FxaaParams`]) in WGSL, with
 /// identical field offsets.
 pub const PARAMS: &str = include_str!("params.wgsl");

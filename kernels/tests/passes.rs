@@ -19,6 +19,7 @@ fn expected(t: Technique, f: SceneFeatures) -> Option<Passes> {
         | opt(lights && refl, Passes::SECONDARY_SHADOW);
     Some(match t {
         Technique::NoAa => Passes::PRIMARY | shade,
+        Technique::Fxaa => Passes::PRIMARY | shade | Passes::POST_PROCESS,
         Technique::Ssaa => Passes::PRIMARY | Passes::SUPERSAMPLE | shade,
         Technique::Sraa if !sdf => {
             Passes::PRIMARY
@@ -61,7 +62,7 @@ fn every_technique_on_every_feature_combination() {
             checked += 1;
         }
     }
-    assert_eq!(checked, 7 * 16);
+    assert_eq!(checked, 8 * 16);
 }
 
 #[test]

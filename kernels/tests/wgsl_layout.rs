@@ -12,6 +12,7 @@ use core::mem::{offset_of, size_of};
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
 use subcone_kernels::ctss::CtssParams;
+use subcone_kernels::fxaa::FxaaParams;
 use subcone_kernels::sraa::{Geometry, SraaParams};
 use subcone_kernels::wgsl;
 
@@ -26,7 +27,14 @@ const KERNELS: &[(&str, &str)] = &[
     // The stepper's SDF is the including shader's: a sphere stands in for it.
     ("the caller's ctss_field", CTSS_FIELD),
     ("ctss::WGSL", subcone_kernels::ctss::WGSL),
+    // The pixel fetch is the including shader's: a constant stands in for it.
+    ("the caller's fxaa_fetch", FXAA_FETCH),
+    ("fxaa::WGSL", subcone_kernels::fxaa::WGSL),
 ];
+
+/// The hook `fxaa.wgsl` expects its including shader to define.
+const FXAA_FETCH: &str =
+    "fn fxaa_fetch(x: i32, y: i32) -> vec4<f32> { return vec4<f32>(f32(x & 1), 0.0, 0.0, 0.5); }";
 
 /// The hook `ctss.wgsl` expects its including shader to define.
 const CTSS_FIELD: &str =
@@ -98,6 +106,7 @@ fn shared_structs() -> Vec<Shared> {
         shared!(Geometry: normal, depth),
         shared!(CtssParams: tan_theta, alpha, eps, t_min, t_max, min_sample_weight,
             max_steps, max_samples, visibility_k, flags, _pad[2]),
+        shared!(FxaaParams: subpix, edge_threshold, edge_threshold_min, _pad),
     ]
 }
 

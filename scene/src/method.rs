@@ -104,6 +104,7 @@ impl fmt::Display for Method {
             Technique::Ctss => write!(f, "ctss{suffix}"),
             Technique::CtssR => write!(f, "ctss-r{suffix}"),
             Technique::SsaaCtss => write!(f, "ssaa{}+ctss{suffix}", self.supersamples()),
+            Technique::Fxaa => write!(f, "fxaa"),
         }?;
         if self.gates_material() {
             write!(f, "+mat")?;
@@ -114,7 +115,7 @@ impl fmt::Display for Method {
 
 /// A method name that does not parse.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("unknown method {0:?}: expected noaa, ssaaN (N in 4, 9, 16, 64, 256), sraa, sraa-rt, sraa+mat, sraa-rt+mat, ctss, ctss+edges, ctss-r or ssaaN+ctss; ctss, ctss-r and ssaaN+ctss optionally with -delayed")]
+#[error("unknown method {0:?}: expected noaa, ssaaN (N in 4, 9, 16, 64, 256), sraa, sraa-rt, sraa+mat, sraa-rt+mat, ctss, ctss+edges, ctss-r, ssaaN+ctss or fxaa; ctss, ctss-r and ssaaN+ctss optionally with -delayed")]
 pub struct ParseMethodError(pub String);
 
 fn parse_ssaa(n: &str) -> Option<u32> {
@@ -152,6 +153,7 @@ impl FromStr for Method {
                 ..Method::new(Technique::Ctss)
             },
             "ctss-r" => Method::new(Technique::CtssR),
+            "fxaa" => Method::new(Technique::Fxaa),
             other => {
                 if let Some(rest) = other.strip_prefix("ssaa") {
                     if let Some(n) = rest.strip_suffix("+ctss") {

@@ -5,7 +5,7 @@ use subcone_kernels::passes::Technique;
 use subcone_scene::method::ParseMethodError;
 use subcone_scene::Method;
 
-const WORDS: [&str; 17] = [
+const WORDS: [&str; 18] = [
     "noaa",
     "ssaa4",
     "ssaa9",
@@ -23,6 +23,7 @@ const WORDS: [&str; 17] = [
     "ctss-delayed",
     "ctss-r-delayed",
     "ssaa4+ctss-delayed",
+    "fxaa",
 ];
 
 #[test]
@@ -53,6 +54,7 @@ fn parsed_methods_have_the_right_technique_and_samples() {
         ("ctss-r", Technique::CtssR, 1),
         ("ssaa4+ctss", Technique::SsaaCtss, 4),
         ("ssaa16+ctss", Technique::SsaaCtss, 16),
+        ("fxaa", Technique::Fxaa, 1),
     ];
     for (word, technique, samples) in cases {
         let m: Method = word.parse().unwrap();
@@ -115,6 +117,7 @@ fn bad_words_list_the_valid_ones() {
             "ctss+edges",
             "ctss-r",
             "ssaaN+ctss",
+            "fxaa",
         ] {
             assert!(msg.contains(valid), "{bad:?}: {msg} lacks {valid}");
         }

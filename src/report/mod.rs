@@ -88,6 +88,7 @@ pub const METHODS: &[&str] = &[
     "ctss+edges",
     "ctss-r",
     "ssaa4+ctss",
+    "fxaa",
 ];
 
 /// Timing size of triangle scenes: SRAA Table 1's largest.
@@ -115,7 +116,7 @@ pub struct ReportArgs {
     #[arg(long)]
     pub no_paper_scenes: bool,
     /// Methods to compare, comma-separated (default: noaa, ssaa4, ssaa16, sraa,
-    /// sraa-rt, sraa+mat, sraa-rt+mat, ctss, ctss-delayed, ctss+edges, ctss-r, ssaa4+ctss, …; each where it applies).
+    /// sraa-rt, sraa+mat, sraa-rt+mat, ctss, ctss-delayed, ctss+edges, ctss-r, ssaa4+ctss, fxaa; each where it applies).
     #[arg(long = "method", value_delimiter = ',', value_name = "METHOD")]
     pub methods: Vec<String>,
     /// Output directory.

@@ -55,6 +55,7 @@ pub fn method_colour(method: &str) -> RGBColor {
         "ctss" => RGBColor(44, 160, 44),
         "ctss-r" => RGBColor(148, 103, 189),
         "ssaa4+ctss" => RGBColor(140, 86, 75),
+        "fxaa" => RGBColor(227, 119, 194),
         other => {
             let h = other
                 .bytes()

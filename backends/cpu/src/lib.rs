@@ -5,6 +5,7 @@
 //! direct light with hard shadows and mirror reflection. Methods: NoAA, SSAA,
 //! SRAA and SRAA-RT. SDF scenes are sphere traced (`sphere`): NoAA, SSAA, the
 //! CTSS family and SRAA-RT. All weight and reconstruction maths is the kernels'.
+//! FXAA (every scene) is NoAA followed by [`post::fxaa`].
 //!
 //! ```
 //! use subcone_cpu::CpuBackend;
@@ -20,6 +21,7 @@
 #![deny(missing_docs)]
 
 pub mod bvh;
+pub mod post;
 mod render;
 pub mod shade;
 pub mod sphere;
@@ -157,7 +159,9 @@ impl Backend for CpuBackend {
                 exhaustive_subpixel_shadows: self.exhaustive_subpixel_shadows,
                 ..SdfView::of_scene(scene, camera).expect("an SDF scene")
             };
-            return Ok(view.render(method, settings, passes));
+            let mut frame = view.render(method, settings, passes);
+            post_process(&mut frame, passes);
+            return Ok(frame);
         }
         if scene.has_translucency() {
             return Err(RenderError::Backend {
@@ -171,14 +175,23 @@ impl Backend for CpuBackend {
         let mesh = scene.mesh().expect("checked by bvh()");
         let mut tracer = Tracer::new(&bvh, scene, mesh, camera, settings.reflection_depth);
         tracer.exhaustive_subpixel_shadows = self.exhaustive_subpixel_shadows;
-        Ok(match method.technique {
-            Technique::NoAa | Technique::Ssaa => {
+        let mut frame = match method.technique {
+            Technique::NoAa | Technique::Ssaa | Technique::Fxaa => {
                 render::supersample(&tracer, method, settings, passes)
             }
             Technique::Sraa | Technique::SraaRt => {
                 render::subpixel(&tracer, method, settings, passes)
             }
             t => return Err(RenderError::Method(format!("{t:?} needs an SDF scene"))),
-        })
+        };
+        post_process(&mut frame, passes);
+        Ok(frame)
+    }
+}
+
+/// The planned post-process pass (FXAA), after the frame is rendered.
+fn post_process(frame: &mut Frame, passes: Passes) {
+    if passes.contains(Passes::POST_PROCESS) {
+        post::fxaa(frame, &subcone_kernels::fxaa::FxaaParams::QUALITY);
     }
 }

@@ -7,7 +7,8 @@
 //! jittered projection (the paper's hybrid pipeline, §3.1); SRAA-RT traces
 //! them. SDF scenes are compiled to WGSL from the scene tree and cone traced.
 //! Every antialiasing formula is a WGSL mirror of a `subcone-kernels`
-//! function, shipped by that crate.
+//! function, shipped by that crate. FXAA, the post-process baseline, filters
+//! the NoAA frame on the GPU before it is read back.
 //!
 //! ```no_run
 //! use subcone_scene::{builtin::builtin, Backend, RenderSettings};
@@ -24,6 +25,7 @@
 #![deny(missing_docs)]
 
 pub mod context;
+mod post;
 pub mod sdf;
 mod triangles;
 

@@ -312,7 +312,8 @@ pub(crate) fn render(
         "sphere tracing"
     };
     let mut timings = Vec::new();
-    let (color_px, count_px) = trace::run(
+    let post = passes.contains(Passes::POST_PROCESS).then_some((w, h));
+    let (color_px, count_px, post_buffers) = trace::run(
         ctx,
         &pipes.render,
         pipes.field.data.as_ref(),
@@ -322,6 +323,7 @@ pub(crate) fn render(
         px_bytes,
         name,
         &mut timings,
+        post,
     )?;
 
     let mut frame = Frame::new(w, h);
@@ -339,6 +341,7 @@ pub(crate) fn render(
         }
     }
     let mut buffers = vec![("color", px_bytes as usize), ("counts", px_bytes as usize)];
+    buffers.extend(post_buffers);
     if pipes.field.data.is_some() {
         buffers.push(("sdf scatter table", pipes.field.data_bytes));
     }

@@ -8,10 +8,13 @@ use wgpu::util::DeviceExt;
 
 use crate::context::GpuContext;
 
-/// Per-pixel colours (RGBA) and counters, read back.
-pub(super) type Traced = (Vec<[f32; 4]>, Vec<[u32; 4]>);
+/// Per-pixel colours (RGBA) and counters, read back, and the buffers of the
+/// post-process pass, by name.
+pub(super) type Traced = (Vec<[f32; 4]>, Vec<[u32; 4]>, Vec<(&'static str, usize)>);
 
-/// Run the pass over `groups` workgroups of 8×8 pixels, timed as `name`.
+/// Run the pass over `groups` workgroups of 8×8 pixels, timed as `name`; with
+/// `fxaa` (the frame's width and height), FXAA filters the colours on the GPU
+/// before they are read back.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn run(
     ctx: &GpuContext,
@@ -23,6 +26,7 @@ pub(super) fn run(
     px_bytes: u64,
     name: &'static str,
     timings: &mut Vec<PassTiming>,
+    fxaa: Option<(u32, u32)>,
 ) -> Result<Traced, RenderError> {
     let (params_buf, color, counts) = ctx.scoped("SDF frame buffers", || {
         let storage = |label| {
@@ -84,8 +88,20 @@ pub(super) fn run(
         pass.set_bind_group(0, &group, &[]);
         pass.dispatch_workgroups(groups.0, groups.1, 1);
     })?;
+    let (color, post_buffers) = match fxaa {
+        Some((w, h)) => crate::post::fxaa::run(
+            ctx,
+            &color,
+            w,
+            h,
+            &subcone_kernels::fxaa::FxaaParams::QUALITY,
+            timings,
+        )?,
+        None => (color, Vec::new()),
+    };
     Ok((
         bytemuck::pod_collect_to_vec(&ctx.read_buffer(&color, 0, px_bytes)?),
         bytemuck::pod_collect_to_vec(&ctx.read_buffer(&counts, 0, px_bytes)?),
+        post_buffers,
     ))
 }

@@ -509,13 +509,19 @@ pub(crate) fn render(
         )));
     }
     match method.technique {
-        Technique::NoAa | Technique::Ssaa | Technique::Sraa | Technique::SraaRt => {}
+        Technique::NoAa
+        | Technique::Ssaa
+        | Technique::Sraa
+        | Technique::SraaRt
+        | Technique::Fxaa => {}
         t => return Err(RenderError::Method(format!("{t:?} needs an SDF scene"))),
     }
     let sg = bvh::scene_gpu(ctx, scene)?;
     let uniform = FrameUniform::new(scene, &sg, camera, method, settings);
     match method.technique {
-        Technique::NoAa | Technique::Ssaa => supersample(ctx, &sg, &uniform, settings, passes),
+        Technique::NoAa | Technique::Ssaa | Technique::Fxaa => {
+            supersample(ctx, &sg, &uniform, settings, passes)
+        }
         _ => subpixel(ctx, scene, &sg, &uniform, method, settings, passes),
     }
 }
@@ -558,7 +564,8 @@ fn centre_geometry(
     ))
 }
 
-/// NoAA and SSAA (render.rs `supersample`): one pass "shading".
+/// NoAA and SSAA (render.rs `supersample`): one pass "shading"; FXAA adds
+/// the pass "post-process" (`post::fxaa`).
 fn supersample(
     ctx: &GpuContext,
     sg: &SceneGpu,
@@ -595,10 +602,25 @@ fn supersample(
             bound.dispatch(enc, &p);
         }
     })?;
-    let mut frame = Frame::new(s.width, s.height);
-    frame.color = read_vec4(ctx, fb.buffer("color").expect("allocated above"), n)?;
-    let c = bound.counts(ctx)?;
+    let color = fb.buffer("color").expect("allocated above");
     let mut buffers = fb.stats.clone();
+    let mut frame = Frame::new(s.width, s.height);
+    if passes.contains(Passes::POST_PROCESS) {
+        // FXAA on the GPU, then one read-back of the filtered frame.
+        let (filtered, post_buffers) = crate::post::fxaa::run(
+            ctx,
+            color,
+            s.width,
+            s.height,
+            &subcone_kernels::fxaa::FxaaParams::QUALITY,
+            &mut timings,
+        )?;
+        buffers.extend(post_buffers);
+        frame.color = read_vec4(ctx, &filtered, n)?;
+    } else {
+        frame.color = read_vec4(ctx, color, n)?;
+    }
+    let c = bound.counts(ctx)?;
     buffers.push(("sample rows", side as usize * 4));
     buffers.push(("ray counters", 48));
     frame.stats = FrameStats {
@@ -811,10 +833,25 @@ fn subpixel(
         bound.dispatch(enc, &resolve)
     })?;
 
-    let mut frame = Frame::new(s.width, s.height);
-    frame.color = read_vec4(ctx, fb.buffer("color").expect("allocated above"), n)?;
-    let c = bound.counts(ctx)?;
+    let color = fb.buffer("color").expect("allocated above");
     let mut buffers = fb.stats.clone();
+    let mut frame = Frame::new(s.width, s.height);
+    if passes.contains(Passes::POST_PROCESS) {
+        // FXAA on the GPU, then one read-back of the filtered frame.
+        let (filtered, post_buffers) = crate::post::fxaa::run(
+            ctx,
+            color,
+            s.width,
+            s.height,
+            &subcone_kernels::fxaa::FxaaParams::QUALITY,
+            &mut timings,
+        )?;
+        buffers.extend(post_buffers);
+        frame.color = read_vec4(ctx, &filtered, n)?;
+    } else {
+        frame.color = read_vec4(ctx, color, n)?;
+    }
+    let c = bound.counts(ctx)?;
     buffers.push(("subsample indices", 16));
     buffers.push(("ray counters", 48));
     frame.stats = FrameStats {

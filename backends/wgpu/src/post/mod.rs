@@ -1,0 +1,3 @@
+//! Post-processing passes over a finished frame that stays on the GPU.
+
+pub(crate) mod fxaa;
