@@ -166,12 +166,15 @@ fn edge_errors(w: i32, h: i32, above: impl Fn(f32, f32) -> bool) -> (f32, f32, u
     (e_alias / n as f32, e_fxaa / n as f32, n)
 }
 
+/// Which side of an edge a point is on.
+type Edge = dyn Fn(f32, f32) -> bool;
+
 /// FXAA's purpose: on shallow and steep straight edges (its horizontal and
 /// vertical spans) and on a 45° edge, the filtered image is closer to the
 /// edge's true coverage than the aliased one.
 #[test]
 fn straight_edges_move_towards_their_coverage() {
-    let cases: [(&str, Box<dyn Fn(f32, f32) -> bool>); 4] = [
+    let cases: [(&str, Box<Edge>); 4] = [
         ("shallow", Box::new(|x, y| y > 0.21 * x + 9.3)),
         ("steep", Box::new(|x, y| x > 0.27 * y + 11.1)),
         ("45°", Box::new(|x, y| y > x - 0.3)),

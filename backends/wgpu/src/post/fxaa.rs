@@ -60,6 +60,9 @@ fn pipelines(ctx: &GpuContext) -> Result<Arc<Pipelines>, RenderError> {
     Ok(p)
 }
 
+/// Buffers allocated by a pass, by name, with their bytes.
+pub(crate) type Buffers = Vec<(&'static str, usize)>;
+
 fn entry(binding: u32, buf: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
     wgpu::BindGroupEntry {
         binding,
@@ -78,7 +81,7 @@ pub(crate) fn run(
     height: u32,
     params: &FxaaParams,
     timings: &mut Vec<PassTiming>,
-) -> Result<(wgpu::Buffer, Vec<(&'static str, usize)>), RenderError> {
+) -> Result<(wgpu::Buffer, Buffers), RenderError> {
     let px_bytes = width as u64 * height as u64 * 16;
     if color.size() < px_bytes {
         return Err(err(format!(
