@@ -9,7 +9,7 @@
 //! can be bought by loosening NoAA.
 //!
 //! Scenes with semi-transparent materials (`alpha < 1`) take the paths of
-//! [`translucent`](self::translucent): CTSS with the `K` masks of §5.3, NoAA/SSAA
+//! `translucent`: CTSS with the `K` masks of §5.3, NoAA/SSAA
 //! with alpha blending along the ray.
 
 mod edges;
