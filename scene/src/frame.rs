@@ -84,6 +84,18 @@ pub struct Frame {
     pub normal: Option<Vec<Vec3>>,
     /// Shaded samples per pixel, when the backend records it.
     pub samples_per_pixel: Option<Vec<f32>>,
+    /// Diffuse albedo at the surface through the pixel centre (the texture
+    /// or pattern at the hit; black for a miss), when the backend records it.
+    pub albedo: Option<Vec<Vec3>>,
+    /// Per-light visibility at the surface through the pixel centre, when
+    /// the backend records it: bit `l` set when nothing blocks the segment to
+    /// light `l`. A light the surface faces away from counts as visible: the
+    /// cosine falls smoothly to 0 there, which is shading, not a shadow edge.
+    /// 0 for a miss.
+    pub light_visibility: Option<Vec<u32>>,
+    /// Mirror reflectance of the material through the pixel centre (0 for a
+    /// miss or a surface that is no mirror), when the backend records it.
+    pub mirror: Option<Vec<f32>>,
     /// Statistics.
     pub stats: FrameStats,
 }
@@ -108,6 +120,9 @@ impl Frame {
             depth: None,
             normal: None,
             samples_per_pixel: None,
+            albedo: None,
+            light_visibility: None,
+            mirror: None,
             stats: FrameStats::default(),
         }
     }

@@ -34,6 +34,7 @@
 //! println!("{summary}");
 //! ```
 
+pub mod classes;
 pub mod crops;
 pub mod kernel_timing;
 pub mod metrics;
@@ -149,6 +150,10 @@ pub struct ReportArgs {
     /// Skip the SRAA Table 1 resolution sweep (256² to 1024² on the atrium).
     #[arg(long)]
     pub no_sweep: bool,
+    /// Go on after a render fails: list the failures in the report and exit 0
+    /// (without it, the first failure stops the run with its error).
+    #[arg(long)]
+    pub keep_going: bool,
 }
 
 impl Default for ReportArgs {
@@ -168,6 +173,7 @@ impl Default for ReportArgs {
             cache: None,
             refresh_references: false,
             no_sweep: false,
+            keep_going: false,
         }
     }
 }
@@ -201,6 +207,9 @@ pub struct ResultRow {
     pub psnr_db: Option<f64>,
     /// Mean FLIP over the edge mask.
     pub edge_flip_mean: Option<f64>,
+    /// Mean FLIP and pixel count per edge class ([`classes`](mod@classes)),
+    /// when the error was measured.
+    pub classes: Option<classes::ClassFlip>,
     /// Shaded samples per pixel: the mean of the samples-per-pixel AOV of the
     /// quality render, or, without one, shading evaluations per pixel.
     pub samples_per_pixel: f64,
@@ -239,6 +248,19 @@ pub struct Skipped {
     pub reason: String,
 }
 
+/// A render that failed (with `--keep-going`; otherwise the run stops).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Failure {
+    /// Scene.
+    pub scene: String,
+    /// Method (or `reference`).
+    pub method: String,
+    /// Backend.
+    pub backend: String,
+    /// The error, with its causes.
+    pub error: String,
+}
+
 /// A chosen crop region of a scene.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SceneCrops {
@@ -267,6 +289,8 @@ pub struct ReportSummary {
     pub sweep: Vec<ResultRow>,
     /// Methods not run, with the reason.
     pub skipped: Vec<Skipped>,
+    /// Renders that failed (only with `--keep-going`).
+    pub failures: Vec<Failure>,
     /// Scenes that could not be loaded, with the reason.
     pub unavailable_scenes: Unavailable,
     /// Crop regions chosen per scene.
@@ -304,10 +328,11 @@ impl fmt::Display for ReportSummary {
             self.rows.iter().map(|r| r.scene.as_str()).collect();
         writeln!(
             f,
-            "report: {} results on {} scenes ({} skipped, {} scenes unavailable) in {:.1} s; references: {} rendered, {} cached",
+            "report: {} results on {} scenes ({} skipped, {} failed, {} scenes unavailable) in {:.1} s; references: {} rendered, {} cached",
             self.rows.len(),
             scenes.len(),
             self.skipped.len(),
+            self.failures.len(),
             self.unavailable_scenes.len(),
             self.elapsed.as_secs_f64(),
             self.references_rendered,
@@ -410,6 +435,7 @@ struct Plan {
     size: Option<(u32, u32)>,
     sweep: bool,
     refresh: bool,
+    keep_going: bool,
 }
 
 fn parse_backends(list: &str) -> Result<Vec<(String, Box<dyn Backend + Send + Sync>)>> {
@@ -498,6 +524,7 @@ impl Plan {
             size,
             sweep,
             refresh: args.refresh_references,
+            keep_going: args.keep_going,
         })
     }
 
@@ -602,6 +629,7 @@ struct SceneQuality {
     noaa_error_base: Rgb8,
     shadow: Option<Vec<bool>>,
     reflective: Option<Vec<bool>>,
+    classes: classes::ClassMasks,
 }
 
 struct Progress {
@@ -632,6 +660,27 @@ struct Runner<'a> {
 }
 
 impl Runner<'_> {
+    /// A failed render: an error that stops the run, or with `--keep-going`
+    /// a note and an entry in `failures`.
+    fn fail(&self, failures: &mut Vec<Failure>, f: Failure) -> Result<()> {
+        if !self.plan.keep_going {
+            self.progress.bar.abandon();
+            bail!(
+                "{} / {} on {} failed: {} (pass --keep-going to list failures in the report and go on)",
+                f.scene,
+                f.method,
+                f.backend,
+                f.error
+            );
+        }
+        self.progress.note(&format!(
+            "FAILED {} / {} on {}: {}",
+            f.scene, f.method, f.backend, f.error
+        ));
+        failures.push(f);
+        Ok(())
+    }
+
     fn reference(&mut self, job: &SceneJob) -> Result<Frame> {
         let (w, h) = job.quality_size;
         let settings = RenderSettings::new(w, h);
@@ -668,6 +717,31 @@ impl Runner<'_> {
         self.references_rendered += 1;
         self.progress.bar.inc(1);
         Ok(frame)
+    }
+
+    /// The edge classes of a scene at its quality size, from the AOVs of a
+    /// CPU NoAA frame at [`classes::SUBSAMPLES`]× the size per side (fewer
+    /// when that frame would be beyond [`subcone_scene::backend::MAX_PIXELS`]).
+    fn classes(&mut self, job: &SceneJob) -> Result<classes::ClassMasks> {
+        let (w, h) = job.quality_size;
+        let side = (1..=classes::SUBSAMPLES)
+            .rev()
+            .find(|s| {
+                let mut t = RenderSettings::new(w * s, h * s);
+                t.aovs = true;
+                t.validate().is_ok()
+            })
+            .unwrap_or(1);
+        self.progress.bar.set_message(format!(
+            "{}: edge classes from {side}x{side} sub-samples per pixel",
+            job.name
+        ));
+        let mut settings = RenderSettings::new(w * side, h * side);
+        settings.aovs = true;
+        let cpu = cli::backend("cpu")?;
+        let noaa = parse_method("noaa", "noaa")?;
+        let (sub, _) = render(cpu.as_ref(), &job.scene, &noaa, &settings)?;
+        classes::classify(&sub, side)
     }
 
     /// Reference, edge mask and the masks the crop heuristics need.
@@ -719,6 +793,7 @@ impl Runner<'_> {
         } else {
             None
         };
+        let classes = self.classes(job)?;
         self.progress.bar.inc(1);
         Ok(SceneQuality {
             reference,
@@ -727,6 +802,7 @@ impl Runner<'_> {
             noaa_error_base: noaa8,
             shadow,
             reflective,
+            classes,
         })
     }
 }
@@ -813,6 +889,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
         references_cached: 0,
     };
     let mut rows: Vec<ResultRow> = Vec::new();
+    let mut failures: Vec<Failure> = Vec::new();
     let mut all_crops: Vec<SceneCrops> = Vec::new();
     let mut plots = Vec::new();
 
@@ -853,10 +930,15 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                     Some(q)
                 }
                 Err(e) => {
-                    runner.progress.note(&format!(
-                        "{}: no reference, errors not measured: {e:#}",
-                        job.name
-                    ));
+                    runner.fail(
+                        &mut failures,
+                        Failure {
+                            scene: job.name.clone(),
+                            method: format!("reference {}", plan.reference),
+                            backend: "cpu".into(),
+                            error: format!("{e:#}"),
+                        },
+                    )?;
                     None
                 }
             }
@@ -884,13 +966,15 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                 let warm = match warm {
                     Ok((f, _)) => f,
                     Err(e) => {
-                        runner.progress.note(&format!("{e:#}"));
-                        skipped.push(Skipped {
-                            scene: job.name.clone(),
-                            method: mname,
-                            backend: bname.clone(),
-                            reason: format!("render failed: {e:#}"),
-                        });
+                        runner.fail(
+                            &mut failures,
+                            Failure {
+                                scene: job.name.clone(),
+                                method: mname,
+                                backend: bname.clone(),
+                                error: format!("{e:#}"),
+                            },
+                        )?;
                         runner
                             .progress
                             .bar
@@ -916,12 +1000,15 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                     runner.progress.bar.inc(1);
                 }
                 if let Some(e) = failed {
-                    skipped.push(Skipped {
-                        scene: job.name.clone(),
-                        method: mname,
-                        backend: bname.clone(),
-                        reason: format!("render failed: {e:#}"),
-                    });
+                    runner.fail(
+                        &mut failures,
+                        Failure {
+                            scene: job.name.clone(),
+                            method: mname,
+                            backend: bname.clone(),
+                            error: format!("{e:#}"),
+                        },
+                    )?;
                     continue;
                 }
                 let last = last.unwrap_or_else(|| warm.clone());
@@ -940,6 +1027,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                     flip_mean: None,
                     psnr_db: None,
                     edge_flip_mean: None,
+                    classes: None,
                     samples_per_pixel: last.stats.shaded_samples as f64 / px,
                     rays_per_pixel: last.stats.rays.total() as f64 / px,
                     buffer_mib: last.stats.buffer_bytes() as f64 / (1u64 << 20) as f64,
@@ -973,6 +1061,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                             row.flip_mean = Some(fl.mean);
                             row.psnr_db = Some(metrics::psnr(&q.reference, &img)?);
                             row.edge_flip_mean = metrics::masked_mean(&fl.map, &q.edges);
+                            row.classes = Some(classes::ClassFlip::measure(&fl.map, &q.classes));
                             row.quality_width = Some(img.width);
                             row.quality_height = Some(img.height);
                             row.reference = Some(plan.reference.to_string());
@@ -989,7 +1078,15 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                                 crop_images.push((mname.clone(), img));
                             }
                         }
-                        Err(e) => runner.progress.note(&format!("{e:#}")),
+                        Err(e) => runner.fail(
+                            &mut failures,
+                            Failure {
+                                scene: job.name.clone(),
+                                method: format!("{mname} (quality render)"),
+                                backend: bname.clone(),
+                                error: format!("{e:#}"),
+                            },
+                        )?,
                     }
                 }
                 rows.push(row);
@@ -1074,7 +1171,15 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                             Ok((f, wall)) if k > 0 => t.push(wall, &f),
                             Ok(_) => {}
                             Err(e) => {
-                                runner.progress.note(&format!("sweep: {e:#}"));
+                                runner.fail(
+                                    &mut failures,
+                                    Failure {
+                                        scene: job.name.clone(),
+                                        method: format!("{m} (sweep at {side}x{side})"),
+                                        backend: bname.clone(),
+                                        error: format!("{e:#}"),
+                                    },
+                                )?;
                                 ok = false;
                             }
                         }
@@ -1098,6 +1203,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                             flip_mean: None,
                             psnr_db: None,
                             edge_flip_mean: None,
+                            classes: None,
                             samples_per_pixel: f64::NAN,
                             rays_per_pixel: f64::NAN,
                             buffer_mib: f64::NAN,
@@ -1148,6 +1254,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
         rows,
         sweep,
         skipped,
+        failures,
         unavailable_scenes: unavailable,
         crops: all_crops,
         references_rendered: runner.references_rendered,

@@ -14,12 +14,13 @@ use anyhow::{anyhow, Result};
 use image::ImageEncoder;
 use serde_json::{json, Map, Value};
 
+use super::classes::{self, Verdict, CLASSES};
 use super::metrics::Rgb8;
 use super::reference::{code_version, write_atomic};
 use super::{crops, file_safe, kernel_timing, Mode, ReportSummary, ResultRow};
 
 /// The columns every results file has, in order.
-pub const BASE_COLUMNS: [&str; 19] = [
+pub const BASE_COLUMNS: [&str; 31] = [
     "scene",
     "method",
     "backend",
@@ -39,6 +40,18 @@ pub const BASE_COLUMNS: [&str; 19] = [
     "quality_width",
     "quality_height",
     "reference",
+    "flip_silhouette",
+    "flip_crease",
+    "flip_shadow",
+    "flip_texture",
+    "flip_reflection",
+    "flip_flat",
+    "px_silhouette",
+    "px_crease",
+    "px_shadow",
+    "px_texture",
+    "px_reflection",
+    "px_flat",
 ];
 
 /// SRAA for ray tracing, Table 1: Sponza, (side, pass 1 ms, pass 2 ms, total ms).
@@ -171,6 +184,17 @@ fn row_cells(r: &ResultRow, passes: &[String]) -> Vec<Cell> {
             .unwrap_or(Cell::Empty),
         r.reference.clone().map(Cell::Text).unwrap_or(Cell::Empty),
     ];
+    // flip_<class> then px_<class>, in `classes::CLASSES` order.
+    for class in CLASSES {
+        c.push(opt(r.classes.and_then(|k| k.flip[class.index()])));
+    }
+    for class in CLASSES {
+        c.push(
+            r.classes
+                .map(|k| Cell::Int(k.px[class.index()]))
+                .unwrap_or(Cell::Empty),
+        );
+    }
     for p in passes {
         c.push(opt(r.pass(p.trim_start_matches("ms_"))));
     }
@@ -274,6 +298,9 @@ pub fn json(s: &ReportSummary, ctx: &Context) -> Value {
         "skipped": s.skipped.iter().map(|k| json!({
             "scene": k.scene, "method": k.method, "backend": k.backend, "reason": k.reason,
         })).collect::<Vec<_>>(),
+        "failures": s.failures.iter().map(|k| json!({
+            "scene": k.scene, "method": k.method, "backend": k.backend, "error": k.error,
+        })).collect::<Vec<_>>(),
         "unavailable_scenes": s.unavailable_scenes.iter().map(|(n, r)| json!({
             "scene": n, "reason": r,
         })).collect::<Vec<_>>(),
@@ -342,6 +369,10 @@ which leaving out passes a scene does not need (shadows, reflections) keeps down
 faster method beats.\n"
     );
 
+    if ctx.mode != Mode::TimingOnly {
+        md.push_str(&rules());
+    }
+
     for sc in &ctx.scenes {
         let rows: Vec<&ResultRow> = s.rows.iter().filter(|r| r.scene == sc.name).collect();
         let _ = writeln!(md, "## {}\n", sc.name);
@@ -397,6 +428,7 @@ faster method beats.\n"
                 "![{0}: time per pass](plots/{1}_passes.png)\n",
                 sc.name, stem
             );
+            md.push_str(&class_section(&sc.name, &rows));
         }
         let skipped: Vec<_> = s.skipped.iter().filter(|k| k.scene == sc.name).collect();
         if !skipped.is_empty() {
@@ -462,6 +494,18 @@ faster method beats.\n"
         let _ = writeln!(md);
     }
 
+    if !s.failures.is_empty() {
+        let _ = writeln!(md, "## Failures\n");
+        for k in &s.failures {
+            let _ = writeln!(
+                md,
+                "- {} / {} on {}: {}",
+                k.scene, k.method, k.backend, k.error
+            );
+        }
+        let _ = writeln!(md);
+    }
+
     md.push_str(&sdf_pick(s, ctx));
     md.push_str(&paper_comparison(s, ctx));
     md.push_str(&targets(s, ctx));
@@ -480,6 +524,108 @@ leaving out geometric edges; without reflective pixels, the most NoAA error off 
 away from the shadow window.\n"
     );
     md
+}
+
+/// The edge classes' definitions and thresholds, and the rules of judgement.
+pub fn rules() -> String {
+    let mut md = String::new();
+    let _ = writeln!(
+        md,
+        "## Edge classes and the rules of judgement\n\n\
+Every pixel is classified from its own sub-samples: the AOVs of a CPU NoAA frame rendered at \
+{s}× the quality size on each side, so each pixel has a {s}×{s} grid of sub-samples (fewer per side \
+only where that frame would pass the pixel limit). A feature the one NoAA sample misses is still \
+seen by a sub-sample. The classes may overlap; *flat* is a pixel in none of the others.\n\n\
+| class | a pixel is in it when |\n|---|---|\n\
+| silhouette | two 4-neighbouring sub-samples of the pixel see a surface and the background, or view depths that differ by more than {d} relatively, unless the inverse depth continues linearly from either side (as across one plane) |\n\
+| crease | two 4-neighbouring sub-samples on one continuous surface (no silhouette between them) have normals whose cosine is below {c} |\n\
+| shadow | no silhouette or crease in the pixel, and the per-light visibility of its surface sub-samples differs (a light that faces away counts as visible) |\n\
+| texture | no silhouette or crease in the pixel, and its surface sub-samples' albedo differs by more than {t} in some channel of √albedo |\n\
+| reflection | a sub-sample sees a mirror (reflectance above 0) |\n\
+| flat | none of the above |\n\n\
+`flip_<class>` is the mean FLIP over the class's pixels and `px_<class>` their count (in \
+`results.csv` and `results.json`).\n\n\
+Which classes each method claims to fix:\n\n\
+| method | claimed classes |\n|---|---|\n\
+| ssaaN, ssaaN+ctss | all |\n\
+| sraa | silhouette, crease |\n\
+| sraa-rt | silhouette, crease, shadow, reflection |\n\
+| `+mat` variants | adds texture |\n\
+| ctss, ctss-r, ctss-delayed | silhouette |\n\
+| ctss+edges | silhouette, crease |\n\
+| fxaa, smaa | silhouette, crease, shadow, texture (luminance edges of any origin) |\n\n\
+A method **beats NoAA** on a class when its FLIP there is at most {b} × NoAA's (same scene and \
+backend). It **holds on flat** when its flat FLIP is at most {f} × NoAA's, and **loses** on \
+flat otherwise. Each scene's verdict lines are computed from the rows by these rules; a claimed \
+class with no pixel in the scene is listed as having none.\n",
+        s = classes::SUBSAMPLES,
+        d = classes::SILHOUETTE_DEPTH,
+        c = classes::CREASE_COS,
+        t = classes::TEXTURE_ALBEDO,
+        b = classes::BEAT_FACTOR,
+        f = classes::FLAT_FACTOR,
+    );
+    md
+}
+
+/// A scene's FLIP by class (table and chart) and its verdict lines.
+fn class_section(scene: &str, rows: &[&ResultRow]) -> String {
+    let mut md = String::new();
+    let with: Vec<&&ResultRow> = rows.iter().filter(|r| r.classes.is_some()).collect();
+    let Some(first) = with.first().and_then(|r| r.classes) else {
+        return md;
+    };
+    let _ = writeln!(md, "FLIP by edge class (pixels per class in the header):\n");
+    let head: Vec<String> = CLASSES
+        .iter()
+        .map(|c| format!("{c} ({} px)", first.px[c.index()]))
+        .collect();
+    let _ = writeln!(md, "| method | backend | {} |", head.join(" | "));
+    let _ = writeln!(md, "|---|---|{}", "--:|".repeat(CLASSES.len()));
+    for r in &with {
+        let k = r.classes.unwrap_or_default();
+        let cells: Vec<String> = CLASSES.iter().map(|c| f(k.flip[c.index()], 4)).collect();
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} |",
+            r.method,
+            r.backend,
+            cells.join(" | ")
+        );
+    }
+    let _ = writeln!(
+        md,
+        "\n![{scene}: FLIP by edge class](plots/{}_classes.png)\n",
+        file_safe(scene)
+    );
+    let verdicts = verdicts(rows);
+    if !verdicts.is_empty() {
+        let _ = writeln!(md, "Verdicts against NoAA:\n");
+        for (backend, v) in &verdicts {
+            let _ = writeln!(md, "{}", v.line(backend));
+        }
+        let _ = writeln!(md);
+    }
+    md
+}
+
+/// The verdict of every method but NoAA among `rows` (one scene), against
+/// NoAA on the same backend: (backend, verdict).
+pub fn verdicts(rows: &[&ResultRow]) -> Vec<(String, Verdict)> {
+    let mut out = Vec::new();
+    for r in rows {
+        if r.method == "noaa" {
+            continue;
+        }
+        let noaa = rows
+            .iter()
+            .find(|n| n.method == "noaa" && n.backend == r.backend && n.scene == r.scene)
+            .and_then(|n| n.classes);
+        if let (Some(it), Some(noaa)) = (r.classes, noaa) {
+            out.push((r.backend.clone(), Verdict::judge(&r.method, &it, &noaa)));
+        }
+    }
+    out
 }
 
 fn rows_for<'a>(s: &'a [ResultRow], method: &str, backend: &str) -> Vec<&'a ResultRow> {
@@ -879,6 +1025,7 @@ mod tests {
             flip_mean: Some(0.125),
             psnr_db: Some(f64::INFINITY),
             edge_flip_mean: None,
+            classes: None,
             samples_per_pixel: 1.0,
             rays_per_pixel: 2.0,
             buffer_mib: 0.5,
@@ -886,6 +1033,15 @@ mod tests {
             quality_height: Some(2),
             reference: Some("ssaa64".into()),
             pass_ms: passes.iter().map(|(n, v)| (n.to_string(), *v)).collect(),
+        }
+    }
+
+    #[test]
+    fn every_class_has_its_two_columns() {
+        for c in CLASSES {
+            for col in [format!("flip_{c}"), format!("px_{c}")] {
+                assert!(BASE_COLUMNS.contains(&col.as_str()), "no column {col}");
+            }
         }
     }
 

@@ -11,6 +11,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::{register_font, FontStyle};
 
+use super::classes::{ClassFlip, CLASSES};
 use super::metrics::Rgb8;
 use super::{file_safe, output, ResultRow};
 
@@ -345,10 +346,94 @@ where
     Ok(())
 }
 
+/// FLIP by edge class: one group of bars per class, one bar per method.
+fn draw_classes<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    scene: &str,
+    rows: &[&ResultRow],
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let e = "edge-class plot";
+    root.fill(&WHITE).map_err(pe(e))?;
+    let backends = {
+        let mut b: Vec<&str> = rows.iter().map(|r| r.backend.as_str()).collect();
+        b.sort();
+        b.dedup();
+        b.len()
+    };
+    let bars: Vec<(String, String, ClassFlip)> = rows
+        .iter()
+        .filter_map(|r| r.classes.map(|k| (label(r, backends), r.method.clone(), k)))
+        .collect();
+    let ymax = bars
+        .iter()
+        .flat_map(|b| b.2.flip.iter().flatten().copied())
+        .fold(0.0, f64::max);
+    let size = (PLOT_SIZE.1 / 32) as i32;
+    let n = CLASSES.len();
+    let px = bars.first().map(|b| b.2.px).unwrap_or_default();
+    let mut chart = ChartBuilder::on(root)
+        .caption(format!("{scene}: FLIP by edge class"), (FAMILY, size + 4))
+        .margin(16)
+        .x_label_area_size(50)
+        .y_label_area_size(70)
+        .build_cartesian_2d(0.0..n as f64, 0.0..(ymax * 1.15).max(1e-3))
+        .map_err(pe(e))?;
+    chart
+        .configure_mesh()
+        .disable_x_mesh()
+        .x_labels(2 * n + 1)
+        .x_label_formatter(&|v| {
+            let i = (v - 0.5).round();
+            if (v - 0.5 - i).abs() < 1e-6 && i >= 0.0 && (i as usize) < n {
+                let c = CLASSES[i as usize];
+                format!("{c} ({} px)", px[c.index()])
+            } else {
+                String::new()
+            }
+        })
+        .y_desc("mean FLIP over the class's pixels")
+        .label_style((FAMILY, size - 6))
+        .axis_desc_style((FAMILY, size - 2))
+        .draw()
+        .map_err(pe(e))?;
+    let k = bars.len().max(1) as f64;
+    let width = 0.8 / k;
+    for (bi, (name, method, flips)) in bars.iter().enumerate() {
+        let c = method_colour(method);
+        let rects: Vec<_> = CLASSES
+            .iter()
+            .filter_map(|cl| {
+                let v = flips.flip[cl.index()]?;
+                let x0 = cl.index() as f64 + 0.1 + bi as f64 * width;
+                Some(Rectangle::new([(x0, 0.0), (x0 + width, v)], c.filled()))
+            })
+            .collect();
+        chart
+            .draw_series(rects)
+            .map_err(pe(e))?
+            .label(name.clone())
+            .legend(move |(x, y)| Rectangle::new([(x, y - 6), (x + 14, y + 6)], c.filled()));
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.4))
+        .label_font((FAMILY, size - 6))
+        .draw()
+        .map_err(pe(e))?;
+    root.present().map_err(pe(e))?;
+    Ok(())
+}
+
 #[derive(Clone, Copy)]
 enum Kind {
     ErrorTime,
     Passes,
+    Classes,
 }
 
 fn draw<DB: DrawingBackend>(
@@ -363,6 +448,7 @@ where
     match kind {
         Kind::ErrorTime => draw_error_time(root, scene, rows),
         Kind::Passes => draw_passes(root, scene, rows),
+        Kind::Classes => draw_classes(root, scene, rows),
     }
 }
 
@@ -398,9 +484,9 @@ fn both(
     Ok(vec![png_path, svg_path])
 }
 
-/// The two plots of a scene, as PNG and SVG in `dir`:
-/// `<scene>_flip_vs_time` (only when errors were measured) and
-/// `<scene>_passes`.
+/// The plots of a scene, as PNG and SVG in `dir`: `<scene>_flip_vs_time`
+/// and `<scene>_classes` (FLIP by edge class; both only when errors were
+/// measured) and `<scene>_passes`.
 pub fn scene_plots(dir: &Path, scene: &str, rows: &[&ResultRow]) -> Result<Vec<PathBuf>> {
     if rows.is_empty() {
         return Ok(Vec::new());
@@ -415,6 +501,15 @@ pub fn scene_plots(dir: &Path, scene: &str, rows: &[&ResultRow]) -> Result<Vec<P
             scene,
             rows,
             Kind::ErrorTime,
+        )?);
+    }
+    if rows.iter().any(|r| r.classes.is_some()) {
+        out.extend(both(
+            dir,
+            &format!("{stem}_classes"),
+            scene,
+            rows,
+            Kind::Classes,
         )?);
     }
     out.extend(both(

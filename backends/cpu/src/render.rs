@@ -87,27 +87,42 @@ pub fn supersample(t: &Tracer, method: &Method, s: &RenderSettings, passes: Pass
     };
     if s.aovs {
         frame.samples_per_pixel = Some(vec![(n * n) as f32; w * h]);
-        let (depth, normal) = centre_geometry(t, s);
-        frame.depth = Some(depth);
-        frame.normal = Some(normal);
+        centre_aovs(t, s, &mut frame);
     }
     frame
 }
 
-/// Depth and normal of the ray through each pixel centre (AOVs; not timed).
-fn centre_geometry(t: &Tracer, s: &RenderSettings) -> (Vec<f32>, Vec<Vec3>) {
+/// The AOVs of the ray through each pixel centre (not timed): view depth,
+/// normal, albedo, per-light visibility and mirror reflectance.
+fn centre_aovs(t: &Tracer, s: &RenderSettings, frame: &mut Frame) {
     let w = s.width as usize;
-    let g: Vec<Geometry> = (0..w * s.height as usize)
+    let lights = t.scene.lights.len().min(MAX_LIGHTS);
+    let g: Vec<(Geometry, Vec3, u32, f32)> = (0..w * s.height as usize)
         .into_par_iter()
         .map(|i| {
             let (o, d) = t.camera.ray(pixel_centre(i % w, i / w), s.width, s.height);
-            t.primary_geometry(t.intersect(o, d, 0.0).as_ref())
+            let hit = t.intersect(o, d, 0.0);
+            let (visible, mirror) = match &hit {
+                Some(h) => (
+                    t.light_visibility(h),
+                    t.scene.materials[h.material as usize].mirror,
+                ),
+                None => (0, 0.0),
+            };
+            let visible = visible & ((1u64 << lights) - 1) as u32;
+            (
+                t.primary_geometry(hit.as_ref()),
+                t.primary_albedo(hit.as_ref()),
+                visible,
+                mirror,
+            )
         })
         .collect();
-    (
-        g.iter().map(|g| g.depth).collect(),
-        g.iter().map(|g| g.normal).collect(),
-    )
+    frame.depth = Some(g.iter().map(|g| g.0.depth).collect());
+    frame.normal = Some(g.iter().map(|g| g.0.normal).collect());
+    frame.albedo = Some(g.iter().map(|g| g.1).collect());
+    frame.light_visibility = Some(g.iter().map(|g| g.2).collect());
+    frame.mirror = Some(g.iter().map(|g| g.3).collect());
 }
 
 /// Buffers of one frame, allocated only for the passes it runs (shared with
@@ -530,9 +545,7 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
         ..Default::default()
     };
     if s.aovs {
-        let (depth, normal) = centre_geometry(t, s);
-        frame.depth = Some(depth);
-        frame.normal = Some(normal);
+        centre_aovs(t, s, &mut frame);
         frame.samples_per_pixel = Some(vec![1.0; n]);
     }
     frame

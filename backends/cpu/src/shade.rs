@@ -218,6 +218,28 @@ impl<'a> Tracer<'a> {
         bits
     }
 
+    /// Per-light visibility of `s` for the AOV (`Frame::light_visibility`):
+    /// bit `l` set when no geometry blocks the segment to light `l`. A light
+    /// the surface faces away from is counted visible without a ray: its
+    /// cosine falls smoothly to 0, so turning away is no shadow edge.
+    pub fn light_visibility(&self, s: &Surface) -> u32 {
+        let mut bits = 0;
+        let origin = s.p + s.ng * self.eps;
+        for (l, light) in self.scene.lights.iter().enumerate().take(MAX_LIGHTS) {
+            let Some(inc) = light.incident(s.p) else {
+                continue;
+            };
+            if inc.direction.dot(s.ng) <= 0.0
+                || !self
+                    .bvh
+                    .occluded(origin, inc.direction, 0.0, inc.distance - self.eps)
+            {
+                bits |= 1 << l;
+            }
+        }
+        bits
+    }
+
     /// Shade a surface seen along `d`: the split parts (without the reflection).
     pub fn parts(&self, s: &Surface, shadowed: u32) -> Parts {
         let mat = &self.scene.materials[s.material as usize];

@@ -633,14 +633,17 @@ impl<F: SdfField> SdfView<'_, F> {
         frame
     }
 
-    /// Depth and normal through each pixel centre (AOVs; not timed).
+    /// The AOVs through each pixel centre (not timed): view depth, normal,
+    /// albedo, per-light visibility (a light the surface faces away from
+    /// counts as visible, as on triangles) and mirror reflectance.
     fn centre_aovs(&self, frame: &mut Frame, s: &RenderSettings) {
         let w = s.width as usize;
         let plain = self.params(
             self.camera.cone_tan_theta(s.height, 1.0),
             &Method::new(Technique::NoAa),
         );
-        let g: Vec<(f32, Vec3)> = (0..w * s.height as usize)
+        let lights = self.lights.len().min(subcone_kernels::passes::MAX_LIGHTS);
+        let g: Vec<(f32, Vec3, Vec3, u32, f32)> = (0..w * s.height as usize)
             .into_par_iter()
             .map(|i| {
                 let (o, d) = self.camera.ray(
@@ -655,17 +658,46 @@ impl<F: SdfField> SdfView<'_, F> {
                 match sphere_trace_split(&plain, o, d, split).t {
                     Some(t) => {
                         let q = o + t * d;
+                        let n = self.normal_at(q, t, plain.tan_theta);
+                        let (_, _, m) = self.field.eval_split(q);
+                        let mat = &self.materials
+                            [(m as usize).min(self.materials.len().saturating_sub(1))];
+                        let facing = if n.dot(d) > 0.0 { -n } else { n };
+                        let mut visible = 0u32;
+                        let mut tally = Tally::default();
+                        for (l, light) in self.lights.iter().enumerate().take(lights) {
+                            let Some(inc) = light.incident(q) else {
+                                continue;
+                            };
+                            if inc.direction.dot(facing) <= 0.0
+                                || !self.shadowed(
+                                    q,
+                                    facing,
+                                    inc.direction,
+                                    inc.distance,
+                                    &mut tally,
+                                )
+                            {
+                                visible |= 1 << l;
+                            }
+                        }
                         (
                             self.camera.view_depth(q),
-                            self.normal_at(q, t, plain.tan_theta),
+                            n,
+                            mat.albedo_at(q, Vec2::ZERO),
+                            visible,
+                            mat.mirror,
                         )
                     }
-                    None => (f32::INFINITY, Vec3::ZERO),
+                    None => (f32::INFINITY, Vec3::ZERO, Vec3::ZERO, 0, 0.0),
                 }
             })
             .collect();
         frame.depth = Some(g.iter().map(|g| g.0).collect());
         frame.normal = Some(g.iter().map(|g| g.1).collect());
+        frame.albedo = Some(g.iter().map(|g| g.2).collect());
+        frame.light_visibility = Some(g.iter().map(|g| g.3).collect());
+        frame.mirror = Some(g.iter().map(|g| g.4).collect());
     }
 
     /// Render a frame (the semi-transparent path when the scene has

@@ -1,0 +1,623 @@
+//! Edge classes: which pixels need antialiasing, and why.
+//!
+//! A pixel is classified from its own **sub-samples**: the AOVs (view depth,
+//! normal, albedo, per-light visibility, mirror reflectance) of a NoAA frame
+//! rendered by the CPU reference at [`SUBSAMPLES`]× the quality size on each
+//! side, so sub-sample `(i, j)` of pixel `(x, y)` is pixel
+//! `(SUBSAMPLES·x + i, SUBSAMPLES·y + j)` of that frame: the centre of cell
+//! `(i, j)` of a regular `SUBSAMPLES × SUBSAMPLES` grid over the pixel. A
+//! feature that the one NoAA sample through the pixel centre misses (a thin
+//! pole, a shadow corner) is still seen by some sub-sample, so the pixel is
+//! not called flat.
+//!
+//! The classes may overlap; *flat* is a pixel in none of the others.
+//!
+//! | class | a pixel is in it when |
+//! |---|---|
+//! | silhouette | two 4-neighbouring sub-samples of the pixel see a surface and the background, or view depths that differ by more than [`SILHOUETTE_DEPTH`] relatively, unless the inverse depth continues linearly from either side (as across one plane, however grazing) |
+//! | crease | two 4-neighbouring sub-samples on one continuous surface (no silhouette between them) have normals whose cosine is below [`CREASE_COS`] |
+//! | shadow | no silhouette or crease in the pixel, and the per-light visibility of its surface sub-samples differs (some see a light that others do not) |
+//! | texture | no silhouette or crease in the pixel, and the albedo of its surface sub-samples differs by more than [`TEXTURE_ALBEDO`] in some channel of `√albedo` |
+//! | reflection | a sub-sample sees a mirror (reflectance above 0) |
+//! | flat | none of the above |
+
+use anyhow::{bail, Result};
+use glam::Vec3;
+use subcone_scene::Frame;
+
+/// Sub-samples per pixel side: the classes see a 4×4 grid in each pixel.
+pub const SUBSAMPLES: u32 = 4;
+/// Relative view-depth difference between neighbouring sub-samples above
+/// which they see different surfaces (the edge mask's threshold, 2 %).
+pub const SILHOUETTE_DEPTH: f32 = 0.02;
+/// Cosine between neighbouring sub-samples' normals below which one surface
+/// folds inside the pixel (about 26°; the edge mask's threshold).
+pub const CREASE_COS: f32 = 0.9;
+/// Difference of `√albedo` in one channel above which the albedo changes
+/// inside the pixel: about 13 sRGB codes at mid-grey, so a printed pattern or
+/// a texture step counts and texture noise of a few codes does not.
+pub const TEXTURE_ALBEDO: f32 = 0.05;
+
+/// An edge class.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Class {
+    /// Different surfaces, or a surface and the background, inside the pixel.
+    Silhouette,
+    /// One continuous surface folds inside the pixel.
+    Crease,
+    /// Smooth geometry, but a light's visibility changes inside the pixel.
+    Shadow,
+    /// Smooth geometry, but the albedo changes inside the pixel.
+    Texture,
+    /// The pixel sees a mirror.
+    Reflection,
+    /// None of the above.
+    Flat,
+}
+
+/// Every class, in column order.
+pub const CLASSES: [Class; 6] = [
+    Class::Silhouette,
+    Class::Crease,
+    Class::Shadow,
+    Class::Texture,
+    Class::Reflection,
+    Class::Flat,
+];
+
+impl Class {
+    /// The name used in columns (`flip_<name>`, `px_<name>`) and the report.
+    pub fn name(self) -> &'static str {
+        match self {
+            Class::Silhouette => "silhouette",
+            Class::Crease => "crease",
+            Class::Shadow => "shadow",
+            Class::Texture => "texture",
+            Class::Reflection => "reflection",
+            Class::Flat => "flat",
+        }
+    }
+
+    /// Index in [`CLASSES`].
+    pub fn index(self) -> usize {
+        self as usize
+    }
+}
+
+impl std::fmt::Display for Class {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// One mask per class over a `width × height` image.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ClassMasks {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// The masks, indexed by [`Class::index`], row-major.
+    pub masks: [Vec<bool>; 6],
+}
+
+impl ClassMasks {
+    /// The mask of `class`.
+    pub fn mask(&self, class: Class) -> &[bool] {
+        &self.masks[class.index()]
+    }
+
+    /// Pixels in `class`.
+    pub fn count(&self, class: Class) -> u64 {
+        self.mask(class).iter().filter(|&&m| m).count() as u64
+    }
+}
+
+/// The AOVs a classification needs, checked against the frame size.
+struct Aovs<'a> {
+    w: usize,
+    h: usize,
+    depth: &'a [f32],
+    normal: &'a [Vec3],
+    albedo: &'a [Vec3],
+    visibility: &'a [u32],
+    mirror: &'a [f32],
+}
+
+impl<'a> Aovs<'a> {
+    fn of(f: &'a Frame) -> Result<Self> {
+        let (w, h) = (f.width as usize, f.height as usize);
+        let (Some(depth), Some(normal), Some(albedo), Some(visibility), Some(mirror)) = (
+            f.depth.as_deref(),
+            f.normal.as_deref(),
+            f.albedo.as_deref(),
+            f.light_visibility.as_deref(),
+            f.mirror.as_deref(),
+        ) else {
+            bail!(
+                "the sub-sample frame lacks an AOV: classes need depth, normal, albedo, \
+                 light visibility and mirror (render with aovs = true on the cpu backend)"
+            );
+        };
+        let n = w * h;
+        if [
+            depth.len(),
+            normal.len(),
+            albedo.len(),
+            visibility.len(),
+            mirror.len(),
+        ]
+        .iter()
+        .any(|&l| l != n)
+        {
+            bail!("the sub-sample AOVs do not match the frame size {w}x{h}");
+        }
+        Ok(Aovs {
+            w,
+            h,
+            depth,
+            normal,
+            albedo,
+            visibility,
+            mirror,
+        })
+    }
+
+    fn hit(&self, i: usize) -> bool {
+        self.depth[i].is_finite()
+    }
+
+    /// Whether sub-samples `a` and `b` (4-neighbours) see different surfaces.
+    /// `oa` is `a`'s neighbour on the same line away from `b`, `ob` is `b`'s:
+    /// inverse view depth is affine in screen space on a plane, so a plane
+    /// extrapolates from either side however grazing it is, a true
+    /// discontinuity from neither.
+    fn silhouette(&self, a: usize, b: usize, oa: Option<usize>, ob: Option<usize>) -> bool {
+        let (da, db) = (self.depth[a], self.depth[b]);
+        let (fa, fb) = (da.is_finite(), db.is_finite());
+        if fa != fb {
+            return true;
+        }
+        if !fa {
+            return false;
+        }
+        let scale = da.abs().min(db.abs()).max(1e-6);
+        if (da - db).abs() / scale <= SILHOUETTE_DEPTH {
+            return false;
+        }
+        let planar = |p: usize, o: Option<usize>, q: usize| -> bool {
+            let Some(o) = o else { return false };
+            if !self.depth[o].is_finite() {
+                return false;
+            }
+            let (ip, io, iq) = (
+                1.0 / self.depth[p],
+                1.0 / self.depth[o],
+                1.0 / self.depth[q],
+            );
+            ((2.0 * ip - io) - iq).abs() <= SILHOUETTE_DEPTH * ip.max(iq)
+        };
+        !planar(a, oa, b) && !planar(b, ob, a)
+    }
+
+    /// Whether the normals of `a` and `b` (both surface points) fold.
+    fn crease(&self, a: usize, b: usize) -> bool {
+        let (na, nb) = (self.normal[a], self.normal[b]);
+        na.is_finite()
+            && nb.is_finite()
+            && na.length_squared() > 0.25
+            && nb.length_squared() > 0.25
+            && na.normalize().dot(nb.normalize()) < CREASE_COS
+    }
+}
+
+/// Classify every pixel of a `sub.width / side × sub.height / side` image
+/// from `sub`, a frame rendered at `side`× that size on each side with the
+/// AOVs [`Frame::albedo`], [`Frame::light_visibility`], [`Frame::mirror`],
+/// depth and normal (the CPU backend records them all).
+///
+/// Errors when an AOV is missing, the sizes disagree or `side` is 0; never
+/// panics on NaN or infinite AOV values (a NaN depth is a miss, a NaN normal
+/// never creases, NaN albedo never differs).
+pub fn classify(sub: &Frame, side: u32) -> Result<ClassMasks> {
+    if side == 0 || sub.width % side != 0 || sub.height % side != 0 {
+        bail!(
+            "a {}x{} sub-sample frame does not divide into {side}x{side} sub-samples per pixel",
+            sub.width,
+            sub.height
+        );
+    }
+    let a = Aovs::of(sub)?;
+    let s = side as usize;
+    let (w, h) = (a.w / s, a.h / s);
+    let mut masks: [Vec<bool>; 6] = std::array::from_fn(|_| vec![false; w * h]);
+    for py in 0..h {
+        for px in 0..w {
+            let mut silhouette = false;
+            let mut crease = false;
+            let (mut vis_or, mut vis_and) = (0u32, u32::MAX);
+            let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+            let mut mirror = false;
+            let mut surfaces = 0;
+            for j in 0..s {
+                for i in 0..s {
+                    let (x, y) = (px * s + i, py * s + j);
+                    let k = y * a.w + x;
+                    // Pairs inside the pixel: with the right and lower neighbour.
+                    if i + 1 < s {
+                        let oa = (x > 0).then(|| k - 1);
+                        let ob = (x + 2 < a.w).then(|| k + 2);
+                        let sil = a.silhouette(k, k + 1, oa, ob);
+                        silhouette |= sil;
+                        crease |= !sil && a.hit(k) && a.hit(k + 1) && a.crease(k, k + 1);
+                    }
+                    if j + 1 < s {
+                        let oa = (y > 0).then(|| k - a.w);
+                        let ob = (y + 2 < a.h).then(|| k + 2 * a.w);
+                        let sil = a.silhouette(k, k + a.w, oa, ob);
+                        silhouette |= sil;
+                        crease |= !sil && a.hit(k) && a.hit(k + a.w) && a.crease(k, k + a.w);
+                    }
+                    mirror |= a.mirror[k] > 0.0;
+                    if a.hit(k) {
+                        surfaces += 1;
+                        vis_or |= a.visibility[k];
+                        vis_and &= a.visibility[k];
+                        let c = a.albedo[k].max(Vec3::ZERO);
+                        let e = Vec3::new(c.x.sqrt(), c.y.sqrt(), c.z.sqrt());
+                        if e.is_finite() {
+                            lo = lo.min(e);
+                            hi = hi.max(e);
+                        }
+                    }
+                }
+            }
+            let smooth = !silhouette && !crease;
+            let shadow = smooth && surfaces > 1 && vis_or != vis_and;
+            let texture = smooth && lo.x.is_finite() && (hi - lo).max_element() > TEXTURE_ALBEDO;
+            let p = py * w + px;
+            masks[Class::Silhouette.index()][p] = silhouette;
+            masks[Class::Crease.index()][p] = crease;
+            masks[Class::Shadow.index()][p] = shadow;
+            masks[Class::Texture.index()][p] = texture;
+            masks[Class::Reflection.index()][p] = mirror;
+            masks[Class::Flat.index()][p] = !(silhouette || crease || shadow || texture || mirror);
+        }
+    }
+    Ok(ClassMasks {
+        width: w as u32,
+        height: h as u32,
+        masks,
+    })
+}
+
+/// The classes a method claims to fix: where it should beat NoAA.
+///
+/// | method | claimed |
+/// |---|---|
+/// | `ssaaN`, `ssaaN+ctss` | every class but flat |
+/// | `sraa` | silhouette, crease |
+/// | `sraa-rt` | silhouette, crease, shadow, reflection |
+/// | `+mat` variants | adds texture |
+/// | `ctss`, `ctss-r`, `-delayed` variants | silhouette |
+/// | `ctss+edges` | silhouette, crease |
+/// | `fxaa`, `smaa` | silhouette, crease, shadow, texture (luminance edges of any origin) |
+///
+/// `noaa` claims nothing; an unknown method claims nothing.
+pub fn claimed(method: &str) -> Vec<Class> {
+    use Class::*;
+    let base = method.strip_suffix("-delayed").unwrap_or(method);
+    let (base, mat) = match base.strip_suffix("+mat") {
+        Some(b) => (b, true),
+        None => (base, false),
+    };
+    let mut c = match base {
+        "sraa" => vec![Silhouette, Crease],
+        "sraa-rt" => vec![Silhouette, Crease, Shadow, Reflection],
+        "ctss" | "ctss-r" => vec![Silhouette],
+        "ctss+edges" => vec![Silhouette, Crease],
+        "fxaa" | "smaa" => vec![Silhouette, Crease, Shadow, Texture],
+        b if b.starts_with("ssaa") => vec![Silhouette, Crease, Shadow, Texture, Reflection],
+        _ => Vec::new(),
+    };
+    if mat && !c.contains(&Texture) && !c.is_empty() {
+        c.push(Texture);
+        c.sort();
+    }
+    c
+}
+
+/// A method beats NoAA on a class when its FLIP there is at most this
+/// factor of NoAA's.
+pub const BEAT_FACTOR: f64 = 0.95;
+/// A method holds on flat pixels when its flat FLIP is at most this factor
+/// of NoAA's.
+pub const FLAT_FACTOR: f64 = 1.02;
+
+/// The per-class FLIP of one result: `flip[c]` is the mean FLIP over the
+/// pixels of class `c` (`None` where the class has no pixel), `px[c]` their
+/// count, both indexed by [`Class::index`].
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ClassFlip {
+    /// Mean FLIP per class.
+    pub flip: [Option<f64>; 6],
+    /// Pixels per class.
+    pub px: [u64; 6],
+}
+
+impl ClassFlip {
+    /// Mean FLIP map values per class.
+    pub fn measure(map: &[f32], masks: &ClassMasks) -> Self {
+        let mut out = ClassFlip::default();
+        for c in CLASSES {
+            out.flip[c.index()] = super::metrics::masked_mean(map, masks.mask(c));
+            out.px[c.index()] = masks.count(c);
+        }
+        out
+    }
+}
+
+/// How one method fares against NoAA on one scene and backend.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Verdict {
+    /// The method.
+    pub method: String,
+    /// Claimed classes it beats: (class, its FLIP, NoAA's).
+    pub beats: Vec<(Class, f64, f64)>,
+    /// Claimed classes it does not beat.
+    pub misses: Vec<(Class, f64, f64)>,
+    /// Claimed classes with no pixel in the scene.
+    pub absent: Vec<Class>,
+    /// Flat pixels: (its FLIP, NoAA's), when the scene has any.
+    pub flat: Option<(f64, f64)>,
+}
+
+impl Verdict {
+    /// Judge `method` from its per-class FLIP against NoAA's on the same
+    /// scene, backend and class masks.
+    pub fn judge(method: &str, it: &ClassFlip, noaa: &ClassFlip) -> Verdict {
+        let mut v = Verdict {
+            method: method.to_string(),
+            beats: Vec::new(),
+            misses: Vec::new(),
+            absent: Vec::new(),
+            flat: None,
+        };
+        for c in claimed(method) {
+            match (it.flip[c.index()], noaa.flip[c.index()]) {
+                (Some(a), Some(n)) if a <= BEAT_FACTOR * n => v.beats.push((c, a, n)),
+                (Some(a), Some(n)) => v.misses.push((c, a, n)),
+                _ => v.absent.push(c),
+            }
+        }
+        let f = Class::Flat.index();
+        if let (Some(a), Some(n)) = (it.flip[f], noaa.flip[f]) {
+            v.flat = Some((a, n));
+        }
+        v
+    }
+
+    /// Whether it holds on flat pixels (true without flat pixels).
+    pub fn holds_on_flat(&self) -> bool {
+        self.flat.is_none_or(|(a, n)| a <= FLAT_FACTOR * n)
+    }
+
+    /// The verdict as one Markdown list item, e.g. `- **sraa-rt** (cpu):
+    /// beats NoAA on silhouette (0.081 vs 0.120); does not beat NoAA on
+    /// shadow (0.200 vs 0.201); no pixels of reflection; flat: holds
+    /// (0.0101 vs 0.0100).`
+    pub fn line(&self, backend: &str) -> String {
+        let list = |v: &[(Class, f64, f64)]| {
+            v.iter()
+                .map(|(c, a, n)| format!("{c} ({a:.4} vs {n:.4})"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let mut parts = Vec::new();
+        if claimed(&self.method).is_empty() {
+            parts.push("claims no class".to_string());
+        }
+        if !self.beats.is_empty() {
+            parts.push(format!("beats NoAA on {}", list(&self.beats)));
+        }
+        if !self.misses.is_empty() {
+            parts.push(format!("does not beat NoAA on {}", list(&self.misses)));
+        }
+        if !self.absent.is_empty() {
+            let a: Vec<&str> = self.absent.iter().map(|c| c.name()).collect();
+            parts.push(format!("no pixels of {}", a.join(", ")));
+        }
+        parts.push(match self.flat {
+            Some((a, n)) if self.holds_on_flat() => format!("flat: holds ({a:.4} vs {n:.4})"),
+            Some((a, n)) => format!("flat: loses ({a:.4} vs {n:.4})"),
+            None => "flat: no pixels".to_string(),
+        });
+        format!("- **{}** ({backend}): {}.", self.method, parts.join("; "))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn claims_follow_the_table() {
+        use Class::*;
+        assert_eq!(claimed("noaa"), vec![]);
+        assert_eq!(claimed("ssaa4").len(), 5);
+        assert_eq!(claimed("ssaa4+ctss").len(), 5);
+        assert_eq!(claimed("sraa"), vec![Silhouette, Crease]);
+        assert_eq!(claimed("sraa+mat"), vec![Silhouette, Crease, Texture]);
+        assert_eq!(
+            claimed("sraa-rt+mat"),
+            vec![Silhouette, Crease, Shadow, Texture, Reflection]
+        );
+        assert_eq!(claimed("ctss-r-delayed"), vec![Silhouette]);
+        assert_eq!(claimed("ctss+edges"), vec![Silhouette, Crease]);
+        assert_eq!(claimed("smaa"), vec![Silhouette, Crease, Shadow, Texture]);
+        assert!(!claimed("ssaa16").contains(&Flat));
+    }
+
+    fn cf(flips: [Option<f64>; 6]) -> ClassFlip {
+        ClassFlip {
+            flip: flips,
+            px: flips.map(|f| f.map_or(0, |_| 10)),
+        }
+    }
+
+    #[test]
+    fn judgement_applies_the_factors() {
+        let noaa = cf([Some(0.2), Some(0.2), Some(0.2), None, Some(0.1), Some(0.01)]);
+        // 0.19 = 0.95 × 0.2 beats (at most the factor), 0.1901 does not.
+        let it = cf([
+            Some(0.19),
+            Some(0.1901),
+            Some(0.5),
+            None,
+            Some(0.0),
+            Some(0.0102),
+        ]);
+        let v = Verdict::judge("sraa-rt", &it, &noaa);
+        assert_eq!(
+            v.beats.iter().map(|b| b.0).collect::<Vec<_>>(),
+            vec![Class::Silhouette, Class::Reflection]
+        );
+        assert_eq!(
+            v.misses.iter().map(|b| b.0).collect::<Vec<_>>(),
+            vec![Class::Crease, Class::Shadow]
+        );
+        assert!(v.absent.is_empty());
+        assert!(v.holds_on_flat());
+        let worse = cf([None, None, None, None, None, Some(0.01021)]);
+        assert!(!Verdict::judge("sraa", &worse, &noaa).holds_on_flat());
+        let line = v.line("cpu");
+        assert!(
+            line.starts_with("- **sraa-rt** (cpu): beats NoAA on silhouette (0.1900 vs 0.2000)")
+        );
+        assert!(line.contains("flat: holds"));
+        // A texture claim without texture pixels is absent.
+        let v = Verdict::judge("sraa+mat", &it, &noaa);
+        assert_eq!(v.absent, vec![Class::Texture]);
+    }
+
+    /// A 2×1-pixel sub-sample frame (8×4 sub-samples), every AOV uniform.
+    fn uniform(w: u32, h: u32) -> Frame {
+        let mut f = Frame::new(w, h);
+        let n = (w * h) as usize;
+        f.depth = Some(vec![2.0; n]);
+        f.normal = Some(vec![Vec3::Z; n]);
+        f.albedo = Some(vec![Vec3::splat(0.5); n]);
+        f.light_visibility = Some(vec![1; n]);
+        f.mirror = Some(vec![0.0; n]);
+        f
+    }
+
+    #[test]
+    fn uniform_aovs_are_flat_and_errors_are_values() {
+        let f = uniform(8, 4);
+        let m = classify(&f, 4).unwrap();
+        assert_eq!((m.width, m.height), (2, 1));
+        assert_eq!(m.mask(Class::Flat), &[true, true]);
+        assert!(classify(&f, 3).is_err());
+        assert!(classify(&f, 0).is_err());
+        let mut g = f.clone();
+        g.albedo = None;
+        assert!(classify(&g, 4).is_err());
+        let mut g = f.clone();
+        g.depth = Some(vec![f32::NAN; 32]);
+        g.normal = Some(vec![Vec3::NAN; 32]);
+        // NaN depth reads as a miss everywhere: background, flat.
+        assert_eq!(classify(&g, 4).unwrap().mask(Class::Flat), &[true, true]);
+    }
+
+    /// The acceptance frame: each class known by construction. Two rows of
+    /// 11 pixels at 4×4 sub-samples. Row 0, by pixel: wall; a box's
+    /// silhouette against the wall; the box's face; a crease of the box;
+    /// wall; a shadow edge; a texture step; a mirror; sky; the wall's edge
+    /// against the sky; a pole one sub-sample wide (missed by a centre
+    /// sample). Row 1: a floor seen at a grazing angle, whose depth grows by
+    /// 20 % to 33 % per sub-sample but is one plane.
+    #[test]
+    fn classes_of_a_frame_built_to_contain_each() {
+        let (pw, ph, s) = (11usize, 2usize, 4usize);
+        let (w, h) = (pw * s, ph * s);
+        let mut f = uniform(w as u32, h as u32);
+        let n = w * h;
+        let mut depth = vec![10.0f32; n];
+        let mut normal = vec![Vec3::Z; n];
+        let mut albedo = vec![Vec3::splat(0.5); n];
+        let mut vis = vec![1u32; n];
+        let mut mirror = vec![0.0f32; n];
+        for y in 0..s {
+            for i in 0..s {
+                let at = |px: usize| y * w + px * s + i;
+                // 1: the box's left edge over the wall.
+                if i >= 2 {
+                    depth[at(1)] = 5.0;
+                }
+                // 2: the box's front face.
+                depth[at(2)] = 5.0;
+                // 3: the box's corner: front face, then its side (continuous depth).
+                depth[at(3)] = 5.0;
+                if i >= 2 {
+                    normal[at(3)] = Vec3::X;
+                }
+                // 5: a shadow edge.
+                if i >= 2 {
+                    vis[at(5)] = 0;
+                }
+                // 6: a texture step.
+                albedo[at(6)] = Vec3::splat(if i >= 2 { 0.8 } else { 0.2 });
+                // 7: a mirror.
+                mirror[at(7)] = 0.9;
+                // 8: sky.
+                depth[at(8)] = f32::INFINITY;
+                // 9: the wall's edge against the sky.
+                if i >= 2 {
+                    depth[at(9)] = f32::INFINITY;
+                }
+                // 10: a pole one sub-sample wide.
+                if i == 1 {
+                    depth[at(10)] = 3.0;
+                }
+            }
+        }
+        // Row 1: a grazing floor, inverse depth affine in the sub-sample row.
+        for y in s..2 * s {
+            for x in 0..w {
+                depth[y * w + x] = 1.0 / (1.0 - 0.1 * y as f32);
+                normal[y * w + x] = Vec3::Y;
+            }
+        }
+        f.depth = Some(depth);
+        f.normal = Some(normal);
+        f.albedo = Some(albedo);
+        f.light_visibility = Some(vis);
+        f.mirror = Some(mirror);
+        let m = classify(&f, s as u32).unwrap();
+        let of =
+            |p: usize| -> Vec<Class> { CLASSES.into_iter().filter(|c| m.mask(*c)[p]).collect() };
+        use Class::*;
+        let expected = [
+            vec![Flat],
+            vec![Silhouette],
+            vec![Flat],
+            vec![Crease],
+            vec![Flat],
+            vec![Shadow],
+            vec![Texture],
+            vec![Reflection],
+            vec![Flat],
+            vec![Silhouette],
+            vec![Silhouette],
+        ];
+        for (p, e) in expected.iter().enumerate() {
+            assert_eq!(&of(p), e, "pixel {p} of row 0");
+        }
+        for p in pw..2 * pw {
+            assert_eq!(of(p), vec![Flat], "pixel {} of the grazing floor", p - pw);
+        }
+        assert_eq!(m.count(Silhouette), 3);
+        assert_eq!(m.count(Flat), 4 + pw as u64);
+    }
+}
