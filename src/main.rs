@@ -72,6 +72,13 @@ fn run() -> Result<()> {
         Command::Report(args) => {
             let summary = subcone::report::run(&args)?;
             println!("report written to {}", summary.report_md.display());
+            if !summary.failures.is_empty() {
+                eprintln!(
+                    "{} renders failed (--keep-going): listed under Failures in {}",
+                    summary.failures.len(),
+                    summary.report_md.display()
+                );
+            }
             Ok(())
         }
         Command::Render {

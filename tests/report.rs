@@ -41,6 +41,104 @@ fn csv_rows(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
     (header, rows)
 }
 
+const CLASSES: [&str; 6] = [
+    "silhouette",
+    "crease",
+    "shadow",
+    "texture",
+    "reflection",
+    "flat",
+];
+
+/// The claims table of the report, restated: the classes each method claims.
+fn claimed(method: &str) -> Vec<&'static str> {
+    let base = method.strip_suffix("-delayed").unwrap_or(method);
+    let (base, mat) = match base.strip_suffix("+mat") {
+        Some(b) => (b, true),
+        None => (base, false),
+    };
+    let mut c = match base {
+        "sraa" => vec!["silhouette", "crease"],
+        "sraa-rt" => vec!["silhouette", "crease", "shadow", "reflection"],
+        "ctss" | "ctss-r" => vec!["silhouette"],
+        "ctss+edges" => vec!["silhouette", "crease"],
+        "fxaa" | "smaa" => vec!["silhouette", "crease", "shadow", "texture"],
+        b if b.starts_with("ssaa") => CLASSES[..5].to_vec(),
+        _ => vec![],
+    };
+    if mat && !c.contains(&"texture") {
+        c.push("texture");
+    }
+    c
+}
+
+/// Every non-NoAA row with class errors has a verdict line in report.md
+/// that lists as beaten exactly the claimed classes whose FLIP is at most
+/// 0.95 × NoAA's, as not beaten the other claimed classes with pixels, and
+/// flat as holding exactly when its FLIP is at most 1.02 × NoAA's.
+fn check_verdicts(results: &serde_json::Value, md: &str) {
+    let rows = results.as_array().unwrap();
+    let get = |r: &serde_json::Value, k: &str| r[k].as_f64();
+    let mut checked = 0;
+    for r in rows {
+        let (scene, method, backend) = (
+            r["scene"].as_str().unwrap(),
+            r["method"].as_str().unwrap(),
+            r["backend"].as_str().unwrap(),
+        );
+        if method == "noaa" || get(r, "flip_flat").is_none() {
+            continue;
+        }
+        let noaa = rows
+            .iter()
+            .find(|n| n["scene"] == scene && n["method"] == "noaa" && n["backend"] == backend)
+            .unwrap_or_else(|| panic!("{scene}: no noaa row on {backend}"));
+        // The verdict lines of this scene's section.
+        let section = md
+            .split("\n## ")
+            .find(|s| s.starts_with(&format!("{scene}\n")))
+            .unwrap_or_else(|| panic!("no section for {scene}"));
+        let prefix = format!("- **{method}** ({backend}): ");
+        let line = section
+            .lines()
+            .find(|l| l.starts_with(&prefix))
+            .unwrap_or_else(|| panic!("{scene}: no verdict line for {method} on {backend}"));
+        let part = |head: &str| -> Vec<String> {
+            line.trim_start_matches(&prefix)
+                .trim_end_matches('.')
+                .split("; ")
+                .find_map(|p| p.strip_prefix(head))
+                .map(|p| {
+                    p.split("), ")
+                        .map(|c| c.split(' ').next().unwrap().to_string())
+                        .collect()
+                })
+                .unwrap_or_default()
+        };
+        let (mut beats, mut misses) = (Vec::new(), Vec::new());
+        for c in claimed(method) {
+            let (Some(a), Some(n)) = (get(r, &format!("flip_{c}")), get(noaa, &format!("flip_{c}")))
+            else {
+                continue;
+            };
+            if a <= 0.95 * n {
+                beats.push(c.to_string());
+            } else {
+                misses.push(c.to_string());
+            }
+        }
+        assert_eq!(part("beats NoAA on "), beats, "{line}");
+        assert_eq!(part("does not beat NoAA on "), misses, "{line}");
+        let holds = get(r, "flip_flat").unwrap() <= 1.02 * get(noaa, "flip_flat").unwrap();
+        assert!(
+            line.contains(if holds { "flat: holds" } else { "flat: loses" }),
+            "{line}"
+        );
+        checked += 1;
+    }
+    assert!(checked > 20, "only {checked} verdict lines checked");
+}
+
 fn nonempty(path: &Path) {
     let len = std::fs::metadata(path)
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
@@ -57,6 +155,7 @@ fn quick_report_on_every_paper_scene() {
         out: out.clone(),
         ..Default::default()
     };
+    let gpu = subcone_wgpu::gpu_required() || subcone_wgpu::WgpuBackend::new().is_ok();
     let start = Instant::now();
     let summary = report::run(&args).expect("quick report");
     println!(
@@ -105,8 +204,13 @@ fn quick_report_on_every_paper_scene() {
                 .unwrap_or_else(|_| panic!("no FLIP for {m} on {name}"))
         };
         let (noaa, ssaa16) = (get("noaa"), get("ssaa16"));
-        // The post-process baseline has its row on every scene.
+        // The post-process baselines have their rows on every scene: SMAA
+        // wherever a GPU adapter exists, and always in CI.
         get("fxaa");
+        if gpu {
+            let smaa = get("smaa");
+            assert!((0.0..1.0).contains(&smaa), "{name}: smaa FLIP {smaa}");
+        }
         assert!(
             ssaa16 < noaa,
             "{name}: FLIP of ssaa16 ({ssaa16}) is not below noaa's ({noaa})"
@@ -142,9 +246,33 @@ fn quick_report_on_every_paper_scene() {
         serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
     assert_eq!(json["results"].as_array().unwrap().len(), rows.len());
 
+    // Edge classes: two columns per class, counts that cover every pixel,
+    // and verdict lines that apply the stated rules to the written numbers.
+    for c in CLASSES {
+        for col in [format!("flip_{c}"), format!("px_{c}")] {
+            assert!(header.contains(&col), "results.csv lacks column {col}");
+        }
+    }
+    assert!(md.contains("## Edge classes and the rules of judgement"));
+    if gpu {
+        assert!(md.contains("SMAA 1x (the `smaa` crate, quality High) on the cpu NoAA frame"));
+        let adapter = col("post_adapter");
+        assert!(rows
+            .iter()
+            .filter(|r| r[method] == "smaa")
+            .all(|r| !r[adapter].is_empty()));
+    } else {
+        assert!(md.contains("no GPU adapter for the SMAA post-process"));
+    }
+    assert!(
+        !md.contains("render failed") && summary.failures.is_empty(),
+        "a quick report has no failed render"
+    );
+    check_verdicts(&json["results"], &md);
+
     // Plots and images.
     for (name, _) in &loaded {
-        for stem in ["flip_vs_time", "passes"] {
+        for stem in ["flip_vs_time", "passes", "classes"] {
             for ext in ["png", "svg"] {
                 nonempty(&out.join("plots").join(format!("{name}_{stem}.{ext}")));
             }

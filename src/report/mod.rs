@@ -2,8 +2,9 @@
 //! backend, with plots, zoomed crops and a comparison with the papers' numbers.
 //!
 //! For each scene (the built-in paper scenes by default, plus `--scene`), each
-//! backend and each method that applies to the scene (decided by
-//! [`required_passes`]), the report
+//! backend and each method that the backend renders on the scene (asked of
+//! [`Backend::supports`] before anything renders; the others are listed under
+//! *Skipped* with the typed reason), the report
 //!
 //! 1. times the method: one warm-up, then `runs` timed calls of
 //!    [`Backend::render`] at the *timing size*;
@@ -12,8 +13,13 @@
 //! 2. measures its error at the *quality size* against a supersampled reference
 //!    (SSAA256; cached on disk, see [`reference`](mod@reference)): mean FLIP, PSNR and mean FLIP
 //!    on the edge mask, all on the tone-mapped 8-bit sRGB images;
-//! 3. writes `report.md`, `results.csv`, `results.json`, plots (FLIP against
-//!    time with the Pareto front, stacked pass times) and images (every method,
+//! 3. classifies every pixel into edge classes from sub-sample AOVs
+//!    ([`classes`](mod@classes)) and measures FLIP per class, then judges
+//!    each method against NoAA on the classes it claims;
+//! 4. adds an `smaa` row per backend: SMAA 1x ([`smaa`](mod@smaa)) on that
+//!    backend's NoAA frame;
+//! 5. writes `report.md`, `results.csv`, `results.json`, plots (FLIP against
+//!    time with the Pareto front, FLIP by edge class, stacked pass times) and images (every method,
 //!    the reference, FLIP maps, zoomed crops of an edge, a shadow and a
 //!    reflection region).
 //!
@@ -41,6 +47,7 @@ pub mod metrics;
 pub mod output;
 pub mod plot;
 pub mod reference;
+pub mod smaa;
 pub mod timing;
 
 use std::fmt;
@@ -50,8 +57,10 @@ use std::time::{Duration, Instant};
 use anyhow::{anyhow, bail, Context, Result};
 use glam::Vec3;
 use indicatif::{ProgressBar, ProgressStyle};
-use subcone_kernels::passes::{required_passes, SceneFeatures};
-use subcone_scene::{Albedo, Backend, Frame, Method, RenderSettings, Scene};
+use subcone_kernels::passes::{SceneFeatures, Technique};
+use subcone_scene::{
+    Albedo, Backend, Frame, Method, RenderSettings, Scene, Unsupported, UnsupportedReason,
+};
 
 use crate::cli;
 use metrics::Rgb8;
@@ -90,7 +99,12 @@ pub const METHODS: &[&str] = &[
     "ctss-r",
     "ssaa4+ctss",
     "fxaa",
+    "smaa",
 ];
+
+/// The name of the SMAA row: not a [`Method`] (no backend renders it), but
+/// [`smaa::SmaaPost`] on the NoAA frame of each backend.
+pub const SMAA: &str = "smaa";
 
 /// Timing size of triangle scenes: SRAA Table 1's largest.
 pub const TRIANGLE_TIMING_SIZE: (u32, u32) = (1024, 1024);
@@ -226,6 +240,8 @@ pub struct ResultRow {
     pub reference: Option<String>,
     /// Median ms of each pass (column-safe name without `ms_`), in run order.
     pub pass_ms: Vec<(String, f64)>,
+    /// The GPU adapter a report-level post-process ran on (the `smaa` row).
+    pub post_adapter: Option<String>,
 }
 
 impl ResultRow {
@@ -436,6 +452,17 @@ struct Plan {
     sweep: bool,
     refresh: bool,
     keep_going: bool,
+    smaa: SmaaPlan,
+}
+
+/// Whether the run has an `smaa` row, and on what.
+enum SmaaPlan {
+    /// Not asked for.
+    Off,
+    /// SMAA 1x on this GPU.
+    On(smaa::SmaaPost),
+    /// Asked for, but no adapter: the reason, listed under Skipped.
+    Unavailable(String),
 }
 
 fn parse_backends(list: &str) -> Result<Vec<(String, Box<dyn Backend + Send + Sync>)>> {
@@ -478,7 +505,12 @@ impl Plan {
             bail!("--method names no method");
         }
         let mut methods: Vec<Method> = Vec::new();
-        for n in &names {
+        let want_smaa = names.iter().any(|n| n == SMAA);
+        if want_smaa && !names.iter().any(|n| n == "noaa") {
+            // SMAA post-processes the NoAA frame and is judged against it.
+            methods.push(Method::new(Technique::NoAa));
+        }
+        for n in names.iter().filter(|n| *n != SMAA) {
             let m = parse_method(n, "--method")?;
             if !methods.iter().any(|x| x.to_string() == m.to_string()) {
                 methods.push(m);
@@ -508,6 +540,21 @@ impl Plan {
         if args.no_paper_scenes && args.scenes.is_empty() {
             bail!("--no-paper-scenes leaves no scene: add at least one --scene");
         }
+        let smaa = if !want_smaa {
+            SmaaPlan::Off
+        } else {
+            match smaa::SmaaPost::new() {
+                Ok(p) => SmaaPlan::On(p),
+                Err(e) if subcone_wgpu::gpu_required() => {
+                    return Err(e.context(
+                        "the smaa row needs a GPU adapter and SUBCONE_REQUIRE_GPU is set",
+                    ))
+                }
+                Err(e) => SmaaPlan::Unavailable(format!(
+                    "no GPU adapter for the SMAA post-process: {e:#}"
+                )),
+            }
+        };
         let cache = args.cache.clone().unwrap_or_else(|| args.out.join("cache"));
         let sweep = mode != Mode::Quick
             && size.is_none()
@@ -525,6 +572,7 @@ impl Plan {
             sweep,
             refresh: args.refresh_references,
             keep_going: args.keep_going,
+            smaa,
         })
     }
 
@@ -807,6 +855,73 @@ impl Runner<'_> {
     }
 }
 
+/// The `smaa` row of one backend: NoAA's row with the SMAA post-process
+/// (one warm-up, then `runs` timed calls on the timing-size NoAA frame)
+/// added to its times, as the pass `smaa`, and the adapter named.
+fn smaa_row(
+    post: &smaa::SmaaPost,
+    noaa: ResultRow,
+    frame: &Rgb8,
+    runs: u32,
+) -> Result<ResultRow> {
+    post.apply(frame)?;
+    let mut ms: Vec<f64> = Vec::new();
+    for _ in 0..runs.max(1) {
+        ms.push(post.apply(frame)?.1.as_secs_f64() * 1e3);
+    }
+    ms.sort_by(f64::total_cmp);
+    let median = ms[ms.len() / 2];
+    let mut pass_ms = noaa.pass_ms.clone();
+    pass_ms.push((SMAA.into(), median));
+    Ok(ResultRow {
+        method: SMAA.into(),
+        ms_median: noaa.ms_median + median,
+        ms_min: noaa.ms_min + ms[0],
+        ms_max: noaa.ms_max + ms[ms.len() - 1],
+        ratio_to_noaa: None,
+        flip_mean: None,
+        psnr_db: None,
+        edge_flip_mean: None,
+        classes: None,
+        quality_width: None,
+        quality_height: None,
+        reference: None,
+        pass_ms,
+        post_adapter: Some(post.adapter()),
+        ..noaa
+    })
+}
+
+/// Measure the error of `img` (the quality render of `row`'s method) against
+/// the scene's reference: mean, PSNR, edge and per-class FLIP; writes the
+/// image and its FLIP map beside the reference.
+fn measure(
+    row: &mut ResultRow,
+    img: &Rgb8,
+    q: &SceneQuality,
+    plan: &Plan,
+    img_dir: &Path,
+    first_backend: bool,
+) -> Result<()> {
+    let fl = metrics::flip(&q.reference, img)?;
+    row.flip_mean = Some(fl.mean);
+    row.psnr_db = Some(metrics::psnr(&q.reference, img)?);
+    row.edge_flip_mean = metrics::masked_mean(&fl.map, &q.edges);
+    row.classes = Some(classes::ClassFlip::measure(&fl.map, &q.classes));
+    row.quality_width = Some(img.width);
+    row.quality_height = Some(img.height);
+    row.reference = Some(plan.reference.to_string());
+    output::save_png(
+        &img_dir.join(image_name("", &row.method, &row.backend, first_backend)),
+        img,
+    )?;
+    output::save_png(
+        &img_dir.join(image_name("flip_", &row.method, &row.backend, first_backend)),
+        &fl.magma,
+    )?;
+    Ok(())
+}
+
 /// The file name of a method's image for `backend` (the first backend gets the
 /// plain name).
 fn image_name(prefix: &str, method: &str, backend: &str, first: bool) -> String {
@@ -829,7 +944,9 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
 
     // Applicability first, so the progress bar knows its length.
     let mut skipped = Vec::new();
-    let mut work: Vec<(usize, Vec<Method>)> = Vec::new();
+    // Per scene: each method that some backend renders, with the indices of
+    // the backends that render it (asked of `Backend::supports`).
+    let mut work: Vec<(usize, Vec<(Method, Vec<usize>)>)> = Vec::new();
     for (i, job) in jobs.iter().enumerate() {
         let mut ms = Vec::new();
         for m in &plan.methods {
@@ -846,15 +963,47 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                 });
                 continue;
             }
-            match required_passes(m.technique, job.scene.features()) {
-                Ok(_) => ms.push(*m),
-                Err(u) => skipped.push(Skipped {
-                    scene: job.name.clone(),
-                    method: m.to_string(),
-                    backend: "*".into(),
-                    reason: u.reason.to_string(),
-                }),
+            let mut able = Vec::new();
+            let mut refused = Vec::new();
+            for (bi, (bname, backend)) in plan.backends.iter().enumerate() {
+                match backend.supports(&job.scene, m) {
+                    Ok(()) => able.push(bi),
+                    Err(u) => refused.push((bname.clone(), u)),
+                }
             }
+            // A refusal of the technique itself holds for every backend: one
+            // line for all of them.
+            let technique = |u: &Unsupported| matches!(u.reason, UnsupportedReason::Technique(_));
+            if able.is_empty() && refused.iter().all(|(_, u)| technique(u)) {
+                if let Some((_, u)) = refused.first() {
+                    skipped.push(Skipped {
+                        scene: job.name.clone(),
+                        method: m.to_string(),
+                        backend: "*".into(),
+                        reason: u.reason.to_string(),
+                    });
+                }
+            } else {
+                for (bname, u) in refused {
+                    skipped.push(Skipped {
+                        scene: job.name.clone(),
+                        method: m.to_string(),
+                        backend: bname,
+                        reason: u.reason.to_string(),
+                    });
+                }
+            }
+            if !able.is_empty() {
+                ms.push((*m, able));
+            }
+        }
+        if let SmaaPlan::Unavailable(reason) = &plan.smaa {
+            skipped.push(Skipped {
+                scene: job.name.clone(),
+                method: SMAA.into(),
+                backend: "*".into(),
+                reason: reason.clone(),
+            });
         }
         work.push((i, ms));
     }
@@ -864,7 +1013,8 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
     for (i, ms) in &work {
         let job = &jobs[*i];
         let separate = quality && job.timing_size != job.quality_size;
-        total += ms.len() as u64 * plan.backends.len() as u64 * (per_method + separate as u64);
+        let renders: u64 = ms.iter().map(|(_, b)| b.len() as u64).sum();
+        total += renders * (per_method + separate as u64);
         if quality && !ms.is_empty() {
             total += 2;
         }
@@ -950,7 +1100,13 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
         let mut crop_images: Vec<(String, Rgb8)> = Vec::new();
         let scene_first = rows.len();
         for (bi, (bname, backend)) in plan.backends.iter().enumerate() {
-            for m in methods {
+            // This backend's NoAA frames, for the SMAA row.
+            let mut noaa_timing: Option<Rgb8> = None;
+            let mut noaa_quality: Option<Rgb8> = None;
+            for (m, able) in methods {
+                if !able.contains(&bi) {
+                    continue;
+                }
                 let mname = m.to_string();
                 runner
                     .progress
@@ -1012,6 +1168,9 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                     continue;
                 }
                 let last = last.unwrap_or_else(|| warm.clone());
+                if m.technique == Technique::NoAa {
+                    noaa_timing = Some(Rgb8::from_frame(&last)?);
+                }
                 let px = (tw as f64 * th as f64).max(1.0);
                 let mut row = ResultRow {
                     scene: job.name.clone(),
@@ -1035,6 +1194,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                     quality_height: None,
                     reference: None,
                     pass_ms: t.pass_medians(),
+                    post_adapter: None,
                 };
                 if let Some(q) = &sq {
                     let qframe = if same {
@@ -1057,24 +1217,11 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                                 }
                             }
                             let img = Rgb8::from_frame(&qf)?;
-                            let fl = metrics::flip(&q.reference, &img)?;
-                            row.flip_mean = Some(fl.mean);
-                            row.psnr_db = Some(metrics::psnr(&q.reference, &img)?);
-                            row.edge_flip_mean = metrics::masked_mean(&fl.map, &q.edges);
-                            row.classes = Some(classes::ClassFlip::measure(&fl.map, &q.classes));
-                            row.quality_width = Some(img.width);
-                            row.quality_height = Some(img.height);
-                            row.reference = Some(plan.reference.to_string());
-                            let first = bi == 0;
-                            output::save_png(
-                                &img_dir.join(image_name("", &mname, bname, first)),
-                                &img,
-                            )?;
-                            output::save_png(
-                                &img_dir.join(image_name("flip_", &mname, bname, first)),
-                                &fl.magma,
-                            )?;
-                            if first {
+                            measure(&mut row, &img, q, plan, &img_dir, bi == 0)?;
+                            if m.technique == Technique::NoAa {
+                                noaa_quality = Some(img.clone());
+                            }
+                            if bi == 0 {
                                 crop_images.push((mname.clone(), img));
                             }
                         }
@@ -1090,6 +1237,41 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                     }
                 }
                 rows.push(row);
+            }
+            // SMAA 1x on this backend's NoAA frames.
+            let noaa_row = rows[scene_first..]
+                .iter()
+                .find(|r| r.backend == *bname && r.method == "noaa")
+                .cloned();
+            if let (SmaaPlan::On(post), Some(frame), Some(noaa_row)) =
+                (&plan.smaa, &noaa_timing, noaa_row)
+            {
+                runner
+                    .progress
+                    .bar
+                    .set_message(format!("{}: smaa on the {bname} NoAA frame", job.name));
+                let result = smaa_row(post, noaa_row, frame, plan.runs).and_then(|mut row| {
+                    if let (Some(q), Some(img)) = (&sq, &noaa_quality) {
+                        let (out, _) = post.apply(img)?;
+                        measure(&mut row, &out, q, plan, &img_dir, bi == 0)?;
+                        if bi == 0 {
+                            crop_images.push((SMAA.to_string(), out));
+                        }
+                    }
+                    Ok(row)
+                });
+                match result {
+                    Ok(row) => rows.push(row),
+                    Err(e) => runner.fail(
+                        &mut failures,
+                        Failure {
+                            scene: job.name.clone(),
+                            method: SMAA.into(),
+                            backend: bname.clone(),
+                            error: format!("{e:#}"),
+                        },
+                    )?,
+                }
             }
         }
         // Ratios to NoAA per backend.
@@ -1211,6 +1393,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                             quality_height: None,
                             reference: None,
                             pass_ms: t.pass_medians(),
+                            post_adapter: None,
                         });
                     }
                 }

@@ -20,7 +20,7 @@ use super::reference::{code_version, write_atomic};
 use super::{crops, file_safe, kernel_timing, Mode, ReportSummary, ResultRow};
 
 /// The columns every results file has, in order.
-pub const BASE_COLUMNS: [&str; 31] = [
+pub const BASE_COLUMNS: [&str; 32] = [
     "scene",
     "method",
     "backend",
@@ -52,6 +52,7 @@ pub const BASE_COLUMNS: [&str; 31] = [
     "px_texture",
     "px_reflection",
     "px_flat",
+    "post_adapter",
 ];
 
 /// SRAA for ray tracing, Table 1: Sponza, (side, pass 1 ms, pass 2 ms, total ms).
@@ -195,6 +196,7 @@ fn row_cells(r: &ResultRow, passes: &[String]) -> Vec<Cell> {
                 .unwrap_or(Cell::Empty),
         );
     }
+    c.push(r.post_adapter.clone().map(Cell::Text).unwrap_or(Cell::Empty));
     for p in passes {
         c.push(opt(r.pass(p.trim_start_matches("ms_"))));
     }
@@ -415,6 +417,16 @@ faster method beats.\n"
                 );
             }
             let _ = writeln!(md);
+            for r in rows.iter().filter(|r| r.post_adapter.is_some()) {
+                let _ = writeln!(
+                    md,
+                    "{}: SMAA 1x (the `smaa` crate, quality High) on the {} NoAA frame, \
+post-processed on {}; its time is NoAA's plus the post-process (upload, SMAA, read-back).\n",
+                    r.method,
+                    r.backend,
+                    r.post_adapter.as_deref().unwrap_or("?")
+                );
+            }
             let stem = file_safe(&sc.name);
             if rows.iter().any(|r| r.flip_mean.is_some()) {
                 let _ = writeln!(
@@ -474,18 +486,32 @@ faster method beats.\n"
     if s.skipped.is_empty() && s.unavailable_scenes.is_empty() {
         let _ = writeln!(md, "Nothing was skipped.\n");
     } else {
+        let _ = writeln!(
+            md,
+            "Combinations that were never rendered, asked of each backend before rendering \
+(one line per method, backend and reason, naming the scenes):\n"
+        );
+        // Group by (method, backend, reason), in first-seen order.
+        let mut groups: Vec<(&str, &str, &str, Vec<&str>)> = Vec::new();
         for k in &s.skipped {
+            match groups
+                .iter_mut()
+                .find(|g| g.0 == k.method && g.1 == k.backend && g.2 == k.reason)
+            {
+                Some(g) => g.3.push(&k.scene),
+                None => groups.push((&k.method, &k.backend, &k.reason, vec![&k.scene])),
+            }
+        }
+        for (method, backend, reason, scenes) in groups {
             let _ = writeln!(
                 md,
-                "- {} / {}{}: {}",
-                k.scene,
-                k.method,
-                if k.backend == "*" {
+                "- {method}{}: {reason} ({})",
+                if backend == "*" {
                     String::new()
                 } else {
-                    format!(" on {}", k.backend)
+                    format!(" on {backend}")
                 },
-                k.reason
+                scenes.join(", ")
             );
         }
         for (n, r) in &s.unavailable_scenes {
@@ -1033,6 +1059,7 @@ mod tests {
             quality_height: Some(2),
             reference: Some("ssaa64".into()),
             pass_ms: passes.iter().map(|(n, v)| (n.to_string(), *v)).collect(),
+            post_adapter: None,
         }
     }
 

@@ -57,6 +57,7 @@ pub fn method_colour(method: &str) -> RGBColor {
         "ctss-r" => RGBColor(148, 103, 189),
         "ssaa4+ctss" => RGBColor(140, 86, 75),
         "fxaa" => RGBColor(227, 119, 194),
+        "smaa" => RGBColor(188, 189, 34),
         other => {
             let h = other
                 .bytes()
