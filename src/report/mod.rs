@@ -40,6 +40,7 @@ pub mod metrics;
 pub mod output;
 pub mod plot;
 pub mod reference;
+pub mod smaa;
 pub mod timing;
 
 use std::fmt;
