@@ -30,9 +30,10 @@
 //! will perform antialiasing in gamma space"). `Rgba8UnormSrgb` would blend
 //! in linear light but detect edges on linear luma, where the 0.1 threshold
 //! misses most edges between dark colours (sRGB 50 against 90 is a linear step
-//! of 0.07); `Rgba8Unorm` keeps SMAA's edges and blends in gamma space, the
-//! reference's documented fallback, and what a game without an sRGB swapchain
-//! shows.
+//! of 0.07: on lavapipe a 50/90 staircase comes back untouched, while
+//! `Rgba8Unorm` blends 92 of its pixels). `Rgba8Unorm` keeps SMAA's edges and
+//! blends in gamma space, the reference's documented fallback and what a game
+//! without an sRGB swapchain shows.
 
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
@@ -206,7 +207,9 @@ impl SmaaPost {
     /// RGBA packing, upload, blit, SMAA's three passes, copy and read-back to
     /// an [`Rgb8`]. The one-off setup for a new size (targets, and on the
     /// first call the compilation of SMAA's shaders) is not counted, as a
-    /// renderer pays it once, not per frame.
+    /// renderer pays it once, not per frame. The first frame can still be
+    /// slower (lavapipe: 71 ms against 45 ms at 512×512, its pipelines being
+    /// built lazily): time after a warm-up call, as for the renderers.
     ///
     /// Fails, without touching the GPU, on an empty image or one whose bytes
     /// do not match its size; fails on a size beyond the device's texture or
@@ -461,8 +464,8 @@ mod tests {
     /// A flat image, and a gradient whose steps (2 codes) are far below SMAA's
     /// 0.1 luma threshold, come back unchanged. The gradient differs in every
     /// row and column, so a flipped, shifted or wrongly padded read-back
-    /// (37 pixels: 148 bytes per row, padded to 256) fails; so does a format
-    /// that decodes or encodes sRGB on the way.
+    /// (37 pixels: 148 bytes per row, padded to 256) fails, and so would an
+    /// sRGB decode without the matching encode.
     #[test]
     fn edgeless_images_come_back_unchanged() {
         let Some(post) = post() else { return };
@@ -481,9 +484,12 @@ mod tests {
 
     /// A black/white staircase (the boundary `y = 20 + x/4`: steps of four
     /// pixels, the aliasing SMAA's area texture is built for) gets
-    /// intermediate values along the edge, greys (R = G = B), while every pixel
-    /// more than two pixels from the edge keeps its value: SMAA blends a pixel
-    /// only with its direct neighbours.
+    /// intermediate greys (R = G = B) along the edge, while every pixel more
+    /// than two pixels from the edge keeps its value: SMAA blends a pixel only
+    /// with its direct neighbours. On lavapipe each step becomes a ramp
+    /// (0, 6, 32, 91 | 164, 223, 249, 255): three of every four edge pixels
+    /// are blended, 84 of 112; at least two thirds must be. Without SMAA (the
+    /// crate's `Disabled` mode) none are, and this test fails.
     #[test]
     fn staircase_edge_is_antialiased_and_the_rest_untouched() {
         let Some(post) = post() else { return };
@@ -511,7 +517,7 @@ mod tests {
                     edge += 1;
                     let p = px(x, y);
                     assert!(p[0] == p[1] && p[1] == p[2], "colour at ({x},{y}): {p:?}");
-                    if (8..=247).contains(&p[0]) {
+                    if (1..=254).contains(&p[0]) {
                         grey += 1;
                     }
                 }
@@ -519,7 +525,7 @@ mod tests {
         }
         assert!(edge > 50, "{edge} edge pixels");
         assert!(
-            grey * 2 >= edge,
+            grey * 3 >= edge * 2,
             "only {grey} of {edge} edge pixels were blended"
         );
         for y in 0..h {
@@ -532,6 +538,13 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The report may hold one post-process for all its threads.
+    #[test]
+    fn post_is_send_and_sync() {
+        fn check<T: Send + Sync>() {}
+        check::<SmaaPost>();
     }
 
     /// Bad input is refused before any GPU work, with or without an adapter.
@@ -584,5 +597,28 @@ mod tests {
         let one = image(1, 1, |_, _| [9, 99, 199]);
         let (out, _) = post.apply(&one).unwrap();
         assert!(max_diff(&out, &one) <= 1);
+    }
+
+    /// The format choice, pinned: a staircase between two dark greys (sRGB 50
+    /// and 90: 0.16 apart encoded, 0.07 in linear light, against SMAA's 0.1
+    /// luma threshold) is antialiased, as SMAA intends on the displayed image.
+    /// With `Rgba8UnormSrgb` textures edge detection runs on linear values and
+    /// leaves this edge untouched (0 pixels changed, 92 with `Rgba8Unorm`).
+    #[test]
+    fn dark_low_contrast_edge_is_detected() {
+        let Some(post) = post() else { return };
+        let img = image(
+            64,
+            48,
+            |x, y| if y < 20 + x / 4 { [90; 3] } else { [50; 3] },
+        );
+        let (out, _) = post.apply(&img).unwrap();
+        let changed = out
+            .data
+            .chunks_exact(3)
+            .zip(img.data.chunks_exact(3))
+            .filter(|(p, q)| p != q)
+            .count();
+        assert!(changed > 50, "only {changed} pixels changed");
     }
 }
