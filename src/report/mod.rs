@@ -1217,7 +1217,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                                 }
                             }
                             let img = Rgb8::from_frame(&qf)?;
-                            measure(&mut row, &img, q, plan, &img_dir, bi == 0)?;
+                            measure(&mut row, &img, q, &plan, &img_dir, bi == 0)?;
                             if m.technique == Technique::NoAa {
                                 noaa_quality = Some(img.clone());
                             }
@@ -1253,7 +1253,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                 let result = smaa_row(post, noaa_row, frame, plan.runs).and_then(|mut row| {
                     if let (Some(q), Some(img)) = (&sq, &noaa_quality) {
                         let (out, _) = post.apply(img)?;
-                        measure(&mut row, &out, q, plan, &img_dir, bi == 0)?;
+                        measure(&mut row, &out, q, &plan, &img_dir, bi == 0)?;
                         if bi == 0 {
                             crop_images.push((SMAA.to_string(), out));
                         }
