@@ -202,11 +202,15 @@ fn aov_frame(frame: &Frame, aov: Aov) -> Result<Frame> {
     Ok(out)
 }
 
-/// Render a scene and write the image (and an AOV image if asked).
+/// Render a scene and write the image (and an AOV image if asked). Asks the
+/// backend first ([`Backend::supports`]): a scene and method it does not
+/// render fail with its [`subcone_scene::Unsupported`] (downcast the error to
+/// read the typed reason), before anything is traced or written.
 pub fn render(opts: &RenderOptions) -> Result<RenderReport> {
     validate_method(&opts.method)?;
     let backend = backend(&opts.backend)?;
     let scene = scene(&opts.scene)?;
+    backend.supports(&scene, &opts.method)?;
     let mut settings = RenderSettings::new(opts.width, opts.height);
     settings.reflection_depth = opts.reflection_depth;
     settings.max_steps = opts.max_steps;

@@ -31,7 +31,7 @@ enum Command {
         /// noaa, ssaaN (N = 4, 9, 16, 64, 256), sraa, sraa-rt, sraa+mat, sraa-rt+mat, ctss, ctss+edges, ctss-r, ssaaN+ctss, fxaa; CTSS methods but ctss+edges take a -delayed suffix.
         #[arg(long, default_value = "sraa-rt")]
         method: String,
-        /// cpu.
+        /// cpu or wgpu.
         #[arg(long, default_value = "cpu")]
         backend: String,
         /// Image size, WxH.

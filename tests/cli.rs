@@ -89,6 +89,33 @@ fn bad_input_is_a_clear_error() {
     );
 }
 
+/// A scene and method the backend does not render fail with its typed
+/// reason, before anything is rendered or written.
+#[test]
+fn unsupported_combinations_are_refused_before_rendering() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("x.png");
+    let o = out.to_str().unwrap();
+    let cases: [(&str, &str, &str); 3] = [
+        ("cornell", "ctss", "needs a signed distance field"),
+        ("glass", "sraa-rt", "semi-transparent materials"),
+        ("primitives", "sraa-rt+mat", "material gate"),
+    ];
+    for (scene, method, needle) in cases {
+        let (ok, text) = subcone(&[
+            "render", "--size", "8x8", "--scene", scene, "--method", method, "-o", o,
+        ]);
+        assert!(!ok, "{scene} {method} succeeded");
+        assert!(
+            text.contains(&format!(
+                "the cpu backend cannot render scene {scene:?} with {method}: "
+            )) && text.contains(needle),
+            "{scene} {method}: expected {needle:?} in {text:?}"
+        );
+        assert!(!out.exists(), "a refused render wrote {o}");
+    }
+}
+
 /// Without an adapter for the requested API, `--backend wgpu` fails with a
 /// message naming the driver to install, not a panic. DX12 never exists on
 /// Linux; on Windows, Metal never does.

@@ -22,7 +22,9 @@ use subcone::report::metrics::{flip, Rgb8};
 use subcone_kernels::passes::{required_passes, Passes, SceneFeatures};
 use subcone_scene::builtin::{builtin, TRIANGLE_SCENES};
 use subcone_scene::sdf::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
-use subcone_scene::{Backend, Frame, Method, RenderError, RenderSettings, Scene};
+use subcone_scene::{
+    Backend, Frame, Method, RenderError, RenderSettings, Scene, UnsupportedReason,
+};
 
 /// Frame size of the suite: small, because lavapipe runs shaders on the CPU,
 /// and not square, so that a swapped width and height shows.
@@ -54,9 +56,12 @@ const SDF_METHODS: [&str; 8] = [
 
 /// Methods only the CPU reference renders on SDF scenes, with the reason. Not
 /// skipped: `cpu_only_methods` renders them on the CPU (every SDF and stiff
-/// scene, frame invariants) and requires every other backend to refuse them
-/// with an error that says "CPU backend only"; where they are also in
-/// [`SDF_METHODS`], the per-scene cases check the refusal too.
+/// scene, frame invariants) and requires every other backend to plan and make
+/// the refusal ([`Backend::supports`], then `render`) as
+/// [`UnsupportedReason::CpuOnly`], saying "CPU backend only"; where they are
+/// also in [`SDF_METHODS`], the per-scene cases check the refusal too. Any
+/// other refusal of a method in the scene lists, but a technique that does
+/// not apply to the scene, fails the suite.
 const CPU_ONLY_ON_SDF: [(&str, &str); 2] = [
     (
         "sraa-rt",
@@ -187,8 +192,10 @@ fn check_invariants(backend: &str, scene: &Scene, method: &Method, frame: &Frame
     }
 }
 
-/// Render `scene_name` with every method of `methods` that applies, on
-/// `backend` and on the CPU reference, and compare.
+/// Render `scene_name` with every method of `methods` that `backend` supports,
+/// on `backend` and on the CPU reference, and compare; where it does not,
+/// check that `render` refuses as `supports` planned, and only for a reason
+/// the suite allows.
 fn check_scene(backend: &dyn Backend, scene_name: &str, methods: &[&str]) {
     let scene = builtin(scene_name).expect("built-in scene");
     let reference = subcone_cpu::CpuBackend::new();
@@ -197,34 +204,56 @@ fn check_scene(backend: &dyn Backend, scene_name: &str, methods: &[&str]) {
     let mut ran = 0;
     for m in methods {
         let method: Method = m.parse().expect("method name");
-        if required_passes(method.technique, scene.features()).is_err() {
-            continue;
+        let sdf = scene.features().contains(SceneFeatures::IS_SDF);
+        let cpu_only = CPU_ONLY_ON_SDF
+            .iter()
+            .find(|(name, _)| sdf && *name == *m && backend.name() != "cpu");
+        match backend.supports(&scene, &method) {
+            Ok(()) => assert!(
+                cpu_only.is_none(),
+                "{}: {scene_name} {m} is listed as CPU-only but supported; compare it instead",
+                backend.name()
+            ),
+            Err(u) => {
+                // The plan is what render does.
+                match backend.render(&scene, &scene.camera, &method, &settings) {
+                    Err(RenderError::NotSupported(r)) => assert_eq!(
+                        r,
+                        u,
+                        "{}: {scene_name} {m}: render refused otherwise than planned",
+                        backend.name()
+                    ),
+                    other => panic!(
+                        "{}: {scene_name} {m}: planned refusal ({u}) but render gave {:?}",
+                        backend.name(),
+                        other.map(|_| "a frame")
+                    ),
+                }
+                match (&u.reason, cpu_only) {
+                    // The technique does not apply: no backend renders it.
+                    (UnsupportedReason::Technique(_), _) => {
+                        assert!(
+                            required_passes(method.technique, scene.features()).is_err(),
+                            "{u}"
+                        );
+                    }
+                    (UnsupportedReason::CpuOnly { .. }, Some((_, why))) => {
+                        assert!(u.to_string().contains("CPU backend only"), "{u}");
+                        ran += 1;
+                        println!(
+                            "{:>5} {scene_name:>16} {m:>10}: CPU-only ({why}), refused: {u}",
+                            backend.name()
+                        );
+                    }
+                    _ => panic!(
+                        "{}: {scene_name} {m} refused, and not as listed in CPU_ONLY_ON_SDF: {u}",
+                        backend.name()
+                    ),
+                }
+                continue;
+            }
         }
         ran += 1;
-        let sdf = scene.features().contains(SceneFeatures::IS_SDF);
-        if let Some((_, why)) = CPU_ONLY_ON_SDF
-            .iter()
-            .find(|(name, _)| sdf && *name == *m && backend.name() != "cpu")
-        {
-            match backend.render(&scene, &scene.camera, &method, &settings) {
-                Err(e) => {
-                    assert!(
-                        e.to_string().contains("CPU backend only"),
-                        "{}: {scene_name} {m} must be refused as CPU-only, got: {e}",
-                        backend.name()
-                    );
-                    println!(
-                        "{:>5} {scene_name:>16} {m:>10}: CPU-only ({why}), refused: {e}",
-                        backend.name()
-                    );
-                }
-                Ok(_) => panic!(
-                    "{}: {scene_name} {m} is listed as CPU-only but rendered; compare it instead",
-                    backend.name()
-                ),
-            }
-            continue;
-        }
         let expected = reference
             .render(&scene, &scene.camera, &method, &settings)
             .unwrap_or_else(|e| panic!("cpu reference: {scene_name} {m}: {e}"));
@@ -302,6 +331,7 @@ fn check_cpu_only(backend: &dyn Backend) {
         let method: Method = m.parse().expect("method name");
         for name in SDF_SCENES.iter().chain(&STIFF_SCENES) {
             let scene = builtin(name).expect("built-in scene");
+            let plan = backend.supports(&scene, &method);
             match backend.render(&scene, &scene.camera, &method, &settings) {
                 Ok(frame) => {
                     assert_eq!(
@@ -310,10 +340,22 @@ fn check_cpu_only(backend: &dyn Backend) {
                         "{m} is CPU-only ({why}) but {} rendered it",
                         backend.name()
                     );
+                    assert_eq!(plan, Ok(()), "cpu: {name} {m}: rendered what it refused");
                     check_invariants(backend.name(), &scene, &method, &frame);
                 }
                 Err(e) => {
                     assert_ne!(backend.name(), "cpu", "cpu: {name} {m}: {e}");
+                    let planned = plan.expect_err("refused by render, so by supports");
+                    assert!(
+                        matches!(planned.reason, UnsupportedReason::CpuOnly { .. }),
+                        "{}: {name} {m} refused without saying it is CPU-only: {planned}",
+                        backend.name()
+                    );
+                    assert!(
+                        matches!(&e, RenderError::NotSupported(u) if *u == planned),
+                        "{}: {name} {m}: render refused otherwise than planned: {e}",
+                        backend.name()
+                    );
                     assert!(
                         e.to_string().contains("CPU backend only"),
                         "{}: {name} {m} refused without saying why: {e}",
@@ -344,24 +386,23 @@ fn check_errors(backend: &dyn Backend) {
         "{name}: a side over the limit must be refused"
     );
     let ctss: Method = "ctss".parse().expect("method");
-    assert!(
-        backend
-            .render(&cornell, &cornell.camera, &ctss, &RenderSettings::new(8, 8))
-            .is_err(),
-        "{name}: CTSS needs an SDF scene"
-    );
     let primitives = builtin("primitives").expect("built-in");
-    assert!(
-        backend
-            .render(
-                &primitives,
-                &primitives.camera,
-                &sraa,
-                &RenderSettings::new(8, 8)
-            )
-            .is_err(),
-        "{name}: SRAA needs a triangle scene"
-    );
+    for (scene, method, why) in [
+        (&cornell, &ctss, "CTSS needs an SDF scene"),
+        (&primitives, &sraa, "SRAA needs a triangle scene"),
+    ] {
+        let planned = backend.supports(scene, method).expect_err(why);
+        assert!(
+            matches!(planned.reason, UnsupportedReason::Technique(_)),
+            "{name}: {why}: {planned}"
+        );
+        let r = backend.render(scene, &scene.camera, method, &RenderSettings::new(8, 8));
+        assert!(
+            matches!(&r, Err(RenderError::NotSupported(u)) if *u == planned),
+            "{name}: {why}: {:?}",
+            r.map(|_| "a frame")
+        );
+    }
     let mut camera = cornell.camera;
     camera.fov_y = f32::NAN;
     assert!(
@@ -502,21 +543,43 @@ fn transparent_scenes_are_refused_by_wgpu_and_rendered_by_cpu() {
         for m in SDF_METHODS {
             let method: Method = m.parse().unwrap();
             if let Some(gpu) = &gpu {
+                let planned = gpu
+                    .supports(&scene, &method)
+                    .expect_err("wgpu plans to refuse a semi-transparent scene");
+                assert!(
+                    matches!(planned.reason, UnsupportedReason::Translucency { .. }),
+                    "{name} {m}: {planned}"
+                );
                 let r = gpu.render(&scene, &scene.camera, &method, &settings);
                 assert!(
-                    matches!(r, Err(RenderError::Backend { .. })),
-                    "{name} {m}: wgpu did not refuse a semi-transparent scene"
+                    matches!(&r, Err(RenderError::NotSupported(u)) if *u == planned),
+                    "{name} {m}: wgpu did not refuse a semi-transparent scene as planned: {:?}",
+                    r.map(|_| "a frame")
                 );
             }
-            let cpu =
-                subcone_cpu::CpuBackend::new().render(&scene, &scene.camera, &method, &settings);
+            let cpu_backend = subcone_cpu::CpuBackend::new();
+            let plan = cpu_backend.supports(&scene, &method);
+            let cpu = cpu_backend.render(&scene, &scene.camera, &method, &settings);
             // The paths that carry opacity render it; the others (SRAA-RT,
             // delayed shading, split groups) refuse it rather than draw it opaque.
             if ["noaa", "ssaa4", "ctss", "ctss-r", "ssaa4+ctss", "fxaa"].contains(&m) {
+                assert_eq!(plan, Ok(()), "{name} {m}");
                 assert!(cpu.is_ok(), "{name} {m}: {:?}", cpu.err());
             } else {
-                let e = cpu.expect_err(m).to_string();
-                assert!(e.contains("semi-transparent"), "{name} {m}: {e}");
+                let planned = plan.expect_err(m);
+                assert!(
+                    matches!(planned.reason, UnsupportedReason::Translucency { .. }),
+                    "{name} {m}: {planned}"
+                );
+                let e = cpu.expect_err(m);
+                assert!(
+                    matches!(&e, RenderError::NotSupported(u) if *u == planned),
+                    "{name} {m}: {e}"
+                );
+                assert!(
+                    e.to_string().contains("semi-transparent"),
+                    "{name} {m}: {e}"
+                );
             }
         }
     }

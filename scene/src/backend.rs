@@ -1,6 +1,8 @@
 //! The interface every backend implements.
 
-use subcone_kernels::passes::Passes;
+use std::fmt;
+
+use subcone_kernels::passes::{self, required_passes, Passes};
 
 use crate::camera::Camera;
 use crate::error::RenderError;
@@ -78,6 +80,131 @@ impl RenderSettings {
     }
 }
 
+/// Why a backend cannot render a scene with a method: the typed reason of an
+/// [`Unsupported`].
+///
+/// These are limits of the technique or of the backend for a given scene and
+/// method, known before any work starts. Resolutions, cameras, settings and
+/// device failures are not among them: those stay [`RenderError`]s of
+/// [`Backend::render`].
+#[non_exhaustive]
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum UnsupportedReason {
+    /// The technique does not apply to the scene's geometry, whatever the
+    /// backend: [`required_passes`] refused it (CTSS on triangles, plain SRAA
+    /// on a signed distance field).
+    Technique(passes::Unsupported),
+    /// The scene has mirror materials (or the secondary passes were forced)
+    /// and the backend does not trace reflections in SDF scenes.
+    SdfReflections,
+    /// The material gate (`sraa+mat`, `sraa-rt+mat`) asked for on an SDF
+    /// scene: it runs on triangle scenes only.
+    MaterialGateOnSdf,
+    /// The scene has semi-transparent materials (alpha < 1) and the path that
+    /// would render it does not carry opacity, so it is refused rather than
+    /// drawn opaque.
+    Translucency {
+        /// The path that does not carry opacity (e.g. `"sraa-rt"`).
+        what: &'static str,
+        /// What renders such scenes instead.
+        instead: &'static str,
+    },
+    /// Implemented by the CPU backend only.
+    CpuOnly {
+        /// What only the CPU backend renders (e.g. `"ctss+edges"`).
+        what: &'static str,
+        /// What this backend lacks for it.
+        why: &'static str,
+    },
+    /// More lights than the backend shades.
+    TooManyLights {
+        /// Lights in the scene.
+        lights: usize,
+        /// The most the backend supports.
+        max: usize,
+    },
+    /// More samples per pixel side than the backend traces.
+    TooManySamples {
+        /// Samples per pixel side asked for.
+        side: u32,
+        /// The most the backend supports.
+        max: u32,
+    },
+}
+
+impl fmt::Display for UnsupportedReason {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            UnsupportedReason::Technique(u) => f.write_str(u.reason),
+            UnsupportedReason::SdfReflections => {
+                f.write_str("mirror reflections in SDF scenes are not implemented")
+            }
+            UnsupportedReason::MaterialGateOnSdf => f.write_str(
+                "the material gate (+mat) is not implemented on SDF scenes: it runs on triangle scenes",
+            ),
+            UnsupportedReason::Translucency { what, instead } => write!(
+                f,
+                "{what} is not implemented for semi-transparent materials (alpha < 1); {instead}"
+            ),
+            UnsupportedReason::CpuOnly { what, why } => {
+                write!(f, "{what} runs on the CPU backend only ({why})")
+            }
+            UnsupportedReason::TooManyLights { lights, max } => {
+                write!(f, "{lights} lights; at most {max} are supported")
+            }
+            UnsupportedReason::TooManySamples { side, max } => write!(
+                f,
+                "{side}x{side} samples per pixel; at most {max}x{max} are supported"
+            ),
+        }
+    }
+}
+
+/// A backend cannot render a scene with a method: what [`Backend::supports`]
+/// answers, and what [`Backend::render`] returns (as
+/// [`RenderError::NotSupported`]) for the same scene and method.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("the {backend} backend cannot render scene {scene:?} with {method}: {reason}")]
+pub struct Unsupported {
+    /// The backend's [`Backend::name`].
+    pub backend: &'static str,
+    /// The scene's name.
+    pub scene: String,
+    /// The method, as it is written (`"sraa-rt+mat"`).
+    pub method: String,
+    /// Why not.
+    pub reason: UnsupportedReason,
+}
+
+impl Unsupported {
+    /// `backend` cannot render `scene` with `method` because of `reason`.
+    pub fn new(
+        backend: &'static str,
+        scene: &Scene,
+        method: &Method,
+        reason: UnsupportedReason,
+    ) -> Self {
+        Unsupported {
+            backend,
+            scene: scene.name.clone(),
+            method: method.to_string(),
+            reason,
+        }
+    }
+}
+
+/// The passes `method` needs on `scene` ([`required_passes`]), or why
+/// `backend` cannot render it ([`UnsupportedReason::Technique`]): where every
+/// [`Backend::supports`] starts.
+pub fn planned_passes(
+    backend: &'static str,
+    scene: &Scene,
+    method: &Method,
+) -> Result<Passes, Unsupported> {
+    required_passes(method.technique, scene.features())
+        .map_err(|u| Unsupported::new(backend, scene, method, UnsupportedReason::Technique(u)))
+}
+
 /// A renderer: the CPU reference, the wgpu backend, or your own.
 pub trait Backend {
     /// Short name (`"cpu"`, `"wgpu"`).
@@ -88,7 +215,26 @@ pub trait Backend {
         self.name().to_string()
     }
 
-    /// Render `scene` through `camera` with `method`.
+    /// Whether this backend renders `scene` with `method`, decided without
+    /// rendering: `Ok` exactly when [`render`](Backend::render) with default
+    /// settings does not fail with [`RenderError::NotSupported`], and
+    /// otherwise the same [`Unsupported`] that `render` returns.
+    ///
+    /// Only scene and method decide it; a render it accepts can still fail for
+    /// its settings (resolution, step budget, forced passes), its camera or the
+    /// device.
+    ///
+    /// The default refuses only what [`required_passes`] refuses (the
+    /// technique does not apply to the geometry); a backend with limits of its
+    /// own must override it, and should call it at the start of `render` so
+    /// that the two cannot disagree.
+    fn supports(&self, scene: &Scene, method: &Method) -> Result<(), Unsupported> {
+        planned_passes(self.name(), scene, method).map(|_| ())
+    }
+
+    /// Render `scene` through `camera` with `method`. Fails with
+    /// [`RenderError::NotSupported`] where [`supports`](Backend::supports)
+    /// does.
     fn render(
         &self,
         scene: &Scene,

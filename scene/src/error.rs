@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use subcone_kernels::passes::Unsupported;
+use crate::backend::Unsupported;
 
 /// A scene could not be built or loaded.
 #[derive(Debug, thiserror::Error)]
@@ -48,9 +48,16 @@ pub enum SceneError {
 /// A frame could not be rendered or written.
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {
-    /// The technique cannot render this scene.
+    /// The technique cannot render this scene, as
+    /// [`subcone_kernels::passes::required_passes`] answers it to code that
+    /// calls it directly. Backends report this (and every other scene or
+    /// method they refuse) as [`RenderError::NotSupported`].
     #[error(transparent)]
-    Unsupported(#[from] Unsupported),
+    Unsupported(#[from] subcone_kernels::passes::Unsupported),
+    /// The backend does not render this scene with this method (what
+    /// [`crate::Backend::supports`] predicts).
+    #[error(transparent)]
+    NotSupported(#[from] Unsupported),
     /// The resolution is zero or beyond the limit.
     #[error("invalid resolution {width}x{height}: {reason}")]
     Resolution {

@@ -27,7 +27,7 @@ pub mod method;
 pub mod scene;
 pub mod sdf;
 
-pub use backend::{Backend, RenderSettings};
+pub use backend::{Backend, RenderSettings, Unsupported, UnsupportedReason};
 pub use camera::Camera;
 pub use error::{RenderError, SceneError};
 pub use frame::{Frame, FrameStats, PassTiming, RayCounts};

@@ -5,7 +5,10 @@
 //! direct light with hard shadows and mirror reflection. Methods: NoAA, SSAA,
 //! SRAA and SRAA-RT. SDF scenes are sphere traced (`sphere`): NoAA, SSAA, the
 //! CTSS family and SRAA-RT. All weight and reconstruction maths is the kernels'.
-//! FXAA (every scene) is NoAA followed by [`post::fxaa`].
+//! FXAA (every scene) is NoAA followed by [`post::fxaa`]. What it refuses
+//! ([`Backend::supports`]): what the kernels refuse, more than
+//! [`shade::MAX_LIGHTS`] lights, mirrors and the material gate on SDF scenes,
+//! and semi-transparent materials outside the SDF paths that carry opacity.
 //!
 //! ```
 //! use subcone_cpu::CpuBackend;
@@ -30,8 +33,12 @@ pub mod throughput;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
-use subcone_kernels::passes::{required_passes, Passes, Technique};
-use subcone_scene::{Backend, Camera, Frame, Method, RenderError, RenderSettings, Scene};
+use subcone_kernels::passes::{Passes, Technique};
+use subcone_scene::backend::planned_passes;
+use subcone_scene::{
+    Backend, Camera, Frame, Method, RenderError, RenderSettings, Scene, Unsupported,
+    UnsupportedReason,
+};
 
 pub use bvh::SceneBvh;
 use shade::{Tracer, MAX_LIGHTS};
@@ -96,9 +103,64 @@ impl CpuBackend {
     }
 }
 
+impl CpuBackend {
+    /// The passes of `method` on `scene` with `force` added, or why this
+    /// backend does not render it: the one place where its scene and method
+    /// refusals live, behind both [`Backend::supports`] and
+    /// [`Backend::render`].
+    fn plan(&self, scene: &Scene, method: &Method, force: Passes) -> Result<Passes, Unsupported> {
+        let refuse = |reason| Err(Unsupported::new(self.name(), scene, method, reason));
+        if scene.lights.len() > MAX_LIGHTS {
+            return refuse(UnsupportedReason::TooManyLights {
+                lights: scene.lights.len(),
+                max: MAX_LIGHTS,
+            });
+        }
+        let passes = planned_passes(self.name(), scene, method)? | force;
+        let translucent = scene.has_translucency();
+        if scene.sdf_geometry().is_some() {
+            if passes.intersects(Passes::SECONDARY) {
+                return refuse(UnsupportedReason::SdfReflections);
+            }
+            if method.gates_material() {
+                return refuse(UnsupportedReason::MaterialGateOnSdf);
+            }
+            let opaque_only = if method.technique == Technique::SraaRt {
+                Some("sraa-rt")
+            } else if method.split_groups {
+                Some("hit group subdivision (ctss+edges)")
+            } else if method.delayed_shading {
+                Some("delayed shading")
+            } else {
+                None
+            };
+            if let Some(what) = opaque_only.filter(|_| translucent) {
+                return refuse(UnsupportedReason::Translucency {
+                    what,
+                    instead: "ctss, ctss-r, ssaaN+ctss, noaa and ssaaN render them",
+                });
+            }
+        } else if translucent {
+            return refuse(UnsupportedReason::Translucency {
+                what: "ray tracing triangles",
+                instead: "they render on SDF scenes only",
+            });
+        }
+        Ok(passes)
+    }
+}
+
 impl Backend for CpuBackend {
     fn name(&self) -> &'static str {
         "cpu"
+    }
+
+    /// Refuses more than [`MAX_LIGHTS`] lights, what the kernels refuse
+    /// (`required_passes`), and on SDF scenes mirror reflections and the
+    /// material gate; semi-transparent materials only with the SDF methods
+    /// that carry opacity (not sraa-rt, ctss+edges or delayed shading).
+    fn supports(&self, scene: &Scene, method: &Method) -> Result<(), Unsupported> {
+        self.plan(scene, method, Passes::empty()).map(|_| ())
     }
 
     fn render(
@@ -110,49 +172,10 @@ impl Backend for CpuBackend {
     ) -> Result<Frame, RenderError> {
         settings.validate()?;
         camera.validate()?;
-        if scene.lights.len() > MAX_LIGHTS {
-            return Err(RenderError::Backend {
-                backend: "cpu",
-                reason: format!(
-                    "{} lights; at most {MAX_LIGHTS} are supported",
-                    scene.lights.len()
-                ),
-            });
-        }
-        let passes = required_passes(method.technique, scene.features())? | settings.force_passes;
+        // Forced passes go through the same plan: forcing the secondary
+        // passes on an SDF scene is refused as its mirrors would be.
+        let passes = self.plan(scene, method, settings.force_passes)?;
         if let Some(g) = scene.sdf_geometry() {
-            if passes.intersects(Passes::SECONDARY) {
-                return Err(RenderError::Backend {
-                    backend: "cpu",
-                    reason: "mirror reflections in SDF scenes are not implemented".into(),
-                });
-            }
-            if method.gates_material() {
-                return Err(RenderError::Backend {
-                    backend: "cpu",
-                    reason: format!(
-                        "{method} on SDF scenes is not implemented: the material gate runs on triangle scenes"
-                    ),
-                });
-            }
-            let unsupported = if method.technique == Technique::SraaRt {
-                Some("sraa-rt")
-            } else if method.split_groups {
-                Some("hit group subdivision (ctss+edges)")
-            } else if method.delayed_shading {
-                Some("delayed shading")
-            } else {
-                None
-            };
-            if let Some(what) = unsupported.filter(|_| scene.has_translucency()) {
-                return Err(RenderError::Backend {
-                    backend: "cpu",
-                    reason: format!(
-                        "{what} is not implemented for semi-transparent materials (alpha < 1); \
-                         ctss, ctss-r, ssaaN+ctss, noaa and ssaaN render them"
-                    ),
-                });
-            }
             let view = SdfView {
                 max_distance: settings.max_distance.unwrap_or(g.max_distance),
                 max_steps: settings.max_steps.unwrap_or(g.max_steps),
@@ -162,14 +185,6 @@ impl Backend for CpuBackend {
             let mut frame = view.render(method, settings, passes);
             post_process(&mut frame, passes);
             return Ok(frame);
-        }
-        if scene.has_translucency() {
-            return Err(RenderError::Backend {
-                backend: "cpu",
-                reason:
-                    "semi-transparent materials (alpha < 1) are implemented for SDF scenes only"
-                        .into(),
-            });
         }
         let bvh = self.bvh(scene)?;
         let mesh = scene.mesh().expect("checked by bvh()");

@@ -31,8 +31,12 @@ mod triangles;
 
 use std::sync::Arc;
 
-use subcone_kernels::passes::{required_passes, Passes};
-use subcone_scene::{Backend, Camera, Frame, Method, RenderError, RenderSettings, Scene};
+use subcone_kernels::passes::{Passes, Technique, MAX_LIGHTS};
+use subcone_scene::backend::planned_passes;
+use subcone_scene::{
+    Backend, Camera, Frame, Method, RenderError, RenderSettings, Scene, Unsupported,
+    UnsupportedReason,
+};
 
 pub use context::GpuContext;
 
@@ -67,9 +71,68 @@ pub fn gpu_required() -> bool {
     std::env::var("SUBCONE_REQUIRE_GPU").is_ok_and(|v| !v.is_empty() && v != "0")
 }
 
+impl WgpuBackend {
+    /// The passes of `method` on `scene` with `force` added, or why this
+    /// backend does not render it: the one place where its scene and method
+    /// refusals live, behind both [`Backend::supports`] and
+    /// [`Backend::render`].
+    fn plan(&self, scene: &Scene, method: &Method, force: Passes) -> Result<Passes, Unsupported> {
+        let refuse = |reason| Err(Unsupported::new(self.name(), scene, method, reason));
+        let passes = planned_passes(self.name(), scene, method)? | force;
+        if scene.has_translucency() {
+            // CTSS §5.3's K masks run on the CPU backend only: refuse rather
+            // than draw the scene opaque.
+            return refuse(UnsupportedReason::Translucency {
+                what: "rendering on the GPU",
+                instead: "the cpu backend renders them (CTSS §5.3's K masks have no WGSL twin yet)",
+            });
+        }
+        if scene.sdf_geometry().is_some() {
+            if passes.intersects(Passes::SECONDARY) {
+                return refuse(UnsupportedReason::SdfReflections);
+            }
+            if method.gates_material() {
+                return refuse(UnsupportedReason::MaterialGateOnSdf);
+            }
+            if method.technique.is_subpixel_reconstruction() {
+                return refuse(sdf::SRAA_RT_CPU_ONLY);
+            }
+            if method.split_groups {
+                return refuse(sdf::CTSS_EDGES_CPU_ONLY);
+            }
+            let side = match method.technique {
+                Technique::Ssaa | Technique::SsaaCtss => method.ssaa_side.max(1),
+                _ => 1,
+            };
+            if side > sdf::MAX_SIDE_SAMPLES {
+                return refuse(UnsupportedReason::TooManySamples {
+                    side,
+                    max: sdf::MAX_SIDE_SAMPLES,
+                });
+            }
+        } else if scene.lights.len() > MAX_LIGHTS {
+            return refuse(UnsupportedReason::TooManyLights {
+                lights: scene.lights.len(),
+                max: MAX_LIGHTS,
+            });
+        }
+        Ok(passes)
+    }
+}
+
 impl Backend for WgpuBackend {
     fn name(&self) -> &'static str {
         "wgpu"
+    }
+
+    /// Refuses what the kernels refuse (`required_passes`) and
+    /// semi-transparent materials; on triangle scenes more than
+    /// [`MAX_LIGHTS`] lights; on SDF scenes mirror reflections, the material
+    /// gate, the CPU-only methods (sraa-rt, [`sdf::SRAA_RT_CPU_ONLY`];
+    /// ctss+edges, [`sdf::CTSS_EDGES_CPU_ONLY`]) and more than
+    /// [`sdf::MAX_SIDE_SAMPLES`] samples per pixel side.
+    fn supports(&self, scene: &Scene, method: &Method) -> Result<(), Unsupported> {
+        self.plan(scene, method, Passes::empty()).map(|_| ())
     }
 
     fn describe(&self) -> String {
@@ -85,18 +148,9 @@ impl Backend for WgpuBackend {
     ) -> Result<Frame, RenderError> {
         settings.validate()?;
         camera.validate()?;
-        let passes: Passes =
-            required_passes(method.technique, scene.features())? | settings.force_passes;
-        if scene.has_translucency() {
-            // CTSS §5.3's K masks run on the CPU backend only: refuse rather
-            // than draw the scene opaque.
-            return Err(RenderError::Backend {
-                backend: "wgpu",
-                reason:
-                    "semi-transparent materials (alpha < 1) are rendered by the cpu backend only"
-                        .into(),
-            });
-        }
+        // Forced passes go through the same plan: forcing the secondary
+        // passes on an SDF scene is refused as its mirrors would be.
+        let passes = self.plan(scene, method, settings.force_passes)?;
         if scene.sdf_geometry().is_some() {
             sdf::render(&self.ctx, scene, camera, method, settings, passes)
         } else {

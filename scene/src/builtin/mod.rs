@@ -27,6 +27,17 @@ pub const PAPER_SCENES: [&str; 8] = [
     "sdf-atrium",
 ];
 
+/// The name of every built-in scene, each of which [`builtin`] builds:
+/// [`TRIANGLE_SCENES`], then [`crate::sdf::SDF_SCENES`],
+/// [`crate::sdf::STIFF_SCENES`] and [`crate::sdf::TRANSPARENT_SCENES`].
+pub fn names() -> impl Iterator<Item = &'static str> {
+    TRIANGLE_SCENES
+        .into_iter()
+        .chain(crate::sdf::SDF_SCENES)
+        .chain(crate::sdf::STIFF_SCENES)
+        .chain(crate::sdf::TRANSPARENT_SCENES)
+}
+
 /// A built-in scene by name: a triangle scene ([`TRIANGLE_SCENES`]) or an SDF
 /// scene ([`crate::sdf::SDF_SCENES`], [`crate::sdf::STIFF_SCENES`]).
 pub fn builtin(name: &str) -> Result<Scene, SceneError> {
@@ -39,14 +50,7 @@ pub fn builtin(name: &str) -> Result<Scene, SceneError> {
             Some(s) => Scene::sdf(s?),
             None => Err(SceneError::UnknownScene {
                 name: name.into(),
-                known: TRIANGLE_SCENES
-                    .iter()
-                    .chain(crate::sdf::SDF_SCENES.iter())
-                    .chain(crate::sdf::STIFF_SCENES.iter())
-                    .chain(crate::sdf::TRANSPARENT_SCENES.iter())
-                    .copied()
-                    .collect::<Vec<_>>()
-                    .join(", "),
+                known: names().collect::<Vec<_>>().join(", "),
             }),
         },
     }

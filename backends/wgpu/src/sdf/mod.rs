@@ -45,6 +45,7 @@ use subcone_scene::sdf::wgsl::WgslField;
 use subcone_scene::sdf::SdfNode;
 use subcone_scene::{
     Camera, Frame, FrameStats, Method, RayCounts, RenderError, RenderSettings, Scene,
+    UnsupportedReason,
 };
 use wgpu::util::DeviceExt;
 
@@ -68,7 +69,20 @@ const DATA_BINDING: &str = "@group(0) @binding(4) var<storage, read> sdf_data: a
 /// their reconstruction exist on the CPU only (`subcone_cpu::sphere`); this
 /// backend would need a subpixel geometry pass in the generated SDF shader
 /// feeding the triangle path's reconstruction pass.
-pub const SRAA_RT_CPU_ONLY: &str = "sraa-rt on SDF scenes runs on the CPU backend only";
+pub const SRAA_RT_CPU_ONLY: UnsupportedReason = UnsupportedReason::CpuOnly {
+    what: "sraa-rt on SDF scenes",
+    why: "sphere-traced subsamples and their reconstruction have no WGSL twin",
+};
+
+/// Why `ctss+edges` is refused: hit group subdivision (CTSS §5.3,
+/// `subcone_kernels::ctss::ConeStepper::split_group`) has no WGSL twin.
+pub const CTSS_EDGES_CPU_ONLY: UnsupportedReason = UnsupportedReason::CpuOnly {
+    what: "ctss+edges",
+    why: "hit group subdivision, CTSS §5.3, has no WGSL twin",
+};
+
+/// Most samples per pixel side (`ssaaN`, `ssaaN+ctss`) one invocation traces.
+pub const MAX_SIDE_SAMPLES: u32 = 64;
 
 /// The kernels' WGSL every SDF shader starts with.
 fn kernels_wgsl() -> String {
@@ -246,17 +260,8 @@ pub(crate) fn render(
     let g = scene
         .sdf_geometry()
         .ok_or_else(|| err("not an SDF scene"))?;
-    if passes.intersects(Passes::SECONDARY) {
-        return Err(err("mirror reflections in SDF scenes are not implemented"));
-    }
-    if method.technique.is_subpixel_reconstruction() {
-        return Err(err(SRAA_RT_CPU_ONLY));
-    }
-    if method.split_groups {
-        return Err(err(
-            "ctss+edges runs on the CPU backend only (hit group subdivision, CTSS §5.3, has no WGSL twin)",
-        ));
-    }
+    // `WgpuBackend::plan` has refused mirrors, SRAA-RT, ctss+edges and more
+    // than MAX_SIDE_SAMPLES samples per side.
     let max_distance = settings.max_distance.unwrap_or(g.max_distance);
     let max_steps = settings.max_steps.unwrap_or(g.max_steps);
     if max_distance.is_nan() {
@@ -267,11 +272,6 @@ pub(crate) fn render(
         Technique::Ssaa | Technique::SsaaCtss => method.ssaa_side.max(1),
         _ => 1,
     };
-    if side > 64 {
-        return Err(err(format!(
-            "{side}x{side} samples per pixel is more than this backend traces per invocation (64x64)"
-        )));
-    }
     let cone = matches!(
         method.technique,
         Technique::Ctss | Technique::CtssR | Technique::SsaaCtss

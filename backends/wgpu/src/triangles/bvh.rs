@@ -244,7 +244,8 @@ fn upload(ctx: &GpuContext, scene: &Scene) -> Result<SceneGpu, RenderError> {
     if texels.is_empty() {
         texels.push([0.0; 4]);
     }
-    // `render` has refused more than MAX_LIGHTS lights before uploading.
+    // `WgpuBackend::render` has refused more than MAX_LIGHTS lights before
+    // uploading.
     let mut lights: Vec<GpuLight> = scene
         .lights
         .iter()

@@ -502,12 +502,7 @@ pub(crate) fn render(
     settings: &RenderSettings,
     passes: Passes,
 ) -> Result<Frame, RenderError> {
-    if scene.lights.len() > MAX_LIGHTS {
-        return Err(err(format!(
-            "{} lights; at most {MAX_LIGHTS} are supported",
-            scene.lights.len()
-        )));
-    }
+    // `WgpuBackend::plan` has refused more than MAX_LIGHTS lights.
     match method.technique {
         Technique::NoAa
         | Technique::Ssaa
