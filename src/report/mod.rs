@@ -455,12 +455,16 @@ struct Plan {
     smaa: SmaaPlan,
 }
 
+/// A method that some backend renders on a scene, with the indices (in the
+/// plan) of the backends that do.
+type Applicable = (Method, Vec<usize>);
+
 /// Whether the run has an `smaa` row, and on what.
 enum SmaaPlan {
     /// Not asked for.
     Off,
     /// SMAA 1x on this GPU.
-    On(smaa::SmaaPost),
+    On(Box<smaa::SmaaPost>),
     /// Asked for, but no adapter: the reason, listed under Skipped.
     Unavailable(String),
 }
@@ -544,7 +548,7 @@ impl Plan {
             SmaaPlan::Off
         } else {
             match smaa::SmaaPost::new() {
-                Ok(p) => SmaaPlan::On(p),
+                Ok(p) => SmaaPlan::On(Box::new(p)),
                 Err(e) if subcone_wgpu::gpu_required() => {
                     return Err(e.context(
                         "the smaa row needs a GPU adapter and SUBCONE_REQUIRE_GPU is set",
@@ -858,12 +862,7 @@ impl Runner<'_> {
 /// The `smaa` row of one backend: NoAA's row with the SMAA post-process
 /// (one warm-up, then `runs` timed calls on the timing-size NoAA frame)
 /// added to its times, as the pass `smaa`, and the adapter named.
-fn smaa_row(
-    post: &smaa::SmaaPost,
-    noaa: ResultRow,
-    frame: &Rgb8,
-    runs: u32,
-) -> Result<ResultRow> {
+fn smaa_row(post: &smaa::SmaaPost, noaa: ResultRow, frame: &Rgb8, runs: u32) -> Result<ResultRow> {
     post.apply(frame)?;
     let mut ms: Vec<f64> = Vec::new();
     for _ in 0..runs.max(1) {
@@ -916,7 +915,12 @@ fn measure(
         img,
     )?;
     output::save_png(
-        &img_dir.join(image_name("flip_", &row.method, &row.backend, first_backend)),
+        &img_dir.join(image_name(
+            "flip_",
+            &row.method,
+            &row.backend,
+            first_backend,
+        )),
         &fl.magma,
     )?;
     Ok(())
@@ -946,7 +950,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
     let mut skipped = Vec::new();
     // Per scene: each method that some backend renders, with the indices of
     // the backends that render it (asked of `Backend::supports`).
-    let mut work: Vec<(usize, Vec<(Method, Vec<usize>)>)> = Vec::new();
+    let mut work: Vec<(usize, Vec<Applicable>)> = Vec::new();
     for (i, job) in jobs.iter().enumerate() {
         let mut ms = Vec::new();
         for m in &plan.methods {

@@ -196,7 +196,12 @@ fn row_cells(r: &ResultRow, passes: &[String]) -> Vec<Cell> {
                 .unwrap_or(Cell::Empty),
         );
     }
-    c.push(r.post_adapter.clone().map(Cell::Text).unwrap_or(Cell::Empty));
+    c.push(
+        r.post_adapter
+            .clone()
+            .map(Cell::Text)
+            .unwrap_or(Cell::Empty),
+    );
     for p in passes {
         c.push(opt(r.pass(p.trim_start_matches("ms_"))));
     }
@@ -282,6 +287,10 @@ pub fn json(s: &ReportSummary, ctx: &Context) -> Value {
     let (_, sweep) = json_rows(&s.sweep);
     json!({
         "version": code_version(),
+        "machine": {
+            "cpu": cpu_model(),
+            "threads": std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1),
+        },
         "mode": ctx.mode.name(),
         "backends": ctx.backends,
         "backend_descriptions": ctx.backend_descriptions,
@@ -336,6 +345,21 @@ fn ms(v: f64) -> String {
     }
 }
 
+/// The processor's model name (Linux: `/proc/cpuinfo`), or the
+/// architecture where that cannot be read.
+pub fn cpu_model() -> String {
+    std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|t| {
+            t.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split_once(':'))
+                .map(|(_, m)| m.trim().to_string())
+        })
+        .filter(|m| !m.is_empty())
+        .unwrap_or_else(|| std::env::consts::ARCH.to_string())
+}
+
 /// `report.md`.
 pub fn markdown(s: &ReportSummary, ctx: &Context) -> String {
     let mut md = String::new();
@@ -345,12 +369,13 @@ pub fn markdown(s: &ReportSummary, ctx: &Context) -> String {
     let _ = writeln!(md, "# subcone report\n");
     let _ = writeln!(
         md,
-        "Mode **{}**, backends {}, {} timed runs after one warm-up, code {}, {} hardware threads.{}\n",
+        "Mode **{}**, backends {}, {} timed runs after one warm-up, code {}, {} hardware threads ({}).{}\n",
         ctx.mode.name(),
         ctx.backend_descriptions.join(", "),
         ctx.runs,
         code_version(),
         threads,
+        cpu_model(),
         if ctx.mode == Mode::TimingOnly {
             " No references and no errors (timing only).".to_string()
         } else {
@@ -1082,11 +1107,15 @@ mod tests {
         let mut lines = text.lines();
         let header = lines.next().unwrap();
         assert!(header.starts_with("scene,method,backend,width,height,runs,ms_median"));
-        assert!(header.ends_with(",reference,ms_geometry,ms_shading"));
+        assert!(header.ends_with(",px_flat,post_adapter,ms_geometry,ms_shading"));
         let first = lines.next().unwrap();
-        assert!(
-            first.starts_with("\"s,1\",noaa,cpu,4,2,3,2.5,2,3,,0.125,inf,,1,2,0.5,4,2,ssaa64,,1")
+        // No classes (12 empty columns), no post-process adapter, no
+        // geometry pass: 14 empty fields between the reference and shading.
+        let expected = format!(
+            "\"s,1\",noaa,cpu,4,2,3,2.5,2,3,,0.125,inf,,1,2,0.5,4,2,ssaa64{}1",
+            ",".repeat(15)
         );
+        assert_eq!(first, expected);
     }
 
     #[test]
