@@ -398,6 +398,7 @@ faster method beats.\n"
 
     if ctx.mode != Mode::TimingOnly {
         md.push_str(&rules());
+        md.push_str(&verdict_summary(s, ctx));
     }
 
     for sc in &ctx.scenes {
@@ -616,6 +617,66 @@ class with no pixel in the scene is listed as having none.\n",
         b = classes::BEAT_FACTOR,
         f = classes::FLAT_FACTOR,
     );
+    md
+}
+
+/// Every verdict of the run in one table: a row per method and backend, a
+/// column per scene, each cell the claimed classes beaten (of those with
+/// pixels) and whether flat holds.
+pub fn verdict_summary(s: &ReportSummary, ctx: &Context) -> String {
+    let mut md = String::new();
+    let scenes: Vec<&str> = ctx.scenes.iter().map(|sc| sc.name.as_str()).collect();
+    let mut keys: Vec<(String, String)> = Vec::new();
+    let mut cells: Vec<((String, String, String), String)> = Vec::new();
+    for sc in &scenes {
+        let rows: Vec<&ResultRow> = s.rows.iter().filter(|r| r.scene == *sc).collect();
+        for (backend, v) in verdicts(&rows) {
+            let key = (v.method.clone(), backend.clone());
+            if !keys.contains(&key) {
+                keys.push(key);
+            }
+            let with = v.beats.len() + v.misses.len();
+            cells.push((
+                (v.method.clone(), backend, sc.to_string()),
+                format!(
+                    "{}/{} · {}",
+                    v.beats.len(),
+                    with,
+                    match v.flat {
+                        None => "no flat",
+                        Some(_) if v.holds_on_flat() => "holds",
+                        Some(_) => "**loses**",
+                    }
+                ),
+            ));
+        }
+    }
+    if keys.is_empty() {
+        return md;
+    }
+    let _ = writeln!(
+        md,
+        "## Verdicts at a glance\n\n\
+Per scene: how many of the claimed classes present in the scene the method beats NoAA on, and \
+whether it holds or loses on flat pixels (the lines under each scene give the classes and \
+figures).\n"
+    );
+    let _ = writeln!(md, "| method | backend | {} |", scenes.join(" | "));
+    let _ = writeln!(md, "|---|---|{}", "--:|".repeat(scenes.len()));
+    for (method, backend) in &keys {
+        let row: Vec<String> = scenes
+            .iter()
+            .map(|sc| {
+                cells
+                    .iter()
+                    .find(|(k, _)| k.0 == *method && k.1 == *backend && k.2 == *sc)
+                    .map(|(_, c)| c.clone())
+                    .unwrap_or_else(|| "–".into())
+            })
+            .collect();
+        let _ = writeln!(md, "| {method} | {backend} | {} |", row.join(" | "));
+    }
+    let _ = writeln!(md);
     md
 }
 
