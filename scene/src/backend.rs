@@ -27,7 +27,10 @@ pub struct RenderSettings {
     /// Passes to run even where the scene does not need them (for tests that
     /// check that leaving a pass out changes nothing).
     pub force_passes: Passes,
-    /// Record depth, normal and samples-per-pixel AOVs.
+    /// Record the AOVs: depth, normal and samples per pixel; the CPU
+    /// backend also records albedo, per-light visibility and mirror
+    /// reflectance (`Frame::albedo`, `Frame::light_visibility`,
+    /// `Frame::mirror`), which the report's edge classes need.
     pub aovs: bool,
     /// SDF scenes: step budget per ray, overriding the scene's.
     pub max_steps: Option<u32>,
