@@ -17,6 +17,7 @@
 pub mod backend;
 pub mod builtin;
 pub mod camera;
+pub mod conformance;
 pub mod error;
 pub mod frame;
 pub mod light;

@@ -6,6 +6,27 @@ use std::str::FromStr;
 use subcone_kernels::passes::Technique;
 use subcone_kernels::sraa::SraaParams;
 
+/// The methods of the default comparison, by the names [`Method`] parses
+/// and prints, in table order: the one list the report, the CLI's help and
+/// the backend contract's checks read. Every other accepted name is an
+/// `ssaaN`/`ssaaN+ctss` with another `N` or a `-delayed` variant of a CTSS
+/// method.
+pub const METHOD_NAMES: [&str; 13] = [
+    "noaa",
+    "ssaa4",
+    "ssaa16",
+    "sraa",
+    "sraa-rt",
+    "sraa+mat",
+    "sraa-rt+mat",
+    "ctss",
+    "ctss-delayed",
+    "ctss+edges",
+    "ctss-r",
+    "ssaa4+ctss",
+    "fxaa",
+];
+
 /// Sample counts `ssaaN` accepts: squares, so the grid is regular.
 pub const SSAA_COUNTS: [u32; 5] = [4, 9, 16, 64, 256];
 
@@ -169,5 +190,22 @@ impl FromStr for Method {
                 }
             }
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_listed_name_parses_and_prints_back() {
+        for name in METHOD_NAMES {
+            let m: Method = name.parse().unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert_eq!(m.to_string(), name);
+        }
+        let mut sorted = METHOD_NAMES.to_vec();
+        sorted.sort();
+        sorted.dedup();
+        assert_eq!(sorted.len(), METHOD_NAMES.len(), "a name is listed twice");
     }
 }

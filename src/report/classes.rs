@@ -167,37 +167,12 @@ impl<'a> Aovs<'a> {
         self.depth[i].is_finite()
     }
 
-    /// Whether sub-samples `a` and `b` (4-neighbours) see different surfaces.
-    /// `oa` is `a`'s neighbour on the same line away from `b`, `ob` is `b`'s:
-    /// inverse view depth is affine in screen space on a plane, so a plane
-    /// extrapolates from either side however grazing it is, a true
-    /// discontinuity from neither.
+    /// Whether sub-samples `a` and `b` (4-neighbours) see different
+    /// surfaces ([`metrics::depth_discontinuity`](super::metrics::depth_discontinuity)
+    /// at [`SILHOUETTE_DEPTH`]); `oa` and `ob` are their neighbours on the
+    /// same line, away from each other.
     fn silhouette(&self, a: usize, b: usize, oa: Option<usize>, ob: Option<usize>) -> bool {
-        let (da, db) = (self.depth[a], self.depth[b]);
-        let (fa, fb) = (da.is_finite(), db.is_finite());
-        if fa != fb {
-            return true;
-        }
-        if !fa {
-            return false;
-        }
-        let scale = da.abs().min(db.abs()).max(1e-6);
-        if (da - db).abs() / scale <= SILHOUETTE_DEPTH {
-            return false;
-        }
-        let planar = |p: usize, o: Option<usize>, q: usize| -> bool {
-            let Some(o) = o else { return false };
-            if !self.depth[o].is_finite() {
-                return false;
-            }
-            let (ip, io, iq) = (
-                1.0 / self.depth[p],
-                1.0 / self.depth[o],
-                1.0 / self.depth[q],
-            );
-            ((2.0 * ip - io) - iq).abs() <= SILHOUETTE_DEPTH * ip.max(iq)
-        };
-        !planar(a, oa, b) && !planar(b, ob, a)
+        super::metrics::depth_discontinuity(self.depth, a, b, oa, ob, SILHOUETTE_DEPTH)
     }
 
     /// Whether the normals of `a` and `b` (both surface points) fold.

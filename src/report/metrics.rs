@@ -164,32 +164,12 @@ pub fn geometric_edges(aov: &Frame) -> Result<Vec<bool>> {
         bail!("AOVs do not match the frame size {w}x{h}");
     }
     let mut mask = vec![false; w * h];
-    // `a` and `b` are neighbours; `oa` is `a`'s other neighbour on the same
-    // line (away from `b`), `ob` is `b`'s. Inverse view depth is affine in
-    // screen space on a plane, so a plane seen at a grazing angle (whose depth
-    // changes by more than 2 % per pixel towards the horizon) extrapolates
-    // exactly from either side; a true discontinuity from neither.
-    let inv = |i: usize| 1.0 / depth[i];
-    let planar = |p: usize, o: Option<usize>, q: usize| -> bool {
-        let Some(o) = o else { return false };
-        if !depth[o].is_finite() {
-            return false;
-        }
-        let pred = 2.0 * inv(p) - inv(o);
-        (pred - inv(q)).abs() <= DEPTH_EDGE * inv(p).max(inv(q))
-    };
     let differs = |a: usize, b: usize, oa: Option<usize>, ob: Option<usize>| -> bool {
-        let (da, db) = (depth[a], depth[b]);
-        let (fa, fb) = (da.is_finite(), db.is_finite());
-        if fa != fb {
+        if depth_discontinuity(depth, a, b, oa, ob, DEPTH_EDGE) {
             return true;
         }
-        if !fa {
+        if !(depth[a].is_finite() && depth[b].is_finite()) {
             return false;
-        }
-        let scale = da.abs().min(db.abs()).max(1e-6);
-        if (da - db).abs() / scale > DEPTH_EDGE && !planar(a, oa, b) && !planar(b, ob, a) {
-            return true;
         }
         let (na, nb) = (normal[a], normal[b]);
         na.is_finite()
@@ -220,6 +200,46 @@ pub fn geometric_edges(aov: &Frame) -> Result<Vec<bool>> {
         }
     }
     Ok(mask)
+}
+
+/// Whether neighbouring samples `a` and `b` of a view-depth image see
+/// different surfaces: one is a miss (non-finite depth) and the other is not,
+/// or their depths differ by more than `threshold` relatively and the inverse
+/// depth does not continue linearly from either side. `oa` is `a`'s other
+/// neighbour on the same line (away from `b`), `ob` is `b`'s: inverse view
+/// depth is affine in screen space on a plane, so a plane seen at a grazing
+/// angle (whose depth may change by far more than `threshold` per sample)
+/// extrapolates exactly from either side; a true discontinuity from neither.
+/// Indices must be in `depth`.
+pub fn depth_discontinuity(
+    depth: &[f32],
+    a: usize,
+    b: usize,
+    oa: Option<usize>,
+    ob: Option<usize>,
+    threshold: f32,
+) -> bool {
+    let (da, db) = (depth[a], depth[b]);
+    let (fa, fb) = (da.is_finite(), db.is_finite());
+    if fa != fb {
+        return true;
+    }
+    if !fa {
+        return false;
+    }
+    let scale = da.abs().min(db.abs()).max(1e-6);
+    if (da - db).abs() / scale <= threshold {
+        return false;
+    }
+    let planar = |p: usize, o: Option<usize>, q: usize| -> bool {
+        let Some(o) = o else { return false };
+        if !depth[o].is_finite() {
+            return false;
+        }
+        let (ip, io, iq) = (1.0 / depth[p], 1.0 / depth[o], 1.0 / depth[q]);
+        ((2.0 * ip - io) - iq).abs() <= threshold * ip.max(iq)
+    };
+    !planar(a, oa, b) && !planar(b, ob, a)
 }
 
 /// Sobel gradient magnitude of a `w × h` scalar image, normalised so that a

@@ -84,23 +84,15 @@ pub const PAPER_SCENES: [&str; 8] = [
 /// materials (CPU only: the wgpu backend lists it as skipped).
 pub const QUICK_EXTRA_SCENES: [&str; 1] = ["glass"];
 
-/// The methods compared, in table order.
-pub const METHODS: &[&str] = &[
-    "noaa",
-    "ssaa4",
-    "ssaa16",
-    "sraa",
-    "sraa-rt",
-    "sraa+mat",
-    "sraa-rt+mat",
-    "ctss",
-    "ctss-delayed",
-    "ctss+edges",
-    "ctss-r",
-    "ssaa4+ctss",
-    "fxaa",
-    "smaa",
-];
+/// The methods compared, in table order: every method of
+/// [`METHOD_NAMES`](subcone_scene::method::METHOD_NAMES), then the `smaa`
+/// post-process row.
+pub fn default_methods() -> Vec<&'static str> {
+    subcone_scene::method::METHOD_NAMES
+        .into_iter()
+        .chain([SMAA])
+        .collect()
+}
 
 /// The name of the SMAA row: not a [`Method`] (no backend renders it), but
 /// [`smaa::SmaaPost`] on the NoAA frame of each backend.
@@ -275,6 +267,23 @@ pub struct Failure {
     pub backend: String,
     /// The error, with its causes.
     pub error: String,
+}
+
+impl Failure {
+    /// `method` on `scene` with `backend` failed with `error`.
+    pub fn new(
+        scene: &str,
+        method: impl Into<String>,
+        backend: impl Into<String>,
+        error: &anyhow::Error,
+    ) -> Self {
+        Failure {
+            scene: scene.into(),
+            method: method.into(),
+            backend: backend.into(),
+            error: format!("{error:#}"),
+        }
+    }
 }
 
 /// A chosen crop region of a scene.
@@ -497,7 +506,7 @@ impl Plan {
         };
         let backends = parse_backends(&args.backend)?;
         let names: Vec<String> = if args.methods.is_empty() {
-            METHODS.iter().map(|s| s.to_string()).collect()
+            default_methods().into_iter().map(String::from).collect()
         } else {
             args.methods
                 .iter()
@@ -1086,12 +1095,12 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                 Err(e) => {
                     runner.fail(
                         &mut failures,
-                        Failure {
-                            scene: job.name.clone(),
-                            method: format!("reference {}", plan.reference),
-                            backend: "cpu".into(),
-                            error: format!("{e:#}"),
-                        },
+                        Failure::new(
+                            &job.name,
+                            format!("reference {}", plan.reference),
+                            "cpu",
+                            &e,
+                        ),
                     )?;
                     None
                 }
@@ -1128,12 +1137,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                     Err(e) => {
                         runner.fail(
                             &mut failures,
-                            Failure {
-                                scene: job.name.clone(),
-                                method: mname,
-                                backend: bname.clone(),
-                                error: format!("{e:#}"),
-                            },
+                            Failure::new(&job.name, mname, bname.clone(), &e),
                         )?;
                         runner
                             .progress
@@ -1162,12 +1166,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                 if let Some(e) = failed {
                     runner.fail(
                         &mut failures,
-                        Failure {
-                            scene: job.name.clone(),
-                            method: mname,
-                            backend: bname.clone(),
-                            error: format!("{e:#}"),
-                        },
+                        Failure::new(&job.name, mname, bname.clone(), &e),
                     )?;
                     continue;
                 }
@@ -1231,12 +1230,12 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                         }
                         Err(e) => runner.fail(
                             &mut failures,
-                            Failure {
-                                scene: job.name.clone(),
-                                method: format!("{mname} (quality render)"),
-                                backend: bname.clone(),
-                                error: format!("{e:#}"),
-                            },
+                            Failure::new(
+                                &job.name,
+                                format!("{mname} (quality render)"),
+                                bname.clone(),
+                                &e,
+                            ),
                         )?,
                     }
                 }
@@ -1268,12 +1267,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                     Ok(row) => rows.push(row),
                     Err(e) => runner.fail(
                         &mut failures,
-                        Failure {
-                            scene: job.name.clone(),
-                            method: SMAA.into(),
-                            backend: bname.clone(),
-                            error: format!("{e:#}"),
-                        },
+                        Failure::new(&job.name, SMAA, bname.clone(), &e),
                     )?,
                 }
             }
@@ -1359,12 +1353,12 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                             Err(e) => {
                                 runner.fail(
                                     &mut failures,
-                                    Failure {
-                                        scene: job.name.clone(),
-                                        method: format!("{m} (sweep at {side}x{side})"),
-                                        backend: bname.clone(),
-                                        error: format!("{e:#}"),
-                                    },
+                                    Failure::new(
+                                        &job.name,
+                                        format!("{m} (sweep at {side}x{side})"),
+                                        bname.clone(),
+                                        &e,
+                                    ),
                                 )?;
                                 ok = false;
                             }
