@@ -102,6 +102,15 @@ pub fn pareto_front(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
     front
 }
 
+/// How many backends `rows` come from (labels name the backend when more
+/// than one).
+fn backend_count(rows: &[&ResultRow]) -> usize {
+    let mut b: Vec<&str> = rows.iter().map(|r| r.backend.as_str()).collect();
+    b.sort();
+    b.dedup();
+    b.len()
+}
+
 fn label(r: &ResultRow, backends: usize) -> String {
     if backends > 1 {
         format!("{} ({})", r.method, r.backend)
@@ -131,12 +140,7 @@ where
             ))
         })
         .collect();
-    let backends = {
-        let mut b: Vec<&str> = rows.iter().map(|r| r.backend.as_str()).collect();
-        b.sort();
-        b.dedup();
-        b.len()
-    };
+    let backends = backend_count(rows);
     let tmin = pts.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
     let tmax = pts.iter().map(|p| p.1).fold(0.0, f64::max);
     let fmax = pts.iter().map(|p| p.2).fold(0.0, f64::max);
@@ -252,12 +256,7 @@ where
 {
     let e = "pass-time plot";
     root.fill(&WHITE).map_err(pe(e))?;
-    let backends = {
-        let mut b: Vec<&str> = rows.iter().map(|r| r.backend.as_str()).collect();
-        b.sort();
-        b.dedup();
-        b.len()
-    };
+    let backends = backend_count(rows);
     // Segments per bar: the passes in run order, then what no pass covers.
     let bars: Vec<(String, Vec<(String, f64)>)> = rows
         .iter()
@@ -358,12 +357,7 @@ where
 {
     let e = "edge-class plot";
     root.fill(&WHITE).map_err(pe(e))?;
-    let backends = {
-        let mut b: Vec<&str> = rows.iter().map(|r| r.backend.as_str()).collect();
-        b.sort();
-        b.dedup();
-        b.len()
-    };
+    let backends = backend_count(rows);
     let bars: Vec<(String, String, ClassFlip)> = rows
         .iter()
         .filter_map(|r| r.classes.map(|k| (label(r, backends), r.method.clone(), k)))
