@@ -237,6 +237,43 @@ pub struct ResultRow {
 }
 
 impl ResultRow {
+    /// The row of `method` on `scene` with `backend`, timed at `size` over
+    /// `runs` runs: times and passes from `t`; no error measured yet, and
+    /// per-frame figures (spp, rays, buffers) 0 until the caller sets them.
+    pub fn timed(
+        scene: &str,
+        method: &str,
+        backend: &str,
+        size: (u32, u32),
+        runs: u32,
+        t: &Timings,
+    ) -> Self {
+        ResultRow {
+            scene: scene.into(),
+            method: method.into(),
+            backend: backend.into(),
+            width: size.0,
+            height: size.1,
+            runs,
+            ms_median: t.median(),
+            ms_min: t.min(),
+            ms_max: t.max(),
+            ratio_to_noaa: None,
+            flip_mean: None,
+            psnr_db: None,
+            edge_flip_mean: None,
+            classes: None,
+            samples_per_pixel: 0.0,
+            rays_per_pixel: 0.0,
+            buffer_mib: 0.0,
+            quality_width: None,
+            quality_height: None,
+            reference: None,
+            pass_ms: t.pass_medians(),
+            post_adapter: None,
+        }
+    }
+
     /// Median ms of pass `name` (column-safe), if the method has it.
     pub fn pass(&self, name: &str) -> Option<f64> {
         self.pass_ms.iter().find(|p| p.0 == name).map(|p| p.1)
@@ -713,17 +750,23 @@ impl Progress {
     }
 }
 
+/// The run's state while it measures: the plan, the progress bar and what
+/// has been measured so far.
 struct Runner<'a> {
     plan: &'a Plan,
     progress: Progress,
     references_rendered: usize,
     references_cached: usize,
+    rows: Vec<ResultRow>,
+    failures: Vec<Failure>,
+    crops: Vec<SceneCrops>,
+    plots: Vec<PathBuf>,
 }
 
 impl Runner<'_> {
     /// A failed render: an error that stops the run, or with `--keep-going`
     /// a note and an entry in `failures`.
-    fn fail(&self, failures: &mut Vec<Failure>, f: Failure) -> Result<()> {
+    fn fail(&mut self, f: Failure) -> Result<()> {
         if !self.plan.keep_going {
             self.progress.bar.abandon();
             bail!(
@@ -738,7 +781,7 @@ impl Runner<'_> {
             "FAILED {} / {} on {}: {}",
             f.scene, f.method, f.backend, f.error
         ));
-        failures.push(f);
+        self.failures.push(f);
         Ok(())
     }
 
@@ -870,33 +913,59 @@ impl Runner<'_> {
 
 /// The `smaa` row of one backend: NoAA's row with the SMAA post-process
 /// (one warm-up, then `runs` timed calls on the timing-size NoAA frame)
-/// added to its times, as the pass `smaa`, and the adapter named.
-fn smaa_row(post: &smaa::SmaaPost, noaa: ResultRow, frame: &Rgb8, runs: u32) -> Result<ResultRow> {
+/// added to its times, as the pass `smaa`, and the adapter named; with the
+/// scene's quality, its error on the post-processed NoAA quality image.
+fn smaa_measured(
+    post: &smaa::SmaaPost,
+    noaa: Measured,
+    sq: Option<&SceneQuality>,
+    plan: &Plan,
+    img_dir: &Path,
+    first_backend: bool,
+) -> Result<Measured> {
+    let frame = noaa
+        .timing
+        .as_ref()
+        .ok_or_else(|| anyhow!("no NoAA frame to post-process"))?;
     post.apply(frame)?;
     let mut ms: Vec<f64> = Vec::new();
-    for _ in 0..runs.max(1) {
+    for _ in 0..plan.runs.max(1) {
         ms.push(post.apply(frame)?.1.as_secs_f64() * 1e3);
     }
     ms.sort_by(f64::total_cmp);
     let median = ms[ms.len() / 2];
-    let mut pass_ms = noaa.pass_ms.clone();
+    let base = noaa.row;
+    let mut pass_ms = base.pass_ms.clone();
     pass_ms.push((SMAA.into(), median));
-    Ok(ResultRow {
+    let mut row = ResultRow {
         method: SMAA.into(),
-        ms_median: noaa.ms_median + median,
-        ms_min: noaa.ms_min + ms[0],
-        ms_max: noaa.ms_max + ms[ms.len() - 1],
-        ratio_to_noaa: None,
-        flip_mean: None,
-        psnr_db: None,
-        edge_flip_mean: None,
-        classes: None,
-        quality_width: None,
-        quality_height: None,
-        reference: None,
+        ms_median: base.ms_median + median,
+        ms_min: base.ms_min + ms[0],
+        ms_max: base.ms_max + ms[ms.len() - 1],
         pass_ms,
         post_adapter: Some(post.adapter()),
-        ..noaa
+        ..ResultRow::timed(
+            &base.scene,
+            SMAA,
+            &base.backend,
+            (base.width, base.height),
+            base.runs,
+            &Timings::default(),
+        )
+    };
+    row.samples_per_pixel = base.samples_per_pixel;
+    row.rays_per_pixel = base.rays_per_pixel;
+    row.buffer_mib = base.buffer_mib;
+    let mut quality = None;
+    if let (Some(q), Some(img)) = (sq, &noaa.quality) {
+        let (out, _) = post.apply(img)?;
+        measure(&mut row, &out, q, plan, img_dir, first_backend)?;
+        quality = Some(out);
+    }
+    Ok(Measured {
+        row,
+        quality,
+        timing: None,
     })
 }
 
@@ -946,7 +1015,12 @@ fn image_name(prefix: &str, method: &str, backend: &str, first: bool) -> String 
     }
 }
 
-/// Run the report.
+/// The methods of the SRAA Table 1 sweep.
+pub const SWEEP_METHODS: [&str; 3] = ["noaa", "sraa-rt", "ssaa16"];
+
+/// Run the report: plan what applies, measure each scene (its methods, the
+/// SMAA row, crops and plots), run the SRAA Table 1 sweep and the CPU
+/// performance targets, then write the files.
 pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
     let start = Instant::now();
     let plan = Plan::new(args)?;
@@ -955,25 +1029,98 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
     let (jobs, unavailable) = load_scenes(args, &plan)?;
     plot::register_fonts()?;
 
-    // Applicability first, so the progress bar knows its length.
+    let (work, skipped) = applicable(&plan, &jobs, args.methods.is_empty());
+    let sweep_job = jobs
+        .iter()
+        .find(|j| j.arg == SWEEP_SCENE && !j.sdf)
+        .filter(|_| plan.sweep);
+    let mut runner = Runner {
+        plan: &plan,
+        progress: Progress::new(progress_length(&plan, &jobs, &work, sweep_job.is_some())),
+        references_rendered: 0,
+        references_cached: 0,
+        rows: Vec::new(),
+        failures: Vec::new(),
+        crops: Vec::new(),
+        plots: Vec::new(),
+    };
+    for (i, methods) in &work {
+        runner.scene(&jobs[*i], methods)?;
+    }
+    let sweep = match sweep_job {
+        Some(job) => runner.sweep(job)?,
+        None => Vec::new(),
+    };
+    let (throughput, kernels) = runner.cpu_targets(&jobs);
+    runner.progress.bar.finish_and_clear();
+
+    let summary = ReportSummary {
+        out_dir: plan.out.clone(),
+        report_md: plan.out.join("report.md"),
+        results_csv: plan.out.join("results.csv"),
+        results_json: plan.out.join("results.json"),
+        plots: runner.plots,
+        rows: runner.rows,
+        sweep,
+        skipped,
+        failures: runner.failures,
+        unavailable_scenes: unavailable,
+        crops: runner.crops,
+        references_rendered: runner.references_rendered,
+        references_cached: runner.references_cached,
+        throughput,
+        kernels,
+        elapsed: start.elapsed(),
+    };
+    output::write_all(&summary, &context(&plan, &jobs))?;
+    Ok(summary)
+}
+
+/// What the output files say about the run besides its rows.
+fn context(plan: &Plan, jobs: &[SceneJob]) -> output::Context {
+    output::Context {
+        mode: plan.mode,
+        backends: plan.backends.iter().map(|b| b.0.clone()).collect(),
+        backend_descriptions: plan.backends.iter().map(|b| b.1.describe()).collect(),
+        runs: plan.runs,
+        reference: plan.reference.to_string(),
+        scenes: jobs
+            .iter()
+            .map(|j| output::SceneInfo {
+                name: j.name.clone(),
+                arg: j.arg.clone(),
+                sdf: j.sdf,
+                timing_size: j.timing_size,
+                quality_size: (plan.mode != Mode::TimingOnly).then_some(j.quality_size),
+            })
+            .collect(),
+    }
+}
+
+/// Per scene (by index in `jobs`), each method that some backend renders,
+/// with the backends that do (asked of [`Backend::supports`] before anything
+/// renders), and the combinations skipped, with the reason.
+fn applicable(
+    plan: &Plan,
+    jobs: &[SceneJob],
+    default_methods: bool,
+) -> (Vec<(usize, Vec<Applicable>)>, Vec<Skipped>) {
     let mut skipped = Vec::new();
-    // Per scene: each method that some backend renders, with the indices of
-    // the backends that render it (asked of `Backend::supports`).
-    let mut work: Vec<(usize, Vec<Applicable>)> = Vec::new();
+    let mut work = Vec::new();
+    let skip = |job: &SceneJob, method: String, backend: &str, reason: String| Skipped {
+        scene: job.name.clone(),
+        method,
+        backend: backend.into(),
+        reason,
+    };
     for (i, job) in jobs.iter().enumerate() {
         let mut ms = Vec::new();
         for m in &plan.methods {
             // ssaa16 on an SDF scene at 1280x720 costs minutes per run and is
             // not in the CTSS comparison (its Table 1 stops at 4x SS); the
             // default run leaves it out there, an explicit --method keeps it.
-            let sdf = job.scene.features().contains(SceneFeatures::IS_SDF);
-            if sdf && args.methods.is_empty() && m.supersamples() > 4 && plan.mode != Mode::Quick {
-                skipped.push(Skipped {
-                    scene: job.name.clone(),
-                    method: m.to_string(),
-                    backend: "*".into(),
-                    reason: "left out of the default run on SDF scenes (minutes per frame at 1280x720; pass --method to include it)".into(),
-                });
+            if job.sdf && default_methods && m.supersamples() > 4 && plan.mode != Mode::Quick {
+                skipped.push(skip(job, m.to_string(), "*", "left out of the default run on SDF scenes (minutes per frame at 1280x720; pass --method to include it)".into()));
                 continue;
             }
             let mut able = Vec::new();
@@ -981,7 +1128,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
             for (bi, (bname, backend)) in plan.backends.iter().enumerate() {
                 match backend.supports(&job.scene, m) {
                     Ok(()) => able.push(bi),
-                    Err(u) => refused.push((bname.clone(), u)),
+                    Err(u) => refused.push((bname.as_str(), u)),
                 }
             }
             // A refusal of the technique itself holds for every backend: one
@@ -989,21 +1136,11 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
             let technique = |u: &Unsupported| matches!(u.reason, UnsupportedReason::Technique(_));
             if able.is_empty() && refused.iter().all(|(_, u)| technique(u)) {
                 if let Some((_, u)) = refused.first() {
-                    skipped.push(Skipped {
-                        scene: job.name.clone(),
-                        method: m.to_string(),
-                        backend: "*".into(),
-                        reason: u.reason.to_string(),
-                    });
+                    skipped.push(skip(job, m.to_string(), "*", u.reason.to_string()));
                 }
             } else {
                 for (bname, u) in refused {
-                    skipped.push(Skipped {
-                        scene: job.name.clone(),
-                        method: m.to_string(),
-                        backend: bname,
-                        reason: u.reason.to_string(),
-                    });
+                    skipped.push(skip(job, m.to_string(), bname, u.reason.to_string()));
                 }
             }
             if !able.is_empty() {
@@ -1011,19 +1148,26 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
             }
         }
         if let SmaaPlan::Unavailable(reason) = &plan.smaa {
-            skipped.push(Skipped {
-                scene: job.name.clone(),
-                method: SMAA.into(),
-                backend: "*".into(),
-                reason: reason.clone(),
-            });
+            skipped.push(skip(job, SMAA.into(), "*", reason.clone()));
         }
         work.push((i, ms));
     }
+    (work, skipped)
+}
+
+/// Renders the progress bar counts: per method and backend a warm-up and the
+/// timed runs (and a separate quality render when the sizes differ), two
+/// per scene with errors (reference and masks), and the sweep's.
+fn progress_length(
+    plan: &Plan,
+    jobs: &[SceneJob],
+    work: &[(usize, Vec<Applicable>)],
+    sweep: bool,
+) -> u64 {
     let quality = plan.mode != Mode::TimingOnly;
     let per_method = 1 + plan.runs as u64;
     let mut total: u64 = 0;
-    for (i, ms) in &work {
+    for (i, ms) in work {
         let job = &jobs[*i];
         let separate = quality && job.timing_size != job.quality_size;
         let renders: u64 = ms.iter().map(|(_, b)| b.len() as u64).sum();
@@ -1032,39 +1176,34 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
             total += 2;
         }
     }
-    let sweep_job = jobs
-        .iter()
-        .find(|j| j.arg == SWEEP_SCENE && !j.sdf)
-        .filter(|_| plan.sweep);
-    let sweep_methods: Vec<Method> = ["noaa", "sraa-rt", "ssaa16"]
-        .iter()
-        .filter_map(|m| m.parse().ok())
-        .collect();
-    if sweep_job.is_some() {
+    if sweep {
         total +=
-            (SWEEP_SIZES.len() * sweep_methods.len() * plan.backends.len()) as u64 * per_method;
+            (SWEEP_SIZES.len() * SWEEP_METHODS.len() * plan.backends.len()) as u64 * per_method;
     }
+    total
+}
 
-    let mut runner = Runner {
-        plan: &plan,
-        progress: Progress::new(total),
-        references_rendered: 0,
-        references_cached: 0,
-    };
-    let mut rows: Vec<ResultRow> = Vec::new();
-    let mut failures: Vec<Failure> = Vec::new();
-    let mut all_crops: Vec<SceneCrops> = Vec::new();
-    let mut plots = Vec::new();
+/// One method on one backend, measured.
+struct Measured {
+    row: ResultRow,
+    /// The quality image (when errors are measured).
+    quality: Option<Rgb8>,
+    /// The timing-size image, kept for NoAA only (the SMAA row's input).
+    timing: Option<Rgb8>,
+}
 
-    for (i, methods) in &work {
-        let job = &jobs[*i];
+impl Runner<'_> {
+    /// Measure every applicable method of one scene on every backend, then
+    /// the ratios to NoAA, the crops and the plots.
+    fn scene(&mut self, job: &SceneJob, methods: &[Applicable]) -> Result<()> {
+        let plan = self.plan;
         if methods.is_empty() {
-            runner
-                .progress
+            self.progress
                 .note(&format!("{}: no method applies, skipped", job.name));
-            continue;
+            return Ok(());
         }
-        runner.progress.note(&format!(
+        let quality = plan.mode != Mode::TimingOnly;
+        self.progress.note(&format!(
             "{}: {} methods, timing at {}x{}{}",
             job.name,
             methods.len(),
@@ -1081,265 +1220,199 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
         ));
         let img_dir = plan.out.join("images").join(&job.name);
         let sq = if quality {
-            std::fs::create_dir_all(&img_dir)
-                .with_context(|| format!("cannot create {}", img_dir.display()))?;
-            match runner.quality(job) {
-                Ok(q) => {
-                    output::save_png(&img_dir.join("reference.png"), &q.reference)?;
-                    output::save_png(
-                        &img_dir.join("edge_mask.png"),
-                        &output::mask_image(q.reference.width, q.reference.height, &q.edges),
-                    )?;
-                    Some(q)
-                }
-                Err(e) => {
-                    runner.fail(
-                        &mut failures,
-                        Failure::new(
-                            &job.name,
-                            format!("reference {}", plan.reference),
-                            "cpu",
-                            &e,
-                        ),
-                    )?;
-                    None
-                }
-            }
+            self.scene_quality(job, &img_dir)?
         } else {
             None
         };
-
         // Quality images of the first backend, for the crops.
         let mut crop_images: Vec<(String, Rgb8)> = Vec::new();
-        let scene_first = rows.len();
+        let first = self.rows.len();
         for (bi, (bname, backend)) in plan.backends.iter().enumerate() {
-            // This backend's NoAA frames, for the SMAA row.
-            let mut noaa_timing: Option<Rgb8> = None;
-            let mut noaa_quality: Option<Rgb8> = None;
-            for (m, able) in methods {
-                if !able.contains(&bi) {
+            let mut noaa: Option<Measured> = None;
+            for (m, _) in methods.iter().filter(|(_, able)| able.contains(&bi)) {
+                let Some(done) =
+                    self.method(job, bi, backend.as_ref(), m, sq.as_ref(), &img_dir)?
+                else {
                     continue;
-                }
-                let mname = m.to_string();
-                runner
-                    .progress
-                    .bar
-                    .set_message(format!("{}: {mname} on {bname}", job.name));
-                let (tw, th) = job.timing_size;
-                let same = job.timing_size == job.quality_size;
-                let mut settings = RenderSettings::new(tw, th);
-                // The warm-up doubles as the quality render when the sizes agree.
-                settings.aovs = sq.is_some() && same;
-                let warm = render(backend.as_ref(), &job.scene, m, &settings);
-                runner.progress.bar.inc(1);
-                let warm = match warm {
-                    Ok((f, _)) => f,
-                    Err(e) => {
-                        runner.fail(
-                            &mut failures,
-                            Failure::new(&job.name, mname, bname.clone(), &e),
-                        )?;
-                        runner
-                            .progress
-                            .bar
-                            .inc(plan.runs as u64 + (!same && sq.is_some()) as u64);
-                        continue;
-                    }
                 };
-                settings.aovs = false;
-                let mut t = Timings::default();
-                let mut last = None;
-                let mut failed = None;
-                for _ in 0..plan.runs {
-                    match render(backend.as_ref(), &job.scene, m, &settings) {
-                        Ok((f, wall)) => {
-                            t.push(wall, &f);
-                            last = Some(f);
-                        }
-                        Err(e) => {
-                            failed = Some(e);
-                            break;
-                        }
-                    }
-                    runner.progress.bar.inc(1);
+                if let (0, Some(img)) = (bi, &done.quality) {
+                    crop_images.push((done.row.method.clone(), img.clone()));
                 }
-                if let Some(e) = failed {
-                    runner.fail(
-                        &mut failures,
-                        Failure::new(&job.name, mname, bname.clone(), &e),
-                    )?;
-                    continue;
-                }
-                let last = last.unwrap_or_else(|| warm.clone());
+                self.rows.push(done.row.clone());
                 if m.technique == Technique::NoAa {
-                    noaa_timing = Some(Rgb8::from_frame(&last)?);
+                    noaa = Some(done);
                 }
-                let px = (tw as f64 * th as f64).max(1.0);
-                let mut row = ResultRow {
-                    scene: job.name.clone(),
-                    method: mname.clone(),
-                    backend: bname.clone(),
-                    width: tw,
-                    height: th,
-                    runs: plan.runs,
-                    ms_median: t.median(),
-                    ms_min: t.min(),
-                    ms_max: t.max(),
-                    ratio_to_noaa: None,
-                    flip_mean: None,
-                    psnr_db: None,
-                    edge_flip_mean: None,
-                    classes: None,
-                    samples_per_pixel: last.stats.shaded_samples as f64 / px,
-                    rays_per_pixel: last.stats.rays.total() as f64 / px,
-                    buffer_mib: last.stats.buffer_bytes() as f64 / (1u64 << 20) as f64,
-                    quality_width: None,
-                    quality_height: None,
-                    reference: None,
-                    pass_ms: t.pass_medians(),
-                    post_adapter: None,
-                };
-                if let Some(q) = &sq {
-                    let qframe = if same {
-                        Ok(warm)
-                    } else {
-                        let (qw, qh) = job.quality_size;
-                        let mut qs = RenderSettings::new(qw, qh);
-                        qs.aovs = true;
-                        let r = render(backend.as_ref(), &job.scene, m, &qs).map(|r| r.0);
-                        runner.progress.bar.inc(1);
-                        r
-                    };
-                    match qframe {
-                        Ok(qf) => {
-                            if let Some(spp) = &qf.samples_per_pixel {
-                                if !spp.is_empty() {
-                                    row.samples_per_pixel =
-                                        spp.iter().map(|&v| v as f64).sum::<f64>()
-                                            / spp.len() as f64;
-                                }
-                            }
-                            let img = Rgb8::from_frame(&qf)?;
-                            measure(&mut row, &img, q, &plan, &img_dir, bi == 0)?;
-                            if m.technique == Technique::NoAa {
-                                noaa_quality = Some(img.clone());
-                            }
-                            if bi == 0 {
-                                crop_images.push((mname.clone(), img));
-                            }
-                        }
-                        Err(e) => runner.fail(
-                            &mut failures,
-                            Failure::new(
-                                &job.name,
-                                format!("{mname} (quality render)"),
-                                bname.clone(),
-                                &e,
-                            ),
-                        )?,
-                    }
-                }
-                rows.push(row);
             }
-            // SMAA 1x on this backend's NoAA frames.
-            let noaa_row = rows[scene_first..]
-                .iter()
-                .find(|r| r.backend == *bname && r.method == "noaa")
-                .cloned();
-            if let (SmaaPlan::On(post), Some(frame), Some(noaa_row)) =
-                (&plan.smaa, &noaa_timing, noaa_row)
-            {
-                runner
-                    .progress
+            if let (SmaaPlan::On(post), Some(noaa)) = (&plan.smaa, noaa) {
+                self.progress
                     .bar
                     .set_message(format!("{}: smaa on the {bname} NoAA frame", job.name));
-                let result = smaa_row(post, noaa_row, frame, plan.runs).and_then(|mut row| {
-                    if let (Some(q), Some(img)) = (&sq, &noaa_quality) {
-                        let (out, _) = post.apply(img)?;
-                        measure(&mut row, &out, q, &plan, &img_dir, bi == 0)?;
-                        if bi == 0 {
-                            crop_images.push((SMAA.to_string(), out));
+                match smaa_measured(post, noaa, sq.as_ref(), plan, &img_dir, bi == 0) {
+                    Ok(done) => {
+                        if let (0, Some(img)) = (bi, done.quality) {
+                            crop_images.push((SMAA.into(), img));
                         }
+                        self.rows.push(done.row);
                     }
-                    Ok(row)
-                });
-                match result {
-                    Ok(row) => rows.push(row),
-                    Err(e) => runner.fail(
-                        &mut failures,
-                        Failure::new(&job.name, SMAA, bname.clone(), &e),
-                    )?,
+                    Err(e) => self.fail(Failure::new(&job.name, SMAA, bname.clone(), &e))?,
                 }
             }
         }
-        // Ratios to NoAA per backend.
-        for b in &plan.backends {
-            let noaa = rows[scene_first..]
-                .iter()
-                .find(|r| r.backend == b.0 && r.method == "noaa")
-                .map(|r| r.ms_median);
-            if let Some(n) = noaa.filter(|n| *n > 0.0) {
-                for r in rows[scene_first..].iter_mut().filter(|r| r.backend == b.0) {
-                    r.ratio_to_noaa = Some(r.ms_median / n);
-                }
-            }
-        }
-        // Crops.
+        ratios_to_noaa(&mut self.rows[first..]);
         if let Some(q) = &sq {
-            let noaa_err = metrics::luma_difference(&q.noaa_error_base, &q.reference)?;
-            let regions = crops::choose_regions(&crops::RegionInputs {
-                width: q.reference.width,
-                height: q.reference.height,
-                edges: &q.edges,
-                geometric: &q.geometric,
-                noaa_error: &noaa_err,
-                shadow: q.shadow.as_deref(),
-                reflective: q.reflective.as_deref(),
-            })?;
-            let mut tiles: Vec<(String, &Rgb8)> = Vec::new();
-            if let Some((n, img)) = crop_images.iter().find(|(n, _)| n == "noaa") {
-                tiles.push((n.clone(), img));
-            }
-            for (n, img) in crop_images.iter().filter(|(n, _)| n != "noaa") {
-                tiles.push((n.clone(), img));
-            }
-            tiles.push((format!("reference ({})", plan.reference), &q.reference));
-            for r in &regions {
-                let zoomed: Vec<(String, Rgb8)> = tiles
-                    .iter()
-                    .map(|(n, img)| Ok((n.clone(), crops::zoom(img, &r.window)?)))
-                    .collect::<Result<_>>()?;
-                let panel = plot::label_panel(&zoomed)?;
-                output::save_png(&img_dir.join(format!("crops_{}.png", r.kind)), &panel)?;
-            }
-            output::save_png(
-                &img_dir.join("crops_overview.png"),
-                &crops::outline(&q.reference, &regions),
-            )?;
-            all_crops.push(SceneCrops {
+            let regions = write_crops(q, &crop_images, plan, &img_dir)?;
+            self.crops.push(SceneCrops {
                 scene: job.name.clone(),
                 regions,
             });
         }
-        let scene_rows: Vec<&ResultRow> = rows[scene_first..].iter().collect();
-        plots.extend(plot::scene_plots(
+        let scene_rows: Vec<&ResultRow> = self.rows[first..].iter().collect();
+        self.plots.extend(plot::scene_plots(
             &plan.out.join("plots"),
             &job.name,
             &scene_rows,
         )?);
+        Ok(())
     }
 
-    // The SRAA Table 1 sweep.
-    let mut sweep = Vec::new();
-    if let Some(job) = sweep_job {
-        runner.progress.note(&format!(
+    /// The scene's reference and masks, with the reference and edge mask
+    /// written beside the images; `None` (with `--keep-going`) when the
+    /// reference fails.
+    fn scene_quality(&mut self, job: &SceneJob, img_dir: &Path) -> Result<Option<SceneQuality>> {
+        std::fs::create_dir_all(img_dir)
+            .with_context(|| format!("cannot create {}", img_dir.display()))?;
+        match self.quality(job) {
+            Ok(q) => {
+                output::save_png(&img_dir.join("reference.png"), &q.reference)?;
+                output::save_png(
+                    &img_dir.join("edge_mask.png"),
+                    &output::mask_image(q.reference.width, q.reference.height, &q.edges),
+                )?;
+                Ok(Some(q))
+            }
+            Err(e) => {
+                let what = format!("reference {}", self.plan.reference);
+                self.fail(Failure::new(&job.name, what, "cpu", &e))?;
+                Ok(None)
+            }
+        }
+    }
+
+    /// Time one method on one backend (a warm-up, then the timed runs) and,
+    /// with `sq`, measure its error. `None` (with `--keep-going`) when a
+    /// render fails.
+    fn method(
+        &mut self,
+        job: &SceneJob,
+        bi: usize,
+        backend: &dyn Backend,
+        m: &Method,
+        sq: Option<&SceneQuality>,
+        img_dir: &Path,
+    ) -> Result<Option<Measured>> {
+        let plan = self.plan;
+        let (mname, bname) = (m.to_string(), plan.backends[bi].0.clone());
+        self.progress
+            .bar
+            .set_message(format!("{}: {mname} on {bname}", job.name));
+        let (tw, th) = job.timing_size;
+        let same = job.timing_size == job.quality_size;
+        let mut settings = RenderSettings::new(tw, th);
+        // The warm-up doubles as the quality render when the sizes agree.
+        settings.aovs = sq.is_some() && same;
+        let warm = render(backend, &job.scene, m, &settings);
+        self.progress.bar.inc(1);
+        let warm = match warm {
+            Ok((f, _)) => f,
+            Err(e) => {
+                self.fail(Failure::new(&job.name, mname, bname, &e))?;
+                let skipped = plan.runs as u64 + (!same && sq.is_some()) as u64;
+                self.progress.bar.inc(skipped);
+                return Ok(None);
+            }
+        };
+        settings.aovs = false;
+        let mut t = Timings::default();
+        let mut last = None;
+        for _ in 0..plan.runs {
+            match render(backend, &job.scene, m, &settings) {
+                Ok((f, wall)) => {
+                    t.push(wall, &f);
+                    last = Some(f);
+                }
+                Err(e) => {
+                    self.fail(Failure::new(&job.name, mname, bname, &e))?;
+                    return Ok(None);
+                }
+            }
+            self.progress.bar.inc(1);
+        }
+        let last = last.unwrap_or_else(|| warm.clone());
+        let timing = (m.technique == Technique::NoAa)
+            .then(|| Rgb8::from_frame(&last))
+            .transpose()?;
+        let px = (tw as f64 * th as f64).max(1.0);
+        let mut row = ResultRow::timed(&job.name, &mname, &bname, (tw, th), plan.runs, &t);
+        row.samples_per_pixel = last.stats.shaded_samples as f64 / px;
+        row.rays_per_pixel = last.stats.rays.total() as f64 / px;
+        row.buffer_mib = last.stats.buffer_bytes() as f64 / (1u64 << 20) as f64;
+        let Some(q) = sq else {
+            return Ok(Some(Measured {
+                row,
+                quality: None,
+                timing,
+            }));
+        };
+        let qframe = if same {
+            Ok(warm)
+        } else {
+            let (qw, qh) = job.quality_size;
+            let mut qs = RenderSettings::new(qw, qh);
+            qs.aovs = true;
+            let r = render(backend, &job.scene, m, &qs).map(|r| r.0);
+            self.progress.bar.inc(1);
+            r
+        };
+        let qf = match qframe {
+            Ok(qf) => qf,
+            Err(e) => {
+                let what = format!("{mname} (quality render)");
+                self.fail(Failure::new(&job.name, what, bname, &e))?;
+                return Ok(Some(Measured {
+                    row,
+                    quality: None,
+                    timing,
+                }));
+            }
+        };
+        if let Some(spp) = qf.samples_per_pixel.as_ref().filter(|s| !s.is_empty()) {
+            row.samples_per_pixel = spp.iter().map(|&v| v as f64).sum::<f64>() / spp.len() as f64;
+        }
+        let img = Rgb8::from_frame(&qf)?;
+        measure(&mut row, &img, q, plan, img_dir, bi == 0)?;
+        Ok(Some(Measured {
+            row,
+            quality: Some(img),
+            timing,
+        }))
+    }
+
+    /// The SRAA Table 1 sweep on `job`: timing only, 256² to 1024².
+    fn sweep(&mut self, job: &SceneJob) -> Result<Vec<ResultRow>> {
+        let plan = self.plan;
+        self.progress.note(&format!(
             "{}: SRAA Table 1 sweep (noaa, sraa-rt, ssaa16 at 256² to 1024²)",
             job.name
         ));
+        let methods: Vec<Method> = SWEEP_METHODS
+            .iter()
+            .filter_map(|m| m.parse().ok())
+            .collect();
+        let mut sweep = Vec::new();
         for (bname, backend) in &plan.backends {
             for side in SWEEP_SIZES {
-                for m in &sweep_methods {
-                    runner.progress.bar.set_message(format!(
+                for m in &methods {
+                    self.progress.bar.set_message(format!(
                         "sweep {}: {m} at {side}x{side} on {bname}",
                         job.name
                     ));
@@ -1351,118 +1424,116 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
                             Ok((f, wall)) if k > 0 => t.push(wall, &f),
                             Ok(_) => {}
                             Err(e) => {
-                                runner.fail(
-                                    &mut failures,
-                                    Failure::new(
-                                        &job.name,
-                                        format!("{m} (sweep at {side}x{side})"),
-                                        bname.clone(),
-                                        &e,
-                                    ),
-                                )?;
+                                let what = format!("{m} (sweep at {side}x{side})");
+                                self.fail(Failure::new(&job.name, what, bname.clone(), &e))?;
                                 ok = false;
                             }
                         }
-                        runner.progress.bar.inc(1);
+                        self.progress.bar.inc(1);
                         if !ok {
                             break;
                         }
                     }
                     if ok {
-                        sweep.push(ResultRow {
-                            scene: job.name.clone(),
-                            method: m.to_string(),
-                            backend: bname.clone(),
-                            width: side,
-                            height: side,
-                            runs: plan.runs,
-                            ms_median: t.median(),
-                            ms_min: t.min(),
-                            ms_max: t.max(),
-                            ratio_to_noaa: None,
-                            flip_mean: None,
-                            psnr_db: None,
-                            edge_flip_mean: None,
-                            classes: None,
-                            samples_per_pixel: f64::NAN,
-                            rays_per_pixel: f64::NAN,
-                            buffer_mib: f64::NAN,
-                            quality_width: None,
-                            quality_height: None,
-                            reference: None,
-                            pass_ms: t.pass_medians(),
-                            post_adapter: None,
-                        });
+                        let name = m.to_string();
+                        let mut row =
+                            ResultRow::timed(&job.name, &name, bname, (side, side), plan.runs, &t);
+                        row.samples_per_pixel = f64::NAN;
+                        row.rays_per_pixel = f64::NAN;
+                        row.buffer_mib = f64::NAN;
+                        sweep.push(row);
                     }
                 }
             }
         }
+        Ok(sweep)
     }
-    // The CPU-side performance targets: ray throughput on every triangle
-    // scene at its timing size, and ns per kernel call.
-    let mut throughput = Vec::new();
-    let mut kernels = Vec::new();
-    if plan.backends.iter().any(|b| b.0 == "cpu") {
+
+    /// The CPU-side performance targets (when the CPU backend is in the run):
+    /// ray throughput on every triangle scene at its timing size, and ns per
+    /// kernel call.
+    fn cpu_targets(
+        &mut self,
+        jobs: &[SceneJob],
+    ) -> (Vec<ThroughputRow>, Vec<kernel_timing::KernelTiming>) {
+        let mut throughput = Vec::new();
+        if !self.plan.backends.iter().any(|b| b.0 == "cpu") {
+            return (throughput, Vec::new());
+        }
         let cpu = subcone_cpu::CpuBackend::new();
         for job in jobs.iter().filter(|j| !j.sdf) {
-            runner
-                .progress
-                .note(&format!("{}: ray throughput", job.name));
+            self.progress.note(&format!("{}: ray throughput", job.name));
             let (w, h) = job.timing_size;
             match subcone_cpu::throughput::RayWorkload::new(&cpu, &job.scene, w, h) {
                 Ok(work) => throughput.push(ThroughputRow {
                     scene: job.name.clone(),
                     width: w,
                     height: h,
-                    rates: work.measure(plan.runs as usize),
+                    rates: work.measure(self.plan.runs as usize),
                 }),
-                Err(e) => runner
+                Err(e) => self
                     .progress
                     .note(&format!("{}: no ray throughput: {e}", job.name)),
             }
         }
-        runner.progress.note("kernels: ns per call");
-        kernels = kernel_timing::measure();
+        self.progress.note("kernels: ns per call");
+        (throughput, kernel_timing::measure())
     }
-    runner.progress.bar.finish_and_clear();
+}
 
-    let summary = ReportSummary {
-        out_dir: plan.out.clone(),
-        report_md: plan.out.join("report.md"),
-        results_csv: plan.out.join("results.csv"),
-        results_json: plan.out.join("results.json"),
-        plots,
-        rows,
-        sweep,
-        skipped,
-        failures,
-        unavailable_scenes: unavailable,
-        crops: all_crops,
-        references_rendered: runner.references_rendered,
-        references_cached: runner.references_cached,
-        throughput,
-        kernels,
-        elapsed: start.elapsed(),
-    };
-    let ctx = output::Context {
-        mode: plan.mode,
-        backends: plan.backends.iter().map(|b| b.0.clone()).collect(),
-        backend_descriptions: plan.backends.iter().map(|b| b.1.describe()).collect(),
-        runs: plan.runs,
-        reference: plan.reference.to_string(),
-        scenes: jobs
+/// `ratio_to_noaa` of every row: its time over NoAA's on the same backend.
+fn ratios_to_noaa(rows: &mut [ResultRow]) {
+    let noaa: Vec<(String, f64)> = rows
+        .iter()
+        .filter(|r| r.method == "noaa" && r.ms_median > 0.0)
+        .map(|r| (r.backend.clone(), r.ms_median))
+        .collect();
+    for r in rows.iter_mut() {
+        if let Some((_, n)) = noaa.iter().find(|(b, _)| *b == r.backend) {
+            r.ratio_to_noaa = Some(r.ms_median / n);
+        }
+    }
+}
+
+/// Choose the scene's crop regions and write the zoomed panels (NoAA first,
+/// then every method, then the reference) and the overview.
+fn write_crops(
+    q: &SceneQuality,
+    images: &[(String, Rgb8)],
+    plan: &Plan,
+    img_dir: &Path,
+) -> Result<Vec<crops::Region>> {
+    let noaa_err = metrics::luma_difference(&q.noaa_error_base, &q.reference)?;
+    let regions = crops::choose_regions(&crops::RegionInputs {
+        width: q.reference.width,
+        height: q.reference.height,
+        edges: &q.edges,
+        geometric: &q.geometric,
+        noaa_error: &noaa_err,
+        shadow: q.shadow.as_deref(),
+        reflective: q.reflective.as_deref(),
+    })?;
+    let mut tiles: Vec<(String, &Rgb8)> = Vec::new();
+    if let Some((n, img)) = images.iter().find(|(n, _)| n == "noaa") {
+        tiles.push((n.clone(), img));
+    }
+    for (n, img) in images.iter().filter(|(n, _)| n != "noaa") {
+        tiles.push((n.clone(), img));
+    }
+    tiles.push((format!("reference ({})", plan.reference), &q.reference));
+    for r in &regions {
+        let zoomed: Vec<(String, Rgb8)> = tiles
             .iter()
-            .map(|j| output::SceneInfo {
-                name: j.name.clone(),
-                arg: j.arg.clone(),
-                sdf: j.sdf,
-                timing_size: j.timing_size,
-                quality_size: (plan.mode != Mode::TimingOnly).then_some(j.quality_size),
-            })
-            .collect(),
-    };
-    output::write_all(&summary, &ctx)?;
-    Ok(summary)
+            .map(|(n, img)| Ok((n.clone(), crops::zoom(img, &r.window)?)))
+            .collect::<Result<_>>()?;
+        let panel = plot::label_panel(&zoomed)?;
+        output::save_png(&img_dir.join(format!("crops_{}.png", r.kind)), &panel)?;
+    }
+    output::save_png(
+        &img_dir.join("crops_overview.png"),
+        &crops::outline(&q.reference, &regions),
+    )?;
+    Ok(regions)
 }
 
 /// The directory of a scene's images.

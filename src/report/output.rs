@@ -345,6 +345,115 @@ fn ms(v: f64) -> String {
     }
 }
 
+/// One scene's section of `report.md`: the table, the plots, the class
+/// errors and verdicts, what was skipped, the crops.
+fn scene_section(md: &mut String, s: &ReportSummary, sc: &SceneInfo) {
+    let rows: Vec<&ResultRow> = s.rows.iter().filter(|r| r.scene == sc.name).collect();
+    let _ = writeln!(md, "## {}\n", sc.name);
+    let _ = writeln!(
+        md,
+        "{} scene (`{}`); timing at {}x{}{}.\n",
+        if sc.sdf { "SDF" } else { "Triangle" },
+        sc.arg,
+        sc.timing_size.0,
+        sc.timing_size.1,
+        match sc.quality_size {
+            Some(q) => format!(", error at {}x{}", q.0, q.1),
+            None => String::new(),
+        }
+    );
+    if rows.is_empty() {
+        let _ = writeln!(md, "No method ran on this scene.\n");
+    } else {
+        let _ = writeln!(
+            md,
+            "| method | backend | median ms | min–max ms | × NoAA | FLIP | PSNR dB | edge FLIP | spp | rays/px | buffers MiB |"
+        );
+        let _ = writeln!(md, "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
+        for r in &rows {
+            let _ = writeln!(
+                md,
+                "| {} | {} | {} | {}–{} | {} | {} | {} | {} | {} | {} | {} |",
+                r.method,
+                r.backend,
+                ms(r.ms_median),
+                ms(r.ms_min),
+                ms(r.ms_max),
+                f(r.ratio_to_noaa, 2),
+                f(r.flip_mean, 4),
+                f(r.psnr_db, 2),
+                f(r.edge_flip_mean, 4),
+                f(Some(r.samples_per_pixel), 2),
+                f(Some(r.rays_per_pixel), 2),
+                f(Some(r.buffer_mib), 2),
+            );
+        }
+        let _ = writeln!(md);
+        for r in rows.iter().filter(|r| r.post_adapter.is_some()) {
+            let _ = writeln!(
+                md,
+                "{}: SMAA 1x (the `smaa` crate, quality High) on the {} NoAA frame, \
+post-processed on {}; its time is NoAA's plus the post-process (upload, SMAA, read-back).\n",
+                r.method,
+                r.backend,
+                r.post_adapter.as_deref().unwrap_or("?")
+            );
+        }
+        let stem = file_safe(&sc.name);
+        if rows.iter().any(|r| r.flip_mean.is_some()) {
+            let _ = writeln!(
+                md,
+                "![{0}: FLIP against time](plots/{1}_flip_vs_time.png)\n",
+                sc.name, stem
+            );
+        }
+        let _ = writeln!(
+            md,
+            "![{0}: time per pass](plots/{1}_passes.png)\n",
+            sc.name, stem
+        );
+        md.push_str(&class_section(&sc.name, &rows));
+    }
+    let skipped: Vec<_> = s.skipped.iter().filter(|k| k.scene == sc.name).collect();
+    if !skipped.is_empty() {
+        let list: Vec<String> = skipped
+            .iter()
+            .map(|k| {
+                if k.backend == "*" {
+                    format!("{} ({})", k.method, k.reason)
+                } else {
+                    format!("{} on {} ({})", k.method, k.backend, k.reason)
+                }
+            })
+            .collect();
+        let _ = writeln!(md, "Skipped: {}.\n", list.join("; "));
+    }
+    if let Some(c) = s.crops.iter().find(|c| c.scene == sc.name) {
+        let _ = writeln!(
+            md,
+            "Zoomed crops ({}×, NoAA | methods | reference; regions outlined in \
+[crops_overview.png](images/{}/crops_overview.png): edge red, shadow green, reflection blue):\n",
+            crops::ZOOM,
+            file_safe(&sc.name)
+        );
+        for r in &c.regions {
+            let _ = writeln!(
+                md,
+                "- {} at ({}, {}), {}×{} px: {}\n\n  ![{} crop](images/{}/crops_{}.png)\n",
+                r.kind,
+                r.window.x,
+                r.window.y,
+                r.window.side,
+                r.window.side,
+                r.rule,
+                r.kind,
+                file_safe(&sc.name),
+                r.kind
+            );
+        }
+    }
+}
+
 /// The processor's model name (Linux: `/proc/cpuinfo`), or the
 /// architecture where that cannot be read.
 pub fn cpu_model() -> String {
@@ -402,110 +511,7 @@ faster method beats.\n"
     }
 
     for sc in &ctx.scenes {
-        let rows: Vec<&ResultRow> = s.rows.iter().filter(|r| r.scene == sc.name).collect();
-        let _ = writeln!(md, "## {}\n", sc.name);
-        let _ = writeln!(
-            md,
-            "{} scene (`{}`); timing at {}x{}{}.\n",
-            if sc.sdf { "SDF" } else { "Triangle" },
-            sc.arg,
-            sc.timing_size.0,
-            sc.timing_size.1,
-            match sc.quality_size {
-                Some(q) => format!(", error at {}x{}", q.0, q.1),
-                None => String::new(),
-            }
-        );
-        if rows.is_empty() {
-            let _ = writeln!(md, "No method ran on this scene.\n");
-        } else {
-            let _ = writeln!(
-                md,
-                "| method | backend | median ms | min–max ms | × NoAA | FLIP | PSNR dB | edge FLIP | spp | rays/px | buffers MiB |"
-            );
-            let _ = writeln!(md, "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
-            for r in &rows {
-                let _ = writeln!(
-                    md,
-                    "| {} | {} | {} | {}–{} | {} | {} | {} | {} | {} | {} | {} |",
-                    r.method,
-                    r.backend,
-                    ms(r.ms_median),
-                    ms(r.ms_min),
-                    ms(r.ms_max),
-                    f(r.ratio_to_noaa, 2),
-                    f(r.flip_mean, 4),
-                    f(r.psnr_db, 2),
-                    f(r.edge_flip_mean, 4),
-                    f(Some(r.samples_per_pixel), 2),
-                    f(Some(r.rays_per_pixel), 2),
-                    f(Some(r.buffer_mib), 2),
-                );
-            }
-            let _ = writeln!(md);
-            for r in rows.iter().filter(|r| r.post_adapter.is_some()) {
-                let _ = writeln!(
-                    md,
-                    "{}: SMAA 1x (the `smaa` crate, quality High) on the {} NoAA frame, \
-post-processed on {}; its time is NoAA's plus the post-process (upload, SMAA, read-back).\n",
-                    r.method,
-                    r.backend,
-                    r.post_adapter.as_deref().unwrap_or("?")
-                );
-            }
-            let stem = file_safe(&sc.name);
-            if rows.iter().any(|r| r.flip_mean.is_some()) {
-                let _ = writeln!(
-                    md,
-                    "![{0}: FLIP against time](plots/{1}_flip_vs_time.png)\n",
-                    sc.name, stem
-                );
-            }
-            let _ = writeln!(
-                md,
-                "![{0}: time per pass](plots/{1}_passes.png)\n",
-                sc.name, stem
-            );
-            md.push_str(&class_section(&sc.name, &rows));
-        }
-        let skipped: Vec<_> = s.skipped.iter().filter(|k| k.scene == sc.name).collect();
-        if !skipped.is_empty() {
-            let list: Vec<String> = skipped
-                .iter()
-                .map(|k| {
-                    if k.backend == "*" {
-                        format!("{} ({})", k.method, k.reason)
-                    } else {
-                        format!("{} on {} ({})", k.method, k.backend, k.reason)
-                    }
-                })
-                .collect();
-            let _ = writeln!(md, "Skipped: {}.\n", list.join("; "));
-        }
-        if let Some(c) = s.crops.iter().find(|c| c.scene == sc.name) {
-            let _ = writeln!(
-                md,
-                "Zoomed crops ({}×, NoAA | methods | reference; regions outlined in \
-[crops_overview.png](images/{}/crops_overview.png): edge red, shadow green, reflection blue):\n",
-                crops::ZOOM,
-                file_safe(&sc.name)
-            );
-            for r in &c.regions {
-                let _ = writeln!(
-                    md,
-                    "- {} at ({}, {}), {}×{} px: {}\n\n  ![{} crop](images/{}/crops_{}.png)\n",
-                    r.kind,
-                    r.window.x,
-                    r.window.y,
-                    r.window.side,
-                    r.window.side,
-                    r.rule,
-                    r.kind,
-                    file_safe(&sc.name),
-                    r.kind
-                );
-            }
-        }
+        scene_section(&mut md, s, sc);
     }
 
     let _ = writeln!(md, "## Skipped\n");
