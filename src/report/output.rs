@@ -55,21 +55,7 @@ pub const BASE_COLUMNS: [&str; 32] = [
     "post_adapter",
 ];
 
-/// SRAA for ray tracing, Table 1: Sponza, (side, pass 1 ms, pass 2 ms, total ms).
-pub const SRAA_TABLE1: [(u32, f64, f64, f64); 4] = [
-    (256, 18.0, 5.0, 23.0),
-    (512, 35.0, 14.0, 49.0),
-    (768, 69.0, 28.0, 97.0),
-    (1024, 116.0, 49.0, 165.0),
-];
-/// SRAA for ray tracing, Fig. 3: speed-up over 16× SSAA with the GPU hybrid.
-pub const SRAA_SPEEDUP_OVER_SSAA16: f64 = 6.0;
-/// CTSS Table 1: average frame-time ratio to NoAA, (paper's name, our method, ratio).
-pub const CTSS_TABLE1: [(&str, &str, f64); 3] = [
-    ("4x SS", "ssaa4", 4.16),
-    ("CTSS", "ctss", 1.30),
-    ("CTSS-R", "ctss-r", 1.16),
-];
+pub use super::papers::{CTSS_TABLE1, SRAA_SPEEDUP_OVER_SSAA16, SRAA_TABLE1};
 
 /// What the report files say about the run besides the rows.
 pub struct Context {
