@@ -445,7 +445,11 @@ fn check_tree(node: &SdfNode, input: &Input, dom: &Domain) {
     for (i, &p) in points.iter().enumerate() {
         let (d, m) = node.eval(p);
         assert!(used.contains(&m), "eval({p}) material {m} not in {used:?}");
-        let (safe, surface, m2) = node.eval_split(p);
+        let subcone_scene::sdf::SplitDistance {
+            safe,
+            surface,
+            material: m2,
+        } = node.eval_split(p);
         assert!(
             used.contains(&m2),
             "eval_split({p}) material {m2} not in {used:?}"

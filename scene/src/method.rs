@@ -82,8 +82,9 @@ impl Method {
         }
     }
 
-    /// `ssaaN` with `N = side²`.
-    pub fn ssaa(side: u32) -> Self {
+    /// `ssaaN` on a regular `side × side` grid, so `N = side²`:
+    /// `Method::ssaa_grid(4)` is `ssaa16`.
+    pub fn ssaa_grid(side: u32) -> Self {
         Method {
             ssaa_side: side.max(1),
             ..Method::new(Technique::Ssaa)
@@ -183,7 +184,7 @@ impl FromStr for Method {
                             ..Method::new(Technique::SsaaCtss)
                         }
                     } else {
-                        Method::ssaa(parse_ssaa(rest).ok_or_else(err)?)
+                        Method::ssaa_grid(parse_ssaa(rest).ok_or_else(err)?)
                     }
                 } else {
                     return Err(err());

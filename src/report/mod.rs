@@ -498,8 +498,8 @@ impl Plan {
         };
         let reference = match &args.reference {
             Some(r) => parse_method(r, "--reference")?,
-            None if args.quick => Method::ssaa(8),
-            None => Method::ssaa(16),
+            None if args.quick => Method::ssaa_grid(8),
+            None => Method::ssaa_grid(16),
         };
         let size = match &args.size {
             Some(s) => {

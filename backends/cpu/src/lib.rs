@@ -51,7 +51,7 @@ impl SdfField for subcone_scene::sdf::SdfNode {
     }
 
     #[inline]
-    fn eval_split(&self, p: glam::Vec3) -> (f32, f32, u32) {
+    fn eval_split(&self, p: glam::Vec3) -> subcone_scene::sdf::SplitDistance {
         subcone_scene::sdf::SdfNode::eval_split(self, p)
     }
 

@@ -26,6 +26,7 @@ use subcone_kernels::ctss::{
 use subcone_kernels::mask::{needs_normal, project_normal};
 use subcone_kernels::passes::{LayerLayout, Passes, Technique, MAX_LIGHTS};
 use subcone_kernels::sraa::{Geometry, SHADED_SUBSAMPLE, SUBPIXEL_OFFSETS};
+use subcone_scene::sdf::SplitDistance;
 use subcone_scene::{
     Camera, Frame, FrameStats, Light, Material, Method, PassTiming, RayCounts, RenderSettings,
 };
@@ -37,13 +38,18 @@ pub trait SdfField: Sync {
     /// Signed distance at `p` and the material of the nearest object.
     fn eval(&self, p: Vec3) -> (f32, u32);
 
-    /// `(safe step, surface distance, material)`: fields that cap their
-    /// distance at repetition cell walls return the capped bound first and the
-    /// distance to the surface second (occlusion and hits use the second,
-    /// marching the first). The default: both are [`eval`](SdfField::eval)'s.
-    fn eval_split(&self, p: Vec3) -> (f32, f32, u32) {
+    /// The step bound and the surface distance apart: fields that cap their
+    /// distance at repetition cell walls return the capped bound as `safe`
+    /// and the distance to the surface as `surface` (occlusion and hits use
+    /// the surface, marching the bound). The default: both are
+    /// [`eval`](SdfField::eval)'s.
+    fn eval_split(&self, p: Vec3) -> SplitDistance {
         let (d, m) = self.eval(p);
-        (d, d, m)
+        SplitDistance {
+            safe: d,
+            surface: d,
+            material: m,
+        }
     }
 
     /// Unit surface normal at `p` from differences of step `h`. The default is
@@ -177,7 +183,9 @@ impl<F: SdfField> SdfView<'_, F> {
             if t >= limit {
                 return false;
             }
-            let (safe, d, _) = self.field.eval_split(o + l * t);
+            let SplitDistance {
+                safe, surface: d, ..
+            } = self.field.eval_split(o + l * t);
             if d.is_nan() {
                 return false;
             }
@@ -192,7 +200,7 @@ impl<F: SdfField> SdfView<'_, F> {
 
     /// Lambert shading with hard shadows and ambient light.
     fn shade(&self, p: Vec3, n: Vec3, dir: Vec3, tally: &mut Tally) -> Vec3 {
-        let (_, _, m) = self.field.eval_split(p);
+        let SplitDistance { material: m, .. } = self.field.eval_split(p);
         let mat = &self.materials[(m as usize).min(self.materials.len().saturating_sub(1))];
         let albedo = mat.albedo_at(p, Vec2::ZERO);
         // Shade the side facing the ray.
@@ -223,7 +231,7 @@ impl<F: SdfField> SdfView<'_, F> {
     /// One NoAA sample.
     fn noaa(&self, o: Vec3, d: Vec3, p: &CtssParams, tally: &mut Tally) -> Vec3 {
         let hit = sphere_trace_split(p, o, d, |q| {
-            let (safe, surface, _) = self.field.eval_split(q);
+            let SplitDistance { safe, surface, .. } = self.field.eval_split(q);
             (surface, safe)
         });
         tally.steps += hit.steps as u64;
@@ -252,7 +260,7 @@ impl<F: SdfField> SdfView<'_, F> {
         let mut stepper = ConeStepper::new(p);
         loop {
             let t = stepper.t();
-            let (safe, surface, _) = self.field.eval_split(o + t * d);
+            let SplitDistance { safe, surface, .. } = self.field.eval_split(o + t * d);
             match stepper.advance_split(surface, safe) {
                 Event::March => {}
                 Event::Sample(s) => {
@@ -392,7 +400,7 @@ impl<F: SdfField> SdfView<'_, F> {
     /// normal facing the ray, distance along the ray.
     fn hit(&self, o: Vec3, d: Vec3, p: &CtssParams, tally: &mut Tally) -> Option<(Vec3, Vec3)> {
         let hit = sphere_trace_split(p, o, d, |q| {
-            let (safe, surface, _) = self.field.eval_split(q);
+            let SplitDistance { safe, surface, .. } = self.field.eval_split(q);
             (surface, safe)
         });
         tally.steps += hit.steps as u64;
@@ -430,7 +438,7 @@ impl<F: SdfField> SdfView<'_, F> {
     /// `split` false, everything goes to `out[0]`; the sum is `shade`'s colour
     /// in the same order.
     fn shade_layers(&self, q: Vec3, n: Vec3, bits: u32, split: bool, out: &mut [Vec3]) {
-        let (_, _, m) = self.field.eval_split(q);
+        let SplitDistance { material: m, .. } = self.field.eval_split(q);
         let mat = &self.materials[(m as usize).min(self.materials.len().saturating_sub(1))];
         let albedo = mat.albedo_at(q, Vec2::ZERO);
         out[0] = mat.emission + self.ambient * albedo;
@@ -652,14 +660,14 @@ impl<F: SdfField> SdfView<'_, F> {
                     s.height,
                 );
                 let split = |q| {
-                    let (safe, surface, _) = self.field.eval_split(q);
+                    let SplitDistance { safe, surface, .. } = self.field.eval_split(q);
                     (surface, safe)
                 };
                 match sphere_trace_split(&plain, o, d, split).t {
                     Some(t) => {
                         let q = o + t * d;
                         let n = self.normal_at(q, t, plain.tan_theta);
-                        let (_, _, m) = self.field.eval_split(q);
+                        let SplitDistance { material: m, .. } = self.field.eval_split(q);
                         let mat = &self.materials
                             [(m as usize).min(self.materials.len().saturating_sub(1))];
                         let facing = if n.dot(d) > 0.0 { -n } else { n };

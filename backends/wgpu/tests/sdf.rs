@@ -3,6 +3,7 @@
 //! images (up to GPU rounding) on every paper and stiff scene.
 
 use std::time::Instant;
+use subcone_scene::sdf::SplitDistance;
 
 use glam::Vec3;
 use subcone_cpu::CpuBackend;
@@ -70,7 +71,11 @@ fn generated_wgsl_evaluates_the_same_field() {
         let mut mat_diff = 0;
         for (p, g) in pts.iter().zip(&got) {
             let (d, m) = scene.root.eval(*p);
-            let (safe, surf, ms) = scene.root.eval_split(*p);
+            let SplitDistance {
+                safe,
+                surface: surf,
+                material: ms,
+            } = scene.root.eval_split(*p);
             let tol = |x: f32| 2e-6 * (1.0f32).max(x.abs()).max(p.abs().max_element() * 1e-2);
             for (want, have) in [(d, g.eval.0), (safe, g.split.0), (surf, g.split.1)] {
                 if want.is_infinite() {
@@ -163,7 +168,11 @@ fn generated_wgsl_covers_every_operator() {
     let mut mat_diff = 0;
     for (p, g) in pts.iter().zip(&got) {
         let (d, m) = root.eval(*p);
-        let (safe, surf, ms) = root.eval_split(*p);
+        let SplitDistance {
+            safe,
+            surface: surf,
+            material: ms,
+        } = root.eval_split(*p);
         for (want, have) in [(d, g.eval.0), (safe, g.split.0), (surf, g.split.1)] {
             let tol = 2e-6 * want.abs().max(1.0);
             assert!(

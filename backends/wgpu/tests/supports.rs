@@ -72,7 +72,7 @@ fn cpu_only_refusals_are_rendered_by_the_cpu() {
 fn too_many_samples_per_side_are_refused() {
     let Some(gpu) = gpu() else { return };
     let scene = builtin("primitives").unwrap();
-    let method = Method::ssaa(subcone_wgpu::sdf::MAX_SIDE_SAMPLES + 1);
+    let method = Method::ssaa_grid(subcone_wgpu::sdf::MAX_SIDE_SAMPLES + 1);
     let planned = gpu.supports(&scene, &method).unwrap_err();
     assert_eq!(
         planned.reason,

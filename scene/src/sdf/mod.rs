@@ -58,7 +58,7 @@ mod stiff;
 pub mod wgsl;
 
 pub use bounds::Aabb;
-pub use node::{SdfNode, MAX_DEPTH};
+pub use node::{SdfNode, SplitDistance, MAX_DEPTH};
 pub use scatter::{ScatterConfig, MAX_SCATTER_CELLS};
 pub use scenes::{atrium, glass, primitives, random_box, random_shape, sparse_shape};
 pub use shape::Shape;

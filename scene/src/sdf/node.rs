@@ -11,6 +11,19 @@ use super::{Exactness, SdfError};
 /// bounded to keep stack use small on worker threads.
 pub const MAX_DEPTH: u32 = 64;
 
+/// One evaluation of a field with the step bound and the surface distance
+/// apart ([`SdfNode::eval_split`]): named, so the two cannot be swapped.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SplitDistance {
+    /// A distance that is safe to march by: at most the surface distance,
+    /// capped at repetition cell walls (plus their margin).
+    pub safe: f32,
+    /// The distance to the surface itself: occlusion, hits and normals use it.
+    pub surface: f32,
+    /// The material of the nearest object.
+    pub material: u32,
+}
+
 /// A node of an SDF tree, and the tree below it.
 ///
 /// Nodes are built by the constructors below, which validate their parameters
@@ -1120,7 +1133,7 @@ impl SdfNode {
         }
     }
 
-    /// `(safe step, surface distance, material)`: for guarded repetition and
+    /// [`SplitDistance`]: for guarded repetition and
     /// scatter, the field [`eval`](SdfNode::eval) returns is capped at the
     /// cell walls (`min(d_object, wall + margin)`), a bound that is right for
     /// stepping but puts fake near-surfaces on every wall. Cone tracing must
@@ -1129,7 +1142,19 @@ impl SdfNode {
     /// to the objects that are evaluated (the cell's own; occlusion and normals
     /// use it), as the CTSS authors' `GRID_TRACE` does. Both are equal for every
     /// other node. The first never exceeds the second.
-    pub fn eval_split(&self, p: Vec3) -> (f32, f32, u32) {
+    #[inline]
+    pub fn eval_split(&self, p: Vec3) -> SplitDistance {
+        let (safe, surface, material) = self.split(p);
+        SplitDistance {
+            safe,
+            surface,
+            material,
+        }
+    }
+
+    /// [`eval_split`](SdfNode::eval_split) as `(safe, surface, material)`,
+    /// for the recursion.
+    fn split(&self, p: Vec3) -> (f32, f32, u32) {
         match &self.op {
             Op::Shape { shape, material } => {
                 let d = shape.distance(p);
@@ -1140,7 +1165,7 @@ impl SdfNode {
                 if t.rotated {
                     q = t.inv_rotation * q;
                 }
-                let (a, b, m) = t.child.eval_split(q);
+                let (a, b, m) = t.child.split(q);
                 (a * t.scale, b * t.scale, m)
             }
             Op::Union { children, spheres } => {
@@ -1155,7 +1180,7 @@ impl SdfNode {
                         safe = safe.min(d2.sqrt() - s.w);
                         continue;
                     }
-                    let (a, b, m) = c.eval_split(p);
+                    let (a, b, m) = c.split(p);
                     safe = safe.min(a);
                     if b < surf {
                         surf = b;
@@ -1166,16 +1191,16 @@ impl SdfNode {
             }
             Op::Repeat(r) if r.guard => {
                 let (q, wall) = r.cell(p);
-                let (a, b, m) = r.child.eval_split(q);
+                let (a, b, m) = r.child.split(q);
                 (a.min(wall + r.margin), b, m)
             }
-            Op::Scatter(s) => s.eval_split(p),
+            Op::Scatter(s) => s.split(p),
             // `bounded` answers with its box's distance far from the box: a
             // bound for stepping, but no surface, so the surface distance must
             // come from the child (a wide cone can reach past the padding).
             Op::Bounded { pad, child } => {
                 let b = child.info.bounds.distance(p);
-                let (a, surface, m) = child.eval_split(p);
+                let (a, surface, m) = child.split(p);
                 (if b > *pad { a.max(b).min(surface) } else { a }, surface, m)
             }
             _ => {
@@ -1198,7 +1223,7 @@ impl SdfNode {
         let h = step(p, h);
         let mut n = Vec3::ZERO;
         for k in K {
-            n += k * self.eval_split(p + k * h).1;
+            n += k * self.eval_split(p + k * h).surface;
         }
         unit_or_up(n)
     }

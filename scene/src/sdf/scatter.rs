@@ -390,7 +390,7 @@ impl Scatter {
     /// `(guarded bound, own object's distance, material)`; see
     /// `SdfNode::eval_split`. An empty cell has no surface (`∞`); far from the
     /// object, its bounding sphere's distance stands in for the surface.
-    pub(crate) fn eval_split(&self, p: Vec3) -> (f32, f32, u32) {
+    pub(crate) fn split(&self, p: Vec3) -> (f32, f32, u32) {
         let rel = p - self.origin;
         let f = rel * self.inv_cell;
         let f =
@@ -436,7 +436,7 @@ impl Scatter {
 
     #[inline(never)]
     fn eval_xyz(&self, x: f32, y: f32, z: f32) -> (f32, u32) {
-        let (bound, _, m) = self.eval_split(Vec3::new(x, y, z));
+        let (bound, _, m) = self.split(Vec3::new(x, y, z));
         (bound, m)
     }
 }

@@ -9,6 +9,7 @@ use subcone_kernels::aggregate::Aggregate;
 use subcone_kernels::ctss::{
     coarse_normal_step, group_needs_split, split_group, CtssParams, GroupSample, SplitRay,
 };
+use subcone_scene::sdf::SplitDistance;
 
 use super::{SdfField, SdfView, Tally};
 
@@ -41,7 +42,7 @@ impl<F: SdfField> SdfView<'_, F> {
             return None;
         }
         let g = split_group(p, s, ray, visible, w, |x| {
-            let (safe, surface, _) = self.field.eval_split(x);
+            let SplitDistance { safe, surface, .. } = self.field.eval_split(x);
             (surface, safe)
         })?;
         tally.steps += g.steps as u64;

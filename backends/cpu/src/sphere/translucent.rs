@@ -33,6 +33,7 @@ use subcone_kernels::ctss::{
     cross_section_frame, sphere_trace_split, ConeStepper, CtssParams, Event, GroupSample,
 };
 use subcone_kernels::mask::{needs_normal, project_normal};
+use subcone_scene::sdf::SplitDistance;
 use subcone_scene::Material;
 
 use super::{SdfField, SdfView, Tally};
@@ -87,7 +88,11 @@ impl<F: SdfField> SdfView<'_, F> {
         };
         loop {
             let t = stepper.t();
-            let (safe, surface, m) = self.field.eval_split(o + t * d);
+            let SplitDistance {
+                safe,
+                surface,
+                material: m,
+            } = self.field.eval_split(o + t * d);
             // One surface per group: split where the nearest object changes
             // between a semi-transparent object and another one.
             if let Some(gm) = group_material {
@@ -141,7 +146,7 @@ impl<F: SdfField> SdfView<'_, F> {
         let mut t0 = p.t_min;
         let mut budget = p.max_steps;
         let split = |q| {
-            let (safe, surface, _) = self.field.eval_split(q);
+            let SplitDistance { safe, surface, .. } = self.field.eval_split(q);
             (surface, safe)
         };
         loop {
@@ -154,7 +159,10 @@ impl<F: SdfField> SdfView<'_, F> {
             };
             tally.samples += 1;
             let q = o + t * d;
-            let (_, _, hit_material) = self.field.eval_split(q);
+            let SplitDistance {
+                material: hit_material,
+                ..
+            } = self.field.eval_split(q);
             let alpha = self.material_opacity(hit_material);
             color +=
                 transmittance * alpha * self.shade(q, self.normal_at(q, t, p.tan_theta), d, tally);
@@ -168,7 +176,11 @@ impl<F: SdfField> SdfView<'_, F> {
                 if budget == 0 || t.is_nan() || t >= p.t_max {
                     return color + transmittance * self.background;
                 }
-                let (safe, dist, m) = self.field.eval_split(o + t * d);
+                let SplitDistance {
+                    safe,
+                    surface: dist,
+                    material: m,
+                } = self.field.eval_split(o + t * d);
                 budget -= 1;
                 tally.steps += 1;
                 if dist.is_nan() {
@@ -206,7 +218,7 @@ mod tests {
     fn opaque_scenes_render_identically_on_the_translucent_path() {
         let methods = [
             Method::new(Technique::NoAa),
-            Method::ssaa(2),
+            Method::ssaa_grid(2),
             Method::new(Technique::Ctss),
             Method::new(Technique::CtssR),
             "ssaa4+ctss".parse().unwrap(),
