@@ -26,11 +26,11 @@ pub(crate) use subcone_kernels::passes::MAX_LIGHTS;
 /// leaf (`count` triangles from `index` in BVH order).
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
-struct GpuNode {
-    min: [f32; 3],
-    count: u32,
-    max: [f32; 3],
-    index: u32,
+pub(super) struct GpuNode {
+    pub(super) min: [f32; 3],
+    pub(super) count: u32,
+    pub(super) max: [f32; 3],
+    pub(super) index: u32,
 }
 
 /// A material; `kind`: 0 solid (`a`), 1 checker (`a`, `b`, `size`), 2 patches
@@ -38,14 +38,14 @@ struct GpuNode {
 /// (`extra.x` first texel, `extra.y` width, `extra.z` height, `extra.w` texels).
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
-struct GpuMaterial {
-    a: [f32; 3],
-    kind: u32,
-    b: [f32; 3],
-    size: f32,
-    emission: [f32; 3],
-    mirror: f32,
-    extra: [u32; 4],
+pub(super) struct GpuMaterial {
+    pub(super) a: [f32; 3],
+    pub(super) kind: u32,
+    pub(super) b: [f32; 3],
+    pub(super) size: f32,
+    pub(super) emission: [f32; 3],
+    pub(super) mirror: f32,
+    pub(super) extra: [u32; 4],
 }
 
 /// A light; `kind`: 0 point (`v` position, `value` intensity), 1 directional
@@ -53,11 +53,11 @@ struct GpuMaterial {
 /// directional light with a zero direction never arrives).
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
-struct GpuLight {
-    v: [f32; 3],
-    kind: u32,
-    value: [f32; 3],
-    _pad: u32,
+pub(super) struct GpuLight {
+    pub(super) v: [f32; 3],
+    pub(super) kind: u32,
+    pub(super) value: [f32; 3],
+    pub(super) _pad: u32,
 }
 
 /// A scene's buffers on one device.

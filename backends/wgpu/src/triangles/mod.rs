@@ -10,6 +10,8 @@
 //! are cached per device and shader source.
 
 mod bvh;
+#[cfg(test)]
+mod layout_tests;
 pub(crate) mod raster;
 
 use std::collections::hash_map::DefaultHasher;

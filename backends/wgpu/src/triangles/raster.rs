@@ -16,7 +16,7 @@ use super::bvh::SceneGpu;
 use super::FrameUniform;
 use crate::context::{err, GpuContext};
 
-const RASTER_WGSL: &str = include_str!("raster.wgsl");
+pub(super) const RASTER_WGSL: &str = include_str!("raster.wgsl");
 
 const TARGET: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -48,17 +48,17 @@ fn put_sub_albedo(j: u32, k: u32, v: vec4<f32>) { }
 /// `RasterUniform` in raster.wgsl (80 bytes).
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
-struct RasterUniform {
-    cam_pos: [f32; 3],
-    half: f32,
-    forward: [f32; 3],
-    aspect: f32,
-    right: [f32; 3],
-    near: f32,
-    up: [f32; 3],
-    width_f: f32,
-    height_f: f32,
-    _pad: [f32; 3],
+pub(super) struct RasterUniform {
+    pub(super) cam_pos: [f32; 3],
+    pub(super) half: f32,
+    pub(super) forward: [f32; 3],
+    pub(super) aspect: f32,
+    pub(super) right: [f32; 3],
+    pub(super) near: f32,
+    pub(super) up: [f32; 3],
+    pub(super) width_f: f32,
+    pub(super) height_f: f32,
+    pub(super) _pad: [f32; 3],
 }
 
 /// The G-buffer pipeline, compiled once per device (in the device's own
