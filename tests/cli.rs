@@ -137,3 +137,37 @@ fn wgpu_without_an_adapter_names_the_fix() {
     assert!(text.contains("mesa-vulkan-drivers"), "{text}");
     assert!(!out.exists(), "no image is written on failure");
 }
+
+/// Every method of the one list (`METHOD_NAMES`) is documented where a user
+/// looks: in `subcone render --help` and in README.md (`ssaa4`, `ssaa16` and
+/// `ssaa4+ctss` as the `ssaaN` and `ssaaN+ctss` families, `-delayed`
+/// variants as the suffix).
+#[test]
+fn every_method_name_is_documented() {
+    let (ok, help) = subcone(&["render", "--help"]);
+    assert!(ok, "{help}");
+    let readme = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md"))
+        .expect("README.md");
+    for name in subcone_scene::method::METHOD_NAMES {
+        let family = if name.starts_with("ssaa") {
+            if name.ends_with("+ctss") {
+                "ssaaN+ctss"
+            } else {
+                "ssaaN"
+            }
+        } else {
+            name.strip_suffix("-delayed").unwrap_or(name)
+        };
+        assert!(help.contains(family), "render --help does not name {name}");
+        assert!(
+            readme.contains(&format!("`{family}`")),
+            "README.md does not name {name} (as `{family}`)"
+        );
+        if name.ends_with("-delayed") {
+            assert!(
+                help.contains("-delayed"),
+                "render --help: no -delayed suffix"
+            );
+        }
+    }
+}
