@@ -792,7 +792,7 @@ fn check_cone(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
 fn mask_line(omega: f32, np: Vec2, placement: MaskPlacement) -> Option<(f64, f64, f64)> {
     let (x, y) = (np.x as f64, np.y as f64);
     let len = (x * x + y * y).sqrt();
-    if omega.is_nan() || !(len > 0.0) || !len.is_finite() {
+    if omega.is_nan() || !len.is_finite() || len <= 0.0 {
         return None;
     }
     let (dx, dy) = (x / len, y / len);
