@@ -66,12 +66,18 @@ const TOL_ALBEDO_DIFFERENCE: Tol = Tol::Abs(1e-6);
 /// `resolve_pixel`: one rounding per add and the scale.
 const TOL_RESOLVE: Tol = Tol::Abs(1e-6);
 /// `cone_radius`, `min_step`, `advance`, `backtrace_cone_entry`,
-/// `backtrace_hard_hit`: a multiply, an add or a division each (WGSL allows
-/// 2.5 ulps for a division, so two results may sit 2 ulps apart at most).
+/// `backtrace_hard_hit`: a multiply, an add or a division each. 2 ulps, the
+/// tighter of the two bounds earlier tests used (2 and 4 ulps). WGSL allows a
+/// division 2.5 ulps, so a GPU using all of that latitude could exceed it;
+/// then widen to 3 ulps (2.5 + Rust's 0.5), no further. Lavapipe agrees
+/// bit for bit.
 const TOL_CONE: Tol = Tol::Ulps(2);
-/// `cone_occlusion` (eq. 5): `(1 − d/R_c)/2`, a division then a subtraction
-/// from 1, which cancels near ω = 0: 2 ulps of the quotient, in absolute
-/// terms.
+/// `cone_occlusion` (eq. 5): `(1 − d/R_c)/2`. 2 ulps, the tighter of the
+/// two bounds earlier tests used (2 ulps, and 2e-6 absolute). Near ω = 0 the
+/// subtraction cancels and one ulp of the quotient is many ulps of the
+/// result: a GPU whose division differs from Rust's there would need the
+/// 2e-6 absolute bound back (twice the f64 bound). Lavapipe agrees bit for
+/// bit.
 const TOL_OCCLUSION: Tol = Tol::Ulps(2);
 /// `project_normal`: a normalisation and two dot products.
 const TOL_PROJECT_NORMAL: Tol = Tol::Abs(1e-6);
