@@ -528,14 +528,7 @@ fn suite_covers_every_builtin_scene() {
 /// an error, never draw them opaque, and the CPU backend must render them.
 #[test]
 fn transparent_scenes_are_refused_by_wgpu_and_rendered_by_cpu() {
-    let gpu = match subcone_wgpu::WgpuBackend::new() {
-        Ok(b) => Some(b),
-        Err(e) if !subcone_wgpu::gpu_required() => {
-            eprintln!("SKIPPED (wgpu part): no adapter and SUBCONE_REQUIRE_GPU unset: {e}");
-            None
-        }
-        Err(e) => panic!("wgpu unavailable (SUBCONE_REQUIRE_GPU is set): {e}"),
-    };
+    let gpu = subcone_wgpu::test_util::gpu_or_skip("the wgpu part");
     let settings = RenderSettings::new(W, H);
     for name in TRANSPARENT_SCENES {
         let scene = builtin(name).unwrap();

@@ -406,8 +406,7 @@ fn timing_only_writes_no_errors() {
 /// names the adapter.
 #[test]
 fn report_with_both_backends() {
-    if subcone_wgpu::WgpuBackend::new().is_err() && !subcone_wgpu::gpu_required() {
-        eprintln!("SKIPPED: no GPU adapter and SUBCONE_REQUIRE_GPU unset");
+    if subcone_wgpu::test_util::gpu_or_skip("report_with_both_backends").is_none() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();

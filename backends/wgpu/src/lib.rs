@@ -27,6 +27,8 @@
 pub mod context;
 mod post;
 pub mod sdf;
+#[cfg(feature = "test-util")]
+pub mod test_util;
 mod triangles;
 
 use std::sync::Arc;

@@ -8,17 +8,11 @@ use subcone_scene::builtin::{builtin, names};
 use subcone_scene::conformance::plan_matches_render;
 use subcone_scene::method::METHOD_NAMES;
 use subcone_scene::{Backend, Method, RenderError, RenderSettings, UnsupportedReason};
-use subcone_wgpu::{gpu_required, WgpuBackend};
+use subcone_wgpu::test_util::gpu_or_skip;
+use subcone_wgpu::WgpuBackend;
 
 fn gpu() -> Option<WgpuBackend> {
-    match WgpuBackend::new() {
-        Ok(b) => Some(b),
-        Err(e) if !gpu_required() => {
-            eprintln!("SKIPPED: no adapter and SUBCONE_REQUIRE_GPU unset: {e}");
-            None
-        }
-        Err(e) => panic!("SUBCONE_REQUIRE_GPU is set but: {e}"),
-    }
+    gpu_or_skip("supports")
 }
 
 #[test]

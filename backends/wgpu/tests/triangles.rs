@@ -6,26 +6,16 @@ use std::time::Instant;
 use glam::Vec3;
 use subcone_cpu::CpuBackend;
 use subcone_kernels::passes::Passes;
-use subcone_kernels::sraa::{
-    bilateral_weight, shadow_gated_weight, DepthMetric, Geometry, SraaParams, WeightForm,
-};
 use subcone_scene::{
     builtin::builtin, Backend, Frame, Material, Method, RenderError, RenderSettings, Scene,
     TriangleMesh,
 };
-use subcone_wgpu::{gpu_required, WgpuBackend};
+use subcone_wgpu::test_util::gpu_or_skip;
+use subcone_wgpu::WgpuBackend;
 
-/// The backend, or `None` (skip, with the reason printed) when no adapter
-/// exists and a GPU is not required.
+/// The backend, or `None` when the test may skip (see [`gpu_or_skip`]).
 fn gpu() -> Option<WgpuBackend> {
-    match WgpuBackend::new() {
-        Ok(b) => Some(b),
-        Err(e) if !gpu_required() => {
-            eprintln!("skipped: {e}");
-            None
-        }
-        Err(e) => panic!("SUBCONE_REQUIRE_GPU is set but: {e}"),
-    }
+    gpu_or_skip("triangles")
 }
 
 fn render(b: &dyn Backend, scene: &Scene, method: &str, w: u32, h: u32) -> Frame {
@@ -361,163 +351,6 @@ fn timings_128() {
                 .collect::<Vec<_>>()
         );
     }
-}
-
-/// One weight evaluation for the WGSL kernels.
-#[repr(C)]
-#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
-struct WeightCase {
-    gi: Geometry,
-    gj: Geometry,
-    params: SraaParams,
-    si: u32,
-    sj: u32,
-    _pad: [u32; 2],
-}
-
-/// kernels/src/sraa.wgsl against the Rust kernels it mirrors: eq. 1 and eq. 2
-/// on ordinary and stiff inputs (misses, NaN normals and depths, zero and huge
-/// depths, both weight forms and depth metrics). Special cases (0, 1, NaN
-/// exclusion) must match exactly; elsewhere the GPU's `exp` may differ from
-/// libm's by a few ulps: |Δw| ≤ 2e-6 + 1e-5·w.
-#[test]
-fn sraa_wgsl_matches_kernels() {
-    use wgpu::util::DeviceExt;
-    let Some(gpu) = gpu() else { return };
-    let ctx = gpu.context();
-    let nan = f32::NAN;
-    let inf = f32::INFINITY;
-    let normals = [
-        Vec3::Z,
-        Vec3::new(0.0, 0.6, 0.8),
-        Vec3::X,
-        -Vec3::Z,
-        Vec3::new(nan, 0.0, 1.0),
-        Vec3::ZERO,
-    ];
-    let depths = [1.0, 1.05, 2.0, 0.0, 1e-40, 3e38, inf, nan, 1e6];
-    let params = [
-        SraaParams::PAPER,
-        SraaParams::CHAJDAS,
-        SraaParams::PAPER.with_depth_metric(DepthMetric::Absolute),
-        SraaParams::new(
-            1e20,
-            1e20,
-            1.0,
-            WeightForm::Product,
-            DepthMetric::Relative,
-            1,
-        ),
-    ];
-    let mut cases = Vec::new();
-    for (a, na) in normals.iter().enumerate() {
-        for nb in &normals {
-            for (i, za) in depths.iter().enumerate() {
-                for zb in &depths {
-                    for (k, p) in params.iter().enumerate() {
-                        cases.push(WeightCase {
-                            gi: Geometry::new(*na, *za),
-                            gj: Geometry::new(*nb, *zb),
-                            params: *p,
-                            si: ((a + i) % 2) as u32,
-                            sj: (k % 2) as u32,
-                            _pad: [0; 2],
-                        });
-                    }
-                }
-            }
-        }
-    }
-    let source = [
-        subcone_kernels::wgsl::PARAMS,
-        subcone_kernels::sraa::WGSL,
-        "struct WeightCase { gi: Geometry, gj: Geometry, params: SraaParams, si: u32, sj: u32, p0: u32, p1: u32 }
-@group(0) @binding(0) var<storage, read> cases: array<WeightCase>;
-@group(0) @binding(1) var<storage, read_write> out: array<vec2<f32>>;
-@compute @workgroup_size(64)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if id.x >= arrayLength(&cases) { return; }
-    let c = cases[id.x];
-    out[id.x] = vec2<f32>(bilateral_weight(c.params, c.gi, c.gj),
-        shadow_gated_weight(c.params, c.gi, c.gj, c.si != 0u, c.sj != 0u));
-}
-",
-    ]
-    .concat();
-    let n = cases.len();
-    let (pipeline, group, out) = ctx
-        .scoped("kernel test", || {
-            let module = ctx
-                .device
-                .create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: None,
-                    source: wgpu::ShaderSource::Wgsl(source.as_str().into()),
-                });
-            let pipeline = ctx
-                .device
-                .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                    label: None,
-                    layout: None,
-                    module: &module,
-                    entry_point: Some("main"),
-                    compilation_options: Default::default(),
-                    cache: None,
-                });
-            let input = ctx
-                .device
-                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: None,
-                    contents: bytemuck::cast_slice(&cases),
-                    usage: wgpu::BufferUsages::STORAGE,
-                });
-            let out = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-                label: None,
-                size: (n * 8) as u64,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-                mapped_at_creation: false,
-            });
-            let group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: None,
-                layout: &pipeline.get_bind_group_layout(0),
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: input.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: out.as_entire_binding(),
-                    },
-                ],
-            });
-            (pipeline, group, out)
-        })
-        .unwrap();
-    let mut t = Vec::new();
-    ctx.timed_pass("kernels", &mut t, |enc| {
-        let mut pass = enc.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &group, &[]);
-        pass.dispatch_workgroups((n as u32).div_ceil(64), 1, 1);
-    })
-    .unwrap();
-    let bytes = ctx.read_buffer(&out, 0, (n * 8) as u64).unwrap();
-    let got: &[[f32; 2]] = bytemuck::cast_slice(&bytes);
-    let close = |g: f32, r: f32| g == r || (g - r).abs() <= 2e-6 + 1e-5 * r;
-    for (c, g) in cases.iter().zip(got) {
-        let w = bilateral_weight(&c.params, &c.gi, &c.gj);
-        let ws = shadow_gated_weight(&c.params, &c.gi, &c.gj, c.si != 0, c.sj != 0);
-        assert!(
-            close(g[0], w) && close(g[1], ws),
-            "{:?} {:?} {:?}: GPU ({}, {}), kernels ({w}, {ws})",
-            c.gi,
-            c.gj,
-            c.params,
-            g[0],
-            g[1]
-        );
-    }
-    eprintln!("{n} weight cases agree");
 }
 
 /// The SRAA kernels' WGSL parses and validates on its own (no GPU needed).

@@ -32,7 +32,6 @@
 //! bounds them more loosely, for other GPUs).
 
 mod aovs;
-mod field;
 mod shading;
 mod trace;
 
@@ -50,8 +49,6 @@ use subcone_scene::{
 use wgpu::util::DeviceExt;
 
 use crate::context::{err, GpuContext};
-
-pub use field::{evaluate_field, FieldSample};
 
 const TRACE_WGSL: &str = include_str!("trace.wgsl");
 const AOVS_WGSL: &str = include_str!("aovs.wgsl");
