@@ -1,0 +1,962 @@
+//! The backend conformance suite: every built-in scene times every method that
+//! applies to it, the numerical-stability scenes, the error cases and the
+//! [`Backend::supports`] plan, on one backend, in that backend's own tests.
+//!
+//! It lives beside the [`Backend`] contract rather than in the root package so
+//! that a backend is checked where it is built, by `cargo test -p` of its own
+//! crate, and so that adding a backend touches no other crate. One macro,
+//! [`conformance_suite!`], holds the cases; each backend instantiates it once,
+//! in `tests/conformance.rs` (see "Adding a backend" in ARCHITECTURE.md):
+//!
+//! ```text
+//! subcone_conformance::conformance_suite!(my_backend, MyBackend::new());
+//! // or, for a backend whose constructor can fail (no device):
+//! subcone_conformance::conformance_suite!(my_gpu, fallible MyGpuBackend::new());
+//! ```
+//!
+//! Every frame is checked twice:
+//!
+//! 1. against the CPU backend's frame of the same method, as tightly as
+//!    rounding allows ([`FRAME_TOLERANCE`]): the two evaluate the same
+//!    kernels, so they must agree. For the CPU backend itself this is
+//!    trivial (two renders of one deterministic renderer); it checks only
+//!    that rendering is deterministic.
+//! 2. against an independent high-sample reference, the CPU's `ssaa64` at the
+//!    same size ([`REFERENCE_BOUNDS`], one mean-FLIP bound per method
+//!    family). This is what gives the CPU backend, and with it every backend
+//!    compared with it, a real check: a kernel bug shared by both backends
+//!    passes (1) and fails (2).
+//!
+//! On a failure the reference, the backend's frame and the FLIP map are
+//! written to `target/conformance/<backend>/` and the message names them.
+//!
+//! A backend constructed with `fallible` that cannot be created (no adapter)
+//! fails the suite when `SUBCONE_REQUIRE_GPU` is set (as CI sets it) and skips
+//! it, saying so, when not.
+
+use std::collections::HashMap;
+use std::fmt::Display;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex, OnceLock};
+
+use subcone_kernels::passes::{required_passes, Passes, SceneFeatures};
+use subcone_scene::builtin::builtin;
+use subcone_scene::conformance::plan_matches_render;
+use subcone_scene::sdf::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
+use subcone_scene::{
+    Backend, Frame, Method, RenderError, RenderSettings, Scene, UnsupportedReason,
+};
+
+#[doc(hidden)]
+pub mod __private {
+    //! What the macro's expansion names, so that a backend's tests need no
+    //! dependency of their own for it.
+    pub use subcone_scene::Backend;
+}
+
+/// Frame width of the suite: small, because lavapipe runs shaders on the CPU,
+/// and not square, so that a swapped width and height shows.
+pub const W: u32 = 64;
+/// Frame height of the suite (see [`W`]).
+pub const H: u32 = 48;
+
+/// Methods run on triangle scenes.
+pub const TRIANGLE_METHODS: [&str; 8] = [
+    "noaa",
+    "ssaa4",
+    "ssaa16",
+    "sraa",
+    "sraa-rt",
+    "sraa+mat",
+    "sraa-rt+mat",
+    "fxaa",
+];
+/// Methods run on SDF scenes.
+pub const SDF_METHODS: [&str; 8] = [
+    "noaa",
+    "ssaa4",
+    "ctss",
+    "ctss-r",
+    "ssaa4+ctss",
+    "ctss-delayed",
+    "sraa-rt",
+    "fxaa",
+];
+
+/// Methods only the CPU reference renders on SDF scenes, with the reason. Not
+/// skipped: `cpu_only_methods` renders them on the CPU (every SDF and stiff
+/// scene, frame invariants and the `ssaa64` bound) and requires every other
+/// backend to plan and make the refusal ([`Backend::supports`], then
+/// `render`) as [`UnsupportedReason::CpuOnly`], saying "CPU backend only";
+/// where they are also in [`SDF_METHODS`], the per-scene cases check the
+/// refusal too. Any other refusal of a method in the scene lists, but a
+/// technique that does not apply to the scene, fails the suite.
+pub const CPU_ONLY_ON_SDF: [(&str, &str); 2] = [
+    (
+        "sraa-rt",
+        "sphere-traced subpixel geometry and its reconstruction exist on the CPU only",
+    ),
+    (
+        "ctss+edges",
+        "hit group subdivision (CTSS §5.3) has no WGSL twin",
+    ),
+];
+
+/// How close a backend's frame must be to the CPU backend's, in LDR-FLIP.
+///
+/// Both backends evaluate the same kernels on the same rays in f32, so the
+/// images differ only where rounding decides a discrete outcome: a ray that
+/// grazes an edge hits on one backend and misses on the other, a shadow ray
+/// that grazes an occluder, a CTSS hit group that closes one step earlier. Each
+/// such pixel can carry a large FLIP error, but they are rare, so the mean is
+/// held tight and the 99th percentile (the worst 1 % of pixels may be those
+/// edge pixels) a little looser, as wgpu's own image tests compare percentiles.
+#[derive(Clone, Copy, Debug)]
+pub struct Tolerance {
+    /// Bound on the mean FLIP.
+    pub mean: f64,
+    /// Bound on the 99th percentile of the FLIP map.
+    pub p99: f32,
+}
+
+/// The tolerance of every comparison with the CPU backend's frame.
+pub const FRAME_TOLERANCE: Tolerance = Tolerance {
+    mean: 0.01,
+    p99: 0.10,
+};
+
+/// The high-sample reference every frame is also compared with: 8×8
+/// supersampling on the CPU backend, at the suite's size.
+pub const REFERENCE_METHOD: &str = "ssaa64";
+
+/// A family of methods that share one bound on the mean FLIP against the
+/// [`REFERENCE_METHOD`] frame.
+#[derive(Clone, Copy, Debug)]
+pub struct Family {
+    /// Name in messages.
+    pub name: &'static str,
+    /// The methods of the family, as parsed by [`Method`].
+    pub methods: &'static [&'static str],
+    /// Bound on the mean LDR-FLIP against `ssaa64`, over every suite scene.
+    pub mean: f64,
+    /// Why the bound is what it is.
+    pub why: &'static str,
+}
+
+/// Mean-FLIP bounds against `ssaa64`, one per method family.
+///
+/// A method's frame differs from `ssaa64` by its own antialiasing error (none
+/// for noaa's aliasing, a little for ssaa16's 4×4 grid), so each family's
+/// bound is the worst mean measured over every suite scene (64×48, on the
+/// CPU and on wgpu/lavapipe alike, as they agree within
+/// [`FRAME_TOLERANCE`]), stated beside it, plus about 30 % margin for that
+/// tolerance and for small scene or kernel changes, and no looser: a black
+/// frame (FLIP ≥ 0.75 on every scene) fails every bound on every scene
+/// (`broken_frames_fail` in this crate's tests).
+pub const REFERENCE_BOUNDS: [Family; 6] = [
+    Family {
+        name: "noaa",
+        methods: &["noaa"],
+        mean: 0.30,
+        // Worst measured 0.224 (checker: a receding checkerboard, all edges).
+        why: "one sample per pixel: the full aliasing error on every edge",
+    },
+    Family {
+        name: "fxaa",
+        methods: &["fxaa"],
+        mean: 0.34,
+        // Worst measured 0.266 (checker): above noaa, as blurring the
+        // checker's aliased texture moves it further from the reference.
+        why: "a post-process of the noaa frame: blurs edges, keeps noaa's missing subpixel detail",
+    },
+    Family {
+        name: "ssaa4",
+        methods: &["ssaa4"],
+        mean: 0.17,
+        // Worst measured 0.127 (checker).
+        why: "2×2 grid: edge coverage quantised to quarters",
+    },
+    Family {
+        name: "ssaa16",
+        methods: &["ssaa16"],
+        mean: 0.12,
+        // Worst measured 0.091 (checker).
+        why: "4×4 grid: closest to the 8×8 reference",
+    },
+    Family {
+        name: "sraa",
+        methods: &["sraa", "sraa-rt", "sraa+mat", "sraa-rt+mat"],
+        mean: 0.30,
+        // Worst measured 0.234 (checker, sraa; the material gate brings it to
+        // 0.167): SRAA fixes geometric edges, not the texture's aliasing.
+        why: "one shading sample per pixel reconstructed from subpixel geometry",
+    },
+    Family {
+        name: "ctss",
+        methods: &["ctss", "ctss-r", "ssaa4+ctss", "ctss-delayed", "ctss+edges"],
+        mean: 0.23,
+        // Worst measured 0.175 (thin: features below a pixel, where one
+        // shading per hit group differs most from 64 samples).
+        why: "cone-traced coverage per hit group, shaded once per group",
+    },
+];
+
+/// The [`REFERENCE_BOUNDS`] family of `method`; panics when no family lists it
+/// (a method added to the suite must be given a bound).
+pub fn family(method: &str) -> &'static Family {
+    REFERENCE_BOUNDS
+        .iter()
+        .find(|f| f.methods.contains(&method))
+        .unwrap_or_else(|| panic!("method {method} has no bound in REFERENCE_BOUNDS"))
+}
+
+/// Whether a backend that cannot be created must fail the suite rather than
+/// skip it: `SUBCONE_REQUIRE_GPU` set, non-empty and not `0` (the rule of
+/// `subcone_wgpu::gpu_required`, read here so that the suite names no backend
+/// but the reference).
+pub fn device_required() -> bool {
+    std::env::var("SUBCONE_REQUIRE_GPU").is_ok_and(|v| !v.is_empty() && v != "0")
+}
+
+/// The backend could not be created: `None` (skip, saying so), or a panic
+/// when [`device_required`].
+#[doc(hidden)]
+pub fn unavailable(backend: &str, e: &dyn Display) -> Option<Box<dyn Backend>> {
+    if device_required() {
+        panic!("{backend} unavailable (SUBCONE_REQUIRE_GPU is set): {e}");
+    }
+    eprintln!("SKIPPED: {backend} unavailable and SUBCONE_REQUIRE_GPU unset: {e}");
+    None
+}
+
+/// A FLIP comparison: the per-pixel error map in `[0, 1]`, its mean, and the
+/// map through FLIP's magma colour map (8-bit RGB) for failure images.
+pub struct Flip {
+    /// Per-pixel FLIP error, row-major.
+    pub map: Vec<f32>,
+    /// Mean FLIP over all pixels.
+    pub mean: f64,
+    /// 99th percentile of `map`.
+    pub p99: f32,
+    /// `map` coloured, 8-bit RGB.
+    pub magma: Vec<u8>,
+}
+
+/// LDR-FLIP of `test` against `reference`, on the 8-bit sRGB images a user
+/// sees ([`Frame::to_srgb8`]), at the default 67 pixels per degree: the
+/// metric of `subcone report`. Panics on frames of different sizes.
+pub fn flip(reference: &Frame, test: &Frame) -> Flip {
+    let (w, h) = (reference.width, reference.height);
+    assert_eq!((test.width, test.height), (w, h), "frames differ in size");
+    let n = (w * h) as usize;
+    assert!(
+        n > 0 && reference.color.len() == n && test.color.len() == n,
+        "frame data does not match the frame size"
+    );
+    let r = nv_flip::FlipImageRgb8::with_data(w, h, &reference.to_srgb8());
+    let t = nv_flip::FlipImageRgb8::with_data(w, h, &test.to_srgb8());
+    let error = nv_flip::flip(r, t, nv_flip::DEFAULT_PIXELS_PER_DEGREE);
+    let map = error.to_vec();
+    let mean = map.iter().map(|&v| v as f64).sum::<f64>() / map.len() as f64;
+    let p99 = percentile(&map, 0.99);
+    let magma = error.apply_color_lut(&nv_flip::magma_lut()).to_vec();
+    Flip {
+        map,
+        mean,
+        p99,
+        magma,
+    }
+}
+
+fn percentile(values: &[f32], q: f64) -> f32 {
+    let mut v = values.to_vec();
+    v.sort_by(f32::total_cmp);
+    let i = ((v.len() as f64 - 1.0) * q).round() as usize;
+    v[i.min(v.len() - 1)]
+}
+
+/// The `ssaa64` frame of `scene` at the suite's size, rendered once per scene
+/// per test process by the CPU backend and kept: several tests (and, for the
+/// CPU-only methods, several methods) compare with it.
+pub fn reference_frame(scene: &Scene) -> Arc<Frame> {
+    static CACHE: OnceLock<Mutex<HashMap<String, Arc<Frame>>>> = OnceLock::new();
+    let cache = CACHE.get_or_init(Default::default);
+    if let Some(f) = cache.lock().expect("cache lock").get(&scene.name) {
+        return f.clone();
+    }
+    // Render outside the lock, so that the other scenes' tests go on; two
+    // tests of one scene at once would at worst render it twice.
+    let method: Method = REFERENCE_METHOD.parse().expect("reference method");
+    let frame = subcone_cpu::CpuBackend::new()
+        .render(scene, &scene.camera, &method, &RenderSettings::new(W, H))
+        .unwrap_or_else(|e| panic!("{REFERENCE_METHOD} reference of {}: {e}", scene.name));
+    let frame = Arc::new(frame);
+    cache
+        .lock()
+        .expect("cache lock")
+        .entry(scene.name.clone())
+        .or_insert(frame)
+        .clone()
+}
+
+/// Compare `frame`, a `method` frame of `scene`, with the `ssaa64` reference:
+/// the mean FLIP, or a message when it exceeds its [`family`]'s bound (the
+/// images are then written to `target/conformance/<backend>/`).
+pub fn check_against_reference(
+    backend: &str,
+    scene: &Scene,
+    method: &str,
+    frame: &Frame,
+) -> Result<f64, String> {
+    let reference = reference_frame(scene);
+    let f = flip(&reference, frame);
+    let fam = family(method);
+    if f.mean <= fam.mean {
+        return Ok(f.mean);
+    }
+    let stem = save_failure(
+        backend,
+        &scene.name,
+        method,
+        REFERENCE_METHOD,
+        &reference,
+        frame,
+        &f,
+    );
+    Err(format!(
+        "{method} against {REFERENCE_METHOD}: FLIP mean {:.5} (limit {} for the {} family: {}); images in {stem}-*.png",
+        f.mean, fam.mean, fam.name, fam.why
+    ))
+}
+
+/// Where failure images go: `<target>/conformance/<backend>/`, the target
+/// directory being `CARGO_TARGET_DIR` or the one holding the test binary
+/// (`<target>/<profile>/deps/<test>`), so that it is the workspace's whoever
+/// instantiates the suite.
+pub fn output_dir(backend: &str) -> PathBuf {
+    let target = std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .or_else(|| {
+            std::env::current_exe()
+                .ok()
+                .and_then(|exe| exe.ancestors().nth(3).map(Path::to_path_buf))
+        })
+        .unwrap_or_else(|| PathBuf::from("target"));
+    target.join("conformance").join(backend)
+}
+
+fn save(data: &[u8], w: u32, h: u32, path: &Path) {
+    let _ = std::fs::create_dir_all(path.parent().expect("has a parent"));
+    if let Err(e) = image::save_buffer(path, data, w, h, image::ExtendedColorType::Rgb8) {
+        eprintln!("could not write {}: {e}", path.display());
+    }
+}
+
+/// Write the reference, the frame and the FLIP map; returns the path stem.
+fn save_failure(
+    backend: &str,
+    scene: &str,
+    method: &str,
+    against: &str,
+    reference: &Frame,
+    actual: &Frame,
+    f: &Flip,
+) -> String {
+    let dir = output_dir(backend);
+    let stem = dir.join(format!("{scene}-{}-vs-{against}", method.replace('+', "_")));
+    let (w, h) = (actual.width, actual.height);
+    for (suffix, data) in [
+        ("reference", reference.to_srgb8()),
+        ("actual", actual.to_srgb8()),
+        ("flip", f.magma.clone()),
+    ] {
+        let mut p = stem.clone().into_os_string();
+        p.push(format!("-{suffix}.png"));
+        save(&data, w, h, Path::new(&p));
+    }
+    stem.display().to_string()
+}
+
+/// What a frame must satisfy on any backend, reference or not.
+pub fn check_invariants(backend: &str, scene: &Scene, method: &Method, frame: &Frame) {
+    let what = format!("{backend}: {} {method}", scene.name);
+    assert_eq!((frame.width, frame.height), (W, H), "{what}: frame size");
+    assert_eq!(frame.color.len(), (W * H) as usize, "{what}: pixel count");
+    if let Some(i) = frame
+        .color
+        .iter()
+        .position(|c| !c.is_finite() || c.min_element() < 0.0)
+    {
+        panic!(
+            "{what}: pixel {i} is {:?}: colours must be finite and non-negative",
+            frame.color[i]
+        );
+    }
+    let features = scene.features();
+    let required = required_passes(method.technique, features).expect("applicable");
+    assert_eq!(
+        frame.stats.passes, required,
+        "{what}: the backend ran other passes than the kernels require"
+    );
+    // A post-process pass (FXAA) is run and timed exactly when planned.
+    assert_eq!(
+        frame.stats.timings.iter().any(|t| t.name == "post-process"),
+        required.contains(Passes::POST_PROCESS),
+        "{what}: post-process pass timed {:?}",
+        frame.stats.timings
+    );
+    // Leave out what the scene does not need: no work and no memory.
+    let shadow = Passes::SHADOW | Passes::SUBPIXEL_SHADOW | Passes::SECONDARY_SHADOW;
+    let secondary = Passes::SECONDARY
+        | Passes::SECONDARY_SHADOW
+        | Passes::SUBPIXEL_SECONDARY_GEOMETRY
+        | Passes::SECONDARY_RECONSTRUCTION;
+    let has = |word: &str| {
+        frame
+            .stats
+            .buffers
+            .iter()
+            .filter(|b| b.0.contains(word) && b.1 > 0)
+            .map(|b| b.0)
+            .collect::<Vec<_>>()
+    };
+    if !features.contains(SceneFeatures::HAS_LIGHTS) {
+        assert_eq!(
+            frame.stats.rays.shadow, 0,
+            "{what}: shadow rays without lights"
+        );
+    }
+    if !required.intersects(shadow) {
+        assert!(
+            has("shadow").is_empty(),
+            "{what}: shadow buffers {:?} allocated",
+            has("shadow")
+        );
+    }
+    if !features.contains(SceneFeatures::HAS_REFLECTIONS) {
+        assert_eq!(
+            frame.stats.rays.secondary, 0,
+            "{what}: reflection rays without mirrors"
+        );
+    }
+    if !required.intersects(secondary) {
+        assert!(
+            has("secondary").is_empty(),
+            "{what}: secondary buffers {:?} allocated",
+            has("secondary")
+        );
+    }
+}
+
+/// Render `scene_name` with every method of `methods` that `backend` supports,
+/// on `backend` and on the CPU backend, and compare the two, and the
+/// backend's frame with the `ssaa64` reference; where it does not support a
+/// method, check that `render` refuses as `supports` planned, and only for a
+/// reason the suite allows.
+pub fn check_scene(backend: &dyn Backend, scene_name: &str, methods: &[&str]) {
+    let scene = builtin(scene_name).expect("built-in scene");
+    let cpu = subcone_cpu::CpuBackend::new();
+    let settings = RenderSettings::new(W, H);
+    let name = backend.name();
+    let mut failures = Vec::new();
+    let mut ran = 0;
+    for m in methods {
+        let method: Method = m.parse().expect("method name");
+        let sdf = scene.features().contains(SceneFeatures::IS_SDF);
+        let cpu_only = CPU_ONLY_ON_SDF
+            .iter()
+            .find(|(n, _)| sdf && *n == *m && name != "cpu");
+        match backend.supports(&scene, &method) {
+            Ok(()) => assert!(
+                cpu_only.is_none(),
+                "{name}: {scene_name} {m} is listed as CPU-only but supported; compare it instead"
+            ),
+            Err(u) => {
+                // The plan is what render does.
+                match backend.render(&scene, &scene.camera, &method, &settings) {
+                    Err(RenderError::NotSupported(r)) => assert_eq!(
+                        r, u,
+                        "{name}: {scene_name} {m}: render refused otherwise than planned"
+                    ),
+                    other => panic!(
+                        "{name}: {scene_name} {m}: planned refusal ({u}) but render gave {:?}",
+                        other.map(|_| "a frame")
+                    ),
+                }
+                match (&u.reason, cpu_only) {
+                    // The technique does not apply: no backend renders it.
+                    (UnsupportedReason::Technique(_), _) => {
+                        assert!(
+                            required_passes(method.technique, scene.features()).is_err(),
+                            "{u}"
+                        );
+                    }
+                    (UnsupportedReason::CpuOnly { .. }, Some((_, why))) => {
+                        assert!(u.to_string().contains("CPU backend only"), "{u}");
+                        ran += 1;
+                        println!(
+                            "{name:>5} {scene_name:>16} {m:>12}: CPU-only ({why}), refused: {u}"
+                        );
+                    }
+                    _ => panic!(
+                        "{name}: {scene_name} {m} refused, and not as listed in CPU_ONLY_ON_SDF: {u}"
+                    ),
+                }
+                continue;
+            }
+        }
+        ran += 1;
+        let expected = cpu
+            .render(&scene, &scene.camera, &method, &settings)
+            .unwrap_or_else(|e| panic!("cpu reference: {scene_name} {m}: {e}"));
+        let actual = backend
+            .render(&scene, &scene.camera, &method, &settings)
+            .unwrap_or_else(|e| panic!("{name}: {scene_name} {m}: {e}"));
+        check_invariants(name, &scene, &method, &actual);
+        let f = flip(&expected, &actual);
+        let t = FRAME_TOLERANCE;
+        if f.mean > t.mean || f.p99 > t.p99 {
+            let stem = save_failure(name, scene_name, m, "cpu", &expected, &actual, &f);
+            failures.push(format!(
+                "{m} against the cpu backend: FLIP mean {:.5} (limit {}), p99 {:.4} (limit {}); images in {stem}-*.png",
+                f.mean, t.mean, f.p99, t.p99
+            ));
+        }
+        let high = check_against_reference(name, &scene, m, &actual);
+        match &high {
+            Ok(_) => {}
+            Err(msg) => failures.push(msg.clone()),
+        }
+        println!(
+            "{name:>5} {scene_name:>16} {m:>12}: vs cpu FLIP mean {:.5} (≤ {}), p99 {:.4} (≤ {}); vs {REFERENCE_METHOD} mean {} (≤ {})",
+            f.mean,
+            t.mean,
+            f.p99,
+            t.p99,
+            high.map_or_else(|_| "over".to_string(), |v| format!("{v:.5}")),
+            family(m).mean,
+        );
+    }
+    assert!(ran > 0, "no method applies to {scene_name}");
+    assert!(
+        failures.is_empty(),
+        "{name} fails on {scene_name}:\n{}",
+        failures.join("\n")
+    );
+}
+
+/// Extreme settings every backend must survive with finite frames: one step,
+/// a ray length far below the scene, and a ray length far beyond f32's reach.
+pub fn check_extreme_settings(backend: &dyn Backend) {
+    let scene = builtin("primitives").expect("built-in");
+    for m in ["noaa", "ctss", "ctss-r"] {
+        let method: Method = m.parse().expect("method");
+        for (label, steps, distance) in [
+            ("one step", Some(1), None),
+            ("tiny reach", None, Some(1e-6)),
+            ("huge reach", None, Some(3.0e38)),
+        ] {
+            let settings = RenderSettings {
+                max_steps: steps,
+                max_distance: distance,
+                ..RenderSettings::new(W, H)
+            };
+            let frame = backend
+                .render(&scene, &scene.camera, &method, &settings)
+                .unwrap_or_else(|e| panic!("{}: {m} with {label}: {e}", backend.name()));
+            check_invariants(backend.name(), &scene, &method, &frame);
+        }
+    }
+}
+
+/// [`CPU_ONLY_ON_SDF`]: finite, invariant-abiding frames within the `ssaa64`
+/// bound on the CPU on every SDF scene; a clear error on any other backend.
+pub fn check_cpu_only(backend: &dyn Backend) {
+    let settings = RenderSettings::new(W, H);
+    let name = backend.name();
+    let mut failures = Vec::new();
+    for (m, why) in CPU_ONLY_ON_SDF {
+        let method: Method = m.parse().expect("method name");
+        for scene_name in SDF_SCENES.iter().chain(&STIFF_SCENES) {
+            let scene = builtin(scene_name).expect("built-in scene");
+            let plan = backend.supports(&scene, &method);
+            match backend.render(&scene, &scene.camera, &method, &settings) {
+                Ok(frame) => {
+                    assert_eq!(
+                        name, "cpu",
+                        "{m} is CPU-only ({why}) but {name} rendered it"
+                    );
+                    assert_eq!(
+                        plan,
+                        Ok(()),
+                        "cpu: {scene_name} {m}: rendered what it refused"
+                    );
+                    check_invariants(name, &scene, &method, &frame);
+                    match check_against_reference(name, &scene, m, &frame) {
+                        Ok(v) => println!(
+                            "{name:>5} {scene_name:>16} {m:>12}: vs {REFERENCE_METHOD} mean {v:.5} (≤ {})",
+                            family(m).mean
+                        ),
+                        Err(e) => failures.push(format!("{scene_name}: {e}")),
+                    }
+                }
+                Err(e) => {
+                    assert_ne!(name, "cpu", "cpu: {scene_name} {m}: {e}");
+                    let planned = plan.expect_err("refused by render, so by supports");
+                    assert!(
+                        matches!(planned.reason, UnsupportedReason::CpuOnly { .. }),
+                        "{name}: {scene_name} {m} refused without saying it is CPU-only: {planned}"
+                    );
+                    assert!(
+                        matches!(&e, RenderError::NotSupported(u) if *u == planned),
+                        "{name}: {scene_name} {m}: render refused otherwise than planned: {e}"
+                    );
+                    assert!(
+                        e.to_string().contains("CPU backend only"),
+                        "{name}: {scene_name} {m} refused without saying why: {e}"
+                    );
+                    break;
+                }
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Bad input is an error value on every backend.
+pub fn check_errors(backend: &dyn Backend) {
+    let name = backend.name();
+    let cornell = builtin("cornell").expect("built-in");
+    let sraa: Method = "sraa".parse().expect("method");
+    let zero = RenderSettings::new(0, 16);
+    assert!(matches!(
+        backend.render(&cornell, &cornell.camera, &sraa, &zero),
+        Err(RenderError::Resolution { .. })
+    ));
+    let huge = RenderSettings::new(subcone_scene::backend::MAX_SIDE + 1, 16);
+    assert!(
+        backend
+            .render(&cornell, &cornell.camera, &sraa, &huge)
+            .is_err(),
+        "{name}: a side over the limit must be refused"
+    );
+    let ctss: Method = "ctss".parse().expect("method");
+    let primitives = builtin("primitives").expect("built-in");
+    for (scene, method, why) in [
+        (&cornell, &ctss, "CTSS needs an SDF scene"),
+        (&primitives, &sraa, "SRAA needs a triangle scene"),
+    ] {
+        let planned = backend.supports(scene, method).expect_err(why);
+        assert!(
+            matches!(planned.reason, UnsupportedReason::Technique(_)),
+            "{name}: {why}: {planned}"
+        );
+        let r = backend.render(scene, &scene.camera, method, &RenderSettings::new(8, 8));
+        assert!(
+            matches!(&r, Err(RenderError::NotSupported(u)) if *u == planned),
+            "{name}: {why}: {:?}",
+            r.map(|_| "a frame")
+        );
+    }
+    let mut camera = cornell.camera;
+    camera.fov_y = f32::NAN;
+    assert!(
+        backend
+            .render(&cornell, &camera, &sraa, &RenderSettings::new(8, 8))
+            .is_err(),
+        "{name}: a NaN field of view must be refused"
+    );
+}
+
+/// The [`Backend::supports`] contract, through
+/// [`subcone_scene::conformance::plan_matches_render`]: every combination the
+/// backend plans renders, every refusal is planned and made alike (a typed
+/// [`subcone_scene::Unsupported`]); and the refusals the suite can judge
+/// without knowing the backend are honest: "the technique does not apply" only
+/// where [`required_passes`] says so, "CPU backend only" never from the CPU
+/// backend and always saying so. What each backend refuses besides is its own
+/// `tests/supports.rs`'s to assert.
+pub fn check_supports(backend: &dyn Backend) {
+    let name = backend.name();
+    let check = plan_matches_render(backend).unwrap_or_else(|e| panic!("{e}"));
+    println!(
+        "{name}: {} renders planned and done, {} refusals planned and made",
+        check.rendered,
+        check.refusals.len()
+    );
+    assert!(check.rendered > 0, "{name} renders nothing");
+    for u in &check.refusals {
+        match &u.reason {
+            UnsupportedReason::Technique(_) => {
+                let scene = subcone_scene::conformance::plan_scenes()
+                    .into_iter()
+                    .find(|s| s.name == u.scene)
+                    .unwrap_or_else(|| panic!("{u}: no plan scene named {}", u.scene));
+                let method: Method = u.method.parse().expect("method name");
+                assert!(
+                    required_passes(method.technique, scene.features()).is_err(),
+                    "{name}: refused as a technique that does not apply, but it does: {u}"
+                );
+            }
+            UnsupportedReason::CpuOnly { .. } => {
+                assert_ne!(name, "cpu", "the CPU backend refuses as CPU-only: {u}");
+                assert!(u.to_string().contains("CPU backend only"), "{u}");
+            }
+            _ => {}
+        }
+    }
+}
+
+/// The scenes with semi-transparent materials ([`TRANSPARENT_SCENES`]) are not
+/// compared (the CPU backend renders them on the paths that carry opacity,
+/// the wgpu backend not at all): each method either renders finite,
+/// invariant-abiding frames or is refused, as planned, as
+/// [`UnsupportedReason::Translucency`] saying "semi-transparent", never drawn
+/// opaque silently.
+pub fn check_transparent(backend: &dyn Backend) {
+    let name = backend.name();
+    let settings = RenderSettings::new(W, H);
+    for scene_name in TRANSPARENT_SCENES {
+        let scene = builtin(scene_name).expect("built-in scene");
+        assert!(scene.has_translucency(), "{scene_name}");
+        for m in SDF_METHODS {
+            let method: Method = m.parse().expect("method name");
+            let plan = backend.supports(&scene, &method);
+            let r = backend.render(&scene, &scene.camera, &method, &settings);
+            match (plan, r) {
+                (Ok(()), Ok(frame)) => check_invariants(name, &scene, &method, &frame),
+                (Err(planned), Err(e)) => {
+                    assert!(
+                        matches!(planned.reason, UnsupportedReason::Translucency { .. }),
+                        "{name}: {scene_name} {m}: {planned}"
+                    );
+                    assert!(
+                        matches!(&e, RenderError::NotSupported(u) if *u == planned),
+                        "{name}: {scene_name} {m}: refused otherwise than planned: {e}"
+                    );
+                    assert!(e.to_string().contains("semi-transparent"), "{name}: {e}");
+                }
+                (plan, r) => panic!(
+                    "{name}: {scene_name} {m}: planned {plan:?}, render gave {:?}",
+                    r.map(|_| "a frame")
+                ),
+            }
+        }
+    }
+}
+
+/// Every built-in scene that is not semi-transparent must be one of the
+/// suite's per-scene cases (`covered`, the macro's list).
+pub fn check_coverage(covered: &[&str]) {
+    for s in subcone_scene::builtin::TRIANGLE_SCENES
+        .iter()
+        .chain(&SDF_SCENES)
+        .chain(&STIFF_SCENES)
+    {
+        assert!(
+            covered.contains(s),
+            "scene {s} is not in the conformance suite"
+        );
+    }
+}
+
+/// One test per scene: `__scene_tests!(backend_fn; METHODS; test_name => "scene", ...)`.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __scene_tests {
+    ($backend:ident; $methods:expr; $($test:ident => $scene:expr),* $(,)?) => {$(
+        #[test]
+        fn $test() {
+            if let Some(b) = $backend() {
+                $crate::check_scene(b.as_ref(), $scene, &$methods);
+            }
+        }
+    )*};
+}
+
+/// The conformance cases for one backend, in a module named `$name`:
+///
+/// ```text
+/// subcone_conformance::conformance_suite!(cpu, CpuBackend::new());
+/// subcone_conformance::conformance_suite!(wgpu, fallible WgpuBackend::new());
+/// ```
+///
+/// The constructor is an expression of a type implementing
+/// [`Backend`] (`'static`), or, after `fallible`, of type
+/// `Result<impl Backend, impl Display>`: an `Err` skips the suite, saying so,
+/// unless `SUBCONE_REQUIRE_GPU` is set ([`device_required`]), when it fails.
+/// It is evaluated once per test, in a module that sees the caller's `use`s.
+///
+/// Run one backend's cases with `cargo test -p <crate> --test conformance`.
+#[macro_export]
+macro_rules! conformance_suite {
+    (@suite $name:ident, $make:block) => {
+        mod $name {
+            #[allow(unused_imports)]
+            use super::*;
+
+            fn backend() -> ::std::option::Option<
+                ::std::boxed::Box<dyn $crate::__private::Backend>,
+            > $make
+
+            $crate::__scene_tests!(backend; $crate::TRIANGLE_METHODS;
+                cornell => "cornell",
+                cornell_nomirror => "cornell-nomirror",
+                checker => "checker",
+                atrium => "atrium",
+            );
+            $crate::__scene_tests!(backend; $crate::SDF_METHODS;
+                primitives => "primitives",
+                random_box => "random-box",
+                random_shape => "random-shape",
+                sdf_atrium => "sdf-atrium",
+                sparse_shape => "sparse-shape",
+                stiff_thin => "thin",
+                stiff_grazing => "grazing",
+                stiff_far => "far",
+                stiff_non_eikonal => "non-eikonal",
+            );
+
+            #[test]
+            fn extreme_settings() {
+                if let Some(b) = backend() {
+                    $crate::check_extreme_settings(b.as_ref());
+                }
+            }
+
+            #[test]
+            fn cpu_only_methods() {
+                if let Some(b) = backend() {
+                    $crate::check_cpu_only(b.as_ref());
+                }
+            }
+
+            #[test]
+            fn errors() {
+                if let Some(b) = backend() {
+                    $crate::check_errors(b.as_ref());
+                }
+            }
+
+            #[test]
+            fn supports_matches_render() {
+                if let Some(b) = backend() {
+                    $crate::check_supports(b.as_ref());
+                }
+            }
+
+            #[test]
+            fn transparent_scenes_render_or_are_refused() {
+                if let Some(b) = backend() {
+                    $crate::check_transparent(b.as_ref());
+                }
+            }
+
+            /// The per-scene cases above are the crate's scene lists: a new
+            /// built-in scene must be added to the suite.
+            #[test]
+            fn suite_covers_every_builtin_scene() {
+                $crate::check_coverage(&[
+                    "cornell",
+                    "cornell-nomirror",
+                    "checker",
+                    "atrium",
+                    "primitives",
+                    "random-box",
+                    "random-shape",
+                    "sdf-atrium",
+                    "sparse-shape",
+                    "thin",
+                    "grazing",
+                    "far",
+                    "non-eikonal",
+                ]);
+            }
+        }
+    };
+    ($name:ident, fallible $make:expr) => {
+        $crate::conformance_suite!(@suite $name, {
+            match $make {
+                ::std::result::Result::Ok(b) => ::std::option::Option::Some(::std::boxed::Box::new(b)),
+                ::std::result::Result::Err(e) => $crate::unavailable(stringify!($name), &e),
+            }
+        });
+    };
+    ($name:ident, $make:expr) => {
+        $crate::conformance_suite!(@suite $name, {
+            ::std::option::Option::Some(::std::boxed::Box::new($make))
+        });
+    };
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use subcone_scene::builtin::TRIANGLE_SCENES;
+
+    /// Every method the suite runs has a bound, and the bounds are ordered as
+    /// the methods' sampling is: no antialiasing is held looser than 16
+    /// samples.
+    #[test]
+    fn every_method_has_a_bound() {
+        for m in TRIANGLE_METHODS
+            .iter()
+            .chain(&SDF_METHODS)
+            .chain(CPU_ONLY_ON_SDF.iter().map(|(m, _)| m))
+        {
+            assert!(m.parse::<Method>().is_ok(), "{m}");
+            family(m);
+        }
+        assert!(family("noaa").mean > family("ssaa4").mean);
+        assert!(family("ssaa4").mean > family("ssaa16").mean);
+    }
+
+    /// The comparisons can fail: a black frame fails the `ssaa64` bound of
+    /// every family on every suite scene (FLIP ≥ 0.75 measured, against bounds
+    /// ≤ 0.34), and the CPU comparison's tolerance; so does a flat frame of
+    /// the reference's mean colour (right brightness, no picture), except on
+    /// `sparse-shape`, whose picture is mostly the empty background: there a
+    /// flat frame measures 0.28, under the loosest families' bounds (noaa,
+    /// fxaa, sraa), and fails only the tighter ones. That is the limit of one
+    /// bound per family over all scenes.
+    #[test]
+    fn broken_frames_fail() {
+        let mut passed = Vec::new();
+        for scene_name in TRIANGLE_SCENES
+            .iter()
+            .chain(&SDF_SCENES)
+            .chain(&STIFF_SCENES)
+        {
+            let scene = builtin(scene_name).expect("built-in scene");
+            let reference = reference_frame(&scene);
+            let mut black = (*reference).clone();
+            black.color.iter_mut().for_each(|c| *c = glam::Vec3::ZERO);
+            let mean =
+                reference.color.iter().copied().sum::<glam::Vec3>() / reference.color.len() as f32;
+            let mut flat = (*reference).clone();
+            flat.color.iter_mut().for_each(|c| *c = mean);
+            for (what, frame) in [("black", &black), ("flat", &flat)] {
+                let f = flip(&reference, frame);
+                println!("{scene_name:>16} {what:>5}: FLIP mean {:.5}", f.mean);
+                if f.mean <= FRAME_TOLERANCE.mean {
+                    passed.push(format!(
+                        "{scene_name}: a {what} frame passes the CPU tolerance"
+                    ));
+                }
+                for fam in REFERENCE_BOUNDS {
+                    let exempt = what == "flat" && *scene_name == "sparse-shape" && fam.mean > 0.28;
+                    if exempt {
+                        continue;
+                    }
+                    if check_against_reference("broken", &scene, fam.methods[0], frame).is_ok() {
+                        passed.push(format!(
+                            "{scene_name}: a {what} frame passes the {} bound ({})",
+                            fam.name, fam.mean
+                        ));
+                    }
+                }
+            }
+        }
+        assert!(passed.is_empty(), "{}", passed.join("\n"));
+    }
+}
