@@ -1255,7 +1255,7 @@ fn check_sdf_field(
     let out: Vec<[f32; 6]> = run_wgsl(
         ctx,
         &Kernel {
-            library: &field.source,
+            library: &[subcone_kernels::wgsl::PARAMS, field.source.as_str()].concat(),
             body: "let e = scene_sdf(v3(0u));
                    let s = scene_sdf_split(v3(0u));
                    out[o] = bitcast<u32>(e.x); out[o + 1u] = bitcast<u32>(e.y);
@@ -1412,7 +1412,7 @@ fn perturbed_kernels_are_caught() {
         ),
         (
             "material gate ignored",
-            "if d <= tolerance && d < subcone_miss_depth() {",
+            "if d <= tolerance && d < subcone_inf() {",
             "if true {",
             check_material,
         ),

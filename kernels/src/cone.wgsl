@@ -6,17 +6,6 @@
 const OCCLUSION_MIN: f32 = -1.0;
 const OCCLUSION_MAX: f32 = 2.0;
 
-fn subcone_is_nan(x: f32) -> bool {
-    return (bitcast<u32>(x) & 0x7fffffffu) > 0x7f800000u;
-}
-
-fn subcone_is_finite(x: f32) -> bool {
-    return (bitcast<u32>(x) & 0x7fffffffu) < 0x7f800000u;
-}
-
-fn subcone_inf() -> f32 {
-    return bitcast<f32>(0x7f800000u);
-}
 
 // f32::next_up: the next representable value above x (x finite).
 fn subcone_next_up(x: f32) -> f32 {

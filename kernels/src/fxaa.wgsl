@@ -21,13 +21,9 @@ fn fxaa_search_step(i: u32) -> f32 {
     }
 }
 
-fn fxaa_is_nan(x: f32) -> bool {
-    return (bitcast<u32>(x) & 0x7fffffffu) > 0x7f800000u;
-}
-
 // Mirrors fxaa::clean01: [0, 1], NaN as 0.
 fn fxaa_clean01(x: f32) -> f32 {
-    if fxaa_is_nan(x) {
+    if subcone_is_nan(x) {
         return 0.0;
     }
     return clamp(x, 0.0, 1.0);

@@ -52,8 +52,19 @@ struct FxaaParams {
 // treated as empty by the SRAA reconstruction and the CTSS aggregation alike.
 const NEGLIGIBLE_WEIGHT: f32 = 5.421011e-20;
 
-// +inf as a bit pattern (WGSL has no infinity literal; a constant-folded 1/0
-// is a shader-creation error).
-fn subcone_miss_depth() -> f32 {
+// The one +inf, NaN test and finiteness test of every shader that includes
+// these parameters (kernels, backend passes, generated SDF fields). +inf is a
+// bit pattern: WGSL has no infinity literal, and a constant-folded 1/0 is a
+// shader-creation error. The tests read the bits, so no compiler may fold
+// them away under fast-math assumptions.
+fn subcone_inf() -> f32 {
     return bitcast<f32>(0x7f800000u);
+}
+
+fn subcone_is_nan(x: f32) -> bool {
+    return (bitcast<u32>(x) & 0x7fffffffu) > 0x7f800000u;
+}
+
+fn subcone_is_finite(x: f32) -> bool {
+    return (bitcast<u32>(x) & 0x7fffffffu) < 0x7f800000u;
 }

@@ -25,20 +25,12 @@ const NORMAL_COS_SNAP: f32 = 4.76837158203125e-7;
 // Mirrors sraa::SHADED_SUBSAMPLE.
 const SHADED_SUBSAMPLE: u32 = 0u;
 
-fn sraa_is_nan(x: f32) -> bool {
-    return (bitcast<u32>(x) & 0x7fffffffu) > 0x7f800000u;
-}
-
-fn sraa_is_finite(x: f32) -> bool {
-    return (bitcast<u32>(x) & 0x7f800000u) != 0x7f800000u;
-}
-
 fn sraa_is_finite3(c: vec3<f32>) -> bool {
-    return sraa_is_finite(c.x) && sraa_is_finite(c.y) && sraa_is_finite(c.z);
+    return subcone_is_finite(c.x) && subcone_is_finite(c.y) && subcone_is_finite(c.z);
 }
 
 fn sraa_any_nan3(c: vec3<f32>) -> bool {
-    return sraa_is_nan(c.x) || sraa_is_nan(c.y) || sraa_is_nan(c.z);
+    return subcone_is_nan(c.x) || subcone_is_nan(c.y) || subcone_is_nan(c.z);
 }
 
 // Mirrors sraa::SUBPIXEL_OFFSETS (§3.1, Fig. 2): the 4x rotated grid on a 4×4
@@ -76,7 +68,7 @@ fn sraa_radius(p: SraaParams) -> u32 {
 // Mirrors sraa::gaussian: G(x) = exp(-x²) of eq. 1; 0 for ±inf and NaN.
 fn gaussian(x: f32) -> f32 {
     let e = exp(-(x * x));
-    if sraa_is_nan(e) {
+    if subcone_is_nan(e) {
         return 0.0;
     }
     return e;
@@ -88,11 +80,11 @@ fn gaussian_sum(s: f32) -> f32 {
     if s == 0.0 {
         return 1.0;
     }
-    if sraa_is_nan(s) || !(s < 105.0) {
+    if subcone_is_nan(s) || !(s < 105.0) {
         return 0.0;
     }
     let e = exp(-s);
-    if sraa_is_nan(e) {
+    if subcone_is_nan(e) {
         return 0.0;
     }
     return e;
@@ -112,7 +104,7 @@ fn saturate(x: f32) -> f32 {
 // Mirrors sraa::depth_difference: Δz of eq. 1 under `metric` (0 = Relative,
 // 1 = Absolute), >= 0; +inf for a miss against a hit or any NaN.
 fn depth_difference(zi: f32, zj: f32, metric: u32) -> f32 {
-    if zi == zj && !sraa_is_nan(zi) {
+    if zi == zj && !subcone_is_nan(zi) {
         return 0.0;
     }
     let diff = abs(zj - zi);
@@ -121,12 +113,12 @@ fn depth_difference(zi: f32, zj: f32, metric: u32) -> f32 {
         let mean = 0.5 * abs(zi) + 0.5 * abs(zj);
         if mean == 0.0 {
             // diff / 0: +inf for diff > 0 (diff = 0 only when zi == zj).
-            return subcone_miss_depth();
+            return subcone_inf();
         }
         r = diff / mean;
     }
-    if sraa_is_nan(r) {
-        return subcone_miss_depth();
+    if subcone_is_nan(r) {
+        return subcone_inf();
     }
     return r;
 }
@@ -142,7 +134,7 @@ fn bilateral_weight(params: SraaParams, gi: Geometry, gj: Geometry) -> f32 {
     if cos >= 1.0 - NORMAL_COS_SNAP {
         dn = 0.0;
     }
-    let inf = subcone_miss_depth();
+    let inf = subcone_inf();
     if gi.depth == inf && gj.depth == inf {
         return 1.0;
     }
@@ -156,11 +148,11 @@ fn bilateral_weight(params: SraaParams, gi: Geometry, gj: Geometry) -> f32 {
         w = gaussian_sum(a * a + b * b);
     } else {
         let x = params.scale * max(dn, params.sigma_z * dz);
-        if sraa_is_nan(x) || x == inf {
+        if subcone_is_nan(x) || x == inf {
             w = 0.0;
         } else {
             w = exp(-x);
-            if sraa_is_nan(w) {
+            if subcone_is_nan(w) {
                 w = 0.0;
             }
         }
@@ -185,7 +177,7 @@ const ALBEDO_TOLERANCE: f32 = 0.1;
 // NaN or infinite.
 fn albedo_difference(a: vec3<f32>, b: vec3<f32>) -> f32 {
     if !sraa_is_finite3(a) || !sraa_is_finite3(b) {
-        return subcone_miss_depth();
+        return subcone_inf();
     }
     let d = abs(sqrt(max(a, vec3<f32>(0.0))) - sqrt(max(b, vec3<f32>(0.0))));
     return max(d.x, max(d.y, d.z));
@@ -196,7 +188,7 @@ fn albedo_difference(a: vec3<f32>, b: vec3<f32>) -> f32 {
 // finite, or the tolerance is NaN), eq. 1 when they match.
 fn material_gated_weight(params: SraaParams, gi: Geometry, gj: Geometry, ai: vec3<f32>, aj: vec3<f32>, tolerance: f32) -> f32 {
     let d = albedo_difference(ai, aj);
-    if d <= tolerance && d < subcone_miss_depth() {
+    if d <= tolerance && d < subcone_inf() {
         return bilateral_weight(params, gi, gj);
     }
     return 0.0;
@@ -293,7 +285,7 @@ struct LayerState {
 
 // sraa::reconstruct_layers, before the loop over neighbours.
 fn reconstruct_layers_begin() -> LayerState {
-    return LayerState(weighted_sum_zero(), vec3<f32>(0.0), subcone_miss_depth(), false);
+    return LayerState(weighted_sum_zero(), vec3<f32>(0.0), subcone_inf(), false);
 }
 
 // sraa::reconstruct_layers, the body of the loop for one neighbour and one
@@ -314,8 +306,8 @@ fn reconstruct_layers_add(
         return;
     }
     var d2 = distance2;
-    if sraa_is_nan(d2) {
-        d2 = subcone_miss_depth();
+    if subcone_is_nan(d2) {
+        d2 = subcone_inf();
     }
     if !(*state).any || d2 < (*state).nearest_d2 {
         (*state).nearest = c;

@@ -11,6 +11,8 @@
 //! ```
 //!
 //! with the material index as an `f32` (exact: indices are far below 2²⁴).
+//! It uses `subcone_inf` and `subcone_is_finite` of
+//! `subcone_kernels::wgsl::PARAMS`: include that first, as every shader does.
 //! Constants become literals. Scatter grids keep their per-cell instance table
 //! in [`WgslField::data`]; when it is not empty the caller binds it as
 //! `var<storage, read> sdf_data: array<vec4<f32>>` (WGSL has no includes, so
@@ -53,9 +55,8 @@ pub struct WgslField {
 /// Helpers shared by every generated field: one WGSL function per
 /// primitive of `shape.rs`, with the same names.
 const PRELUDE: &str = r#"
-// +inf and a NaN test that no compiler may fold away (WGSL has no literal).
-fn sdf_inf() -> f32 { return bitcast<f32>(0x7f800000u); }
-fn sdf_is_finite(x: f32) -> bool { return (bitcast<u32>(x) & 0x7fffffffu) < 0x7f800000u; }
+// +inf and the finiteness test are `subcone_inf` and `subcone_is_finite` of
+// `subcone_kernels::wgsl::PARAMS`, which every including shader puts first.
 // glam's Quat * Vec3 (mul_vec3): v(w² − b·b) + b(2 v·b) + (b × v)(2w).
 fn sdf_rotate(q: vec4<f32>, v: vec3<f32>) -> vec3<f32> {
     let b = q.xyz;
@@ -131,7 +132,7 @@ fn sd_ellipsoid(p: vec3<f32>, radii: vec3<f32>) -> f32 {
     let k1 = length(p / (radii * radii));
     if k1 == 0.0 {
         return -min(min(radii.x, radii.y), radii.z);
-    } else if sdf_is_finite(k0) && sdf_is_finite(k1) {
+    } else if subcone_is_finite(k0) && subcone_is_finite(k1) {
         return k0 * ((k0 - 1.0) / k1);
     }
     return length(p) - sdf_max3(radii);
@@ -147,9 +148,9 @@ fn f(x: f32) -> String {
     if x.is_nan() {
         "bitcast<f32>(0x7fc00000u)".into()
     } else if x == f32::INFINITY {
-        "sdf_inf()".into()
+        "subcone_inf()".into()
     } else if x == f32::NEG_INFINITY {
-        "(-sdf_inf())".into()
+        "(-subcone_inf())".into()
     } else if x.is_sign_negative() {
         format!("(-{:?}f)", -x)
     } else {
@@ -286,7 +287,7 @@ impl Gen {
             }
             Op::Union { children, spheres } => {
                 let names: Vec<String> = children.iter().map(|c| self.eval(c)).collect();
-                let mut s = format!("    var best = vec2<f32>(sdf_inf(), {own});\n");
+                let mut s = format!("    var best = vec2<f32>(subcone_inf(), {own});\n");
                 for (name, sp) in names.iter().zip(spheres) {
                     // A child whose bounding sphere is no nearer than the best so far is skipped.
                     let _ = write!(
@@ -303,7 +304,7 @@ impl Gen {
             }
             Op::Intersection(children) => {
                 let names: Vec<String> = children.iter().map(|c| self.eval(c)).collect();
-                let mut s = format!("    var best = vec2<f32>(-sdf_inf(), {own});\n");
+                let mut s = format!("    var best = vec2<f32>(-subcone_inf(), {own});\n");
                 for name in names {
                     let _ = writeln!(
                         s,
@@ -419,7 +420,7 @@ impl Gen {
 
     /// `Repeat::cell`: declares `q` and `wall`.
     fn repeat_cell(r: &super::node::Repeat) -> String {
-        let mut s = "    var q = p;\n    var wall = sdf_inf();\n".to_string();
+        let mut s = "    var q = p;\n    var wall = subcone_inf();\n".to_string();
         for (k, axis) in ["x", "y", "z"].iter().enumerate() {
             let c = r.period[k];
             if c > 0.0 {
@@ -471,7 +472,7 @@ impl Gen {
         let mut s = format!(
             "    let rel = p - {origin};\n    let fc = rel * {inv_cell};\n    \
              let fi = min(max(floor(fc + vec3<f32>(0.5)), {lo}), {hi});\n    \
-             let q = rel - fi * {cell};\n    var wall = sdf_inf();\n",
+             let q = rel - fi * {cell};\n    var wall = subcone_inf();\n",
             origin = v3(origin),
             inv_cell = v3(inv_cell),
             lo = v3(lo),
@@ -492,12 +493,12 @@ impl Gen {
             s,
             "    let guard = wall + {margin};\n    let ii = fi - {lo};\n    \
              let idx = u32(ii.x) + {d0}u * (u32(ii.y) + {d1}u * u32(ii.z));\n    \
-             if idx >= {count}u {{ return vec3<f32>(guard, sdf_inf(), {default}); }}\n    \
+             if idx >= {count}u {{ return vec3<f32>(guard, subcone_inf(), {default}); }}\n    \
              let ia = sdf_data[{base}u + 3u * idx];\n    \
              let ib = sdf_data[{base}u + 3u * idx + 1u];\n    \
              let ic = sdf_data[{base}u + 3u * idx + 2u];\n    \
              let tpl = bitcast<u32>(ic.z);\n    let material = bitcast<u32>(ic.w);\n    \
-             if tpl >= {nt}u {{ return vec3<f32>(guard, sdf_inf(), {default}); }}\n    \
+             if tpl >= {nt}u {{ return vec3<f32>(guard, subcone_inf(), {default}); }}\n    \
              let local = q - ib.xyz;\n    \
              let own = select(f32(material), {default}, material == 0xffffffffu);\n    \
              let sphere = length(local) - ic.y;\n    \
@@ -552,7 +553,7 @@ impl Gen {
             Op::Union { children, spheres } => {
                 let names: Vec<String> = children.iter().map(|c| self.split(c)).collect();
                 let mut s = format!(
-                    "    var safe = sdf_inf();\n    var surf = sdf_inf();\n    var mat = {own};\n"
+                    "    var safe = subcone_inf();\n    var surf = subcone_inf();\n    var mat = {own};\n"
                 );
                 for (name, sp) in names.iter().zip(spheres) {
                     let _ = write!(

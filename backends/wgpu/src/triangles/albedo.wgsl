@@ -17,7 +17,7 @@ struct MaterialGpu {
 // material::cell: floor(p.x / s), floor(p.z / s).
 fn cell(p: vec3<f32>, size: f32) -> vec2<i32> {
     var s = 1.0;
-    if size > 0.0 && sraa_is_finite(size) {
+    if size > 0.0 && subcone_is_finite(size) {
         s = size;
     }
     return vec2<i32>(i32(floor(p.x / s)), i32(floor(p.z / s)));
@@ -56,7 +56,7 @@ fn albedo_at(m: MaterialGpu, p: vec3<f32>, uv: vec2<f32>) -> vec3<f32> {
             // Texture::sample: nearest, wrapping.
             let w = m.extra.y;
             let hgt = m.extra.z;
-            if m.extra.w == 0u || w == 0u || hgt == 0u || !(sraa_is_finite(uv.x) && sraa_is_finite(uv.y)) {
+            if m.extra.w == 0u || w == 0u || hgt == 0u || !(subcone_is_finite(uv.x) && subcone_is_finite(uv.y)) {
                 return vec3<f32>(0.5);
             }
             let x = u32(rem_euclid1(uv.x) * f32(w)) % w;

@@ -794,7 +794,7 @@ fn subpixel(
             "sub_geo_buf",
             "Geometry",
             4,
-            "Geometry(vec3<f32>(0.0), subcone_miss_depth())",
+            "Geometry(vec3<f32>(0.0), subcone_inf())",
         );
     } else {
         header += raster::SUB_GEO_ACCESSORS;

@@ -28,7 +28,7 @@ const HAS_SUB_GEO: bool = true;
 fn get_sub_geo(j: u32, k: u32) -> Geometry {
     let t = textureLoad(sub_tex, vec2<i32>(i32(j % frame.width), i32(j / frame.width)), i32(k), 0);
     if t.w < 0.0 {
-        return Geometry(vec3<f32>(0.0), subcone_miss_depth());
+        return Geometry(vec3<f32>(0.0), subcone_inf());
     }
     return Geometry(t.xyz, t.w);
 }

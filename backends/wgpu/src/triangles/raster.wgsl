@@ -83,7 +83,7 @@ fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) k: u32) -> V
 
 fn raster_normalize_or_zero(v: vec3<f32>) -> vec3<f32> {
     let l2 = dot(v, v);
-    if l2 > 0.0 && sraa_is_finite(l2) {
+    if l2 > 0.0 && subcone_is_finite(l2) {
         let n = v * (1.0 / sqrt(l2));
         if sraa_is_finite3(n) {
             return n;

@@ -55,7 +55,7 @@ fn reconstruct_subsample(x: u32, y: u32, j: u32, k: u32) -> vec3<f32> {
     var c = reconstruct_run(tgt, get_sub_shadow(j, k), get_sub_albedo(j, k).xyz, false, 0u, x, y, k);
     if SECONDARY_LAYERS {
         let tgt2 = get_sub_geo2(j, k);
-        if !sraa_is_nan(tgt2.depth) {
+        if !subcone_is_nan(tgt2.depth) {
             c = c + reconstruct_run(tgt2, get_sub_shadow2(j, k), vec3<f32>(0.0), true, 1u + LAYER_LIGHTS, x, y, k);
         }
     }

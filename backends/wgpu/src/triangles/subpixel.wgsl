@@ -5,7 +5,7 @@
 // buffers: absent buffers read as the CPU's initial values and ignore writes).
 
 fn geometry_miss() -> Geometry {
-    return Geometry(vec3<f32>(0.0), subcone_miss_depth());
+    return Geometry(vec3<f32>(0.0), subcone_inf());
 }
 
 // render.rs NO_SECONDARY: NaN depth, which the bilateral weight excludes.

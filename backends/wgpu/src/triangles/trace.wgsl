@@ -99,10 +99,6 @@ fn counts_flush(c: Counts) {
     counter_add(4u, c.shaded);
 }
 
-fn inf() -> f32 {
-    return subcone_miss_depth();
-}
-
 // Camera::ray: the unit direction through image point p (pixels, y down).
 fn camera_ray(p: vec2<f32>) -> vec3<f32> {
     let u = (2.0 * p.x / frame.width_f - 1.0) * frame.half * frame.aspect;
@@ -131,13 +127,13 @@ fn intersect_triangle(o: vec3<f32>, d: vec3<f32>, i: u32, tmin: f32, tmax: f32) 
     let v = dot(r, e1) * inv_det;
     let w = 1.0 - u - v;
     let hit = bitcast<u32>(u) | bitcast<u32>(v) | bitcast<u32>(w);
-    if inv_det != 0.0 && (hit & 0x80000000u) == 0u && sraa_is_finite(inv_det) {
+    if inv_det != 0.0 && (hit & 0x80000000u) == 0u && subcone_is_finite(inv_det) {
         let t = dot(n, c) * inv_det;
         if t >= tmin && t <= tmax {
             return t;
         }
     }
-    return inf();
+    return subcone_inf();
 }
 
 // Slab test: entry distance of the ray into the node's box within [tmin, tmax],
@@ -152,7 +148,7 @@ fn intersect_box(o: vec3<f32>, inv_d: vec3<f32>, n: u32, tmin: f32, tmax: f32) -
     if t0 <= t3 {
         return t0;
     }
-    return inf();
+    return subcone_inf();
 }
 
 struct Hit {
@@ -163,13 +159,13 @@ struct Hit {
 
 // SceneBvh::closest: the closest hit along o + t·d, t in [tmin, ∞).
 fn closest(o: vec3<f32>, d: vec3<f32>, tmin: f32) -> Hit {
-    var best = Hit(inf(), 0xffffffffu);
+    var best = Hit(subcone_inf(), 0xffffffffu);
     let inv_d = 1.0 / d;
     var stack: array<u32, STACK_SIZE>;
     var sp = 0u;
     var node = 0u;
     var done = false;
-    if intersect_box(o, inv_d, 0u, tmin, best.t) == inf() {
+    if intersect_box(o, inv_d, 0u, tmin, best.t) == subcone_inf() {
         return best;
     }
     // Each node is visited at most once per ray: node_count bounds the loop.
@@ -187,8 +183,8 @@ fn closest(o: vec3<f32>, d: vec3<f32>, tmin: f32) -> Hit {
             let b = nd.index + 1u;
             let ta = intersect_box(o, inv_d, a, tmin, best.t);
             let tb = intersect_box(o, inv_d, b, tmin, best.t);
-            let hit_a = ta != inf();
-            let hit_b = tb != inf();
+            let hit_a = ta != subcone_inf();
+            let hit_b = tb != subcone_inf();
             if hit_a && hit_b {
                 let near = select(b, a, ta <= tb);
                 let far = select(a, b, ta <= tb);
@@ -214,7 +210,7 @@ fn closest(o: vec3<f32>, d: vec3<f32>, tmin: f32) -> Hit {
             }
             sp--;
             let cand = stack[sp];
-            if intersect_box(o, inv_d, cand, tmin, best.t) != inf() {
+            if intersect_box(o, inv_d, cand, tmin, best.t) != subcone_inf() {
                 node = cand;
                 found = true;
                 break;
@@ -239,7 +235,7 @@ fn occluded(o: vec3<f32>, d: vec3<f32>, tmin: f32, tmax: f32) -> bool {
     var sp = 0u;
     var node = 0u;
     var done = false;
-    if intersect_box(o, inv_d, 0u, tmin, tmax) == inf() {
+    if intersect_box(o, inv_d, 0u, tmin, tmax) == subcone_inf() {
         return false;
     }
     for (var it = 0u; it <= frame.node_count; it++) {
@@ -248,7 +244,7 @@ fn occluded(o: vec3<f32>, d: vec3<f32>, tmin: f32, tmax: f32) -> bool {
             for (var k = 0u; k < min(nd.count, 255u); k++) {
                 let i = nd.index + k;
                 if bitcast<u32>(tris[3u * i + 1u].w) != 0u {
-                    if intersect_triangle(o, d, i, tmin, tmax) != inf() {
+                    if intersect_triangle(o, d, i, tmin, tmax) != subcone_inf() {
                         return true;
                     }
                 }
@@ -256,8 +252,8 @@ fn occluded(o: vec3<f32>, d: vec3<f32>, tmin: f32, tmax: f32) -> bool {
         } else {
             let a = nd.index;
             let b = nd.index + 1u;
-            let hit_a = intersect_box(o, inv_d, a, tmin, tmax) != inf();
-            let hit_b = intersect_box(o, inv_d, b, tmin, tmax) != inf();
+            let hit_a = intersect_box(o, inv_d, a, tmin, tmax) != subcone_inf();
+            let hit_b = intersect_box(o, inv_d, b, tmin, tmax) != subcone_inf();
             if hit_a && hit_b {
                 if sp < STACK_SIZE {
                     stack[sp] = b;
@@ -299,7 +295,7 @@ struct Surface {
 
 fn normalize_or_zero(v: vec3<f32>) -> vec3<f32> {
     let l2 = dot(v, v);
-    if l2 > 0.0 && sraa_is_finite(l2) {
+    if l2 > 0.0 && subcone_is_finite(l2) {
         let r = 1.0 / sqrt(l2);
         let n = v * r;
         if sraa_is_finite3(n) {
@@ -359,7 +355,7 @@ fn intersect(o: vec3<f32>, d: vec3<f32>, tmin: f32) -> Surface {
 // Tracer::primary_geometry.
 fn primary_geometry(s: Surface) -> Geometry {
     if !s.hit {
-        return Geometry(vec3<f32>(0.0), inf());
+        return Geometry(vec3<f32>(0.0), subcone_inf());
     }
     return Geometry(s.n, view_depth(s.p));
 }
@@ -388,7 +384,7 @@ fn incident(l: LightGpu, p: vec3<f32>) -> Incident {
     if l.kind == 0u {
         let to = l.v - p;
         let d2 = dot(to, to);
-        if !(sraa_is_finite(d2) && d2 > 0.0) {
+        if !(subcone_is_finite(d2) && d2 > 0.0) {
             return r;
         }
         let d = sqrt(d2);
@@ -398,7 +394,7 @@ fn incident(l: LightGpu, p: vec3<f32>) -> Incident {
         r.ok = true;
     } else if l.kind == 1u {
         r.direction = l.v;
-        r.distance = inf();
+        r.distance = subcone_inf();
         r.irradiance = l.value;
         r.ok = true;
     }
