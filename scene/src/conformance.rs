@@ -2,10 +2,12 @@
 //! tests, so that they are written once, beside the contract.
 //!
 //! ```no_run
-//! # fn backend() -> Box<dyn subcone_scene::Backend> { unimplemented!() }
-//! let check = subcone_scene::conformance::plan_matches_render(backend().as_ref())
-//!     .unwrap_or_else(|disagreements| panic!("{disagreements}"));
-//! println!("{} renders, {} refusals", check.rendered, check.refusals.len());
+//! /// In a backend's tests: `supports` and `render` agree everywhere.
+//! fn plan_agrees(backend: &dyn subcone_scene::Backend) {
+//!     let check = subcone_scene::conformance::plan_matches_render(backend)
+//!         .unwrap_or_else(|disagreements| panic!("{disagreements}"));
+//!     println!("{} renders, {} refusals", check.rendered, check.refusals.len());
+//! }
 //! ```
 
 use glam::Vec3;

@@ -223,14 +223,7 @@ where
             ))
             .map_err(pe(e))?;
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.4))
-        .label_font((FAMILY, size - 4))
-        .draw()
-        .map_err(pe(e))?;
+    legend(&mut chart, SeriesLabelPosition::UpperRight, size - 4, e)?;
     root.present().map_err(pe(e))?;
     Ok(())
 }
@@ -334,16 +327,29 @@ where
             .label(name)
             .legend(move |(x, y)| Rectangle::new([(x, y - 6), (x + 14, y + 6)], c.filled()));
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.4))
-        .label_font((FAMILY, size - 4))
-        .draw()
-        .map_err(pe(e))?;
+    legend(&mut chart, SeriesLabelPosition::UpperLeft, size - 4, e)?;
     root.present().map_err(pe(e))?;
     Ok(())
+}
+
+/// The legend of a bar chart, in the plots' one style.
+fn legend<'a, DB: DrawingBackend + 'a, CT: plotters::coord::CoordTranslate>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    position: SeriesLabelPosition,
+    font_size: i32,
+    e: &str,
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    chart
+        .configure_series_labels()
+        .position(position)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.4))
+        .label_font((FAMILY, font_size))
+        .draw()
+        .map_err(pe(e))
 }
 
 /// FLIP by edge class: one group of bars per class, one bar per method.
@@ -412,14 +418,7 @@ where
             .label(name.clone())
             .legend(move |(x, y)| Rectangle::new([(x, y - 6), (x + 14, y + 6)], c.filled()));
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.4))
-        .label_font((FAMILY, size - 6))
-        .draw()
-        .map_err(pe(e))?;
+    legend(&mut chart, SeriesLabelPosition::UpperRight, size - 6, e)?;
     root.present().map_err(pe(e))?;
     Ok(())
 }
