@@ -725,13 +725,7 @@ fn check_cone(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
     .collect();
     // ... and awkward ones, signed and independent, over 1e-3..1e3 and the
     // specials (±0, ±∞, NaN, 1e-30, −1e30, f32::MAX), R_c = tan θ ≥ 0.
-    let mut state = 0x9e37_79b9u32;
-    let mut unit = move || {
-        state ^= state << 13;
-        state ^= state >> 17;
-        state ^= state << 5;
-        (state >> 8) as f32 / (1u32 << 24) as f32
-    };
+    let mut unit = unit_stream(0x9e37_79b9u32);
     for i in 0..20_000 {
         let t = awkward(i, &mut unit);
         let d = awkward(i + 1, &mut unit);
@@ -829,6 +823,18 @@ fn line_distance((dx, dy, h): (f64, f64, f64), bit: u32) -> f64 {
     (x * dx + y * dy - h).abs()
 }
 
+/// A deterministic stream of uniform values in `[0, 1)` (xorshift32 from
+/// `seed`), for hand-made inputs beside the generated ones.
+fn unit_stream(seed: u32) -> impl FnMut() -> f32 {
+    let mut state = seed;
+    move || {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        (state >> 8) as f32 / (1u32 << 24) as f32
+    }
+}
+
 /// Eq. 7–8: the visibility mask, for all three line placements, with the
 /// normal projected on the GPU (`project_normal`, [`TOL_PROJECT_NORMAL`]) on
 /// generated 3D normals, and given directly on 20 000 random half-planes
@@ -844,13 +850,7 @@ fn check_mask(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
         .into_iter()
         .map(|(omega, n, r, p)| (omega, n, r, p, None))
         .collect();
-    let mut state = 0x2545_f491u32;
-    let mut unit = move || {
-        state ^= state << 13;
-        state ^= state >> 17;
-        state ^= state << 5;
-        (state >> 8) as f32 / (1u32 << 24) as f32
-    };
+    let mut unit = unit_stream(0x2545_f491u32);
     for i in 0..20_000 {
         let omega = if i % 50 == 0 {
             awkward(i, &mut unit)
