@@ -400,7 +400,8 @@ fn floats(w: &[u32]) -> Vec<f32> {
     w.iter().map(|&x| f32::from_bits(x)).collect()
 }
 
-/// The WGSL library under test: `PARAMS` plus the given kernel sources.
+/// The WGSL library under test: kernel sources (the harness puts the
+/// prelude, `wgsl::PARAMS`, first).
 struct Library {
     sraa: String,
     ctss: String,
@@ -411,9 +412,9 @@ impl Library {
     fn shipped() -> Self {
         use subcone_kernels::*;
         Library {
-            sraa: [wgsl::PARAMS, sraa::WGSL].concat(),
-            ctss: [wgsl::PARAMS, cone::WGSL, mask::WGSL, aggregate::WGSL].concat(),
-            fxaa: [wgsl::PARAMS, FXAA_FETCH, fxaa::WGSL].concat(),
+            sraa: sraa::WGSL.to_string(),
+            ctss: [cone::WGSL, mask::WGSL, aggregate::WGSL].concat(),
+            fxaa: [FXAA_FETCH, fxaa::WGSL].concat(),
         }
     }
 }
@@ -425,7 +426,7 @@ const FXAA_FETCH: &str = "
 fn fxaa_fetch(x: i32, y: i32) -> vec4<f32> {
     let cx = u32(clamp(x, 0, 6));
     let cy = u32(clamp(y, 0, 6));
-    return fxaa_encode(v3(3u * (cy * 7u + cx)));
+    return subcone_fxaa_encode(v3(3u * (cy * 7u + cx)));
 }
 ";
 
@@ -550,17 +551,17 @@ fn check_weights(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
     let out = run(
         ctx,
         &lib.sraa,
-        "let p = SraaParams(f(0u), f(1u), f(2u), u(3u));
-         let gi = Geometry(v3(4u), f(7u));
-         let gj = Geometry(v3(8u), f(11u));
-         out[o] = bitcast<u32>(bilateral_weight(p, gi, gj));
-         out[o + 1u] = bitcast<u32>(shadow_gated_weight(p, gi, gj, u(12u) != 0u, u(13u) != 0u));",
+        "let p = subcone_SraaParams(f(0u), f(1u), f(2u), u(3u));
+         let gi = subcone_Geometry(v3(4u), f(7u));
+         let gj = subcone_Geometry(v3(8u), f(11u));
+         out[o] = bitcast<u32>(subcone_bilateral_weight(p, gi, gj));
+         out[o + 1u] = bitcast<u32>(subcone_shadow_gated_weight(p, gi, gj, u(12u) != 0u, u(13u) != 0u));",
         14,
         2,
         &input,
     )?;
-    let mut bilateral = Report::new("bilateral_weight");
-    let mut gated = Report::new("shadow_gated_weight");
+    let mut bilateral = Report::new("subcone_bilateral_weight");
+    let mut gated = Report::new("subcone_shadow_gated_weight");
     for (i, c) in cases.iter().enumerate() {
         let (p, gi, gj, si, sj) = c;
         let g = floats(&out[2 * i..2 * i + 2]);
@@ -620,17 +621,17 @@ fn check_material(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
     let out = run(
         ctx,
         &lib.sraa,
-        "let p = SraaParams(f(0u), f(1u), f(2u), u(3u));
-         let gi = Geometry(v3(4u), f(7u));
-         let gj = Geometry(v3(8u), f(11u));
-         out[o] = bitcast<u32>(albedo_difference(v3(12u), v3(15u)));
-         out[o + 1u] = bitcast<u32>(material_gated_weight(p, gi, gj, v3(12u), v3(15u), f(18u)));",
+        "let p = subcone_SraaParams(f(0u), f(1u), f(2u), u(3u));
+         let gi = subcone_Geometry(v3(4u), f(7u));
+         let gj = subcone_Geometry(v3(8u), f(11u));
+         out[o] = bitcast<u32>(subcone_albedo_difference(v3(12u), v3(15u)));
+         out[o + 1u] = bitcast<u32>(subcone_material_gated_weight(p, gi, gj, v3(12u), v3(15u), f(18u)));",
         19,
         2,
         &input,
     )?;
-    let mut diff = Report::new("albedo_difference");
-    let mut gated = Report::new("material_gated_weight");
+    let mut diff = Report::new("subcone_albedo_difference");
+    let mut gated = Report::new("subcone_material_gated_weight");
     let mut near = 0;
     for (i, c) in cases.iter().enumerate() {
         let (p, gi, gj, (ai, aj), tol) = c;
@@ -686,13 +687,13 @@ fn check_resolve(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
     let out = run(
         ctx,
         &lib.sraa,
-        "let c = resolve_pixel(v3(0u), v3(3u), v3(6u), v3(9u));
+        "let c = subcone_resolve_pixel(v3(0u), v3(3u), v3(6u), v3(9u));
          out[o] = bitcast<u32>(c.x); out[o + 1u] = bitcast<u32>(c.y); out[o + 2u] = bitcast<u32>(c.z);",
         12,
         3,
         &input,
     )?;
-    let mut r = Report::new("resolve_pixel");
+    let mut r = Report::new("subcone_resolve_pixel");
     for (i, c) in cases.iter().enumerate() {
         let rust = resolve_pixel(c).to_array();
         // Colours this large overflow the sum on one side and not the other;
@@ -743,23 +744,23 @@ fn check_cone(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
         ctx,
         &lib.ctss,
         "let t = f(0u); let d = f(1u); let tan_theta = f(2u); let alpha = f(3u); let rc = f(4u);
-         out[o] = bitcast<u32>(cone_radius(t, tan_theta));
-         out[o + 1u] = bitcast<u32>(cone_occlusion(d, rc));
-         out[o + 2u] = bitcast<u32>(min_step(alpha, rc));
-         out[o + 3u] = bitcast<u32>(advance(t, d, alpha, rc));
-         out[o + 4u] = bitcast<u32>(backtrace_cone_entry(t, tan_theta));
-         out[o + 5u] = bitcast<u32>(backtrace_hard_hit(t, d, f(5u)));",
+         out[o] = bitcast<u32>(subcone_cone_radius(t, tan_theta));
+         out[o + 1u] = bitcast<u32>(subcone_cone_occlusion(d, rc));
+         out[o + 2u] = bitcast<u32>(subcone_min_step(alpha, rc));
+         out[o + 3u] = bitcast<u32>(subcone_advance(t, d, alpha, rc));
+         out[o + 4u] = bitcast<u32>(subcone_backtrace_cone_entry(t, tan_theta));
+         out[o + 5u] = bitcast<u32>(subcone_backtrace_hard_hit(t, d, f(5u)));",
         6,
         6,
         &input,
     )?;
     let mut reports = [
-        Report::new("cone_radius"),
-        Report::new("cone_occlusion"),
-        Report::new("min_step"),
-        Report::new("advance"),
-        Report::new("backtrace_cone_entry"),
-        Report::new("backtrace_hard_hit"),
+        Report::new("subcone_cone_radius"),
+        Report::new("subcone_cone_occlusion"),
+        Report::new("subcone_min_step"),
+        Report::new("subcone_advance"),
+        Report::new("subcone_backtrace_cone_entry"),
+        Report::new("subcone_backtrace_hard_hit"),
     ];
     for (i, c) in cases.iter().enumerate() {
         let &(t, d, tan, alpha, rc, ti) = c;
@@ -879,23 +880,23 @@ fn check_mask(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
     let out = run(
         ctx,
         &lib.ctss,
-        "var np = project_normal(v3(1u), v3(4u), v3(7u));
+        "var np = subcone_project_normal(v3(1u), v3(4u), v3(7u));
          if u(11u) != 0u { np = vec2<f32>(f(12u), f(13u)); }
-         let m = visibility_mask(f(0u), np, u(10u));
+         let m = subcone_visibility_mask(f(0u), np, u(10u));
          out[o] = bitcast<u32>(np.x);
          out[o + 1u] = bitcast<u32>(np.y);
          out[o + 2u] = m;
-         out[o + 3u] = select(0u, 1u, needs_normal(f(0u), u(10u)));
-         out[o + 4u] = bitcast<u32>(sample_weight(countOneBits(m), WEIGHTING_VISIBILITY, 0.0));
-         out[o + 5u] = bitcast<u32>(sample_weight(countOneBits(m), WEIGHTING_VISIBILITY, 0.01));",
+         out[o + 3u] = select(0u, 1u, subcone_needs_normal(f(0u), u(10u)));
+         out[o + 4u] = bitcast<u32>(subcone_sample_weight(countOneBits(m), subcone_WEIGHTING_VISIBILITY, 0.0));
+         out[o + 5u] = bitcast<u32>(subcone_sample_weight(countOneBits(m), subcone_WEIGHTING_VISIBILITY, 0.01));",
         14,
         6,
         &input,
     )?;
-    let mut proj = Report::new("project_normal");
-    let mut mask = Report::new("visibility_mask");
-    let mut needs = Report::new("needs_normal");
-    let mut weight = Report::new("sample_weight (masks)");
+    let mut proj = Report::new("subcone_project_normal");
+    let mut mask = Report::new("subcone_visibility_mask");
+    let mut needs = Report::new("subcone_needs_normal");
+    let mut weight = Report::new("subcone_sample_weight (masks)");
     for (i, c) in cases.iter().enumerate() {
         let &(omega, n, r, code, direct) = c;
         let up = r.cross(n).try_normalize().unwrap_or(Vec3::Y);
@@ -936,7 +937,7 @@ fn check_mask(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
     let cap = cases.len() * MASK_NEAR_ROWS_PER_100 / 100;
     let near_rows = mask.near_boundary_rows;
     println!(
-        "visibility_mask: {near_rows} of {} masks differ, each only at cells within {MASK_NEAR:e} of the line (at most {cap})",
+        "subcone_visibility_mask: {near_rows} of {} masks differ, each only at cells within {MASK_NEAR:e} of the line (at most {cap})",
         cases.len()
     );
     let cap_check = if near_rows <= cap {
@@ -993,20 +994,20 @@ fn check_aggregate(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
     let out = run(
         ctx,
         &lib.ctss,
-        "var agg = aggregate_new();
+        "var agg = subcone_aggregate_new();
          for (var k = 0u; k < 4u; k++) {
-             let w = sample_weight(countOneBits(u(4u * k)), u(20u), f(21u));
+             let w = subcone_sample_weight(countOneBits(u(4u * k)), u(20u), f(21u));
              out[o + 3u + k] = bitcast<u32>(w);
-             aggregate_add(&agg, w, v3(4u * k + 1u));
+             subcone_aggregate_add(&agg, w, v3(4u * k + 1u));
          }
-         let c = aggregate_resolve(agg, v3(16u), f(19u));
+         let c = subcone_aggregate_resolve(agg, v3(16u), f(19u));
          out[o] = bitcast<u32>(c.x); out[o + 1u] = bitcast<u32>(c.y); out[o + 2u] = bitcast<u32>(c.z);",
         22,
         7,
         &input,
     )?;
-    let mut weights = Report::new("sample_weight");
-    let mut agg_r = Report::new("Aggregate (eq. 6)");
+    let mut weights = Report::new("subcone_sample_weight");
+    let mut agg_r = Report::new("subcone_aggregate_add (eq. 6)");
     for (i, c) in cases.iter().enumerate() {
         let (samples, bg, bgw, code, min_w) = c;
         let g = floats(&out[7 * i..7 * i + 7]);
@@ -1090,8 +1091,8 @@ fn check_fxaa(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
     let out = run(
         ctx,
         &lib.fxaa,
-        "let p = FxaaParams(f(147u), f(148u), f(149u), 0.0);
-         let c = fxaa_pixel(3, 3, p);
+        "let p = subcone_FxaaParams(f(147u), f(148u), f(149u), 0.0);
+         let c = subcone_fxaa_pixel(3, 3, p);
          let e = fxaa_fetch(3, 3);
          out[o] = bitcast<u32>(c.x); out[o + 1u] = bitcast<u32>(c.y); out[o + 2u] = bitcast<u32>(c.z);
          out[o + 3u] = bitcast<u32>(e.x); out[o + 4u] = bitcast<u32>(e.y);
@@ -1100,8 +1101,8 @@ fn check_fxaa(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
         7,
         &input,
     )?;
-    let mut enc = Report::new("fxaa_encode");
-    let mut pix = Report::new("fxaa_pixel (FXAA 3.11)");
+    let mut enc = Report::new("subcone_fxaa_encode");
+    let mut pix = Report::new("subcone_fxaa_pixel (FXAA 3.11)");
     let mut ties = 0;
     for (i, c) in cases.iter().enumerate() {
         let ((px, kind), p) = c;
@@ -1255,7 +1256,7 @@ fn check_sdf_field(
     let out: Vec<[f32; 6]> = run_wgsl(
         ctx,
         &Kernel {
-            library: &[subcone_kernels::wgsl::PARAMS, field.source.as_str()].concat(),
+            library: &field.source,
             body: "let e = scene_sdf(v3(0u));
                    let s = scene_sdf_split(v3(0u));
                    out[o] = bitcast<u32>(e.x); out[o + 1u] = bitcast<u32>(e.y);
@@ -1388,8 +1389,8 @@ fn perturbed_kernels_are_caught() {
     let perturbations: [(&str, &str, &str, Check); 6] = [
         (
             "bilateral weight off by 1e-3",
-            "return saturate(w);",
-            "return saturate(w) + 1e-3;",
+            "return subcone_saturate(w);",
+            "return subcone_saturate(w) + 1e-3;",
             check_weights,
         ),
         (

@@ -42,6 +42,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 use subcone_kernels::passes::{required_passes, Passes, SceneFeatures};
 use subcone_scene::builtin::builtin;
 use subcone_scene::conformance::plan_matches_render;
+use subcone_scene::method::METHOD_NAMES;
 use subcone_scene::sdf::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
 use subcone_scene::{
     Backend, Frame, Method, RenderError, RenderSettings, Scene, UnsupportedReason,
@@ -60,35 +61,45 @@ pub const W: u32 = 64;
 /// Frame height of the suite (see [`W`]).
 pub const H: u32 = 48;
 
-/// Methods run on triangle scenes.
-pub const TRIANGLE_METHODS: [&str; 8] = [
-    "noaa",
-    "ssaa4",
-    "ssaa16",
-    "sraa",
-    "sraa-rt",
-    "sraa+mat",
-    "sraa-rt+mat",
-    "fxaa",
+/// Methods of [`METHOD_NAMES`] the per-scene cases leave out of SDF scenes,
+/// with why. Every other listed name whose technique applies to a scene
+/// ([`required_passes`] accepts it) runs on it: [`methods_for`].
+pub const LEFT_OUT_ON_SDF: [(&str, &str); 3] = [
+    (
+        "ssaa16",
+        "16 sphere-traced samples per pixel cost seconds per frame on a software GPU; ssaa4 runs the same code",
+    ),
+    (
+        "ctss+edges",
+        "CPU-only: `cpu_only_methods` renders it on every SDF scene and checks the refusals",
+    ),
+    (
+        "sraa-rt+mat",
+        "the material gate on SDF scenes: `cpu_only_methods`' scene invariants cover sraa-rt",
+    ),
 ];
-/// Methods run on SDF scenes.
-pub const SDF_METHODS: [&str; 8] = [
-    "noaa",
-    "ssaa4",
-    "ctss",
-    "ctss-r",
-    "ssaa4+ctss",
-    "ctss-delayed",
-    "sraa-rt",
-    "fxaa",
-];
+
+/// The methods the per-scene cases run on `scene`: every name of
+/// [`METHOD_NAMES`] whose technique applies to it, but those of
+/// [`LEFT_OUT_ON_SDF`] on SDF scenes.
+pub fn methods_for(scene: &Scene) -> Vec<&'static str> {
+    let sdf = scene.features().contains(SceneFeatures::IS_SDF);
+    METHOD_NAMES
+        .into_iter()
+        .filter(|m| {
+            let method: Method = m.parse().expect("METHOD_NAMES parse");
+            required_passes(method.technique, scene.features()).is_ok()
+                && !(sdf && LEFT_OUT_ON_SDF.iter().any(|(n, _)| n == m))
+        })
+        .collect()
+}
 
 /// Methods only the CPU reference renders on SDF scenes, with the reason. Not
 /// skipped: `cpu_only_methods` renders them on the CPU (every SDF and stiff
 /// scene, frame invariants and the `ssaa64` bound) and requires every other
 /// backend to plan and make the refusal ([`Backend::supports`], then
 /// `render`) as [`UnsupportedReason::CpuOnly`], saying "CPU backend only";
-/// where they are also in [`SDF_METHODS`], the per-scene cases check the
+/// where they are also in [`methods_for`] an SDF scene, the per-scene cases check the
 /// refusal too. Any other refusal of a method in the scene lists, but a
 /// technique that does not apply to the scene, fails the suite.
 pub const CPU_ONLY_ON_SDF: [(&str, &str); 2] = [
@@ -453,14 +464,15 @@ pub fn check_invariants(backend: &str, scene: &Scene, method: &Method, frame: &F
 /// backend's frame with the `ssaa64` reference; where it does not support a
 /// method, check that `render` refuses as `supports` planned, and only for a
 /// reason the suite allows.
-pub fn check_scene(backend: &dyn Backend, scene_name: &str, methods: &[&str]) {
+pub fn check_scene(backend: &dyn Backend, scene_name: &str) {
     let scene = builtin(scene_name).expect("built-in scene");
+    let methods = methods_for(&scene);
     let cpu = subcone_cpu::CpuBackend::new();
     let settings = RenderSettings::new(W, H);
     let name = backend.name();
     let mut failures = Vec::new();
     let mut ran = 0;
-    for m in methods {
+    for m in &methods {
         let method: Method = m.parse().expect("method name");
         let sdf = scene.features().contains(SceneFeatures::IS_SDF);
         let cpu_only = CPU_ONLY_ON_SDF
@@ -719,7 +731,7 @@ pub fn check_transparent(backend: &dyn Backend) {
     for scene_name in TRANSPARENT_SCENES {
         let scene = builtin(scene_name).expect("built-in scene");
         assert!(scene.has_translucency(), "{scene_name}");
-        for m in SDF_METHODS {
+        for m in methods_for(&scene) {
             let method: Method = m.parse().expect("method name");
             let plan = backend.supports(&scene, &method);
             let r = backend.render(&scene, &scene.camera, &method, &settings);
@@ -764,11 +776,11 @@ pub fn check_coverage(covered: &[&str]) {
 #[doc(hidden)]
 #[macro_export]
 macro_rules! __scene_tests {
-    ($backend:ident; $methods:expr; $($test:ident => $scene:expr),* $(,)?) => {$(
+    ($backend:ident; $($test:ident => $scene:expr),* $(,)?) => {$(
         #[test]
         fn $test() {
             if let Some(b) = $backend() {
-                $crate::check_scene(b.as_ref(), $scene, &$methods);
+                $crate::check_scene(b.as_ref(), $scene);
             }
         }
     )*};
@@ -799,13 +811,13 @@ macro_rules! conformance_suite {
                 ::std::boxed::Box<dyn $crate::__private::Backend>,
             > $make
 
-            $crate::__scene_tests!(backend; $crate::TRIANGLE_METHODS;
+            $crate::__scene_tests!(backend;
                 cornell => "cornell",
                 cornell_nomirror => "cornell-nomirror",
                 checker => "checker",
                 atrium => "atrium",
             );
-            $crate::__scene_tests!(backend; $crate::SDF_METHODS;
+            $crate::__scene_tests!(backend;
                 primitives => "primitives",
                 random_box => "random-box",
                 random_shape => "random-shape",
@@ -894,16 +906,30 @@ mod tests {
     use super::*;
     use subcone_scene::builtin::TRIANGLE_SCENES;
 
+    /// Each scene kind runs what applies to it, and every name left out of
+    /// SDF scenes applies there (else leaving it out says nothing).
+    #[test]
+    fn suite_methods_are_the_listed_ones_that_apply() {
+        let tri = methods_for(&builtin("cornell").unwrap());
+        let sdf = methods_for(&builtin("primitives").unwrap());
+        assert!(tri.contains(&"sraa") && !tri.contains(&"ctss"));
+        assert!(sdf.contains(&"ctss") && sdf.contains(&"ssaa4"));
+        let scene = builtin("primitives").unwrap();
+        for (m, _) in LEFT_OUT_ON_SDF {
+            let method: Method = m.parse().unwrap();
+            assert!(
+                required_passes(method.technique, scene.features()).is_ok(),
+                "{m} does not apply to SDF scenes: no need to leave it out"
+            );
+        }
+    }
+
     /// Every method the suite runs has a bound, and the bounds are ordered as
     /// the methods' sampling is: no antialiasing is held looser than 16
     /// samples.
     #[test]
     fn every_method_has_a_bound() {
-        for m in TRIANGLE_METHODS
-            .iter()
-            .chain(&SDF_METHODS)
-            .chain(CPU_ONLY_ON_SDF.iter().map(|(m, _)| m))
-        {
+        for m in METHOD_NAMES {
             assert!(m.parse::<Method>().is_ok(), "{m}");
             family(m);
         }

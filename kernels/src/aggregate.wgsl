@@ -1,28 +1,28 @@
 // WGSL mirror of subcone_kernels::aggregate (CTSS §3.4, eq. 6). Needs
-// mask.wgsl (mask_weight) and cone.wgsl (subcone_is_finite).
+// mask.wgsl (subcone_mask_weight) and cone.wgsl (subcone_is_finite).
 //
 // The CPU accumulates Σw·C in f64 (subcone_kernels::sum); WGSL has no f64, so
 // this sums in f32. The results differ only when weights or colours are so
 // small that their products leave f32's normal range (below ~1e-38).
 
 // subcone_kernels::aggregate::Weighting codes.
-const WEIGHTING_VISIBILITY: u32 = 0u;
-const WEIGHTING_UNIFORM: u32 = 1u;
+const subcone_WEIGHTING_VISIBILITY: u32 = 0u;
+const subcone_WEIGHTING_UNIFORM: u32 = 1u;
 
-// subcone_kernels::aggregate::sample_weight — w_i = bitCount(visible)/32 (eq. 6).
-fn sample_weight(visible: u32, weighting: u32, min_weight: f32) -> f32 {
-    if weighting == WEIGHTING_UNIFORM {
+// subcone_kernels::aggregate::subcone_sample_weight — w_i = bitCount(visible)/32 (eq. 6).
+fn subcone_sample_weight(visible: u32, weighting: u32, min_weight: f32) -> f32 {
+    if weighting == subcone_WEIGHTING_UNIFORM {
         return 1.0;
     }
     var floor_w = 0.0;
     if min_weight > 0.0 {
         floor_w = min(min_weight, 1.0);
     }
-    return max(mask_weight(visible), floor_w);
+    return max(subcone_mask_weight(visible), floor_w);
 }
 
-// subcone_kernels::aggregate::Aggregate
-struct Aggregate {
+// subcone_kernels::aggregate::subcone_Aggregate
+struct subcone_Aggregate {
     sum: vec3<f32>,
     weight: f32,
     last: vec3<f32>,
@@ -30,17 +30,17 @@ struct Aggregate {
     samples: u32,
 }
 
-// subcone_kernels::aggregate::Aggregate::new
-fn aggregate_new() -> Aggregate {
-    return Aggregate(vec3<f32>(0.0), 0.0, vec3<f32>(0.0), 0u, 0u);
+// subcone_kernels::aggregate::subcone_Aggregate::new
+fn subcone_aggregate_new() -> subcone_Aggregate {
+    return subcone_Aggregate(vec3<f32>(0.0), 0.0, vec3<f32>(0.0), 0u, 0u);
 }
 
 fn subcone_finite3(c: vec3<f32>) -> bool {
     return subcone_is_finite(c.x) && subcone_is_finite(c.y) && subcone_is_finite(c.z);
 }
 
-// subcone_kernels::aggregate::Aggregate::add
-fn aggregate_add(agg: ptr<function, Aggregate>, w: f32, color: vec3<f32>) {
+// subcone_kernels::aggregate::subcone_Aggregate::add
+fn subcone_aggregate_add(agg: ptr<function, subcone_Aggregate>, w: f32, color: vec3<f32>) {
     (*agg).samples += 1u;
     if !subcone_finite3(color) {
         return;
@@ -55,9 +55,9 @@ fn aggregate_add(agg: ptr<function, Aggregate>, w: f32, color: vec3<f32>) {
     (*agg).has_last = 1u;
 }
 
-// subcone_kernels::aggregate::Aggregate::resolve — Σ w_i C_i / Σ w_i with the
+// subcone_kernels::aggregate::subcone_Aggregate::resolve — Σ w_i C_i / Σ w_i with the
 // background as a sample of weight bg_weight.
-fn aggregate_resolve(agg: Aggregate, background: vec3<f32>, bg_weight: f32) -> vec3<f32> {
+fn subcone_aggregate_resolve(agg: subcone_Aggregate, background: vec3<f32>, bg_weight: f32) -> vec3<f32> {
     var bgw = 0.0;
     if bg_weight > 0.0 && subcone_finite3(background) {
         bgw = min(bg_weight, 1.0);
@@ -68,7 +68,7 @@ fn aggregate_resolve(agg: Aggregate, background: vec3<f32>, bg_weight: f32) -> v
         sum += bgw * background;
         weight += bgw;
     }
-    if weight >= NEGLIGIBLE_WEIGHT {
+    if weight >= subcone_NEGLIGIBLE_WEIGHT {
         let inv = 1.0 / weight;
         let c = sum * inv;
         if subcone_finite3(c) {

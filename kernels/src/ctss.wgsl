@@ -1,38 +1,38 @@
 // WGSL mirror of subcone_kernels::ctss: Algorithm 1 of CTSS (§3.3, §3.6) as
-// the ConeStepper state machine, and sphere_trace_split, the NoAA baseline
+// the subcone_ConeStepper state machine, and subcone_sphere_trace_split, the NoAA baseline
 // with the same cone-based hit threshold (§4).
 //
-// Needs PARAMS (CtssParams), cone.wgsl, mask.wgsl and aggregate.wgsl. The
-// SDF is the caller's: sphere_trace_split calls
+// Needs PARAMS (subcone_CtssParams), cone.wgsl, mask.wgsl and aggregate.wgsl. The
+// SDF is the caller's: subcone_sphere_trace_split calls
 //     fn ctss_field(p: vec3<f32>) -> vec2<f32>   // (surface distance, safe step)
 // which the including shader defines. Every loop is bounded by max_steps.
 
-// subcone_kernels::ctss::FLAG_RELAXED
-const FLAG_RELAXED: u32 = 1u;
+// subcone_kernels::ctss::subcone_FLAG_RELAXED
+const subcone_FLAG_RELAXED: u32 = 1u;
 
 // subcone_kernels::ctss::StopReason codes (0 = still running).
-const STOP_NONE: u32 = 0u;
-const STOP_FULL_OCCLUSION: u32 = 1u;
-const STOP_HARD_HIT: u32 = 2u;
-const STOP_VISIBILITY_THRESHOLD: u32 = 3u;
-const STOP_SAMPLE_CAP: u32 = 4u;
-const STOP_MAX_DISTANCE: u32 = 5u;
-const STOP_STEP_BUDGET: u32 = 6u;
-const STOP_INVALID_DISTANCE: u32 = 7u;
+const subcone_STOP_NONE: u32 = 0u;
+const subcone_STOP_FULL_OCCLUSION: u32 = 1u;
+const subcone_STOP_HARD_HIT: u32 = 2u;
+const subcone_STOP_VISIBILITY_THRESHOLD: u32 = 3u;
+const subcone_STOP_SAMPLE_CAP: u32 = 4u;
+const subcone_STOP_MAX_DISTANCE: u32 = 5u;
+const subcone_STOP_STEP_BUDGET: u32 = 6u;
+const subcone_STOP_INVALID_DISTANCE: u32 = 7u;
 
 // subcone_kernels::ctss::Event codes.
-const EVENT_MARCH: u32 = 0u;
-const EVENT_SAMPLE: u32 = 1u;
-const EVENT_STOP: u32 = 2u;
+const subcone_EVENT_MARCH: u32 = 0u;
+const subcone_EVENT_SAMPLE: u32 = 1u;
+const subcone_EVENT_STOP: u32 = 2u;
 
-// subcone_kernels::ctss::StopReason::covers_pixel
-fn covers_pixel(reason: u32) -> bool {
-    return reason == STOP_FULL_OCCLUSION || reason == STOP_HARD_HIT
-        || reason == STOP_VISIBILITY_THRESHOLD;
+// subcone_kernels::ctss::StopReason::subcone_covers_pixel
+fn subcone_covers_pixel(reason: u32) -> bool {
+    return reason == subcone_STOP_FULL_OCCLUSION || reason == subcone_STOP_HARD_HIT
+        || reason == subcone_STOP_VISIBILITY_THRESHOLD;
 }
 
-// subcone_kernels::ctss::GroupSample
-struct GroupSample {
+// subcone_kernels::ctss::subcone_GroupSample
+struct subcone_GroupSample {
     t: f32,
     t_entry: f32,
     t_exit: f32,
@@ -41,17 +41,17 @@ struct GroupSample {
     hard: u32,
 }
 
-// subcone_kernels::ctss::Event: kind EVENT_*, the sample of EVENT_SAMPLE, the
-// reason of EVENT_STOP.
-struct CtssEvent {
+// subcone_kernels::ctss::Event: kind EVENT_*, the sample of subcone_EVENT_SAMPLE, the
+// reason of subcone_EVENT_STOP.
+struct subcone_CtssEvent {
     kind: u32,
-    sample: GroupSample,
+    sample: subcone_GroupSample,
     reason: u32,
 }
 
-// subcone_kernels::ctss::ConeStepper (the group is open when group_open != 0).
-struct ConeStepper {
-    params: CtssParams,
+// subcone_kernels::ctss::subcone_ConeStepper (the group is open when group_open != 0).
+struct subcone_ConeStepper {
+    params: subcone_CtssParams,
     thresholds: vec3<f32>,
     t: f32,
     t_prev: f32,
@@ -72,78 +72,78 @@ struct ConeStepper {
     stop: u32,
 }
 
-fn ctss_is_relaxed(p: CtssParams) -> bool {
-    return (p.flags & FLAG_RELAXED) != 0u;
+fn subcone_ctss_is_relaxed(p: subcone_CtssParams) -> bool {
+    return (p.flags & subcone_FLAG_RELAXED) != 0u;
 }
 
-// subcone_kernels::ctss::CtssParams::placement (unknown codes → Derived)
-fn ctss_placement(p: CtssParams) -> u32 {
+// subcone_kernels::ctss::subcone_CtssParams::placement (unknown codes → Derived)
+fn subcone_ctss_placement(p: subcone_CtssParams) -> u32 {
     let v = (p.flags >> 8u) & 0xffu;
-    return select(MASK_DERIVED, v, v <= 2u);
+    return select(subcone_MASK_DERIVED, v, v <= 2u);
 }
 
-// subcone_kernels::ctss::CtssParams::weighting (unknown codes → Visibility)
-fn ctss_weighting(p: CtssParams) -> u32 {
+// subcone_kernels::ctss::subcone_CtssParams::weighting (unknown codes → Visibility)
+fn subcone_ctss_weighting(p: subcone_CtssParams) -> u32 {
     let v = (p.flags >> 16u) & 0xffu;
-    return select(WEIGHTING_VISIBILITY, v, v <= 1u);
+    return select(subcone_WEIGHTING_VISIBILITY, v, v <= 1u);
 }
 
-fn ctss_event(kind: u32, reason: u32) -> CtssEvent {
-    return CtssEvent(kind, GroupSample(0.0, 0.0, 0.0, 0.0, 0.0, 0u), reason);
+fn subcone_ctss_event(kind: u32, reason: u32) -> subcone_CtssEvent {
+    return subcone_CtssEvent(kind, subcone_GroupSample(0.0, 0.0, 0.0, 0.0, 0.0, 0u), reason);
 }
 
-// subcone_kernels::ctss::ConeStepper::new — start at t_min.
-fn cone_stepper_new(params: CtssParams) -> ConeStepper {
+// subcone_kernels::ctss::subcone_ConeStepper::new — start at t_min.
+fn subcone_cone_stepper_new(params: subcone_CtssParams) -> subcone_ConeStepper {
     var t0 = 0.0;
     if params.t_min > 0.0 {
         t0 = params.t_min;
     }
-    return ConeStepper(params, occlusion_thresholds(params.eps), t0, t0, 0.0, 0u, 0u, 0u,
-        0u, 0.0, 0.0, 0.0, 0.0, 0u, 0u, 0u, 0u, STOP_NONE);
+    return subcone_ConeStepper(params, subcone_occlusion_thresholds(params.eps), t0, t0, 0.0, 0u, 0u, 0u,
+        0u, 0.0, 0.0, 0.0, 0.0, 0u, 0u, 0u, 0u, subcone_STOP_NONE);
 }
 
-// subcone_kernels::ctss::ConeStepper::end (private): sample a group still open.
-fn cone_stepper_end(s: ptr<function, ConeStepper>, reason: u32, t_exit: f32) -> CtssEvent {
+// subcone_kernels::ctss::subcone_ConeStepper::end (private): sample a group still open.
+fn subcone_cone_stepper_end(s: ptr<function, subcone_ConeStepper>, reason: u32, t_exit: f32) -> subcone_CtssEvent {
     (*s).stop = reason;
     if (*s).group_open != 0u {
         (*s).group_open = 0u;
         (*s).samples += 1u;
-        return CtssEvent(EVENT_SAMPLE, GroupSample((*s).g_t_sample, (*s).g_t_entry, t_exit,
-            (*s).g_occlusion, (*s).g_t_occlusion, (*s).g_hard), STOP_NONE);
+        return subcone_CtssEvent(subcone_EVENT_SAMPLE, subcone_GroupSample((*s).g_t_sample, (*s).g_t_entry, t_exit,
+            (*s).g_occlusion, (*s).g_t_occlusion, (*s).g_hard), subcone_STOP_NONE);
     }
-    return ctss_event(EVENT_STOP, reason);
+    return subcone_ctss_event(subcone_EVENT_STOP, reason);
 }
 
-// subcone_kernels::ctss::ConeStepper::advance_split — Algorithm 1, lines 7–26:
+// subcone_kernels::ctss::subcone_ConeStepper::advance_split — Algorithm 1, lines 7–26:
 // d (surface distance) decides occlusion and hit groups, step (≤ d) the march.
-fn cone_stepper_advance_split(s: ptr<function, ConeStepper>, d: f32, step: f32) -> CtssEvent {
-    if (*s).stop != STOP_NONE {
-        return ctss_event(EVENT_STOP, (*s).stop);
+fn subcone_cone_stepper_advance_split(s: ptr<function, subcone_ConeStepper>, d: f32, step: f32) -> subcone_CtssEvent {
+    if (*s).stop != subcone_STOP_NONE {
+        return subcone_ctss_event(subcone_EVENT_STOP, (*s).stop);
     }
     let t = (*s).t;
     if (*s).steps >= (*s).params.max_steps {
-        return cone_stepper_end(s, STOP_STEP_BUDGET, t);
+        return subcone_cone_stepper_end(s, subcone_STOP_STEP_BUDGET, t);
     }
     if !(t < (*s).params.t_max) {
-        return cone_stepper_end(s, STOP_MAX_DISTANCE, t);
+        return subcone_cone_stepper_end(s, subcone_STOP_MAX_DISTANCE, t);
     }
     if subcone_is_nan(d) {
-        return cone_stepper_end(s, STOP_INVALID_DISTANCE, t);
+        return subcone_cone_stepper_end(s, subcone_STOP_INVALID_DISTANCE, t);
     }
     (*s).steps += 1u;
 
     let tan = (*s).params.tan_theta;
-    let rc = cone_radius(t, tan);
-    let omega = cone_occlusion(d, rc);
+    let rc = subcone_cone_radius(t, tan);
+    let omega = subcone_cone_occlusion(d, rc);
     let th = (*s).thresholds;
     let soft = omega > th.x;
     let hard = omega > th.y;
-    let relaxed = ctss_is_relaxed((*s).params);
+    let relaxed = subcone_ctss_is_relaxed((*s).params);
     let stop_at = select(th.z, th.y, relaxed);
     let stop = omega > stop_at;
 
     if soft && (*s).prev_soft == 0u {
-        let te = backtrace_cone_entry(t, tan);
+        let te = subcone_backtrace_cone_entry(t, tan);
         (*s).group_open = 1u;
         (*s).g_t_entry = te;
         (*s).g_t_sample = te;
@@ -159,7 +159,7 @@ fn cone_stepper_advance_split(s: ptr<function, ConeStepper>, d: f32, step: f32) 
         if hard && (*s).prev_hard == 0u && (*s).g_hard == 0u {
             (*s).g_hard = 1u;
             if (*s).have_prev != 0u {
-                (*s).g_t_sample = backtrace_hard_hit((*s).t_prev, (*s).d_prev, t);
+                (*s).g_t_sample = subcone_backtrace_hard_hit((*s).t_prev, (*s).d_prev, t);
             } else {
                 (*s).g_t_sample = t;
             }
@@ -169,72 +169,72 @@ fn cone_stepper_advance_split(s: ptr<function, ConeStepper>, d: f32, step: f32) 
     (*s).prev_soft = select(0u, 1u, soft);
     (*s).prev_hard = select(0u, 1u, hard);
 
-    var event = ctss_event(EVENT_MARCH, STOP_NONE);
+    var event = subcone_ctss_event(subcone_EVENT_MARCH, subcone_STOP_NONE);
     if exit || stop {
         if (*s).group_open != 0u {
             (*s).group_open = 0u;
             (*s).samples += 1u;
-            event = CtssEvent(EVENT_SAMPLE, GroupSample((*s).g_t_sample, (*s).g_t_entry,
-                backtrace_cone_entry(t, tan), (*s).g_occlusion, (*s).g_t_occlusion, (*s).g_hard),
-                STOP_NONE);
+            event = subcone_CtssEvent(subcone_EVENT_SAMPLE, subcone_GroupSample((*s).g_t_sample, (*s).g_t_entry,
+                subcone_backtrace_cone_entry(t, tan), (*s).g_occlusion, (*s).g_t_occlusion, (*s).g_hard),
+                subcone_STOP_NONE);
         }
         if stop {
-            (*s).stop = select(STOP_FULL_OCCLUSION, STOP_HARD_HIT, relaxed);
+            (*s).stop = select(subcone_STOP_FULL_OCCLUSION, subcone_STOP_HARD_HIT, relaxed);
         } else if (*s).samples >= (*s).params.max_samples {
-            (*s).stop = STOP_SAMPLE_CAP;
+            (*s).stop = subcone_STOP_SAMPLE_CAP;
         }
     }
 
     (*s).t_prev = t;
     (*s).d_prev = d;
     (*s).have_prev = 1u;
-    if (*s).stop == STOP_NONE {
+    if (*s).stop == subcone_STOP_NONE {
         // Rust's f32::min: a NaN step yields d.
         var m = d;
         if !subcone_is_nan(step) && step < d {
             m = step;
         }
-        (*s).t = advance(t, m, (*s).params.alpha, rc);
+        (*s).t = subcone_advance(t, m, (*s).params.alpha, rc);
     }
     return event;
 }
 
-// subcone_kernels::ctss::ConeStepper::record — the sample's mask (eq. 7–8),
+// subcone_kernels::ctss::subcone_ConeStepper::record — the sample's mask (eq. 7–8),
 // correlated with M (m_i & !M, M |= m_i); returns (visible mask, weight bits).
-fn cone_stepper_record(s: ptr<function, ConeStepper>, sample: GroupSample, projected_normal: vec2<f32>) -> vec2<u32> {
-    let m = visibility_mask(sample.occlusion, projected_normal, ctss_placement((*s).params));
+fn subcone_cone_stepper_record(s: ptr<function, subcone_ConeStepper>, sample: subcone_GroupSample, projected_normal: vec2<f32>) -> vec2<u32> {
+    let m = subcone_visibility_mask(sample.occlusion, projected_normal, subcone_ctss_placement((*s).params));
     let visible = m & ~(*s).covered;
     (*s).covered |= visible;
-    if (*s).stop == STOP_NONE && countOneBits((*s).covered) >= (*s).params.visibility_k {
-        (*s).stop = STOP_VISIBILITY_THRESHOLD;
+    if (*s).stop == subcone_STOP_NONE && countOneBits((*s).covered) >= (*s).params.visibility_k {
+        (*s).stop = subcone_STOP_VISIBILITY_THRESHOLD;
     }
-    let w = sample_weight(visible, ctss_weighting((*s).params), (*s).params.min_sample_weight);
+    let w = subcone_sample_weight(visible, subcone_ctss_weighting((*s).params), (*s).params.min_sample_weight);
     return vec2<u32>(visible, bitcast<u32>(w));
 }
 
-// subcone_kernels::ctss::ConeStepper::background_weight — 0 when the hits cover
+// subcone_kernels::ctss::subcone_ConeStepper::background_weight — 0 when the hits cover
 // the pixel, else 1 − bitCount(M)/32 (1 with uniform weights).
-fn cone_stepper_background_weight(s: ConeStepper) -> f32 {
-    if s.stop != STOP_NONE && covers_pixel(s.stop) {
+fn subcone_cone_stepper_background_weight(s: subcone_ConeStepper) -> f32 {
+    if s.stop != subcone_STOP_NONE && subcone_covers_pixel(s.stop) {
         return 0.0;
     }
-    if ctss_weighting(s.params) == WEIGHTING_UNIFORM {
+    if subcone_ctss_weighting(s.params) == subcone_WEIGHTING_UNIFORM {
         return 1.0;
     }
-    return 1.0 - mask_weight(s.covered);
+    return 1.0 - subcone_mask_weight(s.covered);
 }
 
-// subcone_kernels::ctss::SphereHit: t < 0 means no hit.
-struct SphereHit {
+// subcone_kernels::ctss::subcone_SphereHit: t < 0 means no hit.
+struct subcone_SphereHit {
     t: f32,
     steps: u32,
     stop: u32,
 }
 
-// subcone_kernels::ctss::sphere_trace_split — eq. 1–2 with the hit threshold
+// subcone_kernels::ctss::subcone_sphere_trace_split — eq. 1–2 with the hit threshold
 // ω > 0.5 − ε of §4; the field is the caller's ctss_field (surface, safe).
-fn sphere_trace_split(params: CtssParams, origin: vec3<f32>, dir: vec3<f32>) -> SphereHit {
-    let hard = occlusion_thresholds(params.eps).y;
+fn subcone_sphere_trace_split(params: subcone_CtssParams, origin: vec3<f32>, dir: vec3<f32>) -> subcone_SphereHit {
+    let hard = subcone_occlusion_thresholds(params.eps).y;
     var t = 0.0;
     if params.t_min > 0.0 {
         t = params.t_min;
@@ -243,25 +243,25 @@ fn sphere_trace_split(params: CtssParams, origin: vec3<f32>, dir: vec3<f32>) -> 
     // One evaluation per iteration: the loop ends within max_steps.
     for (var i = 0u; i < params.max_steps; i++) {
         if !(t < params.t_max) {
-            return SphereHit(-1.0, steps, STOP_MAX_DISTANCE);
+            return subcone_SphereHit(-1.0, steps, subcone_STOP_MAX_DISTANCE);
         }
         let f = ctss_field(origin + t * dir);
         steps += 1u;
         let d = f.x;
         if subcone_is_nan(d) {
-            return SphereHit(-1.0, steps, STOP_INVALID_DISTANCE);
+            return subcone_SphereHit(-1.0, steps, subcone_STOP_INVALID_DISTANCE);
         }
-        let rc = cone_radius(t, params.tan_theta);
-        if cone_occlusion(d, rc) > hard {
-            return SphereHit(t, steps, STOP_HARD_HIT);
+        let rc = subcone_cone_radius(t, params.tan_theta);
+        if subcone_cone_occlusion(d, rc) > hard {
+            return subcone_SphereHit(t, steps, subcone_STOP_HARD_HIT);
         }
         var m = d;
         if !subcone_is_nan(f.y) && f.y < d {
             m = f.y;
         }
-        t = advance(t, m, 0.0, rc);
+        t = subcone_advance(t, m, 0.0, rc);
     }
-    return SphereHit(-1.0, steps, STOP_STEP_BUDGET);
+    return subcone_SphereHit(-1.0, steps, subcone_STOP_STEP_BUDGET);
 }
 
 // glam's Vec3::normalize_or_zero: v·(1/|v|), or 0 when that is not finite.
@@ -273,9 +273,9 @@ fn subcone_normalize_or_zero(v: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(0.0);
 }
 
-// subcone_kernels::ctss::cross_section_frame — the cone cross-section's axes
+// subcone_kernels::ctss::subcone_cross_section_frame — the cone cross-section's axes
 // (right, up) for a ray dir; (X, Y) for a zero or non-finite dir.
-fn cross_section_frame(dir: vec3<f32>, up_hint: vec3<f32>) -> mat2x3<f32> {
+fn subcone_cross_section_frame(dir: vec3<f32>, up_hint: vec3<f32>) -> mat2x3<f32> {
     let d = subcone_normalize_or_zero(dir);
     if all(d == vec3<f32>(0.0)) {
         return mat2x3<f32>(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(0.0, 1.0, 0.0));

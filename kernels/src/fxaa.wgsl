@@ -1,17 +1,17 @@
 // FXAA 3.11 quality, preset 12: the WGSL mirror of subcone_kernels::fxaa
 // (kernels/src/fxaa.rs), same names, same statement order.
 //
-// Needs params.wgsl (FxaaParams). The including shader defines the pixel
-// fetch, the twin of fxaa_pixel's `fetch` closure:
+// Needs params.wgsl (subcone_FxaaParams). The including shader defines the pixel
+// fetch, the twin of subcone_fxaa_pixel's `fetch` closure:
 //     fn fxaa_fetch(x: i32, y: i32) -> vec4<f32>
-// returning the input pixel (x, y) as fxaa_encode makes it, with coordinates
+// returning the input pixel (x, y) as subcone_fxaa_encode makes it, with coordinates
 // outside the image clamped to its edge.
 //
 // NaN tests are done on the bits: shader compilers may fold `x != x` away.
 
 // Mirrors fxaa::SEARCH_STEPS (FXAA_QUALITY__P0..P4 of preset 12).
 // Indices >= 5 read as the last step.
-fn fxaa_search_step(i: u32) -> f32 {
+fn subcone_fxaa_search_step(i: u32) -> f32 {
     switch i {
         case 0u: { return 1.0; }
         case 1u: { return 1.5; }
@@ -22,7 +22,7 @@ fn fxaa_search_step(i: u32) -> f32 {
 }
 
 // Mirrors fxaa::clean01: [0, 1], NaN as 0.
-fn fxaa_clean01(x: f32) -> f32 {
+fn subcone_fxaa_clean01(x: f32) -> f32 {
     if subcone_is_nan(x) {
         return 0.0;
     }
@@ -30,8 +30,8 @@ fn fxaa_clean01(x: f32) -> f32 {
 }
 
 // Mirrors fxaa::linear_to_srgb.
-fn fxaa_linear_to_srgb(x: f32) -> f32 {
-    let c = fxaa_clean01(x);
+fn subcone_fxaa_linear_to_srgb(x: f32) -> f32 {
+    let c = subcone_fxaa_clean01(x);
     if c <= 0.0031308 {
         return 12.92 * c;
     }
@@ -39,69 +39,69 @@ fn fxaa_linear_to_srgb(x: f32) -> f32 {
 }
 
 // Mirrors fxaa::srgb_to_linear.
-fn fxaa_srgb_to_linear(x: f32) -> f32 {
-    let c = fxaa_clean01(x);
+fn subcone_fxaa_srgb_to_linear(x: f32) -> f32 {
+    let c = subcone_fxaa_clean01(x);
     if c <= 0.04045 {
         return c / 12.92;
     }
     return pow((c + 0.055) / 1.055, 2.4);
 }
 
-// Mirrors fxaa::quantize8.
-fn quantize8(x: f32) -> f32 {
-    return floor(fxaa_clean01(x) * 255.0 + 0.5) * (1.0 / 255.0);
+// Mirrors fxaa::subcone_quantize8.
+fn subcone_quantize8(x: f32) -> f32 {
+    return floor(subcone_fxaa_clean01(x) * 255.0 + 0.5) * (1.0 / 255.0);
 }
 
-// Mirrors fxaa::fxaa_encode: the RGBA8 texel of the displayed colour and
+// Mirrors fxaa::subcone_fxaa_encode: the RGBA8 texel of the displayed colour and
 // its luma, each rounded to 8 bits.
-fn fxaa_encode(linear: vec3<f32>) -> vec4<f32> {
+fn subcone_fxaa_encode(linear: vec3<f32>) -> vec4<f32> {
     let c = vec3<f32>(
-        quantize8(fxaa_linear_to_srgb(linear.x)),
-        quantize8(fxaa_linear_to_srgb(linear.y)),
-        quantize8(fxaa_linear_to_srgb(linear.z)),
+        subcone_quantize8(subcone_fxaa_linear_to_srgb(linear.x)),
+        subcone_quantize8(subcone_fxaa_linear_to_srgb(linear.y)),
+        subcone_quantize8(subcone_fxaa_linear_to_srgb(linear.z)),
     );
     let luma = c.x * 0.299 + c.y * 0.587 + c.z * 0.114;
-    return vec4<f32>(c, quantize8(luma));
+    return vec4<f32>(c, subcone_quantize8(luma));
 }
 
-// Mirrors fxaa::fxaa_decode.
-fn fxaa_decode(srgb: vec3<f32>) -> vec3<f32> {
+// Mirrors fxaa::subcone_fxaa_decode.
+fn subcone_fxaa_decode(srgb: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(
-        fxaa_srgb_to_linear(srgb.x),
-        fxaa_srgb_to_linear(srgb.y),
-        fxaa_srgb_to_linear(srgb.z),
+        subcone_fxaa_srgb_to_linear(srgb.x),
+        subcone_fxaa_srgb_to_linear(srgb.y),
+        subcone_fxaa_srgb_to_linear(srgb.z),
     );
 }
 
 // Mirrors fxaa::tap.
-fn fxaa_tap(x: i32, y: i32) -> vec4<f32> {
+fn subcone_fxaa_tap(x: i32, y: i32) -> vec4<f32> {
     let v = fxaa_fetch(x, y);
-    return vec4<f32>(fxaa_clean01(v.x), fxaa_clean01(v.y), fxaa_clean01(v.z), fxaa_clean01(v.w));
+    return vec4<f32>(subcone_fxaa_clean01(v.x), subcone_fxaa_clean01(v.y), subcone_fxaa_clean01(v.z), subcone_fxaa_clean01(v.w));
 }
 
 // Mirrors fxaa::bilinear.
-fn fxaa_bilinear(px: f32, py: f32) -> vec4<f32> {
+fn subcone_fxaa_bilinear(px: f32, py: f32) -> vec4<f32> {
     let fx0 = floor(px);
     let fy0 = floor(py);
     let fx = px - fx0;
     let fy = py - fy0;
     let x0 = i32(fx0);
     let y0 = i32(fy0);
-    let top = fxaa_tap(x0, y0) * (1.0 - fx) + fxaa_tap(x0 + 1, y0) * fx;
-    let bottom = fxaa_tap(x0, y0 + 1) * (1.0 - fx) + fxaa_tap(x0 + 1, y0 + 1) * fx;
+    let top = subcone_fxaa_tap(x0, y0) * (1.0 - fx) + subcone_fxaa_tap(x0 + 1, y0) * fx;
+    let bottom = subcone_fxaa_tap(x0, y0 + 1) * (1.0 - fx) + subcone_fxaa_tap(x0 + 1, y0 + 1) * fx;
     return top * (1.0 - fy) + bottom * fy;
 }
 
-// Mirrors fxaa::fxaa_pixel (see its doc comment for the domain).
-fn fxaa_pixel(x: i32, y: i32, p: FxaaParams) -> vec3<f32> {
+// Mirrors fxaa::subcone_fxaa_pixel (see its doc comment for the domain).
+fn subcone_fxaa_pixel(x: i32, y: i32, p: subcone_FxaaParams) -> vec3<f32> {
     let pos_m_x = f32(x);
     let pos_m_y = f32(y);
-    let rgby_m = fxaa_tap(x, y);
+    let rgby_m = subcone_fxaa_tap(x, y);
     let luma_m = rgby_m.w;
-    let luma_s = fxaa_tap(x, y + 1).w;
-    let luma_e = fxaa_tap(x + 1, y).w;
-    let luma_n = fxaa_tap(x, y - 1).w;
-    let luma_w = fxaa_tap(x - 1, y).w;
+    let luma_s = subcone_fxaa_tap(x, y + 1).w;
+    let luma_e = subcone_fxaa_tap(x + 1, y).w;
+    let luma_n = subcone_fxaa_tap(x, y - 1).w;
+    let luma_w = subcone_fxaa_tap(x - 1, y).w;
 
     let max_sm = max(luma_s, luma_m);
     let min_sm = min(luma_s, luma_m);
@@ -118,10 +118,10 @@ fn fxaa_pixel(x: i32, y: i32, p: FxaaParams) -> vec3<f32> {
         return rgby_m.xyz;
     }
 
-    let luma_nw = fxaa_tap(x - 1, y - 1).w;
-    let luma_se = fxaa_tap(x + 1, y + 1).w;
-    let luma_ne = fxaa_tap(x + 1, y - 1).w;
-    let luma_sw = fxaa_tap(x - 1, y + 1).w;
+    let luma_nw = subcone_fxaa_tap(x - 1, y - 1).w;
+    let luma_se = subcone_fxaa_tap(x + 1, y + 1).w;
+    let luma_ne = subcone_fxaa_tap(x + 1, y - 1).w;
+    let luma_sw = subcone_fxaa_tap(x - 1, y + 1).w;
 
     let luma_ns = luma_n + luma_s;
     let luma_we = luma_w + luma_e;
@@ -164,7 +164,7 @@ fn fxaa_pixel(x: i32, y: i32, p: FxaaParams) -> vec3<f32> {
     if pair_n {
         length_sign = -length_sign;
     }
-    let subpix_c = fxaa_clean01(abs(subpix_b) * subpix_rcp_range);
+    let subpix_c = subcone_fxaa_clean01(abs(subpix_b) * subpix_rcp_range);
 
     var off_x = 0.0;
     var off_y = 1.0;
@@ -180,14 +180,14 @@ fn fxaa_pixel(x: i32, y: i32, p: FxaaParams) -> vec3<f32> {
         pos_b_y += length_sign * 0.5;
     }
 
-    var pos_n_x = pos_b_x - off_x * fxaa_search_step(0u);
-    var pos_n_y = pos_b_y - off_y * fxaa_search_step(0u);
-    var pos_p_x = pos_b_x + off_x * fxaa_search_step(0u);
-    var pos_p_y = pos_b_y + off_y * fxaa_search_step(0u);
+    var pos_n_x = pos_b_x - off_x * subcone_fxaa_search_step(0u);
+    var pos_n_y = pos_b_y - off_y * subcone_fxaa_search_step(0u);
+    var pos_p_x = pos_b_x + off_x * subcone_fxaa_search_step(0u);
+    var pos_p_y = pos_b_y + off_y * subcone_fxaa_search_step(0u);
     let subpix_d = -2.0 * subpix_c + 3.0;
-    var luma_end_n = fxaa_bilinear(pos_n_x, pos_n_y).w;
+    var luma_end_n = subcone_fxaa_bilinear(pos_n_x, pos_n_y).w;
     let subpix_e = subpix_c * subpix_c;
-    var luma_end_p = fxaa_bilinear(pos_p_x, pos_p_y).w;
+    var luma_end_p = subcone_fxaa_bilinear(pos_p_x, pos_p_y).w;
 
     if !pair_n {
         luma_nn = luma_ss;
@@ -202,24 +202,24 @@ fn fxaa_pixel(x: i32, y: i32, p: FxaaParams) -> vec3<f32> {
     var done_n = abs(luma_end_n) >= gradient_scaled;
     var done_p = abs(luma_end_p) >= gradient_scaled;
     if !done_n {
-        pos_n_x -= off_x * fxaa_search_step(1u);
-        pos_n_y -= off_y * fxaa_search_step(1u);
+        pos_n_x -= off_x * subcone_fxaa_search_step(1u);
+        pos_n_y -= off_y * subcone_fxaa_search_step(1u);
     }
     if !done_p {
-        pos_p_x += off_x * fxaa_search_step(1u);
-        pos_p_y += off_y * fxaa_search_step(1u);
+        pos_p_x += off_x * subcone_fxaa_search_step(1u);
+        pos_p_y += off_y * subcone_fxaa_search_step(1u);
     }
     // Bounded by the preset's step count (P2..P4).
     for (var i = 2u; i < 5u; i++) {
         if done_n && done_p {
             break;
         }
-        let step = fxaa_search_step(i);
+        let step = subcone_fxaa_search_step(i);
         if !done_n {
-            luma_end_n = fxaa_bilinear(pos_n_x, pos_n_y).w - luma_nn * 0.5;
+            luma_end_n = subcone_fxaa_bilinear(pos_n_x, pos_n_y).w - luma_nn * 0.5;
         }
         if !done_p {
-            luma_end_p = fxaa_bilinear(pos_p_x, pos_p_y).w - luma_nn * 0.5;
+            luma_end_p = subcone_fxaa_bilinear(pos_p_x, pos_p_y).w - luma_nn * 0.5;
         }
         done_n = abs(luma_end_n) >= gradient_scaled;
         done_p = abs(luma_end_p) >= gradient_scaled;
@@ -252,7 +252,7 @@ fn fxaa_pixel(x: i32, y: i32, p: FxaaParams) -> vec3<f32> {
     let subpix_h = subpix_g * p.subpix;
 
     let pixel_offset_good = select(0.0, pixel_offset, good_span);
-    let pixel_offset_subpix = fxaa_clean01(max(pixel_offset_good, subpix_h));
+    let pixel_offset_subpix = subcone_fxaa_clean01(max(pixel_offset_good, subpix_h));
     var px = pos_m_x;
     var py = pos_m_y;
     if !horz_span {
@@ -260,5 +260,5 @@ fn fxaa_pixel(x: i32, y: i32, p: FxaaParams) -> vec3<f32> {
     } else {
         py += pixel_offset_subpix * length_sign;
     }
-    return fxaa_bilinear(px, py).xyz;
+    return subcone_fxaa_bilinear(px, py).xyz;
 }

@@ -3,12 +3,12 @@
 // Each struct here has exactly the field offsets of its Rust twin (checked by
 // kernels/tests/wgsl_layout.rs through naga's layouter). WGSL aligns vec3 to
 // 16 bytes while glam's Vec3 aligns to 4: a scalar after a vec3 fills its
-// 4-byte tail in both languages, which is why `Geometry` puts `depth` last.
+// 4-byte tail in both languages, which is why `subcone_Geometry` puts `depth` last.
 // Arrays in the uniform address space have a 16-byte stride, so padding is
 // spelled as scalars (`_pad0`, `_pad1` are Rust's `_pad: [u32; 2]`).
 
-// subcone_kernels::sraa::SraaParams (16 bytes).
-struct SraaParams {
+// subcone_kernels::sraa::subcone_SraaParams (16 bytes).
+struct subcone_SraaParams {
     sigma_z: f32,
     sigma_n: f32,
     scale: f32,
@@ -16,15 +16,15 @@ struct SraaParams {
     packed: u32,
 }
 
-// subcone_kernels::sraa::Geometry (16 bytes). depth = +inf marks a miss; WGSL
+// subcone_kernels::sraa::subcone_Geometry (16 bytes). depth = +inf marks a miss; WGSL
 // cannot spell infinity as a literal, so shaders use SUBCONE_MISS_DEPTH.
-struct Geometry {
+struct subcone_Geometry {
     normal: vec3<f32>,
     depth: f32,
 }
 
-// subcone_kernels::ctss::CtssParams (48 bytes).
-struct CtssParams {
+// subcone_kernels::ctss::subcone_CtssParams (48 bytes).
+struct subcone_CtssParams {
     tan_theta: f32,
     alpha: f32,
     eps: f32,
@@ -34,23 +34,23 @@ struct CtssParams {
     max_steps: u32,
     max_samples: u32,
     visibility_k: u32,
-    // Bit 0: FLAG_RELAXED. Bits 8..16: MaskPlacement. Bits 16..24: Weighting.
+    // Bit 0: subcone_FLAG_RELAXED. Bits 8..16: MaskPlacement. Bits 16..24: Weighting.
     flags: u32,
     _pad0: u32,
     _pad1: u32,
 }
 
-// subcone_kernels::fxaa::FxaaParams (16 bytes).
-struct FxaaParams {
+// subcone_kernels::fxaa::subcone_FxaaParams (16 bytes).
+struct subcone_FxaaParams {
     subpix: f32,
     edge_threshold: f32,
     edge_threshold_min: f32,
     _pad: f32,
 }
 
-// subcone_kernels::sraa::NEGLIGIBLE_WEIGHT (2^-64): weight sums below it are
+// subcone_kernels::sraa::subcone_NEGLIGIBLE_WEIGHT (2^-64): weight sums below it are
 // treated as empty by the SRAA reconstruction and the CTSS aggregation alike.
-const NEGLIGIBLE_WEIGHT: f32 = 5.421011e-20;
+const subcone_NEGLIGIBLE_WEIGHT: f32 = 5.421011e-20;
 
 // The one +inf, NaN test and finiteness test of every shader that includes
 // these parameters (kernels, backend passes, generated SDF fields). +inf is a

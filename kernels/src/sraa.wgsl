@@ -13,29 +13,29 @@
 //   below ~1e-19 times colours below ~1e-19) the products lose precision that
 //   f64 keeps, and the normalised result may leave the neighbours' convex hull
 //   by that loss.
-// - iterators become loops: `neighbourhood` returns its bounds and
-//   `neighbour_distance2` the distance of one pixel; `reconstruct_layers` is
+// - iterators become loops: `subcone_neighbourhood` returns its bounds and
+//   `subcone_neighbour_distance2` the distance of one pixel; `reconstruct_layers` is
 //   split into begin / add one neighbour's layer / end, which the caller
 //   drives in the Rust function's order.
 //
 // NaN tests are done on the bits: shader compilers may fold `x != x` away.
 
-// Mirrors sraa::NORMAL_COS_SNAP (2^-21).
-const NORMAL_COS_SNAP: f32 = 4.76837158203125e-7;
-// Mirrors sraa::SHADED_SUBSAMPLE.
-const SHADED_SUBSAMPLE: u32 = 0u;
+// Mirrors sraa::subcone_NORMAL_COS_SNAP (2^-21).
+const subcone_NORMAL_COS_SNAP: f32 = 4.76837158203125e-7;
+// Mirrors sraa::subcone_SHADED_SUBSAMPLE.
+const subcone_SHADED_SUBSAMPLE: u32 = 0u;
 
-fn sraa_is_finite3(c: vec3<f32>) -> bool {
+fn subcone_sraa_is_finite3(c: vec3<f32>) -> bool {
     return subcone_is_finite(c.x) && subcone_is_finite(c.y) && subcone_is_finite(c.z);
 }
 
-fn sraa_any_nan3(c: vec3<f32>) -> bool {
+fn subcone_sraa_any_nan3(c: vec3<f32>) -> bool {
     return subcone_is_nan(c.x) || subcone_is_nan(c.y) || subcone_is_nan(c.z);
 }
 
 // Mirrors sraa::SUBPIXEL_OFFSETS (§3.1, Fig. 2): the 4x rotated grid on a 4×4
 // grid, relative to the pixel centre, in pixels. Indices >= 4 read as 0.
-fn subpixel_offset(k: u32) -> vec2<f32> {
+fn subcone_subpixel_offset(k: u32) -> vec2<f32> {
     switch k {
         case 1u: { return vec2<f32>(0.375, -0.125); }
         case 2u: { return vec2<f32>(-0.375, 0.125); }
@@ -44,29 +44,29 @@ fn subpixel_offset(k: u32) -> vec2<f32> {
     }
 }
 
-// Mirrors sraa::SraaParams::form (0 = Product, 1 = ChajdasMax; unknown = Product).
-fn sraa_form(p: SraaParams) -> u32 {
+// Mirrors sraa::subcone_SraaParams::form (0 = Product, 1 = ChajdasMax; unknown = Product).
+fn subcone_sraa_form(p: subcone_SraaParams) -> u32 {
     if (p.packed & 0xffu) == 1u {
         return 1u;
     }
     return 0u;
 }
 
-// Mirrors sraa::SraaParams::depth_metric (0 = Relative, 1 = Absolute; unknown = Relative).
-fn sraa_depth_metric(p: SraaParams) -> u32 {
+// Mirrors sraa::subcone_SraaParams::depth_metric (0 = Relative, 1 = Absolute; unknown = Relative).
+fn subcone_sraa_depth_metric(p: subcone_SraaParams) -> u32 {
     if ((p.packed >> 8u) & 0xffu) == 1u {
         return 1u;
     }
     return 0u;
 }
 
-// Mirrors sraa::SraaParams::radius.
-fn sraa_radius(p: SraaParams) -> u32 {
+// Mirrors sraa::subcone_SraaParams::radius.
+fn subcone_sraa_radius(p: subcone_SraaParams) -> u32 {
     return p.packed >> 16u;
 }
 
-// Mirrors sraa::gaussian: G(x) = exp(-x²) of eq. 1; 0 for ±inf and NaN.
-fn gaussian(x: f32) -> f32 {
+// Mirrors sraa::subcone_gaussian: G(x) = exp(-x²) of eq. 1; 0 for ±inf and NaN.
+fn subcone_gaussian(x: f32) -> f32 {
     let e = exp(-(x * x));
     if subcone_is_nan(e) {
         return 0.0;
@@ -74,9 +74,9 @@ fn gaussian(x: f32) -> f32 {
     return e;
 }
 
-// Mirrors sraa::gaussian_sum: exp(-s); exactly 1 for s = 0, 0 for s ≥ 105
+// Mirrors sraa::subcone_gaussian_sum: exp(-s); exactly 1 for s = 0, 0 for s ≥ 105
 // (sraa::EXP_UNDERFLOW, where exp(-s) rounds to 0), s = inf or NaN.
-fn gaussian_sum(s: f32) -> f32 {
+fn subcone_gaussian_sum(s: f32) -> f32 {
     if s == 0.0 {
         return 1.0;
     }
@@ -90,8 +90,8 @@ fn gaussian_sum(s: f32) -> f32 {
     return e;
 }
 
-// Mirrors sraa::saturate: sat(x) = max(0, min(1, x)), sat(NaN) = 0 (§3.1).
-fn saturate(x: f32) -> f32 {
+// Mirrors sraa::subcone_saturate: sat(x) = max(0, min(1, x)), sat(NaN) = 0 (§3.1).
+fn subcone_saturate(x: f32) -> f32 {
     if x > 0.0 {
         if x < 1.0 {
             return x;
@@ -101,9 +101,9 @@ fn saturate(x: f32) -> f32 {
     return 0.0;
 }
 
-// Mirrors sraa::depth_difference: Δz of eq. 1 under `metric` (0 = Relative,
+// Mirrors sraa::subcone_depth_difference: Δz of eq. 1 under `metric` (0 = Relative,
 // 1 = Absolute), >= 0; +inf for a miss against a hit or any NaN.
-fn depth_difference(zi: f32, zj: f32, metric: u32) -> f32 {
+fn subcone_depth_difference(zi: f32, zj: f32, metric: u32) -> f32 {
     if zi == zj && !subcone_is_nan(zi) {
         return 0.0;
     }
@@ -123,29 +123,29 @@ fn depth_difference(zi: f32, zj: f32, metric: u32) -> f32 {
     return r;
 }
 
-// Mirrors sraa::bilateral_weight (eq. 1):
+// Mirrors sraa::subcone_bilateral_weight (eq. 1):
 // w_ij = G(σz·Δz) · G(σn·(1 − sat(nj·ni))) for the Product form,
 // exp(−s·max(1 − sat(nj·ni), σz·Δz)) for ChajdasMax. In [0, 1]; NaN gives 0;
 // two misses give 1.
-fn bilateral_weight(params: SraaParams, gi: Geometry, gj: Geometry) -> f32 {
-    let dz = depth_difference(gi.depth, gj.depth, sraa_depth_metric(params));
-    let cos = saturate(dot(gj.normal, gi.normal));
+fn subcone_bilateral_weight(params: subcone_SraaParams, gi: subcone_Geometry, gj: subcone_Geometry) -> f32 {
+    let dz = subcone_depth_difference(gi.depth, gj.depth, subcone_sraa_depth_metric(params));
+    let cos = subcone_saturate(dot(gj.normal, gi.normal));
     var dn = 1.0 - cos;
-    if cos >= 1.0 - NORMAL_COS_SNAP {
+    if cos >= 1.0 - subcone_NORMAL_COS_SNAP {
         dn = 0.0;
     }
     let inf = subcone_inf();
     if gi.depth == inf && gj.depth == inf {
         return 1.0;
     }
-    if sraa_any_nan3(gi.normal) || sraa_any_nan3(gj.normal) {
+    if subcone_sraa_any_nan3(gi.normal) || subcone_sraa_any_nan3(gj.normal) {
         return 0.0;
     }
     var w = 0.0;
-    if sraa_form(params) == 0u {
+    if subcone_sraa_form(params) == 0u {
         let a = params.sigma_z * dz;
         let b = params.sigma_n * dn;
-        w = gaussian_sum(a * a + b * b);
+        w = subcone_gaussian_sum(a * a + b * b);
     } else {
         let x = params.scale * max(dn, params.sigma_z * dz);
         if subcone_is_nan(x) || x == inf {
@@ -157,48 +157,48 @@ fn bilateral_weight(params: SraaParams, gi: Geometry, gj: Geometry) -> f32 {
             }
         }
     }
-    return saturate(w);
+    return subcone_saturate(w);
 }
 
-// Mirrors sraa::shadow_gated_weight (eq. 2): 0 when the shadow states differ,
+// Mirrors sraa::subcone_shadow_gated_weight (eq. 2): 0 when the shadow states differ,
 // eq. 1 when they agree.
-fn shadow_gated_weight(params: SraaParams, gi: Geometry, gj: Geometry, si: bool, sj: bool) -> f32 {
+fn subcone_shadow_gated_weight(params: subcone_SraaParams, gi: subcone_Geometry, gj: subcone_Geometry, si: bool, sj: bool) -> f32 {
     if si != sj {
         return 0.0;
     }
-    return bilateral_weight(params, gi, gj);
+    return subcone_bilateral_weight(params, gi, gj);
 }
 
-// Mirrors sraa::ALBEDO_TOLERANCE: the material gate's default tolerance.
-const ALBEDO_TOLERANCE: f32 = 0.1;
+// Mirrors sraa::subcone_ALBEDO_TOLERANCE: the material gate's default tolerance.
+const subcone_ALBEDO_TOLERANCE: f32 = 0.1;
 
-// Mirrors sraa::albedo_difference: max over channels of |sqrt(a) - sqrt(b)|,
+// Mirrors sraa::subcone_albedo_difference: max over channels of |sqrt(a) - sqrt(b)|,
 // negative components counted as 0; +inf when a component of either albedo is
 // NaN or infinite.
-fn albedo_difference(a: vec3<f32>, b: vec3<f32>) -> f32 {
-    if !sraa_is_finite3(a) || !sraa_is_finite3(b) {
+fn subcone_albedo_difference(a: vec3<f32>, b: vec3<f32>) -> f32 {
+    if !subcone_sraa_is_finite3(a) || !subcone_sraa_is_finite3(b) {
         return subcone_inf();
     }
     let d = abs(sqrt(max(a, vec3<f32>(0.0))) - sqrt(max(b, vec3<f32>(0.0))));
     return max(d.x, max(d.y, d.z));
 }
 
-// Mirrors sraa::material_gated_weight (§4.1, Fig. 6; the gate of eq. 2 on
+// Mirrors sraa::subcone_material_gated_weight (§4.1, Fig. 6; the gate of eq. 2 on
 // albedo): 0 when the albedos differ by more than `tolerance` (or one is not
 // finite, or the tolerance is NaN), eq. 1 when they match.
-fn material_gated_weight(params: SraaParams, gi: Geometry, gj: Geometry, ai: vec3<f32>, aj: vec3<f32>, tolerance: f32) -> f32 {
-    let d = albedo_difference(ai, aj);
+fn subcone_material_gated_weight(params: subcone_SraaParams, gi: subcone_Geometry, gj: subcone_Geometry, ai: vec3<f32>, aj: vec3<f32>, tolerance: f32) -> f32 {
+    let d = subcone_albedo_difference(ai, aj);
     if d <= tolerance && d < subcone_inf() {
-        return bilateral_weight(params, gi, gj);
+        return subcone_bilateral_weight(params, gi, gj);
     }
     return 0.0;
 }
 
-// Mirrors sraa::neighbourhood: the clipped (2r+1)² pixels around (x, y), as
+// Mirrors sraa::subcone_neighbourhood: the clipped (2r+1)² pixels around (x, y), as
 // bounds [x0, x1) × [y0, y1), and the target subsample's position minus the
 // shaded sample's within a pixel. Iterate rows y0..y1, columns x0..x1 (row-major,
 // the Rust iterator's order).
-struct Neighbourhood {
+struct subcone_Neighbourhood {
     x0: u32,
     y0: u32,
     x1: u32,
@@ -206,7 +206,7 @@ struct Neighbourhood {
     offset: vec2<f32>,
 }
 
-fn sraa_saturating_add(a: u32, b: u32) -> u32 {
+fn subcone_sraa_saturating_add(a: u32, b: u32) -> u32 {
     let s = a + b;
     if s < a {
         return 0xffffffffu;
@@ -214,42 +214,42 @@ fn sraa_saturating_add(a: u32, b: u32) -> u32 {
     return s;
 }
 
-fn neighbourhood(x: u32, y: u32, sub: u32, radius: u32, width: u32, height: u32) -> Neighbourhood {
+fn subcone_neighbourhood(x: u32, y: u32, sub: u32, radius: u32, width: u32, height: u32) -> subcone_Neighbourhood {
     var s = sub;
     if s >= 4u {
-        s = SHADED_SUBSAMPLE;
+        s = subcone_SHADED_SUBSAMPLE;
     }
-    var n: Neighbourhood;
-    n.offset = subpixel_offset(s) - subpixel_offset(SHADED_SUBSAMPLE);
+    var n: subcone_Neighbourhood;
+    n.offset = subcone_subpixel_offset(s) - subcone_subpixel_offset(subcone_SHADED_SUBSAMPLE);
     n.x0 = select(0u, x - radius, x >= radius);
     n.y0 = select(0u, y - radius, y >= radius);
-    n.x1 = min(sraa_saturating_add(sraa_saturating_add(x, radius), 1u), width);
-    n.y1 = min(sraa_saturating_add(sraa_saturating_add(y, radius), 1u), height);
+    n.x1 = min(subcone_sraa_saturating_add(subcone_sraa_saturating_add(x, radius), 1u), width);
+    n.y1 = min(subcone_sraa_saturating_add(subcone_sraa_saturating_add(y, radius), 1u), height);
     return n;
 }
 
-// Mirrors Neighbourhood::next's distance2: squared distance in pixels² from the
+// Mirrors subcone_Neighbourhood::next's distance2: squared distance in pixels² from the
 // target subsample of (x, y) to the shaded sample of (px, py).
-fn neighbour_distance2(n: Neighbourhood, x: u32, y: u32, px: u32, py: u32) -> f32 {
+fn subcone_neighbour_distance2(n: subcone_Neighbourhood, x: u32, y: u32, px: u32, py: u32) -> f32 {
     let d = vec2<f32>(f32(px) - f32(x), f32(py) - f32(y)) - n.offset;
     return d.x * d.x + d.y * d.y;
 }
 
-// Mirrors sum::WeightedSum: Σ w·C and Σ w, compensated (Kahan) in f32 instead
+// Mirrors sum::subcone_WeightedSum: Σ w·C and Σ w, compensated (Kahan) in f32 instead
 // of f64 (see the header).
-struct WeightedSum {
+struct subcone_WeightedSum {
     sum: vec3<f32>,
     sum_c: vec3<f32>,
     weight: f32,
     weight_c: f32,
 }
 
-fn weighted_sum_zero() -> WeightedSum {
-    return WeightedSum(vec3<f32>(0.0), vec3<f32>(0.0), 0.0, 0.0);
+fn subcone_weighted_sum_zero() -> subcone_WeightedSum {
+    return subcone_WeightedSum(vec3<f32>(0.0), vec3<f32>(0.0), 0.0, 0.0);
 }
 
-// Mirrors WeightedSum::add.
-fn weighted_sum_add(acc: ptr<function, WeightedSum>, w: f32, c: vec3<f32>) {
+// Mirrors subcone_WeightedSum::add.
+fn subcone_weighted_sum_add(acc: ptr<function, subcone_WeightedSum>, w: f32, c: vec3<f32>) {
     let y = w * c - (*acc).sum_c;
     let t = (*acc).sum + y;
     (*acc).sum_c = (t - (*acc).sum) - y;
@@ -260,15 +260,15 @@ fn weighted_sum_add(acc: ptr<function, WeightedSum>, w: f32, c: vec3<f32>) {
     (*acc).weight = tw;
 }
 
-// Mirrors WeightedSum::mean: Σ w·C / Σ w in .xyz, .w = 1; .w = 0 when the weight
+// Mirrors subcone_WeightedSum::mean: Σ w·C / Σ w in .xyz, .w = 1; .w = 0 when the weight
 // is negligible (or NaN) or the mean is not finite.
-fn weighted_sum_mean(acc: WeightedSum) -> vec4<f32> {
-    if !(acc.weight >= NEGLIGIBLE_WEIGHT) {
+fn subcone_weighted_sum_mean(acc: subcone_WeightedSum) -> vec4<f32> {
+    if !(acc.weight >= subcone_NEGLIGIBLE_WEIGHT) {
         return vec4<f32>(0.0);
     }
     let inv = 1.0 / acc.weight;
     let c = acc.sum * inv;
-    if !sraa_is_finite3(c) {
+    if !subcone_sraa_is_finite3(c) {
         return vec4<f32>(0.0);
     }
     return vec4<f32>(c, 1.0);
@@ -276,24 +276,24 @@ fn weighted_sum_mean(acc: WeightedSum) -> vec4<f32> {
 
 // One layer's state in sraa::reconstruct_layers: its weighted sum and the
 // nearest finite colour (the fallback).
-struct LayerState {
-    acc: WeightedSum,
+struct subcone_LayerState {
+    acc: subcone_WeightedSum,
     nearest: vec3<f32>,
     nearest_d2: f32,
     any: bool,
 }
 
 // sraa::reconstruct_layers, before the loop over neighbours.
-fn reconstruct_layers_begin() -> LayerState {
-    return LayerState(weighted_sum_zero(), vec3<f32>(0.0), subcone_inf(), false);
+fn subcone_reconstruct_layers_begin() -> subcone_LayerState {
+    return subcone_LayerState(subcone_weighted_sum_zero(), vec3<f32>(0.0), subcone_inf(), false);
 }
 
 // sraa::reconstruct_layers, the body of the loop for one neighbour and one
-// layer: `w` is the neighbour's bilateral_weight (eq. 1, computed once per
+// layer: `w` is the neighbour's subcone_bilateral_weight (eq. 1, computed once per
 // neighbour), `gated` says whether this layer has a gate and `bit` which light
 // it is (eq. 2: weight 0 when the target's and neighbour's states differ).
-fn reconstruct_layers_add(
-    state: ptr<function, LayerState>,
+fn subcone_reconstruct_layers_add(
+    state: ptr<function, subcone_LayerState>,
     w: f32,
     gated: bool,
     bit: u32,
@@ -302,7 +302,7 @@ fn reconstruct_layers_add(
     distance2: f32,
     c: vec3<f32>,
 ) {
-    if !sraa_is_finite3(c) {
+    if !subcone_sraa_is_finite3(c) {
         return;
     }
     var d2 = distance2;
@@ -321,27 +321,27 @@ fn reconstruct_layers_add(
     // Through a local: naga's SPIR-V writer cannot pass a pointer into a
     // struct behind a pointer as an argument.
     var acc = (*state).acc;
-    weighted_sum_add(&acc, wi, c);
+    subcone_weighted_sum_add(&acc, wi, c);
     (*state).acc = acc;
 }
 
 // sraa::reconstruct_layers, after the loop: the mean, or the nearest shaded
 // sample when the weights underflowed (black with no usable neighbour).
-fn reconstruct_layers_end(state: LayerState) -> vec3<f32> {
-    let m = weighted_sum_mean(state.acc);
+fn subcone_reconstruct_layers_end(state: subcone_LayerState) -> vec3<f32> {
+    let m = subcone_weighted_sum_mean(state.acc);
     if m.w > 0.0 {
         return m.xyz;
     }
     return state.nearest;
 }
 
-// Mirrors sraa::resolve_pixel: the box filter over the four reconstructed
+// Mirrors sraa::subcone_resolve_pixel: the box filter over the four reconstructed
 // subsamples (§3); non-finite subsamples are dropped, none finite gives black.
-fn resolve_pixel(s0: vec3<f32>, s1: vec3<f32>, s2: vec3<f32>, s3: vec3<f32>) -> vec3<f32> {
-    let f0 = sraa_is_finite3(s0);
-    let f1 = sraa_is_finite3(s1);
-    let f2 = sraa_is_finite3(s2);
-    let f3 = sraa_is_finite3(s3);
+fn subcone_resolve_pixel(s0: vec3<f32>, s1: vec3<f32>, s2: vec3<f32>, s3: vec3<f32>) -> vec3<f32> {
+    let f0 = subcone_sraa_is_finite3(s0);
+    let f1 = subcone_sraa_is_finite3(s1);
+    let f2 = subcone_sraa_is_finite3(s2);
+    let f3 = subcone_sraa_is_finite3(s3);
     let n = u32(f0) + u32(f1) + u32(f2) + u32(f3);
     if n == 0u {
         return vec3<f32>(0.0);

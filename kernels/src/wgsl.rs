@@ -8,7 +8,7 @@
 //!
 //! ```
 //! let source = [subcone_kernels::wgsl::PARAMS, "@compute @workgroup_size(64) fn main() {}"].concat();
-//! assert!(source.contains("struct SraaParams"));
+//! assert!(source.contains("struct subcone_SraaParams"));
 //! ```
 //!
 //! The sources use only WGSL core features (no extensions), so they run on any

@@ -50,6 +50,7 @@ struct Member {
 
 /// A Rust struct shared with WGSL.
 struct Shared {
+    /// The WGSL name: `subcone_` + the Rust name.
     name: &'static str,
     size: usize,
     members: Vec<Member>,
@@ -70,7 +71,7 @@ fn element_size<S, T, const N: usize>(_: impl Fn(&S) -> &[T; N]) -> (usize, usiz
 macro_rules! shared {
     ($ty:ident: $($field:ident $([$n:literal])?),+ $(,)?) => {
         Shared {
-            name: stringify!($ty),
+            name: concat!("subcone_", stringify!($ty)),
             size: size_of::<$ty>(),
             members: {
                 let mut m = Vec::new();
@@ -190,18 +191,18 @@ fn shared_structs_have_the_rust_layout() {
 fn layout_mismatches_are_detected() {
     for (edit, from, to) in [
         (
-            "Geometry with depth first (WGSL pads normal to offset 16)",
+            "subcone_Geometry with depth first (WGSL pads normal to offset 16)",
             "    normal: vec3<f32>,\n    depth: f32,",
             "    depth: f32,\n    normal: vec3<f32>,",
         ),
-        ("CtssParams without _pad1", "    _pad1: u32,\n", ""),
+        ("subcone_CtssParams without _pad1", "    _pad1: u32,\n", ""),
         (
-            "SraaParams.packed as a vec2",
+            "subcone_SraaParams.packed as a vec2",
             "    packed: u32,",
             "    packed: vec2<u32>,",
         ),
         (
-            "Geometry.normal as a vec4",
+            "subcone_Geometry.normal as a vec4",
             "normal: vec3<f32>",
             "normal: vec4<f32>",
         ),
@@ -251,8 +252,52 @@ fn params_and_kernels_validate() {
 fn an_invalid_kernel_fails_validation() {
     let source = [
         wgsl::PARAMS,
-        "fn bad(p: SraaParams) -> f32 { return p.packed; }",
+        "fn bad(p: subcone_SraaParams) -> f32 { return p.packed; }",
     ]
     .concat();
     validate("wgsl::PARAMS + bad", &source);
+}
+
+/// The hooks a kernel source expects its including shader to define: the
+/// only names the kernels use that they do not export.
+const HOOKS: &[&str] = &["fxaa_fetch", "ctss_field"];
+
+/// Every function, struct and constant the kernels export is `subcone_` +
+/// its Rust name (ARCHITECTURE.md rule 10), so that a host shader including
+/// them collides with none of its own names and shadows no built-in (before
+/// the prefix, `saturate` hid WGSL's own).
+#[test]
+fn every_exported_wgsl_name_is_prefixed() {
+    let mut source = wgsl::PARAMS.to_string();
+    for &(_, kernel) in KERNELS {
+        source.push('\n');
+        source.push_str(kernel);
+    }
+    let module = parse("the kernels", &source);
+    let mut names: Vec<&str> = Vec::new();
+    names.extend(
+        module
+            .functions
+            .iter()
+            .filter_map(|(_, f)| f.name.as_deref()),
+    );
+    names.extend(
+        module
+            .constants
+            .iter()
+            .filter_map(|(_, c)| c.name.as_deref()),
+    );
+    names.extend(module.types.iter().filter_map(|(_, t)| match t.inner {
+        naga::TypeInner::Struct { .. } => t.name.as_deref(),
+        _ => None,
+    }));
+    assert!(names.len() > 100, "only {} names found", names.len());
+    let bare: Vec<&str> = names
+        .into_iter()
+        .filter(|n| !n.starts_with("subcone_") && !HOOKS.contains(n))
+        .collect();
+    assert!(
+        bare.is_empty(),
+        "exported without the subcone_ prefix: {bare:?}"
+    );
 }

@@ -24,12 +24,15 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
+mod compute;
 pub mod context;
+#[cfg(test)]
+mod layout_tests;
 mod post;
 pub mod sdf;
 #[cfg(feature = "test-util")]
 pub mod test_util;
-mod triangles;
+pub(crate) mod triangles;
 
 use std::sync::Arc;
 
@@ -71,6 +74,16 @@ impl WgpuBackend {
 /// or empty): tests then fail instead of skipping when no adapter exists.
 pub fn gpu_required() -> bool {
     std::env::var("SUBCONE_REQUIRE_GPU").is_ok_and(|v| !v.is_empty() && v != "0")
+}
+
+/// One frame as [`Backend::render`] was asked for it, with the passes
+/// [`WgpuBackend::plan`] planned for it: what every render path takes.
+pub(crate) struct Job<'a> {
+    pub(crate) scene: &'a Scene,
+    pub(crate) camera: &'a Camera,
+    pub(crate) method: &'a Method,
+    pub(crate) settings: &'a RenderSettings,
+    pub(crate) passes: Passes,
 }
 
 impl WgpuBackend {
@@ -152,11 +165,17 @@ impl Backend for WgpuBackend {
         camera.validate()?;
         // Forced passes go through the same plan: forcing the secondary
         // passes on an SDF scene is refused as its mirrors would be.
-        let passes = self.plan(scene, method, settings.force_passes)?;
+        let job = Job {
+            scene,
+            camera,
+            method,
+            settings,
+            passes: self.plan(scene, method, settings.force_passes)?,
+        };
         if scene.sdf_geometry().is_some() {
-            sdf::render(&self.ctx, scene, camera, method, settings, passes)
+            sdf::render(&self.ctx, &job)
         } else {
-            triangles::render(&self.ctx, scene, camera, method, settings, passes)
+            triangles::render(&self.ctx, &job)
         }
     }
 }

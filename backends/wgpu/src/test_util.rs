@@ -8,12 +8,11 @@
 //! scopes, so a shader that fails to compile is an `Err`, not a panic) and one
 //! place to change when wgpu changes.
 
-use bytemuck::Pod;
-use subcone_scene::RenderError;
-use wgpu::util::DeviceExt;
-
+use crate::compute::{self, Access, Bindings, Program};
 use crate::context::{err, GpuContext};
 use crate::{gpu_required, WgpuBackend};
+use bytemuck::Pod;
+use subcone_scene::RenderError;
 
 /// The backend on the shared device, or `None` when there is no adapter and
 /// `SUBCONE_REQUIRE_GPU` is unset (the test then skips, printing why, so
@@ -33,9 +32,8 @@ pub fn gpu_or_skip(what: &str) -> Option<WgpuBackend> {
     }
 }
 
-/// A read-only storage buffer besides the records, bound at `@binding(2 + k)`
-/// for the `k`-th table and declared by the harness as
-/// `var<storage, read> {name}: {wgsl_type};` (e.g. a generated SDF's
+/// A read-only storage buffer besides the records, declared by the harness
+/// as `var<storage, read> {name}: {wgsl_type};` (e.g. a generated SDF's
 /// `sdf_data` scatter table).
 #[derive(Clone, Copy, Debug)]
 pub struct Table<'a> {
@@ -50,8 +48,9 @@ pub struct Table<'a> {
 /// One compute kernel under test: WGSL run once per input record.
 #[derive(Clone, Copy, Debug)]
 pub struct Kernel<'a> {
-    /// The WGSL the body calls: the kernel sources (e.g.
-    /// `subcone_kernels::wgsl::PARAMS` and a kernel's `WGSL`).
+    /// The WGSL the body calls: kernel sources (e.g. `subcone_kernels::
+    /// cone::WGSL`). The harness puts the prelude, `subcone_kernels::wgsl::
+    /// PARAMS`, before them, as every shader of this backend has it.
     pub library: &'a str,
     /// WGSL statements run once per record. They read the record through
     /// `f(k)` (its word `k` as `f32`), `u(k)` (as `u32`) and `v3(k)` (words
@@ -106,19 +105,30 @@ pub fn run_wgsl<I: Pod, O: Pod>(
     }
     ctx.check_buffer_size("run_wgsl inputs", bytes.len() as u64)?;
     ctx.check_buffer_size("run_wgsl outputs", out_bytes)?;
-    let mut source = String::from(kernel.library);
-    for (k, t) in kernel.tables.iter().enumerate() {
-        source.push_str(&format!(
-            "\n@group(0) @binding({}) var<storage, read> {}: {};\n",
-            2 + k,
+    // The names are the harness's own (`run_wgsl_*`) or the body's
+    // documented ones (`f`, `u`, `v3`, `out`, `i`, `o`).
+    let mut b = Bindings::new(0);
+    b.storage_init(
+        ctx,
+        "run_wgsl inputs",
+        "run_wgsl_in",
+        "array<u32>",
+        Access::Read,
+        bytes,
+    )?;
+    b.storage(ctx, "run_wgsl outputs", "out", "array<u32>", out_bytes)?;
+    for t in kernel.tables {
+        b.storage_init(
+            ctx,
+            "run_wgsl table",
             t.name,
-            t.wgsl_type
-        ));
+            t.wgsl_type,
+            Access::Read,
+            t.bytes,
+        )?;
     }
-    source.push_str(&format!(
-        "\n@group(0) @binding(0) var<storage, read> run_wgsl_in: array<u32>;\n\
-         @group(0) @binding(1) var<storage, read_write> out: array<u32>;\n\
-         var<private> run_wgsl_base: u32;\n\
+    let entry = format!(
+        "\nvar<private> run_wgsl_base: u32;\n\
          fn f(k: u32) -> f32 {{ return bitcast<f32>(run_wgsl_in[run_wgsl_base + k]); }}\n\
          fn u(k: u32) -> u32 {{ return run_wgsl_in[run_wgsl_base + k]; }}\n\
          fn v3(k: u32) -> vec3<f32> {{ return vec3<f32>(f(k), f(k + 1u), f(k + 2u)); }}\n\
@@ -133,74 +143,11 @@ pub fn run_wgsl<I: Pod, O: Pod>(
         in_words = kernel.in_words,
         out_words = kernel.out_words,
         body = kernel.body,
-    ));
-    let device = &ctx.device;
-    let out = ctx.scoped("run_wgsl", || {
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("run_wgsl"),
-            source: wgpu::ShaderSource::Wgsl(source.as_str().into()),
-        });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("run_wgsl"),
-            layout: None,
-            module: &module,
-            entry_point: Some("run_wgsl_main"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
-        let buffer = |label, contents| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage: wgpu::BufferUsages::STORAGE,
-            })
-        };
-        let inp = buffer("run_wgsl inputs", bytes);
-        let tables: Vec<wgpu::Buffer> = kernel
-            .tables
-            .iter()
-            .map(|t| buffer("run_wgsl table", t.bytes))
-            .collect();
-        let out = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("run_wgsl outputs"),
-            size: out_bytes,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
-        let mut entries = vec![
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: inp.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: out.as_entire_binding(),
-            },
-        ];
-        for (k, t) in tables.iter().enumerate() {
-            entries.push(wgpu::BindGroupEntry {
-                binding: 2 + k as u32,
-                resource: t.as_entire_binding(),
-            });
-        }
-        let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("run_wgsl"),
-            layout: &pipeline.get_bind_group_layout(0),
-            entries: &entries,
-        });
-        let mut enc = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("run_wgsl"),
-        });
-        {
-            let mut pass = enc.begin_compute_pass(&Default::default());
-            pass.set_pipeline(&pipeline);
-            pass.set_bind_group(0, &bind, &[]);
-            pass.dispatch_workgroups(groups as u32, 1, 1);
-        }
-        ctx.queue.submit([enc.finish()]);
-        out
+    );
+    let mut program = Program::new(ctx, "run_wgsl", &[kernel.library, &entry], &[&b])?;
+    let pipeline = program.pipeline("run_wgsl_main")?;
+    ctx.timed_pass("run_wgsl", &mut Vec::new(), |enc| {
+        program.dispatch(enc, &pipeline, (groups as u32, 1))
     })?;
-    ctx.wait("run_wgsl")?;
-    let bytes = ctx.read_buffer(&out, 0, out_bytes)?;
-    Ok(bytemuck::pod_collect_to_vec(&bytes))
+    compute::read(ctx, b.get("out")?, (out_bytes / unit) as usize)
 }

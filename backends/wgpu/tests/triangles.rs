@@ -365,18 +365,18 @@ fn sraa_wgsl_validates() {
     .validate(&module)
     .unwrap_or_else(|e| panic!("{e:?}"));
     for f in [
-        "bilateral_weight",
-        "shadow_gated_weight",
-        "albedo_difference",
-        "material_gated_weight",
-        "depth_difference",
-        "gaussian",
-        "saturate",
-        "neighbourhood",
-        "reconstruct_layers_begin",
-        "reconstruct_layers_add",
-        "reconstruct_layers_end",
-        "resolve_pixel",
+        "subcone_bilateral_weight",
+        "subcone_shadow_gated_weight",
+        "subcone_albedo_difference",
+        "subcone_material_gated_weight",
+        "subcone_depth_difference",
+        "subcone_gaussian",
+        "subcone_saturate",
+        "subcone_neighbourhood",
+        "subcone_reconstruct_layers_begin",
+        "subcone_reconstruct_layers_add",
+        "subcone_reconstruct_layers_end",
+        "subcone_resolve_pixel",
     ] {
         assert!(
             module

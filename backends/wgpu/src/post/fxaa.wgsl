@@ -8,14 +8,10 @@ struct FxaaFrame {
     _pad1: u32,
 }
 
-@group(0) @binding(0) var<uniform> fxaa_params: FxaaParams;
-@group(0) @binding(1) var<uniform> fxaa_frame: FxaaFrame;
-// The rendered frame, linear RGB (w unused).
-@group(0) @binding(2) var<storage, read> fxaa_src: array<vec4<f32>>;
-// fxaa_encode of every pixel: displayed sRGB colour and luma.
-@group(0) @binding(3) var<storage, read_write> fxaa_encoded: array<vec4<f32>>;
-// The filtered frame, linear RGB.
-@group(0) @binding(4) var<storage, read_write> fxaa_dst: array<vec4<f32>>;
+// Bindings (fxaa.rs): fxaa_params (subcone_FxaaParams), fxaa_frame
+// (FxaaFrame); fxaa_src, the rendered frame, linear RGB (w unused);
+// fxaa_encoded, subcone_fxaa_encode of every pixel (displayed sRGB colour
+// and luma); fxaa_dst, the filtered frame, linear RGB.
 
 // The hook fxaa.wgsl reads pixels through: clamp to edge.
 fn fxaa_fetch(x: i32, y: i32) -> vec4<f32> {
@@ -30,7 +26,7 @@ fn fxaa_encode_main(@builtin(global_invocation_id) gid: vec3<u32>) {
         return;
     }
     let i = gid.y * fxaa_frame.width + gid.x;
-    fxaa_encoded[i] = fxaa_encode(fxaa_src[i].xyz);
+    fxaa_encoded[i] = subcone_fxaa_encode(fxaa_src[i].xyz);
 }
 
 @compute @workgroup_size(8, 8)
@@ -39,6 +35,6 @@ fn fxaa_main(@builtin(global_invocation_id) gid: vec3<u32>) {
         return;
     }
     let i = gid.y * fxaa_frame.width + gid.x;
-    let c = fxaa_pixel(i32(gid.x), i32(gid.y), fxaa_params);
-    fxaa_dst[i] = vec4<f32>(fxaa_decode(c), 1.0);
+    let c = subcone_fxaa_pixel(i32(gid.x), i32(gid.y), fxaa_params);
+    fxaa_dst[i] = vec4<f32>(subcone_fxaa_decode(c), 1.0);
 }

@@ -2,9 +2,8 @@
 // sphere tracing with a pixel-wide cone (SdfView::render's AOV block).
 // Appended to trace.wgsl only when AOVs are requested.
 
-@group(0) @binding(5) var<uniform> aov_params: CtssParams;
-// Per pixel: (normal, view depth); depth +inf and normal 0 on a miss.
-@group(0) @binding(6) var<storage, read_write> aov_out: array<vec4<f32>>;
+// Bindings (sdf/mod.rs): aov_params (subcone_CtssParams); aov_out, per
+// pixel (normal, view depth), depth +inf and normal 0 on a miss.
 
 @compute @workgroup_size(8, 8)
 fn sdf_aovs(@builtin(global_invocation_id) gid: vec3<u32>) {
@@ -12,7 +11,7 @@ fn sdf_aovs(@builtin(global_invocation_id) gid: vec3<u32>) {
         return;
     }
     let d = camera_dir(vec2<f32>(f32(gid.x) + 0.5, f32(gid.y) + 0.5));
-    let hit = sphere_trace_split(aov_params, frame.position, d);
+    let hit = subcone_sphere_trace_split(aov_params, frame.position, d);
     var out = vec4<f32>(0.0, 0.0, 0.0, subcone_inf());
     if hit.t >= 0.0 {
         let q = frame.position + hit.t * d;

@@ -3,7 +3,7 @@
 //! (`subcone_cpu::sphere::SdfView`). SRAA-RT on SDF scenes is CPU-only
 //! ([`SRAA_RT_CPU_ONLY`]).
 //!
-//! The scene's tree is compiled to WGSL ([`SdfNode::to_wgsl`]), its materials
+//! The scene's tree is compiled to WGSL ([`subcone_scene::sdf::SdfNode::to_wgsl`]), its materials
 //! and lights to WGSL constants (`shading.rs`), and concatenated with the
 //! kernels' WGSL (`cone`, `mask`, `aggregate`, `ctss`: Algorithm 1 of CTSS,
 //! eq. 3–10) and this module's entry points (`trace.wgsl`): one invocation per
@@ -31,26 +31,23 @@
 //! evaluation and sample counts exactly and colours within 1e-4 (`tests/sdf.rs`
 //! bounds them more loosely, for other GPUs).
 
-mod aovs;
 mod shading;
-mod trace;
 
-use std::hash::{Hash, Hasher};
 use std::sync::Arc;
+
+use bytemuck::{Pod, Zeroable};
 
 use subcone_kernels::ctss::CtssParams;
 use subcone_kernels::passes::{Passes, Technique};
 use subcone_scene::sdf::wgsl::WgslField;
-use subcone_scene::sdf::SdfNode;
-use subcone_scene::{
-    Camera, Frame, FrameStats, Method, RayCounts, RenderError, RenderSettings, Scene,
-    UnsupportedReason,
-};
+use subcone_scene::{Frame, FrameStats, Method, RayCounts, RenderError, UnsupportedReason};
 use wgpu::util::DeviceExt;
 
+use crate::compute::{self, Access, Bindings, Program};
 use crate::context::{err, GpuContext};
+use crate::Job;
 
-const TRACE_WGSL: &str = include_str!("trace.wgsl");
+pub(crate) const TRACE_WGSL: &str = include_str!("trace.wgsl");
 const AOVS_WGSL: &str = include_str!("aovs.wgsl");
 const WORKGROUP: u32 = 8;
 /// Samples a cone marches ahead of shading them (the `PENDING` of
@@ -59,8 +56,6 @@ const ASAP_BATCH: u32 = 8;
 /// The same for delayed shading (`ctss-delayed`): enough for every cone of
 /// the built-in SDF scenes to be traced completely before it is shaded.
 pub const DELAYED_BATCH: u32 = 32;
-/// Where generated fields find their scatter tables.
-const DATA_BINDING: &str = "@group(0) @binding(4) var<storage, read> sdf_data: array<vec4<f32>>;\n";
 
 /// Why SRAA-RT is refused on SDF scenes: its sphere-traced subsamples and
 /// their reconstruction exist on the CPU only (`subcone_cpu::sphere`); this
@@ -81,130 +76,40 @@ pub const CTSS_EDGES_CPU_ONLY: UnsupportedReason = UnsupportedReason::CpuOnly {
 /// Most samples per pixel side (`ssaaN`, `ssaaN+ctss`) one invocation traces.
 pub const MAX_SIDE_SAMPLES: u32 = 64;
 
-/// The kernels' WGSL every SDF shader starts with.
-fn kernels_wgsl() -> String {
-    [
-        subcone_kernels::wgsl::PARAMS,
-        subcone_kernels::cone::WGSL,
-        subcone_kernels::mask::WGSL,
-        subcone_kernels::aggregate::WGSL,
-        subcone_kernels::ctss::WGSL,
-    ]
-    .concat()
-}
+/// The kernels' WGSL every SDF shader includes, after the prelude.
+const KERNELS: [&str; 4] = [
+    subcone_kernels::cone::WGSL,
+    subcone_kernels::mask::WGSL,
+    subcone_kernels::aggregate::WGSL,
+    subcone_kernels::ctss::WGSL,
+];
 
-/// The field's WGSL and its scatter table on the device (none when empty).
-struct GpuField {
-    data: Option<wgpu::Buffer>,
-    data_bytes: usize,
-}
-
-/// Upload a compiled field's scatter table; returns the field's WGSL with
-/// the table's binding declared when there is one.
-fn upload_field(ctx: &GpuContext, f: &WgslField) -> Result<(String, GpuField), RenderError> {
-    let mut source = f.source.clone();
-    let data = if f.data.is_empty() {
-        None
-    } else {
-        let bytes: &[u8] = bytemuck::cast_slice(&f.data);
-        ctx.check_buffer_size("the SDF's scatter table", bytes.len() as u64)?;
-        source.push_str(DATA_BINDING);
-        Some(ctx.scoped("SDF scatter table", || {
-            ctx.device
-                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("sdf_data"),
-                    contents: bytes,
-                    usage: wgpu::BufferUsages::STORAGE,
-                })
-        })?)
-    };
-    Ok((
-        source,
-        GpuField {
-            data,
-            data_bytes: f.data.len() * 16,
-        },
-    ))
-}
-
-/// Compiled pipelines of one scene (and variant), reused across frames.
-struct Pipelines {
-    render: wgpu::ComputePipeline,
-    aovs: Option<wgpu::ComputePipeline>,
-    field: GpuField,
-}
-
-fn hash_of(x: impl Hash) -> u64 {
-    let mut h = std::collections::hash_map::DefaultHasher::new();
-    x.hash(&mut h);
-    h.finish()
-}
-
-fn pipelines(
+/// The field's scatter table on the device, uploaded once per device and
+/// table (`None` when the field has none).
+fn scatter_table(
     ctx: &GpuContext,
-    scene: &Scene,
-    root: &SdfNode,
-    shadows: bool,
-    aovs: bool,
-    batch: u32,
-) -> Result<Arc<Pipelines>, RenderError> {
-    let field = root.to_wgsl();
-    let mut source = kernels_wgsl();
-    source.push_str(&field.source);
-    if !field.data.is_empty() {
-        source.push_str(DATA_BINDING);
+    f: &WgslField,
+) -> Result<Option<Arc<wgpu::Buffer>>, RenderError> {
+    if f.data.is_empty() {
+        return Ok(None);
     }
-    source.push_str(&shading::shading_wgsl(
-        &scene.materials,
-        &scene.lights,
-        shadows,
-    )?);
-    source.push_str(&format!("const PENDING: u32 = {batch}u;\n"));
-    source.push_str(TRACE_WGSL);
-    if aovs {
-        source.push_str(AOVS_WGSL);
+    let bits: Vec<u32> = f.data.iter().flatten().map(|x| x.to_bits()).collect();
+    let key = compute::pipeline_key("sdf scatter table", &bits);
+    if let Some(b) = ctx.cached::<wgpu::Buffer>(key) {
+        return Ok(Some(b));
     }
-    let data_bits: Vec<u32> = field.data.iter().flatten().map(|x| x.to_bits()).collect();
-    // Per device, by the shader source and the scatter table: a scene changed
-    // in any way compiles anew.
-    let key = hash_of(("sdf", &source, &data_bits));
-    let cached = ctx
-        .cache
-        .lock()
-        .unwrap_or_else(|e| e.into_inner())
-        .get(&key)
-        .cloned();
-    if let Some(p) = cached.and_then(|p| p.downcast::<Pipelines>().ok()) {
-        return Ok(p);
-    }
-    let (_, gpu_field) = upload_field(ctx, &field)?;
-    let (render, aov) = ctx.scoped("compiling the SDF shader", || {
-        let module = ctx
-            .device
-            .create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("sdf trace"),
-                source: wgpu::ShaderSource::Wgsl(source.into()),
-            });
-        let make = |entry: &str| {
-            ctx.device
-                .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                    label: Some(entry),
-                    layout: None,
-                    module: &module,
-                    entry_point: Some(entry),
-                    compilation_options: Default::default(),
-                    cache: None,
-                })
-        };
-        (make("sdf_render"), aovs.then(|| make("sdf_aovs")))
-    })?;
-    let p = Arc::new(Pipelines {
-        render,
-        aovs: aov,
-        field: gpu_field,
-    });
-    ctx.cache_insert(key, p.clone());
-    Ok(p)
+    let bytes: &[u8] = bytemuck::cast_slice(&f.data);
+    ctx.check_buffer_size("the SDF's scatter table", bytes.len() as u64)?;
+    let b = Arc::new(ctx.scoped("SDF scatter table", || {
+        ctx.device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("sdf_data"),
+                contents: bytes,
+                usage: wgpu::BufferUsages::STORAGE,
+            })
+    })?);
+    ctx.cache_insert(key, b.clone());
+    Ok(Some(b))
 }
 
 /// `SdfView::params` of the CPU backend.
@@ -216,44 +121,37 @@ fn ctss_params(tan: f32, method: &Method, max_distance: f32, max_steps: u32) -> 
         .with_visibility_k(method.visibility_k)
 }
 
-/// The `SdfFrame` uniform of trace.wgsl.
-#[allow(clippy::too_many_arguments)]
-fn frame_uniform(
-    camera: &Camera,
-    s: &RenderSettings,
-    scene: &Scene,
-    max_distance: f32,
-    max_steps: u32,
-    side: u32,
-    cone: bool,
-) -> Vec<u32> {
-    let b = |x: f32| x.to_bits();
-    let v = |v: glam::Vec3| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()];
-    let mut u = Vec::with_capacity(28);
-    u.extend(v(camera.position));
-    u.push(s.width);
-    u.extend(v(camera.forward));
-    u.push(s.height);
-    u.extend(v(camera.right()));
-    u.push(b((0.5 * camera.fov_y).tan()));
-    u.extend(v(camera.up));
-    u.push(b(max_distance));
-    u.extend(v(scene.background));
-    u.push(max_steps);
-    u.extend(v(scene.ambient));
-    u.push(side);
-    u.extend([cone as u32, 0, 0, 0]);
-    u
+/// The frame's constants; `SdfFrame` in trace.wgsl (112 bytes).
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+pub(crate) struct SdfFrame {
+    pub(crate) position: [f32; 3],
+    pub(crate) width: u32,
+    pub(crate) forward: [f32; 3],
+    pub(crate) height: u32,
+    pub(crate) right: [f32; 3],
+    /// tan(fov_y / 2).
+    pub(crate) half: f32,
+    pub(crate) up: [f32; 3],
+    pub(crate) max_distance: f32,
+    pub(crate) background: [f32; 3],
+    pub(crate) max_steps: u32,
+    pub(crate) ambient: [f32; 3],
+    /// Samples per pixel side.
+    pub(crate) side: u32,
+    /// 1: cone tracing (the CTSS family), 0: sphere tracing.
+    pub(crate) cone: u32,
+    pub(crate) _pad: [u32; 3],
 }
 
-pub(crate) fn render(
-    ctx: &GpuContext,
-    scene: &Scene,
-    camera: &Camera,
-    method: &Method,
-    settings: &RenderSettings,
-    passes: Passes,
-) -> Result<Frame, RenderError> {
+pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> {
+    let Job {
+        scene,
+        camera,
+        method,
+        settings,
+        passes,
+    } = *job;
     let g = scene
         .sdf_geometry()
         .ok_or_else(|| err("not an SDF scene"))?;
@@ -276,13 +174,7 @@ pub(crate) fn render(
     let tan = camera.cone_tan_theta(h, method.cone_coverage) / side as f32;
     let params = ctss_params(tan, method, max_distance, max_steps);
     let pixels = w as u64 * h as u64;
-    let groups = (w.div_ceil(WORKGROUP), h.div_ceil(WORKGROUP));
-    let max_groups = ctx.device.limits().max_compute_workgroups_per_dimension;
-    if groups.0 > max_groups || groups.1 > max_groups {
-        return Err(err(format!(
-            "{w}x{h} needs more than {max_groups} workgroups per dimension"
-        )));
-    }
+    let groups = compute::workgroups(ctx, "SDF", w, h, WORKGROUP)?;
     let px_bytes = pixels * 16;
     ctx.check_buffer_size("the colour buffer", px_bytes)?;
 
@@ -292,36 +184,75 @@ pub(crate) fn render(
     } else {
         ASAP_BATCH
     };
-    let pipes = pipelines(ctx, scene, &g.root, shadows, settings.aovs, batch)?;
-
-    let frame_words = frame_uniform(camera, settings, scene, max_distance, max_steps, side, cone);
-    let frame_buf = ctx.scoped("SDF frame uniform", || {
-        ctx.device
-            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("sdf frame"),
-                contents: bytemuck::cast_slice(&frame_words),
-                usage: wgpu::BufferUsages::UNIFORM,
-            })
-    })?;
+    let frame_constants = SdfFrame {
+        position: camera.position.to_array(),
+        width: w,
+        forward: camera.forward.to_array(),
+        height: h,
+        right: camera.right().to_array(),
+        half: (0.5 * camera.fov_y).tan(),
+        up: camera.up.to_array(),
+        max_distance,
+        background: scene.background.to_array(),
+        max_steps,
+        ambient: scene.ambient.to_array(),
+        side,
+        cone: cone as u32,
+        _pad: [0; 3],
+    };
+    let field = g.root.to_wgsl();
+    let table = scatter_table(ctx, &field)?;
+    let mut b = Bindings::new(0);
+    b.uniform(ctx, "frame", "SdfFrame", &frame_constants)?;
+    b.uniform(ctx, "ctss", "subcone_CtssParams", &params)?;
+    b.storage(ctx, "color", "color_out", "array<vec4<f32>>", px_bytes)?;
+    b.storage(ctx, "counts", "counts_out", "array<vec4<u32>>", px_bytes)?;
+    if let Some(t) = &table {
+        b.buffer("sdf_data", "array<vec4<f32>>", Access::Read, t);
+    }
+    if settings.aovs {
+        // Depth and normal through each pixel centre (not timed, as on the CPU).
+        let plain = ctss_params(
+            camera.cone_tan_theta(h, 1.0),
+            &Method::new(Technique::NoAa),
+            max_distance,
+            max_steps,
+        );
+        b.uniform(ctx, "aov_params", "subcone_CtssParams", &plain)?;
+        b.storage(ctx, "aovs", "aov_out", "array<vec4<f32>>", px_bytes)?;
+    }
+    let shading = shading::shading_wgsl(&scene.materials, &scene.lights, shadows)?;
+    let pending = format!("const PENDING: u32 = {batch}u;\n");
+    let mut sources: Vec<&str> = KERNELS.to_vec();
+    sources.extend([field.source.as_str(), &shading, &pending, TRACE_WGSL]);
+    if settings.aovs {
+        sources.push(AOVS_WGSL);
+    }
+    let mut program = Program::new(ctx, "sdf", &sources, &[&b])?;
+    let trace = program.pipeline("sdf_render")?;
     let name = if cone {
         "cone tracing"
     } else {
         "sphere tracing"
     };
     let mut timings = Vec::new();
-    let post = passes.contains(Passes::POST_PROCESS).then_some((w, h));
-    let (color_px, count_px, post_buffers) = trace::run(
-        ctx,
-        &pipes.render,
-        pipes.field.data.as_ref(),
-        &frame_buf,
-        &params,
-        groups,
-        px_bytes,
-        name,
-        &mut timings,
-        post,
-    )?;
+    ctx.timed_pass(name, &mut timings, |enc| {
+        program.dispatch(enc, &trace, groups)
+    })?;
+    let (color, post_buffers) = if passes.contains(Passes::POST_PROCESS) {
+        crate::post::fxaa::run(
+            ctx,
+            b.get("color_out")?,
+            w,
+            h,
+            &subcone_kernels::fxaa::FxaaParams::QUALITY,
+            &mut timings,
+        )?
+    } else {
+        (b.get("color_out")?.clone(), Vec::new())
+    };
+    let color_px: Vec<[f32; 4]> = compute::read(ctx, &color, pixels as usize)?;
+    let count_px: Vec<[u32; 4]> = compute::read(ctx, b.get("counts_out")?, pixels as usize)?;
 
     let mut frame = Frame::new(w, h);
     for (c, p) in frame.color.iter_mut().zip(&color_px) {
@@ -339,31 +270,16 @@ pub(crate) fn render(
     }
     let mut buffers = vec![("color", px_bytes as usize), ("counts", px_bytes as usize)];
     buffers.extend(post_buffers);
-    if pipes.field.data.is_some() {
-        buffers.push(("sdf scatter table", pipes.field.data_bytes));
+    if table.is_some() {
+        buffers.push(("sdf scatter table", field.data.len() * 16));
     }
 
     if settings.aovs {
-        let aov_pipe = pipes
-            .aovs
-            .as_ref()
-            .ok_or_else(|| err("the AOV pipeline is missing"))?;
-        // Depth and normal through each pixel centre (not timed, as on the CPU).
-        let plain = ctss_params(
-            camera.cone_tan_theta(h, 1.0),
-            &Method::new(Technique::NoAa),
-            max_distance,
-            max_steps,
-        );
-        let g = aovs::run(
-            ctx,
-            aov_pipe,
-            pipes.field.data.as_ref(),
-            &frame_buf,
-            &plain,
-            groups,
-            px_bytes,
-        )?;
+        let aovs = program.pipeline("sdf_aovs")?;
+        ctx.timed_pass("aovs", &mut Vec::new(), |enc| {
+            program.dispatch(enc, &aovs, groups)
+        })?;
+        let g: Vec<[f32; 4]> = compute::read(ctx, b.get("aov_out")?, pixels as usize)?;
         frame.depth = Some(g.iter().map(|a| a[3]).collect());
         frame.normal = Some(
             g.iter()

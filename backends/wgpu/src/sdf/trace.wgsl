@@ -5,7 +5,7 @@
 // Concatenated after PARAMS, the kernels' cone/mask/aggregate/ctss WGSL, the
 // field (scene_sdf_split) and the scene's materials and lights (shading.rs).
 
-// Per-frame constants (sdf/mod.rs FrameUniform).
+// Per-frame constants (sdf/mod.rs SdfFrame).
 struct SdfFrame {
     position: vec3<f32>,
     width: u32,
@@ -28,13 +28,12 @@ struct SdfFrame {
     _pad2: u32,
 }
 
-@group(0) @binding(0) var<uniform> frame: SdfFrame;
-@group(0) @binding(1) var<uniform> ctss: CtssParams;
-@group(0) @binding(2) var<storage, read_write> color_out: array<vec4<f32>>;
-// Per pixel: (SDF evaluations, shaded samples, shadow rays, 0).
-@group(0) @binding(3) var<storage, read_write> counts_out: array<vec4<u32>>;
+// Bindings (sdf/mod.rs): frame (SdfFrame); ctss (subcone_CtssParams);
+// color_out, the pixels' colours; counts_out, per pixel (SDF evaluations,
+// shaded samples, shadow rays, 0); sdf_data, the field's scatter table, when
+// it has one.
 
-// The field as the kernels' sphere_trace_split wants it: (surface, safe step).
+// The field as the kernels' subcone_sphere_trace_split wants it: (surface, safe step).
 fn ctss_field(p: vec3<f32>) -> vec2<f32> {
     let r = scene_sdf_split(p);
     return vec2<f32>(r.y, r.x);
@@ -132,7 +131,7 @@ fn shade(p: vec3<f32>, n0: vec3<f32>, dir: vec3<f32>, count: ptr<function, u32>)
 // SdfView::noaa: one sphere-traced sample.
 // The tallies (SdfView's Tally) are separate variables: steps, samples, shadow rays.
 fn noaa_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: ptr<function, u32>, shadow: ptr<function, u32>) -> vec3<f32> {
-    let hit = sphere_trace_split(ctss, o, d);
+    let hit = subcone_sphere_trace_split(ctss, o, d);
     *steps += hit.steps;
     if hit.t >= 0.0 {
         *samples += 1u;
@@ -146,12 +145,12 @@ fn noaa_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: p
 // CTSS_NUM_SAMPLES), is declared by sdf/mod.rs before this file: 8 for ASAP
 // methods, DELAYED_BATCH for delayed shading.
 
-// SdfView::ctss: one cone-traced sample (Algorithm 1 through ConeStepper).
+// SdfView::ctss: one cone-traced sample (Algorithm 1 through subcone_ConeStepper).
 fn ctss_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: ptr<function, u32>, shadow: ptr<function, u32>) -> vec3<f32> {
-    let axes = cross_section_frame(d, frame.up);
-    var st = cone_stepper_new(ctss);
-    var agg = aggregate_new();
-    let placement = ctss_placement(ctss);
+    let axes = subcone_cross_section_frame(d, frame.up);
+    var st = subcone_cone_stepper_new(ctss);
+    var agg = subcone_aggregate_new();
+    let placement = subcone_ctss_placement(ctss);
     // advance_split evaluates at most max_steps times and stops within two
     // more calls: the bounds never cut a trace short.
     let budget = min(ctss.max_steps, 0x7fffffffu) + 4u;
@@ -166,12 +165,12 @@ fn ctss_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: p
         var k = 0u;
         for (var i = 0u; i < budget; i++) {
             let f = scene_sdf_split(o + st.t * d);
-            let ev = cone_stepper_advance_split(&st, f.y, f.x);
-            if ev.kind == EVENT_STOP {
+            let ev = subcone_cone_stepper_advance_split(&st, f.y, f.x);
+            if ev.kind == subcone_EVENT_STOP {
                 done = true;
                 break;
             }
-            if ev.kind == EVENT_SAMPLE {
+            if ev.kind == subcone_EVENT_SAMPLE {
                 let s = ev.sample;
                 // Shading normal at the sample point; the mask's normal where
                 // the group's peak occlusion was measured, only when the mask
@@ -180,7 +179,7 @@ fn ctss_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: p
                 var nm = vec3<f32>(0.0);
                 for (var j = 0u; j < 2u; j++) {
                     let tt = select(s.t, s.t_occlusion, j == 1u);
-                    if j == 1u && !(s.t_occlusion != s.t && needs_normal(s.occlusion, placement)) {
+                    if j == 1u && !(s.t_occlusion != s.t && subcone_needs_normal(s.occlusion, placement)) {
                         nm = n;
                         break;
                     }
@@ -191,7 +190,7 @@ fn ctss_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: p
                         nm = nn;
                     }
                 }
-                let rec = cone_stepper_record(&st, s, project_normal(nm, axes[0], axes[1]));
+                let rec = subcone_cone_stepper_record(&st, s, subcone_project_normal(nm, axes[0], axes[1]));
                 pending[k] = vec4<f32>(n, s.t);
                 pending_w[k] = bitcast<f32>(rec.y);
                 k += 1u;
@@ -202,12 +201,12 @@ fn ctss_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: p
         }
         for (var j = 0u; j < k; j++) {
             let q = o + pending[j].w * d;
-            aggregate_add(&agg, pending_w[j], shade(q, pending[j].xyz, d, shadow));
+            subcone_aggregate_add(&agg, pending_w[j], shade(q, pending[j].xyz, d, shadow));
         }
     }
     *steps += st.steps;
     *samples += st.samples;
-    return aggregate_resolve(agg, frame.background, cone_stepper_background_weight(st));
+    return subcone_aggregate_resolve(agg, frame.background, subcone_cone_stepper_background_weight(st));
 }
 
 // SdfView::render, one pixel: side × side samples at sub-pixel centres.

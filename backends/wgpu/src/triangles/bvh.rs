@@ -26,11 +26,11 @@ pub(crate) use subcone_kernels::passes::MAX_LIGHTS;
 /// leaf (`count` triangles from `index` in BVH order).
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
-pub(super) struct GpuNode {
-    pub(super) min: [f32; 3],
-    pub(super) count: u32,
-    pub(super) max: [f32; 3],
-    pub(super) index: u32,
+pub(crate) struct GpuNode {
+    pub(crate) min: [f32; 3],
+    pub(crate) count: u32,
+    pub(crate) max: [f32; 3],
+    pub(crate) index: u32,
 }
 
 /// A material; `kind`: 0 solid (`a`), 1 checker (`a`, `b`, `size`), 2 patches
@@ -38,14 +38,14 @@ pub(super) struct GpuNode {
 /// (`extra.x` first texel, `extra.y` width, `extra.z` height, `extra.w` texels).
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
-pub(super) struct GpuMaterial {
-    pub(super) a: [f32; 3],
-    pub(super) kind: u32,
-    pub(super) b: [f32; 3],
-    pub(super) size: f32,
-    pub(super) emission: [f32; 3],
-    pub(super) mirror: f32,
-    pub(super) extra: [u32; 4],
+pub(crate) struct GpuMaterial {
+    pub(crate) a: [f32; 3],
+    pub(crate) kind: u32,
+    pub(crate) b: [f32; 3],
+    pub(crate) size: f32,
+    pub(crate) emission: [f32; 3],
+    pub(crate) mirror: f32,
+    pub(crate) extra: [u32; 4],
 }
 
 /// A light; `kind`: 0 point (`v` position, `value` intensity), 1 directional
@@ -53,11 +53,11 @@ pub(super) struct GpuMaterial {
 /// directional light with a zero direction never arrives).
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
-pub(super) struct GpuLight {
-    pub(super) v: [f32; 3],
-    pub(super) kind: u32,
-    pub(super) value: [f32; 3],
-    pub(super) _pad: u32,
+pub(crate) struct GpuLight {
+    pub(crate) v: [f32; 3],
+    pub(crate) kind: u32,
+    pub(crate) value: [f32; 3],
+    pub(crate) _pad: u32,
 }
 
 /// A scene's buffers on one device.

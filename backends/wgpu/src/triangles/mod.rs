@@ -9,13 +9,9 @@
 //! absent buffer return the CPU backend's initial value. Compiled pipelines
 //! are cached per device and shader source.
 
-mod bvh;
-#[cfg(test)]
-mod layout_tests;
+pub(crate) mod bvh;
 pub(crate) mod raster;
 
-use std::collections::hash_map::DefaultHasher;
-use std::hash::{Hash, Hasher};
 use std::sync::Arc;
 
 use bytemuck::{Pod, Zeroable};
@@ -26,38 +22,44 @@ use subcone_scene::{
     Camera, Frame, FrameStats, Method, RayCounts, RenderError, RenderSettings, Scene,
 };
 
+use crate::compute::{self, Access, Bindings, Program};
 use crate::context::{err, GpuContext};
+use crate::Job;
 use bvh::{SceneGpu, MAX_LIGHTS, STACK_SIZE};
 
-const TRACE_WGSL: &str = include_str!("trace.wgsl");
+pub(crate) const TRACE_WGSL: &str = include_str!("trace.wgsl");
+pub(crate) const FRAME_WGSL: &str = include_str!("frame.wgsl");
 pub(crate) const ALBEDO_WGSL: &str = include_str!("albedo.wgsl");
 const SUPERSAMPLE_WGSL: &str = include_str!("supersample.wgsl");
 const SUBPIXEL_WGSL: &str = include_str!("subpixel.wgsl");
 const SRAA_WGSL: &str = include_str!("sraa.wgsl");
 
-/// The frame's constants; `FrameUniform` in trace.wgsl (144 bytes).
+/// The frame's constants; `FrameUniform` in frame.wgsl (144 bytes), read
+/// by the compute passes and the raster pass.
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
 pub(crate) struct FrameUniform {
-    cam_pos: [f32; 3],
-    half: f32,
-    forward: [f32; 3],
-    aspect: f32,
-    right: [f32; 3],
-    eps: f32,
-    up: [f32; 3],
-    width_f: f32,
-    ambient: [f32; 3],
-    height_f: f32,
-    background: [f32; 3],
-    ssaa_side: u32,
-    width: u32,
-    height: u32,
-    lights: u32,
-    reflection_depth: u32,
-    node_count: u32,
-    _pad: [u32; 3],
-    sraa: SraaParams,
+    pub(crate) cam_pos: [f32; 3],
+    pub(crate) half: f32,
+    pub(crate) forward: [f32; 3],
+    pub(crate) aspect: f32,
+    pub(crate) right: [f32; 3],
+    pub(crate) eps: f32,
+    pub(crate) up: [f32; 3],
+    pub(crate) width_f: f32,
+    pub(crate) ambient: [f32; 3],
+    pub(crate) height_f: f32,
+    pub(crate) background: [f32; 3],
+    pub(crate) ssaa_side: u32,
+    pub(crate) width: u32,
+    pub(crate) height: u32,
+    pub(crate) lights: u32,
+    pub(crate) reflection_depth: u32,
+    pub(crate) node_count: u32,
+    /// Near plane of the raster pass's reversed depth.
+    pub(crate) near: f32,
+    pub(crate) _pad: [u32; 2],
+    pub(crate) sraa: SraaParams,
 }
 
 impl FrameUniform {
@@ -92,161 +94,18 @@ impl FrameUniform {
             lights: scene.lights.len().min(MAX_LIGHTS) as u32,
             reflection_depth: s.reflection_depth,
             node_count: sg.node_count,
-            _pad: [0; 3],
+            // Far below any ray offset; reversed Z keeps the precision.
+            near: sg.scale * 1e-7,
+            _pad: [0; 2],
             sraa: method.sraa,
         }
-    }
-}
-
-/// A frame buffer or texture bound in group 1.
-pub(crate) enum Resource {
-    Buffer(wgpu::Buffer),
-    Texture(wgpu::TextureView),
-}
-
-/// One group-1 binding: its WGSL variable, element type and resource.
-pub(crate) struct Binding {
-    var: &'static str,
-    ty: &'static str,
-    res: Resource,
-}
-
-/// Frame buffers: what is bound, and what FrameStats reports.
-#[derive(Default)]
-pub(crate) struct FrameBuffers {
-    bindings: Vec<Binding>,
-    pub stats: Vec<(&'static str, usize)>,
-}
-
-impl FrameBuffers {
-    /// Allocate a zeroed storage buffer of `bytes`, bound as `var: ty`, reported
-    /// as `name`.
-    pub(crate) fn storage(
-        &mut self,
-        ctx: &GpuContext,
-        name: &'static str,
-        var: &'static str,
-        ty: &'static str,
-        bytes: u64,
-    ) -> Result<(), RenderError> {
-        ctx.check_buffer_size(name, bytes)?;
-        let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some(name),
-            size: bytes.max(16),
-            usage: wgpu::BufferUsages::STORAGE
-                | wgpu::BufferUsages::COPY_SRC
-                | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        self.stats.push((name, bytes as usize));
-        self.bindings.push(Binding {
-            var,
-            ty,
-            res: Resource::Buffer(buffer),
-        });
-        Ok(())
-    }
-
-    pub(crate) fn texture(&mut self, var: &'static str, view: wgpu::TextureView) {
-        self.bindings.push(Binding {
-            var,
-            ty: "texture_2d_array<f32>",
-            res: Resource::Texture(view),
-        });
-    }
-
-    fn has(&self, var: &str) -> bool {
-        self.bindings.iter().any(|b| b.var == var)
-    }
-
-    pub(crate) fn buffer(&self, var: &str) -> Option<&wgpu::Buffer> {
-        self.bindings.iter().find_map(|b| match &b.res {
-            Resource::Buffer(buf) if b.var == var => Some(buf),
-            _ => None,
-        })
-    }
-
-    /// The WGSL declarations of group 1.
-    fn declarations(&self) -> String {
-        let mut s = String::new();
-        for (i, b) in self.bindings.iter().enumerate() {
-            match b.res {
-                Resource::Buffer(_) => {
-                    s += &format!(
-                        "@group(1) @binding({i}) var<storage, read_write> {}: {};\n",
-                        b.var, b.ty
-                    )
-                }
-                Resource::Texture(_) => {
-                    s += &format!("@group(1) @binding({i}) var {}: {};\n", b.var, b.ty)
-                }
-            }
-        }
-        s
-    }
-
-    fn layout(&self, ctx: &GpuContext) -> wgpu::BindGroupLayout {
-        let entries: Vec<wgpu::BindGroupLayoutEntry> = self
-            .bindings
-            .iter()
-            .enumerate()
-            .map(|(i, b)| wgpu::BindGroupLayoutEntry {
-                binding: i as u32,
-                visibility: wgpu::ShaderStages::COMPUTE,
-                ty: match b.res {
-                    Resource::Buffer(_) => wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Storage { read_only: false },
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    Resource::Texture(_) => wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                        view_dimension: wgpu::TextureViewDimension::D2Array,
-                        multisampled: false,
-                    },
-                },
-                count: None,
-            })
-            .collect();
-        ctx.device
-            .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("frame buffers"),
-                entries: &entries,
-            })
-    }
-
-    fn bind_group(&self, ctx: &GpuContext, layout: &wgpu::BindGroupLayout) -> wgpu::BindGroup {
-        let entries: Vec<wgpu::BindGroupEntry> = self
-            .bindings
-            .iter()
-            .enumerate()
-            .map(|(i, b)| wgpu::BindGroupEntry {
-                binding: i as u32,
-                resource: match &b.res {
-                    Resource::Buffer(buf) => buf.as_entire_binding(),
-                    Resource::Texture(v) => wgpu::BindingResource::TextureView(v),
-                },
-            })
-            .collect();
-        ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("frame buffers"),
-            layout,
-            entries: &entries,
-        })
     }
 }
 
 /// `get_`/`put_` accessors of an optional per-pixel buffer `var` (element
 /// `ty`, `per` elements per pixel): real ones when it is bound, else reads of
 /// `default` and ignored writes. `HAS_<NAME>` says which.
-fn accessors(
-    fb: &FrameBuffers,
-    name: &str,
-    var: &str,
-    ty: &str,
-    per: u32,
-    default: &str,
-) -> String {
+fn accessors(fb: &Bindings, name: &str, var: &str, ty: &str, per: u32, default: &str) -> String {
     let has = fb.has(var);
     let upper = name.to_uppercase();
     let (args, index) = if per == 1 {
@@ -269,243 +128,88 @@ fn accessors(
     }
 }
 
-/// The scene-wide bind group layout (group 0) for compute passes.
-fn scene_layout(ctx: &GpuContext) -> wgpu::BindGroupLayout {
-    let storage = |binding: u32, read_only: bool| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    };
-    let mut entries = vec![wgpu::BindGroupLayoutEntry {
-        binding: 0,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Uniform,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }];
-    for b in 1..=6 {
-        entries.push(storage(b, true));
-    }
-    entries.push(storage(7, false));
-    ctx.device
-        .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("scene"),
-            entries: &entries,
-        })
+/// Group 0 of every triangle pass: the frame's constants, the scene's
+/// buffers (shared with the cached scene) and the ray counters.
+fn scene_bindings(
+    ctx: &GpuContext,
+    sg: &SceneGpu,
+    uniform: &FrameUniform,
+) -> Result<Bindings, RenderError> {
+    let mut b = Bindings::new(0);
+    b.uniform(ctx, "frame", "FrameUniform", uniform)?;
+    b.buffer("nodes", "array<BvhNode>", Access::Read, &sg.nodes);
+    b.buffer("tris", "array<vec4<f32>>", Access::Read, &sg.tris);
+    b.buffer("attrs", "array<vec4<f32>>", Access::Read, &sg.attrs);
+    b.buffer(
+        "materials",
+        "array<MaterialGpu>",
+        Access::Read,
+        &sg.materials,
+    );
+    b.buffer("texels", "array<vec4<f32>>", Access::Read, &sg.texels);
+    b.buffer("lights", "array<LightGpu>", Access::Read, &sg.lights);
+    // 64-bit as (lo, hi) pairs: primary, geometry, shadow, secondary,
+    // shaded; then [10] traversals that ended before their stack emptied.
+    b.storage(
+        ctx,
+        "ray counters",
+        "counters",
+        "array<atomic<u32>, 12>",
+        48,
+    )?;
+    Ok(b)
 }
 
-/// A compiled shader: its source hash and (lazily) its module.
-struct Program<'a> {
+/// A frame's compute program: group 0 the scene ([`scene_bindings`]), group
+/// 1 the frame buffers `fb`, sources the SRAA kernels, trace.wgsl, `header`
+/// and the entry-point files `entries`.
+fn program<'a>(
     ctx: &'a GpuContext,
-    source: String,
-    hash: u64,
-    module: Option<wgpu::ShaderModule>,
-    layout: wgpu::PipelineLayout,
+    scene: &Bindings,
+    fb: &Bindings,
+    header: &str,
+    entries: &[&str],
+) -> Result<Program<'a>, RenderError> {
+    let trace = TRACE_WGSL
+        .replace("__STACK_SIZE__", &STACK_SIZE.to_string())
+        .replace("__MAX_LIGHTS__", &MAX_LIGHTS.to_string());
+    let mut sources = vec![
+        subcone_kernels::sraa::WGSL,
+        FRAME_WGSL,
+        ALBEDO_WGSL,
+        &trace,
+        header,
+    ];
+    sources.extend(entries);
+    Program::new(ctx, "triangles", &sources, &[scene, fb])
 }
 
-impl<'a> Program<'a> {
-    fn new(ctx: &'a GpuContext, source: String, frame_layout: &wgpu::BindGroupLayout) -> Self {
-        let mut h = DefaultHasher::new();
-        source.hash(&mut h);
-        let scene = scene_layout(ctx);
-        let layout = ctx
-            .device
-            .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("triangles"),
-                bind_group_layouts: &[Some(&scene), Some(frame_layout)],
-                immediate_size: 0,
-            });
-        Program {
-            ctx,
-            source,
-            hash: h.finish(),
-            module: None,
-            layout,
-        }
+/// (primary, geometry, shadow, secondary, shaded) of the scene group's ray
+/// counters; an error when a traversal was cut short (the image would be
+/// wrong).
+fn counts(ctx: &GpuContext, scene: &Bindings) -> Result<[u64; 5], RenderError> {
+    let v: Vec<u32> = compute::read(ctx, scene.get("counters")?, 12)?;
+    if v[10] > 0 {
+        return Err(err(format!(
+            "{} BVH traversals stopped before finishing (the driver limits the \
+             loop iterations of one shader invocation; llvmpipe allows 65 535): \
+             the frame would be wrong. Use fewer mirror bounces or a smaller mesh",
+            v[10]
+        )));
     }
-
-    fn pipeline(&mut self, entry: &'static str) -> Result<Arc<wgpu::ComputePipeline>, RenderError> {
-        let ctx = self.ctx;
-        let key = {
-            let mut h = DefaultHasher::new();
-            ("triangle pipeline", self.hash, entry).hash(&mut h);
-            h.finish()
-        };
-        if let Some(p) = ctx.cached::<wgpu::ComputePipeline>(key) {
-            return Ok(p);
-        }
-        if self.module.is_none() {
-            let source = &self.source;
-            self.module = Some(ctx.scoped("triangle shader", || {
-                ctx.device
-                    .create_shader_module(wgpu::ShaderModuleDescriptor {
-                        label: Some("triangles"),
-                        source: wgpu::ShaderSource::Wgsl(source.as_str().into()),
-                    })
-            })?);
-        }
-        let module = self.module.as_ref().expect("compiled above");
-        let layout = &self.layout;
-        let p = Arc::new(ctx.scoped(entry, || {
-            ctx.device
-                .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                    label: Some(entry),
-                    layout: Some(layout),
-                    module,
-                    entry_point: Some(entry),
-                    compilation_options: Default::default(),
-                    cache: None,
-                })
-        })?);
-        ctx.cache_insert(key, p.clone());
-        Ok(p)
-    }
-}
-
-/// Everything a frame's compute passes bind.
-struct Bound {
-    scene_group: wgpu::BindGroup,
-    frame_group: wgpu::BindGroup,
-    counters: wgpu::Buffer,
-    groups: (u32, u32),
-}
-
-impl Bound {
-    fn new(
-        ctx: &GpuContext,
-        sg: &SceneGpu,
-        uniform: &FrameUniform,
-        fb: &FrameBuffers,
-        frame_layout: &wgpu::BindGroupLayout,
-        width: u32,
-        height: u32,
-    ) -> Result<Self, RenderError> {
-        use wgpu::util::DeviceExt;
-        ctx.scoped("frame setup", || {
-            let uniform = ctx
-                .device
-                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("frame constants"),
-                    contents: bytemuck::bytes_of(uniform),
-                    usage: wgpu::BufferUsages::UNIFORM,
-                });
-            let counters = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("ray counters"),
-                size: 48,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-                mapped_at_creation: false,
-            });
-            let layout = scene_layout(ctx);
-            let scene_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("scene"),
-                layout: &layout,
-                entries: &[
-                    uniform.as_entire_binding(),
-                    sg.nodes.as_entire_binding(),
-                    sg.tris.as_entire_binding(),
-                    sg.attrs.as_entire_binding(),
-                    sg.materials.as_entire_binding(),
-                    sg.texels.as_entire_binding(),
-                    sg.lights.as_entire_binding(),
-                    counters.as_entire_binding(),
-                ]
-                .into_iter()
-                .enumerate()
-                .map(|(i, resource)| wgpu::BindGroupEntry {
-                    binding: i as u32,
-                    resource,
-                })
-                .collect::<Vec<_>>(),
-            });
-            Bound {
-                scene_group,
-                frame_group: fb.bind_group(ctx, frame_layout),
-                counters,
-                groups: (width.div_ceil(8), height.div_ceil(8)),
-            }
-        })
-    }
-
-    fn dispatch(&self, enc: &mut wgpu::CommandEncoder, p: &wgpu::ComputePipeline) {
-        let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: None,
-            timestamp_writes: None,
-        });
-        pass.set_pipeline(p);
-        pass.set_bind_group(0, &self.scene_group, &[]);
-        pass.set_bind_group(1, &self.frame_group, &[]);
-        pass.dispatch_workgroups(self.groups.0, self.groups.1, 1);
-    }
-
-    /// (primary, geometry, shadow, secondary, shaded); an error when a
-    /// traversal was cut short (the image would be wrong).
-    fn counts(&self, ctx: &GpuContext) -> Result<[u64; 5], RenderError> {
-        let bytes = ctx.read_buffer(&self.counters, 0, 48)?;
-        let v: &[u32] = bytemuck::cast_slice(&bytes);
-        if v[10] > 0 {
-            return Err(err(format!(
-                "{} BVH traversals stopped before finishing (the driver limits the \
-                 loop iterations of one shader invocation; llvmpipe allows 65 535): \
-                 the frame would be wrong. Use fewer mirror bounces or a smaller mesh",
-                v[10]
-            )));
-        }
-        Ok(std::array::from_fn(|k| {
-            v[2 * k] as u64 | ((v[2 * k + 1] as u64) << 32)
-        }))
-    }
+    Ok(std::array::from_fn(|k| {
+        v[2 * k] as u64 | ((v[2 * k + 1] as u64) << 32)
+    }))
 }
 
 fn read_vec4(ctx: &GpuContext, buf: &wgpu::Buffer, n: usize) -> Result<Vec<Vec3>, RenderError> {
-    let bytes = ctx.read_buffer(buf, 0, (n * 16) as u64)?;
-    let v: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
+    let v: Vec<[f32; 4]> = compute::read(ctx, buf, n)?;
     Ok(v.iter().map(|c| Vec3::new(c[0], c[1], c[2])).collect())
 }
 
-pub(crate) fn read_geometry(
-    ctx: &GpuContext,
-    buf: &wgpu::Buffer,
-    n: usize,
-) -> Result<Vec<Geometry>, RenderError> {
-    let bytes = ctx.read_buffer(buf, 0, (n * 16) as u64)?;
-    Ok(bytemuck::cast_slice(&bytes).to_vec())
-}
-
-/// The shader of a frame: PARAMS, the SRAA kernels, trace.wgsl, the generated
-/// header and the entry-point files.
-fn shader(header: &str, entries: &[&str]) -> String {
-    let mut s = String::new();
-    s += subcone_kernels::wgsl::PARAMS;
-    s += subcone_kernels::sraa::WGSL;
-    s += ALBEDO_WGSL;
-    s += &TRACE_WGSL
-        .replace("__STACK_SIZE__", &STACK_SIZE.to_string())
-        .replace("__MAX_LIGHTS__", &MAX_LIGHTS.to_string());
-    s += header;
-    for e in entries {
-        s += e;
-    }
-    s
-}
-
-pub(crate) fn render(
-    ctx: &GpuContext,
-    scene: &Scene,
-    camera: &Camera,
-    method: &Method,
-    settings: &RenderSettings,
-    passes: Passes,
-) -> Result<Frame, RenderError> {
+pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> {
     // `WgpuBackend::plan` has refused more than MAX_LIGHTS lights.
-    match method.technique {
+    match job.method.technique {
         Technique::NoAa
         | Technique::Ssaa
         | Technique::Sraa
@@ -513,14 +217,29 @@ pub(crate) fn render(
         | Technique::Fxaa => {}
         t => return Err(RenderError::Method(format!("{t:?} needs an SDF scene"))),
     }
-    let sg = bvh::scene_gpu(ctx, scene)?;
-    let uniform = FrameUniform::new(scene, &sg, camera, method, settings);
-    match method.technique {
-        Technique::NoAa | Technique::Ssaa | Technique::Fxaa => {
-            supersample(ctx, &sg, &uniform, settings, passes)
-        }
-        _ => subpixel(ctx, scene, &sg, &uniform, method, settings, passes),
+    let sg = bvh::scene_gpu(ctx, job.scene)?;
+    let uniform = FrameUniform::new(job.scene, &sg, job.camera, job.method, job.settings);
+    let setup = Setup {
+        ctx,
+        job,
+        scene: scene_bindings(ctx, &sg, &uniform)?,
+        sg,
+        uniform,
+    };
+    match job.method.technique {
+        Technique::NoAa | Technique::Ssaa | Technique::Fxaa => supersample(&setup),
+        _ => subpixel(&setup),
     }
+}
+
+/// What every pass of a triangle frame shares: the job, the scene on the
+/// device, the frame's constants and the bind group of both (group 0).
+struct Setup<'a> {
+    ctx: &'a GpuContext,
+    job: &'a Job<'a>,
+    sg: Arc<SceneGpu>,
+    uniform: FrameUniform,
+    scene: Bindings,
 }
 
 fn to_rays(c: [u64; 5]) -> RayCounts {
@@ -533,73 +252,82 @@ fn to_rays(c: [u64; 5]) -> RayCounts {
 }
 
 /// AOVs: centre-ray depth and normal, through `centre_main` (not timed).
-fn centre_geometry(
-    ctx: &GpuContext,
-    sg: &SceneGpu,
-    uniform: &FrameUniform,
-    s: &RenderSettings,
-) -> Result<(Vec<f32>, Vec<Vec3>), RenderError> {
+fn centre_geometry(f: &Setup) -> Result<(Vec<f32>, Vec<Vec3>), RenderError> {
+    let (ctx, s) = (f.ctx, f.job.settings);
     let n = s.width as usize * s.height as usize;
-    let mut fb = FrameBuffers::default();
-    fb.storage(ctx, "aov geometry", "aov", "array<Geometry>", n as u64 * 16)?;
-    // `color` belongs to supersample_main, which this program does not run.
-    let header = fb.declarations()
-        + "fn put_aov(j: u32, g: Geometry) { aov[j] = g; }\n"
-        + "var<private> color: array<vec4<f32>, 1>;\n"
-        + "var<private> sample_row: array<u32, 1>;\n";
-    let layout = fb.layout(ctx);
-    let source = shader(&header, &[SUPERSAMPLE_WGSL]);
-    let mut prog = Program::new(ctx, source, &layout);
+    // Its own ray counters: the frame's are read already, and AOVs are not
+    // counted (nor are they on the CPU).
+    let scene = scene_bindings(ctx, &f.sg, &f.uniform)?;
+    let mut fb = Bindings::new(1);
+    fb.storage(
+        ctx,
+        "aov geometry",
+        "aov",
+        "array<subcone_Geometry>",
+        n as u64 * 16,
+    )?;
+    // `color` and `sample_row` belong to supersample_main, which this
+    // program does not run.
+    let header = "fn put_aov(j: u32, g: subcone_Geometry) { aov[j] = g; }\n\
+                  var<private> color: array<vec4<f32>, 1>;\n\
+                  var<private> sample_row: array<u32, 1>;\n";
+    let mut prog = program(ctx, &scene, &fb, header, &[SUPERSAMPLE_WGSL])?;
     let p = prog.pipeline("centre_main")?;
-    let bound = Bound::new(ctx, sg, uniform, &fb, &layout, s.width, s.height)?;
-    let mut t = Vec::new();
-    ctx.timed_pass("aov", &mut t, |enc| bound.dispatch(enc, &p))?;
-    let g = read_geometry(ctx, fb.buffer("aov").expect("allocated above"), n)?;
+    let groups = workgroups(ctx, s)?;
+    ctx.timed_pass("aov", &mut Vec::new(), |enc| prog.dispatch(enc, &p, groups))?;
+    let g: Vec<Geometry> = compute::read(ctx, fb.get("aov")?, n)?;
     Ok((
         g.iter().map(|g| g.depth).collect(),
         g.iter().map(|g| g.normal).collect(),
     ))
 }
 
-/// NoAA and SSAA (render.rs `supersample`): one pass "shading"; FXAA adds
-/// the pass "post-process" (`post::fxaa`).
-fn supersample(
-    ctx: &GpuContext,
-    sg: &SceneGpu,
-    uniform: &FrameUniform,
-    s: &RenderSettings,
-    passes: Passes,
-) -> Result<Frame, RenderError> {
-    let n = s.width as usize * s.height as usize;
-    let mut fb = FrameBuffers::default();
-    fb.storage(ctx, "color", "color", "array<vec4<f32>>", n as u64 * 16)?;
-    fb.storage(ctx, "sample row", "sample_row", "array<u32>", 4)?;
-    let header = fb.declarations() + "fn put_aov(j: u32, g: Geometry) { }\n";
-    let layout = fb.layout(ctx);
-    let mut prog = Program::new(ctx, shader(&header, &[SUPERSAMPLE_WGSL]), &layout);
-    let p = prog.pipeline("supersample_main")?;
-    let bound = Bound::new(ctx, sg, uniform, &fb, &layout, s.width, s.height)?;
-    // The grid rows 0..n, copied into `sample_row` before each row's dispatch.
-    let side = uniform.ssaa_side.max(1);
-    let rows: Vec<u32> = (0..side).collect();
-    let rows = ctx.scoped("sample rows", || {
-        use wgpu::util::DeviceExt;
+/// The 8×8 workgroups of a frame.
+fn workgroups(ctx: &GpuContext, s: &RenderSettings) -> Result<(u32, u32), RenderError> {
+    compute::workgroups(ctx, "triangles", s.width, s.height, 8)
+}
+
+/// The indices `0..count` in a buffer, copied one at a time into a one-word
+/// storage buffer by [`each_index`].
+fn indices(ctx: &GpuContext, label: &'static str, count: u32) -> Result<wgpu::Buffer, RenderError> {
+    use wgpu::util::DeviceExt;
+    let v: Vec<u32> = (0..count).collect();
+    ctx.scoped(label, || {
         ctx.device
             .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("sample rows"),
-                contents: bytemuck::cast_slice(&rows),
+                label: Some(label),
+                contents: bytemuck::cast_slice(&v),
                 usage: wgpu::BufferUsages::COPY_SRC,
             })
-    })?;
-    let row = fb.buffer("sample_row").expect("allocated above");
-    let mut timings = Vec::new();
-    ctx.timed_pass("shading", &mut timings, |enc| {
-        for sy in 0..side as u64 {
-            enc.copy_buffer_to_buffer(&rows, 4 * sy, row, 0, 4);
-            bound.dispatch(enc, &p);
-        }
-    })?;
-    let color = fb.buffer("color").expect("allocated above");
+    })
+}
+
+/// For each index of `indices` (from [`indices`]), copy it into `slot` and
+/// record `dispatch`: one dispatch per SSAA grid row or per subsample.
+fn each_index(
+    enc: &mut wgpu::CommandEncoder,
+    indices: &wgpu::Buffer,
+    slot: &wgpu::Buffer,
+    mut dispatch: impl FnMut(&mut wgpu::CommandEncoder),
+) {
+    for i in 0..indices.size() / 4 {
+        enc.copy_buffer_to_buffer(indices, 4 * i, slot, 0, 4);
+        dispatch(enc);
+    }
+}
+
+/// The end of every frame: FXAA when planned, the colour read back, the ray
+/// counters checked and the stats filled (`extra` lists buffers allocated
+/// besides the two groups).
+fn finish(
+    f: &Setup,
+    fb: &Bindings,
+    mut timings: Vec<subcone_scene::PassTiming>,
+    extra: &[(&'static str, usize)],
+) -> Result<Frame, RenderError> {
+    let (ctx, s, passes, scene) = (f.ctx, f.job.settings, f.job.passes, &f.scene);
+    let n = s.width as usize * s.height as usize;
+    let color = fb.get("color")?;
     let mut buffers = fb.stats.clone();
     let mut frame = Frame::new(s.width, s.height);
     if passes.contains(Passes::POST_PROCESS) {
@@ -617,9 +345,9 @@ fn supersample(
     } else {
         frame.color = read_vec4(ctx, color, n)?;
     }
-    let c = bound.counts(ctx)?;
-    buffers.push(("sample rows", side as usize * 4));
-    buffers.push(("ray counters", 48));
+    let c = counts(ctx, scene)?;
+    buffers.extend_from_slice(extra);
+    buffers.extend_from_slice(&scene.stats);
     frame.stats = FrameStats {
         passes,
         timings,
@@ -628,27 +356,46 @@ fn supersample(
         shaded_samples: c[4],
         ..Default::default()
     };
+    Ok(frame)
+}
+
+/// NoAA and SSAA (render.rs `supersample`): one pass "shading"; FXAA adds
+/// the pass "post-process" (`post::fxaa`).
+fn supersample(f: &Setup) -> Result<Frame, RenderError> {
+    let (ctx, s, scene) = (f.ctx, f.job.settings, &f.scene);
+    let n = s.width as usize * s.height as usize;
+    let mut fb = Bindings::new(1);
+    fb.storage(ctx, "color", "color", "array<vec4<f32>>", n as u64 * 16)?;
+    fb.storage(ctx, "sample row", "sample_row", "array<u32>", 4)?;
+    let header = "fn put_aov(j: u32, g: subcone_Geometry) { }\n";
+    let mut prog = program(ctx, scene, &fb, header, &[SUPERSAMPLE_WGSL])?;
+    let p = prog.pipeline("supersample_main")?;
+    let groups = workgroups(ctx, s)?;
+    // The grid rows 0..side, one dispatch each.
+    let side = f.uniform.ssaa_side.max(1);
+    let rows = indices(ctx, "sample rows", side)?;
+    let row = fb.get("sample_row")?;
+    let mut timings = Vec::new();
+    ctx.timed_pass("shading", &mut timings, |enc| {
+        each_index(enc, &rows, row, |enc| prog.dispatch(enc, &p, groups))
+    })?;
+    let mut frame = finish(f, &fb, timings, &[("sample rows", side as usize * 4)])?;
     if s.aovs {
-        let side = uniform.ssaa_side as f32;
+        let side = f.uniform.ssaa_side as f32;
         frame.samples_per_pixel = Some(vec![side * side; n]);
-        let (d, nn) = centre_geometry(ctx, sg, uniform, s)?;
+        let (d, nn) = centre_geometry(f)?;
         frame.depth = Some(d);
         frame.normal = Some(nn);
     }
     Ok(frame)
 }
 
-/// SRAA (hybrid: raster subpixel geometry) and SRAA-RT (render.rs `subpixel`):
-/// passes "shading", "geometry" and "antialiasing".
-fn subpixel(
-    ctx: &GpuContext,
-    scene: &Scene,
-    sg: &SceneGpu,
-    uniform: &FrameUniform,
-    method: &Method,
-    s: &RenderSettings,
-    passes: Passes,
-) -> Result<Frame, RenderError> {
+/// The frame buffers of SRAA and SRAA-RT for `passes` (group 1), the WGSL
+/// header that declares which exist, and the raster pass that fills the
+/// subsamples for SRAA (hybrid, §3.1).
+fn subpixel_bindings(f: &Setup) -> Result<(Bindings, String, Option<raster::Raster>), RenderError> {
+    let (ctx, sg, uniform) = (f.ctx, &f.sg, &f.uniform);
+    let (scene, method, s, passes) = (f.job.scene, f.job.method, f.job.settings, f.job.passes);
     let n = s.width as usize * s.height as usize;
     let rt = method.technique == Technique::SraaRt;
     let lights = scene.lights.len().min(MAX_LIGHTS);
@@ -661,9 +408,9 @@ fn subpixel(
     let nl = layout.len();
     let n64 = n as u64;
 
-    let mut fb = FrameBuffers::default();
+    let mut fb = Bindings::new(1);
     fb.storage(ctx, "color", "color", "array<vec4<f32>>", n64 * 16)?;
-    fb.storage(ctx, "geometry", "geo", "array<Geometry>", n64 * 16)?;
+    fb.storage(ctx, "geometry", "geo", "array<subcone_Geometry>", n64 * 16)?;
     fb.storage(
         ctx,
         "shading layers",
@@ -679,7 +426,7 @@ fn subpixel(
             ctx,
             "secondary geometry",
             "geo2_buf",
-            "array<Geometry>",
+            "array<subcone_Geometry>",
             n64 * 16,
         )?;
         if layout.lights > 0 {
@@ -697,7 +444,7 @@ fn subpixel(
             ctx,
             "subpixel geometry",
             "sub_geo_buf",
-            "array<Geometry>",
+            "array<subcone_Geometry>",
             n64 * 64,
         )?;
         fb.storage(ctx, "subsample index", "subsample", "array<u32>", 4)?;
@@ -739,7 +486,7 @@ fn subpixel(
             ctx,
             "subpixel secondary geometry",
             "sub_geo2_buf",
-            "array<Geometry>",
+            "array<subcone_Geometry>",
             n64 * 64,
         )?;
         if layout.lights > 0 {
@@ -753,8 +500,8 @@ fn subpixel(
         }
     }
 
-    let no_secondary = "Geometry(vec3<f32>(0.0), bitcast<f32>(0x7fc00000u))";
-    let mut header = fb.declarations();
+    let no_secondary = "subcone_Geometry(vec3<f32>(0.0), bitcast<f32>(0x7fc00000u))";
+    let mut header = String::new();
     header += &format!(
         "const NL: u32 = {nl}u;\nconst LAYER_LIGHTS: u32 = {}u;\nconst SINGLE: bool = {};\n\
          const SECONDARY_LAYERS: bool = {};\nconst SHADOWS: bool = {shadows};\n\
@@ -762,10 +509,17 @@ fn subpixel(
         layout.lights, layout.single, layout.secondary
     );
     header += &accessors(&fb, "shadow", "shadow_buf", "u32", 1, "0u");
-    header += &accessors(&fb, "geo2", "geo2_buf", "Geometry", 1, no_secondary);
+    header += &accessors(&fb, "geo2", "geo2_buf", "subcone_Geometry", 1, no_secondary);
     header += &accessors(&fb, "shadow2", "shadow2_buf", "u32", 1, "0u");
     header += &accessors(&fb, "sub_shadow", "sub_shadow_buf", "u32", 4, "0u");
-    header += &accessors(&fb, "sub_geo2", "sub_geo2_buf", "Geometry", 4, no_secondary);
+    header += &accessors(
+        &fb,
+        "sub_geo2",
+        "sub_geo2_buf",
+        "subcone_Geometry",
+        4,
+        no_secondary,
+    );
     header += &accessors(&fb, "sub_shadow2", "sub_shadow2_buf", "u32", 4, "0u");
     header += &accessors(
         &fb,
@@ -792,75 +546,52 @@ fn subpixel(
             &fb,
             "sub_geo",
             "sub_geo_buf",
-            "Geometry",
+            "subcone_Geometry",
             4,
-            "Geometry(vec3<f32>(0.0), subcone_inf())",
+            "subcone_Geometry(vec3<f32>(0.0), subcone_inf())",
         );
     } else {
         header += raster::SUB_GEO_ACCESSORS;
         header += "var<private> subsample: array<u32, 1>;\n";
     }
-    let frame_layout = fb.layout(ctx);
-    let source = shader(&header, &[SUBPIXEL_WGSL, SRAA_WGSL]);
-    let mut prog = Program::new(ctx, source, &frame_layout);
+    Ok((fb, header, raster))
+}
+
+/// SRAA (hybrid: raster subpixel geometry) and SRAA-RT (render.rs `subpixel`):
+/// passes "shading", "geometry" and "antialiasing".
+fn subpixel(f: &Setup) -> Result<Frame, RenderError> {
+    let (ctx, s) = (f.ctx, f.job.settings);
+    let n = s.width as usize * s.height as usize;
+    let (fb, header, raster) = subpixel_bindings(f)?;
+    let mut prog = program(ctx, &f.scene, &fb, &header, &[SUBPIXEL_WGSL, SRAA_WGSL])?;
     let shade = prog.pipeline("shade_main")?;
-    let geometry = if rt {
-        Some(prog.pipeline("geometry_main")?)
-    } else {
-        None
+    let geometry = match raster {
+        None => Some(prog.pipeline("geometry_main")?),
+        Some(_) => None,
     };
     let resolve = prog.pipeline("resolve_main")?;
-    let bound = Bound::new(ctx, sg, uniform, &fb, &frame_layout, s.width, s.height)?;
-
-    let indices = subsample_indices(ctx)?;
+    let groups = workgroups(ctx, s)?;
+    let subsamples = indices(ctx, "subsample indices", 4)?;
     let mut timings = Vec::new();
-    ctx.timed_pass("shading", &mut timings, |enc| bound.dispatch(enc, &shade))?;
+    ctx.timed_pass("shading", &mut timings, |enc| {
+        prog.dispatch(enc, &shade, groups)
+    })?;
     match (&geometry, &raster) {
-        (Some(p), _) => ctx.timed_pass("geometry", &mut timings, |enc| {
-            let k = fb.buffer("subsample").expect("allocated above");
-            for i in 0..4 {
-                enc.copy_buffer_to_buffer(&indices, 4 * i, k, 0, 4);
-                bound.dispatch(enc, p);
-            }
-        })?,
+        (Some(p), _) => {
+            let k = fb.get("subsample")?;
+            ctx.timed_pass("geometry", &mut timings, |enc| {
+                each_index(enc, &subsamples, k, |enc| prog.dispatch(enc, p, groups))
+            })?
+        }
         (None, Some(r)) => ctx.timed_pass("geometry", &mut timings, |enc| r.record(enc))?,
         (None, None) => unreachable!("one of the two is set above"),
     }
     ctx.timed_pass("antialiasing", &mut timings, |enc| {
-        bound.dispatch(enc, &resolve)
+        prog.dispatch(enc, &resolve, groups)
     })?;
-
-    let color = fb.buffer("color").expect("allocated above");
-    let mut buffers = fb.stats.clone();
-    let mut frame = Frame::new(s.width, s.height);
-    if passes.contains(Passes::POST_PROCESS) {
-        // FXAA on the GPU, then one read-back of the filtered frame.
-        let (filtered, post_buffers) = crate::post::fxaa::run(
-            ctx,
-            color,
-            s.width,
-            s.height,
-            &subcone_kernels::fxaa::FxaaParams::QUALITY,
-            &mut timings,
-        )?;
-        buffers.extend(post_buffers);
-        frame.color = read_vec4(ctx, &filtered, n)?;
-    } else {
-        frame.color = read_vec4(ctx, color, n)?;
-    }
-    let c = bound.counts(ctx)?;
-    buffers.push(("subsample indices", 16));
-    buffers.push(("ray counters", 48));
-    frame.stats = FrameStats {
-        passes,
-        timings,
-        buffers,
-        rays: to_rays(c),
-        shaded_samples: c[4],
-        ..Default::default()
-    };
+    let mut frame = finish(f, &fb, timings, &[("subsample indices", 16)])?;
     if s.aovs {
-        let (d, nn) = centre_geometry(ctx, sg, uniform, s)?;
+        let (d, nn) = centre_geometry(f)?;
         frame.depth = Some(d);
         frame.normal = Some(nn);
         frame.samples_per_pixel = Some(vec![1.0; n]);
@@ -872,22 +603,9 @@ fn subpixel(
 #[cfg(test)]
 pub(crate) type SubGeometry = Vec<[Geometry; 4]>;
 
-/// The subsample indices 0..4, copied one at a time into `subsample` before
-/// each of the geometry pass's dispatches.
-fn subsample_indices(ctx: &GpuContext) -> Result<wgpu::Buffer, RenderError> {
-    use wgpu::util::DeviceExt;
-    ctx.scoped("subsample indices", || {
-        ctx.device
-            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("subsample indices"),
-                contents: bytemuck::cast_slice(&[0u32, 1, 2, 3]),
-                usage: wgpu::BufferUsages::COPY_SRC,
-            })
-    })
-}
-
 /// For tests: the four subpixel geometries of every pixel, from the raster
-/// pass and from ray tracing (`geometry_main`), `[pixel][subsample]`.
+/// pass and from ray tracing (SRAA-RT's `geometry_main`),
+/// `[pixel][subsample]`.
 #[cfg(test)]
 pub(crate) fn subpixel_geometry_both(
     ctx: &GpuContext,
@@ -903,71 +621,37 @@ pub(crate) fn subpixel_geometry_both(
         .map_err(|e| RenderError::Method(e.to_string()))?;
     let sg = bvh::scene_gpu(ctx, scene)?;
     let uniform = FrameUniform::new(scene, &sg, &scene.camera, &method, &s);
-    // Ray traced: run SRAA-RT's shading and geometry passes.
     let n = width as usize * height as usize;
-    let mut fb = FrameBuffers::default();
-    fb.storage(ctx, "geometry", "geo", "array<Geometry>", n as u64 * 16)?;
-    fb.storage(
+    // Ray traced: SRAA-RT's shading and geometry passes.
+    let job = Job {
+        scene,
+        camera: &scene.camera,
+        method: &method,
+        settings: &s,
+        passes,
+    };
+    let f = Setup {
         ctx,
-        "shading layers",
-        "values",
-        "array<vec4<f32>>",
-        n as u64 * 16,
-    )?;
-    fb.storage(ctx, "color", "color", "array<vec4<f32>>", n as u64 * 16)?;
-    fb.storage(
-        ctx,
-        "subpixel geometry",
-        "sub_geo_buf",
-        "array<Geometry>",
-        n as u64 * 64,
-    )?;
-    fb.storage(ctx, "subsample index", "subsample", "array<u32>", 4)?;
-    let mut header = fb.declarations();
-    header += "const NL: u32 = 1u;\nconst LAYER_LIGHTS: u32 = 0u;\nconst SINGLE: bool = true;\n\
-               const SECONDARY_LAYERS: bool = false;\nconst SHADOWS: bool = false;\n\
-               const SECONDARY_SHADING: bool = false;\nconst MATERIAL: bool = false;\n";
-    let no_secondary = "Geometry(vec3<f32>(0.0), bitcast<f32>(0x7fc00000u))";
-    header += &accessors(&fb, "shadow", "shadow_buf", "u32", 1, "0u");
-    header += &accessors(&fb, "geo2", "geo2_buf", "Geometry", 1, no_secondary);
-    header += &accessors(&fb, "shadow2", "shadow2_buf", "u32", 1, "0u");
-    header += &accessors(&fb, "sub_shadow", "sub_shadow_buf", "u32", 4, "0u");
-    header += &accessors(&fb, "sub_geo2", "sub_geo2_buf", "Geometry", 4, no_secondary);
-    header += &accessors(&fb, "sub_shadow2", "sub_shadow2_buf", "u32", 4, "0u");
-    header += &accessors(&fb, "sub_geo", "sub_geo_buf", "Geometry", 4, "Geometry()");
-    header += &accessors(
-        &fb,
-        "albedo",
-        "albedo_buf",
-        "vec4<f32>",
-        1,
-        "vec4<f32>(0.0)",
-    );
-    header += &accessors(
-        &fb,
-        "sub_albedo",
-        "sub_albedo_buf",
-        "vec4<f32>",
-        4,
-        "vec4<f32>(0.0)",
-    );
-    let layout = fb.layout(ctx);
-    let mut prog = Program::new(ctx, shader(&header, &[SUBPIXEL_WGSL, SRAA_WGSL]), &layout);
+        job: &job,
+        scene: scene_bindings(ctx, &sg, &uniform)?,
+        sg: sg.clone(),
+        uniform,
+    };
+    let (fb, header, _) = subpixel_bindings(&f)?;
+    let mut prog = program(ctx, &f.scene, &fb, &header, &[SUBPIXEL_WGSL, SRAA_WGSL])?;
     let shade = prog.pipeline("shade_main")?;
     let geometry = prog.pipeline("geometry_main")?;
-    let bound = Bound::new(ctx, &sg, &uniform, &fb, &layout, width, height)?;
+    let groups = workgroups(ctx, &s)?;
+    let subsamples = indices(ctx, "subsample indices", 4)?;
+    let k = fb.get("subsample")?;
     let mut t = Vec::new();
-    ctx.timed_pass("shading", &mut t, |enc| bound.dispatch(enc, &shade))?;
-    let indices = subsample_indices(ctx)?;
+    ctx.timed_pass("shading", &mut t, |enc| prog.dispatch(enc, &shade, groups))?;
     ctx.timed_pass("geometry", &mut t, |enc| {
-        let k = fb.buffer("subsample").expect("allocated");
-        for i in 0..4 {
-            enc.copy_buffer_to_buffer(&indices, 4 * i, k, 0, 4);
-            bound.dispatch(enc, &geometry);
-        }
+        each_index(enc, &subsamples, k, |enc| {
+            prog.dispatch(enc, &geometry, groups)
+        })
     })?;
-    let traced = read_geometry(ctx, fb.buffer("sub_geo_buf").expect("allocated"), 4 * n)?;
-    let _ = passes;
+    let traced: Vec<Geometry> = compute::read(ctx, fb.get("sub_geo_buf")?, 4 * n)?;
     // Rasterised.
     let r = raster::Raster::new(ctx, &sg, &uniform, width, height, false)?;
     ctx.timed_pass("geometry", &mut t, |enc| r.record(enc))?;

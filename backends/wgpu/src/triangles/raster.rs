@@ -6,17 +6,16 @@
 //! `Depth32Float` buffer. With the material gate (`+mat`), a second colour
 //! attachment of the same passes receives each subsample's albedo.
 
-use bytemuck::{Pod, Zeroable};
 #[cfg(test)]
 use subcone_kernels::sraa::Geometry;
 use subcone_scene::RenderError;
-use wgpu::util::DeviceExt;
 
 use super::bvh::SceneGpu;
 use super::FrameUniform;
+use crate::compute::{self, Access, Bindings};
 use crate::context::{err, GpuContext};
 
-pub(super) const RASTER_WGSL: &str = include_str!("raster.wgsl");
+const RASTER_WGSL: &str = include_str!("raster.wgsl");
 
 const TARGET: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -25,14 +24,14 @@ const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// `sub_tex`): depth < 0 is a pixel nothing covered, a miss.
 pub(crate) const SUB_GEO_ACCESSORS: &str = "
 const HAS_SUB_GEO: bool = true;
-fn get_sub_geo(j: u32, k: u32) -> Geometry {
+fn get_sub_geo(j: u32, k: u32) -> subcone_Geometry {
     let t = textureLoad(sub_tex, vec2<i32>(i32(j % frame.width), i32(j / frame.width)), i32(k), 0);
     if t.w < 0.0 {
-        return Geometry(vec3<f32>(0.0), subcone_inf());
+        return subcone_Geometry(vec3<f32>(0.0), subcone_inf());
     }
-    return Geometry(t.xyz, t.w);
+    return subcone_Geometry(t.xyz, t.w);
 }
-fn put_sub_geo(j: u32, k: u32, g: Geometry) { }
+fn put_sub_geo(j: u32, k: u32, g: subcone_Geometry) { }
 ";
 
 /// `get_sub_albedo`/`put_sub_albedo` over the rasterised albedo layers (bound
@@ -45,42 +44,46 @@ fn get_sub_albedo(j: u32, k: u32) -> vec4<f32> {
 fn put_sub_albedo(j: u32, k: u32, v: vec4<f32>) { }
 ";
 
-/// `RasterUniform` in raster.wgsl (80 bytes).
-#[repr(C)]
-#[derive(Clone, Copy, Pod, Zeroable)]
-pub(super) struct RasterUniform {
-    pub(super) cam_pos: [f32; 3],
-    pub(super) half: f32,
-    pub(super) forward: [f32; 3],
-    pub(super) aspect: f32,
-    pub(super) right: [f32; 3],
-    pub(super) near: f32,
-    pub(super) up: [f32; 3],
-    pub(super) width_f: f32,
-    pub(super) height_f: f32,
-    pub(super) _pad: [f32; 3],
+/// The bind group of the raster pass: its constants and the scene's
+/// triangles, attributes, materials and texels, read by both stages.
+fn bindings(ctx: &GpuContext, sg: &SceneGpu, u: &FrameUniform) -> Result<Bindings, RenderError> {
+    let mut b = Bindings::visible_in(0, wgpu::ShaderStages::VERTEX_FRAGMENT);
+    b.uniform(ctx, "frame", "FrameUniform", u)?;
+    b.buffer("tris", "array<vec4<f32>>", Access::Read, &sg.tris);
+    b.buffer("attrs", "array<vec4<f32>>", Access::Read, &sg.attrs);
+    b.buffer(
+        "materials",
+        "array<MaterialGpu>",
+        Access::Read,
+        &sg.materials,
+    );
+    b.buffer("texels", "array<vec4<f32>>", Access::Read, &sg.texels);
+    Ok(b)
 }
 
-/// The G-buffer pipeline, compiled once per device (in the device's own
-/// cache: device ids repeat across wgpu instances); with `albedo`, the
-/// variant with the albedo attachment.
-fn pipeline(ctx: &GpuContext, albedo: bool) -> Result<wgpu::RenderPipeline, RenderError> {
-    // "RasterGb", "RasterAl".
-    let key: u64 = if albedo {
-        0x5261_7374_6572_416c
-    } else {
-        0x5261_7374_6572_4762
-    };
+/// The G-buffer pipeline for the bind group `b` of [`bindings`], compiled
+/// once per device (in the device's own cache: device ids repeat across
+/// wgpu instances) and source; with `albedo`, the variant with the albedo
+/// attachment.
+fn pipeline(
+    ctx: &GpuContext,
+    b: &Bindings,
+    layout: &wgpu::BindGroupLayout,
+    albedo: bool,
+) -> Result<wgpu::RenderPipeline, RenderError> {
+    let source = [
+        compute::PRELUDE,
+        subcone_kernels::sraa::WGSL,
+        super::FRAME_WGSL,
+        super::ALBEDO_WGSL,
+        RASTER_WGSL,
+        &b.declarations(),
+    ]
+    .concat();
+    let key = compute::pipeline_key("raster pipeline", (&source, albedo));
     if let Some(p) = ctx.cached::<wgpu::RenderPipeline>(key) {
         return Ok((*p).clone());
     }
-    let source = [
-        subcone_kernels::wgsl::PARAMS,
-        subcone_kernels::sraa::WGSL,
-        super::ALBEDO_WGSL,
-        RASTER_WGSL,
-    ]
-    .concat();
     let target = Some(wgpu::ColorTargetState {
         format: TARGET,
         blend: None,
@@ -99,32 +102,11 @@ fn pipeline(ctx: &GpuContext, albedo: bool) -> Result<wgpu::RenderPipeline, Rend
                 label: Some("raster"),
                 source: wgpu::ShaderSource::Wgsl(source.into()),
             });
-        let layout = ctx
-            .device
-            .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("raster"),
-                entries: &[
-                    wgpu::BindGroupLayoutEntry {
-                        binding: 0,
-                        visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-                        ty: wgpu::BindingType::Buffer {
-                            ty: wgpu::BufferBindingType::Uniform,
-                            has_dynamic_offset: false,
-                            min_binding_size: None,
-                        },
-                        count: None,
-                    },
-                    storage_entry(1, wgpu::ShaderStages::VERTEX),
-                    storage_entry(2, wgpu::ShaderStages::VERTEX),
-                    storage_entry(3, wgpu::ShaderStages::FRAGMENT),
-                    storage_entry(4, wgpu::ShaderStages::FRAGMENT),
-                ],
-            });
         let pl = ctx
             .device
             .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: Some("raster"),
-                bind_group_layouts: &[Some(&layout)],
+                bind_group_layouts: &[Some(layout)],
                 immediate_size: 0,
             });
         ctx.device
@@ -164,19 +146,6 @@ fn pipeline(ctx: &GpuContext, albedo: bool) -> Result<wgpu::RenderPipeline, Rend
     Ok(p)
 }
 
-fn storage_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: true },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
-
 /// The raster targets of one frame and what draws into them.
 pub(crate) struct Raster {
     pipeline: wgpu::RenderPipeline,
@@ -207,54 +176,11 @@ impl Raster {
             .triangle_count
             .checked_mul(3)
             .ok_or_else(|| err("too many triangles to rasterise in one draw"))?;
-        let pipeline = pipeline(ctx, albedo)?;
-        let ru = RasterUniform {
-            cam_pos: u.cam_pos,
-            half: u.half,
-            forward: u.forward,
-            aspect: u.aspect,
-            right: u.right,
-            // Far below any ray offset; reversed Z keeps the precision.
-            near: sg.scale * 1e-7,
-            up: u.up,
-            width_f: u.width_f,
-            height_f: u.height_f,
-            _pad: [0.0; 3],
-        };
+        let b = bindings(ctx, sg, u)?;
+        let layout = b.layout(ctx);
+        let pipeline = pipeline(ctx, &b, &layout, albedo)?;
         ctx.scoped("raster targets", || {
-            let uniform = ctx
-                .device
-                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("raster constants"),
-                    contents: bytemuck::bytes_of(&ru),
-                    usage: wgpu::BufferUsages::UNIFORM,
-                });
-            let group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("raster"),
-                layout: &pipeline.get_bind_group_layout(0),
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: uniform.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: sg.tris.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: sg.attrs.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 3,
-                        resource: sg.materials.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 4,
-                        resource: sg.texels.as_entire_binding(),
-                    },
-                ],
-            });
+            let group = b.bind_group(ctx, &layout);
             let size = wgpu::Extent3d {
                 width,
                 height,

@@ -1,7 +1,7 @@
 // Hybrid SRAA's pass 1 (§3.1): the four geometric subsamples rasterised, one
 // layer of an Rgba32Float array per subsample: shading normal (facing the
 // eye) in .xyz and view depth in .w (-1 where nothing was drawn). Follows
-// subcone_kernels::wgsl::PARAMS and sraa::WGSL (for subpixel_offset).
+// subcone_kernels::wgsl::PARAMS and sraa::WGSL (for subcone_subpixel_offset).
 //
 // The projection is Camera::ray inverted: a point at view-space (x, y, z)
 // (right, up, forward) lies on the ray through image point p with
@@ -11,32 +11,14 @@
 // image point (i + 0.5, j + 0.5) + offset: the ray-traced subsample's point.
 // Depth is reversed (near / z, compare greater) for precision.
 //
-// `+mat` (the material gate, sraa::material_gated_weight) draws with
+// `+mat` (the material gate, sraa::subcone_material_gated_weight) draws with
 // `fs_albedo` instead of `fs_main`: a second colour attachment, one more
 // Rgba32Float array, receives the diffuse albedo at the same point (albedo.wgsl
 // at the interpolated world position and uv): the G-buffer's albedo channel,
 // the same draw and the same rasterised fragments. Follows albedo.wgsl.
 
-struct RasterUniform {
-    cam_pos: vec3<f32>,
-    half: f32,
-    forward: vec3<f32>,
-    aspect: f32,
-    right: vec3<f32>,
-    near: f32,
-    up: vec3<f32>,
-    width_f: f32,
-    height_f: f32,
-    _pad0: f32,
-    _pad1: f32,
-    _pad2: f32,
-}
 
-@group(0) @binding(0) var<uniform> cam: RasterUniform;
-@group(0) @binding(1) var<storage, read> tris: array<vec4<f32>>;
-@group(0) @binding(2) var<storage, read> attrs: array<vec4<f32>>;
-@group(0) @binding(3) var<storage, read> materials: array<MaterialGpu>;
-@group(0) @binding(4) var<storage, read> texels: array<vec4<f32>>;
+// Bindings (raster.rs): frame (FrameUniform, frame.wgsl), tris, attrs, materials, texels.
 
 struct VsOut {
     @builtin(position) clip: vec4<f32>,
@@ -55,16 +37,16 @@ fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) k: u32) -> V
     let v1 = tris[3u * tri + 1u].xyz;
     let v2 = tris[3u * tri + 2u].xyz;
     let p = tris[3u * tri + corner].xyz;
-    let rel = p - cam.cam_pos;
-    let z = dot(rel, cam.forward);
-    let x = dot(rel, cam.right);
-    let y = dot(rel, cam.up);
-    let o = subpixel_offset(k);
+    let rel = p - frame.cam_pos;
+    let z = dot(rel, frame.forward);
+    let x = dot(rel, frame.right);
+    let y = dot(rel, frame.up);
+    let o = subcone_subpixel_offset(k);
     var out: VsOut;
     out.clip = vec4<f32>(
-        x / (cam.half * cam.aspect) - (2.0 * o.x / cam.width_f) * z,
-        y / cam.half + (2.0 * o.y / cam.height_f) * z,
-        cam.near,
+        x / (frame.half * frame.aspect) - (2.0 * o.x / frame.width_f) * z,
+        y / frame.half + (2.0 * o.y / frame.height_f) * z,
+        frame.near,
         z,
     );
     out.world = p;
@@ -85,7 +67,7 @@ fn raster_normalize_or_zero(v: vec3<f32>) -> vec3<f32> {
     let l2 = dot(v, v);
     if l2 > 0.0 && subcone_is_finite(l2) {
         let n = v * (1.0 / sqrt(l2));
-        if sraa_is_finite3(n) {
+        if subcone_sraa_is_finite3(n) {
             return n;
         }
     }
@@ -95,7 +77,7 @@ fn raster_normalize_or_zero(v: vec3<f32>) -> vec3<f32> {
 // Tracer::intersect's normals and Camera::view_depth at the interpolated
 // (perspective-correct, i.e. barycentric) surface point.
 fn raster_geometry(in: VsOut) -> vec4<f32> {
-    let d = in.world - cam.cam_pos;
+    let d = in.world - frame.cam_pos;
     var ng = raster_normalize_or_zero(in.face);
     if dot(ng, d) > 0.0 {
         ng = -ng;
@@ -106,7 +88,7 @@ fn raster_geometry(in: VsOut) -> vec4<f32> {
     } else if dot(n, d) > 0.0 {
         n = -n;
     }
-    return vec4<f32>(n, dot(d, cam.forward));
+    return vec4<f32>(n, dot(d, frame.forward));
 }
 
 @fragment

@@ -4,13 +4,13 @@
 // SHADOWS, SECONDARY_SHADING, and accessors get_/put_ for the optional
 // buffers: absent buffers read as the CPU's initial values and ignore writes).
 
-fn geometry_miss() -> Geometry {
-    return Geometry(vec3<f32>(0.0), subcone_inf());
+fn geometry_miss() -> subcone_Geometry {
+    return subcone_Geometry(vec3<f32>(0.0), subcone_inf());
 }
 
 // render.rs NO_SECONDARY: NaN depth, which the bilateral weight excludes.
-fn no_secondary() -> Geometry {
-    return Geometry(vec3<f32>(0.0), bitcast<f32>(0x7fc00000u));
+fn no_secondary() -> subcone_Geometry {
+    return subcone_Geometry(vec3<f32>(0.0), bitcast<f32>(0x7fc00000u));
 }
 
 fn put_value(j: u32, l: u32, v: vec3<f32>) {
@@ -26,7 +26,7 @@ fn pixel_centre(x: u32, y: u32) -> vec2<f32> {
 }
 
 // Pass "shading" (render.rs `subpixel`, first pass): one shaded sample per pixel
-// at subsample SHADED_SUBSAMPLE. SRAA keeps one layer (the final colour);
+// at subsample subcone_SHADED_SUBSAMPLE. SRAA keeps one layer (the final colour);
 // SRAA-RT keeps the shadow-independent part, one layer per light (gated by its
 // shadow state, eq. 2) and, on mirrors, the same split of the reflected
 // radiance with the secondary hit's geometry and shadow states (§3.3). Every
@@ -36,7 +36,7 @@ fn shade_pixel(x: u32, y: u32, j: u32, c: ptr<function, Counts>) {
         put_value(j, l, vec3<f32>(0.0));
     }
     put_geo2(j, no_secondary());
-    let p = pixel_centre(x, y) + subpixel_offset(SHADED_SUBSAMPLE);
+    let p = pixel_centre(x, y) + subcone_subpixel_offset(subcone_SHADED_SUBSAMPLE);
     let d = camera_ray(p);
     (*c).primary += 1u;
     let sf = intersect(frame.cam_pos, d, 0.0);
@@ -109,7 +109,7 @@ fn shade_pixel(x: u32, y: u32, j: u32, c: ptr<function, Counts>) {
         deeper = radiance(s2.p + s2.ng * frame.eps, reflect_dir(rd, s2.n), 2u, c);
     }
     if SECONDARY_LAYERS {
-        put_geo2(j, Geometry(s2.n, sf.t + s2.t));
+        put_geo2(j, subcone_Geometry(s2.n, sf.t + s2.t));
         if LAYER_LIGHTS > 0u {
             put_shadow2(j, sh2);
             put_value(j, sb, m * ((1.0 - m2) * p2.base + m2 * deeper));
@@ -135,36 +135,8 @@ fn shade_main(@builtin(global_invocation_id) id: vec3<u32>) {
     counts_flush(c);
 }
 
-// shade::Tracer::shadow_states_masked: trace.wgsl `shadow_states`, casting a
-// shadow ray only for the lights in `cast_mask`; the others keep the free answers
-// (no incident light: lit; facing away: shadowed) and otherwise take their bit
-// from `inherited`.
-fn shadow_states_masked(s: Surface, cast_mask: u32, inherited: u32, c: ptr<function, Counts>) -> u32 {
-    var bits = 0u;
-    let origin = s.p + s.ng * frame.eps;
-    for (var l = 0u; l < min(frame.lights, MAX_LIGHTS); l++) {
-        let inc = incident(lights[l], s.p);
-        if !inc.ok {
-            continue;
-        }
-        if dot(inc.direction, s.ng) <= 0.0 {
-            bits |= 1u << l;
-            continue;
-        }
-        if (cast_mask & (1u << l)) == 0u {
-            bits |= inherited & (1u << l);
-            continue;
-        }
-        (*c).shadow += 1u;
-        if occluded(origin, inc.direction, 0.0, inc.distance - frame.eps) {
-            bits |= 1u << l;
-        }
-    }
-    return bits;
-}
-
 // render.rs `shadow_agreement` (adaptive subpixel shadow rays): from the shaded
-// samples of the neighbourhood the pixel's subsamples are reconstructed from,
+// samples of the subcone_neighbourhood the pixel's subsamples are reconstructed from,
 // the lights whose subpixel shadow rays must be cast (x) and the states the
 // others inherit (y). A light is skipped when every neighbour's layer of it is
 // black (the layer reconstructs to 0 whatever the gate: exact) or every
@@ -177,7 +149,7 @@ fn shadow_agreement(x: u32, y: u32, secondary: bool, first: u32) -> vec2<u32> {
     var all_shadowed = 0xffffffffu;
     var any_shadowed = 0u;
     var dark = all_lights;
-    let nb = neighbourhood(x, y, SHADED_SUBSAMPLE, sraa_radius(frame.sraa), frame.width, frame.height);
+    let nb = subcone_neighbourhood(x, y, subcone_SHADED_SUBSAMPLE, subcone_sraa_radius(frame.sraa), frame.width, frame.height);
     for (var py = nb.y0; py < nb.y1; py++) {
         for (var px = nb.x0; px < nb.x1; px++) {
             let jj = py * frame.width + px;
@@ -203,11 +175,11 @@ fn shadow_agreement(x: u32, y: u32, secondary: bool, first: u32) -> vec2<u32> {
 // iterations of one invocation: llvmpipe stops a shader invocation's loops
 // after 65 535 iterations in total). The three subsamples other than the shaded
 // one are traced for geometry only, with their shadow states (subpixel shadow
-// rays, cast only where `shadow_agreement` finds the neighbourhood disagreeing)
+// rays, cast only where `shadow_agreement` finds the subcone_neighbourhood disagreeing)
 // and, on mirrors, the geometry and shadow states of their reflection rays. The
 // shaded subsample's are copied, not traced again.
 fn geometry_pixel(x: u32, y: u32, j: u32, k: u32, c: ptr<function, Counts>) {
-    if k == SHADED_SUBSAMPLE {
+    if k == subcone_SHADED_SUBSAMPLE {
         put_sub_geo(j, k, geo[j]);
         put_sub_shadow(j, k, get_shadow(j));
         put_sub_geo2(j, k, get_geo2(j));
@@ -218,7 +190,7 @@ fn geometry_pixel(x: u32, y: u32, j: u32, k: u32, c: ptr<function, Counts>) {
     put_sub_shadow(j, k, 0u);
     put_sub_geo2(j, k, no_secondary());
     put_sub_shadow2(j, k, 0u);
-    let p = pixel_centre(x, y) + subpixel_offset(k);
+    let p = pixel_centre(x, y) + subcone_subpixel_offset(k);
     let d = camera_ray(p);
     (*c).geometry += 1u;
     let sf = intersect(frame.cam_pos, d, 0.0);
@@ -252,7 +224,7 @@ fn geometry_pixel(x: u32, y: u32, j: u32, k: u32, c: ptr<function, Counts>) {
                     }
                     put_sub_shadow2(j, k, shadow_states_masked(s2, a.x, a.y, c));
                 }
-                put_sub_geo2(j, k, Geometry(s2.n, sf.t + s2.t));
+                put_sub_geo2(j, k, subcone_Geometry(s2.n, sf.t + s2.t));
             }
         }
     }

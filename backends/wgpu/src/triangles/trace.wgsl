@@ -1,34 +1,6 @@
 // BVH traversal and Whitted shading: the GPU twin of subcone-cpu's bvh.rs and
-// shade.rs. Concatenated after subcone_kernels::wgsl::PARAMS and sraa::WGSL;
-// the entry points (supersample.wgsl, subpixel.wgsl) follow.
-
-// The frame's constants (triangles/mod.rs, `FrameUniform`).
-struct FrameUniform {
-    cam_pos: vec3<f32>,
-    // tan(fov_y / 2), computed as Camera::ray does.
-    half: f32,
-    forward: vec3<f32>,
-    // width / height as f32 (Camera::ray's `w / h`).
-    aspect: f32,
-    right: vec3<f32>,
-    // Offset of secondary ray origins (Tracer::eps = scale · 2e-5).
-    eps: f32,
-    up: vec3<f32>,
-    width_f: f32,
-    ambient: vec3<f32>,
-    height_f: f32,
-    background: vec3<f32>,
-    ssaa_side: u32,
-    width: u32,
-    height: u32,
-    lights: u32,
-    reflection_depth: u32,
-    node_count: u32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
-    sraa: SraaParams,
-}
+// shade.rs. Concatenated after subcone_kernels::wgsl::PARAMS, sraa::WGSL,
+// frame.wgsl and albedo.wgsl; the entry points (supersample.wgsl, subpixel.wgsl) follow.
 
 struct BvhNode {
     min: vec3<f32>,
@@ -44,16 +16,8 @@ struct LightGpu {
     _pad: u32,
 }
 
-@group(0) @binding(0) var<uniform> frame: FrameUniform;
-@group(0) @binding(1) var<storage, read> nodes: array<BvhNode>;
-@group(0) @binding(2) var<storage, read> tris: array<vec4<f32>>;
-@group(0) @binding(3) var<storage, read> attrs: array<vec4<f32>>;
-@group(0) @binding(4) var<storage, read> materials: array<MaterialGpu>;
-@group(0) @binding(5) var<storage, read> texels: array<vec4<f32>>;
-@group(0) @binding(6) var<storage, read> lights: array<LightGpu>;
-// Ray counters, 64-bit as (lo, hi) pairs: primary, geometry, shadow, secondary,
-// shaded; then [10] traversals that ended before their stack emptied.
-@group(0) @binding(7) var<storage, read_write> counters: array<atomic<u32>, 12>;
+// Group 0 (triangles/mod.rs scene_bindings): frame, nodes, tris, attrs,
+// materials, texels, lights and the ray counters.
 
 const STACK_SIZE: u32 = __STACK_SIZE__u;
 const MAX_LIGHTS: u32 = __MAX_LIGHTS__u;
@@ -298,7 +262,7 @@ fn normalize_or_zero(v: vec3<f32>) -> vec3<f32> {
     if l2 > 0.0 && subcone_is_finite(l2) {
         let r = 1.0 / sqrt(l2);
         let n = v * r;
-        if sraa_is_finite3(n) {
+        if subcone_sraa_is_finite3(n) {
             return n;
         }
     }
@@ -353,11 +317,11 @@ fn intersect(o: vec3<f32>, d: vec3<f32>, tmin: f32) -> Surface {
 }
 
 // Tracer::primary_geometry.
-fn primary_geometry(s: Surface) -> Geometry {
+fn primary_geometry(s: Surface) -> subcone_Geometry {
     if !s.hit {
-        return Geometry(vec3<f32>(0.0), subcone_inf());
+        return subcone_Geometry(vec3<f32>(0.0), subcone_inf());
     }
-    return Geometry(s.n, view_depth(s.p));
+    return subcone_Geometry(s.n, view_depth(s.p));
 }
 
 // Tracer::primary_albedo: the diffuse albedo at a primary hit (texture or
@@ -401,9 +365,11 @@ fn incident(l: LightGpu, p: vec3<f32>) -> Incident {
     return r;
 }
 
-// Tracer::shadow_states: bit l set = in light l's shadow; one shadow ray per
-// light that faces the surface.
-fn shadow_states(s: Surface, c: ptr<function, Counts>) -> u32 {
+// shade::Tracer::shadow_states_masked: bit l set = in light l's shadow,
+// casting a shadow ray only for the lights in `cast_mask`; the others keep the free answers
+// (no incident light: lit; facing away: shadowed) and otherwise take their bit
+// from `inherited`.
+fn shadow_states_masked(s: Surface, cast_mask: u32, inherited: u32, c: ptr<function, Counts>) -> u32 {
     var bits = 0u;
     let origin = s.p + s.ng * frame.eps;
     for (var l = 0u; l < min(frame.lights, MAX_LIGHTS); l++) {
@@ -415,12 +381,21 @@ fn shadow_states(s: Surface, c: ptr<function, Counts>) -> u32 {
             bits |= 1u << l;
             continue;
         }
+        if (cast_mask & (1u << l)) == 0u {
+            bits |= inherited & (1u << l);
+            continue;
+        }
         (*c).shadow += 1u;
         if occluded(origin, inc.direction, 0.0, inc.distance - frame.eps) {
             bits |= 1u << l;
         }
     }
     return bits;
+}
+
+// Tracer::shadow_states: a shadow ray for every light that faces the surface.
+fn shadow_states(s: Surface, c: ptr<function, Counts>) -> u32 {
+    return shadow_states_masked(s, 0xffffffffu, 0u, c);
 }
 
 // shade::Parts.

@@ -1,4 +1,5 @@
-//! The backend's own `#[repr(C)]` GPU structs against their WGSL twins,
+//! Every one of the backend's own `#[repr(C)]` GPU structs against its WGSL
+//! twin (triangles, SDF scenes, FXAA),
 //! through naga's layouter (WGSL's layout rules), as `kernels/tests/
 //! wgsl_layout.rs` checks the kernels' structs: every WGSL member, in order,
 //! at the offset and with the size of the Rust field it mirrors, and the same
@@ -7,9 +8,10 @@
 
 use core::mem::{offset_of, size_of};
 
-use super::bvh::{GpuLight, GpuMaterial, GpuNode};
-use super::raster::{RasterUniform, RASTER_WGSL};
-use super::{FrameUniform, ALBEDO_WGSL, TRACE_WGSL};
+use crate::post::fxaa::{FxaaFrame, FXAA_WGSL};
+use crate::sdf::{SdfFrame, TRACE_WGSL as SDF_WGSL};
+use crate::triangles::bvh::{GpuLight, GpuMaterial, GpuNode};
+use crate::triangles::{FrameUniform, ALBEDO_WGSL, FRAME_WGSL, TRACE_WGSL};
 
 /// The text of `struct <name> { … }` in `source`.
 fn struct_text<'a>(source: &'a str, name: &str) -> &'a str {
@@ -101,12 +103,12 @@ fn compare(source: &str, wgsl_name: &str, size: usize, members: &[Member]) -> Re
 fn backend_gpu_structs_match_their_wgsl() {
     let checks: Vec<(&str, &str, usize, Vec<Member>)> = vec![
         (
-            TRACE_WGSL,
+            FRAME_WGSL,
             "FrameUniform",
             size_of::<FrameUniform>(),
             members!(FrameUniform: cam_pos, half, forward, aspect, right, eps, up, width_f,
                 ambient, height_f, background, ssaa_side, width, height, lights,
-                reflection_depth, node_count, _pad[3 as u32], sraa),
+                reflection_depth, node_count, near, _pad[2 as u32], sraa),
         ),
         (
             TRACE_WGSL,
@@ -127,11 +129,17 @@ fn backend_gpu_structs_match_their_wgsl() {
             members!(GpuMaterial: a, kind, b, size, emission, mirror, extra),
         ),
         (
-            RASTER_WGSL,
-            "RasterUniform",
-            size_of::<RasterUniform>(),
-            members!(RasterUniform: cam_pos, half, forward, aspect, right, near, up, width_f,
-                height_f, _pad[3 as f32]),
+            SDF_WGSL,
+            "SdfFrame",
+            size_of::<SdfFrame>(),
+            members!(SdfFrame: position, width, forward, height, right, half, up,
+                max_distance, background, max_steps, ambient, side, cone, _pad[3 as u32]),
+        ),
+        (
+            FXAA_WGSL,
+            "FxaaFrame",
+            size_of::<FxaaFrame>(),
+            members!(FxaaFrame: width, height, _pad[2 as u32]),
         ),
     ];
     let errors: Vec<String> = checks
