@@ -9,7 +9,7 @@
 const subcone_WEIGHTING_VISIBILITY: u32 = 0u;
 const subcone_WEIGHTING_UNIFORM: u32 = 1u;
 
-// subcone_kernels::aggregate::subcone_sample_weight — w_i = bitCount(visible)/32 (eq. 6).
+// subcone_kernels::aggregate::sample_weight — w_i = bitCount(visible)/32 (eq. 6).
 fn subcone_sample_weight(visible: u32, weighting: u32, min_weight: f32) -> f32 {
     if weighting == subcone_WEIGHTING_UNIFORM {
         return 1.0;
@@ -21,7 +21,7 @@ fn subcone_sample_weight(visible: u32, weighting: u32, min_weight: f32) -> f32 {
     return max(subcone_mask_weight(visible), floor_w);
 }
 
-// subcone_kernels::aggregate::subcone_Aggregate
+// subcone_kernels::aggregate::Aggregate
 struct subcone_Aggregate {
     sum: vec3<f32>,
     weight: f32,
@@ -30,7 +30,7 @@ struct subcone_Aggregate {
     samples: u32,
 }
 
-// subcone_kernels::aggregate::subcone_Aggregate::new
+// subcone_kernels::aggregate::Aggregate::new
 fn subcone_aggregate_new() -> subcone_Aggregate {
     return subcone_Aggregate(vec3<f32>(0.0), 0.0, vec3<f32>(0.0), 0u, 0u);
 }
@@ -39,7 +39,7 @@ fn subcone_finite3(c: vec3<f32>) -> bool {
     return subcone_is_finite(c.x) && subcone_is_finite(c.y) && subcone_is_finite(c.z);
 }
 
-// subcone_kernels::aggregate::subcone_Aggregate::add
+// subcone_kernels::aggregate::Aggregate::add
 fn subcone_aggregate_add(agg: ptr<function, subcone_Aggregate>, w: f32, color: vec3<f32>) {
     (*agg).samples += 1u;
     if !subcone_finite3(color) {
@@ -55,7 +55,7 @@ fn subcone_aggregate_add(agg: ptr<function, subcone_Aggregate>, w: f32, color: v
     (*agg).has_last = 1u;
 }
 
-// subcone_kernels::aggregate::subcone_Aggregate::resolve — Σ w_i C_i / Σ w_i with the
+// subcone_kernels::aggregate::Aggregate::resolve — Σ w_i C_i / Σ w_i with the
 // background as a sample of weight bg_weight.
 fn subcone_aggregate_resolve(agg: subcone_Aggregate, background: vec3<f32>, bg_weight: f32) -> vec3<f32> {
     var bgw = 0.0;

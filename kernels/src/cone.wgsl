@@ -2,7 +2,7 @@
 // Functions only; needs nothing but core WGSL. NaN tests use the bits, so no
 // compiler may fold them away.
 
-// subcone_kernels::cone::subcone_OCCLUSION_MIN / subcone_OCCLUSION_MAX
+// subcone_kernels::cone::OCCLUSION_MIN / subcone_OCCLUSION_MAX
 const subcone_OCCLUSION_MIN: f32 = -1.0;
 const subcone_OCCLUSION_MAX: f32 = 2.0;
 
@@ -19,7 +19,7 @@ fn subcone_next_up(x: f32) -> f32 {
     return bitcast<f32>(b - 1u);
 }
 
-// subcone_kernels::cone::subcone_cone_radius — eq. 4: R_c = t·tan θ (0 for t ≤ 0).
+// subcone_kernels::cone::cone_radius — eq. 4: R_c = t·tan θ (0 for t ≤ 0).
 fn subcone_cone_radius(t: f32, tan_theta: f32) -> f32 {
     if t > 0.0 && tan_theta > 0.0 {
         return t * tan_theta;
@@ -27,7 +27,7 @@ fn subcone_cone_radius(t: f32, tan_theta: f32) -> f32 {
     return 0.0;
 }
 
-// subcone_kernels::cone::subcone_cone_occlusion — eq. 5: ω = (1 − d/R_c)/2, saturated
+// subcone_kernels::cone::cone_occlusion — eq. 5: ω = (1 − d/R_c)/2, saturated
 // to [−1, 2]; NaN d gives −1; a thin cone or infinite d gives the sign's limit.
 fn subcone_cone_occlusion(d: f32, rc: f32) -> f32 {
     if subcone_is_nan(d) {
@@ -57,7 +57,7 @@ fn subcone_occlusion_thresholds(eps: f32) -> vec3<f32> {
     return vec3<f32>(0.0 - eps, 0.5 - eps, 1.0 - eps);
 }
 
-// subcone_kernels::cone::subcone_min_step — §3.1: s_min = α·R_c (≥ 0).
+// subcone_kernels::cone::min_step — §3.1: s_min = α·R_c (≥ 0).
 fn subcone_min_step(alpha: f32, rc: f32) -> f32 {
     let s = alpha * rc;
     if s > 0.0 {
@@ -66,7 +66,7 @@ fn subcone_min_step(alpha: f32, rc: f32) -> f32 {
     return 0.0;
 }
 
-// subcone_kernels::cone::subcone_advance — t + max(d, s_min), at least one ulp.
+// subcone_kernels::cone::advance — t + max(d, s_min), at least one ulp.
 fn subcone_advance(t: f32, d: f32, alpha: f32, rc: f32) -> f32 {
     let ms = subcone_min_step(alpha, rc);
     // f32::max ignores a NaN d.
@@ -83,7 +83,7 @@ fn subcone_advance(t: f32, d: f32, alpha: f32, rc: f32) -> f32 {
     return subcone_inf();
 }
 
-// subcone_kernels::cone::subcone_backtrace_cone_entry — eq. 9–10: t* = t_i / (1 + tan θ).
+// subcone_kernels::cone::backtrace_cone_entry — eq. 9–10: t* = t_i / (1 + tan θ).
 fn subcone_backtrace_cone_entry(t_i: f32, tan_theta: f32) -> f32 {
     if !(t_i > 0.0) {
         if subcone_is_nan(t_i) {
@@ -98,7 +98,7 @@ fn subcone_backtrace_cone_entry(t_i: f32, tan_theta: f32) -> f32 {
     return min(ts, t_i);
 }
 
-// subcone_kernels::cone::subcone_backtrace_hard_hit — §3.6: t_{i−1} + d_{i−1}, within [t_{i−1}, t_i].
+// subcone_kernels::cone::backtrace_hard_hit — §3.6: t_{i−1} + d_{i−1}, within [t_{i−1}, t_i].
 fn subcone_backtrace_hard_hit(t_prev: f32, d_prev: f32, t_i: f32) -> f32 {
     let ts = t_prev + d_prev;
     if subcone_is_nan(ts) {

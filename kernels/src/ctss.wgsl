@@ -7,7 +7,7 @@
 //     fn ctss_field(p: vec3<f32>) -> vec2<f32>   // (surface distance, safe step)
 // which the including shader defines. Every loop is bounded by max_steps.
 
-// subcone_kernels::ctss::subcone_FLAG_RELAXED
+// subcone_kernels::ctss::FLAG_RELAXED
 const subcone_FLAG_RELAXED: u32 = 1u;
 
 // subcone_kernels::ctss::StopReason codes (0 = still running).
@@ -25,13 +25,13 @@ const subcone_EVENT_MARCH: u32 = 0u;
 const subcone_EVENT_SAMPLE: u32 = 1u;
 const subcone_EVENT_STOP: u32 = 2u;
 
-// subcone_kernels::ctss::StopReason::subcone_covers_pixel
+// subcone_kernels::ctss::StopReason::covers_pixel
 fn subcone_covers_pixel(reason: u32) -> bool {
     return reason == subcone_STOP_FULL_OCCLUSION || reason == subcone_STOP_HARD_HIT
         || reason == subcone_STOP_VISIBILITY_THRESHOLD;
 }
 
-// subcone_kernels::ctss::subcone_GroupSample
+// subcone_kernels::ctss::GroupSample
 struct subcone_GroupSample {
     t: f32,
     t_entry: f32,
@@ -49,7 +49,7 @@ struct subcone_CtssEvent {
     reason: u32,
 }
 
-// subcone_kernels::ctss::subcone_ConeStepper (the group is open when group_open != 0).
+// subcone_kernels::ctss::ConeStepper (the group is open when group_open != 0).
 struct subcone_ConeStepper {
     params: subcone_CtssParams,
     thresholds: vec3<f32>,
@@ -76,13 +76,13 @@ fn subcone_ctss_is_relaxed(p: subcone_CtssParams) -> bool {
     return (p.flags & subcone_FLAG_RELAXED) != 0u;
 }
 
-// subcone_kernels::ctss::subcone_CtssParams::placement (unknown codes → Derived)
+// subcone_kernels::ctss::CtssParams::placement (unknown codes → Derived)
 fn subcone_ctss_placement(p: subcone_CtssParams) -> u32 {
     let v = (p.flags >> 8u) & 0xffu;
     return select(subcone_MASK_DERIVED, v, v <= 2u);
 }
 
-// subcone_kernels::ctss::subcone_CtssParams::weighting (unknown codes → Visibility)
+// subcone_kernels::ctss::CtssParams::weighting (unknown codes → Visibility)
 fn subcone_ctss_weighting(p: subcone_CtssParams) -> u32 {
     let v = (p.flags >> 16u) & 0xffu;
     return select(subcone_WEIGHTING_VISIBILITY, v, v <= 1u);
@@ -92,7 +92,7 @@ fn subcone_ctss_event(kind: u32, reason: u32) -> subcone_CtssEvent {
     return subcone_CtssEvent(kind, subcone_GroupSample(0.0, 0.0, 0.0, 0.0, 0.0, 0u), reason);
 }
 
-// subcone_kernels::ctss::subcone_ConeStepper::new — start at t_min.
+// subcone_kernels::ctss::ConeStepper::new — start at t_min.
 fn subcone_cone_stepper_new(params: subcone_CtssParams) -> subcone_ConeStepper {
     var t0 = 0.0;
     if params.t_min > 0.0 {
@@ -102,7 +102,7 @@ fn subcone_cone_stepper_new(params: subcone_CtssParams) -> subcone_ConeStepper {
         0u, 0.0, 0.0, 0.0, 0.0, 0u, 0u, 0u, 0u, subcone_STOP_NONE);
 }
 
-// subcone_kernels::ctss::subcone_ConeStepper::end (private): sample a group still open.
+// subcone_kernels::ctss::ConeStepper::end (private): sample a group still open.
 fn subcone_cone_stepper_end(s: ptr<function, subcone_ConeStepper>, reason: u32, t_exit: f32) -> subcone_CtssEvent {
     (*s).stop = reason;
     if (*s).group_open != 0u {
@@ -114,7 +114,7 @@ fn subcone_cone_stepper_end(s: ptr<function, subcone_ConeStepper>, reason: u32, 
     return subcone_ctss_event(subcone_EVENT_STOP, reason);
 }
 
-// subcone_kernels::ctss::subcone_ConeStepper::advance_split — Algorithm 1, lines 7–26:
+// subcone_kernels::ctss::ConeStepper::advance_split — Algorithm 1, lines 7–26:
 // d (surface distance) decides occlusion and hit groups, step (≤ d) the march.
 fn subcone_cone_stepper_advance_split(s: ptr<function, subcone_ConeStepper>, d: f32, step: f32) -> subcone_CtssEvent {
     if (*s).stop != subcone_STOP_NONE {
@@ -199,7 +199,7 @@ fn subcone_cone_stepper_advance_split(s: ptr<function, subcone_ConeStepper>, d: 
     return event;
 }
 
-// subcone_kernels::ctss::subcone_ConeStepper::record — the sample's mask (eq. 7–8),
+// subcone_kernels::ctss::ConeStepper::record — the sample's mask (eq. 7–8),
 // correlated with M (m_i & !M, M |= m_i); returns (visible mask, weight bits).
 fn subcone_cone_stepper_record(s: ptr<function, subcone_ConeStepper>, sample: subcone_GroupSample, projected_normal: vec2<f32>) -> vec2<u32> {
     let m = subcone_visibility_mask(sample.occlusion, projected_normal, subcone_ctss_placement((*s).params));
@@ -212,7 +212,7 @@ fn subcone_cone_stepper_record(s: ptr<function, subcone_ConeStepper>, sample: su
     return vec2<u32>(visible, bitcast<u32>(w));
 }
 
-// subcone_kernels::ctss::subcone_ConeStepper::background_weight — 0 when the hits cover
+// subcone_kernels::ctss::ConeStepper::background_weight — 0 when the hits cover
 // the pixel, else 1 − bitCount(M)/32 (1 with uniform weights).
 fn subcone_cone_stepper_background_weight(s: subcone_ConeStepper) -> f32 {
     if s.stop != subcone_STOP_NONE && subcone_covers_pixel(s.stop) {
@@ -224,14 +224,14 @@ fn subcone_cone_stepper_background_weight(s: subcone_ConeStepper) -> f32 {
     return 1.0 - subcone_mask_weight(s.covered);
 }
 
-// subcone_kernels::ctss::subcone_SphereHit: t < 0 means no hit.
+// subcone_kernels::ctss::SphereHit: t < 0 means no hit.
 struct subcone_SphereHit {
     t: f32,
     steps: u32,
     stop: u32,
 }
 
-// subcone_kernels::ctss::subcone_sphere_trace_split — eq. 1–2 with the hit threshold
+// subcone_kernels::ctss::sphere_trace_split — eq. 1–2 with the hit threshold
 // ω > 0.5 − ε of §4; the field is the caller's ctss_field (surface, safe).
 fn subcone_sphere_trace_split(params: subcone_CtssParams, origin: vec3<f32>, dir: vec3<f32>) -> subcone_SphereHit {
     let hard = subcone_occlusion_thresholds(params.eps).y;
@@ -273,7 +273,7 @@ fn subcone_normalize_or_zero(v: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(0.0);
 }
 
-// subcone_kernels::ctss::subcone_cross_section_frame — the cone cross-section's axes
+// subcone_kernels::ctss::cross_section_frame — the cone cross-section's axes
 // (right, up) for a ray dir; (X, Y) for a zero or non-finite dir.
 fn subcone_cross_section_frame(dir: vec3<f32>, up_hint: vec3<f32>) -> mat2x3<f32> {
     let d = subcone_normalize_or_zero(dir);

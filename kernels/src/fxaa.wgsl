@@ -47,12 +47,12 @@ fn subcone_fxaa_srgb_to_linear(x: f32) -> f32 {
     return pow((c + 0.055) / 1.055, 2.4);
 }
 
-// Mirrors fxaa::subcone_quantize8.
+// Mirrors fxaa::quantize8.
 fn subcone_quantize8(x: f32) -> f32 {
     return floor(subcone_fxaa_clean01(x) * 255.0 + 0.5) * (1.0 / 255.0);
 }
 
-// Mirrors fxaa::subcone_fxaa_encode: the RGBA8 texel of the displayed colour and
+// Mirrors fxaa::fxaa_encode: the RGBA8 texel of the displayed colour and
 // its luma, each rounded to 8 bits.
 fn subcone_fxaa_encode(linear: vec3<f32>) -> vec4<f32> {
     let c = vec3<f32>(
@@ -64,7 +64,7 @@ fn subcone_fxaa_encode(linear: vec3<f32>) -> vec4<f32> {
     return vec4<f32>(c, subcone_quantize8(luma));
 }
 
-// Mirrors fxaa::subcone_fxaa_decode.
+// Mirrors fxaa::fxaa_decode.
 fn subcone_fxaa_decode(srgb: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(
         subcone_fxaa_srgb_to_linear(srgb.x),
@@ -92,7 +92,7 @@ fn subcone_fxaa_bilinear(px: f32, py: f32) -> vec4<f32> {
     return top * (1.0 - fy) + bottom * fy;
 }
 
-// Mirrors fxaa::subcone_fxaa_pixel (see its doc comment for the domain).
+// Mirrors fxaa::fxaa_pixel (see its doc comment for the domain).
 fn subcone_fxaa_pixel(x: i32, y: i32, p: subcone_FxaaParams) -> vec3<f32> {
     let pos_m_x = f32(x);
     let pos_m_y = f32(y);

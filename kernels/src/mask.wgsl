@@ -1,9 +1,9 @@
 // WGSL mirror of subcone_kernels::mask (CTSS §3.4–3.5, Fig. 6, eq. 7–8).
 // Needs cone.wgsl (subcone_is_nan, subcone_is_finite).
 
-// subcone_kernels::mask::subcone_GRID_SCALE: √(9π/32), the 32 cells have the disk's area.
+// subcone_kernels::mask::GRID_SCALE: √(9π/32), the 32 cells have the disk's area.
 const subcone_GRID_SCALE: f32 = 0.9399856f;
-// subcone_kernels::mask::subcone_FARTHEST_CENTRE
+// subcone_kernels::mask::FARTHEST_CENTRE
 const subcone_FARTHEST_CENTRE: f32 = subcone_GRID_SCALE * 0.9718253f;
 
 // subcone_kernels::mask::MaskPlacement codes.
@@ -11,7 +11,7 @@ const subcone_MASK_DERIVED: u32 = 0u;
 const subcone_MASK_AUTHORS_CODE: u32 = 1u;
 const subcone_MASK_PAPER_EQ8: u32 = 2u;
 
-// subcone_kernels::mask::subcone_project_normal — n_p = (n·right, n·up) of the unit normal.
+// subcone_kernels::mask::project_normal — n_p = (n·right, n·up) of the unit normal.
 fn subcone_project_normal(normal: vec3<f32>, right: vec3<f32>, up: vec3<f32>) -> vec2<f32> {
     let a = abs(normal);
     let m = max(max(a.x, a.y), a.z);
@@ -27,12 +27,12 @@ fn subcone_project_normal(normal: vec3<f32>, right: vec3<f32>, up: vec3<f32>) ->
     return vec2<f32>(0.0);
 }
 
-// subcone_kernels::mask::subcone_occlusion_to_distance — d/R_c = 1 − 2ω (eq. 5 inverted).
+// subcone_kernels::mask::occlusion_to_distance — d/R_c = 1 − 2ω (eq. 5 inverted).
 fn subcone_occlusion_to_distance(omega: f32) -> f32 {
     return 1.0 - 2.0 * omega;
 }
 
-// subcone_kernels::mask::subcone_half_plane — the covered half-plane q·dir < h;
+// subcone_kernels::mask::half_plane — the covered half-plane q·dir < h;
 // returns (dir, h, 1) or (0, 0, 0, 0) for None.
 fn subcone_half_plane(occlusion: f32, projected_normal: vec2<f32>, placement: u32) -> vec4<f32> {
     let len = length(projected_normal);
@@ -75,7 +75,7 @@ fn subcone_mask_cell_xy(bit: u32) -> vec2<f32> {
     return vec2<f32>(f32(c) - 2.5, f32(r) - 2.5);
 }
 
-// subcone_kernels::mask::subcone_half_plane_mask — rasterise q·dir < h on the 32-cell grid.
+// subcone_kernels::mask::half_plane_mask — rasterise q·dir < h on the 32-cell grid.
 // Cell (r, c) is covered when (c − 2.5)·dx + (r − 2.5)·dy < (3/s)·h (centres
 // (s/3)·(c − 2.5, r − 2.5)); no division. |dx| < 1e-6 counts as 0 (rows all
 // or nothing, §3.5).
@@ -92,7 +92,7 @@ fn subcone_half_plane_mask(dir: vec2<f32>, h: f32) -> u32 {
     return mask;
 }
 
-// subcone_kernels::mask::subcone_visibility_mask — eq. 7–8 (Derived placement by default).
+// subcone_kernels::mask::visibility_mask — eq. 7–8 (Derived placement by default).
 fn subcone_visibility_mask(occlusion: f32, projected_normal: vec2<f32>, placement: u32) -> u32 {
     if subcone_is_nan(occlusion) {
         return 0u;
@@ -107,7 +107,7 @@ fn subcone_visibility_mask(occlusion: f32, projected_normal: vec2<f32>, placemen
     return 0u;
 }
 
-// subcone_kernels::mask::subcone_needs_normal — whether the mask depends on the normal.
+// subcone_kernels::mask::needs_normal — whether the mask depends on the normal.
 fn subcone_needs_normal(occlusion: f32, placement: u32) -> bool {
     if subcone_is_nan(occlusion) {
         return false;
@@ -119,7 +119,7 @@ fn subcone_needs_normal(occlusion: f32, placement: u32) -> bool {
     return abs(delta) < subcone_FARTHEST_CENTRE;
 }
 
-// subcone_kernels::mask::subcone_mask_weight — bitCount(m)/32.
+// subcone_kernels::mask::mask_weight — bitCount(m)/32.
 fn subcone_mask_weight(mask: u32) -> f32 {
     return f32(countOneBits(mask)) * (1.0 / 32.0);
 }

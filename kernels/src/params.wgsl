@@ -7,7 +7,7 @@
 // Arrays in the uniform address space have a 16-byte stride, so padding is
 // spelled as scalars (`_pad0`, `_pad1` are Rust's `_pad: [u32; 2]`).
 
-// subcone_kernels::sraa::subcone_SraaParams (16 bytes).
+// subcone_kernels::sraa::SraaParams (16 bytes).
 struct subcone_SraaParams {
     sigma_z: f32,
     sigma_n: f32,
@@ -16,14 +16,14 @@ struct subcone_SraaParams {
     packed: u32,
 }
 
-// subcone_kernels::sraa::subcone_Geometry (16 bytes). depth = +inf marks a miss; WGSL
+// subcone_kernels::sraa::Geometry (16 bytes). depth = +inf marks a miss; WGSL
 // cannot spell infinity as a literal, so shaders use SUBCONE_MISS_DEPTH.
 struct subcone_Geometry {
     normal: vec3<f32>,
     depth: f32,
 }
 
-// subcone_kernels::ctss::subcone_CtssParams (48 bytes).
+// subcone_kernels::ctss::CtssParams (48 bytes).
 struct subcone_CtssParams {
     tan_theta: f32,
     alpha: f32,
@@ -40,7 +40,7 @@ struct subcone_CtssParams {
     _pad1: u32,
 }
 
-// subcone_kernels::fxaa::subcone_FxaaParams (16 bytes).
+// subcone_kernels::fxaa::FxaaParams (16 bytes).
 struct subcone_FxaaParams {
     subpix: f32,
     edge_threshold: f32,
@@ -48,7 +48,7 @@ struct subcone_FxaaParams {
     _pad: f32,
 }
 
-// subcone_kernels::sraa::subcone_NEGLIGIBLE_WEIGHT (2^-64): weight sums below it are
+// subcone_kernels::sraa::NEGLIGIBLE_WEIGHT (2^-64): weight sums below it are
 // treated as empty by the SRAA reconstruction and the CTSS aggregation alike.
 const subcone_NEGLIGIBLE_WEIGHT: f32 = 5.421011e-20;
 

@@ -20,9 +20,9 @@
 //
 // NaN tests are done on the bits: shader compilers may fold `x != x` away.
 
-// Mirrors sraa::subcone_NORMAL_COS_SNAP (2^-21).
+// Mirrors sraa::NORMAL_COS_SNAP (2^-21).
 const subcone_NORMAL_COS_SNAP: f32 = 4.76837158203125e-7;
-// Mirrors sraa::subcone_SHADED_SUBSAMPLE.
+// Mirrors sraa::SHADED_SUBSAMPLE.
 const subcone_SHADED_SUBSAMPLE: u32 = 0u;
 
 fn subcone_sraa_is_finite3(c: vec3<f32>) -> bool {
@@ -44,7 +44,7 @@ fn subcone_subpixel_offset(k: u32) -> vec2<f32> {
     }
 }
 
-// Mirrors sraa::subcone_SraaParams::form (0 = Product, 1 = ChajdasMax; unknown = Product).
+// Mirrors sraa::SraaParams::form (0 = Product, 1 = ChajdasMax; unknown = Product).
 fn subcone_sraa_form(p: subcone_SraaParams) -> u32 {
     if (p.packed & 0xffu) == 1u {
         return 1u;
@@ -52,7 +52,7 @@ fn subcone_sraa_form(p: subcone_SraaParams) -> u32 {
     return 0u;
 }
 
-// Mirrors sraa::subcone_SraaParams::depth_metric (0 = Relative, 1 = Absolute; unknown = Relative).
+// Mirrors sraa::SraaParams::depth_metric (0 = Relative, 1 = Absolute; unknown = Relative).
 fn subcone_sraa_depth_metric(p: subcone_SraaParams) -> u32 {
     if ((p.packed >> 8u) & 0xffu) == 1u {
         return 1u;
@@ -60,12 +60,12 @@ fn subcone_sraa_depth_metric(p: subcone_SraaParams) -> u32 {
     return 0u;
 }
 
-// Mirrors sraa::subcone_SraaParams::radius.
+// Mirrors sraa::SraaParams::radius.
 fn subcone_sraa_radius(p: subcone_SraaParams) -> u32 {
     return p.packed >> 16u;
 }
 
-// Mirrors sraa::subcone_gaussian: G(x) = exp(-x²) of eq. 1; 0 for ±inf and NaN.
+// Mirrors sraa::gaussian: G(x) = exp(-x²) of eq. 1; 0 for ±inf and NaN.
 fn subcone_gaussian(x: f32) -> f32 {
     let e = exp(-(x * x));
     if subcone_is_nan(e) {
@@ -74,7 +74,7 @@ fn subcone_gaussian(x: f32) -> f32 {
     return e;
 }
 
-// Mirrors sraa::subcone_gaussian_sum: exp(-s); exactly 1 for s = 0, 0 for s ≥ 105
+// Mirrors sraa::gaussian_sum: exp(-s); exactly 1 for s = 0, 0 for s ≥ 105
 // (sraa::EXP_UNDERFLOW, where exp(-s) rounds to 0), s = inf or NaN.
 fn subcone_gaussian_sum(s: f32) -> f32 {
     if s == 0.0 {
@@ -90,7 +90,7 @@ fn subcone_gaussian_sum(s: f32) -> f32 {
     return e;
 }
 
-// Mirrors sraa::subcone_saturate: sat(x) = max(0, min(1, x)), sat(NaN) = 0 (§3.1).
+// Mirrors sraa::saturate: sat(x) = max(0, min(1, x)), sat(NaN) = 0 (§3.1).
 fn subcone_saturate(x: f32) -> f32 {
     if x > 0.0 {
         if x < 1.0 {
@@ -101,7 +101,7 @@ fn subcone_saturate(x: f32) -> f32 {
     return 0.0;
 }
 
-// Mirrors sraa::subcone_depth_difference: Δz of eq. 1 under `metric` (0 = Relative,
+// Mirrors sraa::depth_difference: Δz of eq. 1 under `metric` (0 = Relative,
 // 1 = Absolute), >= 0; +inf for a miss against a hit or any NaN.
 fn subcone_depth_difference(zi: f32, zj: f32, metric: u32) -> f32 {
     if zi == zj && !subcone_is_nan(zi) {
@@ -123,7 +123,7 @@ fn subcone_depth_difference(zi: f32, zj: f32, metric: u32) -> f32 {
     return r;
 }
 
-// Mirrors sraa::subcone_bilateral_weight (eq. 1):
+// Mirrors sraa::bilateral_weight (eq. 1):
 // w_ij = G(σz·Δz) · G(σn·(1 − sat(nj·ni))) for the Product form,
 // exp(−s·max(1 − sat(nj·ni), σz·Δz)) for ChajdasMax. In [0, 1]; NaN gives 0;
 // two misses give 1.
@@ -160,7 +160,7 @@ fn subcone_bilateral_weight(params: subcone_SraaParams, gi: subcone_Geometry, gj
     return subcone_saturate(w);
 }
 
-// Mirrors sraa::subcone_shadow_gated_weight (eq. 2): 0 when the shadow states differ,
+// Mirrors sraa::shadow_gated_weight (eq. 2): 0 when the shadow states differ,
 // eq. 1 when they agree.
 fn subcone_shadow_gated_weight(params: subcone_SraaParams, gi: subcone_Geometry, gj: subcone_Geometry, si: bool, sj: bool) -> f32 {
     if si != sj {
@@ -169,10 +169,10 @@ fn subcone_shadow_gated_weight(params: subcone_SraaParams, gi: subcone_Geometry,
     return subcone_bilateral_weight(params, gi, gj);
 }
 
-// Mirrors sraa::subcone_ALBEDO_TOLERANCE: the material gate's default tolerance.
+// Mirrors sraa::ALBEDO_TOLERANCE: the material gate's default tolerance.
 const subcone_ALBEDO_TOLERANCE: f32 = 0.1;
 
-// Mirrors sraa::subcone_albedo_difference: max over channels of |sqrt(a) - sqrt(b)|,
+// Mirrors sraa::albedo_difference: max over channels of |sqrt(a) - sqrt(b)|,
 // negative components counted as 0; +inf when a component of either albedo is
 // NaN or infinite.
 fn subcone_albedo_difference(a: vec3<f32>, b: vec3<f32>) -> f32 {
@@ -183,7 +183,7 @@ fn subcone_albedo_difference(a: vec3<f32>, b: vec3<f32>) -> f32 {
     return max(d.x, max(d.y, d.z));
 }
 
-// Mirrors sraa::subcone_material_gated_weight (§4.1, Fig. 6; the gate of eq. 2 on
+// Mirrors sraa::material_gated_weight (§4.1, Fig. 6; the gate of eq. 2 on
 // albedo): 0 when the albedos differ by more than `tolerance` (or one is not
 // finite, or the tolerance is NaN), eq. 1 when they match.
 fn subcone_material_gated_weight(params: subcone_SraaParams, gi: subcone_Geometry, gj: subcone_Geometry, ai: vec3<f32>, aj: vec3<f32>, tolerance: f32) -> f32 {
@@ -194,7 +194,7 @@ fn subcone_material_gated_weight(params: subcone_SraaParams, gi: subcone_Geometr
     return 0.0;
 }
 
-// Mirrors sraa::subcone_neighbourhood: the clipped (2r+1)² pixels around (x, y), as
+// Mirrors sraa::neighbourhood: the clipped (2r+1)² pixels around (x, y), as
 // bounds [x0, x1) × [y0, y1), and the target subsample's position minus the
 // shaded sample's within a pixel. Iterate rows y0..y1, columns x0..x1 (row-major,
 // the Rust iterator's order).
@@ -235,7 +235,7 @@ fn subcone_neighbour_distance2(n: subcone_Neighbourhood, x: u32, y: u32, px: u32
     return d.x * d.x + d.y * d.y;
 }
 
-// Mirrors sum::subcone_WeightedSum: Σ w·C and Σ w, compensated (Kahan) in f32 instead
+// Mirrors sum::WeightedSum: Σ w·C and Σ w, compensated (Kahan) in f32 instead
 // of f64 (see the header).
 struct subcone_WeightedSum {
     sum: vec3<f32>,
@@ -335,7 +335,7 @@ fn subcone_reconstruct_layers_end(state: subcone_LayerState) -> vec3<f32> {
     return state.nearest;
 }
 
-// Mirrors sraa::subcone_resolve_pixel: the box filter over the four reconstructed
+// Mirrors sraa::resolve_pixel: the box filter over the four reconstructed
 // subsamples (§3); non-finite subsamples are dropped, none finite gives black.
 fn subcone_resolve_pixel(s0: vec3<f32>, s1: vec3<f32>, s2: vec3<f32>, s3: vec3<f32>) -> vec3<f32> {
     let f0 = subcone_sraa_is_finite3(s0);

@@ -11,7 +11,7 @@
 // image point (i + 0.5, j + 0.5) + offset: the ray-traced subsample's point.
 // Depth is reversed (near / z, compare greater) for precision.
 //
-// `+mat` (the material gate, sraa::subcone_material_gated_weight) draws with
+// `+mat` (the material gate, sraa::material_gated_weight) draws with
 // `fs_albedo` instead of `fs_main`: a second colour attachment, one more
 // Rgba32Float array, receives the diffuse albedo at the same point (albedo.wgsl
 // at the interpolated world position and uv): the G-buffer's albedo channel,

@@ -1,5 +1,5 @@
 // Pass "antialiasing" (the paper's pass 2): render.rs `reconstruct_subsample`
-// for each of the four subsamples, then sraa::subcone_resolve_pixel. Follows
+// for each of the four subsamples, then sraa::resolve_pixel. Follows
 // subpixel.wgsl and the generated frame header.
 
 // render.rs `reconstruct_subsample`'s `run`: sraa::reconstruct_layers over the
