@@ -279,7 +279,15 @@ fn sraa_inputs() -> Vec<ReconstructInput> {
             let sub = rng.below(4);
             let target = scene.shoot(x, y, SUBPIXEL_OFFSETS[sub]);
             // The 3×3 gather a backend does, with the crate's own distances.
-            let mut pixels = neighbourhood(x as u32, y as u32, sub, 1, w as u32, h as u32);
+            let mut pixels = neighbourhood(
+                x as u32,
+                y as u32,
+                sub,
+                SraaParams::PAPER.shaded_offset(),
+                1,
+                w as u32,
+                h as u32,
+            );
             let neighbours = core::array::from_fn(|_| {
                 let q = pixels.next().expect("an interior pixel has 9 neighbours");
                 let s = at(q.x as usize, q.y as usize);
@@ -474,9 +482,17 @@ fn bench_sraa(c: &mut Criterion) {
         let (width, height) = black_box(IMAGE);
         b.iter(|| {
             map_into(&pixels, &mut w, |q| {
-                neighbourhood(q.x, q.y, q.sub, 1, width, height)
-                    .map(|n| n.distance2 + (n.x ^ n.y) as f32)
-                    .sum::<f32>()
+                neighbourhood(
+                    q.x,
+                    q.y,
+                    q.sub,
+                    SraaParams::PAPER.shaded_offset(),
+                    1,
+                    width,
+                    height,
+                )
+                .map(|n| n.distance2 + (n.x ^ n.y) as f32)
+                .sum::<f32>()
             })
         })
     });

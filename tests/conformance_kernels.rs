@@ -38,8 +38,9 @@ use subcone_kernels::mask::{
     needs_normal, project_normal, visibility_mask, MaskPlacement, FARTHEST_CENTRE,
 };
 use subcone_kernels::sraa::{
-    albedo_difference, bilateral_weight, material_gated_weight, resolve_pixel, shadow_gated_weight,
-    DepthMetric, Geometry, SraaParams, WeightForm, ALBEDO_TOLERANCE,
+    albedo_difference, bilateral_weight, material_gated_weight, reconstruction_weight,
+    resolve_pixel, shadow_gated_weight, DepthMetric, Geometry, SraaParams, WeightForm,
+    ALBEDO_TOLERANCE,
 };
 use subcone_wgpu::test_util::{gpu_or_skip, run_wgsl, Kernel, Table};
 use subcone_wgpu::GpuContext;
@@ -412,7 +413,7 @@ impl Library {
     fn shipped() -> Self {
         use subcone_kernels::*;
         Library {
-            sraa: sraa::WGSL.to_string(),
+            sraa: [sraa::WGSL, SRAA_PARAMS_AT].concat(),
             ctss: [cone::WGSL, mask::WGSL, aggregate::WGSL].concat(),
             fxaa: [FXAA_FETCH, fxaa::WGSL].concat(),
         }
@@ -434,8 +435,15 @@ type Check = fn(&GpuContext, &Library) -> Result<String, String>;
 
 fn sraa_params() -> BoxedStrategy<SraaParams> {
     prop_oneof![
-        6 => Just(SraaParams::PAPER),
+        3 => Just(SraaParams::PAPER),
+        3 => Just(SraaParams::TUNED),
         2 => Just(SraaParams::CHAJDAS),
+        2 => (any_f32(0.0, 2.0), 0u32..3).prop_map(|(s, shading)| SraaParams {
+            sigma_s: s,
+            shading,
+            ..SraaParams::TUNED
+        }),
+        1 => any_f32(0.0, 2.0).prop_map(|s| SraaParams::CHAJDAS.with_spatial(s)),
         2 => (any_f32(0.0, 40.0), any_f32(0.0, 2.0), 0u32..2, 0u32..2).prop_map(|(z, n, form, metric)| {
             SraaParams::new(
                 z,
@@ -456,14 +464,27 @@ fn geometry() -> BoxedStrategy<Geometry> {
         .boxed()
 }
 
-fn params_words(p: &SraaParams) -> [u32; 4] {
+/// `SraaParams` as the 8 words `sraa_params_at` reads back in WGSL.
+fn params_words(p: &SraaParams) -> [u32; 8] {
     [
         p.sigma_z.to_bits(),
         p.sigma_n.to_bits(),
         p.scale.to_bits(),
         p.packed,
+        p.sigma_s.to_bits(),
+        p.shading,
+        0,
+        0,
     ]
 }
+
+/// The WGSL of `params_words`: `subcone_SraaParams` from record words
+/// `k..k + 8`.
+const SRAA_PARAMS_AT: &str = "
+fn sraa_params_at(k: u32) -> subcone_SraaParams {
+    return subcone_SraaParams(f(k), f(k + 1u), f(k + 2u), u(k + 3u), f(k + 4u), u(k + 5u), 0u, 0u);
+}
+";
 
 fn geometry_words(g: &Geometry) -> [u32; 4] {
     [
@@ -541,30 +562,42 @@ fn check_weights(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
     .into_iter()
     .chain(weight_grid())
     .collect::<Vec<_>>();
+    // A distance² per case for the spatial term: 0, the subsample offsets'
+    // range, far, and the extremes.
+    let d2s = [0.0f32, 0.156_25, 0.39, 1.2, 4.5, 1e-30, 3e38, f32::INFINITY];
     let mut input = Vec::new();
-    for (p, gi, gj, si, sj) in &cases {
+    for (i, (p, gi, gj, si, sj)) in cases.iter().enumerate() {
         input.extend(params_words(p));
         input.extend(geometry_words(gi));
         input.extend(geometry_words(gj));
-        input.extend([*si as u32, *sj as u32]);
+        input.extend([*si as u32, *sj as u32, d2s[i % d2s.len()].to_bits()]);
     }
     let out = run(
         ctx,
         &lib.sraa,
-        "let p = subcone_SraaParams(f(0u), f(1u), f(2u), u(3u));
-         let gi = subcone_Geometry(v3(4u), f(7u));
-         let gj = subcone_Geometry(v3(8u), f(11u));
+        "let p = sraa_params_at(0u);
+         let gi = subcone_Geometry(v3(8u), f(11u));
+         let gj = subcone_Geometry(v3(12u), f(15u));
          out[o] = bitcast<u32>(subcone_bilateral_weight(p, gi, gj));
-         out[o + 1u] = bitcast<u32>(subcone_shadow_gated_weight(p, gi, gj, u(12u) != 0u, u(13u) != 0u));",
-        14,
-        2,
+         out[o + 1u] = bitcast<u32>(subcone_shadow_gated_weight(p, gi, gj, u(16u) != 0u, u(17u) != 0u));
+         out[o + 2u] = bitcast<u32>(subcone_reconstruction_weight(p, gi, gj, f(18u)));",
+        19,
+        3,
         &input,
     )?;
     let mut bilateral = Report::new("subcone_bilateral_weight");
     let mut gated = Report::new("subcone_shadow_gated_weight");
+    let mut spatial = Report::new("subcone_reconstruction_weight");
     for (i, c) in cases.iter().enumerate() {
         let (p, gi, gj, si, sj) = c;
-        let g = floats(&out[2 * i..2 * i + 2]);
+        let g = floats(&out[3 * i..3 * i + 3]);
+        let d2 = d2s[i % d2s.len()];
+        spatial.floats(
+            TOL_WEIGHT,
+            &(c, d2),
+            &[reconstruction_weight(p, gi, gj, d2)],
+            &g[2..],
+        );
         bilateral.floats(TOL_WEIGHT, c, &[bilateral_weight(p, gi, gj)], &g[..1]);
         let r = shadow_gated_weight(p, gi, gj, *si, *sj);
         if si != sj {
@@ -575,7 +608,7 @@ fn check_weights(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
     }
     let a = bilateral.finish();
     let b = gated.finish();
-    join(a, b)
+    join(join(a, b), spatial.finish())
 }
 
 /// An albedo: mostly in `[0, 1]` (the domain), sometimes anything
@@ -621,12 +654,12 @@ fn check_material(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
     let out = run(
         ctx,
         &lib.sraa,
-        "let p = subcone_SraaParams(f(0u), f(1u), f(2u), u(3u));
-         let gi = subcone_Geometry(v3(4u), f(7u));
-         let gj = subcone_Geometry(v3(8u), f(11u));
-         out[o] = bitcast<u32>(subcone_albedo_difference(v3(12u), v3(15u)));
-         out[o + 1u] = bitcast<u32>(subcone_material_gated_weight(p, gi, gj, v3(12u), v3(15u), f(18u)));",
-        19,
+        "let p = sraa_params_at(0u);
+         let gi = subcone_Geometry(v3(8u), f(11u));
+         let gj = subcone_Geometry(v3(12u), f(15u));
+         out[o] = bitcast<u32>(subcone_albedo_difference(v3(16u), v3(19u)));
+         out[o + 1u] = bitcast<u32>(subcone_material_gated_weight(p, gi, gj, v3(16u), v3(19u), f(22u)));",
+        23,
         2,
         &input,
     )?;
@@ -1386,7 +1419,7 @@ fn wgsl_kernels_match_the_rust_kernels() {
 fn perturbed_kernels_are_caught() {
     let Some(gpu) = gpu() else { return };
     let ctx = gpu.context();
-    let perturbations: [(&str, &str, &str, Check); 6] = [
+    let perturbations: [(&str, &str, &str, Check); 7] = [
         (
             "bilateral weight off by 1e-3",
             "return subcone_saturate(w);",
@@ -1412,9 +1445,15 @@ fn perturbed_kernels_are_caught() {
             check_weights,
         ),
         (
+            "spatial term ignored",
+            "spatial = distance2 / (params.sigma_s * params.sigma_s);",
+            "spatial = 0.0;",
+            check_weights,
+        ),
+        (
             "material gate ignored",
-            "if d <= tolerance && d < subcone_inf() {",
-            "if true {",
+            "return d <= tolerance && d < subcone_inf();",
+            "return true;",
             check_material,
         ),
         (

@@ -8,7 +8,8 @@ use common::{finite_nonneg, unit, v3, Hull};
 use glam::Vec3;
 use libfuzzer_sys::fuzz_target;
 use subcone_kernels::sraa::{
-    bilateral_weight, reconstruct, resolve_pixel, shadow_gated_weight, DepthMetric, Geometry,
+    bilateral_weight, reconstruct, reconstruction_weight, resolve_pixel, shadow_gated_weight,
+    DepthMetric, Geometry,
     ShadedSample, SraaParams, WeightForm, NEGLIGIBLE_WEIGHT,
 };
 
@@ -32,6 +33,8 @@ enum ParamsChoice {
         sigma_n: f32,
         scale: f32,
         packed: u32,
+        sigma_s: f32,
+        shading: u32,
     },
 }
 
@@ -102,12 +105,17 @@ fn params(choice: &ParamsChoice) -> (SraaParams, bool) {
             sigma_n,
             scale,
             packed,
+            sigma_s,
+            shading,
         } => (
             SraaParams {
                 sigma_z,
                 sigma_n,
                 scale,
                 packed,
+                sigma_s,
+                shading,
+                _pad: [0; 2],
             },
             false,
         ),
@@ -125,6 +133,15 @@ fn check_weight(p: &SraaParams, gi: &Geometry, gj: &Geometry, si: bool, sj: bool
         (0.0..=1.0).contains(&g),
         "shadow_gated_weight = {g} not in [0, 1]"
     );
+    // The spatial term only lowers the weight, and at distance 0 is eq. 1.
+    for d2 in [0.0f32, 0.25, 2.0, f32::INFINITY, f32::NAN] {
+        let r = reconstruction_weight(p, gi, gj, d2);
+        assert!(
+            (0.0..=w).contains(&r) || (d2 == 0.0 && r.to_bits() == w.to_bits()),
+            "reconstruction_weight(d² = {d2}) = {r} not in [0, eq. 1's {w}]"
+        );
+    }
+    assert_eq!(reconstruction_weight(p, gi, gj, 0.0).to_bits(), w.to_bits());
     if si != sj {
         assert!(g == 0.0, "shadow gate {g} != 0 across a shadow edge");
     } else {

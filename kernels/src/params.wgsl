@@ -7,13 +7,19 @@
 // Arrays in the uniform address space have a 16-byte stride, so padding is
 // spelled as scalars (`_pad0`, `_pad1` are Rust's `_pad: [u32; 2]`).
 
-// subcone_kernels::sraa::SraaParams (16 bytes).
+// subcone_kernels::sraa::SraaParams (32 bytes).
 struct subcone_SraaParams {
     sigma_z: f32,
     sigma_n: f32,
     scale: f32,
     // Bits 0..8: WeightForm; 8..16: DepthMetric; 16..32: reconstruction radius.
     packed: u32,
+    // σs, the spatial falloff in pixels (0: none, as in eq. 1).
+    sigma_s: f32,
+    // ShadedPosition: 0 on subsample 0 (the paper), 1 at the pixel centre.
+    shading: u32,
+    _pad0: u32,
+    _pad1: u32,
 }
 
 // subcone_kernels::sraa::Geometry (16 bytes). depth = +inf marks a miss; WGSL

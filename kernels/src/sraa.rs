@@ -40,6 +40,10 @@ pub const SUBPIXEL_OFFSETS: [Vec2; 4] = [
 /// which the reconstruction's fixed-radius neighbourhood relies on.
 pub const SHADED_SUBSAMPLE: usize = 0;
 
+/// The `sub` of [`neighbourhood`] that means the shaded sample itself,
+/// wherever [`SraaParams::shaded_offset`] puts it.
+pub const SHADED_SAMPLE: usize = 4;
+
 /// Which functional form the bilateral weight takes.
 #[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -82,6 +86,33 @@ pub struct SraaParams {
     /// Bits 0..8: [`WeightForm`]; bits 8..16: [`DepthMetric`]; bits 16..32: the
     /// reconstruction radius in pixels (1 = the 3×3 neighbourhood).
     pub packed: u32,
+    /// σs, the spatial falloff in pixels: a neighbour's weight is multiplied
+    /// by `exp(−d²/σs²)`, `d` the screen distance from the target subsample
+    /// to the neighbour's shaded sample ([`reconstruction_weight`]). `0` (or
+    /// negative, or NaN) turns the term off, as in eq. 1.
+    pub sigma_s: f32,
+    /// Where each pixel's shaded sample lies: a [`ShadedPosition`] code.
+    pub shading: u32,
+    /// Padding to 32 bytes (uniform blocks are laid out in 16-byte rows).
+    pub _pad: [u32; 2],
+}
+
+/// Where a pixel's one shaded sample lies.
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ShadedPosition {
+    /// On geometric subsample [`SHADED_SUBSAMPLE`] of the rotated grid, as
+    /// §3.1 and Fig. 2 put it ("one of those geometric samples is also a
+    /// shaded sample"): the subsample's geometry is the shaded ray's.
+    Subsample = 0,
+    /// At the pixel centre, the NoAA sample: every one of the four geometric
+    /// subsamples is traced (or rasterised) on its own. Beyond the paper: a
+    /// shaded lattice offset from the pixel centres by a subsample offset
+    /// shifts the whole reconstructed image by that offset wherever the
+    /// geometry agrees (flat, textured surfaces: about 0.4 px), which the
+    /// reference does not; at the centre, a flat pixel reconstructs around
+    /// NoAA's own sample. Costs one geometry ray more per pixel in SRAA-RT.
+    Centre = 1,
 }
 
 impl SraaParams {
@@ -100,6 +131,30 @@ impl SraaParams {
         DepthMetric::Relative,
         1,
     );
+
+    /// The default: eq. 1 (σz = 10, the paper's) with a normal term that
+    /// separates creases (σn = 1: perpendicular normals weigh `e⁻¹`, where
+    /// the paper's 0.25 leaves them 0.94), a spatial term σs = 0.5 px (a
+    /// neighbour one pixel away weighs `e⁻⁴` against one at the subsample;
+    /// Fig. 2's caption weighs samples "by their distance", eq. 1 has no such
+    /// term) and the shaded sample at the pixel centre
+    /// ([`ShadedPosition::Centre`]).
+    ///
+    /// Tuned on the `cornell` and `checker` scenes only, by the report's
+    /// edge-class FLIP; judged on the others (the report's verdicts). Without
+    /// the spatial term the 3×3 neighbourhood is a box filter over every
+    /// neighbour of like geometry, which blurs highlights and textures that
+    /// NoAA keeps sharp.
+    pub const TUNED: Self = Self::new(
+        10.0,
+        1.0,
+        1.0,
+        WeightForm::Product,
+        DepthMetric::Relative,
+        1,
+    )
+    .with_spatial(0.5)
+    .with_shaded_position(ShadedPosition::Centre);
 
     /// The original SRAA form for comparison: `exp(−s·max(1 − n·n, k·Δz))` with
     /// `s = 10`, `k = 1` on the relative depth metric (so a 10 % depth step and a
@@ -128,6 +183,49 @@ impl SraaParams {
             sigma_n,
             scale,
             packed: (form as u32) | ((depth as u32) << 8) | ((radius as u32) << 16),
+            sigma_s: 0.0,
+            shading: ShadedPosition::Subsample as u32,
+            _pad: [0; 2],
+        }
+    }
+
+    /// The same parameters with the spatial falloff σs (pixels; 0 = none).
+    pub const fn with_spatial(self, sigma_s: f32) -> Self {
+        Self { sigma_s, ..self }
+    }
+
+    /// The same parameters with the shaded sample at `position`.
+    pub const fn with_shaded_position(self, position: ShadedPosition) -> Self {
+        Self {
+            shading: position as u32,
+            ..self
+        }
+    }
+
+    /// Where the shaded sample lies. Unknown codes read as
+    /// [`ShadedPosition::Subsample`] (the paper).
+    pub const fn shaded_position(&self) -> ShadedPosition {
+        match self.shading {
+            1 => ShadedPosition::Centre,
+            _ => ShadedPosition::Subsample,
+        }
+    }
+
+    /// The shaded sample's offset from the pixel centre, in pixels.
+    pub const fn shaded_offset(&self) -> Vec2 {
+        match self.shaded_position() {
+            ShadedPosition::Subsample => SUBPIXEL_OFFSETS[SHADED_SUBSAMPLE],
+            ShadedPosition::Centre => Vec2::ZERO,
+        }
+    }
+
+    /// The geometric subsample that is also the shaded sample (its geometry
+    /// is the shaded ray's), if any: [`SHADED_SUBSAMPLE`] in the paper's
+    /// layout, none with the shaded sample at the centre.
+    pub const fn shaded_subsample(&self) -> Option<usize> {
+        match self.shaded_position() {
+            ShadedPosition::Subsample => Some(SHADED_SUBSAMPLE),
+            ShadedPosition::Centre => None,
         }
     }
 
@@ -179,8 +277,9 @@ impl SraaParams {
 }
 
 impl Default for SraaParams {
+    /// [`SraaParams::TUNED`].
     fn default() -> Self {
-        Self::PAPER
+        Self::TUNED
     }
 }
 
@@ -311,6 +410,36 @@ pub fn depth_difference(zi: f32, zj: f32, metric: DepthMetric) -> f32 {
 /// weights that underflow are 0, and [`reconstruct`] falls back.
 #[inline]
 pub fn bilateral_weight(params: &SraaParams, gi: &Geometry, gj: &Geometry) -> f32 {
+    reconstruction_weight(params, gi, gj, 0.0)
+}
+
+/// The weight a reconstruction gives shaded sample `j` for subsample `i`:
+/// eq. 1 ([`bilateral_weight`]) times the spatial term `exp(−d²/σs²)`,
+/// `d² = distance2` the squared screen distance in pixels² from the
+/// subsample to the shaded sample, when [`SraaParams::sigma_s`] is positive.
+///
+/// The paper's Fig. 2 weighs neighbours "by their distance and the normal
+/// change"; eq. 1 itself has no distance, and without one a 3×3
+/// neighbourhood of like geometry is a box filter. For the product form the
+/// three Gaussians are one exponential, `exp(−(a² + b² + d²/σs²))`.
+///
+/// Domain: that of [`bilateral_weight`], and `distance2 ≥ 0`. With the term
+/// on, a NaN or infinite `distance2` gives 0; with it off (`σs ≤ 0` or NaN),
+/// `distance2` is ignored and the result is eq. 1's, bit for bit.
+#[inline]
+pub fn reconstruction_weight(
+    params: &SraaParams,
+    gi: &Geometry,
+    gj: &Geometry,
+    distance2: f32,
+) -> f32 {
+    // At distance 0 the term is 1 whatever σs (an underflowing σs² must
+    // not turn eq. 1 into 0/0).
+    let spatial = if params.sigma_s > 0.0 && distance2 != 0.0 {
+        distance2 / (params.sigma_s * params.sigma_s)
+    } else {
+        0.0
+    };
     let dz = depth_difference(gi.depth, gj.depth, params.depth_metric());
     // A unit vector normalised in f32 has |n|² within a few ulps of 1, so its
     // cosine with itself may be 1 − 2⁻²³·k; count cosines that close to 1 as 1,
@@ -333,15 +462,16 @@ pub fn bilateral_weight(params: &SraaParams, gi: &Geometry, gj: &Geometry) -> f3
         // same value up to rounding (bounded against f64 in the tests).
         WeightForm::Product => {
             let (a, b) = (params.sigma_z * dz, params.sigma_n * dn);
-            gaussian_sum(a * a + b * b)
+            gaussian_sum(a * a + b * b + spatial)
         }
         WeightForm::ChajdasMax => {
             let x = params.scale * dn.max(params.sigma_z * dz);
             let e = libm::expf(-x);
-            if !e.is_nan() {
+            let e = if !e.is_nan() { e } else { 0.0 };
+            if spatial == 0.0 {
                 e
             } else {
-                0.0
+                e * gaussian_sum(spatial)
             }
         }
     };
@@ -432,13 +562,21 @@ pub fn material_gated_weight(
     aj: Vec3,
     tolerance: f32,
 ) -> f32 {
-    let d = albedo_difference(ai, aj);
-    // d = ∞ (a non-finite albedo) gates even under an infinite tolerance.
-    if d <= tolerance && d < f32::INFINITY {
+    if material_gate(ai, aj, tolerance) {
         bilateral_weight(params, gi, gj)
     } else {
         0.0
     }
+}
+
+/// The gate of [`material_gated_weight`]: whether albedos `ai` and `aj` match
+/// within `tolerance` ([`albedo_difference`]). A non-finite albedo, or a NaN
+/// or negative tolerance, never matches.
+#[inline]
+pub fn material_gate(ai: Vec3, aj: Vec3, tolerance: f32) -> bool {
+    let d = albedo_difference(ai, aj);
+    // d = ∞ (a non-finite albedo) gates even under an infinite tolerance.
+    d <= tolerance && d < f32::INFINITY
 }
 
 /// A pixel of a reconstruction neighbourhood, with the squared screen distance
@@ -455,21 +593,28 @@ pub struct NeighbourPixel {
 
 /// The pixels whose shaded samples reconstruct subsample `sub` of pixel `(x, y)`:
 /// the `(2r+1)²` pixels around it (the paper's "fixed radius"; `r = 1` is the 3×3
-/// neighbourhood), clipped to a `width × height` image, in row-major order.
+/// neighbourhood), clipped to a `width × height` image, in row-major order,
+/// with each shaded sample's squared distance to the subsample. `shaded` is
+/// where a pixel's shaded sample lies ([`SraaParams::shaded_offset`]).
 ///
-/// Domain: `sub < 4`, `(x, y)` inside the image. A `sub ≥ 4` reads as
-/// [`SHADED_SUBSAMPLE`]; a pixel outside the image yields only the in-image
-/// part of its neighbourhood (possibly nothing).
+/// Domain: `sub < 4`, `(x, y)` inside the image. A `sub ≥ 4` (e.g.
+/// [`SHADED_SAMPLE`]) is the shaded sample itself; a pixel outside the image
+/// yields only the in-image part of its neighbourhood (possibly nothing).
 pub fn neighbourhood(
     x: u32,
     y: u32,
     sub: usize,
+    shaded: Vec2,
     radius: u32,
     width: u32,
     height: u32,
 ) -> Neighbourhood {
-    let sub = if sub < 4 { sub } else { SHADED_SUBSAMPLE };
-    let offset = SUBPIXEL_OFFSETS[sub] - SUBPIXEL_OFFSETS[SHADED_SUBSAMPLE];
+    let target = if sub < 4 {
+        SUBPIXEL_OFFSETS[sub]
+    } else {
+        shaded
+    };
+    let offset = target - shaded;
     let x0 = x.saturating_sub(radius);
     let y0 = y.saturating_sub(radius);
     let x1 = x.saturating_add(radius).saturating_add(1).min(width);
@@ -533,8 +678,9 @@ pub struct ShadedSample {
     /// Its shadow state for the light being reconstructed (ignored when the
     /// target has no gate).
     pub shadowed: bool,
-    /// Squared screen distance, in pixels², from the target subsample. Only
-    /// used to choose the fallback sample.
+    /// Squared screen distance, in pixels², from the target subsample: the
+    /// spatial term's `d²` ([`reconstruction_weight`]) and what chooses the
+    /// fallback sample.
     pub distance2: f32,
 }
 
@@ -552,8 +698,9 @@ pub struct Reconstruction {
 
 /// Reconstruct the colour of a geometric subsample from shaded neighbours (§3.1–3.3).
 ///
-/// `C_i = Σ_j w_ij C_j / Σ_j w_ij`, with `w_ij` from [`shadow_gated_weight`] when
-/// `target_shadow` is `Some` (eq. 2), else from [`bilateral_weight`] (eq. 1).
+/// `C_i = Σ_j w_ij C_j / Σ_j w_ij`, with `w_ij` from [`reconstruction_weight`]
+/// (eq. 1 times the spatial term), gated as [`shadow_gated_weight`] gates when
+/// `target_shadow` is `Some` (eq. 2).
 /// The caller chooses the neighbourhood (by default the shaded samples of the
 /// 3×3 pixels around, [`SraaParams::radius`]).
 ///
@@ -590,8 +737,8 @@ where
             any = true;
         }
         let w = match target_shadow {
-            Some(si) => shadow_gated_weight(params, target, &s.geometry, si, s.shadowed),
-            None => bilateral_weight(params, target, &s.geometry),
+            Some(si) if si != s.shadowed => 0.0,
+            _ => reconstruction_weight(params, target, &s.geometry, d2),
         };
         acc.add(w, s.color);
     }
@@ -647,8 +794,8 @@ pub struct LayeredSample<'a> {
 }
 
 /// [`reconstruct`] for several layers that share the target's geometry, in one
-/// pass over the neighbours: the bilateral weight (eq. 1) is computed once per
-/// neighbour, and layer `i` applies eq. 2's gate on shadow bit `gates[i]` (or no
+/// pass over the neighbours: the weight ([`reconstruction_weight`]: eq. 1 and
+/// the spatial term) is computed once per neighbour, and layer `i` applies eq. 2's gate on shadow bit `gates[i]` (or no
 /// gate for `None`). This is how SRAA-RT reconstructs a subsample's
 /// shadow-independent part and each light's direct part (§3.1–3.2).
 ///
@@ -666,9 +813,14 @@ pub fn reconstruct_layers<'a, I>(
 ) where
     I: IntoIterator<Item = LayeredSample<'a>>,
 {
-    let weighted = neighbours
-        .into_iter()
-        .map(|s| (bilateral_weight(params, target, &s.geometry), s));
+    let weighted = neighbours.into_iter().map(|s| {
+        let d2 = if !s.distance2.is_nan() {
+            s.distance2
+        } else {
+            f32::INFINITY
+        };
+        (reconstruction_weight(params, target, &s.geometry, d2), s)
+    });
     reconstruct_weighted_layers(target_shadow, gates, weighted, out);
 }
 
@@ -692,14 +844,17 @@ pub fn reconstruct_layers_material<'a, I>(
     I: IntoIterator<Item = (LayeredSample<'a>, Vec3)>,
 {
     let weighted = neighbours.into_iter().map(|(s, albedo)| {
-        let w = material_gated_weight(
-            params,
-            target,
-            &s.geometry,
-            target_albedo,
-            albedo,
-            tolerance,
-        );
+        // As material_gated_weight gates, with the spatial term.
+        let w = if material_gate(target_albedo, albedo, tolerance) {
+            let d2 = if !s.distance2.is_nan() {
+                s.distance2
+            } else {
+                f32::INFINITY
+            };
+            reconstruction_weight(params, target, &s.geometry, d2)
+        } else {
+            0.0
+        };
         (w, s)
     });
     reconstruct_weighted_layers(target_shadow, gates, weighted, out);

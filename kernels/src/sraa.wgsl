@@ -24,6 +24,9 @@
 const subcone_NORMAL_COS_SNAP: f32 = 4.76837158203125e-7;
 // Mirrors sraa::SHADED_SUBSAMPLE.
 const subcone_SHADED_SUBSAMPLE: u32 = 0u;
+// Mirrors sraa::SHADED_SAMPLE: the `sub` of subcone_neighbourhood that means
+// the shaded sample itself.
+const subcone_SHADED_SAMPLE: u32 = 4u;
 
 fn subcone_sraa_is_finite3(c: vec3<f32>) -> bool {
     return subcone_is_finite(c.x) && subcone_is_finite(c.y) && subcone_is_finite(c.z);
@@ -63,6 +66,21 @@ fn subcone_sraa_depth_metric(p: subcone_SraaParams) -> u32 {
 // Mirrors sraa::SraaParams::radius.
 fn subcone_sraa_radius(p: subcone_SraaParams) -> u32 {
     return p.packed >> 16u;
+}
+
+// Mirrors sraa::SraaParams::shaded_offset: the shaded sample's offset from the
+// pixel centre (subsample 0 for code 0 and unknown codes, the centre for 1).
+fn subcone_sraa_shaded_offset(p: subcone_SraaParams) -> vec2<f32> {
+    if p.shading == 1u {
+        return vec2<f32>(0.0);
+    }
+    return subcone_subpixel_offset(subcone_SHADED_SUBSAMPLE);
+}
+
+// Mirrors sraa::SraaParams::shaded_subsample: whether geometric subsample k
+// is also the shaded sample (its geometry is the shaded ray's).
+fn subcone_sraa_is_shaded_subsample(p: subcone_SraaParams, k: u32) -> bool {
+    return p.shading != 1u && k == subcone_SHADED_SUBSAMPLE;
 }
 
 // Mirrors sraa::gaussian: G(x) = exp(-x²) of eq. 1; 0 for ±inf and NaN.
@@ -110,12 +128,20 @@ fn subcone_depth_difference(zi: f32, zj: f32, metric: u32) -> f32 {
     let diff = abs(zj - zi);
     var r = diff;
     if metric != 1u {
-        let mean = 0.5 * abs(zi) + 0.5 * abs(zj);
-        if mean == 0.0 {
-            // diff / 0: +inf for diff > 0 (diff = 0 only when zi == zj).
-            return subcone_inf();
+        let m = max(abs(zi), abs(zj));
+        if m > 1.2676506e30 {
+            // Above 2^100, as a ratio to the larger depth: a GPU may evaluate
+            // 0.5·a + 0.5·b as 0.5·(a + b), which overflows near f32::MAX
+            // (lavapipe does, and cancels any scale factor put around it).
+            r = (diff / m) / (0.5 + 0.5 * (min(abs(zi), abs(zj)) / m));
+        } else {
+            let mean = 0.5 * abs(zi) + 0.5 * abs(zj);
+            if mean == 0.0 {
+                // diff / 0: +inf for diff > 0 (diff = 0 only when zi == zj).
+                return subcone_inf();
+            }
+            r = diff / mean;
         }
-        r = diff / mean;
     }
     if subcone_is_nan(r) {
         return subcone_inf();
@@ -128,6 +154,16 @@ fn subcone_depth_difference(zi: f32, zj: f32, metric: u32) -> f32 {
 // exp(−s·max(1 − sat(nj·ni), σz·Δz)) for ChajdasMax. In [0, 1]; NaN gives 0;
 // two misses give 1.
 fn subcone_bilateral_weight(params: subcone_SraaParams, gi: subcone_Geometry, gj: subcone_Geometry) -> f32 {
+    return subcone_reconstruction_weight(params, gi, gj, 0.0);
+}
+
+// Mirrors sraa::reconstruction_weight: eq. 1 times exp(−d²/σs²) when σs > 0
+// (one exponential for the Product form); distance2 ignored when σs ≤ 0 or NaN.
+fn subcone_reconstruction_weight(params: subcone_SraaParams, gi: subcone_Geometry, gj: subcone_Geometry, distance2: f32) -> f32 {
+    var spatial = 0.0;
+    if params.sigma_s > 0.0 && distance2 != 0.0 {
+        spatial = distance2 / (params.sigma_s * params.sigma_s);
+    }
     let dz = subcone_depth_difference(gi.depth, gj.depth, subcone_sraa_depth_metric(params));
     let cos = subcone_saturate(dot(gj.normal, gi.normal));
     var dn = 1.0 - cos;
@@ -145,7 +181,7 @@ fn subcone_bilateral_weight(params: subcone_SraaParams, gi: subcone_Geometry, gj
     if subcone_sraa_form(params) == 0u {
         let a = params.sigma_z * dz;
         let b = params.sigma_n * dn;
-        w = subcone_gaussian_sum(a * a + b * b);
+        w = subcone_gaussian_sum(a * a + b * b + spatial);
     } else {
         let x = params.scale * max(dn, params.sigma_z * dz);
         if subcone_is_nan(x) || x == inf {
@@ -155,6 +191,9 @@ fn subcone_bilateral_weight(params: subcone_SraaParams, gi: subcone_Geometry, gj
             if subcone_is_nan(w) {
                 w = 0.0;
             }
+        }
+        if spatial != 0.0 {
+            w = w * subcone_gaussian_sum(spatial);
         }
     }
     return subcone_saturate(w);
@@ -187,11 +226,16 @@ fn subcone_albedo_difference(a: vec3<f32>, b: vec3<f32>) -> f32 {
 // albedo): 0 when the albedos differ by more than `tolerance` (or one is not
 // finite, or the tolerance is NaN), eq. 1 when they match.
 fn subcone_material_gated_weight(params: subcone_SraaParams, gi: subcone_Geometry, gj: subcone_Geometry, ai: vec3<f32>, aj: vec3<f32>, tolerance: f32) -> f32 {
-    let d = subcone_albedo_difference(ai, aj);
-    if d <= tolerance && d < subcone_inf() {
+    if subcone_material_gate(ai, aj, tolerance) {
         return subcone_bilateral_weight(params, gi, gj);
     }
     return 0.0;
+}
+
+// Mirrors sraa::material_gate: whether the albedos match within `tolerance`.
+fn subcone_material_gate(ai: vec3<f32>, aj: vec3<f32>, tolerance: f32) -> bool {
+    let d = subcone_albedo_difference(ai, aj);
+    return d <= tolerance && d < subcone_inf();
 }
 
 // Mirrors sraa::neighbourhood: the clipped (2r+1)² pixels around (x, y), as
@@ -214,13 +258,13 @@ fn subcone_sraa_saturating_add(a: u32, b: u32) -> u32 {
     return s;
 }
 
-fn subcone_neighbourhood(x: u32, y: u32, sub: u32, radius: u32, width: u32, height: u32) -> subcone_Neighbourhood {
-    var s = sub;
-    if s >= 4u {
-        s = subcone_SHADED_SUBSAMPLE;
+fn subcone_neighbourhood(x: u32, y: u32, sub: u32, shaded: vec2<f32>, radius: u32, width: u32, height: u32) -> subcone_Neighbourhood {
+    var pos = shaded;
+    if sub < 4u {
+        pos = subcone_subpixel_offset(sub);
     }
     var n: subcone_Neighbourhood;
-    n.offset = subcone_subpixel_offset(s) - subcone_subpixel_offset(subcone_SHADED_SUBSAMPLE);
+    n.offset = pos - shaded;
     n.x0 = select(0u, x - radius, x >= radius);
     n.y0 = select(0u, y - radius, y >= radius);
     n.x1 = min(subcone_sraa_saturating_add(subcone_sraa_saturating_add(x, radius), 1u), width);
@@ -228,7 +272,7 @@ fn subcone_neighbourhood(x: u32, y: u32, sub: u32, radius: u32, width: u32, heig
     return n;
 }
 
-// Mirrors subcone_Neighbourhood::next's distance2: squared distance in pixels² from the
+// Mirrors sraa::Neighbourhood::next's distance2: squared distance in pixels² from the
 // target subsample of (x, y) to the shaded sample of (px, py).
 fn subcone_neighbour_distance2(n: subcone_Neighbourhood, x: u32, y: u32, px: u32, py: u32) -> f32 {
     let d = vec2<f32>(f32(px) - f32(x), f32(py) - f32(y)) - n.offset;
@@ -248,7 +292,7 @@ fn subcone_weighted_sum_zero() -> subcone_WeightedSum {
     return subcone_WeightedSum(vec3<f32>(0.0), vec3<f32>(0.0), 0.0, 0.0);
 }
 
-// Mirrors subcone_WeightedSum::add.
+// Mirrors sum::WeightedSum::add.
 fn subcone_weighted_sum_add(acc: ptr<function, subcone_WeightedSum>, w: f32, c: vec3<f32>) {
     let y = w * c - (*acc).sum_c;
     let t = (*acc).sum + y;
@@ -260,7 +304,7 @@ fn subcone_weighted_sum_add(acc: ptr<function, subcone_WeightedSum>, w: f32, c: 
     (*acc).weight = tw;
 }
 
-// Mirrors subcone_WeightedSum::mean: Σ w·C / Σ w in .xyz, .w = 1; .w = 0 when the weight
+// Mirrors sum::WeightedSum::mean: Σ w·C / Σ w in .xyz, .w = 1; .w = 0 when the weight
 // is negligible (or NaN) or the mean is not finite.
 fn subcone_weighted_sum_mean(acc: subcone_WeightedSum) -> vec4<f32> {
     if !(acc.weight >= subcone_NEGLIGIBLE_WEIGHT) {

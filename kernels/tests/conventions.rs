@@ -31,25 +31,41 @@ fn rotated_grid_has_one_sample_per_row_and_column_of_the_4x4_grid() {
 
 #[test]
 fn neighbourhood_is_the_fixed_radius_window() {
-    let n: Vec<_> = neighbourhood(5, 5, SHADED_SUBSAMPLE, 1, 10, 10).collect();
+    let paper = SraaParams::PAPER.shaded_offset();
+    assert_eq!(paper, SUBPIXEL_OFFSETS[SHADED_SUBSAMPLE]);
+    let n: Vec<_> = neighbourhood(5, 5, SHADED_SUBSAMPLE, paper, 1, 10, 10).collect();
     assert_eq!(n.len(), 9);
     assert!(n.iter().any(|p| (p.x, p.y, p.distance2) == (5, 5, 0.0)));
     assert_eq!(
-        neighbourhood(0, 0, 2, 1, 10, 10).count(),
+        neighbourhood(0, 0, 2, paper, 1, 10, 10).count(),
         4,
         "clipped at the corner"
     );
-    assert_eq!(neighbourhood(5, 5, 1, 2, 10, 10).count(), 25);
+    assert_eq!(neighbourhood(5, 5, 1, paper, 2, 10, 10).count(), 25);
     // Subsample 1 is (0.5, 0.25) away from the shaded one of its own pixel.
-    let own = neighbourhood(5, 5, 1, 1, 10, 10)
+    let own = neighbourhood(5, 5, 1, paper, 1, 10, 10)
         .find(|p| (p.x, p.y) == (5, 5))
         .unwrap();
     assert_eq!(own.distance2, 0.5f32 * 0.5 + 0.25 * 0.25);
     assert_eq!(
-        neighbourhood(20, 20, 0, 1, 10, 10).count(),
+        neighbourhood(20, 20, 0, paper, 1, 10, 10).count(),
         0,
         "outside the image"
     );
+    // The shaded sample at the centre: every subsample is |offset| from its
+    // own pixel's shaded sample, and SHADED_SAMPLE is the shaded sample.
+    let centre = SraaParams::TUNED.shaded_offset();
+    assert_eq!(centre, Vec2::ZERO);
+    for k in 0..4 {
+        let own = neighbourhood(5, 5, k, centre, 1, 10, 10)
+            .find(|p| (p.x, p.y) == (5, 5))
+            .unwrap();
+        assert_eq!(own.distance2, SUBPIXEL_OFFSETS[k].length_squared());
+    }
+    let own = neighbourhood(5, 5, SHADED_SAMPLE, centre, 1, 10, 10)
+        .find(|p| (p.x, p.y) == (5, 5))
+        .unwrap();
+    assert_eq!(own.distance2, 0.0);
 }
 
 /// §3.1: the cone's base passes through the pixel's four corners. For the pixel

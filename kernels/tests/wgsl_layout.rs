@@ -103,7 +103,7 @@ macro_rules! shared {
 /// Every struct `params.wgsl` shares with Rust: one line each.
 fn shared_structs() -> Vec<Shared> {
     vec![
-        shared!(SraaParams: sigma_z, sigma_n, scale, packed),
+        shared!(SraaParams: sigma_z, sigma_n, scale, packed, sigma_s, shading, _pad[2]),
         shared!(Geometry: normal, depth),
         shared!(CtssParams: tan_theta, alpha, eps, t_min, t_max, min_sample_weight,
             max_steps, max_samples, visibility_k, flags, _pad[2]),

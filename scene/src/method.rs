@@ -11,7 +11,7 @@ use subcone_kernels::sraa::SraaParams;
 /// the backend contract's checks read. Every other accepted name is an
 /// `ssaaN`/`ssaaN+ctss` with another `N` or a `-delayed` variant of a CTSS
 /// method.
-pub const METHOD_NAMES: [&str; 13] = [
+pub const METHOD_NAMES: [&str; 17] = [
     "noaa",
     "ssaa4",
     "ssaa16",
@@ -19,6 +19,10 @@ pub const METHOD_NAMES: [&str; 13] = [
     "sraa-rt",
     "sraa+mat",
     "sraa-rt+mat",
+    "sraa-paper",
+    "sraa-rt-paper",
+    "sraa-paper+mat",
+    "sraa-rt-paper+mat",
     "ctss",
     "ctss-delayed",
     "ctss+edges",
@@ -73,7 +77,7 @@ impl Method {
         Method {
             technique,
             ssaa_side,
-            sraa: SraaParams::PAPER,
+            sraa: SraaParams::TUNED,
             cone_coverage: 1.0,
             visibility_k: 32,
             delayed_shading: false,
@@ -88,6 +92,15 @@ impl Method {
         Method {
             ssaa_side: side.max(1),
             ..Method::new(Technique::Ssaa)
+        }
+    }
+
+    /// `technique` with the paper's SRAA preset ([`SraaParams::PAPER`]):
+    /// `sraa-paper`, `sraa-rt-paper`.
+    pub fn paper(technique: Technique) -> Self {
+        Method {
+            sraa: SraaParams::PAPER,
+            ..Method::new(technique)
         }
     }
 
@@ -128,6 +141,9 @@ impl fmt::Display for Method {
             Technique::SsaaCtss => write!(f, "ssaa{}+ctss{suffix}", self.supersamples()),
             Technique::Fxaa => write!(f, "fxaa"),
         }?;
+        if self.technique.is_subpixel_reconstruction() && self.sraa == SraaParams::PAPER {
+            write!(f, "-paper")?;
+        }
         if self.gates_material() {
             write!(f, "+mat")?;
         }
@@ -137,7 +153,7 @@ impl fmt::Display for Method {
 
 /// A method name that does not parse.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("unknown method {0:?}: expected noaa, ssaaN (N in 4, 9, 16, 64, 256), sraa, sraa-rt, sraa+mat, sraa-rt+mat, ctss, ctss+edges, ctss-r, ssaaN+ctss or fxaa; ctss, ctss-r and ssaaN+ctss optionally with -delayed")]
+#[error("unknown method {0:?}: expected noaa, ssaaN (N in 4, 9, 16, 64, 256), sraa, sraa-rt (each optionally with -paper, then +mat), ctss, ctss+edges, ctss-r, ssaaN+ctss or fxaa; ctss, ctss-r and ssaaN+ctss optionally with -delayed")]
 pub struct ParseMethodError(pub String);
 
 fn parse_ssaa(n: &str) -> Option<u32> {
@@ -163,12 +179,37 @@ impl FromStr for Method {
                 ..m
             });
         }
+        // SRAA: a base, then `-paper` (the paper's preset), then `+mat`.
+        let (sraa_base, mat) = match lower.strip_suffix("+mat") {
+            Some(b) => (b, true),
+            None => (lower.as_str(), false),
+        };
+        let (sraa_base, paper) = match sraa_base.strip_suffix("-paper") {
+            Some(b) => (b, true),
+            None => (sraa_base, false),
+        };
+        let sraa = match sraa_base {
+            "sraa" => Some(Technique::Sraa),
+            "sraa-rt" => Some(Technique::SraaRt),
+            _ => None,
+        };
+        if let Some(t) = sraa {
+            let m = if mat {
+                Method::material_aware(t)
+            } else {
+                Method::new(t)
+            };
+            return Ok(if paper {
+                Method {
+                    sraa: SraaParams::PAPER,
+                    ..m
+                }
+            } else {
+                m
+            });
+        }
         Ok(match lower.as_str() {
             "noaa" => Method::new(Technique::NoAa),
-            "sraa" => Method::new(Technique::Sraa),
-            "sraa-rt" => Method::new(Technique::SraaRt),
-            "sraa+mat" => Method::material_aware(Technique::Sraa),
-            "sraa-rt+mat" => Method::material_aware(Technique::SraaRt),
             "ctss" => Method::new(Technique::Ctss),
             "ctss+edges" => Method {
                 split_groups: true,

@@ -7,7 +7,7 @@ use rayon::prelude::*;
 use subcone_kernels::passes::{LayerLayout, Passes, Technique};
 use subcone_kernels::sraa::{
     neighbourhood, reconstruct_layers, reconstruct_layers_material, resolve_pixel, Geometry,
-    LayeredSample, SraaParams, ALBEDO_TOLERANCE, SHADED_SUBSAMPLE, SUBPIXEL_OFFSETS,
+    LayeredSample, SraaParams, ALBEDO_TOLERANCE, SHADED_SAMPLE, SUBPIXEL_OFFSETS,
 };
 use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderSettings};
 
@@ -204,8 +204,9 @@ fn bytes<T>(v: &[T]) -> usize {
 
 /// SRAA (Chajdas et al.) and SRAA for ray tracing (Chiu et al., §3).
 ///
-/// Pass "shading": one shaded sample per pixel, at subsample
-/// [`SHADED_SUBSAMPLE`] of the rotated grid. For SRAA-RT its shading is kept in
+/// Pass "shading": one shaded sample per pixel, where the method's
+/// [`SraaParams::shaded_offset`] puts it: subsample [`SHADED_SUBSAMPLE`](subcone_kernels::sraa::SHADED_SUBSAMPLE) of
+/// the rotated grid (the paper) or the pixel centre (the default). For SRAA-RT its shading is kept in
 /// layers that are reconstructed separately: the shadow-independent part; each
 /// light's direct part (gated by eq. 2 with that light's shadow state); and, on
 /// mirrors, the same split of the reflected radiance, reconstructed on the
@@ -215,10 +216,11 @@ fn bytes<T>(v: &[T]) -> usize {
 /// SRAA keeps one layer, the final colour, reconstructed with eq. 1 on primary
 /// geometry.
 ///
-/// Pass "geometry" (the paper's pass 1): the other three subsamples, traced for
+/// Pass "geometry" (the paper's pass 1): the subsamples, traced for
 /// geometry only (normal and view depth); for SRAA-RT also their shadow states
 /// (subpixel shadow rays) and, on mirrors, the geometry and shadow states of
-/// their reflection rays. The shaded subsample's are reused, not traced again.
+/// their reflection rays. A subsample that is also the shaded sample (the
+/// paper's layout) reuses the shaded ray's, not traced again.
 ///
 /// Pass "antialiasing" (pass 2): every layer of every subsample reconstructed
 /// from the 3×3 neighbourhood's shaded samples by the kernels, then the box
@@ -237,6 +239,8 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
     let secondary_shading = passes.contains(Passes::SECONDARY);
     let material = method.gates_material();
     let nl = layout.len();
+    let shaded_offset = method.sraa.shaded_offset();
+    let shaded_subsample = method.sraa.shaded_subsample();
     let mut b = Buffers {
         geo: vec![Geometry::MISS; n],
         values: vec![Vec3::ZERO; n * nl],
@@ -302,7 +306,7 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
                     let mut c = Counts::default();
                     for i in 0..geo.len() {
                         let (x, y) = (i % w, bi * BAND + i / w);
-                        let p = pixel_centre(x, y) + SUBPIXEL_OFFSETS[SHADED_SUBSAMPLE];
+                        let p = pixel_centre(x, y) + shaded_offset;
                         let (o, d) = t.camera.ray(p, s.width, s.height);
                         c.primary += 1;
                         let v = &mut values[i * nl..(i + 1) * nl];
@@ -456,7 +460,7 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
                         let mut primary_agree = None;
                         let mut secondary_agree = None;
                         for k in 0..4 {
-                            if k == SHADED_SUBSAMPLE {
+                            if Some(k) == shaded_subsample {
                                 sub_geo[i][k] = geo[j];
                                 if let Some(ss) = sub_shadow.get_mut(i) {
                                     ss[k] = shadow[j];
@@ -591,7 +595,8 @@ fn reconstruct_subsample(
         &gates[..group]
     };
     let mut out = [Vec3::ZERO; MAX_LIGHTS + 1];
-    let hood = || neighbourhood(x as u32, y as u32, k, radius, w as u32, h as u32);
+    let shaded = params.shaded_offset();
+    let hood = || neighbourhood(x as u32, y as u32, k, shaded, radius, w as u32, h as u32);
     // `albedo`: the target's albedo when the primary layers are gated by
     // material (`+mat`); the secondary layers never are.
     let run = |target: &Geometry,
@@ -694,10 +699,13 @@ pub(crate) fn shadow_agreement(
         (1u32 << lights) - 1
     };
     let (mut all_shadowed, mut any_shadowed, mut dark) = (u32::MAX, 0u32, all_lights);
+    // Only which pixels: the distances (and so the shaded position) are
+    // not read.
     for np in neighbourhood(
         x as u32,
         y as u32,
-        SHADED_SUBSAMPLE,
+        SHADED_SAMPLE,
+        Vec2::ZERO,
         radius,
         w as u32,
         h as u32,

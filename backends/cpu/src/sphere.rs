@@ -25,7 +25,7 @@ use subcone_kernels::ctss::{
 };
 use subcone_kernels::mask::{needs_normal, project_normal};
 use subcone_kernels::passes::{LayerLayout, Passes, Technique, MAX_LIGHTS};
-use subcone_kernels::sraa::{Geometry, SHADED_SUBSAMPLE, SUBPIXEL_OFFSETS};
+use subcone_kernels::sraa::{Geometry, SUBPIXEL_OFFSETS};
 use subcone_scene::sdf::SplitDistance;
 use subcone_scene::{
     Camera, Frame, FrameStats, Light, Material, Method, PassTiming, RayCounts, RenderSettings,
@@ -464,7 +464,7 @@ impl<F: SdfField> SdfView<'_, F> {
     /// passes (`render::subpixel`) with sphere tracing for every ray.
     ///
     /// Pass "shading": one sample per pixel at subsample
-    /// [`SHADED_SUBSAMPLE`], sphere traced and shaded as NoAA shades (hard
+    /// [`SHADED_SUBSAMPLE`](subcone_kernels::sraa::SHADED_SUBSAMPLE), sphere traced and shaded as NoAA shades (hard
     /// shadows through the field), kept in layers: the shadow-independent part
     /// and one per light with its shadow state. Pass "geometry" (the paper's
     /// pass 1): the other three subsamples sphere traced for geometry (normal
@@ -521,7 +521,7 @@ impl<F: SdfField> SdfView<'_, F> {
                 let mut t = Tally::default();
                 for i in 0..geo.len() {
                     let (x, y) = (i % w, bi * BAND + i / w);
-                    let px = pixel_centre(x, y) + SUBPIXEL_OFFSETS[SHADED_SUBSAMPLE];
+                    let px = pixel_centre(x, y) + method.sraa.shaded_offset();
                     let (o, d) = self.camera.ray(px, s.width, s.height);
                     let v = &mut values[i * nl..(i + 1) * nl];
                     let Some((q, nrm)) = self.hit(o, d, &params, &mut t) else {
@@ -565,7 +565,7 @@ impl<F: SdfField> SdfView<'_, F> {
                         let j = bi * band + i;
                         let mut agree = None;
                         for k in 0..4 {
-                            if k == SHADED_SUBSAMPLE {
+                            if Some(k) == method.sraa.shaded_subsample() {
                                 sub_geo[i][k] = geo[j];
                                 if let Some(ss) = sub_shadow.get_mut(i) {
                                     ss[k] = shadow[j];

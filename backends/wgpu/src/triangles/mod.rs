@@ -34,7 +34,7 @@ const SUPERSAMPLE_WGSL: &str = include_str!("supersample.wgsl");
 const SUBPIXEL_WGSL: &str = include_str!("subpixel.wgsl");
 const SRAA_WGSL: &str = include_str!("sraa.wgsl");
 
-/// The frame's constants; `FrameUniform` in frame.wgsl (144 bytes), read
+/// The frame's constants; `FrameUniform` in frame.wgsl (160 bytes), read
 /// by the compute passes and the raster pass.
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]

@@ -3,7 +3,7 @@
 // subpixel.wgsl and the generated frame header.
 
 // render.rs `reconstruct_subsample`'s `run`: sraa::reconstruct_layers over the
-// subcone_neighbourhood's shaded samples, `first` the first layer, on primary
+// neighbourhood's shaded samples, `first` the first layer, on primary
 // (`secondary` false) or secondary geometry; returns the sum of the layers.
 // Layer 0 is ungated, layer 1 + l gated by light l's shadow bit (eq. 2).
 // With MATERIAL (`+mat`) the primary layers are also gated by albedo
@@ -17,7 +17,7 @@ fn reconstruct_run(tgt: subcone_Geometry, target_shadow: u32, ta: vec3<f32>, sec
     for (var i = 0u; i < gates; i++) {
         st[i] = subcone_reconstruct_layers_begin();
     }
-    let nb = subcone_neighbourhood(x, y, k, subcone_sraa_radius(frame.sraa), frame.width, frame.height);
+    let nb = subcone_neighbourhood(x, y, k, subcone_sraa_shaded_offset(frame.sraa), subcone_sraa_radius(frame.sraa), frame.width, frame.height);
     for (var py = nb.y0; py < nb.y1; py++) {
         for (var px = nb.x0; px < nb.x1; px++) {
             let jj = py * frame.width + px;
@@ -28,11 +28,11 @@ fn reconstruct_run(tgt: subcone_Geometry, target_shadow: u32, ta: vec3<f32>, sec
                 g = get_geo2(jj);
                 s = get_shadow2(jj);
             }
+            // sraa::reconstruction_weight (eq. 1 and the spatial term), gated
+            // by albedo as sraa::reconstruct_layers_material gates.
             var w = 0.0;
-            if MATERIAL && !secondary {
-                w = subcone_material_gated_weight(frame.sraa, tgt, g, ta, get_albedo(jj).xyz, subcone_ALBEDO_TOLERANCE);
-            } else {
-                w = subcone_bilateral_weight(frame.sraa, tgt, g);
+            if !(MATERIAL && !secondary) || subcone_material_gate(ta, get_albedo(jj).xyz, subcone_ALBEDO_TOLERANCE) {
+                w = subcone_reconstruction_weight(frame.sraa, tgt, g, d2);
             }
             for (var i = 0u; i < gates; i++) {
                 // Through a local: naga's SPIR-V writer cannot pass a pointer

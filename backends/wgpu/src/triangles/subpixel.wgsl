@@ -26,7 +26,8 @@ fn pixel_centre(x: u32, y: u32) -> vec2<f32> {
 }
 
 // Pass "shading" (render.rs `subpixel`, first pass): one shaded sample per pixel
-// at subsample subcone_SHADED_SUBSAMPLE. SRAA keeps one layer (the final colour);
+// where the preset puts it (sraa::SraaParams::shaded_offset: subsample 0, the
+// paper's, or the pixel centre). SRAA keeps one layer (the final colour);
 // SRAA-RT keeps the shadow-independent part, one layer per light (gated by its
 // shadow state, eq. 2) and, on mirrors, the same split of the reflected
 // radiance with the secondary hit's geometry and shadow states (§3.3). Every
@@ -36,7 +37,7 @@ fn shade_pixel(x: u32, y: u32, j: u32, c: ptr<function, Counts>) {
         put_value(j, l, vec3<f32>(0.0));
     }
     put_geo2(j, no_secondary());
-    let p = pixel_centre(x, y) + subcone_subpixel_offset(subcone_SHADED_SUBSAMPLE);
+    let p = pixel_centre(x, y) + subcone_sraa_shaded_offset(frame.sraa);
     let d = camera_ray(p);
     (*c).primary += 1u;
     let sf = intersect(frame.cam_pos, d, 0.0);
@@ -136,7 +137,7 @@ fn shade_main(@builtin(global_invocation_id) id: vec3<u32>) {
 }
 
 // render.rs `shadow_agreement` (adaptive subpixel shadow rays): from the shaded
-// samples of the subcone_neighbourhood the pixel's subsamples are reconstructed from,
+// samples of the neighbourhood the pixel's subsamples are reconstructed from,
 // the lights whose subpixel shadow rays must be cast (x) and the states the
 // others inherit (y). A light is skipped when every neighbour's layer of it is
 // black (the layer reconstructs to 0 whatever the gate: exact) or every
@@ -149,7 +150,8 @@ fn shadow_agreement(x: u32, y: u32, secondary: bool, first: u32) -> vec2<u32> {
     var all_shadowed = 0xffffffffu;
     var any_shadowed = 0u;
     var dark = all_lights;
-    let nb = subcone_neighbourhood(x, y, subcone_SHADED_SUBSAMPLE, subcone_sraa_radius(frame.sraa), frame.width, frame.height);
+    // Only which pixels: the distances are not read.
+    let nb = subcone_neighbourhood(x, y, subcone_SHADED_SAMPLE, vec2<f32>(0.0), subcone_sraa_radius(frame.sraa), frame.width, frame.height);
     for (var py = nb.y0; py < nb.y1; py++) {
         for (var px = nb.x0; px < nb.x1; px++) {
             let jj = py * frame.width + px;
@@ -173,13 +175,13 @@ fn shadow_agreement(x: u32, y: u32, secondary: bool, first: u32) -> vec2<u32> {
 // Pass "geometry" (the paper's pass 1, ray traced): subsample `k` of every
 // pixel, one dispatch per subsample (`subsample[0]`, which bounds the loop
 // iterations of one invocation: llvmpipe stops a shader invocation's loops
-// after 65 535 iterations in total). The three subsamples other than the shaded
-// one are traced for geometry only, with their shadow states (subpixel shadow
-// rays, cast only where `shadow_agreement` finds the subcone_neighbourhood disagreeing)
-// and, on mirrors, the geometry and shadow states of their reflection rays. The
-// shaded subsample's are copied, not traced again.
+// after 65 535 iterations in total). The subsamples other than the shaded
+// one (all four with the shaded sample at the centre) are traced for geometry only, with their shadow states (subpixel shadow
+// rays, cast only where `shadow_agreement` finds the neighbourhood disagreeing)
+// and, on mirrors, the geometry and shadow states of their reflection rays. A
+// subsample that is the shaded sample copies the shaded ray's, not traced again.
 fn geometry_pixel(x: u32, y: u32, j: u32, k: u32, c: ptr<function, Counts>) {
-    if k == subcone_SHADED_SUBSAMPLE {
+    if subcone_sraa_is_shaded_subsample(frame.sraa, k) {
         put_sub_geo(j, k, geo[j]);
         put_sub_shadow(j, k, get_shadow(j));
         put_sub_geo2(j, k, get_geo2(j));
