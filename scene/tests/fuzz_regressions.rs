@@ -6,7 +6,7 @@ use std::path::Path;
 
 use glam::Vec3;
 use subcone_scene::load::{load_mesh_bytes, load_mesh_file, load_scene_bytes};
-use subcone_scene::sdf::SdfNode;
+use subcone_scene::sdf::{SdfError, SdfNode};
 
 fn assert_unit(n: Vec3, what: &str) {
     assert!(
@@ -93,6 +93,45 @@ fn smooth_union_bounds_cover_every_child_step() {
         if b.distance(q) > 0.0 {
             assert!(blend.distance(q) > 0.0, "{q}");
         }
+    }
+}
+
+/// `regressions/sdf_builder/crash-d218cc93…`: an onion over a scaled,
+/// guarded `RepeatLimited` (cells of 10⁻³⁰) of a displaced octahedron
+/// evaluated to −35.14 at (99.39, 1, 0), 64.25 outside the node's bounds.
+/// The repetition's value there is its cap `wall + margin` (≈ 6·10⁻¹⁸ after
+/// the scale, the point lies near a cell wall's plane), a step bound and not
+/// a distance; the onion's `|d| − 35.14` read it as inside the shell. An
+/// onion thicker than the repetition's margin grows every instance across
+/// its cell walls, which one-cell evaluation cannot represent: such a tree
+/// is now refused, as a repetition of a child that does not fit its cell is.
+#[test]
+fn onion_over_a_guarded_repetition_stays_inside_its_bounds() {
+    let octahedron = SdfNode::octahedron(2.196_135_6e-38).unwrap();
+    let pair = SdfNode::union(vec![octahedron.clone(), octahedron]).unwrap();
+    let displaced = pair.displace(8.784_619e-38, 0.0).unwrap();
+    let child = SdfNode::union(vec![displaced.clone(), displaced]).unwrap();
+    let cells = child
+        .repeat_limited(
+            Vec3::new(-0.0, 1e-30, 1e-30),
+            [-1_313_754_703, -1_313_754_703, 598_847_921],
+            [0, -714_906_880, 1_667_457_891],
+        )
+        .unwrap();
+    let s = 25443.0 / 256.0;
+    let scaled = cells.scale(s).unwrap().scale(s).unwrap();
+    let p = Vec3::new(s, 1.0, 0.0);
+    match scaled.onion(8995.0 / 256.0) {
+        Ok(shell) => {
+            let outside = shell.bounds().distance(p);
+            let d = shell.distance(p);
+            assert!(
+                outside <= 0.0 || d >= 0.0,
+                "{p} is {outside} outside the bounds {:?} but eval = {d}",
+                shell.bounds()
+            );
+        }
+        Err(e) => assert!(matches!(e, SdfError::Overlap { .. }), "{e}"),
     }
 }
 

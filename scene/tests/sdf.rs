@@ -1071,3 +1071,101 @@ fn union_skipping_is_invisible_for_exact_children() {
         assert!(d >= (p.length() - 0.5).min(e.distance(p)) as f64 - 1e-6);
     }
 }
+
+/// Operators that lower the field (onion, round, displacement, smooth union)
+/// over a capped step bound (a guarded repetition, a scatter grid, a bounded
+/// node) are accepted up to the cap's margin, where the field stays positive
+/// away from the grown instances, and refused beyond it, where the cap would
+/// read as a surface on every cell wall.
+#[test]
+fn offsets_over_capped_fields_stay_within_the_margin() {
+    // Off-centre spheres (asymmetric: guarded) in cells of 3 along x: the
+    // sphere reaches x = 0.2 ± 1, a margin of 0.3.
+    let cells = SdfNode::sphere(1.0)
+        .unwrap()
+        .translate(Vec3::new(0.2, 0.0, 0.0))
+        .unwrap()
+        .repeat_limited(Vec3::new(3.0, 0.0, 0.0), [-2, 0, 0], [2, 0, 0])
+        .unwrap();
+    let margin = 0.3;
+    for thickness in [0.0, 0.1, 0.29] {
+        let shell = cells.clone().onion(thickness).unwrap();
+        let rounded = cells.clone().round(thickness).unwrap();
+        let bounds = shell.bounds();
+        // Next to a cell wall's plane (x = 1.5), far beside the row and
+        // between two instances.
+        for p in [
+            Vec3::new(1.5, 50.0, 0.0),
+            Vec3::new(1.5, 0.0, 40.0),
+            Vec3::new(1.45, 0.0, 1.2),
+        ] {
+            assert!(shell.distance(p) > 0.0, "onion {thickness} at {p}");
+            assert!(rounded.distance(p) > 0.0, "round {thickness} at {p}");
+            let split = shell.eval_split(p);
+            assert!(split.safe <= split.surface && split.safe > 0.0, "{p}");
+        }
+        assert!(bounds.distance(Vec3::new(1.5, 50.0, 0.0)) > 0.0);
+    }
+    // Scaled: the margin scales too.
+    assert!(cells.clone().scale(2.0).unwrap().onion(0.59).is_ok());
+    assert!(matches!(
+        cells.clone().scale(2.0).unwrap().onion(0.61),
+        Err(SdfError::Overlap { .. })
+    ));
+    // Beyond the margin, every lowering operator is refused.
+    let over = margin + 0.01;
+    assert!(matches!(
+        cells.clone().onion(over),
+        Err(SdfError::Overlap { .. })
+    ));
+    assert!(matches!(
+        cells.clone().round(over),
+        Err(SdfError::Overlap { .. })
+    ));
+    assert!(matches!(
+        cells.clone().displace(over, 2.0),
+        Err(SdfError::Overlap { .. })
+    ));
+    assert!(cells.clone().displace(over, 0.0).is_ok());
+    assert!(matches!(
+        SdfNode::smooth_union(
+            4.0 * over,
+            vec![cells.clone(), SdfNode::sphere(0.5).unwrap()]
+        ),
+        Err(SdfError::Overlap { .. })
+    ));
+    // Offsets accumulate: two rounds of 0.2 exceed 0.3.
+    let once = cells.clone().round(0.2).unwrap();
+    assert!(matches!(once.round(0.2), Err(SdfError::Overlap { .. })));
+    // Through a union with an uncapped sibling the limit stays.
+    let both = SdfNode::union(vec![
+        cells.clone(),
+        SdfNode::sphere(1.0)
+            .unwrap()
+            .translate(Vec3::new(0.0, 5.0, 0.0))
+            .unwrap(),
+    ])
+    .unwrap();
+    assert!(both.clone().onion(0.2).is_ok());
+    assert!(both.onion(0.4).is_err());
+    // Below the repetition a thick shell is fine: the repetition checks that
+    // the grown instance fits its cell.
+    assert!(SdfNode::sphere(1.0)
+        .unwrap()
+        .translate(Vec3::new(0.2, 0.0, 0.0))
+        .unwrap()
+        .onion(0.25)
+        .unwrap()
+        .repeat_limited(Vec3::new(3.0, 0.0, 0.0), [-2, 0, 0], [2, 0, 0])
+        .is_ok());
+    // A symmetric (exact, unguarded) repetition has no cap.
+    let exact = SdfNode::sphere(1.0)
+        .unwrap()
+        .repeat_limited(Vec3::new(3.0, 0.0, 0.0), [-2, 0, 0], [2, 0, 0])
+        .unwrap();
+    assert!(exact.onion(2.0).is_ok());
+    // A bounded node answers its box's distance beyond `pad`.
+    let boxed = SdfNode::sphere(1.0).unwrap().bounded(0.5).unwrap();
+    assert!(boxed.clone().onion(0.5).is_ok());
+    assert!(matches!(boxed.onion(0.6), Err(SdfError::Overlap { .. })));
+}

@@ -45,7 +45,9 @@
 //! # Errors
 //!
 //! Constructors validate everything (non-finite or negative sizes, zero scale,
-//! empty operators, overlapping repetition cells, out-of-range materials, …)
+//! empty operators, overlapping repetition cells, instances grown across
+//! their cell walls by an offset above a guarded repetition (see
+//! [`SdfNode::onion`]), out-of-range materials, …)
 //! and return an [`SdfError`]; nothing here panics on any input. Callers that
 //! need a [`SceneError`](crate::SceneError) map it themselves.
 

@@ -56,6 +56,11 @@ pub(super) struct Info {
     depth: u32,
     /// Saturating; `u64::MAX` for infinite repetition.
     objects: u64,
+    /// How far operators above may lower this field (round, onion,
+    /// displacement, smooth union) before a capped step bound in it would
+    /// turn negative away from every surface; `∞` when the field has no cap.
+    /// See [`SdfNode::onion`].
+    offset_limit: f32,
     max_material: u32,
     /// A material of the subtree, returned where no object decides.
     pub(super) material: u32,
@@ -220,6 +225,7 @@ impl SdfNode {
                 symmetry: shape.symmetry(),
                 depth: 1,
                 objects: 1,
+                offset_limit: f32::INFINITY,
                 max_material: 0,
                 material: 0,
             },
@@ -373,6 +379,10 @@ impl SdfNode {
     /// applied child by child, each step lowering the value by at most `k/4`,
     /// so with `n` children the surface grows by at most `(n − 1)·k/4` (and the
     /// bounding box by as much). Material: the nearest child's.
+    ///
+    /// Lowering the field is an offset like [`onion`](SdfNode::onion)'s:
+    /// errors when `(n − 1)·k/4` exceeds the margin of a capped step bound
+    /// among the children (see there).
     pub fn smooth_union(k: f32, children: Vec<SdfNode>) -> Result<SdfNode, SdfError> {
         let k = nonneg("smooth union", "k", k)?;
         if k == 0.0 {
@@ -386,7 +396,9 @@ impl SdfNode {
         )?;
         if let Op::SmoothUnion { children, .. } = &node.op {
             let steps = (children.len() - 1) as f32;
-            node.info.bounds = node.info.bounds.expand(0.25 * k * steps);
+            let lowered = 0.25 * k * steps;
+            node.info.offset_limit = node.offset_limit_after("smooth union", "k", lowered)?;
+            node.info.bounds = node.info.bounds.expand(lowered);
         }
         Ok(node)
     }
@@ -414,6 +426,7 @@ impl SdfNode {
             symmetry: first.symmetry,
             depth,
             objects: 0,
+            offset_limit: first.offset_limit,
             max_material: 0,
             material: first.material,
         };
@@ -426,6 +439,7 @@ impl SdfNode {
                 info.symmetry[k] &= ci.symmetry[k];
             }
             info.objects = info.objects.saturating_add(ci.objects);
+            info.offset_limit = info.offset_limit.min(ci.offset_limit);
             info.max_material = info.max_material.max(ci.max_material);
         }
         info.exactness = exactness(info.exactness);
@@ -465,6 +479,9 @@ impl SdfNode {
             symmetry,
             depth,
             objects: self.info.objects,
+            // `−b` is capped too (towards zero, inside `self`): an onion above
+            // would read it as a shell.
+            offset_limit: self.info.offset_limit.min(other.info.offset_limit),
             max_material: self.info.max_material.max(other.info.max_material),
             material: self.info.material,
         };
@@ -559,6 +576,7 @@ impl SdfNode {
             bounds: child.info.bounds.transform(translation, rotation, scale),
             symmetry,
             depth,
+            offset_limit: child.info.offset_limit * scale,
             ..child.info
         };
         if translation == Vec3::ZERO && !rotated && scale == 1.0 {
@@ -638,7 +656,9 @@ impl SdfNode {
     ///   instance and takes `min(d, w + m)`, where `w` is the distance from `p`
     ///   to the walls of its cell that have neighbours and `m` the margin
     ///   between the child's box and the cell walls: every other instance is at
-    ///   least `w + m` away.
+    ///   least `w + m` away. That cap is a step bound, not a distance, so an
+    ///   offset above it (onion, round, displacement, smooth union) may lower
+    ///   the field by at most `m`: see [`SdfNode::onion`].
     ///
     /// One child evaluation per call either way.
     pub fn repeat_limited(
@@ -713,12 +733,21 @@ impl SdfNode {
         } else {
             self.info.exactness
         };
+        // A guarded cell answers at most `wall + margin` (a step bound, no
+        // surface): lowering that by more than `margin` makes it negative
+        // next to the walls.
+        let offset_limit = if guard {
+            margin.min(self.info.offset_limit)
+        } else {
+            self.info.offset_limit
+        };
         let info = Info {
             bounds,
             exactness,
             symmetry,
             depth,
             objects,
+            offset_limit,
             ..self.info
         };
         Ok(SdfNode {
@@ -735,28 +764,55 @@ impl SdfNode {
     }
 
     /// Round by `radius`: `d − radius` (grows the shape). Exactness preserved
-    /// outside.
+    /// outside. An offset like [`onion`](SdfNode::onion)'s: errors when
+    /// `radius` exceeds the margin of a capped step bound below (see there).
     pub fn round(self, radius: f32) -> Result<SdfNode, SdfError> {
         let radius = nonneg("round", "radius", radius)?;
+        let offset_limit = self.offset_limit_after("round", "radius", radius)?;
         self.unary(
             "round",
             |child| Op::Round { radius, child },
             |i| {
                 i.bounds = i.bounds.expand(radius);
+                i.offset_limit = offset_limit;
             },
         )
     }
 
     /// Shell of `thickness`: `|d| − thickness`. Exact only for an exact single
     /// primitive (whose inside is exact too); a bound otherwise.
+    ///
+    /// Errors ([`SdfError::Overlap`]) when `thickness` exceeds the child's
+    /// *offset limit*: the margin of the capped step bounds in it. A guarded
+    /// repetition or a scatter grid answers `min(d, w + m)` (`w` the distance
+    /// to its cell's walls, `m` the margin between the instances and the
+    /// walls) and a [`bounded`](SdfNode::bounded) node its box's distance
+    /// beyond `pad`: step bounds, positive but not distances, which may be
+    /// tiny far from every surface (`w` ignores the other axes: a point 100
+    /// units beside a row of cells can be next to a wall's plane). `|d| − t`
+    /// of such a cap reads as inside the shell wherever the cap is below `t`,
+    /// which puts solid slabs on the cell walls, outside the node's bounds.
+    /// Below the margin (`t ≤ m`) the cap stays a valid bound of the grown
+    /// instances (`w + m − t ≥ w ≥ 0`, and every other instance's shell is at
+    /// least that far); above it the shells cross the cell walls, which an
+    /// evaluation of one cell cannot see, as a repetition of a child that does
+    /// not fit its cell (refused by [`repeat_limited`](SdfNode::repeat_limited)).
+    /// Apply the onion below the repetition instead. The same holds for every
+    /// operator that lowers the field ([`round`](SdfNode::round),
+    /// [`displace`](SdfNode::displace), [`smooth_union`](SdfNode::smooth_union)):
+    /// the limit is tracked through the tree (scaled by transforms and
+    /// distance factors, reduced by each offset, the smallest of the
+    /// children's), so `eval`, `eval_split` and the WGSL field are unchanged.
     pub fn onion(self, thickness: f32) -> Result<SdfNode, SdfError> {
         let thickness = nonneg("onion", "thickness", thickness)?;
+        let offset_limit = self.offset_limit_after("onion", "thickness", thickness)?;
         let single = self.is_single_primitive();
         self.unary(
             "onion",
             |child| Op::Onion { thickness, child },
             |i| {
                 i.bounds = i.bounds.expand(thickness);
+                i.offset_limit = offset_limit;
                 if !single {
                     i.exactness = i.exactness.max(Exactness::Bound);
                 }
@@ -779,16 +835,21 @@ impl SdfNode {
             |i| {
                 i.exactness = Exactness::NonEikonal;
                 i.conservative &= factor <= 1.0;
+                i.offset_limit *= factor;
             },
         )
     }
 
     /// Displace the surface by `amplitude · sin(f x) sin(f y) sin(f z)`:
     /// non-Eikonal (`|∇f|` up to `1 + amplitude · frequency · √3`), may
-    /// overestimate.
+    /// overestimate. Lowers the field by up to `amplitude`: errors when that
+    /// exceeds the margin of a capped step bound below (see
+    /// [`onion`](SdfNode::onion)).
     pub fn displace(self, amplitude: f32, frequency: f32) -> Result<SdfNode, SdfError> {
         let amplitude = nonneg("displacement", "amplitude", amplitude)?;
         let frequency = nonneg("displacement", "frequency", frequency)?;
+        let lowered = if frequency > 0.0 { amplitude } else { 0.0 };
+        let offset_limit = self.offset_limit_after("displacement", "amplitude", lowered)?;
         self.unary(
             "displacement",
             |child| Op::Displace {
@@ -798,6 +859,7 @@ impl SdfNode {
             },
             |i| {
                 i.bounds = i.bounds.expand(amplitude);
+                i.offset_limit = offset_limit;
                 if amplitude > 0.0 && frequency > 0.0 {
                     i.exactness = Exactness::NonEikonal;
                     i.conservative = false;
@@ -825,6 +887,8 @@ impl SdfNode {
             |child| Op::Bounded { pad, child },
             |i| {
                 i.exactness = i.exactness.max(Exactness::Bound);
+                // Beyond `pad` it answers the box's distance, not the surface's.
+                i.offset_limit = i.offset_limit.min(pad);
             },
         )
     }
@@ -846,6 +910,14 @@ impl SdfNode {
         if let Some(m) = scatter.palette().iter().max() {
             max_material = *m;
         }
+        // Cells answer at most `wall + margin`; an instance's own caps shrink
+        // with its scale.
+        let mut offset_limit = scatter.margin();
+        for inst in scatter.instances() {
+            if let Some(t) = scatter.templates().get(inst.template as usize) {
+                offset_limit = offset_limit.min(t.info.offset_limit * inst.scale);
+            }
+        }
         let info = Info {
             bounds: scatter.bounds(),
             exactness,
@@ -853,6 +925,7 @@ impl SdfNode {
             symmetry: [false; 3],
             depth,
             objects: scatter.object_count(),
+            offset_limit,
             max_material,
             material: scatter.default_material(),
         };
@@ -876,6 +949,29 @@ impl SdfNode {
             op: make(Box::new(self)),
             info,
         })
+    }
+
+    /// The offset limit left after lowering this node's field by `by`, or an
+    /// [`SdfError::Overlap`] when `by` exceeds it (see [`SdfNode::onion`]).
+    fn offset_limit_after(
+        &self,
+        node: &'static str,
+        param: &'static str,
+        by: f32,
+    ) -> Result<f32, SdfError> {
+        let limit = self.info.offset_limit;
+        if by <= limit {
+            Ok(limit - by)
+        } else {
+            Err(SdfError::Overlap {
+                node,
+                reason: format!(
+                    "{param} {by} lowers the field by more than the margin {limit} of a guarded \
+                     repetition, scatter grid or bounded node below: instances would grow \
+                     across their cell walls (apply it below the repetition)"
+                ),
+            })
+        }
     }
 
     fn is_single_primitive(&self) -> bool {
