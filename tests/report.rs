@@ -69,6 +69,7 @@ fn claimed(method: &str) -> Vec<&'static str> {
         Some(b) => (b, true),
         None => (base, false),
     };
+    let base = base.strip_suffix("-paper").unwrap_or(base);
     let mut c = match base {
         "sraa" => vec!["silhouette", "crease"],
         "sraa-rt" => vec!["silhouette", "crease", "shadow", "reflection"],

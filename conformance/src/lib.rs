@@ -61,27 +61,49 @@ pub const W: u32 = 64;
 /// Frame height of the suite (see [`W`]).
 pub const H: u32 = 48;
 
-/// Methods of [`METHOD_NAMES`] the per-scene cases leave out of SDF scenes,
-/// with why. Every other listed name whose technique applies to a scene
+/// Where [`LEFT_OUT`] leaves a method out.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LeftOutOf {
+    /// SDF scenes only.
+    SdfScenes,
+    /// Every scene.
+    Everywhere,
+}
+
+/// Methods of [`METHOD_NAMES`] the per-scene cases leave out, where, and
+/// why. Every other listed name whose technique applies to a scene
 /// ([`required_passes`] accepts it) runs on it: [`methods_for`].
-pub const LEFT_OUT_ON_SDF: [(&str, &str); 3] = [
+pub const LEFT_OUT: [(&str, LeftOutOf, &str); 5] = [
     (
         "ssaa16",
+        LeftOutOf::SdfScenes,
         "16 sphere-traced samples per pixel cost seconds per frame on a software GPU; ssaa4 runs the same code",
     ),
     (
         "ctss+edges",
+        LeftOutOf::SdfScenes,
         "CPU-only: `cpu_only_methods` renders it on every SDF scene and checks the refusals",
     ),
     (
         "sraa-rt+mat",
+        LeftOutOf::SdfScenes,
         "the material gate on SDF scenes: `cpu_only_methods`' scene invariants cover sraa-rt",
+    ),
+    (
+        "sraa-paper+mat",
+        LeftOutOf::Everywhere,
+        "the code of sraa+mat with the parameters of sraa-paper, both in the suite",
+    ),
+    (
+        "sraa-rt-paper+mat",
+        LeftOutOf::Everywhere,
+        "the code of sraa-rt+mat with the parameters of sraa-rt-paper, both in the suite",
     ),
 ];
 
 /// The methods the per-scene cases run on `scene`: every name of
-/// [`METHOD_NAMES`] whose technique applies to it, but those of
-/// [`LEFT_OUT_ON_SDF`] on SDF scenes.
+/// [`METHOD_NAMES`] whose technique applies to it, but those [`LEFT_OUT`]
+/// of it.
 pub fn methods_for(scene: &Scene) -> Vec<&'static str> {
     let sdf = scene.features().contains(SceneFeatures::IS_SDF);
     METHOD_NAMES
@@ -89,7 +111,9 @@ pub fn methods_for(scene: &Scene) -> Vec<&'static str> {
         .filter(|m| {
             let method: Method = m.parse().expect("METHOD_NAMES parse");
             required_passes(method.technique, scene.features()).is_ok()
-                && !(sdf && LEFT_OUT_ON_SDF.iter().any(|(n, _)| n == m))
+                && !LEFT_OUT
+                    .iter()
+                    .any(|(n, o, _)| n == m && (sdf || *o == LeftOutOf::Everywhere))
         })
         .collect()
 }
@@ -102,9 +126,13 @@ pub fn methods_for(scene: &Scene) -> Vec<&'static str> {
 /// where they are also in [`methods_for`] an SDF scene, the per-scene cases check the
 /// refusal too. Any other refusal of a method in the scene lists, but a
 /// technique that does not apply to the scene, fails the suite.
-pub const CPU_ONLY_ON_SDF: [(&str, &str); 2] = [
+pub const CPU_ONLY_ON_SDF: [(&str, &str); 3] = [
     (
         "sraa-rt",
+        "sphere-traced subpixel geometry and its reconstruction exist on the CPU only",
+    ),
+    (
+        "sraa-rt-paper",
         "sphere-traced subpixel geometry and its reconstruction exist on the CPU only",
     ),
     (
@@ -196,7 +224,16 @@ pub const REFERENCE_BOUNDS: [Family; 6] = [
     },
     Family {
         name: "sraa",
-        methods: &["sraa", "sraa-rt", "sraa+mat", "sraa-rt+mat"],
+        methods: &[
+            "sraa",
+            "sraa-rt",
+            "sraa+mat",
+            "sraa-rt+mat",
+            "sraa-paper",
+            "sraa-rt-paper",
+            "sraa-paper+mat",
+            "sraa-rt-paper+mat",
+        ],
         mean: 0.30,
         // Worst measured 0.234 (checker, sraa; the material gate brings it to
         // 0.167): SRAA fixes geometric edges, not the texture's aliasing.
@@ -915,11 +952,13 @@ mod tests {
         assert!(tri.contains(&"sraa") && !tri.contains(&"ctss"));
         assert!(sdf.contains(&"ctss") && sdf.contains(&"ssaa4"));
         let scene = builtin("primitives").unwrap();
-        for (m, _) in LEFT_OUT_ON_SDF {
+        let tri = builtin("cornell").unwrap();
+        for (m, out_of, _) in LEFT_OUT {
             let method: Method = m.parse().unwrap();
+            let applies = |s: &Scene| required_passes(method.technique, s.features()).is_ok();
             assert!(
-                required_passes(method.technique, scene.features()).is_ok(),
-                "{m} does not apply to SDF scenes: no need to leave it out"
+                applies(&scene) || (out_of == LeftOutOf::Everywhere && applies(&tri)),
+                "{m} does not apply where it is left out: no need to list it"
             );
         }
     }

@@ -286,6 +286,8 @@ pub fn claimed(method: &str) -> Vec<Class> {
         Some(b) => (b, true),
         None => (base, false),
     };
+    // A preset claims what its method claims.
+    let base = base.strip_suffix("-paper").unwrap_or(base);
     let mut c = match base {
         "sraa" => vec![Silhouette, Crease],
         "sraa-rt" => vec![Silhouette, Crease, Shadow, Reflection],
@@ -423,6 +425,8 @@ mod tests {
         assert_eq!(claimed("ssaa4+ctss").len(), 5);
         assert_eq!(claimed("sraa"), vec![Silhouette, Crease]);
         assert_eq!(claimed("sraa+mat"), vec![Silhouette, Crease, Texture]);
+        assert_eq!(claimed("sraa-rt-paper+mat"), claimed("sraa-rt+mat"));
+        assert_eq!(claimed("sraa-paper"), claimed("sraa"));
         assert_eq!(
             claimed("sraa-rt+mat"),
             vec![Silhouette, Crease, Shadow, Texture, Reflection]
