@@ -14,6 +14,7 @@ use obvhs::BvhBuildParams;
 use subcone_scene::{Albedo, Light, RenderError, Scene};
 use wgpu::util::DeviceExt;
 
+use crate::compute::{Access, Bindings};
 use crate::context::{err, GpuContext};
 
 /// Entries of the traversal stack in `trace.wgsl`. A BVH deeper than this is
@@ -81,6 +82,22 @@ pub(crate) struct SceneGpu {
 /// The uploaded scene, built on first use per device and `scene.id()`, kept
 /// in the device's own cache (device ids repeat across wgpu instances, so a
 /// process-wide cache keyed by device could hand one device another's buffers).
+impl SceneGpu {
+    /// Bind what both the trace and the raster passes read of the scene:
+    /// triangles, their attributes, materials and texels.
+    pub(crate) fn bind_surfaces(&self, b: &mut Bindings) {
+        b.buffer("tris", "array<vec4<f32>>", Access::Read, &self.tris);
+        b.buffer("attrs", "array<vec4<f32>>", Access::Read, &self.attrs);
+        b.buffer(
+            "materials",
+            "array<MaterialGpu>",
+            Access::Read,
+            &self.materials,
+        );
+        b.buffer("texels", "array<vec4<f32>>", Access::Read, &self.texels);
+    }
+}
+
 pub(crate) fn scene_gpu(ctx: &GpuContext, scene: &Scene) -> Result<Arc<SceneGpu>, RenderError> {
     use std::hash::{DefaultHasher, Hash, Hasher};
     let mut h = DefaultHasher::new();

@@ -138,15 +138,7 @@ fn scene_bindings(
     let mut b = Bindings::new(0);
     b.uniform(ctx, "frame", "FrameUniform", uniform)?;
     b.buffer("nodes", "array<BvhNode>", Access::Read, &sg.nodes);
-    b.buffer("tris", "array<vec4<f32>>", Access::Read, &sg.tris);
-    b.buffer("attrs", "array<vec4<f32>>", Access::Read, &sg.attrs);
-    b.buffer(
-        "materials",
-        "array<MaterialGpu>",
-        Access::Read,
-        &sg.materials,
-    );
-    b.buffer("texels", "array<vec4<f32>>", Access::Read, &sg.texels);
+    sg.bind_surfaces(&mut b);
     b.buffer("lights", "array<LightGpu>", Access::Read, &sg.lights);
     // 64-bit as (lo, hi) pairs: primary, geometry, shadow, secondary,
     // shaded; then [10] traversals that ended before their stack emptied.

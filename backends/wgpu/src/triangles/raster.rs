@@ -12,7 +12,7 @@ use subcone_scene::RenderError;
 
 use super::bvh::SceneGpu;
 use super::FrameUniform;
-use crate::compute::{self, Access, Bindings};
+use crate::compute::{self, Bindings};
 use crate::context::{err, GpuContext};
 
 const RASTER_WGSL: &str = include_str!("raster.wgsl");
@@ -49,15 +49,7 @@ fn put_sub_albedo(j: u32, k: u32, v: vec4<f32>) { }
 fn bindings(ctx: &GpuContext, sg: &SceneGpu, u: &FrameUniform) -> Result<Bindings, RenderError> {
     let mut b = Bindings::visible_in(0, wgpu::ShaderStages::VERTEX_FRAGMENT);
     b.uniform(ctx, "frame", "FrameUniform", u)?;
-    b.buffer("tris", "array<vec4<f32>>", Access::Read, &sg.tris);
-    b.buffer("attrs", "array<vec4<f32>>", Access::Read, &sg.attrs);
-    b.buffer(
-        "materials",
-        "array<MaterialGpu>",
-        Access::Read,
-        &sg.materials,
-    );
-    b.buffer("texels", "array<vec4<f32>>", Access::Read, &sg.texels);
+    sg.bind_surfaces(&mut b);
     Ok(b)
 }
 
