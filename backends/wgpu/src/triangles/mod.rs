@@ -500,27 +500,24 @@ fn subpixel_bindings(f: &Setup) -> Result<(Bindings, String, Option<raster::Rast
          const SECONDARY_SHADING: bool = {secondary_shading};\nconst MATERIAL: bool = {material};\n",
         layout.lights, layout.single, layout.secondary
     );
-    header += &accessors(&fb, "shadow", "shadow_buf", "u32", 1, "0u");
-    header += &accessors(&fb, "geo2", "geo2_buf", "subcone_Geometry", 1, no_secondary);
-    header += &accessors(&fb, "shadow2", "shadow2_buf", "u32", 1, "0u");
-    header += &accessors(&fb, "sub_shadow", "sub_shadow_buf", "u32", 4, "0u");
-    header += &accessors(
-        &fb,
-        "sub_geo2",
-        "sub_geo2_buf",
-        "subcone_Geometry",
-        4,
-        no_secondary,
-    );
-    header += &accessors(&fb, "sub_shadow2", "sub_shadow2_buf", "u32", 4, "0u");
-    header += &accessors(
-        &fb,
-        "albedo",
-        "albedo_buf",
-        "vec4<f32>",
-        1,
-        "vec4<f32>(0.0)",
-    );
+    // (name, buffer, element type, elements per pixel, value when absent)
+    for (name, var, ty, per, default) in [
+        ("shadow", "shadow_buf", "u32", 1, "0u"),
+        ("geo2", "geo2_buf", "subcone_Geometry", 1, no_secondary),
+        ("shadow2", "shadow2_buf", "u32", 1, "0u"),
+        ("sub_shadow", "sub_shadow_buf", "u32", 4, "0u"),
+        (
+            "sub_geo2",
+            "sub_geo2_buf",
+            "subcone_Geometry",
+            4,
+            no_secondary,
+        ),
+        ("sub_shadow2", "sub_shadow2_buf", "u32", 4, "0u"),
+        ("albedo", "albedo_buf", "vec4<f32>", 1, "vec4<f32>(0.0)"),
+    ] {
+        header += &accessors(&fb, name, var, ty, per, default);
+    }
     if !rt && material {
         header += raster::SUB_ALBEDO_ACCESSORS;
     } else {
