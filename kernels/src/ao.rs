@@ -167,7 +167,10 @@ mod tests {
         ] {
             for i in [0, 3, 7, 1000] {
                 let d = ao_direction(n, i, 8);
-                assert!(d.is_finite() && (d.length() - 1.0).abs() < 1e-5, "{n} {i}: {d}");
+                assert!(
+                    d.is_finite() && (d.length() - 1.0).abs() < 1e-5,
+                    "{n} {i}: {d}"
+                );
             }
         }
     }

@@ -71,6 +71,8 @@ pub struct Context {
     pub reference: String,
     /// Scenes.
     pub scenes: Vec<SceneInfo>,
+    /// Ambient-occlusion rays per shaded point of every render (`--ao`).
+    pub ao: u32,
 }
 
 /// A scene in the report.
@@ -281,6 +283,7 @@ pub fn json(s: &ReportSummary, ctx: &Context) -> Value {
         "backends": ctx.backends,
         "backend_descriptions": ctx.backend_descriptions,
         "runs": ctx.runs,
+        "ao_rays": ctx.ao,
         "reference": if ctx.mode == Mode::TimingOnly { Value::Null } else { json!(ctx.reference) },
         "scenes": ctx.scenes.iter().map(|sc| json!({
             "name": sc.name,
@@ -292,6 +295,12 @@ pub fn json(s: &ReportSummary, ctx: &Context) -> Value {
         "columns": columns,
         "results": results,
         "sweep": sweep,
+        "ao_sweep": s.ao_sweep.rows.iter().map(|r| json!({
+            "scene": r.scene, "method": r.method, "backend": r.backend, "ao_rays": r.ao,
+            "ms_median": r.ms_median, "rays_per_pixel": r.rays_per_pixel,
+            "ao_rays_per_pixel": r.ao_rays_per_pixel, "edge_flip": r.edge_flip,
+            "flip_mean": r.flip_mean,
+        })).collect::<Vec<_>>(),
         "skipped": s.skipped.iter().map(|k| json!({
             "scene": k.scene, "method": k.method, "backend": k.backend, "reason": k.reason,
         })).collect::<Vec<_>>(),
@@ -464,7 +473,7 @@ pub fn markdown(s: &ReportSummary, ctx: &Context) -> String {
     let _ = writeln!(md, "# subcone report\n");
     let _ = writeln!(
         md,
-        "Mode **{}**, backends {}, {} timed runs after one warm-up, code {}, {} hardware threads ({}).{}\n",
+        "Mode **{}**, backends {}, {} timed runs after one warm-up, code {}, {} hardware threads ({}).{}{}\n",
         ctx.mode.name(),
         ctx.backend_descriptions.join(", "),
         ctx.runs,
@@ -475,6 +484,14 @@ pub fn markdown(s: &ReportSummary, ctx: &Context) -> String {
             " No references and no errors (timing only).".to_string()
         } else {
             format!(" Errors against a {} reference.", ctx.reference)
+        },
+        if ctx.ao > 0 {
+            format!(
+                " Ambient occlusion: {} rays per shaded point on triangle scenes (`--ao`), references included.",
+                ctx.ao
+            )
+        } else {
+            String::new()
         }
     );
     let _ = writeln!(
@@ -552,6 +569,7 @@ faster method beats.\n"
 
     md.push_str(&sdf_pick(s, ctx));
     md.push_str(&paper_comparison(s, ctx));
+    md.push_str(&super::ao_sweep::section(&s.ao_sweep, &ctx.reference));
     md.push_str(&targets(s, ctx));
 
     let _ = writeln!(
@@ -822,6 +840,7 @@ has the full set).\n",
             );
         }
     }
+    md.push_str(&super::ao_sweep::target_rows(&s.ao_sweep));
     let pct = |x: f64| format!("{:.1}%", 100.0 * x);
     for t in &s.throughput {
         let r = &t.rates;

@@ -5,8 +5,8 @@ use glam::{Vec2, Vec3};
 use subcone_cpu::shade::{Counts, Surface, Tracer};
 use subcone_cpu::CpuBackend;
 use subcone_scene::{
-    builtin::builtin, Backend, Camera, Frame, Material, Method, RenderError, RenderSettings,
-    Scene, TriangleMesh,
+    builtin::builtin, Backend, Camera, Frame, Material, Method, RenderError, RenderSettings, Scene,
+    TriangleMesh,
 };
 
 fn render(scene: &Scene, method: &str, w: u32, h: u32, ao: u32) -> Frame {
