@@ -140,8 +140,9 @@ fn opt(v: Option<f64>, digits: usize) -> String {
     v.map_or("–".into(), |v| format!("{v:.digits$}"))
 }
 
-/// The section's markdown (empty when not asked for).
-pub fn section(sweep: &AoSweep, reference: &str) -> String {
+/// The section's markdown (empty when not asked for); `reference` is the
+/// reference method, `None` in a timing-only run.
+pub fn section(sweep: &AoSweep, reference: Option<&str>) -> String {
     let mut md = String::new();
     if !sweep.ran {
         return md;
@@ -153,13 +154,17 @@ pub fn section(sweep: &AoSweep, reference: &str) -> String {
 the scene's bounding diagonal, in one fixed stratified cosine-weighted set of directions (a \
 noise-free function of position and normal), and the ambient term is multiplied by the \
 unoccluded fraction (not at mirror hits). ssaa4 shades 4 points per pixel, sraa-rt 1. \
-At {}x{}, {} against {reference} rendered with the same N; *edge FLIP* is the mean FLIP \
+At {}x{}, {}{}; *edge FLIP* is the mean FLIP \
 over the silhouette, crease and shadow pixels together. *rays* ratio is ssaa4's rays per \
 pixel over sraa-rt's, *time* ratio the same for the median time.\n",
         subcone_scene::backend::AO_RADIUS_FRACTION,
         AO_SWEEP_SIZE.0,
         AO_SWEEP_SIZE.1,
         AO_SWEEP_METHODS.join(", "),
+        match reference {
+            Some(r) => format!(" against {r} rendered with the same N"),
+            None => " (timing only: no errors)".into(),
+        },
     );
     for (scene, why) in &sweep.missing {
         let _ = writeln!(md, "- `{scene}` not swept: {why}");
@@ -283,6 +288,14 @@ where
         .configure_mesh()
         .x_desc("ambient-occlusion rays per shaded point")
         .y_desc(y_desc)
+        .x_label_formatter(&|v| format!("{v:.0}"))
+        .y_label_formatter(&|v| {
+            if *v >= 10.0 {
+                format!("{v:.0}")
+            } else {
+                format!("{v:.3}")
+            }
+        })
         .label_style((FAMILY, size - 4))
         .axis_desc_style((FAMILY, size - 2))
         .draw()
@@ -536,8 +549,8 @@ mod tests {
         assert!(lines[1].contains("AO 64") && lines[1].ends_with("| met |"));
         assert!(lines[2].contains("4.00x") && lines[2].ends_with("| met |"));
         assert!(lines[3].contains("1.10x") && lines[3].ends_with("| met |"));
-        assert!(section(&sweep, "ssaa256").contains("## Where SRAA pays"));
-        assert!(section(&AoSweep::default(), "ssaa256").is_empty());
+        assert!(section(&sweep, Some("ssaa256")).contains("## Where SRAA pays"));
+        assert!(section(&AoSweep::default(), Some("ssaa256")).is_empty());
     }
 
     #[test]

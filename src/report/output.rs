@@ -569,7 +569,10 @@ faster method beats.\n"
 
     md.push_str(&sdf_pick(s, ctx));
     md.push_str(&paper_comparison(s, ctx));
-    md.push_str(&super::ao_sweep::section(&s.ao_sweep, &ctx.reference));
+    md.push_str(&super::ao_sweep::section(
+        &s.ao_sweep,
+        (ctx.mode != Mode::TimingOnly).then_some(ctx.reference.as_str()),
+    ));
     md.push_str(&targets(s, ctx));
 
     let _ = writeln!(
