@@ -503,7 +503,7 @@ NoAA depth or normal changes across a 4-neighbour by more than 2 % (unless the i
 continues linearly, as across a plane) or a cosine of 0.9, where a surface meets the background, or where the reference's luminance Sobel gradient exceeds 0.1). \
 *spp* is shaded samples per pixel (the mean of the samples-per-pixel AOV of the quality render, \
 or shading evaluations per pixel without one); *rays/px* counts every ray cast (primary, \
-geometry, shadow, secondary); *buffers MiB* is what the backend allocated for the frame, \
+geometry, shadow, secondary, ambient occlusion); *buffers MiB* is what the backend allocated for the frame, \
 which leaving out passes a scene does not need (shadows, reflections) keeps down. Lower FLIP is better; the Pareto front joins the methods that no \
 faster method beats.\n"
     );
