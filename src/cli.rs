@@ -94,11 +94,12 @@ impl RenderReport {
         }
         let r = s.rays;
         out += &format!(
-            "rays per pixel: primary {:.2}, geometry {:.2}, shadow {:.2}, secondary {:.2}\n",
+            "rays per pixel: primary {:.2}, geometry {:.2}, shadow {:.2}, secondary {:.2}, ao {:.2}\n",
             r.primary as f64 / px,
             r.geometry as f64 / px,
             r.shadow as f64 / px,
-            r.secondary as f64 / px
+            r.secondary as f64 / px,
+            r.ao as f64 / px
         );
         out += &format!("buffers: {} bytes\n", s.buffer_bytes());
         for (name, bytes) in &s.buffers {
@@ -138,6 +139,8 @@ pub struct RenderOptions {
     pub max_steps: Option<u32>,
     /// SDF distance override.
     pub max_distance: Option<f32>,
+    /// Ambient-occlusion rays per shaded point (0: off).
+    pub ao_rays: u32,
     /// AOV to write beside the output.
     pub aov: Option<Aov>,
     /// Output path.
@@ -216,7 +219,10 @@ pub fn render(opts: &RenderOptions) -> Result<RenderReport> {
     settings.max_steps = opts.max_steps;
     settings.max_distance = opts.max_distance;
     settings.aovs = opts.aov.is_some();
-    settings.validate()?;
+    settings.ao_rays = opts.ao_rays;
+    settings
+        .validate()
+        .map_err(|e| ao_context(e, opts.ao_rays))?;
     let start = Instant::now();
     let frame = backend.render(&scene, &scene.camera, &opts.method, &settings)?;
     let wall_ms = start.elapsed().as_secs_f64() * 1e3;
@@ -231,6 +237,31 @@ pub fn render(opts: &RenderOptions) -> Result<RenderReport> {
         frame,
         wall_ms,
     })
+}
+
+/// A settings error, naming the `--ao` flag when it is about the AO rays.
+pub fn ao_context(e: subcone_scene::RenderError, ao: u32) -> anyhow::Error {
+    if ao > subcone_scene::backend::MAX_AO_RAYS {
+        anyhow!("--ao {ao}: {e}")
+    } else {
+        e.into()
+    }
+}
+
+/// Parse and check `--ao N`: ambient-occlusion rays per shaded point, at
+/// most [`subcone_scene::backend::MAX_AO_RAYS`].
+pub fn parse_ao(s: &str) -> std::result::Result<u32, String> {
+    let max = subcone_scene::backend::MAX_AO_RAYS;
+    let n: u32 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("{s:?} is not a whole number of rays (0 to {max})"))?;
+    if n > max {
+        return Err(format!(
+            "{n} ambient-occlusion rays per point: at most {max} are supported"
+        ));
+    }
+    Ok(n)
 }
 
 /// Arguments of `subcone report`.
@@ -280,6 +311,16 @@ pub struct ReportArgs {
     /// (without it, the first failure stops the run with its error).
     #[arg(long)]
     pub keep_going: bool,
+    /// Ambient-occlusion rays per shaded point for every render of the run
+    /// (triangle scenes; 0: off, at most 256). Part of the reference cache key.
+    #[arg(long = "ao", value_name = "N", default_value_t = 0, value_parser = parse_ao)]
+    pub ao: u32,
+    /// Add the section "Where SRAA pays": on atrium and Sponza at 512²,
+    /// noaa, ssaa4 and sraa-rt with ambient occlusion 0, 4, 16 and 64 rays
+    /// (time, silhouette + crease + shadow FLIP, ray-count and time ratios).
+    /// Never part of the default or quick report.
+    #[arg(long)]
+    pub sraa_sweep: bool,
 }
 
 impl Default for ReportArgs {
@@ -300,6 +341,8 @@ impl Default for ReportArgs {
             refresh_references: false,
             no_sweep: false,
             keep_going: false,
+            ao: 0,
+            sraa_sweep: false,
         }
     }
 }

@@ -55,6 +55,10 @@ enum Command {
         /// SDF scenes: maximum ray distance (default: the scene's).
         #[arg(long)]
         max_distance: Option<f32>,
+        /// Ambient-occlusion rays per shaded point (triangle scenes; 0: off,
+        /// at most 256): the ambient term times the unoccluded fraction.
+        #[arg(long = "ao", value_name = "N", default_value_t = 0, value_parser = cli::parse_ao)]
+        ao: u32,
         /// Also write an AOV image beside the output: samples, depth or normal.
         #[arg(long)]
         aov: Option<Aov>,
@@ -92,6 +96,7 @@ fn run() -> Result<()> {
             visibility_k,
             max_steps,
             max_distance,
+            ao,
             aov,
             stats,
             verbose,
@@ -109,6 +114,7 @@ fn run() -> Result<()> {
                 reflection_depth,
                 max_steps,
                 max_distance,
+                ao_rays: ao,
                 aov,
                 output,
             };

@@ -171,3 +171,66 @@ fn every_method_name_is_documented() {
         }
     }
 }
+
+/// `--ao N` on `render` and `report`: accepted up to the cap (the rays are
+/// listed with `--verbose`), refused above it, and on an SDF scene, with a
+/// message naming what to change.
+#[test]
+fn ambient_occlusion_flag() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("ao.png");
+    let o = out.to_str().unwrap();
+    let (ok, text) = subcone(&[
+        "render",
+        "--scene",
+        "cornell",
+        "--method",
+        "sraa-rt",
+        "--size",
+        "24x16",
+        "--ao",
+        "4",
+        "--verbose",
+        "-o",
+        o,
+    ]);
+    assert!(ok, "{text}");
+    assert!(text.contains("ao "), "--verbose counts the AO rays: {text}");
+    assert!(out.exists());
+    for (args, needle) in [
+        (
+            vec!["render", "--size", "8x8", "--ao", "257"],
+            "at most 256",
+        ),
+        (vec!["render", "--size", "8x8", "--ao", "many"], "--ao"),
+        (vec!["report", "--quick", "--ao", "1000"], "at most 256"),
+        (
+            vec![
+                "render",
+                "--size",
+                "8x8",
+                "--scene",
+                "primitives",
+                "--method",
+                "noaa",
+                "--ao",
+                "4",
+            ],
+            "triangle scenes only",
+        ),
+    ] {
+        let bad = dir.path().join("bad.png");
+        let mut args = args.clone();
+        args.extend(["-o", bad.to_str().unwrap()]);
+        if args[0] == "report" {
+            args.truncate(args.len() - 2);
+        }
+        let (ok, text) = subcone(&args);
+        assert!(!ok, "{args:?} succeeded");
+        assert!(
+            text.contains(needle),
+            "{args:?}: expected {needle:?} in {text:?}"
+        );
+        assert!(!bad.exists());
+    }
+}

@@ -31,6 +31,7 @@ use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::{Config, TestRunner};
 use subcone_kernels::aggregate::{sample_weight, Aggregate, Weighting};
+use subcone_kernels::ao::{ao_direction, ao_fraction};
 use subcone_kernels::cone::{
     advance, backtrace_cone_entry, backtrace_hard_hit, cone_occlusion, cone_radius, min_step,
 };
@@ -116,6 +117,16 @@ const MATERIAL_GATE_NEAR: f32 = 1e-5;
 /// `needs_normal`: exact, except where `|d/R_c|` lies within this of the
 /// farthest cell centre, where one rounding decides it.
 const NEEDS_NORMAL_NEAR: f32 = 1e-5;
+/// `ao_direction` (with `tangent_frame` and `ao_direction_local`): WGSL
+/// bounds `sin` and `cos` only to 2^-11 absolute on [−π, π], the azimuth's
+/// range, and the frame adds the two components' errors: √2·2^-11 ≈ 6.9e-4,
+/// plus a few roundings of the normalisation and the frame: 1e-3. Every
+/// other step (the stratum's division, square roots) is a few ulps.
+/// Lavapipe's worst is 9e-8.
+const TOL_AO_DIRECTION: Tol = Tol::Abs(1e-3);
+/// `ao_fraction`: a quotient of two exactly converted integers (≤ 2^24);
+/// WGSL allows the division 2.5 ulps, Rust's is correctly rounded: 3 ulps.
+const TOL_AO_FRACTION: Tol = Tol::Ulps(3);
 
 /// The GPU, or `None`: skipped without an adapter unless `SUBCONE_REQUIRE_GPU`.
 fn gpu() -> Option<subcone_wgpu::WgpuBackend> {
@@ -407,6 +418,7 @@ struct Library {
     sraa: String,
     ctss: String,
     fxaa: String,
+    ao: String,
 }
 
 impl Library {
@@ -416,6 +428,7 @@ impl Library {
             sraa: [sraa::WGSL, SRAA_PARAMS_AT].concat(),
             ctss: [cone::WGSL, mask::WGSL, aggregate::WGSL].concat(),
             fxaa: [FXAA_FETCH, fxaa::WGSL].concat(),
+            ao: ao::WGSL.to_string(),
         }
     }
 }
@@ -1381,7 +1394,77 @@ fn generated_sdf_wgsl_evaluates_the_same_field() {
     }
 }
 
-const CHECKS: [(&str, Check); 7] = [
+/// The ambient-occlusion directions and fraction: `ao_direction` within
+/// [`TOL_AO_DIRECTION`] for generated normals (non-finite and degenerate
+/// ones included, which both sides map to the +Z frame), indices and counts
+/// (beyond the count and zero included); `ao_fraction` within
+/// [`TOL_AO_FRACTION`]. Every output must be finite on both sides.
+fn check_ao(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
+    let mut cases: Vec<(Vec3, u32, u32)> = generate((unit_vec(), 0u32..300, 0u32..300), 9);
+    let axes = [
+        Vec3::X,
+        -Vec3::X,
+        Vec3::Y,
+        -Vec3::Y,
+        Vec3::Z,
+        -Vec3::Z,
+        Vec3::new(0.0, 0.0, -0.0),
+        Vec3::ZERO,
+        Vec3::NAN,
+        Vec3::new(f32::INFINITY, 0.0, 1.0),
+        Vec3::splat(f32::MAX),
+        Vec3::splat(1e-30),
+        Vec3::new(0.6, 0.0, -0.8),
+    ];
+    for n in axes {
+        for (i, count) in [
+            (0, 0),
+            (0, 1),
+            (3, 4),
+            (63, 64),
+            (255, 256),
+            (9, 4),
+            (u32::MAX, 16),
+        ] {
+            cases.push((n, i, count));
+        }
+    }
+    let input: Vec<u32> = cases
+        .iter()
+        .flat_map(|(n, i, c)| [n.x.to_bits(), n.y.to_bits(), n.z.to_bits(), *i, *c])
+        .collect();
+    let out = run(
+        ctx,
+        &lib.ao,
+        "let d = subcone_ao_direction(v3(0u), u(3u), u(4u));
+         out[o] = bitcast<u32>(d.x); out[o + 1u] = bitcast<u32>(d.y); out[o + 2u] = bitcast<u32>(d.z);
+         out[o + 3u] = bitcast<u32>(subcone_ao_fraction(u(3u), u(4u)));",
+        5,
+        4,
+        &input,
+    )?;
+    let mut dir = Report::new("subcone_ao_direction");
+    let mut frac = Report::new("subcone_ao_fraction");
+    for (k, (n, i, count)) in cases.iter().enumerate() {
+        let g = floats(&out[4 * k..4 * k + 4]);
+        let rust = ao_direction(*n, *i, *count).to_array();
+        let finite = g.iter().all(|v| v.is_finite());
+        if finite {
+            dir.floats(TOL_AO_DIRECTION, &(n, i, count), &rust, &g[..3]);
+        } else {
+            dir.floats(TOL_AO_DIRECTION, &(n, i, count), &rust, &[f32::NAN; 3]);
+        }
+        frac.floats(
+            TOL_AO_FRACTION,
+            &(i, count),
+            &[ao_fraction(*i, *count)],
+            &g[3..],
+        );
+    }
+    join(dir.finish(), frac.finish())
+}
+
+const CHECKS: [(&str, Check); 8] = [
     ("weights", check_weights),
     ("material", check_material),
     ("resolve", check_resolve),
@@ -1389,6 +1472,7 @@ const CHECKS: [(&str, Check); 7] = [
     ("mask", check_mask),
     ("aggregate", check_aggregate),
     ("fxaa", check_fxaa),
+    ("ao", check_ao),
 ];
 
 #[test]
@@ -1462,19 +1546,27 @@ fn perturbed_kernels_are_caught() {
             "subpix_a * (1.0 / 8.0)",
             check_fxaa,
         ),
+        (
+            "AO azimuth without its half-turn",
+            "(frac - floor(frac)) - 3.1415927",
+            "(frac - floor(frac))",
+            check_ao,
+        ),
     ];
     for (what, from, to, check) in perturbations {
         let shipped = Library::shipped();
         assert!(
             shipped.sraa.contains(from)
                 || shipped.ctss.contains(from)
-                || shipped.fxaa.contains(from),
+                || shipped.fxaa.contains(from)
+                || shipped.ao.contains(from),
             "perturbation {what:?}: {from:?} is not in the shipped WGSL any more; update the test"
         );
         let lib = Library {
             sraa: shipped.sraa.replacen(from, to, 1),
             ctss: shipped.ctss.replacen(from, to, 1),
             fxaa: shipped.fxaa.replacen(from, to, 1),
+            ao: shipped.ao.replacen(from, to, 1),
         };
         match check(ctx, &lib) {
             Ok(_) => panic!("perturbation {what:?} went unnoticed"),

@@ -186,6 +186,11 @@ fn quick_report_on_every_paper_scene() {
         start.elapsed().as_secs_f64()
     );
 
+    // "Where SRAA pays" runs only with --sraa-sweep, never in the quick report.
+    assert!(!summary.ao_sweep.ran && summary.ao_sweep.rows.is_empty());
+    let md_text = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(!md_text.contains("## Where SRAA pays"));
+
     // Every paper scene that loads has rows; the triangle scenes always load.
     let (loaded, _) = report::paper_scenes();
     assert!(loaded.len() >= 3, "cornell, checker and atrium must load");

@@ -11,6 +11,9 @@
 //!   semi-transparent surfaces (CPU only: no WGSL twin yet).
 //! - [`fxaa`]: FXAA 3.11 (Lottes), the post-process baseline the papers'
 //!   methods are compared with.
+//! - [`ao`]: the fixed, stratified, cosine-weighted ambient-occlusion
+//!   directions in the tangent frame of a normal (the report's shading-cost
+//!   axis; not from either paper).
 //! - [`passes`]: which passes a technique needs on a scene, so nothing a scene does
 //!   not need is computed or allocated.
 //!
@@ -41,6 +44,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod aggregate;
+pub mod ao;
 pub mod cone;
 pub mod ctss;
 pub mod fxaa;

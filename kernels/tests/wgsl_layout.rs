@@ -30,6 +30,7 @@ const KERNELS: &[(&str, &str)] = &[
     // The pixel fetch is the including shader's: a constant stands in for it.
     ("the caller's fxaa_fetch", FXAA_FETCH),
     ("fxaa::WGSL", subcone_kernels::fxaa::WGSL),
+    ("ao::WGSL", subcone_kernels::ao::WGSL),
 ];
 
 /// The hook `fxaa.wgsl` expects its including shader to define.

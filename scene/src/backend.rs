@@ -2,6 +2,7 @@
 
 use std::fmt;
 
+pub use subcone_kernels::ao::{AO_RADIUS_FRACTION, MAX_AO_RAYS};
 use subcone_kernels::passes::{self, required_passes, Passes};
 
 use crate::camera::Camera;
@@ -36,6 +37,16 @@ pub struct RenderSettings {
     pub max_steps: Option<u32>,
     /// SDF scenes: maximum ray distance, overriding the scene's.
     pub max_distance: Option<f32>,
+    /// Ambient-occlusion rays per shaded point; 0 (the default) is off. At
+    /// most [`MAX_AO_RAYS`]. Each shaded primary hit casts this many any-hit
+    /// rays over [`AO_RADIUS_FRACTION`] of the scene's bounding diagonal, in
+    /// the fixed directions of `subcone_kernels::ao`, and multiplies the
+    /// scene's ambient term by the unoccluded fraction. SSAA shades it per
+    /// subsample; SRAA and SRAA-RT reconstruct it with the shadow-independent
+    /// shading. Not applied at mirror hits (secondary shading keeps the full
+    /// ambient term). Triangle scenes only: SDF scenes refuse it at render
+    /// time ([`RenderError::Method`]).
+    pub ao_rays: u32,
 }
 
 impl RenderSettings {
@@ -49,11 +60,14 @@ impl RenderSettings {
             aovs: false,
             max_steps: None,
             max_distance: None,
+            ao_rays: 0,
         }
     }
 
     /// Check the resolution: non-zero, at most [`MAX_SIDE`] per side and
-    /// [`MAX_PIXELS`] in all.
+    /// [`MAX_PIXELS`] in all; and the other settings: a step budget of at
+    /// least 1, a positive finite distance, at most [`MAX_AO_RAYS`]
+    /// ambient-occlusion rays.
     pub fn validate(&self) -> Result<(), RenderError> {
         let err = |reason: String| RenderError::Resolution {
             width: self.width,
@@ -71,6 +85,12 @@ impl RenderSettings {
         }
         if self.max_steps == Some(0) {
             return Err(RenderError::Method("max steps must be at least 1".into()));
+        }
+        if self.ao_rays > MAX_AO_RAYS {
+            return Err(RenderError::Method(format!(
+                "{} ambient-occlusion rays per point: at most {MAX_AO_RAYS} are supported",
+                self.ao_rays
+            )));
         }
         if let Some(d) = self.max_distance {
             if !(d > 0.0 && d.is_finite()) {

@@ -29,12 +29,15 @@ pub struct RayCounts {
     pub shadow: u64,
     /// Reflection rays that are shaded.
     pub secondary: u64,
+    /// Ambient-occlusion rays (any-hit, `RenderSettings::ao_rays` per
+    /// shaded primary hit).
+    pub ao: u64,
 }
 
 impl RayCounts {
     /// All rays.
     pub fn total(&self) -> u64 {
-        self.primary + self.geometry + self.shadow + self.secondary
+        self.primary + self.geometry + self.shadow + self.secondary + self.ao
     }
 }
 

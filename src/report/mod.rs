@@ -40,6 +40,7 @@
 //! println!("{summary}");
 //! ```
 
+pub mod ao_sweep;
 pub mod classes;
 pub mod crops;
 pub mod kernel_timing;
@@ -273,6 +274,8 @@ pub struct ReportSummary {
     pub rows: Vec<ResultRow>,
     /// The SRAA Table 1 sweep (empty when not run).
     pub sweep: Vec<ResultRow>,
+    /// "Where SRAA pays", the ambient-occlusion sweep (`--sraa-sweep`).
+    pub ao_sweep: ao_sweep::AoSweep,
     /// Methods not run, with the reason.
     pub skipped: Vec<Skipped>,
     /// Renders that failed (only with `--keep-going`).
@@ -423,6 +426,10 @@ struct Plan {
     refresh: bool,
     keep_going: bool,
     smaa: SmaaPlan,
+    /// Ambient-occlusion rays per shaded point of every render (`--ao`).
+    ao: u32,
+    /// Run the "Where SRAA pays" section (`--sraa-sweep`).
+    sraa_sweep: bool,
 }
 
 /// A method that some backend renders on a scene, with the indices (in the
@@ -547,7 +554,19 @@ impl Plan {
             refresh: args.refresh_references,
             keep_going: args.keep_going,
             smaa,
+            ao: args.ao,
+            sraa_sweep: args.sraa_sweep,
         })
+    }
+
+    /// The settings of a `w × h` render of the run: the run's ambient
+    /// occlusion, on triangle scenes (SDF scenes refuse it).
+    fn settings(&self, w: u32, h: u32, sdf: bool) -> RenderSettings {
+        let mut s = RenderSettings::new(w, h);
+        if !sdf {
+            s.ao_rays = self.ao;
+        }
+        s
     }
 
     fn sizes(&self, sdf: bool) -> ((u32, u32), (u32, u32)) {
@@ -711,13 +730,21 @@ impl Runner<'_> {
 
     fn reference(&mut self, job: &SceneJob) -> Result<Frame> {
         let (w, h) = job.quality_size;
-        let settings = RenderSettings::new(w, h);
+        let settings = self.plan.settings(w, h, job.sdf);
+        self.reference_with(job, &settings)
+    }
+
+    /// The scene's reference at `settings` (size and ambient occlusion),
+    /// from the cache or rendered on the CPU and cached.
+    fn reference_with(&mut self, job: &SceneJob, settings: &RenderSettings) -> Result<Frame> {
+        let (w, h) = (settings.width, settings.height);
         let key = reference::ReferenceKey {
             scene: reference::scene_identity(&job.arg),
             width: w,
             height: h,
             method: self.plan.reference.to_string(),
             reflection_depth: settings.reflection_depth,
+            ao_rays: settings.ao_rays,
             backend: "cpu".into(),
             version: reference::code_version(),
         };
@@ -734,11 +761,16 @@ impl Runner<'_> {
             job.name, self.plan.reference
         ));
         let cpu = cli::backend("cpu")?;
-        let (frame, wall) = render(cpu.as_ref(), &job.scene, &self.plan.reference, &settings)?;
+        let (frame, wall) = render(cpu.as_ref(), &job.scene, &self.plan.reference, settings)?;
         self.progress.note(&format!(
-            "{}: rendered reference {} at {w}x{h} in {:.1} s",
+            "{}: rendered reference {} at {w}x{h}{} in {:.1} s",
             job.name,
             self.plan.reference,
+            if settings.ao_rays > 0 {
+                format!(" with {} AO rays", settings.ao_rays)
+            } else {
+                String::new()
+            },
             wall.as_secs_f64()
         ));
         reference::store(&path, &key, &frame)?;
@@ -778,7 +810,7 @@ impl Runner<'_> {
         let (w, h) = job.quality_size;
         let cpu = cli::backend("cpu")?;
         let noaa = parse_method("noaa", "noaa")?;
-        let mut aov_settings = RenderSettings::new(w, h);
+        let mut aov_settings = self.plan.settings(w, h, job.sdf);
         aov_settings.aovs = true;
         self.progress
             .bar
@@ -975,6 +1007,11 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
         Some(job) => runner.sweep(job)?,
         None => Vec::new(),
     };
+    let ao_sweep = if plan.sraa_sweep {
+        runner.ao_sweep(&jobs)?
+    } else {
+        ao_sweep::AoSweep::default()
+    };
     let (throughput, kernels) = runner.cpu_targets(&jobs);
     runner.progress.bar.finish_and_clear();
 
@@ -986,6 +1023,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
         plots: runner.plots,
         rows: runner.rows,
         sweep,
+        ao_sweep,
         skipped,
         failures: runner.failures,
         unavailable_scenes: unavailable,
@@ -1008,6 +1046,7 @@ fn context(plan: &Plan, jobs: &[SceneJob]) -> output::Context {
         backend_descriptions: plan.backends.iter().map(|b| b.1.describe()).collect(),
         runs: plan.runs,
         reference: plan.reference.to_string(),
+        ao: plan.ao,
         scenes: jobs
             .iter()
             .map(|j| output::SceneInfo {
@@ -1241,7 +1280,7 @@ impl Runner<'_> {
             .set_message(format!("{}: {mname} on {bname}", job.name));
         let (tw, th) = job.timing_size;
         let same = job.timing_size == job.quality_size;
-        let mut settings = RenderSettings::new(tw, th);
+        let mut settings = plan.settings(tw, th, job.sdf);
         // The warm-up doubles as the quality render when the sizes agree.
         settings.aovs = sq.is_some() && same;
         let warm = render(backend, &job.scene, m, &settings);
@@ -1291,7 +1330,7 @@ impl Runner<'_> {
             Ok(warm)
         } else {
             let (qw, qh) = job.quality_size;
-            let mut qs = RenderSettings::new(qw, qh);
+            let mut qs = plan.settings(qw, qh, job.sdf);
             qs.aovs = true;
             let r = render(backend, &job.scene, m, &qs).map(|r| r.0);
             self.progress.bar.inc(1);
@@ -1340,7 +1379,7 @@ impl Runner<'_> {
                         "sweep {}: {m} at {side}x{side} on {bname}",
                         job.name
                     ));
-                    let settings = RenderSettings::new(side, side);
+                    let settings = plan.settings(side, side, job.sdf);
                     let mut t = Timings::default();
                     let mut ok = true;
                     for k in 0..=plan.runs {

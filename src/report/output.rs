@@ -71,6 +71,8 @@ pub struct Context {
     pub reference: String,
     /// Scenes.
     pub scenes: Vec<SceneInfo>,
+    /// Ambient-occlusion rays per shaded point of every render (`--ao`).
+    pub ao: u32,
 }
 
 /// A scene in the report.
@@ -281,6 +283,7 @@ pub fn json(s: &ReportSummary, ctx: &Context) -> Value {
         "backends": ctx.backends,
         "backend_descriptions": ctx.backend_descriptions,
         "runs": ctx.runs,
+        "ao_rays": ctx.ao,
         "reference": if ctx.mode == Mode::TimingOnly { Value::Null } else { json!(ctx.reference) },
         "scenes": ctx.scenes.iter().map(|sc| json!({
             "name": sc.name,
@@ -292,6 +295,12 @@ pub fn json(s: &ReportSummary, ctx: &Context) -> Value {
         "columns": columns,
         "results": results,
         "sweep": sweep,
+        "ao_sweep": s.ao_sweep.rows.iter().map(|r| json!({
+            "scene": r.scene, "method": r.method, "backend": r.backend, "ao_rays": r.ao,
+            "ms_median": r.ms_median, "rays_per_pixel": r.rays_per_pixel,
+            "ao_rays_per_pixel": r.ao_rays_per_pixel, "edge_flip": r.edge_flip,
+            "flip_mean": r.flip_mean,
+        })).collect::<Vec<_>>(),
         "skipped": s.skipped.iter().map(|k| json!({
             "scene": k.scene, "method": k.method, "backend": k.backend, "reason": k.reason,
         })).collect::<Vec<_>>(),
@@ -464,7 +473,7 @@ pub fn markdown(s: &ReportSummary, ctx: &Context) -> String {
     let _ = writeln!(md, "# subcone report\n");
     let _ = writeln!(
         md,
-        "Mode **{}**, backends {}, {} timed runs after one warm-up, code {}, {} hardware threads ({}).{}\n",
+        "Mode **{}**, backends {}, {} timed runs after one warm-up, code {}, {} hardware threads ({}).{}{}\n",
         ctx.mode.name(),
         ctx.backend_descriptions.join(", "),
         ctx.runs,
@@ -475,6 +484,14 @@ pub fn markdown(s: &ReportSummary, ctx: &Context) -> String {
             " No references and no errors (timing only).".to_string()
         } else {
             format!(" Errors against a {} reference.", ctx.reference)
+        },
+        if ctx.ao > 0 {
+            format!(
+                " Ambient occlusion: {} rays per shaded point on triangle scenes (`--ao`), references included.",
+                ctx.ao
+            )
+        } else {
+            String::new()
         }
     );
     let _ = writeln!(
@@ -486,7 +503,7 @@ NoAA depth or normal changes across a 4-neighbour by more than 2 % (unless the i
 continues linearly, as across a plane) or a cosine of 0.9, where a surface meets the background, or where the reference's luminance Sobel gradient exceeds 0.1). \
 *spp* is shaded samples per pixel (the mean of the samples-per-pixel AOV of the quality render, \
 or shading evaluations per pixel without one); *rays/px* counts every ray cast (primary, \
-geometry, shadow, secondary); *buffers MiB* is what the backend allocated for the frame, \
+geometry, shadow, secondary, ambient occlusion); *buffers MiB* is what the backend allocated for the frame, \
 which leaving out passes a scene does not need (shadows, reflections) keeps down. Lower FLIP is better; the Pareto front joins the methods that no \
 faster method beats.\n"
     );
@@ -552,6 +569,10 @@ faster method beats.\n"
 
     md.push_str(&sdf_pick(s, ctx));
     md.push_str(&paper_comparison(s, ctx));
+    md.push_str(&super::ao_sweep::section(
+        &s.ao_sweep,
+        (ctx.mode != Mode::TimingOnly).then_some(ctx.reference.as_str()),
+    ));
     md.push_str(&targets(s, ctx));
 
     let _ = writeln!(
@@ -903,6 +924,7 @@ has the full set).\n",
             );
         }
     }
+    md.push_str(&super::ao_sweep::target_rows(&s.ao_sweep));
     let pct = |x: f64| format!("{:.1}%", 100.0 * x);
     for t in &s.throughput {
         let r = &t.rates;

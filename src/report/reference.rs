@@ -85,6 +85,8 @@ pub struct ReferenceKey {
     pub method: String,
     /// Mirror bounces.
     pub reflection_depth: u32,
+    /// Ambient-occlusion rays per shaded point (0: off).
+    pub ao_rays: u32,
     /// Backend that renders references.
     pub backend: String,
     /// [`code_version`].
@@ -95,12 +97,13 @@ impl ReferenceKey {
     /// The text hashed into the key (also written beside the cache file).
     pub fn describe(&self) -> String {
         format!(
-            "scene={}\nsize={}x{}\nmethod={}\nreflection_depth={}\nbackend={}\nversion={}\n",
+            "scene={}\nsize={}x{}\nmethod={}\nreflection_depth={}\nao_rays={}\nbackend={}\nversion={}\n",
             self.scene,
             self.width,
             self.height,
             self.method,
             self.reflection_depth,
+            self.ao_rays,
             self.backend,
             self.version
         )
@@ -212,6 +215,7 @@ mod tests {
             height: 2,
             method: "ssaa64".into(),
             reflection_depth: 1,
+            ao_rays: 0,
             backend: "cpu".into(),
             version: "0.1.0+abc".into(),
         }
@@ -221,7 +225,7 @@ mod tests {
     fn key_changes_with_every_input() {
         let k = key();
         let mut others = vec![];
-        for i in 0..6 {
+        for i in 0..7 {
             let mut o = k.clone();
             match i {
                 0 => o.scene = "name:checker".into(),
@@ -229,6 +233,7 @@ mod tests {
                 2 => o.height = 3,
                 3 => o.method = "ssaa256".into(),
                 4 => o.reflection_depth = 2,
+                5 => o.ao_rays = 4,
                 _ => o.version = "0.1.0+def".into(),
             }
             others.push(o.hash());

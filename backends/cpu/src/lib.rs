@@ -176,6 +176,9 @@ impl Backend for CpuBackend {
         // passes on an SDF scene is refused as its mirrors would be.
         let passes = self.plan(scene, method, settings.force_passes)?;
         if let Some(g) = scene.sdf_geometry() {
+            if settings.ao_rays > 0 {
+                return Err(ao_on_sdf());
+            }
             let view = SdfView {
                 max_distance: settings.max_distance.unwrap_or(g.max_distance),
                 max_steps: settings.max_steps.unwrap_or(g.max_steps),
@@ -190,6 +193,7 @@ impl Backend for CpuBackend {
         let mesh = scene.mesh().expect("checked by bvh()");
         let mut tracer = Tracer::new(&bvh, scene, mesh, camera, settings.reflection_depth);
         tracer.exhaustive_subpixel_shadows = self.exhaustive_subpixel_shadows;
+        tracer.ao_rays = settings.ao_rays;
         let mut frame = match method.technique {
             Technique::NoAa | Technique::Ssaa | Technique::Fxaa => {
                 render::supersample(&tracer, method, settings, passes)
@@ -202,6 +206,15 @@ impl Backend for CpuBackend {
         post_process(&mut frame, passes);
         Ok(frame)
     }
+}
+
+/// Ambient occlusion asked for on an SDF scene: a setting, not the scene
+/// and method, so a runtime error of `render` (ARCHITECTURE.md, "Adding a
+/// backend"), not an `Unsupported`.
+pub(crate) fn ao_on_sdf() -> RenderError {
+    RenderError::Method(
+        "ambient occlusion (--ao) is implemented for triangle scenes only, not SDF scenes".into(),
+    )
 }
 
 /// The planned post-process pass (FXAA), after the frame is rendered.

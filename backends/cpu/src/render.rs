@@ -33,6 +33,7 @@ fn to_ray_counts(c: Counts) -> RayCounts {
         geometry: c.geometry,
         shadow: c.shadow,
         secondary: c.secondary,
+        ao: c.ao,
     }
 }
 
@@ -328,7 +329,8 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
                         } else {
                             0
                         };
-                        let parts = t.parts(&sf, sh);
+                        let ao = t.ambient_occlusion(&sf, &mut c);
+                        let parts = t.parts(&sf, sh, ao);
                         let m = parts.mirror;
                         let reflects = m > 0.0 && secondary_shading && t.reflection_depth > 0;
                         if layout.single {
@@ -384,7 +386,8 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
                                 } else {
                                     0
                                 };
-                                let p2 = t.parts(&s2, sh2);
+                                // No ambient occlusion at mirror hits.
+                                let p2 = t.parts(&s2, sh2, 1.0);
                                 let m2 = p2.mirror;
                                 let deeper = if m2 > 0.0 && t.reflection_depth > 1 {
                                     c.secondary += 1;

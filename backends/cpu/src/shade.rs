@@ -2,6 +2,7 @@
 //! reflection, split into the parts SRAA-RT reconstructs separately.
 
 use glam::{Vec2, Vec3, Vec3A};
+use subcone_kernels::ao::{ao_direction, ao_fraction, AO_RADIUS_FRACTION};
 use subcone_kernels::sraa::Geometry;
 use subcone_scene::{Camera, Scene, TriangleMesh};
 
@@ -39,6 +40,8 @@ pub struct Counts {
     pub secondary: u64,
     /// Shading evaluations.
     pub shaded: u64,
+    /// Ambient-occlusion rays.
+    pub ao: u64,
 }
 
 impl std::ops::Add for Counts {
@@ -50,6 +53,7 @@ impl std::ops::Add for Counts {
             shadow: self.shadow + o.shadow,
             secondary: self.secondary + o.secondary,
             shaded: self.shaded + o.shaded,
+            ao: self.ao + o.ao,
         }
     }
 }
@@ -59,7 +63,8 @@ impl std::ops::Add for Counts {
 /// state, and the mirror share.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Parts {
-    /// Emission plus ambient: no shadow ray decides it.
+    /// Emission plus ambient (times the ambient occlusion at primary hits):
+    /// no shadow ray decides it.
     pub base: Vec3,
     /// Each light's direct contribution (0 when shadowed).
     pub direct: [Vec3; MAX_LIGHTS],
@@ -94,6 +99,10 @@ pub struct Tracer<'a> {
     /// shaded samples around it disagree about a light (the default; see
     /// `render::shadow_agreement`).
     pub exhaustive_subpixel_shadows: bool,
+    /// Ambient-occlusion rays per shaded primary hit (0: off).
+    pub ao_rays: u32,
+    /// Their length: `AO_RADIUS_FRACTION` of the scene's bounding diagonal.
+    pub ao_radius: f32,
 }
 
 impl<'a> Tracer<'a> {
@@ -113,6 +122,8 @@ impl<'a> Tracer<'a> {
             reflection_depth,
             eps: bvh.scale * 2e-5,
             exhaustive_subpixel_shadows: false,
+            ao_rays: 0,
+            ao_radius: bvh.scale * AO_RADIUS_FRACTION,
         }
     }
 
@@ -240,12 +251,43 @@ impl<'a> Tracer<'a> {
         bits
     }
 
-    /// Shade a surface seen along `d`: the split parts (without the reflection).
-    pub fn parts(&self, s: &Surface, shadowed: u32) -> Parts {
+    /// The unoccluded fraction of `s` ([`subcone_kernels::ao`]): of
+    /// [`Self::ao_rays`] fixed directions around the shading normal, those
+    /// whose any-hit ray of length [`Self::ao_radius`] from the offset
+    /// origin hits nothing that casts shadows (emitters do not occlude, as
+    /// for shadow rays). A direction below the geometric surface (possible
+    /// where the shading normal is interpolated) is occluded by the surface
+    /// itself, without a ray. Exactly 1 when AO is off.
+    pub fn ambient_occlusion(&self, s: &Surface, c: &mut Counts) -> f32 {
+        let n = self.ao_rays;
+        if n == 0 {
+            return 1.0;
+        }
+        let origin = s.p + s.ng * self.eps;
+        let mut open = 0;
+        for i in 0..n {
+            let d = ao_direction(s.n, i, n);
+            if d.dot(s.ng) <= 0.0 {
+                continue;
+            }
+            c.ao += 1;
+            if !self.bvh.occluded(origin, d, 0.0, self.ao_radius) {
+                open += 1;
+            }
+        }
+        ao_fraction(open, n)
+    }
+
+    /// Shade a surface seen along `d`: the split parts (without the
+    /// reflection). `ao` multiplies the ambient term: the point's
+    /// [`Self::ambient_occlusion`] at primary hits, 1 at mirror hits (AO is
+    /// not applied to secondary shading). With `ao == 1` the parts are bit for
+    /// bit those without ambient occlusion (`x · 1 = x`).
+    pub fn parts(&self, s: &Surface, shadowed: u32, ao: f32) -> Parts {
         let mat = &self.scene.materials[s.material as usize];
         let albedo = mat.albedo_at(s.p, s.uv);
         let mut parts = Parts {
-            base: mat.emission + self.scene.ambient * albedo,
+            base: mat.emission + self.scene.ambient * ao * albedo,
             shadowed,
             mirror: mat.mirror,
             ..Default::default()
@@ -268,14 +310,20 @@ impl<'a> Tracer<'a> {
         (d - 2.0 * d.dot(n) * n).normalize()
     }
 
-    /// Full Whitted radiance along a ray, `depth` bounces already taken.
+    /// Full Whitted radiance along a ray, `depth` bounces already taken;
+    /// ambient occlusion at `depth == 0` only.
     pub fn radiance(&self, o: Vec3, d: Vec3, depth: u32, c: &mut Counts) -> Vec3 {
         let Some(s) = self.intersect(o, d, 0.0) else {
             return self.scene.background;
         };
         c.shaded += 1;
         let shadow = self.shadow_states(&s, c);
-        let parts = self.parts(&s, shadow);
+        let ao = if depth == 0 {
+            self.ambient_occlusion(&s, c)
+        } else {
+            1.0
+        };
+        let parts = self.parts(&s, shadow, ao);
         let diffuse = parts.diffuse(self.scene.lights.len().min(MAX_LIGHTS));
         if parts.mirror > 0.0 && depth < self.reflection_depth {
             c.secondary += 1;

@@ -173,6 +173,14 @@ impl Backend for WgpuBackend {
             passes: self.plan(scene, method, settings.force_passes)?,
         };
         if scene.sdf_geometry().is_some() {
+            // A setting, not the scene and method: a runtime error, as on
+            // the CPU backend.
+            if settings.ao_rays > 0 {
+                return Err(RenderError::Method(
+                    "ambient occlusion (--ao) is implemented for triangle scenes only, not SDF scenes"
+                        .into(),
+                ));
+            }
             sdf::render(&self.ctx, &job)
         } else {
             triangles::render(&self.ctx, &job)

@@ -432,3 +432,43 @@ fn buffers_over_the_adapter_limit_are_an_error() {
     assert!(msg.contains("storage buffer limit"), "{msg}");
     println!("{side}x{side}: {msg}");
 }
+
+/// Ambient occlusion (`RenderSettings::ao_rays`) on the GPU against the CPU:
+/// cornell with 4 AO rays at 48×40, NoAA, SSAA4 and SRAA-RT, within the
+/// bounds of `wgpu_matches_cpu_on_builtin_scenes` (the same rays; the AO
+/// directions differ by the WGSL twin's tolerance, `TOL_AO_DIRECTION`, which
+/// can flip a grazing occlusion ray), and the same number of AO rays within
+/// 1 %.
+#[test]
+fn ambient_occlusion_matches_cpu() {
+    let Some(gpu) = gpu() else { return };
+    let cpu = CpuBackend::new();
+    let scene = builtin("cornell").unwrap();
+    let mut s = RenderSettings::new(48, 40);
+    s.ao_rays = 4;
+    for method in ["noaa", "ssaa4", "sraa-rt"] {
+        let m: Method = method.parse().unwrap();
+        let g = gpu.render(&scene, &scene.camera, &m, &s).unwrap();
+        let c = cpu.render(&scene, &scene.camera, &m, &s).unwrap();
+        let (mean, frac) = compare(&g, &c);
+        eprintln!(
+            "cornell --ao 4 {method}: mean {mean:.5}, >0.05 on {:.2} %",
+            frac * 100.0
+        );
+        assert!(
+            mean < 0.002 && frac <= 0.01,
+            "cornell --ao 4 {method}: mean {mean}, fraction {frac}"
+        );
+        let (a, b) = (g.stats.rays.ao, c.stats.rays.ao);
+        assert!(b > 0, "{method}: the CPU cast no AO rays");
+        assert!(
+            a.abs_diff(b) as f64 <= 0.01 * b as f64 + 2.0,
+            "{method}: AO rays {a} on the GPU, {b} on the CPU"
+        );
+        // AO changes the image: the ambient term of occluded points darkens.
+        let plain = gpu
+            .render(&scene, &scene.camera, &m, &RenderSettings::new(48, 40))
+            .unwrap();
+        assert_ne!(plain.color, g.color, "{method}: AO changed nothing");
+    }
+}

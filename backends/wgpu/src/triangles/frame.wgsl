@@ -24,8 +24,9 @@ struct FrameUniform {
     node_count: u32,
     // Near plane of the raster pass's reversed depth (scale · 1e-7).
     near: f32,
-    _pad0: u32,
-    _pad1: u32,
+    // Ambient-occlusion rays per shaded primary hit (0: off) and their length.
+    ao_rays: u32,
+    ao_radius: f32,
     sraa: subcone_SraaParams,
 }
 

@@ -58,7 +58,10 @@ pub(crate) struct FrameUniform {
     pub(crate) node_count: u32,
     /// Near plane of the raster pass's reversed depth.
     pub(crate) near: f32,
-    pub(crate) _pad: [u32; 2],
+    /// Ambient-occlusion rays per shaded primary hit (0: off).
+    pub(crate) ao_rays: u32,
+    /// Their length: `AO_RADIUS_FRACTION` of the bounding diagonal.
+    pub(crate) ao_radius: f32,
     pub(crate) sraa: SraaParams,
 }
 
@@ -96,7 +99,8 @@ impl FrameUniform {
             node_count: sg.node_count,
             // Far below any ray offset; reversed Z keeps the precision.
             near: sg.scale * 1e-7,
-            _pad: [0; 2],
+            ao_rays: s.ao_rays,
+            ao_radius: sg.scale * subcone_kernels::ao::AO_RADIUS_FRACTION,
             sraa: method.sraa,
         }
     }
@@ -141,13 +145,14 @@ fn scene_bindings(
     sg.bind_surfaces(&mut b);
     b.buffer("lights", "array<LightGpu>", Access::Read, &sg.lights);
     // 64-bit as (lo, hi) pairs: primary, geometry, shadow, secondary,
-    // shaded; then [10] traversals that ended before their stack emptied.
+    // shaded; then [10] traversals that ended before their stack emptied,
+    // [11] unused; then [12, 13] ambient-occlusion rays.
     b.storage(
         ctx,
         "ray counters",
         "counters",
-        "array<atomic<u32>, 12>",
-        48,
+        "array<atomic<u32>, 14>",
+        56,
     )?;
     Ok(b)
 }
@@ -167,6 +172,7 @@ fn program<'a>(
         .replace("__MAX_LIGHTS__", &MAX_LIGHTS.to_string());
     let mut sources = vec![
         subcone_kernels::sraa::WGSL,
+        subcone_kernels::ao::WGSL,
         FRAME_WGSL,
         ALBEDO_WGSL,
         &trace,
@@ -176,11 +182,11 @@ fn program<'a>(
     Program::new(ctx, "triangles", &sources, &[scene, fb])
 }
 
-/// (primary, geometry, shadow, secondary, shaded) of the scene group's ray
-/// counters; an error when a traversal was cut short (the image would be
+/// (primary, geometry, shadow, secondary, shaded, ao) of the scene group's
+/// ray counters; an error when a traversal was cut short (the image would be
 /// wrong).
-fn counts(ctx: &GpuContext, scene: &Bindings) -> Result<[u64; 5], RenderError> {
-    let v: Vec<u32> = compute::read(ctx, scene.get("counters")?, 12)?;
+fn counts(ctx: &GpuContext, scene: &Bindings) -> Result<[u64; 6], RenderError> {
+    let v: Vec<u32> = compute::read(ctx, scene.get("counters")?, 14)?;
     if v[10] > 0 {
         return Err(err(format!(
             "{} BVH traversals stopped before finishing (the driver limits the \
@@ -189,7 +195,9 @@ fn counts(ctx: &GpuContext, scene: &Bindings) -> Result<[u64; 5], RenderError> {
             v[10]
         )));
     }
+    // Pair 5 is the traversal flags; the AO rays are pair 6.
     Ok(std::array::from_fn(|k| {
+        let k = if k == 5 { 6 } else { k };
         v[2 * k] as u64 | ((v[2 * k + 1] as u64) << 32)
     }))
 }
@@ -234,12 +242,13 @@ struct Setup<'a> {
     scene: Bindings,
 }
 
-fn to_rays(c: [u64; 5]) -> RayCounts {
+fn to_rays(c: [u64; 6]) -> RayCounts {
     RayCounts {
         primary: c[0],
         geometry: c[1],
         shadow: c[2],
         secondary: c[3],
+        ao: c[5],
     }
 }
 

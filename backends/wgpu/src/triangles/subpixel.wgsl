@@ -55,7 +55,7 @@ fn shade_pixel(x: u32, y: u32, j: u32, c: ptr<function, Counts>) {
     if SHADOWS {
         sh = shadow_states(sf, c);
     }
-    let pa = parts(sf, sh);
+    let pa = parts(sf, sh, ambient_occlusion(sf, c));
     let m = pa.mirror;
     let reflects = m > 0.0 && SECONDARY_SHADING && frame.reflection_depth > 0u;
     if SINGLE {
@@ -102,7 +102,8 @@ fn shade_pixel(x: u32, y: u32, j: u32, c: ptr<function, Counts>) {
     if SHADOWS {
         sh2 = shadow_states(s2, c);
     }
-    let p2 = parts(s2, sh2);
+    // No ambient occlusion at mirror hits.
+    let p2 = parts(s2, sh2, 1.0);
     let m2 = p2.mirror;
     var deeper = vec3<f32>(0.0);
     if m2 > 0.0 && frame.reflection_depth > 1u {

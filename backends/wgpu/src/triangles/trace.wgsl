@@ -32,10 +32,11 @@ struct Counts {
     shadow: u32,
     secondary: u32,
     shaded: u32,
+    ao: u32,
 }
 
 fn counts_zero() -> Counts {
-    return Counts(0u, 0u, 0u, 0u, 0u);
+    return Counts(0u, 0u, 0u, 0u, 0u, 0u);
 }
 
 fn counter_add(k: u32, v: u32) {
@@ -61,6 +62,8 @@ fn counts_flush(c: Counts) {
     counter_add(2u, c.shadow);
     counter_add(3u, c.secondary);
     counter_add(4u, c.shaded);
+    // [10] and [11] are the traversal flags; the AO rays follow them.
+    counter_add(6u, c.ao);
 }
 
 // Camera::ray: the unit direction through image point p (pixels, y down).
@@ -405,12 +408,36 @@ struct Parts {
     direct: array<vec3<f32>, 8>,
 }
 
-// Tracer::parts.
-fn parts(s: Surface, shadowed: u32) -> Parts {
+// Tracer::ambient_occlusion: the unoccluded fraction of frame.ao_rays fixed
+// directions (subcone_ao_direction) around the shading normal, any-hit rays of
+// length frame.ao_radius; a direction below the geometric surface is occluded
+// without a ray. Exactly 1 when AO is off.
+fn ambient_occlusion(s: Surface, c: ptr<function, Counts>) -> f32 {
+    let n = frame.ao_rays;
+    if n == 0u {
+        return 1.0;
+    }
+    let origin = s.p + s.ng * frame.eps;
+    var open = 0u;
+    for (var i = 0u; i < n; i++) {
+        let d = subcone_ao_direction(s.n, i, n);
+        if dot(d, s.ng) <= 0.0 {
+            continue;
+        }
+        (*c).ao += 1u;
+        if !occluded(origin, d, 0.0, frame.ao_radius) {
+            open += 1u;
+        }
+    }
+    return subcone_ao_fraction(open, n);
+}
+
+// Tracer::parts: `ao` multiplies the ambient term (1 at mirror hits).
+fn parts(s: Surface, shadowed: u32, ao: f32) -> Parts {
     let mat = materials[s.material];
     let albedo = albedo_at(mat, s.p, s.uv);
     var r: Parts;
-    r.base = mat.emission + frame.ambient * albedo;
+    r.base = mat.emission + frame.ambient * ao * albedo;
     r.mirror = mat.mirror;
     for (var l = 0u; l < MAX_LIGHTS; l++) {
         r.direct[l] = vec3<f32>(0.0);
@@ -443,7 +470,8 @@ fn reflect_dir(d: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
 }
 
 // Tracer::radiance, iterated instead of recursed: (1 − m)·diffuse + m·(reflected),
-// `depth` bounces already taken, at most MAX_BOUNCES followed.
+// `depth` bounces already taken, at most MAX_BOUNCES followed; ambient
+// occlusion at depth 0 only.
 fn radiance(o0: vec3<f32>, d0: vec3<f32>, depth0: u32, c: ptr<function, Counts>) -> vec3<f32> {
     var o = o0;
     var d = d0;
@@ -459,7 +487,11 @@ fn radiance(o0: vec3<f32>, d0: vec3<f32>, depth0: u32, c: ptr<function, Counts>)
         }
         (*c).shaded += 1u;
         let sh = shadow_states(s, c);
-        let pa = parts(s, sh);
+        var ao = 1.0;
+        if depth == 0u {
+            ao = ambient_occlusion(s, c);
+        }
+        let pa = parts(s, sh, ao);
         let dif = diffuse(pa);
         if pa.mirror > 0.0 && depth < max_depth {
             (*c).secondary += 1u;

@@ -1,0 +1,569 @@
+//! "Where SRAA pays" (`report --sraa-sweep`): a shading-cost axis.
+//!
+//! The built-in scenes shade cheaply, so supersampling's extra shading
+//! costs little and SRAA's geometry-only subsamples cannot pay for their
+//! reconstruction. Ambient occlusion (`RenderSettings::ao_rays`, the fixed
+//! directions of `subcone_kernels::ao`) makes shading as expensive as asked:
+//! `ssaa4` casts the AO rays at four samples per pixel, `sraa-rt` at its one
+//! shaded sample. The section sweeps [`AO_SWEEP`] on [`AO_SWEEP_SCENES`] at
+//! [`AO_SWEEP_SIZE`], times `noaa`, `ssaa4` and `sraa-rt` and measures their
+//! FLIP on the silhouette, crease and shadow pixels (the report's edge
+//! classes) against a reference rendered with the same AO, and sets the
+//! ray-count ratio `ssaa4 / sraa-rt` beside the measured time ratio. It
+//! runs only when asked: never in the default or quick report.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use super::classes::{Class, ClassFlip};
+use super::metrics::{self, Rgb8};
+use super::plot::{method_colour, FAMILY, PLOT_SIZE};
+use super::timing::Timings;
+use super::{file_safe, output, render, Failure, Runner, SceneJob};
+use subcone_scene::{Method, RenderSettings};
+
+/// Ambient-occlusion rays per shaded point swept.
+pub const AO_SWEEP: [u32; 4] = [0, 4, 16, 64];
+/// The scenes swept, when the run has them: the atrium (a paper scene) and
+/// Sponza (add `--scene sponza`; read from `$SUBCONE_DATA_DIR`).
+pub const AO_SWEEP_SCENES: [&str; 2] = ["atrium", "sponza"];
+/// The methods swept.
+pub const AO_SWEEP_METHODS: [&str; 3] = ["noaa", "ssaa4", "sraa-rt"];
+/// Timing and error size of the sweep.
+pub const AO_SWEEP_SIZE: (u32, u32) = (512, 512);
+/// The classes whose pooled FLIP the sweep reports: those an antialiasing
+/// method of geometry and shadows claims.
+pub const AO_SWEEP_CLASSES: [Class; 3] = [Class::Silhouette, Class::Crease, Class::Shadow];
+
+/// Target: the measured time ratio `ssaa4 / sraa-rt` at least this share of
+/// the ray-count ratio, at [`AO_TIME_SHARE_AT`].
+pub const AO_TIME_SHARE: f64 = 0.85;
+/// The AO ray counts at which [`AO_TIME_SHARE`] is checked.
+pub const AO_TIME_SHARE_AT: [u32; 2] = [16, 64];
+/// Target: at [`AO_SPEEDUP_AT`] rays, `sraa-rt` at least this many times
+/// faster than `ssaa4`...
+pub const AO_SPEEDUP: f64 = 3.0;
+/// ... with its silhouette + crease + shadow FLIP at most this factor of
+/// `ssaa4`'s.
+pub const AO_EDGE_FACTOR: f64 = 1.2;
+/// The AO ray count of the speed-up and quality targets.
+pub const AO_SPEEDUP_AT: u32 = 64;
+
+/// One method at one AO ray count on one scene and backend.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AoSweepRow {
+    /// Scene name.
+    pub scene: String,
+    /// Method.
+    pub method: String,
+    /// Backend.
+    pub backend: String,
+    /// AO rays per shaded point.
+    pub ao: u32,
+    /// Median wall time of the timed runs, ms.
+    pub ms_median: f64,
+    /// Every ray cast, per pixel.
+    pub rays_per_pixel: f64,
+    /// AO rays cast, per pixel.
+    pub ao_rays_per_pixel: f64,
+    /// Mean FLIP over the silhouette, crease and shadow pixels together
+    /// (`None` without a reference, or when the scene has none).
+    pub edge_flip: Option<f64>,
+    /// Mean FLIP of the whole image.
+    pub flip_mean: Option<f64>,
+}
+
+/// The mean FLIP over the pixels of `classes` together: each class's mean
+/// weighted by its pixel count (the classes are disjoint).
+pub fn pooled_flip(k: &ClassFlip, classes: &[Class]) -> Option<f64> {
+    let (mut sum, mut px) = (0.0, 0u64);
+    for c in classes {
+        if let Some(f) = k.flip[c.index()] {
+            sum += f * k.px[c.index()] as f64;
+            px += k.px[c.index()];
+        }
+    }
+    (px > 0).then(|| sum / px as f64)
+}
+
+/// What the section has: its rows and the scenes it could not sweep.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct AoSweep {
+    /// Whether it was asked for (`--sraa-sweep`).
+    pub ran: bool,
+    /// One row per scene, backend, method and AO ray count.
+    pub rows: Vec<AoSweepRow>,
+    /// Scenes of [`AO_SWEEP_SCENES`] not swept, with the reason.
+    pub missing: Vec<(String, String)>,
+}
+
+/// The row of `method` at `ao` on `scene` and `backend`.
+fn find<'a>(
+    rows: &'a [AoSweepRow],
+    scene: &str,
+    backend: &str,
+    method: &str,
+    ao: u32,
+) -> Option<&'a AoSweepRow> {
+    rows.iter()
+        .find(|r| r.scene == scene && r.backend == backend && r.method == method && r.ao == ao)
+}
+
+/// `(ray-count ratio, time ratio)` of ssaa4 over sraa-rt.
+pub fn ratios(rows: &[AoSweepRow], scene: &str, backend: &str, ao: u32) -> Option<(f64, f64)> {
+    let ss = find(rows, scene, backend, "ssaa4", ao)?;
+    let rt = find(rows, scene, backend, "sraa-rt", ao)?;
+    (rt.rays_per_pixel > 0.0 && rt.ms_median > 0.0).then(|| {
+        (
+            ss.rays_per_pixel / rt.rays_per_pixel,
+            ss.ms_median / rt.ms_median,
+        )
+    })
+}
+
+/// Scenes and backends in the order the rows have them.
+fn groups(rows: &[AoSweepRow]) -> Vec<(String, String)> {
+    let mut out: Vec<(String, String)> = Vec::new();
+    for r in rows {
+        if !out.iter().any(|(s, b)| *s == r.scene && *b == r.backend) {
+            out.push((r.scene.clone(), r.backend.clone()));
+        }
+    }
+    out
+}
+
+fn opt(v: Option<f64>, digits: usize) -> String {
+    v.map_or("–".into(), |v| format!("{v:.digits$}"))
+}
+
+/// The section's markdown (empty when not asked for); `reference` is the
+/// reference method, `None` in a timing-only run.
+pub fn section(sweep: &AoSweep, reference: Option<&str>) -> String {
+    let mut md = String::new();
+    if !sweep.ran {
+        return md;
+    }
+    let _ = writeln!(md, "## Where SRAA pays\n");
+    let _ = writeln!(
+        md,
+        "Ambient occlusion as a shading cost: each shaded point casts N any-hit rays over {} of \
+the scene's bounding diagonal, in one fixed stratified cosine-weighted set of directions (a \
+noise-free function of position and normal), and the ambient term is multiplied by the \
+unoccluded fraction (not at mirror hits). ssaa4 shades 4 points per pixel, sraa-rt 1. \
+At {}x{}, {}{}; *edge FLIP* is the mean FLIP \
+over the silhouette, crease and shadow pixels together. *rays* ratio is ssaa4's rays per \
+pixel over sraa-rt's, *time* ratio the same for the median time.\n",
+        subcone_scene::backend::AO_RADIUS_FRACTION,
+        AO_SWEEP_SIZE.0,
+        AO_SWEEP_SIZE.1,
+        AO_SWEEP_METHODS.join(", "),
+        match reference {
+            Some(r) => format!(" against {r} rendered with the same N"),
+            None => " (timing only: no errors)".into(),
+        },
+    );
+    for (scene, why) in &sweep.missing {
+        let _ = writeln!(md, "- `{scene}` not swept: {why}");
+    }
+    if !sweep.missing.is_empty() {
+        let _ = writeln!(md);
+    }
+    for (scene, backend) in groups(&sweep.rows) {
+        let _ = writeln!(md, "### {scene} ({backend})\n");
+        let _ = writeln!(
+            md,
+            "| AO rays | noaa ms | ssaa4 ms | sraa-rt ms | noaa edge FLIP | ssaa4 edge FLIP | sraa-rt edge FLIP | rays ratio | time ratio | time / rays |"
+        );
+        let _ = writeln!(md, "|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
+        for ao in AO_SWEEP {
+            let get = |m: &str| find(&sweep.rows, &scene, &backend, m, ao);
+            if AO_SWEEP_METHODS.iter().all(|m| get(m).is_none()) {
+                continue;
+            }
+            let ms = |m: &str| get(m).map_or("–".into(), |r| format!("{:.1}", r.ms_median));
+            let ef = |m: &str| opt(get(m).and_then(|r| r.edge_flip), 4);
+            let rat = ratios(&sweep.rows, &scene, &backend, ao);
+            let _ = writeln!(
+                md,
+                "| {ao} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+                ms("noaa"),
+                ms("ssaa4"),
+                ms("sraa-rt"),
+                ef("noaa"),
+                ef("ssaa4"),
+                ef("sraa-rt"),
+                opt(rat.map(|r| r.0), 2),
+                opt(rat.map(|r| r.1), 2),
+                opt(rat.map(|r| r.1 / r.0), 2),
+            );
+        }
+        let _ = writeln!(
+            md,
+            "\n![time against AO](plots/{0}_{1}_ao_time.png) ![edge FLIP against AO](plots/{0}_{1}_ao_flip.png)\n",
+            file_safe(&scene),
+            file_safe(&backend)
+        );
+    }
+    md
+}
+
+/// The section's rows of the *Performance targets* table, computed from
+/// the sweep's data.
+pub fn target_rows(sweep: &AoSweep) -> String {
+    let mut md = String::new();
+    let yes = |ok: bool| if ok { "met" } else { "**not met**" };
+    for (scene, backend) in groups(&sweep.rows) {
+        for ao in AO_TIME_SHARE_AT {
+            if let Some((rays, time)) = ratios(&sweep.rows, &scene, &backend, ao) {
+                let share = time / rays;
+                let _ = writeln!(
+                    md,
+                    "| ssaa4/sraa-rt time ratio ≥ {:.0}% of the ray-count ratio at AO {ao} | {backend} | {scene} ({}x{}) | {time:.2} of {rays:.2} ({:.0}%) | {} |",
+                    100.0 * AO_TIME_SHARE,
+                    AO_SWEEP_SIZE.0,
+                    AO_SWEEP_SIZE.1,
+                    100.0 * share,
+                    yes(share >= AO_TIME_SHARE)
+                );
+            }
+        }
+        if let Some((_, time)) = ratios(&sweep.rows, &scene, &backend, AO_SPEEDUP_AT) {
+            let _ = writeln!(
+                md,
+                "| sraa-rt ≥ {AO_SPEEDUP}x faster than ssaa4 at AO {AO_SPEEDUP_AT} | {backend} | {scene} ({}x{}) | {time:.2}x | {} |",
+                AO_SWEEP_SIZE.0,
+                AO_SWEEP_SIZE.1,
+                yes(time >= AO_SPEEDUP)
+            );
+        }
+        let edge = |m: &str| {
+            find(&sweep.rows, &scene, &backend, m, AO_SPEEDUP_AT).and_then(|r| r.edge_flip)
+        };
+        if let (Some(rt), Some(ss)) = (edge("sraa-rt"), edge("ssaa4")) {
+            let factor = rt / ss;
+            let _ = writeln!(
+                md,
+                "| sraa-rt silhouette+crease+shadow FLIP ≤ {AO_EDGE_FACTOR}x ssaa4's at AO {AO_SPEEDUP_AT} | {backend} | {scene} ({}x{}) | {rt:.4} vs {ss:.4} ({factor:.2}x) | {} |",
+                AO_SWEEP_SIZE.0,
+                AO_SWEEP_SIZE.1,
+                yes(factor <= AO_EDGE_FACTOR)
+            );
+        }
+    }
+    md
+}
+
+/// A line per method of `value(row)` against the AO ray count.
+fn draw<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    title: &str,
+    y_desc: &str,
+    rows: &[&AoSweepRow],
+    value: fn(&AoSweepRow) -> Option<f64>,
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let pe = |e: DrawingAreaErrorKind<DB::ErrorType>| anyhow::anyhow!("AO sweep plot: {e:?}");
+    root.fill(&WHITE).map_err(pe)?;
+    let ymax = rows
+        .iter()
+        .filter_map(|r| value(r))
+        .filter(|v| v.is_finite())
+        .fold(0.0, f64::max);
+    let xmax = *AO_SWEEP.last().unwrap_or(&64) as f64;
+    let size = (PLOT_SIZE.1 / 32) as i32;
+    let mut chart = ChartBuilder::on(root)
+        .caption(title, (FAMILY, size + 4))
+        .margin(16)
+        .x_label_area_size(50)
+        .y_label_area_size(80)
+        .build_cartesian_2d(0.0..xmax * 1.05, 0.0..(ymax * 1.15).max(1e-3))
+        .map_err(pe)?;
+    chart
+        .configure_mesh()
+        .x_desc("ambient-occlusion rays per shaded point")
+        .y_desc(y_desc)
+        .x_label_formatter(&|v| format!("{v:.0}"))
+        .y_label_formatter(&|v| {
+            if *v >= 10.0 {
+                format!("{v:.0}")
+            } else {
+                format!("{v:.3}")
+            }
+        })
+        .label_style((FAMILY, size - 4))
+        .axis_desc_style((FAMILY, size - 2))
+        .draw()
+        .map_err(pe)?;
+    for m in AO_SWEEP_METHODS {
+        let pts: Vec<(f64, f64)> = AO_SWEEP
+            .iter()
+            .filter_map(|&ao| {
+                let r = rows.iter().find(|r| r.method == m && r.ao == ao)?;
+                value(r).filter(|v| v.is_finite()).map(|v| (ao as f64, v))
+            })
+            .collect();
+        if pts.is_empty() {
+            continue;
+        }
+        let c = method_colour(m);
+        chart
+            .draw_series(LineSeries::new(pts.clone(), c.stroke_width(3)))
+            .map_err(pe)?
+            .label(m)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(3)));
+        chart
+            .draw_series(pts.iter().map(|&p| Circle::new(p, 5, c.filled())))
+            .map_err(pe)?;
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperLeft)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.4))
+        .label_font((FAMILY, size - 4))
+        .draw()
+        .map_err(pe)?;
+    root.present().map_err(pe)?;
+    Ok(())
+}
+
+/// One plot as PNG and SVG in `dir`.
+fn save_both(
+    dir: &Path,
+    stem: &str,
+    title: &str,
+    y_desc: &str,
+    rows: &[&AoSweepRow],
+    value: fn(&AoSweepRow) -> Option<f64>,
+) -> Result<Vec<PathBuf>> {
+    let (w, h) = PLOT_SIZE;
+    let mut buf = vec![255u8; (w * h * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
+        draw(&root, title, y_desc, rows, value)?;
+    }
+    let png = dir.join(format!("{stem}.png"));
+    output::save_png(
+        &png,
+        &Rgb8 {
+            width: w,
+            height: h,
+            data: buf,
+        },
+    )?;
+    let mut svg_text = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg_text, (w, h)).into_drawing_area();
+        draw(&root, title, y_desc, rows, value)?;
+    }
+    let svg = dir.join(format!("{stem}.svg"));
+    super::reference::write_atomic(&svg, svg_text.as_bytes())?;
+    Ok(vec![png, svg])
+}
+
+/// The section's plots, per scene and backend: time, and silhouette +
+/// crease + shadow FLIP, of each method against the AO ray count.
+pub fn plots(dir: &Path, sweep: &AoSweep) -> Result<Vec<PathBuf>> {
+    let mut out = Vec::new();
+    if sweep.rows.is_empty() {
+        return Ok(out);
+    }
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    for (scene, backend) in groups(&sweep.rows) {
+        let rows: Vec<&AoSweepRow> = sweep
+            .rows
+            .iter()
+            .filter(|r| r.scene == scene && r.backend == backend)
+            .collect();
+        let stem = format!("{}_{}", file_safe(&scene), file_safe(&backend));
+        out.extend(save_both(
+            dir,
+            &format!("{stem}_ao_time"),
+            &format!("{scene} ({backend}): median time against AO rays"),
+            "median time per frame (ms)",
+            &rows,
+            |r| Some(r.ms_median),
+        )?);
+        out.extend(save_both(
+            dir,
+            &format!("{stem}_ao_flip"),
+            &format!("{scene} ({backend}): silhouette + crease + shadow FLIP"),
+            "mean FLIP over silhouette, crease and shadow pixels",
+            &rows,
+            |r| r.edge_flip,
+        )?);
+    }
+    Ok(out)
+}
+
+impl Runner<'_> {
+    /// The "Where SRAA pays" sweep over the run's scenes named in
+    /// [`AO_SWEEP_SCENES`] (triangle scenes), every backend of the run.
+    pub(super) fn ao_sweep(&mut self, jobs: &[SceneJob]) -> Result<AoSweep> {
+        let plan = self.plan;
+        let mut sweep = AoSweep {
+            ran: true,
+            ..Default::default()
+        };
+        let methods: Vec<Method> = AO_SWEEP_METHODS
+            .iter()
+            .map(|m| super::parse_method(m, "the AO sweep"))
+            .collect::<Result<_>>()?;
+        let quality = plan.mode != super::Mode::TimingOnly;
+        for name in AO_SWEEP_SCENES {
+            let Some(base) = jobs.iter().find(|j| j.arg == name && !j.sdf) else {
+                sweep.missing.push((
+                    name.to_string(),
+                    format!("not in this run (add --scene {name})"),
+                ));
+                continue;
+            };
+            let job = SceneJob {
+                arg: base.arg.clone(),
+                name: base.name.clone(),
+                scene: base.scene.clone(),
+                sdf: false,
+                timing_size: AO_SWEEP_SIZE,
+                quality_size: AO_SWEEP_SIZE,
+            };
+            self.progress.note(&format!(
+                "{}: where SRAA pays (noaa, ssaa4, sraa-rt with AO {:?} at {}x{})",
+                job.name, AO_SWEEP, AO_SWEEP_SIZE.0, AO_SWEEP_SIZE.1
+            ));
+            let masks = if quality {
+                Some(self.classes(&job)?)
+            } else {
+                None
+            };
+            let (w, h) = AO_SWEEP_SIZE;
+            for ao in AO_SWEEP {
+                let reference = match &masks {
+                    Some(_) => {
+                        let mut s = RenderSettings::new(w, h);
+                        s.ao_rays = ao;
+                        Some(Rgb8::from_frame(&self.reference_with(&job, &s)?)?)
+                    }
+                    None => None,
+                };
+                for (bname, backend) in &plan.backends {
+                    for m in &methods {
+                        self.progress.bar.set_message(format!(
+                            "where SRAA pays, {}: {m} with AO {ao} on {bname}",
+                            job.name
+                        ));
+                        let mut settings = RenderSettings::new(w, h);
+                        settings.ao_rays = ao;
+                        let mut t = Timings::default();
+                        let mut first = None;
+                        let mut failed = false;
+                        for k in 0..=plan.runs {
+                            match render(backend.as_ref(), &job.scene, m, &settings) {
+                                Ok((f, wall)) => {
+                                    if k > 0 {
+                                        t.push(wall, &f);
+                                    }
+                                    first.get_or_insert(f);
+                                }
+                                Err(e) => {
+                                    let what = format!("{m} (AO {ao})");
+                                    self.fail(Failure::new(&job.name, what, bname.clone(), &e))?;
+                                    failed = true;
+                                    break;
+                                }
+                            }
+                        }
+                        let Some(frame) = first.filter(|_| !failed) else {
+                            continue;
+                        };
+                        let px = (w as f64 * h as f64).max(1.0);
+                        let mut row = AoSweepRow {
+                            scene: job.name.clone(),
+                            method: m.to_string(),
+                            backend: bname.clone(),
+                            ao,
+                            ms_median: t.median(),
+                            rays_per_pixel: frame.stats.rays.total() as f64 / px,
+                            ao_rays_per_pixel: frame.stats.rays.ao as f64 / px,
+                            edge_flip: None,
+                            flip_mean: None,
+                        };
+                        if let (Some(r), Some(k)) = (&reference, &masks) {
+                            let fl = metrics::flip(r, &Rgb8::from_frame(&frame)?)?;
+                            row.flip_mean = Some(fl.mean);
+                            row.edge_flip =
+                                pooled_flip(&ClassFlip::measure(&fl.map, k), &AO_SWEEP_CLASSES);
+                        }
+                        sweep.rows.push(row);
+                    }
+                }
+            }
+        }
+        self.plots.extend(plots(&plan.out.join("plots"), &sweep)?);
+        Ok(sweep)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(method: &str, ao: u32, ms: f64, rays: f64, edge: f64) -> AoSweepRow {
+        AoSweepRow {
+            scene: "atrium".into(),
+            method: method.into(),
+            backend: "cpu".into(),
+            ao,
+            ms_median: ms,
+            rays_per_pixel: rays,
+            ao_rays_per_pixel: 0.0,
+            edge_flip: Some(edge),
+            flip_mean: None,
+        }
+    }
+
+    #[test]
+    fn targets_are_computed_from_the_rows() {
+        let sweep = AoSweep {
+            ran: true,
+            rows: vec![
+                row("ssaa4", 16, 400.0, 80.0, 0.05),
+                row("sraa-rt", 16, 200.0, 20.0, 0.05),
+                row("ssaa4", 64, 1200.0, 260.0, 0.05),
+                row("sraa-rt", 64, 300.0, 70.0, 0.055),
+            ],
+            missing: vec![],
+        };
+        assert_eq!(ratios(&sweep.rows, "atrium", "cpu", 16), Some((4.0, 2.0)));
+        let t = target_rows(&sweep);
+        // AO 16: 2.0 of 4.0 is 50 %: not met. AO 64: 4.0 of 3.71: met;
+        // 4x faster: met; 0.055 / 0.05 = 1.1x: met.
+        let lines: Vec<&str> = t.lines().collect();
+        assert_eq!(lines.len(), 4, "{t}");
+        assert!(lines[0].contains("AO 16") && lines[0].ends_with("**not met** |"));
+        assert!(lines[1].contains("AO 64") && lines[1].ends_with("| met |"));
+        assert!(lines[2].contains("4.00x") && lines[2].ends_with("| met |"));
+        assert!(lines[3].contains("1.10x") && lines[3].ends_with("| met |"));
+        assert!(section(&sweep, Some("ssaa256")).contains("## Where SRAA pays"));
+        assert!(section(&AoSweep::default(), Some("ssaa256")).is_empty());
+    }
+
+    #[test]
+    fn pooled_flip_weights_by_pixels() {
+        let mut k = ClassFlip::default();
+        k.flip[Class::Silhouette.index()] = Some(0.1);
+        k.px[Class::Silhouette.index()] = 3;
+        k.flip[Class::Shadow.index()] = Some(0.5);
+        k.px[Class::Shadow.index()] = 1;
+        k.flip[Class::Flat.index()] = Some(9.0);
+        k.px[Class::Flat.index()] = 100;
+        let p = pooled_flip(&k, &AO_SWEEP_CLASSES).unwrap();
+        assert!((p - 0.2).abs() < 1e-12);
+        assert_eq!(pooled_flip(&ClassFlip::default(), &AO_SWEEP_CLASSES), None);
+    }
+}
