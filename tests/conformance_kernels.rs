@@ -1503,7 +1503,7 @@ fn wgsl_kernels_match_the_rust_kernels() {
 fn perturbed_kernels_are_caught() {
     let Some(gpu) = gpu() else { return };
     let ctx = gpu.context();
-    let perturbations: [(&str, &str, &str, Check); 7] = [
+    let perturbations: [(&str, &str, &str, Check); 8] = [
         (
             "bilateral weight off by 1e-3",
             "return subcone_saturate(w);",
