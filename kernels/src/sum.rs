@@ -7,7 +7,7 @@
 //! square of f32's), so `Σ w·C / Σ w` stays inside the hull. The cost is nil on
 //! CPUs; GPU ports without f64 document the difference in the subnormal range.
 
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 
 use crate::sraa::NEGLIGIBLE_WEIGHT;
 
@@ -51,5 +51,53 @@ impl WeightedSum {
             (self.sum[2] * inv) as f32,
         );
         c.is_finite().then_some(c)
+    }
+}
+
+/// Four [`WeightedSum`]s side by side, one per lane: the four subsamples of a
+/// pixel accumulating one layer from the same neighbours. Each lane is the
+/// same f64 arithmetic as [`WeightedSum::add`] and [`WeightedSum::mean`], so
+/// to the same bits, and keeps the same convex-hull guarantee; laid out by
+/// channel so that the four lanes of a channel are one multiply-add.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct WeightedSum4 {
+    sum: [[f64; 4]; 3],
+    weight: [f64; 4],
+}
+
+impl WeightedSum4 {
+    pub(crate) const ZERO: Self = Self {
+        sum: [[0.0; 4]; 3],
+        weight: [0.0; 4],
+    };
+
+    /// Lane `k` adds `w[k]·c`, as [`WeightedSum::add`]. `c` must be finite
+    /// (a zero weight times a non-finite colour is NaN): the caller skips
+    /// non-finite colours, as the scalar reconstruction does.
+    #[inline]
+    pub(crate) fn add(&mut self, w: Vec4, c: Vec3) {
+        let w = w.to_array().map(|w| w as f64);
+        for (sum, c) in self
+            .sum
+            .iter_mut()
+            .zip([c.x as f64, c.y as f64, c.z as f64])
+        {
+            for k in 0..4 {
+                sum[k] += w[k] * c;
+            }
+        }
+        for k in 0..4 {
+            self.weight[k] += w[k];
+        }
+    }
+
+    /// Lane `k`'s mean, as [`WeightedSum::mean`].
+    #[inline]
+    pub(crate) fn mean(&self, k: usize) -> Option<Vec3> {
+        WeightedSum {
+            sum: [self.sum[0][k], self.sum[1][k], self.sum[2][k]],
+            weight: self.weight[k],
+        }
+        .mean()
     }
 }
