@@ -7,7 +7,7 @@
 //! square of f32's), so `Σ w·C / Σ w` stays inside the hull. The cost is nil on
 //! CPUs; GPU ports without f64 document the difference in the subnormal range.
 
-use glam::{Vec3, Vec4};
+use glam::Vec3;
 
 use crate::sraa::NEGLIGIBLE_WEIGHT;
 
@@ -71,24 +71,25 @@ impl WeightedSum4 {
         weight: [0.0; 4],
     };
 
-    /// Lane `k` adds `w[k]·c`, as [`WeightedSum::add`]. `c` must be finite
+    /// Lane `k` adds `w[k]·c`, as [`WeightedSum::add`] (`w[k]` an f32 weight
+    /// widened). `c` must be finite
     /// (a zero weight times a non-finite colour is NaN): the caller skips
     /// non-finite colours, as the scalar reconstruction does.
     #[inline]
-    pub(crate) fn add(&mut self, w: Vec4, c: Vec3) {
-        let w = w.to_array().map(|w| w as f64);
-        for (sum, c) in self
-            .sum
-            .iter_mut()
-            .zip([c.x as f64, c.y as f64, c.z as f64])
-        {
-            for k in 0..4 {
-                sum[k] += w[k] * c;
-            }
+    pub(crate) fn add(&mut self, w: [f64; 4], c: Vec3) {
+        let c = [c.x as f64, c.y as f64, c.z as f64];
+        for ch in 0..3 {
+            let s = &mut self.sum[ch];
+            s[0] += w[0] * c[ch];
+            s[1] += w[1] * c[ch];
+            s[2] += w[2] * c[ch];
+            s[3] += w[3] * c[ch];
         }
-        for k in 0..4 {
-            self.weight[k] += w[k];
-        }
+        let s = &mut self.weight;
+        s[0] += w[0];
+        s[1] += w[1];
+        s[2] += w[2];
+        s[3] += w[3];
     }
 
     /// Lane `k`'s mean, as [`WeightedSum::mean`].

@@ -88,16 +88,15 @@ const SLOTS: usize = 9;
 
 /// Lane factors that zero the lanes set in a 4-bit mask and keep the others:
 /// `w · KEEP_LANES[m]` is `w` (exactly: `w · 1`) or 0 per lane.
-const KEEP_LANES: [Vec4; 16] = {
-    let mut t = [Vec4::ZERO; 16];
+const KEEP_LANES: [[f64; 4]; 16] = {
+    let mut t = [[0.0; 4]; 16];
     let mut m = 0;
     while m < 16 {
-        t[m] = Vec4::new(
-            (m & 1 == 0) as u32 as f32,
-            (m & 2 == 0) as u32 as f32,
-            (m & 4 == 0) as u32 as f32,
-            (m & 8 == 0) as u32 as f32,
-        );
+        let mut k = 0;
+        while k < 4 {
+            t[m][k] = ((m >> k) & 1 == 0) as u32 as f64;
+            k += 1;
+        }
         m += 1;
     }
     t
@@ -215,25 +214,50 @@ impl<'g> Resolver<'g> {
     ) {
         let n = self.gates.len();
         // Gather: which layers have a colour that is not exactly black (and
-        // finite) anywhere in the neighbourhood. A layer without one
-        // reconstructs to black whatever the weights.
+        // finite) anywhere in the neighbourhood (`live`; a layer without one
+        // reconstructs to black whatever the weights), and which have one
+        // colour, bit for bit, wherever it is finite (`varied` clear; such a
+        // layer reconstructs to that colour whatever the weights: each
+        // product w·C is exact in f64 and the normalised sum is within a few
+        // f64 ulps of C, which rounds back to C in f32; the fallback is C too).
         let mut live = 0u32;
-        let mut colors = [[Vec3::ZERO; MAX_LAYERS]; SLOTS];
+        let mut varied = 0u32;
+        let mut seen = 0u32;
+        let mut uniform = [Vec3::ZERO; MAX_LAYERS];
+        let mut base = [0usize; SLOTS];
         let mut finite = [0u32; SLOTS];
         for slot in hood.slots() {
-            let base = hood.index[slot] * frame.layers + group.first_layer;
+            base[slot] = hood.index[slot] * frame.layers + group.first_layer;
             for i in 0..n {
-                let c = frame.colors.get(base + i).copied().unwrap_or(Vec3::ZERO);
-                colors[slot][i] = c;
+                let c = color_at(frame, base[slot] + i);
                 if c.is_finite() {
                     finite[slot] |= 1 << i;
                     if c != Vec3::ZERO {
                         live |= 1 << i;
                     }
+                    if seen & (1 << i) == 0 {
+                        seen |= 1 << i;
+                        uniform[i] = c;
+                    } else if c.to_array().map(f32::to_bits)
+                        != uniform[i].to_array().map(f32::to_bits)
+                    {
+                        varied |= 1 << i;
+                    }
                 }
             }
         }
         if live == 0 {
+            return;
+        }
+        if live & varied == 0 {
+            // Every layer that is not black is uniform: no weight needed.
+            for i in 0..n {
+                if live & (1 << i) != 0 {
+                    for sum in out.iter_mut() {
+                        *sum += uniform[i];
+                    }
+                }
+            }
             return;
         }
         let mut geometry = [Geometry::MISS; SLOTS];
@@ -246,7 +270,7 @@ impl<'g> Resolver<'g> {
 
         // The weights of every neighbour for the four subsamples, one lane
         // each; `nonzero`: the slots with a weight above 0 in some lane.
-        let mut weights = [Vec4::ZERO; SLOTS];
+        let mut weights = [[0.0f64; 4]; SLOTS];
         let mut nonzero = 0u32;
         let lanes = GeometryLanes::new(&targets.geometry);
         for slot in hood.slots() {
@@ -271,23 +295,11 @@ impl<'g> Resolver<'g> {
                         gated |= 1 << k;
                     }
                 }
-                w *= KEEP_LANES[gated];
+                w *= Vec4::from_array(KEEP_LANES[gated].map(|k| k as f32));
             }
-            weights[slot] = w;
+            weights[slot] = w.to_array().map(|w| w as f64);
             if w.cmpgt(Vec4::ZERO).any() {
                 nonzero |= 1 << slot;
-            }
-        }
-
-        // Shadow bits of the four subsamples, bit-transposed: bit k of
-        // `lane_bits[b]` is subsample k's bit b.
-        let mut lane_bits = [0u32; 32];
-        for (k, &ts) in targets.shadow.iter().enumerate() {
-            let mut bits = ts;
-            while bits != 0 {
-                let b = bits.trailing_zeros();
-                lane_bits[b as usize] |= 1 << k;
-                bits &= bits - 1;
             }
         }
 
@@ -295,10 +307,24 @@ impl<'g> Resolver<'g> {
             if live & (1 << i) == 0 {
                 continue;
             }
+            if varied & (1 << i) == 0 {
+                for sum in out.iter_mut() {
+                    *sum += uniform[i];
+                }
+                continue;
+            }
             let bit = match *gate {
                 Some(bit) if bit < 32 => Some(bit as usize),
                 _ => None,
             };
+            // Bit k: subsample k's shadow bit of this layer's light.
+            let mine = bit.map_or(0, |b| {
+                let t = &targets.shadow;
+                ((t[0] >> b) & 1)
+                    | ((t[1] >> b) & 1) << 1
+                    | ((t[2] >> b) & 1) << 2
+                    | ((t[3] >> b) & 1) << 3
+            });
             let mut acc = WeightedSum4::ZERO;
             for slot in slots(hood.valid & nonzero) {
                 if finite[slot] & (1 << i) == 0 {
@@ -309,15 +335,21 @@ impl<'g> Resolver<'g> {
                     // neighbour's weigh 0.
                     Some(b) => {
                         let theirs = if (shadow[slot] >> b) & 1 != 0 { 0xf } else { 0 };
-                        let differ = (lane_bits[b] ^ theirs) as usize;
+                        let differ = (mine ^ theirs) as usize;
                         if differ == 0xf {
                             continue;
                         }
-                        weights[slot] * KEEP_LANES[differ]
+                        let (w, keep) = (weights[slot], KEEP_LANES[differ]);
+                        [
+                            w[0] * keep[0],
+                            w[1] * keep[1],
+                            w[2] * keep[2],
+                            w[3] * keep[3],
+                        ]
                     }
                     None => weights[slot],
                 };
-                acc.add(w, colors[slot][i]);
+                acc.add(w, color_at(frame, base[slot] + i));
             }
             for (k, sum) in out.iter_mut().enumerate() {
                 *sum += match acc.mean(k) {
@@ -330,7 +362,7 @@ impl<'g> Resolver<'g> {
                         for slot in hood.slots() {
                             let d2 = self.distance2[k][slot];
                             if finite[slot] & (1 << i) != 0 && (!any || d2 < nearest_d2) {
-                                nearest = colors[slot][i];
+                                nearest = color_at(frame, base[slot] + i);
                                 nearest_d2 = d2;
                                 any = true;
                             }
@@ -453,6 +485,12 @@ impl Hood {
     }
 }
 
+/// Colour `i` of the frame's flat layer array; black past its end.
+#[inline]
+fn color_at(frame: &ShadedFrame, i: usize) -> Vec3 {
+    frame.colors.get(i).copied().unwrap_or(Vec3::ZERO)
+}
+
 /// The slots set in `mask`, in increasing (row-major) order.
 #[inline]
 fn slots(mut mask: u32) -> impl Iterator<Item = usize> {
@@ -496,11 +534,9 @@ impl GeometryLanes {
 /// `sat(x)` of §3.1 per lane ([`super::saturate`]): NaN gives 0.
 #[inline]
 fn saturate_lanes(x: Vec4) -> Vec4 {
-    Vec4::select(
-        x.cmpgt(Vec4::ZERO),
-        Vec4::select(x.cmplt(Vec4::ONE), x, Vec4::ONE),
-        Vec4::ZERO,
-    )
+    // `max` returns its argument, 0, for a NaN lane (SSE's `maxps` returns
+    // its second operand, the scalar fallback the number).
+    x.max(Vec4::ZERO).min(Vec4::ONE)
 }
 
 /// [`reconstruction_weight`] of the product form (eq. 1 times the spatial
@@ -603,14 +639,10 @@ pub fn gaussian_sum_lanes(s: Vec4) -> Vec4 {
     let deep = k.cmplt(Vec4::splat(-126.0));
     let y = Vec4::select(deep, y * Vec4::splat(f32::from_bits(0x0c80_0000)), y);
     let k = Vec4::select(deep, k + Vec4::splat(102.0), k);
-    let e = ((k + Vec4::splat(127.0)) * Vec4::splat(8_388_608.0)).to_array();
-    let scale = Vec4::new(
-        f32::from_bits(e[0] as u32),
-        f32::from_bits(e[1] as u32),
-        f32::from_bits(e[2] as u32),
-        f32::from_bits(e[3] as u32),
-    );
-    let y = y * scale;
+    let e = k
+        .to_array()
+        .map(|k| (((k as i32).wrapping_add(127)) << 23) as u32);
+    let y = y * Vec4::from_array(e.map(f32::from_bits));
     // |x| ≤ 2⁻¹⁴ (and s = 0): 1 + x.
     let y = Vec4::select(
         s.cmpgt(Vec4::splat(f32::from_bits(0x3900_0000))),
