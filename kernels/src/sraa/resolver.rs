@@ -27,7 +27,7 @@
 //! the same functions (`subcone_reconstruct_layers_begin/add/end`) in the
 //! same order themselves, so this function has no WGSL twin of its own.
 
-use glam::{BVec4A, Vec2, Vec3, Vec4};
+use glam::{BVec4A, Vec2, Vec3, Vec3A, Vec4};
 
 use super::{
     material_gate, neighbourhood, reconstruct_layers, reconstruct_layers_material,
@@ -223,24 +223,25 @@ impl<'g> Resolver<'g> {
         let mut live = 0u32;
         let mut varied = 0u32;
         let mut seen = 0u32;
-        let mut uniform = [Vec3::ZERO; MAX_LAYERS];
+        let mut uniform = [Vec3A::ZERO; MAX_LAYERS];
         let mut base = [0usize; SLOTS];
         let mut finite = [0u32; SLOTS];
         for slot in hood.slots() {
             base[slot] = hood.index[slot] * frame.layers + group.first_layer;
             for i in 0..n {
-                let c = color_at(frame, base[slot] + i);
-                if c.is_finite() {
+                // In one vector register: three lanes compared at once.
+                let c = Vec3A::from(color_at(frame, base[slot] + i));
+                if c.is_finite_mask().all() {
                     finite[slot] |= 1 << i;
-                    if c != Vec3::ZERO {
+                    if c.cmpne(Vec3A::ZERO).any() {
                         live |= 1 << i;
                     }
                     if seen & (1 << i) == 0 {
                         seen |= 1 << i;
                         uniform[i] = c;
-                    } else if c.to_array().map(f32::to_bits)
-                        != uniform[i].to_array().map(f32::to_bits)
-                    {
+                    } else if c.cmpne(uniform[i]).any() {
+                        // (−0 and +0 count as one colour: either adds
+                        // nothing to a subsample's sum of layers.)
                         varied |= 1 << i;
                     }
                 }
@@ -254,7 +255,7 @@ impl<'g> Resolver<'g> {
             for i in 0..n {
                 if live & (1 << i) != 0 {
                     for sum in out.iter_mut() {
-                        *sum += uniform[i];
+                        *sum += Vec3::from(uniform[i]);
                     }
                 }
             }
@@ -309,7 +310,7 @@ impl<'g> Resolver<'g> {
             }
             if varied & (1 << i) == 0 {
                 for sum in out.iter_mut() {
-                    *sum += uniform[i];
+                    *sum += Vec3::from(uniform[i]);
                 }
                 continue;
             }
