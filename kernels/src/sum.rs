@@ -76,6 +76,7 @@ impl WeightedSum4 {
     /// (a zero weight times a non-finite colour is NaN): the caller skips
     /// non-finite colours, as the scalar reconstruction does.
     #[inline]
+    #[allow(clippy::needless_range_loop)]
     pub(crate) fn add(&mut self, w: [f64; 4], c: Vec3) {
         let c = [c.x as f64, c.y as f64, c.z as f64];
         for ch in 0..3 {

@@ -203,6 +203,8 @@ impl<'g> Resolver<'g> {
 
     /// One group of layers for the four subsamples: `out[k]` is the sum of
     /// subsample `k`'s layers, in layer order, from `Vec3::ZERO`.
+    // Layer `i` indexes bit masks and the per-layer arrays alike.
+    #[allow(clippy::needless_range_loop)]
     fn add_group(
         &self,
         frame: &ShadedFrame,
