@@ -640,11 +640,20 @@ pub fn gaussian_sum_lanes(s: Vec4) -> Vec4 {
     // scalbnf(y, k): pre-scale by 2⁻¹⁰² below k = −126 (exact), then one
     // rounding multiplication by a normal power of two.
     let deep = k.cmplt(Vec4::splat(-126.0));
-    let y = Vec4::select(deep, y * Vec4::splat(f32::from_bits(0x0c80_0000)), y);
-    let k = Vec4::select(deep, k + Vec4::splat(102.0), k);
-    let e = k
-        .to_array()
-        .map(|k| (((k as i32).wrapping_add(127)) << 23) as u32);
+    let (y, k) = if deep.any() {
+        (
+            Vec4::select(deep, y * Vec4::splat(f32::from_bits(0x0c80_0000)), y),
+            Vec4::select(deep, k + Vec4::splat(102.0), k),
+        )
+    } else {
+        (y, k)
+    };
+    // 2^k from the bits of k + 127 + 2²³ (exact: an integer below 2²⁴, so
+    // its low mantissa bits are k + 127), moved into the exponent field: a
+    // bit cast, a subtraction and a shift per lane, no float-to-int
+    // conversion.
+    let m = (k + Vec4::splat(127.0 + 8_388_608.0)).to_array();
+    let e = m.map(|m| (m.to_bits().wrapping_sub(0x4b00_0000)) << 23);
     let y = y * Vec4::from_array(e.map(f32::from_bits));
     // |x| ≤ 2⁻¹⁴ (and s = 0): 1 + x.
     let y = Vec4::select(
