@@ -56,11 +56,11 @@ fn neighbourhood_is_the_fixed_radius_window() {
     // own pixel's shaded sample, and SHADED_SAMPLE is the shaded sample.
     let centre = SraaParams::TUNED.shaded_offset();
     assert_eq!(centre, Vec2::ZERO);
-    for k in 0..4 {
+    for (k, offset) in SUBPIXEL_OFFSETS.iter().enumerate() {
         let own = neighbourhood(5, 5, k, centre, 1, 10, 10)
             .find(|p| (p.x, p.y) == (5, 5))
             .unwrap();
-        assert_eq!(own.distance2, SUBPIXEL_OFFSETS[k].length_squared());
+        assert_eq!(own.distance2, offset.length_squared());
     }
     let own = neighbourhood(5, 5, SHADED_SAMPLE, centre, 1, 10, 10)
         .find(|p| (p.x, p.y) == (5, 5))
