@@ -610,10 +610,15 @@ const P2: f32 = -2.766_733_3e-3; // -0xb55215.0p-32
 /// `x = −s ≤ 0` every branch is the same f32 operations in the same order,
 /// and `scalbnf(y, k)` is `y·2⁻¹⁰²·2^(k+102)` below `k = −126` and `y·2^k`
 /// above, as libm computes it, so each lane equals `libm::expf(−s)` bit for
-/// bit (a test compares every f32 in `[0, 105)` at a stride, and all of them
-/// when run with `--ignored`). Its error against the true `e^−s` is libm's,
-/// under 1 ulp. The WGSL twin (`subcone_gaussian_sum`) keeps the GPU's `exp`,
-/// whose tolerance in the kernel conformance table is unchanged.
+/// bit (`kernels/tests/lanes.rs` compares the f32s of `[0, ∞]` at a stride
+/// and densely around every branch threshold and the subnormal range, and
+/// all of them with `--ignored`). Its error against the true `e^−s` is
+/// libm's, under 1 ulp. The WGSL twin (`subcone_gaussian_sum`) keeps the
+/// GPU's `exp`, whose tolerance in the kernel conformance table is unchanged.
+///
+/// Domain: `s ≥ 0` or NaN, as `gaussian_sum` is called (a sum of squares).
+/// A negative `s` is outside it: its lane returns `1 − s`, not `expf(−s)`
+/// (never NaN, never a panic).
 #[inline]
 pub fn gaussian_sum_lanes(s: Vec4) -> Vec4 {
     let x = -s;
