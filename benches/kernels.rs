@@ -35,7 +35,8 @@ use subcone::mask::{
 };
 use subcone::sraa::{
     bilateral_weight, neighbourhood, reconstruct, resolve_pixel, shadow_gated_weight, Geometry,
-    ShadedSample, SraaParams, SHADED_SUBSAMPLE, SUBPIXEL_OFFSETS,
+    Resolver, ShadedFrame, ShadedGroup, ShadedSample, SraaParams, Subsamples, ALBEDO_TOLERANCE,
+    SHADED_SUBSAMPLE, SUBPIXEL_OFFSETS,
 };
 
 /// Inputs per iteration of the cheap kernels.
@@ -235,6 +236,57 @@ fn pixel_inputs() -> Vec<PixelInput> {
             }
         })
         .collect()
+}
+
+/// The SRAA scene as an SRAA-RT frame of one light: per pixel the shaded
+/// sample at the centre (the default preset's) split into two layers, base and
+/// the light's direct part (black in shadow), its shadow bit, and the four
+/// subsamples' geometry and shadow bits.
+struct ResolveFrame {
+    width: u32,
+    height: u32,
+    geometry: Vec<Geometry>,
+    shadow: Vec<u32>,
+    colors: Vec<Vec3>,
+    subsamples: Vec<Subsamples>,
+}
+
+fn resolve_frame() -> ResolveFrame {
+    let scene = SraaScene::new();
+    let (w, h) = (scene.width, scene.height);
+    let shaded: Vec<Hit> = (0..w * h)
+        .map(|i| scene.shoot(i % w, i / w, SraaParams::TUNED.shaded_offset()))
+        .collect();
+    let colors = shaded
+        .iter()
+        .flat_map(|s| {
+            let direct = if s.shadowed {
+                Vec3::ZERO
+            } else {
+                0.7 * s.color
+            };
+            [0.3 * s.color, direct]
+        })
+        .collect();
+    let subsamples = (0..w * h)
+        .map(|i| {
+            let hits: [Hit; 4] =
+                core::array::from_fn(|k| scene.shoot(i % w, i / w, SUBPIXEL_OFFSETS[k]));
+            Subsamples {
+                geometry: hits.map(|h| h.geometry),
+                shadow: hits.map(|h| h.shadowed as u32),
+                albedo: None,
+            }
+        })
+        .collect();
+    ResolveFrame {
+        width: w as u32,
+        height: h as u32,
+        geometry: shaded.iter().map(|s| s.geometry).collect(),
+        shadow: shaded.iter().map(|s| s.shadowed as u32).collect(),
+        colors,
+        subsamples,
+    }
 }
 
 /// Whether two samples would be told apart by an edge-aware filter.
@@ -514,6 +566,42 @@ fn bench_sraa(c: &mut Criterion) {
     });
     g.bench_function("resolve_pixel", |b| {
         b.iter(|| map_into(&quads, &mut rec, resolve_pixel))
+    });
+
+    // The whole antialiasing pass of one SRAA-RT pixel (one light, default
+    // preset): four subsamples, two layers, the 3×3 neighbourhood.
+    let rf = resolve_frame();
+    let gates = [None, Some(0u8)];
+    let frame = ShadedFrame {
+        width: rf.width,
+        height: rf.height,
+        colors: &rf.colors,
+        layers: 2,
+        albedo: &[],
+        primary: ShadedGroup {
+            geometry: &rf.geometry,
+            shadow: &rf.shadow,
+            first_layer: 0,
+        },
+        secondary: None,
+    };
+    let mut rng = Lcg::new(0x5eed_000a);
+    let resolve_pixels: Vec<(u32, u32)> = (0..N)
+        .map(|_| {
+            (
+                rng.below(rf.width as usize) as u32,
+                rng.below(rf.height as usize) as u32,
+            )
+        })
+        .collect();
+    g.bench_function("resolver_resolve_rt_1_light", |b| {
+        let resolver = Resolver::new(&black_box(SraaParams::TUNED), &gates, ALBEDO_TOLERANCE);
+        b.iter(|| {
+            map_into(&resolve_pixels, &mut rec, |&(x, y)| {
+                let i = (y * rf.width + x) as usize;
+                resolver.resolve(&frame, x, y, &rf.subsamples[i], None)
+            })
+        })
     });
     g.finish();
 }

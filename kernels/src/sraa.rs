@@ -14,6 +14,12 @@ use glam::{Vec2, Vec3};
 
 use crate::sum::WeightedSum;
 
+mod resolver;
+pub use resolver::{
+    gaussian_sum_lanes, weights_product_lanes, GeometryLanes, Resolver, ShadedFrame, ShadedGroup,
+    Subsamples,
+};
+
 /// The WGSL mirror of this module's functions (same names; functions only, no
 /// bindings). Concatenate after [`crate::wgsl::PARAMS`]. Its header lists the
 /// differences in rounding (GPU `exp`, compensated f32 sums instead of f64).

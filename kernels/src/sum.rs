@@ -53,3 +53,53 @@ impl WeightedSum {
         c.is_finite().then_some(c)
     }
 }
+
+/// Four [`WeightedSum`]s side by side, one per lane: the four subsamples of a
+/// pixel accumulating one layer from the same neighbours. Each lane is the
+/// same f64 arithmetic as [`WeightedSum::add`] and [`WeightedSum::mean`], so
+/// to the same bits, and keeps the same convex-hull guarantee; laid out by
+/// channel so that the four lanes of a channel are one multiply-add.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct WeightedSum4 {
+    sum: [[f64; 4]; 3],
+    weight: [f64; 4],
+}
+
+impl WeightedSum4 {
+    pub(crate) const ZERO: Self = Self {
+        sum: [[0.0; 4]; 3],
+        weight: [0.0; 4],
+    };
+
+    /// Lane `k` adds `w[k]·c`, as [`WeightedSum::add`] (`w[k]` an f32 weight
+    /// widened). `c` must be finite
+    /// (a zero weight times a non-finite colour is NaN): the caller skips
+    /// non-finite colours, as the scalar reconstruction does.
+    #[inline]
+    #[allow(clippy::needless_range_loop)]
+    pub(crate) fn add(&mut self, w: [f64; 4], c: Vec3) {
+        let c = [c.x as f64, c.y as f64, c.z as f64];
+        for ch in 0..3 {
+            let s = &mut self.sum[ch];
+            s[0] += w[0] * c[ch];
+            s[1] += w[1] * c[ch];
+            s[2] += w[2] * c[ch];
+            s[3] += w[3] * c[ch];
+        }
+        let s = &mut self.weight;
+        s[0] += w[0];
+        s[1] += w[1];
+        s[2] += w[2];
+        s[3] += w[3];
+    }
+
+    /// Lane `k`'s mean, as [`WeightedSum::mean`].
+    #[inline]
+    pub(crate) fn mean(&self, k: usize) -> Option<Vec3> {
+        WeightedSum {
+            sum: [self.sum[0][k], self.sum[1][k], self.sum[2][k]],
+            weight: self.weight[k],
+        }
+        .mean()
+    }
+}

@@ -284,3 +284,194 @@ proptest! {
         }
     }
 }
+
+/// A small deterministic generator for the frames of
+/// `resolver_equals_per_subsample_path`.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u32 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (self.0 >> 33) as u32
+    }
+    fn below(&mut self, n: u32) -> u32 {
+        self.next() % n
+    }
+    fn unit(&mut self) -> f32 {
+        self.next() as f32 / (1u64 << 31) as f32
+    }
+    /// Normals from a small set (equal normals are the common case) or random.
+    fn normal(&mut self) -> Vec3 {
+        match self.below(6) {
+            0 => Vec3::Z,
+            1 => Vec3::Y,
+            2 => Vec3::new(0.0, 0.6, 0.8),
+            3 => Vec3::new(f32::NAN, 0.0, 1.0),
+            _ => Vec3::new(self.unit() - 0.5, self.unit() - 0.5, self.unit() + 0.1).normalize(),
+        }
+    }
+    fn geometry(&mut self) -> Geometry {
+        let depth = match self.below(8) {
+            0 => f32::INFINITY,
+            1 => f32::NAN,
+            2 => 1.0,
+            3 => 1.05,
+            _ => 0.5 + 4.0 * self.unit(),
+        };
+        Geometry::new(self.normal(), depth)
+    }
+    fn color(&mut self) -> Vec3 {
+        match self.below(10) {
+            0..=2 => Vec3::ZERO,
+            3 => Vec3::new(f32::NAN, 0.0, 0.0),
+            4 => Vec3::new(0.0, f32::INFINITY, 1.0),
+            5 => Vec3::splat(1e-30),
+            _ => Vec3::new(self.unit(), self.unit(), self.unit()),
+        }
+    }
+    fn albedo(&mut self) -> Vec3 {
+        [
+            Vec3::splat(0.8),
+            Vec3::new(0.8, 0.1, 0.1),
+            Vec3::new(0.78, 0.8, 0.8),
+        ][self.below(3) as usize]
+    }
+    fn subsamples(&mut self, material: bool) -> Subsamples {
+        Subsamples {
+            geometry: core::array::from_fn(|_| self.geometry()),
+            shadow: core::array::from_fn(|_| self.below(4)),
+            albedo: material.then(|| core::array::from_fn(|_| self.albedo())),
+        }
+    }
+}
+
+/// The per-subsample, per-group path the CPU backend took before
+/// [`Resolver`]: [`reconstruct_layers`] (or its material form) over
+/// [`neighbourhood`] for each subsample and group, layers summed, then
+/// [`resolve_pixel`].
+fn per_subsample_path(
+    p: &SraaParams,
+    gates: &[Option<u8>],
+    frame: &ShadedFrame,
+    x: u32,
+    y: u32,
+    primary: &Subsamples,
+    secondary: Option<&Subsamples>,
+) -> Vec3 {
+    let mut subs = [Vec3::ZERO; 4];
+    for (k, sub) in subs.iter_mut().enumerate() {
+        let run = |group: &ShadedGroup, targets: &Subsamples, albedo: Option<Vec3>| {
+            let hood = neighbourhood(
+                x,
+                y,
+                k,
+                p.shaded_offset(),
+                p.radius(),
+                frame.width,
+                frame.height,
+            );
+            let samples = hood.map(|np| {
+                let j = (np.y * frame.width + np.x) as usize;
+                let base = j * frame.layers + group.first_layer;
+                let s = LayeredSample {
+                    geometry: group.geometry[j],
+                    shadow: group.shadow.get(j).copied().unwrap_or(0),
+                    distance2: np.distance2,
+                    colors: &frame.colors[base..base + gates.len()],
+                };
+                (s, frame.albedo.get(j).copied().unwrap_or(Vec3::ZERO))
+            });
+            let mut out = [Vec3::ZERO; MAX_LAYERS];
+            let (t, ts) = (&targets.geometry[k], targets.shadow[k]);
+            match albedo {
+                Some(a) => reconstruct_layers_material(
+                    p,
+                    t,
+                    ts,
+                    a,
+                    ALBEDO_TOLERANCE,
+                    gates,
+                    samples,
+                    &mut out,
+                ),
+                None => reconstruct_layers(p, t, ts, gates, samples.map(|(s, _)| s), &mut out),
+            }
+            out[..gates.len()].iter().fold(Vec3::ZERO, |a, c| a + *c)
+        };
+        *sub = run(&frame.primary, primary, primary.albedo.map(|a| a[k]));
+        if let (Some(g), Some(s)) = (frame.secondary.as_ref(), secondary) {
+            if !s.geometry[k].depth.is_nan() {
+                *sub += run(g, s, None);
+            }
+        }
+    }
+    resolve_pixel(&subs)
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    /// The frame resolver equals the per-subsample path bit for bit, on
+    /// random frames (misses, NaN geometry, black, non-finite and tiny
+    /// colours, shadow bits, albedos, mirrors), every weight form, both
+    /// shaded positions and radii 1 and 2, at every pixel (borders included).
+    #[test]
+    fn resolver_equals_per_subsample_path(seed in any::<u64>(), preset in 0usize..6) {
+        let mut r = Rng(seed);
+        let p = match preset {
+            0 => SraaParams::TUNED,
+            1 => SraaParams::PAPER,
+            2 => SraaParams::CHAJDAS.with_spatial(0.5),
+            3 => SraaParams::TUNED.with_radius(2),
+            4 => SraaParams::PAPER.with_depth_metric(DepthMetric::Absolute).with_spatial(r.unit()),
+            _ => SraaParams {
+                sigma_z: 30.0 * r.unit(),
+                sigma_n: 4.0 * r.unit(),
+                ..SraaParams::TUNED.with_spatial(0.05 + r.unit())
+            },
+        };
+        let (w, h) = (1 + r.below(5), 1 + r.below(5));
+        let n = (w * h) as usize;
+        let all_gates = [None, Some(0u8), Some(1u8)];
+        let gates = &all_gates[..1 + r.below(3) as usize];
+        let mirrors = r.below(2) == 1;
+        let material = r.below(3) == 0;
+        let layers = gates.len() * if mirrors { 2 } else { 1 };
+        let colors: Vec<Vec3> = (0..n * layers).map(|_| r.color()).collect();
+        let geo: Vec<Geometry> = (0..n).map(|_| r.geometry()).collect();
+        let geo2: Vec<Geometry> = (0..n).map(|_| r.geometry()).collect();
+        let shadow: Vec<u32> = (0..n).map(|_| r.below(4)).collect();
+        let shadow2: Vec<u32> = (0..n).map(|_| r.below(4)).collect();
+        let albedo: Vec<Vec3> = if material { (0..n).map(|_| r.albedo()).collect() } else { Vec::new() };
+        let frame = ShadedFrame {
+            width: w,
+            height: h,
+            colors: &colors,
+            layers,
+            albedo: &albedo,
+            primary: ShadedGroup { geometry: &geo, shadow: &shadow, first_layer: 0 },
+            secondary: mirrors.then_some(ShadedGroup { geometry: &geo2, shadow: &shadow2, first_layer: gates.len() }),
+        };
+        let resolver = Resolver::new(&p, gates, ALBEDO_TOLERANCE);
+        for i in 0..n as u32 {
+            let (x, y) = (i % w, i / w);
+            // Targets near the frame's own samples, so that weights are often 1.
+            let mut primary = r.subsamples(material);
+            let mut secondary = r.subsamples(false);
+            for k in 0..4 {
+                if r.below(2) == 0 {
+                    primary.geometry[k] = geo[i as usize];
+                    secondary.geometry[k] = geo2[i as usize];
+                }
+            }
+            let secondary = mirrors.then_some(&secondary);
+            let got = resolver.resolve(&frame, x, y, &primary, secondary);
+            let want = per_subsample_path(&p, gates, &frame, x, y, &primary, secondary);
+            prop_assert_eq!(got.to_array().map(f32::to_bits), want.to_array().map(f32::to_bits),
+                "pixel ({}, {}): {} against {}", x, y, got, want);
+        }
+    }
+}

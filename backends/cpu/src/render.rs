@@ -6,8 +6,8 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use subcone_kernels::passes::{LayerLayout, Passes, Technique};
 use subcone_kernels::sraa::{
-    neighbourhood, reconstruct_layers, reconstruct_layers_material, resolve_pixel, Geometry,
-    LayeredSample, SraaParams, ALBEDO_TOLERANCE, SHADED_SAMPLE, SUBPIXEL_OFFSETS,
+    neighbourhood, Geometry, Resolver, ShadedFrame, ShadedGroup, SraaParams, Subsamples,
+    ALBEDO_TOLERANCE, SHADED_SAMPLE, SUBPIXEL_OFFSETS,
 };
 use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderSettings};
 
@@ -173,7 +173,7 @@ impl Buffers {
 /// Pass 2 of SRAA (the paper's antialiasing pass): every layer of every
 /// subsample reconstructed from the neighbourhood's shaded samples (eq. 1,
 /// gated by eq. 2 per light), then the box resolve of the four subsamples
-/// into the frame's colours.
+/// into the frame's colours, by the kernels' [`Resolver`].
 pub(crate) fn reconstruct_frame(
     b: &Buffers,
     layout: &LayerLayout,
@@ -182,21 +182,67 @@ pub(crate) fn reconstruct_frame(
     w: usize,
     h: usize,
 ) {
-    let radius = params.radius();
-    let nl = layout.len();
+    // Layer 0 of each group ungated, layer `1 + l` gated by light `l`.
+    let mut gates = [None; MAX_LIGHTS + 1];
+    for (l, g) in gates.iter_mut().enumerate().skip(1).take(layout.lights) {
+        *g = Some((l - 1) as u8);
+    }
+    let gates = if layout.single {
+        &gates[..1]
+    } else {
+        &gates[..1 + layout.lights]
+    };
+    let resolver = Resolver::new(params, gates, ALBEDO_TOLERANCE);
+    let frame = ShadedFrame {
+        width: w as u32,
+        height: h as u32,
+        colors: &b.values,
+        layers: layout.len(),
+        albedo: &b.albedo,
+        primary: ShadedGroup {
+            geometry: &b.geo,
+            shadow: &b.shadow,
+            first_layer: 0,
+        },
+        secondary: layout.secondary.then_some(ShadedGroup {
+            geometry: &b.geo2,
+            shadow: &b.shadow2,
+            first_layer: layout.secondary_base(),
+        }),
+    };
     color
         .par_chunks_mut(w * BAND)
         .enumerate()
-        .for_each(|(band, rows)| {
-            for (i, out) in rows.iter_mut().enumerate() {
-                let (x, y) = (i % w, band * BAND + i / w);
-                let mut subs = [Vec3::ZERO; 4];
-                for (k, sub) in subs.iter_mut().enumerate() {
-                    *sub = reconstruct_subsample(b, layout, params, radius, x, y, k, w, h, nl);
-                }
-                *out = resolve_pixel(&subs);
-            }
+        .for_each(|(band, rows)| reconstruct_band(b, layout, &resolver, &frame, band, rows, w));
+}
+
+/// [`reconstruct_frame`] on one band of rows. Not inlined, so that a profile
+/// shows the antialiasing pass as one function.
+#[inline(never)]
+fn reconstruct_band(
+    b: &Buffers,
+    layout: &LayerLayout,
+    resolver: &Resolver,
+    frame: &ShadedFrame,
+    band: usize,
+    rows: &mut [Vec3],
+    w: usize,
+) {
+    for (i, out) in rows.iter_mut().enumerate() {
+        let (x, y) = (i % w, band * BAND + i / w);
+        let j = y * w + x;
+        let primary = Subsamples {
+            geometry: b.sub_geo[j],
+            shadow: b.sub_shadow.get(j).copied().unwrap_or([0; 4]),
+            albedo: b.sub_albedo.get(j).copied(),
+        };
+        let secondary = layout.secondary.then(|| Subsamples {
+            geometry: b.sub_geo2.get(j).copied().unwrap_or([NO_SECONDARY; 4]),
+            shadow: b.sub_shadow2.get(j).copied().unwrap_or([0; 4]),
+            albedo: None,
         });
+        *out = resolver.resolve(frame, x as u32, y as u32, &primary, secondary.as_ref());
+    }
 }
 
 fn bytes<T>(v: &[T]) -> usize {
@@ -567,100 +613,6 @@ pub(crate) fn bands<T: Send>(v: &mut [T], band: usize, nb: usize) -> Vec<&mut [T
     } else {
         v.chunks_mut(band).collect()
     }
-}
-
-/// Reconstruct one subsample: the primary layers on primary geometry (one pass,
-/// layer 0 ungated, layer `1 + l` gated by light `l`), then, on mirrors, the
-/// secondary layers on secondary geometry, gated by the secondary hits' shadow
-/// states. Returns the sum of the layers.
-#[allow(clippy::too_many_arguments)]
-fn reconstruct_subsample(
-    b: &Buffers,
-    layout: &LayerLayout,
-    params: &SraaParams,
-    radius: u32,
-    x: usize,
-    y: usize,
-    k: usize,
-    w: usize,
-    h: usize,
-    nl: usize,
-) -> Vec3 {
-    let j = y * w + x;
-    let group = 1 + layout.lights;
-    let mut gates = [None; MAX_LIGHTS + 1];
-    for (l, g) in gates.iter_mut().enumerate().skip(1).take(layout.lights) {
-        *g = Some((l - 1) as u8);
-    }
-    let gates = if layout.single {
-        &gates[..1]
-    } else {
-        &gates[..group]
-    };
-    let mut out = [Vec3::ZERO; MAX_LIGHTS + 1];
-    let shaded = params.shaded_offset();
-    let hood = || neighbourhood(x as u32, y as u32, k, shaded, radius, w as u32, h as u32);
-    // `albedo`: the target's albedo when the primary layers are gated by
-    // material (`+mat`); the secondary layers never are.
-    let run = |target: &Geometry,
-               target_shadow: u32,
-               albedo: Option<Vec3>,
-               geo: &[Geometry],
-               bits: &[u32],
-               first: usize,
-               out: &mut [Vec3]| {
-        let samples = hood().map(|np| {
-            let jj = np.y as usize * w + np.x as usize;
-            let s = LayeredSample {
-                geometry: geo[jj],
-                shadow: bits.get(jj).copied().unwrap_or(0),
-                distance2: np.distance2,
-                colors: &b.values[jj * nl + first..jj * nl + first + gates.len()],
-            };
-            (s, b.albedo.get(jj).copied().unwrap_or(Vec3::ZERO))
-        });
-        match albedo {
-            Some(a) => reconstruct_layers_material(
-                params,
-                target,
-                target_shadow,
-                a,
-                ALBEDO_TOLERANCE,
-                gates,
-                samples,
-                out,
-            ),
-            None => reconstruct_layers(
-                params,
-                target,
-                target_shadow,
-                gates,
-                samples.map(|(s, _)| s),
-                out,
-            ),
-        }
-        out[..gates.len()].iter().fold(Vec3::ZERO, |a, c| a + *c)
-    };
-    let target = b.sub_geo[j][k];
-    let shadow = b.sub_shadow.get(j).map(|s| s[k]).unwrap_or(0);
-    let albedo = b.sub_albedo.get(j).map(|a| a[k]);
-    let mut c = run(&target, shadow, albedo, &b.geo, &b.shadow, 0, &mut out);
-    if layout.secondary {
-        let target2 = b.sub_geo2.get(j).map(|g| g[k]).unwrap_or(NO_SECONDARY);
-        if !target2.depth.is_nan() {
-            let shadow2 = b.sub_shadow2.get(j).map(|s| s[k]).unwrap_or(0);
-            c += run(
-                &target2,
-                shadow2,
-                None,
-                &b.geo2,
-                &b.shadow2,
-                layout.secondary_base(),
-                &mut out,
-            );
-        }
-    }
-    c
 }
 
 /// Adaptive subpixel shadow rays: which lights' shadow rays a subsample of pixel
