@@ -21,9 +21,9 @@ use plotters::prelude::*;
 
 use super::classes::{Class, ClassFlip};
 use super::metrics::{self, Rgb8};
-use super::plot::{method_colour, FAMILY, PLOT_SIZE};
+use super::plot::{method_colour, save_chart, Chart, FAMILY, PLOT_SIZE};
 use super::timing::Timings;
-use super::{file_safe, output, render, Failure, Runner, SceneJob};
+use super::{file_safe, render, Failure, Runner, SceneJob};
 use subcone_scene::{Method, RenderSettings};
 
 /// Ambient-occlusion rays per shaded point swept.
@@ -333,6 +333,23 @@ where
     Ok(())
 }
 
+/// One plot of `value` against the AO ray count.
+struct AoChart<'a> {
+    title: &'a str,
+    y_desc: &'a str,
+    rows: &'a [&'a AoSweepRow],
+    value: fn(&AoSweepRow) -> Option<f64>,
+}
+
+impl Chart for AoChart<'_> {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
+    where
+        DB::ErrorType: 'static,
+    {
+        draw(root, self.title, self.y_desc, self.rows, self.value)
+    }
+}
+
 /// One plot as PNG and SVG in `dir`.
 fn save_both(
     dir: &Path,
@@ -342,29 +359,13 @@ fn save_both(
     rows: &[&AoSweepRow],
     value: fn(&AoSweepRow) -> Option<f64>,
 ) -> Result<Vec<PathBuf>> {
-    let (w, h) = PLOT_SIZE;
-    let mut buf = vec![255u8; (w * h * 3) as usize];
-    {
-        let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
-        draw(&root, title, y_desc, rows, value)?;
-    }
-    let png = dir.join(format!("{stem}.png"));
-    output::save_png(
-        &png,
-        &Rgb8 {
-            width: w,
-            height: h,
-            data: buf,
-        },
-    )?;
-    let mut svg_text = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg_text, (w, h)).into_drawing_area();
-        draw(&root, title, y_desc, rows, value)?;
-    }
-    let svg = dir.join(format!("{stem}.svg"));
-    super::reference::write_atomic(&svg, svg_text.as_bytes())?;
-    Ok(vec![png, svg])
+    let chart = AoChart {
+        title,
+        y_desc,
+        rows,
+        value,
+    };
+    save_chart(dir, stem, &chart)
 }
 
 /// The section's plots, per scene and backend: time, and silhouette +

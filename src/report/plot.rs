@@ -446,18 +446,23 @@ where
     }
 }
 
-fn both(
-    dir: &Path,
-    stem: &str,
-    scene: &str,
-    rows: &[&ResultRow],
-    kind: Kind,
-) -> Result<Vec<PathBuf>> {
+/// A chart that draws itself on any plotters backend, so that
+/// [`save_chart`] can write it as PNG and as SVG from one description.
+pub trait Chart {
+    /// Draw on `root`.
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
+    where
+        DB::ErrorType: 'static;
+}
+
+/// `chart` as `<stem>.png` and `<stem>.svg` in `dir`, [`PLOT_SIZE`]
+/// pixels; the paths written.
+pub fn save_chart(dir: &Path, stem: &str, chart: &impl Chart) -> Result<Vec<PathBuf>> {
     let (w, h) = PLOT_SIZE;
     let mut buf = vec![255u8; (w * h * 3) as usize];
     {
         let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
-        draw(kind, &root, scene, rows)?;
+        chart.draw(&root)?;
     }
     let png_path = dir.join(format!("{stem}.png"));
     output::save_png(
@@ -471,11 +476,37 @@ fn both(
     let mut svg_text = String::new();
     {
         let root = SVGBackend::with_string(&mut svg_text, (w, h)).into_drawing_area();
-        draw(kind, &root, scene, rows)?;
+        chart.draw(&root)?;
     }
     let svg_path = dir.join(format!("{stem}.svg"));
     super::reference::write_atomic(&svg_path, svg_text.as_bytes())?;
     Ok(vec![png_path, svg_path])
+}
+
+/// One of a scene's charts.
+struct SceneChart<'a> {
+    kind: Kind,
+    scene: &'a str,
+    rows: &'a [&'a ResultRow],
+}
+
+impl Chart for SceneChart<'_> {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
+    where
+        DB::ErrorType: 'static,
+    {
+        draw(self.kind, root, self.scene, self.rows)
+    }
+}
+
+fn both(
+    dir: &Path,
+    stem: &str,
+    scene: &str,
+    rows: &[&ResultRow],
+    kind: Kind,
+) -> Result<Vec<PathBuf>> {
+    save_chart(dir, stem, &SceneChart { kind, scene, rows })
 }
 
 /// The plots of a scene, as PNG and SVG in `dir`: `<scene>_flip_vs_time`
