@@ -223,19 +223,21 @@ fuzz_target!(|input: Input| {
             continue;
         }
         hull.add(s.color);
-        let w = match input.target_shadow {
-            Some(si) => shadow_gated_weight(&p, &gi, &s.geometry, si, s.shadowed),
-            None => bilateral_weight(&p, &gi, &s.geometry),
-        };
-        for k in 0..3 {
-            sum[k] += w as f64 * s.color[k] as f64;
-        }
-        wsum += w as f64;
         let d2 = if s.distance2.is_nan() {
             f32::INFINITY
         } else {
             s.distance2
         };
+        // Eq. 2's gate, then eq. 1 with the spatial term at the sample's
+        // distance, as `reconstruct` weighs.
+        let w = match input.target_shadow {
+            Some(si) if si != s.shadowed => 0.0,
+            _ => reconstruction_weight(&p, &gi, &s.geometry, d2),
+        };
+        for k in 0..3 {
+            sum[k] += w as f64 * s.color[k] as f64;
+        }
+        wsum += w as f64;
         match nearest {
             Some((nd, _)) if !(d2 < nd) => {}
             _ => nearest = Some((d2, s.color)),
