@@ -822,13 +822,13 @@ pub fn reconstruct_layers<'a, I>(
 ) where
     I: IntoIterator<Item = LayeredSample<'a>>,
 {
+    // A NaN distance needs no sanitising here: reconstruction_weight gives
+    // it weight 0 with the spatial term on, and ignores it with the term off.
     let weighted = neighbours.into_iter().map(|s| {
-        let d2 = if !s.distance2.is_nan() {
-            s.distance2
-        } else {
-            f32::INFINITY
-        };
-        (reconstruction_weight(params, target, &s.geometry, d2), s)
+        (
+            reconstruction_weight(params, target, &s.geometry, s.distance2),
+            s,
+        )
     });
     reconstruct_weighted_layers(target_shadow, gates, weighted, out);
 }
@@ -855,12 +855,7 @@ pub fn reconstruct_layers_material<'a, I>(
     let weighted = neighbours.into_iter().map(|(s, albedo)| {
         // As material_gated_weight gates, with the spatial term.
         let w = if material_gate(target_albedo, albedo, tolerance) {
-            let d2 = if !s.distance2.is_nan() {
-                s.distance2
-            } else {
-                f32::INFINITY
-            };
-            reconstruction_weight(params, target, &s.geometry, d2)
+            reconstruction_weight(params, target, &s.geometry, s.distance2)
         } else {
             0.0
         };

@@ -13,6 +13,10 @@
 //   below ~1e-19 times colours below ~1e-19) the products lose precision that
 //   f64 keeps, and the normalised result may leave the neighbours' convex hull
 //   by that loss.
+// - depth_difference's relative metric, for depths above 2^100, is computed
+//   as a ratio to the larger depth (Rust: difference over the mean), because
+//   GPUs may rewrite 0.5·a + 0.5·b as 0.5·(a + b) and overflow; a few ulps
+//   apart there, the same elsewhere;
 // - iterators become loops: `subcone_neighbourhood` returns its bounds and
 //   `subcone_neighbour_distance2` the distance of one pixel; `reconstruct_layers` is
 //   split into begin / add one neighbour's layer / end, which the caller
