@@ -242,6 +242,8 @@ fn split_group_survives_nan() {
         t_exit: 5.1,
         occlusion: 1.0,
         t_occlusion: 5.05,
+        t_first: 4.95,
+        t_last: 5.1,
         hard: true,
     };
     let g = split_group(&params(true), &s, &ray, FULL_MASK, 1.0, |_| {
@@ -254,6 +256,8 @@ fn split_group_survives_nan() {
         t_entry: f32::NAN,
         t_exit: f32::NAN,
         t_occlusion: f32::NAN,
+        t_first: f32::NAN,
+        t_last: f32::NAN,
         ..s
     };
     let g = split_group(&params(true), &nan, &ray, FULL_MASK, 1.0, |p| {

@@ -9,9 +9,10 @@ use subcone_kernels::sraa::SraaParams;
 /// The methods of the default comparison, by the names [`Method`] parses
 /// and prints, in table order: the one list the report, the CLI's help and
 /// the backend contract's checks read. Every other accepted name is an
-/// `ssaaN`/`ssaaN+ctss` with another `N` or a `-delayed` variant of a CTSS
-/// method.
-pub const METHOD_NAMES: [&str; 17] = [
+/// `ssaaN`/`ssaaN+ctss` with another `N`, a `-delayed` variant of a CTSS
+/// method, or a `-paper` variant of one (`ctss-r-paper`,
+/// `ctss+edges-paper`, `ssaa4+ctss-paper`, `ctss-delayed-paper`).
+pub const METHOD_NAMES: [&str; 18] = [
     "noaa",
     "ssaa4",
     "ssaa16",
@@ -24,6 +25,7 @@ pub const METHOD_NAMES: [&str; 17] = [
     "sraa-paper+mat",
     "sraa-rt-paper+mat",
     "ctss",
+    "ctss-paper",
     "ctss-delayed",
     "ctss+edges",
     "ctss-r",
@@ -43,8 +45,15 @@ pub struct Method {
     pub ssaa_side: u32,
     /// SRAA weight parameters.
     pub sraa: SraaParams,
-    /// CTSS cone coverage multiplier (§5.1).
+    /// CTSS cone coverage multiplier (§5.1): 1 is the paper's cone through
+    /// the pixel's corners. The CTSS methods default to
+    /// [`CONE_COVERAGE`](subcone_kernels::ctss::CONE_COVERAGE), their
+    /// `-paper` variants to 1.
     pub cone_coverage: f32,
+    /// CTSS: the paper's hit groups, masks and cone
+    /// ([`CtssParams::paper`](subcone_kernels::ctss::CtssParams::paper),
+    /// `cone_coverage` 1); named with a `-paper` suffix (`ctss-paper`).
+    pub ctss_paper: bool,
     /// CTSS visibility threshold k (§5.1).
     pub visibility_k: u32,
     /// Delayed shading (CTSS §5.1, a variant the authors name but did not
@@ -78,7 +87,12 @@ impl Method {
             technique,
             ssaa_side,
             sraa: SraaParams::TUNED,
-            cone_coverage: 1.0,
+            cone_coverage: if technique.is_cone_traced() {
+                subcone_kernels::ctss::CONE_COVERAGE
+            } else {
+                1.0
+            },
+            ctss_paper: false,
             visibility_k: 32,
             delayed_shading: false,
             split_groups: false,
@@ -101,6 +115,19 @@ impl Method {
         Method {
             sraa: SraaParams::PAPER,
             ..Method::new(technique)
+        }
+    }
+
+    /// The paper's CTSS ([`ctss_paper`](Self::ctss_paper), coverage 1) of a
+    /// cone-traced method; other methods unchanged.
+    pub fn ctss_paper(self) -> Self {
+        if !self.technique.is_cone_traced() {
+            return self;
+        }
+        Method {
+            ctss_paper: true,
+            cone_coverage: 1.0,
+            ..self
         }
     }
 
@@ -141,6 +168,9 @@ impl fmt::Display for Method {
             Technique::SsaaCtss => write!(f, "ssaa{}+ctss{suffix}", self.supersamples()),
             Technique::Fxaa => write!(f, "fxaa"),
         }?;
+        if self.technique.is_cone_traced() && self.ctss_paper {
+            write!(f, "-paper")?;
+        }
         if self.technique.is_subpixel_reconstruction() && self.sraa == SraaParams::PAPER {
             write!(f, "-paper")?;
         }
@@ -153,7 +183,7 @@ impl fmt::Display for Method {
 
 /// A method name that does not parse.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("unknown method {0:?}: expected noaa, ssaaN (N in 4, 9, 16, 64, 256), sraa, sraa-rt, sraa+mat, sraa-rt+mat, sraa-paper, sraa-rt-paper, sraa-paper+mat, sraa-rt-paper+mat, ctss, ctss+edges, ctss-r, ssaaN+ctss or fxaa; ctss, ctss-r and ssaaN+ctss optionally with -delayed")]
+#[error("unknown method {0:?}: expected noaa, ssaaN (N in 4, 9, 16, 64, 256), sraa, sraa-rt, sraa+mat, sraa-rt+mat, sraa-paper, sraa-rt-paper, sraa-paper+mat, sraa-rt-paper+mat, ctss, ctss+edges, ctss-r, ssaaN+ctss or fxaa; ctss, ctss-r and ssaaN+ctss optionally with -delayed; any of these CTSS names optionally with -paper last")]
 pub struct ParseMethodError(pub String);
 
 fn parse_ssaa(n: &str) -> Option<u32> {
@@ -167,11 +197,23 @@ impl FromStr for Method {
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         let lower = s.trim().to_ascii_lowercase();
         let err = || ParseMethodError(s.to_string());
+        // CTSS: any cone-traced name, then `-paper`.
+        if let Some(base) = lower.strip_suffix("-paper") {
+            if let Ok(m) = base.parse::<Method>() {
+                if m.technique.is_cone_traced() && !m.ctss_paper {
+                    return Ok(m.ctss_paper());
+                }
+            }
+        }
         if let Some(base) = lower.strip_suffix("-delayed") {
             let m: Method = base.parse().map_err(|_| err())?;
             // Delayed shading records one sample per hit group; split groups
             // (`ctss+edges`) shade several, so the two do not combine.
-            if !m.technique.is_cone_traced() || base.ends_with("-delayed") || m.split_groups {
+            if !m.technique.is_cone_traced()
+                || base.ends_with("-delayed")
+                || m.split_groups
+                || m.ctss_paper
+            {
                 return Err(err());
             }
             return Ok(Method {
@@ -245,6 +287,27 @@ mod tests {
             let m: Method = name.parse().unwrap_or_else(|e| panic!("{name}: {e}"));
             assert_eq!(m.to_string(), name);
         }
+        for name in [
+            "ctss-r-paper",
+            "ctss+edges-paper",
+            "ssaa4+ctss-paper",
+            "ctss-delayed-paper",
+            "ctss-r-delayed-paper",
+        ] {
+            let m: Method = name.parse().unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert!(m.ctss_paper && m.cone_coverage == 1.0, "{name}");
+            assert_eq!(m.to_string(), name);
+        }
+        for bad in [
+            "ctss-paper-paper",
+            "noaa-paper",
+            "fxaa-paper",
+            "ctss-paper-delayed",
+        ] {
+            assert!(bad.parse::<Method>().is_err(), "{bad}");
+        }
+        let m: Method = "ctss".parse().unwrap();
+        assert!(!m.ctss_paper && m.cone_coverage == subcone_kernels::ctss::CONE_COVERAGE);
         let mut sorted = METHOD_NAMES.to_vec();
         sorted.sort();
         sorted.dedup();

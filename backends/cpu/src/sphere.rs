@@ -12,8 +12,6 @@
 //! `translucent`: CTSS with the `K` masks of §5.3, NoAA/SSAA
 //! with alpha blending along the ray.
 
-mod edges;
-
 use std::time::Instant;
 
 use crate::render::{bands, pixel_centre, reconstruct_frame, shadow_agreement, Buffers, BAND};
@@ -21,9 +19,9 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use subcone_kernels::aggregate::Aggregate;
 use subcone_kernels::ctss::{
-    cross_section_frame, sphere_trace_split, ConeStepper, CtssParams, Event, GroupSample, SplitRay,
+    cross_section_frame, march, normal_step, sphere_trace_split, trace_field, ConeField,
+    CtssParams, FieldSample, SplitRay,
 };
-use subcone_kernels::mask::{needs_normal, project_normal};
 use subcone_kernels::passes::{LayerLayout, Passes, Technique, MAX_LIGHTS};
 use subcone_kernels::sraa::{Geometry, SUBPIXEL_OFFSETS};
 use subcone_scene::sdf::SplitDistance;
@@ -65,6 +63,30 @@ pub trait SdfField: Sync {
             .iter()
             .fold(Vec3::ZERO, |a, k| a + *k * self.eval(p + *k * h).0);
         n.normalize_or_zero()
+    }
+}
+
+/// An [`SdfField`] as the kernels' trace reads it: the surface distance, the
+/// safe step, and the material as the object id (a group ends where it
+/// changes).
+pub struct ConeFieldOf<'a, F: SdfField>(pub &'a F);
+
+impl<F: SdfField> ConeField for ConeFieldOf<'_, F> {
+    fn sample(&mut self, p: Vec3) -> FieldSample {
+        let SplitDistance {
+            safe,
+            surface,
+            material,
+        } = self.0.eval_split(p);
+        FieldSample {
+            distance: surface,
+            step: safe,
+            object: material,
+        }
+    }
+
+    fn normal(&mut self, p: Vec3, h: f32) -> Vec3 {
+        self.0.normal(p, h)
     }
 }
 
@@ -113,22 +135,6 @@ impl<'a> SdfView<'a, subcone_scene::sdf::SdfNode> {
     }
 }
 
-/// A closed hit group, as [`SdfView::ctss_march`] hands it on.
-struct GroupHit<'s> {
-    /// Sample point.
-    q: Vec3,
-    /// Shading normal there.
-    n: Vec3,
-    /// Eq. 6 weight.
-    w: f32,
-    /// Newly visible mask cells.
-    visible: u32,
-    /// The group, for a split.
-    sample: &'s GroupSample,
-    /// The ray and its cross-section frame, for a split.
-    ray: SplitRay,
-}
-
 struct PendingSample {
     q: Vec3,
     n: Vec3,
@@ -168,8 +174,7 @@ impl<F: SdfField> SdfView<'_, F> {
     /// quarter of the cone radius (never below 1e-5 of the depth), the same for
     /// every method.
     fn normal_at(&self, p: Vec3, t: f32, tan: f32) -> Vec3 {
-        let h = (0.25 * t * tan).max(1e-5 * t.max(1.0));
-        self.field.normal(p, h)
+        self.field.normal(p, normal_step(t, tan))
     }
 
     /// Whether a light is blocked, by plain sphere tracing towards it.
@@ -226,6 +231,7 @@ impl<F: SdfField> SdfView<'_, F> {
             .relaxed(method.technique == Technique::CtssR)
             .with_visibility_k(method.visibility_k)
             .with_split_groups(method.split_groups)
+            .paper(method.ctss_paper)
     }
 
     /// One NoAA sample.
@@ -245,80 +251,33 @@ impl<F: SdfField> SdfView<'_, F> {
         }
     }
 
-    /// Algorithm 1 through the kernels' stepper for the ray `o + t·d`: calls
-    /// `on_sample` with each hit group's sample point, shading normal, eq. 6
-    /// weight and what a split (`ctss+edges`) needs, as the group closes.
-    /// Returns the stepper (its counters and background weight).
-    fn ctss_march(
-        &self,
-        o: Vec3,
-        d: Vec3,
-        p: &CtssParams,
-        mut on_sample: impl FnMut(GroupHit<'_>),
-    ) -> ConeStepper {
+    /// The ray `o + t·d` with its cone's cross-section axes.
+    fn cone_ray(&self, o: Vec3, d: Vec3) -> SplitRay {
         let (right, up) = cross_section_frame(d, self.camera.up);
-        let mut stepper = ConeStepper::new(p);
-        loop {
-            let t = stepper.t();
-            let SplitDistance { safe, surface, .. } = self.field.eval_split(o + t * d);
-            match stepper.advance_split(surface, safe) {
-                Event::March => {}
-                Event::Sample(s) => {
-                    let q = o + s.t * d;
-                    let n = self.normal_at(q, s.t, p.tan_theta);
-                    // The mask's plane model relates the group's peak occlusion to
-                    // the surface normal where that peak was measured; shading
-                    // uses the sample point. The second normal is only computed
-                    // when the mask depends on it (partial coverage).
-                    let nm = if s.t_occlusion != s.t && needs_normal(s.occlusion, p.placement()) {
-                        self.normal_at(o + s.t_occlusion * d, s.t_occlusion, p.tan_theta)
-                    } else {
-                        n
-                    };
-                    let (visible, w) = stepper.record(&s, project_normal(nm, right, up));
-                    on_sample(GroupHit {
-                        q,
-                        n,
-                        w,
-                        visible,
-                        sample: &s,
-                        ray: SplitRay {
-                            origin: o,
-                            dir: d,
-                            right,
-                            up,
-                        },
-                    });
-                }
-                Event::Stop(_) => break,
-            }
+        SplitRay {
+            origin: o,
+            dir: d,
+            right,
+            up,
         }
-        stepper
     }
 
-    /// One CTSS sample, shading each hit group's sample as soon as the group
-    /// closes (ASAP).
+    /// One CTSS sample through the kernels' trace, shading each hit group's
+    /// sample as soon as the group closes (ASAP).
     fn ctss(&self, o: Vec3, d: Vec3, p: &CtssParams, tally: &mut Tally) -> (Vec3, u32) {
-        let mut agg = Aggregate::new();
-        // Shaded samples beyond one per group (`ctss+edges`, §5.3).
-        let mut extra = 0u32;
-        let stepper = self.ctss_march(o, d, p, |g| {
-            if p.splits_groups() {
-                if let Some(k) =
-                    self.split_sample(&g.ray, p, g.sample, g.n, g.visible, g.w, &mut agg, tally)
-                {
-                    extra += k;
-                    return;
-                }
-            }
-            agg.add(g.w, self.shade(g.q, g.n, d, tally));
-        });
-        tally.steps += stepper.steps() as u64;
-        tally.samples += (stepper.samples() + extra) as u64;
-        (
-            agg.resolve(self.background, stepper.background_weight()),
-            stepper.samples() + extra,
-        )
+        let ray = self.cone_ray(o, d);
+        let mut shadow = Tally::default();
+        let r = trace_field(
+            p,
+            &ray,
+            &mut ConeFieldOf(self.field),
+            |q, n, dir| self.shade(q, n, dir, &mut shadow),
+            self.background,
+        );
+        tally.shadow += shadow.shadow;
+        tally.steps += r.steps as u64;
+        tally.samples += r.samples as u64;
+        (r.color, r.samples)
     }
 
     /// One row of CTSS with delayed shading (CTSS §5.1): every cone of the row
@@ -353,11 +312,12 @@ impl<F: SdfField> SdfView<'_, F> {
                     let (o, d) =
                         self.camera
                             .ray(Vec2::new(x as f32, y as f32) + off, s.width, s.height);
-                    let stepper = self.ctss_march(o, d, p, |g| {
+                    let ray = self.cone_ray(o, d);
+                    let stepper = march(p, &ray, &mut ConeFieldOf(self.field), |_, g| {
                         batch.push(PendingSample {
-                            q: g.q,
-                            n: g.n,
-                            w: g.w,
+                            q: g.point,
+                            n: g.normal,
+                            w: g.weight,
                         });
                     });
                     tally.steps += stepper.steps() as u64;

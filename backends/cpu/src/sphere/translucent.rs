@@ -30,13 +30,12 @@ use glam::Vec3;
 use subcone_kernels::aggregate::Aggregate;
 use subcone_kernels::cone::{advance, cone_occlusion, cone_radius};
 use subcone_kernels::ctss::{
-    cross_section_frame, sphere_trace_split, ConeStepper, CtssParams, Event, GroupSample,
+    group_mask, sphere_trace_split, ConeStepper, CtssParams, Event, GroupSample,
 };
-use subcone_kernels::mask::{needs_normal, project_normal};
 use subcone_scene::sdf::SplitDistance;
 use subcone_scene::Material;
 
-use super::{SdfField, SdfView, Tally};
+use super::{ConeFieldOf, SdfField, SdfView, Tally};
 
 /// Minimum step, as a fraction of the cone radius, when the NoAA reference
 /// marches through a semi-transparent object (a twenty-fifth of the pixel's
@@ -67,7 +66,7 @@ impl<F: SdfField> SdfView<'_, F> {
         p: &CtssParams,
         tally: &mut Tally,
     ) -> (Vec3, u32) {
-        let (right, up) = cross_section_frame(d, self.camera.up);
+        let ray = self.cone_ray(o, d);
         let mut stepper = ConeStepper::new(p);
         let mut agg = Aggregate::new();
         // The object nearest where the open group began, and the one the trace
@@ -77,13 +76,9 @@ impl<F: SdfField> SdfView<'_, F> {
         let mut sample = |stepper: &mut ConeStepper, s: &GroupSample, m: u32, tally: &mut Tally| {
             let q = o + s.t * d;
             let n = self.normal_at(q, s.t, p.tan_theta);
-            let nm = if s.t_occlusion != s.t && needs_normal(s.occlusion, p.placement()) {
-                self.normal_at(o + s.t_occlusion * d, s.t_occlusion, p.tan_theta)
-            } else {
-                n
-            };
+            let mask = group_mask(p, &ray, s, n, &mut ConeFieldOf(self.field));
             let alpha = self.material_opacity(m);
-            let (_, w) = stepper.record_alpha(s, project_normal(nm, right, up), alpha);
+            let (_, w) = stepper.record_alpha_mask(mask, alpha);
             agg.add(w, self.shade(q, n, d, tally));
         };
         loop {
@@ -110,7 +105,7 @@ impl<F: SdfField> SdfView<'_, F> {
             if stepper.is_passing() && m != passing_material {
                 stepper.end_pass();
             }
-            let event = stepper.advance_split(surface, safe);
+            let event = stepper.advance_object(surface, safe, m);
             let gm = group_material.unwrap_or(m);
             group_material = stepper.in_group().then_some(gm);
             match event {

@@ -1,0 +1,355 @@
+//! The one CTSS trace: Algorithm 1 through the [`ConeStepper`], with the
+//! normals, the group masks, the §5.3 group splits and eq. 6, over any
+//! [`ConeField`]. The CPU renderer runs it for every cone-traced method, and
+//! its WGSL twin `subcone_ctss_trace` runs on the GPU, so the kernel tests
+//! exercise what the renderers run.
+//!
+//! ```
+//! use glam::Vec3;
+//! use subcone_kernels::ctss::{cross_section_frame, trace_field, CtssParams, FieldSample, ConeField, SplitRay};
+//!
+//! /// A unit sphere 5 units down +z, object 7.
+//! struct Sphere;
+//! impl ConeField for Sphere {
+//!     fn sample(&mut self, p: Vec3) -> FieldSample {
+//!         let d = (p - Vec3::new(0.0, 0.0, 5.0)).length() - 1.0;
+//!         FieldSample { distance: d, step: d, object: 7 }
+//!     }
+//! }
+//! let dir = Vec3::new(0.2, 0.0, 1.0).normalize();
+//! let (right, up) = cross_section_frame(dir, Vec3::Y);
+//! let ray = SplitRay { origin: Vec3::ZERO, dir, right, up };
+//! let r = trace_field(&CtssParams::new(0.02), &ray, &mut Sphere, |_, _, _| Vec3::ONE, Vec3::ZERO);
+//! // The pixel is partly sphere (white), partly background (black).
+//! assert!(r.color.x > 0.0 && r.color.x < 1.0, "{:?}", r);
+//! ```
+
+use glam::{Vec2, Vec3};
+
+use super::{
+    coarse_normal_step, group_needs_split, split_group, tetra_normal, ConeStepper, CtssParams,
+    Event, GroupSample, SplitRay, TraceResult, NO_OBJECT,
+};
+use crate::aggregate::Aggregate;
+use crate::cone::cone_radius;
+use crate::mask::{needs_normal, project_normal, visibility_mask, FULL_MASK};
+
+/// What a field tells the trace about one point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FieldSample {
+    /// Signed distance to the nearest surface: decides occlusion and groups.
+    pub distance: f32,
+    /// A safe step, `≤ distance` (e.g. capped at a repetition cell's walls;
+    /// see [`ConeStepper::advance_split`]).
+    pub step: f32,
+    /// Id of the nearest object (its material, say), or [`NO_OBJECT`]. A
+    /// group ends where it changes ([`ConeStepper::advance_object`]).
+    pub object: u32,
+}
+
+impl FieldSample {
+    /// A distance that is its own safe step, of no known object.
+    pub const fn exact(distance: f32) -> Self {
+        Self {
+            distance,
+            step: distance,
+            object: NO_OBJECT,
+        }
+    }
+}
+
+/// A signed distance field as the trace sees it: the caller's scene.
+pub trait ConeField {
+    /// The field at `p`.
+    fn sample(&mut self, p: Vec3) -> FieldSample;
+
+    /// Unit surface normal at `p` from differences of step `h`
+    /// ([`normal_step`], [`coarse_normal_step`]). The default is
+    /// [`tetra_normal`] of [`sample`](Self::sample)'s distance.
+    fn normal(&mut self, p: Vec3, h: f32) -> Vec3 {
+        tetra_normal(|q| self.sample(q).distance, p, h)
+    }
+
+    /// The normal at `p` over the pixel's footprint, step `h`
+    /// ([`coarse_normal_step`]), for `ctss+edges`' split test. The default is
+    /// [`normal`](Self::normal).
+    fn coarse_normal(&mut self, p: Vec3, h: f32) -> Vec3 {
+        self.normal(p, h)
+    }
+}
+
+/// Step of the shading normal at depth `t`: a quarter of the cone radius,
+/// never below `10⁻⁵` of the depth (or of 1), so the differences resolve
+/// the pixel's footprint and never vanish in rounding. Non-finite or
+/// negative inputs give the floor `10⁻⁵`.
+#[inline]
+pub fn normal_step(t: f32, tan_theta: f32) -> f32 {
+    let floor = 1e-5 * if t > 1.0 { t } else { 1.0 };
+    let h = 0.25 * t * tan_theta;
+    if h > floor {
+        h
+    } else {
+        floor
+    }
+}
+
+/// `|n·dir|` above which a surface counts as seen face-on by the thin-shell
+/// rule of [`group_mask`] (45°).
+pub const FACE_ON_COS: f32 = core::f32::consts::FRAC_1_SQRT_2;
+
+/// Least length, in cone radii at its first contact, of a group whose cone
+/// passed through an oblique thin shell ([`group_mask`]). A shell the cone
+/// meets at angle `φ` keeps it in contact for about `2/sin φ` radii; small
+/// solids (a box smaller than the pixel) for about 2 to 3. 5 (shells seen
+/// within about 24° of grazing) was chosen on the `primitives` and
+/// `random-box` scenes as the shortest length that costs them nothing.
+pub const SHELL_LENGTH: f32 = 5.0;
+
+/// A closed hit group with its shading point and normal, its mask's visible
+/// part and its eq. 6 weight, as [`march`] hands it on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GroupHit {
+    /// The group, as the stepper closed it.
+    pub sample: GroupSample,
+    /// Where to shade: `origin + sample.t·dir`.
+    pub point: Vec3,
+    /// The shading normal there ([`normal_step`]).
+    pub normal: Vec3,
+    /// The cells of the group's mask not covered before (`m & !M`).
+    pub visible: u32,
+    /// Its eq. 6 weight.
+    pub weight: f32,
+}
+
+/// The visibility mask of a closed group (§3.4–3.5), with the normals it
+/// needs from `field`; `normal` is the shading normal at the group's sample
+/// point (reused where the mask wants the normal at the same depth).
+///
+/// The paper ([`FLAG_PAPER`](super::FLAG_PAPER)): the half-plane of the
+/// group's peak occlusion `ω` and the normal where it peaked.
+///
+/// The default adds a rule for shells thinner than the cone (cloth, banners,
+/// leaves, paper), through which the cone passes without full occlusion and
+/// whose normal at the peak, on the medial surface, is either face's: the
+/// half-plane model of a solid then shows the surface behind through the
+/// shell. When the normals where the cone first and last touched the group
+/// oppose (`n₁·n₂ < 0`: it saw the front face, then the back face):
+/// - seen face-on (both `|n·dir| > `[`FACE_ON_COS`]), the mask is full if the
+///   central ray hit it (a hard hit) and the surface reaches a cone radius
+///   beyond the hit, on the front face, in all four directions of the
+///   cross-section (4 evaluations: within half a radius of the surface),
+///   i.e. it is a sheet across the pixel, not a small solid;
+/// - seen obliquely, when the group is longer than [`SHELL_LENGTH`] cone
+///   radii and the projected normals oppose too, the mask is the union of
+///   both faces' half-planes: every ray of the cone crosses the shell's
+///   plane, not only those on one side of its medial surface.
+///
+/// Otherwise, and for convex solids passed at their silhouette (the same
+/// side seen first and last), the paper's mask.
+///
+/// Cost: nothing for a group whose `ω` fixes the mask ([`needs_normal`]);
+/// else one normal (the paper) or up to three, plus the 4 probes.
+pub fn group_mask<F: ConeField + ?Sized>(
+    params: &CtssParams,
+    ray: &SplitRay,
+    sample: &GroupSample,
+    normal: Vec3,
+    field: &mut F,
+) -> u32 {
+    let placement = params.placement();
+    let omega = sample.occlusion;
+    if !needs_normal(omega, placement) {
+        return visibility_mask(omega, Vec2::ZERO, placement);
+    }
+    let tan = params.tan_theta;
+    let normal_at = |field: &mut F, t: f32| {
+        if t == sample.t {
+            normal
+        } else {
+            field.normal(ray.origin + t * ray.dir, normal_step(t, tan))
+        }
+    };
+    let project = |n: Vec3| project_normal(n, ray.right, ray.up);
+    if !params.is_paper() {
+        let n1 = normal_at(field, sample.t_first);
+        let n2 = normal_at(field, sample.t_last);
+        if n1.dot(n2) < 0.0 {
+            let face_on = libm::fabsf(n1.dot(ray.dir)) > FACE_ON_COS
+                && libm::fabsf(n2.dot(ray.dir)) > FACE_ON_COS;
+            if face_on {
+                if sample.hard && sheet_across(ray, sample.t, tan, field) {
+                    return FULL_MASK;
+                }
+            } else {
+                let (p1, p2) = (project(n1), project(n2));
+                let long = sample.t_last - sample.t_first
+                    > SHELL_LENGTH * cone_radius(sample.t_first, tan);
+                if long && p1.dot(p2) < 0.0 {
+                    return visibility_mask(omega, p1, placement)
+                        | visibility_mask(omega, p2, placement);
+                }
+            }
+        }
+    }
+    let peak = normal_at(field, sample.t_occlusion);
+    visibility_mask(omega, project(peak), placement)
+}
+
+/// Whether the surface hit at depth `t` of the ray spans the cone's
+/// cross-section: the field is within half a cone radius of a surface a
+/// full radius away along `±right` and `±up`. NaN distances say no.
+fn sheet_across<F: ConeField + ?Sized>(ray: &SplitRay, t: f32, tan: f32, field: &mut F) -> bool {
+    let rc = cone_radius(t, tan);
+    let c = ray.origin + t * ray.dir;
+    [ray.right, -ray.right, ray.up, -ray.up]
+        .iter()
+        .all(|e| field.sample(c + *e * rc).distance < 0.5 * rc)
+}
+
+/// Algorithm 1 for `ray` through `field`: calls `on_hit` with each hit
+/// group as it closes (its shading point and normal, its mask's visible
+/// cells and its weight) and returns the stepper (counters, coverage,
+/// background weight). [`trace_field`] shades the hits at once (ASAP);
+/// a renderer with delayed shading (§5.1) records them instead.
+pub fn march<F, H>(params: &CtssParams, ray: &SplitRay, field: &mut F, mut on_hit: H) -> ConeStepper
+where
+    F: ConeField + ?Sized,
+    H: FnMut(&mut F, &GroupHit),
+{
+    let mut stepper = ConeStepper::new(params);
+    loop {
+        let t = stepper.t();
+        let f = field.sample(ray.origin + t * ray.dir);
+        match stepper.advance_object(f.distance, f.step, f.object) {
+            Event::March => {}
+            Event::Sample(s) => {
+                let point = ray.origin + s.t * ray.dir;
+                let normal = field.normal(point, normal_step(s.t, params.tan_theta));
+                let mask = group_mask(params, ray, &s, normal, field);
+                let (visible, weight) = stepper.record_mask(mask);
+                on_hit(
+                    field,
+                    &GroupHit {
+                        sample: s,
+                        point,
+                        normal,
+                        visible,
+                        weight,
+                    },
+                );
+            }
+            Event::Stop(_) => break,
+        }
+    }
+    stepper
+}
+
+/// Trace one pixel's cone with CTSS (Algorithm 1) through `field`, shading
+/// each group as it closes (ASAP, §5.1) with `shade(point, normal, dir)` and
+/// resolving eq. 6 against `background`.
+///
+/// With [`FLAG_SPLIT_GROUPS`](super::FLAG_SPLIT_GROUPS) (`ctss+edges`) every
+/// group's coarse normal is taken ([`coarse_normal_step`], 4 evaluations)
+/// and a group that [`group_needs_split`] is shaded at its [`split_group`]
+/// parts instead of once; `steps` and `samples` include the extra
+/// evaluations and shaded parts.
+pub fn trace_field<F, C>(
+    params: &CtssParams,
+    ray: &SplitRay,
+    field: &mut F,
+    mut shade: C,
+    background: Vec3,
+) -> TraceResult
+where
+    F: ConeField + ?Sized,
+    C: FnMut(Vec3, Vec3, Vec3) -> Vec3,
+{
+    let mut agg = Aggregate::new();
+    let (mut extra_steps, mut extra_samples) = (0u32, 0u32);
+    let stepper = march(params, ray, field, |field, hit| {
+        if params.splits_groups() {
+            if let Some((steps, parts)) = shade_split(params, ray, field, hit, &mut shade, &mut agg)
+            {
+                extra_steps = extra_steps.saturating_add(steps);
+                extra_samples = extra_samples.saturating_add(parts);
+                return;
+            }
+            extra_steps = extra_steps.saturating_add(4);
+        }
+        agg.add(hit.weight, shade(hit.point, hit.normal, ray.dir));
+    });
+    TraceResult {
+        color: agg.resolve(background, stepper.background_weight()),
+        samples: stepper.samples().saturating_add(extra_samples),
+        steps: stepper.steps().saturating_add(extra_steps),
+        coverage: stepper.coverage(),
+        stop: stepper
+            .stop_reason()
+            .unwrap_or(super::StopReason::StepBudget),
+    }
+}
+
+/// `ctss+edges` (§5.3): split `hit` if [`group_needs_split`] says so and add
+/// its parts to `agg`. Returns the SDF evaluations taken (the coarse normal's
+/// 4 and the sub-traces') and the shaded samples beyond the group's one, or
+/// `None` when the group stays whole (its coarse normal is then counted by
+/// the caller).
+pub fn shade_split<F, C>(
+    params: &CtssParams,
+    ray: &SplitRay,
+    field: &mut F,
+    hit: &GroupHit,
+    shade: &mut C,
+    agg: &mut Aggregate,
+) -> Option<(u32, u32)>
+where
+    F: ConeField + ?Sized,
+    C: FnMut(Vec3, Vec3, Vec3) -> Vec3,
+{
+    let s = &hit.sample;
+    let coarse = field.coarse_normal(hit.point, coarse_normal_step(s.t, params));
+    if !group_needs_split(hit.normal, coarse, s.t_exit - s.t_entry, s.t, params) {
+        return None;
+    }
+    let g = split_group(params, s, ray, hit.visible, hit.weight, |x| {
+        let f = field.sample(x);
+        (f.distance, f.step)
+    })?;
+    let mut group_color = None;
+    let mut shaded = 0u32;
+    for part in g.parts.iter().filter(|part| part.weight > 0.0) {
+        let c = match part.t {
+            Some(t) => {
+                let x = ray.origin + t * part.dir;
+                let n = field.normal(x, normal_step(t, params.tan_theta));
+                shade(x, n, part.dir)
+            }
+            None => *group_color.get_or_insert_with(|| shade(hit.point, hit.normal, ray.dir)),
+        };
+        agg.add(part.weight, c);
+        shaded += 1;
+    }
+    Some((g.steps.saturating_add(4), shaded.saturating_sub(1)))
+}
+
+/// A [`ConeField`] of two closures: `sdf(p)` (its own safe step, no object)
+/// and `normal(p)` (the step is the closure's business; the coarse normal
+/// of `ctss+edges` is [`tetra_normal`] of `sdf`).
+pub struct ClosureField<S, N> {
+    /// The signed distance.
+    pub sdf: S,
+    /// The unit normal.
+    pub normal: N,
+}
+
+impl<S: FnMut(Vec3) -> f32, N: FnMut(Vec3) -> Vec3> ConeField for ClosureField<S, N> {
+    fn sample(&mut self, p: Vec3) -> FieldSample {
+        FieldSample::exact((self.sdf)(p))
+    }
+    fn normal(&mut self, p: Vec3, _h: f32) -> Vec3 {
+        (self.normal)(p)
+    }
+    fn coarse_normal(&mut self, p: Vec3, h: f32) -> Vec3 {
+        tetra_normal(&mut self.sdf, p, h)
+    }
+}
