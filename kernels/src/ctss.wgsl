@@ -9,6 +9,14 @@
 
 // subcone_kernels::ctss::FLAG_RELAXED
 const subcone_FLAG_RELAXED: u32 = 1u;
+// subcone_kernels::ctss::FLAG_SPLIT_GROUPS
+const subcone_FLAG_SPLIT_GROUPS: u32 = 2u;
+// subcone_kernels::ctss::FLAG_PAPER
+const subcone_FLAG_PAPER: u32 = 4u;
+// subcone_kernels::ctss::GROUP_DIP
+const subcone_GROUP_DIP: f32 = 0.1;
+// subcone_kernels::ctss::NO_OBJECT
+const subcone_NO_OBJECT: u32 = 0xffffffffu;
 
 // subcone_kernels::ctss::StopReason codes (0 = still running).
 const subcone_STOP_NONE: u32 = 0u;
@@ -38,6 +46,8 @@ struct subcone_GroupSample {
     t_exit: f32,
     occlusion: f32,
     t_occlusion: f32,
+    t_first: f32,
+    t_last: f32,
     hard: u32,
 }
 
@@ -64,16 +74,31 @@ struct subcone_ConeStepper {
     g_t_sample: f32,
     g_occlusion: f32,
     g_t_occlusion: f32,
+    g_t_first: f32,
+    g_t_last: f32,
     g_hard: u32,
+    g_object: u32,
+    g_dip: f32,
     steps: u32,
     samples: u32,
     // subcone_kernels::mask::VisibilityAccumulator: the pixel's global mask M.
     covered: u32,
     stop: u32,
+    pending_stop: u32,
 }
 
 fn subcone_ctss_is_relaxed(p: subcone_CtssParams) -> bool {
     return (p.flags & subcone_FLAG_RELAXED) != 0u;
+}
+
+// subcone_kernels::ctss::CtssParams::is_paper
+fn subcone_ctss_is_paper(p: subcone_CtssParams) -> bool {
+    return (p.flags & subcone_FLAG_PAPER) != 0u;
+}
+
+// subcone_kernels::ctss::CtssParams::splits_groups
+fn subcone_ctss_splits_groups(p: subcone_CtssParams) -> bool {
+    return (p.flags & subcone_FLAG_SPLIT_GROUPS) != 0u;
 }
 
 // subcone_kernels::ctss::CtssParams::placement (unknown codes → Derived)
@@ -89,7 +114,7 @@ fn subcone_ctss_weighting(p: subcone_CtssParams) -> u32 {
 }
 
 fn subcone_ctss_event(kind: u32, reason: u32) -> subcone_CtssEvent {
-    return subcone_CtssEvent(kind, subcone_GroupSample(0.0, 0.0, 0.0, 0.0, 0.0, 0u), reason);
+    return subcone_CtssEvent(kind, subcone_GroupSample(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0u), reason);
 }
 
 // subcone_kernels::ctss::ConeStepper::new — start at t_min.
@@ -99,7 +124,13 @@ fn subcone_cone_stepper_new(params: subcone_CtssParams) -> subcone_ConeStepper {
         t0 = params.t_min;
     }
     return subcone_ConeStepper(params, subcone_occlusion_thresholds(params.eps), t0, t0, 0.0, 0u, 0u, 0u,
-        0u, 0.0, 0.0, 0.0, 0.0, 0u, 0u, 0u, 0u, subcone_STOP_NONE);
+        0u, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0u, subcone_NO_OBJECT, 0.0, 0u, 0u, 0u, subcone_STOP_NONE, 0u);
+}
+
+// The open group's sample, exit at t_exit.
+fn subcone_cone_stepper_group_sample(s: ptr<function, subcone_ConeStepper>, t_exit: f32) -> subcone_GroupSample {
+    return subcone_GroupSample((*s).g_t_sample, (*s).g_t_entry, t_exit, (*s).g_occlusion, (*s).g_t_occlusion,
+        (*s).g_t_first, (*s).g_t_last, (*s).g_hard);
 }
 
 // subcone_kernels::ctss::ConeStepper::end (private): sample a group still open.
@@ -108,8 +139,7 @@ fn subcone_cone_stepper_end(s: ptr<function, subcone_ConeStepper>, reason: u32, 
     if (*s).group_open != 0u {
         (*s).group_open = 0u;
         (*s).samples += 1u;
-        return subcone_CtssEvent(subcone_EVENT_SAMPLE, subcone_GroupSample((*s).g_t_sample, (*s).g_t_entry, t_exit,
-            (*s).g_occlusion, (*s).g_t_occlusion, (*s).g_hard), subcone_STOP_NONE);
+        return subcone_CtssEvent(subcone_EVENT_SAMPLE, subcone_cone_stepper_group_sample(s, t_exit), subcone_STOP_NONE);
     }
     return subcone_ctss_event(subcone_EVENT_STOP, reason);
 }
@@ -117,8 +147,21 @@ fn subcone_cone_stepper_end(s: ptr<function, subcone_ConeStepper>, reason: u32, 
 // subcone_kernels::ctss::ConeStepper::advance_split — Algorithm 1, lines 7–26:
 // d (surface distance) decides occlusion and hit groups, step (≤ d) the march.
 fn subcone_cone_stepper_advance_split(s: ptr<function, subcone_ConeStepper>, d: f32, step: f32) -> subcone_CtssEvent {
+    return subcone_cone_stepper_advance_object(s, d, step, subcone_NO_OBJECT);
+}
+
+// subcone_kernels::ctss::ConeStepper::advance_object — advance_split with the
+// nearest object's id: unless FLAG_PAPER, a group ends where it changes, or
+// where the occlusion rises by GROUP_DIP after a dip as deep.
+fn subcone_cone_stepper_advance_object(s: ptr<function, subcone_ConeStepper>, d: f32, step: f32, object: u32) -> subcone_CtssEvent {
     if (*s).stop != subcone_STOP_NONE {
         return subcone_ctss_event(subcone_EVENT_STOP, (*s).stop);
+    }
+    let relaxed = subcone_ctss_is_relaxed((*s).params);
+    if (*s).pending_stop != 0u {
+        (*s).pending_stop = 0u;
+        let reason = select(subcone_STOP_FULL_OCCLUSION, subcone_STOP_HARD_HIT, relaxed);
+        return subcone_cone_stepper_end(s, reason, subcone_backtrace_cone_entry((*s).t, (*s).params.tan_theta));
     }
     let t = (*s).t;
     if (*s).steps >= (*s).params.max_steps {
@@ -138,23 +181,47 @@ fn subcone_cone_stepper_advance_split(s: ptr<function, subcone_ConeStepper>, d: 
     let th = (*s).thresholds;
     let soft = omega > th.x;
     let hard = omega > th.y;
-    let relaxed = subcone_ctss_is_relaxed((*s).params);
     let stop_at = select(th.z, th.y, relaxed);
     let stop = omega > stop_at;
 
-    if soft && (*s).prev_soft == 0u {
-        let te = subcone_backtrace_cone_entry(t, tan);
+    // Beyond the paper: one surface per group.
+    var closed = false;
+    var closed_sample = subcone_GroupSample(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0u);
+    if soft && (*s).prev_soft != 0u && !subcone_ctss_is_paper((*s).params) && (*s).group_open != 0u {
+        (*s).g_dip = min((*s).g_dip, omega);
+        let other = object != (*s).g_object && object != subcone_NO_OBJECT && (*s).g_object != subcone_NO_OBJECT;
+        let rises = (*s).g_dip < (*s).g_occlusion - subcone_GROUP_DIP && omega > (*s).g_dip + subcone_GROUP_DIP;
+        if other || rises {
+            closed = true;
+            closed_sample = subcone_cone_stepper_group_sample(s, t);
+            (*s).group_open = 0u;
+            (*s).samples += 1u;
+            (*s).prev_hard = 0u;
+            (*s).have_prev = 0u;
+        }
+    }
+    if soft && ((*s).prev_soft == 0u || closed) {
+        var te = t;
+        if !closed {
+            te = subcone_backtrace_cone_entry(t, tan);
+        }
         (*s).group_open = 1u;
         (*s).g_t_entry = te;
         (*s).g_t_sample = te;
         (*s).g_occlusion = omega;
         (*s).g_t_occlusion = t;
+        (*s).g_t_first = t;
+        (*s).g_t_last = t;
         (*s).g_hard = 0u;
+        (*s).g_object = object;
+        (*s).g_dip = omega;
     }
     if soft && (*s).group_open != 0u {
+        (*s).g_t_last = t;
         if omega > (*s).g_occlusion {
             (*s).g_occlusion = omega;
             (*s).g_t_occlusion = t;
+            (*s).g_dip = omega;
         }
         if hard && (*s).prev_hard == 0u && (*s).g_hard == 0u {
             (*s).g_hard = 1u;
@@ -169,14 +236,35 @@ fn subcone_cone_stepper_advance_split(s: ptr<function, subcone_ConeStepper>, d: 
     (*s).prev_soft = select(0u, 1u, soft);
     (*s).prev_hard = select(0u, 1u, hard);
 
+    // Rust's f32::min: a NaN step yields d.
+    var m = d;
+    if !subcone_is_nan(step) && step < d {
+        m = step;
+    }
+    if closed {
+        // The closed group is sampled now; the one opened here when it ends.
+        (*s).t_prev = t;
+        (*s).d_prev = d;
+        (*s).have_prev = 1u;
+        if stop {
+            (*s).pending_stop = 1u;
+        } else if (*s).samples >= (*s).params.max_samples {
+            (*s).group_open = 0u;
+            (*s).stop = subcone_STOP_SAMPLE_CAP;
+        }
+        if (*s).stop == subcone_STOP_NONE && (*s).pending_stop == 0u {
+            (*s).t = subcone_advance(t, m, (*s).params.alpha, rc);
+        }
+        return subcone_CtssEvent(subcone_EVENT_SAMPLE, closed_sample, subcone_STOP_NONE);
+    }
+
     var event = subcone_ctss_event(subcone_EVENT_MARCH, subcone_STOP_NONE);
     if exit || stop {
         if (*s).group_open != 0u {
+            event = subcone_CtssEvent(subcone_EVENT_SAMPLE,
+                subcone_cone_stepper_group_sample(s, subcone_backtrace_cone_entry(t, tan)), subcone_STOP_NONE);
             (*s).group_open = 0u;
             (*s).samples += 1u;
-            event = subcone_CtssEvent(subcone_EVENT_SAMPLE, subcone_GroupSample((*s).g_t_sample, (*s).g_t_entry,
-                subcone_backtrace_cone_entry(t, tan), (*s).g_occlusion, (*s).g_t_occlusion, (*s).g_hard),
-                subcone_STOP_NONE);
         }
         if stop {
             (*s).stop = select(subcone_STOP_FULL_OCCLUSION, subcone_STOP_HARD_HIT, relaxed);
@@ -189,11 +277,6 @@ fn subcone_cone_stepper_advance_split(s: ptr<function, subcone_ConeStepper>, d: 
     (*s).d_prev = d;
     (*s).have_prev = 1u;
     if (*s).stop == subcone_STOP_NONE {
-        // Rust's f32::min: a NaN step yields d.
-        var m = d;
-        if !subcone_is_nan(step) && step < d {
-            m = step;
-        }
         (*s).t = subcone_advance(t, m, (*s).params.alpha, rc);
     }
     return event;
@@ -203,6 +286,12 @@ fn subcone_cone_stepper_advance_split(s: ptr<function, subcone_ConeStepper>, d: 
 // correlated with M (m_i & !M, M |= m_i); returns (visible mask, weight bits).
 fn subcone_cone_stepper_record(s: ptr<function, subcone_ConeStepper>, sample: subcone_GroupSample, projected_normal: vec2<f32>) -> vec2<u32> {
     let m = subcone_visibility_mask(sample.occlusion, projected_normal, subcone_ctss_placement((*s).params));
+    return subcone_cone_stepper_record_mask(s, m);
+}
+
+// subcone_kernels::ctss::ConeStepper::record_mask — record with a mask the
+// caller made (subcone_group_mask).
+fn subcone_cone_stepper_record_mask(s: ptr<function, subcone_ConeStepper>, m: u32) -> vec2<u32> {
     let visible = m & ~(*s).covered;
     (*s).covered |= visible;
     if (*s).stop == subcone_STOP_NONE && countOneBits((*s).covered) >= (*s).params.visibility_k {

@@ -119,6 +119,7 @@ fn ctss_params(tan: f32, method: &Method, max_distance: f32, max_steps: u32) -> 
         .with_max_steps(max_steps)
         .relaxed(method.technique == Technique::CtssR)
         .with_visibility_k(method.visibility_k)
+        .paper(method.ctss_paper)
 }
 
 /// The frame's constants; `SdfFrame` in trace.wgsl (112 bytes).
