@@ -274,7 +274,7 @@ pub struct ReportArgs {
     #[arg(long)]
     pub no_paper_scenes: bool,
     /// Methods to compare, comma-separated (default: noaa, ssaa4, ssaa16, sraa,
-    /// sraa-rt, sraa+mat, sraa-rt+mat, their -paper presets, ctss, ctss-delayed, ctss+edges, ctss-r, ssaa4+ctss, fxaa; each where it applies).
+    /// sraa-rt, sraa+mat, sraa-rt+mat, their -paper presets, ctss, ctss-paper, ctss-delayed, ctss+edges, ctss-r, ssaa4+ctss, fxaa; each where it applies).
     #[arg(long = "method", value_delimiter = ',', value_name = "METHOD")]
     pub methods: Vec<String>,
     /// Output directory.

@@ -36,7 +36,7 @@ use glam::{Vec2, Vec3};
 mod trace;
 pub use trace::{
     group_mask, march, normal_step, shade_split, trace_field, ClosureField, ConeField, FieldSample,
-    GroupHit, FACE_ON_COS, SHELL_LENGTH,
+    GroupHit, SHEET_PROBE, SHELL_LENGTH,
 };
 
 use crate::aggregate::{sample_weight, Aggregate, Weighting};

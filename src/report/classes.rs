@@ -281,7 +281,9 @@ pub fn classify(sub: &Frame, side: u32) -> Result<ClassMasks> {
 /// `noaa` claims nothing; an unknown method claims nothing.
 pub fn claimed(method: &str) -> Vec<Class> {
     use Class::*;
-    let base = method.strip_suffix("-delayed").unwrap_or(method);
+    // A CTSS name may end in `-paper` after `-delayed` (`ctss-delayed-paper`).
+    let base = method.strip_suffix("-paper").unwrap_or(method);
+    let base = base.strip_suffix("-delayed").unwrap_or(base);
     let (base, mat) = match base.strip_suffix("+mat") {
         Some(b) => (b, true),
         None => (base, false),
@@ -433,6 +435,10 @@ mod tests {
         );
         assert_eq!(claimed("ctss-r-delayed"), vec![Silhouette]);
         assert_eq!(claimed("ctss+edges"), vec![Silhouette, Crease]);
+        assert_eq!(claimed("ctss-paper"), vec![Silhouette]);
+        assert_eq!(claimed("ctss-delayed-paper"), vec![Silhouette]);
+        assert_eq!(claimed("ctss+edges-paper"), vec![Silhouette, Crease]);
+        assert_eq!(claimed("ssaa4+ctss-paper").len(), 5);
         assert_eq!(claimed("smaa"), vec![Silhouette, Crease, Shadow, Texture]);
         assert!(!claimed("ssaa16").contains(&Flat));
     }

@@ -761,6 +761,16 @@ fn rows_for<'a>(s: &'a [ResultRow], method: &str, backend: &str) -> Vec<&'a Resu
 
 /// CTSS overhead targets: average time ratio to NoAA over the SDF scenes.
 pub const CTSS_TARGETS: [(&str, f64); 2] = [("ctss", 1.20), ("ctss-r", 1.08)];
+/// CTSS's quality bar on the paper's SDF scenes
+/// ([`SDF_SCENES`](subcone_scene::sdf::SDF_SCENES)): `ctss` beats NoAA on
+/// silhouettes and holds on flat pixels (the verdict's rules), its
+/// whole-image FLIP is below NoAA's, and its silhouette FLIP is at most this
+/// factor of `ssaa4`'s (the paper's "comparable to 4× supersampling").
+pub const CTSS_SSAA4_FACTOR: f64 = 1.25;
+/// On the stiff scenes and the semi-transparent ones, no CTSS method's
+/// whole-image FLIP exceeds NoAA's by more than this factor.
+pub const CTSS_STIFF_FACTOR: f64 = 1.02;
+
 /// SRAA-RT target: at most this share of `ssaa16`'s time...
 pub const SRAA_RT_TIME_SHARE: f64 = 1.0 / 6.0;
 /// ...with an edge FLIP at most this factor above `ssaa16`'s.
@@ -849,6 +859,77 @@ fn sraa_targets(s: &ReportSummary, sdf: &[&str], b: &str, md: &mut String) {
     }
 }
 
+/// The rows of the CTSS quality targets for backend `b` (SDF scenes only).
+fn ctss_targets(s: &ReportSummary, b: &str, md: &mut String) {
+    use subcone_scene::sdf::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
+    let yes = |ok: bool| if ok { "met" } else { "**not met**" };
+    let find = |method: &str, scene: &str| {
+        s.rows
+            .iter()
+            .find(|x| x.method == method && x.backend == b && x.scene == scene)
+    };
+    for scene in SDF_SCENES {
+        let (Some(r), Some(noaa)) = (find("ctss", scene), find("noaa", scene)) else {
+            continue;
+        };
+        let (Some(it), Some(n), Some(a), Some(na)) =
+            (r.classes, noaa.classes, r.flip_mean, noaa.flip_mean)
+        else {
+            continue;
+        };
+        let v = Verdict::judge("ctss", &it, &n);
+        let flat = v
+            .flat
+            .map(|(x, y)| format!("flat {x:.4} vs {y:.4}"))
+            .unwrap_or_else(|| "no flat pixels".into());
+        let sil = Class::Silhouette.index();
+        let silhouettes = match (it.flip[sil], n.flip[sil]) {
+            (Some(x), Some(y)) => format!("silhouette {x:.4} vs {y:.4}"),
+            _ => "no silhouette pixels".into(),
+        };
+        let met = v.misses.is_empty() && !v.beats.is_empty() && v.holds_on_flat() && a < na;
+        let _ = writeln!(
+            md,
+            "| ctss beats NoAA on silhouettes, holds on flat, whole FLIP below NoAA's | {b} | {scene} | {silhouettes}, {flat}, whole {a:.4} vs {na:.4} | {} |",
+            yes(met)
+        );
+        if let Some(ss) = find("ssaa4", scene).and_then(|x| x.classes) {
+            if let (Some(x), Some(y)) = (it.flip[sil], ss.flip[sil]) {
+                let ratio = x / y;
+                let _ = writeln!(
+                    md,
+                    "| ctss silhouette FLIP ≤ {CTSS_SSAA4_FACTOR}x ssaa4's | {b} | {scene} | {x:.4} vs {y:.4} ({ratio:.2}x) | {} |",
+                    yes(ratio <= CTSS_SSAA4_FACTOR)
+                );
+            }
+        }
+    }
+    for scene in STIFF_SCENES.iter().chain(&TRANSPARENT_SCENES) {
+        let Some(na) = find("noaa", scene).and_then(|x| x.flip_mean) else {
+            continue;
+        };
+        let mut worst: Option<(&str, f64)> = None;
+        for r in s.rows.iter().filter(|x| {
+            x.backend == b
+                && x.scene == *scene
+                && x.method.contains("ctss")
+                && x.flip_mean.is_some()
+        }) {
+            let ratio = r.flip_mean.unwrap_or(0.0) / na.max(f64::MIN_POSITIVE);
+            if worst.is_none_or(|(_, w)| ratio > w) {
+                worst = Some((r.method.as_str(), ratio));
+            }
+        }
+        if let Some((m, ratio)) = worst {
+            let _ = writeln!(
+                md,
+                "| every CTSS method's whole FLIP ≤ {CTSS_STIFF_FACTOR}x NoAA's | {b} | {scene} | worst {m}: {ratio:.3}x | {} |",
+                yes(ratio <= CTSS_STIFF_FACTOR)
+            );
+        }
+    }
+}
+
 /// The performance targets, each met or not met, with its figure.
 pub fn targets(s: &ReportSummary, ctx: &Context) -> String {
     let mut md = String::new();
@@ -893,6 +974,7 @@ has the full set).\n",
                 yes(avg <= limit)
             );
         }
+        ctss_targets(s, b, &mut md);
         sraa_targets(s, &sdf, b, &mut md);
         // The SRAA-RT target is the paper's, on triangle scenes.
         for rt in rows_for(&s.rows, "sraa-rt", b)
