@@ -48,6 +48,9 @@ use subcone_scene::{
     Backend, Frame, Method, RenderError, RenderSettings, Scene, UnsupportedReason,
 };
 
+mod thin_slab;
+pub use thin_slab::{check_thin_slab, thin_slab_scene, THIN_SLAB_METHODS, THIN_SLAB_TOLERANCE};
+
 #[doc(hidden)]
 pub mod __private {
     //! What the macro's expansion names, so that a backend's tests need no
@@ -892,6 +895,13 @@ macro_rules! conformance_suite {
             fn transparent_scenes_render_or_are_refused() {
                 if let Some(b) = backend() {
                     $crate::check_transparent(b.as_ref());
+                }
+            }
+
+            #[test]
+            fn thin_slab_is_opaque_under_every_ctss_method() {
+                if let Some(b) = backend() {
+                    $crate::check_thin_slab(b.as_ref());
                 }
             }
 
