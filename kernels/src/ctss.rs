@@ -665,7 +665,20 @@ impl ConeStepper {
 
     /// [`record`](Self::record) for a mask the caller made (e.g.
     /// [`group_mask`]).
+    ///
+    /// CTSS-R (unless [`FLAG_PAPER`]): the group that ended the trace on its
+    /// hard hit takes the whole rest of the pixel (its mask is made full).
+    /// The central ray hit it, so the cells no group covered are hidden
+    /// behind it or are more of it; the paper instead leaves them out and
+    /// eq. 6 renormalises over the groups, which stretches every earlier
+    /// group's partial mask (a glancing object in front grows by the share of
+    /// the pixel the trace never saw).
     pub fn record_mask(&mut self, m: u32) -> (u32, f32) {
+        let m = if !self.params.is_paper() && self.stop == Some(StopReason::HardHit) {
+            crate::mask::FULL_MASK
+        } else {
+            m
+        };
         let visible = self.mask.add(m);
         if self.stop.is_none() && self.mask.covered_bits() >= self.params.visibility_k {
             self.stop = Some(StopReason::VisibilityThreshold);

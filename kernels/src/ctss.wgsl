@@ -291,7 +291,13 @@ fn subcone_cone_stepper_record(s: ptr<function, subcone_ConeStepper>, sample: su
 
 // subcone_kernels::ctss::ConeStepper::record_mask — record with a mask the
 // caller made (subcone_group_mask).
-fn subcone_cone_stepper_record_mask(s: ptr<function, subcone_ConeStepper>, m: u32) -> vec2<u32> {
+// CTSS-R (unless FLAG_PAPER): the group that ended the trace on its hard hit
+// takes the rest of the pixel (full mask).
+fn subcone_cone_stepper_record_mask(s: ptr<function, subcone_ConeStepper>, m0: u32) -> vec2<u32> {
+    var m = m0;
+    if !subcone_ctss_is_paper((*s).params) && (*s).stop == subcone_STOP_HARD_HIT {
+        m = 0xffffffffu;
+    }
     let visible = m & ~(*s).covered;
     (*s).covered |= visible;
     if (*s).stop == subcone_STOP_NONE && countOneBits((*s).covered) >= (*s).params.visibility_k {
