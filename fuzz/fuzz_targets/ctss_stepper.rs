@@ -1,5 +1,6 @@
 //! The CTSS stepper (Algorithm 1) driven over planes, spheres, non-Eikonal
-//! spheres and replayed raw distances, plus `trace` and `sphere_trace`.
+//! spheres and replayed raw distances, with fuzzed object ids and the
+//! paper's flag, plus `trace_field` and `sphere_trace`.
 #![no_main]
 
 mod common;
@@ -11,10 +12,9 @@ use libfuzzer_sys::fuzz_target;
 use subcone_kernels::aggregate::Weighting;
 use subcone_kernels::cone::{OCCLUSION_MAX, OCCLUSION_MIN};
 use subcone_kernels::ctss::{
-    cross_section_frame, sphere_trace, trace, ConeStepper, CtssParams, Event, StopReason,
-    FLAG_RELAXED,
+    cross_section_frame, group_mask, normal_step, sphere_trace, trace_field, ConeField,
+    ConeStepper, CtssParams, Event, FieldSample, SplitRay, StopReason, FLAG_RELAXED, NO_OBJECT,
 };
-use subcone_kernels::mask::project_normal;
 
 /// The harness's cap on the step budget.
 const MAX_STEPS: u32 = 4096;
@@ -48,6 +48,9 @@ struct Input {
     max_samples: u32,
     visibility_k: u32,
     relaxed: bool,
+    paper: bool,
+    /// Object ids of successive evaluations (cycled; empty: none known).
+    objects: Vec<u8>,
     placement: u32,
     weighting: u32,
     dir: [f32; 3],
@@ -113,6 +116,40 @@ impl Scene {
     }
 }
 
+/// The scene as the kernels' trace reads it: distances, the fuzzed object
+/// ids (cycled per evaluation) and the harness's normal.
+struct Field<'a> {
+    scene: Scene,
+    objects: &'a [u8],
+    calls: usize,
+    analytic: bool,
+    raw_normal: Vec3,
+}
+
+impl ConeField for Field<'_> {
+    fn sample(&mut self, p: Vec3) -> FieldSample {
+        let d = self.scene.distance(p);
+        let object = if self.objects.is_empty() {
+            NO_OBJECT
+        } else {
+            self.objects[self.calls % self.objects.len()] as u32
+        };
+        self.calls += 1;
+        FieldSample {
+            distance: d,
+            step: d,
+            object,
+        }
+    }
+    fn normal(&mut self, p: Vec3, _h: f32) -> Vec3 {
+        if self.analytic {
+            self.scene.analytic_normal(p)
+        } else {
+            self.raw_normal
+        }
+    }
+}
+
 fn params(x: &Input) -> CtssParams {
     let mut p = CtssParams::new(x.tan_theta).relaxed(x.relaxed);
     if let Some(a) = x.alpha {
@@ -130,7 +167,7 @@ fn params(x: &Input) -> CtssParams {
     p.visibility_k = x.visibility_k % 40;
     // Raw codes, unknown ones included (they decode to the defaults).
     p.flags = (p.flags & FLAG_RELAXED) | ((x.placement & 0xff) << 8) | ((x.weighting & 0xff) << 16);
-    p
+    p.paper(x.paper)
 }
 
 fuzz_target!(|x: Input| {
@@ -144,19 +181,25 @@ fuzz_target!(|x: Input| {
     let visibility = p.weighting() == Weighting::Visibility;
     let mw = p.min_sample_weight;
 
-    // --- The stepper, driven by hand. ---
-    let mut scene = Scene {
-        sdf: x.sdf.clone(),
+    // --- The stepper, driven by hand as `march` drives it. ---
+    let field = |sdf: &Sdf| Field {
+        scene: Scene {
+            sdf: sdf.clone(),
+            dir,
+            right,
+            cursor: 0,
+        },
+        objects: &x.objects,
+        calls: 0,
+        analytic: x.analytic_normal,
+        raw_normal,
+    };
+    let mut scene = field(&x.sdf);
+    let ray = SplitRay {
+        origin,
         dir,
         right,
-        cursor: 0,
-    };
-    let normal_at = |scene: &Scene, q: Vec3| {
-        if x.analytic_normal {
-            scene.analytic_normal(q)
-        } else {
-            raw_normal
-        }
+        up,
     };
     let mut st = ConeStepper::new(&p);
     let mut calls = 0u32;
@@ -173,8 +216,12 @@ fuzz_target!(|x: Input| {
             p.max_steps
         );
         let t = st.t();
-        let d = scene.distance(origin + t * dir);
-        let ev = st.advance(d);
+        let FieldSample {
+            distance: d,
+            step,
+            object,
+        } = scene.sample(origin + t * dir);
+        let ev = st.advance_object(d, step, object);
         assert!(st.steps() <= p.max_steps);
         match ev {
             Event::Stop(r) => {
@@ -195,8 +242,9 @@ fuzz_target!(|x: Input| {
                 );
                 assert!(!s.hard || s.occlusion > th.hard, "hard sample {s:?}");
                 let q = origin + s.t * dir;
-                let np = project_normal(normal_at(&scene, q), right, up);
-                let (visible, w) = st.record(&s, np);
+                let n = scene.normal(q, normal_step(s.t, p.tan_theta));
+                let mask = group_mask(&p, &ray, &s, n, &mut scene);
+                let (visible, w) = st.record_mask(mask);
                 assert!(visible & seen == 0, "visible masks overlap");
                 seen |= visible;
                 assert!(st.coverage() == seen);
@@ -244,21 +292,11 @@ fuzz_target!(|x: Input| {
     };
     let background = v3(x.background);
     let mut used: Vec<Vec3> = Vec::new();
-    let scene = std::cell::RefCell::new(Scene {
-        sdf: x.sdf.clone(),
-        dir,
-        right,
-        cursor: 0,
-    });
-    let r = trace(
+    let r = trace_field(
         &p,
-        origin,
-        dir,
-        right,
-        up,
-        |q| scene.borrow_mut().distance(q),
-        |q| normal_at(&scene.borrow(), q),
-        |_, _| {
+        &ray,
+        &mut field(&x.sdf),
+        |_, _, _| {
             let c = palette[used.len() % palette.len()];
             used.push(c);
             c

@@ -422,8 +422,24 @@ impl ConeStepper {
     }
 
     /// The stop reason, once the trace is over (or decided to end).
+    ///
+    /// A step that closed a group where the object changed and also met the
+    /// occlusion rule has decided to end: the next call samples the group it
+    /// opened and stops, and `t` no longer moves.
     pub fn stop_reason(&self) -> Option<StopReason> {
-        self.stop
+        match self.stop {
+            None if self.pending_stop => Some(self.occlusion_stop()),
+            s => s,
+        }
+    }
+
+    /// The stop of the occlusion rule: CTSS-R's hard hit or full occlusion.
+    fn occlusion_stop(&self) -> StopReason {
+        if self.params.is_relaxed() {
+            StopReason::HardHit
+        } else {
+            StopReason::FullOcclusion
+        }
     }
 
     fn end(&mut self, reason: StopReason, t_exit: f32) -> Event {
@@ -476,11 +492,7 @@ impl ConeStepper {
         }
         if self.pending_stop {
             self.pending_stop = false;
-            let reason = if self.params.is_relaxed() {
-                StopReason::HardHit
-            } else {
-                StopReason::FullOcclusion
-            };
+            let reason = self.occlusion_stop();
             let t_exit = backtrace_cone_entry(self.t, self.params.tan_theta);
             return self.end(reason, t_exit);
         }
@@ -603,11 +615,13 @@ impl ConeStepper {
             self.t_prev = t;
             self.d_prev = d;
             self.have_prev = true;
-            if stop {
-                self.pending_stop = true;
-            } else if self.samples >= self.params.max_samples {
+            if self.samples >= self.params.max_samples {
+                // The cap holds even when this step also met the occlusion
+                // rule: the group opened here is dropped unsampled.
                 self.group = None;
                 self.stop = Some(StopReason::SampleCap);
+            } else if stop {
+                self.pending_stop = true;
             }
             if self.stop.is_none() && !self.pending_stop {
                 self.t = advance(t, step.min(d), self.params.alpha, rc);

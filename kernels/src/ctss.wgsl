@@ -246,11 +246,11 @@ fn subcone_cone_stepper_advance_object(s: ptr<function, subcone_ConeStepper>, d:
         (*s).t_prev = t;
         (*s).d_prev = d;
         (*s).have_prev = 1u;
-        if stop {
-            (*s).pending_stop = 1u;
-        } else if (*s).samples >= (*s).params.max_samples {
+        if (*s).samples >= (*s).params.max_samples {
             (*s).group_open = 0u;
             (*s).stop = subcone_STOP_SAMPLE_CAP;
+        } else if stop {
+            (*s).pending_stop = 1u;
         }
         if (*s).stop == subcone_STOP_NONE && (*s).pending_stop == 0u {
             (*s).t = subcone_advance(t, m, (*s).params.alpha, rc);
