@@ -803,7 +803,10 @@ impl ConeStepper {
             self.stop,
             Some(StopReason::FullOcclusion | StopReason::HardHit)
         );
-        if ended && (!is_opaque(alpha) || !self.layers.is_binary()) {
+        // CTSS-R's hard hit takes the rest of the pixel by default
+        // (`record_mask`), opaque or not.
+        let relaxed_full = !self.params.is_paper() && self.stop == Some(StopReason::HardHit);
+        if ended && (!is_opaque(alpha) || !self.layers.is_binary() || relaxed_full) {
             // The occlusion rule says this surface covers the pixel. CTSS-R's
             // hard hit has a partial mask, which eq. 6's renormalisation
             // stretches over the pixel when only opaque surfaces were seen; a
