@@ -76,11 +76,13 @@ pub const CTSS_EDGES_CPU_ONLY: UnsupportedReason = UnsupportedReason::CpuOnly {
 /// Most samples per pixel side (`ssaaN`, `ssaaN+ctss`) one invocation traces.
 pub const MAX_SIDE_SAMPLES: u32 = 64;
 
-/// The kernels' WGSL every SDF shader includes, after the prelude.
-const KERNELS: [&str; 4] = [
+/// The kernels' WGSL every SDF shader includes, after the prelude (the
+/// stepper carries the K masks of CTSS §5.3, `transparency`).
+const KERNELS: [&str; 5] = [
     subcone_kernels::cone::WGSL,
     subcone_kernels::mask::WGSL,
     subcone_kernels::aggregate::WGSL,
+    subcone_kernels::transparency::WGSL,
     subcone_kernels::ctss::WGSL,
 ];
 
