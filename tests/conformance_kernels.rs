@@ -124,6 +124,26 @@ const NEEDS_NORMAL_NEAR: f32 = 1e-5;
 /// other step (the stratum's division, square roots) is a few ulps.
 /// Lavapipe's worst is 9e-8.
 const TOL_AO_DIRECTION: Tol = Tol::Abs(1e-3);
+/// `TransparencyAccumulator` (CTSS §5.3's K masks: `add`'s visible cells and
+/// gained levels, the planes, `level`, `level_set`, `is_binary`, `opaque`,
+/// `total_levels`), `remaining_after` and `is_opaque`: integer results,
+/// compared exactly. The one float step, `⌊r·(1 − α) + ½⌋`, may be fused on
+/// a GPU: where `r·(1 − α) + ½` lies within this of an integer (in f64, and
+/// not exactly on it in f32) a level may differ, so such records are skipped
+/// and counted (at most 1 %): a few roundings of `r·(1 − α)`, with margin.
+const TRANSPARENCY_NEAR: f64 = 1e-6;
+/// `level_weight`, `uncovered_weight` and `clamp_alpha`: small integers
+/// times a power of two, or a clamp: exact.
+const TOL_TRANSPARENCY_WEIGHT: Tol = Tol::Ulps(0);
+/// The stepper's translucent parts (`ConeStepper::advance_object` passing
+/// through a semi-transparent object, `record_alpha_mask`, `split_group`,
+/// `end_pass`, `background_weight`): events, stop reasons, masks, counters
+/// exactly, and every depth and weight within 2 ulps (the cone kernels'
+/// [`TOL_CONE`]: a multiply, an add or a division each; the weights are
+/// exact). One ulp of a depth can flip a later threshold decision, so a
+/// record whose two traces part ways is counted, not failed, while fewer
+/// than 1 % do. Lavapipe agrees on every record.
+const TOL_STEPPER: Tol = Tol::Ulps(2);
 /// `ao_fraction`: a quotient of two exactly converted integers (≤ 2^24);
 /// WGSL allows the division 2.5 ulps, Rust's is correctly rounded: 3 ulps.
 const TOL_AO_FRACTION: Tol = Tol::Ulps(3);
@@ -419,6 +439,8 @@ struct Library {
     ctss: String,
     fxaa: String,
     ao: String,
+    transparency: String,
+    stepper: String,
 }
 
 impl Library {
@@ -429,9 +451,25 @@ impl Library {
             ctss: [cone::WGSL, mask::WGSL, aggregate::WGSL].concat(),
             fxaa: [FXAA_FETCH, fxaa::WGSL].concat(),
             ao: ao::WGSL.to_string(),
+            transparency: [cone::WGSL, mask::WGSL, transparency::WGSL].concat(),
+            stepper: [
+                cone::WGSL,
+                mask::WGSL,
+                aggregate::WGSL,
+                transparency::WGSL,
+                CTSS_FIELD,
+                ctss::WGSL,
+            ]
+            .concat(),
         }
     }
 }
+
+/// The field `ctss.wgsl`'s sphere tracer expects from its including shader
+/// (the stepper check does not trace, it feeds the distances).
+const CTSS_FIELD: &str = "
+fn ctss_field(p: vec3<f32>) -> vec2<f32> { let d = length(p) - 1.0; return vec2<f32>(d, d); }
+";
 
 /// The pixel fetch `fxaa.wgsl` expects from its including shader: a 7×7
 /// patch of linear colours (the record's first 147 words, row-major),
@@ -1464,7 +1502,383 @@ fn check_ao(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
     join(dir.finish(), frac.finish())
 }
 
-const CHECKS: [(&str, Check); 8] = [
+/// Whether opacity `alpha` puts `r·(1 − α) + ½` within [`TRANSPARENCY_NEAR`]
+/// of an integer for some `r` in `1..=K`, where a fused multiply-add may round
+/// to the other level.
+fn alpha_near_level_boundary(alpha: f32) -> bool {
+    use subcone_kernels::transparency::{clamp_alpha, LEVELS};
+    let a = clamp_alpha(alpha) as f64;
+    (1..=LEVELS).any(|r| {
+        let x = r as f64 * (1.0 - a) + 0.5;
+        let frac = x - x.floor();
+        // Exactly on the boundary in f32 too (a product of a small integer
+        // and a power-of-two fraction) rounds the same way everywhere.
+        let exact = (r as f32 * (1.0 - clamp_alpha(alpha))) as f64 == r as f64 * (1.0 - a);
+        !exact && (frac < TRANSPARENCY_NEAR || 1.0 - frac < TRANSPARENCY_NEAR)
+    })
+}
+
+/// The K masks of CTSS §5.3 (`transparency.wgsl`): three composited surfaces
+/// (random masks, opacities on and off the quarter levels' boundaries,
+/// outside `[0, 1]`, ±∞ and NaN) from a clear pixel, then every query of the
+/// accumulator, `remaining_after` for every `r`, `is_opaque`,
+/// `level_weight` and `clamp_alpha`, against Rust.
+fn check_transparency(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
+    use subcone_kernels::transparency::{
+        clamp_alpha, is_opaque, level_weight, remaining_after, TransparencyAccumulator,
+    };
+    let special = [
+        0.0f32,
+        1.0,
+        0.5,
+        0.125,
+        0.375,
+        0.625,
+        0.875,
+        0.25,
+        0.75,
+        0.3,
+        0.7,
+        -0.5,
+        1.5,
+        f32::NAN,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        1e-30,
+        -0.0,
+    ];
+    let alpha = prop_oneof![
+        3 => any_f32(0.0, 1.0),
+        2 => prop::sample::select(special.to_vec()),
+        1 => any::<u32>().prop_map(f32::from_bits),
+    ];
+    let mask = prop_oneof![
+        any::<u32>(),
+        Just(u32::MAX),
+        Just(0u32),
+        (0u32..32).prop_map(|b| (1u64 << b) as u32 - 1),
+    ];
+    let cases = generate(
+        (
+            prop::array::uniform3((mask, alpha.clone())),
+            0u32..8,
+            0u32..200,
+            0u32..40,
+        ),
+        10,
+    );
+    let input: Vec<u32> = cases
+        .iter()
+        .flat_map(|(adds, r, g, bit)| {
+            adds.iter()
+                .flat_map(|(m, a)| [*m, a.to_bits()])
+                .chain([*r, *g, *bit])
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    const OUT: usize = 6 + 6 + 5 + 6 + 4;
+    let out = run(
+        ctx,
+        &lib.transparency,
+        "var acc = subcone_transparency_accumulator_new();
+         for (var k = 0u; k < 3u; k++) {
+             let vg = subcone_transparency_accumulator_add(&acc, u(2u * k), f(2u * k + 1u));
+             out[o + 2u * k] = vg.x; out[o + 2u * k + 1u] = vg.y;
+         }
+         for (var k = 0u; k < 6u; k++) {
+             out[o + 6u + k] = subcone_transparency_accumulator_plane(acc, k);
+         }
+         out[o + 12u] = subcone_transparency_accumulator_level(acc, u(8u));
+         out[o + 13u] = select(0u, 1u, subcone_transparency_accumulator_is_binary(acc));
+         out[o + 14u] = subcone_transparency_accumulator_opaque(acc);
+         out[o + 15u] = subcone_transparency_accumulator_total_levels(acc);
+         out[o + 16u] = subcone_transparency_accumulator_level_set(acc, u(6u) % 6u);
+         for (var r = 0u; r < 6u; r++) {
+             out[o + 17u + r] = subcone_remaining_after(r, f(1u));
+         }
+         out[o + 23u] = select(0u, 1u, subcone_is_opaque(f(1u)));
+         out[o + 24u] = bitcast<u32>(subcone_level_weight(u(7u)));
+         out[o + 25u] = bitcast<u32>(subcone_transparency_accumulator_uncovered_weight(acc));
+         out[o + 26u] = bitcast<u32>(subcone_clamp_alpha(f(1u)));",
+        9,
+        OUT,
+        &input,
+    )?;
+    let mut levels = Report::new("subcone_transparency_*");
+    let mut weights = Report::new("subcone_level_weight");
+    let mut near = 0usize;
+    for (i, c) in cases.iter().enumerate() {
+        let (adds, r_in, g_in, bit) = c;
+        let g = &out[OUT * i..OUT * (i + 1)];
+        let mut acc = TransparencyAccumulator::new();
+        let mut rust = Vec::with_capacity(OUT);
+        for (m, a) in adds {
+            let (v, gained) = acc.add(*m, *a);
+            rust.extend([v, gained]);
+        }
+        rust.extend((0..6).map(|k| acc.plane(k)));
+        rust.extend([
+            acc.level(*bit),
+            acc.is_binary() as u32,
+            acc.opaque(),
+            acc.total_levels(),
+            acc.level_set(r_in % 6),
+        ]);
+        let a0 = adds[0].1;
+        rust.extend((0..6).map(|r| remaining_after(r, a0)));
+        rust.push(is_opaque(a0) as u32);
+        if adds.iter().any(|(_, a)| alpha_near_level_boundary(*a)) {
+            near += 1;
+        } else {
+            for (k, (x, y)) in rust.iter().zip(&g[..24]).enumerate() {
+                levels.exact(&(c, k), *x, *y);
+            }
+        }
+        let wr = [level_weight(*g_in), acc.uncovered_weight(), clamp_alpha(a0)];
+        let wg = floats(&g[24..27]);
+        weights.floats(TOL_TRANSPARENCY_WEIGHT, c, &wr[..1], &wg[..1]);
+        if !alpha_near_level_boundary(a0)
+            && !adds.iter().any(|(_, a)| alpha_near_level_boundary(*a))
+        {
+            weights.floats(TOL_TRANSPARENCY_WEIGHT, c, &wr[1..], &wg[1..]);
+        }
+    }
+    let mut r = join(levels.finish(), weights.finish());
+    if near * 100 > cases.len() {
+        r = join(
+            r,
+            Err(format!(
+                "transparency: {near} of {} records near a level boundary (more than 1 %)",
+                cases.len()
+            )),
+        );
+    } else if let Ok(s) = &mut r {
+        let _ = write!(s, " | records near a level boundary, skipped: {near}");
+    }
+    r
+}
+
+/// Steps of one [`check_stepper`] record.
+const STEPPER_STEPS: usize = 24;
+
+/// The stepper's translucent parts (CTSS §5.3) on both sides: a random
+/// sequence of field values (distance, safe step, object 0 opaque or
+/// 1, 2 semi-transparent, a request to split the open group or to end a
+/// pass before the step, the mask to record) drives `advance_object`;
+/// every sample is recorded through `record_alpha_mask` with its object's
+/// opacity. Events, samples, weights, and the final stop, coverage,
+/// background weight and counters are compared (see [`TOL_STEPPER`]).
+fn check_stepper(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
+    use subcone_kernels::ctss::{ConeStepper, CtssParams, Event, StopReason};
+    let step = (
+        prop_oneof![
+            6 => any_f32(-0.05, 0.15),
+            1 => any_f32(0.15, 2.0),
+            1 => Just(f32::NAN),
+        ],
+        prop_oneof![3 => Just(1.0f32), 1 => any_f32(0.0, 1.0)],
+        0u32..3,
+        0u32..8,
+        any::<u32>(),
+    );
+    let alpha = prop_oneof![
+        Just(0.5f32),
+        Just(0.3f32),
+        Just(1.0f32),
+        Just(0.0f32),
+        any_f32(0.0, 1.0),
+        Just(f32::NAN),
+    ];
+    let cases = generate(
+        (
+            prop::collection::vec(step, STEPPER_STEPS),
+            any_f32(0.005, 0.1),
+            0u32..4,
+            (alpha.clone(), alpha),
+            prop_oneof![Just(32u32), 8u32..33],
+            prop_oneof![3 => Just(8u32), 1 => 1u32..4],
+        ),
+        11,
+    );
+    let params_of = |tan: f32, flags: u32, k: u32, cap: u32| {
+        let mut p = CtssParams::new(tan)
+            .with_range(1.0, 50.0)
+            .with_max_steps(20)
+            .with_visibility_k(k)
+            .relaxed(flags & 1 != 0)
+            .paper(flags & 2 != 0);
+        p.max_samples = cap;
+        p
+    };
+    let mut input = Vec::new();
+    for (steps, tan, flags, (a1, a2), k, cap) in &cases {
+        let p = params_of(*tan, *flags, *k, *cap);
+        input.extend(
+            bytemuck::cast_slice::<CtssParams, u32>(&[p])
+                .iter()
+                .take(12),
+        );
+        input.extend([a1.to_bits(), a2.to_bits()]);
+        for (d, frac, obj, req, mask) in steps {
+            input.extend([d.to_bits(), (frac * d).to_bits(), obj | (req << 8), *mask]);
+        }
+    }
+    const OUT: usize = 7 * STEPPER_STEPS + 6;
+    let body = format!(
+        "let p = subcone_CtssParams(f(0u), f(1u), f(2u), f(3u), f(4u), f(5u), u(6u), u(7u), u(8u), u(9u), 0u, 0u);
+         var st = subcone_cone_stepper_new(p);
+         for (var k = 0u; k < {STEPPER_STEPS}u; k++) {{
+             let b = 14u + 4u * k;
+             let obj = u(b + 2u) & 0xffu;
+             let req = u(b + 2u) >> 8u;
+             var alpha = 1.0;
+             if obj == 1u {{ alpha = f(12u); }}
+             if obj == 2u {{ alpha = f(13u); }}
+             let ob = o + 7u * k;
+             out[ob + 4u] = 0u; out[ob + 5u] = 0u; out[ob + 6u] = 0u;
+             if (req & 1u) != 0u {{
+                 let sp = subcone_cone_stepper_split_group(&st);
+                 if sp.kind == subcone_EVENT_SAMPLE {{
+                     let r = subcone_cone_stepper_record_alpha_mask(&st, u(b + 3u), alpha);
+                     out[ob + 4u] = 1u + select(0u, 2u, subcone_cone_stepper_is_passing(st));
+                     out[ob + 5u] = bitcast<u32>(sp.sample.t_exit);
+                     out[ob + 6u] = r.y;
+                 }}
+             }}
+             if (req & 2u) != 0u {{
+                 subcone_cone_stepper_end_pass(&st);
+             }}
+             let ev = subcone_cone_stepper_advance_object(&st, f(b), f(b + 1u), obj);
+             out[ob] = ev.kind + 4u * ev.reason + select(0u, 64u, subcone_cone_stepper_is_passing(st));
+             out[ob + 1u] = bitcast<u32>(st.t);
+             out[ob + 2u] = 0u; out[ob + 3u] = 0u;
+             if ev.kind == subcone_EVENT_SAMPLE {{
+                 let r = subcone_cone_stepper_record_alpha_mask(&st, u(b + 3u), alpha);
+                 out[ob + 2u] = bitcast<u32>(ev.sample.t);
+                 out[ob + 3u] = r.y;
+                 out[ob] += 128u * (r.x & 0xffu);
+             }}
+         }}
+         let e = o + 7u * {STEPPER_STEPS}u;
+         out[e] = st.stop;
+         out[e + 1u] = subcone_cone_stepper_coverage(st);
+         out[e + 2u] = bitcast<u32>(subcone_cone_stepper_background_weight(st));
+         out[e + 3u] = st.steps;
+         out[e + 4u] = st.samples;
+         out[e + 5u] = subcone_transparency_accumulator_total_levels(st.layers);"
+    );
+    let out = run(
+        ctx,
+        &lib.stepper,
+        &body,
+        14 + 4 * STEPPER_STEPS,
+        OUT,
+        &input,
+    )?;
+    let code = |r: Option<StopReason>| match r {
+        None => 0u32,
+        Some(StopReason::FullOcclusion) => 1,
+        Some(StopReason::HardHit) => 2,
+        Some(StopReason::VisibilityThreshold) => 3,
+        Some(StopReason::SampleCap) => 4,
+        Some(StopReason::MaxDistance) => 5,
+        Some(StopReason::StepBudget) => 6,
+        Some(StopReason::InvalidDistance) => 7,
+    };
+    let mut exact = Report::new("subcone_cone_stepper_* (§5.3)");
+    let mut depths = Report::new("  depths and weights");
+    let mut parted = 0usize;
+    for (i, c) in cases.iter().enumerate() {
+        let (steps, tan, flags, (a1, a2), k, cap) = c;
+        let p = params_of(*tan, *flags, *k, *cap);
+        let g = &out[OUT * i..OUT * (i + 1)];
+        let mut st = ConeStepper::new(&p);
+        let mut rust = vec![0u32; OUT];
+        let mut floats_r = Vec::new();
+        let mut floats_g = Vec::new();
+        for (k, (d, frac, obj, req, mask)) in steps.iter().enumerate() {
+            let alpha = [1.0, *a1, *a2][*obj as usize];
+            let ob = 7 * k;
+            if req & 1 != 0 {
+                if let Some(sp) = st.split_group() {
+                    let (_, w) = st.record_alpha_mask(*mask, alpha);
+                    rust[ob + 4] = 1 + if st.is_passing() { 2 } else { 0 };
+                    rust[ob + 5] = sp.t_exit.to_bits();
+                    rust[ob + 6] = w.to_bits();
+                }
+            }
+            if req & 2 != 0 {
+                st.end_pass();
+            }
+            let ev = st.advance_object(*d, frac * d, *obj);
+            let (kind, reason) = match ev {
+                Event::March => (0, 0),
+                Event::Sample(_) => (1, 0),
+                Event::Stop(r) => (2, code(Some(r))),
+            };
+            rust[ob] = kind + 4 * reason + if st.is_passing() { 64 } else { 0 };
+            rust[ob + 1] = st.t().to_bits();
+            if let Event::Sample(s) = ev {
+                let (v, w) = st.record_alpha_mask(*mask, alpha);
+                rust[ob + 2] = s.t.to_bits();
+                rust[ob + 3] = w.to_bits();
+                rust[ob] += 128 * (v & 0xff);
+            }
+            for j in [1, 2, 3, 5, 6] {
+                floats_r.push(f32::from_bits(rust[ob + j]));
+                floats_g.push(f32::from_bits(g[ob + j]));
+            }
+        }
+        let e = 7 * STEPPER_STEPS;
+        rust[e] = code(st.stop_reason());
+        rust[e + 1] = st.coverage();
+        rust[e + 2] = st.background_weight().to_bits();
+        rust[e + 3] = st.steps();
+        rust[e + 4] = st.samples();
+        rust[e + 5] = st.layers().total_levels();
+        floats_r.push(f32::from_bits(rust[e + 2]));
+        floats_g.push(f32::from_bits(g[e + 2]));
+        let codes = |w: &[u32]| -> Vec<u32> {
+            (0..STEPPER_STEPS)
+                .flat_map(|k| [w[7 * k], w[7 * k + 4]])
+                .chain([w[e], w[e + 1], w[e + 3], w[e + 4], w[e + 5]])
+                .collect()
+        };
+        let (cr, cg) = (codes(&rust), codes(g));
+        let depth_error = floats_r
+            .iter()
+            .zip(&floats_g)
+            .map(|(a, b)| TOL_STEPPER.error(*a, *b))
+            .fold(0.0, f64::max);
+        if cr != cg && depth_error > 0.0 {
+            // An ulp of a depth moved a later decision: the traces parted.
+            parted += 1;
+            continue;
+        }
+        exact.exact(c, (cr == cg) as u32, 1);
+        if cr != cg && exact.failures.len() <= 5 {
+            exact
+                .failures
+                .push(format!("codes rust {cr:?}\n  codes wgsl {cg:?}"));
+        }
+        depths.floats(TOL_STEPPER, c, &floats_r, &floats_g);
+    }
+    let mut r = join(exact.finish(), depths.finish());
+    if parted * 100 > cases.len() {
+        r = join(
+            r,
+            Err(format!(
+                "stepper: {parted} of {} traces part ways after an ulp of depth (more than 1 %)",
+                cases.len()
+            )),
+        );
+    } else if let Ok(s) = &mut r {
+        let _ = write!(s, " | traces parted by an ulp of depth: {parted}");
+    }
+    r
+}
+
+const CHECKS: [(&str, Check); 10] = [
     ("weights", check_weights),
     ("material", check_material),
     ("resolve", check_resolve),
@@ -1473,6 +1887,8 @@ const CHECKS: [(&str, Check); 8] = [
     ("aggregate", check_aggregate),
     ("fxaa", check_fxaa),
     ("ao", check_ao),
+    ("transparency", check_transparency),
+    ("stepper", check_stepper),
 ];
 
 #[test]
@@ -1503,7 +1919,7 @@ fn wgsl_kernels_match_the_rust_kernels() {
 fn perturbed_kernels_are_caught() {
     let Some(gpu) = gpu() else { return };
     let ctx = gpu.context();
-    let perturbations: [(&str, &str, &str, Check); 8] = [
+    let perturbations: [(&str, &str, &str, Check); 12] = [
         (
             "bilateral weight off by 1e-3",
             "return subcone_saturate(w);",
@@ -1552,6 +1968,30 @@ fn perturbed_kernels_are_caught() {
             "(frac - floor(frac))",
             check_ao,
         ),
+        (
+            "K-mask opacity rounded down instead of to nearest",
+            "floor(f32(r) * (1.0 - a) + 0.5)",
+            "floor(f32(r) * (1.0 - a))",
+            check_transparency,
+        ),
+        (
+            "K-mask composite forgets the cells outside the surface's mask",
+            "var next = (*acc).planes & vec4<u32>(~mask);",
+            "var next = vec4<u32>(0u);",
+            check_transparency,
+        ),
+        (
+            "the pass through a semi-transparent object steps by the distance inside it",
+            "            step_by = -d;",
+            "            step_by = m;",
+            check_stepper,
+        ),
+        (
+            "a semi-transparent full occlusion ends the trace",
+            "        (*s).stop = subcone_STOP_NONE;\n        (*s).passing = 1u;",
+            "        (*s).passing = 0u;",
+            check_stepper,
+        ),
     ];
     for (what, from, to, check) in perturbations {
         let shipped = Library::shipped();
@@ -1559,7 +1999,9 @@ fn perturbed_kernels_are_caught() {
             shipped.sraa.contains(from)
                 || shipped.ctss.contains(from)
                 || shipped.fxaa.contains(from)
-                || shipped.ao.contains(from),
+                || shipped.ao.contains(from)
+                || shipped.transparency.contains(from)
+                || shipped.stepper.contains(from),
             "perturbation {what:?}: {from:?} is not in the shipped WGSL any more; update the test"
         );
         let lib = Library {
@@ -1567,6 +2009,8 @@ fn perturbed_kernels_are_caught() {
             ctss: shipped.ctss.replacen(from, to, 1),
             fxaa: shipped.fxaa.replacen(from, to, 1),
             ao: shipped.ao.replacen(from, to, 1),
+            transparency: shipped.transparency.replacen(from, to, 1),
+            stepper: shipped.stepper.replacen(from, to, 1),
         };
         match check(ctx, &lib) {
             Ok(_) => panic!("perturbation {what:?} went unnoticed"),

@@ -27,9 +27,20 @@
 //! assert!(r.color.x > 0.0 && r.color.x < 1.0, "{:?}", r);
 //! ```
 
-/// The WGSL mirror of this module (ConeStepper and sphere_trace_split): same names, the parameter structs of
-/// [`crate::wgsl::PARAMS`]; concatenate after `PARAMS` (see [`crate::wgsl`]).
+/// The WGSL mirror of this module (ConeStepper, with the translucent parts of
+/// CTSS §5.3, and sphere_trace_split): same names, the parameter structs of
+/// [`crate::wgsl::PARAMS`]; concatenate after `PARAMS`, [`crate::cone::WGSL`],
+/// [`crate::mask::WGSL`], [`crate::aggregate::WGSL`] and
+/// [`crate::transparency::WGSL`] (see [`crate::wgsl`]).
 pub const WGSL: &str = include_str!("ctss.wgsl");
+
+/// The WGSL mirror of [`group_mask`] (`subcone_group_mask`, with
+/// `subcone_normal_step`, `FACE_ON_COS` and `SHELL_LENGTH`): concatenate after
+/// [`WGSL`]. The field is the including shader's, through the hooks
+/// `subcone_field(p) -> vec3<f32>` (distance, safe step, object id as `f32`)
+/// and `subcone_normal(p, h) -> vec3<f32>` ([`ConeField::sample`] and
+/// [`ConeField::normal`]).
+pub const GROUP_MASK_WGSL: &str = include_str!("ctss/group_mask.wgsl");
 
 use glam::{Vec2, Vec3};
 

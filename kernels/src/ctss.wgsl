@@ -2,7 +2,10 @@
 // the subcone_ConeStepper state machine, and subcone_sphere_trace_split, the NoAA baseline
 // with the same cone-based hit threshold (§4).
 //
-// Needs PARAMS (subcone_CtssParams), cone.wgsl, mask.wgsl and aggregate.wgsl. The
+// Needs PARAMS (subcone_CtssParams), cone.wgsl, mask.wgsl, aggregate.wgsl and
+// transparency.wgsl (the K masks of CTSS §5.3, for semi-transparent
+// surfaces: subcone_cone_stepper_record_alpha_mask and the pass through a
+// semi-transparent object). The
 // SDF is the caller's: subcone_sphere_trace_split calls
 //     fn ctss_field(p: vec3<f32>) -> vec2<f32>   // (surface distance, safe step)
 // which the including shader defines. Every loop is bounded by max_steps.
@@ -85,6 +88,13 @@ struct subcone_ConeStepper {
     covered: u32,
     stop: u32,
     pending_stop: u32,
+    // subcone_kernels::ctss::ConeStepper's layers: the K masks of CTSS §5.3,
+    // used instead of covered once record_alpha_mask is called (translucent
+    // != 0).
+    layers: subcone_TransparencyAccumulator,
+    translucent: u32,
+    // Marching through a semi-transparent object after its full occlusion.
+    passing: u32,
 }
 
 fn subcone_ctss_is_relaxed(p: subcone_CtssParams) -> bool {
@@ -124,7 +134,8 @@ fn subcone_cone_stepper_new(params: subcone_CtssParams) -> subcone_ConeStepper {
         t0 = params.t_min;
     }
     return subcone_ConeStepper(params, subcone_occlusion_thresholds(params.eps), t0, t0, 0.0, 0u, 0u, 0u,
-        0u, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0u, subcone_NO_OBJECT, 0.0, 0u, 0u, 0u, subcone_STOP_NONE, 0u);
+        0u, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0u, subcone_NO_OBJECT, 0.0, 0u, 0u, 0u, subcone_STOP_NONE, 0u,
+        subcone_transparency_accumulator_new(), 0u, 0u);
 }
 
 // The open group's sample, exit at t_exit.
@@ -182,12 +193,27 @@ fn subcone_cone_stepper_advance_object(s: ptr<function, subcone_ConeStepper>, d:
     let soft = omega > th.x;
     let hard = omega > th.y;
     let stop_at = select(th.z, th.y, relaxed);
-    let stop = omega > stop_at;
+    var stop = omega > stop_at;
+    if (*s).passing != 0u {
+        // Inside (or just behind) a semi-transparent object whose full
+        // occlusion did not end the trace (record_alpha_mask): no stop and no
+        // new group until the cone leaves it, or until the distance, outside
+        // the object, shrinks again: another surface lies within the cone,
+        // and it starts a group of its own here.
+        if d > 0.0 && (*s).have_prev != 0u && d < (*s).d_prev {
+            (*s).passing = 0u;
+            (*s).prev_soft = 0u;
+            (*s).prev_hard = 0u;
+        } else {
+            stop = false;
+        }
+    }
 
     // Beyond the paper: one surface per group.
     var closed = false;
     var closed_sample = subcone_GroupSample(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0u);
-    if soft && (*s).prev_soft != 0u && !subcone_ctss_is_paper((*s).params) && (*s).group_open != 0u {
+    if soft && (*s).prev_soft != 0u && !subcone_ctss_is_paper((*s).params) && (*s).passing == 0u
+        && (*s).group_open != 0u {
         (*s).g_dip = min((*s).g_dip, omega);
         let other = object != (*s).g_object && object != subcone_NO_OBJECT && (*s).g_object != subcone_NO_OBJECT;
         let rises = (*s).g_dip < (*s).g_occlusion - subcone_GROUP_DIP && omega > (*s).g_dip + subcone_GROUP_DIP;
@@ -233,6 +259,9 @@ fn subcone_cone_stepper_advance_object(s: ptr<function, subcone_ConeStepper>, d:
         }
     }
     let exit = !soft && (*s).prev_soft != 0u;
+    if exit {
+        (*s).passing = 0u;
+    }
     (*s).prev_soft = select(0u, 1u, soft);
     (*s).prev_hard = select(0u, 1u, hard);
 
@@ -277,7 +306,12 @@ fn subcone_cone_stepper_advance_object(s: ptr<function, subcone_ConeStepper>, d:
     (*s).d_prev = d;
     (*s).have_prev = 1u;
     if (*s).stop == subcone_STOP_NONE {
-        (*s).t = subcone_advance(t, m, (*s).params.alpha, rc);
+        // Through a semi-transparent object's inside, −d is a safe step.
+        var step_by = m;
+        if (*s).passing != 0u && d < 0.0 {
+            step_by = -d;
+        }
+        (*s).t = subcone_advance(t, step_by, (*s).params.alpha, rc);
     }
     return event;
 }
@@ -307,14 +341,114 @@ fn subcone_cone_stepper_record_mask(s: ptr<function, subcone_ConeStepper>, m0: u
     return vec2<u32>(visible, bitcast<u32>(w));
 }
 
+// subcone_kernels::ctss::ConeStepper::restart_grouping (private): forget the
+// previous step for grouping, so that the next step touching a surface opens
+// a new group whose hard hit is sampled at that step, not backtraced into the
+// previous object.
+fn subcone_cone_stepper_restart_grouping(s: ptr<function, subcone_ConeStepper>) {
+    (*s).prev_soft = 0u;
+    (*s).prev_hard = 0u;
+    (*s).have_prev = 0u;
+    (*s).passing = 0u;
+}
+
+// subcone_kernels::ctss::ConeStepper::is_passing — whether the trace is
+// passing through a semi-transparent object (record_alpha_mask, §5.3).
+fn subcone_cone_stepper_is_passing(s: subcone_ConeStepper) -> bool {
+    return s.passing != 0u;
+}
+
+// subcone_kernels::ctss::ConeStepper::end_pass — end a pass through a
+// semi-transparent object here (the caller saw the nearest object change):
+// the next step opens a group on the object the ray has entered.
+fn subcone_cone_stepper_end_pass(s: ptr<function, subcone_ConeStepper>) {
+    if (*s).passing != 0u {
+        subcone_cone_stepper_restart_grouping(s);
+    }
+}
+
+// subcone_kernels::ctss::ConeStepper::in_group — a hit group is open.
+fn subcone_cone_stepper_in_group(s: subcone_ConeStepper) -> bool {
+    return s.group_open != 0u;
+}
+
+// subcone_kernels::ctss::ConeStepper::split_group — close the open group at
+// the current depth (exit backtraced from t) so that the next advance starts
+// a new one: one surface per group when the nearest object changes between a
+// semi-transparent object and another (§5.3). Rust's Option<GroupSample> is
+// an event: subcone_EVENT_SAMPLE with the group, or subcone_EVENT_MARCH for
+// None (no open group, or the trace is over).
+fn subcone_cone_stepper_split_group(s: ptr<function, subcone_ConeStepper>) -> subcone_CtssEvent {
+    if (*s).stop != subcone_STOP_NONE || (*s).group_open == 0u {
+        return subcone_ctss_event(subcone_EVENT_MARCH, subcone_STOP_NONE);
+    }
+    (*s).group_open = 0u;
+    (*s).samples += 1u;
+    subcone_cone_stepper_restart_grouping(s);
+    if (*s).samples >= (*s).params.max_samples {
+        (*s).stop = subcone_STOP_SAMPLE_CAP;
+    }
+    let t_exit = subcone_backtrace_cone_entry((*s).t, (*s).params.tan_theta);
+    return subcone_CtssEvent(subcone_EVENT_SAMPLE, subcone_cone_stepper_group_sample(s, t_exit), subcone_STOP_NONE);
+}
+
+// subcone_kernels::ctss::ConeStepper::record_alpha_mask — record_mask for a
+// surface of opacity alpha (CTSS §5.3): the mask is composited over the K
+// masks instead of M, and the weight is the transmittance the sample took
+// (subcone_level_weight). When the sample ended the trace on its occlusion
+// rule but the surface is not opaque, or semi-transparent cells lie in front
+// of it, the mask is full; a surface that is not opaque then lets the trace go
+// on through the object (passing). Returns (visible mask, weight bits).
+fn subcone_cone_stepper_record_alpha_mask(s: ptr<function, subcone_ConeStepper>, mask: u32, alpha: f32) -> vec2<u32> {
+    (*s).translucent = 1u;
+    let ended = (*s).stop == subcone_STOP_FULL_OCCLUSION || (*s).stop == subcone_STOP_HARD_HIT;
+    var m = mask;
+    if ended && (!subcone_is_opaque(alpha) || !subcone_transparency_accumulator_is_binary((*s).layers)) {
+        m = subcone_FULL_MASK;
+    }
+    var layers = (*s).layers;
+    let vg = subcone_transparency_accumulator_add(&layers, m, alpha);
+    (*s).layers = layers;
+    let opaque = subcone_transparency_accumulator_opaque(layers);
+    if ended && !subcone_is_opaque(alpha) && opaque != subcone_FULL_MASK {
+        (*s).stop = subcone_STOP_NONE;
+        (*s).passing = 1u;
+    }
+    if (*s).stop == subcone_STOP_NONE && countOneBits(opaque) >= (*s).params.visibility_k {
+        (*s).stop = subcone_STOP_VISIBILITY_THRESHOLD;
+    }
+    var w = 1.0;
+    if subcone_ctss_weighting((*s).params) == subcone_WEIGHTING_VISIBILITY {
+        var floor_w = 0.0;
+        if (*s).params.min_sample_weight > 0.0 {
+            floor_w = min((*s).params.min_sample_weight, 1.0);
+        }
+        w = max(subcone_level_weight(vg.y), floor_w);
+    }
+    return vec2<u32>(vg.x, bitcast<u32>(w));
+}
+
+// subcone_kernels::ctss::ConeStepper::coverage — the pixel's global mask M
+// (M_K, the opaque cells, once record_alpha_mask was called).
+fn subcone_cone_stepper_coverage(s: subcone_ConeStepper) -> u32 {
+    if s.translucent != 0u {
+        return subcone_transparency_accumulator_opaque(s.layers);
+    }
+    return s.covered;
+}
+
 // subcone_kernels::ctss::ConeStepper::background_weight — 0 when the hits cover
-// the pixel, else 1 − bitCount(M)/32 (1 with uniform weights).
+// the pixel, else 1 − bitCount(M)/32 (1 with uniform weights); for a trace
+// through record_alpha_mask, the transmittance left, 1 − Σ l/(32·K).
 fn subcone_cone_stepper_background_weight(s: subcone_ConeStepper) -> f32 {
     if s.stop != subcone_STOP_NONE && subcone_covers_pixel(s.stop) {
         return 0.0;
     }
     if subcone_ctss_weighting(s.params) == subcone_WEIGHTING_UNIFORM {
         return 1.0;
+    }
+    if s.translucent != 0u {
+        return subcone_transparency_accumulator_uncovered_weight(s.layers);
     }
     return 1.0 - subcone_mask_weight(s.covered);
 }

@@ -8,7 +8,7 @@
 //!   [`cone`] (eq. 3–5, 9–10), [`mask`] (eq. 7–8, §3.5), [`aggregate`] (eq. 6),
 //!   and [`ctss`], the hit-group logic of Algorithm 1 as a stepper any SDF and any
 //!   shading can drive; [`transparency`], the `K` masks of §5.3 for
-//!   semi-transparent surfaces (CPU only: no WGSL twin yet).
+//!   semi-transparent surfaces.
 //! - [`fxaa`]: FXAA 3.11 (Lottes), the post-process baseline the papers'
 //!   methods are compared with.
 //! - [`ao`]: the fixed, stratified, cosine-weighted ambient-occlusion

@@ -6,6 +6,9 @@ const subcone_GRID_SCALE: f32 = 0.9399856f;
 // subcone_kernels::mask::FARTHEST_CENTRE
 const subcone_FARTHEST_CENTRE: f32 = subcone_GRID_SCALE * 0.9718253f;
 
+// subcone_kernels::mask::FULL_MASK — every cell of the pixel's disk.
+const subcone_FULL_MASK: u32 = 0xffffffffu;
+
 // subcone_kernels::mask::MaskPlacement codes.
 const subcone_MASK_DERIVED: u32 = 0u;
 const subcone_MASK_AUTHORS_CODE: u32 = 1u;

@@ -37,6 +37,13 @@
 
 use crate::mask::FULL_MASK;
 
+/// The WGSL mirror of this module (`subcone_remaining_after`,
+/// `subcone_level_weight`, `subcone_TransparencyAccumulator` and its methods
+/// as `subcone_transparency_accumulator_*`): same names, the parameter structs
+/// of [`crate::wgsl::PARAMS`]; concatenate after `PARAMS` and
+/// [`crate::mask::WGSL`] (see [`crate::wgsl`]).
+pub const WGSL: &str = include_str!("transparency.wgsl");
+
 /// `K`, the number of bitmasks (transparency levels) per pixel.
 pub const LEVELS: u32 = 4;
 

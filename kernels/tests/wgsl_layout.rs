@@ -24,9 +24,16 @@ const KERNELS: &[(&str, &str)] = &[
     ("cone::WGSL", subcone_kernels::cone::WGSL),
     ("mask::WGSL", subcone_kernels::mask::WGSL),
     ("aggregate::WGSL", subcone_kernels::aggregate::WGSL),
+    ("transparency::WGSL", subcone_kernels::transparency::WGSL),
     // The stepper's SDF is the including shader's: a sphere stands in for it.
     ("the caller's ctss_field", CTSS_FIELD),
     ("ctss::WGSL", subcone_kernels::ctss::WGSL),
+    // group_mask's field is the including shader's: a sphere stands in for it.
+    ("the caller's subcone_field and subcone_normal", CONE_FIELD),
+    (
+        "ctss::GROUP_MASK_WGSL",
+        subcone_kernels::ctss::GROUP_MASK_WGSL,
+    ),
     // The pixel fetch is the including shader's: a constant stands in for it.
     ("the caller's fxaa_fetch", FXAA_FETCH),
     ("fxaa::WGSL", subcone_kernels::fxaa::WGSL),
@@ -40,6 +47,10 @@ const FXAA_FETCH: &str =
 /// The hook `ctss.wgsl` expects its including shader to define.
 const CTSS_FIELD: &str =
     "fn ctss_field(p: vec3<f32>) -> vec2<f32> { let d = length(p) - 1.0; return vec2<f32>(d, d); }";
+
+/// The hooks `ctss/group_mask.wgsl` expects its including shader to define.
+const CONE_FIELD: &str = "fn subcone_field(p: vec3<f32>) -> vec3<f32> { let d = length(p) - 1.0; return vec3<f32>(d, d, 0.0); }
+fn subcone_normal(p: vec3<f32>, h: f32) -> vec3<f32> { return normalize(p); }";
 
 /// One WGSL member expected at a Rust offset with a Rust size.
 #[derive(Debug)]

@@ -94,20 +94,33 @@ impl WgpuBackend {
     fn plan(&self, scene: &Scene, method: &Method, force: Passes) -> Result<Passes, Unsupported> {
         let refuse = |reason| Err(Unsupported::new(self.name(), scene, method, reason));
         let passes = planned_passes(self.name(), scene, method)? | force;
-        if scene.has_translucency() {
-            // CTSS §5.3's K masks run on the CPU backend only: refuse rather
-            // than draw the scene opaque.
-            return refuse(UnsupportedReason::Translucency {
-                what: "rendering on the GPU",
-                instead: "the cpu backend renders them (CTSS §5.3's K masks have no WGSL twin yet)",
-            });
-        }
+        let translucent = scene.has_translucency();
         if scene.sdf_geometry().is_some() {
             if passes.intersects(Passes::SECONDARY) {
                 return refuse(UnsupportedReason::SdfReflections);
             }
             if method.gates_material() {
                 return refuse(UnsupportedReason::MaterialGateOnSdf);
+            }
+            // Then, in the CPU backend's order: semi-transparent SDF
+            // materials render on the K-mask path (CTSS §5.3,
+            // sdf/translucent.wgsl) with the methods the CPU backend renders
+            // them with, and are refused, for the same reason, with the
+            // others.
+            let opaque_only = if method.technique == Technique::SraaRt {
+                Some("sraa-rt")
+            } else if method.split_groups {
+                Some("hit group subdivision (ctss+edges)")
+            } else if method.delayed_shading {
+                Some("delayed shading")
+            } else {
+                None
+            };
+            if let Some(what) = opaque_only.filter(|_| translucent) {
+                return refuse(UnsupportedReason::Translucency {
+                    what,
+                    instead: "ctss, ctss-r, ssaaN+ctss, noaa and ssaaN render them",
+                });
             }
             if method.technique.is_subpixel_reconstruction() {
                 return refuse(sdf::SRAA_RT_CPU_ONLY);
@@ -125,6 +138,13 @@ impl WgpuBackend {
                     max: sdf::MAX_SIDE_SAMPLES,
                 });
             }
+        } else if translucent {
+            // Triangle scenes have no semi-transparent path on either
+            // backend: refuse rather than draw them opaque.
+            return refuse(UnsupportedReason::Translucency {
+                what: "ray tracing triangles",
+                instead: "they render on SDF scenes only",
+            });
         } else if scene.lights.len() > MAX_LIGHTS {
             return refuse(UnsupportedReason::TooManyLights {
                 lights: scene.lights.len(),

@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use subcone_cpu::CpuBackend;
 use subcone_scene::builtin::builtin;
-use subcone_scene::sdf::{SDF_SCENES, STIFF_SCENES};
+use subcone_scene::sdf::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
 use subcone_scene::{Backend, Frame, Method, RenderSettings};
 use subcone_wgpu::test_util::gpu_or_skip;
 use subcone_wgpu::WgpuBackend;
@@ -65,7 +65,7 @@ fn agree(names: &[&str], w: u32, h: u32) {
             );
             let (mean, bad) = compare(&want, &got);
             eprintln!(
-                "{name:>13} {m:>10}: mean {mean:.5} bad {:.2}% | cpu {:.2?} gpu {:.2?} (pass {:.2?}) | samples {} vs {}, evals {} vs {}, multi {} vs {}",
+                "{name:>13} {m:>10}: mean {mean:.1e} bad {:.2}% | cpu {:.2?} gpu {:.2?} (pass {:.2?}) | samples {} vs {}, evals {} vs {}, multi {} vs {}",
                 bad * 100.0,
                 t1 - t0,
                 t2 - t1,
@@ -129,6 +129,14 @@ fn paper_scenes_match_the_cpu() {
 #[test]
 fn stiff_scenes_are_finite_and_match_the_cpu() {
     agree(&STIFF_SCENES, 64, 48);
+}
+
+/// The semi-transparent scenes (`glass`: CTSS §5.3's K masks for the cone
+/// methods, alpha blending along the ray for NoAA and SSAA), within the
+/// same bounds as the opaque ones.
+#[test]
+fn semi_transparent_scenes_match_the_cpu() {
+    agree(&TRANSPARENT_SCENES, 64, 48);
 }
 
 /// Only what the scene needs is built: no shadow rays without lights, and

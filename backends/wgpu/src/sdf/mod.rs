@@ -3,6 +3,17 @@
 //! (`subcone_cpu::sphere::SdfView`). SRAA-RT on SDF scenes is CPU-only
 //! ([`SRAA_RT_CPU_ONLY`]).
 //!
+//! Scenes with semi-transparent materials run `translucent.wgsl` instead of
+//! `trace.wgsl`'s entry point, the twins of the CPU's semi-transparent path:
+//! CTSS with the `K` masks of §5.3 (`subcone_cone_stepper_record_alpha_mask`,
+//! group splits where the nearest object changes between a semi-transparent
+//! object and another, passes through semi-transparent objects), and NoAA /
+//! SSAA with alpha blending along the ray; materials' opacities are a WGSL
+//! table (`material_opacity`, shading.rs). Samples are shaded as their
+//! groups close; what the CPU refuses on semi-transparent scenes (SRAA-RT,
+//! `ctss+edges`, delayed shading) this backend refuses with the same reason
+//! (`WgpuBackend::plan`).
+//!
 //! The scene's tree is compiled to WGSL ([`subcone_scene::sdf::SdfNode::to_wgsl`]), its materials
 //! and lights to WGSL constants (`shading.rs`), and concatenated with the
 //! kernels' WGSL (`cone`, `mask`, `aggregate`, `ctss`: Algorithm 1 of CTSS,
@@ -76,13 +87,26 @@ pub const CTSS_EDGES_CPU_ONLY: UnsupportedReason = UnsupportedReason::CpuOnly {
 /// Most samples per pixel side (`ssaaN`, `ssaaN+ctss`) one invocation traces.
 pub const MAX_SIDE_SAMPLES: u32 = 64;
 
-/// The kernels' WGSL every SDF shader includes, after the prelude.
-const KERNELS: [&str; 4] = [
+/// The kernels' WGSL every SDF shader includes, after the prelude (the
+/// stepper carries the K masks of CTSS §5.3, `transparency`).
+const KERNELS: [&str; 5] = [
     subcone_kernels::cone::WGSL,
     subcone_kernels::mask::WGSL,
     subcone_kernels::aggregate::WGSL,
+    subcone_kernels::transparency::WGSL,
     subcone_kernels::ctss::WGSL,
 ];
+
+/// The semi-transparent path (CTSS §5.3): the twins of the CPU's
+/// `ctss_translucent` and `noaa_translucent`, with their entry point
+/// `sdf_render_translucent`; after `trace.wgsl` and
+/// [`subcone_kernels::ctss::GROUP_MASK_WGSL`].
+const TRANSLUCENT_WGSL: &str = include_str!("translucent.wgsl");
+
+/// The field hooks `subcone_field` and `subcone_normal` that
+/// [`subcone_kernels::ctss::GROUP_MASK_WGSL`] reads the scene through (the
+/// CPU's `ConeFieldOf`), for the semi-transparent path.
+const FIELD_HOOKS_WGSL: &str = include_str!("field_hooks.wgsl");
 
 /// The field's scatter table on the device, uploaded once per device and
 /// table (`None` when the field has none).
@@ -226,11 +250,25 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     let pending = format!("const PENDING: u32 = {batch}u;\n");
     let mut sources: Vec<&str> = KERNELS.to_vec();
     sources.extend([field.source.as_str(), &shading, &pending, TRACE_WGSL]);
+    // Semi-transparent materials take the K-mask path (CTSS §5.3), as on
+    // the CPU (`SdfView::render`); opaque scenes never compile it.
+    let translucent = scene.has_translucency();
+    if translucent {
+        sources.extend([
+            FIELD_HOOKS_WGSL,
+            subcone_kernels::ctss::GROUP_MASK_WGSL,
+            TRANSLUCENT_WGSL,
+        ]);
+    }
     if settings.aovs {
         sources.push(AOVS_WGSL);
     }
     let mut program = Program::new(ctx, "sdf", &sources, &[&b])?;
-    let trace = program.pipeline("sdf_render")?;
+    let trace = program.pipeline(if translucent {
+        "sdf_render_translucent"
+    } else {
+        "sdf_render"
+    })?;
     let name = if cone {
         "cone tracing"
     } else {

@@ -1,7 +1,8 @@
 //! The scene's materials and lights as WGSL: `material_albedo`,
-//! `material_emission`, `MATERIAL_COUNT` and `shade_lights`, with the same
-//! formulas as `Material::albedo_at` and `Light::incident` and the light loop
-//! of `SdfView::shade` (subcone-cpu).
+//! `material_emission`, `material_opacity`, `MATERIAL_COUNT` and
+//! `shade_lights`, with the same formulas as `Material::albedo_at`,
+//! `Material::opacity` and `Light::incident` and the light loop of
+//! `SdfView::shade` (subcone-cpu).
 
 use std::fmt::Write;
 
@@ -101,6 +102,22 @@ pub(crate) fn shading_wgsl(
         let _ = writeln!(s, "        case {i}u: {{ return {}; }}", v3(m.emission));
     }
     s.push_str("        default: { return vec3<f32>(0.0); }\n    }\n}\n\n");
+    // Material::opacity (NaN is 1); ids past the list read the last
+    // material, as SdfView::material_opacity does. The semi-transparent path
+    // (translucent.wgsl, CTSS §5.3) is its only caller.
+    s.push_str(
+        "// SdfView::material_opacity: the object's opacity along a ray.\n\
+         fn material_opacity(m: u32) -> f32 {\n    switch m {\n",
+    );
+    for (i, m) in materials.iter().enumerate().take(materials.len() - 1) {
+        let _ = writeln!(s, "        case {i}u: {{ return {}; }}", f(m.opacity()));
+    }
+    let last = materials.last().map_or(1.0, Material::opacity);
+    let _ = writeln!(
+        s,
+        "        default: {{ return {}; }}\n    }}\n}}\n",
+        f(last)
+    );
 
     // Lights: (position or unit direction, kind 0 = point / 1 = directional),
     // (intensity or irradiance, 0). Directions are normalised here as
