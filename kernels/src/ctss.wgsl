@@ -403,7 +403,9 @@ fn subcone_cone_stepper_record_alpha_mask(s: ptr<function, subcone_ConeStepper>,
     (*s).translucent = 1u;
     let ended = (*s).stop == subcone_STOP_FULL_OCCLUSION || (*s).stop == subcone_STOP_HARD_HIT;
     var m = mask;
-    if ended && (!subcone_is_opaque(alpha) || !subcone_transparency_accumulator_is_binary((*s).layers)) {
+    // CTSS-R's hard hit takes the rest of the pixel by default (record_mask).
+    let relaxed_full = !subcone_ctss_is_paper((*s).params) && (*s).stop == subcone_STOP_HARD_HIT;
+    if ended && (!subcone_is_opaque(alpha) || !subcone_transparency_accumulator_is_binary((*s).layers) || relaxed_full) {
         m = subcone_FULL_MASK;
     }
     var layers = (*s).layers;
