@@ -7,6 +7,9 @@ const subcone_GRID_SCALE: f32 = 0.9399856f;
 const subcone_FARTHEST_CENTRE: f32 = subcone_GRID_SCALE * 0.9718253f;
 
 // subcone_kernels::mask::MaskPlacement codes.
+// subcone_kernels::mask::FULL_MASK: every cell.
+const subcone_FULL_MASK: u32 = 0xffffffffu;
+
 const subcone_MASK_DERIVED: u32 = 0u;
 const subcone_MASK_AUTHORS_CODE: u32 = 1u;
 const subcone_MASK_PAPER_EQ8: u32 = 2u;

@@ -50,8 +50,9 @@ use crate::Job;
 pub(crate) const TRACE_WGSL: &str = include_str!("trace.wgsl");
 const AOVS_WGSL: &str = include_str!("aovs.wgsl");
 const WORKGROUP: u32 = 8;
-/// Samples a cone marches ahead of shading them (the `PENDING` of
-/// trace.wgsl) for ASAP methods.
+/// Hit groups a cone marches ahead of shading them (the
+/// `subcone_CTSS_BATCH` of the kernels' `subcone_ctss_trace`) for ASAP
+/// methods.
 const ASAP_BATCH: u32 = 8;
 /// The same for delayed shading (`ctss-delayed`): enough for every cone of
 /// the built-in SDF scenes to be traced completely before it is shaded.
@@ -77,11 +78,12 @@ pub const CTSS_EDGES_CPU_ONLY: UnsupportedReason = UnsupportedReason::CpuOnly {
 pub const MAX_SIDE_SAMPLES: u32 = 64;
 
 /// The kernels' WGSL every SDF shader includes, after the prelude.
-const KERNELS: [&str; 4] = [
+const KERNELS: [&str; 5] = [
     subcone_kernels::cone::WGSL,
     subcone_kernels::mask::WGSL,
     subcone_kernels::aggregate::WGSL,
     subcone_kernels::ctss::WGSL,
+    subcone_kernels::ctss::TRACE_WGSL,
 ];
 
 /// The field's scatter table on the device, uploaded once per device and
@@ -223,7 +225,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         b.storage(ctx, "aovs", "aov_out", "array<vec4<f32>>", px_bytes)?;
     }
     let shading = shading::shading_wgsl(&scene.materials, &scene.lights, shadows)?;
-    let pending = format!("const PENDING: u32 = {batch}u;\n");
+    let pending = format!("const subcone_CTSS_BATCH: u32 = {batch}u;\n");
     let mut sources: Vec<&str> = KERNELS.to_vec();
     sources.extend([field.source.as_str(), &shading, &pending, TRACE_WGSL]);
     if settings.aovs {
