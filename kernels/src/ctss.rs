@@ -87,7 +87,8 @@ use crate::transparency::{is_opaque, level_weight, TransparencyAccumulator};
 pub const FLAG_RELAXED: u32 = 1;
 /// `flags` bit: subdivide hit groups whose normal varies across the cone or
 /// that are long for their depth, and shade them with extra samples (§5.3,
-/// [`group_needs_split`], [`split_group`]). Off by default; CPU only.
+/// [`group_needs_split`], [`split_group`]). Off by default; both backends
+/// (the WGSL twin is [`TRACE_WGSL`]).
 pub const FLAG_SPLIT_GROUPS: u32 = 1 << 1;
 /// `flags` bit: the paper's hit groups and masks (the `-paper` methods). A
 /// group then runs as long as the cone touches any surface, and its mask is

@@ -33,11 +33,12 @@ fn compare(a: &Frame, b: &Frame) -> (f32, f32) {
     ((sum / (3 * n) as f64) as f32, bad as f32 / n as f32)
 }
 
-const METHODS: [&str; 6] = [
+const METHODS: [&str; 7] = [
     "noaa",
     "ssaa4",
     "ctss",
     "ctss-paper",
+    "ctss+edges",
     "ctss-r",
     "ssaa4+ctss",
 ];

@@ -1,12 +1,15 @@
-//! SDF scenes on the GPU: NoAA, SSAA, CTSS, CTSS-R and SSAA+CTSS as one compute
+//! SDF scenes on the GPU: NoAA, SSAA, CTSS (with `ctss+edges`' group splits,
+//! §5.3), CTSS-R and SSAA+CTSS as one compute
 //! pass each, producing the images of the CPU reference
 //! (`subcone_cpu::sphere::SdfView`). SRAA-RT on SDF scenes is CPU-only
 //! ([`SRAA_RT_CPU_ONLY`]).
 //!
 //! The scene's tree is compiled to WGSL ([`subcone_scene::sdf::SdfNode::to_wgsl`]), its materials
 //! and lights to WGSL constants (`shading.rs`), and concatenated with the
-//! kernels' WGSL (`cone`, `mask`, `aggregate`, `ctss`: Algorithm 1 of CTSS,
-//! eq. 3–10) and this module's entry points (`trace.wgsl`): one invocation per
+//! kernels' WGSL (`cone`, `mask`, `aggregate`, `ctss` and its trace
+//! `subcone_ctss_trace`, the twin of the CPU's `ctss::trace_field`: Algorithm
+//! 1 of CTSS, eq. 3–10, the group masks and §5.3's splits) and this module's
+//! entry points (`trace.wgsl`), which give the trace its hooks: one invocation per
 //! pixel traces its `side × side` samples exactly as the CPU does (same rays,
 //! same stepper, same normals, same shading, hard shadows inline). Only what
 //! the passes need is built: no light loop without [`Passes::SHADOW`], no AOV
@@ -67,13 +70,6 @@ pub const SRAA_RT_CPU_ONLY: UnsupportedReason = UnsupportedReason::CpuOnly {
     why: "sphere-traced subsamples and their reconstruction have no WGSL twin",
 };
 
-/// Why `ctss+edges` is refused: hit group subdivision (CTSS §5.3,
-/// `subcone_kernels::ctss::ConeStepper::split_group`) has no WGSL twin.
-pub const CTSS_EDGES_CPU_ONLY: UnsupportedReason = UnsupportedReason::CpuOnly {
-    what: "ctss+edges",
-    why: "hit group subdivision, CTSS §5.3, has no WGSL twin",
-};
-
 /// Most samples per pixel side (`ssaaN`, `ssaaN+ctss`) one invocation traces.
 pub const MAX_SIDE_SAMPLES: u32 = 64;
 
@@ -121,6 +117,7 @@ fn ctss_params(tan: f32, method: &Method, max_distance: f32, max_steps: u32) -> 
         .with_max_steps(max_steps)
         .relaxed(method.technique == Technique::CtssR)
         .with_visibility_k(method.visibility_k)
+        .with_split_groups(method.split_groups)
         .paper(method.ctss_paper)
 }
 
@@ -158,8 +155,8 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     let g = scene
         .sdf_geometry()
         .ok_or_else(|| err("not an SDF scene"))?;
-    // `WgpuBackend::plan` has refused mirrors, SRAA-RT, ctss+edges and more
-    // than MAX_SIDE_SAMPLES samples per side.
+    // `WgpuBackend::plan` has refused mirrors, SRAA-RT and more than
+    // MAX_SIDE_SAMPLES samples per side.
     let max_distance = settings.max_distance.unwrap_or(g.max_distance);
     let max_steps = settings.max_steps.unwrap_or(g.max_steps);
     if max_distance.is_nan() {
