@@ -148,6 +148,22 @@ const TOL_STEPPER: Tol = Tol::Ulps(2);
 /// WGSL allows the division 2.5 ulps, Rust's is correctly rounded: 3 ulps.
 const TOL_AO_FRACTION: Tol = Tol::Ulps(3);
 
+/// `subcone_ctss_trace` (the whole CTSS trace, `ctss::trace_field`) on
+/// analytic fields: the colour of a ray whose decisions agree (the same
+/// samples, SDF evaluations, coverage mask and stop). Its error is the
+/// shading normals' (tetrahedral differences of step ≈ R_c/4 over distances
+/// that GPU `sqrt` rounds differently: ~ulp(d)/h ≈ 1e-5 at the steps used),
+/// carried through the shade hook and eq. 6 (f32 sums on the GPU, f64 in
+/// Rust): 1e-4 absolute.
+const TOL_CTSS_TRACE: Tol = Tol::Abs(1e-4);
+/// `subcone_ctss_trace`'s decisions: a ray's counts (samples, evaluations),
+/// coverage mask and stop reason are compared exactly, except that a
+/// distance one rounding apart can flip one of the stepper's threshold tests
+/// (or a split test) where its value lies on the threshold, and then the
+/// rest of the trace differs: at most 1 ray in 200 may differ so (counted and
+/// reported; its colour is not compared). Lavapipe differs on none.
+const CTSS_TRACE_FLIPS_PER_200: usize = 1;
+
 /// The GPU, or `None`: skipped without an adapter unless `SUBCONE_REQUIRE_GPU`.
 fn gpu() -> Option<subcone_wgpu::WgpuBackend> {
     gpu_or_skip("kernel conformance")
@@ -437,6 +453,9 @@ fn floats(w: &[u32]) -> Vec<f32> {
 struct Library {
     sraa: String,
     ctss: String,
+    /// `ctss::WGSL` and `ctss::TRACE_WGSL` with the test's hooks
+    /// ([`TRACE_HOOKS`]); run after `ctss`.
+    trace: String,
     fxaa: String,
     ao: String,
     transparency: String,
@@ -449,6 +468,7 @@ impl Library {
         Library {
             sraa: [sraa::WGSL, SRAA_PARAMS_AT].concat(),
             ctss: [cone::WGSL, mask::WGSL, aggregate::WGSL].concat(),
+            trace: [ctss::WGSL, TRACE_HOOKS, ctss::TRACE_WGSL].concat(),
             fxaa: [FXAA_FETCH, fxaa::WGSL].concat(),
             ao: ao::WGSL.to_string(),
             transparency: [cone::WGSL, mask::WGSL, transparency::WGSL].concat(),
@@ -1879,6 +1899,260 @@ fn check_stepper(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
 }
 
 const CHECKS: [(&str, Check); 10] = [
+/// The hooks of `ctss::TRACE_WGSL` for [`check_ctss_trace`]: four analytic
+/// scenes chosen per record through `trace_scene` (the twin of
+/// [`TraceScene`]), their tetrahedral normals (`subcone_tetra_normal`, the
+/// `ConeField` default), a shading that depends on the normal, the point and
+/// the direction, and a batch of 3 (so that traces shade in several rounds).
+/// `ctss_field` is `ctss.wgsl`'s hook, which the trace does not use.
+const TRACE_HOOKS: &str = "
+var<private> trace_scene: u32;
+
+fn trace_sd_box(p: vec3<f32>, c: vec3<f32>, b: vec3<f32>) -> f32 {
+    let q = abs(p - c) - b;
+    return length(max(q, vec3<f32>(0.0))) + min(max(q.x, max(q.y, q.z)), 0.0);
+}
+
+fn trace_nearest(a: vec2<f32>, b: vec2<f32>) -> vec2<f32> {
+    return select(b, a, a.x < b.x);
+}
+
+fn subcone_field(p: vec3<f32>) -> vec3<f32> {
+    var r: vec2<f32>;
+    switch trace_scene {
+        case 0u: { r = vec2<f32>(length(p - vec3<f32>(0.0, 0.0, 5.0)) - 1.0, 1.0); }
+        case 1u: { r = vec2<f32>(trace_sd_box(p, vec3<f32>(0.0, 0.0, 5.0), vec3<f32>(0.8, 0.5, 0.6)), 2.0); }
+        case 2u: {
+            r = trace_nearest(vec2<f32>(length(p - vec3<f32>(0.3, 0.2, 3.5)) - 0.6, 1.0),
+                vec2<f32>(trace_sd_box(p, vec3<f32>(0.0, 0.0, 5.0), vec3<f32>(1.0, 0.7, 0.5)), 2.0));
+        }
+        default: {
+            r = trace_nearest(vec2<f32>(trace_sd_box(p, vec3<f32>(-0.6, 0.0, 4.0), vec3<f32>(0.6, 0.6, 0.01)), 3.0),
+                vec2<f32>(trace_sd_box(p, vec3<f32>(0.5, 0.0, 5.0), vec3<f32>(0.01, 0.8, 1.5)), 4.0));
+        }
+    }
+    return vec3<f32>(r.x, r.x, r.y);
+}
+
+fn subcone_normal(p: vec3<f32>, h: f32) -> vec3<f32> {
+    return subcone_tetra_normal(p, h);
+}
+
+fn subcone_shade(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> vec3<f32> {
+    return (vec3<f32>(0.5) + 0.5 * n) * (0.5 + 0.1 * p.z) + vec3<f32>(0.25 * abs(dir.x), 0.0, 0.0);
+}
+
+const subcone_CTSS_BATCH: u32 = 3u;
+
+fn ctss_field(p: vec3<f32>) -> vec2<f32> {
+    let f = subcone_field(p);
+    return f.xy;
+}
+";
+
+/// The Rust twin of [`TRACE_HOOKS`]: scene 0 a sphere, 1 a box, 2 a sphere
+/// in front of a box (two objects: groups end where the nearest changes), 3
+/// two thin plates, one seen face-on, one obliquely (the thin-shell rule of
+/// `group_mask`).
+struct TraceScene(u32);
+
+impl TraceScene {
+    fn sd_box(p: Vec3, c: Vec3, b: Vec3) -> f32 {
+        let q = (p - c).abs() - b;
+        q.max(Vec3::ZERO).length() + q.x.max(q.y.max(q.z)).min(0.0)
+    }
+
+    fn nearest(a: (f32, u32), b: (f32, u32)) -> (f32, u32) {
+        if a.0 < b.0 {
+            a
+        } else {
+            b
+        }
+    }
+
+    fn shade(p: Vec3, n: Vec3, dir: Vec3) -> Vec3 {
+        (Vec3::splat(0.5) + 0.5 * n) * (0.5 + 0.1 * p.z) + Vec3::new(0.25 * dir.x.abs(), 0.0, 0.0)
+    }
+}
+
+impl subcone_kernels::ctss::ConeField for TraceScene {
+    fn sample(&mut self, p: Vec3) -> subcone_kernels::ctss::FieldSample {
+        let (d, object) = match self.0 {
+            0 => ((p - Vec3::new(0.0, 0.0, 5.0)).length() - 1.0, 1),
+            1 => (
+                Self::sd_box(p, Vec3::new(0.0, 0.0, 5.0), Vec3::new(0.8, 0.5, 0.6)),
+                2,
+            ),
+            2 => Self::nearest(
+                ((p - Vec3::new(0.3, 0.2, 3.5)).length() - 0.6, 1),
+                (
+                    Self::sd_box(p, Vec3::new(0.0, 0.0, 5.0), Vec3::new(1.0, 0.7, 0.5)),
+                    2,
+                ),
+            ),
+            _ => Self::nearest(
+                (
+                    Self::sd_box(p, Vec3::new(-0.6, 0.0, 4.0), Vec3::new(0.6, 0.6, 0.01)),
+                    3,
+                ),
+                (
+                    Self::sd_box(p, Vec3::new(0.5, 0.0, 5.0), Vec3::new(0.01, 0.8, 1.5)),
+                    4,
+                ),
+            ),
+        };
+        subcone_kernels::ctss::FieldSample {
+            distance: d,
+            step: d,
+            object,
+        }
+    }
+}
+
+/// The whole CTSS trace, `subcone_ctss_trace` against `ctss::trace_field`
+/// (march, group masks, §5.3 splits, eq. 6), on [`TraceScene`]'s four
+/// scenes: rays from the origin through the scenes' silhouettes, edges and
+/// plates (and past them), with random cone widths and the configurations
+/// the renderers use: the default, `FLAG_PAPER`, `FLAG_SPLIT_GROUPS` with
+/// and without it, CTSS-R, a visibility threshold, the authors' code.
+/// Decisions exactly (up to [`CTSS_TRACE_FLIPS_PER_200`]), colours within
+/// [`TOL_CTSS_TRACE`].
+fn check_ctss_trace(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
+    use subcone_kernels::ctss::{cross_section_frame, trace_field, CtssParams, SplitRay};
+    let configs: [fn(CtssParams) -> CtssParams; 7] = [
+        |p| p,
+        |p| p.paper(true),
+        |p| p.with_split_groups(true),
+        |p| p.with_split_groups(true).paper(true),
+        |p| p.relaxed(true),
+        |p| p.with_visibility_k(20).with_split_groups(true),
+        |p| p.authors_code(),
+    ];
+    // Half the rays anywhere in view, half through the ring (at z = 5) where
+    // the sphere's silhouette and the boxes' and plates' edges lie.
+    let aim = prop_oneof![
+        (-1.7f32..1.7, -1.3f32..1.3),
+        (0.45f32..1.15, 0.0f32..std::f32::consts::TAU)
+            .prop_map(|(r, a)| (r * a.cos(), r * a.sin())),
+    ];
+    let cases: Vec<(u32, (f32, f32), f32, usize)> =
+        generate((0u32..4, aim, 0.003f32..0.04, 0usize..7), 11);
+    let background = Vec3::new(0.1, 0.2, 0.9);
+    let mut rays = Vec::new();
+    let mut input = Vec::new();
+    for &(scene, (x, y), tan, config) in &cases {
+        let params = configs[config](CtssParams::new(tan))
+            .with_range(0.0, 100.0)
+            .with_max_steps(256);
+        let dir = Vec3::new(x, y, 5.0).normalize();
+        let (right, up) = cross_section_frame(dir, Vec3::Y);
+        let ray = SplitRay {
+            origin: Vec3::ZERO,
+            dir,
+            right,
+            up,
+        };
+        input.extend(words(&[
+            params.tan_theta,
+            params.alpha,
+            params.eps,
+            params.t_min,
+            params.t_max,
+            params.min_sample_weight,
+        ]));
+        input.extend([
+            params.max_steps,
+            params.max_samples,
+            params.visibility_k,
+            params.flags,
+            0,
+            0,
+        ]);
+        for v in [ray.origin, ray.dir, ray.right, ray.up] {
+            input.extend(words(&v.to_array()));
+        }
+        input.push(scene);
+        rays.push((scene, params, ray));
+    }
+    let body = "trace_scene = u(24u);
+         let params = subcone_CtssParams(f(0u), f(1u), f(2u), f(3u), f(4u), f(5u), u(6u), u(7u), u(8u), u(9u), 0u, 0u);
+         let r = subcone_ctss_trace(params, v3(12u), v3(15u), v3(18u), v3(21u), vec3<f32>(0.1, 0.2, 0.9));
+         out[o] = bitcast<u32>(r.color.x); out[o + 1u] = bitcast<u32>(r.color.y); out[o + 2u] = bitcast<u32>(r.color.z);
+         out[o + 3u] = r.samples; out[o + 4u] = r.steps; out[o + 5u] = r.coverage; out[o + 6u] = r.stop;";
+    let library = [lib.ctss.as_str(), &lib.trace].concat();
+    let out = run(ctx, &library, body, 25, 7, &input)?;
+    let stop_code = |s: subcone_kernels::ctss::StopReason| {
+        use subcone_kernels::ctss::StopReason::*;
+        match s {
+            FullOcclusion => 1,
+            HardHit => 2,
+            VisibilityThreshold => 3,
+            SampleCap => 4,
+            MaxDistance => 5,
+            StepBudget => 6,
+            InvalidDistance => 7,
+        }
+    };
+    let mut colour = Report::new("subcone_ctss_trace");
+    let mut decisions = Report::new("subcone_ctss_trace (counts, mask, stop)");
+    let mut flipped = Vec::new();
+    let (mut split_rays, mut multi_group_rays) = (0usize, 0usize);
+    for (k, (scene, params, ray)) in rays.iter().enumerate() {
+        let g = &out[7 * k..7 * k + 7];
+        let r = trace_field(
+            params,
+            ray,
+            &mut TraceScene(*scene),
+            TraceScene::shade,
+            background,
+        );
+        let rust = [r.samples, r.steps, r.coverage, stop_code(r.stop)];
+        let case = (scene, params.tan_theta, params.flags, ray.dir);
+        if rust[..] != g[3..] {
+            flipped.push((case, rust, [g[3], g[4], g[5], g[6]]));
+            continue;
+        }
+        if params.splits_groups() && r.samples > 1 {
+            split_rays += 1;
+        }
+        if r.samples > 1 {
+            multi_group_rays += 1;
+        }
+        decisions.exact(&case, 1, 1);
+        colour.floats(TOL_CTSS_TRACE, &case, &r.color.to_array(), &floats(&g[..3]));
+    }
+    // Too many flips: every one is a failure.
+    if flipped.len() * 200 > rays.len() * CTSS_TRACE_FLIPS_PER_200 {
+        for (case, rust, gpu) in &flipped {
+            decisions.inputs += 1;
+            decisions.failed += 1;
+            decisions.worst = 1.0;
+            if decisions.failures.len() < 5 {
+                decisions.failures.push(format!(
+                    "input {case:?}: rust (samples, steps, coverage, stop) {rust:?}, wgsl {gpu:?}"
+                ));
+            }
+        }
+    }
+    let mut d = decisions.finish();
+    if let Ok(line) = &mut d {
+        let _ = write!(
+            line,
+            " | {} of {} rays with a flipped decision; {multi_group_rays} rays with several samples, {split_rays} of them with split groups",
+            flipped.len(),
+            rays.len()
+        );
+        // The check must exercise what it claims to.
+        if multi_group_rays * 20 < rays.len() || split_rays * 50 < rays.len() {
+            return Err(format!(
+                "{line}\n  too few rays with several groups or splits"
+            ));
+        }
+    }
+    join(d, colour.finish())
+}
+
+const CHECKS: [(&str, Check); 9] = [
     ("weights", check_weights),
     ("material", check_material),
     ("resolve", check_resolve),
@@ -1889,6 +2163,7 @@ const CHECKS: [(&str, Check); 10] = [
     ("ao", check_ao),
     ("transparency", check_transparency),
     ("stepper", check_stepper),
+    ("ctss trace", check_ctss_trace),
 ];
 
 #[test]
@@ -1919,7 +2194,7 @@ fn wgsl_kernels_match_the_rust_kernels() {
 fn perturbed_kernels_are_caught() {
     let Some(gpu) = gpu() else { return };
     let ctx = gpu.context();
-    let perturbations: [(&str, &str, &str, Check); 12] = [
+    let perturbations: [(&str, &str, &str, Check); 14] = [
         (
             "bilateral weight off by 1e-3",
             "return subcone_saturate(w);",
@@ -1992,12 +2267,25 @@ fn perturbed_kernels_are_caught() {
             "        (*s).passing = 0u;",
             check_stepper,
         ),
+        (
+            "CTSS group masks from the sample normal instead of the peak's",
+            "let peak = subcone_group_normal_at(ray, sample, normal, sample.t_occlusion, tan);",
+            "let peak = normal;",
+            check_ctss_trace,
+        ),
+        (
+            "ctss+edges never splits",
+            "if subcone_group_needs_split(hit.normal",
+            "if false && subcone_group_needs_split(hit.normal",
+            check_ctss_trace,
+        ),
     ];
     for (what, from, to, check) in perturbations {
         let shipped = Library::shipped();
         assert!(
             shipped.sraa.contains(from)
                 || shipped.ctss.contains(from)
+                || shipped.trace.contains(from)
                 || shipped.fxaa.contains(from)
                 || shipped.ao.contains(from)
                 || shipped.transparency.contains(from)
@@ -2007,6 +2295,7 @@ fn perturbed_kernels_are_caught() {
         let lib = Library {
             sraa: shipped.sraa.replacen(from, to, 1),
             ctss: shipped.ctss.replacen(from, to, 1),
+            trace: shipped.trace.replacen(from, to, 1),
             fxaa: shipped.fxaa.replacen(from, to, 1),
             ao: shipped.ao.replacen(from, to, 1),
             transparency: shipped.transparency.replacen(from, to, 1),

@@ -76,16 +76,11 @@ pub enum LeftOutOf {
 /// Methods of [`METHOD_NAMES`] the per-scene cases leave out, where, and
 /// why. Every other listed name whose technique applies to a scene
 /// ([`required_passes`] accepts it) runs on it: [`methods_for`].
-pub const LEFT_OUT: [(&str, LeftOutOf, &str); 5] = [
+pub const LEFT_OUT: [(&str, LeftOutOf, &str); 4] = [
     (
         "ssaa16",
         LeftOutOf::SdfScenes,
         "16 sphere-traced samples per pixel cost seconds per frame on a software GPU; ssaa4 runs the same code",
-    ),
-    (
-        "ctss+edges",
-        LeftOutOf::SdfScenes,
-        "CPU-only: `cpu_only_methods` renders it on every SDF scene and checks the refusals",
     ),
     (
         "sraa-rt+mat",
@@ -129,7 +124,7 @@ pub fn methods_for(scene: &Scene) -> Vec<&'static str> {
 /// where they are also in [`methods_for`] an SDF scene, the per-scene cases check the
 /// refusal too. Any other refusal of a method in the scene lists, but a
 /// technique that does not apply to the scene, fails the suite.
-pub const CPU_ONLY_ON_SDF: [(&str, &str); 3] = [
+pub const CPU_ONLY_ON_SDF: [(&str, &str); 2] = [
     (
         "sraa-rt",
         "sphere-traced subpixel geometry and its reconstruction exist on the CPU only",
@@ -137,10 +132,6 @@ pub const CPU_ONLY_ON_SDF: [(&str, &str); 3] = [
     (
         "sraa-rt-paper",
         "sphere-traced subpixel geometry and its reconstruction exist on the CPU only",
-    ),
-    (
-        "ctss+edges",
-        "hit group subdivision (CTSS §5.3) has no WGSL twin",
     ),
 ];
 

@@ -34,13 +34,41 @@
 /// [`crate::transparency::WGSL`] (see [`crate::wgsl`]).
 pub const WGSL: &str = include_str!("ctss.wgsl");
 
-/// The WGSL mirror of [`group_mask`] (`subcone_group_mask`, with
-/// `subcone_normal_step`, `FACE_ON_COS` and `SHELL_LENGTH`): concatenate after
-/// [`WGSL`]. The field is the including shader's, through the hooks
-/// `subcone_field(p) -> vec3<f32>` (distance, safe step, object id as `f32`)
-/// and `subcone_normal(p, h) -> vec3<f32>` ([`ConeField::sample`] and
-/// [`ConeField::normal`]).
-pub const GROUP_MASK_WGSL: &str = include_str!("ctss/group_mask.wgsl");
+/// The WGSL mirror of [`trace_field`] (with [`march`], [`group_mask`],
+/// [`shade_split`] and the §5.3 split kernels [`group_needs_split`],
+/// [`split_weights`], [`split_direction`], [`split_trace_params`],
+/// [`split_group`], [`coarse_normal_step`], [`normal_step`],
+/// [`tetra_normal`]): `subcone_ctss_trace(params, origin, dir, right, up,
+/// background) -> subcone_CtssTraceResult` (colour, samples, steps, coverage,
+/// stop code). Concatenate after [`WGSL`] (which needs `PARAMS`, `cone`,
+/// `mask` and `aggregate`).
+///
+/// The scene is the including shader's, through hooks it defines (the
+/// [`ConeField`] trait and `trace_field`'s `shade` closure):
+///
+/// - `fn subcone_field(p: vec3<f32>) -> vec3<f32>`: [`ConeField::sample`] as
+///   (signed distance, safe step `≤` distance, object id). The id is an exact
+///   integer held in an `f32` (every integer below 2²⁴ is exact; a material
+///   index, say); a negative or NaN id is [`NO_OBJECT`].
+/// - `fn subcone_normal(p: vec3<f32>, h: f32) -> vec3<f32>`:
+///   [`ConeField::normal`] with difference step `h`; `return
+///   subcone_tetra_normal(p, h);` is the trait's default ([`tetra_normal`] of
+///   `subcone_field`'s distance). It is also the coarse normal of
+///   `ctss+edges` ([`ConeField::coarse_normal`]'s default).
+/// - `fn subcone_shade(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> vec3<f32>`:
+///   the colour of a surface point seen along `dir`. Work the host counts
+///   while shading (shadow rays) goes into a `var<private>` of its own.
+/// - `const subcone_CTSS_BATCH: u32` (≥ 1): the hit groups the trace marches
+///   ahead of shading them. The groups wait in order and are shaded together,
+///   so the lanes of a SIMD group march together and shade together: the
+///   GPU's bounded form of delayed shading (§5.1). Eq. 6 adds the same terms
+///   in the same order whatever the batch, so the result does not depend on
+///   it.
+///
+/// [`WGSL`]'s own hook `ctss_field` (for `subcone_sphere_trace_split`, the
+/// NoAA trace) is independent of these: the sub-traces of a split group run
+/// on `subcone_field`.
+pub const TRACE_WGSL: &str = include_str!("ctss/trace.wgsl");
 
 use glam::{Vec2, Vec3};
 
@@ -62,7 +90,8 @@ use crate::transparency::{is_opaque, level_weight, TransparencyAccumulator};
 pub const FLAG_RELAXED: u32 = 1;
 /// `flags` bit: subdivide hit groups whose normal varies across the cone or
 /// that are long for their depth, and shade them with extra samples (§5.3,
-/// [`group_needs_split`], [`split_group`]). Off by default; CPU only.
+/// [`group_needs_split`], [`split_group`]). Off by default; both backends
+/// (the WGSL twin is [`TRACE_WGSL`]).
 pub const FLAG_SPLIT_GROUPS: u32 = 1 << 1;
 /// `flags` bit: the paper's hit groups and masks (the `-paper` methods). A
 /// group then runs as long as the cone touches any surface, and its mask is

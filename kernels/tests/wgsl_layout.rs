@@ -28,12 +28,10 @@ const KERNELS: &[(&str, &str)] = &[
     // The stepper's SDF is the including shader's: a sphere stands in for it.
     ("the caller's ctss_field", CTSS_FIELD),
     ("ctss::WGSL", subcone_kernels::ctss::WGSL),
-    // group_mask's field is the including shader's: a sphere stands in for it.
-    ("the caller's subcone_field and subcone_normal", CONE_FIELD),
-    (
-        "ctss::GROUP_MASK_WGSL",
-        subcone_kernels::ctss::GROUP_MASK_WGSL,
-    ),
+    // The trace's field, normal, shading and batch are the including
+    // shader's: a sphere, its normal and white stand in for them.
+    ("the caller's subcone_field etc.", CTSS_TRACE_HOOKS),
+    ("ctss::TRACE_WGSL", subcone_kernels::ctss::TRACE_WGSL),
     // The pixel fetch is the including shader's: a constant stands in for it.
     ("the caller's fxaa_fetch", FXAA_FETCH),
     ("fxaa::WGSL", subcone_kernels::fxaa::WGSL),
@@ -48,9 +46,13 @@ const FXAA_FETCH: &str =
 const CTSS_FIELD: &str =
     "fn ctss_field(p: vec3<f32>) -> vec2<f32> { let d = length(p) - 1.0; return vec2<f32>(d, d); }";
 
-/// The hooks `ctss/group_mask.wgsl` expects its including shader to define.
-const CONE_FIELD: &str = "fn subcone_field(p: vec3<f32>) -> vec3<f32> { let d = length(p) - 1.0; return vec3<f32>(d, d, 0.0); }
-fn subcone_normal(p: vec3<f32>, h: f32) -> vec3<f32> { return normalize(p); }";
+/// The hooks `ctss/trace.wgsl` expects its including shader to define.
+const CTSS_TRACE_HOOKS: &str = "
+fn subcone_field(p: vec3<f32>) -> vec3<f32> { let d = length(p) - 1.0; return vec3<f32>(d, d, 0.0); }
+fn subcone_normal(p: vec3<f32>, h: f32) -> vec3<f32> { return normalize(p); }
+fn subcone_shade(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> vec3<f32> { return vec3<f32>(1.0); }
+const subcone_CTSS_BATCH: u32 = 8u;
+";
 
 /// One WGSL member expected at a Rust offset with a Rust size.
 #[derive(Debug)]

@@ -134,7 +134,7 @@ pub enum UnsupportedReason {
     },
     /// Implemented by the CPU backend only.
     CpuOnly {
-        /// What only the CPU backend renders (e.g. `"ctss+edges"`).
+        /// What only the CPU backend renders (e.g. `"sraa-rt on SDF scenes"`).
         what: &'static str,
         /// What this backend lacks for it.
         why: &'static str,

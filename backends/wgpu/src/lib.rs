@@ -125,9 +125,6 @@ impl WgpuBackend {
             if method.technique.is_subpixel_reconstruction() {
                 return refuse(sdf::SRAA_RT_CPU_ONLY);
             }
-            if method.split_groups {
-                return refuse(sdf::CTSS_EDGES_CPU_ONLY);
-            }
             let side = match method.technique {
                 Technique::Ssaa | Technique::SsaaCtss => method.ssaa_side.max(1),
                 _ => 1,
@@ -163,8 +160,7 @@ impl Backend for WgpuBackend {
     /// Refuses what the kernels refuse (`required_passes`) and
     /// semi-transparent materials; on triangle scenes more than
     /// [`MAX_LIGHTS`] lights; on SDF scenes mirror reflections, the material
-    /// gate, the CPU-only methods (sraa-rt, [`sdf::SRAA_RT_CPU_ONLY`];
-    /// ctss+edges, [`sdf::CTSS_EDGES_CPU_ONLY`]) and more than
+    /// gate, the CPU-only method sraa-rt ([`sdf::SRAA_RT_CPU_ONLY`]) and more than
     /// [`sdf::MAX_SIDE_SAMPLES`] samples per pixel side.
     fn supports(&self, scene: &Scene, method: &Method) -> Result<(), Unsupported> {
         self.plan(scene, method, Passes::empty()).map(|_| ())

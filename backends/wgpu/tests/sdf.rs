@@ -33,7 +33,15 @@ fn compare(a: &Frame, b: &Frame) -> (f32, f32) {
     ((sum / (3 * n) as f64) as f32, bad as f32 / n as f32)
 }
 
-const METHODS: [&str; 5] = ["noaa", "ssaa4", "ctss", "ctss-r", "ssaa4+ctss"];
+const METHODS: [&str; 7] = [
+    "noaa",
+    "ssaa4",
+    "ctss",
+    "ctss-paper",
+    "ctss+edges",
+    "ctss-r",
+    "ssaa4+ctss",
+];
 
 /// Thresholds: sphere and cone tracing decide hits by comparisons of f32
 /// values that the GPU computes within a few ulps of the CPU; a flipped

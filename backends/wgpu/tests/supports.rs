@@ -33,7 +33,6 @@ fn refuses_what_it_lacks() {
     use UnsupportedReason as R;
     assert!(refused(&|r| matches!(r, R::Technique(_))));
     assert!(refused(&|r| *r == subcone_wgpu::sdf::SRAA_RT_CPU_ONLY));
-    assert!(refused(&|r| *r == subcone_wgpu::sdf::CTSS_EDGES_CPU_ONLY));
     assert!(refused(&|r| matches!(
         r,
         R::TooManyLights { lights: 9, max: 8 }

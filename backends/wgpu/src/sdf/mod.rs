@@ -1,4 +1,5 @@
-//! SDF scenes on the GPU: NoAA, SSAA, CTSS, CTSS-R and SSAA+CTSS as one compute
+//! SDF scenes on the GPU: NoAA, SSAA, CTSS (with `ctss+edges`' group splits,
+//! §5.3), CTSS-R and SSAA+CTSS as one compute
 //! pass each, producing the images of the CPU reference
 //! (`subcone_cpu::sphere::SdfView`). SRAA-RT on SDF scenes is CPU-only
 //! ([`SRAA_RT_CPU_ONLY`]).
@@ -16,8 +17,10 @@
 //!
 //! The scene's tree is compiled to WGSL ([`subcone_scene::sdf::SdfNode::to_wgsl`]), its materials
 //! and lights to WGSL constants (`shading.rs`), and concatenated with the
-//! kernels' WGSL (`cone`, `mask`, `aggregate`, `ctss`: Algorithm 1 of CTSS,
-//! eq. 3–10) and this module's entry points (`trace.wgsl`): one invocation per
+//! kernels' WGSL (`cone`, `mask`, `aggregate`, `ctss` and its trace
+//! `subcone_ctss_trace`, the twin of the CPU's `ctss::trace_field`: Algorithm
+//! 1 of CTSS, eq. 3–10, the group masks and §5.3's splits) and this module's
+//! entry points (`trace.wgsl`), which give the trace its hooks: one invocation per
 //! pixel traces its `side × side` samples exactly as the CPU does (same rays,
 //! same stepper, same normals, same shading, hard shadows inline). Only what
 //! the passes need is built: no light loop without [`Passes::SHADOW`], no AOV
@@ -61,8 +64,9 @@ use crate::Job;
 pub(crate) const TRACE_WGSL: &str = include_str!("trace.wgsl");
 const AOVS_WGSL: &str = include_str!("aovs.wgsl");
 const WORKGROUP: u32 = 8;
-/// Samples a cone marches ahead of shading them (the `PENDING` of
-/// trace.wgsl) for ASAP methods.
+/// Hit groups a cone marches ahead of shading them (the
+/// `subcone_CTSS_BATCH` of the kernels' `subcone_ctss_trace`) for ASAP
+/// methods.
 const ASAP_BATCH: u32 = 8;
 /// The same for delayed shading (`ctss-delayed`): enough for every cone of
 /// the built-in SDF scenes to be traced completely before it is shaded.
@@ -77,36 +81,25 @@ pub const SRAA_RT_CPU_ONLY: UnsupportedReason = UnsupportedReason::CpuOnly {
     why: "sphere-traced subsamples and their reconstruction have no WGSL twin",
 };
 
-/// Why `ctss+edges` is refused: hit group subdivision (CTSS §5.3,
-/// `subcone_kernels::ctss::ConeStepper::split_group`) has no WGSL twin.
-pub const CTSS_EDGES_CPU_ONLY: UnsupportedReason = UnsupportedReason::CpuOnly {
-    what: "ctss+edges",
-    why: "hit group subdivision, CTSS §5.3, has no WGSL twin",
-};
-
 /// Most samples per pixel side (`ssaaN`, `ssaaN+ctss`) one invocation traces.
 pub const MAX_SIDE_SAMPLES: u32 = 64;
 
 /// The kernels' WGSL every SDF shader includes, after the prelude (the
 /// stepper carries the K masks of CTSS §5.3, `transparency`).
-const KERNELS: [&str; 5] = [
+const KERNELS: [&str; 6] = [
     subcone_kernels::cone::WGSL,
     subcone_kernels::mask::WGSL,
     subcone_kernels::aggregate::WGSL,
     subcone_kernels::transparency::WGSL,
     subcone_kernels::ctss::WGSL,
+    subcone_kernels::ctss::TRACE_WGSL,
 ];
 
 /// The semi-transparent path (CTSS §5.3): the twins of the CPU's
 /// `ctss_translucent` and `noaa_translucent`, with their entry point
-/// `sdf_render_translucent`; after `trace.wgsl` and
-/// [`subcone_kernels::ctss::GROUP_MASK_WGSL`].
+/// `sdf_render_translucent`; after `trace.wgsl` (whose field hooks
+/// [`subcone_kernels::ctss::TRACE_WGSL`]'s `subcone_group_mask` reads).
 const TRANSLUCENT_WGSL: &str = include_str!("translucent.wgsl");
-
-/// The field hooks `subcone_field` and `subcone_normal` that
-/// [`subcone_kernels::ctss::GROUP_MASK_WGSL`] reads the scene through (the
-/// CPU's `ConeFieldOf`), for the semi-transparent path.
-const FIELD_HOOKS_WGSL: &str = include_str!("field_hooks.wgsl");
 
 /// The field's scatter table on the device, uploaded once per device and
 /// table (`None` when the field has none).
@@ -143,6 +136,7 @@ fn ctss_params(tan: f32, method: &Method, max_distance: f32, max_steps: u32) -> 
         .with_max_steps(max_steps)
         .relaxed(method.technique == Technique::CtssR)
         .with_visibility_k(method.visibility_k)
+        .with_split_groups(method.split_groups)
         .paper(method.ctss_paper)
 }
 
@@ -180,8 +174,8 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     let g = scene
         .sdf_geometry()
         .ok_or_else(|| err("not an SDF scene"))?;
-    // `WgpuBackend::plan` has refused mirrors, SRAA-RT, ctss+edges and more
-    // than MAX_SIDE_SAMPLES samples per side.
+    // `WgpuBackend::plan` has refused mirrors, SRAA-RT and more than
+    // MAX_SIDE_SAMPLES samples per side.
     let max_distance = settings.max_distance.unwrap_or(g.max_distance);
     let max_steps = settings.max_steps.unwrap_or(g.max_steps);
     if max_distance.is_nan() {
@@ -247,18 +241,14 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         b.storage(ctx, "aovs", "aov_out", "array<vec4<f32>>", px_bytes)?;
     }
     let shading = shading::shading_wgsl(&scene.materials, &scene.lights, shadows)?;
-    let pending = format!("const PENDING: u32 = {batch}u;\n");
+    let pending = format!("const subcone_CTSS_BATCH: u32 = {batch}u;\n");
     let mut sources: Vec<&str> = KERNELS.to_vec();
     sources.extend([field.source.as_str(), &shading, &pending, TRACE_WGSL]);
     // Semi-transparent materials take the K-mask path (CTSS §5.3), as on
     // the CPU (`SdfView::render`); opaque scenes never compile it.
     let translucent = scene.has_translucency();
     if translucent {
-        sources.extend([
-            FIELD_HOOKS_WGSL,
-            subcone_kernels::ctss::GROUP_MASK_WGSL,
-            TRANSLUCENT_WGSL,
-        ]);
+        sources.push(TRANSLUCENT_WGSL);
     }
     if settings.aovs {
         sources.push(AOVS_WGSL);

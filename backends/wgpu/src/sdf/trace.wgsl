@@ -2,7 +2,7 @@
 // SSAA+CTSS) of one pixel per invocation, mirroring
 // subcone_cpu::sphere::SdfView::{render, noaa, ctss, shade, shadowed, normal_at}.
 //
-// Concatenated after PARAMS, the kernels' cone/mask/aggregate/ctss WGSL, the
+// Concatenated after PARAMS, the kernels' cone/mask/aggregate/ctss/ctss trace WGSL, the
 // field (scene_sdf_split) and the scene's materials and lights (shading.rs).
 
 // Per-frame constants (sdf/mod.rs SdfFrame).
@@ -141,72 +141,42 @@ fn noaa_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: p
     return frame.background;
 }
 
-// PENDING, the samples shaded together in ctss_sample (the authors'
-// CTSS_NUM_SAMPLES), is declared by sdf/mod.rs before this file: 8 for ASAP
-// methods, DELAYED_BATCH for delayed shading.
+// The hooks of the kernels' subcone_ctss_trace (ctss/trace.wgsl): the field
+// as SdfView's ConeFieldOf reads it (surface distance, safe step, material as
+// the object id; scene_sdf_split returns (safe, surface, material)), its normal
+// (normal_surface, SdfNode::normal) and its shading. subcone_CTSS_BATCH is
+// declared by sdf/mod.rs before this file: 8 for ASAP methods, DELAYED_BATCH
+// for delayed shading.
+fn subcone_field(p: vec3<f32>) -> vec3<f32> {
+    let r = scene_sdf_split(p);
+    return vec3<f32>(r.y, r.x, r.z);
+}
 
-// SdfView::ctss: one cone-traced sample (Algorithm 1 through subcone_ConeStepper).
+fn subcone_normal(p: vec3<f32>, h: f32) -> vec3<f32> {
+    return normal_surface(p, h);
+}
+
+// Shadow rays traced by subcone_shade in the current cone (SdfView's
+// Tally::shadow); ctss_sample hands them on to counts_out.
+var<private> ctss_shadow_rays: u32;
+
+fn subcone_shade(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> vec3<f32> {
+    var count = 0u;
+    let c = shade(p, n, dir, &count);
+    ctss_shadow_rays += count;
+    return c;
+}
+
+// SdfView::ctss: one cone-traced sample, the kernels' trace_field
+// (subcone_ctss_trace).
 fn ctss_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: ptr<function, u32>, shadow: ptr<function, u32>) -> vec3<f32> {
     let axes = subcone_cross_section_frame(d, frame.up);
-    var st = subcone_cone_stepper_new(ctss);
-    var agg = subcone_aggregate_new();
-    let placement = subcone_ctss_placement(ctss);
-    // advance_split evaluates at most max_steps times and stops within two
-    // more calls: the bounds never cut a trace short.
-    let budget = min(ctss.max_steps, 0x7fffffffu) + 4u;
-    // Samples wait here, in order, and are shaded together when the march
-    // ends or PENDING of them wait: the lanes of a SIMD group march together
-    // and shade together, instead of idling while one lane traces shadows.
-    // Eq. 6 adds them in the same order as the CPU, so the result is the same.
-    var pending: array<vec4<f32>, PENDING>;
-    var pending_w: array<f32, PENDING>;
-    var done = false;
-    for (var round_i = 0u; round_i < budget && !done; round_i++) {
-        var k = 0u;
-        for (var i = 0u; i < budget; i++) {
-            let f = scene_sdf_split(o + st.t * d);
-            let ev = subcone_cone_stepper_advance_split(&st, f.y, f.x);
-            if ev.kind == subcone_EVENT_STOP {
-                done = true;
-                break;
-            }
-            if ev.kind == subcone_EVENT_SAMPLE {
-                let s = ev.sample;
-                // Shading normal at the sample point; the mask's normal where
-                // the group's peak occlusion was measured, only when the mask
-                // needs it.
-                var n = vec3<f32>(0.0);
-                var nm = vec3<f32>(0.0);
-                for (var j = 0u; j < 2u; j++) {
-                    let tt = select(s.t, s.t_occlusion, j == 1u);
-                    if j == 1u && !(s.t_occlusion != s.t && subcone_needs_normal(s.occlusion, placement)) {
-                        nm = n;
-                        break;
-                    }
-                    let nn = normal_at(o + tt * d, tt, ctss.tan_theta);
-                    if j == 0u {
-                        n = nn;
-                    } else {
-                        nm = nn;
-                    }
-                }
-                let rec = subcone_cone_stepper_record(&st, s, subcone_project_normal(nm, axes[0], axes[1]));
-                pending[k] = vec4<f32>(n, s.t);
-                pending_w[k] = bitcast<f32>(rec.y);
-                k += 1u;
-                if k == PENDING {
-                    break;
-                }
-            }
-        }
-        for (var j = 0u; j < k; j++) {
-            let q = o + pending[j].w * d;
-            subcone_aggregate_add(&agg, pending_w[j], shade(q, pending[j].xyz, d, shadow));
-        }
-    }
-    *steps += st.steps;
-    *samples += st.samples;
-    return subcone_aggregate_resolve(agg, frame.background, subcone_cone_stepper_background_weight(st));
+    ctss_shadow_rays = 0u;
+    let r = subcone_ctss_trace(ctss, o, d, axes[0], axes[1], frame.background);
+    *steps += r.steps;
+    *samples += r.samples;
+    *shadow += ctss_shadow_rays;
+    return r.color;
 }
 
 // SdfView::render, one pixel: side × side samples at sub-pixel centres.

@@ -11,7 +11,8 @@
 //
 // Concatenated after trace.wgsl (frame, ctss, ctss_field, normal_surface,
 // normal_at, shade, camera_dir), the kernels' transparency.wgsl, ctss.wgsl
-// and ctss/group_mask.wgsl (with its field hooks, field_hooks.wgsl), and
+// and ctss/trace.wgsl (subcone_group_mask, through trace.wgsl's field hooks),
+// and
 // shading.rs's material_opacity. sdf/mod.rs
 // runs this file's entry point, sdf_render_translucent, instead of
 // sdf_render when the scene has translucency.
@@ -27,7 +28,7 @@ const PASS_STEP: f32 = 0.04;
 fn translucent_record(st: ptr<function, subcone_ConeStepper>, agg: ptr<function, subcone_Aggregate>, o: vec3<f32>, d: vec3<f32>, axes: mat2x3<f32>, s: subcone_GroupSample, m: u32, shadow: ptr<function, u32>) {
     let q = o + s.t * d;
     let n = normal_at(q, s.t, ctss.tan_theta);
-    let mask = subcone_group_mask(ctss, o, d, axes[0], axes[1], s, n);
+    let mask = subcone_group_mask(ctss, subcone_SplitRay(o, d, axes[0], axes[1]), s, n);
     let rec = subcone_cone_stepper_record_alpha_mask(st, mask, material_opacity(m));
     subcone_aggregate_add(agg, bitcast<f32>(rec.y), shade(q, n, d, shadow));
 }
