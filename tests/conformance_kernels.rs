@@ -453,7 +453,7 @@ fn floats(w: &[u32]) -> Vec<f32> {
 struct Library {
     sraa: String,
     ctss: String,
-    /// `ctss::WGSL` and `ctss::TRACE_WGSL` with the test's hooks
+    /// `transparency::WGSL` (the stepper carries the K masks), `ctss::WGSL` and `ctss::TRACE_WGSL` with the test's hooks
     /// ([`TRACE_HOOKS`]); run after `ctss`.
     trace: String,
     fxaa: String,
@@ -468,7 +468,7 @@ impl Library {
         Library {
             sraa: [sraa::WGSL, SRAA_PARAMS_AT].concat(),
             ctss: [cone::WGSL, mask::WGSL, aggregate::WGSL].concat(),
-            trace: [ctss::WGSL, TRACE_HOOKS, ctss::TRACE_WGSL].concat(),
+            trace: [transparency::WGSL, ctss::WGSL, TRACE_HOOKS, ctss::TRACE_WGSL].concat(),
             fxaa: [FXAA_FETCH, fxaa::WGSL].concat(),
             ao: ao::WGSL.to_string(),
             transparency: [cone::WGSL, mask::WGSL, transparency::WGSL].concat(),
@@ -1898,7 +1898,6 @@ fn check_stepper(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
     r
 }
 
-const CHECKS: [(&str, Check); 10] = [
 /// The hooks of `ctss::TRACE_WGSL` for [`check_ctss_trace`]: four analytic
 /// scenes chosen per record through `trace_scene` (the twin of
 /// [`TraceScene`]), their tetrahedral normals (`subcone_tetra_normal`, the
@@ -2152,7 +2151,7 @@ fn check_ctss_trace(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
     join(d, colour.finish())
 }
 
-const CHECKS: [(&str, Check); 9] = [
+const CHECKS: [(&str, Check); 11] = [
     ("weights", check_weights),
     ("material", check_material),
     ("resolve", check_resolve),
