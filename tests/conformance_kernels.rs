@@ -468,7 +468,13 @@ impl Library {
         Library {
             sraa: [sraa::WGSL, SRAA_PARAMS_AT].concat(),
             ctss: [cone::WGSL, mask::WGSL, aggregate::WGSL].concat(),
-            trace: [transparency::WGSL, ctss::WGSL, TRACE_HOOKS, ctss::TRACE_WGSL].concat(),
+            trace: [
+                transparency::WGSL,
+                ctss::WGSL,
+                TRACE_HOOKS,
+                ctss::TRACE_WGSL,
+            ]
+            .concat(),
             fxaa: [FXAA_FETCH, fxaa::WGSL].concat(),
             ao: ao::WGSL.to_string(),
             transparency: [cone::WGSL, mask::WGSL, transparency::WGSL].concat(),
