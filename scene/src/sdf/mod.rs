@@ -326,10 +326,11 @@ pub const SDF_SCENES: [&str; 5] = [
 /// Scenes for the stability suite.
 pub const STIFF_SCENES: [&str; 4] = ["thin", "grazing", "far", "non-eikonal"];
 
-/// Scenes with semi-transparent materials (CTSS §5.3): rendered by the CPU
-/// backend with every SDF method; the wgpu backend refuses them (no WGSL twin
-/// of the `K` masks yet), which is why they are not in [`SDF_SCENES`] and the
-/// cross-backend conformance suite.
+/// Scenes with semi-transparent materials (CTSS §5.3): rendered by both
+/// backends with the SDF methods that support them (not `ctss+edges`, not
+/// delayed shading); kept apart from [`SDF_SCENES`] (the paper's scenes) and
+/// checked against the CPU by the conformance suite's
+/// `transparent_scenes_match_the_cpu`.
 pub const TRANSPARENT_SCENES: [&str; 1] = ["glass"];
 
 /// A built-in SDF scene by name ([`SDF_SCENES`], [`STIFF_SCENES`] or
