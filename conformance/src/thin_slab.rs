@@ -109,7 +109,7 @@ pub fn check_thin_slab(backend: &dyn Backend) {
             "{}: thin slab {m}: interior max |Δ| from NoAA {worst:.5}",
             backend.name()
         );
-        if !(worst <= THIN_SLAB_TOLERANCE) {
+        if worst.is_nan() || worst > THIN_SLAB_TOLERANCE {
             failures.push(format!(
                 "{m}: interior max |Δ| {worst} > {THIN_SLAB_TOLERANCE}"
             ));

@@ -17,7 +17,7 @@ fn groups(params: &CtssParams, steps: &[(f32, u32)]) -> Vec<GroupSample> {
     let mut out = Vec::new();
     for &(omega, object) in steps
         .iter()
-        .chain(std::iter::repeat(&(-1.0, NO_OBJECT)).take(4))
+        .chain(std::iter::repeat_n(&(-1.0, NO_OBJECT), 4))
     {
         let rc = cone_radius(st.t(), TAN);
         let d = rc * (1.0 - 2.0 * omega);
