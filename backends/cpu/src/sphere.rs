@@ -2,7 +2,7 @@
 //! CTSS variant with ASAP or delayed shading), and SRAA-RT with its samples
 //! taken by sphere tracing.
 //!
-//! CTSS runs through the kernels' [`ConeStepper`]; this module owns only the SDF
+//! CTSS runs through the kernels' trace ([`subcone_kernels::ctss::trace_field`]); this module owns only the SDF
 //! evaluation, the normals and the shading. NoAA uses the kernels'
 //! [`sphere_trace`](subcone_kernels::ctss::sphere_trace), whose hit threshold is the same cone-based `ω > 0.5 − ε`
 //! with the same ε, step budget and maximum distance (§4), so no CTSS/NoAA ratio

@@ -139,7 +139,7 @@ pub struct GroupHit {
 /// shell. When the normals where the cone first and last touched the group
 /// oppose (`n₁·n₂ < 0`: it saw the front face, then the back face):
 /// - if the shell is a sheet over the cone's whole footprint on it (four
-///   probes in its plane around the crossing, [`sheet_across`]), the mask is
+///   probes in its plane around the crossing, [`SHEET_PROBE`]), the mask is
 ///   full: every ray of the cone crosses it;
 /// - else, when the group is longer than [`SHELL_LENGTH`] cone radii (a
 ///   shell seen obliquely) and the projected normals oppose too, the mask is
