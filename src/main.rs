@@ -28,7 +28,7 @@ enum Command {
         /// A built-in scene name, `sponza`/`sponza-mirror`, or a path to an .obj, .gltf or .glb file.
         #[arg(long, default_value = "cornell")]
         scene: String,
-        /// noaa, ssaaN (N = 4, 9, 16, 64, 256), sraa, sraa-rt, sraa+mat, sraa-rt+mat, the paper presets sraa-paper, sraa-rt-paper, sraa-paper+mat, sraa-rt-paper+mat, ctss, ctss+edges, ctss-r, ssaaN+ctss, fxaa; CTSS methods but ctss+edges take a -delayed suffix.
+        /// noaa, ssaaN (N = 4, 9, 16, 64, 256), sraa, sraa-rt, sraa+mat, sraa-rt+mat, the paper presets sraa-paper, sraa-rt-paper, sraa-paper+mat, sraa-rt-paper+mat, ctss, ctss+edges, ctss-r, ssaaN+ctss, fxaa; CTSS methods but ctss+edges take a -delayed suffix, and every CTSS method a -paper suffix last for the CTSS paper's behaviour (ctss-paper).
         #[arg(long, default_value = "sraa-rt")]
         method: String,
         /// cpu or wgpu.
