@@ -462,10 +462,32 @@ struct subcone_SphereHit {
     stop: u32,
 }
 
+// One step of subcone_kernels::ctss::sphere_trace_split at depth *t, given the
+// field's surface distance d and safe step there: the stop it makes
+// (subcone_STOP_HARD_HIT or subcone_STOP_INVALID_DISTANCE), or
+// subcone_STOP_NONE after moving *t on (eq. 1–2, the hit threshold
+// ω > 0.5 − ε of §4). Shared by the two sphere traces below and in
+// ctss/trace.wgsl, which read different hooks.
+fn subcone_sphere_trace_step(params: subcone_CtssParams, t: ptr<function, f32>, d: f32, step: f32) -> u32 {
+    if subcone_is_nan(d) {
+        return subcone_STOP_INVALID_DISTANCE;
+    }
+    let rc = subcone_cone_radius(*t, params.tan_theta);
+    if subcone_cone_occlusion(d, rc) > subcone_occlusion_thresholds(params.eps).y {
+        return subcone_STOP_HARD_HIT;
+    }
+    // Rust's f32::min: a NaN step yields d.
+    var m = d;
+    if !subcone_is_nan(step) && step < d {
+        m = step;
+    }
+    *t = subcone_advance(*t, m, 0.0, rc);
+    return subcone_STOP_NONE;
+}
+
 // subcone_kernels::ctss::sphere_trace_split — eq. 1–2 with the hit threshold
 // ω > 0.5 − ε of §4; the field is the caller's ctss_field (surface, safe).
 fn subcone_sphere_trace_split(params: subcone_CtssParams, origin: vec3<f32>, dir: vec3<f32>) -> subcone_SphereHit {
-    let hard = subcone_occlusion_thresholds(params.eps).y;
     var t = 0.0;
     if params.t_min > 0.0 {
         t = params.t_min;
@@ -478,19 +500,11 @@ fn subcone_sphere_trace_split(params: subcone_CtssParams, origin: vec3<f32>, dir
         }
         let f = ctss_field(origin + t * dir);
         steps += 1u;
-        let d = f.x;
-        if subcone_is_nan(d) {
-            return subcone_SphereHit(-1.0, steps, subcone_STOP_INVALID_DISTANCE);
+        let t_hit = t;
+        let stop = subcone_sphere_trace_step(params, &t, f.x, f.y);
+        if stop != subcone_STOP_NONE {
+            return subcone_SphereHit(select(-1.0, t_hit, stop == subcone_STOP_HARD_HIT), steps, stop);
         }
-        let rc = subcone_cone_radius(t, params.tan_theta);
-        if subcone_cone_occlusion(d, rc) > hard {
-            return subcone_SphereHit(t, steps, subcone_STOP_HARD_HIT);
-        }
-        var m = d;
-        if !subcone_is_nan(f.y) && f.y < d {
-            m = f.y;
-        }
-        t = subcone_advance(t, m, 0.0, rc);
     }
     return subcone_SphereHit(-1.0, steps, subcone_STOP_STEP_BUDGET);
 }

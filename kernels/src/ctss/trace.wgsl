@@ -299,7 +299,6 @@ fn subcone_split_trace_params(params: subcone_CtssParams, sample: subcone_GroupS
 // subcone_kernels::ctss::sphere_trace_split over the host's subcone_field
 // (distance, step) instead of ctss_field: the sub-traces of split_group.
 fn subcone_sphere_trace_field(params: subcone_CtssParams, origin: vec3<f32>, dir: vec3<f32>) -> subcone_SphereHit {
-    let hard = subcone_occlusion_thresholds(params.eps).y;
     var t = 0.0;
     if params.t_min > 0.0 {
         t = params.t_min;
@@ -312,19 +311,11 @@ fn subcone_sphere_trace_field(params: subcone_CtssParams, origin: vec3<f32>, dir
         }
         let f = subcone_field_sample(origin + t * dir);
         steps += 1u;
-        let d = f.distance;
-        if subcone_is_nan(d) {
-            return subcone_SphereHit(-1.0, steps, subcone_STOP_INVALID_DISTANCE);
+        let t_hit = t;
+        let stop = subcone_sphere_trace_step(params, &t, f.distance, f.step);
+        if stop != subcone_STOP_NONE {
+            return subcone_SphereHit(select(-1.0, t_hit, stop == subcone_STOP_HARD_HIT), steps, stop);
         }
-        let rc = subcone_cone_radius(t, params.tan_theta);
-        if subcone_cone_occlusion(d, rc) > hard {
-            return subcone_SphereHit(t, steps, subcone_STOP_HARD_HIT);
-        }
-        var m = d;
-        if !subcone_is_nan(f.step) && f.step < d {
-            m = f.step;
-        }
-        t = subcone_advance(t, m, 0.0, rc);
     }
     return subcone_SphereHit(-1.0, steps, subcone_STOP_STEP_BUDGET);
 }
