@@ -96,10 +96,22 @@ const KERNELS: [&str; 6] = [
 ];
 
 /// The semi-transparent path (CTSS §5.3): the twins of the CPU's
-/// `ctss_translucent` and `noaa_translucent`, with their entry point
-/// `sdf_render_translucent`; after `trace.wgsl` (whose field hooks
-/// [`subcone_kernels::ctss::TRACE_WGSL`]'s `subcone_group_mask` reads).
+/// `ctss_translucent` and `noaa_translucent`, as `sdf_render`'s samplers
+/// `pixel_cone_sample` and `pixel_sphere_sample`; after `trace.wgsl` (whose
+/// field hooks [`subcone_kernels::ctss::TRACE_WGSL`]'s `subcone_group_mask`
+/// reads).
 const TRANSLUCENT_WGSL: &str = include_str!("translucent.wgsl");
+
+/// `sdf_render`'s samplers on opaque scenes: `trace.wgsl`'s own. One pixel
+/// loop serves both paths; the translucent one binds its samplers instead.
+const OPAQUE_SAMPLERS: &str = "
+fn pixel_cone_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: ptr<function, u32>, shadow: ptr<function, u32>) -> vec3<f32> {
+    return ctss_sample(o, d, steps, samples, shadow);
+}
+fn pixel_sphere_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: ptr<function, u32>, shadow: ptr<function, u32>) -> vec3<f32> {
+    return noaa_sample(o, d, steps, samples, shadow);
+}
+";
 
 /// The field's scatter table on the device, uploaded once per device and
 /// table (`None` when the field has none).
@@ -247,18 +259,16 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     // Semi-transparent materials take the K-mask path (CTSS §5.3), as on
     // the CPU (`SdfView::render`); opaque scenes never compile it.
     let translucent = scene.has_translucency();
-    if translucent {
-        sources.push(TRANSLUCENT_WGSL);
-    }
+    sources.push(if translucent {
+        TRANSLUCENT_WGSL
+    } else {
+        OPAQUE_SAMPLERS
+    });
     if settings.aovs {
         sources.push(AOVS_WGSL);
     }
     let mut program = Program::new(ctx, "sdf", &sources, &[&b])?;
-    let trace = program.pipeline(if translucent {
-        "sdf_render_translucent"
-    } else {
-        "sdf_render"
-    })?;
+    let trace = program.pipeline("sdf_render")?;
     let name = if cone {
         "cone tracing"
     } else {

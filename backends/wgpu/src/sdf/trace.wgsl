@@ -179,7 +179,10 @@ fn ctss_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: p
     return r.color;
 }
 
-// SdfView::render, one pixel: side × side samples at sub-pixel centres.
+// SdfView::render, one pixel: side × side samples at sub-pixel centres, each
+// through pixel_cone_sample or pixel_sphere_sample, which sdf/mod.rs binds to
+// this file's samplers (ctss_sample, noaa_sample) on opaque scenes and to
+// translucent.wgsl's on semi-transparent ones.
 @compute @workgroup_size(8, 8)
 fn sdf_render(@builtin(global_invocation_id) gid: vec3<u32>) {
     if gid.x >= frame.width || gid.y >= frame.height {
@@ -195,9 +198,9 @@ fn sdf_render(@builtin(global_invocation_id) gid: vec3<u32>) {
             let off = vec2<f32>((f32(sx) + 0.5) / f32(side), (f32(sy) + 0.5) / f32(side));
             let d = camera_dir(vec2<f32>(f32(gid.x), f32(gid.y)) + off);
             if frame.cone != 0u {
-                sum += ctss_sample(frame.position, d, &steps, &samples, &shadow);
+                sum += pixel_cone_sample(frame.position, d, &steps, &samples, &shadow);
             } else {
-                sum += noaa_sample(frame.position, d, &steps, &samples, &shadow);
+                sum += pixel_sphere_sample(frame.position, d, &steps, &samples, &shadow);
             }
         }
     }

@@ -12,10 +12,9 @@
 // Concatenated after trace.wgsl (frame, ctss, ctss_field, normal_surface,
 // normal_at, shade, camera_dir), the kernels' transparency.wgsl, ctss.wgsl
 // and ctss/trace.wgsl (subcone_group_mask, through trace.wgsl's field hooks),
-// and
-// shading.rs's material_opacity. sdf/mod.rs
-// runs this file's entry point, sdf_render_translucent, instead of
-// sdf_render when the scene has translucency.
+// and shading.rs's material_opacity. sdf/mod.rs includes it, in place of
+// OPAQUE_SAMPLERS, when the scene has translucency: its pixel_cone_sample and
+// pixel_sphere_sample are then sdf_render's samplers.
 
 // No group open (SdfView::ctss_translucent's group_material = None).
 const NO_GROUP: u32 = 0xffffffffu;
@@ -155,31 +154,11 @@ fn noaa_translucent_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>
     return color + transmittance * frame.background;
 }
 
-// SdfView::render on the semi-transparent path, one pixel: side × side
-// samples at sub-pixel centres (sdf_render's loop with the translucent
-// samplers).
-@compute @workgroup_size(8, 8)
-fn sdf_render_translucent(@builtin(global_invocation_id) gid: vec3<u32>) {
-    if gid.x >= frame.width || gid.y >= frame.height {
-        return;
-    }
-    let side = max(frame.side, 1u);
-    var steps = 0u;
-    var samples = 0u;
-    var shadow = 0u;
-    var sum = vec3<f32>(0.0);
-    for (var sy = 0u; sy < side; sy++) {
-        for (var sx = 0u; sx < side; sx++) {
-            let off = vec2<f32>((f32(sx) + 0.5) / f32(side), (f32(sy) + 0.5) / f32(side));
-            let d = camera_dir(vec2<f32>(f32(gid.x), f32(gid.y)) + off);
-            if frame.cone != 0u {
-                sum += ctss_translucent_sample(frame.position, d, &steps, &samples, &shadow);
-            } else {
-                sum += noaa_translucent_sample(frame.position, d, &steps, &samples, &shadow);
-            }
-        }
-    }
-    let i = gid.y * frame.width + gid.x;
-    color_out[i] = vec4<f32>(sum / f32(side * side), 1.0);
-    counts_out[i] = vec4<u32>(steps, samples, shadow, 0u);
+// sdf_render's samplers on the semi-transparent path (SdfView::render).
+fn pixel_cone_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: ptr<function, u32>, shadow: ptr<function, u32>) -> vec3<f32> {
+    return ctss_translucent_sample(o, d, steps, samples, shadow);
+}
+
+fn pixel_sphere_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: ptr<function, u32>, shadow: ptr<function, u32>) -> vec3<f32> {
+    return noaa_translucent_sample(o, d, steps, samples, shadow);
 }
