@@ -36,6 +36,25 @@ pub fn scene(arg: &str) -> Result<Scene> {
     Ok(subcone_scene::load::scene_from_arg(arg)?)
 }
 
+/// A built-in SDF scene written as an SDF scene file (see
+/// [`subcone_scene::sdf::file`]); errors name the built-in SDF scenes when
+/// `name` is none of them.
+pub fn export_sdf_scene(name: &str) -> Result<String> {
+    use subcone_scene::sdf::{sdf_builtin, SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
+    let Some(scene) = sdf_builtin(name) else {
+        let known: Vec<&str> = SDF_SCENES
+            .into_iter()
+            .chain(STIFF_SCENES)
+            .chain(TRANSPARENT_SCENES)
+            .collect();
+        anyhow::bail!(
+            "no built-in SDF scene named {name:?} (built-in SDF scenes: {})",
+            known.join(", ")
+        );
+    };
+    Ok(subcone_scene::sdf::file::write_sdf_scene(&scene?)?)
+}
+
 /// What a render did.
 pub struct RenderReport {
     /// Scene name.

@@ -23,9 +23,22 @@ enum Command {
     /// The main job: every method on every scene, image error against run time,
     /// as tables (report.md, results.csv, results.json), plots and images.
     Report(subcone::report::ReportArgs),
+    /// Write a built-in SDF scene as an SDF scene file (`.sdf.ron`), which
+    /// `--scene PATH` reads back as the same scene.
+    Scene {
+        /// The built-in SDF scene to write: a paper scene (primitives,
+        /// random-box, random-shape, sdf-atrium, sparse-shape), a stiff scene
+        /// (thin, grazing, far, non-eikonal) or glass.
+        #[arg(long, value_name = "NAME")]
+        export: String,
+        /// The file to write (a name ending in .sdf.ron); standard output when
+        /// omitted.
+        #[arg(short = 'o', long = "output")]
+        output: Option<PathBuf>,
+    },
     /// Render one scene with one method.
     Render {
-        /// A built-in scene name, `sponza`/`sponza-mirror`, or a path to an .obj, .gltf or .glb file.
+        /// A built-in scene name, `sponza`/`sponza-mirror`, or a path to an .obj, .gltf, .glb or .sdf.ron (SDF scene) file.
         #[arg(long, default_value = "cornell")]
         scene: String,
         /// noaa, ssaaN (N = 4, 9, 16, 64, 256), sraa, sraa-rt, sraa+mat, sraa-rt+mat, the paper presets sraa-paper, sraa-rt-paper, sraa-paper+mat, sraa-rt-paper+mat, ctss, ctss+edges, ctss-r, ssaaN+ctss, fxaa; CTSS methods but ctss+edges take a -delayed suffix, and every CTSS method a -paper suffix last for the CTSS paper's behaviour (ctss-paper).
@@ -43,9 +56,10 @@ enum Command {
         /// Mirror bounces.
         #[arg(long, default_value_t = 1)]
         reflection_depth: u32,
-        /// CTSS cone coverage in pixels (§5.1).
-        #[arg(long, default_value_t = 1.0)]
-        cone_coverage: f32,
+        /// CTSS cone coverage in pixels (§5.1); default: the method's (0.6 for
+        /// the CTSS default, 1 for the -paper variants).
+        #[arg(long)]
+        cone_coverage: Option<f32>,
         /// CTSS visibility threshold k, 1..=32 (§5.1).
         #[arg(long, default_value_t = 32)]
         visibility_k: u32,
@@ -85,6 +99,18 @@ fn run() -> Result<()> {
             }
             Ok(())
         }
+        Command::Scene { export, output } => {
+            let text = cli::export_sdf_scene(&export)?;
+            match output {
+                Some(path) => {
+                    std::fs::write(&path, text)
+                        .with_context(|| format!("cannot write {}", path.display()))?;
+                    println!("wrote {export} to {}", path.display());
+                }
+                None => print!("{text}"),
+            }
+            Ok(())
+        }
         Command::Render {
             scene,
             method,
@@ -103,7 +129,9 @@ fn run() -> Result<()> {
         } => {
             let (width, height) = cli::parse_size(&size)?;
             let mut method: subcone_scene::Method = method.parse().with_context(|| "--method")?;
-            method.cone_coverage = cone_coverage;
+            if let Some(c) = cone_coverage {
+                method.cone_coverage = c;
+            }
             method.visibility_k = visibility_k;
             let opts = RenderOptions {
                 scene,

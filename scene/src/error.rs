@@ -16,7 +16,7 @@ pub enum SceneError {
         reason: String,
     },
     /// The file format is not one we read.
-    #[error("cannot load scene {path}: unknown format (expected .obj, .gltf or .glb)")]
+    #[error("cannot load scene {path}: unknown format (expected .obj, .gltf, .glb or .sdf.ron)")]
     UnknownFormat {
         /// The file.
         path: PathBuf,
@@ -43,6 +43,10 @@ pub enum SceneError {
     /// An SDF scene is invalid.
     #[error(transparent)]
     Sdf(#[from] crate::sdf::SdfError),
+    /// An SDF scene file (`.sdf.ron`) could not be read: the error names the
+    /// line or the path in the file.
+    #[error("cannot load scene {0}")]
+    SdfFile(#[from] crate::sdf::file::SdfFileError),
 }
 
 /// A frame could not be rendered or written.

@@ -24,6 +24,7 @@ use crate::light::Light;
 use crate::material::Material;
 use crate::mesh::{Sanitized, TriangleMesh};
 use crate::scene::Scene;
+use crate::sdf::file::{is_sdf_file, load_sdf_scene, parse_sdf_scene};
 
 /// Albedo of surfaces whose file gives no colour.
 pub const DEFAULT_ALBEDO: Vec3 = Vec3::new(0.7, 0.7, 0.7);
@@ -729,11 +730,18 @@ pub fn framing_camera(mesh: &TriangleMesh) -> Result<Camera, SceneError> {
     Camera::look_at(centre + distance * dir, centre, Vec3::Y, fov)
 }
 
-/// A scene from a mesh file (see [`load_mesh_file`]): its triangles and
-/// materials, a camera framing its bounds ([`framing_camera`]) and one point
-/// light above and in front of it, bright enough to light it (irradiance about 3
-/// at the model's centre whatever its size).
+/// A scene from a file.
+///
+/// - An SDF scene file (a name ending in `.sdf.ron`, see [`crate::sdf::file`]):
+///   the scene it describes.
+/// - A mesh file (see [`load_mesh_file`]): its triangles and materials, a
+///   camera framing its bounds ([`framing_camera`]) and one point light above
+///   and in front of it, bright enough to light it (irradiance about 3 at the
+///   model's centre whatever its size).
 pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
+    if is_sdf_file(path) {
+        return Scene::sdf(load_sdf_scene(path)?);
+    }
     let (mesh, materials, _dropped) = load_mesh_file(path)?;
     scene_from_mesh(path, mesh, materials)
 }
@@ -741,6 +749,12 @@ pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
 /// [`load_scene`] on the contents of a file already in memory; `path` as in
 /// [`load_mesh_bytes`] (not read; it also names the scene).
 pub fn load_scene_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, SceneError> {
+    if is_sdf_file(path) {
+        let file = path.display().to_string();
+        let text = std::str::from_utf8(bytes)
+            .map_err(|e| load_err(path, &format!("not UTF-8 text ({e})")))?;
+        return Scene::sdf(parse_sdf_scene(text, &file)?);
+    }
     let (mesh, materials, _dropped) = load_mesh_bytes(path, bytes)?;
     scene_from_mesh(path, mesh, materials)
 }
@@ -860,7 +874,7 @@ pub fn sponza(data_dir: &Path, reflective_floor: bool) -> Result<Scene, SceneErr
 
 /// A scene named on a command line: a built-in scene
 /// ([`builtin::TRIANGLE_SCENES`]), `sponza` or `sponza-mirror` (loaded from
-/// [`data_dir`]), or a path to a `.obj`, `.gltf` or `.glb` file.
+/// [`data_dir`]), or a path to a `.obj`, `.gltf`, `.glb` or `.sdf.ron` file.
 pub fn scene_from_arg(arg: &str) -> Result<Scene, SceneError> {
     if builtin::TRIANGLE_SCENES.contains(&arg) || crate::sdf::sdf_builtin(arg).is_some() {
         return builtin::builtin(arg);
@@ -871,6 +885,9 @@ pub fn scene_from_arg(arg: &str) -> Result<Scene, SceneError> {
         _ => {}
     }
     let path = Path::new(arg);
+    if is_sdf_file(path) {
+        return load_scene(path);
+    }
     let has_mesh_ext = path
         .extension()
         .and_then(|e| e.to_str())
@@ -886,7 +903,7 @@ pub fn scene_from_arg(arg: &str) -> Result<Scene, SceneError> {
     Err(SceneError::UnknownScene {
         name: arg.into(),
         known: format!(
-            "{}; or a path to a .obj, .gltf or .glb file",
+            "{}; or a path to a .obj, .gltf, .glb or .sdf.ron file",
             known.join(", ")
         ),
     })

@@ -11,6 +11,11 @@ use super::{Exactness, SdfError};
 /// bounded to keep stack use small on worker threads.
 pub const MAX_DEPTH: u32 = 64;
 
+/// How far from 1 the length of a rotation quaternion or a plane normal may be
+/// for it to be taken as unit and kept as given (a few f32 ulps): normalising
+/// again would move its last bits.
+pub(crate) const UNIT_TOLERANCE: f64 = 4.0 * f32::EPSILON as f64;
+
 /// One evaluation of a field with the step bound and the surface distance
 /// apart ([`SdfNode::eval_split`]): named, so the two cannot be swapped.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -540,7 +545,14 @@ impl SdfNode {
                 reason: format!("rotation quaternion {rotation} has zero length"),
             });
         }
-        let rotation = Quat::from_array(q.map(|c| (c / len) as f32));
+        // A quaternion that is already unit to f32 precision is kept as given:
+        // normalising is then idempotent, so a tree written to a scene file
+        // and read back is the same tree, bit for bit.
+        let rotation = if (len - 1.0).abs() <= UNIT_TOLERANCE {
+            rotation
+        } else {
+            Quat::from_array(q.map(|c| (c / len) as f32))
+        };
         let scale = positive(NAME, "scale", scale)?;
         // Merge with a transform below: outer ∘ inner.
         let (translation, rotation, scale, child) = match self.op {

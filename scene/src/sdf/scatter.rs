@@ -111,6 +111,8 @@ pub(crate) struct Scatter {
     objects: u64,
     default_material: u32,
     bounds: Aabb,
+    /// What it was built from (the palette as given; see [`Scatter::config`]).
+    config: ScatterConfig,
 }
 
 fn mix(mut z: u64) -> u64 {
@@ -317,6 +319,7 @@ impl Scatter {
         let f = |v: [i32; 3]| Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32);
         let (lo, hi) = (f(c.lo), f(c.hi));
         let half = 0.5 * c.cell - Vec3::splat(c.margin);
+        let palette = c.palette.clone();
         let bounds = Aabb::new(c.origin + lo * c.cell - half, c.origin + hi * c.cell + half);
         Ok(Scatter {
             origin: c.origin,
@@ -327,11 +330,12 @@ impl Scatter {
             dims,
             margin: c.margin,
             templates,
-            palette: c.palette,
+            palette,
             instances,
             objects,
             default_material,
             bounds,
+            config: c,
         })
     }
 
@@ -370,6 +374,17 @@ impl Scatter {
 
     pub(crate) fn bounds(&self) -> Aabb {
         self.bounds
+    }
+
+    /// The configuration that builds this scatter again: the one it was built
+    /// from, with the palette [`Scatter::set_material`] may have replaced
+    /// (a one-colour palette draws the same instances: the palette is the
+    /// last draw of a cell's random stream).
+    pub(crate) fn config(&self) -> ScatterConfig {
+        ScatterConfig {
+            palette: self.palette.clone(),
+            ..self.config.clone()
+        }
     }
 
     pub(crate) fn set_material(&mut self, m: u32) {

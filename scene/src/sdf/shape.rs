@@ -306,8 +306,10 @@ impl Shape {
                         reason: format!("normal {normal} has no usable direction"),
                     });
                 }
+                // Kept as given when already unit (see `UNIT_TOLERANCE`).
+                let unit = (f64::from(len) - 1.0).abs() <= super::node::UNIT_TOLERANCE;
                 return Ok(Shape::Plane {
-                    normal: normal / len,
+                    normal: if unit { normal } else { normal / len },
                     offset,
                 });
             }
