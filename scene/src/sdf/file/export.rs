@@ -279,3 +279,76 @@ fn shape_desc(s: Shape, material: u32) -> NodeDesc<Written> {
         },
     }
 }
+
+/// The path, in the file's terms (`root.Union[1].Transform.child.Sphere`), of
+/// the first object below `n` whose material index is at least `count`.
+pub(super) fn material_path(n: &SdfNode, count: usize, at: &str) -> Option<String> {
+    let child = |c: &SdfNode, seg: String| material_path(c, count, &format!("{at}.{seg}"));
+    let list = |cs: &[SdfNode], seg: &str| {
+        cs.iter()
+            .enumerate()
+            .find_map(|(i, c)| material_path(c, count, &format!("{at}.{seg}[{i}]")))
+    };
+    let variant = variant_name(&n.op);
+    match &n.op {
+        Op::Shape { material, .. } => {
+            ((*material as usize) >= count).then(|| format!("{at}.{variant}.material"))
+        }
+        Op::Union { children, .. } | Op::Intersection(children) => list(children, variant),
+        Op::SmoothUnion { children, .. } => list(children, "SmoothUnion.children"),
+        Op::Subtract(ab) => {
+            child(&ab.0, "Subtract.from".into()).or_else(|| child(&ab.1, "Subtract.remove".into()))
+        }
+        Op::Transform(t) => child(&t.child, "Transform.child".into()),
+        Op::Repeat(r) => child(&r.child, "Repeat.child".into()),
+        Op::Mirror { child: c, .. }
+        | Op::Round { child: c, .. }
+        | Op::Onion { child: c, .. }
+        | Op::ScaleDistance { child: c, .. }
+        | Op::Displace { child: c, .. }
+        | Op::Bounded { child: c, .. } => child(c, format!("{variant}.child")),
+        Op::Scatter(s) => {
+            let palette = s.palette();
+            match palette.iter().position(|&m| m as usize >= count) {
+                Some(i) => Some(format!("{at}.Scatter.palette[{i}]")),
+                None if palette.is_empty() => list(s.templates(), "Scatter.templates"),
+                None => None,
+            }
+        }
+    }
+}
+
+/// The node's name in the file.
+fn variant_name(op: &Op) -> &'static str {
+    match op {
+        Op::Shape { shape, .. } => match shape {
+            Shape::Sphere { .. } => "Sphere",
+            Shape::Box { .. } => "Box",
+            Shape::RoundBox { .. } => "RoundBox",
+            Shape::BoxFrame { .. } => "BoxFrame",
+            Shape::Torus { .. } => "Torus",
+            Shape::Link { .. } => "Link",
+            Shape::Capsule { .. } => "Capsule",
+            Shape::Cylinder { .. } => "Cylinder",
+            Shape::RoundedCylinder { .. } => "RoundedCylinder",
+            Shape::CappedCone { .. } => "CappedCone",
+            Shape::Octahedron { .. } => "Octahedron",
+            Shape::HexPrism { .. } => "HexPrism",
+            Shape::Ellipsoid { .. } => "Ellipsoid",
+            Shape::Plane { .. } => "Plane",
+        },
+        Op::Union { .. } => "Union",
+        Op::Intersection(_) => "Intersection",
+        Op::SmoothUnion { .. } => "SmoothUnion",
+        Op::Subtract(_) => "Subtract",
+        Op::Transform(_) => "Transform",
+        Op::Mirror { .. } => "Mirror",
+        Op::Repeat(_) => "Repeat",
+        Op::Round { .. } => "Round",
+        Op::Onion { .. } => "Onion",
+        Op::ScaleDistance { .. } => "ScaleDistance",
+        Op::Displace { .. } => "Displace",
+        Op::Bounded { .. } => "Bounded",
+        Op::Scatter(_) => "Scatter",
+    }
+}

@@ -335,10 +335,14 @@ fn scene(d: SceneDesc<Parsed>, file: &str) -> Result<SdfScene, SdfFileError> {
     }
     let name = d.name.unwrap_or_else(|| default_name(file));
     let root = d.root.0;
+    let count = materials.len().max(1);
+    let culprit = (root.max_material() as usize >= count)
+        .then(|| export::material_path(&root, count, "root"))
+        .flatten();
     let mut s = SdfScene::new(&name, root, materials, lights, camera).map_err(|e| {
         let path = match &e {
-            SdfError::Material { .. } => "root",
-            _ => "",
+            SdfError::Material { .. } => culprit.unwrap_or_else(|| "root".into()),
+            _ => String::new(),
         };
         SdfFileError::at(file, path, e.to_string())
     })?;
