@@ -286,7 +286,8 @@ pub fn parse_ao(s: &str) -> std::result::Result<u32, String> {
 /// Arguments of `subcone report`.
 #[derive(clap::Args, Clone, Debug, PartialEq)]
 pub struct ReportArgs {
-    /// Add a scene: a built-in name or a path to a mesh file (repeatable).
+    /// Add a scene: a built-in name, or a path to a mesh file (.obj, .gltf,
+    /// .glb) or an SDF scene file (.sdf.ron) (repeatable).
     #[arg(long = "scene", value_name = "NAME|PATH")]
     pub scenes: Vec<String>,
     /// Leave out the built-in paper scenes: report only the --scene scenes.

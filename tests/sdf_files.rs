@@ -146,3 +146,50 @@ fn the_example_scenes_go_through_the_quick_report_on_both_backends() {
         }
     }
 }
+
+/// The fuzz target `sdf_file` starts from these seeds: every exported built-in
+/// as `subcone scene --export` writes it today, and the examples.
+#[test]
+fn the_fuzz_seeds_are_the_current_exports_and_the_examples() {
+    let seeds = Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/seeds/sdf_file");
+    for name in SDF_SCENES
+        .into_iter()
+        .chain(STIFF_SCENES)
+        .chain(TRANSPARENT_SCENES)
+    {
+        let seed = std::fs::read_to_string(seeds.join(format!("{name}.sdf.ron"))).unwrap();
+        let now = subcone(&["scene", "--export", name]);
+        assert!(
+            seed == now,
+            "fuzz/seeds/sdf_file/{name}.sdf.ron is stale: regenerate it with \
+             `subcone scene --export {name} -o fuzz/seeds/sdf_file/{name}.sdf.ron`"
+        );
+    }
+    for file in examples() {
+        let seed = std::fs::read(seeds.join(file.file_name().unwrap())).unwrap();
+        assert!(
+            seed == std::fs::read(&file).unwrap(),
+            "{}: stale seed",
+            file.display()
+        );
+    }
+}
+
+/// The README shows `examples/scenes/few-primitives.sdf.ron` as it is.
+#[test]
+fn the_readme_shows_the_example_file_as_it_is() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let shown = readme
+        .split("```ron\n")
+        .nth(1)
+        .and_then(|rest| rest.split("```").next())
+        .expect("README.md has a ```ron block");
+    let file =
+        std::fs::read_to_string(root.join("examples/scenes/few-primitives.sdf.ron")).unwrap();
+    let body = &file[file.find("SdfScene(").unwrap()..];
+    assert_eq!(
+        shown, body,
+        "README.md's ```ron block is not the example file"
+    );
+}
