@@ -752,7 +752,7 @@ pub fn load_scene_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, SceneError> 
     if is_sdf_file(path) {
         let file = path.display().to_string();
         let text = std::str::from_utf8(bytes)
-            .map_err(|e| load_err(path, &format!("not UTF-8 text ({e})")))?;
+            .map_err(|e| load_err(path, format!("not UTF-8 text ({e})")))?;
         return Scene::sdf(parse_sdf_scene(text, &file)?);
     }
     let (mesh, materials, _dropped) = load_mesh_bytes(path, bytes)?;

@@ -88,7 +88,7 @@
 //! `Directional(direction: (..), irradiance: (..))`, `direction` pointing
 //! towards the light (normalised when it is not unit).
 //!
-//! **Nodes**, one per [`SdfNode`] constructor, with its parameters under the
+//! **Nodes**, one per [`SdfNode`](crate::sdf::SdfNode) constructor, with its parameters under the
 //! same names (see each constructor for the ranges it accepts):
 //!
 //! | node | fields |
