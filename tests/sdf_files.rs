@@ -193,3 +193,43 @@ fn the_readme_shows_the_example_file_as_it_is() {
         "README.md's ```ron block is not the example file"
     );
 }
+
+/// A bad scene file or export name fails with a message that says where and
+/// what, and writes no image.
+#[test]
+fn bad_scene_files_and_export_names_are_clear_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("bad.sdf.ron");
+    std::fs::write(
+        &bad,
+        "SdfScene(\n    camera: (position: (0, 1, -5), target: (0, 0, 0)),\n    root: Sphere(radius: -2),\n)\n",
+    )
+    .unwrap();
+    let out = dir.path().join("x.png");
+    let run = |args: &[&str]| {
+        let o = Command::new(env!("CARGO_BIN_EXE_subcone"))
+            .args(args)
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&o.stderr).to_string();
+        assert!(!o.status.success() && !text.contains("panicked"), "{text}");
+        text
+    };
+    let text = run(&[
+        "render",
+        "--scene",
+        bad.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        text.contains("bad.sdf.ron:3:28: root: sphere: radius must not be negative, got -2"),
+        "{text}"
+    );
+    assert!(!out.exists(), "an image was written for a bad scene");
+    let text = run(&["scene", "--export", "cornell"]);
+    assert!(text.contains("no built-in SDF scene named \"cornell\""), "{text}");
+    let missing = dir.path().join("missing.sdf.ron");
+    let text = run(&["render", "--scene", missing.to_str().unwrap()]);
+    assert!(text.contains("cannot read the file"), "{text}");
+}
