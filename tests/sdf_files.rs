@@ -228,7 +228,10 @@ fn bad_scene_files_and_export_names_are_clear_errors() {
     );
     assert!(!out.exists(), "an image was written for a bad scene");
     let text = run(&["scene", "--export", "cornell"]);
-    assert!(text.contains("no built-in SDF scene named \"cornell\""), "{text}");
+    assert!(
+        text.contains("no built-in SDF scene named \"cornell\""),
+        "{text}"
+    );
     let missing = dir.path().join("missing.sdf.ron");
     let text = run(&["render", "--scene", missing.to_str().unwrap()]);
     assert!(text.contains("cannot read the file"), "{text}");

@@ -101,7 +101,8 @@ fn all(children: &[SdfNode]) -> Vec<Written> {
 
 /// Infinite cell limits (an unlimited repetition) are written as none.
 fn limits(x: Vec3) -> Option<[i32; 3]> {
-    x.is_finite().then_some([x.x as i32, x.y as i32, x.z as i32])
+    x.is_finite()
+        .then_some([x.x as i32, x.y as i32, x.z as i32])
 }
 
 fn node(n: &SdfNode) -> Written {

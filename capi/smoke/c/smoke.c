@@ -1,0 +1,222 @@
+/* The C smoke test: every function of include/subcone.h called from C with
+ * fixed inputs (the Rust test compares the results with the kernels) and
+ * with bad input (each must give its documented error code). */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "subcone.h"
+
+typedef struct SmokeOutputs {
+    uint32_t version;
+    float bilateral;
+    float shadow_same;
+    float shadow_differ;
+    float reconstruction;
+    float albedo;
+    SubconeVec3 resolved;
+    float tan_theta;
+    float radius;
+    float occlusion;
+    float advanced;
+    float entry;
+    float hard_hit;
+    float projected[2];
+    uint32_t mask;
+    float sample_weight;
+    SubconeVec3 sraa[6];
+    SubconeCtssResult ctss;
+} SmokeOutputs;
+
+int subcone_smoke_run(SmokeOutputs *out, char *log, size_t log_len);
+
+static SubconeVec3 v3(float x, float y, float z) {
+    SubconeVec3 v;
+    v.x = x;
+    v.y = y;
+    v.z = z;
+    return v;
+}
+
+/* A unit sphere at (0, 0, 5), object 3. */
+static SubconeFieldSample sphere(void *user, SubconeVec3 p) {
+    SubconeFieldSample s;
+    float dx = p.x - 0.0f, dy = p.y - 0.0f, dz = p.z - 5.0f;
+    (void)user;
+    s.distance = sqrtf(dx * dx + dy * dy + dz * dz) - 1.0f;
+    s.step = s.distance;
+    s.object = 3;
+    return s;
+}
+
+/* The normal as a colour; counts the calls through `user`. */
+static SubconeVec3 shade(void *user, SubconeVec3 p, SubconeVec3 n, SubconeVec3 dir) {
+    (void)p;
+    (void)dir;
+    *(int *)user += 1;
+    return v3(n.x * 0.5f + 0.5f, n.y * 0.5f + 0.5f, n.z * 0.5f + 0.5f);
+}
+
+static int failures;
+static char *log_at;
+static size_t log_left;
+
+static void expect(SubconeStatus got, SubconeStatus want, const char *what) {
+    if (got != want) {
+        int n = snprintf(log_at, log_left, "%s: status %d, expected %d\n", what, (int)got, (int)want);
+        if (n > 0 && (size_t)n < log_left) {
+            log_at += n;
+            log_left -= (size_t)n;
+        }
+        failures++;
+    }
+}
+
+#define OK(call) expect((call), SUBCONE_STATUS_OK, #call)
+
+int subcone_smoke_run(SmokeOutputs *o, char *log, size_t log_len) {
+    SubconeSraaParams params, bad;
+    SubconeGeometry gi, gj;
+    SubconeVec3 colours4[4];
+    SubconeCtssParams ctss;
+    SubconeSraaFrame frame;
+    SubconeVec3 colors[12];
+    SubconeGeometry geometry[6], subgeometry[24];
+    uint32_t shadow[6], subshadow[24];
+    int8_t gates[2] = {-1, 0};
+    int j, k, shaded = 0;
+    float f;
+    uint32_t u;
+    SubconeCtssResult r;
+
+    failures = 0;
+    log_at = log;
+    log_left = log_len;
+    if (log_len > 0) log[0] = 0;
+    memset(o, 0, sizeof *o);
+
+    o->version = subcone_version();
+    if (o->version != ((SUBCONE_VERSION_MAJOR << 16) | (SUBCONE_VERSION_MINOR << 8) | SUBCONE_VERSION_PATCH)) {
+        expect(SUBCONE_STATUS_PANIC, SUBCONE_STATUS_OK, "version macros differ from subcone_version()");
+    }
+
+    /* SRAA weights (eq. 1, eq. 2, the spatial term) and the resolve. */
+    OK(subcone_sraa_params_default(&params));
+    gi.normal = v3(0.0f, 0.0f, 1.0f);
+    gi.depth = 2.0f;
+    gj.normal = v3(0.6f, 0.0f, 0.8f);
+    gj.depth = 2.1f;
+    OK(subcone_bilateral_weight(&params, &gi, &gj, &o->bilateral));
+    OK(subcone_shadow_gated_weight(&params, &gi, &gj, 1, 1, &o->shadow_same));
+    OK(subcone_shadow_gated_weight(&params, &gi, &gj, 0, 1, &o->shadow_differ));
+    OK(subcone_reconstruction_weight(&params, &gi, &gj, 0.5f, &o->reconstruction));
+    OK(subcone_albedo_difference(v3(0.2f, 0.4f, 0.6f), v3(0.3f, 0.1f, 0.6f), &o->albedo));
+    colours4[0] = v3(1, 0, 0);
+    colours4[1] = v3(0, 1, 0);
+    colours4[2] = v3(0, 0, 1);
+    colours4[3] = v3(1, 1, 1);
+    OK(subcone_resolve_pixel(colours4, &o->resolved));
+
+    /* CTSS kernels. */
+    OK(subcone_cone_tan_theta(0.8f, 720, 0.6f, 0, &o->tan_theta));
+    OK(subcone_cone_radius(3.0f, o->tan_theta, &o->radius));
+    OK(subcone_cone_occlusion(0.001f, o->radius, &o->occlusion));
+    OK(subcone_advance(3.0f, 0.001f, 0.5f, o->radius, &o->advanced));
+    OK(subcone_backtrace_cone_entry(3.0f, o->tan_theta, &o->entry));
+    OK(subcone_backtrace_hard_hit(2.9f, 0.05f, 3.0f, &o->hard_hit));
+    OK(subcone_project_normal(v3(0.3f, 0.4f, 0.5f), v3(1, 0, 0), v3(0, 1, 0), o->projected));
+    OK(subcone_visibility_mask(0.3f, 0.6f, 0.8f, 0, &o->mask));
+    OK(subcone_sample_weight(0x0000FFFFu, 0, 0.0f, &o->sample_weight));
+
+    /* A 3×2 SRAA frame, two layers (ungated, gated by light 0). */
+    for (j = 0; j < 6; j++) {
+        colors[2 * j] = v3((float)(j + 1) * 0.1f, 0.0f, 0.25f);
+        colors[2 * j + 1] = v3((float)(j + 1) * 0.1f, 0.5f, 0.25f);
+        geometry[j].normal = v3(0, 0, 1);
+        geometry[j].depth = 2.0f + (float)(j % 3) * 0.5f;
+        shadow[j] = (uint32_t)(j % 2);
+        for (k = 0; k < 4; k++) {
+            subgeometry[4 * j + k].normal = v3(0, 0, 1);
+            subgeometry[4 * j + k].depth = 2.0f + (float)(j % 3) * 0.5f + (float)k * 0.01f;
+            subshadow[4 * j + k] = (uint32_t)((j + k) % 2);
+        }
+    }
+    memset(&frame, 0, sizeof frame);
+    frame.width = 3;
+    frame.height = 2;
+    frame.layers = 2;
+    frame.colors = colors;
+    frame.colors_len = 12;
+    frame.layer_lights = gates;
+    frame.shaded_geometry = geometry;
+    frame.shaded_geometry_len = 6;
+    frame.shaded_shadow = shadow;
+    frame.shaded_shadow_len = 6;
+    frame.subsample_geometry = subgeometry;
+    frame.subsample_geometry_len = 24;
+    frame.subsample_shadow = subshadow;
+    frame.subsample_shadow_len = 24;
+    OK(subcone_sraa_resolve(&params, &frame, o->sraa, 6));
+
+    /* One CTSS trace through C callbacks: a ray past the sphere's edge. */
+    OK(subcone_ctss_params_default(o->tan_theta, &ctss));
+    OK(subcone_ctss_trace(&ctss, v3(0, 0, 0), v3(0.2041241f, 0.0f, 1.0f), v3(0, 1, 0), sphere, NULL, shade,
+                          &shaded, v3(0.1f, 0.2f, 0.3f), &o->ctss));
+    if ((uint32_t)shaded != o->ctss.samples) {
+        expect(SUBCONE_STATUS_PANIC, SUBCONE_STATUS_OK, "shade callback calls differ from samples");
+    }
+
+    /* Bad input: error codes, never a crash. */
+    expect(subcone_bilateral_weight(&params, &gi, NULL, &f), SUBCONE_STATUS_NULL_POINTER, "null gj");
+    expect(subcone_bilateral_weight(&params, &gi, &gj, NULL), SUBCONE_STATUS_NULL_POINTER, "null out");
+    expect(subcone_bilateral_weight(NULL, &gi, &gj, &f), SUBCONE_STATUS_NULL_POINTER, "null params");
+    bad = params;
+    bad.sigma_z = NAN;
+    expect(subcone_bilateral_weight(&bad, &gi, &gj, &f), SUBCONE_STATUS_INVALID_ARGUMENT, "NaN sigma_z");
+    bad = params;
+    bad.sigma_s = INFINITY;
+    expect(subcone_shadow_gated_weight(&bad, &gi, &gj, 0, 0, &f), SUBCONE_STATUS_INVALID_ARGUMENT, "inf sigma_s");
+    expect(subcone_cone_tan_theta(NAN, 720, 1.0f, 0, &f), SUBCONE_STATUS_INVALID_ARGUMENT, "NaN fov");
+    expect(subcone_cone_tan_theta(0.8f, 0, 1.0f, 0, &f), SUBCONE_STATUS_INVALID_ARGUMENT, "zero height");
+    expect(subcone_cone_tan_theta(0.8f, 720, 1.0f, 9, &f), SUBCONE_STATUS_INVALID_ARGUMENT, "footprint 9");
+    expect(subcone_visibility_mask(0.5f, 1, 0, 7, &u), SUBCONE_STATUS_INVALID_ARGUMENT, "placement 7");
+    expect(subcone_sample_weight(1, 5, 0.0f, &f), SUBCONE_STATUS_INVALID_ARGUMENT, "weighting 5");
+    expect(subcone_sample_weight(1, 0, NAN, &f), SUBCONE_STATUS_INVALID_ARGUMENT, "NaN min weight");
+    expect(subcone_resolve_pixel(NULL, &colours4[0]), SUBCONE_STATUS_NULL_POINTER, "null subsamples");
+    expect(subcone_ctss_params_default(-1.0f, &ctss), SUBCONE_STATUS_INVALID_ARGUMENT, "negative tan");
+    expect(subcone_sraa_params_paper(NULL), SUBCONE_STATUS_NULL_POINTER, "null params out");
+    {
+        SubconeSraaFrame b = frame;
+        b.width = 0;
+        expect(subcone_sraa_resolve(&params, &b, o->sraa, 6), SUBCONE_STATUS_SIZE_MISMATCH, "zero width");
+        b = frame;
+        b.colors_len = 11;
+        expect(subcone_sraa_resolve(&params, &b, o->sraa, 6), SUBCONE_STATUS_SIZE_MISMATCH, "short colours");
+        b = frame;
+        b.colors = NULL;
+        expect(subcone_sraa_resolve(&params, &b, o->sraa, 6), SUBCONE_STATUS_NULL_POINTER, "null colours");
+        b = frame;
+        b.layers = 17;
+        expect(subcone_sraa_resolve(&params, &b, o->sraa, 6), SUBCONE_STATUS_SIZE_MISMATCH, "17 layers");
+        expect(subcone_sraa_resolve(&params, &frame, o->sraa, 5), SUBCONE_STATUS_SIZE_MISMATCH, "short out");
+        expect(subcone_sraa_resolve(&params, &frame, NULL, 6), SUBCONE_STATUS_NULL_POINTER, "null out");
+        expect(subcone_sraa_resolve(&params, NULL, o->sraa, 6), SUBCONE_STATUS_NULL_POINTER, "null frame");
+    }
+    expect(subcone_ctss_trace(&ctss, v3(0, 0, 0), v3(0, 0, 1), v3(0, 1, 0), NULL, NULL, shade, &shaded,
+                              v3(0, 0, 0), &r),
+           SUBCONE_STATUS_NULL_POINTER, "null distance");
+    expect(subcone_ctss_trace(&ctss, v3(NAN, 0, 0), v3(0, 0, 1), v3(0, 1, 0), sphere, NULL, shade, &shaded,
+                              v3(0, 0, 0), &r),
+           SUBCONE_STATUS_INVALID_ARGUMENT, "NaN origin");
+    expect(subcone_ctss_trace(&ctss, v3(0, 0, 0), v3(0, 0, 0), v3(0, 1, 0), sphere, NULL, shade, &shaded,
+                              v3(0, 0, 0), &r),
+           SUBCONE_STATUS_INVALID_ARGUMENT, "zero direction");
+    {
+        SubconeCtssParams b = ctss;
+        b.t_max = NAN;
+        expect(subcone_ctss_trace(&b, v3(0, 0, 0), v3(0, 0, 1), v3(0, 1, 0), sphere, NULL, shade, &shaded,
+                                  v3(0, 0, 0), &r),
+               SUBCONE_STATUS_INVALID_ARGUMENT, "NaN t_max");
+    }
+    return failures;
+}

@@ -1,0 +1,1004 @@
+//! A C ABI for subcone's kernels, for C and C++ engines: the SRAA weights
+//! (SRAA for ray tracing, eq. 1 and 2) and per-pixel resolve, the CTSS cone
+//! kernels (CTSS eq. 3–8) and one whole CTSS trace over a distance callback.
+//! The header, `include/subcone.h`, is generated from this file by cbindgen
+//! and checked in (`tests/header.rs` keeps it current).
+//!
+//! # Contract
+//!
+//! - Every fallible function returns a [`SubconeStatus`] and writes its result
+//!   through an out-pointer only on [`SubconeStatus::Ok`].
+//! - Null pointers, zero sizes, mismatched lengths and non-finite parameters
+//!   (the fields of the parameter structs, camera and cone settings, a ray's
+//!   origin and direction) are refused with an error code, never undefined
+//!   behaviour. Per-sample data (depths, normals, colours, distances) may be
+//!   anything: the kernels' documented domains say what they return outside
+//!   them (see each function).
+//! - Nothing panics across the boundary: every body runs under
+//!   `catch_unwind`, and an unexpected panic becomes
+//!   [`SubconeStatus::Panic`].
+//! - Thread safety: every function is reentrant and thread-safe; there is no
+//!   global state. [`subcone_ctss_trace`] calls its callbacks synchronously on
+//!   the calling thread; they must not unwind (a C callback cannot).
+//!
+//! ```
+//! use subcone_capi::*;
+//!
+//! let mut params = SubconeSraaParams::default();
+//! assert_eq!(unsafe { subcone_sraa_params_paper(&mut params) }, SubconeStatus::Ok);
+//! let g = SubconeGeometry { normal: SubconeVec3 { x: 0.0, y: 0.0, z: 1.0 }, depth: 2.0 };
+//! let mut w = 0.0;
+//! assert_eq!(unsafe { subcone_bilateral_weight(&params, &g, &g, &mut w) }, SubconeStatus::Ok);
+//! assert_eq!(w, 1.0);
+//! // A null pointer is an error, not a crash.
+//! let e = unsafe { subcone_bilateral_weight(&params, &g, std::ptr::null(), &mut w) };
+//! assert_eq!(e, SubconeStatus::NullPointer);
+//! ```
+#![deny(unsafe_op_in_unsafe_fn)]
+#![deny(missing_docs)]
+
+use std::ffi::c_void;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
+use glam::{Vec2, Vec3};
+use subcone_kernels::aggregate::{sample_weight, Weighting};
+use subcone_kernels::cone::{
+    advance, backtrace_cone_entry, backtrace_hard_hit, cone_occlusion, cone_radius, cone_tan_theta,
+    PixelFootprint,
+};
+use subcone_kernels::ctss::{
+    cross_section_frame, trace_field, ConeField, CtssParams, FieldSample, SplitRay, StopReason,
+};
+use subcone_kernels::mask::{project_normal, visibility_mask, MaskPlacement};
+use subcone_kernels::sraa::{
+    albedo_difference, bilateral_weight, reconstruction_weight, resolve_pixel, shadow_gated_weight,
+    Geometry, Resolver, ShadedFrame, ShadedGroup, SraaParams, Subsamples, ALBEDO_TOLERANCE,
+    MAX_LAYERS,
+};
+
+/// Major version of this library (the crate's; see [`subcone_version`]).
+pub const SUBCONE_VERSION_MAJOR: u32 = 0;
+/// Minor version.
+pub const SUBCONE_VERSION_MINOR: u32 = 1;
+/// Patch version.
+pub const SUBCONE_VERSION_PATCH: u32 = 0;
+
+/// What a call did.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SubconeStatus {
+    /// Success: the out-pointers were written.
+    Ok = 0,
+    /// A required pointer was null.
+    NullPointer = 1,
+    /// A parameter was not finite or out of its range (named in the function's
+    /// documentation).
+    InvalidArgument = 2,
+    /// A size was zero, or a buffer's length does not match the sizes given.
+    SizeMismatch = 3,
+    /// An internal error was caught before it crossed the boundary (a bug:
+    /// please report it).
+    Panic = 4,
+}
+
+/// A 3-vector: a point, a direction or a linear RGB colour.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SubconeVec3 {
+    /// x (red).
+    pub x: f32,
+    /// y (green).
+    pub y: f32,
+    /// z (blue).
+    pub z: f32,
+}
+
+impl From<SubconeVec3> for Vec3 {
+    fn from(v: SubconeVec3) -> Vec3 {
+        Vec3::new(v.x, v.y, v.z)
+    }
+}
+
+impl From<Vec3> for SubconeVec3 {
+    fn from(v: Vec3) -> SubconeVec3 {
+        SubconeVec3 {
+            x: v.x,
+            y: v.y,
+            z: v.z,
+        }
+    }
+}
+
+/// A sample's geometry for the SRAA weights: unit normal and view depth (the
+/// distance along the view axis). 16 bytes; a NaN depth marks a miss.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SubconeGeometry {
+    /// Unit surface normal.
+    pub normal: SubconeVec3,
+    /// View depth; NaN for a miss.
+    pub depth: f32,
+}
+
+impl From<SubconeGeometry> for Geometry {
+    fn from(g: SubconeGeometry) -> Geometry {
+        Geometry {
+            normal: g.normal.into(),
+            depth: g.depth,
+        }
+    }
+}
+
+/// The SRAA weight parameters, the layout of the kernels' `SraaParams`
+/// (32 bytes). Fill it with [`subcone_sraa_params_default`] or
+/// [`subcone_sraa_params_paper`] and adjust the σs.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SubconeSraaParams {
+    /// σz of eq. 1 (relative depth difference by default).
+    pub sigma_z: f32,
+    /// σn of eq. 1.
+    pub sigma_n: f32,
+    /// The Chajdas form's scale (unused by eq. 1's product form).
+    pub scale: f32,
+    /// Bits 0..8: weight form; 8..16: depth metric; 16..32: radius in pixels.
+    pub packed: u32,
+    /// σs, the spatial falloff in pixels (0: off, as in eq. 1).
+    pub sigma_s: f32,
+    /// Where the shaded sample lies: 0 on subsample 0 (the paper), 1 at the
+    /// pixel centre.
+    pub shading: u32,
+    /// Padding; write 0.
+    pub pad: [u32; 2],
+}
+
+impl From<SubconeSraaParams> for SraaParams {
+    fn from(p: SubconeSraaParams) -> SraaParams {
+        SraaParams {
+            sigma_z: p.sigma_z,
+            sigma_n: p.sigma_n,
+            scale: p.scale,
+            packed: p.packed,
+            sigma_s: p.sigma_s,
+            shading: p.shading,
+            _pad: p.pad,
+        }
+    }
+}
+
+impl From<SraaParams> for SubconeSraaParams {
+    fn from(p: SraaParams) -> SubconeSraaParams {
+        SubconeSraaParams {
+            sigma_z: p.sigma_z,
+            sigma_n: p.sigma_n,
+            scale: p.scale,
+            packed: p.packed,
+            sigma_s: p.sigma_s,
+            shading: p.shading,
+            pad: p._pad,
+        }
+    }
+}
+
+/// The CTSS trace parameters, the layout of the kernels' `CtssParams`
+/// (48 bytes). Fill it with [`subcone_ctss_params_default`].
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SubconeCtssParams {
+    /// `tan θ` of the pixel's cone (eq. 3, [`subcone_cone_tan_theta`]).
+    pub tan_theta: f32,
+    /// Minimum step factor α (§3.1).
+    pub alpha: f32,
+    /// ε of the occlusion thresholds (§3.2).
+    pub eps: f32,
+    /// First depth evaluated.
+    pub t_min: f32,
+    /// Depth at which the ray leaves the scene.
+    pub t_max: f32,
+    /// Minimum sample weight (0 by default).
+    pub min_sample_weight: f32,
+    /// Step budget.
+    pub max_steps: u32,
+    /// Sample cap.
+    pub max_samples: u32,
+    /// Visibility threshold k (§5.1), 1..=32; 32 is off.
+    pub visibility_k: u32,
+    /// Bit 0: CTSS-R (stop at the first hard hit). Bit 1: split groups at
+    /// internal edges (§5.3). Bit 2: the paper's groups and masks. Bits
+    /// 8..16: mask placement. Bits 16..24: sample weighting.
+    pub flags: u32,
+    /// Padding; write 0.
+    pub pad: [u32; 2],
+}
+
+impl From<SubconeCtssParams> for CtssParams {
+    fn from(p: SubconeCtssParams) -> CtssParams {
+        CtssParams {
+            tan_theta: p.tan_theta,
+            alpha: p.alpha,
+            eps: p.eps,
+            t_min: p.t_min,
+            t_max: p.t_max,
+            min_sample_weight: p.min_sample_weight,
+            max_steps: p.max_steps,
+            max_samples: p.max_samples,
+            visibility_k: p.visibility_k,
+            flags: p.flags,
+            _pad: p.pad,
+        }
+    }
+}
+
+impl From<CtssParams> for SubconeCtssParams {
+    fn from(p: CtssParams) -> SubconeCtssParams {
+        SubconeCtssParams {
+            tan_theta: p.tan_theta,
+            alpha: p.alpha,
+            eps: p.eps,
+            t_min: p.t_min,
+            t_max: p.t_max,
+            min_sample_weight: p.min_sample_weight,
+            max_steps: p.max_steps,
+            max_samples: p.max_samples,
+            visibility_k: p.visibility_k,
+            flags: p.flags,
+            pad: p._pad,
+        }
+    }
+}
+
+// The mirrored structs have the kernels' layouts (a host may hand the same
+// bytes to the WGSL kernels).
+const _: () = {
+    use std::mem::{offset_of, size_of};
+    assert!(size_of::<SubconeGeometry>() == size_of::<Geometry>());
+    assert!(offset_of!(SubconeGeometry, depth) == offset_of!(Geometry, depth));
+    assert!(size_of::<SubconeSraaParams>() == size_of::<SraaParams>());
+    assert!(offset_of!(SubconeSraaParams, sigma_s) == offset_of!(SraaParams, sigma_s));
+    assert!(offset_of!(SubconeSraaParams, shading) == offset_of!(SraaParams, shading));
+    assert!(size_of::<SubconeCtssParams>() == size_of::<CtssParams>());
+    assert!(offset_of!(SubconeCtssParams, flags) == offset_of!(CtssParams, flags));
+};
+
+/// What a field callback says about a point (see [`SubconeDistanceFn`]).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SubconeFieldSample {
+    /// Signed distance to the nearest surface.
+    pub distance: f32,
+    /// A safe step, at most `distance` (return the distance when in doubt).
+    pub step: f32,
+    /// Id of the nearest object (a material, say); `0xFFFFFFFF` for none. A
+    /// hit group ends where it changes.
+    pub object: u32,
+}
+
+/// The signed distance field at `p`, for [`subcone_ctss_trace`] (a nullable
+/// function pointer; null is refused).
+pub type SubconeDistanceFn =
+    Option<extern "C" fn(user: *mut c_void, p: SubconeVec3) -> SubconeFieldSample>;
+
+/// The unit surface normal at `p` from differences of step `h`, for
+/// [`subcone_ctss_trace`] (optional: by default a tetrahedron of distance
+/// differences: pass null).
+pub type SubconeNormalFn =
+    Option<extern "C" fn(user: *mut c_void, p: SubconeVec3, h: f32) -> SubconeVec3>;
+
+/// The colour of the surface point `p` with normal `n`, seen along `dir` (a
+/// nullable function pointer; null is refused).
+pub type SubconeShadeFn = Option<
+    extern "C" fn(
+        user: *mut c_void,
+        p: SubconeVec3,
+        n: SubconeVec3,
+        dir: SubconeVec3,
+    ) -> SubconeVec3,
+>;
+
+/// What a CTSS trace returns.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SubconeCtssResult {
+    /// The antialiased pixel colour (eq. 6, the background as a sample).
+    pub color: SubconeVec3,
+    /// Shaded samples taken.
+    pub samples: u32,
+    /// Distance evaluations.
+    pub steps: u32,
+    /// The final 32-bit visibility mask `M`.
+    pub coverage: u32,
+    /// Why it ended: 0 full occlusion, 1 hard hit, 2 visibility threshold, 3
+    /// sample cap, 4 left the scene, 5 step budget, 6 NaN distance.
+    pub stop: u32,
+}
+
+fn guard(f: impl FnOnce() -> SubconeStatus) -> SubconeStatus {
+    catch_unwind(AssertUnwindSafe(f)).unwrap_or(SubconeStatus::Panic)
+}
+
+/// `*p` when `p` is not null.
+///
+/// # Safety
+/// `p` is null or points to a valid `T`.
+unsafe fn read<T: Copy>(p: *const T) -> Result<T, SubconeStatus> {
+    // SAFETY: the caller's contract; null was checked.
+    unsafe { p.as_ref() }
+        .copied()
+        .ok_or(SubconeStatus::NullPointer)
+}
+
+/// Write `v` through `p` when `p` is not null.
+///
+/// # Safety
+/// `p` is null or points to writable memory for a `T`.
+unsafe fn write<T>(p: *mut T, v: T) -> SubconeStatus {
+    // SAFETY: the caller's contract; null was checked.
+    match unsafe { p.as_mut() } {
+        Some(out) => {
+            *out = v;
+            SubconeStatus::Ok
+        }
+        None => SubconeStatus::NullPointer,
+    }
+}
+
+/// `len` elements at `p`: empty for `len == 0`, an error for a null `p` with
+/// `len > 0` or a length that overflows the address space.
+///
+/// # Safety
+/// `p` is null or points to `len` valid, initialised `T`.
+unsafe fn slice<'a, T>(p: *const T, len: usize) -> Result<&'a [T], SubconeStatus> {
+    if len == 0 {
+        return Ok(&[]);
+    }
+    if p.is_null() {
+        return Err(SubconeStatus::NullPointer);
+    }
+    if len
+        .checked_mul(size_of::<T>())
+        .is_none_or(|b| b > isize::MAX as usize)
+    {
+        return Err(SubconeStatus::SizeMismatch);
+    }
+    // SAFETY: non-null, the caller's contract on length and validity.
+    Ok(unsafe { std::slice::from_raw_parts(p, len) })
+}
+
+fn finite(values: &[f32]) -> Result<(), SubconeStatus> {
+    if values.iter().all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err(SubconeStatus::InvalidArgument)
+    }
+}
+
+fn sraa_params(p: *const SubconeSraaParams) -> Result<SraaParams, SubconeStatus> {
+    // SAFETY: `p` comes from the caller's contract on the exported function.
+    let p = unsafe { read(p) }?;
+    finite(&[p.sigma_z, p.sigma_n, p.scale, p.sigma_s])?;
+    Ok(p.into())
+}
+
+fn status(r: Result<SubconeStatus, SubconeStatus>) -> SubconeStatus {
+    r.unwrap_or_else(|e| e)
+}
+
+/// The library's version: `major << 16 | minor << 8 | patch`; compare it
+/// with the header's `SUBCONE_VERSION_*` to catch a mismatched library.
+#[no_mangle]
+pub extern "C" fn subcone_version() -> u32 {
+    SUBCONE_VERSION_MAJOR << 16 | SUBCONE_VERSION_MINOR << 8 | SUBCONE_VERSION_PATCH
+}
+
+/// The default SRAA parameters (σz 10, σn 1, σs 0.4 px, shaded sample at the
+/// pixel centre; the Rust `SraaParams::TUNED`).
+///
+/// # Safety
+/// `out` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn subcone_sraa_params_default(out: *mut SubconeSraaParams) -> SubconeStatus {
+    // SAFETY: forwarded contract.
+    guard(|| unsafe { write(out, SraaParams::TUNED.into()) })
+}
+
+/// The SRAA paper's parameters (§3.1: σz 10, σn 0.25, eq. 1 as published,
+/// the shaded sample on subsample 0).
+///
+/// # Safety
+/// `out` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn subcone_sraa_params_paper(out: *mut SubconeSraaParams) -> SubconeStatus {
+    // SAFETY: forwarded contract.
+    guard(|| unsafe { write(out, SraaParams::PAPER.into()) })
+}
+
+/// The default CTSS parameters for a cone of `tan_theta` (α 0.5, ε 0.01, up
+/// to 8 samples, subcone's default groups and masks). `tan_theta` must be
+/// finite and not negative.
+///
+/// # Safety
+/// `out` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn subcone_ctss_params_default(
+    tan_theta: f32,
+    out: *mut SubconeCtssParams,
+) -> SubconeStatus {
+    guard(|| {
+        if !(tan_theta.is_finite() && tan_theta >= 0.0) {
+            return SubconeStatus::InvalidArgument;
+        }
+        // SAFETY: forwarded contract.
+        unsafe { write(out, CtssParams::new(tan_theta).into()) }
+    })
+}
+
+/// SRAA eq. 1: the bilateral weight of sample `gj` for target `gi`, in
+/// `[0, 1]`. Geometry outside the domain (a NaN depth, a zero normal) gives
+/// 0; see the Rust `bilateral_weight`.
+///
+/// # Safety
+/// Each pointer is null or valid.
+#[no_mangle]
+pub unsafe extern "C" fn subcone_bilateral_weight(
+    params: *const SubconeSraaParams,
+    gi: *const SubconeGeometry,
+    gj: *const SubconeGeometry,
+    out: *mut f32,
+) -> SubconeStatus {
+    guard(|| {
+        status((|| {
+            let p = sraa_params(params)?;
+            // SAFETY: forwarded contract.
+            let (gi, gj) = unsafe { (read(gi)?, read(gj)?) };
+            // SAFETY: forwarded contract.
+            Ok(unsafe { write(out, bilateral_weight(&p, &gi.into(), &gj.into())) })
+        })())
+    })
+}
+
+/// SRAA eq. 2: 0 when the shadow states `si` and `sj` (non-zero: in shadow)
+/// differ, eq. 1 otherwise.
+///
+/// # Safety
+/// Each pointer is null or valid.
+#[no_mangle]
+pub unsafe extern "C" fn subcone_shadow_gated_weight(
+    params: *const SubconeSraaParams,
+    gi: *const SubconeGeometry,
+    gj: *const SubconeGeometry,
+    si: u32,
+    sj: u32,
+    out: *mut f32,
+) -> SubconeStatus {
+    guard(|| {
+        status((|| {
+            let p = sraa_params(params)?;
+            // SAFETY: forwarded contract.
+            let (gi, gj) = unsafe { (read(gi)?, read(gj)?) };
+            let w = shadow_gated_weight(&p, &gi.into(), &gj.into(), si != 0, sj != 0);
+            // SAFETY: forwarded contract.
+            Ok(unsafe { write(out, w) })
+        })())
+    })
+}
+
+/// Eq. 1 times the spatial term `exp(−d²/σs²)` for a neighbour at squared
+/// screen distance `distance2` (pixels²); a NaN or infinite `distance2`
+/// gives 0 when σs is on.
+///
+/// # Safety
+/// Each pointer is null or valid.
+#[no_mangle]
+pub unsafe extern "C" fn subcone_reconstruction_weight(
+    params: *const SubconeSraaParams,
+    gi: *const SubconeGeometry,
+    gj: *const SubconeGeometry,
+    distance2: f32,
+    out: *mut f32,
+) -> SubconeStatus {
+    guard(|| {
+        status((|| {
+            let p = sraa_params(params)?;
+            // SAFETY: forwarded contract.
+            let (gi, gj) = unsafe { (read(gi)?, read(gj)?) };
+            let w = reconstruction_weight(&p, &gi.into(), &gj.into(), distance2);
+            // SAFETY: forwarded contract.
+            Ok(unsafe { write(out, w) })
+        })())
+    })
+}
+
+/// The material gate's dissimilarity of two albedos, `max |√a − √b|` per
+/// channel; `+∞` when either is not finite.
+///
+/// # Safety
+/// `out` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn subcone_albedo_difference(
+    a: SubconeVec3,
+    b: SubconeVec3,
+    out: *mut f32,
+) -> SubconeStatus {
+    // SAFETY: forwarded contract.
+    guard(|| unsafe { write(out, albedo_difference(a.into(), b.into())) })
+}
+
+/// The box resolve of a pixel's four reconstructed subsamples (a plain mean;
+/// non-finite ones are dropped, none finite gives black).
+///
+/// # Safety
+/// `subsamples` is null or points to 4 values; `out` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn subcone_resolve_pixel(
+    subsamples: *const SubconeVec3,
+    out: *mut SubconeVec3,
+) -> SubconeStatus {
+    guard(|| {
+        status((|| {
+            // SAFETY: forwarded contract (4 values).
+            let s = unsafe { slice(subsamples, 4) }?;
+            let c = resolve_pixel(&[s[0].into(), s[1].into(), s[2].into(), s[3].into()]);
+            // SAFETY: forwarded contract.
+            Ok(unsafe { write(out, c.into()) })
+        })())
+    })
+}
+
+/// CTSS eq. 3: `tan θ` of a pixel's cone for a vertical field of view `fov_y`
+/// (radians, in `(0, π)`), an image `height` in pixels (> 0), a `coverage`
+/// in pixels (> 0, finite) and a footprint (0 circumscribed, the default; 1
+/// the authors' balanced; 2 inscribed).
+///
+/// # Safety
+/// `out` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn subcone_cone_tan_theta(
+    fov_y: f32,
+    height: u32,
+    coverage: f32,
+    footprint: u32,
+    out: *mut f32,
+) -> SubconeStatus {
+    guard(|| {
+        let fp = match footprint {
+            0 => PixelFootprint::Circumscribed,
+            1 => PixelFootprint::Balanced,
+            2 => PixelFootprint::Inscribed,
+            _ => return SubconeStatus::InvalidArgument,
+        };
+        let fov_ok = fov_y > 0.0 && fov_y < std::f32::consts::PI;
+        if !fov_ok || height == 0 || !(coverage.is_finite() && coverage > 0.0) {
+            return SubconeStatus::InvalidArgument;
+        }
+        // SAFETY: forwarded contract.
+        unsafe { write(out, cone_tan_theta(fov_y, height, coverage, fp)) }
+    })
+}
+
+/// CTSS eq. 4: the cone radius `t·tan θ` at depth `t`.
+///
+/// # Safety
+/// `out` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn subcone_cone_radius(
+    t: f32,
+    tan_theta: f32,
+    out: *mut f32,
+) -> SubconeStatus {
+    // SAFETY: forwarded contract.
+    guard(|| unsafe { write(out, cone_radius(t, tan_theta)) })
+}
+
+/// CTSS eq. 5: the cone occlusion `ω` of a surface at distance `d` from the
+/// axis for a cone of radius `rc`, in `[0, 1]` (clamped; NaN input gives the
+/// documented clamp of the Rust `cone_occlusion`).
+///
+/// # Safety
+/// `out` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn subcone_cone_occlusion(d: f32, rc: f32, out: *mut f32) -> SubconeStatus {
+    // SAFETY: forwarded contract.
+    guard(|| unsafe { write(out, cone_occlusion(d, rc)) })
+}
+
+/// The next depth of the cone march from `t`: `t + max(d, α·R_c)` (§3.1).
+///
+/// # Safety
+/// `out` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn subcone_advance(
+    t: f32,
+    d: f32,
+    alpha: f32,
+    rc: f32,
+    out: *mut f32,
+) -> SubconeStatus {
+    // SAFETY: forwarded contract.
+    guard(|| unsafe { write(out, advance(t, d, alpha, rc)) })
+}
+
+/// CTSS eq. 9–10: the depth where the cone first met the surface, backtraced
+/// from `t_i`.
+///
+/// # Safety
+/// `out` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn subcone_backtrace_cone_entry(
+    t_i: f32,
+    tan_theta: f32,
+    out: *mut f32,
+) -> SubconeStatus {
+    // SAFETY: forwarded contract.
+    guard(|| unsafe { write(out, backtrace_cone_entry(t_i, tan_theta)) })
+}
+
+/// CTSS §3.6: the depth of the first hard hit, between `t_prev` and `t_i`.
+///
+/// # Safety
+/// `out` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn subcone_backtrace_hard_hit(
+    t_prev: f32,
+    d_prev: f32,
+    t_i: f32,
+    out: *mut f32,
+) -> SubconeStatus {
+    // SAFETY: forwarded contract.
+    guard(|| unsafe { write(out, backtrace_hard_hit(t_prev, d_prev, t_i)) })
+}
+
+/// The surface normal projected on the cone's cross-section, `(n̂·r, n̂·u)`:
+/// `out` receives 2 floats.
+///
+/// # Safety
+/// `out` is null or points to 2 writable floats.
+#[no_mangle]
+pub unsafe extern "C" fn subcone_project_normal(
+    normal: SubconeVec3,
+    right: SubconeVec3,
+    up: SubconeVec3,
+    out: *mut f32,
+) -> SubconeStatus {
+    guard(|| {
+        let n = project_normal(normal.into(), right.into(), up.into());
+        // SAFETY: forwarded contract (2 floats).
+        unsafe { write(out.cast::<[f32; 2]>(), n.to_array()) }
+    })
+}
+
+/// CTSS eq. 7–8: the 32-bit visibility mask of a surface of cone occlusion
+/// `occlusion` whose projected normal is `(nx, ny)`; `placement` 0 derived
+/// (default), 1 the authors' code, 2 the paper's eq. 8.
+///
+/// # Safety
+/// `out` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn subcone_visibility_mask(
+    occlusion: f32,
+    nx: f32,
+    ny: f32,
+    placement: u32,
+    out: *mut u32,
+) -> SubconeStatus {
+    guard(|| {
+        if placement > 2 {
+            return SubconeStatus::InvalidArgument;
+        }
+        let m = visibility_mask(
+            occlusion,
+            Vec2::new(nx, ny),
+            MaskPlacement::from_u32(placement),
+        );
+        // SAFETY: forwarded contract.
+        unsafe { write(out, m) }
+    })
+}
+
+/// CTSS eq. 6's weight of a sample whose correlated mask is `visible`;
+/// `weighting` 0 visibility (default), 1 uniform; `min_weight` finite.
+///
+/// # Safety
+/// `out` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn subcone_sample_weight(
+    visible: u32,
+    weighting: u32,
+    min_weight: f32,
+    out: *mut f32,
+) -> SubconeStatus {
+    guard(|| {
+        if weighting > 1 || !min_weight.is_finite() {
+            return SubconeStatus::InvalidArgument;
+        }
+        let w = sample_weight(visible, Weighting::from_u32(weighting), min_weight);
+        // SAFETY: forwarded contract.
+        unsafe { write(out, w) }
+    })
+}
+
+/// A frame's worth of SRAA input for [`subcone_sraa_resolve`], in
+/// caller-owned CPU buffers (row-major, `width × height` pixels).
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct SubconeSraaFrame {
+    /// Image width in pixels (> 0).
+    pub width: u32,
+    /// Image height in pixels (> 0).
+    pub height: u32,
+    /// Shaded layers per pixel, 1..=16 (`layer_lights` gives each its gate).
+    pub layers: u32,
+    /// `width·height·layers` linear RGB colours: every pixel's shaded sample,
+    /// one colour per layer (e.g. layer 0 ambient and indirect, layer `1 + l`
+    /// light `l`'s direct light).
+    pub colors: *const SubconeVec3,
+    /// Length of `colors`.
+    pub colors_len: usize,
+    /// `layers` entries: the light whose shadow gates each layer (eq. 2), or
+    /// −1 for an ungated layer (eq. 1). Null: every layer ungated.
+    pub layer_lights: *const i8,
+    /// `width·height` geometries of the shaded samples.
+    pub shaded_geometry: *const SubconeGeometry,
+    /// Length of `shaded_geometry`.
+    pub shaded_geometry_len: usize,
+    /// `width·height` shadow bit sets of the shaded samples (bit `l`: in light
+    /// `l`'s shadow), or null for none.
+    pub shaded_shadow: *const u32,
+    /// Length of `shaded_shadow` (0 when null).
+    pub shaded_shadow_len: usize,
+    /// `4·width·height` geometries of the four subsamples of every pixel, at
+    /// `SUBPIXEL_OFFSETS` (the 4× MSAA pattern: (−⅛,−⅜), (⅜,−⅛), (−⅜,⅛),
+    /// (⅛,⅜)), pixel by pixel.
+    pub subsample_geometry: *const SubconeGeometry,
+    /// Length of `subsample_geometry`.
+    pub subsample_geometry_len: usize,
+    /// `4·width·height` shadow bit sets of the subsamples, or null for none.
+    pub subsample_shadow: *const u32,
+    /// Length of `subsample_shadow` (0 when null).
+    pub subsample_shadow_len: usize,
+}
+
+/// SRAA's antialiasing pass (§3, pass 2) over a whole frame: every layer of
+/// every subsample reconstructed from the 3×3 neighbourhood's shaded samples
+/// (eq. 1, gated by eq. 2 per light), then the box resolve, written to `out`
+/// (`width·height` colours). The same loop, to the bit, as the CPU backend's
+/// (the kernels' `sraa::Resolver`). Primary hits only: reconstruct the
+/// reflections on their own geometry with a second call and add.
+///
+/// Errors: null pointers where data is required, a zero size or more than 16
+/// layers, lengths that do not match the sizes, a gate naming a light above
+/// 31, non-finite parameters.
+///
+/// # Safety
+/// Every pointer is null or points to as many valid values as its length says.
+#[no_mangle]
+pub unsafe extern "C" fn subcone_sraa_resolve(
+    params: *const SubconeSraaParams,
+    frame: *const SubconeSraaFrame,
+    out: *mut SubconeVec3,
+    out_len: usize,
+) -> SubconeStatus {
+    // SAFETY: forwarded contract.
+    guard(|| status(unsafe { sraa_resolve(params, frame, out, out_len) }))
+}
+
+/// # Safety
+/// As [`subcone_sraa_resolve`].
+unsafe fn sraa_resolve(
+    params: *const SubconeSraaParams,
+    frame: *const SubconeSraaFrame,
+    out: *mut SubconeVec3,
+    out_len: usize,
+) -> Result<SubconeStatus, SubconeStatus> {
+    let p = sraa_params(params)?;
+    // SAFETY: forwarded contract.
+    let f = unsafe { read(frame) }?;
+    let (w, h, layers) = (f.width as usize, f.height as usize, f.layers as usize);
+    if w == 0 || h == 0 || layers == 0 || layers > MAX_LAYERS {
+        return Err(SubconeStatus::SizeMismatch);
+    }
+    let n = w.checked_mul(h).ok_or(SubconeStatus::SizeMismatch)?;
+    let exact = |len: usize, want: Option<usize>| match want {
+        Some(want) if len == want => Ok(()),
+        _ => Err(SubconeStatus::SizeMismatch),
+    };
+    exact(f.colors_len, n.checked_mul(layers))?;
+    exact(f.shaded_geometry_len, Some(n))?;
+    exact(f.subsample_geometry_len, n.checked_mul(4))?;
+    exact(out_len, Some(n))?;
+    let optional = |len: usize, want: usize| {
+        if len == 0 || len == want {
+            Ok(())
+        } else {
+            Err(SubconeStatus::SizeMismatch)
+        }
+    };
+    optional(f.shaded_shadow_len, n)?;
+    optional(f.subsample_shadow_len, 4 * n)?;
+    // SAFETY: lengths checked above against the sizes; pointers per contract.
+    let (colors, geometry, shadow, sub_geometry, sub_shadow, gates) = unsafe {
+        (
+            slice(f.colors, f.colors_len)?,
+            slice(f.shaded_geometry, f.shaded_geometry_len)?,
+            slice(f.shaded_shadow, f.shaded_shadow_len)?,
+            slice(f.subsample_geometry, f.subsample_geometry_len)?,
+            slice(f.subsample_shadow, f.subsample_shadow_len)?,
+            if f.layer_lights.is_null() {
+                &[][..]
+            } else {
+                slice(f.layer_lights, layers)?
+            },
+        )
+    };
+    if out.is_null() {
+        return Err(SubconeStatus::NullPointer);
+    }
+    let mut layer_gates = [None; MAX_LAYERS];
+    for (g, &l) in layer_gates.iter_mut().zip(gates) {
+        *g = match l {
+            l if l < 0 => None,
+            l if l < 32 => Some(l as u8),
+            _ => return Err(SubconeStatus::InvalidArgument),
+        };
+    }
+    // The kernels take glam types: the same layouts (checked above), copied
+    // rather than reinterpreted.
+    let colors: Vec<Vec3> = colors.iter().map(|&c| c.into()).collect();
+    let geometry: Vec<Geometry> = geometry.iter().map(|&g| g.into()).collect();
+    let resolver = Resolver::new(&p, &layer_gates[..layers], ALBEDO_TOLERANCE);
+    let shaded = ShadedFrame {
+        width: f.width,
+        height: f.height,
+        colors: &colors,
+        layers,
+        albedo: &[],
+        primary: ShadedGroup {
+            geometry: &geometry,
+            shadow,
+            first_layer: 0,
+        },
+        secondary: None,
+    };
+    // SAFETY: `out` is non-null and holds `n` values (checked above).
+    let out = unsafe { std::slice::from_raw_parts_mut(out, n) };
+    for (j, o) in out.iter_mut().enumerate() {
+        let g = &sub_geometry[4 * j..4 * j + 4];
+        let subsamples = Subsamples {
+            geometry: [g[0].into(), g[1].into(), g[2].into(), g[3].into()],
+            shadow: match sub_shadow.get(4 * j..4 * j + 4) {
+                Some(s) => [s[0], s[1], s[2], s[3]],
+                None => [0; 4],
+            },
+            albedo: None,
+        };
+        let (x, y) = ((j % w) as u32, (j / w) as u32);
+        *o = resolver.resolve(&shaded, x, y, &subsamples, None).into();
+    }
+    Ok(SubconeStatus::Ok)
+}
+
+/// The caller's field, through its callbacks.
+struct Callbacks {
+    distance: extern "C" fn(*mut c_void, SubconeVec3) -> SubconeFieldSample,
+    normal: SubconeNormalFn,
+    user: *mut c_void,
+}
+
+impl ConeField for Callbacks {
+    fn sample(&mut self, p: Vec3) -> FieldSample {
+        let s = (self.distance)(self.user, p.into());
+        FieldSample {
+            distance: s.distance,
+            step: s.step,
+            object: s.object,
+        }
+    }
+
+    fn normal(&mut self, p: Vec3, h: f32) -> Vec3 {
+        match self.normal {
+            Some(f) => f(self.user, p.into(), h).into(),
+            None => subcone_kernels::ctss::tetra_normal(|q| self.sample(q).distance, p, h),
+        }
+    }
+}
+
+/// One pixel's CTSS trace (Algorithm 1 with subcone's default groups, or the
+/// paper's with bit 2 of `flags`): the cone from `origin` along `dir`
+/// (normalised unless unit), its cross-section oriented by `up_hint`, through the caller's
+/// field `distance` (and `normal`, or NULL for differences of `distance`),
+/// each hit group shaded by `shade` as it closes (ASAP, §5.1), resolved by
+/// eq. 6 against `background`. The same loop, to the bit, as the CPU
+/// renderer's (the kernels' `ctss::trace_field`).
+///
+/// Errors: null `params`, `distance`, `shade` or `out`; non-finite
+/// parameters, `origin` or `dir`, a zero `dir`, a `visibility_k` outside
+/// 1..=32. A callback's NaN distance ends the trace
+/// (`stop` 6); its colour is then that of the groups before.
+///
+/// # Safety
+/// `params` and `out` are null or valid; the callbacks are valid functions
+/// that accept `user` and do not unwind.
+#[no_mangle]
+pub unsafe extern "C" fn subcone_ctss_trace(
+    params: *const SubconeCtssParams,
+    origin: SubconeVec3,
+    dir: SubconeVec3,
+    up_hint: SubconeVec3,
+    distance: SubconeDistanceFn,
+    normal: SubconeNormalFn,
+    shade: SubconeShadeFn,
+    user: *mut c_void,
+    background: SubconeVec3,
+    out: *mut SubconeCtssResult,
+) -> SubconeStatus {
+    guard(|| {
+        status((|| {
+            // SAFETY: forwarded contract.
+            let p: CtssParams = unsafe { read(params) }?.into();
+            let (Some(distance), Some(shade)) = (distance, shade) else {
+                return Err(SubconeStatus::NullPointer);
+            };
+            if out.is_null() {
+                return Err(SubconeStatus::NullPointer);
+            }
+            finite(&[
+                p.tan_theta,
+                p.alpha,
+                p.eps,
+                p.t_min,
+                p.t_max,
+                p.min_sample_weight,
+            ])?;
+            let (origin, dir, up_hint) = (Vec3::from(origin), Vec3::from(dir), Vec3::from(up_hint));
+            if !(origin.is_finite() && dir.is_finite() && up_hint.is_finite())
+                || dir.length_squared() == 0.0
+                || p.tan_theta < 0.0
+                || !(1..=32).contains(&p.visibility_k)
+            {
+                return Err(SubconeStatus::InvalidArgument);
+            }
+            // A unit direction is used as given (as the renderers pass it).
+            let dir = if (dir.length_squared() - 1.0).abs() > 4.0 * f32::EPSILON {
+                dir.normalize()
+            } else {
+                dir
+            };
+            let (right, up) = cross_section_frame(dir, up_hint);
+            let ray = SplitRay {
+                origin,
+                dir,
+                right,
+                up,
+            };
+            let mut field = Callbacks {
+                distance,
+                normal,
+                user,
+            };
+            let r = trace_field(
+                &p,
+                &ray,
+                &mut field,
+                |q, n, d| shade(user, q.into(), n.into(), d.into()).into(),
+                background.into(),
+            );
+            let stop = match r.stop {
+                StopReason::FullOcclusion => 0,
+                StopReason::HardHit => 1,
+                StopReason::VisibilityThreshold => 2,
+                StopReason::SampleCap => 3,
+                StopReason::MaxDistance => 4,
+                StopReason::StepBudget => 5,
+                StopReason::InvalidDistance => 6,
+            };
+            let result = SubconeCtssResult {
+                color: r.color.into(),
+                samples: r.samples,
+                steps: r.steps,
+                coverage: r.coverage,
+                stop,
+            };
+            // SAFETY: checked non-null; forwarded contract.
+            Ok(unsafe { write(out, result) })
+        })())
+    })
+}
