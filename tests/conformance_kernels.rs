@@ -1810,6 +1810,7 @@ fn check_stepper(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
         Some(StopReason::MaxDistance) => 5,
         Some(StopReason::StepBudget) => 6,
         Some(StopReason::InvalidDistance) => 7,
+        Some(s) => panic!("a stop reason this suite does not know: {s:?}"),
     };
     let mut exact = Report::new("subcone_cone_stepper_* (§5.3)");
     let mut depths = Report::new("  depths and weights");
@@ -1841,6 +1842,7 @@ fn check_stepper(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
                 Event::March => (0, 0),
                 Event::Sample(_) => (1, 0),
                 Event::Stop(r) => (2, code(Some(r))),
+                e => panic!("an event this suite does not know: {e:?}"),
             };
             rust[ob] = kind + 4 * reason + if st.is_passing() { 64 } else { 0 };
             rust[ob + 1] = st.t().to_bits();
@@ -2096,6 +2098,7 @@ fn check_ctss_trace(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
             MaxDistance => 5,
             StepBudget => 6,
             InvalidDistance => 7,
+            s => panic!("a stop reason this suite does not know: {s:?}"),
         }
     };
     let mut colour = Report::new("subcone_ctss_trace");

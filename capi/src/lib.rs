@@ -308,7 +308,8 @@ pub struct SubconeCtssResult {
     /// The final 32-bit visibility mask `M`.
     pub coverage: u32,
     /// Why it ended: 0 full occlusion, 1 hard hit, 2 visibility threshold, 3
-    /// sample cap, 4 left the scene, 5 step budget, 6 NaN distance.
+    /// sample cap, 4 left the scene, 5 step budget, 6 NaN distance, 7 a
+    /// reason this version does not name.
     pub stop: u32,
 }
 
@@ -989,6 +990,7 @@ pub unsafe extern "C" fn subcone_ctss_trace(
                 StopReason::MaxDistance => 4,
                 StopReason::StepBudget => 5,
                 StopReason::InvalidDistance => 6,
+                _ => 7,
             };
             let result = SubconeCtssResult {
                 color: r.color.into(),

@@ -283,6 +283,7 @@ impl CtssParams {
 
 /// Why a trace ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum StopReason {
     /// `ω > 1 − ε`: the cone is fully inside a surface.
     FullOcclusion,
@@ -342,6 +343,7 @@ pub struct GroupSample {
 
 /// What the caller does next.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum Event {
     /// Evaluate the SDF at the new [`ConeStepper::t`] and call `advance` again.
     March,

@@ -21,6 +21,7 @@ use bitflags::bitflags;
 /// coverage, k, …)
 #[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum Technique {
     /// One sample per pixel.
     NoAa = 0,

@@ -159,6 +159,7 @@ fn first_hard_hit_is_sampled_at_the_last_safe_depth() {
             Event::March => {}
             Event::Sample(g) => break g,
             Event::Stop(r) => panic!("stopped without a sample: {r:?}"),
+            e => panic!("an event this test does not know: {e:?}"),
         }
     };
     let hard = OcclusionThresholds::PAPER.hard;
@@ -200,6 +201,7 @@ fn sample_cap_is_eight() {
                 s.record(&g, Vec2::Y);
             }
             Event::Stop(r) => break r,
+            e => panic!("an event this test does not know: {e:?}"),
         }
     };
     assert_eq!((s.samples(), stop), (8, StopReason::SampleCap));

@@ -28,6 +28,7 @@ fn groups(params: &CtssParams, steps: &[(f32, u32)]) -> Vec<GroupSample> {
             }
             Event::Stop(_) => break,
             Event::March => {}
+            e => panic!("an event this test does not know: {e:?}"),
         }
     }
     out
@@ -197,6 +198,7 @@ fn ctss_r_last_group_takes_the_rest_of_the_pixel() {
                     break;
                 }
                 Event::March => {}
+                e => panic!("an event this test does not know: {e:?}"),
             }
         }
         assert_eq!(st.stop_reason(), Some(StopReason::HardHit));

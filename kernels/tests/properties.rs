@@ -241,6 +241,7 @@ fn check_entry_is_safe(
                 s.record(&g, Vec2::Y);
             }
             Event::Stop(_) => return Ok(()),
+            e => panic!("an event this test does not know: {e:?}"),
         }
         first = false;
     }

@@ -52,6 +52,7 @@ fn run_stepper(params: &CtssParams, mut sdf: impl FnMut(f32) -> f32) -> (u32, St
                 assert!(s.steps() <= params.max_steps);
                 return (s.steps(), r);
             }
+            e => panic!("an event this test does not know: {e:?}"),
         }
     }
 }

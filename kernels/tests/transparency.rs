@@ -244,6 +244,7 @@ fn transparent_trace_ends_within_budget() {
                 st.record_alpha(&s, Vec2::ZERO, 0.0);
             }
             Event::Stop(_) => break,
+            e => panic!("an event this test does not know: {e:?}"),
         }
     }
     assert!(st.steps() <= 300);

@@ -110,8 +110,8 @@ impl RenderSettings {
 /// method, known before any work starts. Resolutions, cameras, settings and
 /// device failures are not among them: those stay [`RenderError`]s of
 /// [`Backend::render`].
-#[non_exhaustive]
 #[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum UnsupportedReason {
     /// The technique does not apply to the scene's geometry, whatever the
     /// backend: [`required_passes`] refused it (CTSS on triangles, plain SRAA

@@ -6,6 +6,7 @@ use crate::backend::Unsupported;
 
 /// A scene could not be built or loaded.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum SceneError {
     /// A file could not be read or parsed.
     #[error("cannot load scene {path}: {reason}")]
@@ -51,6 +52,7 @@ pub enum SceneError {
 
 /// A frame could not be rendered or written.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum RenderError {
     /// The technique cannot render this scene, as
     /// [`subcone_kernels::passes::required_passes`] answers it to code that

@@ -167,6 +167,8 @@ impl fmt::Display for Method {
             Technique::CtssR => write!(f, "ctss-r{suffix}"),
             Technique::SsaaCtss => write!(f, "ssaa{}+ctss{suffix}", self.supersamples()),
             Technique::Fxaa => write!(f, "fxaa"),
+            // A technique added to the kernels before this crate names it.
+            other => write!(f, "{}", format!("{other:?}").to_ascii_lowercase()),
         }?;
         if self.technique.is_cone_traced() && self.ctss_paper {
             write!(f, "-paper")?;

@@ -95,6 +95,7 @@ pub enum Exactness {
 /// Callers that need a [`SceneError`](crate::SceneError) map it, e.g. to
 /// `SceneError::Load { path: "<sdf>".into(), reason: e.to_string() }`.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum SdfError {
     /// A parameter is NaN or infinite.
     #[error("{node}: {param} must be finite")]

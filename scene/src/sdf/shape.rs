@@ -22,6 +22,7 @@ use super::{Exactness, SdfError};
 /// shapes (a sphere of radius 0 is a point). All shapes are exact distances
 /// except [`Shape::Ellipsoid`] (a bound).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum Shape {
     /// Sphere. Exact.
     Sphere {

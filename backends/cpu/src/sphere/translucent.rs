@@ -116,7 +116,8 @@ impl<F: SdfField> SdfView<'_, F> {
                         passing_material = gm;
                     }
                 }
-                Event::Stop(_) => break,
+                // Stop, or an event this loop does not know.
+                _ => break,
             }
         }
         tally.steps += stepper.steps() as u64;
