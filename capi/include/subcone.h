@@ -189,7 +189,8 @@ typedef struct SubconeCtssResult {
   // The final 32-bit visibility mask `M`.
   uint32_t coverage;
   // Why it ended: 0 full occlusion, 1 hard hit, 2 visibility threshold, 3
-  // sample cap, 4 left the scene, 5 step budget, 6 NaN distance.
+  // sample cap, 4 left the scene, 5 step budget, 6 NaN distance, 7 a
+  // reason this version does not name.
   uint32_t stop;
 } SubconeCtssResult;
 
