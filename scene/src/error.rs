@@ -80,7 +80,71 @@ pub enum RenderError {
     /// The method's parameters are unusable.
     #[error("invalid method: {0}")]
     Method(String),
-    /// The backend failed (e.g. no GPU adapter).
+    /// No GPU adapter could be opened: the message names the fix (a driver,
+    /// or `WGPU_BACKEND`).
+    #[error("{backend} backend: {reason}")]
+    NoAdapter {
+        /// Backend name.
+        backend: &'static str,
+        /// What was tried and what to install.
+        reason: String,
+    },
+    /// The adapter cannot do what is needed (a device with the required
+    /// features and limits could not be opened, a format is not
+    /// renderable, …).
+    #[error("{backend} backend: {reason}")]
+    GpuUnsupported {
+        /// Backend name.
+        backend: &'static str,
+        /// What is missing.
+        reason: String,
+    },
+    /// The GPU ran out of memory during `what`.
+    #[error("{backend} backend: {what}: out of GPU memory: {reason}")]
+    OutOfMemory {
+        /// Backend name.
+        backend: &'static str,
+        /// The pass or upload.
+        what: String,
+        /// The driver's message.
+        reason: String,
+    },
+    /// The GPU API refused a call during `what` (a bug in a pass, or input
+    /// the pass should have refused earlier).
+    #[error("{backend} backend: {what}: {reason}")]
+    Validation {
+        /// Backend name.
+        backend: &'static str,
+        /// The pass or upload.
+        what: String,
+        /// The validation message.
+        reason: String,
+    },
+    /// The device was lost (driver reset, GPU removed), or an error was raised
+    /// outside every error scope; the context cannot be used again.
+    #[error("{backend} backend: {reason}")]
+    DeviceLost {
+        /// Backend name.
+        backend: &'static str,
+        /// The driver's message.
+        reason: String,
+    },
+    /// A resource would exceed one of the adapter's limits.
+    #[error("{backend} backend: {what} needs {requested}, over this adapter's {limit} of {max}")]
+    LimitExceeded {
+        /// Backend name.
+        backend: &'static str,
+        /// The resource.
+        what: String,
+        /// The limit's name (as wgpu names it).
+        limit: &'static str,
+        /// What was asked for.
+        requested: u64,
+        /// The adapter's limit.
+        max: u64,
+    },
+    /// Another backend failure (a wait that timed out, a read-back, data the
+    /// backend cannot lay out).
     #[error("{backend} backend: {reason}")]
     Backend {
         /// Backend name.

@@ -1,9 +1,12 @@
 //! The device: adapter choice, limits, error capture, read-back and pass timing.
 //!
-//! Every GPU failure becomes a [`RenderError::Backend`] with a message that
-//! says what to do, never a panic or a hang: validation and out-of-memory
-//! errors are caught by error scopes around each pass, device loss is recorded
-//! by a callback, and every wait on the GPU has a timeout.
+//! Every GPU failure becomes a typed [`RenderError`] with a message that says
+//! what to do, never a panic or a hang: [`RenderError::NoAdapter`],
+//! [`RenderError::GpuUnsupported`], [`RenderError::OutOfMemory`] and
+//! [`RenderError::Validation`] (caught by error scopes around each pass),
+//! [`RenderError::DeviceLost`] (recorded by a callback),
+//! [`RenderError::LimitExceeded`], and [`RenderError::Backend`] for the rest
+//! (every wait on the GPU has a timeout).
 
 use std::any::Any;
 use std::collections::HashMap;
@@ -73,7 +76,10 @@ impl GpuContext {
             compatible_surface: None,
             apply_limit_buckets: false,
         }))
-        .map_err(|e| err(format!("{NO_ADAPTER} ({e})")))?;
+        .map_err(|e| RenderError::NoAdapter {
+            backend: BACKEND,
+            reason: format!("{NO_ADAPTER} ({e})"),
+        })?;
         let info = adapter.get_info();
         let want =
             wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS;
@@ -97,7 +103,10 @@ impl GpuContext {
             memory_hints: wgpu::MemoryHints::Performance,
             trace: wgpu::Trace::Off,
         }))
-        .map_err(|e| err(format!("cannot open a device on {}: {e}", info.name)))?;
+        .map_err(|e| RenderError::GpuUnsupported {
+            backend: BACKEND,
+            reason: format!("cannot open a device on {}: {e}", info.name),
+        })?;
         let lost = Arc::new(Mutex::new(None));
         let sink = lost.clone();
         device.set_device_lost_callback(move |reason, message| {
@@ -146,14 +155,20 @@ impl GpuContext {
     /// One context per process, opened on first use. Tests and the CLI share
     /// it: opening a device costs far more than a small render.
     pub fn shared() -> Result<Arc<GpuContext>, RenderError> {
-        static SHARED: OnceLock<Result<Arc<GpuContext>, String>> = OnceLock::new();
-        SHARED
-            .get_or_init(|| GpuContext::new().map(Arc::new).map_err(|e| e.to_string()))
-            .clone()
-            .map_err(|reason| match reason.strip_prefix("wgpu backend: ") {
-                Some(r) => err(r),
-                None => err(reason),
-            })
+        static SHARED: OnceLock<Result<Arc<GpuContext>, RenderError>> = OnceLock::new();
+        match SHARED.get_or_init(|| GpuContext::new().map(Arc::new)) {
+            Ok(ctx) => Ok(ctx.clone()),
+            // Opening fails with one of these two; anything else keeps its text.
+            Err(RenderError::NoAdapter { reason, .. }) => Err(RenderError::NoAdapter {
+                backend: BACKEND,
+                reason: reason.clone(),
+            }),
+            Err(RenderError::GpuUnsupported { reason, .. }) => Err(RenderError::GpuUnsupported {
+                backend: BACKEND,
+                reason: reason.clone(),
+            }),
+            Err(e) => Err(err(e.to_string())),
+        }
     }
 
     /// A one-line description, e.g. `llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan, Mesa 22.3.6)`.
@@ -167,7 +182,10 @@ impl GpuContext {
     /// The error recorded by device loss or an uncaptured error, if any.
     pub fn check_lost(&self) -> Result<(), RenderError> {
         match self.lost.lock().unwrap_or_else(|e| e.into_inner()).as_ref() {
-            Some(m) => Err(err(m.clone())),
+            Some(m) => Err(RenderError::DeviceLost {
+                backend: BACKEND,
+                reason: m.clone(),
+            }),
             None => Ok(()),
         }
     }
@@ -177,9 +195,13 @@ impl GpuContext {
     pub fn check_texture_size(&self, width: u32, height: u32) -> Result<(), RenderError> {
         let max = self.device.limits().max_texture_dimension_2d;
         if width > max || height > max {
-            return Err(err(format!(
-                "{width}x{height} exceeds this adapter's largest 2D texture ({max}x{max})"
-            )));
+            return Err(RenderError::LimitExceeded {
+                backend: BACKEND,
+                what: format!("a {width}x{height} image"),
+                limit: "max_texture_dimension_2d",
+                requested: u64::from(width.max(height)),
+                max: u64::from(max),
+            });
         }
         Ok(())
     }
@@ -189,9 +211,13 @@ impl GpuContext {
         let l = self.device.limits();
         let max = l.max_storage_buffer_binding_size.min(l.max_buffer_size);
         if bytes > max {
-            return Err(err(format!(
-                "{what} needs {bytes} bytes, over this adapter's storage buffer limit of {max}"
-            )));
+            return Err(RenderError::LimitExceeded {
+                backend: BACKEND,
+                what: what.to_string(),
+                limit: "max_storage_buffer_binding_size",
+                requested: bytes,
+                max,
+            });
         }
         Ok(())
     }
@@ -206,10 +232,18 @@ impl GpuContext {
         let v = pollster::block_on(validation.pop());
         let o = pollster::block_on(oom.pop());
         if let Some(e) = o {
-            return Err(err(format!("{what}: out of GPU memory: {e}")));
+            return Err(RenderError::OutOfMemory {
+                backend: BACKEND,
+                what: what.to_string(),
+                reason: e.to_string(),
+            });
         }
         if let Some(e) = v {
-            return Err(err(format!("{what}: {e}")));
+            return Err(RenderError::Validation {
+                backend: BACKEND,
+                what: what.to_string(),
+                reason: e.to_string(),
+            });
         }
         self.check_lost()?;
         Ok(out)

@@ -429,7 +429,17 @@ fn buffers_over_the_adapter_limit_are_an_error() {
         .render(&scene, &scene.camera, &method, &settings)
         .expect_err("over the limit");
     let msg = err.to_string();
-    assert!(msg.contains("storage buffer limit"), "{msg}");
+    assert!(
+        matches!(
+            err,
+            RenderError::LimitExceeded {
+                limit: "max_storage_buffer_binding_size",
+                ..
+            }
+        ),
+        "{msg}"
+    );
+    assert!(msg.contains("max_storage_buffer_binding_size"), "{msg}");
     println!("{side}x{side}: {msg}");
 }
 
