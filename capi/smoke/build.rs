@@ -5,11 +5,11 @@
 fn main() {
     let include = std::path::Path::new("../include");
     println!("cargo:rerun-if-changed=../include/subcone.h");
-    for f in ["c/smoke.c", "c/readme_example.c"] {
+    for f in ["c/smoke.c", "c/vectors.c", "c/readme_example.c"] {
         println!("cargo:rerun-if-changed={f}");
     }
     cc::Build::new()
-        .files(["c/smoke.c", "c/readme_example.c"])
+        .files(["c/smoke.c", "c/vectors.c", "c/readme_example.c"])
         .include(include)
         .std("c99")
         .warnings(true)

@@ -51,7 +51,33 @@ pub struct SmokeOutputs {
     pub ctss: SubconeCtssResult,
 }
 
+/// What `subcone_smoke_vectors` checked. Mirrors `VectorTally` in
+/// `c/vectors.c`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct VectorTally {
+    /// Vector files read.
+    pub files: u32,
+    /// Cases read.
+    pub cases: u32,
+    /// Cases whose parameters the C ABI refuses (and did, with the error).
+    pub refused: u32,
+    /// Cases whose outputs matched the file's bit for bit (NaN as NaN).
+    pub exact: u32,
+    /// Cases that failed.
+    pub failures: u32,
+}
+
 extern "C" {
+    /// Reads the golden vectors in `dir` (`subcone vectors --out DIR`) for the
+    /// kernels the C ABI exports and checks each case within its file's
+    /// tolerance; returns the number of failures, described in `log`.
+    pub fn subcone_smoke_vectors(
+        dir: *const c_char,
+        tally: *mut VectorTally,
+        log: *mut c_char,
+        log_len: usize,
+    ) -> c_int;
     /// Calls every exported function with fixed inputs into `out`; also calls
     /// each with bad input (null pointers, NaN parameters, zero sizes,
     /// mismatched lengths) and returns how many of those did not give the
