@@ -1,0 +1,135 @@
+// SraaResolve (sraa.rs): SRAA's antialiasing pass (Chiu et al., §3, the
+// paper's pass 2) over the host's textures. The loop is the wgpu backend's
+// resolve (backends/wgpu/src/triangles/sraa.wgsl) and the kernels' Resolver:
+// for each of the four geometric subsamples, sraa::reconstruct_layers over
+// the neighbourhood's shaded samples (eq. 1, eq. 2 per light, the material
+// gate), then sraa::resolve_pixel. All the mathematics is the kernels'
+// (subcone_kernels::sraa::WGSL); this file only reads the host's textures.
+//
+// Follows subcone_kernels::wgsl::PARAMS, subcone_kernels::sraa::WGSL and the
+// header sraa.rs generates: the constants LIGHTS, MATERIAL, HARDWARE_DEPTH,
+// UNSIGNED_NORMALS, SHADED_AT_CENTRE, the bindings, and the loaders
+// sraa_load_sub_depth/normal/shadow/albedo (subsample k of pixel p),
+// sraa_load_centre_depth/normal, sraa_load_color (layer l),
+// sraa_load_shaded_shadow and sraa_load_shaded_albedo (the shaded sample).
+
+// sraa.rs `SraaFrame` (64 bytes).
+struct SraaFrame {
+    sraa: subcone_SraaParams,
+    // The host projection's entries that map view-space z to clip z and w
+    // (column-major m[2][2], m[3][2], m[2][3], m[3][3]): clip.z = x·z + y,
+    // clip.w = z·z + w. Read only with HARDWARE_DEPTH.
+    projection: vec4<f32>,
+    width: u32,
+    height: u32,
+    // The hardware depth of a sample nothing covered (the clear value).
+    depth_miss: f32,
+    albedo_tolerance: f32,
+}
+
+// View depth from the host's depth sample: a linear view depth (> 0 and
+// finite, anything else a miss), or a hardware depth d inverted through the
+// projection, z = |(m32 − d·m33) / (d·m23 − m22)| (forward or reversed Z,
+// finite or infinite far plane); +inf (a miss) for the clear value.
+fn sraa_decode_depth(d: f32) -> f32 {
+    var z = d;
+    if HARDWARE_DEPTH {
+        if d == frame.depth_miss {
+            return subcone_inf();
+        }
+        let m = frame.projection;
+        z = abs((m.y - d * m.w) / (d * m.z - m.x));
+    }
+    if subcone_is_finite(z) && z > 0.0 {
+        return z;
+    }
+    return subcone_inf();
+}
+
+// A unit normal from the host's encoding (xyz signed, or xyz·0.5 + 0.5 with
+// UNSIGNED_NORMALS); zero when the vector is zero or not finite.
+fn sraa_decode_normal(v: vec3<f32>) -> vec3<f32> {
+    var n = v;
+    if UNSIGNED_NORMALS {
+        n = v * 2.0 - vec3<f32>(1.0);
+    }
+    let l2 = dot(n, n);
+    if l2 > 0.0 && subcone_is_finite(l2) {
+        return n * (1.0 / sqrt(l2));
+    }
+    return vec3<f32>(0.0);
+}
+
+fn sraa_geometry(depth: f32, normal: vec3<f32>) -> subcone_Geometry {
+    let z = sraa_decode_depth(depth);
+    if z == subcone_inf() {
+        return subcone_Geometry(vec3<f32>(0.0), z);
+    }
+    return subcone_Geometry(sraa_decode_normal(normal), z);
+}
+
+// Geometric subsample k of pixel p (at SUBPIXEL_OFFSETS[k]).
+fn sraa_sub_geo(p: vec2<i32>, k: u32) -> subcone_Geometry {
+    return sraa_geometry(sraa_load_sub_depth(p, k), sraa_load_sub_normal(p, k));
+}
+
+// The geometry of pixel p's shaded sample: subsample SHADED_SUBSAMPLE, or
+// the host's centre geometry when the preset shades the pixel centre.
+fn sraa_shaded_geo(p: vec2<i32>) -> subcone_Geometry {
+    if SHADED_AT_CENTRE {
+        return sraa_geometry(sraa_load_centre_depth(p), sraa_load_centre_normal(p));
+    }
+    return sraa_sub_geo(p, subcone_SHADED_SUBSAMPLE);
+}
+
+// sraa::reconstruct_layers (sraa::reconstruct_layers_material with
+// MATERIAL) for subsample k of pixel (x, y): layer 0 ungated, layer 1 + l
+// gated by light l's shadow bit (eq. 2); returns the sum of the layers.
+fn sraa_reconstruct_subsample(x: u32, y: u32, k: u32) -> vec3<f32> {
+    let p = vec2<i32>(i32(x), i32(y));
+    let tgt = sraa_sub_geo(p, k);
+    let target_shadow = sraa_load_sub_shadow(p, k);
+    let ta = sraa_load_sub_albedo(p, k);
+    let gates = 1u + LIGHTS;
+    var st: array<subcone_LayerState, 9>;
+    for (var i = 0u; i < gates; i++) {
+        st[i] = subcone_reconstruct_layers_begin();
+    }
+    let nb = subcone_neighbourhood(x, y, k, subcone_sraa_shaded_offset(frame.sraa), subcone_sraa_radius(frame.sraa), frame.width, frame.height);
+    for (var py = nb.y0; py < nb.y1; py++) {
+        for (var px = nb.x0; px < nb.x1; px++) {
+            let q = vec2<i32>(i32(px), i32(py));
+            let d2 = subcone_neighbour_distance2(nb, x, y, px, py);
+            let g = sraa_shaded_geo(q);
+            let s = sraa_load_shaded_shadow(q);
+            var w = 0.0;
+            if !MATERIAL || subcone_material_gate(ta, sraa_load_shaded_albedo(q), frame.albedo_tolerance) {
+                w = subcone_reconstruction_weight(frame.sraa, tgt, g, d2);
+            }
+            for (var i = 0u; i < gates; i++) {
+                // Through a local: naga's SPIR-V writer cannot pass a pointer
+                // to an array element as an argument.
+                var layer = st[i];
+                subcone_reconstruct_layers_add(&layer, w, i > 0u, i - 1u, target_shadow, s, d2, sraa_load_color(q, i));
+                st[i] = layer;
+            }
+        }
+    }
+    var sum = vec3<f32>(0.0);
+    for (var i = 0u; i < gates; i++) {
+        sum = sum + subcone_reconstruct_layers_end(st[i]);
+    }
+    return sum;
+}
+
+@compute @workgroup_size(8, 8)
+fn sraa_resolve_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= frame.width || id.y >= frame.height {
+        return;
+    }
+    let s0 = sraa_reconstruct_subsample(id.x, id.y, 0u);
+    let s1 = sraa_reconstruct_subsample(id.x, id.y, 1u);
+    let s2 = sraa_reconstruct_subsample(id.x, id.y, 2u);
+    let s3 = sraa_reconstruct_subsample(id.x, id.y, 3u);
+    textureStore(sraa_output, vec2<i32>(i32(id.x), i32(id.y)), vec4<f32>(subcone_resolve_pixel(s0, s1, s2, s3), 1.0));
+}
