@@ -1,3 +1,4 @@
+#![allow(dead_code)]
 //! What the GPU tests of this crate share: a host device, or a skip that
 //! fails when `SUBCONE_REQUIRE_GPU` is set.
 

@@ -1,0 +1,247 @@
+//! The passes stay inside the host's error handling: they install no
+//! callback (the host's uncaptured-error handler is still the one called
+//! after they ran, and `subcone_wgpu::GpuContext::from_device` does not take
+//! it over either), and inputs that do not fit are typed errors before
+//! anything reaches the device.
+
+mod common;
+
+#[allow(dead_code)]
+#[path = "../examples/host_sraa.rs"]
+mod host_sraa;
+
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Arc;
+
+use subcone_kernels::fxaa::FxaaParams;
+use subcone_kernels::sraa::SraaParams;
+use subcone_passes::{
+    DepthConvention, FxaaPass, PassError, SraaInputs, SraaResolve, SraaResolveDesc,
+};
+
+fn texture(
+    device: &wgpu::Device,
+    (w, h): (u32, u32),
+    samples: u32,
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: None,
+        size: wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: samples,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
+}
+
+fn wait(device: &wgpu::Device) {
+    device
+        .poll(wgpu::PollType::Wait {
+            submission_index: None,
+            timeout: Some(std::time::Duration::from_secs(60)),
+        })
+        .expect("poll");
+}
+
+#[test]
+fn the_hosts_uncaptured_error_handler_stays_the_hosts() {
+    let Some((device, queue)) = common::device_or_skip("host errors", host_sraa::open_device)
+    else {
+        return;
+    };
+    let seen = Arc::new(AtomicUsize::new(0));
+    let counter = seen.clone();
+    device.on_uncaptured_error(Arc::new(move |_e: wgpu::Error| {
+        counter.fetch_add(1, Ordering::SeqCst);
+    }));
+    // subcone's own context on the host's device: no callback installed.
+    let ctx = subcone_wgpu::GpuContext::from_device(device.clone(), queue.clone());
+    assert!(ctx.check_lost().is_ok());
+    // The passes run (SRAA through the host example, FXAA on its output).
+    let image = host_sraa::render(&device, &queue, SraaParams::PAPER, 16, 8).expect("host render");
+    assert_eq!(image.len(), 16 * 8);
+    let fxaa = FxaaPass::new(
+        &device,
+        &FxaaParams::QUALITY,
+        wgpu::TextureFormat::Rgba16Float,
+    )
+    .expect("fxaa");
+    let read = wgpu::TextureUsages::TEXTURE_BINDING;
+    let src = texture(&device, (16, 8), 1, wgpu::TextureFormat::Rgba16Float, read);
+    let dst = texture(
+        &device,
+        (16, 8),
+        1,
+        wgpu::TextureFormat::Rgba16Float,
+        wgpu::TextureUsages::STORAGE_BINDING,
+    );
+    let mut enc = device.create_command_encoder(&Default::default());
+    fxaa.encode(&device, &mut enc, &src, &dst)
+        .expect("fxaa encode");
+    queue.submit([enc.finish()]);
+    wait(&device);
+    assert_eq!(seen.load(Ordering::SeqCst), 0, "the passes raised an error");
+    // A mistake of the host's own, outside any error scope: its handler
+    // sees it, not subcone's.
+    let _bad = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("invalid"),
+        size: 16,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::MAP_WRITE,
+        mapped_at_creation: false,
+    });
+    wait(&device);
+    assert_eq!(
+        seen.load(Ordering::SeqCst),
+        1,
+        "the host's handler did not see the host's error"
+    );
+    // And subcone's context recorded nothing of it: it is the host's.
+    assert!(ctx.check_lost().is_ok());
+}
+
+/// Each wrong input is its typed error, and nothing reaches the device (the
+/// host's handler sees no error).
+#[test]
+fn inputs_that_do_not_fit_are_typed_errors() {
+    let Some((device, _queue)) =
+        common::device_or_skip("pass input checks", host_sraa::open_device)
+    else {
+        return;
+    };
+    let seen = Arc::new(AtomicUsize::new(0));
+    let counter = seen.clone();
+    device.on_uncaptured_error(Arc::new(move |_e: wgpu::Error| {
+        counter.fetch_add(1, Ordering::SeqCst);
+    }));
+    use wgpu::TextureFormat::{Depth32Float, R32Float, Rgba16Float, Rgba8UnormSrgb};
+    let read = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT;
+    let store = wgpu::TextureUsages::STORAGE_BINDING;
+    let size = (8, 4);
+    let depth = texture(&device, size, 4, Depth32Float, read);
+    let normal = texture(&device, size, 4, Rgba16Float, read);
+    let normal1 = texture(&device, size, 1, Rgba16Float, read);
+    let small = texture(&device, (4, 4), 4, Rgba16Float, read);
+    let color = texture(&device, size, 1, Rgba16Float, read);
+    let linear = texture(&device, size, 4, R32Float, read);
+    let output = texture(&device, size, 1, Rgba16Float, store);
+    let sraa = SraaResolve::new(&device, &SraaResolveDesc::msaa()).expect("pass");
+    let good = SraaInputs {
+        subsample_depth: &depth,
+        subsample_normal: Some(&normal),
+        depth: DepthConvention::Hardware {
+            projection: glam::Mat4::IDENTITY.to_cols_array_2d(),
+            miss: 0.0,
+        },
+        centre: None,
+        color: &color,
+        shadows: None,
+        albedo: None,
+        output: &output,
+    };
+    let mut enc = device.create_command_encoder(&Default::default());
+    assert_eq!(sraa.encode(&device, &mut enc, &good), Ok(()));
+    let cases: Vec<(SraaInputs<'_>, fn(&PassError) -> bool)> = vec![
+        (
+            SraaInputs {
+                subsample_normal: Some(&normal1),
+                ..good
+            },
+            |e| {
+                matches!(
+                    e,
+                    PassError::SampleCount {
+                        expected: 4,
+                        found: 1,
+                        ..
+                    }
+                )
+            },
+        ),
+        (
+            SraaInputs {
+                subsample_normal: Some(&small),
+                ..good
+            },
+            |e| matches!(e, PassError::Size { .. }),
+        ),
+        (
+            SraaInputs {
+                subsample_depth: &linear,
+                ..good
+            },
+            |e| matches!(e, PassError::Format { .. }),
+        ),
+        (
+            SraaInputs {
+                subsample_normal: None,
+                ..good
+            },
+            |e| matches!(e, PassError::Missing(_)),
+        ),
+        (
+            SraaInputs {
+                depth: DepthConvention::LinearView,
+                ..good
+            },
+            |e| matches!(e, PassError::Config(_)),
+        ),
+        (
+            SraaInputs {
+                output: &color,
+                ..good
+            },
+            |e| matches!(e, PassError::Usage { .. }),
+        ),
+    ];
+    for (i, (inputs, expected)) in cases.iter().enumerate() {
+        match sraa.encode(&device, &mut enc, inputs) {
+            Err(e) if expected(&e) => {}
+            other => panic!("case {i}: {other:?}"),
+        }
+    }
+    // The tuned preset shades the centre: its geometry is required.
+    let tuned = SraaResolve::new(
+        &device,
+        &SraaResolveDesc {
+            params: SraaParams::TUNED,
+            ..SraaResolveDesc::msaa()
+        },
+    )
+    .expect("tuned pass");
+    assert!(matches!(
+        tuned.encode(&device, &mut enc, &good),
+        Err(PassError::Missing(_))
+    ));
+    // Configurations out of range.
+    for desc in [
+        SraaResolveDesc {
+            lights: 9,
+            ..SraaResolveDesc::msaa()
+        },
+        SraaResolveDesc {
+            secondary: true,
+            ..SraaResolveDesc::msaa()
+        },
+        SraaResolveDesc {
+            output_format: Rgba8UnormSrgb,
+            ..SraaResolveDesc::msaa()
+        },
+    ] {
+        assert!(SraaResolve::new(&device, &desc).is_err(), "{desc:?}");
+    }
+    drop(enc);
+    wait(&device);
+    assert_eq!(
+        seen.load(Ordering::SeqCst),
+        0,
+        "a refused input reached the device"
+    );
+}
