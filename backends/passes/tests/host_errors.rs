@@ -148,7 +148,8 @@ fn inputs_that_do_not_fit_are_typed_errors() {
     };
     let mut enc = device.create_command_encoder(&Default::default());
     assert_eq!(sraa.encode(&device, &mut enc, &good), Ok(()));
-    let cases: Vec<(SraaInputs<'_>, fn(&PassError) -> bool)> = vec![
+    type Case<'a> = (SraaInputs<'a>, fn(&PassError) -> bool);
+    let cases: Vec<Case<'_>> = vec![
         (
             SraaInputs {
                 subsample_normal: Some(&normal1),
