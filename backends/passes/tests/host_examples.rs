@@ -96,3 +96,43 @@ fn host_sraa_matches_the_cpu_backend() {
         );
     }
 }
+
+#[allow(dead_code)]
+#[path = "../examples/host_ctss.rs"]
+mod host_ctss;
+
+/// `host_ctss`: `CtssPass` with the host's WGSL field against the kernels'
+/// `trace_field` of the same field written in Rust, pixel by pixel (the
+/// same cones, parameters and shading). Bound: mean FLIP ≤ 0.01 (the two
+/// differ by the GPU's `length`, `sqrt` and `exp` against libm's, a few
+/// ulps that can move a step); 99th percentile ≤ 0.05. Most pixels are
+/// surfaces (the image is not trivially the background).
+#[test]
+fn host_ctss_matches_the_cpu_trace() {
+    let Some((device, queue)) = common::device_or_skip("host_ctss", host_ctss::open_device) else {
+        return;
+    };
+    let gpu = host_ctss::render_gpu(&device, &queue, W, H).expect("GPU render");
+    let cpu = host_ctss::render_cpu(W, H);
+    let surface = gpu
+        .iter()
+        .filter(|c| (**c - host_ctss::BACKGROUND).abs().max_element() > 1e-3)
+        .count();
+    assert!(
+        surface > gpu.len() / 2,
+        "{surface} of {} pixels show a surface",
+        gpu.len()
+    );
+    let (g8, c8) = (host_ctss::to_srgb8(&gpu), host_ctss::to_srgb8(&cpu));
+    let (mean, p99) = common::flip(W, H, &c8, &g8);
+    let worst = gpu
+        .iter()
+        .zip(&cpu)
+        .map(|(g, c)| (*g - *c).abs().max_element())
+        .fold(0.0f32, f32::max);
+    eprintln!(
+        "ctss: GPU vs CPU mean FLIP {mean:.6}, p99 {p99:.5}, largest channel difference {worst:e}"
+    );
+    assert!(mean <= 0.01, "mean FLIP {mean} > 0.01");
+    assert!(p99 <= 0.05, "99th percentile FLIP {p99} > 0.05");
+}
