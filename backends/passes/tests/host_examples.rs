@@ -136,3 +136,83 @@ fn host_ctss_matches_the_cpu_trace() {
     assert!(mean <= 0.01, "mean FLIP {mean} > 0.01");
     assert!(p99 <= 0.05, "99th percentile FLIP {p99} > 0.05");
 }
+
+/// `FxaaPass` on a host texture against the CPU backend's FXAA
+/// (`subcone_cpu::post::fxaa`, the same kernel in Rust) of the same frame:
+/// the CPU's NoAA frame of the host scene. Bound: mean FLIP ≤ 0.01 and no
+/// channel off by more than 2/255 in sRGB (the kernel quantises to 8 bits:
+/// the GPU's `pow` may round a value across a step). FXAA must change the
+/// frame (edges are blended).
+#[test]
+fn fxaa_pass_matches_the_cpu_post_process() {
+    use subcone_passes::FxaaPass;
+    let Some((device, queue)) = common::device_or_skip("fxaa pass", host_sraa::open_device) else {
+        return;
+    };
+    let scene = cpu_scene();
+    let method = "noaa".parse().expect("method");
+    let frame = subcone_cpu::CpuBackend::new()
+        .render(&scene, &scene.camera, &method, &RenderSettings::new(W, H))
+        .expect("CPU render");
+    let mut cpu = frame.clone();
+    subcone_cpu::post::fxaa(&mut cpu, &subcone_kernels::fxaa::FxaaParams::QUALITY);
+    let format = wgpu::TextureFormat::Rgba32Float;
+    let texture = |usage| {
+        device.create_texture(&wgpu::TextureDescriptor {
+            label: None,
+            size: wgpu::Extent3d {
+                width: W,
+                height: H,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage,
+            view_formats: &[],
+        })
+    };
+    let input = texture(wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST);
+    let output = texture(wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC);
+    let texels: Vec<[f32; 4]> = frame.color.iter().map(|c| c.extend(1.0).into()).collect();
+    queue.write_texture(
+        input.as_image_copy(),
+        bytemuck::cast_slice(&texels),
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(W * 16),
+            rows_per_image: Some(H),
+        },
+        input.size(),
+    );
+    let pass =
+        FxaaPass::new(&device, &subcone_kernels::fxaa::FxaaParams::QUALITY, format).expect("pass");
+    let mut enc = device.create_command_encoder(&Default::default());
+    pass.encode(&device, &mut enc, &input, &output)
+        .expect("encode");
+    let gpu = host_sraa::read_rgba32f(&device, &queue, enc, &output).expect("read-back");
+    let gpu: Vec<glam::Vec3> = gpu
+        .iter()
+        .map(|p| glam::Vec3::new(p[0], p[1], p[2]))
+        .collect();
+    let (g8, c8) = (host_sraa::to_srgb8(&gpu), cpu.to_srgb8());
+    let (mean, p99) = common::flip(W, H, &c8, &g8);
+    let worst = g8
+        .iter()
+        .zip(&c8)
+        .map(|(a, b)| a.abs_diff(*b))
+        .max()
+        .unwrap_or(0);
+    // Pixels FXAA blended (beyond its 8-bit quantisation).
+    let changed = frame
+        .to_srgb8()
+        .chunks(3)
+        .zip(c8.chunks(3))
+        .filter(|(a, b)| a.iter().zip(*b).any(|(x, y)| x.abs_diff(*y) > 4))
+        .count();
+    eprintln!("fxaa: GPU vs CPU mean FLIP {mean:.6}, p99 {p99:.5}, worst {worst}/255; {changed} pixels filtered");
+    assert!(changed > 20, "FXAA changed only {changed} pixels");
+    assert!(mean <= 0.01, "mean FLIP {mean} > 0.01");
+    assert!(worst <= 2, "a channel differs by {worst}/255");
+}
