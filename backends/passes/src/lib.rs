@@ -40,6 +40,11 @@ pub use sraa::{
     ShadowTextures, SraaInputs, SraaResolve, SraaResolveDesc,
 };
 
+/// README.md's code blocks (its "Embedding" section), compiled as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+pub struct ReadmeSnippets;
+
 /// Why a pass refused its configuration or its inputs. Nothing was recorded.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum PassError {
