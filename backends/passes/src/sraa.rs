@@ -25,6 +25,18 @@ use crate::bind::{self, Expect, Group};
 use crate::PassError;
 
 pub(crate) const SRAA_WGSL: &str = include_str!("sraa.wgsl");
+
+/// The SRAA reconstruction loop in WGSL, shared by every GPU resolve
+/// ([`SraaResolve`] and the wgpu backend's own): `sraa_reconstruct_run`,
+/// `sraa::reconstruct_layers` (with the albedo gate,
+/// `sraa::reconstruct_layers_material`) of one subsample over the
+/// neighbourhood's shaded samples of one group, driving the kernels' WGSL in
+/// the CPU's order. Concatenate after `subcone_kernels::wgsl::PARAMS`,
+/// `subcone_kernels::sraa::WGSL` and the hooks the source's header lists
+/// (`SRAA_GATES`, `SRAA_MATERIAL`, `sraa_params`, `sraa_size`,
+/// `sraa_albedo_tolerance`, `sraa_shaded_geometry`, `sraa_shaded_shadow`,
+/// `sraa_shaded_albedo`, `sraa_shaded_value`).
+pub const RECONSTRUCT_WGSL: &str = include_str!("reconstruct.wgsl");
 const WORKGROUP: u32 = 8;
 
 /// The pass's constants; `SraaFrame` in `sraa.wgsl` (64 bytes).
@@ -463,6 +475,7 @@ impl SraaResolve {
             subcone_kernels::sraa::WGSL,
             &h,
             SRAA_WGSL,
+            RECONSTRUCT_WGSL,
         ]
         .concat())
     }

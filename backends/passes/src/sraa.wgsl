@@ -3,11 +3,13 @@
 // resolve (backends/wgpu/src/triangles/sraa.wgsl) and the kernels' Resolver:
 // for each of the four geometric subsamples, sraa::reconstruct_layers over
 // the neighbourhood's shaded samples (eq. 1, eq. 2 per light, the material
-// gate), then sraa::resolve_pixel. All the mathematics is the kernels'
+// gate; reconstruct.wgsl, shared with the backend), then
+// sraa::resolve_pixel. All the mathematics is the kernels'
 // (subcone_kernels::sraa::WGSL); this file only reads the host's textures.
 //
 // Follows subcone_kernels::wgsl::PARAMS, subcone_kernels::sraa::WGSL and the
-// header sraa.rs generates: the constants LIGHTS, MATERIAL, HARDWARE_DEPTH,
+// header sraa.rs generates, and before reconstruct.wgsl (the loop, whose
+// hooks this file defines): the constants LIGHTS, MATERIAL, HARDWARE_DEPTH,
 // UNSIGNED_NORMALS, SHADED_AT_CENTRE, the bindings, and the loaders
 // sraa_load_sub_depth/normal/shadow/albedo (subsample k of pixel p),
 // sraa_load_centre_depth/normal, sraa_load_color (layer l),
@@ -82,44 +84,42 @@ fn sraa_shaded_geo(p: vec2<i32>) -> subcone_Geometry {
     return sraa_sub_geo(p, subcone_SHADED_SUBSAMPLE);
 }
 
-// sraa::reconstruct_layers (sraa::reconstruct_layers_material with
-// MATERIAL) for subsample k of pixel (x, y): layer 0 ungated, layer 1 + l
-// gated by light l's shadow bit (eq. 2); returns the sum of the layers.
+// The hooks of reconstruct.wgsl (subcone_passes::RECONSTRUCT_WGSL).
+const SRAA_GATES: u32 = 1u + LIGHTS;
+const SRAA_MATERIAL: bool = MATERIAL;
+
+fn sraa_params() -> subcone_SraaParams {
+    return frame.sraa;
+}
+
+fn sraa_size() -> vec2<u32> {
+    return vec2<u32>(frame.width, frame.height);
+}
+
+fn sraa_albedo_tolerance() -> f32 {
+    return frame.albedo_tolerance;
+}
+
+fn sraa_shaded_geometry(x: u32, y: u32, secondary: bool) -> subcone_Geometry {
+    return sraa_shaded_geo(vec2<i32>(i32(x), i32(y)));
+}
+
+fn sraa_shaded_shadow(x: u32, y: u32, secondary: bool) -> u32 {
+    return sraa_load_shaded_shadow(vec2<i32>(i32(x), i32(y)));
+}
+
+fn sraa_shaded_albedo(x: u32, y: u32) -> vec3<f32> {
+    return sraa_load_shaded_albedo(vec2<i32>(i32(x), i32(y)));
+}
+
+fn sraa_shaded_value(x: u32, y: u32, layer: u32) -> vec3<f32> {
+    return sraa_load_color(vec2<i32>(i32(x), i32(y)), layer);
+}
+
+// Subsample k of pixel (x, y), reconstructed (primary group only).
 fn sraa_reconstruct_subsample(x: u32, y: u32, k: u32) -> vec3<f32> {
     let p = vec2<i32>(i32(x), i32(y));
-    let tgt = sraa_sub_geo(p, k);
-    let target_shadow = sraa_load_sub_shadow(p, k);
-    let ta = sraa_load_sub_albedo(p, k);
-    let gates = 1u + LIGHTS;
-    var st: array<subcone_LayerState, 9>;
-    for (var i = 0u; i < gates; i++) {
-        st[i] = subcone_reconstruct_layers_begin();
-    }
-    let nb = subcone_neighbourhood(x, y, k, subcone_sraa_shaded_offset(frame.sraa), subcone_sraa_radius(frame.sraa), frame.width, frame.height);
-    for (var py = nb.y0; py < nb.y1; py++) {
-        for (var px = nb.x0; px < nb.x1; px++) {
-            let q = vec2<i32>(i32(px), i32(py));
-            let d2 = subcone_neighbour_distance2(nb, x, y, px, py);
-            let g = sraa_shaded_geo(q);
-            let s = sraa_load_shaded_shadow(q);
-            var w = 0.0;
-            if !MATERIAL || subcone_material_gate(ta, sraa_load_shaded_albedo(q), frame.albedo_tolerance) {
-                w = subcone_reconstruction_weight(frame.sraa, tgt, g, d2);
-            }
-            for (var i = 0u; i < gates; i++) {
-                // Through a local: naga's SPIR-V writer cannot pass a pointer
-                // to an array element as an argument.
-                var layer = st[i];
-                subcone_reconstruct_layers_add(&layer, w, i > 0u, i - 1u, target_shadow, s, d2, sraa_load_color(q, i));
-                st[i] = layer;
-            }
-        }
-    }
-    var sum = vec3<f32>(0.0);
-    for (var i = 0u; i < gates; i++) {
-        sum = sum + subcone_reconstruct_layers_end(st[i]);
-    }
-    return sum;
+    return sraa_reconstruct_run(sraa_sub_geo(p, k), sraa_load_sub_shadow(p, k), sraa_load_sub_albedo(p, k), false, 0u, x, y, k);
 }
 
 @compute @workgroup_size(8, 8)
