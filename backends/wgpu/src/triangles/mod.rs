@@ -33,6 +33,8 @@ pub(crate) const ALBEDO_WGSL: &str = include_str!("albedo.wgsl");
 const SUPERSAMPLE_WGSL: &str = include_str!("supersample.wgsl");
 const SUBPIXEL_WGSL: &str = include_str!("subpixel.wgsl");
 const SRAA_WGSL: &str = include_str!("sraa.wgsl");
+/// The resolve's reconstruction loop, shared with `subcone_passes::SraaResolve`.
+const RECONSTRUCT_WGSL: &str = subcone_passes::RECONSTRUCT_WGSL;
 
 /// The frame's constants; `FrameUniform` in frame.wgsl (160 bytes), read
 /// by the compute passes and the raster pass.
@@ -561,7 +563,13 @@ fn subpixel(f: &Setup) -> Result<Frame, RenderError> {
     let (ctx, s) = (f.ctx, f.job.settings);
     let n = s.width as usize * s.height as usize;
     let (fb, header, raster) = subpixel_bindings(f)?;
-    let mut prog = program(ctx, &f.scene, &fb, &header, &[SUBPIXEL_WGSL, SRAA_WGSL])?;
+    let mut prog = program(
+        ctx,
+        &f.scene,
+        &fb,
+        &header,
+        &[SUBPIXEL_WGSL, SRAA_WGSL, RECONSTRUCT_WGSL],
+    )?;
     let shade = prog.pipeline("shade_main")?;
     let geometry = match raster {
         None => Some(prog.pipeline("geometry_main")?),
@@ -636,7 +644,13 @@ pub(crate) fn subpixel_geometry_both(
         uniform,
     };
     let (fb, header, _) = subpixel_bindings(&f)?;
-    let mut prog = program(ctx, &f.scene, &fb, &header, &[SUBPIXEL_WGSL, SRAA_WGSL])?;
+    let mut prog = program(
+        ctx,
+        &f.scene,
+        &fb,
+        &header,
+        &[SUBPIXEL_WGSL, SRAA_WGSL, RECONSTRUCT_WGSL],
+    )?;
     let shade = prog.pipeline("shade_main")?;
     let geometry = prog.pipeline("geometry_main")?;
     let groups = workgroups(ctx, &s)?;
