@@ -553,6 +553,7 @@ pub fn render(
             color: &color,
             shadows: None,
             albedo: None,
+            secondary: None,
             output: &output,
         },
     )

@@ -156,7 +156,7 @@ fn validate(label: &str, source: &str) -> Result<(), String> {
 }
 
 /// Every SRAA configuration's shader (layout × depth × normals × centre or
-/// subsample shading × lights × albedo gate) validates, and so do the
+/// subsample shading × lights × albedo gate × secondary shading) validates, and so do the
 /// CTSS (with and without the host's normal) and FXAA shaders.
 #[test]
 fn every_pass_shader_validates() {
@@ -176,10 +176,16 @@ fn every_pass_shader_validates() {
                     continue;
                 }
                 for params in [SraaParams::PAPER, SraaParams::TUNED] {
-                    for (lights, albedo_gate) in [(0, false), (2, true), (8, false)] {
+                    for (lights, albedo_gate, secondary) in [
+                        (0, false, false),
+                        (2, true, true),
+                        (8, false, true),
+                        (0, false, true),
+                    ] {
                         let desc = SraaResolveDesc {
                             lights,
                             albedo_gate,
+                            secondary,
                             params,
                             geometry,
                             depth,

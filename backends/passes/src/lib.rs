@@ -37,7 +37,7 @@ pub use ctss::{CtssCamera, CtssFrame, CtssPass, CtssPassDesc, MAX_BATCH};
 pub use fxaa::FxaaPass;
 pub use sraa::{
     AlbedoTextures, CentreGeometry, DepthConvention, DepthKind, GeometryLayout, NormalEncoding,
-    ShadowTextures, SraaInputs, SraaResolve, SraaResolveDesc, RECONSTRUCT_WGSL,
+    SecondaryInputs, ShadowTextures, SraaInputs, SraaResolve, SraaResolveDesc, RECONSTRUCT_WGSL,
 };
 
 /// README.md's code blocks (its "Embedding" section), compiled as doctests.

@@ -140,9 +140,11 @@ pub struct SraaResolveDesc {
     /// contribution) and shadow bits ([`ShadowTextures`]).
     pub lights: u32,
     /// Secondary shading (mirror reflections, SRAA-RT §3.3) reconstructed
-    /// with the secondary hits' own geometry. Not supported by this pass
-    /// yet: `true` is refused with [`PassError::Config`]; fold the reflected
-    /// radiance into the primary layers instead.
+    /// on the secondary hits' own geometry ([`SecondaryInputs`]): the colour
+    /// then has twice the layers, the primary group's `1 + L` followed by
+    /// the secondary group's `1 + L` (each weighted by the mirror's
+    /// reflectance by the host), and a subsample's secondary layers are
+    /// added to its primary ones where it sees a mirror.
     pub secondary: bool,
     /// The material gate (§4.1, Fig. 6; `sraa::material_gated_weight`): a
     /// neighbour whose albedo differs from the subsample's by more than
@@ -183,6 +185,11 @@ impl SraaResolveDesc {
             normal: NormalEncoding::Signed,
             output_format: wgpu::TextureFormat::Rgba16Float,
         }
+    }
+
+    /// Colour layers: `1 + lights`, twice that with secondary shading.
+    fn color_layers(&self) -> u32 {
+        (1 + self.lights) * if self.secondary { 2 } else { 1 }
     }
 
     fn shaded_at_centre(&self) -> bool {
@@ -227,6 +234,29 @@ pub struct AlbedoTextures<'a> {
     pub subsamples: &'a wgpu::Texture,
 }
 
+/// The secondary hits (SRAA-RT §3.3: where a mirror reflects the ray) for
+/// [`SraaResolveDesc::secondary`]. Depth is always the linear length of the
+/// reflected path (eye to mirror plus mirror to hit), in a float colour
+/// format (e.g. `R32Float`), whatever the primary depth's kind: a value
+/// `> 0` and finite is a hit; `0` or `+inf` a miss (the reflection left the
+/// scene: its layers hold the background); negative or NaN means no mirror
+/// at that sample (its secondary layers are not used). Normals as
+/// [`SraaResolveDesc::normal`].
+#[derive(Clone, Copy, Debug)]
+pub struct SecondaryInputs<'a> {
+    /// At the shaded sample of each pixel (one sample, one layer).
+    pub shaded_depth: &'a wgpu::Texture,
+    /// Normals at the shaded sample.
+    pub shaded_normal: &'a wgpu::Texture,
+    /// At each geometric subsample: 4x multisampled for
+    /// [`GeometryLayout::Multisampled`], else a 4-layer array.
+    pub subsample_depth: &'a wgpu::Texture,
+    /// Normals at each geometric subsample, in the same layout.
+    pub subsample_normal: &'a wgpu::Texture,
+    /// The secondary hits' shadow bits: required exactly when `lights > 0`.
+    pub shadows: Option<ShadowTextures<'a>>,
+}
+
 /// One frame's textures for [`SraaResolve::encode`]. Every texture is the
 /// output's size, 2D, one mip level read (level 0), and has
 /// `TEXTURE_BINDING`; the output has `STORAGE_BINDING`.
@@ -244,15 +274,40 @@ pub struct SraaInputs<'a> {
     pub centre: Option<CentreGeometry<'a>>,
     /// The shaded colour, linear RGB in `.xyz`, one sample per pixel, shaded
     /// where the preset puts the shaded sample (see
-    /// [`SraaResolveDesc::params`]). With 0 lights one layer (a 2D
-    /// texture); with `L` lights a 2D array of exactly `1 + L` layers.
+    /// [`SraaResolveDesc::params`]). With 0 lights and no secondary shading
+    /// one layer (a 2D texture); else a 2D array of exactly `1 + L` layers,
+    /// `2·(1 + L)` with secondary shading.
     pub color: &'a wgpu::Texture,
     /// Shadow bits: required exactly when `lights > 0`.
     pub shadows: Option<ShadowTextures<'a>>,
     /// Albedo: required exactly when the albedo gate is on.
     pub albedo: Option<AlbedoTextures<'a>>,
+    /// The secondary hits: required exactly when the desc has `secondary`.
+    pub secondary: Option<SecondaryInputs<'a>>,
     /// Where the antialiased colour is written (level 0, layer 0).
     pub output: &'a wgpu::Texture,
+}
+
+/// Check a pair of shadow textures: `R32Uint`, one layer at the shaded
+/// sample, four at the subsamples.
+fn check_shadows(
+    s: &ShadowTextures<'_>,
+    one: &dyn Fn(&'static str, u32) -> Expect,
+) -> Result<(), PassError> {
+    for (what, t, layers) in [
+        ("shaded shadows", s.shaded, 1),
+        ("subsample shadows", s.subsamples, 4),
+    ] {
+        bind::check(t, &one(what, layers))?;
+        if t.format() != wgpu::TextureFormat::R32Uint {
+            return Err(PassError::Format {
+                what,
+                found: t.format(),
+                expected: "R32Uint",
+            });
+        }
+    }
+    Ok(())
 }
 
 /// SRAA's antialiasing pass on the host's device. See the module docs of
@@ -272,6 +327,7 @@ pub struct SraaInputs<'a> {
 ///     color,                    // shaded at SUBPIXEL_OFFSETS[0]
 ///     shadows: None,
 ///     albedo: None,
+///     secondary: None,
 ///     output,                   // Rgba16Float, STORAGE_BINDING
 /// })?;
 /// # Ok(()) }
@@ -298,7 +354,7 @@ fn float_sample() -> wgpu::TextureSampleType {
 
 impl SraaResolve {
     /// Build the pass (compile its pipeline) on the host's device. Refuses
-    /// more than `MAX_LIGHTS` lights, secondary shading, an output format
+    /// more than `MAX_LIGHTS` lights, an output format
     /// it cannot write, and [`GeometryLayout::Packed`] with hardware depth
     /// or unsigned normals.
     pub fn new(device: &wgpu::Device, desc: &SraaResolveDesc) -> Result<Self, PassError> {
@@ -367,7 +423,7 @@ impl SraaResolve {
                 false,
             );
         }
-        if desc.lights == 0 {
+        if desc.color_layers() == 1 {
             g.texture("color", "texture_2d<f32>", float_sample(), D2, false);
         } else {
             g.texture(
@@ -377,9 +433,27 @@ impl SraaResolve {
                 D2Array,
                 false,
             );
-            let u = wgpu::TextureSampleType::Uint;
+        }
+        let u = wgpu::TextureSampleType::Uint;
+        if desc.lights > 0 {
             g.texture("shaded_shadow", "texture_2d<u32>", u, D2, false);
             g.texture("sub_shadow", "texture_2d_array<u32>", u, D2Array, false);
+        }
+        if desc.secondary {
+            let f = float_sample();
+            let sub = if ms {
+                "texture_multisampled_2d<f32>"
+            } else {
+                "texture_2d_array<f32>"
+            };
+            g.texture("sec_shaded_depth", "texture_2d<f32>", f, D2, false);
+            g.texture("sec_shaded_normal", "texture_2d<f32>", f, D2, false);
+            g.texture("sec_sub_depth", sub, f, dim, ms);
+            g.texture("sec_sub_normal", sub, f, dim, ms);
+            if desc.lights > 0 {
+                g.texture("sec_shaded_shadow", "texture_2d<u32>", u, D2, false);
+                g.texture("sec_sub_shadow", "texture_2d_array<u32>", u, D2Array, false);
+            }
         }
         if desc.albedo_gate {
             g.texture(
@@ -404,13 +478,7 @@ impl SraaResolve {
                 desc.lights
             )));
         }
-        if desc.secondary {
-            return Err(PassError::Config(
-                "secondary shading (SRAA-RT §3.3) is not supported by SraaResolve: fold the \
-                 reflected radiance into the primary layers"
-                    .into(),
-            ));
-        }
+
         bind::check_output_format(desc.output_format)?;
         let packed = desc.geometry == GeometryLayout::Packed;
         if packed && (desc.depth != DepthKind::LinearView || desc.normal != NormalEncoding::Signed)
@@ -426,11 +494,13 @@ impl SraaResolve {
         let scalar = if hw { "" } else { ".x" };
         let mut h = format!(
             "const LIGHTS: u32 = {}u;\nconst MATERIAL: bool = {};\nconst HARDWARE_DEPTH: bool = {hw};\n\
-             const UNSIGNED_NORMALS: bool = {};\nconst SHADED_AT_CENTRE: bool = {};\n",
+             const UNSIGNED_NORMALS: bool = {};\nconst SHADED_AT_CENTRE: bool = {};\n\
+             const SECONDARY: bool = {};\n",
             desc.lights,
             desc.albedo_gate,
             desc.normal == NormalEncoding::Unsigned,
             desc.shaded_at_centre(),
+            desc.secondary,
         );
         if packed {
             h += &format!(
@@ -452,14 +522,33 @@ impl SraaResolve {
             h += "fn sraa_load_centre_depth(p: vec2<i32>) -> f32 { return 0.0; }\n\
                   fn sraa_load_centre_normal(p: vec2<i32>) -> vec3<f32> { return vec3<f32>(0.0); }\n";
         }
-        if desc.lights == 0 {
-            h += "fn sraa_load_color(p: vec2<i32>, l: u32) -> vec3<f32> { return textureLoad(color, p, 0).xyz; }\n\
-                  fn sraa_load_shaded_shadow(p: vec2<i32>) -> u32 { return 0u; }\n\
-                  fn sraa_load_sub_shadow(p: vec2<i32>, k: u32) -> u32 { return 0u; }\n";
+        if desc.color_layers() == 1 {
+            h += "fn sraa_load_color(p: vec2<i32>, l: u32) -> vec3<f32> { return textureLoad(color, p, 0).xyz; }\n";
         } else {
-            h += "fn sraa_load_color(p: vec2<i32>, l: u32) -> vec3<f32> { return textureLoad(color, p, i32(l), 0).xyz; }\n\
-                  fn sraa_load_shaded_shadow(p: vec2<i32>) -> u32 { return textureLoad(shaded_shadow, p, 0).x; }\n\
-                  fn sraa_load_sub_shadow(p: vec2<i32>, k: u32) -> u32 { return textureLoad(sub_shadow, p, i32(k), 0).x; }\n";
+            h += "fn sraa_load_color(p: vec2<i32>, l: u32) -> vec3<f32> { return textureLoad(color, p, i32(l), 0).xyz; }\n";
+        }
+        // Shadow bits of the primary (`g` empty) and secondary (`sec_`) hits.
+        for g in ["", "sec_"] {
+            if desc.lights > 0 && (g.is_empty() || desc.secondary) {
+                h += &format!(
+                    "fn sraa_load_{g}shaded_shadow(p: vec2<i32>) -> u32 {{ return textureLoad({g}shaded_shadow, p, 0).x; }}\n\
+                     fn sraa_load_{g}sub_shadow(p: vec2<i32>, k: u32) -> u32 {{ return textureLoad({g}sub_shadow, p, i32(k), 0).x; }}\n"
+                );
+            } else {
+                h += &format!(
+                    "fn sraa_load_{g}shaded_shadow(p: vec2<i32>) -> u32 {{ return 0u; }}\n\
+                     fn sraa_load_{g}sub_shadow(p: vec2<i32>, k: u32) -> u32 {{ return 0u; }}\n"
+                );
+            }
+        }
+        if desc.secondary {
+            h += &format!(
+                "fn sraa_load_sec_shaded(p: vec2<i32>) -> vec4<f32> {{ return vec4<f32>(textureLoad(sec_shaded_normal, p, 0).xyz, textureLoad(sec_shaded_depth, p, 0).x); }}\n\
+                 fn sraa_load_sec_sub(p: vec2<i32>, k: u32) -> vec4<f32> {{ return vec4<f32>(textureLoad(sec_sub_normal, p, {sub_at}).xyz, textureLoad(sec_sub_depth, p, {sub_at}).x); }}\n"
+            );
+        } else {
+            h += "fn sraa_load_sec_shaded(p: vec2<i32>) -> vec4<f32> { return vec4<f32>(0.0); }\n\
+                  fn sraa_load_sec_sub(p: vec2<i32>, k: u32) -> vec4<f32> { return vec4<f32>(0.0); }\n";
         }
         if desc.albedo_gate {
             h += &format!(
@@ -589,26 +678,41 @@ impl SraaResolve {
             }
             (false, None) => {}
         }
-        bind::check(inputs.color, &one("colour", 1 + d.lights))?;
+        bind::check(inputs.color, &one("colour", d.color_layers()))?;
         float_format("colour", inputs.color)?;
         match (d.lights > 0, &inputs.shadows) {
-            (true, Some(s)) => {
-                for (what, t, layers) in [
-                    ("shaded shadows", s.shaded, 1),
-                    ("subsample shadows", s.subsamples, 4),
-                ] {
-                    bind::check(t, &one(what, layers))?;
-                    if t.format() != wgpu::TextureFormat::R32Uint {
-                        return Err(PassError::Format {
-                            what,
-                            found: t.format(),
-                            expected: "R32Uint",
-                        });
-                    }
-                }
-            }
+            (true, Some(s)) => check_shadows(s, &one)?,
             (true, None) => return Err(PassError::Missing("shadow textures (lights > 0)")),
             (false, Some(_)) => return Err(PassError::Unexpected("shadow textures (0 lights)")),
+            (false, None) => {}
+        }
+        match (d.secondary, &inputs.secondary) {
+            (true, Some(s)) => {
+                bind::check(s.shaded_depth, &one("secondary shaded depth", 1))?;
+                float_format("secondary shaded depth", s.shaded_depth)?;
+                bind::check(s.shaded_normal, &one("secondary shaded normal", 1))?;
+                float_format("secondary shaded normal", s.shaded_normal)?;
+                bind::check(s.subsample_depth, &sub("secondary subsample depth"))?;
+                float_format("secondary subsample depth", s.subsample_depth)?;
+                bind::check(s.subsample_normal, &sub("secondary subsample normal"))?;
+                float_format("secondary subsample normal", s.subsample_normal)?;
+                match (d.lights > 0, &s.shadows) {
+                    (true, Some(sh)) => check_shadows(sh, &one)?,
+                    (true, None) => {
+                        return Err(PassError::Missing("secondary shadow textures (lights > 0)"))
+                    }
+                    (false, Some(_)) => {
+                        return Err(PassError::Unexpected(
+                            "secondary shadow textures (0 lights)",
+                        ))
+                    }
+                    (false, None) => {}
+                }
+            }
+            (true, None) => return Err(PassError::Missing("secondary inputs (secondary on)")),
+            (false, Some(_)) => {
+                return Err(PassError::Unexpected("secondary inputs (secondary off)"))
+            }
             (false, None) => {}
         }
         match (d.albedo_gate, &inputs.albedo) {
@@ -672,11 +776,21 @@ impl SraaResolve {
             views.push(("centre_depth", bind::view(c.depth, D2)));
             views.push(("centre_normal", bind::view(c.normal, D2)));
         }
-        let color_dim = if d.lights == 0 { D2 } else { D2Array };
+        let color_dim = if d.color_layers() == 1 { D2 } else { D2Array };
         views.push(("color", bind::view(inputs.color, color_dim)));
         if let Some(s) = &inputs.shadows {
             views.push(("shaded_shadow", bind::view(s.shaded, D2)));
             views.push(("sub_shadow", bind::view(s.subsamples, D2Array)));
+        }
+        if let Some(s) = &inputs.secondary {
+            views.push(("sec_shaded_depth", bind::view(s.shaded_depth, D2)));
+            views.push(("sec_shaded_normal", bind::view(s.shaded_normal, D2)));
+            views.push(("sec_sub_depth", bind::view(s.subsample_depth, sub_dim)));
+            views.push(("sec_sub_normal", bind::view(s.subsample_normal, sub_dim)));
+            if let Some(sh) = &s.shadows {
+                views.push(("sec_shaded_shadow", bind::view(sh.shaded, D2)));
+                views.push(("sec_sub_shadow", bind::view(sh.subsamples, D2Array)));
+            }
         }
         if let Some(a) = &inputs.albedo {
             views.push(("shaded_albedo", bind::view(a.shaded, D2)));

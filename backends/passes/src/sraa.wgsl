@@ -10,8 +10,10 @@
 // Follows subcone_kernels::wgsl::PARAMS, subcone_kernels::sraa::WGSL and the
 // header sraa.rs generates, and before reconstruct.wgsl (the loop, whose
 // hooks this file defines): the constants LIGHTS, MATERIAL, HARDWARE_DEPTH,
-// UNSIGNED_NORMALS, SHADED_AT_CENTRE, the bindings, and the loaders
+// UNSIGNED_NORMALS, SHADED_AT_CENTRE, SECONDARY, the bindings, and the loaders
 // sraa_load_sub_depth/normal/shadow/albedo (subsample k of pixel p),
+// sraa_load_sec_shaded / sraa_load_sec_sub (secondary normal and path
+// length), sraa_load_sec_shaded_shadow / sraa_load_sec_sub_shadow,
 // sraa_load_centre_depth/normal, sraa_load_color (layer l),
 // sraa_load_shaded_shadow and sraa_load_shaded_albedo (the shaded sample).
 
@@ -84,6 +86,19 @@ fn sraa_shaded_geo(p: vec2<i32>) -> subcone_Geometry {
     return sraa_sub_geo(p, subcone_SHADED_SUBSAMPLE);
 }
 
+// A secondary hit's geometry from (normal, path length): a NaN depth (no
+// mirror here, excluded by every weight) for a negative or NaN length, a
+// miss for 0 or +inf, else a hit.
+fn sraa_secondary_geometry(v: vec4<f32>) -> subcone_Geometry {
+    if subcone_is_nan(v.w) || v.w < 0.0 {
+        return subcone_Geometry(vec3<f32>(0.0), bitcast<f32>(0x7fc00000u));
+    }
+    if v.w == 0.0 || v.w == subcone_inf() {
+        return subcone_Geometry(vec3<f32>(0.0), subcone_inf());
+    }
+    return subcone_Geometry(sraa_decode_normal(v.xyz), v.w);
+}
+
 // The hooks of reconstruct.wgsl (subcone_passes::RECONSTRUCT_WGSL).
 const SRAA_GATES: u32 = 1u + LIGHTS;
 const SRAA_MATERIAL: bool = MATERIAL;
@@ -101,11 +116,19 @@ fn sraa_albedo_tolerance() -> f32 {
 }
 
 fn sraa_shaded_geometry(x: u32, y: u32, secondary: bool) -> subcone_Geometry {
-    return sraa_shaded_geo(vec2<i32>(i32(x), i32(y)));
+    let p = vec2<i32>(i32(x), i32(y));
+    if secondary {
+        return sraa_secondary_geometry(sraa_load_sec_shaded(p));
+    }
+    return sraa_shaded_geo(p);
 }
 
 fn sraa_shaded_shadow(x: u32, y: u32, secondary: bool) -> u32 {
-    return sraa_load_shaded_shadow(vec2<i32>(i32(x), i32(y)));
+    let p = vec2<i32>(i32(x), i32(y));
+    if secondary {
+        return sraa_load_sec_shaded_shadow(p);
+    }
+    return sraa_load_shaded_shadow(p);
 }
 
 fn sraa_shaded_albedo(x: u32, y: u32) -> vec3<f32> {
@@ -116,10 +139,18 @@ fn sraa_shaded_value(x: u32, y: u32, layer: u32) -> vec3<f32> {
     return sraa_load_color(vec2<i32>(i32(x), i32(y)), layer);
 }
 
-// Subsample k of pixel (x, y), reconstructed (primary group only).
+// Subsample k of pixel (x, y), reconstructed: its primary layers, plus its
+// secondary layers where it sees a mirror (§3.3).
 fn sraa_reconstruct_subsample(x: u32, y: u32, k: u32) -> vec3<f32> {
     let p = vec2<i32>(i32(x), i32(y));
-    return sraa_reconstruct_run(sraa_sub_geo(p, k), sraa_load_sub_shadow(p, k), sraa_load_sub_albedo(p, k), false, 0u, x, y, k);
+    var c = sraa_reconstruct_run(sraa_sub_geo(p, k), sraa_load_sub_shadow(p, k), sraa_load_sub_albedo(p, k), false, 0u, x, y, k);
+    if SECONDARY {
+        let tgt2 = sraa_secondary_geometry(sraa_load_sec_sub(p, k));
+        if !subcone_is_nan(tgt2.depth) {
+            c = c + sraa_reconstruct_run(tgt2, sraa_load_sec_sub_shadow(p, k), vec3<f32>(0.0), true, SRAA_GATES, x, y, k);
+        }
+    }
+    return c;
 }
 
 @compute @workgroup_size(8, 8)

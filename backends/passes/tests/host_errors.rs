@@ -144,6 +144,7 @@ fn inputs_that_do_not_fit_are_typed_errors() {
         color: &color,
         shadows: None,
         albedo: None,
+        secondary: None,
         output: &output,
     };
     let mut enc = device.create_command_encoder(&Default::default());
@@ -221,14 +222,53 @@ fn inputs_that_do_not_fit_are_typed_errors() {
         tuned.encode(&device, &mut enc, &good),
         Err(PassError::Missing(_))
     ));
+    // Secondary shading needs the secondary hits.
+    let mirrors = SraaResolve::new(
+        &device,
+        &SraaResolveDesc {
+            secondary: true,
+            ..SraaResolveDesc::msaa()
+        },
+    )
+    .expect("secondary pass");
+    // (with the colour's two groups of layers, as it needs).
+    let color2 = device.create_texture(&wgpu::TextureDescriptor {
+        label: None,
+        size: wgpu::Extent3d {
+            width: size.0,
+            height: size.1,
+            depth_or_array_layers: 2,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: Rgba16Float,
+        usage: read,
+        view_formats: &[],
+    });
+    assert!(matches!(
+        mirrors.encode(&device, &mut enc, &good),
+        Err(PassError::Layers {
+            expected: 2,
+            found: 1,
+            ..
+        })
+    ));
+    assert!(matches!(
+        mirrors.encode(
+            &device,
+            &mut enc,
+            &SraaInputs {
+                color: &color2,
+                ..good
+            }
+        ),
+        Err(PassError::Missing(_))
+    ));
     // Configurations out of range.
     for desc in [
         SraaResolveDesc {
             lights: 9,
-            ..SraaResolveDesc::msaa()
-        },
-        SraaResolveDesc {
-            secondary: true,
             ..SraaResolveDesc::msaa()
         },
         SraaResolveDesc {

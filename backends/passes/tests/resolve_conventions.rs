@@ -4,7 +4,8 @@
 //! 4x MSAA with hardware depth): four-layer arrays and the packed layout,
 //! linear view depth, signed and `[0, 1]`-encoded normals, shading at
 //! subsample 0 and at the centre, lights gated by shadow bits (eq. 2), the
-//! albedo gate, a 5×5 neighbourhood. Bound: every channel within 1e-4 of
+//! albedo gate, secondary (mirror) hits reconstructed on their own geometry
+//! (§3.3), a 5×5 neighbourhood. Bound: every channel within 1e-4 of
 //! the CPU's (the WGSL accumulates in compensated f32 where the Rust uses
 //! f64, and the GPU's `exp` is not libm's; `[0, 1]` normals are decoded and
 //! renormalised).
@@ -22,7 +23,7 @@ use subcone_kernels::sraa::{
 };
 use subcone_passes::{
     AlbedoTextures, CentreGeometry, DepthConvention, DepthKind, GeometryLayout, NormalEncoding,
-    ShadowTextures, SraaInputs, SraaResolve, SraaResolveDesc,
+    SecondaryInputs, ShadowTextures, SraaInputs, SraaResolve, SraaResolveDesc,
 };
 
 const W: u32 = 12;
@@ -54,9 +55,15 @@ struct Data {
     sub_shadow: Vec<[u32; 4]>,
     shaded_albedo: Vec<Vec3>,
     sub_albedo: Vec<[Vec3; 4]>,
+    /// Secondary hits (NaN depth: no mirror), when the case has them.
+    secondary: bool,
+    shaded2: Vec<Geometry>,
+    sub2: Vec<[Geometry; 4]>,
+    shaded_shadow2: Vec<u32>,
+    sub_shadow2: Vec<[u32; 4]>,
 }
 
-fn data(seed: u32, lights: usize, shaded_on_subsample: bool) -> Data {
+fn data(seed: u32, lights: usize, shaded_on_subsample: bool, secondary: bool) -> Data {
     let mut r = Rng(seed);
     let normals = [
         Vec3::new(0.0, 0.0, 1.0),
@@ -89,6 +96,20 @@ fn data(seed: u32, lights: usize, shaded_on_subsample: bool) -> Data {
         sub_shadow: Vec::new(),
         shaded_albedo: Vec::new(),
         sub_albedo: Vec::new(),
+        secondary,
+        shaded2: Vec::new(),
+        sub2: Vec::new(),
+        shaded_shadow2: Vec::new(),
+        sub_shadow2: Vec::new(),
+    };
+    // A secondary hit: none (no mirror), a miss, or one of the surfaces at
+    // a path length of 3 to 6.
+    let geo2 = |r: &mut Rng| -> Geometry {
+        match r.next() % 6 {
+            0 | 1 => Geometry::new(Vec3::ZERO, f32::NAN),
+            2 => Geometry::MISS,
+            s => Geometry::new(normals[s as usize - 3], 3.0 + s as f32 + r.unit()),
+        }
     };
     for j in 0..n {
         let x = j as u32 % W;
@@ -112,7 +133,23 @@ fn data(seed: u32, lights: usize, shaded_on_subsample: bool) -> Data {
         d.sub_albedo.push(sub_albedo);
         d.shaded_shadow.push(shadow);
         d.shaded_albedo.push(a);
-        for _ in 0..1 + lights {
+        let mut sub2 = [Geometry::MISS; 4];
+        let mut sub_shadow2 = [0u32; 4];
+        for k in 0..4 {
+            sub2[k] = geo2(&mut r);
+            sub_shadow2[k] = r.next() % (1 << lights);
+        }
+        let mut g2 = geo2(&mut r);
+        let mut shadow2 = r.next() % (1 << lights);
+        if shaded_on_subsample {
+            (g2, shadow2) = (sub2[0], sub_shadow2[0]);
+        }
+        d.shaded2.push(g2);
+        d.sub2.push(sub2);
+        d.shaded_shadow2.push(shadow2);
+        d.sub_shadow2.push(sub_shadow2);
+        let groups = if secondary { 2 } else { 1 };
+        for _ in 0..(1 + lights) * groups {
             d.colors.push(
                 Vec3::new(r.unit(), r.unit(), r.unit())
                     * if g.depth.is_finite() { 1.0 } else { 0.2 },
@@ -132,14 +169,18 @@ fn cpu(d: &Data, params: &SraaParams, gate: bool) -> Vec<Vec3> {
         width: W,
         height: H,
         colors: &d.colors,
-        layers: 1 + d.lights,
+        layers: (1 + d.lights) * if d.secondary { 2 } else { 1 },
         albedo: if gate { &d.shaded_albedo } else { &[] },
         primary: ShadedGroup {
             geometry: &d.shaded,
             shadow: &d.shaded_shadow,
             first_layer: 0,
         },
-        secondary: None,
+        secondary: d.secondary.then_some(ShadedGroup {
+            geometry: &d.shaded2,
+            shadow: &d.shaded_shadow2,
+            first_layer: 1 + d.lights,
+        }),
     };
     (0..W * H)
         .map(|j| {
@@ -149,7 +190,12 @@ fn cpu(d: &Data, params: &SraaParams, gate: bool) -> Vec<Vec3> {
                 shadow: d.sub_shadow[i],
                 albedo: gate.then_some(d.sub_albedo[i]),
             };
-            resolver.resolve(&frame, j % W, j / W, &subs, None)
+            let subs2 = Subsamples {
+                geometry: d.sub2[i],
+                shadow: d.sub_shadow2[i],
+                albedo: None,
+            };
+            resolver.resolve(&frame, j % W, j / W, &subs, d.secondary.then_some(&subs2))
         })
         .collect()
 }
@@ -161,6 +207,7 @@ struct Case {
     params: SraaParams,
     lights: usize,
     gate: bool,
+    secondary: bool,
 }
 
 fn upload(
@@ -260,7 +307,7 @@ fn gpu(device: &wgpu::Device, queue: &wgpu::Queue, d: &Data, c: &Case) -> Vec<Ve
         1,
         &layered(1, |j, _| normal(&d.shaded[j])),
     );
-    let layers = 1 + c.lights;
+    let layers = (1 + c.lights) * if c.secondary { 2 } else { 1 };
     let color = upload(
         device,
         queue,
@@ -299,6 +346,58 @@ fn gpu(device: &wgpu::Device, queue: &wgpu::Queue, d: &Data, c: &Case) -> Vec<Ve
         4,
         &layered(4, |j, k| v4(d.sub_albedo[j][k])),
     );
+    // Secondary path length: negative for no mirror, 0 for a miss.
+    let path = |g: &Geometry| {
+        if g.depth.is_nan() {
+            -1.0
+        } else if g.depth.is_finite() {
+            g.depth
+        } else {
+            0.0
+        }
+    };
+    let sec_shaded_depth = upload(
+        device,
+        queue,
+        R32Float,
+        1,
+        &layered(1, |j, _| path(&d.shaded2[j])),
+    );
+    let sec_shaded_normal = upload(
+        device,
+        queue,
+        Rgba32Float,
+        1,
+        &layered(1, |j, _| normal(&d.shaded2[j])),
+    );
+    let sec_sub_depth = upload(
+        device,
+        queue,
+        R32Float,
+        4,
+        &layered(4, |j, k| path(&d.sub2[j][k])),
+    );
+    let sec_sub_normal = upload(
+        device,
+        queue,
+        Rgba32Float,
+        4,
+        &layered(4, |j, k| normal(&d.sub2[j][k])),
+    );
+    let sec_shaded_shadow = upload(
+        device,
+        queue,
+        R32Uint,
+        1,
+        &layered(1, |j, _| d.shaded_shadow2[j]),
+    );
+    let sec_sub_shadow = upload(
+        device,
+        queue,
+        R32Uint,
+        4,
+        &layered(4, |j, k| d.sub_shadow2[j][k]),
+    );
     let output = device.create_texture(&wgpu::TextureDescriptor {
         label: None,
         size: wgpu::Extent3d {
@@ -317,7 +416,7 @@ fn gpu(device: &wgpu::Device, queue: &wgpu::Queue, d: &Data, c: &Case) -> Vec<Ve
         device,
         &SraaResolveDesc {
             lights: c.lights as u32,
-            secondary: false,
+            secondary: c.secondary,
             albedo_gate: c.gate,
             params: c.params,
             geometry: c.geometry,
@@ -348,6 +447,16 @@ fn gpu(device: &wgpu::Device, queue: &wgpu::Queue, d: &Data, c: &Case) -> Vec<Ve
                 shaded: &shaded_albedo,
                 subsamples: &sub_albedo,
             }),
+            secondary: c.secondary.then_some(SecondaryInputs {
+                shaded_depth: &sec_shaded_depth,
+                shaded_normal: &sec_shaded_normal,
+                subsample_depth: &sec_sub_depth,
+                subsample_normal: &sec_sub_normal,
+                shadows: (c.lights > 0).then_some(ShadowTextures {
+                    shaded: &sec_shaded_shadow,
+                    subsamples: &sec_sub_shadow,
+                }),
+            }),
             output: &output,
         },
     )
@@ -374,6 +483,7 @@ fn sraa_resolve_matches_the_cpu_resolver_in_every_convention() {
             params: SraaParams::PAPER,
             lights: 2,
             gate: true,
+            secondary: false,
         },
         Case {
             name: "layers, unsigned, tuned",
@@ -382,6 +492,7 @@ fn sraa_resolve_matches_the_cpu_resolver_in_every_convention() {
             params: SraaParams::TUNED,
             lights: 0,
             gate: false,
+            secondary: false,
         },
         Case {
             name: "packed, tuned, 3 lights, albedo gate",
@@ -390,6 +501,7 @@ fn sraa_resolve_matches_the_cpu_resolver_in_every_convention() {
             params: SraaParams::TUNED,
             lights: 3,
             gate: true,
+            secondary: false,
         },
         Case {
             name: "layers, signed, tuned, radius 2",
@@ -398,11 +510,35 @@ fn sraa_resolve_matches_the_cpu_resolver_in_every_convention() {
             params: SraaParams::TUNED.with_radius(2),
             lights: 1,
             gate: false,
+            secondary: false,
+        },
+        Case {
+            name: "layers, signed, paper, 2 lights, secondary",
+            geometry: GeometryLayout::Layers,
+            normal: NormalEncoding::Signed,
+            params: SraaParams::PAPER,
+            lights: 2,
+            gate: true,
+            secondary: true,
+        },
+        Case {
+            name: "packed, tuned, secondary",
+            geometry: GeometryLayout::Packed,
+            normal: NormalEncoding::Signed,
+            params: SraaParams::TUNED,
+            lights: 0,
+            gate: false,
+            secondary: true,
         },
     ];
     for (i, c) in cases.iter().enumerate() {
         let on_subsample = c.params.shaded_position() == ShadedPosition::Subsample;
-        let d = data(0x9e37_79b9 ^ (i as u32 * 7919 + 1), c.lights, on_subsample);
+        let d = data(
+            0x9e37_79b9 ^ (i as u32 * 7919 + 1),
+            c.lights,
+            on_subsample,
+            c.secondary,
+        );
         let want = cpu(&d, &c.params, c.gate);
         let got = gpu(&device, &queue, &d, c);
         let worst = want
