@@ -42,6 +42,29 @@ fn texture(
     })
 }
 
+/// `host_sraa::open_device` with the adapter's own limits.
+fn open_device_with_adapter_limits() -> Result<(wgpu::Device, wgpu::Queue), String> {
+    let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+    desc.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::PRIMARY);
+    let instance = wgpu::Instance::new(desc);
+    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+        power_preference: wgpu::PowerPreference::HighPerformance,
+        force_fallback_adapter: false,
+        compatible_surface: None,
+        apply_limit_buckets: false,
+    }))
+    .map_err(|e| format!("no GPU adapter: {e}"))?;
+    pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+        label: Some("host, adapter limits"),
+        required_features: wgpu::Features::empty(),
+        required_limits: adapter.limits(),
+        experimental_features: wgpu::ExperimentalFeatures::disabled(),
+        memory_hints: wgpu::MemoryHints::Performance,
+        trace: wgpu::Trace::Off,
+    }))
+    .map_err(|e| format!("cannot open a device: {e}"))
+}
+
 fn wait(device: &wgpu::Device) {
     device
         .poll(wgpu::PollType::Wait {
@@ -63,8 +86,49 @@ fn the_hosts_uncaptured_error_handler_stays_the_hosts() {
         counter.fetch_add(1, Ordering::SeqCst);
     }));
     // subcone's own context on the host's device: no callback installed.
-    let ctx = subcone_wgpu::GpuContext::from_device(device.clone(), queue.clone());
+    let ctx = Arc::new(subcone_wgpu::GpuContext::from_device(
+        device.clone(),
+        queue.clone(),
+    ));
     assert!(ctx.check_lost().is_ok());
+    // The backend on the host's device: this host asked for wgpu's default
+    // limits, too few for the backend's triangle passes (more than 8 storage
+    // buffers per stage). The render fails as a value, caught by the
+    // backend's own error scopes; the host's handler sees nothing.
+    use subcone_scene::Backend;
+    let scene = subcone_scene::builtin::builtin("cornell").expect("scene");
+    let method = "sraa".parse().expect("method");
+    let settings = subcone_scene::RenderSettings::new(16, 12);
+    let refused = subcone_wgpu::WgpuBackend::with_context(ctx.clone()).render(
+        &scene,
+        &scene.camera,
+        &method,
+        &settings,
+    );
+    match refused {
+        Err(e) => assert!(e.to_string().contains("limit"), "{e}"),
+        Ok(_) => {
+            // An adapter whose defaults suffice: nothing to refuse.
+        }
+    }
+    assert_eq!(
+        seen.load(Ordering::SeqCst),
+        0,
+        "the backend's error reached the host's handler"
+    );
+    // A host device with the adapter's limits (as `GpuContext::new` asks)
+    // renders the frame the backend's own device renders.
+    let (big, big_queue) = open_device_with_adapter_limits().expect("device");
+    let hosted = subcone_wgpu::WgpuBackend::with_context(Arc::new(
+        subcone_wgpu::GpuContext::from_device(big, big_queue),
+    ))
+    .render(&scene, &scene.camera, &method, &settings)
+    .expect("render on the host's device");
+    let own = subcone_wgpu::WgpuBackend::new()
+        .expect("the backend's own device")
+        .render(&scene, &scene.camera, &method, &settings)
+        .expect("render on the backend's device");
+    assert_eq!(hosted.color, own.color);
     // The passes run (SRAA through the host example, FXAA on its output).
     let image = host_sraa::render(&device, &queue, SraaParams::PAPER, 16, 8).expect("host render");
     assert_eq!(image.len(), 16 * 8);

@@ -132,6 +132,12 @@ impl GpuContext {
     /// ([`GpuContext::scoped`]); device loss shows up as the failure of the
     /// next pass or wait, not through [`GpuContext::check_lost`]. Passes are
     /// timed on the CPU (no timestamp queries are assumed).
+    ///
+    /// The renderers need more than wgpu's default limits (the triangle
+    /// passes bind more than 8 storage buffers per stage): open the device
+    /// with the adapter's own limits (`adapter.limits()`), as
+    /// [`GpuContext::new`] does. On a device with too few, a render fails
+    /// with a [`RenderError`] naming the limit.
     pub fn from_device(device: wgpu::Device, queue: wgpu::Queue) -> Self {
         let info = device.adapter_info();
         GpuContext {
