@@ -172,7 +172,13 @@ pub(crate) struct Expect {
 /// caller's).
 pub(crate) fn check(t: &wgpu::Texture, e: &Expect) -> Result<(), PassError> {
     let found = (t.width(), t.height());
-    if t.dimension() != wgpu::TextureDimension::D2 || found != e.size {
+    if t.dimension() != wgpu::TextureDimension::D2 {
+        return Err(PassError::Dimension {
+            what: e.what,
+            found: t.dimension(),
+        });
+    }
+    if found != e.size {
         return Err(PassError::Size {
             what: e.what,
             expected: e.size,

@@ -57,6 +57,13 @@ pub enum PassError {
         /// The texture's size.
         found: (u32, u32),
     },
+    /// A texture is not two-dimensional.
+    Dimension {
+        /// Which input.
+        what: &'static str,
+        /// The texture's dimension.
+        found: wgpu::TextureDimension,
+    },
     /// A texture has the wrong sample count.
     SampleCount {
         /// Which input.
@@ -113,6 +120,9 @@ impl std::fmt::Display for PassError {
                 "{what}: {}x{} texture, the pass needs {}x{}",
                 found.0, found.1, expected.0, expected.1
             ),
+            PassError::Dimension { what, found } => {
+                write!(f, "{what}: a {found:?} texture, the pass reads 2D textures")
+            }
             PassError::SampleCount {
                 what,
                 expected,

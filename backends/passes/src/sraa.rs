@@ -332,19 +332,18 @@ fn check_shadows(
 /// })?;
 /// # Ok(()) }
 /// ```
-#[derive(Debug)]
 pub struct SraaResolve {
     desc: SraaResolveDesc,
-    group: GroupHolder,
+    group: Group,
     layout: wgpu::BindGroupLayout,
     pipeline: wgpu::ComputePipeline,
 }
 
-struct GroupHolder(Group);
-
-impl std::fmt::Debug for GroupHolder {
+impl std::fmt::Debug for SraaResolve {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str("Group")
+        f.debug_struct("SraaResolve")
+            .field("desc", &self.desc)
+            .finish()
     }
 }
 
@@ -372,7 +371,7 @@ impl SraaResolve {
         .remove(0);
         Ok(SraaResolve {
             desc: *desc,
-            group: GroupHolder(group),
+            group,
             layout,
             pipeline,
         })
@@ -805,7 +804,6 @@ impl SraaResolve {
         );
         let group =
             self.group
-                .0
                 .bind_group(device, &self.layout, "subcone sraa resolve", &resources)?;
         let (gx, gy) = crate::workgroups(width, height, WORKGROUP);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
