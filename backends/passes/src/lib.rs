@@ -7,9 +7,10 @@
 //! is built once for a configuration (`new`, which compiles its pipeline) and
 //! recorded every frame (`encode`).
 //!
-//! - [`SraaResolve`]: SRAA's antialiasing pass (Chiu et al., §3, eq. 1–2)
-//!   from the host's subsample geometry (a 4x MSAA depth + normal prepass, or
-//!   four layers) and its one shaded colour per pixel.
+//! - [`SraaResolve`]: SRAA's antialiasing pass (Chiu et al., §3, eq. 1–2,
+//!   secondary hits §3.3) from the host's subsample geometry (a 4x MSAA
+//!   depth + normal prepass, or four layers) and its one shaded colour per
+//!   pixel.
 //! - [`CtssPass`]: cone-traced supersampling (CTSS, Algorithm 1, eq. 3–10)
 //!   of the host's own signed distance field, written in WGSL.
 //! - [`FxaaPass`]: FXAA 3.11 (`subcone_kernels::fxaa`) over a host texture.

@@ -730,8 +730,10 @@ impl SraaResolve {
         Ok(size)
     }
 
-    /// Record the resolve of one frame into `encoder` (one compute pass).
-    /// Checks every input first: on an error nothing is recorded.
+    /// Record the resolve of one frame into `encoder` (one compute pass of
+    /// 8×8 workgroups, one invocation per pixel). Checks every input first:
+    /// on an error nothing is recorded. Each call creates a 64-byte uniform
+    /// buffer and a bind group (the frame's size, preset and projection).
     pub fn encode(
         &self,
         device: &wgpu::Device,
