@@ -49,6 +49,10 @@ pub(crate) enum Access {
     ReadWrite,
     /// A `texture_2d_array<f32>`, read with `textureLoad` (not filtered).
     Texture,
+    /// A `texture_2d<f32>`, read with `textureLoad` (not filtered).
+    Texture2d,
+    /// A write-only `texture_storage_2d` of this format.
+    StorageTexture(wgpu::TextureFormat),
 }
 
 enum Resource {
@@ -188,6 +192,33 @@ impl Bindings {
         );
     }
 
+    /// A 2D texture `var` (`texture_2d<f32>`).
+    pub(crate) fn texture_2d(&mut self, var: &str, view: wgpu::TextureView) {
+        self.push(
+            var,
+            "texture_2d<f32>",
+            Access::Texture2d,
+            Resource::Texture(view),
+        );
+    }
+
+    /// A write-only 2D storage texture `var` of `format`, whose WGSL name is
+    /// `wgsl_format` (e.g. `rgba32float`).
+    pub(crate) fn storage_texture(
+        &mut self,
+        var: &str,
+        format: wgpu::TextureFormat,
+        wgsl_format: &str,
+        view: wgpu::TextureView,
+    ) {
+        self.push(
+            var,
+            &format!("texture_storage_2d<{wgsl_format}, write>"),
+            Access::StorageTexture(format),
+            Resource::Texture(view),
+        );
+    }
+
     /// Whether `var` is bound.
     pub(crate) fn has(&self, var: &str) -> bool {
         self.list.iter().any(|b| b.var == var)
@@ -212,7 +243,7 @@ impl Bindings {
                 Access::Uniform => "<uniform>",
                 Access::Read => "<storage, read>",
                 Access::ReadWrite => "<storage, read_write>",
-                Access::Texture => "",
+                Access::Texture | Access::Texture2d | Access::StorageTexture(_) => "",
             };
             s += &format!(
                 "@group({}) @binding({i}) var{space} {}: {};\n",
@@ -249,6 +280,16 @@ impl Bindings {
                             sample_type: wgpu::TextureSampleType::Float { filterable: false },
                             view_dimension: wgpu::TextureViewDimension::D2Array,
                             multisampled: false,
+                        },
+                        Access::Texture2d => wgpu::BindingType::Texture {
+                            sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                            view_dimension: wgpu::TextureViewDimension::D2,
+                            multisampled: false,
+                        },
+                        Access::StorageTexture(format) => wgpu::BindingType::StorageTexture {
+                            access: wgpu::StorageTextureAccess::WriteOnly,
+                            format,
+                            view_dimension: wgpu::TextureViewDimension::D2,
                         },
                     },
                     count: None,

@@ -132,6 +132,33 @@ impl GpuContext {
         })
     }
 
+    /// Wrap the host's own device and queue (an engine that embeds subcone).
+    ///
+    /// Unlike [`GpuContext::new`], this installs no callback: the host's
+    /// device-lost and uncaptured-error handlers stay the host's (a library
+    /// never takes over its caller's error handling). Errors inside subcone's
+    /// passes are still caught by the error scopes around each pass
+    /// ([`GpuContext::scoped`]); device loss shows up as the failure of the
+    /// next pass or wait, not through [`GpuContext::check_lost`]. Passes are
+    /// timed on the CPU (no timestamp queries are assumed).
+    ///
+    /// The renderers need more than wgpu's default limits (the triangle
+    /// passes bind more than 8 storage buffers per stage): open the device
+    /// with the adapter's own limits (`adapter.limits()`), as
+    /// [`GpuContext::new`] does. On a device with too few, a render fails
+    /// with a [`RenderError`] naming the limit.
+    pub fn from_device(device: wgpu::Device, queue: wgpu::Queue) -> Self {
+        let info = device.adapter_info();
+        GpuContext {
+            device,
+            queue,
+            info,
+            timestamps: false,
+            lost: Arc::new(Mutex::new(None)),
+            cache: Mutex::new(HashMap::new()),
+        }
+    }
+
     /// The object cached under `key` on this device, if it has type `T`.
     pub(crate) fn cached<T: std::any::Any + Send + Sync>(&self, key: u64) -> Option<Arc<T>> {
         let cache = self.cache.lock().unwrap_or_else(|e| e.into_inner());

@@ -482,3 +482,41 @@ fn ambient_occlusion_matches_cpu() {
         assert_ne!(plain.color, g.color, "{method}: AO changed nothing");
     }
 }
+
+/// Hybrid SRAA (`sraa`, `sraa-paper`, `sraa+mat`) resolves through
+/// `subcone_passes::SraaResolve`, the pass a host renderer runs (its
+/// textures are listed among the frame's buffers: the shaded colour, the
+/// output, the centre geometry where the preset shades the centre, the
+/// albedo with `+mat`); SRAA-RT keeps its own resolve over its traced
+/// subsamples.
+#[test]
+fn hybrid_sraa_resolves_through_the_pass_crate() {
+    let Some(g) = gpu() else { return };
+    let scene = builtin("cornell").unwrap();
+    let names = |method: &str| -> Vec<&'static str> {
+        render(&g, &scene, method, 16, 12)
+            .stats
+            .buffers
+            .iter()
+            .map(|b| b.0)
+            .collect()
+    };
+    let tuned = names("sraa");
+    for b in [
+        "resolve colour",
+        "resolve output",
+        "resolve centre geometry",
+    ] {
+        assert!(tuned.contains(&b), "sraa: no {b} in {tuned:?}");
+    }
+    assert!(!tuned.contains(&"resolve albedo"), "{tuned:?}");
+    let paper = names("sraa-paper");
+    assert!(paper.contains(&"resolve output"), "{paper:?}");
+    assert!(
+        !paper.contains(&"resolve centre geometry"),
+        "sraa-paper shades subsample 0: {paper:?}"
+    );
+    assert!(names("sraa+mat").contains(&"resolve albedo"));
+    let rt = names("sraa-rt");
+    assert!(!rt.iter().any(|b| b.starts_with("resolve")), "{rt:?}");
+}

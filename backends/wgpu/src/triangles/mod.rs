@@ -11,6 +11,7 @@
 
 pub(crate) mod bvh;
 pub(crate) mod raster;
+mod resolve;
 
 use std::sync::Arc;
 
@@ -32,7 +33,11 @@ pub(crate) const FRAME_WGSL: &str = include_str!("frame.wgsl");
 pub(crate) const ALBEDO_WGSL: &str = include_str!("albedo.wgsl");
 const SUPERSAMPLE_WGSL: &str = include_str!("supersample.wgsl");
 const SUBPIXEL_WGSL: &str = include_str!("subpixel.wgsl");
+/// SRAA-RT's resolve (hybrid SRAA's is `resolve.rs`, through
+/// `subcone_passes::SraaResolve`).
 const SRAA_WGSL: &str = include_str!("sraa.wgsl");
+/// The resolve's reconstruction loop, shared with `subcone_passes::SraaResolve`.
+const RECONSTRUCT_WGSL: &str = subcone_passes::RECONSTRUCT_WGSL;
 
 /// The frame's constants; `FrameUniform` in frame.wgsl (160 bytes), read
 /// by the compute passes and the raster pass.
@@ -561,13 +566,35 @@ fn subpixel(f: &Setup) -> Result<Frame, RenderError> {
     let (ctx, s) = (f.ctx, f.job.settings);
     let n = s.width as usize * s.height as usize;
     let (fb, header, raster) = subpixel_bindings(f)?;
-    let mut prog = program(ctx, &f.scene, &fb, &header, &[SUBPIXEL_WGSL, SRAA_WGSL])?;
+    let mut prog = program(
+        ctx,
+        &f.scene,
+        &fb,
+        &header,
+        &[SUBPIXEL_WGSL, SRAA_WGSL, RECONSTRUCT_WGSL],
+    )?;
     let shade = prog.pipeline("shade_main")?;
     let geometry = match raster {
         None => Some(prog.pipeline("geometry_main")?),
         Some(_) => None,
     };
-    let resolve = prog.pipeline("resolve_main")?;
+    // Hybrid SRAA resolves through subcone_passes::SraaResolve (resolve.rs);
+    // SRAA-RT through its own entry point over the traced subsamples.
+    let hybrid = match &raster {
+        Some(_) => Some(resolve::HybridResolve::new(
+            ctx,
+            &fb,
+            &f.job.method.sraa,
+            f.job.method.gates_material(),
+            s.width,
+            s.height,
+        )?),
+        None => None,
+    };
+    let resolve = match &hybrid {
+        None => Some(prog.pipeline("resolve_main")?),
+        Some(_) => None,
+    };
     let groups = workgroups(ctx, s)?;
     let subsamples = indices(ctx, "subsample indices", 4)?;
     let mut timings = Vec::new();
@@ -584,10 +611,24 @@ fn subpixel(f: &Setup) -> Result<Frame, RenderError> {
         (None, Some(r)) => ctx.timed_pass("geometry", &mut timings, |enc| r.record(enc))?,
         (None, None) => unreachable!("one of the two is set above"),
     }
-    ctx.timed_pass("antialiasing", &mut timings, |enc| {
-        prog.dispatch(enc, &resolve, groups)
-    })?;
-    let mut frame = finish(f, &fb, timings, &[("subsample indices", 16)])?;
+    match (&hybrid, &raster, &resolve) {
+        (Some(h), Some(r), _) => {
+            let mut recorded = Ok(());
+            ctx.timed_pass("antialiasing", &mut timings, |enc| {
+                recorded = h.record(ctx, enc, r, groups);
+            })?;
+            recorded?;
+        }
+        (_, _, Some(p)) => ctx.timed_pass("antialiasing", &mut timings, |enc| {
+            prog.dispatch(enc, p, groups)
+        })?,
+        _ => return Err(crate::context::err("antialiasing: no resolve was built")),
+    }
+    let mut extra = vec![("subsample indices", 16)];
+    if let Some(h) = &hybrid {
+        extra.extend_from_slice(&h.stats);
+    }
+    let mut frame = finish(f, &fb, timings, &extra)?;
     if s.aovs {
         let (d, nn) = centre_geometry(f)?;
         frame.depth = Some(d);
@@ -636,7 +677,13 @@ pub(crate) fn subpixel_geometry_both(
         uniform,
     };
     let (fb, header, _) = subpixel_bindings(&f)?;
-    let mut prog = program(ctx, &f.scene, &fb, &header, &[SUBPIXEL_WGSL, SRAA_WGSL])?;
+    let mut prog = program(
+        ctx,
+        &f.scene,
+        &fb,
+        &header,
+        &[SUBPIXEL_WGSL, SRAA_WGSL, RECONSTRUCT_WGSL],
+    )?;
     let shade = prog.pipeline("shade_main")?;
     let geometry = prog.pipeline("geometry_main")?;
     let groups = workgroups(ctx, &s)?;

@@ -142,13 +142,12 @@ fn pipeline(
 pub(crate) struct Raster {
     pipeline: wgpu::RenderPipeline,
     group: wgpu::BindGroup,
-    #[cfg_attr(not(test), allow(dead_code))]
     target: wgpu::Texture,
     layers: [wgpu::TextureView; 4],
     array: wgpu::TextureView,
     depth: wgpu::TextureView,
     /// `+mat`: the albedo layers and their array view.
-    albedo: Option<([wgpu::TextureView; 4], wgpu::TextureView)>,
+    albedo: Option<([wgpu::TextureView; 4], wgpu::TextureView, wgpu::Texture)>,
     vertices: u32,
     width: u32,
     height: u32,
@@ -227,7 +226,7 @@ impl Raster {
             let albedo = albedo.then(|| {
                 let t = layers("subpixel albedo");
                 let l = |k: u32| layer_of(&t, k);
-                ([l(0), l(1), l(2), l(3)], array_of(&t))
+                ([l(0), l(1), l(2), l(3)], array_of(&t), t.clone())
             });
             Raster {
                 pipeline: pipeline.clone(),
@@ -249,9 +248,20 @@ impl Raster {
         self.array.clone()
     }
 
+    /// The four layers' texture (`Rgba32Float`, 4 layers: normal, view
+    /// depth; negative depth where nothing was drawn).
+    pub(crate) fn texture(&self) -> &wgpu::Texture {
+        &self.target
+    }
+
+    /// The four albedo layers' texture (`+mat` only).
+    pub(crate) fn albedo_texture(&self) -> Option<&wgpu::Texture> {
+        self.albedo.as_ref().map(|(_, _, t)| t)
+    }
+
     /// The four albedo layers (`+mat` only).
     pub(crate) fn albedo_view(&self) -> Option<wgpu::TextureView> {
-        self.albedo.as_ref().map(|(_, a)| a.clone())
+        self.albedo.as_ref().map(|(_, a, _)| a.clone())
     }
 
     pub(crate) fn target_bytes(&self) -> usize {
@@ -282,7 +292,7 @@ impl Raster {
                 })
             };
             let mut attachments = vec![attachment(view, -1.0)];
-            if let Some((albedo, _)) = &self.albedo {
+            if let Some((albedo, _, _)) = &self.albedo {
                 attachments.push(attachment(&albedo[k], 0.0));
             }
             let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {

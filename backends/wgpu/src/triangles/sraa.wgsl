@@ -1,62 +1,62 @@
 // Pass "antialiasing" (the paper's pass 2): render.rs `reconstruct_subsample`
 // for each of the four subsamples, then sraa::resolve_pixel. Follows
-// subpixel.wgsl and the generated frame header.
+// subpixel.wgsl and the generated frame header, and comes before
+// subcone_passes::RECONSTRUCT_WGSL (`sraa_reconstruct_run`, the loop every
+// GPU resolve shares, SraaResolve's included), whose hooks it defines over
+// this backend's buffers.
 
-// render.rs `reconstruct_subsample`'s `run`: sraa::reconstruct_layers over the
-// neighbourhood's shaded samples, `first` the first layer, on primary
-// (`secondary` false) or secondary geometry; returns the sum of the layers.
-// Layer 0 is ungated, layer 1 + l gated by light l's shadow bit (eq. 2).
-// With MATERIAL (`+mat`) the primary layers are also gated by albedo
-// (sraa::reconstruct_layers_material): `ta` is the target's albedo.
-fn reconstruct_run(tgt: subcone_Geometry, target_shadow: u32, ta: vec3<f32>, secondary: bool, first: u32, x: u32, y: u32, k: u32) -> vec3<f32> {
-    var gates = 1u + LAYER_LIGHTS;
-    if SINGLE {
-        gates = 1u;
+// Layers per group: layer 0 ungated and layer 1 + l gated by light l's
+// shadow bit (eq. 2); the final colour alone with SINGLE, where the layout
+// (passes::LayerLayout) has no light layers. With MATERIAL (`+mat`) the
+// primary layers are also gated by albedo (sraa::reconstruct_layers_material).
+const SRAA_GATES: u32 = 1u + LAYER_LIGHTS;
+const SRAA_MATERIAL: bool = MATERIAL;
+
+fn sraa_params() -> subcone_SraaParams {
+    return frame.sraa;
+}
+
+fn sraa_size() -> vec2<u32> {
+    return vec2<u32>(frame.width, frame.height);
+}
+
+fn sraa_albedo_tolerance() -> f32 {
+    return subcone_ALBEDO_TOLERANCE;
+}
+
+// The shaded sample of pixel (x, y): its primary geometry, or (`secondary`)
+// its mirror hit's.
+fn sraa_shaded_geometry(x: u32, y: u32, secondary: bool) -> subcone_Geometry {
+    let j = y * frame.width + x;
+    if secondary {
+        return get_geo2(j);
     }
-    var st: array<subcone_LayerState, 9>;
-    for (var i = 0u; i < gates; i++) {
-        st[i] = subcone_reconstruct_layers_begin();
+    return geo[j];
+}
+
+fn sraa_shaded_shadow(x: u32, y: u32, secondary: bool) -> u32 {
+    let j = y * frame.width + x;
+    if secondary {
+        return get_shadow2(j);
     }
-    let nb = subcone_neighbourhood(x, y, k, subcone_sraa_shaded_offset(frame.sraa), subcone_sraa_radius(frame.sraa), frame.width, frame.height);
-    for (var py = nb.y0; py < nb.y1; py++) {
-        for (var px = nb.x0; px < nb.x1; px++) {
-            let jj = py * frame.width + px;
-            let d2 = subcone_neighbour_distance2(nb, x, y, px, py);
-            var g = geo[jj];
-            var s = get_shadow(jj);
-            if secondary {
-                g = get_geo2(jj);
-                s = get_shadow2(jj);
-            }
-            // sraa::reconstruction_weight (eq. 1 and the spatial term), gated
-            // by albedo as sraa::reconstruct_layers_material gates.
-            var w = 0.0;
-            if !(MATERIAL && !secondary) || subcone_material_gate(ta, get_albedo(jj).xyz, subcone_ALBEDO_TOLERANCE) {
-                w = subcone_reconstruction_weight(frame.sraa, tgt, g, d2);
-            }
-            for (var i = 0u; i < gates; i++) {
-                // Through a local: naga's SPIR-V writer cannot pass a pointer
-                // to an array element as an argument.
-                var layer = st[i];
-                subcone_reconstruct_layers_add(&layer, w, i > 0u, i - 1u, target_shadow, s, d2, get_value(jj, first + i));
-                st[i] = layer;
-            }
-        }
-    }
-    var sum = vec3<f32>(0.0);
-    for (var i = 0u; i < gates; i++) {
-        sum = sum + subcone_reconstruct_layers_end(st[i]);
-    }
-    return sum;
+    return get_shadow(j);
+}
+
+fn sraa_shaded_albedo(x: u32, y: u32) -> vec3<f32> {
+    return get_albedo(y * frame.width + x).xyz;
+}
+
+fn sraa_shaded_value(x: u32, y: u32, layer: u32) -> vec3<f32> {
+    return get_value(y * frame.width + x, layer);
 }
 
 fn reconstruct_subsample(x: u32, y: u32, j: u32, k: u32) -> vec3<f32> {
     let tgt = get_sub_geo(j, k);
-    var c = reconstruct_run(tgt, get_sub_shadow(j, k), get_sub_albedo(j, k).xyz, false, 0u, x, y, k);
+    var c = sraa_reconstruct_run(tgt, get_sub_shadow(j, k), get_sub_albedo(j, k).xyz, false, 0u, x, y, k);
     if SECONDARY_LAYERS {
         let tgt2 = get_sub_geo2(j, k);
         if !subcone_is_nan(tgt2.depth) {
-            c = c + reconstruct_run(tgt2, get_sub_shadow2(j, k), vec3<f32>(0.0), true, 1u + LAYER_LIGHTS, x, y, k);
+            c = c + sraa_reconstruct_run(tgt2, get_sub_shadow2(j, k), vec3<f32>(0.0), true, 1u + LAYER_LIGHTS, x, y, k);
         }
     }
     return c;

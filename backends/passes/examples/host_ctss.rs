@@ -1,0 +1,348 @@
+//! A host that cone-traces its own signed distance field with `CtssPass`.
+//!
+//! The field (a sphere, a box and a floor, each its own object) is written
+//! twice, once as a Rust closure for the CPU ([`field`], run through
+//! `subcone_kernels::ctss::trace_field`) and once as WGSL for the GPU
+//! ([`HOST_WGSL`], the hooks `subcone_field` and `subcone_shade`; the normal
+//! is the pass's default, tetrahedral differences of the field, as the
+//! CPU's `ConeField::normal`). Both trace the same cones (CTSS eq. 3 at the
+//! default coverage) with the same parameters.
+//!
+//! `cargo run -p subcone-passes --example host_ctss [out.png]` writes the
+//! GPU image. The test `tests/host_examples.rs` compares [`render_gpu`] with
+//! [`render_cpu`] by FLIP.
+
+use glam::{Vec2, Vec3, Vec4};
+use subcone_kernels::cone::{cone_tan_theta, PixelFootprint};
+use subcone_kernels::ctss::{
+    cross_section_frame, trace_field, ConeField, CtssParams, FieldSample, SplitRay, CONE_COVERAGE,
+};
+use subcone_passes::{CtssCamera, CtssFrame, CtssPass, CtssPassDesc};
+use wgpu::util::DeviceExt;
+
+/// Colour of the part of a pixel no surface covers.
+pub const BACKGROUND: Vec3 = Vec3::new(0.05, 0.06, 0.09);
+
+/// The host's field in WGSL: `subcone_field` (distance, step, object) and
+/// `subcone_shade`, the twins of [`field`] and [`shade`]. The light
+/// direction comes from the host's own bind group (`@group(1)`).
+pub const HOST_WGSL: &str = "
+@group(1) @binding(0) var<uniform> host_light: vec4<f32>;
+
+fn host_box(p: vec3<f32>, b: vec3<f32>) -> f32 {
+    let q = abs(p) - b;
+    return length(max(q, vec3<f32>(0.0))) + min(max(q.x, max(q.y, q.z)), 0.0);
+}
+
+fn subcone_field(p: vec3<f32>) -> vec3<f32> {
+    let sphere = length(p - vec3<f32>(-0.6, 0.0, 0.0)) - 0.6;
+    let cube = host_box(p - vec3<f32>(0.7, -0.1, -0.4), vec3<f32>(0.45, 0.5, 0.45));
+    let floor = p.y + 0.6;
+    var r = vec3<f32>(sphere, sphere, 0.0);
+    if cube < r.x {
+        r = vec3<f32>(cube, cube, 1.0);
+    }
+    if floor < r.x {
+        r = vec3<f32>(floor, floor, 2.0);
+    }
+    return r;
+}
+
+fn host_albedo(object: f32) -> vec3<f32> {
+    if object < 0.5 {
+        return vec3<f32>(0.85, 0.3, 0.2);
+    }
+    if object < 1.5 {
+        return vec3<f32>(0.25, 0.6, 0.85);
+    }
+    return vec3<f32>(0.7, 0.7, 0.65);
+}
+
+fn subcone_shade(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> vec3<f32> {
+    let a = host_albedo(subcone_field(p).z);
+    return a * (0.15 + 0.85 * max(dot(n, host_light.xyz), 0.0));
+}
+";
+
+/// Unit direction towards the light.
+pub fn light() -> Vec3 {
+    Vec3::new(0.4, 0.8, 0.5).normalize()
+}
+
+fn host_box(p: Vec3, b: Vec3) -> f32 {
+    let q = p.abs() - b;
+    q.max(Vec3::ZERO).length() + q.x.max(q.y.max(q.z)).min(0.0)
+}
+
+/// The field in Rust: (distance, object), the twin of `subcone_field`.
+pub fn field(p: Vec3) -> (f32, u32) {
+    let sphere = (p - Vec3::new(-0.6, 0.0, 0.0)).length() - 0.6;
+    let cube = host_box(p - Vec3::new(0.7, -0.1, -0.4), Vec3::new(0.45, 0.5, 0.45));
+    let floor = p.y + 0.6;
+    let mut r = (sphere, 0);
+    if cube < r.0 {
+        r = (cube, 1);
+    }
+    if floor < r.0 {
+        r = (floor, 2);
+    }
+    r
+}
+
+/// The shading in Rust, the twin of `subcone_shade`.
+pub fn shade(p: Vec3, n: Vec3) -> Vec3 {
+    let a = match field(p).1 {
+        0 => Vec3::new(0.85, 0.3, 0.2),
+        1 => Vec3::new(0.25, 0.6, 0.85),
+        _ => Vec3::new(0.7, 0.7, 0.65),
+    };
+    a * (0.15 + 0.85 * n.dot(light()).max(0.0))
+}
+
+struct Field;
+
+impl ConeField for Field {
+    fn sample(&mut self, p: Vec3) -> FieldSample {
+        let (d, object) = field(p);
+        FieldSample {
+            distance: d,
+            step: d,
+            object,
+        }
+    }
+}
+
+/// The camera.
+pub fn camera() -> CtssCamera {
+    let eye = Vec3::new(0.3, 0.9, 3.2);
+    CtssCamera::new(eye, Vec3::new(0.0, -0.1, 0.0) - eye, Vec3::Y, 0.9)
+}
+
+/// The trace's parameters at `height` pixels: subcone's default cone
+/// (CTSS eq. 3 at `CONE_COVERAGE`), 20 units, 300 steps.
+pub fn params(height: u32) -> CtssParams {
+    let tan = cone_tan_theta(
+        camera().fov_y,
+        height,
+        CONE_COVERAGE,
+        PixelFootprint::Circumscribed,
+    );
+    CtssParams::new(tan)
+        .with_range(0.0, 20.0)
+        .with_max_steps(300)
+}
+
+/// The CPU image: `trace_field` of [`field`] per pixel, linear RGB.
+pub fn render_cpu(width: u32, height: u32) -> Vec<Vec3> {
+    let (cam, params) = (camera(), params(height));
+    let mut out = Vec::with_capacity((width * height) as usize);
+    for y in 0..height {
+        for x in 0..width {
+            let p = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+            let (origin, dir) = cam.ray(p, width, height);
+            let (right, up) = cross_section_frame(dir, cam.up);
+            let ray = SplitRay {
+                origin,
+                dir,
+                right,
+                up,
+            };
+            let r = trace_field(&params, &ray, &mut Field, |p, n, _| shade(p, n), BACKGROUND);
+            out.push(r.color);
+        }
+    }
+    out
+}
+
+/// The GPU image: `CtssPass` with [`HOST_WGSL`] on the host's device,
+/// linear RGB.
+pub fn render_gpu(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    width: u32,
+    height: u32,
+) -> Result<Vec<Vec3>, String> {
+    // The host's own bind group: the light direction.
+    let host_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("host"),
+        entries: &[wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        }],
+    });
+    let light_buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("host light"),
+        contents: bytemuck::bytes_of(&light().extend(0.0)),
+        usage: wgpu::BufferUsages::UNIFORM,
+    });
+    let host_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("host"),
+        layout: &host_layout,
+        entries: &[wgpu::BindGroupEntry {
+            binding: 0,
+            resource: light_buf.as_entire_binding(),
+        }],
+    });
+    let format = wgpu::TextureFormat::Rgba32Float;
+    let pass = CtssPass::new(
+        device,
+        HOST_WGSL,
+        &CtssPassDesc {
+            batch: 8,
+            output_format: format,
+            host_layout: Some(&host_layout),
+        },
+    )
+    .map_err(|e| e.to_string())?;
+    let output = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("ctss output"),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    });
+    let mut enc = device.create_command_encoder(&Default::default());
+    pass.encode(
+        device,
+        &mut enc,
+        &CtssFrame {
+            camera: camera(),
+            params: params(height),
+            background: BACKGROUND,
+            host_group: Some(&host_group),
+            output: &output,
+        },
+    )
+    .map_err(|e| e.to_string())?;
+    let pixels = read_rgba32f(device, queue, enc, &output)?;
+    Ok(pixels.iter().map(|p| p.truncate()).collect())
+}
+
+/// Open a device as a host would: `WGPU_BACKEND` or Vulkan, Metal, DX12.
+pub fn open_device() -> Result<(wgpu::Device, wgpu::Queue), String> {
+    let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+    desc.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::PRIMARY);
+    let instance = wgpu::Instance::new(desc);
+    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+        power_preference: wgpu::PowerPreference::HighPerformance,
+        force_fallback_adapter: false,
+        compatible_surface: None,
+        apply_limit_buckets: false,
+    }))
+    .map_err(|e| format!("no GPU adapter: {e}"))?;
+    pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+        label: Some("host"),
+        required_features: wgpu::Features::empty(),
+        required_limits: wgpu::Limits::default(),
+        experimental_features: wgpu::ExperimentalFeatures::disabled(),
+        memory_hints: wgpu::MemoryHints::Performance,
+        trace: wgpu::Trace::Off,
+    }))
+    .map_err(|e| format!("cannot open a device: {e}"))
+}
+
+/// Submit `enc` with a copy of `texture` (`Rgba32Float`) and read it back.
+fn read_rgba32f(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    mut enc: wgpu::CommandEncoder,
+    texture: &wgpu::Texture,
+) -> Result<Vec<Vec4>, String> {
+    let (w, h) = (texture.width(), texture.height());
+    let row = (w * 16).div_ceil(256) * 256;
+    let buf = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("read-back"),
+        size: (row * h) as u64,
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    enc.copy_texture_to_buffer(
+        texture.as_image_copy(),
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buf,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(row),
+                rows_per_image: Some(h),
+            },
+        },
+        texture.size(),
+    );
+    queue.submit([enc.finish()]);
+    let (tx, rx) = std::sync::mpsc::channel();
+    buf.map_async(wgpu::MapMode::Read, .., move |r| {
+        let _ = tx.send(r);
+    });
+    device
+        .poll(wgpu::PollType::Wait {
+            submission_index: None,
+            timeout: Some(std::time::Duration::from_secs(300)),
+        })
+        .map_err(|e| format!("waiting for the GPU: {e}"))?;
+    rx.recv_timeout(std::time::Duration::from_secs(5))
+        .map_err(|_| "read-back did not complete".to_string())?
+        .map_err(|e| format!("read-back failed: {e}"))?;
+    let data = buf
+        .get_mapped_range(..)
+        .map_err(|e| format!("read-back failed: {e}"))?;
+    let mut out = Vec::with_capacity((w * h) as usize);
+    for y in 0..h {
+        for x in 0..w {
+            let o = (y * row + x * 16) as usize;
+            out.push(Vec4::from_array(bytemuck::pod_read_unaligned(
+                &data[o..o + 16],
+            )));
+        }
+    }
+    Ok(out)
+}
+
+/// Linear RGB to 8-bit sRGB, row-major.
+pub fn to_srgb8(pixels: &[Vec3]) -> Vec<u8> {
+    let enc = |c: f32| {
+        let c = if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) };
+        let s = if c <= 0.003_130_8 {
+            12.92 * c
+        } else {
+            1.055 * c.powf(1.0 / 2.4) - 0.055
+        };
+        (s * 255.0 + 0.5) as u8
+    };
+    pixels
+        .iter()
+        .flat_map(|p| [enc(p.x), enc(p.y), enc(p.z)])
+        .collect()
+}
+
+#[allow(dead_code)]
+fn main() -> Result<(), String> {
+    let out = std::env::args()
+        .nth(1)
+        .unwrap_or_else(|| "host_ctss.png".into());
+    let (device, queue) = open_device()?;
+    let (w, h) = (192, 128);
+    let pixels = render_gpu(&device, &queue, w, h)?;
+    image::save_buffer(
+        &out,
+        &to_srgb8(&pixels),
+        w,
+        h,
+        image::ExtendedColorType::Rgb8,
+    )
+    .map_err(|e| e.to_string())?;
+    println!("wrote {out}");
+    Ok(())
+}

@@ -1,0 +1,368 @@
+//! [`CtssPass`]: cone-traced supersampling (CTSS, Algorithm 1, eq. 3–10,
+//! the group masks of §3.4–3.5, §5.3's splits) of the host's own signed
+//! distance field, written in WGSL, one cone per pixel, into the host's
+//! texture.
+//!
+//! The trace is the kernels' `subcone_ctss_trace`
+//! (`subcone_kernels::ctss::TRACE_WGSL`), the WGSL twin of
+//! `subcone_kernels::ctss::trace_field`, which the CPU renderer runs: a host
+//! that writes its field once in Rust (a `ConeField`) and once in WGSL gets
+//! the same image from both (the example `host_ctss` measures it).
+
+use bytemuck::{Pod, Zeroable};
+use glam::Vec3;
+use subcone_kernels::ctss::CtssParams;
+use wgpu::util::DeviceExt;
+
+use crate::bind::{self, Expect, Group};
+use crate::PassError;
+
+pub(crate) const CTSS_WGSL: &str = include_str!("ctss.wgsl");
+const WORKGROUP: u32 = 8;
+/// Most hit groups a trace may march ahead of shading them.
+pub const MAX_BATCH: u32 = 64;
+
+/// The frame's camera; `CtssUniform` in `ctss.wgsl` (80 bytes).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub(crate) struct CtssUniform {
+    pub(crate) position: [f32; 3],
+    pub(crate) width: u32,
+    pub(crate) forward: [f32; 3],
+    pub(crate) height: u32,
+    pub(crate) right: [f32; 3],
+    pub(crate) half: f32,
+    pub(crate) up: [f32; 3],
+    pub(crate) _pad0: u32,
+    pub(crate) background: [f32; 3],
+    pub(crate) _pad1: u32,
+}
+
+/// A pinhole camera: the eye and an orthonormal frame. Pixel `(x, y)` of a
+/// `width × height` image (x right, y down) is the cone around the ray
+/// through image point `(x + 0.5, y + 0.5)` ([`CtssCamera::ray`]), of half
+/// angle `params.tan_theta` (CTSS eq. 3: `cone_tan_theta`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CtssCamera {
+    /// The eye.
+    pub position: Vec3,
+    /// Unit view direction.
+    pub forward: Vec3,
+    /// Unit right vector, orthogonal to `forward`.
+    pub right: Vec3,
+    /// Unit up vector, orthogonal to both.
+    pub up: Vec3,
+    /// Vertical field of view in radians.
+    pub fov_y: f32,
+}
+
+impl CtssCamera {
+    /// A camera at `position` looking along `forward`, `up_hint` roughly up
+    /// (not parallel to `forward`); the frame is orthonormalised, right =
+    /// forward × up.
+    pub fn new(position: Vec3, forward: Vec3, up_hint: Vec3, fov_y: f32) -> Self {
+        let forward = forward.normalize_or_zero();
+        let right = forward.cross(up_hint).normalize_or_zero();
+        let up = right.cross(forward);
+        CtssCamera {
+            position,
+            forward,
+            right,
+            up,
+            fov_y,
+        }
+    }
+
+    /// The ray through image point `p` (pixels, y down) of a
+    /// `width × height` image: `(origin, unit direction)`, exactly as the
+    /// pass computes it on the GPU.
+    pub fn ray(&self, p: glam::Vec2, width: u32, height: u32) -> (Vec3, Vec3) {
+        let (w, h) = (width.max(1) as f32, height.max(1) as f32);
+        let half = (0.5 * self.fov_y).tan();
+        let u = (2.0 * p.x / w - 1.0) * half * (w / h);
+        let v = (1.0 - 2.0 * p.y / h) * half;
+        let d = self.forward + u * self.right + v * self.up;
+        (self.position, d * (1.0 / d.length()))
+    }
+}
+
+/// The configuration of a [`CtssPass`], fixed for its life.
+#[derive(Clone, Copy, Debug)]
+pub struct CtssPassDesc<'a> {
+    /// `subcone_CTSS_BATCH`: hit groups marched ahead of shading them, in
+    /// `1..=MAX_BATCH` (64). 8 suits shading that is cheap; the result does
+    /// not depend on it (eq. 6 adds the same terms in the same order).
+    pub batch: u32,
+    /// The output texture's format: `Rgba8Unorm`, `Rgba16Float` or
+    /// `Rgba32Float` (a storage texture; linear colour, alpha 1).
+    pub output_format: wgpu::TextureFormat,
+    /// The layout of the host's own bind group, which its WGSL declares as
+    /// `@group(1)` (uniforms, textures its field or shading reads). The pass
+    /// owns `@group(0)`.
+    pub host_layout: Option<&'a wgpu::BindGroupLayout>,
+}
+
+impl Default for CtssPassDesc<'_> {
+    fn default() -> Self {
+        CtssPassDesc {
+            batch: 8,
+            output_format: wgpu::TextureFormat::Rgba16Float,
+            host_layout: None,
+        }
+    }
+}
+
+/// One frame of a [`CtssPass`].
+#[derive(Clone, Copy, Debug)]
+pub struct CtssFrame<'a> {
+    /// The camera.
+    pub camera: CtssCamera,
+    /// The trace's parameters: `CtssParams::new(tan_theta)` with
+    /// `tan_theta = subcone_kernels::cone::cone_tan_theta(fov_y, height,
+    /// subcone_kernels::ctss::CONE_COVERAGE, PixelFootprint::Circumscribed)`
+    /// for subcone's default cone, `.with_range(0.0, far)` and
+    /// `.with_max_steps(n)` (every trace ends within `n` field evaluations
+    /// plus a few).
+    pub params: CtssParams,
+    /// The colour of the part of a pixel no surface covers (linear RGB).
+    pub background: Vec3,
+    /// The host's bind group: given exactly when the desc had a layout.
+    pub host_group: Option<&'a wgpu::BindGroup>,
+    /// Where the image is written (level 0, layer 0; `STORAGE_BINDING`).
+    pub output: &'a wgpu::Texture,
+}
+
+/// CTSS of the host's field on the host's device.
+///
+/// The host's WGSL defines, after the kernels' sources (so it may call any
+/// `subcone_` function, e.g. `subcone_tetra_normal`):
+///
+/// - `fn subcone_field(p: vec3<f32>) -> vec3<f32>`: (signed distance, a safe
+///   step `≤` distance, object id: an integer-valued `f32`, e.g. a material
+///   index; negative for none). A group of hits ends where the id changes.
+/// - `fn subcone_shade(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> vec3<f32>`:
+///   the linear colour of surface point `p` with unit normal `n` seen along
+///   `dir`.
+/// - optionally `fn subcone_normal(p: vec3<f32>, h: f32) -> vec3<f32>`: the
+///   unit normal from differences of step `h`; when the source has no
+///   `fn subcone_normal`, the pass adds the default, tetrahedral differences
+///   of `subcone_field` (`subcone_tetra_normal`, the CPU's
+///   `ConeField::normal`).
+///
+/// It must not declare `@group(0)` bindings, `subcone_CTSS_BATCH` or names
+/// starting with `subcone_pass_`.
+///
+/// ```no_run
+/// # fn f(device: &wgpu::Device, encoder: &mut wgpu::CommandEncoder, output: &wgpu::Texture)
+/// # -> Result<(), subcone_passes::PassError> {
+/// use glam::Vec3;
+/// use subcone_kernels::ctss::CtssParams;
+/// use subcone_passes::{CtssCamera, CtssFrame, CtssPass, CtssPassDesc};
+/// let host_wgsl = "
+///     fn subcone_field(p: vec3<f32>) -> vec3<f32> {
+///         let d = length(p - vec3<f32>(0.0, 0.0, 5.0)) - 1.0;
+///         return vec3<f32>(d, d, 0.0);
+///     }
+///     fn subcone_shade(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> vec3<f32> {
+///         return vec3<f32>(max(n.y, 0.0));
+///     }";
+/// let pass = CtssPass::new(device, host_wgsl, &CtssPassDesc::default())?;
+/// let camera = CtssCamera::new(Vec3::ZERO, Vec3::Z, Vec3::Y, 0.8);
+/// pass.encode(device, encoder, &CtssFrame {
+///     camera,
+///     params: CtssParams::new(0.002).with_range(0.0, 100.0).with_max_steps(256),
+///     background: Vec3::ZERO,
+///     host_group: None,
+///     output,
+/// })?;
+/// # Ok(()) }
+/// ```
+pub struct CtssPass {
+    output_format: wgpu::TextureFormat,
+    host_group: bool,
+    group: Group,
+    layout: wgpu::BindGroupLayout,
+    pipeline: wgpu::ComputePipeline,
+}
+
+impl std::fmt::Debug for CtssPass {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("CtssPass")
+            .field("output_format", &self.output_format)
+            .field("host_group", &self.host_group)
+            .finish()
+    }
+}
+
+impl CtssPass {
+    /// Build the pass for the host's WGSL (compile its pipeline). Refuses a
+    /// batch outside `1..=MAX_BATCH` and an output format it cannot write;
+    /// a host source that does not compile is a validation error on the
+    /// host's device, reported through the host's own error handling.
+    pub fn new(
+        device: &wgpu::Device,
+        host_wgsl: &str,
+        desc: &CtssPassDesc<'_>,
+    ) -> Result<Self, PassError> {
+        bind::check_output_format(desc.output_format)?;
+        if !(1..=MAX_BATCH).contains(&desc.batch) {
+            return Err(PassError::Config(format!(
+                "batch {}: subcone_CTSS_BATCH must be in 1..={MAX_BATCH}",
+                desc.batch
+            )));
+        }
+        let group = Self::group(desc.output_format);
+        let layout = group.layout(device, "subcone ctss");
+        let source = Self::source(host_wgsl, desc.batch, &group);
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("subcone ctss"),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let layouts = [Some(&layout), desc.host_layout];
+        let n = if desc.host_layout.is_some() { 2 } else { 1 };
+        let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("subcone ctss"),
+            bind_group_layouts: &layouts[..n],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("subcone ctss"),
+            layout: Some(&pl),
+            module: &module,
+            entry_point: Some("subcone_pass_ctss_main"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        Ok(CtssPass {
+            output_format: desc.output_format,
+            host_group: desc.host_layout.is_some(),
+            group,
+            layout,
+            pipeline,
+        })
+    }
+
+    #[cfg(test)]
+    pub(crate) fn group_for_tests(output_format: wgpu::TextureFormat) -> Group {
+        Self::group(output_format)
+    }
+
+    fn group(output_format: wgpu::TextureFormat) -> Group {
+        let mut g = Group::default();
+        g.uniform("subcone_pass_frame", "CtssUniform");
+        g.uniform("subcone_pass_params", "subcone_CtssParams");
+        g.storage_texture("subcone_pass_output", output_format);
+        g
+    }
+
+    /// The whole shader: the kernels, the batch, the host's WGSL (and the
+    /// default normal), the pass's entry point, the declarations.
+    pub(crate) fn source(host_wgsl: &str, batch: u32, group: &Group) -> String {
+        let normal = if host_wgsl.contains("fn subcone_normal") {
+            ""
+        } else {
+            "fn subcone_normal(p: vec3<f32>, h: f32) -> vec3<f32> { return subcone_tetra_normal(p, h); }\n"
+        };
+        [
+            subcone_kernels::wgsl::PARAMS,
+            subcone_kernels::cone::WGSL,
+            subcone_kernels::mask::WGSL,
+            subcone_kernels::aggregate::WGSL,
+            subcone_kernels::transparency::WGSL,
+            subcone_kernels::ctss::WGSL,
+            subcone_kernels::ctss::TRACE_WGSL,
+            &format!("const subcone_CTSS_BATCH: u32 = {batch}u;\n"),
+            // ctss::WGSL's NoAA hook, on the host's field.
+            "fn ctss_field(p: vec3<f32>) -> vec2<f32> { let f = subcone_field(p); return f.xy; }\n",
+            host_wgsl,
+            "\n",
+            normal,
+            CTSS_WGSL,
+            &group.declarations(),
+        ]
+        .concat()
+    }
+
+    /// Record the trace of one frame into `encoder` (one compute pass).
+    /// Checks the output and the host group first: on an error nothing is
+    /// recorded.
+    pub fn encode(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &CtssFrame<'_>,
+    ) -> Result<(), PassError> {
+        let out = frame.output;
+        let size = (out.width(), out.height());
+        bind::check(
+            out,
+            &Expect {
+                what: "output",
+                size,
+                samples: 1,
+                layers: 1,
+                usage: wgpu::TextureUsages::STORAGE_BINDING,
+            },
+        )?;
+        if out.format() != self.output_format {
+            return Err(PassError::Format {
+                what: "output",
+                found: out.format(),
+                expected: "the desc's output_format",
+            });
+        }
+        match (self.host_group, frame.host_group) {
+            (true, None) => return Err(PassError::Missing("host bind group")),
+            (false, Some(_)) => return Err(PassError::Unexpected("host bind group")),
+            _ => {}
+        }
+        let c = &frame.camera;
+        let uniform = CtssUniform {
+            position: c.position.into(),
+            width: size.0,
+            forward: c.forward.into(),
+            height: size.1,
+            right: c.right.into(),
+            half: (0.5 * c.fov_y).tan(),
+            up: c.up.into(),
+            _pad0: 0,
+            background: frame.background.into(),
+            _pad1: 0,
+        };
+        let buffer = |label, bytes: &[u8]| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: bytes,
+                usage: wgpu::BufferUsages::UNIFORM,
+            })
+        };
+        let u = buffer("subcone ctss frame", bytemuck::bytes_of(&uniform));
+        let p = buffer("subcone ctss params", bytemuck::bytes_of(&frame.params));
+        let view = bind::view(out, wgpu::TextureViewDimension::D2);
+        let group = self.group.bind_group(
+            device,
+            &self.layout,
+            "subcone ctss",
+            &[
+                ("subcone_pass_frame", u.as_entire_binding()),
+                ("subcone_pass_params", p.as_entire_binding()),
+                (
+                    "subcone_pass_output",
+                    wgpu::BindingResource::TextureView(&view),
+                ),
+            ],
+        )?;
+        let (gx, gy) = crate::workgroups(size.0, size.1, WORKGROUP);
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("subcone ctss"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &group, &[]);
+        if let Some(h) = frame.host_group {
+            pass.set_bind_group(1, h, &[]);
+        }
+        pass.dispatch_workgroups(gx, gy, 1);
+        Ok(())
+    }
+}

@@ -1,0 +1,222 @@
+//! The crate's `#[repr(C)]` GPU structs against their WGSL twins through
+//! naga's layouter (the check of `subcone-wgpu`'s `layout_tests.rs`): every
+//! WGSL member, in order, at the offset and with the size of the Rust field
+//! it mirrors, and the same total size. And every shader the passes build,
+//! for every configuration, parses and validates.
+
+use core::mem::{offset_of, size_of};
+
+use crate::ctss::{CtssPass, CtssUniform, CTSS_WGSL};
+use crate::fxaa::{FxaaFrame, FxaaPass, FXAA_WGSL};
+use crate::sraa::{SraaFrame, SRAA_WGSL};
+
+/// The text of `struct <name> { … }` in `source`.
+fn struct_text<'a>(source: &'a str, name: &str) -> &'a str {
+    let start = source
+        .find(&format!("struct {name} {{"))
+        .unwrap_or_else(|| panic!("no struct {name} in the WGSL"));
+    let end = start + source[start..].find('}').expect("closing brace") + 1;
+    &source[start..end]
+}
+
+/// One Rust field as WGSL members: (WGSL name, offset, size).
+type Member = (String, usize, usize);
+
+/// `members!(T: field, field, pad[N] as f32, …)`: a field is the WGSL member
+/// of the same name; `pad[N] as E` is N scalar members `pad0` … of type E.
+macro_rules! members {
+    ($ty:ty: $($field:ident $([$n:literal as $e:ty])?),+ $(,)?) => {{
+        let mut m: Vec<Member> = Vec::new();
+        $( members!(@one m, $ty, $field $([$n as $e])?); )+
+        m
+    }};
+    (@one $m:ident, $ty:ty, $field:ident) => {{
+        let probe = |s: &$ty| core::mem::size_of_val(&s.$field);
+        let size = probe(&bytemuck::Zeroable::zeroed());
+        $m.push((stringify!($field).to_string(), offset_of!($ty, $field), size));
+    }};
+    (@one $m:ident, $ty:ty, $field:ident [$n:literal as $e:ty]) => {{
+        for i in 0..$n {
+            $m.push((
+                format!("{}{i}", stringify!($field)),
+                offset_of!($ty, $field) + i * size_of::<$e>(),
+                size_of::<$e>(),
+            ));
+        }
+    }};
+}
+
+/// Compare the WGSL struct `wgsl_name` (declared in `source`, after the
+/// kernels' shared structs) with the Rust layout `members` of total `size`.
+fn compare(source: &str, wgsl_name: &str, size: usize, members: &[Member]) -> Result<(), String> {
+    let text = format!(
+        "{}\n{}\n",
+        subcone_kernels::wgsl::PARAMS,
+        struct_text(source, wgsl_name)
+    );
+    let module = naga::front::wgsl::parse_str(&text).map_err(|e| e.emit_to_string(&text))?;
+    let mut layouter = naga::proc::Layouter::default();
+    layouter
+        .update(module.to_ctx())
+        .map_err(|e| e.to_string())?;
+    let (handle, ty) = module
+        .types
+        .iter()
+        .find(|(_, t)| t.name.as_deref() == Some(wgsl_name))
+        .ok_or_else(|| format!("no WGSL struct {wgsl_name}"))?;
+    let naga::TypeInner::Struct {
+        members: wgsl,
+        span,
+    } = &ty.inner
+    else {
+        return Err(format!("{wgsl_name} is not a struct"));
+    };
+    let names: Vec<&str> = wgsl
+        .iter()
+        .map(|m| m.name.as_deref().unwrap_or("?"))
+        .collect();
+    let rust: Vec<&str> = members.iter().map(|m| m.0.as_str()).collect();
+    if names != rust {
+        return Err(format!(
+            "{wgsl_name}: WGSL members {names:?}, Rust {rust:?}"
+        ));
+    }
+    for (w, (name, offset, bytes)) in wgsl.iter().zip(members) {
+        let wsize = layouter[w.ty].size as usize;
+        if w.offset as usize != *offset || wsize != *bytes {
+            return Err(format!(
+                "{wgsl_name}.{name}: WGSL offset {} size {wsize}, Rust offset {offset} size {bytes}",
+                w.offset
+            ));
+        }
+    }
+    if *span as usize != size || layouter[handle].size as usize != size {
+        return Err(format!("{wgsl_name}: WGSL size {span}, Rust size {size}"));
+    }
+    Ok(())
+}
+
+#[test]
+fn pass_gpu_structs_match_their_wgsl() {
+    let checks: Vec<(&str, &str, usize, Vec<Member>)> = vec![
+        (
+            SRAA_WGSL,
+            "SraaFrame",
+            size_of::<SraaFrame>(),
+            members!(SraaFrame: sraa, projection, width, height, depth_miss, albedo_tolerance),
+        ),
+        (
+            CTSS_WGSL,
+            "CtssUniform",
+            size_of::<CtssUniform>(),
+            members!(CtssUniform: position, width, forward, height, right, half, up, _pad0,
+                background, _pad1),
+        ),
+        (
+            FXAA_WGSL,
+            "FxaaFrame",
+            size_of::<FxaaFrame>(),
+            members!(FxaaFrame: width, height, _pad[2 as u32]),
+        ),
+    ];
+    let errors: Vec<String> = checks
+        .iter()
+        .filter_map(|(src, name, size, m)| compare(src, name, *size, m).err())
+        .collect();
+    assert!(errors.is_empty(), "{}", errors.join("\n"));
+}
+
+/// The comparison can fail: fields out of order, a field at another offset
+/// and another total size are each caught.
+#[test]
+fn a_mismatched_layout_is_caught() {
+    let good = members!(FxaaFrame: width, height, _pad[2 as u32]);
+    let size = size_of::<FxaaFrame>();
+    assert_eq!(compare(FXAA_WGSL, "FxaaFrame", size, &good), Ok(()));
+    let mut swapped = good.clone();
+    swapped.swap(0, 1);
+    assert!(compare(FXAA_WGSL, "FxaaFrame", size, &swapped).is_err());
+    let mut moved = good.clone();
+    moved[1].1 += 4;
+    assert!(compare(FXAA_WGSL, "FxaaFrame", size, &moved).is_err());
+    assert!(compare(FXAA_WGSL, "FxaaFrame", size + 16, &good).is_err());
+}
+
+/// Parse and validate a whole shader as wgpu would.
+fn validate(label: &str, source: &str) -> Result<(), String> {
+    let module = naga::front::wgsl::parse_str(source)
+        .map_err(|e| format!("{label}: {}", e.emit_to_string(source)))?;
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::default(),
+    )
+    .validate(&module)
+    .map_err(|e| format!("{label}: {}", e.emit_to_string(source)))?;
+    Ok(())
+}
+
+/// Every SRAA configuration's shader (layout × depth × normals × centre or
+/// subsample shading × lights × albedo gate × secondary shading) validates, and so do the
+/// CTSS (with and without the host's normal) and FXAA shaders.
+#[test]
+fn every_pass_shader_validates() {
+    use crate::sraa::{test_source, DepthKind, GeometryLayout, NormalEncoding, SraaResolveDesc};
+    use subcone_kernels::sraa::SraaParams;
+    let mut errors = Vec::new();
+    for geometry in [
+        GeometryLayout::Multisampled,
+        GeometryLayout::Layers,
+        GeometryLayout::Packed,
+    ] {
+        for depth in [DepthKind::Hardware, DepthKind::LinearView] {
+            for normal in [NormalEncoding::Signed, NormalEncoding::Unsigned] {
+                if geometry == GeometryLayout::Packed
+                    && (depth != DepthKind::LinearView || normal != NormalEncoding::Signed)
+                {
+                    continue;
+                }
+                for params in [SraaParams::PAPER, SraaParams::TUNED] {
+                    for (lights, albedo_gate, secondary) in [
+                        (0, false, false),
+                        (2, true, true),
+                        (8, false, true),
+                        (0, false, true),
+                    ] {
+                        let desc = SraaResolveDesc {
+                            lights,
+                            albedo_gate,
+                            secondary,
+                            params,
+                            geometry,
+                            depth,
+                            normal,
+                            ..SraaResolveDesc::msaa()
+                        };
+                        if let Err(e) = validate(&format!("{desc:?}"), &test_source(&desc)) {
+                            errors.push(e);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    let field = "fn subcone_field(p: vec3<f32>) -> vec3<f32> { let d = length(p) - 1.0; return vec3<f32>(d, d, 0.0); }\n\
+                 fn subcone_shade(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> vec3<f32> { return n; }\n";
+    let own_normal = format!(
+        "{field}fn subcone_normal(p: vec3<f32>, h: f32) -> vec3<f32> {{ return normalize(p); }}\n"
+    );
+    for (label, host) in [
+        ("ctss", field.to_string()),
+        ("ctss, host normal", own_normal),
+    ] {
+        let g = CtssPass::group_for_tests(wgpu::TextureFormat::Rgba16Float);
+        if let Err(e) = validate(label, &CtssPass::source(&host, 8, &g)) {
+            errors.push(e);
+        }
+    }
+    let g = FxaaPass::group_for_tests(wgpu::TextureFormat::Rgba8Unorm);
+    if let Err(e) = validate("fxaa", &FxaaPass::source(&g)) {
+        errors.push(e);
+    }
+    assert!(errors.is_empty(), "{}", errors.join("\n\n"));
+}

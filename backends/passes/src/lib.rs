@@ -1,0 +1,160 @@
+//! subcone's GPU passes for a host wgpu renderer.
+//!
+//! Each pass works on the host's `wgpu::Device`, queue and textures and never
+//! opens a device of its own, never installs a device-lost or uncaptured-error
+//! callback and never waits on the GPU: it records into the host's
+//! `wgpu::CommandEncoder` and the host submits. Like the `smaa` crate, a pass
+//! is built once for a configuration (`new`, which compiles its pipeline) and
+//! recorded every frame (`encode`).
+//!
+//! - [`SraaResolve`]: SRAA's antialiasing pass (Chiu et al., §3, eq. 1–2,
+//!   secondary hits §3.3) from the host's subsample geometry (a 4x MSAA
+//!   depth + normal prepass, or four layers) and its one shaded colour per
+//!   pixel.
+//! - [`CtssPass`]: cone-traced supersampling (CTSS, Algorithm 1, eq. 3–10)
+//!   of the host's own signed distance field, written in WGSL.
+//! - [`FxaaPass`]: FXAA 3.11 (`subcone_kernels::fxaa`) over a host texture.
+//!
+//! Every pass runs the kernels' WGSL (`subcone_kernels::sraa::WGSL`,
+//! `subcone_kernels::ctss::TRACE_WGSL`, `subcone_kernels::fxaa::WGSL`): the
+//! mathematics is written once, in the kernels crate, and this crate only
+//! binds textures to it. Each GPU pass is one `.rs` beside one `.wgsl`.
+//!
+//! Inputs are checked before anything is recorded: a texture of the wrong
+//! size, format, sample count, layer count or usage is a [`PassError`], never
+//! a wgpu validation error raised on the host's device.
+
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+mod bind;
+mod ctss;
+mod fxaa;
+#[cfg(test)]
+mod layout_tests;
+mod sraa;
+
+pub use ctss::{CtssCamera, CtssFrame, CtssPass, CtssPassDesc, MAX_BATCH};
+pub use fxaa::FxaaPass;
+pub use sraa::{
+    AlbedoTextures, CentreGeometry, DepthConvention, DepthKind, GeometryLayout, NormalEncoding,
+    SecondaryInputs, ShadowTextures, SraaInputs, SraaResolve, SraaResolveDesc, RECONSTRUCT_WGSL,
+};
+
+/// README.md's code blocks (its "Embedding" section), compiled as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+pub struct ReadmeSnippets;
+
+/// Why a pass refused its configuration or its inputs. Nothing was recorded.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum PassError {
+    /// A texture has the wrong size.
+    Size {
+        /// Which input.
+        what: &'static str,
+        /// The size the pass needs (the output's), `(width, height)`.
+        expected: (u32, u32),
+        /// The texture's size.
+        found: (u32, u32),
+    },
+    /// A texture is not two-dimensional.
+    Dimension {
+        /// Which input.
+        what: &'static str,
+        /// The texture's dimension.
+        found: wgpu::TextureDimension,
+    },
+    /// A texture has the wrong sample count.
+    SampleCount {
+        /// Which input.
+        what: &'static str,
+        /// The count the configuration needs.
+        expected: u32,
+        /// The texture's.
+        found: u32,
+    },
+    /// A texture has the wrong number of array layers.
+    Layers {
+        /// Which input.
+        what: &'static str,
+        /// The layers the configuration needs.
+        expected: u32,
+        /// The texture's.
+        found: u32,
+    },
+    /// A texture's format does not fit its role.
+    Format {
+        /// Which input.
+        what: &'static str,
+        /// The texture's format.
+        found: wgpu::TextureFormat,
+        /// What the role accepts.
+        expected: &'static str,
+    },
+    /// A texture lacks a usage the pass needs (`TEXTURE_BINDING` to read,
+    /// `STORAGE_BINDING` to write).
+    Usage {
+        /// Which input.
+        what: &'static str,
+        /// The usage it lacks.
+        missing: wgpu::TextureUsages,
+    },
+    /// An input the configuration needs was not given.
+    Missing(&'static str),
+    /// An input was given that the configuration does not read (so the host
+    /// and the pass disagree about what is being resolved).
+    Unexpected(&'static str),
+    /// A configuration value is out of range.
+    Config(String),
+}
+
+impl std::fmt::Display for PassError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            PassError::Size {
+                what,
+                expected,
+                found,
+            } => write!(
+                f,
+                "{what}: {}x{} texture, the pass needs {}x{}",
+                found.0, found.1, expected.0, expected.1
+            ),
+            PassError::Dimension { what, found } => {
+                write!(f, "{what}: a {found:?} texture, the pass reads 2D textures")
+            }
+            PassError::SampleCount {
+                what,
+                expected,
+                found,
+            } => write!(f, "{what}: {found} samples per pixel, needs {expected}"),
+            PassError::Layers {
+                what,
+                expected,
+                found,
+            } => write!(f, "{what}: {found} array layers, needs {expected}"),
+            PassError::Format {
+                what,
+                found,
+                expected,
+            } => write!(f, "{what}: format {found:?}, needs {expected}"),
+            PassError::Usage { what, missing } => write!(f, "{what}: lacks usage {missing:?}"),
+            PassError::Missing(what) => write!(f, "{what} is required by this configuration"),
+            PassError::Unexpected(what) => {
+                write!(
+                    f,
+                    "{what} was given but this configuration does not read it"
+                )
+            }
+            PassError::Config(m) => f.write_str(m),
+        }
+    }
+}
+
+impl std::error::Error for PassError {}
+
+/// Workgroups of `size`×`size` covering `width × height`.
+pub(crate) fn workgroups(width: u32, height: u32, size: u32) -> (u32, u32) {
+    (width.div_ceil(size), height.div_ceil(size))
+}

@@ -1,0 +1,62 @@
+// The SRAA reconstruction loop shared by every GPU resolve: SraaResolve
+// (sraa.wgsl) and the wgpu backend's own SRAA and SRAA-RT resolve
+// (backends/wgpu/src/triangles/sraa.wgsl), so there is one GPU resolve.
+// subcone_passes::RECONSTRUCT_WGSL. It drives the kernels' WGSL
+// (subcone_kernels::sraa::WGSL) in the order of the CPU's
+// sraa::reconstruct_layers / reconstruct_layers_material.
+//
+// Follows subcone_kernels::wgsl::PARAMS and subcone_kernels::sraa::WGSL. The
+// including shader defines:
+//     const SRAA_GATES: u32             layers per group: 1 + gated lights (≤ 9)
+//     const SRAA_MATERIAL: bool         the albedo gate on the primary group
+//     fn sraa_params() -> subcone_SraaParams
+//     fn sraa_size() -> vec2<u32>       the image's width and height
+//     fn sraa_albedo_tolerance() -> f32
+//     fn sraa_shaded_geometry(x: u32, y: u32, secondary: bool) -> subcone_Geometry
+//     fn sraa_shaded_shadow(x: u32, y: u32, secondary: bool) -> u32
+//     fn sraa_shaded_albedo(x: u32, y: u32) -> vec3<f32>
+//     fn sraa_shaded_value(x: u32, y: u32, layer: u32) -> vec3<f32>
+// the shaded sample of pixel (x, y): its geometry, shadow bits (bit l: light
+// l's shadow), albedo, and colour layer `layer`.
+
+// sraa::reconstruct_layers (sraa::reconstruct_layers_material with
+// SRAA_MATERIAL, on the primary group) of subsample k of pixel (x, y), whose
+// geometry is `tgt`, shadow bits `target_shadow` and albedo `ta`, over the
+// neighbourhood's shaded samples of one group (`secondary`: the secondary
+// hits', §3.3), layers first .. first + SRAA_GATES: layer 0 of the group
+// ungated, layer 1 + l gated by light l's shadow bit (eq. 2). Returns the sum
+// of the group's reconstructed layers.
+fn sraa_reconstruct_run(tgt: subcone_Geometry, target_shadow: u32, ta: vec3<f32>, secondary: bool, first: u32, x: u32, y: u32, k: u32) -> vec3<f32> {
+    let params = sraa_params();
+    let size = sraa_size();
+    var st: array<subcone_LayerState, 9>;
+    for (var i = 0u; i < SRAA_GATES; i++) {
+        st[i] = subcone_reconstruct_layers_begin();
+    }
+    let nb = subcone_neighbourhood(x, y, k, subcone_sraa_shaded_offset(params), subcone_sraa_radius(params), size.x, size.y);
+    for (var py = nb.y0; py < nb.y1; py++) {
+        for (var px = nb.x0; px < nb.x1; px++) {
+            let d2 = subcone_neighbour_distance2(nb, x, y, px, py);
+            let g = sraa_shaded_geometry(px, py, secondary);
+            let s = sraa_shaded_shadow(px, py, secondary);
+            // sraa::reconstruction_weight (eq. 1 and the spatial term), gated
+            // by albedo as sraa::reconstruct_layers_material gates.
+            var w = 0.0;
+            if !(SRAA_MATERIAL && !secondary) || subcone_material_gate(ta, sraa_shaded_albedo(px, py), sraa_albedo_tolerance()) {
+                w = subcone_reconstruction_weight(params, tgt, g, d2);
+            }
+            for (var i = 0u; i < SRAA_GATES; i++) {
+                // Through a local: naga's SPIR-V writer cannot pass a pointer
+                // to an array element as an argument.
+                var layer = st[i];
+                subcone_reconstruct_layers_add(&layer, w, i > 0u, i - 1u, target_shadow, s, d2, sraa_shaded_value(px, py, first + i));
+                st[i] = layer;
+            }
+        }
+    }
+    var sum = vec3<f32>(0.0);
+    for (var i = 0u; i < SRAA_GATES; i++) {
+        sum = sum + subcone_reconstruct_layers_end(st[i]);
+    }
+    return sum;
+}

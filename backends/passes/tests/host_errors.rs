@@ -1,0 +1,352 @@
+//! The passes stay inside the host's error handling: they install no
+//! callback (the host's uncaptured-error handler is still the one called
+//! after they ran, and `subcone_wgpu::GpuContext::from_device` does not take
+//! it over either), and inputs that do not fit are typed errors before
+//! anything reaches the device.
+
+mod common;
+
+#[allow(dead_code)]
+#[path = "../examples/host_sraa.rs"]
+mod host_sraa;
+
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Arc;
+
+use subcone_kernels::fxaa::FxaaParams;
+use subcone_kernels::sraa::SraaParams;
+use subcone_passes::{
+    DepthConvention, FxaaPass, PassError, SraaInputs, SraaResolve, SraaResolveDesc,
+};
+
+fn texture(
+    device: &wgpu::Device,
+    (w, h): (u32, u32),
+    samples: u32,
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: None,
+        size: wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: samples,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
+}
+
+/// `host_sraa::open_device` with the adapter's own limits.
+fn open_device_with_adapter_limits() -> Result<(wgpu::Device, wgpu::Queue), String> {
+    let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+    desc.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::PRIMARY);
+    let instance = wgpu::Instance::new(desc);
+    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+        power_preference: wgpu::PowerPreference::HighPerformance,
+        force_fallback_adapter: false,
+        compatible_surface: None,
+        apply_limit_buckets: false,
+    }))
+    .map_err(|e| format!("no GPU adapter: {e}"))?;
+    pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+        label: Some("host, adapter limits"),
+        required_features: wgpu::Features::empty(),
+        required_limits: adapter.limits(),
+        experimental_features: wgpu::ExperimentalFeatures::disabled(),
+        memory_hints: wgpu::MemoryHints::Performance,
+        trace: wgpu::Trace::Off,
+    }))
+    .map_err(|e| format!("cannot open a device: {e}"))
+}
+
+fn wait(device: &wgpu::Device) {
+    device
+        .poll(wgpu::PollType::Wait {
+            submission_index: None,
+            timeout: Some(std::time::Duration::from_secs(60)),
+        })
+        .expect("poll");
+}
+
+#[test]
+fn the_hosts_uncaptured_error_handler_stays_the_hosts() {
+    let Some((device, queue)) = common::device_or_skip("host errors", host_sraa::open_device)
+    else {
+        return;
+    };
+    let seen = Arc::new(AtomicUsize::new(0));
+    let counter = seen.clone();
+    device.on_uncaptured_error(Arc::new(move |_e: wgpu::Error| {
+        counter.fetch_add(1, Ordering::SeqCst);
+    }));
+    // subcone's own context on the host's device: no callback installed.
+    let ctx = Arc::new(subcone_wgpu::GpuContext::from_device(
+        device.clone(),
+        queue.clone(),
+    ));
+    assert!(ctx.check_lost().is_ok());
+    // The backend on the host's device: this host asked for wgpu's default
+    // limits, too few for the backend's triangle passes (more than 8 storage
+    // buffers per stage). The render fails as a value, caught by the
+    // backend's own error scopes; the host's handler sees nothing.
+    use subcone_scene::Backend;
+    let scene = subcone_scene::builtin::builtin("cornell").expect("scene");
+    let method = "sraa".parse().expect("method");
+    let settings = subcone_scene::RenderSettings::new(16, 12);
+    let refused = subcone_wgpu::WgpuBackend::with_context(ctx.clone()).render(
+        &scene,
+        &scene.camera,
+        &method,
+        &settings,
+    );
+    match refused {
+        Err(e) => assert!(e.to_string().contains("limit"), "{e}"),
+        Ok(_) => {
+            // An adapter whose defaults suffice: nothing to refuse.
+        }
+    }
+    assert_eq!(
+        seen.load(Ordering::SeqCst),
+        0,
+        "the backend's error reached the host's handler"
+    );
+    // A host device with the adapter's limits (as `GpuContext::new` asks)
+    // renders the frame the backend's own device renders.
+    let (big, big_queue) = open_device_with_adapter_limits().expect("device");
+    let hosted = subcone_wgpu::WgpuBackend::with_context(Arc::new(
+        subcone_wgpu::GpuContext::from_device(big, big_queue),
+    ))
+    .render(&scene, &scene.camera, &method, &settings)
+    .expect("render on the host's device");
+    let own = subcone_wgpu::WgpuBackend::new()
+        .expect("the backend's own device")
+        .render(&scene, &scene.camera, &method, &settings)
+        .expect("render on the backend's device");
+    assert_eq!(hosted.color, own.color);
+    // The passes run (SRAA through the host example, FXAA on its output).
+    let image = host_sraa::render(&device, &queue, SraaParams::PAPER, 16, 8).expect("host render");
+    assert_eq!(image.len(), 16 * 8);
+    let fxaa = FxaaPass::new(
+        &device,
+        &FxaaParams::QUALITY,
+        wgpu::TextureFormat::Rgba16Float,
+    )
+    .expect("fxaa");
+    let read = wgpu::TextureUsages::TEXTURE_BINDING;
+    let src = texture(&device, (16, 8), 1, wgpu::TextureFormat::Rgba16Float, read);
+    let dst = texture(
+        &device,
+        (16, 8),
+        1,
+        wgpu::TextureFormat::Rgba16Float,
+        wgpu::TextureUsages::STORAGE_BINDING,
+    );
+    let mut enc = device.create_command_encoder(&Default::default());
+    fxaa.encode(&device, &mut enc, &src, &dst)
+        .expect("fxaa encode");
+    queue.submit([enc.finish()]);
+    wait(&device);
+    assert_eq!(seen.load(Ordering::SeqCst), 0, "the passes raised an error");
+    // A mistake of the host's own, outside any error scope: its handler
+    // sees it, not subcone's.
+    let _bad = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("invalid"),
+        size: 16,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::MAP_WRITE,
+        mapped_at_creation: false,
+    });
+    wait(&device);
+    assert_eq!(
+        seen.load(Ordering::SeqCst),
+        1,
+        "the host's handler did not see the host's error"
+    );
+    // And subcone's context recorded nothing of it: it is the host's.
+    assert!(ctx.check_lost().is_ok());
+}
+
+/// Each wrong input is its typed error, and nothing reaches the device (the
+/// host's handler sees no error).
+#[test]
+fn inputs_that_do_not_fit_are_typed_errors() {
+    let Some((device, _queue)) =
+        common::device_or_skip("pass input checks", host_sraa::open_device)
+    else {
+        return;
+    };
+    let seen = Arc::new(AtomicUsize::new(0));
+    let counter = seen.clone();
+    device.on_uncaptured_error(Arc::new(move |_e: wgpu::Error| {
+        counter.fetch_add(1, Ordering::SeqCst);
+    }));
+    use wgpu::TextureFormat::{Depth32Float, R32Float, Rgba16Float, Rgba8UnormSrgb};
+    let read = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT;
+    let store = wgpu::TextureUsages::STORAGE_BINDING;
+    let size = (8, 4);
+    let depth = texture(&device, size, 4, Depth32Float, read);
+    let normal = texture(&device, size, 4, Rgba16Float, read);
+    let normal1 = texture(&device, size, 1, Rgba16Float, read);
+    let small = texture(&device, (4, 4), 4, Rgba16Float, read);
+    let color = texture(&device, size, 1, Rgba16Float, read);
+    let linear = texture(&device, size, 4, R32Float, read);
+    let output = texture(&device, size, 1, Rgba16Float, store);
+    let sraa = SraaResolve::new(&device, &SraaResolveDesc::msaa()).expect("pass");
+    let good = SraaInputs {
+        subsample_depth: &depth,
+        subsample_normal: Some(&normal),
+        depth: DepthConvention::Hardware {
+            projection: glam::Mat4::IDENTITY.to_cols_array_2d(),
+            miss: 0.0,
+        },
+        centre: None,
+        color: &color,
+        shadows: None,
+        albedo: None,
+        secondary: None,
+        output: &output,
+    };
+    let mut enc = device.create_command_encoder(&Default::default());
+    assert_eq!(sraa.encode(&device, &mut enc, &good), Ok(()));
+    type Case<'a> = (SraaInputs<'a>, fn(&PassError) -> bool);
+    let cases: Vec<Case<'_>> = vec![
+        (
+            SraaInputs {
+                subsample_normal: Some(&normal1),
+                ..good
+            },
+            |e| {
+                matches!(
+                    e,
+                    PassError::SampleCount {
+                        expected: 4,
+                        found: 1,
+                        ..
+                    }
+                )
+            },
+        ),
+        (
+            SraaInputs {
+                subsample_normal: Some(&small),
+                ..good
+            },
+            |e| matches!(e, PassError::Size { .. }),
+        ),
+        (
+            SraaInputs {
+                subsample_depth: &linear,
+                ..good
+            },
+            |e| matches!(e, PassError::Format { .. }),
+        ),
+        (
+            SraaInputs {
+                subsample_normal: None,
+                ..good
+            },
+            |e| matches!(e, PassError::Missing(_)),
+        ),
+        (
+            SraaInputs {
+                depth: DepthConvention::LinearView,
+                ..good
+            },
+            |e| matches!(e, PassError::Config(_)),
+        ),
+        (
+            SraaInputs {
+                output: &color,
+                ..good
+            },
+            |e| matches!(e, PassError::Usage { .. }),
+        ),
+    ];
+    for (i, (inputs, expected)) in cases.iter().enumerate() {
+        match sraa.encode(&device, &mut enc, inputs) {
+            Err(e) if expected(&e) => {}
+            other => panic!("case {i}: {other:?}"),
+        }
+    }
+    // The tuned preset shades the centre: its geometry is required.
+    let tuned = SraaResolve::new(
+        &device,
+        &SraaResolveDesc {
+            params: SraaParams::TUNED,
+            ..SraaResolveDesc::msaa()
+        },
+    )
+    .expect("tuned pass");
+    assert!(matches!(
+        tuned.encode(&device, &mut enc, &good),
+        Err(PassError::Missing(_))
+    ));
+    // Secondary shading needs the secondary hits.
+    let mirrors = SraaResolve::new(
+        &device,
+        &SraaResolveDesc {
+            secondary: true,
+            ..SraaResolveDesc::msaa()
+        },
+    )
+    .expect("secondary pass");
+    // (with the colour's two groups of layers, as it needs).
+    let color2 = device.create_texture(&wgpu::TextureDescriptor {
+        label: None,
+        size: wgpu::Extent3d {
+            width: size.0,
+            height: size.1,
+            depth_or_array_layers: 2,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: Rgba16Float,
+        usage: read,
+        view_formats: &[],
+    });
+    assert!(matches!(
+        mirrors.encode(&device, &mut enc, &good),
+        Err(PassError::Layers {
+            expected: 2,
+            found: 1,
+            ..
+        })
+    ));
+    assert!(matches!(
+        mirrors.encode(
+            &device,
+            &mut enc,
+            &SraaInputs {
+                color: &color2,
+                ..good
+            }
+        ),
+        Err(PassError::Missing(_))
+    ));
+    // Configurations out of range.
+    for desc in [
+        SraaResolveDesc {
+            lights: 9,
+            ..SraaResolveDesc::msaa()
+        },
+        SraaResolveDesc {
+            output_format: Rgba8UnormSrgb,
+            ..SraaResolveDesc::msaa()
+        },
+    ] {
+        assert!(SraaResolve::new(&device, &desc).is_err(), "{desc:?}");
+    }
+    drop(enc);
+    wait(&device);
+    assert_eq!(
+        seen.load(Ordering::SeqCst),
+        0,
+        "a refused input reached the device"
+    );
+}
