@@ -122,7 +122,11 @@ fn run() -> Result<()> {
         Command::Vectors { out } => {
             let written = subcone::vectors::write_all(&out)
                 .with_context(|| format!("cannot write vectors to {}", out.display()))?;
-            println!("wrote {} kernel vector files to {}", written.len(), out.display());
+            println!(
+                "wrote {} kernel vector files to {}",
+                written.len(),
+                out.display()
+            );
             Ok(())
         }
         Command::Render {

@@ -73,8 +73,8 @@ use glam::{Vec2, Vec3};
 use subcone_kernels::aggregate::{sample_weight, Aggregate, Weighting};
 use subcone_kernels::ao::{ao_direction, ao_fraction};
 use subcone_kernels::cone::{
-    advance, backtrace_cone_entry, backtrace_hard_hit, cone_occlusion, cone_radius,
-    cone_tan_theta, min_step, PixelFootprint,
+    advance, backtrace_cone_entry, backtrace_hard_hit, cone_occlusion, cone_radius, cone_tan_theta,
+    min_step, PixelFootprint,
 };
 use subcone_kernels::fxaa::{fxaa_encode, fxaa_pixel, FxaaParams};
 use subcone_kernels::mask::{
@@ -198,12 +198,9 @@ impl KernelVectors {
     pub fn cases(&self) -> Vec<(Vec<u32>, Vec<u32>)> {
         // One seed per kernel, from its name: adding a kernel does not move
         // another's cases.
-        let seed = self
-            .name
-            .bytes()
-            .fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
-                (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
-            });
+        let seed = self.name.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
+            (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
+        });
         let mut rng = Rng(seed);
         let inputs = (self.generate)(&mut rng);
         let n_in = self.inputs().len();
@@ -223,7 +220,13 @@ impl KernelVectors {
         let cases = self.cases();
         let sig = |fs: &[Field]| {
             fs.iter()
-                .map(|f| format!("{{\"name\": {}, \"type\": \"{}\"}}", json_str(&f.name), f.ty.name()))
+                .map(|f| {
+                    format!(
+                        "{{\"name\": {}, \"type\": \"{}\"}}",
+                        json_str(&f.name),
+                        f.ty.name()
+                    )
+                })
                 .collect::<Vec<_>>()
                 .join(", ")
         };
@@ -1387,8 +1390,8 @@ pub const KERNELS: &[KernelVectors] = &[
         outputs: "w:f32",
         tolerance: TOL_TRANSPARENCY_WEIGHT,
         tolerance_constant: "TOL_TRANSPARENCY_WEIGHT",
-        non_finite: "gained / (32 K), K = 4: the weight of gained opacity levels summed over cells. Total over u32.",
-        reference: "exact: gained/128 (checked by tests/vectors.rs).",
+        non_finite: "min(gained, 32 K) / (32 K), K = 4: the weight of gained opacity levels summed over cells, at most 1. Total over u32.",
+        reference: "exact: min(gained, 128)/128 (checked by tests/vectors.rs).",
         eval: |w| out(&[level_weight(R(w).u())]),
         generate: |rng| {
             let mut v: Vec<Vec<u32>> = (0..=160u32).map(|g| vec![g]).collect();
@@ -1451,19 +1454,7 @@ pub const KERNELS: &[KernelVectors] = &[
 /// boundaries and specials, any bits.
 fn alphas(rng: &mut Rng) -> Vec<f32> {
     let special = [
-        0.0f32,
-        1.0,
-        0.5,
-        0.125,
-        0.375,
-        0.625,
-        0.875,
-        0.25,
-        0.75,
-        0.3,
-        0.7,
-        -0.5,
-        1.5,
+        0.0f32, 1.0, 0.5, 0.125, 0.375, 0.625, 0.875, 0.25, 0.75, 0.3, 0.7, -0.5, 1.5,
     ];
     let mut v: Vec<f32> = special.iter().chain(SPECIALS.iter()).copied().collect();
     for _ in 0..GENERATED {
@@ -1481,7 +1472,12 @@ fn alphas(rng: &mut Rng) -> Vec<f32> {
 /// of [`SPECIALS`].
 fn cone_pairs(rng: &mut Rng, a: (f32, f32), b: (f32, f32)) -> Vec<Vec<u32>> {
     let mut v: Vec<Vec<u32>> = (0..GENERATED)
-        .map(|_| W::default().f(rng.any_f32(a.0, a.1)).f(rng.any_f32(b.0, b.1)).0)
+        .map(|_| {
+            W::default()
+                .f(rng.any_f32(a.0, a.1))
+                .f(rng.any_f32(b.0, b.1))
+                .0
+        })
         .collect();
     for _ in 0..512 {
         let (x, y) = (rng.awkward(), rng.awkward().abs());

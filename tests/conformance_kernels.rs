@@ -31,6 +31,13 @@ use glam::{Vec2, Vec3};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::{Config, TestRunner};
+use subcone::vectors::tolerance::{
+    Tol, CTSS_TRACE_FLIPS_PER_200, MASK_NEAR, MASK_NEAR_ROWS_PER_100, MATERIAL_GATE_NEAR,
+    NEEDS_NORMAL_NEAR, SDF_MATERIAL_TIES_PER_200, TOL_AGGREGATE, TOL_ALBEDO_DIFFERENCE,
+    TOL_AO_DIRECTION, TOL_AO_FRACTION, TOL_CONE, TOL_CTSS_TRACE, TOL_FXAA_ENCODE, TOL_FXAA_PIXEL,
+    TOL_OCCLUSION, TOL_PROJECT_NORMAL, TOL_RESOLVE, TOL_SAMPLE_WEIGHT, TOL_SDF_FIELD, TOL_STEPPER,
+    TOL_TRANSPARENCY_WEIGHT, TOL_WEIGHT, TRANSPARENCY_NEAR,
+};
 use subcone_kernels::aggregate::{sample_weight, Aggregate, Weighting};
 use subcone_kernels::ao::{ao_direction, ao_fraction};
 use subcone_kernels::cone::{
@@ -43,13 +50,6 @@ use subcone_kernels::sraa::{
     albedo_difference, bilateral_weight, material_gated_weight, reconstruction_weight,
     resolve_pixel, shadow_gated_weight, DepthMetric, Geometry, SraaParams, WeightForm,
     ALBEDO_TOLERANCE,
-};
-use subcone::vectors::tolerance::{
-    Tol, CTSS_TRACE_FLIPS_PER_200, MASK_NEAR, MASK_NEAR_ROWS_PER_100, MATERIAL_GATE_NEAR,
-    NEEDS_NORMAL_NEAR, SDF_MATERIAL_TIES_PER_200, TOL_AGGREGATE, TOL_ALBEDO_DIFFERENCE,
-    TOL_AO_DIRECTION, TOL_AO_FRACTION, TOL_CONE, TOL_CTSS_TRACE, TOL_FXAA_ENCODE, TOL_FXAA_PIXEL,
-    TOL_OCCLUSION, TOL_PROJECT_NORMAL, TOL_RESOLVE, TOL_SAMPLE_WEIGHT, TOL_SDF_FIELD, TOL_STEPPER,
-    TOL_TRANSPARENCY_WEIGHT, TOL_WEIGHT, TRANSPARENCY_NEAR,
 };
 use subcone_wgpu::test_util::{gpu_or_skip, run_wgsl, Kernel, Table};
 use subcone_wgpu::GpuContext;

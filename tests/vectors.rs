@@ -99,7 +99,9 @@ fn check_file(k: &KernelVectors, text: &str) {
         assert_eq!(input.len(), inputs.len(), "{name}: {line}");
         assert_eq!(output.len(), outputs.len(), "{name}: {line}");
         // Each value in its type's spelling.
-        let values = line.split(['[', ']']).filter(|s| s.contains(|c: char| c.is_ascii_digit()));
+        let values = line
+            .split(['[', ']'])
+            .filter(|s| s.contains(|c: char| c.is_ascii_digit()));
         for (value, field) in values
             .flat_map(|s| s.split(", "))
             .zip(inputs.iter().chain(outputs.iter()))
@@ -144,7 +146,10 @@ fn check_file(k: &KernelVectors, text: &str) {
         }
     }
     if reference.is_some() {
-        assert!(checked >= 100, "{name}: {checked} cases on the reference's domain");
+        assert!(
+            checked >= 100,
+            "{name}: {checked} cases on the reference's domain"
+        );
         println!("{name}: {count} cases, {checked} within {worst:e} of f64");
     }
     if inputs.iter().any(|f| f.ty == Type::F32) {
@@ -224,8 +229,7 @@ fn reference(kernel: &str) -> Option<Reference> {
         }),
         "backtrace_cone_entry" => (Tol::Ulps(2), |w| {
             let (t, tan) = (f(w[0]) as f64, f(w[1]) as f64);
-            (positive(t) && positive(tan) && t < 1e30 && tan < 1e30)
-                .then(|| vec![t / (1.0 + tan)])
+            (positive(t) && positive(tan) && t < 1e30 && tan < 1e30).then(|| vec![t / (1.0 + tan)])
         }),
         "backtrace_hard_hit" => (Tol::Ulps(2), |w| {
             let x = fs(w);
@@ -254,7 +258,11 @@ fn reference(kernel: &str) -> Option<Reference> {
                 return Some(vec![0.0; 3]);
             }
             let n = finite.len() as f64;
-            Some((0..3).map(|c| finite.iter().map(|s| s[c]).sum::<f64>() / n).collect())
+            Some(
+                (0..3)
+                    .map(|c| finite.iter().map(|s| s[c]).sum::<f64>() / n)
+                    .collect(),
+            )
         }),
         "cone_tan_theta" => (Tol::Ulps(4), |w| {
             let (fov, h, cov, fp) = (f(w[0]) as f64, w[1], f(w[2]) as f64, w[3]);
@@ -290,7 +298,7 @@ fn reference(kernel: &str) -> Option<Reference> {
                 base
             }])
         }),
-        "level_weight" => (Tol::Ulps(0), |w| Some(vec![w[0] as f64 / 128.0])),
+        "level_weight" => (Tol::Ulps(0), |w| Some(vec![w[0].min(128) as f64 / 128.0])),
         _ => return None,
     })
 }
