@@ -646,7 +646,7 @@ const WEIGHT_NON_FINITE: &str = "Domain: unit normals, depths in [0, inf], finit
 const WEIGHT_REFERENCE: &str = "kernels/tests/f64_reference.rs: eq. 1 in f64 (SraaParams::PAPER and CHAJDAS presets, unit normals, depths 1e-3..1e6), within 2e-6 absolute; not re-checked on these cases.";
 
 const NO_REFERENCE: &str =
-    "none: the outputs are the Rust kernel's, checked bit for bit when the vectors are written.";
+    "none: no f64 reference; the outputs are the Rust kernel's, which tests/vectors.rs re-reads and compares bit for bit.";
 
 /// Every kernel with golden vectors, in the order [`write_all`] writes them.
 pub const KERNELS: &[KernelVectors] = &[
