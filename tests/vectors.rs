@@ -328,3 +328,27 @@ fn case_lines_parse() {
     );
     assert_eq!(parse_case_line("\"count\": 3,"), None);
 }
+
+#[test]
+fn the_command_line_writes_the_same_files() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = dir.path().join("vectors");
+    let status = std::process::Command::new(env!("CARGO_BIN_EXE_subcone"))
+        .args(["vectors", "--out"])
+        .arg(&out)
+        .output()
+        .expect("run subcone vectors");
+    assert!(status.status.success(), "{status:?}");
+    let mut files: Vec<String> = std::fs::read_dir(&out)
+        .expect("listing")
+        .map(|e| e.expect("entry").file_name().into_string().expect("name"))
+        .collect();
+    files.sort();
+    let mut want: Vec<String> = KERNELS.iter().map(|k| k.file_name()).collect();
+    want.sort();
+    assert_eq!(files, want);
+    for k in KERNELS {
+        let text = std::fs::read_to_string(out.join(k.file_name())).expect("read");
+        assert!(text == k.render(), "{}: the CLI's file differs", k.name);
+    }
+}
