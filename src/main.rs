@@ -36,6 +36,14 @@ enum Command {
         #[arg(short = 'o', long = "output")]
         output: Option<PathBuf>,
     },
+    /// Write golden vectors for ports of the kernels: for every pure kernel,
+    /// a few thousand input/output cases as JSON, one file per kernel (the
+    /// format is documented in the `subcone::vectors` module).
+    Vectors {
+        /// The directory to write the files into (created if missing).
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+    },
     /// Render one scene with one method.
     Render {
         /// A built-in scene name, `sponza`/`sponza-mirror`, or a path to an .obj, .gltf, .glb or .sdf.ron (SDF scene) file.
@@ -109,6 +117,16 @@ fn run() -> Result<()> {
                 }
                 None => print!("{text}"),
             }
+            Ok(())
+        }
+        Command::Vectors { out } => {
+            let written = subcone::vectors::write_all(&out)
+                .with_context(|| format!("cannot write vectors to {}", out.display()))?;
+            println!(
+                "wrote {} kernel vector files to {}",
+                written.len(),
+                out.display()
+            );
             Ok(())
         }
         Command::Render {
