@@ -57,22 +57,25 @@ static SubconeVec3 shade(void *user, SubconeVec3 p, SubconeVec3 n, SubconeVec3 d
     return v3(n.x * 0.5f + 0.5f, n.y * 0.5f + 0.5f, n.z * 0.5f + 0.5f);
 }
 
-static int failures;
-static char *log_at;
-static size_t log_left;
+/* The failures so far and where they are described (no global state). */
+typedef struct Check {
+    int failures;
+    char *at;
+    size_t left;
+} Check;
 
-static void expect(SubconeStatus got, SubconeStatus want, const char *what) {
+static void expect(Check *c, SubconeStatus got, SubconeStatus want, const char *what) {
     if (got != want) {
-        int n = snprintf(log_at, log_left, "%s: status %d, expected %d\n", what, (int)got, (int)want);
-        if (n > 0 && (size_t)n < log_left) {
-            log_at += n;
-            log_left -= (size_t)n;
+        int n = snprintf(c->at, c->left, "%s: status %d, expected %d\n", what, (int)got, (int)want);
+        if (n > 0 && (size_t)n < c->left) {
+            c->at += n;
+            c->left -= (size_t)n;
         }
-        failures++;
+        c->failures++;
     }
 }
 
-#define OK(call) expect((call), SUBCONE_STATUS_OK, #call)
+#define OK(call) expect(&check, (call), SUBCONE_STATUS_OK, #call)
 
 int subcone_smoke_run(SmokeOutputs *o, char *log, size_t log_len) {
     SubconeSraaParams params, bad;
@@ -89,15 +92,16 @@ int subcone_smoke_run(SmokeOutputs *o, char *log, size_t log_len) {
     uint32_t u;
     SubconeCtssResult r;
 
-    failures = 0;
-    log_at = log;
-    log_left = log_len;
+    Check check;
+    check.failures = 0;
+    check.at = log;
+    check.left = log_len;
     if (log_len > 0) log[0] = 0;
     memset(o, 0, sizeof *o);
 
     o->version = subcone_version();
     if (o->version != ((SUBCONE_VERSION_MAJOR << 16) | (SUBCONE_VERSION_MINOR << 8) | SUBCONE_VERSION_PATCH)) {
-        expect(SUBCONE_STATUS_PANIC, SUBCONE_STATUS_OK, "version macros differ from subcone_version()");
+        expect(&check, SUBCONE_STATUS_PANIC, SUBCONE_STATUS_OK, "version macros differ from subcone_version()");
     }
 
     /* SRAA weights (eq. 1, eq. 2, the spatial term) and the resolve. */
@@ -163,60 +167,60 @@ int subcone_smoke_run(SmokeOutputs *o, char *log, size_t log_len) {
     OK(subcone_ctss_trace(&ctss, v3(0, 0, 0), v3(0.2041241f, 0.0f, 1.0f), v3(0, 1, 0), sphere, NULL, shade,
                           &shaded, v3(0.1f, 0.2f, 0.3f), &o->ctss));
     if ((uint32_t)shaded != o->ctss.samples) {
-        expect(SUBCONE_STATUS_PANIC, SUBCONE_STATUS_OK, "shade callback calls differ from samples");
+        expect(&check, SUBCONE_STATUS_PANIC, SUBCONE_STATUS_OK, "shade callback calls differ from samples");
     }
 
     /* Bad input: error codes, never a crash. */
-    expect(subcone_bilateral_weight(&params, &gi, NULL, &f), SUBCONE_STATUS_NULL_POINTER, "null gj");
-    expect(subcone_bilateral_weight(&params, &gi, &gj, NULL), SUBCONE_STATUS_NULL_POINTER, "null out");
-    expect(subcone_bilateral_weight(NULL, &gi, &gj, &f), SUBCONE_STATUS_NULL_POINTER, "null params");
+    expect(&check, subcone_bilateral_weight(&params, &gi, NULL, &f), SUBCONE_STATUS_NULL_POINTER, "null gj");
+    expect(&check, subcone_bilateral_weight(&params, &gi, &gj, NULL), SUBCONE_STATUS_NULL_POINTER, "null out");
+    expect(&check, subcone_bilateral_weight(NULL, &gi, &gj, &f), SUBCONE_STATUS_NULL_POINTER, "null params");
     bad = params;
     bad.sigma_z = NAN;
-    expect(subcone_bilateral_weight(&bad, &gi, &gj, &f), SUBCONE_STATUS_INVALID_ARGUMENT, "NaN sigma_z");
+    expect(&check, subcone_bilateral_weight(&bad, &gi, &gj, &f), SUBCONE_STATUS_INVALID_ARGUMENT, "NaN sigma_z");
     bad = params;
     bad.sigma_s = INFINITY;
-    expect(subcone_shadow_gated_weight(&bad, &gi, &gj, 0, 0, &f), SUBCONE_STATUS_INVALID_ARGUMENT, "inf sigma_s");
-    expect(subcone_cone_tan_theta(NAN, 720, 1.0f, 0, &f), SUBCONE_STATUS_INVALID_ARGUMENT, "NaN fov");
-    expect(subcone_cone_tan_theta(0.8f, 0, 1.0f, 0, &f), SUBCONE_STATUS_INVALID_ARGUMENT, "zero height");
-    expect(subcone_cone_tan_theta(0.8f, 720, 1.0f, 9, &f), SUBCONE_STATUS_INVALID_ARGUMENT, "footprint 9");
-    expect(subcone_visibility_mask(0.5f, 1, 0, 7, &u), SUBCONE_STATUS_INVALID_ARGUMENT, "placement 7");
-    expect(subcone_sample_weight(1, 5, 0.0f, &f), SUBCONE_STATUS_INVALID_ARGUMENT, "weighting 5");
-    expect(subcone_sample_weight(1, 0, NAN, &f), SUBCONE_STATUS_INVALID_ARGUMENT, "NaN min weight");
-    expect(subcone_resolve_pixel(NULL, &colours4[0]), SUBCONE_STATUS_NULL_POINTER, "null subsamples");
-    expect(subcone_ctss_params_default(-1.0f, &ctss), SUBCONE_STATUS_INVALID_ARGUMENT, "negative tan");
-    expect(subcone_sraa_params_paper(NULL), SUBCONE_STATUS_NULL_POINTER, "null params out");
+    expect(&check, subcone_shadow_gated_weight(&bad, &gi, &gj, 0, 0, &f), SUBCONE_STATUS_INVALID_ARGUMENT, "inf sigma_s");
+    expect(&check, subcone_cone_tan_theta(NAN, 720, 1.0f, 0, &f), SUBCONE_STATUS_INVALID_ARGUMENT, "NaN fov");
+    expect(&check, subcone_cone_tan_theta(0.8f, 0, 1.0f, 0, &f), SUBCONE_STATUS_INVALID_ARGUMENT, "zero height");
+    expect(&check, subcone_cone_tan_theta(0.8f, 720, 1.0f, 9, &f), SUBCONE_STATUS_INVALID_ARGUMENT, "footprint 9");
+    expect(&check, subcone_visibility_mask(0.5f, 1, 0, 7, &u), SUBCONE_STATUS_INVALID_ARGUMENT, "placement 7");
+    expect(&check, subcone_sample_weight(1, 5, 0.0f, &f), SUBCONE_STATUS_INVALID_ARGUMENT, "weighting 5");
+    expect(&check, subcone_sample_weight(1, 0, NAN, &f), SUBCONE_STATUS_INVALID_ARGUMENT, "NaN min weight");
+    expect(&check, subcone_resolve_pixel(NULL, &colours4[0]), SUBCONE_STATUS_NULL_POINTER, "null subsamples");
+    expect(&check, subcone_ctss_params_default(-1.0f, &ctss), SUBCONE_STATUS_INVALID_ARGUMENT, "negative tan");
+    expect(&check, subcone_sraa_params_paper(NULL), SUBCONE_STATUS_NULL_POINTER, "null params out");
     {
         SubconeSraaFrame b = frame;
         b.width = 0;
-        expect(subcone_sraa_resolve(&params, &b, o->sraa, 6), SUBCONE_STATUS_SIZE_MISMATCH, "zero width");
+        expect(&check, subcone_sraa_resolve(&params, &b, o->sraa, 6), SUBCONE_STATUS_SIZE_MISMATCH, "zero width");
         b = frame;
         b.colors_len = 11;
-        expect(subcone_sraa_resolve(&params, &b, o->sraa, 6), SUBCONE_STATUS_SIZE_MISMATCH, "short colours");
+        expect(&check, subcone_sraa_resolve(&params, &b, o->sraa, 6), SUBCONE_STATUS_SIZE_MISMATCH, "short colours");
         b = frame;
         b.colors = NULL;
-        expect(subcone_sraa_resolve(&params, &b, o->sraa, 6), SUBCONE_STATUS_NULL_POINTER, "null colours");
+        expect(&check, subcone_sraa_resolve(&params, &b, o->sraa, 6), SUBCONE_STATUS_NULL_POINTER, "null colours");
         b = frame;
         b.layers = 17;
-        expect(subcone_sraa_resolve(&params, &b, o->sraa, 6), SUBCONE_STATUS_SIZE_MISMATCH, "17 layers");
-        expect(subcone_sraa_resolve(&params, &frame, o->sraa, 5), SUBCONE_STATUS_SIZE_MISMATCH, "short out");
-        expect(subcone_sraa_resolve(&params, &frame, NULL, 6), SUBCONE_STATUS_NULL_POINTER, "null out");
-        expect(subcone_sraa_resolve(&params, NULL, o->sraa, 6), SUBCONE_STATUS_NULL_POINTER, "null frame");
+        expect(&check, subcone_sraa_resolve(&params, &b, o->sraa, 6), SUBCONE_STATUS_SIZE_MISMATCH, "17 layers");
+        expect(&check, subcone_sraa_resolve(&params, &frame, o->sraa, 5), SUBCONE_STATUS_SIZE_MISMATCH, "short out");
+        expect(&check, subcone_sraa_resolve(&params, &frame, NULL, 6), SUBCONE_STATUS_NULL_POINTER, "null out");
+        expect(&check, subcone_sraa_resolve(&params, NULL, o->sraa, 6), SUBCONE_STATUS_NULL_POINTER, "null frame");
     }
-    expect(subcone_ctss_trace(&ctss, v3(0, 0, 0), v3(0, 0, 1), v3(0, 1, 0), NULL, NULL, shade, &shaded,
+    expect(&check, subcone_ctss_trace(&ctss, v3(0, 0, 0), v3(0, 0, 1), v3(0, 1, 0), NULL, NULL, shade, &shaded,
                               v3(0, 0, 0), &r),
            SUBCONE_STATUS_NULL_POINTER, "null distance");
-    expect(subcone_ctss_trace(&ctss, v3(NAN, 0, 0), v3(0, 0, 1), v3(0, 1, 0), sphere, NULL, shade, &shaded,
+    expect(&check, subcone_ctss_trace(&ctss, v3(NAN, 0, 0), v3(0, 0, 1), v3(0, 1, 0), sphere, NULL, shade, &shaded,
                               v3(0, 0, 0), &r),
            SUBCONE_STATUS_INVALID_ARGUMENT, "NaN origin");
-    expect(subcone_ctss_trace(&ctss, v3(0, 0, 0), v3(0, 0, 0), v3(0, 1, 0), sphere, NULL, shade, &shaded,
+    expect(&check, subcone_ctss_trace(&ctss, v3(0, 0, 0), v3(0, 0, 0), v3(0, 1, 0), sphere, NULL, shade, &shaded,
                               v3(0, 0, 0), &r),
            SUBCONE_STATUS_INVALID_ARGUMENT, "zero direction");
     {
         SubconeCtssParams b = ctss;
         b.t_max = NAN;
-        expect(subcone_ctss_trace(&b, v3(0, 0, 0), v3(0, 0, 1), v3(0, 1, 0), sphere, NULL, shade, &shaded,
+        expect(&check, subcone_ctss_trace(&b, v3(0, 0, 0), v3(0, 0, 1), v3(0, 1, 0), sphere, NULL, shade, &shaded,
                                   v3(0, 0, 0), &r),
                SUBCONE_STATUS_INVALID_ARGUMENT, "NaN t_max");
     }
-    return failures;
+    return check.failures;
 }

@@ -260,23 +260,28 @@ static int within(uint32_t want, uint32_t got, int is_float, const char *kind, d
     return 0;
 }
 
-static char *log_at;
-static size_t log_left;
+/* Where failures are described: no global state, so that checks may run on
+ * several threads at once. */
+typedef struct Log {
+    char *at;
+    size_t left;
+} Log;
 
-static void note(const char *what, const char *name, long line) {
-    int n = snprintf(log_at, log_left, "%s: %s (line %ld)\n", name, what, line);
-    if (n > 0 && (size_t)n < log_left) {
-        log_at += n;
-        log_left -= (size_t)n;
+static void note(Log *log, const char *what, const char *name, long line) {
+    int n = snprintf(log->at, log->left, "%s: %s (line %ld)\n", name, what, line);
+    if (n > 0 && (size_t)n < log->left) {
+        log->at += n;
+        log->left -= (size_t)n;
     }
 }
 
 int subcone_smoke_vectors(const char *dir, VectorTally *t, char *log, size_t log_len) {
-    static char line[8192];
+    char line[8192];
     size_t k;
+    Log notes;
     memset(t, 0, sizeof *t);
-    log_at = log;
-    log_left = log_len;
+    notes.at = log;
+    notes.left = log_len;
     if (log_len > 0) log[0] = 0;
     for (k = 0; k < sizeof KERNELS / sizeof KERNELS[0]; k++) {
         char path[4096], kind[16] = "";
@@ -287,7 +292,7 @@ int subcone_smoke_vectors(const char *dir, VectorTally *t, char *log, size_t log
         snprintf(path, sizeof path, "%s/%s.json", dir, KERNELS[k].name);
         f = fopen(path, "r");
         if (!f) {
-            note("cannot open the vector file", KERNELS[k].name, 0);
+            note(&notes, "cannot open the vector file", KERNELS[k].name, 0);
             t->failures++;
             continue;
         }
@@ -316,7 +321,7 @@ int subcone_smoke_vectors(const char *dir, VectorTally *t, char *log, size_t log
             n_in = values_after(line, "\"in\"", in, MAX_VALUES);
             n_want = values_after(line, "\"out\"", want, MAX_VALUES);
             if (n_in < 0 || n_want < 0 || n_want != n_out_types || kind[0] == 0) {
-                note("unreadable case", KERNELS[k].name, lineno);
+                note(&notes, "unreadable case", KERNELS[k].name, lineno);
                 t->failures++;
                 continue;
             }
@@ -325,13 +330,13 @@ int subcone_smoke_vectors(const char *dir, VectorTally *t, char *log, size_t log
             if (refuse) {
                 t->refused++;
                 if (s != SUBCONE_STATUS_INVALID_ARGUMENT) {
-                    note("a refused case was not INVALID_ARGUMENT", KERNELS[k].name, lineno);
+                    note(&notes, "a refused case was not INVALID_ARGUMENT", KERNELS[k].name, lineno);
                     t->failures++;
                 }
                 continue;
             }
             if (s != SUBCONE_STATUS_OK) {
-                note("an error on a valid case", KERNELS[k].name, lineno);
+                note(&notes, "an error on a valid case", KERNELS[k].name, lineno);
                 t->failures++;
                 continue;
             }
@@ -340,7 +345,7 @@ int subcone_smoke_vectors(const char *dir, VectorTally *t, char *log, size_t log
                 exact &= want[i] == got[i] || (out_float[i] && isnan(f32_of(want[i])) && isnan(f32_of(got[i])));
             }
             if (!ok) {
-                note("outside the tolerance", KERNELS[k].name, lineno);
+                note(&notes, "outside the tolerance", KERNELS[k].name, lineno);
                 t->failures++;
             }
             t->exact += (uint32_t)exact;

@@ -190,28 +190,34 @@ fn the_readme_shows_the_c_example_as_it_is() {
     );
 }
 
-/// The C checker (`c/vectors.c`) reads the golden vectors, as `subcone
-/// vectors --out DIR` writes them, and checks the C ABI against every case
-/// of the kernels it exports, within each file's tolerance; where the ABI
-/// refuses a case's parameters, the error code must be its answer.
-#[test]
-fn the_c_abi_passes_the_golden_vectors_from_c() {
-    use subcone_capi_smoke::{subcone_smoke_vectors, VectorTally};
-    let dir = tempfile::tempdir().unwrap();
-    subcone::vectors::write_all(dir.path()).unwrap();
-    let path = std::ffi::CString::new(dir.path().to_str().unwrap()).unwrap();
-    let mut tally = VectorTally::default();
+/// Runs the C checker (`c/vectors.c`) on the vectors in `dir`: its failure
+/// count, its tally and its log.
+fn check_vectors(dir: &std::path::Path) -> (i32, subcone_capi_smoke::VectorTally, String) {
+    let path = std::ffi::CString::new(dir.to_str().unwrap()).unwrap();
+    let mut tally = subcone_capi_smoke::VectorTally::default();
     let mut log = vec![0u8; 1 << 16];
     // SAFETY: valid pointers for the call; the C code writes within them.
     let failures = unsafe {
-        subcone_smoke_vectors(
+        subcone_capi_smoke::subcone_smoke_vectors(
             path.as_ptr(),
             &mut tally,
             log.as_mut_ptr().cast(),
             log.len(),
         )
     };
-    let log = String::from_utf8_lossy(&log[..log.iter().position(|&b| b == 0).unwrap_or(0)]);
+    let end = log.iter().position(|&b| b == 0).unwrap_or(0);
+    (failures, tally, String::from_utf8_lossy(&log[..end]).into())
+}
+
+/// The C checker reads the golden vectors, as `subcone vectors --out DIR`
+/// writes them, and checks the C ABI against every case of the kernels it
+/// exports, within each file's tolerance; where the ABI refuses a case's
+/// parameters, the error code must be its answer.
+#[test]
+fn the_c_abi_passes_the_golden_vectors_from_c() {
+    let dir = tempfile::tempdir().unwrap();
+    subcone::vectors::write_all(dir.path()).unwrap();
+    let (failures, tally, log) = check_vectors(dir.path());
     println!("{tally:?}");
     assert_eq!(failures, 0, "{tally:?}\n{log}");
     assert_eq!(tally.files, 14, "{tally:?}");
@@ -223,7 +229,6 @@ fn the_c_abi_passes_the_golden_vectors_from_c() {
 /// The C checker fails a case whose expected output is wrong.
 #[test]
 fn the_c_vector_checker_catches_a_wrong_output() {
-    use subcone_capi_smoke::{subcone_smoke_vectors, VectorTally};
     let dir = tempfile::tempdir().unwrap();
     subcone::vectors::write_all(dir.path()).unwrap();
     // Flip the first cone_radius case's output to 1.0.
@@ -234,19 +239,7 @@ fn the_c_vector_checker_catches_a_wrong_output() {
     let bad = format!("{}0x3f800000{}", &line[..at], &line[at + 10..]);
     assert_ne!(bad, line);
     std::fs::write(&file, text.replacen(line, &bad, 1)).unwrap();
-    let path = std::ffi::CString::new(dir.path().to_str().unwrap()).unwrap();
-    let mut tally = VectorTally::default();
-    let mut log = vec![0u8; 1 << 16];
-    // SAFETY: valid pointers for the call.
-    let failures = unsafe {
-        subcone_smoke_vectors(
-            path.as_ptr(),
-            &mut tally,
-            log.as_mut_ptr().cast(),
-            log.len(),
-        )
-    };
-    let log = String::from_utf8_lossy(&log[..log.iter().position(|&b| b == 0).unwrap_or(0)]);
+    let (failures, tally, log) = check_vectors(dir.path());
     assert_eq!(failures, 1, "{tally:?}\n{log}");
     assert!(log.contains("cone_radius: outside the tolerance"), "{log}");
 }
