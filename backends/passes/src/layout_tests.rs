@@ -4,97 +4,11 @@
 //! it mirrors, and the same total size. And every shader the passes build,
 //! for every configuration, parses and validates.
 
-use core::mem::{offset_of, size_of};
+use crate::layout_check::{compare, Member};
 
 use crate::ctss::{CtssPass, CtssUniform, CTSS_WGSL};
 use crate::fxaa::{FxaaFrame, FxaaPass, FXAA_WGSL};
 use crate::sraa::{SraaFrame, SRAA_WGSL};
-
-/// The text of `struct <name> { … }` in `source`.
-fn struct_text<'a>(source: &'a str, name: &str) -> &'a str {
-    let start = source
-        .find(&format!("struct {name} {{"))
-        .unwrap_or_else(|| panic!("no struct {name} in the WGSL"));
-    let end = start + source[start..].find('}').expect("closing brace") + 1;
-    &source[start..end]
-}
-
-/// One Rust field as WGSL members: (WGSL name, offset, size).
-type Member = (String, usize, usize);
-
-/// `members!(T: field, field, pad[N] as f32, …)`: a field is the WGSL member
-/// of the same name; `pad[N] as E` is N scalar members `pad0` … of type E.
-macro_rules! members {
-    ($ty:ty: $($field:ident $([$n:literal as $e:ty])?),+ $(,)?) => {{
-        let mut m: Vec<Member> = Vec::new();
-        $( members!(@one m, $ty, $field $([$n as $e])?); )+
-        m
-    }};
-    (@one $m:ident, $ty:ty, $field:ident) => {{
-        let probe = |s: &$ty| core::mem::size_of_val(&s.$field);
-        let size = probe(&bytemuck::Zeroable::zeroed());
-        $m.push((stringify!($field).to_string(), offset_of!($ty, $field), size));
-    }};
-    (@one $m:ident, $ty:ty, $field:ident [$n:literal as $e:ty]) => {{
-        for i in 0..$n {
-            $m.push((
-                format!("{}{i}", stringify!($field)),
-                offset_of!($ty, $field) + i * size_of::<$e>(),
-                size_of::<$e>(),
-            ));
-        }
-    }};
-}
-
-/// Compare the WGSL struct `wgsl_name` (declared in `source`, after the
-/// kernels' shared structs) with the Rust layout `members` of total `size`.
-fn compare(source: &str, wgsl_name: &str, size: usize, members: &[Member]) -> Result<(), String> {
-    let text = format!(
-        "{}\n{}\n",
-        subcone_kernels::wgsl::PARAMS,
-        struct_text(source, wgsl_name)
-    );
-    let module = naga::front::wgsl::parse_str(&text).map_err(|e| e.emit_to_string(&text))?;
-    let mut layouter = naga::proc::Layouter::default();
-    layouter
-        .update(module.to_ctx())
-        .map_err(|e| e.to_string())?;
-    let (handle, ty) = module
-        .types
-        .iter()
-        .find(|(_, t)| t.name.as_deref() == Some(wgsl_name))
-        .ok_or_else(|| format!("no WGSL struct {wgsl_name}"))?;
-    let naga::TypeInner::Struct {
-        members: wgsl,
-        span,
-    } = &ty.inner
-    else {
-        return Err(format!("{wgsl_name} is not a struct"));
-    };
-    let names: Vec<&str> = wgsl
-        .iter()
-        .map(|m| m.name.as_deref().unwrap_or("?"))
-        .collect();
-    let rust: Vec<&str> = members.iter().map(|m| m.0.as_str()).collect();
-    if names != rust {
-        return Err(format!(
-            "{wgsl_name}: WGSL members {names:?}, Rust {rust:?}"
-        ));
-    }
-    for (w, (name, offset, bytes)) in wgsl.iter().zip(members) {
-        let wsize = layouter[w.ty].size as usize;
-        if w.offset as usize != *offset || wsize != *bytes {
-            return Err(format!(
-                "{wgsl_name}.{name}: WGSL offset {} size {wsize}, Rust offset {offset} size {bytes}",
-                w.offset
-            ));
-        }
-    }
-    if *span as usize != size || layouter[handle].size as usize != size {
-        return Err(format!("{wgsl_name}: WGSL size {span}, Rust size {size}"));
-    }
-    Ok(())
-}
 
 #[test]
 fn pass_gpu_structs_match_their_wgsl() {

@@ -31,6 +31,9 @@ mod bind;
 mod ctss;
 mod fxaa;
 #[cfg(test)]
+#[macro_use]
+mod layout_check;
+#[cfg(test)]
 mod layout_tests;
 mod sraa;
 
