@@ -1,6 +1,9 @@
 //! The host examples, run on a device of the test's own (as a host opens
 //! it) and compared by FLIP with subcone's CPU renderers of the same scene.
 
+// Both examples include their shared helpers (`examples/host/mod.rs`).
+#![allow(clippy::duplicate_mod)]
+
 mod common;
 
 #[allow(dead_code)]
