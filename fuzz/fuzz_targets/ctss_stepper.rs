@@ -255,6 +255,7 @@ fuzz_target!(|x: Input| {
                 }
                 weight_sum += w;
             }
+            e => panic!("an event this target does not know: {e:?}"),
         }
         // t strictly increases while the trace goes on.
         if st.stop_reason().is_none() && t.is_finite() {
