@@ -20,10 +20,13 @@
 //!     .unwrap();
 //! assert_eq!(frame.color.len(), 32 * 32);
 //! ```
-#![forbid(unsafe_code)]
+// One module, `isa`, calls into `#[target_feature]` code after detecting the
+// features at run time; everything else is safe code.
+#![deny(unsafe_code)]
 #![deny(missing_docs)]
 
 pub mod bvh;
+pub mod isa;
 pub mod post;
 mod render;
 pub mod shade;
@@ -66,6 +69,8 @@ impl SdfField for subcone_scene::sdf::SdfNode {
 pub struct CpuBackend {
     cache: Mutex<HashMap<u64, Arc<SceneBvh>>>,
     exhaustive_subpixel_shadows: bool,
+    /// `None`: the widest path the CPU supports.
+    isa: Option<isa::Isa>,
 }
 
 impl CpuBackend {
@@ -80,6 +85,20 @@ impl CpuBackend {
     pub fn with_exhaustive_subpixel_shadows(mut self, on: bool) -> Self {
         self.exhaustive_subpixel_shadows = on;
         self
+    }
+
+    /// Runs the hot loops on instruction-set path `isa` (or the widest
+    /// supported one below it) instead of the widest the CPU supports. Every
+    /// path renders the same images bit for bit; this is for measuring and
+    /// testing them.
+    pub fn with_isa(mut self, isa: isa::Isa) -> Self {
+        self.isa = Some(isa);
+        self
+    }
+
+    /// The instruction-set path the hot loops run on.
+    pub fn isa(&self) -> isa::Isa {
+        self.isa.map_or_else(isa::Isa::detected, isa::Isa::or_supported)
     }
 
     /// The BVH of `scene`, built on first use.
