@@ -54,6 +54,7 @@
 mod bounds;
 pub mod file;
 mod node;
+pub mod program;
 mod scatter;
 mod scenes;
 mod shape;

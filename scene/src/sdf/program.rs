@@ -1,0 +1,1340 @@
+//! An SDF tree compiled into a flat program, evaluated for
+//! [`LANES`] points at once.
+//!
+//! [`SdfNode::eval_split`] walks the tree node by node, one point at a time.
+//! [`SdfProgram::compile`] flattens the tree once into a list of instructions
+//! over a small stack machine, so that an evaluation is one loop; the loop
+//! runs eight points (a packet of rays) through every instruction together,
+//! each arithmetic step one lane-wise operation that the compiler turns into
+//! SIMD instructions (8-wide under AVX2, two 4-wide halves on baseline SSE2).
+//!
+//! **Bit for bit the tree's values.** Every lane computes exactly the
+//! operations [`SdfNode::eval_split`] computes for its point, in the same order:
+//! the same glam formulas written out lane-wise (`length` as
+//! `√((x·x + y·y) + z·z)`, the SSE2 quaternion rotation, glam's compare-based
+//! `min`/`max` of vectors against Rust's NaN-ignoring `f32::min`/`max` of
+//! scalars), and the same bound culling: a union child is evaluated for the
+//! lanes whose best distance so far its bounding sphere does not exceed, and
+//! skipped (for all lanes at once) when no lane needs it. Skipping a subtree
+//! is exact: the tree skips it for that point too. What no lane-wise formula
+//! covers (displacement's `sin`) is evaluated per lane through the tree.
+//! `tests/program.rs` compares the two on every shape and operator.
+//!
+//! ```
+//! use glam::Vec3;
+//! use subcone_scene::sdf::{program::{Points, SdfProgram, LANES}, SdfNode};
+//!
+//! let tree = SdfNode::union(vec![
+//!     SdfNode::sphere(1.0).unwrap(),
+//!     SdfNode::cuboid(Vec3::splat(0.5)).unwrap().translate(Vec3::X * 3.0).unwrap(),
+//! ])
+//! .unwrap();
+//! let program = SdfProgram::compile(&tree);
+//! let mut scratch = program.scratch();
+//! let mut points = Points::default();
+//! for k in 0..LANES {
+//!     points.set(k, Vec3::new(k as f32, 0.25, 0.0));
+//! }
+//! let out = program.eval_split(&points, 0xff, &mut scratch);
+//! for k in 0..LANES {
+//!     let one = tree.eval_split(points.get(k));
+//!     assert_eq!(out.safe[k].to_bits(), one.safe.to_bits());
+//!     assert_eq!(out.surface[k].to_bits(), one.surface.to_bits());
+//!     assert_eq!(out.material[k], one.material);
+//! }
+//! ```
+
+use core::ops::{Add, Div, Mul, Neg, Sub};
+
+use glam::{Quat, Vec3, Vec4};
+
+use super::bounds::Aabb;
+use super::node::{Op, SdfNode};
+use super::scatter::Scatter;
+use super::shape::Shape;
+use super::SplitDistance;
+
+/// Points evaluated together: the width of a packet.
+pub const LANES: usize = 8;
+
+/// A set of active lanes, bit `k` for lane `k`.
+pub type LaneMask = u8;
+
+/// [`LANES`] points, one per lane, as coordinate arrays.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Points {
+    /// x of each lane.
+    pub x: [f32; LANES],
+    /// y of each lane.
+    pub y: [f32; LANES],
+    /// z of each lane.
+    pub z: [f32; LANES],
+}
+
+impl Points {
+    /// Lane `k`'s point. Panics if `k ≥ LANES`.
+    #[inline(always)]
+    pub fn get(&self, k: usize) -> Vec3 {
+        Vec3::new(self.x[k], self.y[k], self.z[k])
+    }
+
+    /// Sets lane `k`'s point. Panics if `k ≥ LANES`.
+    #[inline(always)]
+    pub fn set(&mut self, k: usize, p: Vec3) {
+        self.x[k] = p.x;
+        self.y[k] = p.y;
+        self.z[k] = p.z;
+    }
+}
+
+/// [`SplitDistance`] for each lane.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SplitLanes {
+    /// The safe step of each lane.
+    pub safe: [f32; LANES],
+    /// The surface distance of each lane.
+    pub surface: [f32; LANES],
+    /// The material of each lane.
+    pub material: [u32; LANES],
+}
+
+impl SplitLanes {
+    /// Lane `k` as a [`SplitDistance`]. Panics if `k ≥ LANES`.
+    #[inline(always)]
+    pub fn get(&self, k: usize) -> SplitDistance {
+        SplitDistance {
+            safe: self.safe[k],
+            surface: self.surface[k],
+            material: self.material[k],
+        }
+    }
+}
+
+// ------------------------------------------------------------------ lanes
+
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[repr(C, align(32))]
+struct F8([f32; LANES]);
+
+type M8 = [bool; LANES];
+
+macro_rules! lanewise {
+    ($a:expr, |$k:ident| $e:expr) => {{
+        let mut r = [0.0f32; LANES];
+        for $k in 0..LANES {
+            r[$k] = $e;
+        }
+        F8(r)
+    }};
+}
+
+impl F8 {
+    #[inline(always)]
+    fn splat(v: f32) -> F8 {
+        F8([v; LANES])
+    }
+    /// Rust's `f32::min` (NaN-ignoring), lane-wise.
+    #[inline(always)]
+    fn min(self, o: F8) -> F8 {
+        lanewise!(self, |k| self.0[k].min(o.0[k]))
+    }
+    /// Rust's `f32::max`, lane-wise.
+    #[inline(always)]
+    fn max(self, o: F8) -> F8 {
+        lanewise!(self, |k| self.0[k].max(o.0[k]))
+    }
+    /// glam's vector `min`: `if a < b { a } else { b }`.
+    #[inline(always)]
+    fn gmin(self, o: F8) -> F8 {
+        lanewise!(self, |k| if self.0[k] < o.0[k] {
+            self.0[k]
+        } else {
+            o.0[k]
+        })
+    }
+    /// glam's vector `max`: `if a > b { a } else { b }`.
+    #[inline(always)]
+    fn gmax(self, o: F8) -> F8 {
+        lanewise!(self, |k| if self.0[k] > o.0[k] {
+            self.0[k]
+        } else {
+            o.0[k]
+        })
+    }
+    /// Rust's `f32::clamp`.
+    #[inline(always)]
+    fn clamp(self, lo: F8, hi: F8) -> F8 {
+        lanewise!(self, |k| {
+            let mut v = self.0[k];
+            if v < lo.0[k] {
+                v = lo.0[k];
+            }
+            if v > hi.0[k] {
+                v = hi.0[k];
+            }
+            v
+        })
+    }
+    #[inline(always)]
+    fn abs(self) -> F8 {
+        lanewise!(self, |k| self.0[k].abs())
+    }
+    #[inline(always)]
+    fn sqrt(self) -> F8 {
+        lanewise!(self, |k| self.0[k].sqrt())
+    }
+    #[inline(always)]
+    fn lt(self, o: F8) -> M8 {
+        core::array::from_fn(|k| self.0[k] < o.0[k])
+    }
+    #[inline(always)]
+    fn gt(self, o: F8) -> M8 {
+        core::array::from_fn(|k| self.0[k] > o.0[k])
+    }
+    #[inline(always)]
+    fn ge(self, o: F8) -> M8 {
+        core::array::from_fn(|k| self.0[k] >= o.0[k])
+    }
+    #[inline(always)]
+    fn eq(self, o: F8) -> M8 {
+        core::array::from_fn(|k| self.0[k] == o.0[k])
+    }
+    #[inline(always)]
+    fn select(m: M8, a: F8, b: F8) -> F8 {
+        lanewise!(a, |k| if m[k] { a.0[k] } else { b.0[k] })
+    }
+}
+
+macro_rules! binop {
+    ($tr:ident, $f:ident, $op:tt) => {
+        impl $tr for F8 {
+            type Output = F8;
+            #[inline(always)]
+            fn $f(self, o: F8) -> F8 {
+                lanewise!(self, |k| self.0[k] $op o.0[k])
+            }
+        }
+        impl $tr<f32> for F8 {
+            type Output = F8;
+            #[inline(always)]
+            fn $f(self, o: f32) -> F8 {
+                lanewise!(self, |k| self.0[k] $op o)
+            }
+        }
+        impl $tr<F8> for f32 {
+            type Output = F8;
+            #[inline(always)]
+            fn $f(self, o: F8) -> F8 {
+                lanewise!(o, |k| self $op o.0[k])
+            }
+        }
+    };
+}
+binop!(Add, add, +);
+binop!(Sub, sub, -);
+binop!(Mul, mul, *);
+binop!(Div, div, /);
+
+impl Neg for F8 {
+    type Output = F8;
+    #[inline(always)]
+    fn neg(self) -> F8 {
+        lanewise!(self, |k| -self.0[k])
+    }
+}
+
+#[inline(always)]
+fn mask_bits(m: M8) -> LaneMask {
+    let mut b = 0;
+    for (k, on) in m.iter().enumerate() {
+        b |= (*on as u8) << k;
+    }
+    b
+}
+
+#[inline(always)]
+fn bits_mask(b: LaneMask) -> M8 {
+    core::array::from_fn(|k| b & (1 << k) != 0)
+}
+
+#[inline(always)]
+fn select_u(m: M8, a: [u32; LANES], b: [u32; LANES]) -> [u32; LANES] {
+    core::array::from_fn(|k| if m[k] { a[k] } else { b[k] })
+}
+
+/// Three coordinates of eight lanes, with glam's `Vec3` semantics.
+#[derive(Clone, Copy, Debug, Default)]
+struct V3 {
+    x: F8,
+    y: F8,
+    z: F8,
+}
+
+impl V3 {
+    #[inline(always)]
+    fn new(x: F8, y: F8, z: F8) -> V3 {
+        V3 { x, y, z }
+    }
+    #[inline(always)]
+    fn splat(v: Vec3) -> V3 {
+        V3::new(F8::splat(v.x), F8::splat(v.y), F8::splat(v.z))
+    }
+    #[inline(always)]
+    fn sub(self, o: V3) -> V3 {
+        V3::new(self.x - o.x, self.y - o.y, self.z - o.z)
+    }
+    #[inline(always)]
+    fn add(self, o: V3) -> V3 {
+        V3::new(self.x + o.x, self.y + o.y, self.z + o.z)
+    }
+    #[inline(always)]
+    fn mul(self, o: V3) -> V3 {
+        V3::new(self.x * o.x, self.y * o.y, self.z * o.z)
+    }
+    #[inline(always)]
+    fn div(self, o: V3) -> V3 {
+        V3::new(self.x / o.x, self.y / o.y, self.z / o.z)
+    }
+    #[inline(always)]
+    fn scale(self, s: F8) -> V3 {
+        V3::new(self.x * s, self.y * s, self.z * s)
+    }
+    #[inline(always)]
+    fn dot(self, o: V3) -> F8 {
+        (self.x * o.x) + (self.y * o.y) + (self.z * o.z)
+    }
+    #[inline(always)]
+    fn length(self) -> F8 {
+        self.dot(self).sqrt()
+    }
+    #[inline(always)]
+    fn abs(self) -> V3 {
+        V3::new(self.x.abs(), self.y.abs(), self.z.abs())
+    }
+    /// glam's `max`.
+    #[inline(always)]
+    fn gmax(self, o: V3) -> V3 {
+        V3::new(self.x.gmax(o.x), self.y.gmax(o.y), self.z.gmax(o.z))
+    }
+    /// glam's `max(Vec3::ZERO)`.
+    #[inline(always)]
+    fn pos(self) -> V3 {
+        self.gmax(V3::splat(Vec3::ZERO))
+    }
+    /// glam's `max_element`: `max(x, max(y, z))` by `>`.
+    #[inline(always)]
+    fn max_element(self) -> F8 {
+        self.x.gmax(self.y.gmax(self.z))
+    }
+    /// glam's `Quat * Vec3` (SSE2): `v(w² − b·b) + b(2 v·b) + (b × v)(2w)`.
+    #[inline(always)]
+    fn rotate(self, q: Quat) -> V3 {
+        let (bx, by, bz, w) = (q.x, q.y, q.z, q.w);
+        let b2 = (bx * bx + by * by) + bz * bz;
+        let ww = w * w - b2;
+        let vb2 = ((self.x * bx + self.y * by) + self.z * bz) * 2.0;
+        let w2 = w * 2.0;
+        // b × v, as glam's SSE2 `cross` forms it.
+        let cx = by * self.z - self.y * bz;
+        let cy = bz * self.x - self.z * bx;
+        let cz = bx * self.y - self.x * by;
+        V3::new(
+            (self.x * ww + bx * vb2) + cx * w2,
+            (self.y * ww + by * vb2) + cy * w2,
+            (self.z * ww + bz * vb2) + cz * w2,
+        )
+    }
+    /// [`V3::rotate`] by a different quaternion per lane.
+    #[inline(always)]
+    fn rotate_lanes(self, q: [F8; 4]) -> V3 {
+        let [bx, by, bz, w] = q;
+        let b2 = (bx * bx + by * by) + bz * bz;
+        let ww = w * w - b2;
+        let vb2 = ((self.x * bx + self.y * by) + self.z * bz) * 2.0;
+        let w2 = w * 2.0;
+        let cx = by * self.z - self.y * bz;
+        let cy = bz * self.x - self.z * bx;
+        let cz = bx * self.y - self.x * by;
+        V3::new(
+            (self.x * ww + bx * vb2) + cx * w2,
+            (self.y * ww + by * vb2) + cy * w2,
+            (self.z * ww + bz * vb2) + cz * w2,
+        )
+    }
+}
+
+/// glam's `Vec2::length`.
+#[inline(always)]
+fn len2(x: F8, y: F8) -> F8 {
+    (x * x + y * y).sqrt()
+}
+
+// ------------------------------------------------------------------ shapes
+
+/// `Shape::distance`, lane-wise, operation for operation.
+#[inline(always)]
+fn shape_distance(shape: &Shape, p: V3) -> F8 {
+    let z = F8::splat(0.0);
+    match *shape {
+        Shape::Sphere { radius } => p.length() - radius,
+        Shape::Box { half } => sd_box(p, half),
+        Shape::RoundBox { half, radius } => sd_box(p, half - Vec3::splat(radius)) - radius,
+        Shape::BoxFrame { half, thickness } => sd_box_frame(p, half, 0.5 * thickness),
+        Shape::Torus { major, minor } => len2(len2(p.x, p.z) - major, p.y) - minor,
+        Shape::Link {
+            half_length,
+            major,
+            minor,
+        } => {
+            let qy = (p.y.abs() - half_length).max(z);
+            len2(len2(p.x, qy) - major, p.z) - minor
+        }
+        Shape::Capsule {
+            half_height,
+            radius,
+        } => {
+            let y = p.y - p.y.clamp(F8::splat(-half_height), F8::splat(half_height));
+            V3::new(p.x, y, p.z).length() - radius
+        }
+        Shape::Cylinder {
+            radius,
+            half_height,
+        } => sd_cylinder(p, radius, half_height),
+        Shape::RoundedCylinder {
+            radius,
+            half_height,
+            rounding,
+        } => sd_cylinder(p, radius - rounding, half_height - rounding) - rounding,
+        Shape::CappedCone {
+            half_height,
+            bottom,
+            top,
+        } => sd_capped_cone(p, half_height, bottom, top),
+        Shape::Octahedron { size } => sd_octahedron(p, size),
+        Shape::HexPrism {
+            apothem,
+            half_height,
+        } => sd_hex_prism(V3::new(p.x, p.z, p.y), apothem, half_height),
+        Shape::Ellipsoid { radii } => {
+            let k0 = p.div(V3::splat(radii)).length();
+            let k1 = p.div(V3::splat(radii * radii)).length();
+            let centre = F8::splat(-radii.min_element());
+            let inside = k0 * ((k0 - 1.0) / k1);
+            let far = p.length() - radii.max_element();
+            let finite: M8 = core::array::from_fn(|k| k0.0[k].is_finite() && k1.0[k].is_finite());
+            F8::select(k1.eq(z), centre, F8::select(finite, inside, far))
+        }
+        Shape::Plane { normal, offset } => p.dot(V3::splat(normal)) + offset,
+    }
+}
+
+#[inline(always)]
+fn sd_box(p: V3, half: Vec3) -> F8 {
+    let q = p.abs().sub(V3::splat(half));
+    q.pos().length() + q.max_element().min(F8::splat(0.0))
+}
+
+#[inline(always)]
+fn sd_box_frame(p: V3, half: Vec3, e: f32) -> F8 {
+    let p = p.abs().sub(V3::splat(half));
+    let q = p
+        .add(V3::splat(Vec3::splat(e)))
+        .abs()
+        .sub(V3::splat(Vec3::splat(e)));
+    let part = |v: V3| v.pos().length() + v.max_element().min(F8::splat(0.0));
+    part(V3::new(p.x, q.y, q.z))
+        .min(part(V3::new(q.x, p.y, q.z)))
+        .min(part(V3::new(q.x, q.y, p.z)))
+}
+
+#[inline(always)]
+fn sd_cylinder(p: V3, radius: f32, half_height: f32) -> F8 {
+    let dx = len2(p.x, p.z).abs() - radius;
+    let dy = p.y.abs() - half_height;
+    let z = F8::splat(0.0);
+    dx.max(dy).min(z) + len2(dx.gmax(z), dy.gmax(z))
+}
+
+#[inline(always)]
+fn sd_capped_cone(p: V3, h: f32, r1: f32, r2: f32) -> F8 {
+    let z = F8::splat(0.0);
+    let (qx, qy) = (len2(p.x, p.z), p.y);
+    let (k1x, k1y) = (r2, h);
+    let (k2x, k2y) = (r2 - r1, 2.0 * h);
+    let r = F8::select(qy.lt(z), F8::splat(r1), F8::splat(r2));
+    let cax = qx - qx.min(r);
+    let cay = qy.abs() - h;
+    let k2k2 = k2x * k2x + k2y * k2y;
+    let s = if k2k2 > 0.0 {
+        (((k1x - qx) * k2x + (k1y - qy) * k2y) / k2k2).clamp(z, F8::splat(1.0))
+    } else {
+        z
+    };
+    let cbx = (qx - k1x) + k2x * s;
+    let cby = (qy - k1y) + k2y * s;
+    let inside: M8 = core::array::from_fn(|k| cbx.0[k] < 0.0 && cay.0[k] < 0.0);
+    let sign = F8::select(inside, F8::splat(-1.0), F8::splat(1.0));
+    sign * (cax * cax + cay * cay).min(cbx * cbx + cby * cby).sqrt()
+}
+
+#[inline(always)]
+fn sd_octahedron(p: V3, s: f32) -> F8 {
+    let p = p.abs();
+    let m = p.x + p.y + p.z - s;
+    let ax = (3.0 * p.x).lt(m);
+    let ay = (3.0 * p.y).lt(m);
+    let az = (3.0 * p.z).lt(m);
+    // q = p, p.yzx or p.zxy by the first axis that passes, as the tree picks.
+    let pick = |a: F8, b: F8, c: F8| F8::select(ax, a, F8::select(ay, b, c));
+    let qx = pick(p.x, p.y, p.z);
+    let qy = pick(p.y, p.z, p.x);
+    let qz = pick(p.z, p.x, p.y);
+    let k = (0.5 * (qz - qy + s)).clamp(F8::splat(0.0), F8::splat(s));
+    let d = V3::new(qx, qy - s + k, qz - k).length();
+    let any: M8 = core::array::from_fn(|k| ax[k] || ay[k] || az[k]);
+    F8::select(any, d, m * 0.577_350_26)
+}
+
+#[inline(always)]
+fn sd_hex_prism(p: V3, apothem: f32, half_height: f32) -> F8 {
+    const K: Vec3 = Vec3::new(-0.866_025_4, 0.5, 0.577_350_26);
+    let z = F8::splat(0.0);
+    let p = p.abs();
+    let f = 2.0 * (K.x * p.x + K.y * p.y).min(z);
+    let px = p.x - f * K.x;
+    let py = p.y - f * K.y;
+    let ex = px - px.clamp(F8::splat(-K.z * apothem), F8::splat(K.z * apothem));
+    let ey = py - apothem;
+    let sign = F8::select((py - apothem).lt(z), F8::splat(-1.0), F8::splat(1.0));
+    let dx = len2(ex, ey) * sign;
+    let dy = p.z - half_height;
+    dx.max(dy).min(z) + len2(dx.gmax(z), dy.gmax(z))
+}
+
+/// `Aabb::distance`, lane-wise.
+#[inline(always)]
+fn aabb_distance(b: &Aabb, p: V3) -> F8 {
+    V3::splat(b.min)
+        .sub(p)
+        .gmax(p.sub(V3::splat(b.max)))
+        .pos()
+        .length()
+}
+
+/// `round_cell`, lane-wise.
+#[inline(always)]
+fn round_cell(x: F8) -> F8 {
+    lanewise!(x, |k| super::bounds::round_cell(x.0[k]))
+}
+
+// ------------------------------------------------------------------ program
+
+/// One instruction of an [`SdfProgram`]. Values live on a stack of
+/// `(safe, surface, material)` lanes; in the tree's `eval` mode (below an
+/// operator that does not split its distance) `safe` and `surface` are equal.
+#[derive(Clone, Debug)]
+enum Inst<'a> {
+    /// Push the shape's distance at the current point.
+    Shape { shape: Shape, material: u32 },
+    /// Push `(p − translation)·inv_scale`, rotated by `inv_rotation` if any.
+    PushTransform {
+        translation: Vec3,
+        inv_scale: f32,
+        inv_rotation: Option<Quat>,
+    },
+    /// Pop the point; scale the top value by `scale`.
+    PopTransform { scale: f32 },
+    /// Push the point with the `axes` mirrored (`|p_k|`).
+    PushMirror { axes: [bool; 3] },
+    /// Pop the point.
+    PopPoint,
+    /// Push a repetition cell's point; keep its wall distance.
+    PushRepeat {
+        period: Vec3,
+        lo: Vec3,
+        hi: Vec3,
+        guard: bool,
+    },
+    /// Pop the cell point and its walls; cap the top value: the safe step by
+    /// `wall + margin` (`split`), or the distance as `eval` does.
+    PopRepeat { margin: f32, split: bool },
+    /// Push a union's accumulator.
+    UnionBegin { material: u32 },
+    /// Cull the next child (ending at its `UnionMerge`, `skip` instructions
+    /// on) by its bounding sphere against the accumulator.
+    UnionChild {
+        sphere: Vec4,
+        skip: u32,
+        split: bool,
+    },
+    /// Fold the child on top into the accumulator below it, in its lanes.
+    UnionMerge { split: bool },
+    /// Close a split union: `safe = min(safe, surface)`.
+    UnionEnd { split: bool },
+    /// Push an intersection's accumulator.
+    IntersectionBegin { material: u32 },
+    /// Fold the child on top in: the larger distance wins.
+    IntersectionMerge,
+    /// Fold the child on top into the smooth union below it (`first`: it is
+    /// the first child and becomes the accumulator).
+    SmoothMerge { k: f32, first: bool },
+    /// Pop `b`, then `a`: push `a` where `a ≥ −b`, else `−b`.
+    SubtractMerge,
+    /// `d − radius`.
+    Round { radius: f32 },
+    /// `|d| − thickness`.
+    Onion { thickness: f32 },
+    /// `d·factor`.
+    ScaleDistance { factor: f32 },
+    /// `bounded`, eval mode: push the box distance; cull the child (ending
+    /// at its `BoundedMerge`, `skip` on) in the lanes farther than `pad`.
+    BoundedBegin {
+        bounds: Aabb,
+        pad: f32,
+        material: u32,
+        skip: u32,
+    },
+    /// Fold the child on top into the lanes that needed it.
+    BoundedMerge,
+    /// `bounded`, split mode: keep the box distance for after the child.
+    BoundedSplitBegin { bounds: Aabb },
+    /// Combine the child's split values with the box distance kept.
+    BoundedSplitEnd { pad: f32 },
+    /// A scatter: the cell's instance of a template, per lane.
+    Scatter {
+        scatter: &'a Scatter,
+        templates: Vec<SdfProgram<'a>>,
+        split: bool,
+    },
+    /// What has no lane-wise form: the tree, lane by lane.
+    Tree { node: &'a SdfNode, split: bool },
+}
+
+/// An SDF tree as a flat program: see the [module](self) docs. Borrows the
+/// tree (scatter tables and per-lane fallbacks are read from it).
+#[derive(Clone, Debug)]
+pub struct SdfProgram<'a> {
+    code: Vec<Inst<'a>>,
+    /// Deepest value, point, mask and wall stacks the code uses.
+    depth: [usize; 4],
+    /// Whether any instruction evaluates lane by lane through the tree.
+    tree_fallback: bool,
+}
+
+/// Working stacks of one [`SdfProgram`] evaluation, reused from one packet to
+/// the next ([`SdfProgram::scratch`]).
+#[derive(Clone, Debug)]
+pub struct Scratch {
+    values: Vec<Value>,
+    points: Vec<V3>,
+    masks: Vec<LaneMask>,
+    walls: Vec<F8>,
+    nested: Option<Box<Scratch>>,
+}
+
+#[derive(Clone, Copy, Debug, Default)]
+struct Value {
+    safe: F8,
+    surf: F8,
+    mat: [u32; LANES],
+}
+
+impl Value {
+    #[inline(always)]
+    fn both(d: F8, mat: [u32; LANES]) -> Value {
+        Value {
+            safe: d,
+            surf: d,
+            mat,
+        }
+    }
+    #[inline(always)]
+    fn select(m: M8, a: Value, b: Value) -> Value {
+        Value {
+            safe: F8::select(m, a.safe, b.safe),
+            surf: F8::select(m, a.surf, b.surf),
+            mat: select_u(m, a.mat, b.mat),
+        }
+    }
+}
+
+struct Compiler<'a> {
+    code: Vec<Inst<'a>>,
+    /// Current and deepest stack depths: values, points, masks, walls.
+    now: [usize; 4],
+    max: [usize; 4],
+    nested: bool,
+    tree_fallback: bool,
+}
+
+const VALUES: usize = 0;
+const POINTS: usize = 1;
+const MASKS: usize = 2;
+const WALLS: usize = 3;
+
+impl<'a> Compiler<'a> {
+    fn push(&mut self, stack: usize, n: isize) {
+        self.now[stack] = (self.now[stack] as isize + n) as usize;
+        self.max[stack] = self.max[stack].max(self.now[stack]);
+    }
+
+    /// Compile `node` as the tree's `split` (or, with `split` false, `eval`):
+    /// leaves one value on the stack.
+    fn node(&mut self, node: &'a SdfNode, split: bool) {
+        match &node.op {
+            Op::Shape { shape, material } => {
+                self.code.push(Inst::Shape {
+                    shape: *shape,
+                    material: *material,
+                });
+                self.push(VALUES, 1);
+            }
+            Op::Transform(t) => {
+                self.code.push(Inst::PushTransform {
+                    translation: t.translation,
+                    inv_scale: t.inv_scale,
+                    inv_rotation: t.rotated.then_some(t.inv_rotation),
+                });
+                self.push(POINTS, 1);
+                self.node(&t.child, split);
+                self.code.push(Inst::PopTransform { scale: t.scale });
+                self.push(POINTS, -1);
+            }
+            Op::Union { children, spheres } => {
+                self.code.push(Inst::UnionBegin {
+                    material: node.info.material,
+                });
+                self.push(VALUES, 1);
+                for (c, s) in children.iter().zip(spheres) {
+                    let at = self.code.len();
+                    self.code.push(Inst::UnionChild {
+                        sphere: *s,
+                        skip: 0,
+                        split,
+                    });
+                    self.push(MASKS, 1);
+                    self.node(c, split);
+                    self.code.push(Inst::UnionMerge { split });
+                    self.push(VALUES, -1);
+                    self.push(MASKS, -1);
+                    let skip = (self.code.len() - at) as u32;
+                    if let Inst::UnionChild { skip: s, .. } = &mut self.code[at] {
+                        *s = skip;
+                    }
+                }
+                self.code.push(Inst::UnionEnd { split });
+            }
+            Op::Repeat(r) if split && r.guard => {
+                self.repeat(r, true);
+            }
+            Op::Scatter(s) => {
+                if self.nested {
+                    self.tree(node, split);
+                    return;
+                }
+                let templates = s
+                    .templates
+                    .iter()
+                    .map(|t| compile(t, false, true))
+                    .collect();
+                self.code.push(Inst::Scatter {
+                    scatter: s,
+                    templates,
+                    split,
+                });
+                self.push(VALUES, 1);
+            }
+            Op::Bounded { pad, child } if split => {
+                self.code.push(Inst::BoundedSplitBegin {
+                    bounds: child.info.bounds,
+                });
+                self.push(WALLS, 1);
+                self.node(child, true);
+                self.code.push(Inst::BoundedSplitEnd { pad: *pad });
+                self.push(WALLS, -1);
+            }
+            // Below here: the tree's `eval` (split falls back to it).
+            Op::Bounded { pad, child } => {
+                let at = self.code.len();
+                self.code.push(Inst::BoundedBegin {
+                    bounds: child.info.bounds,
+                    pad: *pad,
+                    material: node.info.material,
+                    skip: 0,
+                });
+                self.push(VALUES, 1);
+                self.push(MASKS, 1);
+                self.node(child, false);
+                self.code.push(Inst::BoundedMerge);
+                self.push(VALUES, -1);
+                self.push(MASKS, -1);
+                let skip = (self.code.len() - at) as u32;
+                if let Inst::BoundedBegin { skip: s, .. } = &mut self.code[at] {
+                    *s = skip;
+                }
+            }
+            Op::Repeat(r) => self.repeat(r, false),
+            Op::Intersection(children) => {
+                self.code.push(Inst::IntersectionBegin {
+                    material: node.info.material,
+                });
+                self.push(VALUES, 1);
+                for c in children {
+                    self.node(c, false);
+                    self.code.push(Inst::IntersectionMerge);
+                    self.push(VALUES, -1);
+                }
+            }
+            Op::SmoothUnion { k, children } => {
+                for (i, c) in children.iter().enumerate() {
+                    self.node(c, false);
+                    self.code.push(Inst::SmoothMerge {
+                        k: *k,
+                        first: i == 0,
+                    });
+                    if i > 0 {
+                        self.push(VALUES, -1);
+                    }
+                }
+            }
+            Op::Subtract(ab) => {
+                self.node(&ab.0, false);
+                self.node(&ab.1, false);
+                self.code.push(Inst::SubtractMerge);
+                self.push(VALUES, -1);
+            }
+            Op::Mirror { axes, child } => {
+                self.code.push(Inst::PushMirror { axes: *axes });
+                self.push(POINTS, 1);
+                self.node(child, false);
+                self.code.push(Inst::PopPoint);
+                self.push(POINTS, -1);
+            }
+            Op::Round { radius, child } => {
+                self.node(child, false);
+                self.code.push(Inst::Round { radius: *radius });
+            }
+            Op::Onion { thickness, child } => {
+                self.node(child, false);
+                self.code.push(Inst::Onion {
+                    thickness: *thickness,
+                });
+            }
+            Op::ScaleDistance { factor, child } => {
+                self.node(child, false);
+                self.code.push(Inst::ScaleDistance { factor: *factor });
+            }
+            Op::Displace { .. } => self.tree(node, false),
+        }
+    }
+
+    fn repeat(&mut self, r: &'a super::node::Repeat, split: bool) {
+        self.code.push(Inst::PushRepeat {
+            period: r.period,
+            lo: r.lo,
+            hi: r.hi,
+            guard: r.guard,
+        });
+        self.push(POINTS, 1);
+        self.push(WALLS, 1);
+        self.node(&r.child, split);
+        self.code.push(Inst::PopRepeat {
+            margin: r.margin,
+            split,
+        });
+        self.push(POINTS, -1);
+        self.push(WALLS, -1);
+    }
+
+    fn tree(&mut self, node: &'a SdfNode, split: bool) {
+        self.tree_fallback = true;
+        self.code.push(Inst::Tree { node, split });
+        self.push(VALUES, 1);
+    }
+}
+
+fn compile(root: &SdfNode, split: bool, nested: bool) -> SdfProgram<'_> {
+    let mut c = Compiler {
+        code: Vec::new(),
+        now: [0, 1, 1, 0],
+        max: [0, 1, 1, 0],
+        nested,
+        tree_fallback: false,
+    };
+    c.node(root, split);
+    SdfProgram {
+        code: c.code,
+        depth: c.max,
+        tree_fallback: c.tree_fallback,
+    }
+}
+
+impl<'a> SdfProgram<'a> {
+    /// Compiles `root` for [`SdfNode::eval_split`]'s values.
+    pub fn compile(root: &'a SdfNode) -> SdfProgram<'a> {
+        compile(root, true, false)
+    }
+
+    /// Number of instructions.
+    pub fn len(&self) -> usize {
+        self.code.len()
+    }
+
+    /// Whether the program is empty (never, for a compiled tree).
+    pub fn is_empty(&self) -> bool {
+        self.code.is_empty()
+    }
+
+    /// Whether some subtree has no lane-wise form and is evaluated lane by
+    /// lane through the tree (displacement, a scatter inside a scatter).
+    pub fn has_tree_fallback(&self) -> bool {
+        self.tree_fallback
+    }
+
+    /// Stacks sized for this program.
+    pub fn scratch(&self) -> Scratch {
+        let nested = self
+            .code
+            .iter()
+            .filter_map(|i| match i {
+                Inst::Scatter { templates, .. } => Some(templates),
+                _ => None,
+            })
+            .flatten()
+            .map(|t| t.depth)
+            .reduce(|a, b| core::array::from_fn(|k| a[k].max(b[k])));
+        let mut s = Scratch::with_depth(self.depth);
+        s.nested = nested.map(|d| Box::new(Scratch::with_depth(d)));
+        s
+    }
+
+    /// The tree's [`SdfNode::eval_split`] at each lane's point, bit for bit.
+    /// Lanes outside `active` hold unspecified values (they are computed
+    /// where that is cheaper than not; nothing panics). `scratch` must come
+    /// from this program's [`scratch`](Self::scratch); another program's
+    /// may panic.
+    #[inline]
+    pub fn eval_split(&self, p: &Points, active: LaneMask, scratch: &mut Scratch) -> SplitLanes {
+        let v = self.run::<false>(V3::new(F8(p.x), F8(p.y), F8(p.z)), active, scratch);
+        SplitLanes {
+            safe: v.safe.0,
+            surface: v.surf.0,
+            material: v.mat,
+        }
+    }
+
+    /// One point in lane 0: [`SdfNode::eval_split`] at `p`.
+    pub fn eval_split_one(&self, p: Vec3, scratch: &mut Scratch) -> SplitDistance {
+        let mut pts = Points::default();
+        for k in 0..LANES {
+            pts.set(k, p);
+        }
+        self.eval_split(&pts, 1, scratch).get(0)
+    }
+
+    /// The interpreter. `NESTED` programs (scatter templates) never contain
+    /// a scatter, so the two instantiations do not recurse and both inline
+    /// into the caller's loop.
+    #[inline(always)]
+    fn run<const NESTED: bool>(&self, p: V3, active: LaneMask, s: &mut Scratch) -> Value {
+        let (mut vs, mut ps, mut ms, mut ws) = (0usize, 0usize, 0usize, 0usize);
+        s.points[0] = p;
+        s.masks[0] = active;
+        let code = &self.code;
+        let mut pc = 0;
+        while pc < code.len() {
+            let p = s.points[ps];
+            match &code[pc] {
+                Inst::Shape { shape, material } => {
+                    let d = shape_distance(shape, p);
+                    s.values[vs] = Value::both(d, [*material; LANES]);
+                    vs += 1;
+                }
+                Inst::PushTransform {
+                    translation,
+                    inv_scale,
+                    inv_rotation,
+                } => {
+                    let mut q = p.sub(V3::splat(*translation)).scale(F8::splat(*inv_scale));
+                    if let Some(r) = inv_rotation {
+                        q = q.rotate(*r);
+                    }
+                    ps += 1;
+                    s.points[ps] = q;
+                }
+                Inst::PopTransform { scale } => {
+                    ps -= 1;
+                    let v = &mut s.values[vs - 1];
+                    v.safe = v.safe * *scale;
+                    v.surf = v.surf * *scale;
+                }
+                Inst::PushMirror { axes } => {
+                    let mut q = p;
+                    if axes[0] {
+                        q.x = q.x.abs();
+                    }
+                    if axes[1] {
+                        q.y = q.y.abs();
+                    }
+                    if axes[2] {
+                        q.z = q.z.abs();
+                    }
+                    ps += 1;
+                    s.points[ps] = q;
+                }
+                Inst::PopPoint => ps -= 1,
+                Inst::PushRepeat {
+                    period,
+                    lo,
+                    hi,
+                    guard,
+                } => {
+                    let mut q = [p.x, p.y, p.z];
+                    let mut wall = F8::splat(f32::INFINITY);
+                    for (k, qk) in q.iter_mut().enumerate() {
+                        let c = period[k];
+                        if c > 0.0 {
+                            let i = round_cell(*qk / c).clamp(F8::splat(lo[k]), F8::splat(hi[k]));
+                            let pk = *qk;
+                            *qk = pk - c * i;
+                            if *guard {
+                                let below = i.lt(F8::splat(hi[k]));
+                                wall = F8::select(below, wall.min(0.5 * c - *qk), wall);
+                                let above = i.gt(F8::splat(lo[k]));
+                                wall = F8::select(above, wall.min(0.5 * c + *qk), wall);
+                            }
+                        }
+                    }
+                    ps += 1;
+                    s.points[ps] = V3::new(q[0], q[1], q[2]);
+                    s.walls[ws] = wall;
+                    ws += 1;
+                }
+                Inst::PopRepeat { margin, split } => {
+                    ps -= 1;
+                    ws -= 1;
+                    let g = s.walls[ws] + *margin;
+                    let v = &mut s.values[vs - 1];
+                    if *split {
+                        v.safe = v.safe.min(g);
+                    } else {
+                        let d = F8::select(g.lt(v.surf), g, v.surf);
+                        v.safe = d;
+                        v.surf = d;
+                    }
+                }
+                Inst::UnionBegin { material } => {
+                    let inf = F8::splat(f32::INFINITY);
+                    s.values[vs] = Value {
+                        safe: inf,
+                        surf: inf,
+                        mat: [*material; LANES],
+                    };
+                    vs += 1;
+                }
+                Inst::UnionChild {
+                    sphere,
+                    skip,
+                    split,
+                } => {
+                    let acc = &mut s.values[vs - 1];
+                    let c = V3::splat(sphere.truncate());
+                    let d2 = {
+                        let e = p.sub(c);
+                        e.dot(e)
+                    };
+                    let reach = acc.surf + sphere.w;
+                    let skipped: M8 = core::array::from_fn(|k| {
+                        reach.0[k] >= 0.0 && d2.0[k] >= reach.0[k] * reach.0[k]
+                    });
+                    let needed = s.masks[ms] & !mask_bits(skipped);
+                    if *split {
+                        let bound = d2.sqrt() - sphere.w;
+                        let lanes = bits_mask(s.masks[ms] & mask_bits(skipped));
+                        acc.safe = F8::select(lanes, acc.safe.min(bound), acc.safe);
+                    }
+                    if needed == 0 {
+                        pc += *skip as usize;
+                        continue;
+                    }
+                    ms += 1;
+                    s.masks[ms] = needed;
+                }
+                Inst::UnionMerge { split } => {
+                    vs -= 1;
+                    let c = s.values[vs];
+                    let lanes = bits_mask(s.masks[ms]);
+                    ms -= 1;
+                    let acc = &mut s.values[vs - 1];
+                    if *split {
+                        acc.safe = F8::select(lanes, acc.safe.min(c.safe), acc.safe);
+                    }
+                    let better: M8 =
+                        core::array::from_fn(|k| lanes[k] && c.surf.0[k] < acc.surf.0[k]);
+                    acc.surf = F8::select(better, c.surf, acc.surf);
+                    acc.mat = select_u(better, c.mat, acc.mat);
+                    if !*split {
+                        acc.safe = acc.surf;
+                    }
+                }
+                Inst::UnionEnd { split } => {
+                    let acc = &mut s.values[vs - 1];
+                    if *split {
+                        acc.safe = acc.safe.min(acc.surf);
+                    } else {
+                        acc.safe = acc.surf;
+                    }
+                }
+                Inst::IntersectionBegin { material } => {
+                    s.values[vs] = Value::both(F8::splat(f32::NEG_INFINITY), [*material; LANES]);
+                    vs += 1;
+                }
+                Inst::IntersectionMerge => {
+                    vs -= 1;
+                    let c = s.values[vs];
+                    let acc = &mut s.values[vs - 1];
+                    *acc = Value::select(c.surf.gt(acc.surf), c, *acc);
+                }
+                Inst::SmoothMerge { k, first } => {
+                    if !*first {
+                        vs -= 1;
+                        let c = s.values[vs];
+                        let acc = &mut s.values[vs - 1];
+                        let k = *k;
+                        let h = (k - (acc.surf - c.surf).abs()).max(F8::splat(0.0)) / k;
+                        let mat = select_u(c.surf.lt(acc.surf), c.mat, acc.mat);
+                        let d = acc.surf.min(c.surf) - 0.25 * k * h * h;
+                        *acc = Value::both(d, mat);
+                    }
+                }
+                Inst::SubtractMerge => {
+                    vs -= 1;
+                    let b = s.values[vs];
+                    let a = s.values[vs - 1];
+                    let nb = -b.surf;
+                    s.values[vs - 1] = Value::select(a.surf.ge(nb), a, Value::both(nb, b.mat));
+                }
+                Inst::Round { radius } => {
+                    let v = &mut s.values[vs - 1];
+                    *v = Value::both(v.surf - *radius, v.mat);
+                }
+                Inst::Onion { thickness } => {
+                    let v = &mut s.values[vs - 1];
+                    *v = Value::both(v.surf.abs() - *thickness, v.mat);
+                }
+                Inst::ScaleDistance { factor } => {
+                    let v = &mut s.values[vs - 1];
+                    *v = Value::both(v.surf * *factor, v.mat);
+                }
+                Inst::BoundedBegin {
+                    bounds,
+                    pad,
+                    material,
+                    skip,
+                } => {
+                    let b = aabb_distance(bounds, p);
+                    s.values[vs] = Value::both(b, [*material; LANES]);
+                    vs += 1;
+                    let needed = s.masks[ms] & !mask_bits(b.gt(F8::splat(*pad)));
+                    if needed == 0 {
+                        pc += *skip as usize;
+                        continue;
+                    }
+                    ms += 1;
+                    s.masks[ms] = needed;
+                }
+                Inst::BoundedMerge => {
+                    vs -= 1;
+                    let c = s.values[vs];
+                    let lanes = bits_mask(s.masks[ms]);
+                    ms -= 1;
+                    let acc = &mut s.values[vs - 1];
+                    *acc = Value::select(lanes, c, *acc);
+                }
+                Inst::BoundedSplitBegin { bounds } => {
+                    s.walls[ws] = aabb_distance(bounds, p);
+                    ws += 1;
+                }
+                Inst::BoundedSplitEnd { pad } => {
+                    ws -= 1;
+                    let b = s.walls[ws];
+                    let v = &mut s.values[vs - 1];
+                    let far = b.gt(F8::splat(*pad));
+                    v.safe = F8::select(far, v.safe.max(b).min(v.surf), v.safe);
+                }
+                Inst::Scatter {
+                    scatter,
+                    templates,
+                    split,
+                } => {
+                    let v = if NESTED {
+                        // Never compiled: nested scatters fall back to the tree.
+                        Value::default()
+                    } else {
+                        scatter_lanes(scatter, templates, p, s.masks[ms], &mut s.nested, *split)
+                    };
+                    s.values[vs] = v;
+                    vs += 1;
+                }
+                Inst::Tree { node, split } => {
+                    let mut v = Value::default();
+                    let m = s.masks[ms];
+                    for k in 0..LANES {
+                        if m & (1 << k) == 0 {
+                            continue;
+                        }
+                        let q = Vec3::new(p.x.0[k], p.y.0[k], p.z.0[k]);
+                        let (a, b, mat) = if *split {
+                            let r = node.eval_split(q);
+                            (r.safe, r.surface, r.material)
+                        } else {
+                            let (d, mat) = node.eval(q);
+                            (d, d, mat)
+                        };
+                        v.safe.0[k] = a;
+                        v.surf.0[k] = b;
+                        v.mat[k] = mat;
+                    }
+                    s.values[vs] = v;
+                    vs += 1;
+                }
+            }
+            pc += 1;
+        }
+        s.values[0]
+    }
+}
+
+/// `Scatter::split` (or its `eval` bound) lane-wise: each lane's cell and
+/// instance, then each distinct template among the lanes that reach their
+/// object, run once over those lanes.
+#[inline(always)]
+fn scatter_lanes(
+    sc: &Scatter,
+    templates: &[SdfProgram<'_>],
+    p: V3,
+    active: LaneMask,
+    nested: &mut Option<Box<Scratch>>,
+    split: bool,
+) -> Value {
+    let rel = p.sub(V3::splat(sc.origin));
+    let f = rel.mul(V3::splat(sc.inv_cell));
+    let f = V3::new(round_cell(f.x), round_cell(f.y), round_cell(f.z));
+    // glam's `clamp`: `max(lo).min(hi)` by comparisons.
+    let lo = V3::splat(sc.lo);
+    let hi = V3::splat(sc.hi);
+    let f = {
+        let m = f.gmax(lo);
+        V3::new(m.x.gmin(hi.x), m.y.gmin(hi.y), m.z.gmin(hi.z))
+    };
+    let q = rel.sub(f.mul(V3::splat(sc.cell)));
+    let mut wall = F8::splat(f32::INFINITY);
+    let (fa, qa) = ([f.x, f.y, f.z], [q.x, q.y, q.z]);
+    for k in 0..3 {
+        let below = fa[k].lt(F8::splat(sc.hi[k]));
+        wall = F8::select(below, wall.min(0.5 * sc.cell[k] - qa[k]), wall);
+        let above = fa[k].gt(F8::splat(sc.lo[k]));
+        wall = F8::select(above, wall.min(0.5 * sc.cell[k] + qa[k]), wall);
+    }
+    let guard = wall + sc.margin;
+    let i = f.sub(lo);
+
+    // Gather each lane's instance.
+    const EMPTY: u32 = u32::MAX;
+    let mut off = [F8::default(); 3];
+    let mut rot = [F8::default(); 4];
+    let (mut radius, mut scale, mut inv_scale) = (F8::default(), F8::default(), F8::default());
+    let mut template = [EMPTY; LANES];
+    let mut own = [sc.default_material; LANES];
+    let mut inst_mat = [EMPTY; LANES];
+    for k in 0..LANES {
+        if active & (1 << k) == 0 {
+            continue;
+        }
+        let idx =
+            i.x.0[k] as usize + sc.dims[0] * (i.y.0[k] as usize + sc.dims[1] * i.z.0[k] as usize);
+        let Some(inst) = sc.instances.get(idx) else {
+            continue;
+        };
+        if sc.templates.get(inst.template as usize).is_none() {
+            continue;
+        }
+        template[k] = inst.template;
+        inst_mat[k] = inst.material;
+        if inst.material != EMPTY {
+            own[k] = inst.material;
+        }
+        for (a, v) in off.iter_mut().zip(inst.offset.to_array()) {
+            a.0[k] = v;
+        }
+        for (a, v) in rot.iter_mut().zip(inst.inv_rotation.to_array()) {
+            a.0[k] = v;
+        }
+        radius.0[k] = inst.radius;
+        scale.0[k] = inst.scale;
+        inv_scale.0[k] = inst.inv_scale;
+    }
+    let local = q.sub(V3::new(off[0], off[1], off[2]));
+    let sphere = local.length() - radius;
+    let has: M8 = core::array::from_fn(|k| template[k] != EMPTY);
+    // No instance: `(guard, ∞, default)`; far from the object: its sphere.
+    let mut out = Value {
+        safe: guard,
+        surf: F8::select(has, sphere, F8::splat(f32::INFINITY)),
+        mat: own,
+    };
+    let reach = active & mask_bits(has) & !mask_bits(sphere.ge(guard));
+    if reach != 0 {
+        let tp = local.rotate_lanes(rot).scale(inv_scale);
+        let scratch = nested.get_or_insert_with(|| {
+            let d = templates
+                .iter()
+                .map(|t| t.depth)
+                .fold([0; 4], |a, b| core::array::from_fn(|k| a[k].max(b[k])));
+            Box::new(Scratch::with_depth(d))
+        });
+        let mut left = reach;
+        while left != 0 {
+            let first = left.trailing_zeros() as usize;
+            let t = template[first];
+            let mut lanes = 0u8;
+            for k in 0..LANES {
+                if left & (1 << k) != 0 && template[k] == t {
+                    lanes |= 1 << k;
+                }
+            }
+            left &= !lanes;
+            let Some(prog) = templates.get(t as usize) else {
+                continue;
+            };
+            let v = prog.run::<true>(tp, lanes, scratch);
+            let d = v.surf * scale;
+            let m = select_u(
+                core::array::from_fn(|k| inst_mat[k] == EMPTY),
+                v.mat,
+                inst_mat,
+            );
+            let sel = bits_mask(lanes);
+            out.safe = F8::select(sel, guard.min(d), out.safe);
+            out.surf = F8::select(sel, d, out.surf);
+            out.mat = select_u(sel, m, out.mat);
+        }
+    }
+    if !split {
+        // `eval`: the bound alone.
+        out.surf = out.safe;
+    }
+    out
+}
+
+impl Scratch {
+    fn with_depth(depth: [usize; 4]) -> Scratch {
+        Scratch {
+            values: vec![Value::default(); depth[VALUES] + 1],
+            points: vec![V3::default(); depth[POINTS] + 1],
+            masks: vec![0; depth[MASKS] + 1],
+            walls: vec![F8::default(); depth[WALLS] + 1],
+            nested: None,
+        }
+    }
+}
