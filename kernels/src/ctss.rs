@@ -74,8 +74,8 @@ use glam::{Vec2, Vec3};
 
 mod trace;
 pub use trace::{
-    group_mask, march, normal_step, shade_split, trace_field, ClosureField, ConeField, FieldSample,
-    GroupHit, SHEET_PROBE, SHELL_LENGTH,
+    group_mask, march, march_step, normal_step, shade_split, trace_field, ClosureField, ConeField,
+    FieldSample, GroupHit, SHEET_PROBE, SHELL_LENGTH,
 };
 
 use crate::aggregate::{sample_weight, Aggregate, Weighting};
@@ -1057,46 +1057,115 @@ pub fn sphere_trace_split<S>(params: &CtssParams, origin: Vec3, dir: Vec3, mut s
 where
     S: FnMut(Vec3) -> (f32, f32),
 {
-    let hard = params.thresholds().hard;
-    let mut t = if params.t_min > 0.0 {
-        params.t_min
-    } else {
-        0.0
-    };
-    let mut steps = 0;
+    let mut march = SphereMarch::new(params);
     loop {
-        if steps >= params.max_steps {
-            return SphereHit {
-                t: None,
-                steps,
-                stop: StopReason::StepBudget,
-            };
+        if let Some(hit) = march.before_step(params) {
+            return hit;
         }
-        if !(t < params.t_max) {
-            return SphereHit {
-                t: None,
-                steps,
-                stop: StopReason::MaxDistance,
-            };
+        let (d, step) = sdf(origin + march.t() * dir);
+        if let Some(hit) = march.after_step(params, d, step) {
+            return hit;
         }
-        let (d, step) = sdf(origin + t * dir);
-        steps += 1;
+    }
+}
+
+/// [`sphere_trace_split`] one step at a time, for a caller that evaluates the
+/// field for several rays together (a packet of rays in SIMD lanes): the
+/// same state and the same tests, so every ray ends exactly where
+/// [`sphere_trace_split`] ends it.
+///
+/// ```
+/// use glam::Vec3;
+/// use subcone_kernels::ctss::{sphere_trace_split, CtssParams, SphereMarch};
+///
+/// let params = CtssParams::new(0.01);
+/// let field = |p: Vec3| (p - Vec3::Z * 4.0).length() - 1.0;
+/// let mut m = SphereMarch::new(&params);
+/// let hit = loop {
+///     if let Some(h) = m.before_step(&params) {
+///         break h;
+///     }
+///     let d = field(Vec3::Z * m.t());
+///     if let Some(h) = m.after_step(&params, d, d) {
+///         break h;
+///     }
+/// };
+/// let whole = sphere_trace_split(&params, Vec3::ZERO, Vec3::Z, |p| (field(p), field(p)));
+/// assert_eq!(hit, whole);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SphereMarch {
+    t: f32,
+    steps: u32,
+}
+
+impl SphereMarch {
+    /// A march from `params.t_min` (or 0).
+    #[inline]
+    pub fn new(params: &CtssParams) -> SphereMarch {
+        SphereMarch {
+            t: if params.t_min > 0.0 {
+                params.t_min
+            } else {
+                0.0
+            },
+            steps: 0,
+        }
+    }
+
+    /// Depth of the next evaluation.
+    #[inline]
+    pub fn t(&self) -> f32 {
+        self.t
+    }
+
+    /// Evaluations so far.
+    #[inline]
+    pub fn steps(&self) -> u32 {
+        self.steps
+    }
+
+    /// The end of the march before the next evaluation (step budget spent,
+    /// or past `t_max`), if it ends.
+    #[inline]
+    pub fn before_step(&self, params: &CtssParams) -> Option<SphereHit> {
+        let miss = |stop| SphereHit {
+            t: None,
+            steps: self.steps,
+            stop,
+        };
+        if self.steps >= params.max_steps {
+            return Some(miss(StopReason::StepBudget));
+        }
+        if !(self.t < params.t_max) {
+            return Some(miss(StopReason::MaxDistance));
+        }
+        None
+    }
+
+    /// Takes the field at [`t`](Self::t): surface distance `d` and safe step
+    /// `step`. Returns the end of the march (a hit, or a NaN distance), or
+    /// `None` and advances.
+    #[inline]
+    pub fn after_step(&mut self, params: &CtssParams, d: f32, step: f32) -> Option<SphereHit> {
+        self.steps += 1;
         if d.is_nan() {
-            return SphereHit {
+            return Some(SphereHit {
                 t: None,
-                steps,
+                steps: self.steps,
                 stop: StopReason::InvalidDistance,
-            };
+            });
         }
-        let rc = cone_radius(t, params.tan_theta);
-        if cone_occlusion(d, rc) > hard {
-            return SphereHit {
-                t: Some(t),
-                steps,
+        let rc = cone_radius(self.t, params.tan_theta);
+        if cone_occlusion(d, rc) > params.thresholds().hard {
+            return Some(SphereHit {
+                t: Some(self.t),
+                steps: self.steps,
                 stop: StopReason::HardHit,
-            };
+            });
         }
-        t = advance(t, step.min(d), 0.0, rc);
+        self.t = advance(self.t, step.min(d), 0.0, rc);
+        None
     }
 }
 

@@ -108,7 +108,9 @@ impl Isa {
 
     /// Runs `f` on this path (or the widest supported one below it): the
     /// closure, and every `#[inline]` function it calls, is compiled with the
-    /// path's instructions enabled.
+    /// path's instructions enabled. Mark a large closure `#[inline(always)]`
+    /// (`isa.run(#[inline(always)] || …)`): it is then compiled into each
+    /// path's function instead of being called from it as baseline code.
     #[inline]
     pub fn run<R>(self, f: impl FnOnce() -> R) -> R {
         match self.or_supported() {

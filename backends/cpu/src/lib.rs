@@ -98,7 +98,8 @@ impl CpuBackend {
 
     /// The instruction-set path the hot loops run on.
     pub fn isa(&self) -> isa::Isa {
-        self.isa.map_or_else(isa::Isa::detected, isa::Isa::or_supported)
+        self.isa
+            .map_or_else(isa::Isa::detected, isa::Isa::or_supported)
     }
 
     /// The BVH of `scene`, built on first use.
@@ -202,6 +203,7 @@ impl Backend for CpuBackend {
                 max_distance: settings.max_distance.unwrap_or(g.max_distance),
                 max_steps: settings.max_steps.unwrap_or(g.max_steps),
                 exhaustive_subpixel_shadows: self.exhaustive_subpixel_shadows,
+                isa: self.isa(),
                 ..SdfView::of_scene(scene, camera).expect("an SDF scene")
             };
             let mut frame = view.render(method, settings, passes);

@@ -29,7 +29,12 @@ use subcone_scene::{
     Camera, Frame, FrameStats, Light, Material, Method, PassTiming, RayCounts, RenderSettings,
 };
 
+mod packet;
 mod translucent;
+
+use crate::isa::Isa;
+use packet::{Packets, ShadowRay};
+use subcone_scene::sdf::program::SdfProgram;
 
 /// A signed distance field with per-object materials.
 pub trait SdfField: Sync {
@@ -112,6 +117,13 @@ pub struct SdfView<'a, F: SdfField> {
     /// shaded samples around it disagree about a light (as the triangle path's
     /// `CpuBackend::with_exhaustive_subpixel_shadows`).
     pub exhaustive_subpixel_shadows: bool,
+    /// The field compiled for packets of rays (NoAA, SSAA and the CTSS
+    /// family trace [`LANES`](subcone_scene::sdf::program::LANES) rays at
+    /// once through it); `None`: one ray at a time through
+    /// [`field`](Self::field). Both give the same frames bit for bit.
+    pub program: Option<SdfProgram<'a>>,
+    /// The instruction-set path of the hot loops ([`Isa::run`]).
+    pub isa: Isa,
 }
 
 /// A hit-group sample waiting to be shaded (delayed shading).
@@ -131,6 +143,8 @@ impl<'a> SdfView<'a, subcone_scene::sdf::SdfNode> {
             max_distance: g.max_distance,
             max_steps: g.max_steps,
             exhaustive_subpixel_shadows: false,
+            program: Some(SdfProgram::compile(&g.root)),
+            isa: Isa::detected(),
         })
     }
 }
@@ -180,27 +194,17 @@ impl<F: SdfField> SdfView<'_, F> {
     /// Whether a light is blocked, by plain sphere tracing towards it.
     fn shadowed(&self, p: Vec3, n: Vec3, l: Vec3, dist: f32, tally: &mut Tally) -> bool {
         tally.shadow += 1;
-        let eps = 1e-4 * (1.0 + p.length());
-        let o = p + n * (4.0 * eps);
-        let mut t = 0.0f32;
-        let limit = dist.min(self.max_distance);
-        for _ in 0..self.max_steps {
-            if t >= limit {
-                return false;
+        let mut ray = ShadowRay::new(p, n, l, dist, self.max_distance);
+        loop {
+            let q = match ray.next(self.max_steps) {
+                Ok(q) => q,
+                Err(lit) => return lit,
+            };
+            let SplitDistance { safe, surface, .. } = self.field.eval_split(q);
+            if let Some(blocked) = ray.feed(safe, surface) {
+                return blocked;
             }
-            let SplitDistance {
-                safe, surface: d, ..
-            } = self.field.eval_split(o + l * t);
-            if d.is_nan() {
-                return false;
-            }
-            if d < eps * (1.0 + t * 1e-3) {
-                return true;
-            }
-            let next = t + safe.min(d);
-            t = if next > t { next } else { t.next_up() };
         }
-        false
     }
 
     /// Lambert shading with hard shadows and ambient light.
@@ -707,9 +711,28 @@ impl<F: SdfField> SdfView<'_, F> {
             .zip(spp.par_chunks_mut(w))
             .enumerate()
             .map_init(
-                || (Vec::new(), Vec::new()),
-                |buffers, (y, (row, spp_row))| {
+                || {
+                    (
+                        (Vec::new(), Vec::new()),
+                        self.program.as_ref().map(|p| Packets::new(self, p)),
+                    )
+                },
+                |(buffers, packets), (y, (row, spp_row))| {
                     let mut t = Tally::default();
+                    // Packets of rays: every opaque method but `ctss+edges`
+                    // (its split groups trace sub-cones of their own).
+                    if let Some(pk) = packets
+                        .as_mut()
+                        .filter(|_| !translucent && !(cone && params.splits_groups()))
+                    {
+                        let side = side as usize;
+                        t.multi += if cone {
+                            pk.cone_row(y, side, &params, s, row, spp_row, &mut t)
+                        } else {
+                            pk.sphere_row(y, side, &params, s, row, spp_row, &mut t)
+                        };
+                        return t;
+                    }
                     // Split groups shade several samples per group, and the
                     // semi-transparent path its own way: neither is recorded
                     // by the delayed path (the backend refuses the latter).

@@ -239,30 +239,53 @@ where
 {
     let mut stepper = ConeStepper::new(params);
     loop {
-        let t = stepper.t();
-        let f = field.sample(ray.origin + t * ray.dir);
-        match stepper.advance_object(f.distance, f.step, f.object) {
-            Event::March => {}
-            Event::Sample(s) => {
-                let point = ray.origin + s.t * ray.dir;
-                let normal = field.normal(point, normal_step(s.t, params.tan_theta));
-                let mask = group_mask(params, ray, &s, normal, field);
-                let (visible, weight) = stepper.record_mask(mask);
-                on_hit(
-                    field,
-                    &GroupHit {
-                        sample: s,
-                        point,
-                        normal,
-                        visible,
-                        weight,
-                    },
-                );
-            }
-            Event::Stop(_) => break,
+        let f = field.sample(ray.origin + stepper.t() * ray.dir);
+        if !march_step(params, ray, &mut stepper, f, field, &mut on_hit) {
+            break;
         }
     }
     stepper
+}
+
+/// One step of [`march`]: `f` is the field at `ray.origin + stepper.t()·ray.dir`.
+/// Advances the stepper and, when a group closes, takes its normal and mask
+/// from `field` and calls `on_hit`. Returns whether the march goes on. A
+/// caller that evaluates the field for several cones together (SIMD lanes)
+/// runs [`march`] as this, one step per cone and packet.
+#[inline]
+pub fn march_step<F, H>(
+    params: &CtssParams,
+    ray: &SplitRay,
+    stepper: &mut ConeStepper,
+    f: FieldSample,
+    field: &mut F,
+    on_hit: &mut H,
+) -> bool
+where
+    F: ConeField + ?Sized,
+    H: FnMut(&mut F, &GroupHit),
+{
+    match stepper.advance_object(f.distance, f.step, f.object) {
+        Event::March => true,
+        Event::Sample(s) => {
+            let point = ray.origin + s.t * ray.dir;
+            let normal = field.normal(point, normal_step(s.t, params.tan_theta));
+            let mask = group_mask(params, ray, &s, normal, field);
+            let (visible, weight) = stepper.record_mask(mask);
+            on_hit(
+                field,
+                &GroupHit {
+                    sample: s,
+                    point,
+                    normal,
+                    visible,
+                    weight,
+                },
+            );
+            true
+        }
+        Event::Stop(_) => false,
+    }
 }
 
 /// Trace one pixel's cone with CTSS (Algorithm 1) through `field`, shading

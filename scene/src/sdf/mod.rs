@@ -62,7 +62,7 @@ mod stiff;
 pub mod wgsl;
 
 pub use bounds::Aabb;
-pub use node::{SdfNode, SplitDistance, MAX_DEPTH};
+pub use node::{tetra_normal_from, tetra_taps, SdfNode, SplitDistance, MAX_DEPTH};
 pub use scatter::{ScatterConfig, MAX_SCATTER_CELLS};
 pub use scenes::{atrium, glass, primitives, random_box, random_shape, sparse_shape};
 pub use shape::Shape;

@@ -1322,18 +1322,8 @@ impl SdfNode {
     /// (tetrahedral differences, as [`normal`](SdfNode::normal)), so guarded
     /// cells do not bend normals towards their walls.
     pub fn normal_surface(&self, p: Vec3, h: f32) -> Vec3 {
-        const K: [Vec3; 4] = [
-            Vec3::new(1.0, -1.0, -1.0),
-            Vec3::new(-1.0, -1.0, 1.0),
-            Vec3::new(-1.0, 1.0, -1.0),
-            Vec3::new(1.0, 1.0, 1.0),
-        ];
-        let h = step(p, h);
-        let mut n = Vec3::ZERO;
-        for k in K {
-            n += k * self.eval_split(p + k * h).surface;
-        }
-        unit_or_up(n)
+        let taps = tetra_taps(p, h);
+        tetra_normal_from(taps.map(|q| self.eval_split(q).surface))
     }
 
     /// The distance alone.
@@ -1397,6 +1387,37 @@ fn skip_sphere(c: &SdfNode) -> Vec4 {
     // Grow by a few ulps so rounding never skips a child that matters.
     let slack = 1e-5 * (radius + centre.abs().max_element());
     centre.extend(radius + slack)
+}
+
+/// The four points of [`SdfNode::normal_surface`]'s tetrahedral differences
+/// at `p` with step `h` (raised to 16 ulps of `p`'s largest coordinate).
+#[inline]
+pub fn tetra_taps(p: Vec3, h: f32) -> [Vec3; 4] {
+    const K: [Vec3; 4] = [
+        Vec3::new(1.0, -1.0, -1.0),
+        Vec3::new(-1.0, -1.0, 1.0),
+        Vec3::new(-1.0, 1.0, -1.0),
+        Vec3::new(1.0, 1.0, 1.0),
+    ];
+    let h = step(p, h);
+    K.map(|k| p + k * h)
+}
+
+/// [`SdfNode::normal_surface`] from the surface distances at the four
+/// [`tetra_taps`], in their order: `Σ k·d`, normalised (or `+y`).
+#[inline]
+pub fn tetra_normal_from(d: [f32; 4]) -> Vec3 {
+    const K: [Vec3; 4] = [
+        Vec3::new(1.0, -1.0, -1.0),
+        Vec3::new(-1.0, -1.0, 1.0),
+        Vec3::new(-1.0, 1.0, -1.0),
+        Vec3::new(1.0, 1.0, 1.0),
+    ];
+    let mut n = Vec3::ZERO;
+    for (k, d) in K.into_iter().zip(d) {
+        n += k * d;
+    }
+    unit_or_up(n)
 }
 
 #[inline]

@@ -521,10 +521,34 @@ fn aabb_distance(b: &Aabb, p: V3) -> F8 {
         .length()
 }
 
-/// `round_cell`, lane-wise.
+/// `round_cell` (`⌊x + ½⌋` through a truncation to `i64`), lane-wise and
+/// bit for bit, with a truncation to `i32` that vectorises: below `2²³` in
+/// magnitude both truncations agree; from there on every `f32` is an integer,
+/// which the scalar form returns as is up to its `i64` saturation at `±2⁶³`;
+/// NaN gives 0 in both.
 #[inline(always)]
 fn round_cell(x: F8) -> F8 {
-    lanewise!(x, |k| super::bounds::round_cell(x.0[k]))
+    const BIG: f32 = 8_388_608.0; // 2²³
+    const SAT: f32 = 9_223_372_036_854_775_808.0; // 2⁶³
+    lanewise!(x, |k| {
+        let f = x.0[k] + 0.5;
+        let t = f as i32 as f32;
+        let small = if t > f { t - 1.0 } else { t };
+        let large = if f > SAT {
+            SAT
+        } else if f < -SAT {
+            -SAT
+        } else {
+            f
+        };
+        if f.abs() < BIG {
+            small
+        } else if f.is_nan() {
+            0.0
+        } else {
+            large
+        }
+    })
 }
 
 // ------------------------------------------------------------------ program
@@ -534,8 +558,16 @@ fn round_cell(x: F8) -> F8 {
 /// operator that does not split its distance) `safe` and `surface` are equal.
 #[derive(Clone, Debug)]
 enum Inst<'a> {
-    /// Push the shape's distance at the current point.
-    Shape { shape: Shape, material: u32 },
+    /// A shape, or a transformed shape: one instruction for the commonest
+    /// subtree.
+    Leaf(Leaf),
+    /// A union's child that is a [`Leaf`]: cull, evaluate and fold in one
+    /// instruction.
+    UnionLeaf {
+        sphere: Vec4,
+        leaf: Leaf,
+        split: bool,
+    },
     /// Push `(p − translation)·inv_scale`, rotated by `inv_rotation` if any.
     PushTransform {
         translation: Vec3,
@@ -610,6 +642,68 @@ enum Inst<'a> {
     Tree { node: &'a SdfNode, split: bool },
 }
 
+/// A shape in its own frame: `scale · shape((p − translation)·inv_scale`,
+/// rotated by `inv_rotation`).
+#[derive(Clone, Copy, Debug)]
+struct Leaf {
+    shape: Shape,
+    material: u32,
+    transform: Option<LeafTransform>,
+}
+
+#[derive(Clone, Copy, Debug)]
+struct LeafTransform {
+    translation: Vec3,
+    inv_scale: f32,
+    inv_rotation: Option<Quat>,
+    scale: f32,
+}
+
+impl Leaf {
+    /// The node as a leaf, if it is a shape or a transformed shape.
+    fn of(node: &SdfNode) -> Option<Leaf> {
+        match &node.op {
+            Op::Shape { shape, material } => Some(Leaf {
+                shape: *shape,
+                material: *material,
+                transform: None,
+            }),
+            Op::Transform(t) => match &t.child.op {
+                Op::Shape { shape, material } => Some(Leaf {
+                    shape: *shape,
+                    material: *material,
+                    transform: Some(LeafTransform {
+                        translation: t.translation,
+                        inv_scale: t.inv_scale,
+                        inv_rotation: t.rotated.then_some(t.inv_rotation),
+                        scale: t.scale,
+                    }),
+                }),
+                _ => None,
+            },
+            _ => None,
+        }
+    }
+
+    /// The distance at `p`: the transform's then the shape's operations, as
+    /// the tree does them.
+    #[inline(always)]
+    fn distance(&self, p: &V3) -> F8 {
+        match &self.transform {
+            None => shape_distance(&self.shape, *p),
+            Some(t) => {
+                let mut q = p
+                    .sub(V3::splat(t.translation))
+                    .scale(F8::splat(t.inv_scale));
+                if let Some(r) = t.inv_rotation {
+                    q = q.rotate(r);
+                }
+                shape_distance(&self.shape, q) * t.scale
+            }
+        }
+    }
+}
+
 /// An SDF tree as a flat program: see the [module](self) docs. Borrows the
 /// tree (scatter tables and per-lane fallbacks are read from it).
 #[derive(Clone, Debug)]
@@ -681,12 +775,19 @@ impl<'a> Compiler<'a> {
     /// Compile `node` as the tree's `split` (or, with `split` false, `eval`):
     /// leaves one value on the stack.
     fn node(&mut self, node: &'a SdfNode, split: bool) {
+        if let Some(leaf) = Leaf::of(node) {
+            self.code.push(Inst::Leaf(leaf));
+            self.push(VALUES, 1);
+            return;
+        }
         match &node.op {
+            // Taken by `Leaf::of` above; kept for completeness.
             Op::Shape { shape, material } => {
-                self.code.push(Inst::Shape {
+                self.code.push(Inst::Leaf(Leaf {
                     shape: *shape,
                     material: *material,
-                });
+                    transform: None,
+                }));
                 self.push(VALUES, 1);
             }
             Op::Transform(t) => {
@@ -706,6 +807,14 @@ impl<'a> Compiler<'a> {
                 });
                 self.push(VALUES, 1);
                 for (c, s) in children.iter().zip(spheres) {
+                    if let Some(leaf) = Leaf::of(c) {
+                        self.code.push(Inst::UnionLeaf {
+                            sphere: *s,
+                            leaf,
+                            split,
+                        });
+                        continue;
+                    }
                     let at = self.code.len();
                     self.code.push(Inst::UnionChild {
                         sphere: *s,
@@ -913,7 +1022,7 @@ impl<'a> SdfProgram<'a> {
     /// where that is cheaper than not; nothing panics). `scratch` must come
     /// from this program's [`scratch`](Self::scratch); another program's
     /// may panic.
-    #[inline]
+    #[inline(always)]
     pub fn eval_split(&self, p: &Points, active: LaneMask, scratch: &mut Scratch) -> SplitLanes {
         let v = self.run::<false>(V3::new(F8(p.x), F8(p.y), F8(p.z)), active, scratch);
         SplitLanes {
@@ -943,18 +1052,41 @@ impl<'a> SdfProgram<'a> {
         let code = &self.code;
         let mut pc = 0;
         while pc < code.len() {
-            let p = s.points[ps];
             match &code[pc] {
-                Inst::Shape { shape, material } => {
-                    let d = shape_distance(shape, p);
-                    s.values[vs] = Value::both(d, [*material; LANES]);
+                Inst::Leaf(leaf) => {
+                    let d = leaf.distance(&s.points[ps]);
+                    s.values[vs] = Value::both(d, [leaf.material; LANES]);
                     vs += 1;
+                }
+                Inst::UnionLeaf {
+                    sphere,
+                    leaf,
+                    split,
+                } => {
+                    let p = &s.points[ps];
+                    let acc = &mut s.values[vs - 1];
+                    let (needed, _) = cull(sphere, p, acc, s.masks[ms], *split);
+                    if needed != 0 {
+                        let d = leaf.distance(p);
+                        let lanes = bits_mask(needed);
+                        if *split {
+                            acc.safe = F8::select(lanes, acc.safe.min(d), acc.safe);
+                        }
+                        let better: M8 =
+                            core::array::from_fn(|k| lanes[k] && d.0[k] < acc.surf.0[k]);
+                        acc.surf = F8::select(better, d, acc.surf);
+                        acc.mat = select_u(better, [leaf.material; LANES], acc.mat);
+                        if !*split {
+                            acc.safe = acc.surf;
+                        }
+                    }
                 }
                 Inst::PushTransform {
                     translation,
                     inv_scale,
                     inv_rotation,
                 } => {
+                    let p = s.points[ps];
                     let mut q = p.sub(V3::splat(*translation)).scale(F8::splat(*inv_scale));
                     if let Some(r) = inv_rotation {
                         q = q.rotate(*r);
@@ -969,6 +1101,7 @@ impl<'a> SdfProgram<'a> {
                     v.surf = v.surf * *scale;
                 }
                 Inst::PushMirror { axes } => {
+                    let p = s.points[ps];
                     let mut q = p;
                     if axes[0] {
                         q.x = q.x.abs();
@@ -989,6 +1122,7 @@ impl<'a> SdfProgram<'a> {
                     hi,
                     guard,
                 } => {
+                    let p = s.points[ps];
                     let mut q = [p.x, p.y, p.z];
                     let mut wall = F8::splat(f32::INFINITY);
                     for (k, qk) in q.iter_mut().enumerate() {
@@ -1037,22 +1171,9 @@ impl<'a> SdfProgram<'a> {
                     skip,
                     split,
                 } => {
+                    let p = s.points[ps];
                     let acc = &mut s.values[vs - 1];
-                    let c = V3::splat(sphere.truncate());
-                    let d2 = {
-                        let e = p.sub(c);
-                        e.dot(e)
-                    };
-                    let reach = acc.surf + sphere.w;
-                    let skipped: M8 = core::array::from_fn(|k| {
-                        reach.0[k] >= 0.0 && d2.0[k] >= reach.0[k] * reach.0[k]
-                    });
-                    let needed = s.masks[ms] & !mask_bits(skipped);
-                    if *split {
-                        let bound = d2.sqrt() - sphere.w;
-                        let lanes = bits_mask(s.masks[ms] & mask_bits(skipped));
-                        acc.safe = F8::select(lanes, acc.safe.min(bound), acc.safe);
-                    }
+                    let (needed, _) = cull(sphere, &p, acc, s.masks[ms], *split);
                     if needed == 0 {
                         pc += *skip as usize;
                         continue;
@@ -1132,6 +1253,7 @@ impl<'a> SdfProgram<'a> {
                     material,
                     skip,
                 } => {
+                    let p = s.points[ps];
                     let b = aabb_distance(bounds, p);
                     s.values[vs] = Value::both(b, [*material; LANES]);
                     vs += 1;
@@ -1152,6 +1274,7 @@ impl<'a> SdfProgram<'a> {
                     *acc = Value::select(lanes, c, *acc);
                 }
                 Inst::BoundedSplitBegin { bounds } => {
+                    let p = s.points[ps];
                     s.walls[ws] = aabb_distance(bounds, p);
                     ws += 1;
                 }
@@ -1167,6 +1290,7 @@ impl<'a> SdfProgram<'a> {
                     templates,
                     split,
                 } => {
+                    let p = s.points[ps];
                     let v = if NESTED {
                         // Never compiled: nested scatters fall back to the tree.
                         Value::default()
@@ -1177,6 +1301,7 @@ impl<'a> SdfProgram<'a> {
                     vs += 1;
                 }
                 Inst::Tree { node, split } => {
+                    let p = s.points[ps];
                     let mut v = Value::default();
                     let m = s.masks[ms];
                     for k in 0..LANES {
@@ -1203,6 +1328,35 @@ impl<'a> SdfProgram<'a> {
         }
         s.values[0]
     }
+}
+
+/// A union's bound culling of one child against the accumulator `acc`, in
+/// the `active` lanes: the lanes that must evaluate the child, and those
+/// that skip it. A split union takes the skipped child's sphere distance
+/// into its safe step, as the tree does.
+#[inline(always)]
+fn cull(
+    sphere: &Vec4,
+    p: &V3,
+    acc: &mut Value,
+    active: LaneMask,
+    split: bool,
+) -> (LaneMask, LaneMask) {
+    let c = V3::splat(sphere.truncate());
+    let d2 = {
+        let e = p.sub(c);
+        e.dot(e)
+    };
+    let reach = acc.surf + sphere.w;
+    let skipped: M8 =
+        core::array::from_fn(|k| reach.0[k] >= 0.0 && d2.0[k] >= reach.0[k] * reach.0[k]);
+    let skipped = active & mask_bits(skipped);
+    if split && skipped != 0 {
+        let bound = d2.sqrt() - sphere.w;
+        let lanes = bits_mask(skipped);
+        acc.safe = F8::select(lanes, acc.safe.min(bound), acc.safe);
+    }
+    (active & !skipped, skipped)
 }
 
 /// `Scatter::split` (or its `eval` bound) lane-wise: each lane's cell and
@@ -1239,6 +1393,12 @@ fn scatter_lanes(
     let guard = wall + sc.margin;
     let i = f.sub(lo);
 
+    // The cell's index: `i` is clamped to the grid (NaN to its first cell),
+    // so every term is an integer below 2¹⁸ and exact in `f32`.
+    let idx: [i32; LANES] = {
+        let f = i.x + sc.dims[0] as f32 * (i.y + sc.dims[1] as f32 * i.z);
+        core::array::from_fn(|k| f.0[k] as i32)
+    };
     // Gather each lane's instance.
     const EMPTY: u32 = u32::MAX;
     let mut off = [F8::default(); 3];
@@ -1251,8 +1411,7 @@ fn scatter_lanes(
         if active & (1 << k) == 0 {
             continue;
         }
-        let idx =
-            i.x.0[k] as usize + sc.dims[0] * (i.y.0[k] as usize + sc.dims[1] * i.z.0[k] as usize);
+        let idx = idx[k] as usize;
         let Some(inst) = sc.instances.get(idx) else {
             continue;
         };

@@ -1,0 +1,511 @@
+//! Packets of rays in SIMD lanes: the sphere-traced methods with the field
+//! evaluated for [`LANES`] rays at once through the scene's compiled
+//! [`SdfProgram`].
+//!
+//! Each lane runs the scalar path's own state machine (the kernels'
+//! [`SphereMarch`] and [`march_step`], this module's [`ShadowRay`]), so every
+//! ray takes the steps, hits and samples it takes alone; only the field
+//! evaluations are shared. A lane whose ray has ended idles until the packet
+//! ends. Colours are summed in the scalar path's order, so frames are bit for
+//! bit those of one ray at a time (`tests/sdf.rs` compares them).
+//!
+//! - NoAA and SSAA: the rays of a row (every subsample of every pixel, in
+//!   pixel order) eight at a time: trace, normals (four packets of
+//!   tetrahedral taps), material, and each light's shadow rays as a packet.
+//! - CTSS and CTSS-R: the cones of a row eight at a time through the kernels'
+//!   stepper, their hit groups recorded, then shaded in packets of eight
+//!   samples (CTSS §5.1's delayed shading, which sums eq. 6 in the same order
+//!   as shading as soon as a group closes).
+
+use glam::{Vec2, Vec3};
+use subcone_kernels::aggregate::Aggregate;
+use subcone_kernels::ctss::{
+    march_step, normal_step, ConeStepper, CtssParams, FieldSample, SphereHit, SphereMarch, SplitRay,
+};
+use subcone_scene::sdf::program::{LaneMask, Points, Scratch, SdfProgram, SplitLanes, LANES};
+use subcone_scene::sdf::{tetra_normal_from, tetra_taps};
+use subcone_scene::RenderSettings;
+
+use super::{ConeFieldOf, SdfField, SdfView, Tally};
+
+/// All of the first `n` lanes.
+#[inline(always)]
+fn first(n: usize) -> LaneMask {
+    if n >= LANES {
+        LaneMask::MAX
+    } else {
+        ((1u16 << n) - 1) as LaneMask
+    }
+}
+
+#[inline(always)]
+fn lanes(m: LaneMask) -> impl Iterator<Item = usize> {
+    (0..LANES).filter(move |k| m & (1 << k) != 0)
+}
+
+/// A shadow ray's march towards a light (the scalar path's `shadowed`), one
+/// evaluation at a time.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct ShadowRay {
+    o: Vec3,
+    l: Vec3,
+    eps: f32,
+    t: f32,
+    limit: f32,
+    steps: u32,
+}
+
+impl ShadowRay {
+    /// From `p` (normal `n`, facing the light side) towards unit `l`, at most
+    /// `dist` (the light) or `max_distance` away.
+    #[inline(always)]
+    pub(super) fn new(p: Vec3, n: Vec3, l: Vec3, dist: f32, max_distance: f32) -> ShadowRay {
+        let eps = 1e-4 * (1.0 + p.length());
+        ShadowRay {
+            o: p + n * (4.0 * eps),
+            l,
+            eps,
+            t: 0.0,
+            limit: dist.min(max_distance),
+            steps: 0,
+        }
+    }
+
+    /// The next point to evaluate, or the answer (`false`: lit) when the
+    /// march ends before it.
+    #[inline(always)]
+    pub(super) fn next(&self, max_steps: u32) -> Result<Vec3, bool> {
+        if self.steps >= max_steps || self.t >= self.limit {
+            return Err(false);
+        }
+        Ok(self.o + self.l * self.t)
+    }
+
+    /// Takes the field at the point of [`next`](Self::next); the answer
+    /// (`true`: shadowed) when the march ends.
+    #[inline(always)]
+    pub(super) fn feed(&mut self, safe: f32, d: f32) -> Option<bool> {
+        self.steps += 1;
+        if d.is_nan() {
+            return Some(false);
+        }
+        if d < self.eps * (1.0 + self.t * 1e-3) {
+            return Some(true);
+        }
+        let next = self.t + safe.min(d);
+        self.t = if next > self.t {
+            next
+        } else {
+            self.t.next_up()
+        };
+        None
+    }
+}
+
+/// A hit-group sample waiting for shading.
+#[derive(Clone, Copy)]
+struct Pending {
+    q: Vec3,
+    n: Vec3,
+    w: f32,
+}
+
+/// One cone's trace, waiting for its samples' shading.
+#[derive(Clone, Copy)]
+struct PendingCone {
+    background_weight: f32,
+    end: usize,
+    samples: u32,
+}
+
+/// The packet renderer of one rayon task: the view, its program and the
+/// program's stacks, and row buffers kept from one row to the next.
+pub(super) struct Packets<'v, 'a, F: SdfField> {
+    view: &'v SdfView<'a, F>,
+    program: &'v SdfProgram<'a>,
+    scratch: Scratch,
+    rays: Vec<(Vec3, Vec3)>,
+    colors: Vec<Vec3>,
+    hits: Vec<bool>,
+    batch: Vec<Pending>,
+    lane_batch: [Vec<Pending>; LANES],
+    cones: Vec<PendingCone>,
+    sample_dirs: Vec<Vec3>,
+}
+
+impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
+    pub(super) fn new(view: &'v SdfView<'a, F>, program: &'v SdfProgram<'a>) -> Self {
+        Packets {
+            view,
+            program,
+            scratch: program.scratch(),
+            rays: Vec::new(),
+            colors: Vec::new(),
+            hits: Vec::new(),
+            batch: Vec::new(),
+            lane_batch: Default::default(),
+            cones: Vec::new(),
+            sample_dirs: Vec::new(),
+        }
+    }
+
+    /// The one call into the program: compiled once per instruction-set
+    /// path ([`Isa::run`](crate::isa::Isa::run) inlines the whole
+    /// interpreter into it), and called from every loop of this module.
+    #[inline(never)]
+    fn eval(&mut self, p: &Points, active: LaneMask) -> SplitLanes {
+        let (program, scratch) = (self.program, &mut self.scratch);
+        self.view.isa.run(
+            #[inline(always)]
+            || program.eval_split(p, active, scratch),
+        )
+    }
+
+    /// The rays of row `y`: `side²` subsamples per pixel, pixel by pixel, as
+    /// the scalar loop visits them.
+    fn row_rays(&mut self, y: usize, side: usize, s: &RenderSettings) {
+        self.rays.clear();
+        for x in 0..s.width as usize {
+            for sy in 0..side {
+                for sx in 0..side {
+                    let off = Vec2::new(
+                        (sx as f32 + 0.5) / side as f32,
+                        (sy as f32 + 0.5) / side as f32,
+                    );
+                    self.rays.push(self.view.camera.ray(
+                        Vec2::new(x as f32, y as f32) + off,
+                        s.width,
+                        s.height,
+                    ));
+                }
+            }
+        }
+    }
+
+    /// Sphere traces up to [`LANES`] rays together.
+    #[inline(always)]
+    fn trace(&mut self, rays: &[(Vec3, Vec3)], params: &CtssParams) -> [Option<SphereHit>; LANES] {
+        let mut m = [SphereMarch::new(params); LANES];
+        let mut out = [None; LANES];
+        let mut active = first(rays.len());
+        let mut pts = Points::default();
+        loop {
+            for k in lanes(active) {
+                match m[k].before_step(params) {
+                    Some(h) => {
+                        out[k] = Some(h);
+                        active &= !(1 << k);
+                    }
+                    None => {
+                        let (o, d) = rays[k];
+                        pts.set(k, o + m[k].t() * d);
+                    }
+                }
+            }
+            if active == 0 {
+                return out;
+            }
+            let r = self.eval(&pts, active);
+            for k in lanes(active) {
+                if let Some(h) = m[k].after_step(params, r.surface[k], r.safe[k]) {
+                    out[k] = Some(h);
+                    active &= !(1 << k);
+                }
+            }
+        }
+    }
+
+    /// The surface normals at `q` with difference steps `h` (the scalar
+    /// path's `normal_surface`), four packets of taps.
+    #[inline(always)]
+    fn normals(&mut self, q: &[Vec3; LANES], h: &[f32; LANES], active: LaneMask) -> [Vec3; LANES] {
+        let taps: [[Vec3; 4]; LANES] = std::array::from_fn(|k| tetra_taps(q[k], h[k]));
+        let mut d = [[0.0f32; 4]; LANES];
+        let mut pts = Points::default();
+        for i in 0..4 {
+            for k in lanes(active) {
+                pts.set(k, taps[k][i]);
+            }
+            let r = self.eval(&pts, active);
+            for k in lanes(active) {
+                d[k][i] = r.surface[k];
+            }
+        }
+        std::array::from_fn(|k| {
+            if active & (1 << k) != 0 {
+                tetra_normal_from(d[k])
+            } else {
+                Vec3::ZERO
+            }
+        })
+    }
+
+    /// Which of the `active` shadow rays are blocked.
+    #[inline(always)]
+    fn shadowed(&mut self, rays: &mut [ShadowRay; LANES], mut active: LaneMask) -> LaneMask {
+        let max_steps = self.view.max_steps;
+        let mut blocked = 0;
+        let mut pts = Points::default();
+        loop {
+            for k in lanes(active) {
+                match rays[k].next(max_steps) {
+                    Ok(p) => pts.set(k, p),
+                    Err(_) => active &= !(1 << k),
+                }
+            }
+            if active == 0 {
+                return blocked;
+            }
+            let r = self.eval(&pts, active);
+            for k in lanes(active) {
+                if let Some(b) = rays[k].feed(r.safe[k], r.surface[k]) {
+                    blocked |= (b as LaneMask) << k;
+                    active &= !(1 << k);
+                }
+            }
+        }
+    }
+
+    /// The scalar path's `shade` for each active lane: Lambert with hard
+    /// shadows (each light's shadow rays as one packet) and ambient light.
+    #[inline(always)]
+    fn shade(
+        &mut self,
+        q: &[Vec3; LANES],
+        n: &[Vec3; LANES],
+        dir: &[Vec3; LANES],
+        active: LaneMask,
+        tally: &mut Tally,
+    ) -> [Vec3; LANES] {
+        let view = self.view;
+        let mut pts = Points::default();
+        for k in lanes(active) {
+            pts.set(k, q[k]);
+        }
+        let mats = self.eval(&pts, active).material;
+        let mut albedo = [Vec3::ZERO; LANES];
+        let mut c = [Vec3::ZERO; LANES];
+        let mut facing = [Vec3::ZERO; LANES];
+        for k in lanes(active) {
+            let m = mats[k] as usize;
+            let mat = &view.materials[m.min(view.materials.len().saturating_sub(1))];
+            albedo[k] = mat.albedo_at(q[k], Vec2::ZERO);
+            facing[k] = if n[k].dot(dir[k]) > 0.0 { -n[k] } else { n[k] };
+            c[k] = mat.emission + view.ambient * albedo[k];
+        }
+        for light in view.lights {
+            let mut need: LaneMask = 0;
+            let mut inc = [None; LANES];
+            let mut cos = [0.0f32; LANES];
+            let mut rays = [ShadowRay::default(); LANES];
+            for k in lanes(active) {
+                let Some(i) = light.incident(q[k]) else {
+                    continue;
+                };
+                cos[k] = i.direction.dot(facing[k]);
+                if cos[k] <= 0.0 {
+                    continue;
+                }
+                rays[k] =
+                    ShadowRay::new(q[k], facing[k], i.direction, i.distance, view.max_distance);
+                inc[k] = Some(i);
+                need |= 1 << k;
+            }
+            tally.shadow += need.count_ones() as u64;
+            let blocked = self.shadowed(&mut rays, need);
+            for k in lanes(need & !blocked) {
+                if let Some(i) = inc[k] {
+                    c[k] += albedo[k] * std::f32::consts::FRAC_1_PI * cos[k] * i.irradiance;
+                }
+            }
+        }
+        c
+    }
+
+    /// One NoAA or SSAA row (the scalar path's pixel loop with `noaa`):
+    /// writes colours and samples per pixel; returns the pixels with more
+    /// samples than rays.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn sphere_row(
+        &mut self,
+        y: usize,
+        side: usize,
+        params: &CtssParams,
+        s: &RenderSettings,
+        row: &mut [Vec3],
+        spp_row: &mut [f32],
+        tally: &mut Tally,
+    ) -> u64 {
+        self.row_rays(y, side, s);
+        let rays = std::mem::take(&mut self.rays);
+        self.colors.clear();
+        self.hits.clear();
+        for chunk in rays.chunks(LANES) {
+            let hits = self.trace(chunk, params);
+            let mut q = [Vec3::ZERO; LANES];
+            let mut h = [0.0f32; LANES];
+            let mut dir = [Vec3::ZERO; LANES];
+            let mut hit: LaneMask = 0;
+            for (k, ray) in chunk.iter().enumerate() {
+                let Some(r) = hits[k] else { continue };
+                tally.steps += r.steps as u64;
+                if let Some(t) = r.t {
+                    q[k] = ray.0 + t * ray.1;
+                    h[k] = normal_step(t, params.tan_theta);
+                    dir[k] = ray.1;
+                    hit |= 1 << k;
+                }
+            }
+            tally.samples += hit.count_ones() as u64;
+            let n = self.normals(&q, &h, hit);
+            let c = self.shade(&q, &n, &dir, hit, tally);
+            for k in 0..chunk.len() {
+                let on = hit & (1 << k) != 0;
+                self.colors
+                    .push(if on { c[k] } else { self.view.background });
+                self.hits.push(on);
+            }
+        }
+        self.rays = rays;
+        let per_pixel = side * side;
+        let mut multi = 0;
+        for (x, (colors, hits)) in self
+            .colors
+            .chunks(per_pixel)
+            .zip(self.hits.chunks(per_pixel))
+            .enumerate()
+        {
+            let mut sum = Vec3::ZERO;
+            for c in colors {
+                sum += *c;
+            }
+            let samples = hits.iter().filter(|h| **h).count();
+            row[x] = sum / per_pixel as f32;
+            spp_row[x] = samples as f32;
+            if samples > per_pixel {
+                multi += 1;
+            }
+        }
+        multi
+    }
+
+    /// One CTSS (or CTSS-R, SSAA+CTSS) row: every cone of the row traced in
+    /// packets with its hit groups recorded, then the samples shaded in
+    /// packets and summed per cone in the order they were found (eq. 6).
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn cone_row(
+        &mut self,
+        y: usize,
+        side: usize,
+        params: &CtssParams,
+        s: &RenderSettings,
+        row: &mut [Vec3],
+        spp_row: &mut [f32],
+        tally: &mut Tally,
+    ) -> u64 {
+        self.row_rays(y, side, s);
+        let rays = std::mem::take(&mut self.rays);
+        self.batch.clear();
+        self.cones.clear();
+        self.sample_dirs.clear();
+        let view = self.view;
+        let mut pts = Points::default();
+        for chunk in rays.chunks(LANES) {
+            let cones: [SplitRay; LANES] = std::array::from_fn(|k| {
+                let (o, d) = chunk.get(k).copied().unwrap_or((Vec3::ZERO, Vec3::Z));
+                view.cone_ray(o, d)
+            });
+            let mut steppers: [ConeStepper; LANES] =
+                std::array::from_fn(|_| ConeStepper::new(params));
+            let mut active = first(chunk.len());
+            for b in &mut self.lane_batch {
+                b.clear();
+            }
+            while active != 0 {
+                for k in lanes(active) {
+                    pts.set(k, cones[k].origin + steppers[k].t() * cones[k].dir);
+                }
+                let r = self.eval(&pts, active);
+                for k in lanes(active) {
+                    let f = FieldSample {
+                        distance: r.surface[k],
+                        step: r.safe[k],
+                        object: r.material[k],
+                    };
+                    let out = &mut self.lane_batch[k];
+                    let going = march_step(
+                        params,
+                        &cones[k],
+                        &mut steppers[k],
+                        f,
+                        &mut ConeFieldOf(view.field),
+                        &mut |_, g| {
+                            out.push(Pending {
+                                q: g.point,
+                                n: g.normal,
+                                w: g.weight,
+                            })
+                        },
+                    );
+                    if !going {
+                        active &= !(1 << k);
+                    }
+                }
+            }
+            for (k, (_, d)) in chunk.iter().enumerate() {
+                let st = &steppers[k];
+                tally.steps += st.steps() as u64;
+                tally.samples += st.samples() as u64;
+                self.batch.extend_from_slice(&self.lane_batch[k]);
+                self.sample_dirs
+                    .extend(std::iter::repeat_n(*d, self.lane_batch[k].len()));
+                self.cones.push(PendingCone {
+                    background_weight: st.background_weight(),
+                    end: self.batch.len(),
+                    samples: st.samples(),
+                });
+            }
+        }
+        self.rays = rays;
+
+        // Shading, eight samples at a time.
+        let batch = std::mem::take(&mut self.batch);
+        let dirs = std::mem::take(&mut self.sample_dirs);
+        self.colors.clear();
+        for (b, d) in batch.chunks(LANES).zip(dirs.chunks(LANES)) {
+            let q = std::array::from_fn(|k| b.get(k).map_or(Vec3::ZERO, |p| p.q));
+            let n = std::array::from_fn(|k| b.get(k).map_or(Vec3::Y, |p| p.n));
+            let dir = std::array::from_fn(|k| d.get(k).copied().unwrap_or(Vec3::Z));
+            let c = self.shade(&q, &n, &dir, first(b.len()), tally);
+            self.colors.extend_from_slice(&c[..b.len()]);
+        }
+
+        let per_pixel = side * side;
+        let mut multi = 0;
+        let mut start = 0;
+        for (x, pixel) in self.cones.chunks(per_pixel).enumerate() {
+            let mut sum = Vec3::ZERO;
+            let mut samples = 0;
+            for cone in pixel {
+                let mut agg = Aggregate::new();
+                for (p, c) in batch[start..cone.end]
+                    .iter()
+                    .zip(&self.colors[start..cone.end])
+                {
+                    agg.add(p.w, *c);
+                }
+                start = cone.end;
+                sum += agg.resolve(view.background, cone.background_weight);
+                samples += cone.samples;
+            }
+            row[x] = sum / per_pixel as f32;
+            spp_row[x] = samples as f32;
+            if samples as usize > per_pixel {
+                multi += 1;
+            }
+        }
+        self.batch = batch;
+        self.sample_dirs = dirs;
+        multi
+    }
+}
