@@ -534,13 +534,7 @@ fn round_cell(x: F8) -> F8 {
         let f = x.0[k] + 0.5;
         let t = f as i32 as f32;
         let small = if t > f { t - 1.0 } else { t };
-        let large = if f > SAT {
-            SAT
-        } else if f < -SAT {
-            -SAT
-        } else {
-            f
-        };
+        let large = f.clamp(-SAT, SAT);
         if f.abs() < BIG {
             small
         } else if f.is_nan() {
@@ -1457,8 +1451,8 @@ fn scatter_lanes(
             let first = left.trailing_zeros() as usize;
             let t = template[first];
             let mut lanes = 0u8;
-            for k in 0..LANES {
-                if left & (1 << k) != 0 && template[k] == t {
+            for (k, tk) in template.iter().enumerate() {
+                if left & (1 << k) != 0 && *tk == t {
                     lanes |= 1 << k;
                 }
             }
