@@ -723,7 +723,7 @@ impl<F: SdfField> SdfView<'_, F> {
                     // (its split groups trace sub-cones of their own).
                     if let Some(pk) = packets
                         .as_mut()
-                        .filter(|_| !translucent && !(cone && params.splits_groups()))
+                        .filter(|_| !(translucent || cone && params.splits_groups()))
                     {
                         let side = side as usize;
                         t.multi += if cone {

@@ -359,10 +359,10 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
             tally.samples += hit.count_ones() as u64;
             let n = self.normals(&q, &h, hit);
             let c = self.shade(&q, &n, &dir, hit, tally);
-            for k in 0..chunk.len() {
+            for (k, ck) in c.iter().enumerate().take(chunk.len()) {
                 let on = hit & (1 << k) != 0;
                 self.colors
-                    .push(if on { c[k] } else { self.view.background });
+                    .push(if on { *ck } else { self.view.background });
                 self.hits.push(on);
             }
         }
