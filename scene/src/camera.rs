@@ -109,6 +109,7 @@ impl Camera {
     }
 
     /// Depth of a point along the view axis (what SRAA's `z` is).
+    #[inline]
     pub fn view_depth(&self, p: Vec3) -> f32 {
         (p - self.position).dot(self.forward)
     }
