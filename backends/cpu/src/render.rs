@@ -12,8 +12,9 @@ use subcone_kernels::sraa::{
 use subcone_scene::camera::CameraRays;
 use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderSettings};
 
+use crate::bvh::Hit;
 use crate::isa::Isa;
-use crate::shade::{Counts, Tracer, MAX_LIGHTS};
+use crate::shade::{Counts, Surface, Tracer, MAX_LIGHTS};
 
 /// Rows per rayon task: a band of the image, so neighbouring rays stay coherent.
 pub(crate) const BAND: usize = 4;
@@ -80,8 +81,16 @@ pub fn supersample(t: &Tracer, method: &Method, s: &RenderSettings, passes: Pass
     frame
 }
 
+/// Samples traced together in [`supersample_band`]: the rays of a batch are
+/// generated, then traversed, then their hits reconstructed, then shaded, each
+/// step as its own loop, so that the processor overlaps the long division and
+/// square-root chains of neighbouring rays instead of waiting on each.
+const BATCH: usize = 64;
+
 /// One band of [`supersample`]: `n`×`n` rays per pixel of `rows`, the rows
-/// from `band · BAND` on.
+/// from `band · BAND` on. Per ray the same operations as [`Tracer::radiance`]
+/// on each sample in turn, and each pixel's sum in the same order, so the
+/// same bits.
 #[inline(always)]
 fn supersample_band(
     t: &Tracer,
@@ -92,22 +101,51 @@ fn supersample_band(
     n: u32,
 ) -> Counts {
     let mut c = Counts::default();
-    // Row by row: no integer division per pixel.
-    let pixels = rows.chunks_mut(w).enumerate().flat_map(|(r, row)| {
+    let n = n.max(1) as usize;
+    let spp = n * n;
+    let mut ray = [(Vec3::ZERO, Vec3::ZERO); BATCH];
+    let mut hit: [Option<Hit>; BATCH] = [None; BATCH];
+    let mut surface: [Option<Surface>; BATCH] = [None; BATCH];
+    for (r, row) in rows.chunks_mut(w).enumerate() {
         let y = band * BAND + r;
-        row.iter_mut().enumerate().map(move |(x, out)| (x, y, out))
-    });
-    for (x, y, out) in pixels {
-        let mut sum = Vec3::ZERO;
-        for sy in 0..n {
-            for sx in 0..n {
+        // The next sample to generate: pixel `x`, sub-sample (`sx`, `sy`).
+        let (mut x, mut sx, mut sy) = (0usize, 0usize, 0usize);
+        // The pixel being summed and its samples so far.
+        let (mut px, mut taken, mut sum) = (0usize, 0usize, Vec3::ZERO);
+        let total = row.len() * spp;
+        let mut done = 0;
+        while done < total {
+            let m = BATCH.min(total - done);
+            for slot in &mut ray[..m] {
                 let off = Vec2::new((sx as f32 + 0.5) / n as f32, (sy as f32 + 0.5) / n as f32);
-                let (o, d) = rays.ray(Vec2::new(x as f32, y as f32) + off);
-                c.primary += 1;
-                sum += t.radiance(o, d, 0, &mut c);
+                *slot = rays.ray(Vec2::new(x as f32, y as f32) + off);
+                sx += 1;
+                if sx == n {
+                    sx = 0;
+                    sy += 1;
+                    if sy == n {
+                        sy = 0;
+                        x += 1;
+                    }
+                }
             }
+            for (h, (o, d)) in hit[..m].iter_mut().zip(&ray[..m]) {
+                *h = t.bvh.closest(*o, *d, 0.0, f32::INFINITY);
+            }
+            for ((s, h), (o, d)) in surface[..m].iter_mut().zip(&hit[..m]).zip(&ray[..m]) {
+                *s = h.map(|h| t.surface(*o, *d, h));
+            }
+            for (s, (_, d)) in surface[..m].iter().zip(&ray[..m]) {
+                c.primary += 1;
+                sum += t.radiance_at(*d, s.as_ref(), 0, &mut c);
+                taken += 1;
+                if taken == spp {
+                    row[px] = sum / spp as f32;
+                    (px, taken, sum) = (px + 1, 0, Vec3::ZERO);
+                }
+            }
+            done += m;
         }
-        *out = sum / (n * n) as f32;
     }
     c
 }

@@ -6,7 +6,7 @@ use subcone_kernels::ao::{ao_direction, ao_fraction, AO_RADIUS_FRACTION};
 use subcone_kernels::sraa::Geometry;
 use subcone_scene::{Camera, Scene, TriangleMesh};
 
-use crate::bvh::SceneBvh;
+use crate::bvh::{Hit, SceneBvh};
 use crate::isa::Isa;
 
 pub use subcone_kernels::passes::MAX_LIGHTS;
@@ -136,6 +136,13 @@ impl<'a> Tracer<'a> {
     #[inline(always)]
     pub fn intersect(&self, o: Vec3, d: Vec3, tmin: f32) -> Option<Surface> {
         let hit = self.bvh.closest(o, d, tmin, f32::INFINITY)?;
+        Some(self.surface(o, d, hit))
+    }
+
+    /// The surface a ray `o + t·d` hit: position, normals, texture
+    /// coordinates and material ([`Self::intersect`] after the traversal).
+    #[inline(always)]
+    pub fn surface(&self, o: Vec3, d: Vec3, hit: Hit) -> Surface {
         let tri = self.bvh.shading(hit.slot);
         // In SIMD lanes (`Vec3A`): the same operations in the same order as
         // scalar `Vec3`, so the same bits, in fewer instructions. The
@@ -161,14 +168,14 @@ impl<'a> Tracer<'a> {
         } else if n.dot(d) > 0.0 {
             n = -n;
         }
-        Some(Surface {
+        Surface {
             p: p.into(),
             n: n.into(),
             ng: ng.into(),
             uv: b0 * uv[0] + b1 * uv[1] + b2 * uv[2],
             material: tri.material,
             t: hit.t,
-        })
+        }
     }
 
     /// The SRAA geometry (normal and view depth) of a primary surface.
@@ -324,7 +331,21 @@ impl<'a> Tracer<'a> {
     /// ambient occlusion at `depth == 0` only.
     #[inline(always)]
     pub fn radiance(&self, o: Vec3, d: Vec3, depth: u32, c: &mut Counts) -> Vec3 {
-        let Some(s) = self.intersect(o, d, 0.0) else {
+        let s = self.intersect(o, d, 0.0);
+        self.radiance_at(d, s.as_ref(), depth, c)
+    }
+
+    /// [`Self::radiance`] of a ray along `d` that was already traced to
+    /// `surface` (`None`: a miss).
+    #[inline(always)]
+    pub fn radiance_at(
+        &self,
+        d: Vec3,
+        surface: Option<&Surface>,
+        depth: u32,
+        c: &mut Counts,
+    ) -> Vec3 {
+        let Some(&s) = surface else {
             return self.scene.background;
         };
         c.shaded += 1;
