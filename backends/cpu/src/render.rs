@@ -155,10 +155,11 @@ fn supersample_band(
 fn centre_aovs(t: &Tracer, s: &RenderSettings, frame: &mut Frame) {
     let w = s.width as usize;
     let lights = t.scene.lights.len().min(MAX_LIGHTS);
+    let cam = t.camera.rays(s.width, s.height);
     let g: Vec<(Geometry, Vec3, u32, f32)> = (0..w * s.height as usize)
         .into_par_iter()
         .map(|i| {
-            let (o, d) = t.camera.ray(pixel_centre(i % w, i / w), s.width, s.height);
+            let (o, d) = cam.ray(pixel_centre(i % w, i / w));
             let hit = t.intersect(o, d, 0.0);
             let (visible, mirror) = match &hit {
                 Some(h) => (
@@ -409,6 +410,9 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
         },
     };
     let mut timings = Vec::new();
+    // The camera's per-image constants, once (`CameraRays::ray` is
+    // `Camera::ray` bit for bit).
+    let cam = t.camera.rays(s.width, s.height);
 
     // Pass: shading of one sample per pixel.
     let start = Instant::now();
@@ -432,7 +436,7 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
                             for i in 0..geo.len() {
                                 let (x, y) = (i % w, bi * BAND + i / w);
                                 let p = pixel_centre(x, y) + shaded_offset;
-                                let (o, d) = t.camera.ray(p, s.width, s.height);
+                                let (o, d) = cam.ray(p);
                                 c.primary += 1;
                                 let v = &mut values[i * nl..(i + 1) * nl];
                                 let Some(sf) = t.intersect(o, d, 0.0) else {
@@ -613,7 +617,7 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
                                         continue;
                                     }
                                     let p = pixel_centre(x, y) + SUBPIXEL_OFFSETS[k];
-                                    let (o, d) = t.camera.ray(p, s.width, s.height);
+                                    let (o, d) = cam.ray(p);
                                     c.geometry += 1;
                                     let sf = t.intersect(o, d, 0.0);
                                     sub_geo[i][k] = t.primary_geometry(sf.as_ref());
