@@ -206,7 +206,7 @@ impl<'g> Resolver<'g> {
     /// subsample `k`'s layers, in layer order, from `Vec3::ZERO`.
     // Layer `i` indexes bit masks and the per-layer arrays alike.
     #[allow(clippy::needless_range_loop)]
-    #[inline]
+    #[inline(always)]
     fn add_group(
         &self,
         frame: &ShadedFrame,
@@ -472,7 +472,7 @@ struct Hood {
 }
 
 impl Hood {
-    #[inline]
+    #[inline(always)]
     fn new(frame: &ShadedFrame, x: u32, y: u32) -> Self {
         let mut valid = 0;
         let mut index = [0; SLOTS];
