@@ -108,6 +108,13 @@ fn supersample_band(
     let mut surface: [Option<Surface>; BATCH] = [None; BATCH];
     for (r, row) in rows.chunks_mut(w).enumerate() {
         let y = band * BAND + r;
+        // Each sub-row's image-plane coordinate (`n` ≤ 16 for every SSAA
+        // the methods name; more sub-rows are computed per ray).
+        let mut row_v = [0.0f32; 16];
+        for (sy, v) in row_v.iter_mut().enumerate().take(n) {
+            let off_y = (sy as f32 + 0.5) / n as f32;
+            *v = rays.v(y as f32 + off_y);
+        }
         // The next sample to generate: pixel `x`, sub-sample (`sx`, `sy`).
         let (mut x, mut sx, mut sy) = (0usize, 0usize, 0usize);
         // The pixel being summed and its samples so far.
@@ -117,8 +124,12 @@ fn supersample_band(
         while done < total {
             let m = BATCH.min(total - done);
             for slot in &mut ray[..m] {
+                // `rays.ray(p)` with the row's coordinate computed once per
+                // sub-row: the same operations, so the same ray.
                 let off = Vec2::new((sx as f32 + 0.5) / n as f32, (sy as f32 + 0.5) / n as f32);
-                *slot = rays.ray(Vec2::new(x as f32, y as f32) + off);
+                let p = Vec2::new(x as f32, y as f32) + off;
+                let v = row_v.get(sy).copied().unwrap_or_else(|| rays.v(p.y));
+                *slot = rays.through(rays.u(p.x), v);
                 sx += 1;
                 if sx == n {
                     sx = 0;
