@@ -4,6 +4,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{anyhow, Result};
+use subcone_cpu::isa::Isa;
 use subcone_cpu::CpuBackend;
 use subcone_scene::{Backend, Frame, Method, RenderSettings, Scene};
 
@@ -23,10 +24,20 @@ pub fn parse_size(s: &str) -> Result<(u32, u32)> {
 /// A backend by name (`cpu` or `wgpu`). Opening `wgpu` fails with a message
 /// naming the fix when no GPU adapter exists.
 pub fn backend(name: &str) -> Result<Box<dyn Backend + Send + Sync>> {
-    match name.trim() {
-        "cpu" => Ok(Box::new(CpuBackend::new())),
-        "wgpu" => Ok(Box::new(subcone_wgpu::WgpuBackend::new()?)),
-        other => Err(anyhow!("unknown backend {other:?}: expected cpu or wgpu")),
+    backend_on(name, None)
+}
+
+/// [`backend`], with the CPU backend's instruction-set path forced to `isa`
+/// ([`CpuBackend::with_isa`]); `isa` with another backend is an error.
+pub fn backend_on(name: &str, isa: Option<Isa>) -> Result<Box<dyn Backend + Send + Sync>> {
+    match (name.trim(), isa) {
+        ("cpu", Some(isa)) => Ok(Box::new(CpuBackend::new().with_isa(isa))),
+        (other, Some(_)) if other != "cpu" => Err(anyhow!(
+            "--isa chooses the cpu backend's instruction-set path; backend {other:?} has none"
+        )),
+        ("cpu", _) => Ok(Box::new(CpuBackend::new())),
+        ("wgpu", _) => Ok(Box::new(subcone_wgpu::WgpuBackend::new()?)),
+        (other, _) => Err(anyhow!("unknown backend {other:?}: expected cpu or wgpu")),
     }
 }
 
@@ -67,6 +78,8 @@ pub struct RenderReport {
     pub wall_ms: f64,
     /// What the backend ran on (for `wgpu`, the adapter and driver).
     pub backend: String,
+    /// The CPU backend's instruction-set path (`None` on other backends).
+    pub cpu_path: Option<Isa>,
 }
 
 impl RenderReport {
@@ -103,7 +116,11 @@ impl RenderReport {
     pub fn details(&self) -> String {
         let s = &self.frame.stats;
         let px = self.frame.width as f64 * self.frame.height as f64;
-        let mut out = format!("passes: {:?}\n", s.passes);
+        let mut out = String::new();
+        if let Some(isa) = self.cpu_path {
+            out += &format!("cpu path: {isa}\n");
+        }
+        out += &format!("passes: {:?}\n", s.passes);
         for t in &s.timings {
             out += &format!(
                 "  pass {:<14} {:>9.2} ms\n",
@@ -164,6 +181,9 @@ pub struct RenderOptions {
     pub aov: Option<Aov>,
     /// Output path.
     pub output: std::path::PathBuf,
+    /// CPU backend only: the instruction-set path (default: the widest the
+    /// CPU supports).
+    pub isa: Option<Isa>,
 }
 
 /// Check a method's parameters.
@@ -230,7 +250,7 @@ fn aov_frame(frame: &Frame, aov: Aov) -> Result<Frame> {
 /// read the typed reason), before anything is traced or written.
 pub fn render(opts: &RenderOptions) -> Result<RenderReport> {
     validate_method(&opts.method)?;
-    let backend = backend(&opts.backend)?;
+    let backend = backend_on(&opts.backend, opts.isa)?;
     let scene = scene(&opts.scene)?;
     backend.supports(&scene, &opts.method)?;
     let mut settings = RenderSettings::new(opts.width, opts.height);
@@ -249,13 +269,21 @@ pub fn render(opts: &RenderOptions) -> Result<RenderReport> {
     if let Some(aov) = opts.aov {
         aov_frame(&frame, aov)?.save(&aov_path(&opts.output, aov))?;
     }
+    let cpu_path = (opts.backend.trim() == "cpu")
+        .then(|| opts.isa.map_or_else(Isa::detected, Isa::or_supported));
     Ok(RenderReport {
+        cpu_path,
         backend: backend.describe(),
         scene: scene.name.clone(),
         method: opts.method,
         frame,
         wall_ms,
     })
+}
+
+/// Parse `--isa`: `baseline`, `avx2` or `avx512`.
+pub fn parse_isa(s: &str) -> std::result::Result<Isa, String> {
+    s.trim().parse()
 }
 
 /// A settings error, naming the `--ao` flag when it is about the AO rays.

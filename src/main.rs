@@ -87,9 +87,16 @@ enum Command {
         /// Print per-frame statistics (SDF evaluations, samples, multi-sample pixels).
         #[arg(long)]
         stats: bool,
-        /// List the passes run, their times, the rays cast and the buffers allocated.
+        /// List the passes run, their times, the rays cast and the buffers allocated
+        /// (and, on the cpu backend, its instruction-set path).
         #[arg(long)]
         verbose: bool,
+        /// The cpu backend's instruction-set path: baseline, avx2 or avx512
+        /// (default: the widest the CPU supports; an unsupported one falls
+        /// back to the widest supported below it). Every path renders the
+        /// same image bit for bit.
+        #[arg(long, value_parser = cli::parse_isa)]
+        isa: Option<subcone_cpu::isa::Isa>,
     },
 }
 
@@ -144,6 +151,7 @@ fn run() -> Result<()> {
             aov,
             stats,
             verbose,
+            isa,
         } => {
             let (width, height) = cli::parse_size(&size)?;
             let mut method: subcone_scene::Method = method.parse().with_context(|| "--method")?;
@@ -163,6 +171,7 @@ fn run() -> Result<()> {
                 ao_rays: ao,
                 aov,
                 output,
+                isa,
             };
             let report = cli::render(&opts)?;
             println!("{}", report.summary());

@@ -35,6 +35,10 @@ fn render_writes_png_and_exr_for_every_triangle_method() {
             ]);
             assert!(ok, "{method}: {text}");
             assert!(text.contains("pass "), "--verbose lists the passes: {text}");
+            assert!(
+                text.contains("cpu path: "),
+                "--verbose names the instruction-set path: {text}"
+            );
             let img = image::open(&out).unwrap();
             assert_eq!((img.width(), img.height()), (24, 16));
         }
@@ -46,7 +50,7 @@ fn bad_input_is_a_clear_error() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("x.png");
     let o = out.to_str().unwrap();
-    let cases: [(&[&str], &str); 8] = [
+    let cases: [(&[&str], &str); 10] = [
         (&["render", "--size", "0x0", "-o", o], "resolution"),
         (
             &["render", "--size", "100000x100000", "-o", o],
@@ -54,6 +58,14 @@ fn bad_input_is_a_clear_error() {
         ),
         (&["render", "--size", "abc", "-o", o], "--size"),
         (&["render", "--method", "ssaa5", "-o", o], "unknown method"),
+        (
+            &["render", "--isa", "sse9", "-o", o],
+            "unknown instruction set",
+        ),
+        (
+            &["render", "--backend", "wgpu", "--isa", "avx2", "-o", o],
+            "--isa",
+        ),
         (&["render", "--scene", "nope", "-o", o], "no built-in scene"),
         (
             &["render", "--scene", "/does/not/exist.obj", "-o", o],

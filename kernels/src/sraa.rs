@@ -771,7 +771,7 @@ where
 ///
 /// Domain: finite colours. A non-finite subsample is dropped and the others are
 /// averaged; with none finite, returns black.
-#[inline]
+#[inline(always)]
 pub fn resolve_pixel(subsamples: &[Vec3; 4]) -> Vec3 {
     let n = subsamples.iter().filter(|c| c.is_finite()).count();
     if n == 0 {

@@ -109,6 +109,7 @@ impl Camera {
     }
 
     /// Depth of a point along the view axis (what SRAA's `z` is).
+    #[inline]
     pub fn view_depth(&self, p: Vec3) -> f32 {
         (p - self.position).dot(self.forward)
     }
@@ -137,9 +138,28 @@ impl CameraRays {
     /// as [`Camera::ray`].
     #[inline]
     pub fn ray(&self, p: Vec2) -> (Vec3, Vec3) {
-        let (w, h, half) = (self.w, self.h, self.half);
-        let u = (2.0 * p.x / w - 1.0) * half * (w / h);
-        let v = (1.0 - 2.0 * p.y / h) * half;
+        self.through(self.u(p.x), self.v(p.y))
+    }
+
+    /// The horizontal image-plane coordinate of column `x` (pixels), for
+    /// [`Self::through`]: a renderer that sweeps a row computes each
+    /// column's once.
+    #[inline]
+    pub fn u(&self, x: f32) -> f32 {
+        (2.0 * x / self.w - 1.0) * self.half * (self.w / self.h)
+    }
+
+    /// The vertical image-plane coordinate of row `y` (pixels), for
+    /// [`Self::through`].
+    #[inline]
+    pub fn v(&self, y: f32) -> f32 {
+        (1.0 - 2.0 * y / self.h) * self.half
+    }
+
+    /// The ray through image-plane point `(u, v)`: `ray(p)` is
+    /// `through(u(p.x), v(p.y))`, bit for bit.
+    #[inline]
+    pub fn through(&self, u: f32, v: f32) -> (Vec3, Vec3) {
         let d = (self.forward + u * self.right + v * self.up).normalize();
         (self.position, d)
     }

@@ -129,6 +129,7 @@ impl Material {
     }
 
     /// Diffuse colour at world point `p` with surface coordinates `uv`.
+    #[inline(always)]
     pub fn albedo_at(&self, p: Vec3, uv: Vec2) -> Vec3 {
         match &self.albedo {
             Albedo::Solid(c) => *c,

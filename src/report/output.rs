@@ -277,6 +277,7 @@ pub fn json(s: &ReportSummary, ctx: &Context) -> Value {
         "version": code_version(),
         "machine": {
             "cpu": cpu_model(),
+            "cpu_path": subcone_cpu::isa::Isa::detected().name(),
             "threads": std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1),
         },
         "mode": ctx.mode.name(),
@@ -940,10 +941,11 @@ pub fn targets(s: &ReportSummary, ctx: &Context) -> String {
         md,
         "Each target as measured by this run (its sizes and runs; the targets are stated for \
 1280x720 on the CTSS scenes and 1024x1024 on `cornell` and Sponza). Ray throughput is \
-measured on the CPU backend at each triangle scene's timing size (median of the run's timed \
-passes; `cargo bench -p subcone-cpu --bench rays` measures the same passes with criterion), \
+measured on the CPU backend, on its {} path, at each triangle scene's timing size (median of \
+the run's timed passes, raw and pipeline on the same path; `cargo bench -p subcone-cpu --bench rays` measures the same passes with criterion), \
 ns per kernel call on one thread (\"a few ns\" read as ≤ {} ns; `cargo bench --bench kernels` \
 has the full set).\n",
+        subcone_cpu::isa::Isa::detected(),
         kernel_timing::FEW_NS
     );
     let _ = writeln!(md, "| target | backend | scenes | figure | met |");

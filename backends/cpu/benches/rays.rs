@@ -4,9 +4,12 @@
 //! times too.
 //!
 //! Mrays/s = elements/s of each group; the ratio pipeline/raw is the target
-//! (≥ 70 %). Sponza is read from `SUBCONE_DATA_DIR`.
+//! (≥ 70 %). Sponza is read from `SUBCONE_DATA_DIR`. Both run on the widest
+//! instruction-set path the CPU supports, or on `SUBCONE_ISA` (`baseline`,
+//! `avx2`, `avx512`); the path is printed first.
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use subcone_cpu::isa::Isa;
 use subcone_cpu::throughput::RayWorkload;
 use subcone_cpu::CpuBackend;
 use subcone_scene::load::scene_from_arg;
@@ -15,7 +18,14 @@ const W: u32 = 512;
 const H: u32 = 512;
 
 fn bench(c: &mut Criterion) {
-    let backend = CpuBackend::new();
+    let backend = match std::env::var("SUBCONE_ISA") {
+        Ok(name) => match name.parse::<Isa>() {
+            Ok(isa) => CpuBackend::new().with_isa(isa),
+            Err(e) => panic!("SUBCONE_ISA: {e}"),
+        },
+        Err(_) => CpuBackend::new(),
+    };
+    eprintln!("cpu path: {}", backend.isa());
     for name in ["cornell", "sponza"] {
         let scene = match scene_from_arg(name) {
             Ok(s) => s,

@@ -2,7 +2,7 @@
 
 use std::time::{Duration, Instant};
 
-use glam::{Vec3, Vec3A};
+use glam::{UVec2, Vec2, Vec3, Vec3A};
 use obvhs::cwbvh::builder::build_cwbvh_from_tris;
 use obvhs::cwbvh::CwBvh;
 use obvhs::ray::{Ray, RayHit};
@@ -17,6 +17,53 @@ pub struct Hit {
     pub t: f32,
     /// Index of the triangle in the scene's mesh.
     pub triangle: u32,
+    /// Index of the triangle in BVH order ([`SceneBvh::shading`]).
+    pub slot: u32,
+}
+
+/// What hit reconstruction reads of one triangle, precomputed once per
+/// scene and laid out in BVH order beside the intersector's triangles: the
+/// same values, computed by the same operations, that a hit would otherwise
+/// derive from the mesh each time.
+#[derive(Clone, Copy, Debug)]
+pub struct TriangleShading {
+    /// First vertex.
+    pub v0: Vec3A,
+    /// `v1 − v0`.
+    pub e1: Vec3A,
+    /// `v2 − v0`.
+    pub e2: Vec3A,
+    /// `e1 × e2` (twice the area, along the normal).
+    pub cross: Vec3A,
+    /// `|e1 × e2|²`, at least `f32::MIN_POSITIVE`.
+    pub area2: f32,
+    /// `e1 × e2` normalised (zero for a degenerate triangle).
+    pub normal: Vec3A,
+    /// Per-vertex shading normals.
+    pub normals: [Vec3A; 3],
+    /// Per-vertex texture coordinates.
+    pub uvs: [Vec2; 3],
+    /// Material index.
+    pub material: u32,
+}
+
+impl TriangleShading {
+    fn new(mesh: &TriangleMesh, i: usize) -> Self {
+        let [v0, v1, v2] = mesh.positions[i].map(Vec3A::from);
+        let (e1, e2) = (v1 - v0, v2 - v0);
+        let cross = e1.cross(e2);
+        TriangleShading {
+            v0,
+            e1,
+            e2,
+            cross,
+            area2: cross.length_squared().max(f32::MIN_POSITIVE),
+            normal: cross.normalize_or_zero(),
+            normals: mesh.normals[i].map(Vec3A::from),
+            uvs: mesh.uvs[i],
+            material: mesh.materials[i],
+        }
+    }
 }
 
 /// A CWBVH over a mesh, with the triangles laid out in BVH order.
@@ -27,6 +74,8 @@ pub struct SceneBvh {
     /// Whether each triangle (in BVH order) blocks shadow rays. Emitters do not:
     /// a point light placed at a drawn light quad must not be shadowed by it.
     casts_shadow: Vec<bool>,
+    /// Hit reconstruction data, in BVH order.
+    shading: Vec<TriangleShading>,
     /// Time the build took.
     pub build_time: Duration,
     /// Length of the scene's bounding-box diagonal, for ray offsets.
@@ -62,6 +111,11 @@ impl SceneBvh {
             .iter()
             .map(|&i| casts_shadow(i as usize))
             .collect();
+        let shading = bvh
+            .primitive_indices
+            .iter()
+            .map(|&i| TriangleShading::new(mesh, i as usize))
+            .collect();
         let scale = mesh
             .bounds()
             .map(|(lo, hi)| (hi - lo).length())
@@ -71,62 +125,111 @@ impl SceneBvh {
             bvh,
             triangles,
             casts_shadow,
+            shading,
             build_time: start.elapsed(),
             scale,
         }
     }
 
+    /// The hit reconstruction data of triangle `slot` (BVH order, [`Hit::slot`]).
+    #[inline(always)]
+    pub fn shading(&self, slot: u32) -> &TriangleShading {
+        &self.shading[slot as usize]
+    }
+
     /// Closest hit along `origin + t·dir`, `t` in `(tmin, tmax]`.
-    #[inline]
+    ///
+    /// obvhs' `CwBvh::ray_traverse`, written out here from its `traverse!`
+    /// macro so that the traversal and the intersector are inlined into the
+    /// caller, and so compiled for the instruction-set path it runs on
+    /// ([`crate::isa::Isa::run`]).
+    #[inline(always)]
     pub fn closest(&self, origin: Vec3, dir: Vec3, tmin: f32, tmax: f32) -> Option<Hit> {
         let ray = Ray::new(Vec3A::from(origin), Vec3A::from(dir), tmin, tmax);
+        let t = self.closest_slot(ray);
+        (t.0 < ray.tmax).then(|| Hit {
+            t: t.0,
+            triangle: self.bvh.primitive_indices[t.1 as usize],
+            slot: t.1,
+        })
+    }
+
+    /// `(t, slot)` of the closest hit of `ray` (`t` is `ray.tmax` or more on a miss).
+    #[inline(always)]
+    fn closest_slot(&self, ray: Ray) -> (f32, u32) {
         let mut hit = RayHit::none();
         let tris = &self.triangles;
-        if self
-            .bvh
-            .ray_traverse(ray, &mut hit, |r, id| tris[id].intersect(r))
-        {
-            let triangle = self.bvh.primitive_indices[hit.primitive_id as usize];
-            Some(Hit { t: hit.t, triangle })
-        } else {
-            None
+        let bvh = &self.bvh;
+        let mut traverse_ray = ray;
+        let mut state = bvh.new_traversal(ray.direction);
+        let mut node;
+        obvhs::traverse!(
+            bvh,
+            node,
+            state,
+            node.intersect_ray(&traverse_ray, state.oct_inv4),
+            {
+                let t = tris[state.primitive_id as usize].intersect(&traverse_ray);
+                if t < traverse_ray.tmax {
+                    hit.primitive_id = state.primitive_id;
+                    hit.t = t;
+                    traverse_ray.tmax = t;
+                }
+            }
+        );
+        (hit.t, hit.primitive_id)
+    }
+
+    /// Whether anything for which `blocks(slot)` holds crosses `ray`: obvhs'
+    /// `ray_traverse_miss`, written out from `traverse!` to be inlined.
+    #[inline(always)]
+    fn any_hit(&self, ray: Ray, blocks: impl Fn(usize) -> bool) -> bool {
+        let tris = &self.triangles;
+        let bvh = &self.bvh;
+        let mut state = bvh.new_traversal(ray.direction);
+        let mut node;
+        let mut hit = false;
+        'outer: {
+            obvhs::traverse!(
+                bvh,
+                node,
+                state,
+                node.intersect_ray(&ray, state.oct_inv4),
+                {
+                    let id = state.primitive_id as usize;
+                    if blocks(id) && tris[id].intersect(&ray) < ray.tmax {
+                        hit = true;
+                        break 'outer;
+                    }
+                }
+            );
         }
+        hit
     }
 
     /// Whether anything blocks `origin + t·dir` for `t` in `(tmin, tmax)`.
     /// (`ray_traverse_miss` stops at the first blocker; `ray_traverse_anyhit`
     /// would visit every one.)
-    #[inline]
+    #[inline(always)]
     pub fn occluded(&self, origin: Vec3, dir: Vec3, tmin: f32, tmax: f32) -> bool {
         let ray = Ray::new(Vec3A::from(origin), Vec3A::from(dir), tmin, tmax);
-        let (tris, casts) = (&self.triangles, &self.casts_shadow);
-        !self.bvh.ray_traverse_miss(ray, |r, id| {
-            if casts[id] {
-                tris[id].intersect(r)
-            } else {
-                f32::INFINITY
-            }
-        })
+        let casts = &self.casts_shadow;
+        self.any_hit(ray, |id| casts[id])
     }
 
     /// obvhs' raw `ray_traverse_miss`, for throughput comparisons: every
     /// triangle blocks, nothing else is done.
+    #[inline(always)]
     pub fn raw_occluded(&self, origin: Vec3, dir: Vec3, tmax: f32) -> bool {
         let ray = Ray::new(Vec3A::from(origin), Vec3A::from(dir), 0.0, tmax);
-        let tris = &self.triangles;
-        !self
-            .bvh
-            .ray_traverse_miss(ray, |r, id| tris[id].intersect(r))
+        self.any_hit(ray, |_| true)
     }
 
     /// The raw traversal, for throughput comparisons: closest hit of each ray,
     /// nothing else.
+    #[inline(always)]
     pub fn raw_closest_t(&self, origin: Vec3, dir: Vec3) -> f32 {
         let ray = Ray::new(Vec3A::from(origin), Vec3A::from(dir), 0.0, f32::INFINITY);
-        let mut hit = RayHit::none();
-        let tris = &self.triangles;
-        self.bvh
-            .ray_traverse(ray, &mut hit, |r, id| tris[id].intersect(r));
-        hit.t
+        self.closest_slot(ray).0
     }
 }

@@ -175,6 +175,12 @@ impl Backend for CpuBackend {
         "cpu"
     }
 
+    /// `cpu` and the instruction-set path its hot loops run on, e.g.
+    /// `cpu (AVX2 (x86-64-v3))`: what its timings were measured on.
+    fn describe(&self) -> String {
+        format!("cpu ({})", self.isa())
+    }
+
     /// Refuses more than [`MAX_LIGHTS`] lights, what the kernels refuse
     /// (`required_passes`), and on SDF scenes mirror reflections and the
     /// material gate; semi-transparent materials only with the SDF methods
@@ -215,6 +221,7 @@ impl Backend for CpuBackend {
         let mut tracer = Tracer::new(&bvh, scene, mesh, camera, settings.reflection_depth);
         tracer.exhaustive_subpixel_shadows = self.exhaustive_subpixel_shadows;
         tracer.ao_rays = settings.ao_rays;
+        tracer.isa = self.isa();
         let mut frame = match method.technique {
             Technique::NoAa | Technique::Ssaa | Technique::Fxaa => {
                 render::supersample(&tracer, method, settings, passes)

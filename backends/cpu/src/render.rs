@@ -9,9 +9,12 @@ use subcone_kernels::sraa::{
     neighbourhood, Geometry, Resolver, ShadedFrame, ShadedGroup, SraaParams, Subsamples,
     ALBEDO_TOLERANCE, SHADED_SAMPLE, SUBPIXEL_OFFSETS,
 };
+use subcone_scene::camera::CameraRays;
 use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderSettings};
 
-use crate::shade::{Counts, Tracer, MAX_LIGHTS};
+use crate::bvh::Hit;
+use crate::isa::Isa;
+use crate::shade::{Counts, Surface, Tracer, MAX_LIGHTS};
 
 /// Rows per rayon task: a band of the image, so neighbouring rays stay coherent.
 pub(crate) const BAND: usize = 4;
@@ -53,26 +56,11 @@ pub fn supersample(t: &Tracer, method: &Method, s: &RenderSettings, passes: Pass
         .par_chunks_mut(w * BAND)
         .enumerate()
         .map(|(band, rows)| {
-            let mut c = Counts::default();
-            // Row by row: no integer division per pixel.
-            let pixels = rows.chunks_mut(w).enumerate().flat_map(|(r, row)| {
-                let y = band * BAND + r;
-                row.iter_mut().enumerate().map(move |(x, out)| (x, y, out))
-            });
-            for (x, y, out) in pixels {
-                let mut sum = Vec3::ZERO;
-                for sy in 0..n {
-                    for sx in 0..n {
-                        let off =
-                            Vec2::new((sx as f32 + 0.5) / n as f32, (sy as f32 + 0.5) / n as f32);
-                        let (o, d) = rays.ray(Vec2::new(x as f32, y as f32) + off);
-                        c.primary += 1;
-                        sum += t.radiance(o, d, 0, &mut c);
-                    }
-                }
-                *out = sum / (n * n) as f32;
-            }
-            c
+            // The band's rays on the instruction-set path (`isa`).
+            t.isa.run(
+                #[inline(always)]
+                || supersample_band(t, &rays, band, rows, w, n),
+            )
         })
         .reduce(Counts::default, |a, b| a + b);
     frame.stats = FrameStats {
@@ -93,15 +81,96 @@ pub fn supersample(t: &Tracer, method: &Method, s: &RenderSettings, passes: Pass
     frame
 }
 
+/// Samples traced together in [`supersample_band`]: the rays of a batch are
+/// generated, then traversed, then their hits reconstructed, then shaded, each
+/// step as its own loop, so that the processor overlaps the long division and
+/// square-root chains of neighbouring rays instead of waiting on each.
+const BATCH: usize = 64;
+
+/// One band of [`supersample`]: `n`×`n` rays per pixel of `rows`, the rows
+/// from `band · BAND` on. Per ray the same operations as [`Tracer::radiance`]
+/// on each sample in turn, and each pixel's sum in the same order, so the
+/// same bits.
+#[inline(always)]
+fn supersample_band(
+    t: &Tracer,
+    rays: &CameraRays,
+    band: usize,
+    rows: &mut [Vec3],
+    w: usize,
+    n: u32,
+) -> Counts {
+    let mut c = Counts::default();
+    let n = n.max(1) as usize;
+    let spp = n * n;
+    let mut ray = [(Vec3::ZERO, Vec3::ZERO); BATCH];
+    let mut hit: [Option<Hit>; BATCH] = [None; BATCH];
+    let mut surface: [Option<Surface>; BATCH] = [None; BATCH];
+    for (r, row) in rows.chunks_mut(w).enumerate() {
+        let y = band * BAND + r;
+        // Each sub-row's image-plane coordinate (`n` ≤ 16 for every SSAA
+        // the methods name; more sub-rows are computed per ray).
+        let mut row_v = [0.0f32; 16];
+        for (sy, v) in row_v.iter_mut().enumerate().take(n) {
+            let off_y = (sy as f32 + 0.5) / n as f32;
+            *v = rays.v(y as f32 + off_y);
+        }
+        // The next sample to generate: pixel `x`, sub-sample (`sx`, `sy`).
+        let (mut x, mut sx, mut sy) = (0usize, 0usize, 0usize);
+        // The pixel being summed and its samples so far.
+        let (mut px, mut taken, mut sum) = (0usize, 0usize, Vec3::ZERO);
+        let total = row.len() * spp;
+        let mut done = 0;
+        while done < total {
+            let m = BATCH.min(total - done);
+            for slot in &mut ray[..m] {
+                // `rays.ray(p)` with the row's coordinate computed once per
+                // sub-row: the same operations, so the same ray.
+                let off = Vec2::new((sx as f32 + 0.5) / n as f32, (sy as f32 + 0.5) / n as f32);
+                let p = Vec2::new(x as f32, y as f32) + off;
+                let v = row_v.get(sy).copied().unwrap_or_else(|| rays.v(p.y));
+                *slot = rays.through(rays.u(p.x), v);
+                sx += 1;
+                if sx == n {
+                    sx = 0;
+                    sy += 1;
+                    if sy == n {
+                        sy = 0;
+                        x += 1;
+                    }
+                }
+            }
+            for (h, (o, d)) in hit[..m].iter_mut().zip(&ray[..m]) {
+                *h = t.bvh.closest(*o, *d, 0.0, f32::INFINITY);
+            }
+            for ((s, h), (o, d)) in surface[..m].iter_mut().zip(&hit[..m]).zip(&ray[..m]) {
+                *s = h.map(|h| t.surface(*o, *d, h));
+            }
+            for (s, (_, d)) in surface[..m].iter().zip(&ray[..m]) {
+                c.primary += 1;
+                sum += t.radiance_at(*d, s.as_ref(), 0, &mut c);
+                taken += 1;
+                if taken == spp {
+                    row[px] = sum / spp as f32;
+                    (px, taken, sum) = (px + 1, 0, Vec3::ZERO);
+                }
+            }
+            done += m;
+        }
+    }
+    c
+}
+
 /// The AOVs of the ray through each pixel centre (not timed): view depth,
 /// normal, albedo, per-light visibility and mirror reflectance.
 fn centre_aovs(t: &Tracer, s: &RenderSettings, frame: &mut Frame) {
     let w = s.width as usize;
     let lights = t.scene.lights.len().min(MAX_LIGHTS);
+    let cam = t.camera.rays(s.width, s.height);
     let g: Vec<(Geometry, Vec3, u32, f32)> = (0..w * s.height as usize)
         .into_par_iter()
         .map(|i| {
-            let (o, d) = t.camera.ray(pixel_centre(i % w, i / w), s.width, s.height);
+            let (o, d) = cam.ray(pixel_centre(i % w, i / w));
             let hit = t.intersect(o, d, 0.0);
             let (visible, mirror) = match &hit {
                 Some(h) => (
@@ -182,6 +251,19 @@ pub(crate) fn reconstruct_frame(
     w: usize,
     h: usize,
 ) {
+    reconstruct_frame_on(Isa::detected(), b, layout, params, color, w, h);
+}
+
+/// [`reconstruct_frame`] on instruction-set path `isa`.
+pub(crate) fn reconstruct_frame_on(
+    isa: Isa,
+    b: &Buffers,
+    layout: &LayerLayout,
+    params: &SraaParams,
+    color: &mut [Vec3],
+    w: usize,
+    h: usize,
+) {
     // Layer 0 of each group ungated, layer `1 + l` gated by light `l`.
     let mut gates = [None; MAX_LIGHTS + 1];
     for (l, g) in gates.iter_mut().enumerate().skip(1).take(layout.lights) {
@@ -213,12 +295,17 @@ pub(crate) fn reconstruct_frame(
     color
         .par_chunks_mut(w * BAND)
         .enumerate()
-        .for_each(|(band, rows)| reconstruct_band(b, layout, &resolver, &frame, band, rows, w));
+        .for_each(|(band, rows)| {
+            isa.run(
+                #[inline(always)]
+                || reconstruct_band(b, layout, &resolver, &frame, band, rows, w),
+            )
+        });
 }
 
-/// [`reconstruct_frame`] on one band of rows. Not inlined, so that a profile
-/// shows the antialiasing pass as one function.
-#[inline(never)]
+/// [`reconstruct_frame`] on one band of rows, inlined into the
+/// instruction-set path's function (which a profile shows as one function).
+#[inline(always)]
 fn reconstruct_band(
     b: &Buffers,
     layout: &LayerLayout,
@@ -334,6 +421,9 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
         },
     };
     let mut timings = Vec::new();
+    // The camera's per-image constants, once (`CameraRays::ray` is
+    // `Camera::ray` bit for bit).
+    let cam = t.camera.rays(s.width, s.height);
 
     // Pass: shading of one sample per pixel.
     let start = Instant::now();
@@ -350,121 +440,130 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
             .enumerate()
             .map(
                 |(bi, (((((geo, values), shadow), geo2), shadow2), albedo))| {
-                    let mut c = Counts::default();
-                    for i in 0..geo.len() {
-                        let (x, y) = (i % w, bi * BAND + i / w);
-                        let p = pixel_centre(x, y) + shaded_offset;
-                        let (o, d) = t.camera.ray(p, s.width, s.height);
-                        c.primary += 1;
-                        let v = &mut values[i * nl..(i + 1) * nl];
-                        let Some(sf) = t.intersect(o, d, 0.0) else {
-                            geo[i] = Geometry::MISS;
-                            v[0] = t.scene.background;
-                            if let Some(g2) = geo2.get_mut(i) {
-                                *g2 = NO_SECONDARY;
-                            }
-                            continue;
-                        };
-                        c.shaded += 1;
-                        geo[i] = t.primary_geometry(Some(&sf));
-                        if let Some(a) = albedo.get_mut(i) {
-                            *a = t.primary_albedo(Some(&sf));
-                        }
-                        let sh = if shadows {
-                            t.shadow_states(&sf, &mut c)
-                        } else {
-                            0
-                        };
-                        let ao = t.ambient_occlusion(&sf, &mut c);
-                        let parts = t.parts(&sf, sh, ao);
-                        let m = parts.mirror;
-                        let reflects = m > 0.0 && secondary_shading && t.reflection_depth > 0;
-                        if layout.single {
-                            let diffuse = parts.diffuse(lights);
-                            v[0] = if reflects {
-                                c.secondary += 1;
-                                let r = t.radiance(
-                                    sf.p + sf.ng * t.eps,
-                                    Tracer::reflect(d, sf.n),
-                                    1,
-                                    &mut c,
-                                );
-                                (1.0 - m) * diffuse + m * r
-                            } else if m > 0.0 {
-                                (1.0 - m) * diffuse
-                            } else {
-                                diffuse
-                            };
-                            continue;
-                        }
-                        // SRAA-RT layers: primary base, then one per light.
-                        if layout.lights > 0 {
-                            shadow[i] = sh;
-                            v[0] = (1.0 - m) * parts.base;
-                            for l in 0..layout.lights {
-                                v[1 + l] = (1.0 - m) * parts.direct[l];
-                            }
-                        } else {
-                            v[0] = (1.0 - m) * parts.diffuse(lights);
-                        }
-                        if !reflects {
-                            continue;
-                        }
-                        c.secondary += 1;
-                        let rd = Tracer::reflect(d, sf.n);
-                        let sb = layout.secondary_base();
-                        match t.intersect(sf.p + sf.ng * t.eps, rd, 0.0) {
-                            None => {
-                                if let Some(g2) = geo2.get_mut(i) {
-                                    *g2 = Geometry::MISS;
-                                }
-                                let bg = m * t.scene.background;
-                                if layout.secondary {
-                                    v[sb] = bg;
-                                } else {
-                                    v[0] += bg;
-                                }
-                            }
-                            Some(s2) => {
+                    t.isa.run(
+                        #[inline(always)]
+                        || {
+                            let mut c = Counts::default();
+                            for i in 0..geo.len() {
+                                let (x, y) = (i % w, bi * BAND + i / w);
+                                let p = pixel_centre(x, y) + shaded_offset;
+                                let (o, d) = cam.ray(p);
+                                c.primary += 1;
+                                let v = &mut values[i * nl..(i + 1) * nl];
+                                let Some(sf) = t.intersect(o, d, 0.0) else {
+                                    geo[i] = Geometry::MISS;
+                                    v[0] = t.scene.background;
+                                    if let Some(g2) = geo2.get_mut(i) {
+                                        *g2 = NO_SECONDARY;
+                                    }
+                                    continue;
+                                };
                                 c.shaded += 1;
-                                let sh2 = if shadows {
-                                    t.shadow_states(&s2, &mut c)
+                                geo[i] = t.primary_geometry(Some(&sf));
+                                if let Some(a) = albedo.get_mut(i) {
+                                    *a = t.primary_albedo(Some(&sf));
+                                }
+                                let sh = if shadows {
+                                    t.shadow_states(&sf, &mut c)
                                 } else {
                                     0
                                 };
-                                // No ambient occlusion at mirror hits.
-                                let p2 = t.parts(&s2, sh2, 1.0);
-                                let m2 = p2.mirror;
-                                let deeper = if m2 > 0.0 && t.reflection_depth > 1 {
-                                    c.secondary += 1;
-                                    t.radiance(
-                                        s2.p + s2.ng * t.eps,
-                                        Tracer::reflect(rd, s2.n),
-                                        2,
-                                        &mut c,
-                                    )
-                                } else {
-                                    Vec3::ZERO
-                                };
-                                if layout.secondary {
-                                    geo2[i] = Geometry::new(s2.n, sf.t + s2.t);
-                                    if layout.lights > 0 {
-                                        shadow2[i] = sh2;
-                                        v[sb] = m * ((1.0 - m2) * p2.base + m2 * deeper);
-                                        for l in 0..layout.lights {
-                                            v[sb + 1 + l] = m * (1.0 - m2) * p2.direct[l];
-                                        }
+                                let ao = t.ambient_occlusion(&sf, &mut c);
+                                let parts = t.parts(&sf, sh, ao);
+                                let m = parts.mirror;
+                                let reflects =
+                                    m > 0.0 && secondary_shading && t.reflection_depth > 0;
+                                if layout.single {
+                                    let diffuse = parts.diffuse(lights);
+                                    v[0] = if reflects {
+                                        c.secondary += 1;
+                                        let r = t.radiance(
+                                            sf.p + sf.ng * t.eps,
+                                            Tracer::reflect(d, sf.n),
+                                            1,
+                                            &mut c,
+                                        );
+                                        (1.0 - m) * diffuse + m * r
+                                    } else if m > 0.0 {
+                                        (1.0 - m) * diffuse
                                     } else {
-                                        v[sb] = m * ((1.0 - m2) * p2.diffuse(lights) + m2 * deeper);
+                                        diffuse
+                                    };
+                                    continue;
+                                }
+                                // SRAA-RT layers: primary base, then one per light.
+                                if layout.lights > 0 {
+                                    shadow[i] = sh;
+                                    v[0] = (1.0 - m) * parts.base;
+                                    for l in 0..layout.lights {
+                                        v[1 + l] = (1.0 - m) * parts.direct[l];
                                     }
                                 } else {
-                                    // Reflections forced off: fold them into the primary base.
-                                    v[0] += m * ((1.0 - m2) * p2.diffuse(lights) + m2 * deeper);
+                                    v[0] = (1.0 - m) * parts.diffuse(lights);
+                                }
+                                if !reflects {
+                                    continue;
+                                }
+                                c.secondary += 1;
+                                let rd = Tracer::reflect(d, sf.n);
+                                let sb = layout.secondary_base();
+                                match t.intersect(sf.p + sf.ng * t.eps, rd, 0.0) {
+                                    None => {
+                                        if let Some(g2) = geo2.get_mut(i) {
+                                            *g2 = Geometry::MISS;
+                                        }
+                                        let bg = m * t.scene.background;
+                                        if layout.secondary {
+                                            v[sb] = bg;
+                                        } else {
+                                            v[0] += bg;
+                                        }
+                                    }
+                                    Some(s2) => {
+                                        c.shaded += 1;
+                                        let sh2 = if shadows {
+                                            t.shadow_states(&s2, &mut c)
+                                        } else {
+                                            0
+                                        };
+                                        // No ambient occlusion at mirror hits.
+                                        let p2 = t.parts(&s2, sh2, 1.0);
+                                        let m2 = p2.mirror;
+                                        let deeper = if m2 > 0.0 && t.reflection_depth > 1 {
+                                            c.secondary += 1;
+                                            t.radiance(
+                                                s2.p + s2.ng * t.eps,
+                                                Tracer::reflect(rd, s2.n),
+                                                2,
+                                                &mut c,
+                                            )
+                                        } else {
+                                            Vec3::ZERO
+                                        };
+                                        if layout.secondary {
+                                            geo2[i] = Geometry::new(s2.n, sf.t + s2.t);
+                                            if layout.lights > 0 {
+                                                shadow2[i] = sh2;
+                                                v[sb] = m * ((1.0 - m2) * p2.base + m2 * deeper);
+                                                for l in 0..layout.lights {
+                                                    v[sb + 1 + l] = m * (1.0 - m2) * p2.direct[l];
+                                                }
+                                            } else {
+                                                v[sb] = m
+                                                    * ((1.0 - m2) * p2.diffuse(lights)
+                                                        + m2 * deeper);
+                                            }
+                                        } else {
+                                            // Reflections forced off: fold them into the primary base.
+                                            v[0] +=
+                                                m * ((1.0 - m2) * p2.diffuse(lights) + m2 * deeper);
+                                        }
+                                    }
                                 }
                             }
-                        }
-                    }
-                    c
+                            c
+                        },
+                    )
                 },
             )
             .reduce(Counts::default, |a, b| a + b)
@@ -500,75 +599,82 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
             .enumerate()
             .map(
                 |(bi, ((((sub_geo, sub_shadow), sub_geo2), sub_shadow2), sub_albedo))| {
-                    let mut c = Counts::default();
-                    for i in 0..sub_geo.len() {
-                        let (x, y) = (i % w, bi * BAND + i / w);
-                        let j = bi * band + i;
-                        // Computed on first use: a pixel whose subsamples all miss
-                        // needs neither.
-                        let mut primary_agree = None;
-                        let mut secondary_agree = None;
-                        for k in 0..4 {
-                            if Some(k) == shaded_subsample {
-                                sub_geo[i][k] = geo[j];
-                                if let Some(ss) = sub_shadow.get_mut(i) {
-                                    ss[k] = shadow[j];
-                                }
-                                if let Some(g2) = sub_geo2.get_mut(i) {
-                                    g2[k] = geo2.get(j).copied().unwrap_or(NO_SECONDARY);
-                                }
-                                if let Some(s2) = sub_shadow2.get_mut(i) {
-                                    s2[k] = shadow2.get(j).copied().unwrap_or(0);
-                                }
-                                if let Some(a) = sub_albedo.get_mut(i) {
-                                    a[k] = albedo[j];
-                                }
-                                continue;
-                            }
-                            let p = pixel_centre(x, y) + SUBPIXEL_OFFSETS[k];
-                            let (o, d) = t.camera.ray(p, s.width, s.height);
-                            c.geometry += 1;
-                            let sf = t.intersect(o, d, 0.0);
-                            sub_geo[i][k] = t.primary_geometry(sf.as_ref());
-                            if let Some(a) = sub_albedo.get_mut(i) {
-                                a[k] = t.primary_albedo(sf.as_ref());
-                            }
-                            let Some(sf) = sf else { continue };
-                            if let Some(ss) = sub_shadow.get_mut(i) {
-                                let (cast, inherited) =
-                                    *primary_agree.get_or_insert_with(|| agree(x, y, shadow, 0));
-                                ss[k] = t.shadow_states_masked(&sf, cast, inherited, &mut c);
-                            }
-                            if let Some(g2) = sub_geo2.get_mut(i) {
-                                let mat = &t.scene.materials[sf.material as usize];
-                                if mat.mirror > 0.0 && t.reflection_depth > 0 {
-                                    c.geometry += 1;
-                                    let rd = Tracer::reflect(d, sf.n);
-                                    g2[k] = match t.intersect(sf.p + sf.ng * t.eps, rd, 0.0) {
-                                        None => Geometry::MISS,
-                                        Some(s2) => {
-                                            if let Some(sh2) = sub_shadow2.get_mut(i) {
-                                                let (cast, inherited) = *secondary_agree
-                                                    .get_or_insert_with(|| {
-                                                        agree(
-                                                            x,
-                                                            y,
-                                                            shadow2,
-                                                            layout.secondary_base(),
-                                                        )
-                                                    });
-                                                sh2[k] = t.shadow_states_masked(
-                                                    &s2, cast, inherited, &mut c,
-                                                );
-                                            }
-                                            Geometry::new(s2.n, sf.t + s2.t)
+                    t.isa.run(
+                        #[inline(always)]
+                        || {
+                            let mut c = Counts::default();
+                            for i in 0..sub_geo.len() {
+                                let (x, y) = (i % w, bi * BAND + i / w);
+                                let j = bi * band + i;
+                                // Computed on first use: a pixel whose subsamples all miss
+                                // needs neither.
+                                let mut primary_agree = None;
+                                let mut secondary_agree = None;
+                                for k in 0..4 {
+                                    if Some(k) == shaded_subsample {
+                                        sub_geo[i][k] = geo[j];
+                                        if let Some(ss) = sub_shadow.get_mut(i) {
+                                            ss[k] = shadow[j];
                                         }
-                                    };
+                                        if let Some(g2) = sub_geo2.get_mut(i) {
+                                            g2[k] = geo2.get(j).copied().unwrap_or(NO_SECONDARY);
+                                        }
+                                        if let Some(s2) = sub_shadow2.get_mut(i) {
+                                            s2[k] = shadow2.get(j).copied().unwrap_or(0);
+                                        }
+                                        if let Some(a) = sub_albedo.get_mut(i) {
+                                            a[k] = albedo[j];
+                                        }
+                                        continue;
+                                    }
+                                    let p = pixel_centre(x, y) + SUBPIXEL_OFFSETS[k];
+                                    let (o, d) = cam.ray(p);
+                                    c.geometry += 1;
+                                    let sf = t.intersect(o, d, 0.0);
+                                    sub_geo[i][k] = t.primary_geometry(sf.as_ref());
+                                    if let Some(a) = sub_albedo.get_mut(i) {
+                                        a[k] = t.primary_albedo(sf.as_ref());
+                                    }
+                                    let Some(sf) = sf else { continue };
+                                    if let Some(ss) = sub_shadow.get_mut(i) {
+                                        let (cast, inherited) = *primary_agree
+                                            .get_or_insert_with(|| agree(x, y, shadow, 0));
+                                        ss[k] =
+                                            t.shadow_states_masked(&sf, cast, inherited, &mut c);
+                                    }
+                                    if let Some(g2) = sub_geo2.get_mut(i) {
+                                        let mat = &t.scene.materials[sf.material as usize];
+                                        if mat.mirror > 0.0 && t.reflection_depth > 0 {
+                                            c.geometry += 1;
+                                            let rd = Tracer::reflect(d, sf.n);
+                                            g2[k] = match t.intersect(sf.p + sf.ng * t.eps, rd, 0.0)
+                                            {
+                                                None => Geometry::MISS,
+                                                Some(s2) => {
+                                                    if let Some(sh2) = sub_shadow2.get_mut(i) {
+                                                        let (cast, inherited) = *secondary_agree
+                                                            .get_or_insert_with(|| {
+                                                                agree(
+                                                                    x,
+                                                                    y,
+                                                                    shadow2,
+                                                                    layout.secondary_base(),
+                                                                )
+                                                            });
+                                                        sh2[k] = t.shadow_states_masked(
+                                                            &s2, cast, inherited, &mut c,
+                                                        );
+                                                    }
+                                                    Geometry::new(s2.n, sf.t + s2.t)
+                                                }
+                                            };
+                                        }
+                                    }
                                 }
                             }
-                        }
-                    }
-                    c
+                            c
+                        },
+                    )
                 },
             )
             .reduce(Counts::default, |a, b| a + b)
@@ -581,7 +687,7 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
     // Pass 2 of the paper: reconstruction and resolve.
     let start = Instant::now();
     let mut frame = Frame::new(s.width, s.height);
-    reconstruct_frame(&b, &layout, &method.sraa, &mut frame.color, w, h);
+    reconstruct_frame_on(t.isa, &b, &layout, &method.sraa, &mut frame.color, w, h);
     timings.push(PassTiming {
         name: "antialiasing",
         time: start.elapsed(),

@@ -6,7 +6,8 @@ use subcone_kernels::ao::{ao_direction, ao_fraction, AO_RADIUS_FRACTION};
 use subcone_kernels::sraa::Geometry;
 use subcone_scene::{Camera, Scene, TriangleMesh};
 
-use crate::bvh::SceneBvh;
+use crate::bvh::{Hit, SceneBvh};
+use crate::isa::Isa;
 
 pub use subcone_kernels::passes::MAX_LIGHTS;
 
@@ -103,6 +104,9 @@ pub struct Tracer<'a> {
     pub ao_rays: u32,
     /// Their length: `AO_RADIUS_FRACTION` of the scene's bounding diagonal.
     pub ao_radius: f32,
+    /// The instruction-set path the passes run on (the widest the CPU
+    /// supports unless set); every path gives the same bits.
+    pub isa: Isa,
 }
 
 impl<'a> Tracer<'a> {
@@ -124,29 +128,37 @@ impl<'a> Tracer<'a> {
             exhaustive_subpixel_shadows: false,
             ao_rays: 0,
             ao_radius: bvh.scale * AO_RADIUS_FRACTION,
+            isa: Isa::detected(),
         }
     }
 
     /// Closest surface along a ray.
-    #[inline]
+    #[inline(always)]
     pub fn intersect(&self, o: Vec3, d: Vec3, tmin: f32) -> Option<Surface> {
         let hit = self.bvh.closest(o, d, tmin, f32::INFINITY)?;
-        let i = hit.triangle as usize;
+        Some(self.surface(o, d, hit))
+    }
+
+    /// The surface a ray `o + t·d` hit: position, normals, texture
+    /// coordinates and material ([`Self::intersect`] after the traversal).
+    #[inline(always)]
+    pub fn surface(&self, o: Vec3, d: Vec3, hit: Hit) -> Surface {
+        let tri = self.bvh.shading(hit.slot);
         // In SIMD lanes (`Vec3A`): the same operations in the same order as
-        // scalar `Vec3`, so the same bits, in fewer instructions.
-        let [v0, v1, v2] = self.mesh.positions[i].map(Vec3A::from);
+        // scalar `Vec3`, so the same bits, in fewer instructions. The
+        // triangle's edges, normal and area are precomputed by the same
+        // operations (`bvh::TriangleShading`).
         let (o, d) = (Vec3A::from(o), Vec3A::from(d));
         let p = o + hit.t * d;
         // Barycentrics from areas (independent of the intersector's convention).
-        let (e1, e2) = (v1 - v0, v2 - v0);
-        let ng = e1.cross(e2);
-        let area2 = ng.length_squared().max(f32::MIN_POSITIVE);
-        let b1 = (p - v0).cross(e2).dot(ng) / area2;
-        let b2 = e1.cross(p - v0).dot(ng) / area2;
+        let (v0, e1, e2, cross) = (tri.v0, tri.e1, tri.e2, tri.cross);
+        let area2 = tri.area2;
+        let b1 = (p - v0).cross(e2).dot(cross) / area2;
+        let b2 = e1.cross(p - v0).dot(cross) / area2;
         let b0 = 1.0 - b1 - b2;
-        let [n0, n1, n2] = self.mesh.normals[i].map(Vec3A::from);
-        let uv = self.mesh.uvs[i];
-        let mut ng = ng.normalize_or_zero();
+        let [n0, n1, n2] = tri.normals;
+        let uv = tri.uvs;
+        let mut ng = tri.normal;
         if ng.dot(d) > 0.0 {
             ng = -ng;
         }
@@ -156,17 +168,18 @@ impl<'a> Tracer<'a> {
         } else if n.dot(d) > 0.0 {
             n = -n;
         }
-        Some(Surface {
+        Surface {
             p: p.into(),
             n: n.into(),
             ng: ng.into(),
             uv: b0 * uv[0] + b1 * uv[1] + b2 * uv[2],
-            material: self.mesh.materials[i],
+            material: tri.material,
             t: hit.t,
-        })
+        }
     }
 
     /// The SRAA geometry (normal and view depth) of a primary surface.
+    #[inline(always)]
     pub fn primary_geometry(&self, s: Option<&Surface>) -> Geometry {
         match s {
             Some(s) => Geometry::new(s.n, self.camera.view_depth(s.p)),
@@ -178,6 +191,7 @@ impl<'a> Tracer<'a> {
     /// (`subcone_kernels::sraa::material_gated_weight`): the texture or
     /// pattern at the hit, the material's constant elsewhere; black for a
     /// miss (a miss never matches a hit anyway: its depth weight is 0).
+    #[inline(always)]
     pub fn primary_albedo(&self, s: Option<&Surface>) -> Vec3 {
         match s {
             Some(s) => self.scene.materials[s.material as usize].albedo_at(s.p, s.uv),
@@ -187,7 +201,7 @@ impl<'a> Tracer<'a> {
 
     /// Shadow states of `s` for every light (bit set = shadowed), casting one
     /// shadow ray per light that faces the surface.
-    #[inline]
+    #[inline(always)]
     pub fn shadow_states(&self, s: &Surface, c: &mut Counts) -> u32 {
         self.shadow_states_masked(s, u32::MAX, 0, c)
     }
@@ -196,7 +210,7 @@ impl<'a> Tracer<'a> {
     /// bit is set in `cast`. A light outside `cast` still gets the free answers
     /// (no incident light: lit; facing away: shadowed); where a ray would have
     /// decided, it takes its bit from `inherited` instead.
-    #[inline]
+    #[inline(always)]
     pub fn shadow_states_masked(
         &self,
         s: &Surface,
@@ -233,6 +247,7 @@ impl<'a> Tracer<'a> {
     /// bit `l` set when no geometry blocks the segment to light `l`. A light
     /// the surface faces away from is counted visible without a ray: its
     /// cosine falls smoothly to 0, so turning away is no shadow edge.
+    #[inline]
     pub fn light_visibility(&self, s: &Surface) -> u32 {
         let mut bits = 0;
         let origin = s.p + s.ng * self.eps;
@@ -258,6 +273,7 @@ impl<'a> Tracer<'a> {
     /// for shadow rays). A direction below the geometric surface (possible
     /// where the shading normal is interpolated) is occluded by the surface
     /// itself, without a ray. Exactly 1 when AO is off.
+    #[inline(always)]
     pub fn ambient_occlusion(&self, s: &Surface, c: &mut Counts) -> f32 {
         let n = self.ao_rays;
         if n == 0 {
@@ -283,6 +299,7 @@ impl<'a> Tracer<'a> {
     /// [`Self::ambient_occlusion`] at primary hits, 1 at mirror hits (AO is
     /// not applied to secondary shading). With `ao == 1` the parts are bit for
     /// bit those without ambient occlusion (`x · 1 = x`).
+    #[inline(always)]
     pub fn parts(&self, s: &Surface, shadowed: u32, ao: f32) -> Parts {
         let mat = &self.scene.materials[s.material as usize];
         let albedo = mat.albedo_at(s.p, s.uv);
@@ -312,8 +329,23 @@ impl<'a> Tracer<'a> {
 
     /// Full Whitted radiance along a ray, `depth` bounces already taken;
     /// ambient occlusion at `depth == 0` only.
+    #[inline(always)]
     pub fn radiance(&self, o: Vec3, d: Vec3, depth: u32, c: &mut Counts) -> Vec3 {
-        let Some(s) = self.intersect(o, d, 0.0) else {
+        let s = self.intersect(o, d, 0.0);
+        self.radiance_at(d, s.as_ref(), depth, c)
+    }
+
+    /// [`Self::radiance`] of a ray along `d` that was already traced to
+    /// `surface` (`None`: a miss).
+    #[inline(always)]
+    pub fn radiance_at(
+        &self,
+        d: Vec3,
+        surface: Option<&Surface>,
+        depth: u32,
+        c: &mut Counts,
+    ) -> Vec3 {
+        let Some(&s) = surface else {
             return self.scene.background;
         };
         c.shaded += 1;
@@ -327,10 +359,20 @@ impl<'a> Tracer<'a> {
         let diffuse = parts.diffuse(self.scene.lights.len().min(MAX_LIGHTS));
         if parts.mirror > 0.0 && depth < self.reflection_depth {
             c.secondary += 1;
-            let r = self.radiance(s.p + s.ng * self.eps, Self::reflect(d, s.n), depth + 1, c);
+            let r = self.reflected(s.p + s.ng * self.eps, Self::reflect(d, s.n), depth + 1, c);
             (1.0 - parts.mirror) * diffuse + parts.mirror * r
         } else {
             diffuse
         }
+    }
+
+    /// [`Self::radiance`] of a reflection ray: a call (the recursion cannot
+    /// be inlined) that enters the instruction-set path again.
+    #[inline(never)]
+    pub fn reflected(&self, o: Vec3, d: Vec3, depth: u32, c: &mut Counts) -> Vec3 {
+        self.isa.run(
+            #[inline(always)]
+            || self.radiance(o, d, depth, c),
+        )
     }
 }

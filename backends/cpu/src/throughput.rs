@@ -19,6 +19,9 @@
 //! - shadow, pipeline: the pipeline's shadow test of the same hits (which also
 //!   skips emitters and back-facing lights).
 //!
+//! Every pass runs on the backend's instruction-set path
+//! ([`CpuBackend::isa`]), so raw and pipeline are compared on the same one.
+//!
 //! ```
 //! use subcone_cpu::throughput::RayWorkload;
 //! use subcone_cpu::CpuBackend;
@@ -182,14 +185,25 @@ impl<'a> RayWorkload<'a> {
     /// obvhs' closest-hit traversal of every primary ray; returns the sum of
     /// the finite hit distances.
     pub fn raw_primary_pass(&self) -> f32 {
-        let bvh = &self.bvh;
+        let (bvh, isa) = (&self.bvh, self.backend.isa());
         self.rays
             .par_chunks(CHUNK)
             .map(|c| {
-                c.iter()
-                    .map(|(o, d)| bvh.raw_closest_t(*o, *d))
-                    .filter(|t| t.is_finite())
-                    .sum::<f32>()
+                // Plain loops: an iterator adaptor's `fold` would be a call
+                // out of the instruction-set path.
+                isa.run(
+                    #[inline(always)]
+                    || {
+                        let mut sum = 0.0f32;
+                        for (o, d) in c {
+                            let t = bvh.raw_closest_t(*o, *d);
+                            if t.is_finite() {
+                                sum += t;
+                            }
+                        }
+                        sum
+                    },
+                )
             })
             .sum()
     }
@@ -208,13 +222,20 @@ impl<'a> RayWorkload<'a> {
     /// obvhs' occlusion traversal of every shadow ray; returns how many are
     /// blocked.
     pub fn raw_shadow_pass(&self) -> usize {
-        let bvh = &self.bvh;
+        let (bvh, isa) = (&self.bvh, self.backend.isa());
         self.shadow_rays
             .par_chunks(CHUNK)
             .map(|c| {
-                c.iter()
-                    .filter(|(o, d, t)| bvh.raw_occluded(*o, *d, *t))
-                    .count()
+                isa.run(
+                    #[inline(always)]
+                    || {
+                        let mut blocked = 0;
+                        for (o, d, t) in c {
+                            blocked += usize::from(bvh.raw_occluded(*o, *d, *t));
+                        }
+                        blocked
+                    },
+                )
             })
             .sum()
     }
@@ -226,15 +247,23 @@ impl<'a> RayWorkload<'a> {
             return Ok(0);
         };
         let mesh = lit.mesh().ok_or_else(no_mesh)?;
-        let tracer = Tracer::new(&self.bvh, lit, mesh, &self.camera, 1);
+        let mut tracer = Tracer::new(&self.bvh, lit, mesh, &self.camera, 1);
+        tracer.isa = self.backend.isa();
         Ok(self
             .hits
             .par_chunks(CHUNK)
             .map(|c| {
-                let mut counts = Default::default();
-                c.iter()
-                    .map(|s| tracer.shadow_states(s, &mut counts).count_ones() as usize)
-                    .sum::<usize>()
+                tracer.isa.run(
+                    #[inline(always)]
+                    || {
+                        let mut counts = Default::default();
+                        let mut shadowed = 0;
+                        for s in c {
+                            shadowed += tracer.shadow_states(s, &mut counts).count_ones() as usize;
+                        }
+                        shadowed
+                    },
+                )
             })
             .sum())
     }

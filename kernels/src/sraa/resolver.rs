@@ -168,6 +168,7 @@ impl<'g> Resolver<'g> {
     /// a pixel outside the image reconstructs from the in-image part of its
     /// neighbourhood (possibly nothing: black), and entries missing from a
     /// short slice read as a miss, no shadow and black; never a panic.
+    #[inline(always)]
     pub fn resolve(
         &self,
         frame: &ShadedFrame,
@@ -205,6 +206,7 @@ impl<'g> Resolver<'g> {
     /// subsample `k`'s layers, in layer order, from `Vec3::ZERO`.
     // Layer `i` indexes bit masks and the per-layer arrays alike.
     #[allow(clippy::needless_range_loop)]
+    #[inline(always)]
     fn add_group(
         &self,
         frame: &ShadedFrame,
@@ -378,6 +380,7 @@ impl<'g> Resolver<'g> {
     }
 
     /// Any radius: the per-subsample path over [`neighbourhood`].
+    #[inline]
     fn resolve_generic(
         &self,
         frame: &ShadedFrame,
@@ -406,6 +409,7 @@ impl<'g> Resolver<'g> {
     /// One subsample's layers of one group, summed: [`reconstruct_layers`]
     /// (or its material-gated form) over [`neighbourhood`].
     #[allow(clippy::too_many_arguments)]
+    #[inline]
     fn subsample_generic(
         &self,
         frame: &ShadedFrame,
@@ -468,6 +472,7 @@ struct Hood {
 }
 
 impl Hood {
+    #[inline(always)]
     fn new(frame: &ShadedFrame, x: u32, y: u32) -> Self {
         let mut valid = 0;
         let mut index = [0; SLOTS];
