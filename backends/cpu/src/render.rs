@@ -239,22 +239,11 @@ impl Buffers {
     }
 }
 
-/// Pass 2 of SRAA (the paper's antialiasing pass): every layer of every
-/// subsample reconstructed from the neighbourhood's shaded samples (eq. 1,
-/// gated by eq. 2 per light), then the box resolve of the four subsamples
-/// into the frame's colours, by the kernels' [`Resolver`].
-pub(crate) fn reconstruct_frame(
-    b: &Buffers,
-    layout: &LayerLayout,
-    params: &SraaParams,
-    color: &mut [Vec3],
-    w: usize,
-    h: usize,
-) {
-    reconstruct_frame_on(Isa::detected(), b, layout, params, color, w, h);
-}
-
-/// [`reconstruct_frame`] on instruction-set path `isa`.
+/// Pass 2 of SRAA (the paper's antialiasing pass) on instruction-set path
+/// `isa`: every layer of every subsample reconstructed from the
+/// neighbourhood's shaded samples (eq. 1, gated by eq. 2 per light), then the
+/// box resolve of the four subsamples into the frame's colours, by the
+/// kernels' [`Resolver`].
 pub(crate) fn reconstruct_frame_on(
     isa: Isa,
     b: &Buffers,

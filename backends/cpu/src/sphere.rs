@@ -14,7 +14,7 @@
 
 use std::time::Instant;
 
-use crate::render::{bands, pixel_centre, reconstruct_frame, shadow_agreement, Buffers, BAND};
+use crate::render::{bands, pixel_centre, reconstruct_frame_on, shadow_agreement, Buffers, BAND};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use subcone_kernels::aggregate::Aggregate;
@@ -577,7 +577,7 @@ impl<F: SdfField> SdfView<'_, F> {
         // Pass 2 of the paper: reconstruction and resolve.
         let start = Instant::now();
         let mut frame = Frame::new(s.width, s.height);
-        reconstruct_frame(&b, &layout, &method.sraa, &mut frame.color, w, h);
+        reconstruct_frame_on(self.isa, &b, &layout, &method.sraa, &mut frame.color, w, h);
         timings.push(PassTiming {
             name: "antialiasing",
             time: start.elapsed(),
