@@ -7,7 +7,10 @@
 //! `materials_used()` and at most `max_material()`, at any point (NaN too);
 //! `normal`, `normal_central` and `normal_surface` are finite unit vectors at
 //! any point and step; a scene accepts exactly the trees whose materials
-//! exist, and `Scene::sdf` accepts every scene `SdfScene::new` built.
+//! exist, and `Scene::sdf` accepts every scene `SdfScene::new` built; the
+//! tree's compiled program (`sdf::program`) gives `eval_split`'s values bit
+//! for bit (NaN payloads aside) in every lane, at any point, with any lanes
+//! active.
 //!
 //! Asserted inside the documented domain of `SdfNode` ("for finite `p`, with
 //! `|p|` and every size well inside f32 range, say below 10¹⁸"): `eval` and
@@ -442,6 +445,7 @@ fn check_tree(node: &SdfNode, input: &Input, dom: &Domain) {
         .take(MAX_POINTS)
         .map(|p| v3(*p))
         .collect();
+    check_program(node, &points);
     for (i, &p) in points.iter().enumerate() {
         let (d, m) = node.eval(p);
         assert!(used.contains(&m), "eval({p}) material {m} not in {used:?}");
@@ -501,6 +505,39 @@ fn check_tree(node: &SdfNode, input: &Input, dom: &Domain) {
                     p.distance(q)
                 );
             }
+        }
+    }
+}
+
+/// The compiled program against the tree, eight points at a time (the
+/// points rotated through the lanes, every other lane inactive in odd
+/// packets).
+fn check_program(node: &SdfNode, points: &[Vec3]) {
+    use subcone_scene::sdf::program::{Points, SdfProgram, LANES};
+    if points.is_empty() {
+        return;
+    }
+    let program = SdfProgram::compile(node);
+    let mut scratch = program.scratch();
+    for start in 0..points.len() {
+        let mut pts = Points::default();
+        for k in 0..LANES {
+            pts.set(k, points[(start + k) % points.len()]);
+        }
+        let active = if start % 2 == 0 { 0xff } else { 0x55 };
+        let out = program.eval_split(&pts, active, &mut scratch);
+        for k in (0..LANES).filter(|k| active & (1 << k) != 0) {
+            let want = node.eval_split(pts.get(k));
+            let got = out.get(k);
+            // Bit for bit; a NaN's payload is not part of the contract.
+            let same = |a: f32, b: f32| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
+            assert!(
+                same(want.safe, got.safe)
+                    && same(want.surface, got.surface)
+                    && want.material == got.material,
+                "program at {}: {got:?}, tree: {want:?}",
+                pts.get(k)
+            );
         }
     }
 }

@@ -292,7 +292,7 @@ pub(crate) fn reconstruct_frame_on(
         });
 }
 
-/// [`reconstruct_frame`] on one band of rows, inlined into the
+/// [`reconstruct_frame_on`] on one band of rows, inlined into the
 /// instruction-set path's function (which a profile shows as one function).
 #[inline(always)]
 fn reconstruct_band(

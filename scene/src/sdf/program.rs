@@ -1011,7 +1011,8 @@ impl<'a> SdfProgram<'a> {
         s
     }
 
-    /// The tree's [`SdfNode::eval_split`] at each lane's point, bit for bit.
+    /// The tree's [`SdfNode::eval_split`] at each lane's point, bit for bit
+    /// (a NaN may carry another payload).
     /// Lanes outside `active` hold unspecified values (they are computed
     /// where that is cheaper than not; nothing panics). `scratch` must come
     /// from this program's [`scratch`](Self::scratch); another program's
