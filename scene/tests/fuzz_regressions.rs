@@ -30,6 +30,32 @@ fn sdf_normal_of_tiny_differences_is_unit() {
     }
 }
 
+/// A flat, wide capped cone (half height 1/256, radii 10⁻³⁰ and 87): the
+/// projection onto its slanted side is nearly vertical, and Quilez's sign
+/// test (`cb.x < 0`) rounded to "outside" on the axis, so the field jumped
+/// from `−h` to `+h` there and the tree stopped being 1-Lipschitz. The side
+/// is now tested by a cross product.
+#[test]
+fn flat_wide_capped_cone_is_inside_on_its_axis() {
+    let (h, r1, r2) = (1.0 / 256.0, 1e-30, 22359.0 / 256.0);
+    for cone in [
+        SdfNode::capped_cone(h, r1, r2).unwrap(),
+        SdfNode::capped_cone(h, r2, r1).unwrap(),
+    ] {
+        let d0 = cone.eval(Vec3::ZERO).0;
+        assert!((d0 + h).abs() < 1e-6, "f(0) = {d0}, want {}", -h);
+        let q = Vec3::new(0.001, -0.0005, 0.00025);
+        let dq = cone.eval(q).0;
+        assert!(
+            (d0 - dq).abs() <= q.length() * 1.0001,
+            "f(0) = {d0}, f({q}) = {dq}"
+        );
+        // Far outside radially, and above the top, stays outside.
+        assert!(cone.eval(Vec3::new(200.0, 0.0, 0.0)).0 > 0.0);
+        assert!(cone.eval(Vec3::new(0.0, 2.0 * h, 0.0)).0 > 0.0);
+    }
+}
+
 /// A central difference that is NaN along `y` only (the point at
 /// `y = f32::MAX` steps to `∞`, and the plane's `0 · ∞` is NaN): the
 /// largest-component scale skipped the NaN and the normal came out NaN; it

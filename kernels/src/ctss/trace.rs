@@ -249,9 +249,10 @@ where
 
 /// One step of [`march`]: `f` is the field at `ray.origin + stepper.t()·ray.dir`.
 /// Advances the stepper and, when a group closes, takes its normal and mask
-/// from `field` and calls `on_hit`. Returns whether the march goes on. A
-/// caller that evaluates the field for several cones together (SIMD lanes)
-/// runs [`march`] as this, one step per cone and packet.
+/// from `field` and calls `on_hit` ([`close_group`]). Returns whether the
+/// march goes on. A caller that evaluates the field for several cones
+/// together (SIMD lanes) runs [`march`] as this, one step per cone and
+/// packet, or as [`ConeStepper::advance_object`] then [`close_group`].
 #[inline]
 pub fn march_step<F, H>(
     params: &CtssParams,
@@ -268,24 +269,70 @@ where
     match stepper.advance_object(f.distance, f.step, f.object) {
         Event::March => true,
         Event::Sample(s) => {
-            let point = ray.origin + s.t * ray.dir;
-            let normal = field.normal(point, normal_step(s.t, params.tan_theta));
-            let mask = group_mask(params, ray, &s, normal, field);
-            let (visible, weight) = stepper.record_mask(mask);
-            on_hit(
-                field,
-                &GroupHit {
-                    sample: s,
-                    point,
-                    normal,
-                    visible,
-                    weight,
-                },
-            );
+            close_group(params, ray, stepper, s, field, on_hit);
             true
         }
         Event::Stop(_) => false,
     }
+}
+
+/// What [`march_step`] does with a group `s` the stepper has closed: the
+/// normal at the shading point (Algorithm 1, line 16), the group's mask
+/// ([`group_mask`], eq. 7–8) recorded in the stepper (line 19), then
+/// `on_hit`.
+#[inline]
+pub fn close_group<F, H>(
+    params: &CtssParams,
+    ray: &SplitRay,
+    stepper: &mut ConeStepper,
+    s: GroupSample,
+    field: &mut F,
+    on_hit: &mut H,
+) where
+    F: ConeField + ?Sized,
+    H: FnMut(&mut F, &GroupHit),
+{
+    let point = ray.origin + s.t * ray.dir;
+    let normal = field.normal(point, normal_step(s.t, params.tan_theta));
+    let mask = group_mask(params, ray, &s, normal, field);
+    let (visible, weight) = stepper.record_mask(mask);
+    on_hit(
+        field,
+        &GroupHit {
+            sample: s,
+            point,
+            normal,
+            visible,
+            weight,
+        },
+    );
+}
+
+/// The depths along the ray whose normals [`close_group`] takes for the
+/// group `s`, each at `ray.origin + t·ray.dir` with step
+/// [`normal_step`]`(t, tan θ)`: the shading point, then those
+/// [`group_mask`] may ask for. The first `n` entries of the array are used;
+/// repeated depths are listed once. A renderer that evaluates fields in
+/// SIMD lanes computes these normals for several cones together and serves
+/// them to [`close_group`] from a cache; [`group_mask`]'s other evaluations
+/// (the sheet test) are not listed.
+pub fn group_normal_depths(params: &CtssParams, s: &GroupSample) -> ([f32; 4], usize) {
+    let mut out = [s.t; 4];
+    let mut n = 1;
+    let mut add = |t: f32| {
+        if !out[..n].iter().any(|u| u.to_bits() == t.to_bits()) {
+            out[n] = t;
+            n += 1;
+        }
+    };
+    if needs_normal(s.occlusion, params.placement()) {
+        if !params.is_paper() {
+            add(s.t_first);
+            add(s.t_last);
+        }
+        add(s.t_occlusion);
+    }
+    (out, n)
 }
 
 /// Trace one pixel's cone with CTSS (Algorithm 1) through `field`, shading

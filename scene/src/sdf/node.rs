@@ -1343,15 +1343,9 @@ impl SdfNode {
     /// the differences never vanish in `f32` far from the origin; a zero or
     /// non-finite gradient gives `+y`.
     pub fn normal(&self, p: Vec3, h: f32) -> Vec3 {
-        const K: [Vec3; 4] = [
-            Vec3::new(1.0, -1.0, -1.0),
-            Vec3::new(-1.0, -1.0, 1.0),
-            Vec3::new(-1.0, 1.0, -1.0),
-            Vec3::new(1.0, 1.0, 1.0),
-        ];
         let h = step(p, h);
         let mut n = Vec3::ZERO;
-        for k in K {
+        for k in TETRA {
             n += k * self.distance(p + k * h);
         }
         unit_or_up(n)
@@ -1389,32 +1383,28 @@ fn skip_sphere(c: &SdfNode) -> Vec4 {
     centre.extend(radius + slack)
 }
 
+/// The corners of the tetrahedral differences (Quilez): `n ∝ Σ k f(p + k h)`.
+const TETRA: [Vec3; 4] = [
+    Vec3::new(1.0, -1.0, -1.0),
+    Vec3::new(-1.0, -1.0, 1.0),
+    Vec3::new(-1.0, 1.0, -1.0),
+    Vec3::new(1.0, 1.0, 1.0),
+];
+
 /// The four points of [`SdfNode::normal_surface`]'s tetrahedral differences
 /// at `p` with step `h` (raised to 16 ulps of `p`'s largest coordinate).
 #[inline]
 pub fn tetra_taps(p: Vec3, h: f32) -> [Vec3; 4] {
-    const K: [Vec3; 4] = [
-        Vec3::new(1.0, -1.0, -1.0),
-        Vec3::new(-1.0, -1.0, 1.0),
-        Vec3::new(-1.0, 1.0, -1.0),
-        Vec3::new(1.0, 1.0, 1.0),
-    ];
     let h = step(p, h);
-    K.map(|k| p + k * h)
+    TETRA.map(|k| p + k * h)
 }
 
 /// [`SdfNode::normal_surface`] from the surface distances at the four
 /// [`tetra_taps`], in their order: `Σ k·d`, normalised (or `+y`).
 #[inline]
 pub fn tetra_normal_from(d: [f32; 4]) -> Vec3 {
-    const K: [Vec3; 4] = [
-        Vec3::new(1.0, -1.0, -1.0),
-        Vec3::new(-1.0, -1.0, 1.0),
-        Vec3::new(-1.0, 1.0, -1.0),
-        Vec3::new(1.0, 1.0, 1.0),
-    ];
     let mut n = Vec3::ZERO;
-    for (k, d) in K.into_iter().zip(d) {
+    for (k, d) in TETRA.into_iter().zip(d) {
         n += k * d;
     }
     unit_or_up(n)

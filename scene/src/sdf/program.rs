@@ -329,20 +329,12 @@ impl V3 {
     /// glam's `Quat * Vec3` (SSE2): `v(w² − b·b) + b(2 v·b) + (b × v)(2w)`.
     #[inline(always)]
     fn rotate(self, q: Quat) -> V3 {
-        let (bx, by, bz, w) = (q.x, q.y, q.z, q.w);
-        let b2 = (bx * bx + by * by) + bz * bz;
-        let ww = w * w - b2;
-        let vb2 = ((self.x * bx + self.y * by) + self.z * bz) * 2.0;
-        let w2 = w * 2.0;
-        // b × v, as glam's SSE2 `cross` forms it.
-        let cx = by * self.z - self.y * bz;
-        let cy = bz * self.x - self.z * bx;
-        let cz = bx * self.y - self.x * by;
-        V3::new(
-            (self.x * ww + bx * vb2) + cx * w2,
-            (self.y * ww + by * vb2) + cy * w2,
-            (self.z * ww + bz * vb2) + cz * w2,
-        )
+        self.rotate_lanes([
+            F8::splat(q.x),
+            F8::splat(q.y),
+            F8::splat(q.z),
+            F8::splat(q.w),
+        ])
     }
     /// [`V3::rotate`] by a different quaternion per lane.
     #[inline(always)]
@@ -352,6 +344,7 @@ impl V3 {
         let ww = w * w - b2;
         let vb2 = ((self.x * bx + self.y * by) + self.z * bz) * 2.0;
         let w2 = w * 2.0;
+        // b × v, as glam's SSE2 `cross` forms it.
         let cx = by * self.z - self.y * bz;
         let cy = bz * self.x - self.z * bx;
         let cz = bx * self.y - self.x * by;
@@ -472,7 +465,8 @@ fn sd_capped_cone(p: V3, h: f32, r1: f32, r2: f32) -> F8 {
     };
     let cbx = (qx - k1x) + k2x * s;
     let cby = (qy - k1y) + k2y * s;
-    let inside: M8 = core::array::from_fn(|k| cbx.0[k] < 0.0 && cay.0[k] < 0.0);
+    let side = (qy + h) * k2x - (qx - r1) * k2y;
+    let inside: M8 = core::array::from_fn(|k| side.0[k] > 0.0 && cay.0[k] < 0.0);
     let sign = F8::select(inside, F8::splat(-1.0), F8::splat(1.0));
     sign * (cax * cax + cay * cay).min(cbx * cbx + cby * cby).sqrt()
 }

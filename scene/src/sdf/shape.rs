@@ -513,7 +513,12 @@ fn sd_capped_cone(p: Vec3, h: f32, r1: f32, r2: f32) -> f32 {
         0.0
     };
     let cb = q - k1 + k2 * s;
-    let sign = if cb.x < 0.0 && ca.y < 0.0 { -1.0 } else { 1.0 };
+    // Inside the slanted side: `q` left of the edge from the bottom corner
+    // `(r1, −h)` to the top one, by the cross product. Quilez's test,
+    // `cb.x < 0`, loses its sign to rounding on flat wide cones (`cb` nearly
+    // vertical), which made the axis of such a cone read as outside.
+    let side = k2.x * (q.y + h) - k2.y * (q.x - r1);
+    let sign = if side > 0.0 && ca.y < 0.0 { -1.0 } else { 1.0 };
     sign * ca.length_squared().min(cb.length_squared()).sqrt()
 }
 

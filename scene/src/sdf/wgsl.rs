@@ -94,7 +94,8 @@ fn sd_capped_cone(p: vec3<f32>, h: f32, r1: f32, r2: f32) -> f32 {
         s = clamp(dot(k1 - q, k2) / k2k2, 0.0, 1.0);
     }
     let cb = q - k1 + k2 * s;
-    let sgn = select(1.0, -1.0, cb.x < 0.0 && ca.y < 0.0);
+    let side = k2.x * (q.y + h) - k2.y * (q.x - r1);
+    let sgn = select(1.0, -1.0, side > 0.0 && ca.y < 0.0);
     return sgn * sqrt(min(dot(ca, ca), dot(cb, cb)));
 }
 // shape.rs sd_octahedron

@@ -3,7 +3,7 @@
 //! [`SdfProgram`].
 //!
 //! Each lane runs the scalar path's own state machine (the kernels'
-//! [`SphereMarch`] and [`march_step`], this module's [`ShadowRay`]), so every
+//! [`SphereMarch`] and [`march_step`](subcone_kernels::ctss::march_step), this module's [`ShadowRay`]), so every
 //! ray takes the steps, hits and samples it takes alone; only the field
 //! evaluations are shared. A lane whose ray has ended idles until the packet
 //! ends. Colours are summed in the scalar path's order, so frames are bit for
@@ -13,14 +13,18 @@
 //!   pixel order) eight at a time: trace, normals (four packets of
 //!   tetrahedral taps), material, and each light's shadow rays as a packet.
 //! - CTSS and CTSS-R: the cones of a row eight at a time through the kernels'
-//!   stepper, their hit groups recorded, then shaded in packets of eight
-//!   samples (CTSS §5.1's delayed shading, which sums eq. 6 in the same order
-//!   as shading as soon as a group closes).
+//!   stepper. The normals of the groups that close at a step (the shading
+//!   point's and those of the group's mask, [`group_normal_depths`]) are
+//!   taken in packets too, then each group is closed as [`march_step`](subcone_kernels::ctss::march_step)
+//!   closes it ([`close_group`]). The hit groups are recorded, then shaded
+//!   in packets of eight samples (CTSS §5.1's delayed shading, which sums
+//!   eq. 6 in the same order as shading as soon as a group closes).
 
 use glam::{Vec2, Vec3};
 use subcone_kernels::aggregate::Aggregate;
 use subcone_kernels::ctss::{
-    march_step, normal_step, ConeStepper, CtssParams, FieldSample, SphereHit, SphereMarch, SplitRay,
+    close_group, group_normal_depths, normal_step, ConeField, ConeStepper, CtssParams, Event,
+    FieldSample, GroupSample, SphereHit, SphereMarch, SplitRay,
 };
 use subcone_scene::sdf::program::{LaneMask, Points, Scratch, SdfProgram, SplitLanes, LANES};
 use subcone_scene::sdf::{tetra_normal_from, tetra_taps};
@@ -110,6 +114,32 @@ struct Pending {
     w: f32,
 }
 
+/// A [`ConeField`] that serves the normals computed in packets for the
+/// groups closing at this step, and asks the field for anything else.
+struct NormalCache<'c, F: SdfField> {
+    field: ConeFieldOf<'c, F>,
+    /// Point and step of each normal computed.
+    at: &'c [(Vec3, f32)],
+    normals: &'c [Vec3],
+}
+
+impl<F: SdfField> ConeField for NormalCache<'_, F> {
+    fn sample(&mut self, p: Vec3) -> FieldSample {
+        self.field.sample(p)
+    }
+
+    fn normal(&mut self, p: Vec3, h: f32) -> Vec3 {
+        let same = |(q, g): &(Vec3, f32)| {
+            q.to_array().map(f32::to_bits) == p.to_array().map(f32::to_bits)
+                && g.to_bits() == h.to_bits()
+        };
+        match self.at.iter().position(same) {
+            Some(i) => self.normals[i],
+            None => self.field.normal(p, h),
+        }
+    }
+}
+
 /// One cone's trace, waiting for its samples' shading.
 #[derive(Clone, Copy)]
 struct PendingCone {
@@ -131,6 +161,8 @@ pub(super) struct Packets<'v, 'a, F: SdfField> {
     lane_batch: [Vec<Pending>; LANES],
     cones: Vec<PendingCone>,
     sample_dirs: Vec<Vec3>,
+    normal_at: Vec<(Vec3, f32)>,
+    normal_values: Vec<Vec3>,
 }
 
 impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
@@ -146,6 +178,8 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
             lane_batch: Default::default(),
             cones: Vec::new(),
             sample_dirs: Vec::new(),
+            normal_at: Vec::new(),
+            normal_values: Vec::new(),
         }
     }
 
@@ -216,28 +250,42 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
     }
 
     /// The surface normals at `q` with difference steps `h` (the scalar
-    /// path's `normal_surface`), four packets of taps.
+    /// path's `normal_surface`) in the `active` lanes.
     #[inline(always)]
     fn normals(&mut self, q: &[Vec3; LANES], h: &[f32; LANES], active: LaneMask) -> [Vec3; LANES] {
-        let taps: [[Vec3; 4]; LANES] = std::array::from_fn(|k| tetra_taps(q[k], h[k]));
-        let mut d = [[0.0f32; 4]; LANES];
+        let mut at = std::mem::take(&mut self.normal_at);
+        let mut values = std::mem::take(&mut self.normal_values);
+        at.clear();
+        at.extend(lanes(active).map(|k| (q[k], h[k])));
+        self.normals_at(&at, &mut values);
+        let mut out = [Vec3::ZERO; LANES];
+        for (k, n) in lanes(active).zip(&values) {
+            out[k] = *n;
+        }
+        self.normal_at = at;
+        self.normal_values = values;
+        out
+    }
+
+    /// The surface normals at each point and step of `at` (the scalar
+    /// path's `normal_surface`), appended to `out` after clearing it. The
+    /// four taps of each normal go side by side, two normals per packet.
+    #[inline(always)]
+    fn normals_at(&mut self, at: &[(Vec3, f32)], out: &mut Vec<Vec3>) {
+        out.clear();
         let mut pts = Points::default();
-        for i in 0..4 {
-            for k in lanes(active) {
-                pts.set(k, taps[k][i]);
+        for pair in at.chunks(LANES / 4) {
+            for (i, &(q, h)) in pair.iter().enumerate() {
+                for (j, tap) in tetra_taps(q, h).into_iter().enumerate() {
+                    pts.set(4 * i + j, tap);
+                }
             }
-            let r = self.eval(&pts, active);
-            for k in lanes(active) {
-                d[k][i] = r.surface[k];
+            let r = self.eval(&pts, first(4 * pair.len()));
+            for i in 0..pair.len() {
+                let d = std::array::from_fn(|j| r.surface[4 * i + j]);
+                out.push(tetra_normal_from(d));
             }
         }
-        std::array::from_fn(|k| {
-            if active & (1 << k) != 0 {
-                tetra_normal_from(d[k])
-            } else {
-                Vec3::ZERO
-            }
-        })
     }
 
     /// Which of the `active` shadow rays are blocked.
@@ -389,6 +437,56 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
         multi
     }
 
+    /// Closes the groups of the lanes in `closing` as [`march_step`](subcone_kernels::ctss::march_step) would
+    /// ([`close_group`]), their normals taken in packets first.
+    #[inline(always)]
+    fn close_groups(
+        &mut self,
+        params: &CtssParams,
+        cones: &[SplitRay; LANES],
+        steppers: &mut [ConeStepper; LANES],
+        closing: &[Option<GroupSample>; LANES],
+    ) {
+        let tan = params.tan_theta;
+        self.normal_at.clear();
+        for (k, g) in closing.iter().enumerate() {
+            let Some(g) = g else { continue };
+            let (depths, n) = group_normal_depths(params, g);
+            for &t in &depths[..n] {
+                self.normal_at
+                    .push((cones[k].origin + t * cones[k].dir, normal_step(t, tan)));
+            }
+        }
+        let at = std::mem::take(&mut self.normal_at);
+        let mut values = std::mem::take(&mut self.normal_values);
+        self.normals_at(&at, &mut values);
+        self.normal_values = values;
+        let mut field = NormalCache {
+            field: ConeFieldOf(self.view.field),
+            at: &at,
+            normals: &self.normal_values,
+        };
+        for (k, g) in closing.iter().enumerate() {
+            let Some(g) = *g else { continue };
+            let out = &mut self.lane_batch[k];
+            close_group(
+                params,
+                &cones[k],
+                &mut steppers[k],
+                g,
+                &mut field,
+                &mut |_, hit| {
+                    out.push(Pending {
+                        q: hit.point,
+                        n: hit.normal,
+                        w: hit.weight,
+                    })
+                },
+            );
+        }
+        self.normal_at = at;
+    }
+
     /// One CTSS (or CTSS-R, SSAA+CTSS) row: every cone of the row traced in
     /// packets with its hit groups recorded, then the samples shaded in
     /// packets and summed per cone in the order they were found (eq. 6).
@@ -426,30 +524,17 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
                     pts.set(k, cones[k].origin + steppers[k].t() * cones[k].dir);
                 }
                 let r = self.eval(&pts, active);
+                let mut closing = [None::<GroupSample>; LANES];
                 for k in lanes(active) {
-                    let f = FieldSample {
-                        distance: r.surface[k],
-                        step: r.safe[k],
-                        object: r.material[k],
-                    };
-                    let out = &mut self.lane_batch[k];
-                    let going = march_step(
-                        params,
-                        &cones[k],
-                        &mut steppers[k],
-                        f,
-                        &mut ConeFieldOf(view.field),
-                        &mut |_, g| {
-                            out.push(Pending {
-                                q: g.point,
-                                n: g.normal,
-                                w: g.weight,
-                            })
-                        },
-                    );
-                    if !going {
-                        active &= !(1 << k);
+                    match steppers[k].advance_object(r.surface[k], r.safe[k], r.material[k]) {
+                        Event::March => {}
+                        Event::Sample(g) => closing[k] = Some(g),
+                        // `Event::Stop`: the march is over.
+                        _ => active &= !(1 << k),
                     }
+                }
+                if closing.iter().any(Option::is_some) {
+                    self.close_groups(params, &cones, &mut steppers, &closing);
                 }
             }
             for (k, (_, d)) in chunk.iter().enumerate() {
