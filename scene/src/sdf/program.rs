@@ -1054,15 +1054,14 @@ impl<'a> SdfProgram<'a> {
                 } => {
                     let p = &s.points[ps];
                     let acc = &mut s.values[vs - 1];
-                    let (needed, _) = cull(sphere, p, acc, s.masks[ms], *split);
-                    if needed != 0 {
+                    let lanes = cull(sphere, p, acc, s.masks[ms], *split);
+                    if any(lanes) {
                         let d = leaf.distance(p);
-                        let lanes = bits_mask(needed);
                         if *split {
                             acc.safe = F8::select(lanes, acc.safe.min(d), acc.safe);
                         }
                         let better: M8 =
-                            core::array::from_fn(|k| lanes[k] && d.0[k] < acc.surf.0[k]);
+                            core::array::from_fn(|k| lanes[k] & (d.0[k] < acc.surf.0[k]));
                         acc.surf = F8::select(better, d, acc.surf);
                         acc.mat = select_u(better, [leaf.material; LANES], acc.mat);
                         if !*split {
@@ -1162,13 +1161,13 @@ impl<'a> SdfProgram<'a> {
                 } => {
                     let p = s.points[ps];
                     let acc = &mut s.values[vs - 1];
-                    let (needed, _) = cull(sphere, &p, acc, s.masks[ms], *split);
-                    if needed == 0 {
+                    let needed = cull(sphere, &p, acc, s.masks[ms], *split);
+                    if !any(needed) {
                         pc += *skip as usize;
                         continue;
                     }
                     ms += 1;
-                    s.masks[ms] = needed;
+                    s.masks[ms] = mask_bits(needed);
                 }
                 Inst::UnionMerge { split } => {
                     vs -= 1;
@@ -1180,7 +1179,7 @@ impl<'a> SdfProgram<'a> {
                         acc.safe = F8::select(lanes, acc.safe.min(c.safe), acc.safe);
                     }
                     let better: M8 =
-                        core::array::from_fn(|k| lanes[k] && c.surf.0[k] < acc.surf.0[k]);
+                        core::array::from_fn(|k| lanes[k] & (c.surf.0[k] < acc.surf.0[k]));
                     acc.surf = F8::select(better, c.surf, acc.surf);
                     acc.mat = select_u(better, c.mat, acc.mat);
                     if !*split {
@@ -1320,32 +1319,32 @@ impl<'a> SdfProgram<'a> {
 }
 
 /// A union's bound culling of one child against the accumulator `acc`, in
-/// the `active` lanes: the lanes that must evaluate the child, and those
-/// that skip it. A split union takes the skipped child's sphere distance
+/// the `active` lanes: the lanes that must evaluate the child. A split union takes the skipped child's sphere distance
 /// into its safe step, as the tree does.
 #[inline(always)]
-fn cull(
-    sphere: &Vec4,
-    p: &V3,
-    acc: &mut Value,
-    active: LaneMask,
-    split: bool,
-) -> (LaneMask, LaneMask) {
+fn cull(sphere: &Vec4, p: &V3, acc: &mut Value, active: LaneMask, split: bool) -> M8 {
+    let active = bits_mask(active);
     let c = V3::splat(sphere.truncate());
     let d2 = {
         let e = p.sub(c);
         e.dot(e)
     };
     let reach = acc.surf + sphere.w;
-    let skipped: M8 =
-        core::array::from_fn(|k| reach.0[k] >= 0.0 && d2.0[k] >= reach.0[k] * reach.0[k]);
-    let skipped = active & mask_bits(skipped);
-    if split && skipped != 0 {
+    // `&`, not `&&`: lane-wise masks without branches.
+    let skipped: M8 = core::array::from_fn(|k| {
+        active[k] & (reach.0[k] >= 0.0) & (d2.0[k] >= reach.0[k] * reach.0[k])
+    });
+    if split && any(skipped) {
         let bound = d2.sqrt() - sphere.w;
-        let lanes = bits_mask(skipped);
-        acc.safe = F8::select(lanes, acc.safe.min(bound), acc.safe);
+        acc.safe = F8::select(skipped, acc.safe.min(bound), acc.safe);
     }
-    (active & !skipped, skipped)
+    core::array::from_fn(|k| active[k] & !skipped[k])
+}
+
+/// Whether any lane of `m` is set.
+#[inline(always)]
+fn any(m: M8) -> bool {
+    m.iter().fold(false, |a, &b| a | b)
 }
 
 /// `Scatter::split` (or its `eval` bound) lane-wise: each lane's cell and
