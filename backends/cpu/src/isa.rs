@@ -28,6 +28,7 @@
 #![allow(unsafe_code)]
 
 use std::fmt;
+use std::sync::OnceLock;
 
 /// An instruction-set path of the CPU backend, from the most portable up.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -45,13 +46,16 @@ impl Isa {
     /// Every path, from the most portable up.
     pub const ALL: [Isa; 3] = [Isa::Baseline, Isa::Avx2, Isa::Avx512];
 
-    /// The widest path this CPU supports.
+    /// The widest path this CPU supports (detected once per process).
     pub fn detected() -> Isa {
-        Isa::ALL
-            .into_iter()
-            .rev()
-            .find(|i| i.is_supported())
-            .unwrap_or(Isa::Baseline)
+        static DETECTED: OnceLock<Isa> = OnceLock::new();
+        *DETECTED.get_or_init(|| {
+            Isa::ALL
+                .into_iter()
+                .rev()
+                .find(|i| i.is_supported())
+                .unwrap_or(Isa::Baseline)
+        })
     }
 
     /// Every path this CPU supports, from the most portable up.
@@ -88,13 +92,12 @@ impl Isa {
     }
 
     /// This path if the CPU supports it, else the widest supported one below.
+    /// Each path's features include those of the paths below it, so this is
+    /// the narrower of `self` and [`detected`](Isa::detected): one load, cheap
+    /// enough for [`run`](Isa::run) to call in every inner loop.
+    #[inline]
     pub fn or_supported(self) -> Isa {
-        Isa::ALL
-            .into_iter()
-            .rev()
-            .filter(|i| *i <= self)
-            .find(|i| i.is_supported())
-            .unwrap_or(Isa::Baseline)
+        self.min(Isa::detected())
     }
 
     /// A short name: `baseline`, `avx2`, `avx512`.
@@ -173,6 +176,16 @@ mod tests {
             assert_eq!(i.name().parse::<Isa>(), Ok(i));
             assert!(i.or_supported().is_supported());
             assert!(i.or_supported() <= i);
+            // The nesting `or_supported` relies on.
+            assert_eq!(
+                i.or_supported(),
+                Isa::ALL
+                    .into_iter()
+                    .rev()
+                    .filter(|j| *j <= i)
+                    .find(|j| j.is_supported())
+                    .unwrap()
+            );
         }
         assert!("sse9".parse::<Isa>().is_err());
         assert!(Isa::supported().contains(&Isa::Baseline));
