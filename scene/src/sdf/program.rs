@@ -118,6 +118,62 @@ struct F8([f32; LANES]);
 
 type M8 = [bool; LANES];
 
+/// A lane mask as the vector units hold one: each lane all ones or all
+/// zeros. The hot union instructions use it; `[bool; 8]` masks make LLVM
+/// pack and unpack bytes at every step.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[repr(C, align(32))]
+struct W8([u32; LANES]);
+
+impl W8 {
+    /// The lanes of `bits`.
+    #[inline(always)]
+    fn of_bits(bits: LaneMask) -> W8 {
+        W8(core::array::from_fn(|k| {
+            0u32.wrapping_sub(((bits >> k) & 1) as u32)
+        }))
+    }
+    /// Lane-wise `cond`.
+    #[inline(always)]
+    fn from_fn(cond: impl Fn(usize) -> bool) -> W8 {
+        W8(core::array::from_fn(|k| 0u32.wrapping_sub(cond(k) as u32)))
+    }
+    #[inline(always)]
+    fn and(self, o: W8) -> W8 {
+        W8(core::array::from_fn(|k| self.0[k] & o.0[k]))
+    }
+    #[inline(always)]
+    fn and_not(self, o: W8) -> W8 {
+        W8(core::array::from_fn(|k| self.0[k] & !o.0[k]))
+    }
+    /// Whether any lane is set.
+    #[inline(always)]
+    fn any(self) -> bool {
+        self.0.iter().fold(0, |a, &b| a | b) != 0
+    }
+    /// The lanes as bits.
+    #[inline(always)]
+    fn bits(self) -> LaneMask {
+        let mut b = 0;
+        for (k, w) in self.0.iter().enumerate() {
+            b |= ((w & 1) as LaneMask) << k;
+        }
+        b
+    }
+    /// `a` in the set lanes, `b` elsewhere, bit for bit.
+    #[inline(always)]
+    fn select(self, a: F8, b: F8) -> F8 {
+        F8(core::array::from_fn(|k| {
+            f32::from_bits((a.0[k].to_bits() & self.0[k]) | (b.0[k].to_bits() & !self.0[k]))
+        }))
+    }
+    /// [`select`](W8::select) for materials.
+    #[inline(always)]
+    fn select_u(self, a: [u32; LANES], b: [u32; LANES]) -> [u32; LANES] {
+        core::array::from_fn(|k| (a[k] & self.0[k]) | (b[k] & !self.0[k]))
+    }
+}
+
 macro_rules! lanewise {
     ($a:expr, |$k:ident| $e:expr) => {{
         let mut r = [0.0f32; LANES];
@@ -1055,15 +1111,14 @@ impl<'a> SdfProgram<'a> {
                     let p = &s.points[ps];
                     let acc = &mut s.values[vs - 1];
                     let lanes = cull(sphere, p, acc, s.masks[ms], *split);
-                    if any(lanes) {
+                    if lanes.any() {
                         let d = leaf.distance(p);
                         if *split {
-                            acc.safe = F8::select(lanes, acc.safe.min(d), acc.safe);
+                            acc.safe = lanes.select(acc.safe.min(d), acc.safe);
                         }
-                        let better: M8 =
-                            core::array::from_fn(|k| lanes[k] & (d.0[k] < acc.surf.0[k]));
-                        acc.surf = F8::select(better, d, acc.surf);
-                        acc.mat = select_u(better, [leaf.material; LANES], acc.mat);
+                        let better = lanes.and(W8::from_fn(|k| d.0[k] < acc.surf.0[k]));
+                        acc.surf = better.select(d, acc.surf);
+                        acc.mat = better.select_u([leaf.material; LANES], acc.mat);
                         if !*split {
                             acc.safe = acc.surf;
                         }
@@ -1162,26 +1217,25 @@ impl<'a> SdfProgram<'a> {
                     let p = s.points[ps];
                     let acc = &mut s.values[vs - 1];
                     let needed = cull(sphere, &p, acc, s.masks[ms], *split);
-                    if !any(needed) {
+                    if !needed.any() {
                         pc += *skip as usize;
                         continue;
                     }
                     ms += 1;
-                    s.masks[ms] = mask_bits(needed);
+                    s.masks[ms] = needed.bits();
                 }
                 Inst::UnionMerge { split } => {
                     vs -= 1;
                     let c = s.values[vs];
-                    let lanes = bits_mask(s.masks[ms]);
+                    let lanes = W8::of_bits(s.masks[ms]);
                     ms -= 1;
                     let acc = &mut s.values[vs - 1];
                     if *split {
-                        acc.safe = F8::select(lanes, acc.safe.min(c.safe), acc.safe);
+                        acc.safe = lanes.select(acc.safe.min(c.safe), acc.safe);
                     }
-                    let better: M8 =
-                        core::array::from_fn(|k| lanes[k] & (c.surf.0[k] < acc.surf.0[k]));
-                    acc.surf = F8::select(better, c.surf, acc.surf);
-                    acc.mat = select_u(better, c.mat, acc.mat);
+                    let better = lanes.and(W8::from_fn(|k| c.surf.0[k] < acc.surf.0[k]));
+                    acc.surf = better.select(c.surf, acc.surf);
+                    acc.mat = better.select_u(c.mat, acc.mat);
                     if !*split {
                         acc.safe = acc.surf;
                     }
@@ -1322,8 +1376,8 @@ impl<'a> SdfProgram<'a> {
 /// the `active` lanes: the lanes that must evaluate the child. A split union takes the skipped child's sphere distance
 /// into its safe step, as the tree does.
 #[inline(always)]
-fn cull(sphere: &Vec4, p: &V3, acc: &mut Value, active: LaneMask, split: bool) -> M8 {
-    let active = bits_mask(active);
+fn cull(sphere: &Vec4, p: &V3, acc: &mut Value, active: LaneMask, split: bool) -> W8 {
+    let active = W8::of_bits(active);
     let c = V3::splat(sphere.truncate());
     let d2 = {
         let e = p.sub(c);
@@ -1331,20 +1385,14 @@ fn cull(sphere: &Vec4, p: &V3, acc: &mut Value, active: LaneMask, split: bool) -
     };
     let reach = acc.surf + sphere.w;
     // `&`, not `&&`: lane-wise masks without branches.
-    let skipped: M8 = core::array::from_fn(|k| {
-        active[k] & (reach.0[k] >= 0.0) & (d2.0[k] >= reach.0[k] * reach.0[k])
-    });
-    if split && any(skipped) {
+    let skipped = active.and(W8::from_fn(|k| {
+        (reach.0[k] >= 0.0) & (d2.0[k] >= reach.0[k] * reach.0[k])
+    }));
+    if split && skipped.any() {
         let bound = d2.sqrt() - sphere.w;
-        acc.safe = F8::select(skipped, acc.safe.min(bound), acc.safe);
+        acc.safe = skipped.select(acc.safe.min(bound), acc.safe);
     }
-    core::array::from_fn(|k| active[k] & !skipped[k])
-}
-
-/// Whether any lane of `m` is set.
-#[inline(always)]
-fn any(m: M8) -> bool {
-    m.iter().fold(false, |a, &b| a | b)
+    active.and_not(skipped)
 }
 
 /// `Scatter::split` (or its `eval` bound) lane-wise: each lane's cell and
