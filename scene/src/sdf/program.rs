@@ -116,7 +116,8 @@ impl SplitLanes {
 #[repr(C, align(32))]
 struct F8([f32; LANES]);
 
-type M8 = [bool; LANES];
+/// A lane mask.
+type M8 = W8;
 
 /// A lane mask as the vector units hold one: each lane all ones or all
 /// zeros. The hot union instructions use it; `[bool; 8]` masks make LLVM
@@ -159,11 +160,6 @@ impl W8 {
             b |= ((w & 1) as LaneMask) << k;
         }
         b
-    }
-    /// The lanes as `bool`s.
-    #[inline(always)]
-    fn to_bools(self) -> M8 {
-        core::array::from_fn(|k| self.0[k] != 0)
     }
     /// `a` in the set lanes, `b` elsewhere, bit for bit.
     #[inline(always)]
@@ -246,23 +242,23 @@ impl F8 {
     }
     #[inline(always)]
     fn lt(self, o: F8) -> M8 {
-        core::array::from_fn(|k| self.0[k] < o.0[k])
+        W8::from_fn(|k| self.0[k] < o.0[k])
     }
     #[inline(always)]
     fn gt(self, o: F8) -> M8 {
-        core::array::from_fn(|k| self.0[k] > o.0[k])
+        W8::from_fn(|k| self.0[k] > o.0[k])
     }
     #[inline(always)]
     fn ge(self, o: F8) -> M8 {
-        core::array::from_fn(|k| self.0[k] >= o.0[k])
+        W8::from_fn(|k| self.0[k] >= o.0[k])
     }
     #[inline(always)]
     fn eq(self, o: F8) -> M8 {
-        core::array::from_fn(|k| self.0[k] == o.0[k])
+        W8::from_fn(|k| self.0[k] == o.0[k])
     }
     #[inline(always)]
     fn select(m: M8, a: F8, b: F8) -> F8 {
-        lanewise!(a, |k| if m[k] { a.0[k] } else { b.0[k] })
+        m.select(a, b)
     }
 }
 
@@ -302,25 +298,6 @@ impl Neg for F8 {
     fn neg(self) -> F8 {
         lanewise!(self, |k| -self.0[k])
     }
-}
-
-#[inline(always)]
-fn mask_bits(m: M8) -> LaneMask {
-    let mut b = 0;
-    for (k, on) in m.iter().enumerate() {
-        b |= (*on as u8) << k;
-    }
-    b
-}
-
-#[inline(always)]
-fn bits_mask(b: LaneMask) -> M8 {
-    core::array::from_fn(|k| b & (1 << k) != 0)
-}
-
-#[inline(always)]
-fn select_u(m: M8, a: [u32; LANES], b: [u32; LANES]) -> [u32; LANES] {
-    core::array::from_fn(|k| if m[k] { a[k] } else { b[k] })
 }
 
 /// Three coordinates of eight lanes, with glam's `Vec3` semantics.
@@ -475,7 +452,7 @@ fn shape_distance(shape: &Shape, p: V3) -> F8 {
             let centre = F8::splat(-radii.min_element());
             let inside = k0 * ((k0 - 1.0) / k1);
             let far = p.length() - radii.max_element();
-            let finite: M8 = core::array::from_fn(|k| k0.0[k].is_finite() && k1.0[k].is_finite());
+            let finite = W8::from_fn(|k| k0.0[k].is_finite() & k1.0[k].is_finite());
             F8::select(k1.eq(z), centre, F8::select(finite, inside, far))
         }
         Shape::Plane { normal, offset } => p.dot(V3::splat(normal)) + offset,
@@ -527,7 +504,7 @@ fn sd_capped_cone(p: V3, h: f32, r1: f32, r2: f32) -> F8 {
     let cbx = (qx - k1x) + k2x * s;
     let cby = (qy - k1y) + k2y * s;
     let side = (qy + h) * k2x - (qx - r1) * k2y;
-    let inside: M8 = core::array::from_fn(|k| side.0[k] > 0.0 && cay.0[k] < 0.0);
+    let inside = W8::from_fn(|k| (side.0[k] > 0.0) & (cay.0[k] < 0.0));
     let sign = F8::select(inside, F8::splat(-1.0), F8::splat(1.0));
     sign * (cax * cax + cay * cay).min(cbx * cbx + cby * cby).sqrt()
 }
@@ -546,7 +523,7 @@ fn sd_octahedron(p: V3, s: f32) -> F8 {
     let qz = pick(p.z, p.x, p.y);
     let k = (0.5 * (qz - qy + s)).clamp(F8::splat(0.0), F8::splat(s));
     let d = V3::new(qx, qy - s + k, qz - k).length();
-    let any: M8 = core::array::from_fn(|k| ax[k] || ay[k] || az[k]);
+    let any = W8(core::array::from_fn(|k| ax.0[k] | ay.0[k] | az.0[k]));
     F8::select(any, d, m * 0.577_350_26)
 }
 
@@ -797,7 +774,7 @@ impl Value {
         Value {
             safe: F8::select(m, a.safe, b.safe),
             surf: F8::select(m, a.surf, b.surf),
-            mat: select_u(m, a.mat, b.mat),
+            mat: m.select_u(a.mat, b.mat),
         }
     }
 }
@@ -1271,7 +1248,7 @@ impl<'a> SdfProgram<'a> {
                         let acc = &mut s.values[vs - 1];
                         let k = *k;
                         let h = (k - (acc.surf - c.surf).abs()).max(F8::splat(0.0)) / k;
-                        let mat = select_u(c.surf.lt(acc.surf), c.mat, acc.mat);
+                        let mat = c.surf.lt(acc.surf).select_u(c.mat, acc.mat);
                         let d = acc.surf.min(c.surf) - 0.25 * k * h * h;
                         *acc = Value::both(d, mat);
                     }
@@ -1316,7 +1293,7 @@ impl<'a> SdfProgram<'a> {
                 Inst::BoundedMerge => {
                     vs -= 1;
                     let c = s.values[vs];
-                    let lanes = s.masks[ms].to_bools();
+                    let lanes = s.masks[ms];
                     ms -= 1;
                     let acc = &mut s.values[vs - 1];
                     *acc = Value::select(lanes, c, *acc);
@@ -1483,14 +1460,14 @@ fn scatter_lanes(
     }
     let local = q.sub(V3::new(off[0], off[1], off[2]));
     let sphere = local.length() - radius;
-    let has: M8 = core::array::from_fn(|k| template[k] != EMPTY);
+    let has = W8::from_fn(|k| template[k] != EMPTY);
     // No instance: `(guard, ∞, default)`; far from the object: its sphere.
     let mut out = Value {
         safe: guard,
         surf: F8::select(has, sphere, F8::splat(f32::INFINITY)),
         mat: own,
     };
-    let reach = active & mask_bits(has) & !mask_bits(sphere.ge(guard));
+    let reach = active & has.and_not(sphere.ge(guard)).bits();
     if reach != 0 {
         let tp = local.rotate_lanes(rot).scale(inv_scale);
         let scratch = nested.get_or_insert_with(|| {
@@ -1516,15 +1493,11 @@ fn scatter_lanes(
             };
             let v = prog.run::<true>(tp, lanes, scratch);
             let d = v.surf * scale;
-            let m = select_u(
-                core::array::from_fn(|k| inst_mat[k] == EMPTY),
-                v.mat,
-                inst_mat,
-            );
-            let sel = bits_mask(lanes);
+            let m = W8::from_fn(|k| inst_mat[k] == EMPTY).select_u(v.mat, inst_mat);
+            let sel = W8::of_bits(lanes);
             out.safe = F8::select(sel, guard.min(d), out.safe);
             out.surf = F8::select(sel, d, out.surf);
-            out.mat = select_u(sel, m, out.mat);
+            out.mat = sel.select_u(m, out.mat);
         }
     }
     if !split {
