@@ -216,9 +216,31 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
         }
     }
 
-    /// Sphere traces up to [`LANES`] rays together.
+    /// [`eval`](Self::eval) for a loop that already runs on the
+    /// instruction-set path (inside [`Isa::run`](crate::isa::Isa::run)):
+    /// the interpreter inlines into the loop.
     #[inline(always)]
+    fn eval_here(&mut self, p: &Points, active: LaneMask) -> SplitLanes {
+        self.program.eval_split(p, active, &mut self.scratch)
+    }
+
+    /// Sphere traces up to [`LANES`] rays together, the whole march on the
+    /// instruction-set path.
+    #[inline(never)]
     fn trace(&mut self, rays: &[(Vec3, Vec3)], params: &CtssParams) -> [Option<SphereHit>; LANES] {
+        let isa = self.view.isa;
+        isa.run(
+            #[inline(always)]
+            || self.trace_here(rays, params),
+        )
+    }
+
+    #[inline(always)]
+    fn trace_here(
+        &mut self,
+        rays: &[(Vec3, Vec3)],
+        params: &CtssParams,
+    ) -> [Option<SphereHit>; LANES] {
         let mut m = [SphereMarch::new(params); LANES];
         let mut out = [None; LANES];
         let mut active = first(rays.len());
@@ -239,7 +261,7 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
             if active == 0 {
                 return out;
             }
-            let r = self.eval(&pts, active);
+            let r = self.eval_here(&pts, active);
             for k in lanes(active) {
                 if let Some(h) = m[k].after_step(params, r.surface[k], r.safe[k]) {
                     out[k] = Some(h);
