@@ -3,20 +3,22 @@
 //! [`SdfProgram`].
 //!
 //! Each lane runs the scalar path's own state machine (the kernels'
-//! [`SphereMarch`] and [`march_step`](subcone_kernels::ctss::march_step), this module's [`ShadowRay`]), so every
-//! ray takes the steps, hits and samples it takes alone; only the field
+//! [`SphereMarch`] and [`march_step`](subcone_kernels::ctss::march_step),
+//! this module's [`ShadowRay`]), so every ray takes the steps, hits and samples it takes alone; only the field
 //! evaluations are shared. A lane whose ray has ended idles until the packet
 //! ends. Colours are summed in the scalar path's order, so frames are bit for
 //! bit those of one ray at a time (`tests/sdf.rs` compares them).
 //!
 //! - NoAA and SSAA: the rays of a row (every subsample of every pixel, in
-//!   pixel order) eight at a time: trace, normals (four packets of
-//!   tetrahedral taps), material, and each light's shadow rays as a packet.
+//!   pixel order) eight at a time: trace, normals (the four tetrahedral taps
+//!   of a normal side by side, two normals per packet), material, and each
+//!   light's shadow rays as a packet.
 //! - CTSS and CTSS-R: the cones of a row eight at a time through the kernels'
 //!   stepper. The normals of the groups that close at a step (the shading
 //!   point's and those of the group's mask, [`group_normal_depths`]) are
-//!   taken in packets too, then each group is closed as [`march_step`](subcone_kernels::ctss::march_step)
-//!   closes it ([`close_group`]). The hit groups are recorded, then shaded
+//!   taken in packets too, then each group is closed as
+//!   [`march_step`](subcone_kernels::ctss::march_step) closes it
+//!   ([`close_group`]). The hit groups are recorded, then shaded
 //!   in packets of eight samples (CTSS §5.1's delayed shading, which sums
 //!   eq. 6 in the same order as shading as soon as a group closes).
 
@@ -459,7 +461,8 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
         multi
     }
 
-    /// Closes the groups of the lanes in `closing` as [`march_step`](subcone_kernels::ctss::march_step) would
+    /// Closes the groups of the lanes in `closing` as
+    /// [`march_step`](subcone_kernels::ctss::march_step) would
     /// ([`close_group`]), their normals taken in packets first.
     #[inline(always)]
     fn close_groups(
