@@ -528,6 +528,7 @@ impl ConeStepper {
     /// group, one surface, so a front object's sample never takes the
     /// occlusion of the object behind it (which would extrude the front
     /// object over the pixel). [`NO_OBJECT`] never changes groups.
+    #[inline]
     pub fn advance_object(&mut self, d: f32, step: f32, object: u32) -> Event {
         if let Some(r) = self.stop {
             return Event::Stop(r);
@@ -730,7 +731,7 @@ impl ConeStepper {
     /// group's partial mask (a glancing object in front grows by the share of
     /// the pixel the trace never saw).
     pub fn record_mask(&mut self, m: u32) -> (u32, f32) {
-        let m = if !self.params.is_paper() && self.stop == Some(StopReason::HardHit) {
+        let m = if self.takes_rest_of_pixel() {
             crate::mask::FULL_MASK
         } else {
             m
@@ -745,6 +746,15 @@ impl ConeStepper {
             self.params.min_sample_weight,
         );
         (visible, w)
+    }
+
+    /// Whether [`record_mask`](Self::record_mask) now ignores the mask it is
+    /// given and records a full one: CTSS-R's hard hit (unless
+    /// [`FLAG_PAPER`]) takes the rest of the pixel. A caller can then skip
+    /// making the mask ([`close_group`] does), and its normals.
+    #[inline]
+    pub fn takes_rest_of_pixel(&self) -> bool {
+        !self.params.is_paper() && self.stop == Some(StopReason::HardHit)
     }
 
     /// Forget the previous step for grouping: the next step that touches a

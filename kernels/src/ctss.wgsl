@@ -323,13 +323,20 @@ fn subcone_cone_stepper_record(s: ptr<function, subcone_ConeStepper>, sample: su
     return subcone_cone_stepper_record_mask(s, m);
 }
 
+// subcone_kernels::ctss::ConeStepper::takes_rest_of_pixel — whether
+// record_mask ignores its mask: CTSS-R's hard hit (unless FLAG_PAPER) takes
+// the rest of the pixel, so the caller can skip making the mask.
+fn subcone_cone_stepper_takes_rest_of_pixel(s: ptr<function, subcone_ConeStepper>) -> bool {
+    return !subcone_ctss_is_paper((*s).params) && (*s).stop == subcone_STOP_HARD_HIT;
+}
+
 // subcone_kernels::ctss::ConeStepper::record_mask — record with a mask the
 // caller made (subcone_group_mask).
 // CTSS-R (unless FLAG_PAPER): the group that ended the trace on its hard hit
 // takes the rest of the pixel (full mask).
 fn subcone_cone_stepper_record_mask(s: ptr<function, subcone_ConeStepper>, m0: u32) -> vec2<u32> {
     var m = m0;
-    if !subcone_ctss_is_paper((*s).params) && (*s).stop == subcone_STOP_HARD_HIT {
+    if subcone_cone_stepper_takes_rest_of_pixel(s) {
         m = 0xffffffffu;
     }
     let visible = m & ~(*s).covered;

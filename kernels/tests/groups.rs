@@ -3,8 +3,8 @@
 use glam::Vec3;
 use subcone_kernels::cone::cone_radius;
 use subcone_kernels::ctss::{
-    cross_section_frame, trace_field, ConeField, ConeStepper, CtssParams, Event, FieldSample,
-    GroupSample, SplitRay, StopReason, NO_OBJECT,
+    cross_section_frame, group_normal_depths, trace_field, ConeField, ConeStepper, CtssParams,
+    Event, FieldSample, GroupSample, SplitRay, StopReason, NO_OBJECT,
 };
 use subcone_kernels::mask::FULL_MASK;
 
@@ -185,11 +185,15 @@ fn ctss_r_last_group_takes_the_rest_of_the_pixel() {
         let p = params().relaxed(true).paper(paper);
         let mut st = ConeStepper::new(&p);
         let mut coverage = 0;
+        // Per sample: whether the stepper ignores its mask, and how many
+        // normals `close_group` takes for it.
+        let mut takes_rest = Vec::new();
         for &(omega, object) in &[(0.3, 1), (0.0, 1), (-0.5, 1), (0.2, 2), (0.5, 2), (0.6, 2)] {
             let rc = cone_radius(st.t(), TAN);
             let d = rc * (1.0 - 2.0 * omega);
             match st.advance_object(d, d, object) {
                 Event::Sample(s) => {
+                    takes_rest.push((st.takes_rest_of_pixel(), group_normal_depths(&p, &st, &s).1));
                     st.record(&s, glam::Vec2::X);
                     coverage = st.coverage();
                 }
@@ -207,5 +211,13 @@ fn ctss_r_last_group_takes_the_rest_of_the_pixel() {
             !paper,
             "paper {paper}: {coverage:#x}"
         );
+        // Only the last group takes the rest, and then only the shading
+        // normal is taken: the mask it would have made is never asked for.
+        let last = takes_rest.pop().expect("a last group");
+        assert_eq!(last.0, !paper, "paper {paper}");
+        if !paper {
+            assert_eq!(last.1, 1);
+        }
+        assert!(takes_rest.iter().all(|t| !t.0), "{takes_rest:?}");
     }
 }

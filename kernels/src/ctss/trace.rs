@@ -294,7 +294,13 @@ pub fn close_group<F, H>(
 {
     let point = ray.origin + s.t * ray.dir;
     let normal = field.normal(point, normal_step(s.t, params.tan_theta));
-    let mask = group_mask(params, ray, &s, normal, field);
+    // The mask `record_mask` would discard is not made: CTSS-R's last group
+    // takes the rest of the pixel, so its normals and sheet test are skipped.
+    let mask = if stepper.takes_rest_of_pixel() {
+        FULL_MASK
+    } else {
+        group_mask(params, ray, &s, normal, field)
+    };
     let (visible, weight) = stepper.record_mask(mask);
     on_hit(
         field,
@@ -315,8 +321,14 @@ pub fn close_group<F, H>(
 /// repeated depths are listed once. A renderer that evaluates fields in
 /// SIMD lanes computes these normals for several cones together and serves
 /// them to [`close_group`] from a cache; [`group_mask`]'s other evaluations
-/// (the sheet test) are not listed.
-pub fn group_normal_depths(params: &CtssParams, s: &GroupSample) -> ([f32; 4], usize) {
+/// (the sheet test) are not listed. `stepper` is the one that closed `s`:
+/// when it [takes the rest of the pixel](ConeStepper::takes_rest_of_pixel),
+/// `close_group` makes no mask and needs only the shading normal.
+pub fn group_normal_depths(
+    params: &CtssParams,
+    stepper: &ConeStepper,
+    s: &GroupSample,
+) -> ([f32; 4], usize) {
     let mut out = [s.t; 4];
     let mut n = 1;
     let mut add = |t: f32| {
@@ -325,7 +337,7 @@ pub fn group_normal_depths(params: &CtssParams, s: &GroupSample) -> ([f32; 4], u
             n += 1;
         }
     };
-    if needs_normal(s.occlusion, params.placement()) {
+    if !stepper.takes_rest_of_pixel() && needs_normal(s.occlusion, params.placement()) {
         if !params.is_paper() {
             add(s.t_first);
             add(s.t_last);

@@ -444,7 +444,12 @@ fn subcone_ctss_trace(params: subcone_CtssParams, origin: vec3<f32>, dir: vec3<f
                 let s = ev.sample;
                 let point = origin + s.t * dir;
                 let normal = subcone_normal(point, subcone_normal_step(s.t, params.tan_theta));
-                let mask = subcone_group_mask(params, ray, s, normal);
+                // CTSS-R's last group takes the rest of the pixel: no mask
+                // to make (close_group).
+                var mask = 0xffffffffu;
+                if !subcone_cone_stepper_takes_rest_of_pixel(&st) {
+                    mask = subcone_group_mask(params, ray, s, normal);
+                }
                 let rec = subcone_cone_stepper_record_mask(&st, mask);
                 pending[k] = subcone_GroupHit(s, point, normal, rec.x, bitcast<f32>(rec.y));
                 k += 1u;

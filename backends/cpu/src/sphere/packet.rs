@@ -312,9 +312,19 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
         }
     }
 
-    /// Which of the `active` shadow rays are blocked.
+    /// Which of the `active` shadow rays are blocked, the whole march on
+    /// the instruction-set path.
+    #[inline(never)]
+    fn shadowed(&mut self, rays: &mut [ShadowRay; LANES], active: LaneMask) -> LaneMask {
+        let isa = self.view.isa;
+        isa.run(
+            #[inline(always)]
+            || self.shadowed_here(rays, active),
+        )
+    }
+
     #[inline(always)]
-    fn shadowed(&mut self, rays: &mut [ShadowRay; LANES], mut active: LaneMask) -> LaneMask {
+    fn shadowed_here(&mut self, rays: &mut [ShadowRay; LANES], mut active: LaneMask) -> LaneMask {
         let max_steps = self.view.max_steps;
         let mut blocked = 0;
         let mut pts = Points::default();
@@ -328,7 +338,7 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
             if active == 0 {
                 return blocked;
             }
-            let r = self.eval(&pts, active);
+            let r = self.eval_here(&pts, active);
             for k in lanes(active) {
                 if let Some(b) = rays[k].feed(r.safe[k], r.surface[k]) {
                     blocked |= (b as LaneMask) << k;
@@ -463,8 +473,9 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
 
     /// Closes the groups of the lanes in `closing` as
     /// [`march_step`](subcone_kernels::ctss::march_step) would
-    /// ([`close_group`]), their normals taken in packets first.
-    #[inline(always)]
+    /// ([`close_group`]), their normals taken in packets first. Kept out of
+    /// line: groups close at few steps, and the march loop stays small.
+    #[inline(never)]
     fn close_groups(
         &mut self,
         params: &CtssParams,
@@ -476,7 +487,7 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
         self.normal_at.clear();
         for (k, g) in closing.iter().enumerate() {
             let Some(g) = g else { continue };
-            let (depths, n) = group_normal_depths(params, g);
+            let (depths, n) = group_normal_depths(params, &steppers[k], g);
             for &t in &depths[..n] {
                 self.normal_at
                     .push((cones[k].origin + t * cones[k].dir, normal_step(t, tan)));
@@ -512,6 +523,57 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
         self.normal_at = at;
     }
 
+    /// Marches the `active` cones of a packet to their ends, their hit
+    /// groups closed into [`lane_batch`](Self::lane_batch), the whole march
+    /// on the instruction-set path.
+    #[inline(never)]
+    fn march_cones(
+        &mut self,
+        params: &CtssParams,
+        cones: &[SplitRay; LANES],
+        steppers: &mut [ConeStepper; LANES],
+        active: LaneMask,
+    ) {
+        let isa = self.view.isa;
+        isa.run(
+            #[inline(always)]
+            || self.march_cones_here(params, cones, steppers, active),
+        )
+    }
+
+    #[inline(always)]
+    fn march_cones_here(
+        &mut self,
+        params: &CtssParams,
+        cones: &[SplitRay; LANES],
+        steppers: &mut [ConeStepper; LANES],
+        mut active: LaneMask,
+    ) {
+        let mut pts = Points::default();
+        while active != 0 {
+            for k in lanes(active) {
+                pts.set(k, cones[k].origin + steppers[k].t() * cones[k].dir);
+            }
+            let r = self.eval_here(&pts, active);
+            let mut closing = [None::<GroupSample>; LANES];
+            let mut any_closing = false;
+            for k in lanes(active) {
+                match steppers[k].advance_object(r.surface[k], r.safe[k], r.material[k]) {
+                    Event::March => {}
+                    Event::Sample(g) => {
+                        closing[k] = Some(g);
+                        any_closing = true;
+                    }
+                    // `Event::Stop`: the march is over.
+                    _ => active &= !(1 << k),
+                }
+            }
+            if any_closing {
+                self.close_groups(params, cones, steppers, &closing);
+            }
+        }
+    }
+
     /// One CTSS (or CTSS-R, SSAA+CTSS) row: every cone of the row traced in
     /// packets with its hit groups recorded, then the samples shaded in
     /// packets and summed per cone in the order they were found (eq. 6).
@@ -532,7 +594,6 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
         self.cones.clear();
         self.sample_dirs.clear();
         let view = self.view;
-        let mut pts = Points::default();
         for chunk in rays.chunks(LANES) {
             let cones: [SplitRay; LANES] = std::array::from_fn(|k| {
                 let (o, d) = chunk.get(k).copied().unwrap_or((Vec3::ZERO, Vec3::Z));
@@ -540,28 +601,10 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
             });
             let mut steppers: [ConeStepper; LANES] =
                 std::array::from_fn(|_| ConeStepper::new(params));
-            let mut active = first(chunk.len());
             for b in &mut self.lane_batch {
                 b.clear();
             }
-            while active != 0 {
-                for k in lanes(active) {
-                    pts.set(k, cones[k].origin + steppers[k].t() * cones[k].dir);
-                }
-                let r = self.eval(&pts, active);
-                let mut closing = [None::<GroupSample>; LANES];
-                for k in lanes(active) {
-                    match steppers[k].advance_object(r.surface[k], r.safe[k], r.material[k]) {
-                        Event::March => {}
-                        Event::Sample(g) => closing[k] = Some(g),
-                        // `Event::Stop`: the march is over.
-                        _ => active &= !(1 << k),
-                    }
-                }
-                if closing.iter().any(Option::is_some) {
-                    self.close_groups(params, &cones, &mut steppers, &closing);
-                }
-            }
+            self.march_cones(params, &cones, &mut steppers, first(chunk.len()));
             for (k, (_, d)) in chunk.iter().enumerate() {
                 let st = &steppers[k];
                 tally.steps += st.steps() as u64;
