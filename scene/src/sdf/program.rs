@@ -50,7 +50,7 @@ use glam::{Quat, Vec3, Vec4};
 
 use super::bounds::Aabb;
 use super::node::{Op, SdfNode};
-use super::scatter::Scatter;
+use super::scatter::{Instance, Scatter};
 use super::shape::Shape;
 use super::SplitDistance;
 
@@ -1424,40 +1424,56 @@ fn scatter_lanes(
         let f = i.x + sc.dims[0] as f32 * (i.y + sc.dims[1] as f32 * i.z);
         core::array::from_fn(|k| f.0[k] as i32)
     };
-    // Gather each lane's instance.
+    // Gather each lane's instance: a lane with none (inactive, outside the
+    // table, or an unknown template) reads `NONE`, whose zeros are what the
+    // lanes without an instance carry. Each field is built lane by lane in
+    // registers, not stored per lane and reloaded as a vector (which stalls
+    // store forwarding).
     const EMPTY: u32 = u32::MAX;
-    let mut off = [F8::default(); 3];
-    let mut rot = [F8::default(); 4];
-    let (mut radius, mut scale, mut inv_scale) = (F8::default(), F8::default(), F8::default());
-    let mut template = [EMPTY; LANES];
-    let mut own = [sc.default_material; LANES];
-    let mut inst_mat = [EMPTY; LANES];
-    for k in 0..LANES {
+    const NONE: Instance = Instance {
+        template: EMPTY,
+        material: EMPTY,
+        inv_rotation: Quat::from_xyzw(0.0, 0.0, 0.0, 0.0),
+        offset: Vec3::ZERO,
+        scale: 0.0,
+        inv_scale: 0.0,
+        radius: 0.0,
+    };
+    let inst: [&Instance; LANES] = core::array::from_fn(|k| {
         if active & (1 << k) == 0 {
-            continue;
+            return &NONE;
         }
-        let idx = idx[k] as usize;
-        let Some(inst) = sc.instances.get(idx) else {
-            continue;
-        };
-        if sc.templates.get(inst.template as usize).is_none() {
-            continue;
+        match sc.instances.get(idx[k] as usize) {
+            Some(i) if (i.template as usize) < sc.templates.len() => i,
+            _ => &NONE,
         }
-        template[k] = inst.template;
-        inst_mat[k] = inst.material;
-        if inst.material != EMPTY {
-            own[k] = inst.material;
+    });
+    let field = |f: fn(&Instance) -> f32| F8(core::array::from_fn(|k| f(inst[k])));
+    let off = [
+        field(|i| i.offset.x),
+        field(|i| i.offset.y),
+        field(|i| i.offset.z),
+    ];
+    let rot = [
+        field(|i| i.inv_rotation.x),
+        field(|i| i.inv_rotation.y),
+        field(|i| i.inv_rotation.z),
+        field(|i| i.inv_rotation.w),
+    ];
+    let (radius, scale, inv_scale) = (
+        field(|i| i.radius),
+        field(|i| i.scale),
+        field(|i| i.inv_scale),
+    );
+    let template: [u32; LANES] = core::array::from_fn(|k| inst[k].template);
+    let inst_mat: [u32; LANES] = core::array::from_fn(|k| inst[k].material);
+    let own: [u32; LANES] = core::array::from_fn(|k| {
+        if inst_mat[k] != EMPTY {
+            inst_mat[k]
+        } else {
+            sc.default_material
         }
-        for (a, v) in off.iter_mut().zip(inst.offset.to_array()) {
-            a.0[k] = v;
-        }
-        for (a, v) in rot.iter_mut().zip(inst.inv_rotation.to_array()) {
-            a.0[k] = v;
-        }
-        radius.0[k] = inst.radius;
-        scale.0[k] = inst.scale;
-        inv_scale.0[k] = inst.inv_scale;
-    }
+    });
     let local = q.sub(V3::new(off[0], off[1], off[2]));
     let sphere = local.length() - radius;
     let has = W8::from_fn(|k| template[k] != EMPTY);
