@@ -165,30 +165,3 @@ unsafe fn run_avx2<R>(f: impl FnOnce() -> R) -> R {
 unsafe fn run_avx512<R>(f: impl FnOnce() -> R) -> R {
     f()
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn names_round_trip_and_fallback_is_supported() {
-        for i in Isa::ALL {
-            assert_eq!(i.name().parse::<Isa>(), Ok(i));
-            assert!(i.or_supported().is_supported());
-            assert!(i.or_supported() <= i);
-            // The nesting `or_supported` relies on.
-            assert_eq!(
-                i.or_supported(),
-                Isa::ALL
-                    .into_iter()
-                    .rev()
-                    .filter(|j| *j <= i)
-                    .find(|j| j.is_supported())
-                    .unwrap()
-            );
-        }
-        assert!("sse9".parse::<Isa>().is_err());
-        assert!(Isa::supported().contains(&Isa::Baseline));
-        assert_eq!(Isa::supported().last(), Some(&Isa::detected()));
-    }
-}

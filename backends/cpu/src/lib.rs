@@ -44,6 +44,10 @@ use subcone_scene::{
 };
 
 pub use bvh::SceneBvh;
+// Public for `tests/render.rs` (the library has no unit-test build: see
+// Cargo.toml), not part of the API.
+#[doc(hidden)]
+pub use render::shadow_agreement;
 use shade::{Tracer, MAX_LIGHTS};
 use sphere::{SdfField, SdfView};
 

@@ -213,3 +213,92 @@ fn bad_settings_are_errors_not_panics() {
         .unwrap_err();
     assert!(e.to_string().contains("signed distance field"), "{e}");
 }
+
+/// Adaptive subpixel shadow rays (`render::shadow_agreement`).
+mod adaptive_shadows {
+    use glam::Vec3;
+    use subcone_cpu::{shadow_agreement, CpuBackend};
+    use subcone_scene::{builtin::builtin, Backend, Method, RenderSettings};
+
+    /// 3×3 image, one light, layers `[base, light 0]`.
+    fn agreement(bits: [u32; 9], lit: [f32; 9]) -> (u32, u32) {
+        let values: Vec<Vec3> = lit
+            .iter()
+            .flat_map(|&v| [Vec3::ONE, Vec3::splat(v)])
+            .collect();
+        shadow_agreement(&bits, &values, 2, 0, 1, 1, 1, 1, 3, 3)
+    }
+
+    #[test]
+    fn agreement_skips_only_where_the_neighbourhood_agrees() {
+        // All lit: inherit "lit", no ray.
+        assert_eq!(agreement([0; 9], [0.5; 9]), (0, 0));
+        // All shadowed (black layer): inherit "shadowed", no ray.
+        assert_eq!(agreement([1; 9], [0.0; 9]), (0, 1));
+        // Disagreement with light reaching some neighbours: cast.
+        let mut bits = [0; 9];
+        bits[4] = 1;
+        let mut lit = [0.5; 9];
+        lit[4] = 0.0;
+        assert_eq!(agreement(bits, lit), (1, 0));
+        // Disagreement, but the light's layer is black everywhere (grazing
+        // light): the gate cannot change the image, no ray.
+        assert_eq!(agreement(bits, [0.0; 9]), (0, 0));
+        // A corner pixel reads only its 2×2 neighbourhood.
+        let values = vec![Vec3::ONE; 18];
+        let mut bits = [0u32; 9];
+        bits[8] = 1;
+        assert_eq!(
+            shadow_agreement(&bits, &values, 2, 0, 1, 0, 0, 1, 3, 3),
+            (0, 0)
+        );
+        assert_eq!(
+            shadow_agreement(&bits, &values, 2, 0, 1, 2, 2, 1, 3, 3),
+            (1, 0)
+        );
+    }
+
+    /// The adaptive subpixel shadow rays against the exhaustive ones on the
+    /// Cornell box (one light, a mirror): far fewer shadow rays, the same
+    /// image but for a few pixels inside shadows that no shaded sample sees.
+    #[test]
+    fn adaptive_subpixel_shadows_match_exhaustive_ones() {
+        let scene = builtin("cornell").unwrap();
+        let method: Method = "sraa-rt".parse().unwrap();
+        let s = RenderSettings::new(96, 96);
+        let adaptive = CpuBackend::new()
+            .render(&scene, &scene.camera, &method, &s)
+            .unwrap();
+        let full = CpuBackend::new()
+            .with_exhaustive_subpixel_shadows(true)
+            .render(&scene, &scene.camera, &method, &s)
+            .unwrap();
+        let (a, f) = (adaptive.stats.rays, full.stats.rays);
+        assert_eq!(a.primary, f.primary);
+        assert_eq!(a.geometry, f.geometry);
+        assert_eq!(a.secondary, f.secondary);
+        // The exhaustive pass casts about 3 subpixel shadow rays per pixel for
+        // its one light; the adaptive one keeps well under half of them.
+        assert!(
+            (a.shadow as f64) < 0.6 * f.shadow as f64,
+            "shadow rays: adaptive {} vs exhaustive {}",
+            a.shadow,
+            f.shadow
+        );
+        let diffs: Vec<f32> = adaptive
+            .color
+            .iter()
+            .zip(&full.color)
+            .map(|(p, q)| (*p - *q).abs().max_element())
+            .collect();
+        let differing = diffs.iter().filter(|&&d| d > 0.0).count();
+        let mean = diffs.iter().sum::<f32>() / diffs.len() as f32;
+        // Measured: a handful of pixels on 96×96, mean difference ~1e-4.
+        assert!(
+            differing <= diffs.len() / 100,
+            "{differing} of {} pixels differ",
+            diffs.len()
+        );
+        assert!(mean < 1e-3, "mean difference {mean}");
+    }
+}

@@ -168,3 +168,43 @@ fn methods_without_opacity_refuse_glass() {
         );
     }
 }
+
+/// The semi-transparent path against the opaque one (`sphere::translucent`).
+mod translucent_path {
+    use subcone_kernels::passes::{required_passes, Technique};
+    use subcone_scene::builtin::builtin;
+    use subcone_scene::sdf::{SDF_SCENES, STIFF_SCENES};
+    use subcone_scene::{Method, RenderSettings};
+
+    use subcone_cpu::sphere::SdfView;
+
+    /// The semi-transparent path with every opacity 1 is the opaque renderer,
+    /// bit for bit, on every built-in SDF scene and every SDF method.
+    #[test]
+    fn opaque_scenes_render_identically_on_the_translucent_path() {
+        let methods = [
+            Method::new(Technique::NoAa),
+            Method::ssaa_grid(2),
+            Method::new(Technique::Ctss),
+            Method::new(Technique::CtssR),
+            "ssaa4+ctss".parse().unwrap(),
+        ];
+        for name in SDF_SCENES.iter().chain(STIFF_SCENES.iter()) {
+            let scene = builtin(name).unwrap();
+            assert!(!scene.has_translucency(), "{name}");
+            let view = SdfView::of_scene(&scene, &scene.camera).expect("an SDF scene");
+            let s = RenderSettings::new(32, 18);
+            for m in &methods {
+                let passes = required_passes(m.technique, scene.features()).unwrap();
+                let a = view.render_with(m, &s, passes, false);
+                let b = view.render_with(m, &s, passes, true);
+                let same =
+                    a.color.iter().zip(&b.color).all(|(x, y)| {
+                        x.to_array().map(f32::to_bits) == y.to_array().map(f32::to_bits)
+                    });
+                assert!(same, "{name} {m}: the translucent path changed the image");
+                assert_eq!(a.stats.shaded_samples, b.stats.shaded_samples, "{name} {m}");
+            }
+        }
+    }
+}
