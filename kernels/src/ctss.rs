@@ -711,6 +711,69 @@ impl ConeStepper {
         event
     }
 
+    /// The free-space step of [`advance_object`](Self::advance_object) alone
+    /// (Algorithm 1, lines 7–9 and 26), for a packet of up to 32 cones
+    /// (bit `k` of `active`: `steppers[k]`, fed `d[k]` and `step[k]`).
+    ///
+    /// A lane is free where the trace goes on, the step budget and `t_max`
+    /// allow the step, `d` is a number, and the cone touches nothing now or
+    /// at the step before (`ω ≤ 0 − ε` both times, eq. 5) while not passing
+    /// through a semi-transparent object. There `advance_object` only counts
+    /// the step, remembers it and steps by `max(min(step, d), α·R_c)`; this
+    /// does the same, bit for bit. Every lane's occlusion and next depth are
+    /// computed side by side first, branch-free (SIMD lanes where the
+    /// compiler can), then the free lanes are stepped. A cone spends most of
+    /// its steps in free space, and this path builds no [`Event`].
+    ///
+    /// Returns the lanes of `active` that were not free, their steppers
+    /// untouched: the caller feeds them to `advance_object`. Lanes outside
+    /// `active` (and bits 32 and up) are never touched.
+    ///
+    /// Domain: any `d` and `step` (a NaN `d` is never free).
+    #[inline(always)]
+    pub fn advance_free_lanes<const N: usize>(
+        steppers: &mut [ConeStepper; N],
+        d: &[f32; N],
+        step: &[f32; N],
+        active: u32,
+    ) -> u32 {
+        let mut t = [0.0f32; N];
+        let mut next = [0.0f32; N];
+        let mut free = [false; N];
+        for k in 0..N {
+            let s = &steppers[k];
+            let tk = s.t;
+            let rc = cone_radius(tk, s.params.tan_theta);
+            let omega = cone_occlusion(d[k], rc);
+            t[k] = tk;
+            next[k] = advance(tk, step[k].min(d[k]), s.params.alpha, rc);
+            // `!(ω > soft)` implies no hard hit and no stop: `soft ≤ hard
+            // ≤ full` for every ε (each is a constant minus the same ε).
+            free[k] = s.stop.is_none()
+                & !s.pending_stop
+                & !s.prev_soft
+                & !s.passing
+                & (s.steps < s.params.max_steps)
+                & (tk < s.params.t_max)
+                & !d[k].is_nan()
+                & !(omega > s.thresholds.soft);
+        }
+        let mut left = active;
+        for k in 0..N.min(32) {
+            if active & (1 << k) != 0 && free[k] {
+                let s = &mut steppers[k];
+                s.steps += 1;
+                s.prev_hard = false;
+                s.t_prev = t[k];
+                s.d_prev = d[k];
+                s.have_prev = true;
+                s.t = next[k];
+                left &= !(1 << k);
+            }
+        }
+        left
+    }
+
     /// Make the sample's visibility mask from its projected normal, correlate it
     /// with `M` (`m_i & !M`, `M |= m_i`) and return `(visible mask, weight)`.
     ///

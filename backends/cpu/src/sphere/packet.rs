@@ -557,7 +557,10 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
             let r = self.eval_here(&pts, active);
             let mut closing = [None::<GroupSample>; LANES];
             let mut any_closing = false;
-            for k in lanes(active) {
+            // Free-space steps side by side; the rest one lane at a time.
+            let slow = ConeStepper::advance_free_lanes(steppers, &r.surface, &r.safe, active.into())
+                as LaneMask;
+            for k in lanes(slow) {
                 match steppers[k].advance_object(r.surface[k], r.safe[k], r.material[k]) {
                     Event::March => {}
                     Event::Sample(g) => {
