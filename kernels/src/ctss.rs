@@ -737,7 +737,6 @@ impl ConeStepper {
         step: &[f32; N],
         active: u32,
     ) -> u32 {
-        let mut t = [0.0f32; N];
         let mut next = [0.0f32; N];
         let mut free = [false; N];
         for k in 0..N {
@@ -745,7 +744,6 @@ impl ConeStepper {
             let tk = s.t;
             let rc = cone_radius(tk, s.params.tan_theta);
             let omega = cone_occlusion(d[k], rc);
-            t[k] = tk;
             next[k] = advance(tk, step[k].min(d[k]), s.params.alpha, rc);
             // `!(ω > soft)` implies no hard hit and no stop: `soft ≤ hard
             // ≤ full` for every ε (each is a constant minus the same ε).
@@ -764,7 +762,7 @@ impl ConeStepper {
                 let s = &mut steppers[k];
                 s.steps += 1;
                 s.prev_hard = false;
-                s.t_prev = t[k];
+                s.t_prev = s.t;
                 s.d_prev = d[k];
                 s.have_prev = true;
                 s.t = next[k];
