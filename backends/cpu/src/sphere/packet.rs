@@ -188,6 +188,12 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
     /// The one call into the program: compiled once per instruction-set
     /// path ([`Isa::run`](crate::isa::Isa::run) inlines the whole
     /// interpreter into it), and called from every loop of this module.
+    ///
+    /// The march loops (`trace`, `shadowed`, `march_cones`) run on the
+    /// instruction-set path themselves but still call this out of line:
+    /// inlined into each of them, the interpreter was compiled twelve times
+    /// (four loops × three paths), which was most of this crate's build. A
+    /// call per step is small beside one evaluation of a program.
     #[inline(never)]
     fn eval(&mut self, p: &Points, active: LaneMask) -> SplitLanes {
         let (program, scratch) = (self.program, &mut self.scratch);
@@ -216,14 +222,6 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
                 }
             }
         }
-    }
-
-    /// [`eval`](Self::eval) for a loop that already runs on the
-    /// instruction-set path (inside [`Isa::run`](crate::isa::Isa::run)):
-    /// the interpreter inlines into the loop.
-    #[inline(always)]
-    fn eval_here(&mut self, p: &Points, active: LaneMask) -> SplitLanes {
-        self.program.eval_split(p, active, &mut self.scratch)
     }
 
     /// Sphere traces up to [`LANES`] rays together, the whole march on the
@@ -263,7 +261,7 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
             if active == 0 {
                 return out;
             }
-            let r = self.eval_here(&pts, active);
+            let r = self.eval(&pts, active);
             for k in lanes(active) {
                 if let Some(h) = m[k].after_step(params, r.surface[k], r.safe[k]) {
                     out[k] = Some(h);
@@ -338,7 +336,7 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
             if active == 0 {
                 return blocked;
             }
-            let r = self.eval_here(&pts, active);
+            let r = self.eval(&pts, active);
             for k in lanes(active) {
                 if let Some(b) = rays[k].feed(r.safe[k], r.surface[k]) {
                     blocked |= (b as LaneMask) << k;
@@ -554,7 +552,7 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
             for k in lanes(active) {
                 pts.set(k, cones[k].origin + steppers[k].t() * cones[k].dir);
             }
-            let r = self.eval_here(&pts, active);
+            let r = self.eval(&pts, active);
             let mut closing = [None::<GroupSample>; LANES];
             let mut any_closing = false;
             // Free-space steps side by side; the rest one lane at a time.
