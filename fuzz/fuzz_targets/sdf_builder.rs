@@ -525,7 +525,7 @@ fn check_program(node: &SdfNode, points: &[Vec3]) {
             pts.set(k, points[(start + k) % points.len()]);
         }
         let active = if start % 2 == 0 { 0xff } else { 0x55 };
-        let out = program.eval_split(&pts, active, &mut scratch);
+        let out = program.eval_split_outlined(&pts, active, &mut scratch);
         for k in (0..LANES).filter(|k| active & (1 << k) != 0) {
             let want = node.eval_split(pts.get(k));
             let got = out.get(k);

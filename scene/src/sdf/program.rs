@@ -1060,13 +1060,28 @@ impl<'a> SdfProgram<'a> {
         }
     }
 
+    /// [`eval_split`](Self::eval_split) as one out-of-line function, compiled
+    /// once in this crate: for callers off the hot path (tests, tools,
+    /// fuzzing), each of which would otherwise compile the whole interpreter
+    /// into itself at every call site. A hot loop calls `eval_split`, so that
+    /// the interpreter is compiled into the loop, on its instruction set.
+    #[inline(never)]
+    pub fn eval_split_outlined(
+        &self,
+        p: &Points,
+        active: LaneMask,
+        scratch: &mut Scratch,
+    ) -> SplitLanes {
+        self.eval_split(p, active, scratch)
+    }
+
     /// One point in lane 0: [`SdfNode::eval_split`] at `p`.
     pub fn eval_split_one(&self, p: Vec3, scratch: &mut Scratch) -> SplitDistance {
         let mut pts = Points::default();
         for k in 0..LANES {
             pts.set(k, p);
         }
-        self.eval_split(&pts, 1, scratch).get(0)
+        self.eval_split_outlined(&pts, 1, scratch).get(0)
     }
 
     /// The interpreter. `NESTED` programs (scatter templates) never contain
