@@ -10,6 +10,34 @@ use obvhs::triangle::Triangle;
 use obvhs::BvhBuildParams;
 use subcone_scene::TriangleMesh;
 
+/// obvhs' `Ray::new` written out here, the same operations (its
+/// `safe_inverse` per component) so the same bits: obvhs' function is not
+/// `#[inline]`, so each ray was a call out of the instruction-set path into
+/// a baseline-compiled copy with three scalar divisions behind branches.
+/// (It leaves out the finiteness `debug_assert!`s of obvhs' function.)
+#[inline(always)]
+fn make_ray(origin: Vec3A, direction: Vec3A, tmin: f32, tmax: f32) -> Ray {
+    #[inline(always)]
+    fn safe_inverse(x: f32) -> f32 {
+        if x.abs() <= f32::EPSILON {
+            x.signum() / f32::EPSILON
+        } else {
+            1.0 / x
+        }
+    }
+    Ray {
+        origin,
+        direction,
+        inv_direction: Vec3A::new(
+            safe_inverse(direction.x),
+            safe_inverse(direction.y),
+            safe_inverse(direction.z),
+        ),
+        tmin,
+        tmax,
+    }
+}
+
 /// A closest hit.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
@@ -145,7 +173,7 @@ impl SceneBvh {
     /// ([`crate::isa::Isa::run`]).
     #[inline(always)]
     pub fn closest(&self, origin: Vec3, dir: Vec3, tmin: f32, tmax: f32) -> Option<Hit> {
-        let ray = Ray::new(Vec3A::from(origin), Vec3A::from(dir), tmin, tmax);
+        let ray = make_ray(Vec3A::from(origin), Vec3A::from(dir), tmin, tmax);
         let t = self.closest_slot(ray);
         (t.0 < ray.tmax).then(|| Hit {
             t: t.0,
@@ -212,7 +240,7 @@ impl SceneBvh {
     /// would visit every one.)
     #[inline(always)]
     pub fn occluded(&self, origin: Vec3, dir: Vec3, tmin: f32, tmax: f32) -> bool {
-        let ray = Ray::new(Vec3A::from(origin), Vec3A::from(dir), tmin, tmax);
+        let ray = make_ray(Vec3A::from(origin), Vec3A::from(dir), tmin, tmax);
         let casts = &self.casts_shadow;
         self.any_hit(ray, |id| casts[id])
     }
@@ -221,7 +249,7 @@ impl SceneBvh {
     /// triangle blocks, nothing else is done.
     #[inline(always)]
     pub fn raw_occluded(&self, origin: Vec3, dir: Vec3, tmax: f32) -> bool {
-        let ray = Ray::new(Vec3A::from(origin), Vec3A::from(dir), 0.0, tmax);
+        let ray = make_ray(Vec3A::from(origin), Vec3A::from(dir), 0.0, tmax);
         self.any_hit(ray, |_| true)
     }
 
@@ -229,7 +257,7 @@ impl SceneBvh {
     /// nothing else.
     #[inline(always)]
     pub fn raw_closest_t(&self, origin: Vec3, dir: Vec3) -> f32 {
-        let ray = Ray::new(Vec3A::from(origin), Vec3A::from(dir), 0.0, f32::INFINITY);
+        let ray = make_ray(Vec3A::from(origin), Vec3A::from(dir), 0.0, f32::INFINITY);
         self.closest_slot(ray).0
     }
 }
