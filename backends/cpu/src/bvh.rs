@@ -16,7 +16,8 @@ use subcone_scene::TriangleMesh;
 /// a baseline-compiled copy with three scalar divisions behind branches.
 /// (It leaves out the finiteness `debug_assert!`s of obvhs' function.)
 #[inline(always)]
-fn make_ray(origin: Vec3A, direction: Vec3A, tmin: f32, tmax: f32) -> Ray {
+fn make_ray(origin: Vec3, direction: Vec3, tmin: f32, tmax: f32) -> Ray {
+    let (origin, direction) = (Vec3A::from(origin), Vec3A::from(direction));
     #[inline(always)]
     fn safe_inverse(x: f32) -> f32 {
         if x.abs() <= f32::EPSILON {
@@ -173,7 +174,7 @@ impl SceneBvh {
     /// ([`crate::isa::Isa::run`]).
     #[inline(always)]
     pub fn closest(&self, origin: Vec3, dir: Vec3, tmin: f32, tmax: f32) -> Option<Hit> {
-        let ray = make_ray(Vec3A::from(origin), Vec3A::from(dir), tmin, tmax);
+        let ray = make_ray(origin, dir, tmin, tmax);
         let t = self.closest_slot(ray);
         (t.0 < ray.tmax).then(|| Hit {
             t: t.0,
@@ -240,7 +241,7 @@ impl SceneBvh {
     /// would visit every one.)
     #[inline(always)]
     pub fn occluded(&self, origin: Vec3, dir: Vec3, tmin: f32, tmax: f32) -> bool {
-        let ray = make_ray(Vec3A::from(origin), Vec3A::from(dir), tmin, tmax);
+        let ray = make_ray(origin, dir, tmin, tmax);
         let casts = &self.casts_shadow;
         self.any_hit(ray, |id| casts[id])
     }
@@ -249,7 +250,7 @@ impl SceneBvh {
     /// triangle blocks, nothing else is done.
     #[inline(always)]
     pub fn raw_occluded(&self, origin: Vec3, dir: Vec3, tmax: f32) -> bool {
-        let ray = make_ray(Vec3A::from(origin), Vec3A::from(dir), 0.0, tmax);
+        let ray = make_ray(origin, dir, 0.0, tmax);
         self.any_hit(ray, |_| true)
     }
 
@@ -257,7 +258,7 @@ impl SceneBvh {
     /// nothing else.
     #[inline(always)]
     pub fn raw_closest_t(&self, origin: Vec3, dir: Vec3) -> f32 {
-        let ray = make_ray(Vec3A::from(origin), Vec3A::from(dir), 0.0, f32::INFINITY);
+        let ray = make_ray(origin, dir, 0.0, f32::INFINITY);
         self.closest_slot(ray).0
     }
 }
