@@ -403,6 +403,12 @@ impl<F: SdfField> SdfView<'_, F> {
     /// in the same order.
     fn shade_layers(&self, q: Vec3, n: Vec3, bits: u32, split: bool, out: &mut [Vec3]) {
         let SplitDistance { material: m, .. } = self.field.eval_split(q);
+        self.shade_layers_of(m, q, n, bits, split, out);
+    }
+
+    /// [`shade_layers`](Self::shade_layers) with the field's material at `q`
+    /// already known (the packets read it off the program).
+    fn shade_layers_of(&self, m: u32, q: Vec3, n: Vec3, bits: u32, split: bool, out: &mut [Vec3]) {
         let mat = &self.materials[(m as usize).min(self.materials.len().saturating_sub(1))];
         let albedo = mat.albedo_at(q, Vec2::ZERO);
         out[0] = mat.emission + self.ambient * albedo;
@@ -476,13 +482,28 @@ impl<F: SdfField> SdfView<'_, F> {
 
         // Pass: shading of one sample per pixel.
         let start = Instant::now();
+        let packets = || self.program.as_ref().map(|p| Packets::new(self, p));
         let shaded = bands(&mut b.geo, band, nb)
             .into_par_iter()
             .zip(bands(&mut b.values, band * nl, nb))
             .zip(bands(&mut b.shadow, band, nb))
             .enumerate()
-            .map(|(bi, ((geo, values), shadow))| {
+            .map_init(packets, |packets, (bi, ((geo, values), shadow))| {
                 let mut t = Tally::default();
+                if let Some(pk) = packets {
+                    pk.sraa_shading_band(
+                        bi * BAND,
+                        method.sraa.shaded_offset(),
+                        &params,
+                        s,
+                        (shadows, split, nl),
+                        geo,
+                        values,
+                        shadow,
+                        &mut t,
+                    );
+                    return t;
+                }
                 for i in 0..geo.len() {
                     let (x, y) = (i % w, bi * BAND + i / w);
                     let px = pixel_centre(x, y) + method.sraa.shaded_offset();
@@ -518,12 +539,42 @@ impl<F: SdfField> SdfView<'_, F> {
         let adaptive = !self.exhaustive_subpixel_shadows;
         let geometry = {
             let (geo, shadow, values) = (&b.geo, &b.shadow, &b.values);
+            let agreement = |x: usize, y: usize| {
+                if adaptive {
+                    shadow_agreement(shadow, values, nl, 0, layout.lights, x, y, radius, w, h)
+                } else {
+                    (u32::MAX, 0)
+                }
+            };
             bands(&mut b.sub_geo, band, nb)
                 .into_par_iter()
                 .zip(bands(&mut b.sub_shadow, band, nb))
                 .enumerate()
-                .map(|(bi, (sub_geo, sub_shadow))| {
+                .map_init(packets, |packets, (bi, (sub_geo, sub_shadow))| {
                     let mut t = Tally::default();
+                    if let Some(pk) = packets {
+                        // The shaded subsample's geometry and shadow states
+                        // are the shading pass's.
+                        if let Some(k) = method.sraa.shaded_subsample() {
+                            for (i, g) in sub_geo.iter_mut().enumerate() {
+                                g[k] = geo[bi * band + i];
+                            }
+                            for (i, ss) in sub_shadow.iter_mut().enumerate() {
+                                ss[k] = shadow[bi * band + i];
+                            }
+                        }
+                        pk.sraa_geometry_band(
+                            bi * BAND,
+                            method.sraa.shaded_subsample(),
+                            &params,
+                            s,
+                            agreement,
+                            sub_geo,
+                            sub_shadow,
+                            &mut t,
+                        );
+                        return t;
+                    }
                     for i in 0..sub_geo.len() {
                         let (x, y) = (i % w, bi * BAND + i / w);
                         let j = bi * band + i;
@@ -543,24 +594,8 @@ impl<F: SdfField> SdfView<'_, F> {
                             };
                             sub_geo[i][k] = Geometry::new(nrm, self.camera.view_depth(q));
                             if let Some(ss) = sub_shadow.get_mut(i) {
-                                let (cast, inherited) = *agree.get_or_insert_with(|| {
-                                    if adaptive {
-                                        shadow_agreement(
-                                            shadow,
-                                            values,
-                                            nl,
-                                            0,
-                                            layout.lights,
-                                            x,
-                                            y,
-                                            radius,
-                                            w,
-                                            h,
-                                        )
-                                    } else {
-                                        (u32::MAX, 0)
-                                    }
-                                });
+                                let (cast, inherited) =
+                                    *agree.get_or_insert_with(|| agreement(x, y));
                                 ss[k] = self.shadow_states(q, nrm, cast, inherited, &mut t);
                             }
                         }

@@ -1,11 +1,11 @@
 //! Packets of rays against one ray at a time: the SDF renderer traces NoAA,
-//! SSAA and the CTSS family eight rays at a time through the scene's compiled
-//! program; with no program it traces each ray alone through the tree. The
+//! SSAA, the CTSS family and SRAA-RT's shading and geometry passes eight
+//! rays at a time through the scene's compiled program; with no program it traces each ray alone through the tree. The
 //! frames must be equal bit for bit (colour, samples per pixel and the
 //! counters), on every paper scene, the stiff scenes and glass.
 
 use subcone_cpu::sphere::SdfView;
-use subcone_kernels::passes::Passes;
+use subcone_kernels::passes::{required_passes, Passes};
 use subcone_scene::sdf::{SDF_SCENES, STIFF_SCENES};
 use subcone_scene::{builtin::builtin, Frame, Method, RenderSettings};
 
@@ -14,7 +14,9 @@ fn frames(name: &str, method: &str, w: u32, h: u32) -> (Frame, Frame) {
     let m: Method = method.parse().unwrap();
     let mut s = RenderSettings::new(w, h);
     s.aovs = true;
-    let passes = Passes::PRIMARY | Passes::SHADING | Passes::SHADOW;
+    // The scene's own passes (SRAA-RT's subpixel shadows among them).
+    let passes = required_passes(m.technique, scene.features()).unwrap();
+    assert!(passes.contains(Passes::PRIMARY));
     let packets = SdfView::of_scene(&scene, &scene.camera).unwrap();
     assert!(
         packets.program.is_some(),
@@ -48,6 +50,8 @@ fn packets_render_what_single_rays_render() {
             "ctss-r",
             "ctss-delayed",
             "ssaa4+ctss",
+            "sraa-rt",
+            "sraa-rt-paper",
         ] {
             let (a, b) = frames(name, method, 40, 24);
             assert!(bits(&a) == bits(&b), "{name} {method}: the colours differ");
@@ -69,5 +73,36 @@ fn packets_render_what_single_rays_render() {
                 "{name} {method}: the counters differ"
             );
         }
+    }
+}
+
+/// SRAA-RT with every subsample's shadow rays cast (not only where the
+/// shaded samples around disagree): the packets cast the same rays.
+#[test]
+fn packets_cast_every_subpixel_shadow_ray_single_rays_cast() {
+    for name in SDF_SCENES {
+        let scene = builtin(name).unwrap();
+        let m: Method = "sraa-rt".parse().unwrap();
+        let s = RenderSettings::new(40, 24);
+        let passes = required_passes(m.technique, scene.features()).unwrap();
+        let exhaustive = |program: bool| {
+            let mut v = SdfView::of_scene(&scene, &scene.camera).unwrap();
+            v.exhaustive_subpixel_shadows = true;
+            if !program {
+                v.program = None;
+            }
+            v.render(&m, &s, passes)
+        };
+        let (a, b) = (exhaustive(true), exhaustive(false));
+        assert!(bits(&a) == bits(&b), "{name}: the colours differ");
+        assert_eq!(
+            (a.stats.sdf_evaluations, a.stats.rays.shadow),
+            (b.stats.sdf_evaluations, b.stats.rays.shadow),
+            "{name}: the counters differ"
+        );
+        assert!(
+            !scene.lights.is_empty() || a.stats.rays.shadow == 0,
+            "{name}: shadow rays without lights"
+        );
     }
 }

@@ -28,11 +28,14 @@ use subcone_kernels::ctss::{
     close_group, group_normal_depths, normal_step, ConeField, ConeStepper, CtssParams, Event,
     FieldSample, GroupSample, SphereHit, SphereMarch, SplitRay,
 };
+use subcone_kernels::passes::MAX_LIGHTS;
+use subcone_kernels::sraa::{Geometry, SUBPIXEL_OFFSETS};
 use subcone_scene::sdf::program::{LaneMask, Points, Scratch, SdfProgram, SplitLanes, LANES};
 use subcone_scene::sdf::{tetra_normal_from, tetra_taps};
 use subcone_scene::RenderSettings;
 
 use super::{ConeFieldOf, SdfField, SdfView, Tally};
+use crate::render::pixel_centre;
 
 /// All of the first `n` lanes.
 #[inline(always)]
@@ -661,5 +664,223 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
         self.batch = batch;
         self.sample_dirs = dirs;
         multi
+    }
+}
+
+/// What SRAA-RT keeps of up to [`LANES`] traced rays (the scalar path's
+/// `hit`): in the lanes of `hit`, the point and the unit normal facing the
+/// ray.
+pub(super) struct Surfaces {
+    pub(super) q: [Vec3; LANES],
+    pub(super) n: [Vec3; LANES],
+    pub(super) hit: LaneMask,
+}
+
+/// SRAA-RT on an SDF (`SdfView::sraa_rt`) in packets: its shading and
+/// geometry passes trace, take normals, shadow states and materials eight
+/// rays at a time, each lane as the scalar path takes it alone, so the
+/// buffers, and so the frames, are bit for bit the scalar path's.
+impl<F: SdfField> Packets<'_, '_, F> {
+    /// The scalar path's `hit` for each of up to [`LANES`] rays: sphere
+    /// traced, then the normals of the hits in packets, turned to face the
+    /// ray.
+    pub(super) fn surfaces(
+        &mut self,
+        rays: &[(Vec3, Vec3)],
+        params: &CtssParams,
+        tally: &mut Tally,
+    ) -> Surfaces {
+        let traced = self.trace(rays, params);
+        let mut q = [Vec3::ZERO; LANES];
+        let mut h = [0.0f32; LANES];
+        let mut hit: LaneMask = 0;
+        for (k, ray) in rays.iter().enumerate() {
+            let Some(r) = traced[k] else { continue };
+            tally.steps += r.steps as u64;
+            if let Some(t) = r.t {
+                q[k] = ray.0 + t * ray.1;
+                h[k] = normal_step(t, params.tan_theta);
+                hit |= 1 << k;
+            }
+        }
+        let mut n = self.normals(&q, &h, hit);
+        for k in lanes(hit) {
+            if n[k].dot(rays[k].1) > 0.0 {
+                n[k] = -n[k];
+            }
+        }
+        Surfaces { q, n, hit }
+    }
+
+    /// The scalar path's `shadow_states` in the lanes of `s.hit`: bit `l`
+    /// set where light `l` shadows the point. A light facing away shadows
+    /// without a ray, one that does not reach the point leaves it lit; of
+    /// the others, a lane casts a ray where its `cast` bit is set (each
+    /// light's rays as one packet) and takes its `inherited` bit elsewhere.
+    pub(super) fn shadow_states(
+        &mut self,
+        s: &Surfaces,
+        cast: &[u32; LANES],
+        inherited: &[u32; LANES],
+        tally: &mut Tally,
+    ) -> [u32; LANES] {
+        let view = self.view;
+        let mut bits = [0u32; LANES];
+        for (l, light) in view.lights.iter().enumerate().take(MAX_LIGHTS) {
+            let mut need: LaneMask = 0;
+            let mut rays = [ShadowRay::default(); LANES];
+            for k in lanes(s.hit) {
+                let Some(inc) = light.incident(s.q[k]) else {
+                    continue;
+                };
+                if inc.direction.dot(s.n[k]) <= 0.0 {
+                    bits[k] |= 1 << l;
+                } else if cast[k] & (1 << l) == 0 {
+                    bits[k] |= inherited[k] & (1 << l);
+                } else {
+                    rays[k] = ShadowRay::new(
+                        s.q[k],
+                        s.n[k],
+                        inc.direction,
+                        inc.distance,
+                        view.max_distance,
+                    );
+                    need |= 1 << k;
+                }
+            }
+            tally.shadow += need.count_ones() as u64;
+            for k in lanes(self.shadowed(&mut rays, need)) {
+                bits[k] |= 1 << l;
+            }
+        }
+        bits
+    }
+
+    /// SRAA-RT's shading pass over the pixels of one band (`geo`, from row
+    /// `first_row` on): each pixel's ray through its centre plus `offset`,
+    /// its geometry in `geo`, its shadow states in `shadow` (when not empty;
+    /// with `shadows` false, no shadow ray is cast), its layers (`nl` per
+    /// pixel, split by light when `split`) in `values`.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn sraa_shading_band(
+        &mut self,
+        first_row: usize,
+        offset: Vec2,
+        params: &CtssParams,
+        s: &RenderSettings,
+        (shadows, split, nl): (bool, bool, usize),
+        geo: &mut [Geometry],
+        values: &mut [Vec3],
+        shadow: &mut [u32],
+        tally: &mut Tally,
+    ) {
+        let view = self.view;
+        let w = s.width as usize;
+        let mut rays = std::mem::take(&mut self.rays);
+        for start in (0..geo.len()).step_by(LANES) {
+            let m = LANES.min(geo.len() - start);
+            rays.clear();
+            rays.extend((start..start + m).map(|i| {
+                let px = pixel_centre(i % w, first_row + i / w) + offset;
+                view.camera.ray(px, s.width, s.height)
+            }));
+            let surf = self.surfaces(&rays, params, tally);
+            tally.samples += surf.hit.count_ones() as u64;
+            let bits = if shadows {
+                self.shadow_states(&surf, &[u32::MAX; LANES], &[0; LANES], tally)
+            } else {
+                [0; LANES]
+            };
+            let mut pts = Points::default();
+            for k in lanes(surf.hit) {
+                pts.set(k, surf.q[k]);
+            }
+            let material = if surf.hit != 0 {
+                self.eval(&pts, surf.hit).material
+            } else {
+                [0; LANES]
+            };
+            for k in 0..m {
+                let i = start + k;
+                let v = &mut values[i * nl..(i + 1) * nl];
+                if surf.hit & (1 << k) == 0 {
+                    v[0] = view.background;
+                    continue;
+                }
+                let (q, n) = (surf.q[k], surf.n[k]);
+                geo[i] = Geometry::new(n, view.camera.view_depth(q));
+                if let Some(sh) = shadow.get_mut(i) {
+                    *sh = bits[k];
+                }
+                view.shade_layers_of(material[k], q, n, bits[k], split, v);
+            }
+        }
+        self.rays = rays;
+    }
+
+    /// SRAA-RT's geometry pass (the paper's pass 1) over the pixels of one
+    /// band (`sub_geo`, from row `first_row` on): subsample `k` of each
+    /// pixel (every one but `shaded`, which the caller copies from the
+    /// shading pass) traced for its geometry and, when `sub_shadow` is not
+    /// empty, its shadow states, casting the lights `agree(x, y)` names for
+    /// pixel `(x, y)` and inheriting the others (`(cast, inherited)`).
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn sraa_geometry_band(
+        &mut self,
+        first_row: usize,
+        shaded: Option<usize>,
+        params: &CtssParams,
+        s: &RenderSettings,
+        agree: impl Fn(usize, usize) -> (u32, u32),
+        sub_geo: &mut [[Geometry; 4]],
+        sub_shadow: &mut [[u32; 4]],
+        tally: &mut Tally,
+    ) {
+        let view = self.view;
+        let w = s.width as usize;
+        let subsamples: Vec<usize> = (0..4).filter(|k| Some(*k) != shaded).collect();
+        let total = sub_geo.len() * subsamples.len();
+        let mut rays = std::mem::take(&mut self.rays);
+        let mut which = [(0usize, 0usize); LANES];
+        // The last pixel's `agree` (its subsamples share packets).
+        let mut agreed: Option<(usize, (u32, u32))> = None;
+        for start in (0..total).step_by(LANES) {
+            let m = LANES.min(total - start);
+            rays.clear();
+            for (slot, j) in which.iter_mut().zip(start..start + m) {
+                let (i, k) = (j / subsamples.len(), subsamples[j % subsamples.len()]);
+                *slot = (i, k);
+                let px = pixel_centre(i % w, first_row + i / w) + SUBPIXEL_OFFSETS[k];
+                rays.push(view.camera.ray(px, s.width, s.height));
+            }
+            let surf = self.surfaces(&rays, params, tally);
+            for k in lanes(surf.hit) {
+                let (i, sub) = which[k];
+                sub_geo[i][sub] = Geometry::new(surf.n[k], view.camera.view_depth(surf.q[k]));
+            }
+            if sub_shadow.is_empty() || surf.hit == 0 {
+                continue;
+            }
+            let mut cast = [0u32; LANES];
+            let mut inherited = [0u32; LANES];
+            for k in lanes(surf.hit) {
+                let i = which[k].0;
+                let a = match agreed {
+                    Some((p, a)) if p == i => a,
+                    _ => {
+                        let a = agree(i % w, first_row + i / w);
+                        agreed = Some((i, a));
+                        a
+                    }
+                };
+                (cast[k], inherited[k]) = a;
+            }
+            let bits = self.shadow_states(&surf, &cast, &inherited, tally);
+            for k in lanes(surf.hit) {
+                let (i, sub) = which[k];
+                sub_shadow[i][sub] = bits[k];
+            }
+        }
+        self.rays = rays;
     }
 }
