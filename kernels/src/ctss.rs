@@ -75,7 +75,8 @@ use glam::{Vec2, Vec3};
 mod trace;
 pub use trace::{
     close_group, group_mask, group_normal_depths, march, march_step, normal_step, shade_split,
-    trace_field, ClosureField, ConeField, FieldSample, GroupHit, SHEET_PROBE, SHELL_LENGTH,
+    split_samples, trace_field, ClosureField, ConeField, FieldSample, GroupHit, PartSample,
+    SHEET_PROBE, SHELL_LENGTH,
 };
 
 use crate::aggregate::{sample_weight, Aggregate, Weighting};

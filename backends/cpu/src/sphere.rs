@@ -117,8 +117,8 @@ pub struct SdfView<'a, F: SdfField> {
     /// shaded samples around it disagree about a light (as the triangle path's
     /// `CpuBackend::with_exhaustive_subpixel_shadows`).
     pub exhaustive_subpixel_shadows: bool,
-    /// The field compiled for packets of rays (NoAA, SSAA and the CTSS
-    /// family trace [`LANES`](subcone_scene::sdf::program::LANES) rays at
+    /// The field compiled for packets of rays (NoAA, SSAA, SRAA-RT and the
+    /// CTSS family on opaque scenes trace [`LANES`](subcone_scene::sdf::program::LANES) rays at
     /// once through it); `None`: one ray at a time through
     /// [`field`](Self::field). Both give the same frames bit for bit.
     pub program: Option<SdfProgram<'a>>,
@@ -754,12 +754,9 @@ impl<F: SdfField> SdfView<'_, F> {
                 },
                 |(buffers, packets), (y, (row, spp_row))| {
                     let mut t = Tally::default();
-                    // Packets of rays: every opaque method but `ctss+edges`
-                    // (its split groups trace sub-cones of their own).
-                    if let Some(pk) = packets
-                        .as_mut()
-                        .filter(|_| !(translucent || cone && params.splits_groups()))
-                    {
+                    // Packets of rays: every opaque method (`ctss+edges`'
+                    // split groups trace their sub-rays one at a time).
+                    if let Some(pk) = packets.as_mut().filter(|_| !translucent) {
                         let side = side as usize;
                         t.multi += if cone {
                             pk.cone_row(y, side, &params, s, row, spp_row, &mut t)

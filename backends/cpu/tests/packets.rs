@@ -50,6 +50,7 @@ fn packets_render_what_single_rays_render() {
             "ctss-r",
             "ctss-delayed",
             "ssaa4+ctss",
+            "ctss+edges",
             "sraa-rt",
             "sraa-rt-paper",
         ] {

@@ -409,6 +409,61 @@ where
     F: ConeField + ?Sized,
     C: FnMut(Vec3, Vec3, Vec3) -> Vec3,
 {
+    // The group's own colour, shaded once for every part that takes it.
+    let mut group_color = None;
+    split_samples(params, ray, field, hit, |part| match part {
+        PartSample::Hit {
+            point,
+            normal,
+            dir,
+            weight,
+        } => agg.add(weight, shade(point, normal, dir)),
+        PartSample::Group { weight } => agg.add(
+            weight,
+            *group_color.get_or_insert_with(|| shade(hit.point, hit.normal, ray.dir)),
+        ),
+    })
+}
+
+/// A shaded part of a split group ([`split_samples`]), with its share of
+/// eq. 6.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PartSample {
+    /// A sub-ray's hit: shade `point` with `normal`, seen along `dir`.
+    Hit {
+        /// The hit point.
+        point: Vec3,
+        /// Its unit normal (step [`normal_step`]).
+        normal: Vec3,
+        /// The sub-ray's direction.
+        dir: Vec3,
+        /// Its weight.
+        weight: f32,
+    },
+    /// A sub-ray that found no surface within the group: it takes the
+    /// group's own sample (its point and normal seen along the cone's axis),
+    /// shaded once for the group however many parts take it.
+    Group {
+        /// Its weight.
+        weight: f32,
+    },
+}
+
+/// [`shade_split`] without the shading: the parts of a split group, in the
+/// order eq. 6 adds them, each passed to `part`, for a renderer that shades
+/// later (delayed shading, §5.1, or packets of samples). Returns what
+/// [`shade_split`] returns; `part` is not called when the group stays whole.
+pub fn split_samples<F, P>(
+    params: &CtssParams,
+    ray: &SplitRay,
+    field: &mut F,
+    hit: &GroupHit,
+    mut part: P,
+) -> Option<(u32, u32)>
+where
+    F: ConeField + ?Sized,
+    P: FnMut(PartSample),
+{
     let s = &hit.sample;
     let coarse = field.coarse_normal(hit.point, coarse_normal_step(s.t, params));
     if !group_needs_split(hit.normal, coarse, s.t_exit - s.t_entry, s.t, params) {
@@ -418,18 +473,20 @@ where
         let f = field.sample(x);
         (f.distance, f.step)
     })?;
-    let mut group_color = None;
     let mut shaded = 0u32;
-    for part in g.parts.iter().filter(|part| part.weight > 0.0) {
-        let c = match part.t {
+    for p in g.parts.iter().filter(|p| p.weight > 0.0) {
+        part(match p.t {
             Some(t) => {
-                let x = ray.origin + t * part.dir;
-                let n = field.normal(x, normal_step(t, params.tan_theta));
-                shade(x, n, part.dir)
+                let point = ray.origin + t * p.dir;
+                PartSample::Hit {
+                    point,
+                    normal: field.normal(point, normal_step(t, params.tan_theta)),
+                    dir: p.dir,
+                    weight: p.weight,
+                }
             }
-            None => *group_color.get_or_insert_with(|| shade(hit.point, hit.normal, ray.dir)),
-        };
-        agg.add(part.weight, c);
+            None => PartSample::Group { weight: p.weight },
+        });
         shaded += 1;
     }
     Some((g.steps.saturating_add(4), shaded.saturating_sub(1)))

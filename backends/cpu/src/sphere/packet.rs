@@ -21,12 +21,19 @@
 //!   ([`close_group`]). The hit groups are recorded, then shaded
 //!   in packets of eight samples (CTSS §5.1's delayed shading, which sums
 //!   eq. 6 in the same order as shading as soon as a group closes).
+//!   `ctss+edges` (§5.3) takes every group's coarse normal in those packets
+//!   and records a split group's parts ([`split_samples`]), its sub-rays
+//!   traced one at a time through the tree.
+//! - SRAA-RT (Chiu et al. §3) on an SDF: the shading pass's and the
+//!   geometry pass's rays eight at a time (trace, normals, shadow states,
+//!   materials), each buffer entry as the scalar path writes it.
 
 use glam::{Vec2, Vec3};
 use subcone_kernels::aggregate::Aggregate;
 use subcone_kernels::ctss::{
-    close_group, group_normal_depths, normal_step, ConeField, ConeStepper, CtssParams, Event,
-    FieldSample, GroupSample, SphereHit, SphereMarch, SplitRay,
+    close_group, coarse_normal_step, group_normal_depths, normal_step, split_samples, ConeField,
+    ConeStepper, CtssParams, Event, FieldSample, GroupSample, PartSample, SphereHit, SphereMarch,
+    SplitRay,
 };
 use subcone_kernels::passes::MAX_LIGHTS;
 use subcone_kernels::sraa::{Geometry, SUBPIXEL_OFFSETS};
@@ -111,12 +118,18 @@ impl ShadowRay {
     }
 }
 
-/// A hit-group sample waiting for shading.
+/// A hit-group sample waiting for shading: point, normal and the direction
+/// it is seen along, and its weight in eq. 6.
 #[derive(Clone, Copy)]
 struct Pending {
     q: Vec3,
     n: Vec3,
+    dir: Vec3,
     w: f32,
+    /// 0: shade it. `r > 0`: it takes the colour of the sample `r` places
+    /// before it (a split group's parts that take the group's own colour,
+    /// [`PartSample::Group`], shaded once as `shade_split` shades it).
+    reuse: u32,
 }
 
 /// A [`ConeField`] that serves the normals computed in packets for the
@@ -164,8 +177,13 @@ pub(super) struct Packets<'v, 'a, F: SdfField> {
     hits: Vec<bool>,
     batch: Vec<Pending>,
     lane_batch: [Vec<Pending>; LANES],
+    /// `ctss+edges`: each lane's evaluations and shaded samples beyond its
+    /// stepper's (coarse normals, split groups' sub-traces and parts), as
+    /// `trace_field` adds them.
+    lane_extra: [(u32, u32); LANES],
     cones: Vec<PendingCone>,
-    sample_dirs: Vec<Vec3>,
+    /// The samples of the batch that are shaded (not reused).
+    to_shade: Vec<usize>,
     normal_at: Vec<(Vec3, f32)>,
     normal_values: Vec<Vec3>,
 }
@@ -181,8 +199,9 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
             hits: Vec::new(),
             batch: Vec::new(),
             lane_batch: Default::default(),
+            lane_extra: [(0, 0); LANES],
             cones: Vec::new(),
-            sample_dirs: Vec::new(),
+            to_shade: Vec::new(),
             normal_at: Vec::new(),
             normal_values: Vec::new(),
         }
@@ -493,6 +512,14 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
                 self.normal_at
                     .push((cones[k].origin + t * cones[k].dir, normal_step(t, tan)));
             }
+            // `ctss+edges` takes every group's coarse normal at its shading
+            // point (`split_samples`).
+            if params.splits_groups() {
+                self.normal_at.push((
+                    cones[k].origin + g.t * cones[k].dir,
+                    coarse_normal_step(g.t, params),
+                ));
+            }
         }
         let at = std::mem::take(&mut self.normal_at);
         let mut values = std::mem::take(&mut self.normal_values);
@@ -505,19 +532,60 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
         };
         for (k, g) in closing.iter().enumerate() {
             let Some(g) = *g else { continue };
-            let out = &mut self.lane_batch[k];
+            let (out, extra) = (&mut self.lane_batch[k], &mut self.lane_extra[k]);
+            let ray = &cones[k];
             close_group(
                 params,
-                &cones[k],
+                ray,
                 &mut steppers[k],
                 g,
                 &mut field,
-                &mut |_, hit| {
-                    out.push(Pending {
+                &mut |field, hit| {
+                    let whole = Pending {
                         q: hit.point,
                         n: hit.normal,
+                        dir: ray.dir,
                         w: hit.weight,
-                    })
+                        reuse: 0,
+                    };
+                    if params.splits_groups() {
+                        // `trace_field`'s split (`shade_split`), recorded.
+                        let mut group_at = None;
+                        let split = split_samples(params, ray, field, hit, |part| {
+                            out.push(match part {
+                                PartSample::Hit {
+                                    point,
+                                    normal,
+                                    dir,
+                                    weight,
+                                } => Pending {
+                                    q: point,
+                                    n: normal,
+                                    dir,
+                                    w: weight,
+                                    reuse: 0,
+                                },
+                                PartSample::Group { weight } => {
+                                    let at = out.len();
+                                    let first = *group_at.get_or_insert(at);
+                                    Pending {
+                                        w: weight,
+                                        reuse: (at - first) as u32,
+                                        ..whole
+                                    }
+                                }
+                            })
+                        });
+                        match split {
+                            Some((steps, parts)) => {
+                                extra.0 = extra.0.saturating_add(steps);
+                                extra.1 = extra.1.saturating_add(parts);
+                                return;
+                            }
+                            None => extra.0 = extra.0.saturating_add(4),
+                        }
+                    }
+                    out.push(whole);
                 },
             );
         }
@@ -596,7 +664,6 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
         let rays = std::mem::take(&mut self.rays);
         self.batch.clear();
         self.cones.clear();
-        self.sample_dirs.clear();
         let view = self.view;
         for chunk in rays.chunks(LANES) {
             let cones: [SplitRay; LANES] = std::array::from_fn(|k| {
@@ -608,34 +675,47 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
             for b in &mut self.lane_batch {
                 b.clear();
             }
+            self.lane_extra = [(0, 0); LANES];
             self.march_cones(params, &cones, &mut steppers, first(chunk.len()));
-            for (k, (_, d)) in chunk.iter().enumerate() {
+            for k in 0..chunk.len() {
                 let st = &steppers[k];
-                tally.steps += st.steps() as u64;
-                tally.samples += st.samples() as u64;
+                let (steps, samples) = self.lane_extra[k];
+                let samples = st.samples().saturating_add(samples);
+                tally.steps += st.steps().saturating_add(steps) as u64;
+                tally.samples += samples as u64;
                 self.batch.extend_from_slice(&self.lane_batch[k]);
-                self.sample_dirs
-                    .extend(std::iter::repeat_n(*d, self.lane_batch[k].len()));
                 self.cones.push(PendingCone {
                     background_weight: st.background_weight(),
                     end: self.batch.len(),
-                    samples: st.samples(),
+                    samples,
                 });
             }
         }
         self.rays = rays;
 
-        // Shading, eight samples at a time.
+        // Shading, eight samples at a time; reused colours copied after.
         let batch = std::mem::take(&mut self.batch);
-        let dirs = std::mem::take(&mut self.sample_dirs);
+        let mut to_shade = std::mem::take(&mut self.to_shade);
+        to_shade.clear();
+        to_shade.extend((0..batch.len()).filter(|&i| batch[i].reuse == 0));
         self.colors.clear();
-        for (b, d) in batch.chunks(LANES).zip(dirs.chunks(LANES)) {
-            let q = std::array::from_fn(|k| b.get(k).map_or(Vec3::ZERO, |p| p.q));
-            let n = std::array::from_fn(|k| b.get(k).map_or(Vec3::Y, |p| p.n));
-            let dir = std::array::from_fn(|k| d.get(k).copied().unwrap_or(Vec3::Z));
-            let c = self.shade(&q, &n, &dir, first(b.len()), tally);
-            self.colors.extend_from_slice(&c[..b.len()]);
+        self.colors.resize(batch.len(), Vec3::ZERO);
+        for idx in to_shade.chunks(LANES) {
+            let at = |k: usize| idx.get(k).map(|&i| batch[i]);
+            let q = std::array::from_fn(|k| at(k).map_or(Vec3::ZERO, |p| p.q));
+            let n = std::array::from_fn(|k| at(k).map_or(Vec3::Y, |p| p.n));
+            let dir = std::array::from_fn(|k| at(k).map_or(Vec3::Z, |p| p.dir));
+            let c = self.shade(&q, &n, &dir, first(idx.len()), tally);
+            for (&i, c) in idx.iter().zip(c) {
+                self.colors[i] = c;
+            }
         }
+        for (i, p) in batch.iter().enumerate() {
+            if p.reuse > 0 {
+                self.colors[i] = self.colors[i - p.reuse as usize];
+            }
+        }
+        self.to_shade = to_shade;
 
         let per_pixel = side * side;
         let mut multi = 0;
@@ -662,7 +742,6 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
             }
         }
         self.batch = batch;
-        self.sample_dirs = dirs;
         multi
     }
 }
