@@ -677,8 +677,7 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
             }
             self.lane_extra = [(0, 0); LANES];
             self.march_cones(params, &cones, &mut steppers, first(chunk.len()));
-            for k in 0..chunk.len() {
-                let st = &steppers[k];
+            for (k, st) in steppers.iter().enumerate().take(chunk.len()) {
                 let (steps, samples) = self.lane_extra[k];
                 let samples = st.samples().saturating_add(samples);
                 tally.steps += st.steps().saturating_add(steps) as u64;
