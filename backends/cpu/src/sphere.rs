@@ -184,6 +184,12 @@ impl std::ops::Add for Tally {
 }
 
 impl<F: SdfField> SdfView<'_, F> {
+    /// The material the field names `m` (the last one for an index past
+    /// the end).
+    fn material(&self, m: u32) -> &Material {
+        &self.materials[(m as usize).min(self.materials.len().saturating_sub(1))]
+    }
+
     /// Normal at `p` seen from depth `t` with cone `tan`: differences over a
     /// quarter of the cone radius (never below 1e-5 of the depth), the same for
     /// every method.
@@ -210,7 +216,7 @@ impl<F: SdfField> SdfView<'_, F> {
     /// Lambert shading with hard shadows and ambient light.
     fn shade(&self, p: Vec3, n: Vec3, dir: Vec3, tally: &mut Tally) -> Vec3 {
         let SplitDistance { material: m, .. } = self.field.eval_split(p);
-        let mat = &self.materials[(m as usize).min(self.materials.len().saturating_sub(1))];
+        let mat = self.material(m);
         let albedo = mat.albedo_at(p, Vec2::ZERO);
         // Shade the side facing the ray.
         let n = if n.dot(dir) > 0.0 { -n } else { n };
@@ -409,7 +415,7 @@ impl<F: SdfField> SdfView<'_, F> {
     /// [`shade_layers`](Self::shade_layers) with the field's material at `q`
     /// already known (the packets read it off the program).
     fn shade_layers_of(&self, m: u32, q: Vec3, n: Vec3, bits: u32, split: bool, out: &mut [Vec3]) {
-        let mat = &self.materials[(m as usize).min(self.materials.len().saturating_sub(1))];
+        let mat = self.material(m);
         let albedo = mat.albedo_at(q, Vec2::ZERO);
         out[0] = mat.emission + self.ambient * albedo;
         for (l, light) in self.lights.iter().enumerate().take(MAX_LIGHTS) {
@@ -650,56 +656,65 @@ impl<F: SdfField> SdfView<'_, F> {
             &Method::new(Technique::NoAa),
         );
         let lights = self.lights.len().min(subcone_kernels::passes::MAX_LIGHTS);
-        let g: Vec<(f32, Vec3, Vec3, u32, f32)> = (0..w * s.height as usize)
-            .into_par_iter()
-            .map(|i| {
-                let (o, d) = self.camera.ray(
-                    Vec2::new((i % w) as f32 + 0.5, (i / w) as f32 + 0.5),
-                    s.width,
-                    s.height,
-                );
-                let split = |q| {
-                    let SplitDistance { safe, surface, .. } = self.field.eval_split(q);
-                    (surface, safe)
-                };
-                match sphere_trace_split(&plain, o, d, split).t {
-                    Some(t) => {
-                        let q = o + t * d;
-                        let n = self.normal_at(q, t, plain.tan_theta);
-                        let SplitDistance { material: m, .. } = self.field.eval_split(q);
-                        let mat = &self.materials
-                            [(m as usize).min(self.materials.len().saturating_sub(1))];
-                        let facing = if n.dot(d) > 0.0 { -n } else { n };
-                        let mut visible = 0u32;
-                        let mut tally = Tally::default();
-                        for (l, light) in self.lights.iter().enumerate().take(lights) {
-                            let Some(inc) = light.incident(q) else {
-                                continue;
-                            };
-                            if inc.direction.dot(facing) <= 0.0
-                                || !self.shadowed(
-                                    q,
-                                    facing,
-                                    inc.direction,
-                                    inc.distance,
-                                    &mut tally,
-                                )
-                            {
-                                visible |= 1 << l;
+        let g: Vec<(f32, Vec3, Vec3, u32, f32)> = if let Some(program) = &self.program {
+            // In packets, row by row: the same values.
+            let mut g = vec![(0.0, Vec3::ZERO, Vec3::ZERO, 0, 0.0); w * s.height as usize];
+            g.par_chunks_mut(w).enumerate().for_each_init(
+                || Packets::new(self, program),
+                |pk, (y, row)| pk.aov_row(y, &plain, s, row),
+            );
+            g
+        } else {
+            (0..w * s.height as usize)
+                .into_par_iter()
+                .map(|i| {
+                    let (o, d) = self.camera.ray(
+                        Vec2::new((i % w) as f32 + 0.5, (i / w) as f32 + 0.5),
+                        s.width,
+                        s.height,
+                    );
+                    let split = |q| {
+                        let SplitDistance { safe, surface, .. } = self.field.eval_split(q);
+                        (surface, safe)
+                    };
+                    match sphere_trace_split(&plain, o, d, split).t {
+                        Some(t) => {
+                            let q = o + t * d;
+                            let n = self.normal_at(q, t, plain.tan_theta);
+                            let SplitDistance { material: m, .. } = self.field.eval_split(q);
+                            let mat = self.material(m);
+                            let facing = if n.dot(d) > 0.0 { -n } else { n };
+                            let mut visible = 0u32;
+                            let mut tally = Tally::default();
+                            for (l, light) in self.lights.iter().enumerate().take(lights) {
+                                let Some(inc) = light.incident(q) else {
+                                    continue;
+                                };
+                                if inc.direction.dot(facing) <= 0.0
+                                    || !self.shadowed(
+                                        q,
+                                        facing,
+                                        inc.direction,
+                                        inc.distance,
+                                        &mut tally,
+                                    )
+                                {
+                                    visible |= 1 << l;
+                                }
                             }
+                            (
+                                self.camera.view_depth(q),
+                                n,
+                                mat.albedo_at(q, Vec2::ZERO),
+                                visible,
+                                mat.mirror,
+                            )
                         }
-                        (
-                            self.camera.view_depth(q),
-                            n,
-                            mat.albedo_at(q, Vec2::ZERO),
-                            visible,
-                            mat.mirror,
-                        )
+                        None => (f32::INFINITY, Vec3::ZERO, Vec3::ZERO, 0, 0.0),
                     }
-                    None => (f32::INFINITY, Vec3::ZERO, Vec3::ZERO, 0, 0.0),
-                }
-            })
-            .collect();
+                })
+                .collect()
+        };
         frame.depth = Some(g.iter().map(|g| g.0).collect());
         frame.normal = Some(g.iter().map(|g| g.1).collect());
         frame.albedo = Some(g.iter().map(|g| g.2).collect());

@@ -38,6 +38,25 @@ fn bits(f: &Frame) -> Vec<u32> {
         .collect()
 }
 
+/// The centre AOVs (view depth, normal, albedo, light visibility, mirror),
+/// bit for bit; they are taken in packets too.
+fn aov_bits(f: &Frame) -> Vec<u32> {
+    let v3 = |v: &Option<Vec<glam::Vec3>>| -> Vec<u32> {
+        let v = v.as_ref().expect("AOVs were asked for");
+        v.iter().flat_map(|c| c.to_array().map(f32::to_bits)).collect()
+    };
+    let f1 = |v: &Option<Vec<f32>>| -> Vec<u32> {
+        let v = v.as_ref().expect("AOVs were asked for");
+        v.iter().map(|x| x.to_bits()).collect()
+    };
+    let mut out = f1(&f.depth);
+    out.extend(v3(&f.normal));
+    out.extend(v3(&f.albedo));
+    out.extend(f.light_visibility.as_ref().expect("AOVs were asked for"));
+    out.extend(f1(&f.mirror));
+    out
+}
+
 #[test]
 fn packets_render_what_single_rays_render() {
     let scenes = SDF_SCENES.iter().chain(STIFF_SCENES.iter());
@@ -55,6 +74,7 @@ fn packets_render_what_single_rays_render() {
         ] {
             let (a, b) = frames(name, method, 40, 24);
             assert!(bits(&a) == bits(&b), "{name} {method}: the colours differ");
+            assert!(aov_bits(&a) == aov_bits(&b), "{name} {method}: the AOVs differ");
             assert_eq!(a.samples_per_pixel, b.samples_per_pixel, "{name} {method}");
             let (sa, sb) = (&a.stats, &b.stats);
             assert_eq!(

@@ -27,6 +27,8 @@
 //! - SRAA-RT (Chiu et al. §3) on an SDF: the shading pass's and the
 //!   geometry pass's rays eight at a time (trace, normals, shadow states,
 //!   materials), each buffer entry as the scalar path writes it.
+//! - The centre AOVs (depth, normal, albedo, light visibility, mirror), a
+//!   row's rays eight at a time.
 
 use glam::{Vec2, Vec3};
 use subcone_kernels::aggregate::Aggregate;
@@ -389,8 +391,7 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
         let mut c = [Vec3::ZERO; LANES];
         let mut facing = [Vec3::ZERO; LANES];
         for k in lanes(active) {
-            let m = mats[k] as usize;
-            let mat = &view.materials[m.min(view.materials.len().saturating_sub(1))];
+            let mat = view.material(mats[k]);
             albedo[k] = mat.albedo_at(q[k], Vec2::ZERO);
             facing[k] = if n[k].dot(dir[k]) > 0.0 { -n[k] } else { n[k] };
             c[k] = mat.emission + view.ambient * albedo[k];
@@ -443,24 +444,12 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
         self.colors.clear();
         self.hits.clear();
         for chunk in rays.chunks(LANES) {
-            let hits = self.trace(chunk, params);
-            let mut q = [Vec3::ZERO; LANES];
-            let mut h = [0.0f32; LANES];
-            let mut dir = [Vec3::ZERO; LANES];
-            let mut hit: LaneMask = 0;
-            for (k, ray) in chunk.iter().enumerate() {
-                let Some(r) = hits[k] else { continue };
-                tally.steps += r.steps as u64;
-                if let Some(t) = r.t {
-                    q[k] = ray.0 + t * ray.1;
-                    h[k] = normal_step(t, params.tan_theta);
-                    dir[k] = ray.1;
-                    hit |= 1 << k;
-                }
-            }
+            // `shade` turns the normals towards the ray again: no change.
+            let surf = self.surfaces(chunk, params, tally);
+            let hit = surf.hit;
+            let dir = std::array::from_fn(|k| chunk.get(k).map_or(Vec3::Z, |r| r.1));
             tally.samples += hit.count_ones() as u64;
-            let n = self.normals(&q, &h, hit);
-            let c = self.shade(&q, &n, &dir, hit, tally);
+            let c = self.shade(&surf.q, &surf.n, &dir, hit, tally);
             for (k, ck) in c.iter().enumerate().take(chunk.len()) {
                 let on = hit & (1 << k) != 0;
                 self.colors
@@ -751,6 +740,8 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
 pub(super) struct Surfaces {
     pub(super) q: [Vec3; LANES],
     pub(super) n: [Vec3; LANES],
+    /// The field's normal as it is (not turned towards the ray).
+    pub(super) normal: [Vec3; LANES],
     pub(super) hit: LaneMask,
 }
 
@@ -781,13 +772,14 @@ impl<F: SdfField> Packets<'_, '_, F> {
                 hit |= 1 << k;
             }
         }
-        let mut n = self.normals(&q, &h, hit);
+        let normal = self.normals(&q, &h, hit);
+        let mut n = normal;
         for k in lanes(hit) {
             if n[k].dot(rays[k].1) > 0.0 {
                 n[k] = -n[k];
             }
         }
-        Surfaces { q, n, hit }
+        Surfaces { q, n, normal, hit }
     }
 
     /// The scalar path's `shadow_states` in the lanes of `s.hit`: bit `l`
@@ -800,6 +792,28 @@ impl<F: SdfField> Packets<'_, '_, F> {
         s: &Surfaces,
         cast: &[u32; LANES],
         inherited: &[u32; LANES],
+        tally: &mut Tally,
+    ) -> [u32; LANES] {
+        self.light_states(s, cast, inherited, false, tally)
+    }
+
+    /// The light-visibility AOV of the lanes of `s.hit` (the scalar
+    /// `centre_aovs`): bit `l` set where no geometry blocks light `l`, or
+    /// where the point faces away from it (its cosine falls to 0 smoothly:
+    /// no shadow edge); clear where the light does not reach the point.
+    pub(super) fn light_visibility(&mut self, s: &Surfaces, tally: &mut Tally) -> [u32; LANES] {
+        self.light_states(s, &[u32::MAX; LANES], &[0; LANES], true, tally)
+    }
+
+    /// [`shadow_states`](Self::shadow_states), or with `visibility`
+    /// [`light_visibility`](Self::light_visibility): the two differ only in
+    /// the bit a cast ray sets (blocked, or not blocked).
+    fn light_states(
+        &mut self,
+        s: &Surfaces,
+        cast: &[u32; LANES],
+        inherited: &[u32; LANES],
+        visibility: bool,
         tally: &mut Tally,
     ) -> [u32; LANES] {
         let view = self.view;
@@ -827,11 +841,62 @@ impl<F: SdfField> Packets<'_, '_, F> {
                 }
             }
             tally.shadow += need.count_ones() as u64;
-            for k in lanes(self.shadowed(&mut rays, need)) {
+            let blocked = self.shadowed(&mut rays, need);
+            for k in lanes(if visibility { need & !blocked } else { blocked }) {
                 bits[k] |= 1 << l;
             }
         }
         bits
+    }
+
+    /// The AOVs of row `y` through each pixel centre (the scalar
+    /// `centre_aovs`, NoAA's trace with `params`): per pixel the view depth,
+    /// the field's normal, the albedo, the light visibility and the mirror
+    /// reflectance; a miss is `(∞, 0, 0, 0, 0)`.
+    pub(super) fn aov_row(
+        &mut self,
+        y: usize,
+        params: &CtssParams,
+        s: &RenderSettings,
+        out: &mut [(f32, Vec3, Vec3, u32, f32)],
+    ) {
+        let view = self.view;
+        let mut tally = Tally::default();
+        self.row_rays(y, 1, s);
+        let rays = std::mem::take(&mut self.rays);
+        for (chunk, out) in rays.chunks(LANES).zip(out.chunks_mut(LANES)) {
+            let surf = self.surfaces(chunk, params, &mut tally);
+            let visible = self.light_visibility(&surf, &mut tally);
+            let material = self.materials(&surf);
+            for (k, o) in out.iter_mut().enumerate() {
+                *o = if surf.hit & (1 << k) == 0 {
+                    (f32::INFINITY, Vec3::ZERO, Vec3::ZERO, 0, 0.0)
+                } else {
+                    let mat = view.material(material[k]);
+                    (
+                        view.camera.view_depth(surf.q[k]),
+                        surf.normal[k],
+                        mat.albedo_at(surf.q[k], Vec2::ZERO),
+                        visible[k],
+                        mat.mirror,
+                    )
+                };
+            }
+        }
+        self.rays = rays;
+    }
+
+    /// The field's material at each hit point of `s` (0 elsewhere), as the
+    /// scalar path reads it off `eval_split`.
+    fn materials(&mut self, s: &Surfaces) -> [u32; LANES] {
+        if s.hit == 0 {
+            return [0; LANES];
+        }
+        let mut pts = Points::default();
+        for k in lanes(s.hit) {
+            pts.set(k, s.q[k]);
+        }
+        self.eval(&pts, s.hit).material
     }
 
     /// SRAA-RT's shading pass over the pixels of one band (`geo`, from row
@@ -869,15 +934,7 @@ impl<F: SdfField> Packets<'_, '_, F> {
             } else {
                 [0; LANES]
             };
-            let mut pts = Points::default();
-            for k in lanes(surf.hit) {
-                pts.set(k, surf.q[k]);
-            }
-            let material = if surf.hit != 0 {
-                self.eval(&pts, surf.hit).material
-            } else {
-                [0; LANES]
-            };
+            let material = self.materials(&surf);
             for k in 0..m {
                 let i = start + k;
                 let v = &mut values[i * nl..(i + 1) * nl];
