@@ -43,7 +43,9 @@ fn bits(f: &Frame) -> Vec<u32> {
 fn aov_bits(f: &Frame) -> Vec<u32> {
     let v3 = |v: &Option<Vec<glam::Vec3>>| -> Vec<u32> {
         let v = v.as_ref().expect("AOVs were asked for");
-        v.iter().flat_map(|c| c.to_array().map(f32::to_bits)).collect()
+        v.iter()
+            .flat_map(|c| c.to_array().map(f32::to_bits))
+            .collect()
     };
     let f1 = |v: &Option<Vec<f32>>| -> Vec<u32> {
         let v = v.as_ref().expect("AOVs were asked for");
@@ -74,7 +76,10 @@ fn packets_render_what_single_rays_render() {
         ] {
             let (a, b) = frames(name, method, 40, 24);
             assert!(bits(&a) == bits(&b), "{name} {method}: the colours differ");
-            assert!(aov_bits(&a) == aov_bits(&b), "{name} {method}: the AOVs differ");
+            assert!(
+                aov_bits(&a) == aov_bits(&b),
+                "{name} {method}: the AOVs differ"
+            );
             assert_eq!(a.samples_per_pixel, b.samples_per_pixel, "{name} {method}");
             let (sa, sb) = (&a.stats, &b.stats);
             assert_eq!(
