@@ -36,6 +36,13 @@ use crate::isa::Isa;
 use packet::{Packets, ShadowRay};
 use subcone_scene::sdf::program::SdfProgram;
 
+/// The centre AOVs of one pixel: view depth, the field's normal, albedo,
+/// light visibility (bit per light) and mirror reflectance.
+pub(super) type CentreAovs = (f32, Vec3, Vec3, u32, f32);
+
+/// [`CentreAovs`] of a ray that hits nothing.
+pub(super) const MISS_AOVS: CentreAovs = (f32::INFINITY, Vec3::ZERO, Vec3::ZERO, 0, 0.0);
+
 /// A signed distance field with per-object materials.
 pub trait SdfField: Sync {
     /// Signed distance at `p` and the material of the nearest object.
@@ -117,10 +124,11 @@ pub struct SdfView<'a, F: SdfField> {
     /// shaded samples around it disagree about a light (as the triangle path's
     /// `CpuBackend::with_exhaustive_subpixel_shadows`).
     pub exhaustive_subpixel_shadows: bool,
-    /// The field compiled for packets of rays (NoAA, SSAA, SRAA-RT and the
-    /// CTSS family on opaque scenes trace [`LANES`](subcone_scene::sdf::program::LANES) rays at
-    /// once through it); `None`: one ray at a time through
-    /// [`field`](Self::field). Both give the same frames bit for bit.
+    /// The field compiled for packets of rays: NoAA, SSAA, SRAA-RT, the CTSS
+    /// family on opaque scenes and the centre AOVs trace
+    /// [`LANES`](subcone_scene::sdf::program::LANES) rays at once through
+    /// it; `None`: one ray at a time through [`field`](Self::field). Both
+    /// give the same frames bit for bit.
     pub program: Option<SdfProgram<'a>>,
     /// The instruction-set path of the hot loops ([`Isa::run`]).
     pub isa: Isa,
@@ -656,9 +664,9 @@ impl<F: SdfField> SdfView<'_, F> {
             &Method::new(Technique::NoAa),
         );
         let lights = self.lights.len().min(subcone_kernels::passes::MAX_LIGHTS);
-        let g: Vec<(f32, Vec3, Vec3, u32, f32)> = if let Some(program) = &self.program {
+        let g: Vec<CentreAovs> = if let Some(program) = &self.program {
             // In packets, row by row: the same values.
-            let mut g = vec![(0.0, Vec3::ZERO, Vec3::ZERO, 0, 0.0); w * s.height as usize];
+            let mut g = vec![MISS_AOVS; w * s.height as usize];
             g.par_chunks_mut(w).enumerate().for_each_init(
                 || Packets::new(self, program),
                 |pk, (y, row)| pk.aov_row(y, &plain, s, row),
@@ -710,7 +718,7 @@ impl<F: SdfField> SdfView<'_, F> {
                                 mat.mirror,
                             )
                         }
-                        None => (f32::INFINITY, Vec3::ZERO, Vec3::ZERO, 0, 0.0),
+                        None => MISS_AOVS,
                     }
                 })
                 .collect()

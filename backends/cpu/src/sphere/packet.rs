@@ -43,7 +43,7 @@ use subcone_scene::sdf::program::{LaneMask, Points, Scratch, SdfProgram, SplitLa
 use subcone_scene::sdf::{tetra_normal_from, tetra_taps};
 use subcone_scene::RenderSettings;
 
-use super::{ConeFieldOf, SdfField, SdfView, Tally};
+use super::{CentreAovs, ConeFieldOf, SdfField, SdfView, Tally, MISS_AOVS};
 use crate::render::pixel_centre;
 
 /// All of the first `n` lanes.
@@ -858,7 +858,7 @@ impl<F: SdfField> Packets<'_, '_, F> {
         y: usize,
         params: &CtssParams,
         s: &RenderSettings,
-        out: &mut [(f32, Vec3, Vec3, u32, f32)],
+        out: &mut [CentreAovs],
     ) {
         let view = self.view;
         let mut tally = Tally::default();
@@ -870,7 +870,7 @@ impl<F: SdfField> Packets<'_, '_, F> {
             let material = self.materials(&surf);
             for (k, o) in out.iter_mut().enumerate() {
                 *o = if surf.hit & (1 << k) == 0 {
-                    (f32::INFINITY, Vec3::ZERO, Vec3::ZERO, 0, 0.0)
+                    MISS_AOVS
                 } else {
                     let mat = view.material(material[k]);
                     (
