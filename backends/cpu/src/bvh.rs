@@ -39,6 +39,60 @@ fn make_ray(origin: Vec3, direction: Vec3, tmin: f32, tmax: f32) -> Ray {
     }
 }
 
+/// A triangle prepared for obvhs' Möller–Trumbore test
+/// (`obvhs::triangle::Triangle::intersect`): its first vertex, its two edges
+/// and their cross product, which obvhs derives from the vertices at every
+/// test. The test below is obvhs' with those values read instead, the same
+/// operations in the same order, so the same `t`, bit for bit; and it also
+/// returns the hit's barycentrics, which obvhs computes and drops.
+#[derive(Clone, Copy, Debug)]
+struct PreparedTriangle {
+    v0: Vec3A,
+    /// `v0 − v1` (obvhs' sign).
+    e1: Vec3A,
+    /// `v2 − v0`.
+    e2: Vec3A,
+    /// `e1 × e2`.
+    n: Vec3A,
+}
+
+impl PreparedTriangle {
+    fn new(t: &Triangle) -> Self {
+        let e1 = t.v0 - t.v1;
+        let e2 = t.v2 - t.v0;
+        PreparedTriangle {
+            v0: t.v0,
+            e1,
+            e2,
+            n: e1.cross(e2),
+        }
+    }
+
+    /// `(t, u, v)` of `ray`'s hit, `t` in `[ray.tmin, ray.tmax]`, or `t = ∞`
+    /// on a miss. The hit point is `(1 − u − v)·v0 + u·v1 + v·v2`.
+    ///
+    /// Domain: any ray. A degenerate triangle (`n · d = 0`) or a NaN
+    /// anywhere is a miss (every comparison with NaN fails), as in obvhs.
+    #[inline(always)]
+    fn intersect(&self, ray: &Ray) -> (f32, f32, f32) {
+        let c = self.v0 - ray.origin;
+        let r = ray.direction.cross(c);
+        let inv_det = 1.0 / self.n.dot(ray.direction);
+        let u = r.dot(self.e2) * inv_det;
+        let v = r.dot(self.e1) * inv_det;
+        let w = 1.0 - u - v;
+        // obvhs' test: every barycentric's sign bit clear (so `-0.0` misses).
+        let hit = u.to_bits() | v.to_bits() | w.to_bits();
+        if inv_det != 0.0 && hit & 0x8000_0000 == 0 {
+            let t = self.n.dot(c) * inv_det;
+            if t >= ray.tmin && t <= ray.tmax {
+                return (t, u, v);
+            }
+        }
+        (f32::INFINITY, 0.0, 0.0)
+    }
+}
+
 /// A closest hit.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
@@ -48,6 +102,9 @@ pub struct Hit {
     pub triangle: u32,
     /// Index of the triangle in BVH order ([`SceneBvh::shading`]).
     pub slot: u32,
+    /// The intersector's barycentrics `(u, v)`: the hit point is
+    /// `(1 − u − v)·v0 + u·v1 + v·v2` of the mesh's triangle.
+    pub barycentrics: Vec2,
 }
 
 /// What hit reconstruction reads of one triangle, precomputed once per
@@ -98,8 +155,11 @@ impl TriangleShading {
 /// A CWBVH over a mesh, with the triangles laid out in BVH order.
 pub struct SceneBvh {
     bvh: CwBvh,
-    /// Triangles in `bvh.primitive_indices` order, so leaves index them directly.
+    /// Triangles in `bvh.primitive_indices` order, so leaves index them
+    /// directly: what obvhs' own intersector reads (the raw traversal).
     triangles: Vec<Triangle>,
+    /// The same triangles prepared for the pipeline's intersector.
+    prepared: Vec<PreparedTriangle>,
     /// Whether each triangle (in BVH order) blocks shadow rays. Emitters do not:
     /// a point light placed at a drawn light quad must not be shadowed by it.
     casts_shadow: Vec<bool>,
@@ -130,11 +190,12 @@ impl SceneBvh {
             BvhBuildParams::medium_build(),
             &mut Duration::default(),
         );
-        let triangles = bvh
+        let triangles: Vec<Triangle> = bvh
             .primitive_indices
             .iter()
             .map(|&i| tris[i as usize])
             .collect();
+        let prepared = triangles.iter().map(PreparedTriangle::new).collect();
         let casts_shadow = bvh
             .primitive_indices
             .iter()
@@ -153,6 +214,7 @@ impl SceneBvh {
         SceneBvh {
             bvh,
             triangles,
+            prepared,
             casts_shadow,
             shading,
             build_time: start.elapsed(),
@@ -171,23 +233,32 @@ impl SceneBvh {
     /// obvhs' `CwBvh::ray_traverse`, written out here from its `traverse!`
     /// macro so that the traversal and the intersector are inlined into the
     /// caller, and so compiled for the instruction-set path it runs on
-    /// ([`crate::isa::Isa::run`]).
+    /// ([`crate::isa::Isa::run`]). Each triangle is tested by obvhs'
+    /// intersector on prepared edges (the same `t`, bit for bit), which also
+    /// gives the hit's barycentrics.
     #[inline(always)]
     pub fn closest(&self, origin: Vec3, dir: Vec3, tmin: f32, tmax: f32) -> Option<Hit> {
         let ray = make_ray(origin, dir, tmin, tmax);
-        let t = self.closest_slot(ray);
-        (t.0 < ray.tmax).then(|| Hit {
-            t: t.0,
-            triangle: self.bvh.primitive_indices[t.1 as usize],
-            slot: t.1,
+        let prepared = &self.prepared;
+        let (t, slot, u, v) = self.closest_by(ray, |i, r| prepared[i].intersect(r));
+        (t < ray.tmax).then(|| Hit {
+            t,
+            triangle: self.bvh.primitive_indices[slot as usize],
+            slot,
+            barycentrics: Vec2::new(u, v),
         })
     }
 
-    /// `(t, slot)` of the closest hit of `ray` (`t` is `ray.tmax` or more on a miss).
+    /// `(t, slot, u, v)` of the closest hit of `ray` by the intersector
+    /// `test(slot, ray) = (t, u, v)` (`t` is `ray.tmax` or more on a miss).
     #[inline(always)]
-    fn closest_slot(&self, ray: Ray) -> (f32, u32) {
+    fn closest_by(
+        &self,
+        ray: Ray,
+        test: impl Fn(usize, &Ray) -> (f32, f32, f32),
+    ) -> (f32, u32, f32, f32) {
         let mut hit = RayHit::none();
-        let tris = &self.triangles;
+        let (mut u, mut v) = (0.0, 0.0);
         let bvh = &self.bvh;
         let mut traverse_ray = ray;
         let mut state = bvh.new_traversal(ray.direction);
@@ -198,22 +269,22 @@ impl SceneBvh {
             state,
             node.intersect_ray(&traverse_ray, state.oct_inv4),
             {
-                let t = tris[state.primitive_id as usize].intersect(&traverse_ray);
+                let (t, tu, tv) = test(state.primitive_id as usize, &traverse_ray);
                 if t < traverse_ray.tmax {
                     hit.primitive_id = state.primitive_id;
                     hit.t = t;
+                    (u, v) = (tu, tv);
                     traverse_ray.tmax = t;
                 }
             }
         );
-        (hit.t, hit.primitive_id)
+        (hit.t, hit.primitive_id, u, v)
     }
 
     /// Whether anything for which `blocks(slot)` holds crosses `ray`: obvhs'
     /// `ray_traverse_miss`, written out from `traverse!` to be inlined.
     #[inline(always)]
-    fn any_hit(&self, ray: Ray, blocks: impl Fn(usize) -> bool) -> bool {
-        let tris = &self.triangles;
+    fn any_hit(&self, ray: Ray, blocks: impl Fn(usize, &Ray) -> bool) -> bool {
         let bvh = &self.bvh;
         let mut state = bvh.new_traversal(ray.direction);
         let mut node;
@@ -225,8 +296,7 @@ impl SceneBvh {
                 state,
                 node.intersect_ray(&ray, state.oct_inv4),
                 {
-                    let id = state.primitive_id as usize;
-                    if blocks(id) && tris[id].intersect(&ray) < ray.tmax {
+                    if blocks(state.primitive_id as usize, &ray) {
                         hit = true;
                         break 'outer;
                     }
@@ -242,23 +312,84 @@ impl SceneBvh {
     #[inline(always)]
     pub fn occluded(&self, origin: Vec3, dir: Vec3, tmin: f32, tmax: f32) -> bool {
         let ray = make_ray(origin, dir, tmin, tmax);
-        let casts = &self.casts_shadow;
-        self.any_hit(ray, |id| casts[id])
+        let (casts, prepared) = (&self.casts_shadow, &self.prepared);
+        self.any_hit(ray, |id, r| {
+            casts[id] && prepared[id].intersect(r).0 < r.tmax
+        })
     }
 
     /// obvhs' raw `ray_traverse_miss`, for throughput comparisons: every
-    /// triangle blocks, nothing else is done.
+    /// triangle blocks, each tested by obvhs' own intersector, nothing else
+    /// is done.
     #[inline(always)]
     pub fn raw_occluded(&self, origin: Vec3, dir: Vec3, tmax: f32) -> bool {
         let ray = make_ray(origin, dir, 0.0, tmax);
-        self.any_hit(ray, |_| true)
+        let tris = &self.triangles;
+        self.any_hit(ray, |id, r| tris[id].intersect(r) < r.tmax)
     }
 
-    /// The raw traversal, for throughput comparisons: closest hit of each ray,
-    /// nothing else.
+    /// The raw traversal, for throughput comparisons: closest hit of each ray
+    /// by obvhs' own intersector, nothing else.
     #[inline(always)]
     pub fn raw_closest_t(&self, origin: Vec3, dir: Vec3) -> f32 {
         let ray = make_ray(origin, dir, 0.0, f32::INFINITY);
-        self.closest_slot(ray).0
+        let tris = &self.triangles;
+        self.closest_by(ray, |i, r| (tris[i].intersect(r), 0.0, 0.0))
+            .0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A small xorshift stream in `[-1, 1)`.
+    fn stream(mut s: u32) -> impl FnMut() -> f32 {
+        move || {
+            s ^= s << 13;
+            s ^= s >> 17;
+            s ^= s << 5;
+            (s >> 8) as f32 / (1 << 23) as f32 - 1.0
+        }
+    }
+
+    /// The prepared intersector is obvhs' (the same `t`, bit for bit, as the
+    /// raw traversal), and its barycentrics weigh v1 and v2: the hit point
+    /// rebuilt from them lies on the ray.
+    #[test]
+    fn prepared_hits_match_obvhs_and_barycentrics_rebuild_the_point() {
+        let mut r = stream(0x9e37_79b9);
+        let mut v = || Vec3::new(r(), r(), r()) * 4.0;
+        let mut mesh = TriangleMesh::default();
+        for _ in 0..64 {
+            let c = v();
+            mesh.push_flat([c + 0.5 * v(), c + 0.5 * v(), c + 0.5 * v()], 0);
+        }
+        let bvh = SceneBvh::build(&mesh, |_| true);
+        let mut hits = 0;
+        for _ in 0..4000 {
+            let o = v() * 2.0;
+            let d = (v() * 0.25 - o).normalize();
+            let raw = bvh.raw_closest_t(o, d);
+            let Some(hit) = bvh.closest(o, d, 0.0, f32::INFINITY) else {
+                assert!(raw.is_infinite(), "obvhs hit at {raw}, the pipeline missed");
+                continue;
+            };
+            hits += 1;
+            assert_eq!(hit.t.to_bits(), raw.to_bits());
+            let [v0, v1, v2] = mesh.positions[hit.triangle as usize];
+            let (b1, b2) = (hit.barycentrics.x, hit.barycentrics.y);
+            assert!(b1 >= 0.0 && b2 >= 0.0 && b1 + b2 <= 1.0 + 1e-6);
+            let rebuilt = (1.0 - b1 - b2) * v0 + b1 * v1 + b2 * v2;
+            let p = o + hit.t * d;
+            assert!(
+                (rebuilt - p).length() <= 1e-4 * (1.0 + p.length()),
+                "{rebuilt} from the barycentrics, {p} on the ray"
+            );
+        }
+        assert!(
+            hits > 400,
+            "only {hits} of 4000 rays hit: the test tests little"
+        );
     }
 }

@@ -150,11 +150,8 @@ impl<'a> Tracer<'a> {
         // operations (`bvh::TriangleShading`).
         let (o, d) = (Vec3A::from(o), Vec3A::from(d));
         let p = o + hit.t * d;
-        // Barycentrics from areas (independent of the intersector's convention).
-        let (v0, e1, e2, cross) = (tri.v0, tri.e1, tri.e2, tri.cross);
-        let area2 = tri.area2;
-        let b1 = (p - v0).cross(e2).dot(cross) / area2;
-        let b2 = e1.cross(p - v0).dot(cross) / area2;
+        // The intersector's barycentrics: the weights of v1 and v2.
+        let (b1, b2) = (hit.barycentrics.x, hit.barycentrics.y);
         let b0 = 1.0 - b1 - b2;
         let [n0, n1, n2] = tri.normals;
         let uv = tri.uvs;

@@ -1454,16 +1454,30 @@ fn scatter_lanes(
         inv_scale: 0.0,
         radius: 0.0,
     };
+    let lookup = |k: usize| match sc.instances.get(idx[k] as usize) {
+        Some(i) if (i.template as usize) < sc.templates.len() => i,
+        _ => &NONE,
+    };
+    // Neighbouring rays are mostly in one cell: when every active lane is,
+    // its instance is read once and broadcast (the same values in every
+    // lane, so the same bits as the lane-by-lane gather).
+    let lead = (active.trailing_zeros() as usize).min(LANES - 1);
+    let shared = (0..LANES).all(|k| active & (1 << k) == 0 || idx[k] == idx[lead]);
+    let one = shared.then(|| lookup(lead));
+    let act = W8::of_bits(active);
     let inst: [&Instance; LANES] = core::array::from_fn(|k| {
         if active & (1 << k) == 0 {
-            return &NONE;
-        }
-        match sc.instances.get(idx[k] as usize) {
-            Some(i) if (i.template as usize) < sc.templates.len() => i,
-            _ => &NONE,
+            &NONE
+        } else if let Some(i) = one {
+            i
+        } else {
+            lookup(k)
         }
     });
-    let field = |f: fn(&Instance) -> f32| F8(core::array::from_fn(|k| f(inst[k])));
+    let field = |f: fn(&Instance) -> f32| match one {
+        Some(i) => act.select(F8::splat(f(i)), F8::splat(f(&NONE))),
+        None => F8(core::array::from_fn(|k| f(inst[k]))),
+    };
     let off = [
         field(|i| i.offset.x),
         field(|i| i.offset.y),
