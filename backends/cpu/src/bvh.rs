@@ -107,23 +107,13 @@ pub struct Hit {
     pub barycentrics: Vec2,
 }
 
-/// What hit reconstruction reads of one triangle, precomputed once per
-/// scene and laid out in BVH order beside the intersector's triangles: the
+/// What hit reconstruction reads of one triangle beside the intersector's
+/// barycentrics, precomputed once per scene and laid out in BVH order: the
 /// same values, computed by the same operations, that a hit would otherwise
 /// derive from the mesh each time.
 #[derive(Clone, Copy, Debug)]
 pub struct TriangleShading {
-    /// First vertex.
-    pub v0: Vec3A,
-    /// `v1 − v0`.
-    pub e1: Vec3A,
-    /// `v2 − v0`.
-    pub e2: Vec3A,
-    /// `e1 × e2` (twice the area, along the normal).
-    pub cross: Vec3A,
-    /// `|e1 × e2|²`, at least `f32::MIN_POSITIVE`.
-    pub area2: f32,
-    /// `e1 × e2` normalised (zero for a degenerate triangle).
+    /// `(v1 − v0) × (v2 − v0)` normalised (zero for a degenerate triangle).
     pub normal: Vec3A,
     /// Per-vertex shading normals.
     pub normals: [Vec3A; 3],
@@ -136,15 +126,8 @@ pub struct TriangleShading {
 impl TriangleShading {
     fn new(mesh: &TriangleMesh, i: usize) -> Self {
         let [v0, v1, v2] = mesh.positions[i].map(Vec3A::from);
-        let (e1, e2) = (v1 - v0, v2 - v0);
-        let cross = e1.cross(e2);
         TriangleShading {
-            v0,
-            e1,
-            e2,
-            cross,
-            area2: cross.length_squared().max(f32::MIN_POSITIVE),
-            normal: cross.normalize_or_zero(),
+            normal: (v1 - v0).cross(v2 - v0).normalize_or_zero(),
             normals: mesh.normals[i].map(Vec3A::from),
             uvs: mesh.uvs[i],
             material: mesh.materials[i],

@@ -151,7 +151,8 @@ fn supersample_band(
                 sum += t.radiance_at(*d, s.as_ref(), 0, &mut c);
                 taken += 1;
                 if taken == spp {
-                    row[px] = sum / spp as f32;
+                    // `x / 1 = x`: NoAA's pixels skip the division.
+                    row[px] = if spp == 1 { sum } else { sum / spp as f32 };
                     (px, taken, sum) = (px + 1, 0, Vec3::ZERO);
                 }
             }

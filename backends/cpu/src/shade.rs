@@ -146,8 +146,9 @@ impl<'a> Tracer<'a> {
         let tri = self.bvh.shading(hit.slot);
         // In SIMD lanes (`Vec3A`): the same operations in the same order as
         // scalar `Vec3`, so the same bits, in fewer instructions. The
-        // triangle's edges, normal and area are precomputed by the same
-        // operations (`bvh::TriangleShading`).
+        // triangle's normal is precomputed by the same operations
+        // (`bvh::TriangleShading`); the barycentrics are the intersector's,
+        // from the test that found `t`.
         let (o, d) = (Vec3A::from(o), Vec3A::from(d));
         let p = o + hit.t * d;
         // The intersector's barycentrics: the weights of v1 and v2.
