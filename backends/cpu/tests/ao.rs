@@ -34,7 +34,10 @@ fn frame_hash(f: &Frame) -> u64 {
 
 /// With AO off (the default), cornell at 32×24 is bit for bit the image of
 /// the code before ambient occlusion existed: the hashes below were taken
-/// from commit ed65dae (the parent of the AO change). SRAA and SRAA-RT
+/// from commit ed65dae (the parent of the AO change). NoAA's and SSAA's were
+/// re-taken when hit reconstruction switched to the intersector's
+/// barycentrics, a change of the hit alone that left every AO line as it
+/// was (FXAA's image at this size kept its bits). SRAA and SRAA-RT
 /// reach the same `Tracer::parts` with `ao = 1` (and were compared bit for
 /// bit with that commit when AO was added), but are not pinned here: their
 /// reconstruction is tuned independently of the shading, and a pinned hash
@@ -42,20 +45,23 @@ fn frame_hash(f: &Frame) -> u64 {
 #[test]
 fn ao_off_changes_no_bit() {
     let scene = builtin("cornell").unwrap();
+    let mut changed = Vec::new();
     for (method, before) in [
-        ("noaa", 0xe424_4378_df6e_1330u64),
-        ("ssaa4", 0x8792_ed49_5a9c_5161),
+        ("noaa", 0x6df0_df39_8385_bde6u64),
+        ("ssaa4", 0x2550_23d9_98d2_c91c),
         ("fxaa", 0x31cc_b91e_b12c_dac2),
     ] {
         let f = render(&scene, method, 32, 24, 0);
-        assert_eq!(
-            frame_hash(&f),
-            before,
-            "{method}: the AO-off image changed (hash {:#x}); if shading changed on purpose, update the hash",
-            frame_hash(&f)
-        );
+        if frame_hash(&f) != before {
+            changed.push(format!("{method}: {:#x}", frame_hash(&f)));
+        }
         assert_eq!(f.stats.rays.ao, 0, "{method}: AO rays with AO off");
     }
+    assert!(
+        changed.is_empty(),
+        "the AO-off images changed (new hashes: {}); if shading changed on purpose, update the hashes",
+        changed.join(", ")
+    );
 }
 
 /// AO only darkens: every channel of every pixel of an AO frame is at most

@@ -196,4 +196,45 @@ mod traversal {
         // would compare little).
         assert!(hits > dirs.len() / 2, "{hits} of {} rays hit", dirs.len());
     }
+
+    /// The pipeline's intersector is obvhs' (the same `t`, bit for bit, as
+    /// the raw traversal), and its barycentrics weigh `v1` and `v2`: the
+    /// point rebuilt from them lies on the ray.
+    #[test]
+    fn barycentrics_rebuild_the_hit_point() {
+        let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+        let mesh = soup(&mut rng);
+        let bvh = SceneBvh::build(&mesh, |_| true);
+        let mut hits = 0;
+        for i in 0..4000 {
+            let o = rng.vec() * 25.0;
+            let d = (rng.vec() * 5.0 - o).normalize();
+            let raw = bvh.raw_closest_t(o, d);
+            let Some(hit) = bvh.closest(o, d, 0.0, f32::INFINITY) else {
+                assert!(
+                    raw.is_infinite(),
+                    "ray {i}: obvhs hit at {raw}, the pipeline missed"
+                );
+                continue;
+            };
+            hits += 1;
+            assert_eq!(hit.t.to_bits(), raw.to_bits(), "ray {i}");
+            let [v0, v1, v2] = mesh.positions[hit.triangle as usize];
+            let (b1, b2) = (hit.barycentrics.x, hit.barycentrics.y);
+            assert!(
+                b1 >= 0.0 && b2 >= 0.0 && b1 + b2 <= 1.0 + 1e-6,
+                "ray {i}: {b1}, {b2}"
+            );
+            let rebuilt = (1.0 - b1 - b2) * v0 + b1 * v1 + b2 * v2;
+            let p = o + hit.t * d;
+            assert!(
+                (rebuilt - p).length() <= 1e-4 * (1.0 + p.length()),
+                "ray {i}: {rebuilt} from the barycentrics, {p} on the ray"
+            );
+        }
+        assert!(
+            hits > 2000,
+            "only {hits} of 4000 rays hit: the test compares little"
+        );
+    }
 }
