@@ -149,13 +149,10 @@ impl Material {
                 let h = (i as u32).wrapping_mul(0x9E37_79B1) ^ (k as u32).wrapping_mul(0x85EB_CA77);
                 let h = (h ^ (h >> 15)).wrapping_mul(0x2C1B_3C6D);
                 // `(h >> 7) % len` in 32 bits (a 64-bit division is much
-                // slower): `h >> 7 < 2²⁵`, and a longer palette leaves it as is.
-                let (i, len) = (h >> 7, palette.len());
-                palette[if len > i as usize {
-                    i as usize
-                } else {
-                    (i % len as u32) as usize
-                }]
+                // slower); a palette too long for `u32` is longer than
+                // `h >> 7 < 2²⁵`, which it leaves as is.
+                let at = h >> 7;
+                palette[u32::try_from(palette.len()).map_or(at, |len| at % len) as usize]
             }
             Albedo::Texture(t) => t.sample(uv),
         }

@@ -58,7 +58,8 @@ pub fn check_mesh(mesh: &TriangleMesh, materials: &[Material]) {
             a.is_finite() && b.is_finite() && c.is_finite(),
             "triangle {i} not finite"
         );
-        // What the renderers divide by for barycentrics.
+        // What the wgpu renderer divides by for barycentrics (the CPU's
+        // intersector divides by `n · d` and misses where it is 0).
         let area2 = (b - a).cross(c - a).length_squared();
         assert!(
             area2.is_finite() && area2 >= f32::MIN_POSITIVE,
