@@ -7,7 +7,11 @@
 //! *Skipped* with the typed reason), the report
 //!
 //! 1. times the method: one warm-up, then `runs` timed calls of
-//!    [`Backend::render`] at the *timing size*;
+//!    [`Backend::render`] at the *timing size*; the warm-up is the quality
+//!    render of step 2 when errors are measured (a render the row needs
+//!    anyway), followed by one at the timing size only where the sizes
+//!    differ and the frame is predicted shorter than
+//!    [`timing::SHORT_RENDER`]; else a render at the timing size;
 //!    median and range of the wall time, and the median of every pass of
 //!    [`FrameStats::timings`](subcone_scene::FrameStats);
 //! 2. measures its error at the *quality size* against a supersampled reference
@@ -992,7 +996,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
         .filter(|_| plan.sweep);
     let mut runner = Runner {
         plan: &plan,
-        progress: Progress::new(progress_length(&plan, &jobs, &work, sweep_job.is_some())),
+        progress: Progress::new(progress_length(&plan, &work, sweep_job.is_some())),
         references_rendered: 0,
         references_cached: 0,
         rows: Vec::new(),
@@ -1118,23 +1122,16 @@ fn applicable(
     (work, skipped)
 }
 
-/// Renders the progress bar counts: per method and backend a warm-up and the
-/// timed runs (and a separate quality render when the sizes differ), two
-/// per scene with errors (reference and masks), and the sweep's.
-fn progress_length(
-    plan: &Plan,
-    jobs: &[SceneJob],
-    work: &[(usize, Vec<Applicable>)],
-    sweep: bool,
-) -> u64 {
+/// Renders the progress bar counts: per method and backend a warm-up (the
+/// quality render when errors are measured) and the timed runs, two per scene
+/// with errors (reference and masks), and the sweep's.
+fn progress_length(plan: &Plan, work: &[(usize, Vec<Applicable>)], sweep: bool) -> u64 {
     let quality = plan.mode != Mode::TimingOnly;
     let per_method = 1 + plan.runs as u64;
     let mut total: u64 = 0;
-    for (i, ms) in work {
-        let job = &jobs[*i];
-        let separate = quality && job.timing_size != job.quality_size;
+    for (_, ms) in work {
         let renders: u64 = ms.iter().map(|(_, b)| b.len() as u64).sum();
-        total += renders * (per_method + separate as u64);
+        total += renders * per_method;
         if quality && !ms.is_empty() {
             total += 2;
         }
@@ -1264,6 +1261,13 @@ impl Runner<'_> {
     /// Time one method on one backend (a warm-up, then the timed runs) and,
     /// with `sq`, measure its error. `None` (with `--keep-going`) when a
     /// render fails.
+    ///
+    /// The warm-up is a render the row needs anyway: the quality render when
+    /// errors are measured (at the quality size, before the timed runs), else
+    /// a render at the timing size. It runs the method's code on the scene's
+    /// tree and the thread pool once before the clock starts. A frame
+    /// predicted shorter than [`timing::SHORT_RENDER`] gets a warm-up at the
+    /// timing size as well ([`timing::warm_up_at_timing_size`]).
     fn method(
         &mut self,
         job: &SceneJob,
@@ -1279,22 +1283,39 @@ impl Runner<'_> {
             .bar
             .set_message(format!("{}: {mname} on {bname}", job.name));
         let (tw, th) = job.timing_size;
-        let same = job.timing_size == job.quality_size;
-        let mut settings = plan.settings(tw, th, job.sdf);
-        // The warm-up doubles as the quality render when the sizes agree.
-        settings.aovs = sq.is_some() && same;
-        let warm = render(backend, &job.scene, m, &settings);
-        self.progress.bar.inc(1);
-        let warm = match warm {
-            Ok((f, _)) => f,
-            Err(e) => {
+        let (qw, qh) = job.quality_size;
+        let quality = match sq {
+            Some(_) => {
+                let mut qs = plan.settings(qw, qh, job.sdf);
+                qs.aovs = true;
+                let r = render(backend, &job.scene, m, &qs);
+                self.progress.bar.inc(1);
+                match r {
+                    Ok(r) => Some(r),
+                    Err(e) => {
+                        let what = format!("{mname} (quality render)");
+                        self.fail(Failure::new(&job.name, what, bname.clone(), &e))?;
+                        None
+                    }
+                }
+            }
+            None => None,
+        };
+        let settings = plan.settings(tw, th, job.sdf);
+        let quality_wall = quality.as_ref().map(|q| q.1);
+        if timing::warm_up_at_timing_size(quality_wall, (tw, th), (qw, qh)) {
+            if sq.is_some() {
+                // Not in the bar's length, which counts one warm-up.
+                self.progress.bar.inc_length(1);
+            }
+            let warm = render(backend, &job.scene, m, &settings);
+            self.progress.bar.inc(1);
+            if let Err(e) = warm {
                 self.fail(Failure::new(&job.name, mname, bname, &e))?;
-                let skipped = plan.runs as u64 + (!same && sq.is_some()) as u64;
-                self.progress.bar.inc(skipped);
+                self.progress.bar.inc(plan.runs as u64);
                 return Ok(None);
             }
-        };
-        settings.aovs = false;
+        }
         let mut t = Timings::default();
         let mut last = None;
         for _ in 0..plan.runs {
@@ -1310,7 +1331,9 @@ impl Runner<'_> {
             }
             self.progress.bar.inc(1);
         }
-        let last = last.unwrap_or_else(|| warm.clone());
+        let Some(last) = last else {
+            bail!("{} / {mname} on {bname}: no timed run", job.name);
+        };
         let timing = (m.technique == Technique::NoAa)
             .then(|| Rgb8::from_frame(&last))
             .transpose()?;
@@ -1319,34 +1342,12 @@ impl Runner<'_> {
         row.samples_per_pixel = last.stats.shaded_samples as f64 / px;
         row.rays_per_pixel = last.stats.rays.total() as f64 / px;
         row.buffer_mib = last.stats.buffer_bytes() as f64 / (1u64 << 20) as f64;
-        let Some(q) = sq else {
+        let (Some(q), Some((qf, _))) = (sq, quality) else {
             return Ok(Some(Measured {
                 row,
                 quality: None,
                 timing,
             }));
-        };
-        let qframe = if same {
-            Ok(warm)
-        } else {
-            let (qw, qh) = job.quality_size;
-            let mut qs = plan.settings(qw, qh, job.sdf);
-            qs.aovs = true;
-            let r = render(backend, &job.scene, m, &qs).map(|r| r.0);
-            self.progress.bar.inc(1);
-            r
-        };
-        let qf = match qframe {
-            Ok(qf) => qf,
-            Err(e) => {
-                let what = format!("{mname} (quality render)");
-                self.fail(Failure::new(&job.name, what, bname, &e))?;
-                return Ok(Some(Measured {
-                    row,
-                    quality: None,
-                    timing,
-                }));
-            }
         };
         if let Some(spp) = qf.samples_per_pixel.as_ref().filter(|s| !s.is_empty()) {
             row.samples_per_pixel = spp.iter().map(|&v| v as f64).sum::<f64>() / spp.len() as f64;

@@ -474,10 +474,18 @@ pub fn markdown(s: &ReportSummary, ctx: &Context) -> String {
     let _ = writeln!(md, "# subcone report\n");
     let _ = writeln!(
         md,
-        "Mode **{}**, backends {}, {} timed runs after one warm-up, code {}, {} hardware threads ({}).{}{}\n",
+        "Mode **{}**, backends {}, {} timed runs after one warm-up ({}), code {}, {} hardware threads ({}).{}{}\n",
         ctx.mode.name(),
         ctx.backend_descriptions.join(", "),
         ctx.runs,
+        if ctx.mode == Mode::TimingOnly {
+            "a render at the timing size".to_string()
+        } else {
+            format!(
+                "the method's quality render, and a render at the timing size where that size differs and the frame is predicted under {} s",
+                super::timing::SHORT_RENDER.as_secs_f64()
+            )
+        },
         code_version(),
         threads,
         cpu_model(),

@@ -4,6 +4,35 @@ use std::time::Duration;
 
 use subcone_scene::Frame;
 
+/// A method whose timed render is predicted (its quality render's time,
+/// scaled by pixels) to take less than this also gets a warm-up render at
+/// the timing size after its quality render. The first render at a new size
+/// pays fixed costs (the fresh buffers' page faults, the allocator growing),
+/// a few ms that a median of three would carry into a 100 ms frame but not
+/// into a frame of seconds, where the extra warm-up would cost most.
+pub const SHORT_RENDER: Duration = Duration::from_secs(1);
+
+/// Whether a method gets a warm-up render at the timing size before its
+/// timed runs: always without a quality render (`quality_wall` is `None`:
+/// timing only, or the quality render failed); never when the quality render
+/// was at the timing size (it was the first render at that size); else when
+/// its time scaled by pixels from `quality_size` to `timing_size` is under
+/// [`SHORT_RENDER`] (a zero-pixel quality size counts as one pixel).
+pub fn warm_up_at_timing_size(
+    quality_wall: Option<Duration>,
+    timing_size: (u32, u32),
+    quality_size: (u32, u32),
+) -> bool {
+    let Some(wall) = quality_wall else {
+        return true;
+    };
+    if quality_size == timing_size {
+        return false;
+    }
+    let px = |(w, h): (u32, u32)| (w as f64 * h as f64).max(1.0);
+    wall.as_secs_f64() * px(timing_size) / px(quality_size) < SHORT_RENDER.as_secs_f64()
+}
+
 /// Median of `v` (mean of the two middle values for an even count); `None`
 /// when empty. NaNs sort last.
 pub fn median(v: &[f64]) -> Option<f64> {
@@ -103,6 +132,28 @@ impl Timings {
 mod tests {
     use super::*;
     use subcone_scene::PassTiming;
+
+    #[test]
+    fn timing_size_warm_up_only_for_short_frames() {
+        let ms = Duration::from_millis;
+        // No quality render: always.
+        assert!(warm_up_at_timing_size(None, (1280, 720), (320, 180)));
+        // 16× the pixels: 50 ms predicts 800 ms (warm up), 70 ms 1.12 s (not).
+        assert!(warm_up_at_timing_size(
+            Some(ms(50)),
+            (1280, 720),
+            (320, 180)
+        ));
+        assert!(!warm_up_at_timing_size(
+            Some(ms(70)),
+            (1280, 720),
+            (320, 180)
+        ));
+        // Same size: the quality render was the first at the timing size.
+        assert!(!warm_up_at_timing_size(Some(ms(1)), (96, 64), (96, 64)));
+        // Degenerate sizes do not divide by zero.
+        assert!(!warm_up_at_timing_size(Some(ms(2)), (1024, 1024), (0, 0)));
+    }
 
     #[test]
     fn medians() {
