@@ -269,46 +269,37 @@ impl<'a> RayWorkload<'a> {
     }
 
     /// Time each pass `runs` times (after one warm-up pass each) and return
-    /// the median rates. Errors of the pipeline's frame become a zero rate,
-    /// which no target accepts.
+    /// the median rates. A raw pass and its pipeline pass alternate (raw,
+    /// pipeline, raw, pipeline, …), so that the machine's drift during the
+    /// measurement falls on both sides of a ratio alike. Errors of the
+    /// pipeline's frame become a zero rate, which no target accepts.
     pub fn measure(&self, runs: usize) -> RayThroughput {
         let runs = runs.max(1);
-        let rate = |n: usize, f: &dyn Fn()| -> f64 {
-            f();
-            let mut t: Vec<Duration> = (0..runs)
-                .map(|_| {
-                    let s = Instant::now();
-                    f();
-                    s.elapsed()
-                })
-                .collect();
-            t.sort();
-            let median = t[runs / 2].as_secs_f64();
-            if median > 0.0 {
-                n as f64 / median
-            } else {
-                0.0
-            }
-        };
         let ok = std::cell::Cell::new(true);
-        let raw_primary = rate(self.rays.len(), &|| {
-            std::hint::black_box(self.raw_primary_pass());
-        });
-        let pipeline_primary = rate(self.rays.len(), &|| {
-            ok.set(ok.get() && std::hint::black_box(self.pipeline_primary_pass()).is_ok());
-        });
+        let (raw_primary, pipeline_primary) = alternating(
+            self.rays.len(),
+            runs,
+            &|| {
+                std::hint::black_box(self.raw_primary_pass());
+            },
+            &|| {
+                ok.set(ok.get() && std::hint::black_box(self.pipeline_primary_pass()).is_ok());
+            },
+        );
         let (raw_shadow, pipeline_shadow) = if self.shadow_rays.is_empty() {
             (None, None)
         } else {
-            let n = self.shadow_rays.len();
-            (
-                Some(rate(n, &|| {
+            let (raw, pipeline) = alternating(
+                self.shadow_rays.len(),
+                runs,
+                &|| {
                     std::hint::black_box(self.raw_shadow_pass());
-                })),
-                Some(rate(n, &|| {
+                },
+                &|| {
                     ok.set(ok.get() && std::hint::black_box(self.pipeline_shadow_pass()).is_ok());
-                })),
-            )
+                },
+            );
+            (Some(raw), Some(pipeline))
         };
         let fail = |r: f64| if ok.get() { r } else { 0.0 };
         RayThroughput {
@@ -320,4 +311,29 @@ impl<'a> RayWorkload<'a> {
             pipeline_shadow: pipeline_shadow.map(fail),
         }
     }
+}
+
+/// The median rates, in rays per second, of two passes over `n` rays: one
+/// warm-up each, then `runs` rounds of `a` followed by `b`. A zero median
+/// time gives a zero rate.
+fn alternating(n: usize, runs: usize, a: &dyn Fn(), b: &dyn Fn()) -> (f64, f64) {
+    let time = |f: &dyn Fn()| {
+        let s = Instant::now();
+        f();
+        s.elapsed()
+    };
+    a();
+    b();
+    let (mut ta, mut tb): (Vec<Duration>, Vec<Duration>) =
+        (0..runs.max(1)).map(|_| (time(a), time(b))).unzip();
+    let rate = |t: &mut Vec<Duration>| {
+        t.sort();
+        let median = t[t.len() / 2].as_secs_f64();
+        if median > 0.0 {
+            n as f64 / median
+        } else {
+            0.0
+        }
+    };
+    (rate(&mut ta), rate(&mut tb))
 }
