@@ -268,13 +268,12 @@ impl<'a> RayWorkload<'a> {
             .sum())
     }
 
-    /// Time each pass `runs` times (after one warm-up pass each) and return
+    /// Time each pass `runs` times (at least once, after one warm-up pass each) and return
     /// the median rates. A raw pass and its pipeline pass alternate (raw,
     /// pipeline, raw, pipeline, …), so that the machine's drift during the
     /// measurement falls on both sides of a ratio alike. Errors of the
     /// pipeline's frame become a zero rate, which no target accepts.
     pub fn measure(&self, runs: usize) -> RayThroughput {
-        let runs = runs.max(1);
         let ok = std::cell::Cell::new(true);
         let (raw_primary, pipeline_primary) = alternating(
             self.rays.len(),
@@ -314,8 +313,8 @@ impl<'a> RayWorkload<'a> {
 }
 
 /// The median rates, in rays per second, of two passes over `n` rays: one
-/// warm-up each, then `runs` rounds of `a` followed by `b`. A zero median
-/// time gives a zero rate.
+/// warm-up each, then `runs` (at least one) rounds of `a` followed by `b`.
+/// A zero median time gives a zero rate.
 fn alternating(n: usize, runs: usize, a: &dyn Fn(), b: &dyn Fn()) -> (f64, f64) {
     let time = |f: &dyn Fn()| {
         let s = Instant::now();
