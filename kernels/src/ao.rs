@@ -72,7 +72,7 @@ pub fn tangent_frame(n: Vec3) -> (Vec3, Vec3) {
 fn unit_or_z(n: Vec3) -> Vec3 {
     let d = n.dot(n);
     if d >= f32::MIN_POSITIVE && d.is_finite() {
-        n * (1.0 / libm::sqrtf(d))
+        n * (1.0 / crate::math::sqrt(d))
     } else {
         Vec3::Z
     }
@@ -99,11 +99,11 @@ pub fn ao_direction_local(i: u32, count: u32) -> Vec3 {
     let frac = i as f32 * GOLDEN_FRACTION;
     // In [−π, π): WGSL bounds sin and cos there (2^-11 absolute).
     let phi = core::f32::consts::TAU * (frac - libm::floorf(frac)) - core::f32::consts::PI;
-    let r = libm::sqrtf(u);
+    let r = crate::math::sqrt(u);
     Vec3::new(
         r * libm::cosf(phi),
         r * libm::sinf(phi),
-        libm::sqrtf((1.0 - u).max(0.0)),
+        crate::math::sqrt((1.0 - u).max(0.0)),
     )
 }
 

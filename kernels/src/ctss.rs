@@ -70,6 +70,7 @@ pub const WGSL: &str = include_str!("ctss.wgsl");
 /// on `subcone_field`.
 pub const TRACE_WGSL: &str = include_str!("ctss/trace.wgsl");
 
+use crate::math::Euclidean;
 use glam::{Vec2, Vec3};
 
 mod trace;
@@ -969,11 +970,11 @@ impl ConeStepper {
 /// Falls back to another axis when `dir ∥ up_hint`; returns `(X, Y)` for a zero
 /// or non-finite `dir`.
 pub fn cross_section_frame(dir: Vec3, up_hint: Vec3) -> (Vec3, Vec3) {
-    let d = dir.normalize_or_zero();
+    let d = dir.unit_or_zero();
     if d == Vec3::ZERO {
         return (Vec3::X, Vec3::Y);
     }
-    let mut right = d.cross(up_hint).normalize_or_zero();
+    let mut right = d.cross(up_hint).unit_or_zero();
     if right == Vec3::ZERO {
         right = d.any_orthonormal_vector();
     }
@@ -1318,7 +1319,7 @@ pub fn tetra_normal<S: FnMut(Vec3) -> f32>(mut sdf: S, p: Vec3, h: f32) -> Vec3 
     ];
     K.iter()
         .fold(Vec3::ZERO, |a, k| a + *k * sdf(p + *k * h))
-        .normalize_or_zero()
+        .unit_or_zero()
 }
 
 /// Whether a hit group hides an internal edge and needs extra samples (§5.3).
@@ -1352,7 +1353,7 @@ pub fn group_needs_split(
         && rc > 0.0
         && group_length.is_finite()
         && group_length > SPLIT_LENGTH_RATIO * rc;
-    let (a, b) = (n_fine.normalize_or_zero(), n_coarse.normalize_or_zero());
+    let (a, b) = (n_fine.unit_or_zero(), n_coarse.unit_or_zero());
     let bent = a != Vec3::ZERO && b != Vec3::ZERO && a.dot(b) < SPLIT_MIN_COS;
     long || bent
 }
@@ -1390,7 +1391,7 @@ pub fn split_weights(visible: u32, weight: f32) -> Option<[f32; 4]> {
 #[inline]
 pub fn split_direction(dir: Vec3, right: Vec3, up: Vec3, tan_theta: f32, offset: Vec2) -> Vec3 {
     let d = dir + (tan_theta * offset.x) * right + (tan_theta * offset.y) * up;
-    let n = d.normalize_or_zero();
+    let n = d.unit_or_zero();
     if n == Vec3::ZERO {
         dir
     } else {

@@ -43,12 +43,17 @@
 // rewrite would hide exactly the NaN case the domain docs are about.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+// With `std`, `math::sqrt` is `f32::sqrt` (VEX-encodable), not libm's asm.
+#[cfg(feature = "std")]
+extern crate std;
+
 pub mod aggregate;
 pub mod ao;
 pub mod cone;
 pub mod ctss;
 pub mod fxaa;
 pub mod mask;
+pub mod math;
 pub mod passes;
 pub mod sraa;
 mod sum;

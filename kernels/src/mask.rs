@@ -55,6 +55,7 @@
 /// [`crate::wgsl::PARAMS`]; concatenate after `PARAMS` (see [`crate::wgsl`]).
 pub const WGSL: &str = include_str!("mask.wgsl");
 
+use crate::math::Euclidean;
 use glam::{Vec2, Vec3, Vec4};
 
 /// All 32 cells covered.
@@ -122,7 +123,7 @@ pub fn project_normal(normal: Vec3, right: Vec3, up: Vec3) -> Vec2 {
         return Vec2::ZERO;
     }
     let n = normal / m;
-    let n = n * (1.0 / libm::sqrtf(n.length_squared()));
+    let n = n * (1.0 / crate::math::sqrt(n.length_squared()));
     let p = Vec2::new(n.dot(right), n.dot(up));
     if p.is_finite() {
         p
@@ -148,7 +149,7 @@ pub fn half_plane(
     projected_normal: Vec2,
     placement: MaskPlacement,
 ) -> Option<(Vec2, f32)> {
-    let len = projected_normal.length();
+    let len = projected_normal.norm();
     if !(len > 0.0) || !len.is_finite() {
         return None;
     }

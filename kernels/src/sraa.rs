@@ -539,9 +539,23 @@ pub fn albedo_difference(a: Vec3, b: Vec3) -> f32 {
     if !(a.is_finite() && b.is_finite()) {
         return f32::INFINITY;
     }
-    let e = |x: f32| libm::sqrtf(if x > 0.0 { x } else { 0.0 });
-    let d = |x: f32, y: f32| libm::fabsf(e(x) - e(y));
-    d(a.x, b.x).max(d(a.y, b.y)).max(d(a.z, b.z))
+    root_difference(albedo_root(a), albedo_root(b))
+}
+
+/// `√max(a, 0)` per channel: the space [`albedo_difference`] compares in.
+/// Kept apart so the resolver can take each albedo's roots once per pixel
+/// instead of once per (subsample, neighbour) pair, to the same bits.
+#[inline(always)]
+pub(crate) fn albedo_root(a: Vec3) -> Vec3 {
+    let e = |x: f32| crate::math::sqrt(if x > 0.0 { x } else { 0.0 });
+    Vec3::new(e(a.x), e(a.y), e(a.z))
+}
+
+/// The largest channel difference of two [`albedo_root`]s.
+#[inline(always)]
+pub(crate) fn root_difference(ra: Vec3, rb: Vec3) -> f32 {
+    let d = |x: f32, y: f32| libm::fabsf(x - y);
+    d(ra.x, rb.x).max(d(ra.y, rb.y)).max(d(ra.z, rb.z))
 }
 
 /// Material-gated weight: eq. 2's gate applied to albedo instead of shadow

@@ -2,6 +2,7 @@
 
 use glam::{Vec2, Vec3};
 use subcone_kernels::cone::{cone_tan_theta, PixelFootprint};
+use subcone_kernels::math::Euclidean;
 
 use crate::error::SceneError;
 
@@ -39,11 +40,11 @@ impl Camera {
                 "position, target and up must be finite".into(),
             ));
         }
-        let forward = (target - position).normalize_or_zero();
+        let forward = (target - position).unit_or_zero();
         if forward == Vec3::ZERO {
             return Err(SceneError::Camera("target equals position".into()));
         }
-        let right = forward.cross(up_hint).normalize_or_zero();
+        let right = forward.cross(up_hint).unit_or_zero();
         if right == Vec3::ZERO {
             return Err(SceneError::Camera(
                 "up vector is parallel to the view direction".into(),
@@ -70,8 +71,8 @@ impl Camera {
         if !(self.position.is_finite() && self.forward.is_finite() && self.up.is_finite()) {
             return Err(SceneError::Camera("camera frame is not finite".into()));
         }
-        if (self.forward.length() - 1.0).abs() > 1e-3
-            || (self.up.length() - 1.0).abs() > 1e-3
+        if (self.forward.norm() - 1.0).abs() > 1e-3
+            || (self.up.norm() - 1.0).abs() > 1e-3
             || self.forward.dot(self.up).abs() > 1e-3
         {
             return Err(SceneError::Camera(
@@ -160,7 +161,7 @@ impl CameraRays {
     /// `through(u(p.x), v(p.y))`, bit for bit.
     #[inline]
     pub fn through(&self, u: f32, v: f32) -> (Vec3, Vec3) {
-        let d = (self.forward + u * self.right + v * self.up).normalize();
+        let d = (self.forward + u * self.right + v * self.up).unit();
         (self.position, d)
     }
 }

@@ -1,6 +1,7 @@
 //! Lights that cast hard shadows.
 
 use glam::Vec3;
+use subcone_kernels::math::Euclidean;
 
 /// A light. Both kinds cast hard shadows.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -57,7 +58,7 @@ impl Light {
                 direction,
                 irradiance,
             } => {
-                let dir = direction.normalize_or_zero();
+                let dir = direction.unit_or_zero();
                 (dir != Vec3::ZERO).then_some(Incident {
                     direction: dir,
                     distance: f32::INFINITY,

@@ -14,6 +14,7 @@
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
+use subcone_kernels::math::Euclidean;
 
 use glam::{Mat3, Mat4, Vec2, Vec3};
 
@@ -322,7 +323,7 @@ fn read_obj(path: &Path, bytes: &[u8]) -> Result<(TriangleMesh, Vec<Material>), 
                 ));
             };
             let v = [a, b, c];
-            let geo = (b - a).cross(c - a).normalize_or_zero();
+            let geo = (b - a).cross(c - a).unit_or_zero();
             let mut n = [geo; 3];
             if has_normals {
                 for (k, nk) in n.iter_mut().enumerate() {
@@ -642,7 +643,7 @@ impl GltfCtx<'_> {
                 .collect();
             let normals: Option<Vec<Vec3>> = if normals_ok {
                 reader.read_normals().map(|it| {
-                    it.map(|n| normal_m.mul_vec3(Vec3::from_array(n)).normalize_or_zero())
+                    it.map(|n| normal_m.mul_vec3(Vec3::from_array(n)).unit_or_zero())
                         .collect()
                 })
             } else {
@@ -695,7 +696,7 @@ impl GltfCtx<'_> {
                         "an index refers to a vertex that does not exist",
                     ));
                 };
-                let geo = (b - a).cross(c - a).normalize_or_zero();
+                let geo = (b - a).cross(c - a).unit_or_zero();
                 let n = match &normals {
                     Some(ns) => t.map(|i| ns.get(i as usize).copied().unwrap_or(geo)),
                     None => [geo; 3],
@@ -716,7 +717,7 @@ impl GltfCtx<'_> {
 fn bounding_sphere(mesh: &TriangleMesh) -> (Vec3, f32) {
     let (lo, hi) = mesh.bounds().unwrap_or((Vec3::ZERO, Vec3::ZERO));
     let centre = 0.5 * (lo + hi);
-    let r = 0.5 * (hi - lo).length();
+    let r = 0.5 * (hi - lo).norm();
     (centre, r.max(1e-6 * centre.abs().max_element()).max(1e-30))
 }
 
@@ -726,7 +727,7 @@ pub fn framing_camera(mesh: &TriangleMesh) -> Result<Camera, SceneError> {
     let (centre, r) = bounding_sphere(mesh);
     let fov = 50f32.to_radians();
     let distance = 1.1 * r / (0.5 * fov).sin();
-    let dir = Vec3::new(0.0, 0.35, 1.0).normalize();
+    let dir = Vec3::new(0.0, 0.35, 1.0).unit();
     Camera::look_at(centre + distance * dir, centre, Vec3::Y, fov)
 }
 
@@ -813,7 +814,7 @@ pub fn sponza(data_dir: &Path, reflective_floor: bool) -> Result<Scene, SceneErr
     let path = data_dir.join(SPONZA_PATH);
     let (mut mesh, _materials, _dropped) = load_mesh_file(&path)?;
     let (lo, hi) = mesh.bounds().unwrap_or((Vec3::ZERO, Vec3::ZERO));
-    let up_facing = |v: &[Vec3; 3]| (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero().y > 0.99;
+    let up_facing = |v: &[Vec3; 3]| (v[1] - v[0]).cross(v[2] - v[0]).unit_or_zero().y > 0.99;
     // The file's lowest point is the bottom of an outer shell (y ≈ -0.91) that
     // faces down; the floor is the lowest upward-facing surface (y ≈ 0.09).
     let floor_y = mesh
@@ -852,7 +853,7 @@ pub fn sponza(data_dir: &Path, reflective_floor: bool) -> Result<Scene, SceneErr
     // columns throw hard shadows across the aisle floor. (The courtyard is
     // about 6.4 m wide and 15.6 m deep: a lower sun leaves the floor in shadow.)
     let sun = Light::Directional {
-        direction: Vec3::new(-0.35, 1.0, 0.22).normalize(),
+        direction: Vec3::new(-0.35, 1.0, 0.22).unit(),
         irradiance: Vec3::new(1.0, 0.95, 0.85) * 3.0,
     };
     let name = if reflective_floor {
@@ -863,7 +864,7 @@ pub fn sponza(data_dir: &Path, reflective_floor: bool) -> Result<Scene, SceneErr
     // A weaker fill from the other side, so the +z arcade (in the sun's shadow)
     // shows its edges and casts shadows of its own instead of a flat ambient grey.
     let fill = Light::Directional {
-        direction: Vec3::new(0.1, 1.0, -0.3).normalize(),
+        direction: Vec3::new(0.1, 1.0, -0.3).unit(),
         irradiance: Vec3::new(0.75, 0.8, 0.95) * 2.0,
     };
     let mut s = Scene::triangles(name, mesh, materials, vec![sun, fill], camera)?;

@@ -2,6 +2,7 @@
 //! material index each.
 
 use glam::{Mat4, Vec2, Vec3};
+use subcone_kernels::math::Euclidean;
 
 /// Triangles, one entry per triangle in each vector.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -55,7 +56,7 @@ impl TriangleMesh {
 
     /// Add a flat-shaded triangle.
     pub fn push_flat(&mut self, v: [Vec3; 3], material: u32) {
-        let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
+        let n = (v[1] - v[0]).cross(v[2] - v[0]).unit_or_zero();
         self.push(v, [n; 3], [Vec2::ZERO; 3], material);
     }
 
@@ -159,7 +160,7 @@ impl TriangleMesh {
                 s.degenerate += 1;
                 continue;
             }
-            let geo = cross.normalize();
+            let geo = cross.unit();
             let mut n = self.normals[i];
             for k in &mut n {
                 if !k.is_finite() || k.length_squared() < 1e-12 {
@@ -167,7 +168,7 @@ impl TriangleMesh {
                 } else {
                     // By the largest component first, so that huge normals
                     // (whose squared length overflows) stay unit.
-                    *k = (*k / k.abs().max_element()).normalize();
+                    *k = (*k / k.abs().max_element()).unit();
                 }
             }
             let mut uv = self.uvs[i];

@@ -1,6 +1,7 @@
 //! The scene's triangles in an obvhs CWBVH: closest hits and occlusion.
 
 use std::time::{Duration, Instant};
+use subcone_kernels::math::Euclidean;
 
 use glam::{UVec2, Vec2, Vec3, Vec3A};
 use obvhs::cwbvh::builder::build_cwbvh_from_tris;
@@ -191,7 +192,7 @@ impl SceneBvh {
             .collect();
         let scale = mesh
             .bounds()
-            .map(|(lo, hi)| (hi - lo).length())
+            .map(|(lo, hi)| (hi - lo).norm())
             .unwrap_or(1.0)
             .max(f32::MIN_POSITIVE);
         SceneBvh {

@@ -3,6 +3,7 @@
 
 use glam::{Vec2, Vec3, Vec3A};
 use subcone_kernels::ao::{ao_direction, ao_fraction, AO_RADIUS_FRACTION};
+use subcone_kernels::math::Euclidean;
 use subcone_kernels::sraa::Geometry;
 use subcone_scene::{Camera, Scene, TriangleMesh};
 
@@ -322,7 +323,7 @@ impl<'a> Tracer<'a> {
     /// Mirror direction of `d` about `n`.
     #[inline]
     pub fn reflect(d: Vec3, n: Vec3) -> Vec3 {
-        (d - 2.0 * d.dot(n) * n).normalize()
+        (d - 2.0 * d.dot(n) * n).unit()
     }
 
     /// Full Whitted radiance along a ray, `depth` bounces already taken;

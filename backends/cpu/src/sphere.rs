@@ -13,6 +13,7 @@
 //! with alpha blending along the ray.
 
 use std::time::Instant;
+use subcone_kernels::math::Euclidean;
 
 use crate::render::{bands, pixel_centre, reconstruct_frame_on, shadow_agreement, Buffers, BAND};
 use glam::{Vec2, Vec3};
@@ -74,7 +75,7 @@ pub trait SdfField: Sync {
         let n = K
             .iter()
             .fold(Vec3::ZERO, |a, k| a + *k * self.eval(p + *k * h).0);
-        n.normalize_or_zero()
+        n.unit_or_zero()
     }
 }
 

@@ -24,6 +24,7 @@
 //! assert!(r.color.x > 0.0 && r.color.x < 1.0, "{:?}", r);
 //! ```
 
+use crate::math::Euclidean;
 use glam::{Vec2, Vec3};
 
 use super::{
@@ -208,18 +209,18 @@ fn sheet_across<F: ConeField + ?Sized>(
     field: &mut F,
 ) -> bool {
     let rc = cone_radius(t, tan);
-    let n = n.normalize_or_zero();
+    let n = n.unit_or_zero();
     if n == Vec3::ZERO || !(rc > 0.0) {
         return false;
     }
     let cos = libm::fabsf(n.dot(ray.dir));
-    let along = (ray.dir - n.dot(ray.dir) * n).normalize_or_zero();
+    let along = (ray.dir - n.dot(ray.dir) * n).unit_or_zero();
     let along = if along == Vec3::ZERO {
         ray.right
     } else {
         along
     };
-    let across = n.cross(along).normalize_or_zero();
+    let across = n.cross(along).unit_or_zero();
     let stretch = rc / if cos > 0.25 { cos } else { 0.25 };
     let c = ray.origin + t * ray.dir;
     [along * stretch, -along * stretch, across * rc, -across * rc]

@@ -30,9 +30,9 @@
 use glam::{BVec4A, Vec2, Vec3, Vec3A, Vec4};
 
 use super::{
-    material_gate, neighbourhood, reconstruct_layers, reconstruct_layers_material,
-    reconstruction_weight, resolve_pixel, DepthMetric, Geometry, LayeredSample, SraaParams,
-    WeightForm, MAX_LAYERS, NORMAL_COS_SNAP, SUBPIXEL_OFFSETS,
+    albedo_root, neighbourhood, reconstruct_layers, reconstruct_layers_material,
+    reconstruction_weight, resolve_pixel, root_difference, DepthMetric, Geometry, LayeredSample,
+    SraaParams, WeightForm, MAX_LAYERS, NORMAL_COS_SNAP, SUBPIXEL_OFFSETS,
 };
 use crate::sum::WeightedSum4;
 
@@ -278,6 +278,7 @@ impl<'g> Resolver<'g> {
         let mut weights = [[0.0f64; 4]; SLOTS];
         let mut nonzero = 0u32;
         let lanes = GeometryLanes::new(&targets.geometry);
+        let gate = albedo.map(|a| MaterialGateLanes::new(a, self.tolerance));
         for slot in hood.slots() {
             let mut w = match self.params.form() {
                 WeightForm::Product => {
@@ -292,15 +293,9 @@ impl<'g> Resolver<'g> {
                     )
                 })),
             };
-            if let Some(a) = albedo {
+            if let Some(gate) = &gate {
                 let aj = frame.albedo.get(hood.index[slot]).copied();
-                let mut gated = 0;
-                for (k, ak) in a.iter().enumerate() {
-                    if !aj.is_some_and(|aj| material_gate(*ak, aj, self.tolerance)) {
-                        gated |= 1 << k;
-                    }
-                }
-                w *= Vec4::from_array(KEEP_LANES[gated].map(|k| k as f32));
+                w *= Vec4::from_array(KEEP_LANES[gate.gated(aj)].map(|k| k as f32));
             }
             weights[slot] = w.to_array().map(|w| w as f64);
             if w.cmpgt(Vec4::ZERO).any() {
@@ -461,6 +456,71 @@ impl<'g> Resolver<'g> {
             }
         }
         out[..n].iter().fold(Vec3::ZERO, |a, c| a + *c)
+    }
+}
+
+/// The material gate ([`material_gate`](super::material_gate)) of the four subsamples against one
+/// neighbour at a time, to the same decisions: each subsample's albedo is
+/// taken to the compared space ([`albedo_root`], three square roots) once per
+/// pixel, not once per neighbour, and a neighbour whose albedo equals a
+/// subsample's (the common case inside a patch: the difference is exactly 0)
+/// needs no square root at all.
+struct MaterialGateLanes {
+    albedo: [Vec3; 4],
+    root: [Vec3; 4],
+    /// Bit k: subsample k's albedo is finite.
+    finite: u32,
+    tolerance: f32,
+    /// Whether a difference of exactly 0 passes (`0 ≤ tolerance`; false for a
+    /// negative or NaN tolerance, as in [`material_gate`](super::material_gate)).
+    equal_passes: bool,
+}
+
+impl MaterialGateLanes {
+    #[inline(always)]
+    fn new(albedo: [Vec3; 4], tolerance: f32) -> Self {
+        let mut finite = 0;
+        let mut root = [Vec3::ZERO; 4];
+        for (k, a) in albedo.iter().enumerate() {
+            if a.is_finite() {
+                finite |= 1 << k;
+                root[k] = albedo_root(*a);
+            }
+        }
+        Self {
+            albedo,
+            root,
+            finite,
+            tolerance,
+            equal_passes: 0.0 <= tolerance,
+        }
+    }
+
+    /// Bit k set: subsample k is gated off from a neighbour of albedo `aj`
+    /// (`None`: the neighbour has none, which gates every subsample).
+    #[inline(always)]
+    fn gated(&self, aj: Option<Vec3>) -> usize {
+        let Some(aj) = aj.filter(|a| a.is_finite()) else {
+            return 0b1111;
+        };
+        let mut gated = 0;
+        let mut rj = None;
+        for k in 0..4 {
+            let pass = if self.finite & (1 << k) == 0 {
+                false
+            } else if self.albedo[k] == aj {
+                // Equal albedos have equal roots: the difference is 0.
+                self.equal_passes
+            } else {
+                let rj = *rj.get_or_insert_with(|| albedo_root(aj));
+                let d = root_difference(self.root[k], rj);
+                d <= self.tolerance && d < f32::INFINITY
+            };
+            if !pass {
+                gated |= 1 << k;
+            }
+        }
+        gated
     }
 }
 

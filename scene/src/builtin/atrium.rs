@@ -4,6 +4,7 @@
 //! Units: metres; `x` runs along the courtyard, `y` is up.
 
 use std::f32::consts::{PI, TAU};
+use subcone_kernels::math::Euclidean;
 
 use glam::{Mat4, Vec2, Vec3};
 
@@ -263,7 +264,7 @@ pub fn atrium() -> Scene {
     // High sun behind the camera on the +z side: the -z arcade's arches throw
     // their shapes into its aisle, the +z arcade shades the courtyard's edge.
     let sun = Light::Directional {
-        direction: Vec3::new(-0.35, 1.0, 0.5).normalize(),
+        direction: Vec3::new(-0.35, 1.0, 0.5).unit(),
         irradiance: Vec3::new(1.0, 0.95, 0.85) * 3.0,
     };
     let mut s =

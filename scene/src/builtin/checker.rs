@@ -3,6 +3,7 @@
 //! geometric ones, so the geometry samples see one flat floor.
 
 use glam::{Mat4, Quat, Vec3};
+use subcone_kernels::math::Euclidean;
 
 use crate::camera::Camera;
 use crate::light::Light;
@@ -75,7 +76,7 @@ pub fn checker() -> Scene {
     let forward = Vec3::new(0.0, -down.sin(), -down.cos());
     let camera = Camera::look_at(eye, eye + forward, Vec3::Y, fov).expect("valid camera");
     let sun = Light::Directional {
-        direction: Vec3::new(-0.5, 1.0, 0.6).normalize(),
+        direction: Vec3::new(-0.5, 1.0, 0.6).unit(),
         irradiance: Vec3::new(1.0, 0.97, 0.9) * 3.0,
     };
     let mut s = Scene::triangles("checker", m, materials, vec![sun], camera)

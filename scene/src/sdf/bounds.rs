@@ -1,6 +1,7 @@
 //! Conservative axis-aligned bounding boxes of SDF nodes.
 
 use glam::{Quat, Vec3};
+use subcone_kernels::math::Euclidean;
 
 /// An axis-aligned box `[min, max]`, possibly infinite on some sides.
 ///
@@ -77,7 +78,7 @@ impl Aabb {
     #[inline]
     pub fn distance(&self, p: Vec3) -> f32 {
         let d = (self.min - p).max(p - self.max).max(Vec3::ZERO);
-        d.length()
+        d.norm()
     }
 
     /// The largest distance from the origin to a point of the box (∞ when
@@ -86,7 +87,7 @@ impl Aabb {
         if !self.is_finite() {
             return f32::INFINITY;
         }
-        self.min.abs().max(self.max.abs()).length()
+        self.min.abs().max(self.max.abs()).norm()
     }
 }
 

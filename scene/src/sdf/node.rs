@@ -1,6 +1,7 @@
 //! The SDF tree: validated nodes, evaluation and normals.
 
 use glam::{Quat, Vec3, Vec4};
+use subcone_kernels::math::Euclidean;
 
 use super::bounds::{round_cell, Aabb};
 use super::scatter::{Scatter, ScatterConfig};
@@ -1377,7 +1378,7 @@ fn skip_sphere(c: &SdfNode) -> Vec4 {
         return Vec4::new(0.0, 0.0, 0.0, f32::INFINITY);
     }
     let centre = 0.5 * (b.min + b.max);
-    let radius = 0.5 * (b.max - b.min).length();
+    let radius = 0.5 * (b.max - b.min).norm();
     // Grow by a few ulps so rounding never skips a child that matters.
     let slack = 1e-5 * (radius + centre.abs().max_element());
     centre.extend(radius + slack)
@@ -1428,7 +1429,7 @@ fn step(p: Vec3, h: f32) -> f32 {
 fn unit_or_up(n: Vec3) -> Vec3 {
     let m = n.abs().max_element();
     if n.is_finite() && m > 0.0 {
-        (n / m).normalize()
+        (n / m).unit()
     } else {
         Vec3::Y
     }

@@ -3,6 +3,7 @@
 //! time (the authors' `GRID_TRACE` idea).
 
 use glam::{Quat, Vec3};
+use subcone_kernels::math::Euclidean;
 
 use super::bounds::{round_cell, Aabb};
 use super::node::SdfNode;
@@ -435,7 +436,7 @@ impl Scatter {
         } else {
             inst.material
         };
-        let sphere = local.length() - inst.radius;
+        let sphere = local.norm() - inst.radius;
         if sphere >= guard {
             return (guard, sphere, own);
         }

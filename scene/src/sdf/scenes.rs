@@ -4,6 +4,7 @@
 //! frame a 16:9 image (the benches run at 1280×720).
 
 use std::f32::consts::FRAC_PI_2;
+use subcone_kernels::math::Euclidean;
 
 use glam::{Quat, Vec3};
 
@@ -26,7 +27,7 @@ pub(super) fn checker(name: &str, a: Vec3, b: Vec3, size: f32) -> Material {
 
 pub(super) fn sun(direction: Vec3, irradiance: f32) -> Light {
     Light::Directional {
-        direction: direction.normalize(),
+        direction: direction.unit(),
         irradiance: Vec3::new(1.0, 0.96, 0.88) * irradiance,
     }
 }

@@ -10,6 +10,7 @@
 //! [`SdfNode::rotate`]: crate::sdf::SdfNode::rotate
 
 use glam::{Vec2, Vec3};
+use subcone_kernels::math::Euclidean;
 
 use super::bounds::Aabb;
 use super::{Exactness, SdfError};
@@ -300,7 +301,7 @@ impl Shape {
                         param: "offset",
                     });
                 }
-                let len = normal.length();
+                let len = normal.norm();
                 if len <= 1e-12 || !len.is_finite() {
                     return Err(SdfError::Invalid {
                         node: n,
@@ -414,12 +415,12 @@ impl Shape {
     fn distance_xyz(&self, x: f32, y: f32, z: f32) -> f32 {
         let p = Vec3::new(x, y, z);
         match *self {
-            Shape::Sphere { radius } => p.length() - radius,
+            Shape::Sphere { radius } => p.norm() - radius,
             Shape::Box { half } => sd_box(p, half),
             Shape::RoundBox { half, radius } => sd_box(p, half - Vec3::splat(radius)) - radius,
             Shape::BoxFrame { half, thickness } => sd_box_frame(p, half, 0.5 * thickness),
             Shape::Torus { major, minor } => {
-                Vec2::new(Vec2::new(p.x, p.z).length() - major, p.y).length() - minor
+                Vec2::new(Vec2::new(p.x, p.z).norm() - major, p.y).norm() - minor
             }
             Shape::Link {
                 half_length,
@@ -427,14 +428,14 @@ impl Shape {
                 minor,
             } => {
                 let q = Vec3::new(p.x, (p.y.abs() - half_length).max(0.0), p.z);
-                Vec2::new(Vec2::new(q.x, q.y).length() - major, q.z).length() - minor
+                Vec2::new(Vec2::new(q.x, q.y).norm() - major, q.z).norm() - minor
             }
             Shape::Capsule {
                 half_height,
                 radius,
             } => {
                 let y = p.y - p.y.clamp(-half_height, half_height);
-                Vec3::new(p.x, y, p.z).length() - radius
+                Vec3::new(p.x, y, p.z).norm() - radius
             }
             Shape::Cylinder {
                 radius,
@@ -456,8 +457,8 @@ impl Shape {
                 half_height,
             } => sd_hex_prism(Vec3::new(p.x, p.z, p.y), apothem, half_height),
             Shape::Ellipsoid { radii } => {
-                let k0 = (p / radii).length();
-                let k1 = (p / (radii * radii)).length();
+                let k0 = (p / radii).norm();
+                let k1 = (p / (radii * radii)).norm();
                 if k1 == 0.0 {
                     // The centre: the exact depth is the smallest semi-axis.
                     -radii.min_element()
@@ -466,7 +467,7 @@ impl Shape {
                 } else {
                     // Radii so small that `r²` underflows: the bounding
                     // sphere's distance, still a bound.
-                    p.length() - radii.max_element()
+                    p.norm() - radii.max_element()
                 }
             }
             Shape::Plane { normal, offset } => p.dot(normal) + offset,
@@ -477,14 +478,14 @@ impl Shape {
 #[inline]
 fn sd_box(p: Vec3, half: Vec3) -> f32 {
     let q = p.abs() - half;
-    q.max(Vec3::ZERO).length() + q.max_element().min(0.0)
+    q.max(Vec3::ZERO).norm() + q.max_element().min(0.0)
 }
 
 #[inline]
 fn sd_box_frame(p: Vec3, half: Vec3, e: f32) -> f32 {
     let p = p.abs() - half;
     let q = (p + Vec3::splat(e)).abs() - Vec3::splat(e);
-    let part = |v: Vec3| v.max(Vec3::ZERO).length() + v.max_element().min(0.0);
+    let part = |v: Vec3| v.max(Vec3::ZERO).norm() + v.max_element().min(0.0);
     part(Vec3::new(p.x, q.y, q.z))
         .min(part(Vec3::new(q.x, p.y, q.z)))
         .min(part(Vec3::new(q.x, q.y, p.z)))
@@ -492,13 +493,13 @@ fn sd_box_frame(p: Vec3, half: Vec3, e: f32) -> f32 {
 
 #[inline]
 fn sd_cylinder(p: Vec3, radius: f32, half_height: f32) -> f32 {
-    let d = Vec2::new(Vec2::new(p.x, p.z).length(), p.y).abs() - Vec2::new(radius, half_height);
-    d.x.max(d.y).min(0.0) + d.max(Vec2::ZERO).length()
+    let d = Vec2::new(Vec2::new(p.x, p.z).norm(), p.y).abs() - Vec2::new(radius, half_height);
+    d.x.max(d.y).min(0.0) + d.max(Vec2::ZERO).norm()
 }
 
 #[inline]
 fn sd_capped_cone(p: Vec3, h: f32, r1: f32, r2: f32) -> f32 {
-    let q = Vec2::new(Vec2::new(p.x, p.z).length(), p.y);
+    let q = Vec2::new(Vec2::new(p.x, p.z).norm(), p.y);
     let k1 = Vec2::new(r2, h);
     let k2 = Vec2::new(r2 - r1, 2.0 * h);
     let ca = Vec2::new(
@@ -536,7 +537,7 @@ fn sd_octahedron(p: Vec3, s: f32) -> f32 {
         return m * 0.577_350_26;
     };
     let k = (0.5 * (q.z - q.y + s)).clamp(0.0, s);
-    Vec3::new(q.x, q.y - s + k, q.z - k).length()
+    Vec3::new(q.x, q.y - s + k, q.z - k).norm()
 }
 
 /// Quilez's hexagonal prism with its axis along `z`.
@@ -553,6 +554,6 @@ fn sd_hex_prism(p: Vec3, apothem: f32, half_height: f32) -> f32 {
         p.y - apothem,
     );
     let sign = if p.y - apothem < 0.0 { -1.0 } else { 1.0 };
-    let d = Vec2::new(edge.length() * sign, p.z - half_height);
-    d.x.max(d.y).min(0.0) + d.max(Vec2::ZERO).length()
+    let d = Vec2::new(edge.norm() * sign, p.z - half_height);
+    d.x.max(d.y).min(0.0) + d.max(Vec2::ZERO).norm()
 }

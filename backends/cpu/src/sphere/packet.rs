@@ -37,6 +37,7 @@ use subcone_kernels::ctss::{
     ConeStepper, CtssParams, Event, FieldSample, GroupSample, PartSample, SphereHit, SphereMarch,
     SplitRay,
 };
+use subcone_kernels::math::Euclidean;
 use subcone_kernels::passes::MAX_LIGHTS;
 use subcone_kernels::sraa::{Geometry, SUBPIXEL_OFFSETS};
 use subcone_scene::sdf::program::{LaneMask, Points, Scratch, SdfProgram, SplitLanes, LANES};
@@ -78,7 +79,7 @@ impl ShadowRay {
     /// `dist` (the light) or `max_distance` away.
     #[inline(always)]
     pub(super) fn new(p: Vec3, n: Vec3, l: Vec3, dist: f32, max_distance: f32) -> ShadowRay {
-        let eps = 1e-4 * (1.0 + p.length());
+        let eps = 1e-4 * (1.0 + p.norm());
         ShadowRay {
             o: p + n * (4.0 * eps),
             l,

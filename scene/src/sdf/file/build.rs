@@ -8,6 +8,7 @@
 
 use glam::{Quat, Vec3};
 use serde::Deserialize;
+use subcone_kernels::math::Euclidean;
 
 use super::desc::{
     AlbedoDesc, Axis, CameraDesc, LightDesc, MaterialDesc, NodeDesc, RotationDesc,
@@ -201,7 +202,7 @@ fn rotation(r: RotationDesc) -> Result<Quat, SdfError> {
                     param: "rotation axis and angle",
                 });
             }
-            let unit = axis.normalize_or_zero();
+            let unit = axis.unit_or_zero();
             if unit == Vec3::ZERO {
                 return Err(SdfError::Invalid {
                     node: NAME,
