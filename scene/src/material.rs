@@ -17,7 +17,9 @@ pub struct Texture {
 }
 
 impl Texture {
-    /// Sample at `uv` (wrapping).
+    /// Sample at `uv` (wrapping). `#[inline]` so that the CPU backend's
+    /// instruction-set paths compile it in, rather than call baseline code.
+    #[inline]
     pub fn sample(&self, uv: Vec2) -> Vec3 {
         if self.texels.is_empty() || !uv.is_finite() {
             return Vec3::splat(0.5);

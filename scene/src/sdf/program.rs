@@ -472,7 +472,13 @@ fn sd_box_frame(p: V3, half: Vec3, e: f32) -> F8 {
         .add(V3::splat(Vec3::splat(e)))
         .abs()
         .sub(V3::splat(Vec3::splat(e)));
-    let part = |v: V3| v.pos().length() + v.max_element().min(F8::splat(0.0));
+    // A function, not a closure: always inlined, where a closure left out of
+    // line is compiled for the baseline and called from every
+    // instruction-set path.
+    #[inline(always)]
+    fn part(v: V3) -> F8 {
+        v.pos().length() + v.max_element().min(F8::splat(0.0))
+    }
     part(V3::new(p.x, q.y, q.z))
         .min(part(V3::new(q.x, p.y, q.z)))
         .min(part(V3::new(q.x, q.y, p.z)))
@@ -517,10 +523,14 @@ fn sd_octahedron(p: V3, s: f32) -> F8 {
     let ay = (3.0 * p.y).lt(m);
     let az = (3.0 * p.z).lt(m);
     // q = p, p.yzx or p.zxy by the first axis that passes, as the tree picks.
-    let pick = |a: F8, b: F8, c: F8| F8::select(ax, a, F8::select(ay, b, c));
-    let qx = pick(p.x, p.y, p.z);
-    let qy = pick(p.y, p.z, p.x);
-    let qz = pick(p.z, p.x, p.y);
+    // A function, not a closure, as `sd_box_frame`'s `part`.
+    #[inline(always)]
+    fn pick(ax: M8, ay: M8, a: F8, b: F8, c: F8) -> F8 {
+        F8::select(ax, a, F8::select(ay, b, c))
+    }
+    let qx = pick(ax, ay, p.x, p.y, p.z);
+    let qy = pick(ax, ay, p.y, p.z, p.x);
+    let qz = pick(ax, ay, p.z, p.x, p.y);
     let k = (0.5 * (qz - qy + s)).clamp(F8::splat(0.0), F8::splat(s));
     let d = V3::new(qx, qy - s + k, qz - k).length();
     let any = W8(core::array::from_fn(|k| ax.0[k] | ay.0[k] | az.0[k]));
