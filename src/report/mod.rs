@@ -6,14 +6,24 @@
 //! [`Backend::supports`] before anything renders; the others are listed under
 //! *Skipped* with the typed reason), the report
 //!
-//! 1. times the method: one warm-up, then `runs` timed calls of
-//!    [`Backend::render`] at the *timing size*; the warm-up is the quality
-//!    render of step 2 when errors are measured (a render the row needs
-//!    anyway), followed by one at the timing size only where the sizes
-//!    differ and the frame is predicted shorter than
-//!    [`timing::SHORT_RENDER`]; else a render at the timing size;
-//!    median and range of the wall time, and the median of every pass of
-//!    [`FrameStats::timings`](subcone_scene::FrameStats);
+//! 1. times the methods in interleaved rounds. First every method's
+//!    warm-up: the quality render of step 2 when errors are measured (a
+//!    render the row needs anyway), followed by one at the timing size only
+//!    where the sizes differ and the frame is predicted shorter than
+//!    [`timing::SHORT_RENDER`]; else a render at the timing size. Then
+//!    `runs` rounds, each calling [`Backend::render`] once per method at the
+//!    *timing size*, round `r` starting at the method of index `r mod n` (of
+//!    the `n` methods in table order) and wrapping
+//!    ([`timing::round_order`]), so that the machine's drift falls on every
+//!    method alike. A method's time is the median and range of its wall
+//!    times over the rounds, with the median of every pass of
+//!    [`FrameStats::timings`](subcone_scene::FrameStats); its ratio to NoAA
+//!    is the median (and range) of its per-round ratios to NoAA's time in the
+//!    same round ([`timing::round_ratios`]). The SMAA row, whose
+//!    post-process is timed apart from the rounds, keeps the ratio of
+//!    medians, without a range; the SRAA Table 1 sweep times each method's
+//!    runs back to back and has no ratio to NoAA. The header says how much
+//!    CPU time other processes took during the rounds ([`load`](mod@load));
 //! 2. measures its error at the *quality size* against a supersampled reference
 //!    (SSAA256; cached on disk, see [`reference`](mod@reference)): mean FLIP, PSNR and mean FLIP
 //!    on the edge mask, all on the tone-mapped 8-bit sRGB images;
@@ -33,7 +43,7 @@
 //! where a 256-sample reference per scene is affordable on a CPU (sphere
 //! tracing costs several times more per sample than the BVH). `--size` sets
 //! both; `--quick` uses 96×64 for both with an SSAA64 reference; `--timing-only`
-//! skips references and errors. Every mode times 3 runs after the warm-up
+//! skips references and errors. Every mode times 3 rounds after the warm-ups
 //! unless `--runs` says otherwise. The default run leaves ssaa16 out on SDF
 //! scenes (minutes per 720p frame; CTSS Table 1 stops at 4× SS); an explicit
 //! `--method` keeps it.
@@ -48,6 +58,7 @@ pub mod ao_sweep;
 pub mod classes;
 pub mod crops;
 pub mod kernel_timing;
+pub mod load;
 pub mod metrics;
 pub mod output;
 pub mod papers;
@@ -134,8 +145,14 @@ pub struct ResultRow {
     pub ms_min: f64,
     /// Slowest run, ms.
     pub ms_max: f64,
-    /// `ms_median` over NoAA's on the same scene and backend.
+    /// Time over NoAA's on the same scene and backend: the median over the
+    /// rounds of the method's time over NoAA's in the same round; for rows
+    /// not timed in NoAA's rounds (the `smaa` row), `ms_median` over NoAA's.
     pub ratio_to_noaa: Option<f64>,
+    /// Smallest per-round ratio to NoAA (`None` without per-round ratios).
+    pub ratio_min: Option<f64>,
+    /// Largest per-round ratio to NoAA (`None` without per-round ratios).
+    pub ratio_max: Option<f64>,
     /// Mean FLIP against the reference (quality size).
     pub flip_mean: Option<f64>,
     /// PSNR in dB against the reference; `+∞` when identical.
@@ -161,6 +178,11 @@ pub struct ResultRow {
     pub reference: Option<String>,
     /// Median ms of each pass (column-safe name without `ms_`), in run order.
     pub pass_ms: Vec<(String, f64)>,
+    /// Wall time of each timed round, ms, in round order: the rows of one
+    /// scene and backend share their rounds, so `round_ms[r]` of two of them
+    /// were measured a few frames apart. Empty for rows not timed in rounds
+    /// (the `smaa` row, the sweep). Not a results column.
+    pub round_ms: Vec<f64>,
     /// The GPU adapter a report-level post-process ran on (the `smaa` row).
     pub post_adapter: Option<String>,
 }
@@ -188,6 +210,8 @@ impl ResultRow {
             ms_min: t.min(),
             ms_max: t.max(),
             ratio_to_noaa: None,
+            ratio_min: None,
+            ratio_max: None,
             flip_mean: None,
             psnr_db: None,
             edge_flip_mean: None,
@@ -199,6 +223,7 @@ impl ResultRow {
             quality_height: None,
             reference: None,
             pass_ms: t.pass_medians(),
+            round_ms: Vec::new(),
             post_adapter: None,
         }
     }
@@ -708,6 +733,9 @@ struct Runner<'a> {
     failures: Vec<Failure>,
     crops: Vec<SceneCrops>,
     plots: Vec<PathBuf>,
+    /// Other processes' CPU time over the timed rounds, summed over scenes
+    /// and backends.
+    load: load::OtherCpu,
 }
 
 impl Runner<'_> {
@@ -1003,6 +1031,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
         failures: Vec::new(),
         crops: Vec::new(),
         plots: Vec::new(),
+        load: load::OtherCpu::default(),
     };
     for (i, methods) in &work {
         runner.scene(&jobs[*i], methods)?;
@@ -1038,13 +1067,14 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
         kernels,
         elapsed: start.elapsed(),
     };
-    output::write_all(&summary, &context(&plan, &jobs))?;
+    output::write_all(&summary, &context(&plan, &jobs, runner.load))?;
     Ok(summary)
 }
 
 /// What the output files say about the run besides its rows.
-fn context(plan: &Plan, jobs: &[SceneJob]) -> output::Context {
+fn context(plan: &Plan, jobs: &[SceneJob], other_cpu: load::OtherCpu) -> output::Context {
     output::Context {
+        other_cpu,
         mode: plan.mode,
         backends: plan.backends.iter().map(|b| b.0.clone()).collect(),
         backend_descriptions: plan.backends.iter().map(|b| b.1.describe()).collect(),
@@ -1123,8 +1153,10 @@ fn applicable(
 }
 
 /// Renders the progress bar counts: per method and backend a warm-up (the
-/// quality render when errors are measured) and the timed runs, two per scene
-/// with errors (reference and masks), and the sweep's.
+/// quality render when errors are measured) and one render in each timed
+/// round, two per scene with errors (reference and masks), and the sweep's.
+/// A second warm-up at the timing size adds itself to the length when it
+/// happens; a method dropped after a failure counts its renders left as done.
 fn progress_length(plan: &Plan, work: &[(usize, Vec<Applicable>)], sweep: bool) -> u64 {
     let quality = plan.mode != Mode::TimingOnly;
     let per_method = 1 + plan.runs as u64;
@@ -1152,9 +1184,55 @@ struct Measured {
     timing: Option<Rgb8>,
 }
 
+/// The per-pixel figures of a timed frame.
+#[derive(Clone, Copy, Debug)]
+struct FrameFigures {
+    /// Shading evaluations per pixel.
+    spp: f64,
+    /// Rays of every kind per pixel.
+    rays_per_pixel: f64,
+    /// Frame buffers, MiB.
+    buffer_mib: f64,
+}
+
+impl FrameFigures {
+    fn of(f: &Frame) -> Self {
+        let px = (f.width as f64 * f.height as f64).max(1.0);
+        FrameFigures {
+            spp: f.stats.shaded_samples as f64 / px,
+            rays_per_pixel: f.stats.rays.total() as f64 / px,
+            buffer_mib: f.stats.buffer_bytes() as f64 / (1u64 << 20) as f64,
+        }
+    }
+}
+
+/// A method of one backend between its warm-ups and its row. Its quality
+/// image waits here, as 8-bit RGB, until the rounds are over: the error
+/// measurement (FLIP, image files) stays out of the timed rounds.
+struct Contender {
+    method: Method,
+    /// The quality render, when errors are measured and it rendered.
+    quality: Option<Rgb8>,
+    /// Mean of the quality render's samples-per-pixel AOV, when it has one.
+    quality_spp: Option<f64>,
+    /// The rounds so far, in round order.
+    timings: Timings,
+    /// Figures of the last timed frame.
+    figures: Option<FrameFigures>,
+    /// The last timed frame, kept for NoAA only (the SMAA row's input): one
+    /// frame, not one per method, stays in memory during the rounds.
+    last_noaa: Option<Frame>,
+    /// A render failed: no row, no further rounds.
+    dropped: bool,
+}
+
 impl Runner<'_> {
     /// Measure every applicable method of one scene on every backend, then
     /// the ratios to NoAA, the crops and the plots.
+    ///
+    /// Per backend: every method's warm-ups ([`Runner::warm_up`]), then the
+    /// timed rounds of all of them ([`Runner::rounds`]), then each surviving
+    /// method's row and error ([`Runner::finish`]) and the SMAA row.
     fn scene(&mut self, job: &SceneJob, methods: &[Applicable]) -> Result<()> {
         let plan = self.plan;
         if methods.is_empty() {
@@ -1164,11 +1242,12 @@ impl Runner<'_> {
         }
         let quality = plan.mode != Mode::TimingOnly;
         self.progress.note(&format!(
-            "{}: {} methods, timing at {}x{}{}",
+            "{}: {} methods, timing at {}x{} in {} rounds{}",
             job.name,
             methods.len(),
             job.timing_size.0,
             job.timing_size.1,
+            plan.runs,
             if quality {
                 format!(
                     ", error at {}x{} against {}",
@@ -1188,18 +1267,22 @@ impl Runner<'_> {
         let mut crop_images: Vec<(String, Rgb8)> = Vec::new();
         let first = self.rows.len();
         for (bi, (bname, backend)) in plan.backends.iter().enumerate() {
-            let mut noaa: Option<Measured> = None;
+            let mut contenders = Vec::new();
             for (m, _) in methods.iter().filter(|(_, able)| able.contains(&bi)) {
-                let Some(done) =
-                    self.method(job, bi, backend.as_ref(), m, sq.as_ref(), &img_dir)?
-                else {
-                    continue;
-                };
+                if let Some(c) = self.warm_up(job, bi, backend.as_ref(), m, sq.is_some())? {
+                    contenders.push(c);
+                }
+            }
+            self.rounds(job, bi, backend.as_ref(), &mut contenders)?;
+            let mut noaa: Option<Measured> = None;
+            for c in contenders.into_iter().filter(|c| !c.dropped) {
+                let is_noaa = c.method.technique == Technique::NoAa;
+                let done = self.finish(job, bi, c, sq.as_ref(), &img_dir)?;
                 if let (0, Some(img)) = (bi, &done.quality) {
                     crop_images.push((done.row.method.clone(), img.clone()));
                 }
                 self.rows.push(done.row.clone());
-                if m.technique == Technique::NoAa {
+                if is_noaa {
                     noaa = Some(done);
                 }
             }
@@ -1258,57 +1341,60 @@ impl Runner<'_> {
         }
     }
 
-    /// Time one method on one backend (a warm-up, then the timed runs) and,
-    /// with `sq`, measure its error. `None` (with `--keep-going`) when a
-    /// render fails.
+    /// A method's warm-ups on one backend, before the rounds; with `errors`
+    /// its quality render, kept for the error. `None` (with `--keep-going`)
+    /// when the warm-up at the timing size fails.
     ///
     /// The warm-up is a render the row needs anyway: the quality render when
-    /// errors are measured (at the quality size, before the timed runs), else
-    /// a render at the timing size. It runs the method's code on the scene's
-    /// tree and the thread pool once before the clock starts. A frame
-    /// predicted shorter than [`timing::SHORT_RENDER`] gets a warm-up at the
-    /// timing size as well ([`timing::warm_up_at_timing_size`]).
-    fn method(
+    /// errors are measured (at the quality size), else a render at the
+    /// timing size. It runs the method's code on the scene's tree and the
+    /// thread pool once before any clock starts. A frame predicted shorter
+    /// than [`timing::SHORT_RENDER`] gets a warm-up at the timing size as
+    /// well ([`timing::warm_up_at_timing_size`]). A failed quality render is
+    /// listed and the method is still timed, without an error.
+    fn warm_up(
         &mut self,
         job: &SceneJob,
         bi: usize,
         backend: &dyn Backend,
         m: &Method,
-        sq: Option<&SceneQuality>,
-        img_dir: &Path,
-    ) -> Result<Option<Measured>> {
+        errors: bool,
+    ) -> Result<Option<Contender>> {
         let plan = self.plan;
         let (mname, bname) = (m.to_string(), plan.backends[bi].0.clone());
         self.progress
             .bar
-            .set_message(format!("{}: {mname} on {bname}", job.name));
+            .set_message(format!("{}: {mname} on {bname}, warm-up", job.name));
         let (tw, th) = job.timing_size;
         let (qw, qh) = job.quality_size;
-        let quality = match sq {
-            Some(_) => {
-                let mut qs = plan.settings(qw, qh, job.sdf);
-                qs.aovs = true;
-                let r = render(backend, &job.scene, m, &qs);
-                self.progress.bar.inc(1);
-                match r {
-                    Ok(r) => Some(r),
-                    Err(e) => {
-                        let what = format!("{mname} (quality render)");
-                        self.fail(Failure::new(&job.name, what, bname.clone(), &e))?;
-                        None
-                    }
+        let (mut quality, mut quality_spp, mut quality_wall) = (None, None, None);
+        if errors {
+            let mut qs = plan.settings(qw, qh, job.sdf);
+            qs.aovs = true;
+            let r = render(backend, &job.scene, m, &qs);
+            self.progress.bar.inc(1);
+            match r {
+                Ok((qf, wall)) => {
+                    quality_wall = Some(wall);
+                    quality_spp = qf
+                        .samples_per_pixel
+                        .as_ref()
+                        .filter(|s| !s.is_empty())
+                        .map(|s| s.iter().map(|&v| v as f64).sum::<f64>() / s.len() as f64);
+                    quality = Some(Rgb8::from_frame(&qf)?);
+                }
+                Err(e) => {
+                    let what = format!("{mname} (quality render)");
+                    self.fail(Failure::new(&job.name, what, bname.clone(), &e))?;
                 }
             }
-            None => None,
-        };
-        let settings = plan.settings(tw, th, job.sdf);
-        let quality_wall = quality.as_ref().map(|q| q.1);
+        }
         if timing::warm_up_at_timing_size(quality_wall, (tw, th), (qw, qh)) {
-            if sq.is_some() {
+            if errors {
                 // Not in the bar's length, which counts one warm-up.
                 self.progress.bar.inc_length(1);
             }
-            let warm = render(backend, &job.scene, m, &settings);
+            let warm = render(backend, &job.scene, m, &plan.settings(tw, th, job.sdf));
             self.progress.bar.inc(1);
             if let Err(e) = warm {
                 self.fail(Failure::new(&job.name, mname, bname, &e))?;
@@ -1316,49 +1402,117 @@ impl Runner<'_> {
                 return Ok(None);
             }
         }
-        let mut t = Timings::default();
-        let mut last = None;
-        for _ in 0..plan.runs {
-            match render(backend, &job.scene, m, &settings) {
-                Ok((f, wall)) => {
-                    t.push(wall, &f);
-                    last = Some(f);
+        Ok(Some(Contender {
+            method: *m,
+            quality,
+            quality_spp,
+            timings: Timings::default(),
+            figures: None,
+            last_noaa: None,
+            dropped: false,
+        }))
+    }
+
+    /// The timed rounds of one backend's methods: `plan.runs` rounds, each
+    /// rendering every method not dropped once at the timing size, round `r`
+    /// starting at method `r mod n` ([`timing::round_order`]), so the
+    /// machine's drift falls on every method alike. A method whose render
+    /// fails is dropped (with `--keep-going`; else the run stops) and its
+    /// renders left are counted as done. Other processes' CPU time over the
+    /// rounds is added to `self.load`.
+    fn rounds(
+        &mut self,
+        job: &SceneJob,
+        bi: usize,
+        backend: &dyn Backend,
+        cs: &mut [Contender],
+    ) -> Result<()> {
+        if cs.is_empty() {
+            return Ok(());
+        }
+        let plan = self.plan;
+        let bname = &plan.backends[bi].0;
+        let (tw, th) = job.timing_size;
+        let settings = plan.settings(tw, th, job.sdf);
+        let runs = plan.runs as usize;
+        let started = self.load.start();
+        for r in 0..runs {
+            for i in timing::round_order(cs.len(), r) {
+                let c = &mut cs[i];
+                if c.dropped {
+                    continue;
                 }
-                Err(e) => {
-                    self.fail(Failure::new(&job.name, mname, bname, &e))?;
-                    return Ok(None);
+                self.progress.bar.set_message(format!(
+                    "{}: {} on {bname}, round {}/{runs}",
+                    job.name,
+                    c.method,
+                    r + 1
+                ));
+                let result = render(backend, &job.scene, &c.method, &settings);
+                self.progress.bar.inc(1);
+                match result {
+                    Ok((f, wall)) => {
+                        c.timings.push(wall, &f);
+                        c.figures = Some(FrameFigures::of(&f));
+                        if c.method.technique == Technique::NoAa {
+                            c.last_noaa = Some(f);
+                        }
+                    }
+                    Err(e) => {
+                        c.dropped = true;
+                        let failure = Failure::new(&job.name, c.method.to_string(), bname, &e);
+                        self.progress.bar.inc((runs - r - 1) as u64);
+                        self.fail(failure)?;
+                    }
                 }
             }
-            self.progress.bar.inc(1);
         }
-        let Some(last) = last else {
-            bail!("{} / {mname} on {bname}: no timed run", job.name);
+        self.load.stop(started);
+        Ok(())
+    }
+
+    /// The row of a method that went through every round: its times over
+    /// the rounds, the figures of its last timed frame, and with `sq` its
+    /// error, measured on its quality image (images written beside the
+    /// reference).
+    fn finish(
+        &self,
+        job: &SceneJob,
+        bi: usize,
+        c: Contender,
+        sq: Option<&SceneQuality>,
+        img_dir: &Path,
+    ) -> Result<Measured> {
+        let plan = self.plan;
+        let (mname, bname) = (c.method.to_string(), &plan.backends[bi].0);
+        let Some(fig) = c.figures else {
+            bail!("{} / {mname} on {bname}: no timed round", job.name);
         };
-        let timing = (m.technique == Technique::NoAa)
-            .then(|| Rgb8::from_frame(&last))
-            .transpose()?;
-        let px = (tw as f64 * th as f64).max(1.0);
-        let mut row = ResultRow::timed(&job.name, &mname, &bname, (tw, th), plan.runs, &t);
-        row.samples_per_pixel = last.stats.shaded_samples as f64 / px;
-        row.rays_per_pixel = last.stats.rays.total() as f64 / px;
-        row.buffer_mib = last.stats.buffer_bytes() as f64 / (1u64 << 20) as f64;
-        let (Some(q), Some((qf, _))) = (sq, quality) else {
-            return Ok(Some(Measured {
-                row,
-                quality: None,
-                timing,
-            }));
+        let mut row = ResultRow::timed(
+            &job.name,
+            &mname,
+            bname,
+            job.timing_size,
+            c.timings.wall_ms.len() as u32,
+            &c.timings,
+        );
+        row.round_ms = c.timings.wall_ms.clone();
+        row.samples_per_pixel = c.quality_spp.unwrap_or(fig.spp);
+        row.rays_per_pixel = fig.rays_per_pixel;
+        row.buffer_mib = fig.buffer_mib;
+        let timing = c.last_noaa.as_ref().map(Rgb8::from_frame).transpose()?;
+        let quality = match (sq, c.quality) {
+            (Some(q), Some(img)) => {
+                measure(&mut row, &img, q, plan, img_dir, bi == 0)?;
+                Some(img)
+            }
+            _ => None,
         };
-        if let Some(spp) = qf.samples_per_pixel.as_ref().filter(|s| !s.is_empty()) {
-            row.samples_per_pixel = spp.iter().map(|&v| v as f64).sum::<f64>() / spp.len() as f64;
-        }
-        let img = Rgb8::from_frame(&qf)?;
-        measure(&mut row, &img, q, plan, img_dir, bi == 0)?;
-        Ok(Some(Measured {
+        Ok(Measured {
             row,
-            quality: Some(img),
+            quality,
             timing,
-        }))
+        })
     }
 
     /// The SRAA Table 1 sweep on `job`: timing only, 256² to 1024².
@@ -1445,16 +1599,31 @@ impl Runner<'_> {
     }
 }
 
-/// `ratio_to_noaa` of every row: its time over NoAA's on the same backend.
+/// `ratio_to_noaa`, `ratio_min` and `ratio_max` of every row of one scene,
+/// against NoAA on the same backend.
+///
+/// A row timed in NoAA's rounds (its `round_ms` pairs with NoAA's, round by
+/// round) gets the median, min and max over the rounds of its time over
+/// NoAA's in the same round ([`timing::round_ratios`]): the drift between
+/// rounds cancels in each ratio. A row that was not (the `smaa` row, whose
+/// post-process is timed on its own) keeps the ratio of medians, without a
+/// range. No NoAA row on the backend, no ratio.
 fn ratios_to_noaa(rows: &mut [ResultRow]) {
-    let noaa: Vec<(String, f64)> = rows
+    let noaa: Vec<(String, f64, Vec<f64>)> = rows
         .iter()
-        .filter(|r| r.method == "noaa" && r.ms_median > 0.0)
-        .map(|r| (r.backend.clone(), r.ms_median))
+        .filter(|r| r.method == "noaa")
+        .map(|r| (r.backend.clone(), r.ms_median, r.round_ms.clone()))
         .collect();
     for r in rows.iter_mut() {
-        if let Some((_, n)) = noaa.iter().find(|(b, _)| *b == r.backend) {
-            r.ratio_to_noaa = Some(r.ms_median / n);
+        let Some((_, median, rounds)) = noaa.iter().find(|(b, ..)| *b == r.backend) else {
+            continue;
+        };
+        if let Some(s) = timing::round_ratios(&r.round_ms, rounds) {
+            r.ratio_to_noaa = Some(s.median);
+            r.ratio_min = Some(s.min);
+            r.ratio_max = Some(s.max);
+        } else if *median > 0.0 && median.is_finite() {
+            r.ratio_to_noaa = Some(r.ms_median / median);
         }
     }
 }
@@ -1503,4 +1672,78 @@ fn write_crops(
 /// The directory of a scene's images.
 pub fn image_dir(out: &Path, scene: &str) -> PathBuf {
     out.join("images").join(file_safe(scene))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(method: &str, backend: &str, ms_median: f64, rounds: &[f64]) -> ResultRow {
+        let mut r = ResultRow::timed("s", method, backend, (4, 4), 3, &Timings::default());
+        r.ms_median = ms_median;
+        r.round_ms = rounds.to_vec();
+        r
+    }
+
+    #[test]
+    fn ratios_per_round_with_range_and_medians_without_rounds() {
+        let mut rows = vec![
+            // NoAA drifts from 10 to 20 ms over the rounds.
+            row("noaa", "cpu", 15.0, &[10.0, 20.0, 15.0]),
+            // 1.1, 1.3, 1.2 × NoAA in its rounds; its median time (18) over
+            // NoAA's (15) would say 1.2 by luck, not by round.
+            row("ctss", "cpu", 18.0, &[11.0, 26.0, 18.0]),
+            // The smaa row: not in the rounds, ratio of medians.
+            row("smaa", "cpu", 16.5, &[]),
+            // Another backend without NoAA: no ratio.
+            row("ctss", "wgpu", 2.0, &[2.0, 2.0, 2.0]),
+        ];
+        ratios_to_noaa(&mut rows);
+        let close = |a: Option<f64>, b: f64| a.is_some_and(|a| (a - b).abs() < 1e-12);
+        assert!(close(rows[0].ratio_to_noaa, 1.0));
+        assert!(close(rows[0].ratio_min, 1.0) && close(rows[0].ratio_max, 1.0));
+        assert!(
+            close(rows[1].ratio_to_noaa, 1.2),
+            "{:?}",
+            rows[1].ratio_to_noaa
+        );
+        assert!(close(rows[1].ratio_min, 1.1), "{:?}", rows[1].ratio_min);
+        assert!(close(rows[1].ratio_max, 1.3), "{:?}", rows[1].ratio_max);
+        assert!(close(rows[2].ratio_to_noaa, 1.1));
+        assert_eq!((rows[2].ratio_min, rows[2].ratio_max), (None, None));
+        assert_eq!(rows[3].ratio_to_noaa, None);
+    }
+
+    #[test]
+    fn the_median_of_ratios_is_not_the_ratio_of_medians() {
+        // The method is 2× NoAA in two rounds of three; NoAA's slow round
+        // fell on the method's fast one. Ratio of medians: 20 / 20 = 1;
+        // per-round ratios 2, 2, 0.5: median 2.
+        let mut rows = vec![
+            row("noaa", "cpu", 20.0, &[10.0, 20.0, 40.0]),
+            row("sraa", "cpu", 20.0, &[20.0, 40.0, 20.0]),
+        ];
+        ratios_to_noaa(&mut rows);
+        assert_eq!(rows[1].ratio_to_noaa, Some(2.0));
+        assert_eq!(
+            (rows[1].ratio_min, rows[1].ratio_max),
+            (Some(0.5), Some(2.0))
+        );
+    }
+
+    #[test]
+    fn progress_counts_a_warm_up_and_every_round() {
+        let args = ReportArgs {
+            quick: true,
+            runs: Some(4),
+            methods: vec!["noaa".into(), "sraa".into()],
+            ..Default::default()
+        };
+        let plan = Plan::new(&args).unwrap();
+        let noaa = Method::new(Technique::NoAa);
+        // Scene 0: two methods on backend 0; scene 1: nothing applies.
+        let work = vec![(0, vec![(noaa, vec![0]), (noaa, vec![0])]), (1, vec![])];
+        // 2 methods × (1 warm-up + 4 rounds) + reference and masks.
+        assert_eq!(progress_length(&plan, &work, false), 2 * 5 + 2);
+    }
 }

@@ -6,6 +6,11 @@
 //! method has no such pass. Missing values are empty in CSV and `null` in
 //! JSON; an infinite PSNR (identical images) is `inf` in CSV and `null` in
 //! JSON.
+//!
+//! Time ratios to NoAA are medians of per-round ratios (the methods of a
+//! scene and backend are timed in interleaved rounds, see [`timing`]);
+//! `ratio_min` and `ratio_max` are the smallest and largest per-round
+//! ratio, empty for rows not timed in NoAA's rounds.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -17,10 +22,10 @@ use serde_json::{json, Map, Value};
 use super::classes::{self, Class, Verdict, CLASSES};
 use super::metrics::Rgb8;
 use super::reference::{code_version, write_atomic};
-use super::{crops, file_safe, kernel_timing, Mode, ReportSummary, ResultRow};
+use super::{crops, file_safe, kernel_timing, load, timing, Mode, ReportSummary, ResultRow};
 
 /// The columns every results file has, in order.
-pub const BASE_COLUMNS: [&str; 32] = [
+pub const BASE_COLUMNS: [&str; 34] = [
     "scene",
     "method",
     "backend",
@@ -31,6 +36,8 @@ pub const BASE_COLUMNS: [&str; 32] = [
     "ms_min",
     "ms_max",
     "ratio_to_noaa",
+    "ratio_min",
+    "ratio_max",
     "flip_mean",
     "psnr_db",
     "edge_flip_mean",
@@ -73,6 +80,8 @@ pub struct Context {
     pub scenes: Vec<SceneInfo>,
     /// Ambient-occlusion rays per shaded point of every render (`--ao`).
     pub ao: u32,
+    /// Other processes' CPU time during the timed rounds.
+    pub other_cpu: load::OtherCpu,
 }
 
 /// A scene in the report.
@@ -159,6 +168,8 @@ fn row_cells(r: &ResultRow, passes: &[String]) -> Vec<Cell> {
         Cell::Num(r.ms_min),
         Cell::Num(r.ms_max),
         opt(r.ratio_to_noaa),
+        opt(r.ratio_min),
+        opt(r.ratio_max),
         opt(r.flip_mean),
         opt(r.psnr_db),
         opt(r.edge_flip_mean),
@@ -284,6 +295,7 @@ pub fn json(s: &ReportSummary, ctx: &Context) -> Value {
         "backends": ctx.backends,
         "backend_descriptions": ctx.backend_descriptions,
         "runs": ctx.runs,
+        "other_cpu": ctx.other_cpu.json(),
         "ao_rays": ctx.ao,
         "reference": if ctx.mode == Mode::TimingOnly { Value::Null } else { json!(ctx.reference) },
         "scenes": ctx.scenes.iter().map(|sc| json!({
@@ -326,6 +338,70 @@ fn f(v: Option<f64>, digits: usize) -> String {
         Some(x) if x.is_infinite() => "∞".into(),
         Some(x) if x.is_finite() => format!("{x:.digits$}"),
         _ => "–".into(),
+    }
+}
+
+/// A row's ratio to NoAA with its per-round range, `1.18 (1.15–1.21)`.
+/// The range is left out where there is none (a ratio of medians) or it is
+/// a single value (NoAA itself, or one round).
+fn ratio_cell(r: &ResultRow) -> String {
+    match (r.ratio_min, r.ratio_max) {
+        (Some(lo), Some(hi)) if lo != hi => format!(
+            "{} ({}–{})",
+            f(r.ratio_to_noaa, 2),
+            f(Some(lo), 2),
+            f(Some(hi), 2)
+        ),
+        _ => f(r.ratio_to_noaa, 2),
+    }
+}
+
+/// A mean of ratios to NoAA over scenes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MeanRatio {
+    /// Mean of the rows' `ratio_to_noaa` (each a median over rounds).
+    pub mean: f64,
+    /// Means of the rows' `ratio_min` and of their `ratio_max`: the range
+    /// the mean would take were every scene at its lowest, or its highest,
+    /// round. `None` unless every row has a range.
+    pub range: Option<(f64, f64)>,
+    /// Rows averaged.
+    pub n: usize,
+}
+
+impl MeanRatio {
+    /// Over the rows that have a ratio to NoAA; `None` without one.
+    pub fn of<'a>(rows: impl IntoIterator<Item = &'a ResultRow>) -> Option<MeanRatio> {
+        let rows: Vec<&ResultRow> = rows
+            .into_iter()
+            .filter(|r| r.ratio_to_noaa.is_some())
+            .collect();
+        if rows.is_empty() {
+            return None;
+        }
+        let n = rows.len() as f64;
+        let mean_of = |v: &dyn Fn(&ResultRow) -> Option<f64>| -> Option<f64> {
+            rows.iter()
+                .map(|r| v(r))
+                .sum::<Option<f64>>()
+                .map(|s| s / n)
+        };
+        Some(MeanRatio {
+            mean: mean_of(&|r| r.ratio_to_noaa)?,
+            range: mean_of(&|r| r.ratio_min).zip(mean_of(&|r| r.ratio_max)),
+            n: rows.len(),
+        })
+    }
+
+    /// `1.153x (1.121–1.190)` with `digits` decimals, `x` after each
+    /// figure when `times`.
+    pub fn show(&self, digits: usize, times: bool) -> String {
+        let x = if times { "x" } else { "" };
+        let mut s = format!("{:.digits$}{x}", self.mean);
+        if let Some((lo, hi)) = self.range {
+            let _ = write!(s, " ({lo:.digits$}–{hi:.digits$}{x})");
+        }
+        s
     }
 }
 
@@ -375,7 +451,7 @@ fn scene_section(md: &mut String, s: &ReportSummary, sc: &SceneInfo) {
                 ms(r.ms_median),
                 ms(r.ms_min),
                 ms(r.ms_max),
-                f(r.ratio_to_noaa, 2),
+                ratio_cell(r),
                 f(r.flip_mean, 4),
                 f(r.psnr_db, 2),
                 f(r.edge_flip_mean, 4),
@@ -474,7 +550,10 @@ pub fn markdown(s: &ReportSummary, ctx: &Context) -> String {
     let _ = writeln!(md, "# subcone report\n");
     let _ = writeln!(
         md,
-        "Mode **{}**, backends {}, {} timed runs after one warm-up ({}), code {}, {} hardware threads ({}).{}{}\n",
+        "Mode **{}**, backends {}, {} timed rounds after each method's warm-up ({}): a round renders \
+every method of the scene and backend once at the timing size, round *r* starting at method *r* mod \
+*n* of the *n* in table order and wrapping, so that the machine's drift falls on every method \
+alike. Code {}, {} hardware threads ({}).{}{} {}\n",
         ctx.mode.name(),
         ctx.backend_descriptions.join(", "),
         ctx.runs,
@@ -501,12 +580,18 @@ pub fn markdown(s: &ReportSummary, ctx: &Context) -> String {
             )
         } else {
             String::new()
-        }
+        },
+        ctx.other_cpu.sentence()
     );
+    if let Some(w) = ctx.other_cpu.warning() {
+        let _ = writeln!(md, "{w}\n");
+    }
     let _ = writeln!(
         md,
-        "Times are the median (and range) of the wall time of `Backend::render` at the timing size; \
-errors are measured on the tone-mapped 8-bit sRGB images at the quality size: mean FLIP (LDR-FLIP, \
+        "Times are the median (and range) over the rounds of the wall time of `Backend::render` at the \
+timing size; *× NoAA* is the median over the rounds of the method's time over NoAA's in the same \
+round, with the smallest and largest per-round ratio in brackets (the smaa row, whose post-process \
+is timed apart from the rounds, shows its median time over NoAA's, without a range); errors are measured on the tone-mapped 8-bit sRGB images at the quality size: mean FLIP (LDR-FLIP, \
 67 pixels per degree), PSNR, and *edge FLIP*, the mean FLIP over the edge mask (pixels where the \
 NoAA depth or normal changes across a 4-neighbour by more than 2 % (unless the inverse depth \
 continues linearly, as across a plane) or a cosine of 0.9, where a surface meets the background, or where the reference's luminance Sobel gradient exceeds 0.1). \
@@ -952,7 +1037,11 @@ pub fn targets(s: &ReportSummary, ctx: &Context) -> String {
 measured on the CPU backend, on its {} path, at each triangle scene's timing size (median of \
 the run's timed passes, raw and pipeline on the same path; `cargo bench -p subcone-cpu --bench rays` measures the same passes with criterion), \
 ns per kernel call on one thread (\"a few ns\" read as ≤ {} ns; `cargo bench --bench kernels` \
-has the full set).\n",
+has the full set). Time ratios between methods are medians of per-round ratios (the methods of \
+a scene are timed in interleaved rounds); a target is judged on them. In brackets: for one scene, \
+the smallest and largest per-round ratio; for a mean over scenes, the means of the scenes' smallest \
+and of their largest per-round ratios, the range the mean would take were every scene at its \
+lowest or its highest round.\n",
         subcone_cpu::isa::Isa::detected(),
         kernel_timing::FEW_NS
     );
@@ -967,23 +1056,22 @@ has the full set).\n",
     let yes = |ok: bool| if ok { "met" } else { "**not met**" };
     for b in &ctx.backends {
         for (method, limit) in CTSS_TARGETS {
-            let rs: Vec<f64> = s
-                .rows
-                .iter()
-                .filter(|r| {
-                    &r.backend == b && r.method == method && sdf.contains(&r.scene.as_str())
-                })
-                .filter_map(|r| r.ratio_to_noaa)
-                .collect();
-            if rs.is_empty() {
+            let Some(avg) = MeanRatio::of(s.rows.iter().filter(|r| {
+                &r.backend == b && r.method == method && sdf.contains(&r.scene.as_str())
+            })) else {
                 continue;
-            }
-            let avg = rs.iter().sum::<f64>() / rs.len() as f64;
+            };
+            // Judged on the medians; a limit inside the range is worth a word.
+            let close = match avg.range {
+                Some((lo, hi)) if lo <= limit && limit <= hi => ", the limit inside the range",
+                _ => "",
+            };
             let _ = writeln!(
                 md,
-                "| {method} ≤ {limit:.2}x NoAA (mean time ratio) | {b} | {} SDF scenes | {avg:.3}x | {} |",
-                rs.len(),
-                yes(avg <= limit)
+                "| {method} ≤ {limit:.2}x NoAA (mean time ratio) | {b} | {} SDF scenes | {}{close} | {} |",
+                avg.n,
+                avg.show(3, true),
+                yes(avg.mean <= limit)
             );
         }
         ctss_targets(s, b, &mut md);
@@ -1000,7 +1088,14 @@ has the full set).\n",
             else {
                 continue;
             };
-            let share = rt.ms_median / ss.ms_median;
+            // Per round where both were timed in the same rounds; else the
+            // ratio of medians.
+            let per_round = timing::round_ratios(&rt.round_ms, &ss.round_ms);
+            let share = per_round.map_or(rt.ms_median / ss.ms_median, |p| p.median);
+            let range = per_round
+                .filter(|p| p.min != p.max)
+                .map(|p| format!(" (1/{:.2}–1/{:.2})", 1.0 / p.max, 1.0 / p.min))
+                .unwrap_or_default();
             let edge = match (rt.edge_flip_mean, ss.edge_flip_mean) {
                 (Some(a), Some(e)) if e > 0.0 => Some(a / e),
                 _ => None,
@@ -1008,7 +1103,7 @@ has the full set).\n",
             let met = share <= SRAA_RT_TIME_SHARE && edge.is_some_and(|e| e <= SRAA_RT_EDGE_FACTOR);
             let _ = writeln!(
                 md,
-                "| sraa-rt ≤ 1/6 of ssaa16's time, edge FLIP ≤ {SRAA_RT_EDGE_FACTOR}x ssaa16's | {b} | {} ({}x{}) | 1/{:.2} of the time, edge FLIP {}x | {} |",
+                "| sraa-rt ≤ 1/6 of ssaa16's time, edge FLIP ≤ {SRAA_RT_EDGE_FACTOR}x ssaa16's | {b} | {} ({}x{}) | 1/{:.2}{range} of the time, edge FLIP {}x | {} |",
                 rt.scene,
                 rt.width,
                 rt.height,
@@ -1161,6 +1256,11 @@ ssaa16's median time over sraa-rt's.\n"
         let _ = writeln!(md, "No SDF scene was reported on.\n");
         return md;
     }
+    let _ = writeln!(
+        md,
+        "Ours: the mean over the scenes of each scene's median per-round ratio to NoAA; in brackets \
+the means of the scenes' smallest and of their largest per-round ratios.\n"
+    );
     for b in &ctx.backends {
         let _ = writeln!(
             md,
@@ -1174,19 +1274,15 @@ ssaa16's median time over sraa-rt's.\n"
             .collect::<Vec<_>>();
         lines.push(("4x SS + CTSS / ssaa4+ctss".into(), None, "ssaa4+ctss"));
         for (name, paper, ours) in lines {
-            let rs: Vec<f64> = s
-                .rows
-                .iter()
-                .filter(|r| r.backend == *b && r.method == ours && sdf.contains(&r.scene.as_str()))
-                .filter_map(|r| r.ratio_to_noaa)
-                .collect();
-            let avg = (!rs.is_empty()).then(|| rs.iter().sum::<f64>() / rs.len() as f64);
+            let avg = MeanRatio::of(s.rows.iter().filter(|r| {
+                r.backend == *b && r.method == ours && sdf.contains(&r.scene.as_str())
+            }));
             let _ = writeln!(
                 md,
                 "| {name} | {} | {} | {} |",
                 f(paper, 2),
-                f(avg, 2),
-                rs.len()
+                avg.map_or_else(|| "–".into(), |a| a.show(2, false)),
+                avg.map_or(0, |a| a.n)
             );
         }
         let _ = writeln!(md);
@@ -1323,6 +1419,8 @@ mod tests {
             ms_min: 2.0,
             ms_max: 3.0,
             ratio_to_noaa: None,
+            ratio_min: None,
+            ratio_max: None,
             flip_mean: Some(0.125),
             psnr_db: Some(f64::INFINITY),
             edge_flip_mean: None,
@@ -1334,8 +1432,15 @@ mod tests {
             quality_height: Some(2),
             reference: Some("ssaa64".into()),
             pass_ms: passes.iter().map(|(n, v)| (n.to_string(), *v)).collect(),
+            round_ms: Vec::new(),
             post_adapter: None,
         }
+    }
+
+    fn ratio(mut r: ResultRow, median: f64, range: Option<(f64, f64)>) -> ResultRow {
+        r.ratio_to_noaa = Some(median);
+        (r.ratio_min, r.ratio_max) = (range.map(|r| r.0), range.map(|r| r.1));
+        r
     }
 
     #[test]
@@ -1351,21 +1456,28 @@ mod tests {
     fn csv_columns_are_stable_and_passes_sorted() {
         let rows = vec![
             row("noaa", &[("shading", 1.0)]),
-            row("sraa", &[("shading", 1.0), ("geometry", 0.5)]),
+            ratio(
+                row("sraa", &[("shading", 1.0), ("geometry", 0.5)]),
+                1.2,
+                Some((1.1, 1.3)),
+            ),
         ];
         let text = csv(&rows);
         let mut lines = text.lines();
         let header = lines.next().unwrap();
         assert!(header.starts_with("scene,method,backend,width,height,runs,ms_median"));
         assert!(header.ends_with(",px_flat,post_adapter,ms_geometry,ms_shading"));
+        assert!(header.contains(",ms_max,ratio_to_noaa,ratio_min,ratio_max,flip_mean,"));
         let first = lines.next().unwrap();
-        // No classes (12 empty columns), no post-process adapter, no
-        // geometry pass: 14 empty fields between the reference and shading.
+        // No ratios, no classes (12 empty columns), no post-process adapter,
+        // no geometry pass: 14 empty fields between the reference and shading.
         let expected = format!(
-            "\"s,1\",noaa,cpu,4,2,3,2.5,2,3,,0.125,inf,,1,2,0.5,4,2,ssaa64{}1",
+            "\"s,1\",noaa,cpu,4,2,3,2.5,2,3,,,,0.125,inf,,1,2,0.5,4,2,ssaa64{}1",
             ",".repeat(15)
         );
         assert_eq!(first, expected);
+        let second = lines.next().unwrap();
+        assert!(second.contains(",2.5,2,3,1.2,1.1,1.3,0.125,"), "{second}");
     }
 
     #[test]
@@ -1375,5 +1487,44 @@ mod tests {
         assert_eq!(vals[0]["psnr_db"], Value::Null);
         assert_eq!(vals[0]["edge_flip_mean"], Value::Null);
         assert_eq!(vals[0]["flip_mean"], json!(0.125));
+        assert_eq!(vals[0]["ratio_min"], Value::Null);
+        let (_, vals) = json_rows(&[ratio(row("ctss", &[]), 1.2, Some((1.1, 1.3)))]);
+        assert_eq!(
+            (&vals[0]["ratio_min"], &vals[0]["ratio_max"]),
+            (&json!(1.1), &json!(1.3))
+        );
+    }
+
+    #[test]
+    fn ratio_cells_show_the_range_where_there_is_one() {
+        let r = ratio(row("ctss", &[]), 1.184, Some((1.151, 1.2149)));
+        assert_eq!(ratio_cell(&r), "1.18 (1.15–1.21)");
+        // A ratio of medians (the smaa row), NoAA itself: no range.
+        assert_eq!(ratio_cell(&ratio(row("smaa", &[]), 1.5, None)), "1.50");
+        assert_eq!(
+            ratio_cell(&ratio(row("noaa", &[]), 1.0, Some((1.0, 1.0)))),
+            "1.00"
+        );
+        assert_eq!(ratio_cell(&row("noaa", &[])), "–");
+    }
+
+    #[test]
+    fn mean_ratio_over_scenes_averages_the_ranges() {
+        let rows = [
+            ratio(row("ctss", &[]), 1.2, Some((1.1, 1.3))),
+            ratio(row("ctss", &[]), 1.0, Some((0.9, 1.5))),
+            row("ctss", &[]),
+        ];
+        let m = MeanRatio::of(&rows).unwrap();
+        assert_eq!(m.n, 2, "a row without a ratio is not averaged");
+        assert!((m.mean - 1.1).abs() < 1e-12);
+        let (lo, hi) = m.range.unwrap();
+        assert!((lo - 1.0).abs() < 1e-12 && (hi - 1.4).abs() < 1e-12);
+        assert_eq!(m.show(3, true), "1.100x (1.000–1.400x)");
+        // One row without a range: the mean has none.
+        let mixed = [rows[0].clone(), ratio(row("ctss", &[]), 1.5, None)];
+        let m = MeanRatio::of(&mixed).unwrap();
+        assert_eq!((m.range, m.show(2, false)), (None, "1.35".to_string()));
+        assert_eq!(MeanRatio::of(&rows[2..]), None);
     }
 }
