@@ -317,8 +317,9 @@ pub struct ReportSummary {
     pub references_rendered: usize,
     /// References read from the cache.
     pub references_cached: usize,
-    /// Ray throughput of the CPU pipeline against raw traversal, per triangle
-    /// scene (empty when the CPU backend is not in the run).
+    /// Ray throughput of the CPU pipeline against raw traversal, per
+    /// instruction-set path the machine runs and triangle scene (empty when
+    /// the CPU backend is not in the run).
     pub throughput: Vec<ThroughputRow>,
     /// ns per call of the hot kernels (empty when the CPU backend is not in the
     /// run: they are CPU figures).
@@ -332,6 +333,8 @@ pub struct ReportSummary {
 pub struct ThroughputRow {
     /// Scene.
     pub scene: String,
+    /// The CPU backend's instruction-set path, raw and pipeline alike.
+    pub isa: subcone_cpu::isa::Isa,
     /// Frame size the rays cover (the scene's timing size).
     pub width: u32,
     /// Frame height.
@@ -1578,20 +1581,30 @@ impl Runner<'_> {
         if !self.plan.backends.iter().any(|b| b.0 == "cpu") {
             return (throughput, Vec::new());
         }
-        let cpu = subcone_cpu::CpuBackend::new();
-        for job in jobs.iter().filter(|j| !j.sdf) {
-            self.progress.note(&format!("{}: ray throughput", job.name));
-            let (w, h) = job.timing_size;
-            match subcone_cpu::throughput::RayWorkload::new(&cpu, &job.scene, w, h) {
-                Ok(work) => throughput.push(ThroughputRow {
-                    scene: job.name.clone(),
-                    width: w,
-                    height: h,
-                    rates: work.measure(self.plan.runs as usize),
-                }),
-                Err(e) => self
-                    .progress
-                    .note(&format!("{}: no ray throughput: {e}", job.name)),
+        // Every path the machine runs, not only the one it picks: a path
+        // chosen at run time must never be slower than the baseline, and a
+        // figure from one path says nothing about another (issue 37).
+        for isa in subcone_cpu::isa::Isa::supported() {
+            let cpu = subcone_cpu::CpuBackend::new().with_isa(isa);
+            for job in jobs.iter().filter(|j| !j.sdf) {
+                self.progress.note(&format!(
+                    "{}: ray throughput on the {} path",
+                    job.name,
+                    isa.name()
+                ));
+                let (w, h) = job.timing_size;
+                match subcone_cpu::throughput::RayWorkload::new(&cpu, &job.scene, w, h) {
+                    Ok(work) => throughput.push(ThroughputRow {
+                        scene: job.name.clone(),
+                        isa,
+                        width: w,
+                        height: h,
+                        rates: work.measure(self.plan.runs as usize),
+                    }),
+                    Err(e) => self
+                        .progress
+                        .note(&format!("{}: no ray throughput: {e}", job.name)),
+                }
             }
         }
         self.progress.note("kernels: ns per call");

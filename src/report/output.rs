@@ -1034,7 +1034,8 @@ pub fn targets(s: &ReportSummary, ctx: &Context) -> String {
         md,
         "Each target as measured by this run (its sizes and runs; the targets are stated for \
 1280x720 on the CTSS scenes and 1024x1024 on `cornell` and Sponza). Ray throughput is \
-measured on the CPU backend, on its {} path, at each triangle scene's timing size (median of \
+measured on the CPU backend, on every instruction-set path this machine runs ({}; the \
+default is the widest), at each triangle scene's timing size (median of \
 the run's timed passes, raw and pipeline on the same path; `cargo bench -p subcone-cpu --bench rays` measures the same passes with criterion), \
 ns per kernel call on one thread (\"a few ns\" read as ≤ {} ns; `cargo bench --bench kernels` \
 has the full set). Time ratios between methods are medians of per-round ratios (the methods of \
@@ -1042,7 +1043,11 @@ a scene are timed in interleaved rounds); a target is judged on them. In bracket
 the smallest and largest per-round ratio; for a mean over scenes, the means of the scenes' smallest \
 and of their largest per-round ratios, the range the mean would take were every scene at its \
 lowest or its highest round.\n",
-        subcone_cpu::isa::Isa::detected(),
+        subcone_cpu::isa::Isa::supported()
+            .iter()
+            .map(|i| i.name())
+            .collect::<Vec<_>>()
+            .join(", "),
         kernel_timing::FEW_NS
     );
     let _ = writeln!(md, "| target | backend | scenes | figure | met |");
@@ -1119,8 +1124,9 @@ lowest or its highest round.\n",
         let r = &t.rates;
         let _ = writeln!(
             md,
-            "| primary rays ≥ {} of raw traversal | cpu | {} ({}x{}) | {:.2} of {:.2} Mrays/s ({}) | {} |",
+            "| primary rays ≥ {} of raw traversal | cpu ({}) | {} ({}x{}) | {:.2} of {:.2} Mrays/s ({}) | {} |",
             pct(RAY_THROUGHPUT_SHARE),
+            t.isa.name(),
             t.scene,
             t.width,
             t.height,
@@ -1134,8 +1140,9 @@ lowest or its highest round.\n",
         {
             let _ = writeln!(
                 md,
-                "| shadow rays ≥ {} of raw traversal | cpu | {} ({} rays) | {:.2} of {:.2} Mrays/s ({}) | {} |",
+                "| shadow rays ≥ {} of raw traversal | cpu ({}) | {} ({} rays) | {:.2} of {:.2} Mrays/s ({}) | {} |",
                 pct(RAY_THROUGHPUT_SHARE),
+                t.isa.name(),
                 t.scene,
                 r.shadow_rays,
                 p / 1e6,
