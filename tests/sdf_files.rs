@@ -131,6 +131,12 @@ fn the_example_scenes_go_through_the_quick_report_on_both_backends() {
         out.path().to_str().unwrap(),
     ]);
     let csv = std::fs::read_to_string(out.path().join("results.csv")).unwrap();
+    // By name, not position: the report may add columns.
+    let flip_col = csv
+        .lines()
+        .next()
+        .and_then(|h| h.split(',').position(|c| c == "flip_mean"))
+        .unwrap_or_else(|| panic!("no flip_mean column:\n{csv}"));
     for backend in ["cpu", "wgpu"] {
         for method in ["noaa", "ssaa4", "ctss", "ctss-r"] {
             // scene,method,backend,…, with a measured FLIP.
@@ -138,10 +144,13 @@ fn the_example_scenes_go_through_the_quick_report_on_both_backends() {
                 .lines()
                 .map(|l| l.split(',').collect::<Vec<_>>())
                 .find(|c| {
-                    c.len() > 10 && c[0] == "few-primitives" && c[1] == method && c[2] == backend
+                    c.len() > flip_col
+                        && c[0] == "few-primitives"
+                        && c[1] == method
+                        && c[2] == backend
                 });
             let row = row.unwrap_or_else(|| panic!("no {backend} {method} row:\n{csv}"));
-            let flip: f64 = row[10].parse().unwrap_or(f64::NAN);
+            let flip: f64 = row[flip_col].parse().unwrap_or(f64::NAN);
             assert!(flip > 0.0 && flip < 1.0, "{backend} {method}: FLIP {flip}");
         }
     }
