@@ -120,33 +120,26 @@ pub trait Euclidean: Copy + Sized {
     }
 }
 
-impl Euclidean for Vec3 {
-    const ZERO_VECTOR: Self = Vec3::ZERO;
+/// One implementation for both vector types: what differs is only the type.
+macro_rules! euclidean {
+    ($($vector:ty),*) => {$(
+        impl Euclidean for $vector {
+            const ZERO_VECTOR: Self = <$vector>::ZERO;
 
-    #[inline(always)]
-    fn norm_squared(self) -> f32 {
-        self.dot(self)
-    }
+            #[inline(always)]
+            fn norm_squared(self) -> f32 {
+                self.dot(self)
+            }
 
-    #[inline(always)]
-    fn scaled(self, s: f32) -> Self {
-        self * s
-    }
+            #[inline(always)]
+            fn scaled(self, s: f32) -> Self {
+                self * s
+            }
+        }
+    )*};
 }
 
-impl Euclidean for Vec2 {
-    const ZERO_VECTOR: Self = Vec2::ZERO;
-
-    #[inline(always)]
-    fn norm_squared(self) -> f32 {
-        self.dot(self)
-    }
-
-    #[inline(always)]
-    fn scaled(self, s: f32) -> Self {
-        self * s
-    }
-}
+euclidean!(Vec2, Vec3);
 
 /// The distance between two points (glam's `distance`).
 #[inline(always)]
