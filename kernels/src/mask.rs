@@ -123,7 +123,7 @@ pub fn project_normal(normal: Vec3, right: Vec3, up: Vec3) -> Vec2 {
         return Vec2::ZERO;
     }
     let n = normal / m;
-    let n = n * (1.0 / crate::math::sqrt(n.length_squared()));
+    let n = n.unit();
     let p = Vec2::new(n.dot(right), n.dot(up));
     if p.is_finite() {
         p
