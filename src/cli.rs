@@ -186,23 +186,6 @@ pub struct RenderOptions {
     pub isa: Option<Isa>,
 }
 
-/// Check a method's parameters.
-pub fn validate_method(m: &Method) -> Result<()> {
-    if !(m.cone_coverage > 0.0 && m.cone_coverage.is_finite()) {
-        return Err(anyhow!(
-            "--cone-coverage {} must be positive and finite",
-            m.cone_coverage
-        ));
-    }
-    if !(1..=32).contains(&m.visibility_k) {
-        return Err(anyhow!(
-            "--visibility-k {} must be in 1..=32",
-            m.visibility_k
-        ));
-    }
-    Ok(())
-}
-
 /// The path of an AOV image beside `output`: `out.png` → `out.samples.png`.
 pub fn aov_path(output: &Path, aov: Aov) -> std::path::PathBuf {
     let stem = output.file_stem().and_then(|s| s.to_str()).unwrap_or("out");
@@ -249,7 +232,6 @@ fn aov_frame(frame: &Frame, aov: Aov) -> Result<Frame> {
 /// render fail with its [`subcone_scene::Unsupported`] (downcast the error to
 /// read the typed reason), before anything is traced or written.
 pub fn render(opts: &RenderOptions) -> Result<RenderReport> {
-    validate_method(&opts.method)?;
     let backend = backend_on(&opts.backend, opts.isa)?;
     let scene = scene(&opts.scene)?;
     backend.supports(&scene, &opts.method)?;

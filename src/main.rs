@@ -49,8 +49,8 @@ enum Command {
         /// A built-in scene name, `sponza`/`sponza-mirror`, or a path to an .obj, .gltf, .glb or .sdf.ron (SDF scene) file.
         #[arg(long, default_value = "cornell")]
         scene: String,
-        /// noaa, ssaaN (N = 4, 9, 16, 64, 256), sraa, sraa-rt, sraa+mat, sraa-rt+mat, the paper presets sraa-paper, sraa-rt-paper, sraa-paper+mat, sraa-rt-paper+mat, ctss, ctss+edges, ctss-r, ssaaN+ctss, fxaa; CTSS methods but ctss+edges take a -delayed suffix, and every CTSS method a -paper suffix last for the CTSS paper's behaviour (ctss-paper).
-        #[arg(long, default_value = "sraa-rt")]
+        /// The antialiasing method (the names: --help).
+        #[arg(long, default_value = subcone_scene::registry::DEFAULT_METHOD, long_help = subcone_scene::registry::method_help())]
         method: String,
         /// cpu or wgpu.
         #[arg(long, default_value = "cpu")]
@@ -68,9 +68,9 @@ enum Command {
         /// the CTSS default, 1 for the -paper variants).
         #[arg(long)]
         cone_coverage: Option<f32>,
-        /// CTSS visibility threshold k, 1..=32 (§5.1).
-        #[arg(long, default_value_t = 32)]
-        visibility_k: u32,
+        /// CTSS visibility threshold k, 1..=32 (§5.1); default: 32.
+        #[arg(long)]
+        visibility_k: Option<u32>,
         /// SDF scenes: step budget per ray (default: the scene's).
         #[arg(long)]
         max_steps: Option<u32>,
@@ -156,9 +156,11 @@ fn run() -> Result<()> {
             let (width, height) = cli::parse_size(&size)?;
             let mut method: subcone_scene::Method = method.parse().with_context(|| "--method")?;
             if let Some(c) = cone_coverage {
-                method.cone_coverage = c;
+                method = method.with_cone_coverage(c).context("--cone-coverage")?;
             }
-            method.visibility_k = visibility_k;
+            if let Some(k) = visibility_k {
+                method = method.with_visibility_k(k).context("--visibility-k")?;
+            }
             let opts = RenderOptions {
                 scene,
                 method,

@@ -108,7 +108,7 @@ pub fn methods_for(scene: &Scene) -> Vec<&'static str> {
         .into_iter()
         .filter(|m| {
             let method: Method = m.parse().expect("METHOD_NAMES parse");
-            required_passes(method.technique, scene.features()).is_ok()
+            required_passes(method.technique(), scene.features()).is_ok()
                 && !LEFT_OUT
                     .iter()
                     .any(|(n, o, _)| n == m && (sdf || *o == LeftOutOf::Everywhere))
@@ -429,7 +429,7 @@ pub fn check_invariants(backend: &str, scene: &Scene, method: &Method, frame: &F
         );
     }
     let features = scene.features();
-    let required = required_passes(method.technique, features).expect("applicable");
+    let required = required_passes(method.technique(), features).expect("applicable");
     assert_eq!(
         frame.stats.passes, required,
         "{what}: the backend ran other passes than the kernels require"
@@ -524,7 +524,7 @@ pub fn check_scene(backend: &dyn Backend, scene_name: &str) {
                     // The technique does not apply: no backend renders it.
                     (UnsupportedReason::Technique(_), _) => {
                         assert!(
-                            required_passes(method.technique, scene.features()).is_err(),
+                            required_passes(method.technique(), scene.features()).is_err(),
                             "{u}"
                         );
                     }
@@ -731,7 +731,7 @@ pub fn check_supports(backend: &dyn Backend) {
                     .unwrap_or_else(|| panic!("{u}: no plan scene named {}", u.scene));
                 let method: Method = u.method.parse().expect("method name");
                 assert!(
-                    required_passes(method.technique, scene.features()).is_err(),
+                    required_passes(method.technique(), scene.features()).is_err(),
                     "{name}: refused as a technique that does not apply, but it does: {u}"
                 );
             }
@@ -985,7 +985,7 @@ mod tests {
         let tri = builtin("cornell").unwrap();
         for (m, out_of, _) in LEFT_OUT {
             let method: Method = m.parse().unwrap();
-            let applies = |s: &Scene| required_passes(method.technique, s.features()).is_ok();
+            let applies = |s: &Scene| required_passes(method.technique(), s.features()).is_ok();
             assert!(
                 applies(&scene) || (out_of == LeftOutOf::Everywhere && applies(&tri)),
                 "{m} does not apply where it is left out: no need to list it"

@@ -9,6 +9,7 @@ use crate::camera::Camera;
 use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::method::Method;
+use crate::registry::{self, info, Geometry};
 use crate::scene::Scene;
 
 /// Largest accepted image side.
@@ -128,9 +129,9 @@ pub enum UnsupportedReason {
     /// drawn opaque.
     Translucency {
         /// The path that does not carry opacity (e.g. `"sraa-rt"`).
-        what: &'static str,
+        what: String,
         /// What renders such scenes instead.
-        instead: &'static str,
+        instead: String,
     },
     /// Implemented by the CPU backend only.
     CpuOnly {
@@ -217,15 +218,146 @@ impl Unsupported {
 }
 
 /// The passes `method` needs on `scene` ([`required_passes`]), or why
-/// `backend` cannot render it ([`UnsupportedReason::Technique`]): where every
-/// [`Backend::supports`] starts.
+/// `backend` cannot render it ([`UnsupportedReason::Technique`]): what the
+/// default [`Backend::supports`] answers, and where [`plan`] starts.
 pub fn planned_passes(
     backend: &'static str,
     scene: &Scene,
     method: &Method,
 ) -> Result<Passes, Unsupported> {
-    required_passes(method.technique, scene.features())
+    required_passes(method.technique(), scene.features())
         .map_err(|u| Unsupported::new(backend, scene, method, UnsupportedReason::Technique(u)))
+}
+
+/// What a backend renders, as data: the one support [`plan`] reads it, so
+/// that every backend refuses with the same rules and the same messages.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Capabilities {
+    /// The backend's [`Backend::name`].
+    pub backend: &'static str,
+    /// Most lights shaded on triangle scenes (`None`: no limit).
+    pub max_lights_triangles: Option<usize>,
+    /// Most lights shaded on SDF scenes (`None`: no limit).
+    pub max_lights_sdf: Option<usize>,
+    /// Sphere-traced subpixel geometry and its reconstruction (SRAA-RT on SDF
+    /// scenes, [`registry::Needs::sdf_subpixel_geometry`]): `Ok`, or what
+    /// the backend lacks for it.
+    pub sdf_subpixel_geometry: Result<(), &'static str>,
+    /// Most samples per pixel side on SDF scenes (`None`: no limit).
+    pub max_sdf_side_samples: Option<u32>,
+}
+
+/// What [`UnsupportedReason::CpuOnly`] names when a backend lacks
+/// sphere-traced subpixel geometry.
+pub const SDF_SUBPIXEL_GEOMETRY: &str = "sraa-rt on SDF scenes";
+
+/// The passes of `method` on `scene` for a backend with `caps`, or why it
+/// cannot render them: the one support plan behind every backend's
+/// [`Backend::supports`] and [`Backend::render`].
+///
+/// In order: more lights than the backend shades; what the kernels refuse
+/// ([`required_passes`]); on SDF scenes mirror reflections, the material
+/// gate, semi-transparent materials with a method that does not carry
+/// opacity ([`registry::TechniqueInfo::carries_opacity`], hit-group
+/// subdivision, delayed shading), and what the backend lacks
+/// ([`Capabilities`]); on triangle scenes semi-transparent materials.
+///
+/// ```
+/// use subcone_scene::backend::{plan, Capabilities};
+/// use subcone_scene::builtin::builtin;
+///
+/// let caps = Capabilities {
+///     backend: "mine",
+///     max_lights_triangles: Some(8),
+///     max_lights_sdf: None,
+///     sdf_subpixel_geometry: Err("no sphere-traced subsamples yet"),
+///     max_sdf_side_samples: Some(8),
+/// };
+/// let cornell = builtin("cornell").unwrap();
+/// assert!(plan(&cornell, &"sraa-rt".parse().unwrap(), &caps).is_ok());
+/// let primitives = builtin("primitives").unwrap();
+/// let no = plan(&primitives, &"sraa-rt".parse().unwrap(), &caps).unwrap_err();
+/// assert!(no.to_string().contains("no sphere-traced subsamples yet"));
+/// ```
+pub fn plan(scene: &Scene, method: &Method, caps: &Capabilities) -> Result<Passes, Unsupported> {
+    plan_forced(scene, method, caps, Passes::empty())
+}
+
+/// [`plan`] with `force` added to the planned passes (the passes
+/// [`RenderSettings::force_passes`] asks for) before the rules that read
+/// them: forcing the secondary passes on an SDF scene is refused as its
+/// mirrors would be.
+pub fn plan_forced(
+    scene: &Scene,
+    method: &Method,
+    caps: &Capabilities,
+    force: Passes,
+) -> Result<Passes, Unsupported> {
+    let refuse = |reason| Err(Unsupported::new(caps.backend, scene, method, reason));
+    let sdf = scene.sdf_geometry().is_some();
+    let max_lights = if sdf {
+        caps.max_lights_sdf
+    } else {
+        caps.max_lights_triangles
+    };
+    if let Some(max) = max_lights.filter(|&max| scene.lights.len() > max) {
+        return refuse(UnsupportedReason::TooManyLights {
+            lights: scene.lights.len(),
+            max,
+        });
+    }
+    let passes = planned_passes(caps.backend, scene, method)? | force;
+    let translucent = scene.has_translucency();
+    let technique = info(method.technique());
+    if !sdf {
+        if translucent {
+            // Triangle scenes have no semi-transparent path on any backend:
+            // refuse rather than draw them opaque.
+            return refuse(UnsupportedReason::Translucency {
+                what: "ray tracing triangles".into(),
+                instead: "they render on SDF scenes only".into(),
+            });
+        }
+        return Ok(passes);
+    }
+    if passes.intersects(Passes::SECONDARY) {
+        return refuse(UnsupportedReason::SdfReflections);
+    }
+    if method.gates_material() {
+        return refuse(UnsupportedReason::MaterialGateOnSdf);
+    }
+    let opaque_only = if !technique.carries_opacity {
+        Some(technique.name.to_string())
+    } else if method.split_groups() {
+        Some(format!(
+            "hit group subdivision ({}{})",
+            technique.name,
+            registry::EDGES
+        ))
+    } else if method.delayed_shading() {
+        Some("delayed shading".to_string())
+    } else {
+        None
+    };
+    if let Some(what) = opaque_only.filter(|_| translucent) {
+        return refuse(UnsupportedReason::Translucency {
+            what,
+            instead: format!("{} render them", registry::opacity_methods()),
+        });
+    }
+    if technique.needs.sdf_subpixel_geometry && technique.geometry == Geometry::Any {
+        if let Err(why) = caps.sdf_subpixel_geometry {
+            return refuse(UnsupportedReason::CpuOnly {
+                what: SDF_SUBPIXEL_GEOMETRY,
+                why,
+            });
+        }
+    }
+    let side = method.ssaa_side();
+    if let Some(max) = caps.max_sdf_side_samples.filter(|&max| side > max) {
+        return refuse(UnsupportedReason::TooManySamples { side, max });
+    }
+    Ok(passes)
 }
 
 /// A renderer: the CPU reference, the wgpu backend, or your own.

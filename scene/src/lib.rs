@@ -25,6 +25,7 @@ pub mod load;
 pub mod material;
 pub mod mesh;
 pub mod method;
+pub mod registry;
 pub mod scene;
 pub mod sdf;
 
@@ -38,5 +39,6 @@ pub use load::{
 };
 pub use material::{Albedo, Material};
 pub use mesh::{Sanitized, TriangleMesh};
-pub use method::Method;
+pub use method::{Method, MethodError, Preset};
+pub use registry::EdgeClass;
 pub use scene::{Geometry, Scene};

@@ -1,4 +1,28 @@
-//! Antialiasing methods: a kernel [`Technique`] with its parameters.
+//! Antialiasing methods: a kernel [`Technique`], its preset and its
+//! modifiers, built only in combinations that mean something.
+//!
+//! A [`Method`] is parsed from and displayed as the names of the
+//! [`registry`](crate::registry) (`sraa-rt-paper+mat`, `ctss-delayed`,
+//! `ssaa4+ctss`); built in code, every modifier is a method that checks it
+//! applies and returns a typed [`MethodError`] where it does not. Settings
+//! that belong to the method (cone coverage, visibility k) are checked the
+//! same way, so the CLI and a library caller get the same checks.
+//!
+//! ```
+//! use subcone_kernels::passes::Technique;
+//! use subcone_scene::method::{Method, MethodError, Preset};
+//!
+//! let m = Method::new(Technique::SraaRt).with_preset(Preset::Paper)?.with_material_gate()?;
+//! assert_eq!(m.to_string(), "sraa-rt-paper+mat");
+//! assert_eq!("sraa-rt-paper+mat".parse::<Method>()?, m);
+//! // A combination that means nothing is refused.
+//! assert!(matches!(
+//!     Method::new(Technique::NoAa).with_material_gate(),
+//!     Err(MethodError::Modifier { .. })
+//! ));
+//! assert!(Method::new(Technique::Ctss).with_visibility_k(0).is_err());
+//! # Ok::<(), MethodError>(())
+//! ```
 
 use std::fmt;
 use std::str::FromStr;
@@ -6,276 +30,422 @@ use std::str::FromStr;
 use subcone_kernels::passes::Technique;
 use subcone_kernels::sraa::SraaParams;
 
-/// The methods of the default comparison, by the names [`Method`] parses
-/// and prints, in table order: the one list the report, the CLI's help and
-/// the backend contract's checks read. Every other accepted name is an
-/// `ssaaN`/`ssaaN+ctss` with another `N`, a `-delayed` variant of a CTSS
-/// method, or a `-paper` variant of one (`ctss-r-paper`,
-/// `ctss+edges-paper`, `ssaa4+ctss-paper`, `ctss-delayed-paper`).
-pub const METHOD_NAMES: [&str; 18] = [
-    "noaa",
-    "ssaa4",
-    "ssaa16",
-    "sraa",
-    "sraa-rt",
-    "sraa+mat",
-    "sraa-rt+mat",
-    "sraa-paper",
-    "sraa-rt-paper",
-    "sraa-paper+mat",
-    "sraa-rt-paper+mat",
-    "ctss",
-    "ctss-paper",
-    "ctss-delayed",
-    "ctss+edges",
-    "ctss-r",
-    "ssaa4+ctss",
-    "fxaa",
-];
+use crate::registry::{
+    self, info, EdgeClass, CTSS_SUFFIX, DELAYED, EDGES, MATERIAL_GATE, PAPER, SSAA_PREFIX,
+};
+pub use crate::registry::{METHOD_NAMES, SSAA_COUNTS};
 
-/// Sample counts `ssaaN` accepts: squares, so the grid is regular.
-pub const SSAA_COUNTS: [u32; 5] = [4, 9, 16, 64, 256];
+/// Which parameters a method runs with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum Preset {
+    /// This project's tuned parameters ([`SraaParams::TUNED`], the CTSS
+    /// defaults of [`subcone_kernels::ctss`]).
+    #[default]
+    Tuned,
+    /// The paper's: [`SraaParams::PAPER`] for the SRAA family, the paper's
+    /// hit groups, masks and cone
+    /// ([`CtssParams::paper`](subcone_kernels::ctss::CtssParams::paper),
+    /// cone coverage 1) for the CTSS family. Named with a `-paper` suffix.
+    Paper,
+}
 
-/// A method: the technique and the parameters that do not decide passes.
+/// A method that cannot be built: an unknown name, a modifier that does not
+/// apply to the technique, or a setting outside its domain.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum MethodError {
+    /// The name does not parse.
+    #[error("unknown method {0:?}: expected {grammar}", grammar = registry::grammar())]
+    Unknown(String),
+    /// A modifier does not apply to the method.
+    #[error("{method} cannot take {modifier}: {why}")]
+    Modifier {
+        /// The method as built so far.
+        method: String,
+        /// The modifier (`+mat`, `-delayed`, …).
+        modifier: &'static str,
+        /// Why not.
+        why: &'static str,
+    },
+    /// A cone coverage that is not positive and finite.
+    #[error("cone coverage {0} must be positive and finite")]
+    ConeCoverage(f32),
+    /// A visibility threshold outside `1..=32`.
+    #[error("visibility k {0} must be in 1..=32")]
+    VisibilityK(u32),
+    /// A sample count `ssaaN` does not accept.
+    #[error("{0} samples per pixel: expected one of 4, 9, 16, 64, 256")]
+    Samples(u32),
+}
+
+/// The error of [`Method::from_str`] (kept under its old name).
+pub type ParseMethodError = MethodError;
+
+/// A method: the technique, its preset, its modifiers and its settings.
+/// Fields are private: every value was built through a check.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Method {
-    /// What decides the passes.
-    pub technique: Technique,
-    /// Samples per pixel side for SSAA (`ssaa16` → 4); 1 otherwise.
-    pub ssaa_side: u32,
-    /// SRAA weight parameters.
-    pub sraa: SraaParams,
-    /// CTSS cone coverage multiplier (§5.1): 1 is the paper's cone through
-    /// the pixel's corners. The CTSS methods default to
-    /// [`CONE_COVERAGE`](subcone_kernels::ctss::CONE_COVERAGE), their
-    /// `-paper` variants to 1.
-    pub cone_coverage: f32,
-    /// CTSS: the paper's hit groups, masks and cone
-    /// ([`CtssParams::paper`](subcone_kernels::ctss::CtssParams::paper),
-    /// `cone_coverage` 1); named with a `-paper` suffix (`ctss-paper`).
-    pub ctss_paper: bool,
-    /// CTSS visibility threshold k (§5.1).
-    pub visibility_k: u32,
-    /// Delayed shading (CTSS §5.1, a variant the authors name but did not
-    /// implement): trace every cone's coverage first, recording its hit-group
-    /// samples, then shade the recorded samples in a batch; otherwise each
-    /// sample is shaded as soon as its group closes (ASAP). The image is the
-    /// same (eq. 6 adds the same terms in the same order); only the order of
-    /// the work changes. Only the cone-traced techniques read it; named with a
-    /// `-delayed` suffix (`ctss-delayed`).
-    pub delayed_shading: bool,
-    /// CTSS: subdivide hit groups at internal edges (§5.3, `ctss+edges`).
-    pub split_groups: bool,
-    /// SRAA and SRAA-RT: gate the reconstruction by albedo as well
-    /// (`sraa+mat`, `sraa-rt+mat`; `subcone_kernels::sraa::material_gated_weight`),
-    /// so edges between differently coloured patches of one surface (§4.1,
-    /// Fig. 6) are resolved. Adds an albedo per shaded sample and per
-    /// geometric subsample; only changes the image where albedo varies
-    /// (textures, patterned or several materials). Ignored by other techniques.
-    pub material_aware: bool,
+    technique: Technique,
+    preset: Preset,
+    /// Samples per pixel side (SSAA, SSAA+CTSS); 1 otherwise.
+    side: u32,
+    material_gate: bool,
+    delayed_shading: bool,
+    split_groups: bool,
+    cone_coverage: f32,
+    visibility_k: u32,
 }
 
 impl Method {
-    /// A method with default parameters.
-    pub fn new(technique: Technique) -> Self {
-        let ssaa_side = match technique {
+    /// `technique` with the tuned preset and no modifier. `ssaa` gets 16
+    /// samples (`ssaa16`), `ssaa+ctss` 4 (`ssaa4+ctss`); cone-traced
+    /// techniques the tuned cone coverage
+    /// ([`CONE_COVERAGE`](subcone_kernels::ctss::CONE_COVERAGE)).
+    pub const fn new(technique: Technique) -> Self {
+        let side = match technique {
             Technique::Ssaa => 4,
             Technique::SsaaCtss => 2,
             _ => 1,
         };
         Method {
             technique,
-            ssaa_side,
-            sraa: SraaParams::TUNED,
+            preset: Preset::Tuned,
+            side,
+            material_gate: false,
+            delayed_shading: false,
+            split_groups: false,
             cone_coverage: if technique.is_cone_traced() {
                 subcone_kernels::ctss::CONE_COVERAGE
             } else {
                 1.0
             },
-            ctss_paper: false,
             visibility_k: 32,
-            delayed_shading: false,
-            split_groups: false,
-            material_aware: false,
         }
     }
 
     /// `ssaaN` on a regular `side × side` grid, so `N = side²`:
-    /// `Method::ssaa_grid(4)` is `ssaa16`.
+    /// `Method::ssaa_grid(4)` is `ssaa16`. Any side of at least 1 (a side
+    /// whose square is not in [`SSAA_COUNTS`] prints a name that does not
+    /// parse back); [`Method::ssaa`] takes a named count.
     pub fn ssaa_grid(side: u32) -> Self {
         Method {
-            ssaa_side: side.max(1),
+            side: side.max(1),
             ..Method::new(Technique::Ssaa)
         }
     }
 
-    /// `technique` with the paper's SRAA preset ([`SraaParams::PAPER`]):
-    /// `sraa-paper`, `sraa-rt-paper`.
-    pub fn paper(technique: Technique) -> Self {
-        Method {
-            sraa: SraaParams::PAPER,
-            ..Method::new(technique)
+    /// `ssaaN`, `N` one of [`SSAA_COUNTS`].
+    pub fn ssaa(samples: u32) -> Result<Self, MethodError> {
+        Ok(Method::ssaa_grid(side_of(samples)?))
+    }
+
+    /// `ssaaN+ctss`, `N` one of [`SSAA_COUNTS`].
+    pub fn ssaa_ctss(samples: u32) -> Result<Self, MethodError> {
+        Ok(Method {
+            side: side_of(samples)?,
+            ..Method::new(Technique::SsaaCtss)
+        })
+    }
+
+    fn refuse(&self, modifier: &'static str, why: &'static str) -> MethodError {
+        MethodError::Modifier {
+            method: self.to_string(),
+            modifier,
+            why,
         }
     }
 
-    /// The paper's CTSS ([`ctss_paper`](Self::ctss_paper), coverage 1) of a
-    /// cone-traced method; other methods unchanged.
-    pub fn ctss_paper(self) -> Self {
-        if !self.technique.is_cone_traced() {
-            return self;
+    /// The same method with `preset`. The paper's preset exists for the SRAA
+    /// and CTSS families; it sets a cone-traced method's coverage to the
+    /// paper's 1.
+    pub fn with_preset(self, preset: Preset) -> Result<Self, MethodError> {
+        if preset == Preset::Paper {
+            if !info(self.technique).modifiers.paper {
+                return Err(
+                    self.refuse(PAPER, "only SRAA and CTSS methods have the paper's preset")
+                );
+            }
+            if self.preset == Preset::Paper {
+                return Err(self.refuse(PAPER, "it is already the paper's preset"));
+            }
         }
-        Method {
-            ctss_paper: true,
-            cone_coverage: 1.0,
+        let cone_coverage = match (preset, self.technique.is_cone_traced()) {
+            (Preset::Paper, true) => 1.0,
+            (Preset::Tuned, true) if self.preset == Preset::Paper => {
+                subcone_kernels::ctss::CONE_COVERAGE
+            }
+            _ => self.cone_coverage,
+        };
+        Ok(Method {
+            preset,
+            cone_coverage,
             ..self
+        })
+    }
+
+    /// The SRAA material gate (`+mat`,
+    /// `subcone_kernels::sraa::material_gated_weight`): edges between
+    /// differently coloured patches of one surface (§4.1, Fig. 6) are
+    /// resolved too. SRAA and SRAA-RT only.
+    pub fn with_material_gate(self) -> Result<Self, MethodError> {
+        if !info(self.technique).modifiers.material_gate {
+            return Err(self.refuse(
+                MATERIAL_GATE,
+                "the material gate gates SRAA's reconstruction",
+            ));
+        }
+        Ok(Method {
+            material_gate: true,
+            ..self
+        })
+    }
+
+    /// Delayed shading (`-delayed`, CTSS §5.1, a variant the authors name but
+    /// did not implement): every cone's coverage is traced first, recording
+    /// its hit-group samples, then the recorded samples are shaded in a
+    /// batch. The image is the same (eq. 6 adds the same terms in the same
+    /// order); only the order of the work changes. Cone-traced methods
+    /// without hit-group subdivision.
+    pub fn with_delayed_shading(self) -> Result<Self, MethodError> {
+        if !info(self.technique).modifiers.delayed {
+            return Err(self.refuse(DELAYED, "delayed shading orders the work of cone tracing"));
+        }
+        if self.split_groups {
+            // Delayed shading records one sample per hit group; split groups
+            // shade several.
+            return Err(self.refuse(DELAYED, "split hit groups shade several samples per group"));
+        }
+        Ok(Method {
+            delayed_shading: true,
+            ..self
+        })
+    }
+
+    /// Hit-group subdivision at internal edges (`ctss+edges`, CTSS §5.3).
+    /// CTSS only, without delayed shading.
+    pub fn with_split_groups(self) -> Result<Self, MethodError> {
+        if !info(self.technique).modifiers.edges {
+            return Err(self.refuse(EDGES, "only ctss subdivides its hit groups"));
+        }
+        if self.delayed_shading {
+            return Err(self.refuse(EDGES, "delayed shading records one sample per hit group"));
+        }
+        Ok(Method {
+            split_groups: true,
+            ..self
+        })
+    }
+
+    /// The cone coverage multiplier (CTSS §5.1): 1 is the paper's cone
+    /// through the pixel's corners. Positive and finite; cone-traced methods
+    /// only.
+    pub fn with_cone_coverage(self, coverage: f32) -> Result<Self, MethodError> {
+        if !self.technique.is_cone_traced() {
+            return Err(self.refuse("a cone coverage", "only cone-traced methods trace cones"));
+        }
+        if !(coverage > 0.0 && coverage.is_finite()) {
+            return Err(MethodError::ConeCoverage(coverage));
+        }
+        Ok(Method {
+            cone_coverage: coverage,
+            ..self
+        })
+    }
+
+    /// The visibility threshold k (CTSS §5.1): the trace stops once `k` of
+    /// the mask's 32 bits are covered. In `1..=32`; cone-traced methods only.
+    pub fn with_visibility_k(self, k: u32) -> Result<Self, MethodError> {
+        if !self.technique.is_cone_traced() {
+            return Err(self.refuse(
+                "a visibility k",
+                "only cone-traced methods have a visibility mask",
+            ));
+        }
+        if !(1..=32).contains(&k) {
+            return Err(MethodError::VisibilityK(k));
+        }
+        Ok(Method {
+            visibility_k: k,
+            ..self
+        })
+    }
+
+    /// What decides the passes.
+    pub const fn technique(&self) -> Technique {
+        self.technique
+    }
+
+    /// The preset.
+    pub const fn preset(&self) -> Preset {
+        self.preset
+    }
+
+    /// Whether this is the paper's preset (`-paper`).
+    pub fn is_paper(&self) -> bool {
+        self.preset == Preset::Paper
+    }
+
+    /// The SRAA weight parameters of the preset.
+    pub fn sraa(&self) -> SraaParams {
+        match self.preset {
+            Preset::Tuned => SraaParams::TUNED,
+            Preset::Paper => SraaParams::PAPER,
         }
     }
 
-    /// `sraa+mat` or `sraa-rt+mat`: `technique` with the material gate.
-    pub fn material_aware(technique: Technique) -> Self {
-        Method {
-            material_aware: technique.is_subpixel_reconstruction(),
-            ..Method::new(technique)
-        }
+    /// CTSS: the paper's hit groups, masks and cone
+    /// ([`CtssParams::paper`](subcone_kernels::ctss::CtssParams::paper)).
+    pub fn ctss_paper(&self) -> bool {
+        self.technique.is_cone_traced() && self.is_paper()
     }
 
-    /// Whether the SRAA reconstruction is gated by albedo (`+mat`).
-    pub fn gates_material(&self) -> bool {
-        self.material_aware && self.technique.is_subpixel_reconstruction()
+    /// Samples per pixel side (`ssaa16` → 4); 1 without supersampling.
+    pub const fn ssaa_side(&self) -> u32 {
+        self.side
     }
 
     /// Samples per pixel of the supersampling grid (1 without supersampling).
-    pub fn supersamples(&self) -> u32 {
-        match self.technique {
-            Technique::Ssaa | Technique::SsaaCtss => self.ssaa_side * self.ssaa_side,
-            _ => 1,
+    pub const fn supersamples(&self) -> u32 {
+        self.side * self.side
+    }
+
+    /// The cone coverage (1 for methods that trace no cone).
+    pub const fn cone_coverage(&self) -> f32 {
+        self.cone_coverage
+    }
+
+    /// The visibility threshold k (32 for methods that trace no cone).
+    pub const fn visibility_k(&self) -> u32 {
+        self.visibility_k
+    }
+
+    /// Whether shading is delayed (`-delayed`).
+    pub const fn delayed_shading(&self) -> bool {
+        self.delayed_shading
+    }
+
+    /// Whether hit groups are subdivided at internal edges (`ctss+edges`).
+    pub const fn split_groups(&self) -> bool {
+        self.split_groups
+    }
+
+    /// Whether the SRAA reconstruction is gated by albedo (`+mat`).
+    pub const fn gates_material(&self) -> bool {
+        self.material_gate
+    }
+
+    /// The edge classes the method claims to antialias: its technique's
+    /// ([`registry::TechniqueInfo::claims`]), plus texture edges with the
+    /// material gate and creases with hit-group subdivision.
+    pub fn claims(&self) -> Vec<EdgeClass> {
+        let mut c = info(self.technique).claims.to_vec();
+        if self.material_gate {
+            c.push(EdgeClass::Texture);
         }
+        if self.split_groups {
+            c.push(EdgeClass::Crease);
+        }
+        c.sort();
+        c.dedup();
+        c
+    }
+}
+
+impl Default for Method {
+    fn default() -> Self {
+        Method::new(Technique::NoAa)
+    }
+}
+
+fn side_of(samples: u32) -> Result<u32, MethodError> {
+    if SSAA_COUNTS.contains(&samples) {
+        Ok((samples as f64).sqrt() as u32)
+    } else {
+        Err(MethodError::Samples(samples))
     }
 }
 
 impl fmt::Display for Method {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let delayed = self.delayed_shading && self.technique.is_cone_traced();
-        let suffix = if delayed { "-delayed" } else { "" };
-        match self.technique {
-            Technique::NoAa => write!(f, "noaa"),
-            Technique::Ssaa => write!(f, "ssaa{}", self.supersamples()),
-            Technique::Sraa => write!(f, "sraa"),
-            Technique::SraaRt => write!(f, "sraa-rt"),
-            Technique::Ctss if self.split_groups => write!(f, "ctss+edges{suffix}"),
-            Technique::Ctss => write!(f, "ctss{suffix}"),
-            Technique::CtssR => write!(f, "ctss-r{suffix}"),
-            Technique::SsaaCtss => write!(f, "ssaa{}+ctss{suffix}", self.supersamples()),
-            Technique::Fxaa => write!(f, "fxaa"),
-            // A technique added to the kernels before this crate names it.
-            other => write!(f, "{}", format!("{other:?}").to_ascii_lowercase()),
-        }?;
-        if self.technique.is_cone_traced() && self.ctss_paper {
-            write!(f, "-paper")?;
+        let i = info(self.technique);
+        if i.modifiers.samples {
+            write!(f, "{SSAA_PREFIX}{}", self.supersamples())?;
+            if self.technique == Technique::SsaaCtss {
+                f.write_str(CTSS_SUFFIX)?;
+            }
+        } else {
+            f.write_str(i.name)?;
         }
-        if self.technique.is_subpixel_reconstruction() && self.sraa == SraaParams::PAPER {
-            write!(f, "-paper")?;
+        if self.split_groups {
+            f.write_str(EDGES)?;
         }
-        if self.gates_material() {
-            write!(f, "+mat")?;
+        if self.delayed_shading {
+            f.write_str(DELAYED)?;
+        }
+        if self.is_paper() {
+            f.write_str(PAPER)?;
+        }
+        if self.material_gate {
+            f.write_str(MATERIAL_GATE)?;
         }
         Ok(())
     }
 }
 
-/// A method name that does not parse.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("unknown method {0:?}: expected noaa, ssaaN (N in 4, 9, 16, 64, 256), sraa, sraa-rt, sraa+mat, sraa-rt+mat, sraa-paper, sraa-rt-paper, sraa-paper+mat, sraa-rt-paper+mat, ctss, ctss+edges, ctss-r, ssaaN+ctss or fxaa; ctss, ctss-r and ssaaN+ctss optionally with -delayed; any of these CTSS names optionally with -paper last")]
-pub struct ParseMethodError(pub String);
-
-fn parse_ssaa(n: &str) -> Option<u32> {
-    let n: u32 = n.parse().ok()?;
-    SSAA_COUNTS.contains(&n).then(|| (n as f64).sqrt() as u32)
+/// The technique and sample count of a name without modifiers.
+fn parse_base(base: &str) -> Option<Method> {
+    if let Some(rest) = base.strip_prefix(SSAA_PREFIX) {
+        return match rest.strip_suffix(CTSS_SUFFIX) {
+            Some(n) => Method::ssaa_ctss(n.parse().ok()?).ok(),
+            None => Method::ssaa(rest.parse().ok()?).ok(),
+        };
+    }
+    let (base, edges) = match base.strip_suffix(EDGES) {
+        Some(b) => (b, true),
+        None => (base, false),
+    };
+    let t = registry::TECHNIQUES
+        .iter()
+        .find(|t| !t.modifiers.samples && t.name == base)?;
+    let m = Method::new(t.technique);
+    if edges {
+        m.with_split_groups().ok()
+    } else {
+        Some(m)
+    }
 }
 
 impl FromStr for Method {
-    type Err = ParseMethodError;
+    type Err = MethodError;
 
+    /// Parses the registry's grammar, case-insensitively and trimmed: a base
+    /// name, then `-delayed`, then `-paper`, then `+mat`, each where it
+    /// applies (`ctss-delayed-paper`, `sraa-rt-paper+mat`).
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         let lower = s.trim().to_ascii_lowercase();
-        let err = || ParseMethodError(s.to_string());
-        // CTSS: any cone-traced name, then `-paper`.
-        if let Some(base) = lower.strip_suffix("-paper") {
-            if let Ok(m) = base.parse::<Method>() {
-                if m.technique.is_cone_traced() && !m.ctss_paper {
-                    return Ok(m.ctss_paper());
-                }
-            }
-        }
-        if let Some(base) = lower.strip_suffix("-delayed") {
-            let m: Method = base.parse().map_err(|_| err())?;
-            // Delayed shading records one sample per hit group; split groups
-            // (`ctss+edges`) shade several, so the two do not combine.
-            if !m.technique.is_cone_traced()
-                || base.ends_with("-delayed")
-                || m.split_groups
-                || m.ctss_paper
-            {
-                return Err(err());
-            }
-            return Ok(Method {
-                delayed_shading: true,
-                ..m
-            });
-        }
-        // SRAA: a base, then `-paper` (the paper's preset), then `+mat`.
-        let (sraa_base, mat) = match lower.strip_suffix("+mat") {
-            Some(b) => (b, true),
+        let unknown = || MethodError::Unknown(s.to_string());
+        let (rest, mat) = match lower.strip_suffix(MATERIAL_GATE) {
+            Some(r) => (r, true),
             None => (lower.as_str(), false),
         };
-        let (sraa_base, paper) = match sraa_base.strip_suffix("-paper") {
-            Some(b) => (b, true),
-            None => (sraa_base, false),
+        let (rest, paper) = match rest.strip_suffix(PAPER) {
+            Some(r) => (r, true),
+            None => (rest, false),
         };
-        let sraa = match sraa_base {
-            "sraa" => Some(Technique::Sraa),
-            "sraa-rt" => Some(Technique::SraaRt),
-            _ => None,
+        let (base, delayed) = match rest.strip_suffix(DELAYED) {
+            Some(r) => (r, true),
+            None => (rest, false),
         };
-        if let Some(t) = sraa {
-            let m = if mat {
-                Method::material_aware(t)
-            } else {
-                Method::new(t)
-            };
-            return Ok(if paper {
-                Method {
-                    sraa: SraaParams::PAPER,
-                    ..m
-                }
-            } else {
-                m
-            });
+        let mut m = parse_base(base).ok_or_else(unknown)?;
+        if delayed {
+            m = m.with_delayed_shading().map_err(|_| unknown())?;
         }
-        Ok(match lower.as_str() {
-            "noaa" => Method::new(Technique::NoAa),
-            "ctss" => Method::new(Technique::Ctss),
-            "ctss+edges" => Method {
-                split_groups: true,
-                ..Method::new(Technique::Ctss)
-            },
-            "ctss-r" => Method::new(Technique::CtssR),
-            "fxaa" => Method::new(Technique::Fxaa),
-            other => {
-                if let Some(rest) = other.strip_prefix("ssaa") {
-                    if let Some(n) = rest.strip_suffix("+ctss") {
-                        Method {
-                            ssaa_side: parse_ssaa(n).ok_or_else(err)?,
-                            ..Method::new(Technique::SsaaCtss)
-                        }
-                    } else {
-                        Method::ssaa_grid(parse_ssaa(rest).ok_or_else(err)?)
-                    }
-                } else {
-                    return Err(err());
-                }
-            }
-        })
+        if paper {
+            m = m.with_preset(Preset::Paper).map_err(|_| unknown())?;
+        }
+        if mat {
+            m = m.with_material_gate().map_err(|_| unknown())?;
+        }
+        Ok(m)
     }
 }
 
@@ -297,7 +467,7 @@ mod tests {
             "ctss-r-delayed-paper",
         ] {
             let m: Method = name.parse().unwrap_or_else(|e| panic!("{name}: {e}"));
-            assert!(m.ctss_paper && m.cone_coverage == 1.0, "{name}");
+            assert!(m.ctss_paper() && m.cone_coverage() == 1.0, "{name}");
             assert_eq!(m.to_string(), name);
         }
         for bad in [
@@ -305,14 +475,50 @@ mod tests {
             "noaa-paper",
             "fxaa-paper",
             "ctss-paper-delayed",
+            "sraa+mat-paper",
+            "sraa-rt+mat+mat",
+            "ctss-r+edges",
+            "ssaa4+ctss+edges",
         ] {
             assert!(bad.parse::<Method>().is_err(), "{bad}");
         }
         let m: Method = "ctss".parse().unwrap();
-        assert!(!m.ctss_paper && m.cone_coverage == subcone_kernels::ctss::CONE_COVERAGE);
+        assert!(!m.ctss_paper() && m.cone_coverage() == subcone_kernels::ctss::CONE_COVERAGE);
         let mut sorted = METHOD_NAMES.to_vec();
         sorted.sort();
         sorted.dedup();
         assert_eq!(sorted.len(), METHOD_NAMES.len(), "a name is listed twice");
+    }
+
+    #[test]
+    fn settings_are_checked_by_the_method() {
+        let ctss = Method::new(Technique::Ctss);
+        assert_eq!(ctss.with_cone_coverage(2.0).unwrap().cone_coverage(), 2.0);
+        for bad in [0.0, -1.0, f32::NAN, f32::INFINITY] {
+            assert!(matches!(
+                ctss.with_cone_coverage(bad),
+                Err(MethodError::ConeCoverage(_))
+            ));
+        }
+        assert_eq!(ctss.with_visibility_k(16).unwrap().visibility_k(), 16);
+        assert_eq!(ctss.with_visibility_k(0), Err(MethodError::VisibilityK(0)));
+        assert_eq!(
+            ctss.with_visibility_k(33),
+            Err(MethodError::VisibilityK(33))
+        );
+        let noaa = Method::new(Technique::NoAa);
+        assert!(matches!(
+            noaa.with_cone_coverage(1.0),
+            Err(MethodError::Modifier { .. })
+        ));
+        assert!(matches!(
+            noaa.with_visibility_k(32),
+            Err(MethodError::Modifier { .. })
+        ));
+        // The paper's preset resets the coverage to 1, the tuned one back.
+        let paper = ctss.with_preset(Preset::Paper).unwrap();
+        assert_eq!(paper.cone_coverage(), 1.0);
+        assert_eq!(paper.with_preset(Preset::Tuned).unwrap(), ctss);
+        assert_eq!(Method::ssaa(5), Err(MethodError::Samples(5)));
     }
 }

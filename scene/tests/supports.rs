@@ -85,8 +85,8 @@ fn every_reason_reads_as_a_sentence() {
         ),
         (
             UnsupportedReason::Translucency {
-                what: "sraa-rt",
-                instead: "ctss renders them",
+                what: "sraa-rt".into(),
+                instead: "ctss renders them".into(),
             },
             "sraa-rt is not implemented for semi-transparent materials (alpha < 1); ctss renders them",
         ),

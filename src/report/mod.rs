@@ -1279,7 +1279,7 @@ impl Runner<'_> {
             self.rounds(job, bi, backend.as_ref(), &mut contenders)?;
             let mut noaa: Option<Measured> = None;
             for c in contenders.into_iter().filter(|c| !c.dropped) {
-                let is_noaa = c.method.technique == Technique::NoAa;
+                let is_noaa = c.method.technique() == Technique::NoAa;
                 let done = self.finish(job, bi, c, sq.as_ref(), &img_dir)?;
                 if let (0, Some(img)) = (bi, &done.quality) {
                     crop_images.push((done.row.method.clone(), img.clone()));
@@ -1457,7 +1457,7 @@ impl Runner<'_> {
                     Ok((f, wall)) => {
                         c.timings.push(wall, &f);
                         c.figures = Some(FrameFigures::of(&f));
-                        if c.method.technique == Technique::NoAa {
+                        if c.method.technique() == Technique::NoAa {
                             c.last_noaa = Some(f);
                         }
                     }

@@ -37,10 +37,9 @@ use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
 use subcone_kernels::passes::{Passes, Technique};
-use subcone_scene::backend::planned_passes;
+use subcone_scene::backend::{plan, plan_forced, Capabilities};
 use subcone_scene::{
     Backend, Camera, Frame, Method, RenderError, RenderSettings, Scene, Unsupported,
-    UnsupportedReason,
 };
 
 pub use bvh::SceneBvh;
@@ -127,56 +126,21 @@ impl CpuBackend {
     }
 }
 
-impl CpuBackend {
-    /// The passes of `method` on `scene` with `force` added, or why this
-    /// backend does not render it: the one place where its scene and method
-    /// refusals live, behind both [`Backend::supports`] and
-    /// [`Backend::render`].
-    fn plan(&self, scene: &Scene, method: &Method, force: Passes) -> Result<Passes, Unsupported> {
-        let refuse = |reason| Err(Unsupported::new(self.name(), scene, method, reason));
-        if scene.lights.len() > MAX_LIGHTS {
-            return refuse(UnsupportedReason::TooManyLights {
-                lights: scene.lights.len(),
-                max: MAX_LIGHTS,
-            });
-        }
-        let passes = planned_passes(self.name(), scene, method)? | force;
-        let translucent = scene.has_translucency();
-        if scene.sdf_geometry().is_some() {
-            if passes.intersects(Passes::SECONDARY) {
-                return refuse(UnsupportedReason::SdfReflections);
-            }
-            if method.gates_material() {
-                return refuse(UnsupportedReason::MaterialGateOnSdf);
-            }
-            let opaque_only = if method.technique == Technique::SraaRt {
-                Some("sraa-rt")
-            } else if method.split_groups {
-                Some("hit group subdivision (ctss+edges)")
-            } else if method.delayed_shading {
-                Some("delayed shading")
-            } else {
-                None
-            };
-            if let Some(what) = opaque_only.filter(|_| translucent) {
-                return refuse(UnsupportedReason::Translucency {
-                    what,
-                    instead: "ctss, ctss-r, ssaaN+ctss, noaa and ssaaN render them",
-                });
-            }
-        } else if translucent {
-            return refuse(UnsupportedReason::Translucency {
-                what: "ray tracing triangles",
-                instead: "they render on SDF scenes only",
-            });
-        }
-        Ok(passes)
-    }
-}
+/// What the CPU backend renders: every technique on every scene the
+/// kernels accept, up to [`MAX_LIGHTS`] lights, SRAA-RT on SDF scenes
+/// included; the refusals are the one plan's
+/// ([`subcone_scene::backend::plan`]).
+pub const CAPABILITIES: Capabilities = Capabilities {
+    backend: "cpu",
+    max_lights_triangles: Some(MAX_LIGHTS),
+    max_lights_sdf: Some(MAX_LIGHTS),
+    sdf_subpixel_geometry: Ok(()),
+    max_sdf_side_samples: None,
+};
 
 impl Backend for CpuBackend {
     fn name(&self) -> &'static str {
-        "cpu"
+        CAPABILITIES.backend
     }
 
     /// `cpu` and the instruction-set path its hot loops run on, e.g.
@@ -190,7 +154,7 @@ impl Backend for CpuBackend {
     /// material gate; semi-transparent materials only with the SDF methods
     /// that carry opacity (not sraa-rt, ctss+edges or delayed shading).
     fn supports(&self, scene: &Scene, method: &Method) -> Result<(), Unsupported> {
-        self.plan(scene, method, Passes::empty()).map(|_| ())
+        plan(scene, method, &CAPABILITIES).map(|_| ())
     }
 
     fn render(
@@ -204,7 +168,7 @@ impl Backend for CpuBackend {
         camera.validate()?;
         // Forced passes go through the same plan: forcing the secondary
         // passes on an SDF scene is refused as its mirrors would be.
-        let passes = self.plan(scene, method, settings.force_passes)?;
+        let passes = plan_forced(scene, method, &CAPABILITIES, settings.force_passes)?;
         if let Some(g) = scene.sdf_geometry() {
             if settings.ao_rays > 0 {
                 return Err(ao_on_sdf());
@@ -226,7 +190,7 @@ impl Backend for CpuBackend {
         tracer.exhaustive_subpixel_shadows = self.exhaustive_subpixel_shadows;
         tracer.ao_rays = settings.ao_rays;
         tracer.isa = self.isa();
-        let mut frame = match method.technique {
+        let mut frame = match method.technique() {
             Technique::NoAa | Technique::Ssaa | Technique::Fxaa => {
                 render::supersample(&tracer, method, settings, passes)
             }

@@ -43,8 +43,8 @@ fn to_ray_counts(c: Counts) -> RayCounts {
 /// NoAA (one ray through each pixel centre) and SSAA (a regular n×n grid).
 pub fn supersample(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes) -> Frame {
     let (w, h) = (s.width as usize, s.height as usize);
-    let n = if method.technique == Technique::Ssaa {
-        method.ssaa_side.max(1)
+    let n = if method.technique() == Technique::Ssaa {
+        method.ssaa_side().max(1)
     } else {
         1
     };
@@ -354,17 +354,17 @@ fn bytes<T>(v: &[T]) -> usize {
 pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes) -> Frame {
     let (w, h) = (s.width as usize, s.height as usize);
     let n = w * h;
-    let rt = method.technique == Technique::SraaRt;
+    let rt = method.technique() == Technique::SraaRt;
     let lights = t.scene.lights.len().min(MAX_LIGHTS);
-    let layout = LayerLayout::new(method.technique, passes, lights);
+    let layout = LayerLayout::new(method.technique(), passes, lights);
     let shadows = passes.contains(Passes::SHADOW);
     let sub_shadows = rt && passes.contains(Passes::SUBPIXEL_SHADOW);
     let sub_secondary = rt && passes.contains(Passes::SUBPIXEL_SECONDARY_GEOMETRY);
     let secondary_shading = passes.contains(Passes::SECONDARY);
     let material = method.gates_material();
     let nl = layout.len();
-    let shaded_offset = method.sraa.shaded_offset();
-    let shaded_subsample = method.sraa.shaded_subsample();
+    let shaded_offset = method.sraa().shaded_offset();
+    let shaded_subsample = method.sraa().shaded_subsample();
     let mut b = Buffers {
         geo: vec![Geometry::MISS; n],
         values: vec![Vec3::ZERO; n * nl],
@@ -565,7 +565,7 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
 
     // Pass 1 of the paper: subpixel geometry.
     let start = Instant::now();
-    let radius = method.sraa.radius();
+    let radius = method.sraa().radius();
     let adaptive = !t.exhaustive_subpixel_shadows;
     let geo_counts = {
         let (geo, shadow, geo2, shadow2) = (&b.geo, &b.shadow, &b.geo2, &b.shadow2);
@@ -677,7 +677,7 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
     // Pass 2 of the paper: reconstruction and resolve.
     let start = Instant::now();
     let mut frame = Frame::new(s.width, s.height);
-    reconstruct_frame_on(t.isa, &b, &layout, &method.sraa, &mut frame.color, w, h);
+    reconstruct_frame_on(t.isa, &b, &layout, &method.sraa(), &mut frame.color, w, h);
     timings.push(PassTiming {
         name: "antialiasing",
         time: start.elapsed(),

@@ -247,10 +247,10 @@ impl<F: SdfField> SdfView<'_, F> {
         CtssParams::new(tan)
             .with_range(0.0, self.max_distance)
             .with_max_steps(self.max_steps)
-            .relaxed(method.technique == Technique::CtssR)
-            .with_visibility_k(method.visibility_k)
-            .with_split_groups(method.split_groups)
-            .paper(method.ctss_paper)
+            .relaxed(method.technique() == Technique::CtssR)
+            .with_visibility_k(method.visibility_k())
+            .with_split_groups(method.split_groups())
+            .paper(method.ctss_paper())
     }
 
     /// One NoAA sample.
@@ -470,7 +470,7 @@ impl<F: SdfField> SdfView<'_, F> {
         let nl = layout.len();
         let split = layout.lights > 0;
         let params = self.params(
-            self.camera.cone_tan_theta(s.height, method.cone_coverage),
+            self.camera.cone_tan_theta(s.height, method.cone_coverage()),
             method,
         );
         let mut b = Buffers {
@@ -508,7 +508,7 @@ impl<F: SdfField> SdfView<'_, F> {
                 if let Some(pk) = packets {
                     pk.sraa_shading_band(
                         bi * BAND,
-                        method.sraa.shaded_offset(),
+                        method.sraa().shaded_offset(),
                         &params,
                         s,
                         (shadows, split, nl),
@@ -521,7 +521,7 @@ impl<F: SdfField> SdfView<'_, F> {
                 }
                 for i in 0..geo.len() {
                     let (x, y) = (i % w, bi * BAND + i / w);
-                    let px = pixel_centre(x, y) + method.sraa.shaded_offset();
+                    let px = pixel_centre(x, y) + method.sraa().shaded_offset();
                     let (o, d) = self.camera.ray(px, s.width, s.height);
                     let v = &mut values[i * nl..(i + 1) * nl];
                     let Some((q, nrm)) = self.hit(o, d, &params, &mut t) else {
@@ -550,7 +550,7 @@ impl<F: SdfField> SdfView<'_, F> {
 
         // Pass 1 of the paper: subpixel geometry (and shadow states).
         let start = Instant::now();
-        let radius = method.sraa.radius();
+        let radius = method.sraa().radius();
         let adaptive = !self.exhaustive_subpixel_shadows;
         let geometry = {
             let (geo, shadow, values) = (&b.geo, &b.shadow, &b.values);
@@ -570,7 +570,7 @@ impl<F: SdfField> SdfView<'_, F> {
                     if let Some(pk) = packets {
                         // The shaded subsample's geometry and shadow states
                         // are the shading pass's.
-                        if let Some(k) = method.sraa.shaded_subsample() {
+                        if let Some(k) = method.sraa().shaded_subsample() {
                             for (i, g) in sub_geo.iter_mut().enumerate() {
                                 g[k] = geo[bi * band + i];
                             }
@@ -580,7 +580,7 @@ impl<F: SdfField> SdfView<'_, F> {
                         }
                         pk.sraa_geometry_band(
                             bi * BAND,
-                            method.sraa.shaded_subsample(),
+                            method.sraa().shaded_subsample(),
                             &params,
                             s,
                             agreement,
@@ -595,7 +595,7 @@ impl<F: SdfField> SdfView<'_, F> {
                         let j = bi * band + i;
                         let mut agree = None;
                         for k in 0..4 {
-                            if Some(k) == method.sraa.shaded_subsample() {
+                            if Some(k) == method.sraa().shaded_subsample() {
                                 sub_geo[i][k] = geo[j];
                                 if let Some(ss) = sub_shadow.get_mut(i) {
                                     ss[k] = shadow[j];
@@ -627,7 +627,15 @@ impl<F: SdfField> SdfView<'_, F> {
         // Pass 2 of the paper: reconstruction and resolve.
         let start = Instant::now();
         let mut frame = Frame::new(s.width, s.height);
-        reconstruct_frame_on(self.isa, &b, &layout, &method.sraa, &mut frame.color, w, h);
+        reconstruct_frame_on(
+            self.isa,
+            &b,
+            &layout,
+            &method.sraa(),
+            &mut frame.color,
+            w,
+            h,
+        );
         timings.push(PassTiming {
             name: "antialiasing",
             time: start.elapsed(),
@@ -746,20 +754,20 @@ impl<F: SdfField> SdfView<'_, F> {
         passes: Passes,
         translucent: bool,
     ) -> Frame {
-        if method.technique == Technique::SraaRt {
+        if method.technique() == Technique::SraaRt {
             return self.sraa_rt(method, s, passes);
         }
         let (w, h) = (s.width as usize, s.height as usize);
-        let side = match method.technique {
-            Technique::Ssaa | Technique::SsaaCtss => method.ssaa_side.max(1),
+        let side = match method.technique() {
+            Technique::Ssaa | Technique::SsaaCtss => method.ssaa_side().max(1),
             _ => 1,
         };
         let cone = matches!(
-            method.technique,
+            method.technique(),
             Technique::Ctss | Technique::CtssR | Technique::SsaaCtss
         );
         // Each supersample's cone covers its own sub-pixel.
-        let tan = self.camera.cone_tan_theta(s.height, method.cone_coverage) / side as f32;
+        let tan = self.camera.cone_tan_theta(s.height, method.cone_coverage()) / side as f32;
         let params = self.params(tan, method);
         let mut frame = Frame::new(s.width, s.height);
         let mut spp = vec![0.0f32; w * h];
@@ -792,7 +800,7 @@ impl<F: SdfField> SdfView<'_, F> {
                     // Split groups shade several samples per group, and the
                     // semi-transparent path its own way: neither is recorded
                     // by the delayed path (the backend refuses the latter).
-                    if cone && method.delayed_shading && !params.splits_groups() && !translucent {
+                    if cone && method.delayed_shading() && !params.splits_groups() && !translucent {
                         t.multi += self.ctss_delayed_row(
                             y,
                             side as usize,

@@ -15,7 +15,7 @@ fn frames(name: &str, method: &str, w: u32, h: u32) -> (Frame, Frame) {
     let mut s = RenderSettings::new(w, h);
     s.aovs = true;
     // The scene's own passes (SRAA-RT's subpixel shadows among them).
-    let passes = required_passes(m.technique, scene.features()).unwrap();
+    let passes = required_passes(m.technique(), scene.features()).unwrap();
     let packets = SdfView::of_scene(&scene, &scene.camera).unwrap();
     assert!(
         packets.program.is_some(),
@@ -109,7 +109,7 @@ fn packets_cast_every_subpixel_shadow_ray_single_rays_cast() {
         let scene = builtin(name).unwrap();
         let m: Method = "sraa-rt".parse().unwrap();
         let s = RenderSettings::new(40, 24);
-        let passes = required_passes(m.technique, scene.features()).unwrap();
+        let passes = required_passes(m.technique(), scene.features()).unwrap();
         let exhaustive = |program: bool| {
             let mut v = SdfView::of_scene(&scene, &scene.camera).unwrap();
             v.exhaustive_subpixel_shadows = true;

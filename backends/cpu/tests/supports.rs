@@ -63,7 +63,7 @@ fn translucency_refusals_name_what_renders_instead() {
     ] {
         let u = cpu.supports(&glass, &m.parse().unwrap()).unwrap_err();
         assert!(
-            matches!(u.reason, UnsupportedReason::Translucency { what: w, .. } if w == what),
+            matches!(&u.reason, UnsupportedReason::Translucency { what: w, .. } if w == what),
             "{m}: {u:?}"
         );
         let text = u.to_string();

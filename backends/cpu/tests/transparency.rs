@@ -195,7 +195,7 @@ mod translucent_path {
             let view = SdfView::of_scene(&scene, &scene.camera).expect("an SDF scene");
             let s = RenderSettings::new(32, 18);
             for m in &methods {
-                let passes = required_passes(m.technique, scene.features()).unwrap();
+                let passes = required_passes(m.technique(), scene.features()).unwrap();
                 let a = view.render_with(m, &s, passes, false);
                 let b = view.render_with(m, &s, passes, true);
                 let same =

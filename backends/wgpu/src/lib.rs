@@ -36,11 +36,10 @@ pub(crate) mod triangles;
 
 use std::sync::Arc;
 
-use subcone_kernels::passes::{Passes, Technique, MAX_LIGHTS};
-use subcone_scene::backend::planned_passes;
+use subcone_kernels::passes::{Passes, MAX_LIGHTS};
+use subcone_scene::backend::{plan, plan_forced, Capabilities};
 use subcone_scene::{
     Backend, Camera, Frame, Method, RenderError, RenderSettings, Scene, Unsupported,
-    UnsupportedReason,
 };
 
 pub use context::GpuContext;
@@ -77,7 +76,7 @@ pub fn gpu_required() -> bool {
 }
 
 /// One frame as [`Backend::render`] was asked for it, with the passes
-/// [`WgpuBackend::plan`] planned for it: what every render path takes.
+/// [`plan_forced`] planned for it: what every render path takes.
 pub(crate) struct Job<'a> {
     pub(crate) scene: &'a Scene,
     pub(crate) camera: &'a Camera,
@@ -86,75 +85,22 @@ pub(crate) struct Job<'a> {
     pub(crate) passes: Passes,
 }
 
-impl WgpuBackend {
-    /// The passes of `method` on `scene` with `force` added, or why this
-    /// backend does not render it: the one place where its scene and method
-    /// refusals live, behind both [`Backend::supports`] and
-    /// [`Backend::render`].
-    fn plan(&self, scene: &Scene, method: &Method, force: Passes) -> Result<Passes, Unsupported> {
-        let refuse = |reason| Err(Unsupported::new(self.name(), scene, method, reason));
-        let passes = planned_passes(self.name(), scene, method)? | force;
-        let translucent = scene.has_translucency();
-        if scene.sdf_geometry().is_some() {
-            if passes.intersects(Passes::SECONDARY) {
-                return refuse(UnsupportedReason::SdfReflections);
-            }
-            if method.gates_material() {
-                return refuse(UnsupportedReason::MaterialGateOnSdf);
-            }
-            // Then, in the CPU backend's order: semi-transparent SDF
-            // materials render on the K-mask path (CTSS §5.3,
-            // sdf/translucent.wgsl) with the methods the CPU backend renders
-            // them with, and are refused, for the same reason, with the
-            // others.
-            let opaque_only = if method.technique == Technique::SraaRt {
-                Some("sraa-rt")
-            } else if method.split_groups {
-                Some("hit group subdivision (ctss+edges)")
-            } else if method.delayed_shading {
-                Some("delayed shading")
-            } else {
-                None
-            };
-            if let Some(what) = opaque_only.filter(|_| translucent) {
-                return refuse(UnsupportedReason::Translucency {
-                    what,
-                    instead: "ctss, ctss-r, ssaaN+ctss, noaa and ssaaN render them",
-                });
-            }
-            if method.technique.is_subpixel_reconstruction() {
-                return refuse(sdf::SRAA_RT_CPU_ONLY);
-            }
-            let side = match method.technique {
-                Technique::Ssaa | Technique::SsaaCtss => method.ssaa_side.max(1),
-                _ => 1,
-            };
-            if side > sdf::MAX_SIDE_SAMPLES {
-                return refuse(UnsupportedReason::TooManySamples {
-                    side,
-                    max: sdf::MAX_SIDE_SAMPLES,
-                });
-            }
-        } else if translucent {
-            // Triangle scenes have no semi-transparent path on either
-            // backend: refuse rather than draw them opaque.
-            return refuse(UnsupportedReason::Translucency {
-                what: "ray tracing triangles",
-                instead: "they render on SDF scenes only",
-            });
-        } else if scene.lights.len() > MAX_LIGHTS {
-            return refuse(UnsupportedReason::TooManyLights {
-                lights: scene.lights.len(),
-                max: MAX_LIGHTS,
-            });
-        }
-        Ok(passes)
-    }
-}
+/// What the wgpu backend renders: the kernels' techniques but SRAA-RT on
+/// SDF scenes ([`sdf::SRAA_RT_CPU_ONLY`]), up to [`MAX_LIGHTS`] lights on
+/// triangle scenes, up to [`sdf::MAX_SIDE_SAMPLES`] samples per pixel side on
+/// SDF scenes; the refusals are the one plan's
+/// ([`subcone_scene::backend::plan`]).
+pub const CAPABILITIES: Capabilities = Capabilities {
+    backend: "wgpu",
+    max_lights_triangles: Some(MAX_LIGHTS),
+    max_lights_sdf: None,
+    sdf_subpixel_geometry: Err(sdf::SRAA_RT_WHY),
+    max_sdf_side_samples: Some(sdf::MAX_SIDE_SAMPLES),
+};
 
 impl Backend for WgpuBackend {
     fn name(&self) -> &'static str {
-        "wgpu"
+        CAPABILITIES.backend
     }
 
     /// Refuses what the kernels refuse (`required_passes`) and
@@ -163,7 +109,7 @@ impl Backend for WgpuBackend {
     /// gate, the CPU-only method sraa-rt ([`sdf::SRAA_RT_CPU_ONLY`]) and more than
     /// [`sdf::MAX_SIDE_SAMPLES`] samples per pixel side.
     fn supports(&self, scene: &Scene, method: &Method) -> Result<(), Unsupported> {
-        self.plan(scene, method, Passes::empty()).map(|_| ())
+        plan(scene, method, &CAPABILITIES).map(|_| ())
     }
 
     fn describe(&self) -> String {
@@ -186,7 +132,7 @@ impl Backend for WgpuBackend {
             camera,
             method,
             settings,
-            passes: self.plan(scene, method, settings.force_passes)?,
+            passes: plan_forced(scene, method, &CAPABILITIES, settings.force_passes)?,
         };
         if scene.sdf_geometry().is_some() {
             // A setting, not the scene and method: a runtime error, as on

@@ -77,9 +77,12 @@ pub const DELAYED_BATCH: u32 = 32;
 /// backend would need a subpixel geometry pass in the generated SDF shader
 /// feeding the triangle path's reconstruction pass.
 pub const SRAA_RT_CPU_ONLY: UnsupportedReason = UnsupportedReason::CpuOnly {
-    what: "sraa-rt on SDF scenes",
-    why: "sphere-traced subsamples and their reconstruction have no WGSL twin",
+    what: subcone_scene::backend::SDF_SUBPIXEL_GEOMETRY,
+    why: SRAA_RT_WHY,
 };
+
+/// What this backend lacks for SRAA-RT on SDF scenes.
+pub const SRAA_RT_WHY: &str = "sphere-traced subsamples and their reconstruction have no WGSL twin";
 
 /// Most samples per pixel side (`ssaaN`, `ssaaN+ctss`) one invocation traces.
 pub const MAX_SIDE_SAMPLES: u32 = 64;
@@ -146,10 +149,10 @@ fn ctss_params(tan: f32, method: &Method, max_distance: f32, max_steps: u32) -> 
     CtssParams::new(tan)
         .with_range(0.0, max_distance)
         .with_max_steps(max_steps)
-        .relaxed(method.technique == Technique::CtssR)
-        .with_visibility_k(method.visibility_k)
-        .with_split_groups(method.split_groups)
-        .paper(method.ctss_paper)
+        .relaxed(method.technique() == Technique::CtssR)
+        .with_visibility_k(method.visibility_k())
+        .with_split_groups(method.split_groups())
+        .paper(method.ctss_paper())
 }
 
 /// The frame's constants; `SdfFrame` in trace.wgsl (112 bytes).
@@ -194,15 +197,15 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         return Err(err("the maximum ray distance is NaN"));
     }
     let (w, h) = (settings.width, settings.height);
-    let side = match method.technique {
-        Technique::Ssaa | Technique::SsaaCtss => method.ssaa_side.max(1),
+    let side = match method.technique() {
+        Technique::Ssaa | Technique::SsaaCtss => method.ssaa_side().max(1),
         _ => 1,
     };
     let cone = matches!(
-        method.technique,
+        method.technique(),
         Technique::Ctss | Technique::CtssR | Technique::SsaaCtss
     );
-    let tan = camera.cone_tan_theta(h, method.cone_coverage) / side as f32;
+    let tan = camera.cone_tan_theta(h, method.cone_coverage()) / side as f32;
     let params = ctss_params(tan, method, max_distance, max_steps);
     let pixels = w as u64 * h as u64;
     let groups = compute::workgroups(ctx, "SDF", w, h, WORKGROUP)?;
@@ -210,7 +213,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     ctx.check_buffer_size("the colour buffer", px_bytes)?;
 
     let shadows = passes.contains(Passes::SHADOW) && !scene.lights.is_empty();
-    let batch = if cone && method.delayed_shading {
+    let batch = if cone && method.delayed_shading() {
         DELAYED_BATCH
     } else {
         ASAP_BATCH

@@ -92,8 +92,8 @@ impl FrameUniform {
             ambient: scene.ambient.to_array(),
             height_f: h,
             background: scene.background.to_array(),
-            ssaa_side: if method.technique == Technique::Ssaa {
-                method.ssaa_side.max(1)
+            ssaa_side: if method.technique() == Technique::Ssaa {
+                method.ssaa_side().max(1)
             } else {
                 1
             },
@@ -106,7 +106,7 @@ impl FrameUniform {
             near: sg.scale * 1e-7,
             ao_rays: s.ao_rays,
             ao_radius: sg.scale * subcone_kernels::ao::AO_RADIUS_FRACTION,
-            sraa: method.sraa,
+            sraa: method.sraa(),
         }
     }
 }
@@ -214,7 +214,7 @@ fn read_vec4(ctx: &GpuContext, buf: &wgpu::Buffer, n: usize) -> Result<Vec<Vec3>
 
 pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> {
     // `WgpuBackend::plan` has refused more than MAX_LIGHTS lights.
-    match job.method.technique {
+    match job.method.technique() {
         Technique::NoAa
         | Technique::Ssaa
         | Technique::Sraa
@@ -231,7 +231,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         sg,
         uniform,
     };
-    match job.method.technique {
+    match job.method.technique() {
         Technique::NoAa | Technique::Ssaa | Technique::Fxaa => supersample(&setup),
         _ => subpixel(&setup),
     }
@@ -403,9 +403,9 @@ fn subpixel_bindings(f: &Setup) -> Result<(Bindings, String, Option<raster::Rast
     let (ctx, sg, uniform) = (f.ctx, &f.sg, &f.uniform);
     let (scene, method, s, passes) = (f.job.scene, f.job.method, f.job.settings, f.job.passes);
     let n = s.width as usize * s.height as usize;
-    let rt = method.technique == Technique::SraaRt;
+    let rt = method.technique() == Technique::SraaRt;
     let lights = scene.lights.len().min(MAX_LIGHTS);
-    let layout = LayerLayout::new(method.technique, passes, lights);
+    let layout = LayerLayout::new(method.technique(), passes, lights);
     let shadows = passes.contains(Passes::SHADOW);
     let sub_shadows = rt && passes.contains(Passes::SUBPIXEL_SHADOW);
     let sub_secondary = rt && passes.contains(Passes::SUBPIXEL_SECONDARY_GEOMETRY);
@@ -584,7 +584,7 @@ fn subpixel(f: &Setup) -> Result<Frame, RenderError> {
         Some(_) => Some(resolve::HybridResolve::new(
             ctx,
             &fb,
-            &f.job.method.sraa,
+            &f.job.method.sraa(),
             f.job.method.gates_material(),
             s.width,
             s.height,
@@ -656,7 +656,7 @@ pub(crate) fn subpixel_geometry_both(
     let method: Method = "sraa-rt"
         .parse()
         .map_err(|e| RenderError::Method(format!("{e:?}")))?;
-    let passes = subcone_kernels::passes::required_passes(method.technique, scene.features())
+    let passes = subcone_kernels::passes::required_passes(method.technique(), scene.features())
         .map_err(|e| RenderError::Method(e.to_string()))?;
     let sg = bvh::scene_gpu(ctx, scene)?;
     let uniform = FrameUniform::new(scene, &sg, &scene.camera, &method, &s);
