@@ -39,10 +39,12 @@ use std::fmt::Display;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, OnceLock};
 
+use subcone_kernels::passes::Technique;
 use subcone_kernels::passes::{required_passes, Passes, SceneFeatures};
 use subcone_scene::builtin::builtin;
 use subcone_scene::conformance::plan_matches_render;
-use subcone_scene::method::METHOD_NAMES;
+use subcone_scene::method::{Preset, METHOD_NAMES};
+use subcone_scene::registry;
 use subcone_scene::sdf::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
 use subcone_scene::{
     Backend, Frame, Method, RenderError, RenderSettings, Scene, UnsupportedReason,
@@ -64,7 +66,7 @@ pub const W: u32 = 64;
 /// Frame height of the suite (see [`W`]).
 pub const H: u32 = 48;
 
-/// Where [`LEFT_OUT`] leaves a method out.
+/// Where [`left_out`] leaves a method out.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LeftOutOf {
     /// SDF scenes only.
@@ -76,31 +78,39 @@ pub enum LeftOutOf {
 /// Methods of [`METHOD_NAMES`] the per-scene cases leave out, where, and
 /// why. Every other listed name whose technique applies to a scene
 /// ([`required_passes`] accepts it) runs on it: [`methods_for`].
-pub const LEFT_OUT: [(&str, LeftOutOf, &str); 4] = [
-    (
-        "ssaa16",
-        LeftOutOf::SdfScenes,
-        "16 sphere-traced samples per pixel cost seconds per frame on a software GPU; ssaa4 runs the same code",
-    ),
-    (
-        "sraa-rt+mat",
-        LeftOutOf::SdfScenes,
-        "the material gate on SDF scenes: `cpu_only_methods`' scene invariants cover sraa-rt",
-    ),
-    (
-        "sraa-paper+mat",
-        LeftOutOf::Everywhere,
-        "the code of sraa+mat with the parameters of sraa-paper, both in the suite",
-    ),
-    (
-        "sraa-rt-paper+mat",
-        LeftOutOf::Everywhere,
-        "the code of sraa-rt+mat with the parameters of sraa-rt-paper, both in the suite",
-    ),
-];
+pub fn left_out() -> [(Method, LeftOutOf, &'static str); 4] {
+    let sraa_rt = Method::new(Technique::SraaRt);
+    let gated = |m: Method| m.with_material_gate().expect("an SRAA method takes +mat");
+    let paper = |m: Method| {
+        m.with_preset(Preset::Paper)
+            .expect("an SRAA method has the paper's preset")
+    };
+    [
+        (
+            Method::ssaa_grid(4),
+            LeftOutOf::SdfScenes,
+            "16 sphere-traced samples per pixel cost seconds per frame on a software GPU; ssaa4 runs the same code",
+        ),
+        (
+            gated(sraa_rt),
+            LeftOutOf::SdfScenes,
+            "the material gate on SDF scenes: `cpu_only_methods`' scene invariants cover sraa-rt",
+        ),
+        (
+            gated(paper(Method::new(Technique::Sraa))),
+            LeftOutOf::Everywhere,
+            "the code of sraa+mat with the parameters of sraa-paper, both in the suite",
+        ),
+        (
+            gated(paper(sraa_rt)),
+            LeftOutOf::Everywhere,
+            "the code of sraa-rt+mat with the parameters of sraa-rt-paper, both in the suite",
+        ),
+    ]
+}
 
 /// The methods the per-scene cases run on `scene`: every name of
-/// [`METHOD_NAMES`] whose technique applies to it, but those [`LEFT_OUT`]
+/// [`METHOD_NAMES`] whose technique applies to it, but those [`left_out`]
 /// of it.
 pub fn methods_for(scene: &Scene) -> Vec<&'static str> {
     let sdf = scene.features().contains(SceneFeatures::IS_SDF);
@@ -109,9 +119,9 @@ pub fn methods_for(scene: &Scene) -> Vec<&'static str> {
         .filter(|m| {
             let method: Method = m.parse().expect("METHOD_NAMES parse");
             required_passes(method.technique(), scene.features()).is_ok()
-                && !LEFT_OUT
+                && !left_out()
                     .iter()
-                    .any(|(n, o, _)| n == m && (sdf || *o == LeftOutOf::Everywhere))
+                    .any(|(n, o, _)| *n == method && (sdf || *o == LeftOutOf::Everywhere))
         })
         .collect()
 }
@@ -124,16 +134,25 @@ pub fn methods_for(scene: &Scene) -> Vec<&'static str> {
 /// where they are also in [`methods_for`] an SDF scene, the per-scene cases check the
 /// refusal too. Any other refusal of a method in the scene lists, but a
 /// technique that does not apply to the scene, fails the suite.
-pub const CPU_ONLY_ON_SDF: [(&str, &str); 2] = [
-    (
-        "sraa-rt",
-        "sphere-traced subpixel geometry and its reconstruction exist on the CPU only",
-    ),
-    (
-        "sraa-rt-paper",
-        "sphere-traced subpixel geometry and its reconstruction exist on the CPU only",
-    ),
-];
+///
+/// They are the methods of [`METHOD_NAMES`] whose technique needs
+/// sphere-traced subpixel geometry on SDF scenes
+/// ([`registry::Needs::sdf_subpixel_geometry`]), but the material gate's
+/// (which SDF scenes refuse on every backend).
+pub fn cpu_only_on_sdf() -> Vec<(&'static str, &'static str)> {
+    METHOD_NAMES
+        .into_iter()
+        .filter(|m| {
+            let m: Method = m.parse().expect("METHOD_NAMES parse");
+            registry::info(m.technique()).needs.sdf_subpixel_geometry && !m.gates_material()
+        })
+        .map(|m| (m, CPU_ONLY_WHY))
+        .collect()
+}
+
+/// Why [`cpu_only_on_sdf`] methods are the CPU backend's only.
+pub const CPU_ONLY_WHY: &str =
+    "sphere-traced subpixel geometry and its reconstruction exist on the CPU only";
 
 /// How close a backend's frame must be to the CPU backend's, in LDR-FLIP.
 ///
@@ -168,8 +187,11 @@ pub const REFERENCE_METHOD: &str = "ssaa64";
 pub struct Family {
     /// Name in messages.
     pub name: &'static str,
-    /// The methods of the family, as parsed by [`Method`].
-    pub methods: &'static [&'static str],
+    /// The registry's family it bounds ([`registry::Family`]).
+    pub of: registry::Family,
+    /// A method of the family; for supersampling, the most samples per pixel
+    /// it bounds (a method with more takes the next bound).
+    pub example: Method,
     /// Bound on the mean LDR-FLIP against `ssaa64`, over every suite scene.
     pub mean: f64,
     /// Why the bound is what it is.
@@ -189,14 +211,16 @@ pub struct Family {
 pub const REFERENCE_BOUNDS: [Family; 6] = [
     Family {
         name: "noaa",
-        methods: &["noaa"],
+        of: registry::Family::NoAa,
+        example: Method::new(Technique::NoAa),
         mean: 0.30,
         // Worst measured 0.224 (checker: a receding checkerboard, all edges).
         why: "one sample per pixel: the full aliasing error on every edge",
     },
     Family {
         name: "fxaa",
-        methods: &["fxaa"],
+        of: registry::Family::PostProcess,
+        example: Method::new(Technique::Fxaa),
         mean: 0.34,
         // Worst measured 0.266 (checker): above noaa, as blurring the
         // checker's aliased texture moves it further from the reference.
@@ -204,22 +228,25 @@ pub const REFERENCE_BOUNDS: [Family; 6] = [
     },
     Family {
         name: "ssaa4",
-        methods: &["ssaa4"],
+        of: registry::Family::Supersampling,
+        example: Method::ssaa_grid(2),
         mean: 0.17,
         // Worst measured 0.127 (checker).
         why: "2×2 grid: edge coverage quantised to quarters",
     },
     Family {
         name: "ssaa16",
-        methods: &["ssaa16"],
+        of: registry::Family::Supersampling,
+        example: Method::ssaa_grid(4),
         mean: 0.12,
         // Worst measured 0.091 (checker).
         why: "4×4 grid: closest to the 8×8 reference",
     },
     Family {
         name: "sraa",
-        // The `-paper` presets too (`family` reads them as their method).
-        methods: &["sraa", "sraa-rt", "sraa+mat", "sraa-rt+mat"],
+        // Every preset and the material gate too.
+        of: registry::Family::Sraa,
+        example: Method::new(Technique::Sraa),
         mean: 0.30,
         // Worst measured 0.234 (checker, sraa; the material gate brings it to
         // 0.167): SRAA fixes geometric edges, not the texture's aliasing.
@@ -227,7 +254,8 @@ pub const REFERENCE_BOUNDS: [Family; 6] = [
     },
     Family {
         name: "ctss",
-        methods: &["ctss", "ctss-r", "ssaa4+ctss", "ctss-delayed", "ctss+edges"],
+        of: registry::Family::Ctss,
+        example: Method::new(Technique::Ctss),
         mean: 0.23,
         // Worst measured 0.175 (thin: features below a pixel, where one
         // shading per hit group differs most from 64 samples).
@@ -235,14 +263,23 @@ pub const REFERENCE_BOUNDS: [Family; 6] = [
     },
 ];
 
-/// The [`REFERENCE_BOUNDS`] family of `method`; panics when no family lists it
-/// (a method added to the suite must be given a bound).
+/// The [`REFERENCE_BOUNDS`] family of `method`: the bound of its registry
+/// family (for supersampling, the first whose example has at least its
+/// samples, else the last); panics when no bound covers the family or the
+/// name does not parse (a method added to the suite must be given a bound).
 pub fn family(method: &str) -> &'static Family {
-    // A preset is bound as its method: `sraa-rt-paper+mat` as `sraa-rt+mat`.
-    let method = method.replacen("-paper", "", 1);
-    REFERENCE_BOUNDS
+    let m: Method = method
+        .parse()
+        .unwrap_or_else(|e| panic!("method {method}: {e}"));
+    let of = registry::info(m.technique()).family;
+    let candidates: Vec<&'static Family> = REFERENCE_BOUNDS.iter().filter(|f| f.of == of).collect();
+    candidates
         .iter()
-        .find(|f| f.methods.contains(&method.as_str()))
+        .find(|f| {
+            f.of != registry::Family::Supersampling || f.example.supersamples() >= m.supersamples()
+        })
+        .or(candidates.last())
+        .copied()
         .unwrap_or_else(|| panic!("method {method} has no bound in REFERENCE_BOUNDS"))
 }
 
@@ -500,8 +537,8 @@ pub fn check_scene(backend: &dyn Backend, scene_name: &str) {
     for m in &methods {
         let method: Method = m.parse().expect("method name");
         let sdf = scene.features().contains(SceneFeatures::IS_SDF);
-        let cpu_only = CPU_ONLY_ON_SDF
-            .iter()
+        let cpu_only = cpu_only_on_sdf()
+            .into_iter()
             .find(|(n, _)| sdf && *n == *m && name != "cpu");
         match backend.supports(&scene, &method) {
             Ok(()) => assert!(
@@ -536,7 +573,7 @@ pub fn check_scene(backend: &dyn Backend, scene_name: &str) {
                         );
                     }
                     _ => panic!(
-                        "{name}: {scene_name} {m} refused, and not as listed in CPU_ONLY_ON_SDF: {u}"
+                        "{name}: {scene_name} {m} refused, and not as listed in cpu_only_on_sdf: {u}"
                     ),
                 }
                 continue;
@@ -606,13 +643,13 @@ pub fn check_extreme_settings(backend: &dyn Backend) {
     }
 }
 
-/// [`CPU_ONLY_ON_SDF`]: finite, invariant-abiding frames within the `ssaa64`
+/// [`cpu_only_on_sdf`]: finite, invariant-abiding frames within the `ssaa64`
 /// bound on the CPU on every SDF scene; a clear error on any other backend.
 pub fn check_cpu_only(backend: &dyn Backend) {
     let settings = RenderSettings::new(W, H);
     let name = backend.name();
     let mut failures = Vec::new();
-    for (m, why) in CPU_ONLY_ON_SDF {
+    for (m, why) in cpu_only_on_sdf() {
         let method: Method = m.parse().expect("method name");
         for scene_name in SDF_SCENES.iter().chain(&STIFF_SCENES) {
             let scene = builtin(scene_name).expect("built-in scene");
@@ -983,8 +1020,8 @@ mod tests {
         assert!(sdf.contains(&"ctss") && sdf.contains(&"ssaa4"));
         let scene = builtin("primitives").unwrap();
         let tri = builtin("cornell").unwrap();
-        for (m, out_of, _) in LEFT_OUT {
-            let method: Method = m.parse().unwrap();
+        for (method, out_of, _) in left_out() {
+            let m = method.to_string();
             let applies = |s: &Scene| required_passes(method.technique(), s.features()).is_ok();
             assert!(
                 applies(&scene) || (out_of == LeftOutOf::Everywhere && applies(&tri)),
@@ -1043,7 +1080,9 @@ mod tests {
                     if exempt {
                         continue;
                     }
-                    if check_against_reference("broken", &scene, fam.methods[0], frame).is_ok() {
+                    if check_against_reference("broken", &scene, &fam.example.to_string(), frame)
+                        .is_ok()
+                    {
                         passed.push(format!(
                             "{scene_name}: a {what} frame passes the {} bound ({})",
                             fam.name, fam.mean

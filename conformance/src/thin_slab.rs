@@ -48,7 +48,7 @@ pub fn thin_slab_scene() -> Scene {
         .iter()
         .map(|m| {
             let m: Method = m.parse().expect("method");
-            cam.cone_tan_theta(SIZE, m.cone_coverage()) / m.ssaa_side().max(1) as f32
+            m.cone_tan_theta(&cam, SIZE)
         })
         .fold(f32::INFINITY, f32::min);
     let thickness = 2.0 * DISTANCE * narrowest / 10.0;

@@ -27,8 +27,11 @@
 use std::fmt;
 use std::str::FromStr;
 
+use subcone_kernels::ctss::CtssParams;
 use subcone_kernels::passes::Technique;
 use subcone_kernels::sraa::SraaParams;
+
+use crate::camera::Camera;
 
 use crate::registry::{
     self, info, EdgeClass, CTSS_SUFFIX, DELAYED, EDGES, MATERIAL_GATE, PAPER, SSAA_PREFIX,
@@ -126,9 +129,9 @@ impl Method {
     /// `Method::ssaa_grid(4)` is `ssaa16`. Any side of at least 1 (a side
     /// whose square is not in [`SSAA_COUNTS`] prints a name that does not
     /// parse back); [`Method::ssaa`] takes a named count.
-    pub fn ssaa_grid(side: u32) -> Self {
+    pub const fn ssaa_grid(side: u32) -> Self {
         Method {
-            side: side.max(1),
+            side: if side == 0 { 1 } else { side },
             ..Method::new(Technique::Ssaa)
         }
     }
@@ -333,6 +336,37 @@ impl Method {
         self.material_gate
     }
 
+    /// `tan θ` of the cone of one of this method's samples in a frame
+    /// `height` pixels high through `camera` (CTSS eq. 3, §3.1): the pixel's
+    /// cone at the method's [`cone_coverage`](Self::cone_coverage), narrowed
+    /// by the samples per side, so that each supersample's cone covers its
+    /// own subpixel. The one place a coverage becomes `tan θ`.
+    pub fn cone_tan_theta(&self, camera: &Camera, height: u32) -> f32 {
+        camera.cone_tan_theta(height, self.cone_coverage) / self.side.max(1) as f32
+    }
+
+    /// The CTSS parameters of this method for a frame `height` pixels high
+    /// through `camera`, marching `[0, max_distance]` in at most `max_steps`
+    /// steps: [`cone_tan_theta`](Self::cone_tan_theta), CTSS-R's relaxed
+    /// stop (§4), the visibility threshold, hit-group subdivision and the
+    /// paper's behaviour. Every backend builds its
+    /// [`CtssParams`] here (sphere tracing reads the same struct).
+    pub fn ctss_params(
+        &self,
+        camera: &Camera,
+        height: u32,
+        max_distance: f32,
+        max_steps: u32,
+    ) -> CtssParams {
+        CtssParams::new(self.cone_tan_theta(camera, height))
+            .with_range(0.0, max_distance)
+            .with_max_steps(max_steps)
+            .relaxed(self.technique == Technique::CtssR)
+            .with_visibility_k(self.visibility_k)
+            .with_split_groups(self.split_groups)
+            .paper(self.ctss_paper())
+    }
+
     /// The edge classes the method claims to antialias: its technique's
     /// ([`registry::TechniqueInfo::claims`]), plus texture edges with the
     /// material gate and creases with hit-group subdivision.
@@ -364,8 +398,9 @@ fn side_of(samples: u32) -> Result<u32, MethodError> {
     }
 }
 
-impl fmt::Display for Method {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+impl Method {
+    /// The name, written as the registry spells it.
+    fn write_name(&self, f: &mut impl fmt::Write) -> fmt::Result {
         let i = info(self.technique);
         if i.modifiers.samples {
             write!(f, "{SSAA_PREFIX}{}", self.supersamples())?;
@@ -388,6 +423,16 @@ impl fmt::Display for Method {
             f.write_str(MATERIAL_GATE)?;
         }
         Ok(())
+    }
+}
+
+/// The method's name; width and alignment pad it (`{:<12}`) as they pad a
+/// string.
+impl fmt::Display for Method {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut name = String::new();
+        self.write_name(&mut name)?;
+        f.pad(&name)
     }
 }
 

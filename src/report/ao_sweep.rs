@@ -21,6 +21,7 @@ use plotters::prelude::*;
 
 use super::classes::{Class, ClassFlip};
 use super::metrics::{self, Rgb8};
+use super::named::{NOAA, SRAA_RT, SSAA4};
 use super::plot::{method_colour, save_chart, Chart, FAMILY, PLOT_SIZE};
 use super::timing::Timings;
 use super::{file_safe, render, Failure, Runner, SceneJob};
@@ -32,7 +33,7 @@ pub const AO_SWEEP: [u32; 4] = [0, 4, 16, 64];
 /// Sponza (add `--scene sponza`; read from `$SUBCONE_DATA_DIR`).
 pub const AO_SWEEP_SCENES: [&str; 2] = ["atrium", "sponza"];
 /// The methods swept.
-pub const AO_SWEEP_METHODS: [&str; 3] = ["noaa", "ssaa4", "sraa-rt"];
+pub const AO_SWEEP_METHODS: [Method; 3] = [NOAA, SSAA4, SRAA_RT];
 /// Timing and error size of the sweep.
 pub const AO_SWEEP_SIZE: (u32, u32) = (512, 512);
 /// The classes whose pooled FLIP the sweep reports: those an antialiasing
@@ -115,8 +116,8 @@ fn find<'a>(
 
 /// `(ray-count ratio, time ratio)` of ssaa4 over sraa-rt.
 pub fn ratios(rows: &[AoSweepRow], scene: &str, backend: &str, ao: u32) -> Option<(f64, f64)> {
-    let ss = find(rows, scene, backend, "ssaa4", ao)?;
-    let rt = find(rows, scene, backend, "sraa-rt", ao)?;
+    let ss = find(rows, scene, backend, SSAA4.to_string().as_str(), ao)?;
+    let rt = find(rows, scene, backend, SRAA_RT.to_string().as_str(), ao)?;
     (rt.rays_per_pixel > 0.0 && rt.ms_median > 0.0).then(|| {
         (
             ss.rays_per_pixel / rt.rays_per_pixel,
@@ -160,7 +161,7 @@ pixel over sraa-rt's, *time* ratio the same for the median time.\n",
         subcone_scene::backend::AO_RADIUS_FRACTION,
         AO_SWEEP_SIZE.0,
         AO_SWEEP_SIZE.1,
-        AO_SWEEP_METHODS.join(", "),
+        AO_SWEEP_METHODS.map(|m| m.to_string()).join(", "),
         match reference {
             Some(r) => format!(" against {r} rendered with the same N"),
             None => " (timing only: no errors)".into(),
@@ -181,7 +182,10 @@ pixel over sraa-rt's, *time* ratio the same for the median time.\n",
         let _ = writeln!(md, "|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
         for ao in AO_SWEEP {
             let get = |m: &str| find(&sweep.rows, &scene, &backend, m, ao);
-            if AO_SWEEP_METHODS.iter().all(|m| get(m).is_none()) {
+            if AO_SWEEP_METHODS
+                .iter()
+                .all(|m| get(&m.to_string()).is_none())
+            {
                 continue;
             }
             let ms = |m: &str| get(m).map_or("–".into(), |r| format!("{:.1}", r.ms_median));
@@ -190,12 +194,12 @@ pixel over sraa-rt's, *time* ratio the same for the median time.\n",
             let _ = writeln!(
                 md,
                 "| {ao} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
-                ms("noaa"),
-                ms("ssaa4"),
-                ms("sraa-rt"),
-                ef("noaa"),
-                ef("ssaa4"),
-                ef("sraa-rt"),
+                ms(NOAA.to_string().as_str()),
+                ms(SSAA4.to_string().as_str()),
+                ms(SRAA_RT.to_string().as_str()),
+                ef(NOAA.to_string().as_str()),
+                ef(SSAA4.to_string().as_str()),
+                ef(SRAA_RT.to_string().as_str()),
                 opt(rat.map(|r| r.0), 2),
                 opt(rat.map(|r| r.1), 2),
                 opt(rat.map(|r| r.1 / r.0), 2),
@@ -243,7 +247,10 @@ pub fn target_rows(sweep: &AoSweep) -> String {
         let edge = |m: &str| {
             find(&sweep.rows, &scene, &backend, m, AO_SPEEDUP_AT).and_then(|r| r.edge_flip)
         };
-        if let (Some(rt), Some(ss)) = (edge("sraa-rt"), edge("ssaa4")) {
+        if let (Some(rt), Some(ss)) = (
+            edge(SRAA_RT.to_string().as_str()),
+            edge(SSAA4.to_string().as_str()),
+        ) {
             let factor = rt / ss;
             let _ = writeln!(
                 md,
@@ -300,7 +307,7 @@ where
         .axis_desc_style((FAMILY, size - 2))
         .draw()
         .map_err(pe)?;
-    for m in AO_SWEEP_METHODS {
+    for m in AO_SWEEP_METHODS.map(|m| m.to_string()) {
         let pts: Vec<(f64, f64)> = AO_SWEEP
             .iter()
             .filter_map(|&ao| {
@@ -311,11 +318,11 @@ where
         if pts.is_empty() {
             continue;
         }
-        let c = method_colour(m);
+        let c = method_colour(&m);
         chart
             .draw_series(LineSeries::new(pts.clone(), c.stroke_width(3)))
             .map_err(pe)?
-            .label(m)
+            .label(m.as_str())
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(3)));
         chart
             .draw_series(pts.iter().map(|&p| Circle::new(p, 5, c.filled())))
@@ -412,10 +419,7 @@ impl Runner<'_> {
             ran: true,
             ..Default::default()
         };
-        let methods: Vec<Method> = AO_SWEEP_METHODS
-            .iter()
-            .map(|m| super::parse_method(m, "the AO sweep"))
-            .collect::<Result<_>>()?;
+        let methods: Vec<Method> = AO_SWEEP_METHODS.to_vec();
         let quality = plan.mode != super::Mode::TimingOnly;
         for name in AO_SWEEP_SCENES {
             let Some(base) = jobs.iter().find(|j| j.arg == name && !j.sdf) else {

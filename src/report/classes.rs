@@ -38,57 +38,11 @@ pub const CREASE_COS: f32 = 0.9;
 /// a texture step counts and texture noise of a few codes does not.
 pub const TEXTURE_ALBEDO: f32 = 0.05;
 
-/// An edge class.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Class {
-    /// Different surfaces, or a surface and the background, inside the pixel.
-    Silhouette,
-    /// One continuous surface folds inside the pixel.
-    Crease,
-    /// Smooth geometry, but a light's visibility changes inside the pixel.
-    Shadow,
-    /// Smooth geometry, but the albedo changes inside the pixel.
-    Texture,
-    /// The pixel sees a mirror.
-    Reflection,
-    /// None of the above.
-    Flat,
-}
-
+/// An edge class: the registry's ([`subcone_scene::EdgeClass`]), which
+/// also says which classes each method claims.
+pub use subcone_scene::registry::EdgeClass as Class;
 /// Every class, in column order.
-pub const CLASSES: [Class; 6] = [
-    Class::Silhouette,
-    Class::Crease,
-    Class::Shadow,
-    Class::Texture,
-    Class::Reflection,
-    Class::Flat,
-];
-
-impl Class {
-    /// The name used in columns (`flip_<name>`, `px_<name>`) and the report.
-    pub fn name(self) -> &'static str {
-        match self {
-            Class::Silhouette => "silhouette",
-            Class::Crease => "crease",
-            Class::Shadow => "shadow",
-            Class::Texture => "texture",
-            Class::Reflection => "reflection",
-            Class::Flat => "flat",
-        }
-    }
-
-    /// Index in [`CLASSES`].
-    pub fn index(self) -> usize {
-        self as usize
-    }
-}
-
-impl std::fmt::Display for Class {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
-    }
-}
+pub use subcone_scene::registry::EDGE_CLASSES as CLASSES;
 
 /// One mask per class over a `width × height` image.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -266,44 +220,19 @@ pub fn classify(sub: &Frame, side: u32) -> Result<ClassMasks> {
     })
 }
 
-/// The classes a method claims to fix: where it should beat NoAA.
-///
-/// | method | claimed |
-/// |---|---|
-/// | `ssaaN`, `ssaaN+ctss` | every class but flat |
-/// | `sraa` | silhouette, crease |
-/// | `sraa-rt` | silhouette, crease, shadow, reflection |
-/// | `+mat` variants | adds texture |
-/// | `ctss`, `ctss-r`, `-delayed` variants | silhouette |
-/// | `ctss+edges` | silhouette, crease |
-/// | `fxaa`, `smaa` | silhouette, crease, shadow, texture (luminance edges of any origin) |
-///
-/// `noaa` claims nothing; an unknown method claims nothing.
+/// The classes a method claims to fix: where it should beat NoAA. A method
+/// name claims what the registry says ([`subcone_scene::Method::claims`]:
+/// its technique's classes, texture with `+mat`, crease with `+edges`); the
+/// report's post-process rows (`smaa`, `--post-process`) claim what a
+/// post-process claims
+/// ([`POST_PROCESS_CLAIMS`](subcone_scene::registry::POST_PROCESS_CLAIMS));
+/// any other name claims nothing.
 pub fn claimed(method: &str) -> Vec<Class> {
-    use Class::*;
-    // A CTSS name may end in `-paper` after `-delayed` (`ctss-delayed-paper`).
-    let base = method.strip_suffix("-paper").unwrap_or(method);
-    let base = base.strip_suffix("-delayed").unwrap_or(base);
-    let (base, mat) = match base.strip_suffix("+mat") {
-        Some(b) => (b, true),
-        None => (base, false),
-    };
-    // A preset claims what its method claims.
-    let base = base.strip_suffix("-paper").unwrap_or(base);
-    let mut c = match base {
-        "sraa" => vec![Silhouette, Crease],
-        "sraa-rt" => vec![Silhouette, Crease, Shadow, Reflection],
-        "ctss" | "ctss-r" => vec![Silhouette],
-        "ctss+edges" => vec![Silhouette, Crease],
-        "fxaa" | "smaa" => vec![Silhouette, Crease, Shadow, Texture],
-        b if b.starts_with("ssaa") => vec![Silhouette, Crease, Shadow, Texture, Reflection],
-        _ => Vec::new(),
-    };
-    if mat && !c.contains(&Texture) && !c.is_empty() {
-        c.push(Texture);
-        c.sort();
+    match method.parse::<subcone_scene::Method>() {
+        Ok(m) => m.claims(),
+        Err(_) if method == super::SMAA => subcone_scene::registry::POST_PROCESS_CLAIMS.to_vec(),
+        Err(_) => Vec::new(),
     }
-    c
 }
 
 /// A method beats NoAA on a class when its FLIP there is at most this

@@ -60,6 +60,7 @@ pub mod crops;
 pub mod kernel_timing;
 pub mod load;
 pub mod metrics;
+pub mod named;
 pub mod output;
 pub mod papers;
 pub mod plot;
@@ -81,6 +82,7 @@ use subcone_scene::{
 
 use crate::cli;
 use metrics::Rgb8;
+use named::{NOAA, SRAA_RT, SSAA16};
 use timing::Timings;
 
 /// The built-in scenes of the papers, which the report runs by default:
@@ -519,7 +521,7 @@ impl Plan {
         }
         let mut methods: Vec<Method> = Vec::new();
         let want_smaa = names.iter().any(|n| n == SMAA);
-        if want_smaa && !names.iter().any(|n| n == "noaa") {
+        if want_smaa && !names.iter().any(|n| n == NOAA.to_string().as_str()) {
             // SMAA post-processes the NoAA frame and is judged against it.
             methods.push(Method::new(Technique::NoAa));
         }
@@ -572,7 +574,9 @@ impl Plan {
         let sweep = mode != Mode::Quick
             && size.is_none()
             && !args.no_sweep
-            && methods.iter().any(|m| m.to_string() == "sraa-rt");
+            && methods
+                .iter()
+                .any(|m| m.to_string() == SRAA_RT.to_string().as_str());
         Ok(Plan {
             mode,
             out: args.out.clone(),
@@ -834,7 +838,7 @@ impl Runner<'_> {
         let mut settings = RenderSettings::new(w * side, h * side);
         settings.aovs = true;
         let cpu = cli::backend("cpu")?;
-        let noaa = parse_method("noaa", "noaa")?;
+        let noaa = parse_method(NOAA.to_string().as_str(), NOAA.to_string().as_str())?;
         let (sub, _) = render(cpu.as_ref(), &job.scene, &noaa, &settings)?;
         classes::classify(&sub, side)
     }
@@ -844,7 +848,7 @@ impl Runner<'_> {
         let reference = Rgb8::from_frame(&self.reference(job)?)?;
         let (w, h) = job.quality_size;
         let cpu = cli::backend("cpu")?;
-        let noaa = parse_method("noaa", "noaa")?;
+        let noaa = parse_method(NOAA.to_string().as_str(), NOAA.to_string().as_str())?;
         let mut aov_settings = self.plan.settings(w, h, job.sdf);
         aov_settings.aovs = true;
         self.progress
@@ -1007,7 +1011,7 @@ fn image_name(prefix: &str, method: &str, backend: &str, first: bool) -> String 
 }
 
 /// The methods of the SRAA Table 1 sweep.
-pub const SWEEP_METHODS: [&str; 3] = ["noaa", "sraa-rt", "ssaa16"];
+pub const SWEEP_METHODS: [Method; 3] = [NOAA, SRAA_RT, SSAA16];
 
 /// Run the report: plan what applies, measure each scene (its methods, the
 /// SMAA row, crops and plots), run the SRAA Table 1 sweep and the CPU
@@ -1525,10 +1529,7 @@ impl Runner<'_> {
             "{}: SRAA Table 1 sweep (noaa, sraa-rt, ssaa16 at 256² to 1024²)",
             job.name
         ));
-        let methods: Vec<Method> = SWEEP_METHODS
-            .iter()
-            .filter_map(|m| m.parse().ok())
-            .collect();
+        let methods: Vec<Method> = SWEEP_METHODS.to_vec();
         let mut sweep = Vec::new();
         for (bname, backend) in &plan.backends {
             for side in SWEEP_SIZES {
@@ -1624,7 +1625,7 @@ impl Runner<'_> {
 fn ratios_to_noaa(rows: &mut [ResultRow]) {
     let noaa: Vec<(String, f64, Vec<f64>)> = rows
         .iter()
-        .filter(|r| r.method == "noaa")
+        .filter(|r| r.method == NOAA.to_string().as_str())
         .map(|r| (r.backend.clone(), r.ms_median, r.round_ms.clone()))
         .collect();
     for r in rows.iter_mut() {
@@ -1660,10 +1661,13 @@ fn write_crops(
         reflective: q.reflective.as_deref(),
     })?;
     let mut tiles: Vec<(String, &Rgb8)> = Vec::new();
-    if let Some((n, img)) = images.iter().find(|(n, _)| n == "noaa") {
+    if let Some((n, img)) = images.iter().find(|(n, _)| n == NOAA.to_string().as_str()) {
         tiles.push((n.clone(), img));
     }
-    for (n, img) in images.iter().filter(|(n, _)| n != "noaa") {
+    for (n, img) in images
+        .iter()
+        .filter(|(n, _)| n != NOAA.to_string().as_str())
+    {
         tiles.push((n.clone(), img));
     }
     tiles.push((format!("reference ({})", plan.reference), &q.reference));

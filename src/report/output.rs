@@ -21,8 +21,10 @@ use serde_json::{json, Map, Value};
 
 use super::classes::{self, Class, Verdict, CLASSES};
 use super::metrics::Rgb8;
+use super::named::{CTSS, CTSS_R, NOAA, SRAA, SRAA_RT, SSAA16, SSAA4, SSAA4_CTSS};
 use super::reference::{code_version, write_atomic};
 use super::{crops, file_safe, kernel_timing, load, timing, Mode, ReportSummary, ResultRow};
+use subcone_scene::Method;
 
 /// The columns every results file has, in order.
 pub const BASE_COLUMNS: [&str; 34] = [
@@ -833,12 +835,16 @@ fn class_section(scene: &str, rows: &[&ResultRow]) -> String {
 pub fn verdicts(rows: &[&ResultRow]) -> Vec<(String, Verdict)> {
     let mut out = Vec::new();
     for r in rows {
-        if r.method == "noaa" {
+        if r.method == NOAA.to_string().as_str() {
             continue;
         }
         let noaa = rows
             .iter()
-            .find(|n| n.method == "noaa" && n.backend == r.backend && n.scene == r.scene)
+            .find(|n| {
+                n.method == NOAA.to_string().as_str()
+                    && n.backend == r.backend
+                    && n.scene == r.scene
+            })
             .and_then(|n| n.classes);
         if let (Some(it), Some(noaa)) = (r.classes, noaa) {
             out.push((r.backend.clone(), Verdict::judge(&r.method, &it, &noaa)));
@@ -854,7 +860,7 @@ fn rows_for<'a>(s: &'a [ResultRow], method: &str, backend: &str) -> Vec<&'a Resu
 }
 
 /// CTSS overhead targets: average time ratio to NoAA over the SDF scenes.
-pub const CTSS_TARGETS: [(&str, f64); 2] = [("ctss", 1.20), ("ctss-r", 1.08)];
+pub const CTSS_TARGETS: [(Method, f64); 2] = [(CTSS, 1.20), (CTSS_R, 1.08)];
 /// CTSS's quality bar on the paper's SDF scenes
 /// ([`SDF_SCENES`](subcone_scene::sdf::SDF_SCENES)): `ctss` beats NoAA on
 /// silhouettes and holds on flat pixels (the verdict's rules), its
@@ -877,7 +883,7 @@ pub const RAY_THROUGHPUT_SHARE: f64 = 0.70;
 /// SRAA's quality bar against NoAA: on every triangle scene, `sraa` and
 /// `sraa-rt` beat NoAA on each class they claim and hold on flat pixels (the
 /// verdict's rules) and their whole-image FLIP is below NoAA's.
-pub const SRAA_METHODS: [&str; 2] = ["sraa", "sraa-rt"];
+pub const SRAA_METHODS: [Method; 2] = [SRAA, SRAA_RT];
 /// `sraa-rt`'s FLIP on silhouette, crease and shadow pixels at most this
 /// factor of `ssaa4`'s...
 pub const SRAA_RT_SSAA4_FACTOR: f64 = 1.25;
@@ -892,12 +898,13 @@ fn sraa_targets(s: &ReportSummary, sdf: &[&str], b: &str, md: &mut String) {
             .iter()
             .find(|x| x.method == method && x.backend == b && x.scene == scene)
     };
-    for method in SRAA_METHODS {
+    for method in SRAA_METHODS.map(|m| m.to_string()) {
+        let method = method.as_str();
         for r in rows_for(&s.rows, method, b)
             .into_iter()
             .filter(|r| !sdf.contains(&r.scene.as_str()))
         {
-            let Some(noaa) = find("noaa", &r.scene) else {
+            let Some(noaa) = find(NOAA.to_string().as_str(), &r.scene) else {
                 continue;
             };
             let (Some(it), Some(n), Some(a), Some(na)) =
@@ -922,7 +929,10 @@ fn sraa_targets(s: &ReportSummary, sdf: &[&str], b: &str, md: &mut String) {
         }
     }
     for scene in SRAA_RT_SSAA4_SCENES {
-        let (Some(rt), Some(ss)) = (find("sraa-rt", scene), find("ssaa4", scene)) else {
+        let (Some(rt), Some(ss)) = (
+            find(SRAA_RT.to_string().as_str(), scene),
+            find(SSAA4.to_string().as_str(), scene),
+        ) else {
             continue;
         };
         if let (Some(a), Some(e)) = (rt.classes, ss.classes) {
@@ -964,7 +974,10 @@ fn ctss_targets(s: &ReportSummary, b: &str, md: &mut String) {
             .find(|x| x.method == method && x.backend == b && x.scene == scene)
     };
     for scene in SDF_SCENES {
-        let (Some(r), Some(noaa)) = (find("ctss", scene), find("noaa", scene)) else {
+        let (Some(r), Some(noaa)) = (
+            find(CTSS.to_string().as_str(), scene),
+            find(NOAA.to_string().as_str(), scene),
+        ) else {
             continue;
         };
         let (Some(it), Some(n), Some(a), Some(na)) =
@@ -972,7 +985,7 @@ fn ctss_targets(s: &ReportSummary, b: &str, md: &mut String) {
         else {
             continue;
         };
-        let v = Verdict::judge("ctss", &it, &n);
+        let v = Verdict::judge(CTSS.to_string().as_str(), &it, &n);
         let flat = v
             .flat
             .map(|(x, y)| format!("flat {x:.4} vs {y:.4}"))
@@ -988,7 +1001,7 @@ fn ctss_targets(s: &ReportSummary, b: &str, md: &mut String) {
             "| ctss beats NoAA on silhouettes, holds on flat, whole FLIP below NoAA's | {b} | {scene} | {silhouettes}, {flat}, whole {a:.4} vs {na:.4} | {} |",
             yes(met)
         );
-        if let Some(ss) = find("ssaa4", scene).and_then(|x| x.classes) {
+        if let Some(ss) = find(SSAA4.to_string().as_str(), scene).and_then(|x| x.classes) {
             if let (Some(x), Some(y)) = (it.flip[sil], ss.flip[sil]) {
                 let ratio = x / y;
                 let _ = writeln!(
@@ -1000,14 +1013,14 @@ fn ctss_targets(s: &ReportSummary, b: &str, md: &mut String) {
         }
     }
     for scene in STIFF_SCENES.iter().chain(&TRANSPARENT_SCENES) {
-        let Some(na) = find("noaa", scene).and_then(|x| x.flip_mean) else {
+        let Some(na) = find(NOAA.to_string().as_str(), scene).and_then(|x| x.flip_mean) else {
             continue;
         };
         let mut worst: Option<(&str, f64)> = None;
         for r in s.rows.iter().filter(|x| {
             x.backend == b
                 && x.scene == *scene
-                && x.method.contains("ctss")
+                && x.method.contains(CTSS.to_string().as_str())
                 && !x.method.ends_with("-paper")
                 && x.flip_mean.is_some()
         }) {
@@ -1060,7 +1073,7 @@ lowest or its highest round.\n",
         .collect();
     let yes = |ok: bool| if ok { "met" } else { "**not met**" };
     for b in &ctx.backends {
-        for (method, limit) in CTSS_TARGETS {
+        for (method, limit) in CTSS_TARGETS.map(|(m, l)| (m.to_string(), l)) {
             let Some(avg) = MeanRatio::of(s.rows.iter().filter(|r| {
                 &r.backend == b && r.method == method && sdf.contains(&r.scene.as_str())
             })) else {
@@ -1082,15 +1095,13 @@ lowest or its highest round.\n",
         ctss_targets(s, b, &mut md);
         sraa_targets(s, &sdf, b, &mut md);
         // The SRAA-RT target is the paper's, on triangle scenes.
-        for rt in rows_for(&s.rows, "sraa-rt", b)
+        for rt in rows_for(&s.rows, SRAA_RT.to_string().as_str(), b)
             .into_iter()
             .filter(|r| !sdf.contains(&r.scene.as_str()))
         {
-            let Some(ss) = s
-                .rows
-                .iter()
-                .find(|x| x.method == "ssaa16" && &x.backend == b && x.scene == rt.scene)
-            else {
+            let Some(ss) = s.rows.iter().find(|x| {
+                x.method == SSAA16.to_string().as_str() && &x.backend == b && x.scene == rt.scene
+            }) else {
                 continue;
             };
             // Per round where both were timed in the same rounds; else the
@@ -1194,10 +1205,10 @@ ssaa16's median time over sraa-rt's.\n"
     );
     let sdf_scene = |name: &str| ctx.scenes.iter().any(|sc| sc.sdf && sc.name == name);
     for b in &ctx.backends {
-        let sweep: Vec<&ResultRow> = rows_for(&s.sweep, "sraa-rt", b);
+        let sweep: Vec<&ResultRow> = rows_for(&s.sweep, SRAA_RT.to_string().as_str(), b);
         let (source, rows): (&[ResultRow], Vec<&ResultRow>) = if sweep.is_empty() {
             // Table 1 is about triangle scenes: SDF rows are in `sdf_pick`.
-            let rows = rows_for(&s.rows, "sraa-rt", b)
+            let rows = rows_for(&s.rows, SRAA_RT.to_string().as_str(), b)
                 .into_iter()
                 .filter(|r| !sdf_scene(&r.scene))
                 .collect();
@@ -1219,7 +1230,7 @@ ssaa16's median time over sraa-rt's.\n"
                 .iter()
                 .find(|p| p.0 == r.width && p.0 == r.height);
             let ss = source.iter().find(|x| {
-                x.method == "ssaa16"
+                x.method == SSAA16.to_string().as_str()
                     && x.backend == r.backend
                     && x.scene == r.scene
                     && x.width == r.width
@@ -1277,9 +1288,15 @@ the means of the scenes' smallest and of their largest per-round ratios.\n"
         let _ = writeln!(md, "|---|--:|--:|--:|");
         let mut lines = CTSS_TABLE1
             .iter()
-            .map(|(paper, ours, ratio)| (format!("{paper} / {ours}"), Some(*ratio), *ours))
+            .map(|(paper, ours, ratio)| {
+                (format!("{paper} / {ours}"), Some(*ratio), ours.to_string())
+            })
             .collect::<Vec<_>>();
-        lines.push(("4x SS + CTSS / ssaa4+ctss".into(), None, "ssaa4+ctss"));
+        lines.push((
+            format!("4x SS + CTSS / {SSAA4_CTSS}"),
+            None,
+            SSAA4_CTSS.to_string(),
+        ));
         for (name, paper, ours) in lines {
             let avg = MeanRatio::of(s.rows.iter().filter(|r| {
                 r.backend == *b && r.method == ours && sdf.contains(&r.scene.as_str())
@@ -1331,7 +1348,10 @@ image and edge mask); time: median ms at the timing size.\n"
         // (scenes where each has the lower FLIP, where each is faster)
         let (mut sraa_better, mut ctss_better, mut sraa_faster, mut ctss_faster) = (0, 0, 0, 0);
         for sc in &sdf {
-            let (Some(rt), Some(ct)) = (find(sc, "sraa-rt"), find(sc, "ctss")) else {
+            let (Some(rt), Some(ct)) = (
+                find(sc, SRAA_RT.to_string().as_str()),
+                find(sc, CTSS.to_string().as_str()),
+            ) else {
                 continue;
             };
             let (Some(er), Some(ec)) = (rt.flip_mean, ct.flip_mean) else {
@@ -1361,7 +1381,7 @@ image and edge mask); time: median ms at the timing size.\n"
                     ct.ms_median / rt.ms_median
                 ),
             };
-            let noaa = find(sc, "noaa").and_then(|r| r.flip_mean);
+            let noaa = find(sc, NOAA.to_string().as_str()).and_then(|r| r.flip_mean);
             lines.push(format!(
                 "| {sc} | {} | {} | {} | {} | {} | {} | {} | {pick} |",
                 f(noaa, 4),

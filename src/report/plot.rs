@@ -45,28 +45,30 @@ fn pe<E: std::fmt::Debug>(what: &str) -> impl FnOnce(E) -> anyhow::Error + '_ {
 /// Plot size in pixels.
 pub const PLOT_SIZE: (u32, u32) = (960, 640);
 
-/// A fixed colour per method, so every plot agrees.
+/// A fixed colour per method, so every plot agrees: the registry's
+/// ([`subcone_scene::registry::plot_colour`]) for the default comparison,
+/// [`SMAA_COLOUR`] for the SMAA row, a palette colour picked by the name's
+/// hash for any other.
 pub fn method_colour(method: &str) -> RGBColor {
-    match method {
-        "noaa" => RGBColor(90, 90, 90),
-        "ssaa4" => RGBColor(31, 119, 180),
-        "ssaa16" => RGBColor(23, 75, 140),
-        "sraa" => RGBColor(255, 127, 14),
-        "sraa-rt" => RGBColor(214, 39, 40),
-        "ctss" => RGBColor(44, 160, 44),
-        "ctss-r" => RGBColor(148, 103, 189),
-        "ssaa4+ctss" => RGBColor(140, 86, 75),
-        "fxaa" => RGBColor(227, 119, 194),
-        "smaa" => RGBColor(188, 189, 34),
-        other => {
-            let h = other
-                .bytes()
-                .fold(7u32, |a, b| a.wrapping_mul(31).wrapping_add(b as u32));
-            let c = Palette99::pick(h as usize % 99).to_rgba();
-            RGBColor(c.0, c.1, c.2)
-        }
+    let registered = method
+        .parse::<subcone_scene::Method>()
+        .ok()
+        .and_then(|m| subcone_scene::registry::plot_colour(&m));
+    if let Some([r, g, b]) = registered {
+        return RGBColor(r, g, b);
     }
+    if method == super::SMAA {
+        return SMAA_COLOUR;
+    }
+    let h = method
+        .bytes()
+        .fold(7u32, |a, b| a.wrapping_mul(31).wrapping_add(b as u32));
+    let c = Palette99::pick(h as usize % 99).to_rgba();
+    RGBColor(c.0, c.1, c.2)
 }
+
+/// The SMAA row's colour.
+pub const SMAA_COLOUR: RGBColor = RGBColor(188, 189, 34);
 
 /// A fixed colour per pass name (column-safe).
 pub fn pass_colour(pass: &str, i: usize) -> RGBColor {

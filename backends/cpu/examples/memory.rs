@@ -24,7 +24,7 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use subcone_cpu::CpuBackend;
-use subcone_kernels::passes::Passes;
+use subcone_kernels::passes::{Passes, Technique};
 use subcone_scene::{builtin::builtin, Backend, Frame, Method, RenderSettings, Scene};
 
 /// The system allocator, counting live bytes and their high-water mark.
@@ -74,7 +74,12 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static ALLOC: Counting = Counting;
 
-const METHODS: [&str; 4] = ["noaa", "ssaa4", "sraa", "sraa-rt"];
+const METHODS: [Method; 4] = [
+    Method::new(Technique::NoAa),
+    Method::ssaa_grid(2),
+    Method::new(Technique::Sraa),
+    Method::new(Technique::SraaRt),
+];
 
 /// Buffer bytes and peak heap bytes of one frame.
 struct Measure {
@@ -82,8 +87,7 @@ struct Measure {
     peak: usize,
 }
 
-fn measure(b: &CpuBackend, scene: &Scene, method: &str, size: u32, force: Passes) -> Measure {
-    let m: Method = method.parse().expect("a known method");
+fn measure(b: &CpuBackend, scene: &Scene, m: Method, size: u32, force: Passes) -> Measure {
     let mut settings = RenderSettings::new(size, size);
     settings.force_passes = force;
     // Warm-up at a small size: builds and caches the BVH.

@@ -243,14 +243,9 @@ impl<F: SdfField> SdfView<'_, F> {
         c
     }
 
-    fn params(&self, tan: f32, method: &Method) -> CtssParams {
-        CtssParams::new(tan)
-            .with_range(0.0, self.max_distance)
-            .with_max_steps(self.max_steps)
-            .relaxed(method.technique() == Technique::CtssR)
-            .with_visibility_k(method.visibility_k())
-            .with_split_groups(method.split_groups())
-            .paper(method.ctss_paper())
+    /// The method's CTSS parameters on this view ([`Method::ctss_params`]).
+    fn params(&self, method: &Method, height: u32) -> CtssParams {
+        method.ctss_params(self.camera, height, self.max_distance, self.max_steps)
     }
 
     /// One NoAA sample.
@@ -469,10 +464,7 @@ impl<F: SdfField> SdfView<'_, F> {
         let sub_shadows = passes.contains(Passes::SUBPIXEL_SHADOW) && layout.lights > 0;
         let nl = layout.len();
         let split = layout.lights > 0;
-        let params = self.params(
-            self.camera.cone_tan_theta(s.height, method.cone_coverage()),
-            method,
-        );
+        let params = self.params(method, s.height);
         let mut b = Buffers {
             geo: vec![Geometry::MISS; n],
             values: vec![Vec3::ZERO; n * nl],
@@ -668,10 +660,7 @@ impl<F: SdfField> SdfView<'_, F> {
     /// counts as visible, as on triangles) and mirror reflectance.
     fn centre_aovs(&self, frame: &mut Frame, s: &RenderSettings) {
         let w = s.width as usize;
-        let plain = self.params(
-            self.camera.cone_tan_theta(s.height, 1.0),
-            &Method::new(Technique::NoAa),
-        );
+        let plain = self.params(&Method::new(Technique::NoAa), s.height);
         let lights = self.lights.len().min(subcone_kernels::passes::MAX_LIGHTS);
         let g: Vec<CentreAovs> = if let Some(program) = &self.program {
             // In packets, row by row: the same values.
@@ -767,8 +756,7 @@ impl<F: SdfField> SdfView<'_, F> {
             Technique::Ctss | Technique::CtssR | Technique::SsaaCtss
         );
         // Each supersample's cone covers its own sub-pixel.
-        let tan = self.camera.cone_tan_theta(s.height, method.cone_coverage()) / side as f32;
-        let params = self.params(tan, method);
+        let params = self.params(method, s.height);
         let mut frame = Frame::new(s.width, s.height);
         let mut spp = vec![0.0f32; w * h];
         let start = Instant::now();

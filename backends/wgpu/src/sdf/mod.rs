@@ -51,7 +51,6 @@ use std::sync::Arc;
 
 use bytemuck::{Pod, Zeroable};
 
-use subcone_kernels::ctss::CtssParams;
 use subcone_kernels::passes::{Passes, Technique};
 use subcone_scene::sdf::wgsl::WgslField;
 use subcone_scene::{Frame, FrameStats, Method, RayCounts, RenderError, UnsupportedReason};
@@ -144,17 +143,6 @@ fn scatter_table(
     Ok(Some(b))
 }
 
-/// `SdfView::params` of the CPU backend.
-fn ctss_params(tan: f32, method: &Method, max_distance: f32, max_steps: u32) -> CtssParams {
-    CtssParams::new(tan)
-        .with_range(0.0, max_distance)
-        .with_max_steps(max_steps)
-        .relaxed(method.technique() == Technique::CtssR)
-        .with_visibility_k(method.visibility_k())
-        .with_split_groups(method.split_groups())
-        .paper(method.ctss_paper())
-}
-
 /// The frame's constants; `SdfFrame` in trace.wgsl (112 bytes).
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
@@ -205,8 +193,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         method.technique(),
         Technique::Ctss | Technique::CtssR | Technique::SsaaCtss
     );
-    let tan = camera.cone_tan_theta(h, method.cone_coverage()) / side as f32;
-    let params = ctss_params(tan, method, max_distance, max_steps);
+    let params = method.ctss_params(camera, h, max_distance, max_steps);
     let pixels = w as u64 * h as u64;
     let groups = compute::workgroups(ctx, "SDF", w, h, WORKGROUP)?;
     let px_bytes = pixels * 16;
@@ -246,12 +233,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     }
     if settings.aovs {
         // Depth and normal through each pixel centre (not timed, as on the CPU).
-        let plain = ctss_params(
-            camera.cone_tan_theta(h, 1.0),
-            &Method::new(Technique::NoAa),
-            max_distance,
-            max_steps,
-        );
+        let plain = Method::new(Technique::NoAa).ctss_params(camera, h, max_distance, max_steps);
         b.uniform(ctx, "aov_params", "subcone_CtssParams", &plain)?;
         b.storage(ctx, "aovs", "aov_out", "array<vec4<f32>>", px_bytes)?;
     }

@@ -653,9 +653,7 @@ pub(crate) fn subpixel_geometry_both(
     height: u32,
 ) -> Result<(SubGeometry, SubGeometry), RenderError> {
     let s = RenderSettings::new(width, height);
-    let method: Method = "sraa-rt"
-        .parse()
-        .map_err(|e| RenderError::Method(format!("{e:?}")))?;
+    let method = Method::new(subcone_kernels::passes::Technique::SraaRt);
     let passes = subcone_kernels::passes::required_passes(method.technique(), scene.features())
         .map_err(|e| RenderError::Method(e.to_string()))?;
     let sg = bvh::scene_gpu(ctx, scene)?;
