@@ -1,51 +1,13 @@
 //! What the command line does, as functions that return errors as values.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::Instant;
 
 use anyhow::{anyhow, Result};
 use subcone_cpu::isa::Isa;
-use subcone_cpu::CpuBackend;
-use subcone_scene::{Backend, Frame, Method, RenderSettings, Scene};
+use subcone_scene::{Frame, Method, RenderSettings};
 
-/// Parse `WxH` (e.g. `1024x768`).
-pub fn parse_size(s: &str) -> Result<(u32, u32)> {
-    let (w, h) = s
-        .split_once(['x', 'X'])
-        .ok_or_else(|| anyhow!("invalid --size {s:?}: expected WxH, e.g. 512x512"))?;
-    let p = |v: &str| {
-        v.trim()
-            .parse::<u32>()
-            .map_err(|_| anyhow!("invalid --size {s:?}: {v:?} is not a whole number"))
-    };
-    Ok((p(w)?, p(h)?))
-}
-
-/// A backend by name (`cpu` or `wgpu`). Opening `wgpu` fails with a message
-/// naming the fix when no GPU adapter exists.
-pub fn backend(name: &str) -> Result<Box<dyn Backend + Send + Sync>> {
-    backend_on(name, None)
-}
-
-/// [`backend`], with the CPU backend's instruction-set path forced to `isa`
-/// ([`CpuBackend::with_isa`]); `isa` with another backend is an error.
-pub fn backend_on(name: &str, isa: Option<Isa>) -> Result<Box<dyn Backend + Send + Sync>> {
-    match (name.trim(), isa) {
-        ("cpu", Some(isa)) => Ok(Box::new(CpuBackend::new().with_isa(isa))),
-        (other, Some(_)) if other != "cpu" => Err(anyhow!(
-            "--isa chooses the cpu backend's instruction-set path; backend {other:?} has none"
-        )),
-        ("cpu", _) => Ok(Box::new(CpuBackend::new())),
-        ("wgpu", _) => Ok(Box::new(subcone_wgpu::WgpuBackend::new()?)),
-        (other, _) => Err(anyhow!("unknown backend {other:?}: expected cpu or wgpu")),
-    }
-}
-
-/// Load a scene by name (built-in, or `sponza`/`sponza-mirror` from the data
-/// directory) or by path (`.obj`, `.gltf`, `.glb`).
-pub fn scene(arg: &str) -> Result<Scene> {
-    Ok(subcone_scene::load::scene_from_arg(arg)?)
-}
+pub use crate::setup::{backend, backend_on, parse_ao, parse_isa, parse_size, scene};
 
 /// A built-in SDF scene written as an SDF scene file (see
 /// [`subcone_scene::sdf::file`]); errors name the built-in SDF scenes when
@@ -263,116 +225,11 @@ pub fn render(opts: &RenderOptions) -> Result<RenderReport> {
     })
 }
 
-/// Parse `--isa`: `baseline`, `avx2` or `avx512`.
-pub fn parse_isa(s: &str) -> std::result::Result<Isa, String> {
-    s.trim().parse()
-}
-
 /// A settings error, naming the `--ao` flag when it is about the AO rays.
 pub fn ao_context(e: subcone_scene::RenderError, ao: u32) -> anyhow::Error {
     if ao > subcone_scene::backend::MAX_AO_RAYS {
         anyhow!("--ao {ao}: {e}")
     } else {
         e.into()
-    }
-}
-
-/// Parse and check `--ao N`: ambient-occlusion rays per shaded point, at
-/// most [`subcone_scene::backend::MAX_AO_RAYS`].
-pub fn parse_ao(s: &str) -> std::result::Result<u32, String> {
-    let max = subcone_scene::backend::MAX_AO_RAYS;
-    let n: u32 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("{s:?} is not a whole number of rays (0 to {max})"))?;
-    if n > max {
-        return Err(format!(
-            "{n} ambient-occlusion rays per point: at most {max} are supported"
-        ));
-    }
-    Ok(n)
-}
-
-/// Arguments of `subcone report`.
-#[derive(clap::Args, Clone, Debug, PartialEq)]
-pub struct ReportArgs {
-    /// Add a scene: a built-in name, or a path to a mesh file (.obj, .gltf,
-    /// .glb) or an SDF scene file (.sdf.ron) (repeatable).
-    #[arg(long = "scene", value_name = "NAME|PATH")]
-    pub scenes: Vec<String>,
-    /// Leave out the built-in paper scenes: report only the --scene scenes.
-    #[arg(long)]
-    pub no_paper_scenes: bool,
-    /// Methods to compare, comma-separated (default: noaa, ssaa4, ssaa16, sraa,
-    /// sraa-rt, sraa+mat, sraa-rt+mat, their -paper presets, ctss, ctss-paper, ctss-delayed, ctss+edges, ctss-r, ssaa4+ctss, fxaa; each where it applies).
-    #[arg(long = "method", value_delimiter = ',', value_name = "METHOD")]
-    pub methods: Vec<String>,
-    /// Output directory.
-    #[arg(long, default_value = "report")]
-    pub out: PathBuf,
-    /// Backends, comma-separated (cpu, wgpu).
-    #[arg(long, default_value = "cpu")]
-    pub backend: String,
-    /// Image size WxH for both timing and error, overriding the defaults.
-    #[arg(long, value_name = "WxH")]
-    pub size: Option<String>,
-    /// Small, fast run (CI): 96x64, 1 warm-up + 3 runs, SSAA64 reference.
-    #[arg(long)]
-    pub quick: bool,
-    /// Only time: skip references and errors.
-    #[arg(long)]
-    pub timing_only: bool,
-    /// Timed runs per method after one warm-up (default 3).
-    #[arg(long)]
-    pub runs: Option<u32>,
-    /// Reference method (default ssaa256; ssaa64 with --quick).
-    #[arg(long, value_name = "METHOD")]
-    pub reference: Option<String>,
-    /// Reference cache directory (default OUT/cache).
-    #[arg(long, value_name = "DIR")]
-    pub cache: Option<PathBuf>,
-    /// Re-render references even when cached.
-    #[arg(long)]
-    pub refresh_references: bool,
-    /// Skip the SRAA Table 1 resolution sweep (256² to 1024² on the atrium).
-    #[arg(long)]
-    pub no_sweep: bool,
-    /// Go on after a render fails: list the failures in the report and exit 0
-    /// (without it, the first failure stops the run with its error).
-    #[arg(long)]
-    pub keep_going: bool,
-    /// Ambient-occlusion rays per shaded point for every render of the run
-    /// (triangle scenes; 0: off, at most 256). Part of the reference cache key.
-    #[arg(long = "ao", value_name = "N", default_value_t = 0, value_parser = parse_ao)]
-    pub ao: u32,
-    /// Add the section "Where SRAA pays": on atrium and Sponza at 512²,
-    /// noaa, ssaa4 and sraa-rt with ambient occlusion 0, 4, 16 and 64 rays
-    /// (time, silhouette + crease + shadow FLIP, ray-count and time ratios).
-    /// Never part of the default or quick report.
-    #[arg(long)]
-    pub sraa_sweep: bool,
-}
-
-impl Default for ReportArgs {
-    /// The same defaults as the command line.
-    fn default() -> Self {
-        ReportArgs {
-            scenes: Vec::new(),
-            no_paper_scenes: false,
-            methods: Vec::new(),
-            out: PathBuf::from("report"),
-            backend: "cpu".into(),
-            size: None,
-            quick: false,
-            timing_only: false,
-            runs: None,
-            reference: None,
-            cache: None,
-            refresh_references: false,
-            no_sweep: false,
-            keep_going: false,
-            ao: 0,
-            sraa_sweep: false,
-        }
     }
 }

@@ -14,6 +14,7 @@
 
 pub mod cli;
 pub mod report;
+pub mod setup;
 pub mod vectors;
 
 pub use subcone_kernels as kernels;

@@ -246,3 +246,30 @@ fn ambient_occlusion_flag() {
         assert!(!bad.exists());
     }
 }
+
+/// A bad scene file is an error that says where and why once: the scene
+/// error's message holds the file error's, and the chain of causes does not
+/// print it a second time.
+#[test]
+fn a_bad_scene_file_prints_its_cause_once() {
+    let dir = std::env::temp_dir().join(format!("subcone-cli-cause-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("nan.sdf.ron");
+    std::fs::write(
+        &path,
+        "SdfScene(\n    camera: (position: (0, 1, -5), target: (0, 1, 0)),\n    materials: [(name: \"floor\")],\n    lights: [],\n    root: Sphere(radius: NaN),\n)\n",
+    )
+    .unwrap();
+    let (ok, text) = subcone(&[
+        "render",
+        "--scene",
+        path.to_str().unwrap(),
+        "--method",
+        "noaa",
+    ]);
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(!ok, "{text}");
+    assert!(text.contains("radius must be finite"), "{text}");
+    assert_eq!(text.matches("radius must be finite").count(), 1, "{text}");
+    assert_eq!(text.matches("nan.sdf.ron:").count(), 1, "{text}");
+}

@@ -22,7 +22,7 @@
 #define SUBCONE_VERSION_MAJOR 0
 
 // Minor version.
-#define SUBCONE_VERSION_MINOR 1
+#define SUBCONE_VERSION_MINOR 2
 
 // Patch version.
 #define SUBCONE_VERSION_PATCH 0

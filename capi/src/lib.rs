@@ -59,7 +59,7 @@ use subcone_kernels::sraa::{
 /// Major version of this library (the crate's; see [`subcone_version`]).
 pub const SUBCONE_VERSION_MAJOR: u32 = 0;
 /// Minor version.
-pub const SUBCONE_VERSION_MINOR: u32 = 1;
+pub const SUBCONE_VERSION_MINOR: u32 = 2;
 /// Patch version.
 pub const SUBCONE_VERSION_PATCH: u32 = 0;
 

@@ -354,7 +354,10 @@ pub fn plan_forced(
         }
     }
     let side = method.ssaa_side();
-    if let Some(max) = caps.max_sdf_side_samples.filter(|&max| side > max) {
+    let limit = caps
+        .max_sdf_side_samples
+        .filter(|_| technique.needs.sdf_supersampling);
+    if let Some(max) = limit.filter(|&max| side > max) {
         return refuse(UnsupportedReason::TooManySamples { side, max });
     }
     Ok(passes)

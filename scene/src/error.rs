@@ -45,9 +45,16 @@ pub enum SceneError {
     #[error(transparent)]
     Sdf(#[from] crate::sdf::SdfError),
     /// An SDF scene file (`.sdf.ron`) could not be read: the error names the
-    /// line or the path in the file.
+    /// line or the path in the file. Its message is part of this one, not a
+    /// `source` as well, so that a chain of causes (`{:#}`) prints it once.
     #[error("cannot load scene {0}")]
-    SdfFile(#[from] crate::sdf::file::SdfFileError),
+    SdfFile(crate::sdf::file::SdfFileError),
+}
+
+impl From<crate::sdf::file::SdfFileError> for SceneError {
+    fn from(e: crate::sdf::file::SdfFileError) -> Self {
+        SceneError::SdfFile(e)
+    }
 }
 
 /// A frame could not be rendered or written.

@@ -144,6 +144,17 @@ pub struct Modifiers {
     pub edges: bool,
 }
 
+impl Modifiers {
+    /// No modifier.
+    pub const NONE: Modifiers = Modifiers {
+        samples: false,
+        paper: false,
+        material_gate: false,
+        delayed: false,
+        edges: false,
+    };
+}
+
 /// What a backend needs, beyond tracing the scene's geometry, to run a
 /// technique ([`crate::backend::Capabilities`] says what it has).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -154,8 +165,14 @@ pub struct Needs {
     /// On SDF scenes: several samples per pixel side
     /// ([`crate::backend::Capabilities::max_sdf_side_samples`] bounds them).
     pub sdf_supersampling: bool,
-    /// A post-process pass over the finished frame (FXAA).
-    pub post_process: bool,
+}
+
+impl Needs {
+    /// Nothing beyond tracing the scene's geometry.
+    pub const NONE: Needs = Needs {
+        sdf_subpixel_geometry: false,
+        sdf_supersampling: false,
+    };
 }
 
 /// One technique in the registry.
@@ -196,20 +213,10 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
         grammar: "noaa",
         family: Family::NoAa,
         claims: &[],
-        modifiers: Modifiers {
-            samples: false,
-            paper: false,
-            material_gate: false,
-            delayed: false,
-            edges: false,
-        },
+        modifiers: Modifiers::NONE,
         geometry: Geometry::Any,
         carries_opacity: true,
-        needs: Needs {
-            sdf_subpixel_geometry: false,
-            sdf_supersampling: false,
-            post_process: false,
-        },
+        needs: Needs::NONE,
         description: "one ray through each pixel centre: no antialiasing",
     },
     TechniqueInfo {
@@ -220,17 +227,13 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
         claims: SUPERSAMPLING_CLAIMS,
         modifiers: Modifiers {
             samples: true,
-            paper: false,
-            material_gate: false,
-            delayed: false,
-            edges: false,
+            ..Modifiers::NONE
         },
         geometry: Geometry::Any,
         carries_opacity: true,
         needs: Needs {
-            sdf_subpixel_geometry: false,
             sdf_supersampling: true,
-            post_process: false,
+            ..Needs::NONE
         },
         description: "N shaded samples per pixel on a regular grid, box-filtered",
     },
@@ -241,19 +244,13 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
         family: Family::Sraa,
         claims: &[EdgeClass::Silhouette, EdgeClass::Crease],
         modifiers: Modifiers {
-            samples: false,
             paper: true,
             material_gate: true,
-            delayed: false,
-            edges: false,
+            ..Modifiers::NONE
         },
         geometry: Geometry::Triangles,
         carries_opacity: false,
-        needs: Needs {
-            sdf_subpixel_geometry: false,
-            sdf_supersampling: false,
-            post_process: false,
-        },
+        needs: Needs::NONE,
         description: "subpixel reconstruction (Chajdas et al.): one shaded sample, four geometric subsamples, eq. 1",
     },
     TechniqueInfo {
@@ -268,18 +265,15 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
             EdgeClass::Reflection,
         ],
         modifiers: Modifiers {
-            samples: false,
             paper: true,
             material_gate: true,
-            delayed: false,
-            edges: false,
+            ..Modifiers::NONE
         },
         geometry: Geometry::Any,
         carries_opacity: false,
         needs: Needs {
             sdf_subpixel_geometry: true,
-            sdf_supersampling: false,
-            post_process: false,
+            ..Needs::NONE
         },
         description: "SRAA for ray tracing: plus shadow-gated weights (eq. 2) and secondary shading on secondary geometry (§3.3)",
     },
@@ -290,19 +284,14 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
         family: Family::Ctss,
         claims: &[EdgeClass::Silhouette],
         modifiers: Modifiers {
-            samples: false,
             paper: true,
-            material_gate: false,
             delayed: true,
             edges: true,
+            ..Modifiers::NONE
         },
         geometry: Geometry::Sdf,
         carries_opacity: true,
-        needs: Needs {
-            sdf_subpixel_geometry: false,
-            sdf_supersampling: false,
-            post_process: false,
-        },
+        needs: Needs::NONE,
         description: "cone-traced supersampling: hit groups and a 32-bit visibility mask, traced to full occlusion",
     },
     TechniqueInfo {
@@ -312,19 +301,13 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
         family: Family::Ctss,
         claims: &[EdgeClass::Silhouette],
         modifiers: Modifiers {
-            samples: false,
             paper: true,
-            material_gate: false,
             delayed: true,
-            edges: false,
+            ..Modifiers::NONE
         },
         geometry: Geometry::Sdf,
         carries_opacity: true,
-        needs: Needs {
-            sdf_subpixel_geometry: false,
-            sdf_supersampling: false,
-            post_process: false,
-        },
+        needs: Needs::NONE,
         description: "CTSS-R: cone tracing that stops at the first hard hit",
     },
     TechniqueInfo {
@@ -336,16 +319,14 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
         modifiers: Modifiers {
             samples: true,
             paper: true,
-            material_gate: false,
             delayed: true,
-            edges: false,
+            ..Modifiers::NONE
         },
         geometry: Geometry::Sdf,
         carries_opacity: true,
         needs: Needs {
-            sdf_subpixel_geometry: false,
             sdf_supersampling: true,
-            post_process: false,
+            ..Needs::NONE
         },
         description: "N×N supersampling with a cone traced per sample (CTSS §4.2)",
     },
@@ -355,20 +336,10 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
         grammar: "fxaa",
         family: Family::PostProcess,
         claims: POST_PROCESS_CLAIMS,
-        modifiers: Modifiers {
-            samples: false,
-            paper: false,
-            material_gate: false,
-            delayed: false,
-            edges: false,
-        },
+        modifiers: Modifiers::NONE,
         geometry: Geometry::Any,
         carries_opacity: true,
-        needs: Needs {
-            sdf_subpixel_geometry: false,
-            sdf_supersampling: false,
-            post_process: true,
-        },
+        needs: Needs::NONE,
         description: "FXAA 3.11 over the NoAA frame (the post-process baseline)",
     },
 ];

@@ -55,6 +55,7 @@
 //! ```
 
 pub mod ao_sweep;
+mod args;
 pub mod classes;
 pub mod crops;
 pub mod kernel_timing;
@@ -80,7 +81,7 @@ use subcone_scene::{
     Albedo, Backend, Frame, Method, RenderSettings, Scene, Unsupported, UnsupportedReason,
 };
 
-use crate::cli;
+use crate::setup;
 use metrics::Rgb8;
 use named::{NOAA, SRAA_RT, SSAA16};
 use timing::Timings;
@@ -124,7 +125,7 @@ pub const SWEEP_SIZES: [u32; 4] = [256, 512, 768, 1024];
 /// The scene of the SRAA Table 1 sweep: our Sponza-like atrium.
 pub const SWEEP_SCENE: &str = "atrium";
 
-pub use crate::cli::ReportArgs;
+pub use args::ReportArgs;
 
 /// One method on one scene with one backend: a row of `results.csv`.
 #[derive(Clone, Debug, PartialEq)]
@@ -415,7 +416,7 @@ pub fn paper_scenes() -> (Vec<(String, Scene)>, Unavailable) {
     let mut ok = Vec::new();
     let mut missing = Vec::new();
     for name in PAPER_SCENES {
-        match cli::scene(name) {
+        match setup::scene(name) {
             Ok(s) => ok.push((name.to_string(), s)),
             Err(e) => {
                 eprintln!("note: scene {name} is not available, skipped: {e:#}");
@@ -486,7 +487,7 @@ fn parse_backends(list: &str) -> Result<Vec<(String, Box<dyn Backend + Send + Sy
         if out.iter().any(|(n, _)| n == name) {
             continue;
         }
-        let b = cli::backend(name).with_context(|| format!("--backend {list:?}"))?;
+        let b = setup::backend(name).with_context(|| format!("--backend {list:?}"))?;
         out.push((name.to_string(), b));
     }
     if out.is_empty() {
@@ -544,7 +545,7 @@ impl Plan {
         };
         let size = match &args.size {
             Some(s) => {
-                let (w, h) = cli::parse_size(s)?;
+                let (w, h) = setup::parse_size(s)?;
                 RenderSettings::new(w, h)
                     .validate()
                     .map_err(|e| anyhow!("--size {s}: {e}"))?;
@@ -626,7 +627,7 @@ fn load_scenes(args: &ReportArgs, plan: &Plan) -> Result<(Vec<SceneJob>, Unavail
         unavailable = missing;
         if plan.mode == Mode::Quick {
             for name in QUICK_EXTRA_SCENES {
-                match cli::scene(name) {
+                match setup::scene(name) {
                     Ok(s) => loaded.push((name.to_string(), s)),
                     Err(e) => unavailable.push((name.to_string(), format!("{e:#}"))),
                 }
@@ -637,7 +638,7 @@ fn load_scenes(args: &ReportArgs, plan: &Plan) -> Result<(Vec<SceneJob>, Unavail
         if loaded.iter().any(|(a, _)| a == arg) {
             continue;
         }
-        let s = cli::scene(arg).with_context(|| format!("--scene {arg}"))?;
+        let s = setup::scene(arg).with_context(|| format!("--scene {arg}"))?;
         loaded.push((arg.clone(), s));
     }
     if loaded.is_empty() {
@@ -799,7 +800,7 @@ impl Runner<'_> {
             "{}: reference {} at {w}x{h}",
             job.name, self.plan.reference
         ));
-        let cpu = cli::backend("cpu")?;
+        let cpu = setup::backend("cpu")?;
         let (frame, wall) = render(cpu.as_ref(), &job.scene, &self.plan.reference, settings)?;
         self.progress.note(&format!(
             "{}: rendered reference {} at {w}x{h}{} in {:.1} s",
@@ -837,7 +838,7 @@ impl Runner<'_> {
         ));
         let mut settings = RenderSettings::new(w * side, h * side);
         settings.aovs = true;
-        let cpu = cli::backend("cpu")?;
+        let cpu = setup::backend("cpu")?;
         let noaa = parse_method(NOAA.to_string().as_str(), NOAA.to_string().as_str())?;
         let (sub, _) = render(cpu.as_ref(), &job.scene, &noaa, &settings)?;
         classes::classify(&sub, side)
@@ -847,7 +848,7 @@ impl Runner<'_> {
     fn quality(&mut self, job: &SceneJob) -> Result<SceneQuality> {
         let reference = Rgb8::from_frame(&self.reference(job)?)?;
         let (w, h) = job.quality_size;
-        let cpu = cli::backend("cpu")?;
+        let cpu = setup::backend("cpu")?;
         let noaa = parse_method(NOAA.to_string().as_str(), NOAA.to_string().as_str())?;
         let mut aov_settings = self.plan.settings(w, h, job.sdf);
         aov_settings.aovs = true;
