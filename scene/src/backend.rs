@@ -247,9 +247,7 @@ pub struct Capabilities {
     pub max_sdf_side_samples: Option<u32>,
 }
 
-/// What [`UnsupportedReason::CpuOnly`] names when a backend lacks
-/// sphere-traced subpixel geometry.
-pub const SDF_SUBPIXEL_GEOMETRY: &str = "sraa-rt on SDF scenes";
+pub use crate::registry::SDF_SUBPIXEL_GEOMETRY;
 
 /// The passes of `method` on `scene` for a backend with `caps`, or why it
 /// cannot render them: the one support plan behind every backend's

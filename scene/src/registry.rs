@@ -417,6 +417,11 @@ pub fn grammar() -> String {
     )
 }
 
+/// What [`UnsupportedReason::CpuOnly`](crate::UnsupportedReason::CpuOnly)
+/// names when a backend lacks sphere-traced subpixel geometry
+/// ([`Needs::sdf_subpixel_geometry`]).
+pub const SDF_SUBPIXEL_GEOMETRY: &str = "sraa-rt on SDF scenes";
+
 /// The method `subcone render` uses when none is named.
 pub const DEFAULT_METHOD: &str = "sraa-rt";
 
@@ -445,7 +450,10 @@ pub fn opacity_methods() -> String {
         .filter_map(|t| t.grammar.split([',', ' ']).next())
         .map(str::to_string)
         .collect();
-    names.join(", ")
+    match names.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} and {last}", rest.join(", ")),
+        _ => names.join(""),
+    }
 }
 
 /// The plot colour of a method of the default comparison (sRGB), so every
