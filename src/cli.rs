@@ -190,7 +190,7 @@ fn aov_frame(frame: &Frame, aov: Aov) -> Result<Frame> {
 }
 
 /// Render a scene and write the image (and an AOV image if asked). Asks the
-/// backend first ([`Backend::supports`]): a scene and method it does not
+/// backend first ([`Backend::supports`](subcone_scene::Backend::supports)): a scene and method it does not
 /// render fail with its [`subcone_scene::Unsupported`] (downcast the error to
 /// read the typed reason), before anything is traced or written.
 pub fn render(opts: &RenderOptions) -> Result<RenderReport> {

@@ -9,7 +9,7 @@ use crate::camera::Camera;
 use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::method::Method;
-use crate::registry::{self, info, Geometry};
+use crate::registry::{self, info};
 use crate::scene::Scene;
 
 /// Largest accepted image side.
@@ -343,7 +343,7 @@ pub fn plan_forced(
             instead: format!("{} render them", registry::opacity_methods()),
         });
     }
-    if technique.needs.sdf_subpixel_geometry && technique.geometry == Geometry::Any {
+    if technique.needs.sdf_subpixel_geometry {
         if let Err(why) = caps.sdf_subpixel_geometry {
             return refuse(UnsupportedReason::CpuOnly {
                 what: SDF_SUBPIXEL_GEOMETRY,

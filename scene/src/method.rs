@@ -2,7 +2,7 @@
 //! modifiers, built only in combinations that mean something.
 //!
 //! A [`Method`] is parsed from and displayed as the names of the
-//! [`registry`](crate::registry) (`sraa-rt-paper+mat`, `ctss-delayed`,
+//! [`registry`] (`sraa-rt-paper+mat`, `ctss-delayed`,
 //! `ssaa4+ctss`); built in code, every modifier is a method that checks it
 //! applies and returns a typed [`MethodError`] where it does not. Settings
 //! that belong to the method (cone coverage, visibility k) are checked the

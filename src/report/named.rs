@@ -12,10 +12,6 @@ pub const NOAA: Method = Method::new(Technique::NoAa);
 pub const SSAA4: Method = Method::ssaa_grid(2);
 /// 4×4 supersampling (SRAA's comparison, Fig. 3).
 pub const SSAA16: Method = Method::ssaa_grid(4);
-/// 8×8 supersampling (the quick report's reference).
-pub const SSAA64: Method = Method::ssaa_grid(8);
-/// 16×16 supersampling (the default reference).
-pub const SSAA256: Method = Method::ssaa_grid(16);
 /// Plain SRAA.
 pub const SRAA: Method = Method::new(Technique::Sraa);
 /// SRAA for ray tracing.
@@ -39,8 +35,6 @@ mod tests {
             (NOAA, "noaa"),
             (SSAA4, "ssaa4"),
             (SSAA16, "ssaa16"),
-            (SSAA64, "ssaa64"),
-            (SSAA256, "ssaa256"),
             (SRAA, "sraa"),
             (SRAA_RT, "sraa-rt"),
             (CTSS, "ctss"),

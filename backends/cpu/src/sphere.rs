@@ -747,14 +747,10 @@ impl<F: SdfField> SdfView<'_, F> {
             return self.sraa_rt(method, s, passes);
         }
         let (w, h) = (s.width as usize, s.height as usize);
-        let side = match method.technique() {
-            Technique::Ssaa | Technique::SsaaCtss => method.ssaa_side().max(1),
-            _ => 1,
-        };
-        let cone = matches!(
-            method.technique(),
-            Technique::Ctss | Technique::CtssR | Technique::SsaaCtss
-        );
+        // Samples per pixel side (1 without supersampling), and whether a
+        // cone is traced per sample (the CTSS family).
+        let side = method.ssaa_side().max(1);
+        let cone = method.technique().is_cone_traced();
         // Each supersample's cone covers its own sub-pixel.
         let params = self.params(method, s.height);
         let mut frame = Frame::new(s.width, s.height);

@@ -185,14 +185,10 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         return Err(err("the maximum ray distance is NaN"));
     }
     let (w, h) = (settings.width, settings.height);
-    let side = match method.technique() {
-        Technique::Ssaa | Technique::SsaaCtss => method.ssaa_side().max(1),
-        _ => 1,
-    };
-    let cone = matches!(
-        method.technique(),
-        Technique::Ctss | Technique::CtssR | Technique::SsaaCtss
-    );
+    // Samples per pixel side (1 without supersampling), and whether a
+    // cone is traced per sample (the CTSS family).
+    let side = method.ssaa_side().max(1);
+    let cone = method.technique().is_cone_traced();
     let params = method.ctss_params(camera, h, max_distance, max_steps);
     let pixels = w as u64 * h as u64;
     let groups = compute::workgroups(ctx, "SDF", w, h, WORKGROUP)?;
