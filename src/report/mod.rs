@@ -572,12 +572,8 @@ impl Plan {
             }
         };
         let cache = args.cache.clone().unwrap_or_else(|| args.out.join("cache"));
-        let sweep = mode != Mode::Quick
-            && size.is_none()
-            && !args.no_sweep
-            && methods
-                .iter()
-                .any(|m| m.to_string() == SRAA_RT.to_string().as_str());
+        let sweep =
+            mode != Mode::Quick && size.is_none() && !args.no_sweep && methods.contains(&SRAA_RT);
         Ok(Plan {
             mode,
             out: args.out.clone(),
@@ -839,7 +835,7 @@ impl Runner<'_> {
         let mut settings = RenderSettings::new(w * side, h * side);
         settings.aovs = true;
         let cpu = setup::backend("cpu")?;
-        let noaa = parse_method(NOAA.to_string().as_str(), NOAA.to_string().as_str())?;
+        let noaa = NOAA;
         let (sub, _) = render(cpu.as_ref(), &job.scene, &noaa, &settings)?;
         classes::classify(&sub, side)
     }
@@ -849,7 +845,7 @@ impl Runner<'_> {
         let reference = Rgb8::from_frame(&self.reference(job)?)?;
         let (w, h) = job.quality_size;
         let cpu = setup::backend("cpu")?;
-        let noaa = parse_method(NOAA.to_string().as_str(), NOAA.to_string().as_str())?;
+        let noaa = NOAA;
         let mut aov_settings = self.plan.settings(w, h, job.sdf);
         aov_settings.aovs = true;
         self.progress
