@@ -118,17 +118,6 @@ const SUPERSAMPLING_CLAIMS: &[EdgeClass] = &[
     EdgeClass::Reflection,
 ];
 
-/// The geometry a technique renders.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Geometry {
-    /// Triangle meshes and signed distance fields.
-    Any,
-    /// Triangle meshes only (plain SRAA: its subpixel G-buffer is rasterised).
-    Triangles,
-    /// Signed distance fields only (the cone-traced techniques).
-    Sdf,
-}
-
 /// The modifiers a method name may carry, and what each does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct Modifiers {
@@ -191,8 +180,6 @@ pub struct TechniqueInfo {
     pub claims: &'static [EdgeClass],
     /// The modifiers its names may carry.
     pub modifiers: Modifiers,
-    /// The geometry it renders.
-    pub geometry: Geometry,
     /// Whether it carries opacity through semi-transparent SDF materials
     /// (CTSS §5.3's `K` masks, or alpha blending along each sample's ray).
     pub carries_opacity: bool,
@@ -214,7 +201,6 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
         family: Family::NoAa,
         claims: &[],
         modifiers: Modifiers::NONE,
-        geometry: Geometry::Any,
         carries_opacity: true,
         needs: Needs::NONE,
         description: "one ray through each pixel centre: no antialiasing",
@@ -229,7 +215,6 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
             samples: true,
             ..Modifiers::NONE
         },
-        geometry: Geometry::Any,
         carries_opacity: true,
         needs: Needs {
             sdf_supersampling: true,
@@ -248,7 +233,6 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
             material_gate: true,
             ..Modifiers::NONE
         },
-        geometry: Geometry::Triangles,
         carries_opacity: false,
         needs: Needs::NONE,
         description: "subpixel reconstruction (Chajdas et al.): one shaded sample, four geometric subsamples, eq. 1",
@@ -269,7 +253,6 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
             material_gate: true,
             ..Modifiers::NONE
         },
-        geometry: Geometry::Any,
         carries_opacity: false,
         needs: Needs {
             sdf_subpixel_geometry: true,
@@ -289,7 +272,6 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
             edges: true,
             ..Modifiers::NONE
         },
-        geometry: Geometry::Sdf,
         carries_opacity: true,
         needs: Needs::NONE,
         description: "cone-traced supersampling: hit groups and a 32-bit visibility mask, traced to full occlusion",
@@ -305,7 +287,6 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
             delayed: true,
             ..Modifiers::NONE
         },
-        geometry: Geometry::Sdf,
         carries_opacity: true,
         needs: Needs::NONE,
         description: "CTSS-R: cone tracing that stops at the first hard hit",
@@ -322,7 +303,6 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
             delayed: true,
             ..Modifiers::NONE
         },
-        geometry: Geometry::Sdf,
         carries_opacity: true,
         needs: Needs {
             sdf_supersampling: true,
@@ -337,7 +317,6 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
         family: Family::PostProcess,
         claims: POST_PROCESS_CLAIMS,
         modifiers: Modifiers::NONE,
-        geometry: Geometry::Any,
         carries_opacity: true,
         needs: Needs::NONE,
         description: "FXAA 3.11 over the NoAA frame (the post-process baseline)",
@@ -444,7 +423,7 @@ pub fn method_help() -> String {
 pub fn opacity_methods() -> String {
     let names: Vec<String> = TECHNIQUES
         .iter()
-        .filter(|t| t.carries_opacity && t.geometry != Geometry::Triangles)
+        .filter(|t| t.carries_opacity)
         .filter(|t| t.family != Family::PostProcess)
         // The first alternative, without its note: `ssaaN`, `ctss`.
         .filter_map(|t| t.grammar.split([',', ' ']).next())
