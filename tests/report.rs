@@ -75,7 +75,9 @@ fn claimed(method: &str) -> Vec<&'static str> {
         "sraa-rt" => vec!["silhouette", "crease", "shadow", "reflection"],
         "ctss" | "ctss-r" => vec!["silhouette"],
         "ctss+edges" => vec!["silhouette", "crease"],
-        "fxaa" | "smaa" => vec!["silhouette", "crease", "shadow", "texture"],
+        // The post-process rows: FXAA, SMAA and the box filter of
+        // `examples/box_filter.rs`.
+        "fxaa" | "smaa" | "box" => vec!["silhouette", "crease", "shadow", "texture"],
         b if b.starts_with("ssaa") => CLASSES[..5].to_vec(),
         _ => vec![],
     };
@@ -169,6 +171,28 @@ fn nonempty(path: &Path) {
     assert!(len > 0, "{} is empty", path.display());
 }
 
+/// The 3×3 box filter of `examples/box_filter.rs`: `cargo test` builds the
+/// examples before it runs any test; a narrower run builds it here.
+fn box_filter() -> std::path::PathBuf {
+    let exe = std::env::current_exe().unwrap();
+    let dir = exe.parent().unwrap().parent().unwrap().join("examples");
+    let bin = dir.join(format!("box_filter{}", std::env::consts::EXE_SUFFIX));
+    if !bin.exists() {
+        let status = std::process::Command::new(env!("CARGO"))
+            .args(["build", "--example", "box_filter"])
+            .status()
+            .expect("cargo build --example box_filter");
+        assert!(status.success());
+    }
+    assert!(bin.exists(), "{} was not built", bin.display());
+    bin
+}
+
+/// `--post-process box=…`, the path quoted for the shell-like split.
+fn box_post_process() -> String {
+    format!("box='{}' {{color}} {{output}}", box_filter().display())
+}
+
 #[test]
 fn quick_report_on_every_paper_scene() {
     let dir = tempfile::tempdir().unwrap();
@@ -176,6 +200,7 @@ fn quick_report_on_every_paper_scene() {
     let args = ReportArgs {
         quick: true,
         out: out.clone(),
+        post_processes: vec![box_post_process()],
         ..Default::default()
     };
     let gpu = subcone_wgpu::gpu_required() || subcone_wgpu::WgpuBackend::new().is_ok();
@@ -233,8 +258,11 @@ fn quick_report_on_every_paper_scene() {
         };
         let (noaa, ssaa16) = (get("noaa"), get("ssaa16"));
         // The post-process baselines have their rows on every scene: SMAA
-        // wherever a GPU adapter exists, and always in CI.
+        // wherever a GPU adapter exists, and always in CI; the outside
+        // command's everywhere.
         get("fxaa");
+        let boxed = get("box");
+        assert!((0.0..1.0).contains(&boxed), "{name}: box FLIP {boxed}");
         if gpu {
             let smaa = get("smaa");
             assert!((0.0..1.0).contains(&smaa), "{name}: smaa FLIP {smaa}");
@@ -282,13 +310,31 @@ fn quick_report_on_every_paper_scene() {
         }
     }
     assert!(md.contains("## Edge classes and the rules of judgement"));
+    let post = col("post_process");
+    assert!(md.contains("box: the cpu NoAA frame post-processed by the command `'"));
+    assert!(md.contains("its time is NoAA's plus the command's wall time"));
+    for r in rows.iter().filter(|r| r[method] == "box") {
+        assert!(r[post].starts_with("the command `"), "{r:?}");
+        // Its time is NoAA's plus the command's, which is the pass `box`.
+        let noaa = rows
+            .iter()
+            .find(|n| n[scene] == r[scene] && n[method] == "noaa")
+            .unwrap();
+        let ms = |row: &Vec<String>, c: &str| row[col(c)].parse::<f64>().unwrap();
+        let sum = ms(noaa, "ms_median") + ms(r, "ms_box");
+        assert!(
+            (ms(r, "ms_median") - sum).abs() < 1e-3 * sum.max(1.0),
+            "{r:?}"
+        );
+    }
     if gpu {
-        assert!(md.contains("SMAA 1x (the `smaa` crate, quality High) on the cpu NoAA frame"));
-        let adapter = col("post_adapter");
+        assert!(md.contains(
+            "smaa: the cpu NoAA frame post-processed by SMAA 1x (the `smaa` crate, quality High) on "
+        ));
         assert!(rows
             .iter()
             .filter(|r| r[method] == "smaa")
-            .all(|r| !r[adapter].is_empty()));
+            .all(|r| !r[post].is_empty()));
     } else {
         assert!(md.contains("no GPU adapter for the SMAA post-process"));
     }
@@ -312,6 +358,8 @@ fn quick_report_on_every_paper_scene() {
             "ssaa16.png",
             "flip_noaa.png",
             "flip_ssaa16.png",
+            "box.png",
+            "flip_box.png",
             "crops_edge.png",
             "crops_shadow.png",
             "crops_reflection.png",
@@ -326,6 +374,7 @@ fn quick_report_on_every_paper_scene() {
     // A second run reads every reference from the cache.
     let again = report::run(&ReportArgs {
         methods: vec!["noaa".into()],
+        post_processes: Vec::new(),
         ..args
     })
     .expect("second quick report");
@@ -448,4 +497,74 @@ fn report_with_both_backends() {
     }
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(md.contains("wgpu on "), "the report names the adapter");
+}
+
+/// A post-process command that fails, cannot start, writes the wrong thing
+/// or hangs: an error naming the row and the scene; with `--keep-going`, a
+/// line under Failures and no row.
+#[test]
+fn a_failing_post_process_is_an_error_naming_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |post: &str, keep_going: bool| {
+        report::run(&ReportArgs {
+            quick: true,
+            no_paper_scenes: true,
+            scenes: vec!["cornell".into()],
+            methods: vec!["noaa".into()],
+            out: dir.path().join("report"),
+            post_processes: vec![post.into()],
+            post_timeout: Some(2.0),
+            keep_going,
+            ..Default::default()
+        })
+    };
+    let bin = box_filter();
+    let bin = bin.display();
+    // A PNG of another size, which the box filter copies (filtered) to the
+    // output.
+    let small = dir.path().join("small.png");
+    image::RgbImage::new(5, 5).save(&small).unwrap();
+    let small = small.display();
+    let cases = [
+        ("missing=/nonexistent/filter {color} {output}", "cannot run"),
+        // The box filter's own error (one argument short): exit code 1, its
+        // standard error quoted.
+        (&*format!("nonzero='{bin}' {{color}}"), "usage: box_filter"),
+        // Exits 0 without writing the output.
+        (
+            &*format!("silent='{bin}' {{color}} {{depth}}"),
+            "was not written",
+        ),
+        (
+            &*format!("resized='{bin}' '{small}' {{output}}"),
+            "is 5x5; expected the frame's 96x64",
+        ),
+    ];
+    for (spec, why) in cases {
+        let name = spec.split('=').next().unwrap();
+        let e = format!("{:#}", run(spec, false).expect_err(spec));
+        assert!(
+            e.contains(&format!("cornell / {name} on cpu failed")),
+            "{e}"
+        );
+        assert!(e.contains(why), "{spec}: {e}");
+        let s = run(spec, true).expect(spec);
+        assert!(s.rows.iter().all(|r| r.method != name), "{spec}: a row");
+        assert_eq!(s.failures.len(), 1, "{spec}");
+        assert!(s.failures[0].error.contains(why), "{}", s.failures[0].error);
+        let md = std::fs::read_to_string(dir.path().join("report/report.md")).unwrap();
+        assert!(md.contains("## Failures") && md.contains(why), "{spec}");
+    }
+    #[cfg(unix)]
+    {
+        // A file that is no PNG, and a hang.
+        let unix = [
+            ("depth=cp {depth} {output}", "not a PNG"),
+            ("hang=sleep 30", "ran past the timeout of 2 s"),
+        ];
+        for (spec, why) in unix {
+            let e = format!("{:#}", run(spec, false).expect_err(spec));
+            assert!(e.contains(why), "{spec}: {e}");
+        }
+    }
 }

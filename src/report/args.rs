@@ -62,6 +62,18 @@ pub struct ReportArgs {
     /// Never part of the default or quick report.
     #[arg(long)]
     pub sraa_sweep: bool,
+    /// Add a post-process row NAME: NoAA's frame filtered by COMMAND, judged
+    /// like fxaa and smaa (repeatable). COMMAND gets the frame and its AOVs
+    /// through placeholders ({color}, {linear}, {depth}, {normal}, {albedo},
+    /// {output}, {width}, {height}, {scene}) or SUBCONE_POST_* variables, and
+    /// writes an 8-bit PNG of the same size to {output}; see the
+    /// `report::post` docs.
+    #[arg(long = "post-process", value_name = "NAME=COMMAND")]
+    pub post_processes: Vec<String>,
+    /// Seconds one run of a --post-process command may take before it is
+    /// killed and counted as a failure (default 60).
+    #[arg(long, value_name = "SECONDS")]
+    pub post_timeout: Option<f64>,
 }
 
 impl Default for ReportArgs {
@@ -84,6 +96,8 @@ impl Default for ReportArgs {
             keep_going: false,
             ao: 0,
             sraa_sweep: false,
+            post_processes: Vec::new(),
+            post_timeout: None,
         }
     }
 }

@@ -222,15 +222,13 @@ pub fn classify(sub: &Frame, side: u32) -> Result<ClassMasks> {
 
 /// The classes a method claims to fix: where it should beat NoAA. A method
 /// name claims what the registry says ([`subcone_scene::Method::claims`]:
-/// its technique's classes, texture with `+mat`, crease with `+edges`); the
-/// report's post-process rows (`smaa`, `--post-process`) claim what a
-/// post-process claims
-/// ([`POST_PROCESS_CLAIMS`](subcone_scene::registry::POST_PROCESS_CLAIMS));
-/// any other name claims nothing.
+/// its technique's classes, texture with `+mat`, crease with `+edges`); any
+/// other name claims nothing. A post-process row (`smaa`, `--post-process`)
+/// is not named by a method: [`ResultRow::claims`](super::ResultRow::claims)
+/// gives it what a post-process claims.
 pub fn claimed(method: &str) -> Vec<Class> {
     match method.parse::<subcone_scene::Method>() {
         Ok(m) => m.claims(),
-        Err(_) if method == super::SMAA => subcone_scene::registry::POST_PROCESS_CLAIMS.to_vec(),
         Err(_) => Vec::new(),
     }
 }
@@ -270,6 +268,8 @@ impl ClassFlip {
 pub struct Verdict {
     /// The method.
     pub method: String,
+    /// The classes it claims.
+    pub claims: Vec<Class>,
     /// Claimed classes it beats: (class, its FLIP, NoAA's).
     pub beats: Vec<(Class, f64, f64)>,
     /// Claimed classes it does not beat.
@@ -282,16 +282,29 @@ pub struct Verdict {
 
 impl Verdict {
     /// Judge `method` from its per-class FLIP against NoAA's on the same
-    /// scene, backend and class masks.
+    /// scene, backend and class masks, on the classes its name claims
+    /// ([`claimed`]).
     pub fn judge(method: &str, it: &ClassFlip, noaa: &ClassFlip) -> Verdict {
+        Verdict::judge_claims(method, claimed(method), it, noaa)
+    }
+
+    /// Judge the row `method` on the classes in `claims` (a post-process
+    /// row's, say), by the same rules as [`Verdict::judge`].
+    pub fn judge_claims(
+        method: &str,
+        claims: Vec<Class>,
+        it: &ClassFlip,
+        noaa: &ClassFlip,
+    ) -> Verdict {
         let mut v = Verdict {
             method: method.to_string(),
+            claims: claims.clone(),
             beats: Vec::new(),
             misses: Vec::new(),
             absent: Vec::new(),
             flat: None,
         };
-        for c in claimed(method) {
+        for c in claims {
             match (it.flip[c.index()], noaa.flip[c.index()]) {
                 (Some(a), Some(n)) if a <= BEAT_FACTOR * n => v.beats.push((c, a, n)),
                 (Some(a), Some(n)) => v.misses.push((c, a, n)),
@@ -322,7 +335,7 @@ impl Verdict {
                 .join(", ")
         };
         let mut parts = Vec::new();
-        if claimed(&self.method).is_empty() {
+        if self.claims.is_empty() {
             parts.push("claims no class".to_string());
         }
         if !self.beats.is_empty() {
@@ -368,7 +381,15 @@ mod tests {
         assert_eq!(claimed("ctss-delayed-paper"), vec![Silhouette]);
         assert_eq!(claimed("ctss+edges-paper"), vec![Silhouette, Crease]);
         assert_eq!(claimed("ssaa4+ctss-paper").len(), 5);
-        assert_eq!(claimed("smaa"), vec![Silhouette, Crease, Shadow, Texture]);
+        // A post-process row claims through its row, not its name.
+        assert_eq!(claimed("smaa"), vec![]);
+        let mut row =
+            crate::report::ResultRow::timed("s", "smaa", "cpu", (1, 1), 1, &Default::default());
+        assert_eq!(row.claims(), vec![]);
+        row.post_process = Some("SMAA".into());
+        assert_eq!(row.claims(), vec![Silhouette, Crease, Shadow, Texture]);
+        row.method = "sraa".into();
+        assert_eq!(row.claims(), vec![Silhouette, Crease, Shadow, Texture]);
         assert!(!claimed("ssaa16").contains(&Flat));
     }
 

@@ -65,6 +65,7 @@ pub mod named;
 pub mod output;
 pub mod papers;
 pub mod plot;
+pub mod post;
 pub mod reference;
 pub mod smaa;
 pub mod timing;
@@ -186,8 +187,10 @@ pub struct ResultRow {
     /// were measured a few frames apart. Empty for rows not timed in rounds
     /// (the `smaa` row, the sweep). Not a results column.
     pub round_ms: Vec<f64>,
-    /// The GPU adapter a report-level post-process ran on (the `smaa` row).
-    pub post_adapter: Option<String>,
+    /// For a post-process row (`smaa`, `--post-process`): what filtered
+    /// NoAA's frame, where, and what its time covers
+    /// ([`PostProcess::describe`](post::PostProcess::describe)).
+    pub post_process: Option<String>,
 }
 
 impl ResultRow {
@@ -227,7 +230,18 @@ impl ResultRow {
             reference: None,
             pass_ms: t.pass_medians(),
             round_ms: Vec::new(),
-            post_adapter: None,
+            post_process: None,
+        }
+    }
+
+    /// The classes the row claims to fix: a post-process row's
+    /// ([`POST_PROCESS_CLAIMS`](subcone_scene::registry::POST_PROCESS_CLAIMS)),
+    /// else what its method's name claims ([`classes::claimed`]).
+    pub fn claims(&self) -> Vec<classes::Class> {
+        if self.post_process.is_some() {
+            subcone_scene::registry::POST_PROCESS_CLAIMS.to_vec()
+        } else {
+            classes::claimed(&self.method)
         }
     }
 
@@ -460,7 +474,8 @@ struct Plan {
     sweep: bool,
     refresh: bool,
     keep_going: bool,
-    smaa: SmaaPlan,
+    /// The post-process rows, in table order after the methods.
+    post: Vec<PostPlan>,
     /// Ambient-occlusion rays per shaded point of every render (`--ao`).
     ao: u32,
     /// Run the "Where SRAA pays" section (`--sraa-sweep`).
@@ -471,14 +486,57 @@ struct Plan {
 /// plan) of the backends that do.
 type Applicable = (Method, Vec<usize>);
 
-/// Whether the run has an `smaa` row, and on what.
-enum SmaaPlan {
-    /// Not asked for.
-    Off,
-    /// SMAA 1x on this GPU.
-    On(Box<smaa::SmaaPost>),
-    /// Asked for, but no adapter: the reason, listed under Skipped.
-    Unavailable(String),
+/// A post-process row of the run ([`post`](mod@post)).
+enum PostPlan {
+    /// The step, ready.
+    On(Box<dyn post::PostProcess>),
+    /// Asked for, but it cannot run here (SMAA without an adapter): its name
+    /// and the reason, listed under Skipped.
+    Unavailable { name: String, reason: String },
+}
+
+impl PostPlan {
+    /// The `smaa` row: SMAA 1x on the shared GPU, or the reason it cannot
+    /// run (an error instead when `SUBCONE_REQUIRE_GPU` is set).
+    fn smaa() -> Result<PostPlan> {
+        match smaa::SmaaPost::new() {
+            Ok(p) => Ok(PostPlan::On(Box::new(p))),
+            Err(e) if subcone_wgpu::gpu_required() => {
+                Err(e.context("the smaa row needs a GPU adapter and SUBCONE_REQUIRE_GPU is set"))
+            }
+            Err(e) => Ok(PostPlan::Unavailable {
+                name: SMAA.into(),
+                reason: format!("no GPU adapter for the SMAA post-process: {e:#}"),
+            }),
+        }
+    }
+
+    /// The `smaa` row when `names` asks for it, then one row per
+    /// `--post-process NAME=COMMAND` (names distinct).
+    fn all(names: &[String], args: &ReportArgs) -> Result<Vec<PostPlan>> {
+        let mut out = Vec::new();
+        if names.iter().any(|n| n == SMAA) {
+            out.push(PostPlan::smaa()?);
+        }
+        let timeout = match args.post_timeout {
+            None => post::DEFAULT_TIMEOUT,
+            Some(s) if s.is_finite() && s > 0.0 && s <= 86_400.0 => Duration::from_secs_f64(s),
+            Some(s) => bail!("--post-timeout {s}: expected seconds in (0, 86400]"),
+        };
+        let mut seen: Vec<String> = Vec::new();
+        for spec in &args.post_processes {
+            let c = post::CommandPost::parse(spec, timeout)?;
+            if seen.iter().any(|n| n == post::PostProcess::name(&c)) {
+                bail!(
+                    "--post-process: the name {:?} is given twice",
+                    post::PostProcess::name(&c)
+                );
+            }
+            seen.push(post::PostProcess::name(&c).to_string());
+            out.push(PostPlan::On(Box::new(c)));
+        }
+        Ok(out)
+    }
 }
 
 fn parse_backends(list: &str) -> Result<Vec<(String, Box<dyn Backend + Send + Sync>)>> {
@@ -521,12 +579,17 @@ impl Plan {
             bail!("--method names no method");
         }
         let mut methods: Vec<Method> = Vec::new();
-        let want_smaa = names.iter().any(|n| n == SMAA);
-        if want_smaa && !names.iter().any(|n| n == NOAA.to_string().as_str()) {
-            // SMAA post-processes the NoAA frame and is judged against it.
-            methods.push(Method::new(Technique::NoAa));
+        let post = PostPlan::all(&names, args)?;
+        if !post.is_empty() && !names.iter().any(|n| n == NOAA.to_string().as_str()) {
+            // A post-process filters the NoAA frame and is judged against it.
+            methods.push(NOAA);
         }
-        for n in names.iter().filter(|n| *n != SMAA) {
+        let is_post = |n: &String| {
+            post.iter()
+                .any(|p| matches!(p, PostPlan::On(p) if p.name() == n.as_str()))
+                || n == SMAA
+        };
+        for n in names.iter().filter(|n| !is_post(n)) {
             let m = parse_method(n, "--method")?;
             if !methods.iter().any(|x| x.to_string() == m.to_string()) {
                 methods.push(m);
@@ -556,21 +619,6 @@ impl Plan {
         if args.no_paper_scenes && args.scenes.is_empty() {
             bail!("--no-paper-scenes leaves no scene: add at least one --scene");
         }
-        let smaa = if !want_smaa {
-            SmaaPlan::Off
-        } else {
-            match smaa::SmaaPost::new() {
-                Ok(p) => SmaaPlan::On(Box::new(p)),
-                Err(e) if subcone_wgpu::gpu_required() => {
-                    return Err(e.context(
-                        "the smaa row needs a GPU adapter and SUBCONE_REQUIRE_GPU is set",
-                    ))
-                }
-                Err(e) => SmaaPlan::Unavailable(format!(
-                    "no GPU adapter for the SMAA post-process: {e:#}"
-                )),
-            }
-        };
         let cache = args.cache.clone().unwrap_or_else(|| args.out.join("cache"));
         let sweep =
             mode != Mode::Quick && size.is_none() && !args.no_sweep && methods.contains(&SRAA_RT);
@@ -586,7 +634,7 @@ impl Plan {
             sweep,
             refresh: args.refresh_references,
             keep_going: args.keep_going,
-            smaa,
+            post,
             ao: args.ao,
             sraa_sweep: args.sraa_sweep,
         })
@@ -903,42 +951,55 @@ impl Runner<'_> {
     }
 }
 
-/// The `smaa` row of one backend: NoAA's row with the SMAA post-process
+/// Where the post-process rows of one scene and backend go.
+struct PostAt<'a> {
+    job: &'a SceneJob,
+    /// The backend's index in the plan.
+    bi: usize,
+    sq: Option<&'a SceneQuality>,
+    img_dir: &'a Path,
+}
+
+/// The row of post-process `step` on one backend: NoAA's row with the step
 /// (one warm-up, then `runs` timed calls on the timing-size NoAA frame)
-/// added to its times, as the pass `smaa`, and the adapter named; with the
-/// scene's quality, its error on the post-processed NoAA quality image.
-fn smaa_measured(
-    post: &smaa::SmaaPost,
-    noaa: Measured,
-    sq: Option<&SceneQuality>,
+/// added to its times, as the pass named after the step, and the step
+/// described; with the scene's quality, its error on the filtered NoAA
+/// quality image. `timing` is the timing-size NoAA frame the step gets
+/// (with AOVs when it reads them).
+fn post_measured(
+    step: &dyn post::PostProcess,
+    noaa: &Measured,
+    timing: &Frame,
+    at: &PostAt<'_>,
     plan: &Plan,
-    img_dir: &Path,
-    first_backend: bool,
 ) -> Result<Measured> {
-    let frame = noaa
-        .timing
-        .as_ref()
-        .ok_or_else(|| anyhow!("no NoAA frame to post-process"))?;
-    post.apply(frame)?;
+    let name = step.name();
+    let image = Rgb8::from_frame(timing)?;
+    let input = post::PostInput {
+        scene: &at.job.name,
+        image: &image,
+        frame: timing,
+    };
+    step.apply(&input)?;
     let mut ms: Vec<f64> = Vec::new();
     for _ in 0..plan.runs.max(1) {
-        ms.push(post.apply(frame)?.1.as_secs_f64() * 1e3);
+        ms.push(step.apply(&input)?.1.as_secs_f64() * 1e3);
     }
     ms.sort_by(f64::total_cmp);
     let median = ms[ms.len() / 2];
-    let base = noaa.row;
+    let base = &noaa.row;
     let mut pass_ms = base.pass_ms.clone();
-    pass_ms.push((SMAA.into(), median));
+    pass_ms.push((file_safe(name), median));
     let mut row = ResultRow {
-        method: SMAA.into(),
+        method: name.into(),
         ms_median: base.ms_median + median,
         ms_min: base.ms_min + ms[0],
         ms_max: base.ms_max + ms[ms.len() - 1],
         pass_ms,
-        post_adapter: Some(post.adapter()),
+        post_process: Some(step.describe()),
         ..ResultRow::timed(
             &base.scene,
-            SMAA,
+            name,
             &base.backend,
             (base.width, base.height),
             base.runs,
@@ -949,15 +1010,21 @@ fn smaa_measured(
     row.rays_per_pixel = base.rays_per_pixel;
     row.buffer_mib = base.buffer_mib;
     let mut quality = None;
-    if let (Some(q), Some(img)) = (sq, &noaa.quality) {
-        let (out, _) = post.apply(img)?;
-        measure(&mut row, &out, q, plan, img_dir, first_backend)?;
+    let noaa_quality = noaa.noaa.as_ref().and_then(|f| f.quality.as_ref());
+    if let (Some(q), Some(img), Some(frame)) = (at.sq, &noaa.quality, noaa_quality) {
+        let input = post::PostInput {
+            scene: &at.job.name,
+            image: img,
+            frame,
+        };
+        let (out, _) = step.apply(&input)?;
+        measure(&mut row, &out, q, plan, at.img_dir, at.bi == 0)?;
         quality = Some(out);
     }
     Ok(Measured {
         row,
         quality,
-        timing: None,
+        noaa: None,
     })
 }
 
@@ -1148,8 +1215,10 @@ fn applicable(
                 ms.push((*m, able));
             }
         }
-        if let SmaaPlan::Unavailable(reason) = &plan.smaa {
-            skipped.push(skip(job, SMAA.into(), "*", reason.clone()));
+        for p in &plan.post {
+            if let PostPlan::Unavailable { name, reason } = p {
+                skipped.push(skip(job, name.clone(), "*", reason.clone()));
+            }
         }
         work.push((i, ms));
     }
@@ -1184,8 +1253,16 @@ struct Measured {
     row: ResultRow,
     /// The quality image (when errors are measured).
     quality: Option<Rgb8>,
-    /// The timing-size image, kept for NoAA only (the SMAA row's input).
-    timing: Option<Rgb8>,
+    /// NoAA's frames, the post-process rows' input (NoAA only).
+    noaa: Option<NoaaFrames>,
+}
+
+/// The NoAA frames a post-process filters.
+struct NoaaFrames {
+    /// The last timed frame (no AOVs).
+    timing: Frame,
+    /// The quality render, with its AOVs (when errors are measured).
+    quality: Option<Frame>,
 }
 
 /// The per-pixel figures of a timed frame.
@@ -1223,9 +1300,13 @@ struct Contender {
     timings: Timings,
     /// Figures of the last timed frame.
     figures: Option<FrameFigures>,
-    /// The last timed frame, kept for NoAA only (the SMAA row's input): one
-    /// frame, not one per method, stays in memory during the rounds.
+    /// The last timed frame, kept for NoAA only (the post-process rows'
+    /// input): one frame, not one per method, stays in memory during the
+    /// rounds.
     last_noaa: Option<Frame>,
+    /// The quality render with its AOVs, kept for NoAA only when the run has
+    /// post-process rows.
+    noaa_quality: Option<Frame>,
     /// A render failed: no row, no further rounds.
     dropped: bool,
 }
@@ -1270,7 +1351,7 @@ impl Runner<'_> {
         // Quality images of the first backend, for the crops.
         let mut crop_images: Vec<(String, Rgb8)> = Vec::new();
         let first = self.rows.len();
-        for (bi, (bname, backend)) in plan.backends.iter().enumerate() {
+        for (bi, (_, backend)) in plan.backends.iter().enumerate() {
             let mut contenders = Vec::new();
             for (m, _) in methods.iter().filter(|(_, able)| able.contains(&bi)) {
                 if let Some(c) = self.warm_up(job, bi, backend.as_ref(), m, sq.is_some())? {
@@ -1290,18 +1371,15 @@ impl Runner<'_> {
                     noaa = Some(done);
                 }
             }
-            if let (SmaaPlan::On(post), Some(noaa)) = (&plan.smaa, noaa) {
-                self.progress
-                    .bar
-                    .set_message(format!("{}: smaa on the {bname} NoAA frame", job.name));
-                match smaa_measured(post, noaa, sq.as_ref(), plan, &img_dir, bi == 0) {
-                    Ok(done) => {
-                        if let (0, Some(img)) = (bi, done.quality) {
-                            crop_images.push((SMAA.into(), img));
-                        }
-                        self.rows.push(done.row);
-                    }
-                    Err(e) => self.fail(Failure::new(&job.name, SMAA, bname.clone(), &e))?,
+            if let Some(noaa) = noaa {
+                let at = PostAt {
+                    job,
+                    bi,
+                    sq: sq.as_ref(),
+                    img_dir: &img_dir,
+                };
+                for (name, img) in self.post_rows(&at, backend.as_ref(), noaa)? {
+                    crop_images.push((name, img));
                 }
             }
         }
@@ -1320,6 +1398,66 @@ impl Runner<'_> {
             &scene_rows,
         )?);
         Ok(())
+    }
+
+    /// The post-process rows of one scene and backend, pushed to the rows
+    /// (a failing step listed, with `--keep-going`), and the quality images
+    /// of the first backend's, for the crops. A step that reads AOVs gets a
+    /// NoAA frame rendered with them at the timing size, once for all such
+    /// steps and apart from the rounds; the others get NoAA's last timed
+    /// frame.
+    fn post_rows(
+        &mut self,
+        at: &PostAt<'_>,
+        backend: &dyn Backend,
+        noaa: Measured,
+    ) -> Result<Vec<(String, Rgb8)>> {
+        let plan = self.plan;
+        let (job, bname) = (at.job, &plan.backends[at.bi].0);
+        let steps: Vec<&dyn post::PostProcess> = plan
+            .post
+            .iter()
+            .filter_map(|p| match p {
+                PostPlan::On(step) => Some(step.as_ref()),
+                PostPlan::Unavailable { .. } => None,
+            })
+            .collect();
+        let Some(frames) = &noaa.noaa else {
+            return Ok(Vec::new());
+        };
+        let with_aovs = if steps.iter().any(|s| s.needs_aovs()) {
+            self.progress
+                .bar
+                .set_message(format!("{}: NoAA with AOVs on {bname}", job.name));
+            let (tw, th) = job.timing_size;
+            let mut settings = plan.settings(tw, th, job.sdf);
+            settings.aovs = true;
+            Some(render(backend, &job.scene, &NOAA, &settings).map(|(f, _)| f))
+        } else {
+            None
+        };
+        let mut crops = Vec::new();
+        for step in steps {
+            let name = step.name();
+            self.progress
+                .bar
+                .set_message(format!("{}: {name} on the {bname} NoAA frame", job.name));
+            let timing = match (step.needs_aovs(), &with_aovs) {
+                (true, Some(Ok(f))) => Ok(f),
+                (true, Some(Err(e))) => Err(anyhow!("the NoAA frame with AOVs: {e:#}")),
+                _ => Ok(&frames.timing),
+            };
+            match timing.and_then(|t| post_measured(step, &noaa, t, at, plan)) {
+                Ok(done) => {
+                    if let (0, Some(img)) = (at.bi, done.quality) {
+                        crops.push((name.to_string(), img));
+                    }
+                    self.rows.push(done.row);
+                }
+                Err(e) => self.fail(Failure::new(&job.name, name, bname.clone(), &e))?,
+            }
+        }
+        Ok(crops)
     }
 
     /// The scene's reference and masks, with the reference and edge mask
@@ -1372,6 +1510,7 @@ impl Runner<'_> {
         let (tw, th) = job.timing_size;
         let (qw, qh) = job.quality_size;
         let (mut quality, mut quality_spp, mut quality_wall) = (None, None, None);
+        let mut noaa_quality = None;
         if errors {
             let mut qs = plan.settings(qw, qh, job.sdf);
             qs.aovs = true;
@@ -1386,6 +1525,9 @@ impl Runner<'_> {
                         .filter(|s| !s.is_empty())
                         .map(|s| s.iter().map(|&v| v as f64).sum::<f64>() / s.len() as f64);
                     quality = Some(Rgb8::from_frame(&qf)?);
+                    if m.technique() == Technique::NoAa && !plan.post.is_empty() {
+                        noaa_quality = Some(qf);
+                    }
                 }
                 Err(e) => {
                     let what = format!("{mname} (quality render)");
@@ -1413,6 +1555,7 @@ impl Runner<'_> {
             timings: Timings::default(),
             figures: None,
             last_noaa: None,
+            noaa_quality,
             dropped: false,
         }))
     }
@@ -1504,7 +1647,10 @@ impl Runner<'_> {
         row.samples_per_pixel = c.quality_spp.unwrap_or(fig.spp);
         row.rays_per_pixel = fig.rays_per_pixel;
         row.buffer_mib = fig.buffer_mib;
-        let timing = c.last_noaa.as_ref().map(Rgb8::from_frame).transpose()?;
+        let noaa = c.last_noaa.map(|timing| NoaaFrames {
+            timing,
+            quality: c.noaa_quality,
+        });
         let quality = match (sq, c.quality) {
             (Some(q), Some(img)) => {
                 measure(&mut row, &img, q, plan, img_dir, bi == 0)?;
@@ -1512,11 +1658,7 @@ impl Runner<'_> {
             }
             _ => None,
         };
-        Ok(Measured {
-            row,
-            quality,
-            timing,
-        })
+        Ok(Measured { row, quality, noaa })
     }
 
     /// The SRAA Table 1 sweep on `job`: timing only, 256² to 1024².

@@ -61,7 +61,7 @@ pub const BASE_COLUMNS: [&str; 34] = [
     "px_texture",
     "px_reflection",
     "px_flat",
-    "post_adapter",
+    "post_process",
 ];
 
 pub use super::papers::{CTSS_TABLE1, SRAA_SPEEDUP_OVER_SSAA16, SRAA_TABLE1};
@@ -198,7 +198,7 @@ fn row_cells(r: &ResultRow, passes: &[String]) -> Vec<Cell> {
         );
     }
     c.push(
-        r.post_adapter
+        r.post_process
             .clone()
             .map(Cell::Text)
             .unwrap_or(Cell::Empty),
@@ -463,14 +463,13 @@ fn scene_section(md: &mut String, s: &ReportSummary, sc: &SceneInfo) {
             );
         }
         let _ = writeln!(md);
-        for r in rows.iter().filter(|r| r.post_adapter.is_some()) {
+        for r in rows.iter().filter(|r| r.post_process.is_some()) {
             let _ = writeln!(
                 md,
-                "{}: SMAA 1x (the `smaa` crate, quality High) on the {} NoAA frame, \
-post-processed on {}; its time is NoAA's plus the post-process (upload, SMAA, read-back).\n",
+                "{}: the {} NoAA frame post-processed by {}.\n",
                 r.method,
                 r.backend,
-                r.post_adapter.as_deref().unwrap_or("?")
+                r.post_process.as_deref().unwrap_or("?")
             );
         }
         let stem = file_safe(&sc.name);
@@ -847,7 +846,8 @@ pub fn verdicts(rows: &[&ResultRow]) -> Vec<(String, Verdict)> {
             })
             .and_then(|n| n.classes);
         if let (Some(it), Some(noaa)) = (r.classes, noaa) {
-            out.push((r.backend.clone(), Verdict::judge(&r.method, &it, &noaa)));
+            let v = Verdict::judge_claims(&r.method, r.claims(), &it, &noaa);
+            out.push((r.backend.clone(), v));
         }
     }
     out
@@ -1460,7 +1460,7 @@ mod tests {
             reference: Some("ssaa64".into()),
             pass_ms: passes.iter().map(|(n, v)| (n.to_string(), *v)).collect(),
             round_ms: Vec::new(),
-            post_adapter: None,
+            post_process: None,
         }
     }
 
@@ -1493,7 +1493,7 @@ mod tests {
         let mut lines = text.lines();
         let header = lines.next().unwrap();
         assert!(header.starts_with("scene,method,backend,width,height,runs,ms_median"));
-        assert!(header.ends_with(",px_flat,post_adapter,ms_geometry,ms_shading"));
+        assert!(header.ends_with(",px_flat,post_process,ms_geometry,ms_shading"));
         assert!(header.contains(",ms_max,ratio_to_noaa,ratio_min,ratio_max,flip_mean,"));
         let first = lines.next().unwrap();
         // No ratios, no classes (12 empty columns), no post-process adapter,
