@@ -427,19 +427,17 @@ fn read_output(path: &Path, w: u32, h: u32) -> Result<Rgb8> {
     if !path.exists() {
         bail!("{} was not written", path.display());
     }
-    let reader = image::ImageReader::open(path)
-        .with_context(|| format!("cannot open {}", path.display()))?
-        .with_guessed_format()?;
-    if reader.format() != Some(image::ImageFormat::Png) {
-        bail!(
-            "{} is not a PNG ({})",
-            path.display(),
-            reader
-                .format()
-                .map(|f| format!("{f:?}"))
-                .unwrap_or_else(|| "unknown format".into())
-        );
+    // By its signature, not its name: the output path always ends in .png.
+    const PNG_SIGNATURE: &[u8] = b"\x89PNG\r\n\x1a\n";
+    let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    if !bytes.starts_with(PNG_SIGNATURE) {
+        let format = image::guess_format(&bytes)
+            .map(|f| format!("{f:?}"))
+            .unwrap_or_else(|_| "unknown format".into());
+        bail!("{} is not a PNG ({format})", path.display());
     }
+    let reader =
+        image::ImageReader::with_format(std::io::Cursor::new(bytes), image::ImageFormat::Png);
     let img = reader
         .decode()
         .with_context(|| format!("{} is not a valid PNG", path.display()))?;
