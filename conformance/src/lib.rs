@@ -284,22 +284,17 @@ pub fn family(method: &str) -> &'static Family {
 }
 
 /// Whether a backend that cannot be created must fail the suite rather than
-/// skip it: `SUBCONE_REQUIRE_GPU` set, non-empty and not `0` (the rule of
-/// `subcone_wgpu::gpu_required`, read here so that the suite names no backend
-/// but the reference).
+/// skip it: `SUBCONE_REQUIRE_GPU` set, non-empty and not `0`
+/// ([`subcone_scene::conformance::gpu_required`], the one reading of it).
 pub fn device_required() -> bool {
-    std::env::var("SUBCONE_REQUIRE_GPU").is_ok_and(|v| !v.is_empty() && v != "0")
+    subcone_scene::conformance::gpu_required()
 }
 
 /// The backend could not be created: `None` (skip, saying so), or a panic
-/// when [`device_required`].
+/// when [`device_required`] ([`subcone_scene::conformance::or_skip`]).
 #[doc(hidden)]
 pub fn unavailable(backend: &str, e: &dyn Display) -> Option<Box<dyn Backend>> {
-    if device_required() {
-        panic!("{backend} unavailable (SUBCONE_REQUIRE_GPU is set): {e}");
-    }
-    eprintln!("SKIPPED: {backend} unavailable and SUBCONE_REQUIRE_GPU unset: {e}");
-    None
+    subcone_scene::conformance::or_skip(backend, Err(e))
 }
 
 /// A FLIP comparison: the per-pixel error map in `[0, 1]`, its mean, and the
@@ -326,8 +321,24 @@ pub fn flip(reference: &Frame, test: &Frame) -> Flip {
         n > 0 && reference.color.len() == n && test.color.len() == n,
         "frame data does not match the frame size"
     );
-    let r = nv_flip::FlipImageRgb8::with_data(w, h, &reference.to_srgb8());
-    let t = nv_flip::FlipImageRgb8::with_data(w, h, &test.to_srgb8());
+    flip_srgb8(w, h, &reference.to_srgb8(), &test.to_srgb8())
+}
+
+/// LDR-FLIP of two `w × h` 8-bit sRGB images (RGB, row-major) at the
+/// default 67 pixels per degree: the one call of `nv-flip` that the suite,
+/// the report and the passes' tests share. Panics when a buffer is not
+/// `3 · w · h` bytes or the image is empty.
+pub fn flip_srgb8(w: u32, h: u32, reference: &[u8], test: &[u8]) -> Flip {
+    let n = w as usize * h as usize;
+    assert!(
+        n > 0 && reference.len() == 3 * n && test.len() == 3 * n,
+        "{w}x{h} images need {} bytes each, got {} and {}",
+        3 * n,
+        reference.len(),
+        test.len()
+    );
+    let r = nv_flip::FlipImageRgb8::with_data(w, h, reference);
+    let t = nv_flip::FlipImageRgb8::with_data(w, h, test);
     let error = nv_flip::flip(r, t, nv_flip::DEFAULT_PIXELS_PER_DEGREE);
     let map = error.to_vec();
     let mean = map.iter().map(|&v| v as f64).sum::<f64>() / map.len() as f64;

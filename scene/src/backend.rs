@@ -128,7 +128,7 @@ pub enum UnsupportedReason {
     /// would render it does not carry opacity, so it is refused rather than
     /// drawn opaque.
     Translucency {
-        /// The path that does not carry opacity (e.g. `"sraa-rt"`).
+        /// The path that does not carry opacity (e.g. SRAA-RT).
         what: String,
         /// What renders such scenes instead.
         instead: String,
@@ -261,8 +261,10 @@ pub use crate::registry::SDF_SUBPIXEL_GEOMETRY;
 /// ([`Capabilities`]); on triangle scenes semi-transparent materials.
 ///
 /// ```
+/// use subcone_kernels::passes::Technique;
 /// use subcone_scene::backend::{plan, Capabilities};
 /// use subcone_scene::builtin::builtin;
+/// use subcone_scene::Method;
 ///
 /// let caps = Capabilities {
 ///     backend: "mine",
@@ -272,9 +274,10 @@ pub use crate::registry::SDF_SUBPIXEL_GEOMETRY;
 ///     max_sdf_side_samples: Some(8),
 /// };
 /// let cornell = builtin("cornell").unwrap();
-/// assert!(plan(&cornell, &"sraa-rt".parse().unwrap(), &caps).is_ok());
+/// let sraa_rt = Method::new(Technique::SraaRt);
+/// assert!(plan(&cornell, &sraa_rt, &caps).is_ok());
 /// let primitives = builtin("primitives").unwrap();
-/// let no = plan(&primitives, &"sraa-rt".parse().unwrap(), &caps).unwrap_err();
+/// let no = plan(&primitives, &sraa_rt, &caps).unwrap_err();
 /// assert!(no.to_string().contains("no sphere-traced subsamples yet"));
 /// ```
 pub fn plan(scene: &Scene, method: &Method, caps: &Capabilities) -> Result<Passes, Unsupported> {

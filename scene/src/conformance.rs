@@ -122,3 +122,36 @@ pub fn plan_matches_render(backend: &dyn Backend) -> Result<PlanCheck, String> {
         ))
     }
 }
+
+/// Whether a GPU is required: `SUBCONE_REQUIRE_GPU` set to anything but `0`
+/// or empty, as CI sets it. GPU tests then fail instead of skipping when no
+/// adapter exists: a GPU test must never pass by skipping where a GPU is
+/// expected. The one reading of the variable, for every crate's tests.
+pub fn gpu_required() -> bool {
+    std::env::var("SUBCONE_REQUIRE_GPU").is_ok_and(|v| !v.is_empty() && v != "0")
+}
+
+/// What a GPU test opened (`opened`), or `None` when it could not be opened
+/// and no GPU is required ([`gpu_required`]): the test then skips, printing
+/// `what` and why, so machines without a GPU still run the rest. Panics,
+/// naming `what` and the error, when a GPU is required.
+///
+/// ```
+/// use subcone_scene::conformance::or_skip;
+///
+/// let opened: Result<u32, &str> = Err("no adapter");
+/// if !subcone_scene::conformance::gpu_required() {
+///     assert_eq!(or_skip("an example", opened), None);
+/// }
+/// assert_eq!(or_skip("an example", Ok::<_, &str>(7)), Some(7));
+/// ```
+pub fn or_skip<T, E: std::fmt::Display>(what: &str, opened: Result<T, E>) -> Option<T> {
+    match opened {
+        Ok(t) => Some(t),
+        Err(e) if !gpu_required() => {
+            eprintln!("SKIPPED ({what}): no GPU adapter and SUBCONE_REQUIRE_GPU unset: {e}");
+            None
+        }
+        Err(e) => panic!("{what}: no GPU adapter, and SUBCONE_REQUIRE_GPU is set: {e}"),
+    }
+}

@@ -86,24 +86,19 @@ pub struct Flip {
 pub fn flip(reference: &Rgb8, test: &Rgb8) -> Result<Flip> {
     same_size(reference, test)?;
     let (w, h) = (reference.width, reference.height);
-    let r = nv_flip::FlipImageRgb8::with_data(w, h, &reference.data);
-    let t = nv_flip::FlipImageRgb8::with_data(w, h, &test.data);
-    let error = nv_flip::flip(r, t, nv_flip::DEFAULT_PIXELS_PER_DEGREE);
-    let map = error.to_vec();
-    if map.len() != reference.pixels() {
-        bail!(
-            "FLIP returned {} values for {} pixels",
-            map.len(),
-            reference.pixels()
-        );
-    }
-    let mean = map.iter().map(|&v| v as f64).sum::<f64>() / map.len() as f64;
+    // The suite's FLIP, so that the report and the conformance bounds
+    // measure the same thing.
+    let f = subcone_conformance::flip_srgb8(w, h, &reference.data, &test.data);
     let magma = Rgb8 {
         width: w,
         height: h,
-        data: error.apply_color_lut(&nv_flip::magma_lut()).to_vec(),
+        data: f.magma,
     };
-    Ok(Flip { map, mean, magma })
+    Ok(Flip {
+        map: f.map,
+        mean: f.mean,
+        magma,
+    })
 }
 
 /// PSNR in dB over the three 8-bit channels; `+∞` for identical images.

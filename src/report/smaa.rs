@@ -428,14 +428,7 @@ mod tests {
     /// The post-process, or `None` (with a note) when there is no adapter and
     /// no GPU is required; with `SUBCONE_REQUIRE_GPU` set, no adapter fails.
     fn post() -> Option<SmaaPost> {
-        match SmaaPost::new() {
-            Ok(p) => Some(p),
-            Err(e) if !subcone_wgpu::gpu_required() => {
-                eprintln!("skipped: {e}");
-                None
-            }
-            Err(e) => panic!("{e:#}"),
-        }
+        subcone_scene::conformance::or_skip("SMAA", SmaaPost::new().map_err(|e| format!("{e:#}")))
     }
 
     fn image(width: u32, height: u32, f: impl Fn(u32, u32) -> [u8; 3]) -> Rgb8 {

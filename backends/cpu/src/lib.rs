@@ -12,11 +12,13 @@
 //!
 //! ```
 //! use subcone_cpu::CpuBackend;
-//! use subcone_scene::{builtin::builtin, Backend, RenderSettings};
+//! use subcone_kernels::passes::Technique;
+//! use subcone_scene::{builtin::builtin, Backend, Method, RenderSettings};
 //!
 //! let scene = builtin("cornell").unwrap();
+//! let sraa_rt = Method::new(Technique::SraaRt);
 //! let frame = CpuBackend::new()
-//!     .render(&scene, &scene.camera, &"sraa-rt".parse().unwrap(), &RenderSettings::new(32, 32))
+//!     .render(&scene, &scene.camera, &sraa_rt, &RenderSettings::new(32, 32))
 //!     .unwrap();
 //! assert_eq!(frame.color.len(), 32 * 32);
 //! ```

@@ -70,10 +70,9 @@ impl WgpuBackend {
 }
 
 /// Whether a GPU is required (`SUBCONE_REQUIRE_GPU` set to anything but `0`
-/// or empty): tests then fail instead of skipping when no adapter exists.
-pub fn gpu_required() -> bool {
-    std::env::var("SUBCONE_REQUIRE_GPU").is_ok_and(|v| !v.is_empty() && v != "0")
-}
+/// or empty): tests then fail instead of skipping when no adapter exists
+/// ([`subcone_scene::conformance::gpu_required`], the one reading of it).
+pub use subcone_scene::conformance::gpu_required;
 
 /// One frame as [`Backend::render`] was asked for it, with the passes
 /// [`plan_forced`] planned for it: what every render path takes.

@@ -10,7 +10,7 @@
 
 use crate::compute::{self, Access, Bindings, Program};
 use crate::context::{err, GpuContext};
-use crate::{gpu_required, WgpuBackend};
+use crate::WgpuBackend;
 use bytemuck::Pod;
 use subcone_scene::RenderError;
 
@@ -22,14 +22,7 @@ use subcone_scene::RenderError;
 ///
 /// `what` names the test or part that skips, for the message.
 pub fn gpu_or_skip(what: &str) -> Option<WgpuBackend> {
-    match WgpuBackend::new() {
-        Ok(b) => Some(b),
-        Err(e) if !gpu_required() => {
-            eprintln!("SKIPPED ({what}): no GPU adapter and SUBCONE_REQUIRE_GPU unset: {e}");
-            None
-        }
-        Err(e) => panic!("{what}: no GPU adapter, and SUBCONE_REQUIRE_GPU is set: {e}"),
-    }
+    subcone_scene::conformance::or_skip(what, WgpuBackend::new())
 }
 
 /// A read-only storage buffer besides the records, declared by the harness

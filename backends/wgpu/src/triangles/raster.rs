@@ -384,13 +384,10 @@ mod tests {
     /// 1e-3 (dot > 0.999); at least 97 % of all subsamples agree that well.
     #[test]
     fn raster_subsamples_line_up_with_traced_subsamples() {
-        let ctx = match GpuContext::shared() {
-            Ok(c) => c,
-            Err(e) if !crate::gpu_required() => {
-                eprintln!("skipped: {e}");
-                return;
-            }
-            Err(e) => panic!("{e}"),
+        let Some(ctx) =
+            subcone_scene::conformance::or_skip("raster subsamples", GpuContext::shared())
+        else {
+            return;
         };
         for name in ["cornell", "checker"] {
             let scene = builtin(name).unwrap();
