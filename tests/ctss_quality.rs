@@ -10,19 +10,11 @@
 //! (cone coverage, group dip, shell length) were chosen on `primitives` and
 //! `random-box`; `random-shape`, `sparse-shape` and `sdf-atrium` judge them.
 
-use subcone::report::classes::{self, ClassFlip, Verdict};
-use subcone::report::metrics::{self, Rgb8};
-use subcone_cpu::CpuBackend;
+mod common;
+
+use subcone::report::classes::Verdict;
 use subcone_scene::builtin::builtin;
 use subcone_scene::sdf::SDF_SCENES;
-use subcone_scene::{Backend, Frame, Method, RenderSettings, Scene};
-
-fn render(scene: &Scene, method: &str, settings: &RenderSettings) -> Frame {
-    let method: Method = method.parse().expect("method");
-    CpuBackend::new()
-        .render(scene, &scene.camera, &method, settings)
-        .expect("render")
-}
 
 #[test]
 fn default_ctss_beats_noaa_on_silhouettes_and_the_whole_image_of_every_paper_scene() {
@@ -30,20 +22,8 @@ fn default_ctss_beats_noaa_on_silhouettes_and_the_whole_image_of_every_paper_sce
     for (w, h) in [(96, 54), (96, 64)] {
         for name in SDF_SCENES {
             let scene = builtin(name).expect("scene");
-            let settings = RenderSettings::new(w, h);
-            let reference = Rgb8::from_frame(&render(&scene, "ssaa64", &settings)).unwrap();
-            let side = classes::SUBSAMPLES;
-            let mut sub = RenderSettings::new(w * side, h * side);
-            sub.aovs = true;
-            let masks = classes::classify(&render(&scene, "noaa", &sub), side).unwrap();
-            let measure = |method: &str| {
-                let f = metrics::flip(
-                    &reference,
-                    &Rgb8::from_frame(&render(&scene, method, &settings)).unwrap(),
-                )
-                .unwrap();
-                (f.mean, ClassFlip::measure(&f.map, &masks))
-            };
+            let judged = common::Judged::new(&scene, w, h);
+            let measure = |method: &str| judged.measure(method);
             let (noaa_mean, noaa) = measure("noaa");
             let (mean, it) = measure("ctss");
             let v = Verdict::judge("ctss", &it, &noaa);

@@ -9,41 +9,21 @@
 //! computes them. The preset was tuned on `cornell` and `checker`; `atrium`
 //! (and the mesh scenes of the report) judge it.
 
-use subcone::report::classes::{self, ClassFlip, Verdict};
-use subcone::report::metrics::{self, Rgb8};
-use subcone_cpu::CpuBackend;
+mod common;
+
+use subcone::report::classes::Verdict;
 use subcone_scene::builtin::{builtin, TRIANGLE_SCENES};
-use subcone_scene::{Backend, Frame, Method, RenderSettings, Scene};
 
 const W: u32 = 96;
 const H: u32 = 64;
-
-fn render(scene: &Scene, method: &str, settings: &RenderSettings) -> Frame {
-    let method: Method = method.parse().expect("method");
-    CpuBackend::new()
-        .render(scene, &scene.camera, &method, settings)
-        .expect("render")
-}
 
 #[test]
 fn default_sraa_beats_noaa_where_it_claims_on_every_triangle_scene() {
     let mut failures = Vec::new();
     for name in TRIANGLE_SCENES {
         let scene = builtin(name).expect("scene");
-        let settings = RenderSettings::new(W, H);
-        let reference = Rgb8::from_frame(&render(&scene, "ssaa64", &settings)).unwrap();
-        let side = classes::SUBSAMPLES;
-        let mut sub = RenderSettings::new(W * side, H * side);
-        sub.aovs = true;
-        let masks = classes::classify(&render(&scene, "noaa", &sub), side).unwrap();
-        let measure = |method: &str| {
-            let f = metrics::flip(
-                &reference,
-                &Rgb8::from_frame(&render(&scene, method, &settings)).unwrap(),
-            )
-            .unwrap();
-            (f.mean, ClassFlip::measure(&f.map, &masks))
-        };
+        let judged = common::Judged::new(&scene, W, H);
+        let measure = |method: &str| judged.measure(method);
         let (noaa_mean, noaa) = measure("noaa");
         for method in ["sraa", "sraa-rt"] {
             let (mean, it) = measure(method);

@@ -1,0 +1,51 @@
+//! What the quality tests share: a scene judged as the quick report judges
+//! it, on the CPU backend.
+
+use subcone::report::classes::{self, ClassFlip, ClassMasks};
+use subcone::report::metrics::{self, Rgb8};
+use subcone_cpu::CpuBackend;
+use subcone_scene::{Backend, Frame, Method, RenderSettings, Scene};
+
+/// `method` on `scene` at `settings`, on the CPU backend.
+pub fn render(scene: &Scene, method: &str, settings: &RenderSettings) -> Frame {
+    let method: Method = method.parse().expect("method");
+    CpuBackend::new()
+        .render(scene, &scene.camera, &method, settings)
+        .expect("render")
+}
+
+/// A scene at one size with its `ssaa64` reference and its edge classes
+/// (from NoAA's AOVs at [`classes::SUBSAMPLES`]² sub-samples per pixel), as
+/// the quick report computes them.
+pub struct Judged<'a> {
+    scene: &'a Scene,
+    settings: RenderSettings,
+    reference: Rgb8,
+    masks: ClassMasks,
+}
+
+impl<'a> Judged<'a> {
+    /// Render the reference and the classes of `scene` at `w × h`.
+    pub fn new(scene: &'a Scene, w: u32, h: u32) -> Self {
+        let settings = RenderSettings::new(w, h);
+        let reference = Rgb8::from_frame(&render(scene, "ssaa64", &settings)).unwrap();
+        let side = classes::SUBSAMPLES;
+        let mut sub = RenderSettings::new(w * side, h * side);
+        sub.aovs = true;
+        let masks = classes::classify(&render(scene, "noaa", &sub), side).unwrap();
+        Judged {
+            scene,
+            settings,
+            reference,
+            masks,
+        }
+    }
+
+    /// The whole-image mean FLIP of `method` against the reference, and its
+    /// FLIP per class.
+    pub fn measure(&self, method: &str) -> (f64, ClassFlip) {
+        let image = Rgb8::from_frame(&render(self.scene, method, &self.settings)).unwrap();
+        let f = metrics::flip(&self.reference, &image).unwrap();
+        (f.mean, ClassFlip::measure(&f.map, &self.masks))
+    }
+}
