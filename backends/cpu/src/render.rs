@@ -548,17 +548,21 @@ fn shading_pass(t: &Tracer, plan: &SubpixelPlan, cam: &CameraRays, b: &mut Buffe
         .enumerate()
         .map(
             |(bi, (((((geo, values), shadow), geo2), shadow2), albedo))| {
-                let mut out = ShadedBand {
-                    geo,
-                    values,
-                    shadow,
-                    geo2,
-                    shadow2,
-                    albedo,
-                };
                 t.isa.run(
                     #[inline(always)]
                     || {
+                        // Built inside the instruction-set path's function:
+                        // a local there, its slices stay in registers (a
+                        // struct borrowed from outside would be reloaded
+                        // after every store).
+                        let mut out = ShadedBand {
+                            geo,
+                            values,
+                            shadow,
+                            geo2,
+                            shadow2,
+                            albedo,
+                        };
                         let mut c = Counts::default();
                         for i in 0..out.geo.len() {
                             let (x, y) = (i % plan.w, bi * BAND + i / plan.w);
@@ -758,16 +762,18 @@ fn geometry_pass(t: &Tracer, plan: &SubpixelPlan, cam: &CameraRays, b: &mut Buff
         .zip(bands(&mut b.sub_albedo, band, nb))
         .enumerate()
         .map(|(bi, ((((geo, shadow), geo2), shadow2), albedo))| {
-            let mut out = SubsampleBand {
-                geo,
-                shadow,
-                geo2,
-                shadow2,
-                albedo,
-            };
             t.isa.run(
                 #[inline(always)]
                 || {
+                    // A local of the instruction-set path's function, as in
+                    // the shading pass.
+                    let mut out = SubsampleBand {
+                        geo,
+                        shadow,
+                        geo2,
+                        shadow2,
+                        albedo,
+                    };
                     let mut c = Counts::default();
                     for i in 0..out.geo.len() {
                         let (x, y) = (i % plan.w, bi * BAND + i / plan.w);
@@ -802,6 +808,9 @@ fn trace_subsamples(
     // neither.
     let mut primary_agree = None;
     let mut secondary_agree = None;
+    // The same for the four subsamples: computed once per pixel (the
+    // compiler does not hoist it out of the loop by itself here).
+    let centre = pixel_centre(x, y);
     for k in 0..4 {
         if Some(k) == plan.shaded_subsample {
             out.geo[i][k] = shaded.geo[j];
@@ -819,7 +828,7 @@ fn trace_subsamples(
             }
             continue;
         }
-        let p = pixel_centre(x, y) + SUBPIXEL_OFFSETS[k];
+        let p = centre + SUBPIXEL_OFFSETS[k];
         let (o, d) = cam.ray(p);
         c.geometry += 1;
         let sf = t.intersect(o, d, 0.0);
