@@ -326,349 +326,48 @@ fn bytes<T>(v: &[T]) -> usize {
     std::mem::size_of_val(v)
 }
 
-/// SRAA (Chajdas et al.) and SRAA for ray tracing (Chiu et al., §3).
+/// SRAA (Chajdas et al.) and SRAA for ray tracing (Chiu et al., §3), in the
+/// passes named after what they compute.
 ///
-/// Pass "shading": one shaded sample per pixel, where the method's
-/// [`SraaParams::shaded_offset`] puts it: subsample [`SHADED_SUBSAMPLE`](subcone_kernels::sraa::SHADED_SUBSAMPLE) of
-/// the rotated grid (the paper) or the pixel centre (the default). For SRAA-RT its shading is kept in
-/// layers that are reconstructed separately: the shadow-independent part; each
-/// light's direct part (gated by eq. 2 with that light's shadow state); and, on
-/// mirrors, the same split of the reflected radiance, reconstructed on the
-/// geometry of the secondary hits (§3.3) and gated by the secondary hits' shadow
-/// states ("reflected shadow", Fig. 5). Every layer already carries its mirror
-/// factor, `(1 − m)` or `m`, so the subsample's colour is the sum of its layers.
-/// SRAA keeps one layer, the final colour, reconstructed with eq. 1 on primary
-/// geometry.
+/// Pass "shading" ([`shading_pass`]): one shaded sample per pixel, where the
+/// method's [`SraaParams::shaded_offset`] puts it: subsample
+/// [`SHADED_SUBSAMPLE`](subcone_kernels::sraa::SHADED_SUBSAMPLE) of the
+/// rotated grid (the paper) or the pixel centre (the default). For SRAA-RT its
+/// shading is kept in layers that are reconstructed separately: the
+/// shadow-independent part; each light's direct part (gated by eq. 2 with that
+/// light's shadow state); and, on mirrors, the same split of the reflected
+/// radiance, reconstructed on the geometry of the secondary hits (§3.3) and
+/// gated by the secondary hits' shadow states ("reflected shadow", Fig. 5).
+/// Every layer already carries its mirror factor, `(1 − m)` or `m`, so the
+/// subsample's colour is the sum of its layers. SRAA keeps one layer, the
+/// final colour, reconstructed with eq. 1 on primary geometry.
 ///
-/// Pass "geometry" (the paper's pass 1): the subsamples, traced for
-/// geometry only (normal and view depth); for SRAA-RT also their shadow states
-/// (subpixel shadow rays) and, on mirrors, the geometry and shadow states of
-/// their reflection rays. A subsample that is also the shaded sample (the
-/// paper's layout) reuses the shaded ray's, not traced again.
+/// Pass "geometry" ([`geometry_pass`], the paper's pass 1): the subsamples,
+/// traced for geometry only (normal and view depth); for SRAA-RT also their
+/// shadow states (subpixel shadow rays) and, on mirrors, the geometry and
+/// shadow states of their reflection rays. A subsample that is also the shaded
+/// sample (the paper's layout) reuses the shaded ray's, not traced again.
 ///
-/// Pass "antialiasing" (pass 2): every layer of every subsample reconstructed
-/// from the 3×3 neighbourhood's shaded samples by the kernels, then the box
-/// resolve of the four subsamples.
-// Each band indexes several parallel buffers by the same pixel index.
-#[allow(clippy::needless_range_loop)]
+/// Pass "antialiasing" ([`reconstruct_frame_on`], pass 2): every layer of
+/// every subsample reconstructed from the 3×3 neighbourhood's shaded samples
+/// by the kernels, then the box resolve of the four subsamples.
 pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes) -> Frame {
-    let (w, h) = (s.width as usize, s.height as usize);
-    let n = w * h;
-    let rt = method.technique() == Technique::SraaRt;
-    let lights = t.scene.lights.len().min(MAX_LIGHTS);
-    let layout = LayerLayout::new(method.technique(), passes, lights);
-    let shadows = passes.contains(Passes::SHADOW);
-    let sub_shadows = rt && passes.contains(Passes::SUBPIXEL_SHADOW);
-    let sub_secondary = rt && passes.contains(Passes::SUBPIXEL_SECONDARY_GEOMETRY);
-    let secondary_shading = passes.contains(Passes::SECONDARY);
-    let material = method.gates_material();
-    let nl = layout.len();
-    let shaded_offset = method.sraa().shaded_offset();
-    let shaded_subsample = method.sraa().shaded_subsample();
-    let mut b = Buffers {
-        geo: vec![Geometry::MISS; n],
-        values: vec![Vec3::ZERO; n * nl],
-        shadow: if layout.lights > 0 {
-            vec![0; n]
-        } else {
-            Vec::new()
-        },
-        geo2: if layout.secondary {
-            vec![NO_SECONDARY; n]
-        } else {
-            Vec::new()
-        },
-        shadow2: if layout.secondary && layout.lights > 0 {
-            vec![0; n]
-        } else {
-            Vec::new()
-        },
-        sub_geo: vec![[Geometry::MISS; 4]; n],
-        sub_shadow: if sub_shadows && layout.lights > 0 {
-            vec![[0; 4]; n]
-        } else {
-            Vec::new()
-        },
-        sub_geo2: if sub_secondary {
-            vec![[NO_SECONDARY; 4]; n]
-        } else {
-            Vec::new()
-        },
-        sub_shadow2: if sub_secondary && layout.lights > 0 {
-            vec![[0; 4]; n]
-        } else {
-            Vec::new()
-        },
-        albedo: if material {
-            vec![Vec3::ZERO; n]
-        } else {
-            Vec::new()
-        },
-        sub_albedo: if material {
-            vec![[Vec3::ZERO; 4]; n]
-        } else {
-            Vec::new()
-        },
-    };
+    let plan = SubpixelPlan::new(t, method, passes, s);
+    let mut b = plan.buffers();
     let mut timings = Vec::new();
     // The camera's per-image constants, once (`CameraRays::ray` is
     // `Camera::ray` bit for bit).
     let cam = t.camera.rays(s.width, s.height);
 
-    // Pass: shading of one sample per pixel.
     let start = Instant::now();
-    let nb = h.div_ceil(BAND);
-    let band = w * BAND;
-    let shaded_counts = {
-        bands(&mut b.geo, band, nb)
-            .into_par_iter()
-            .zip(bands(&mut b.values, band * nl, nb))
-            .zip(bands(&mut b.shadow, band, nb))
-            .zip(bands(&mut b.geo2, band, nb))
-            .zip(bands(&mut b.shadow2, band, nb))
-            .zip(bands(&mut b.albedo, band, nb))
-            .enumerate()
-            .map(
-                |(bi, (((((geo, values), shadow), geo2), shadow2), albedo))| {
-                    t.isa.run(
-                        #[inline(always)]
-                        || {
-                            let mut c = Counts::default();
-                            for i in 0..geo.len() {
-                                let (x, y) = (i % w, bi * BAND + i / w);
-                                let p = pixel_centre(x, y) + shaded_offset;
-                                let (o, d) = cam.ray(p);
-                                c.primary += 1;
-                                let v = &mut values[i * nl..(i + 1) * nl];
-                                let Some(sf) = t.intersect(o, d, 0.0) else {
-                                    geo[i] = Geometry::MISS;
-                                    v[0] = t.scene.background;
-                                    if let Some(g2) = geo2.get_mut(i) {
-                                        *g2 = NO_SECONDARY;
-                                    }
-                                    continue;
-                                };
-                                c.shaded += 1;
-                                geo[i] = t.primary_geometry(Some(&sf));
-                                if let Some(a) = albedo.get_mut(i) {
-                                    *a = t.primary_albedo(Some(&sf));
-                                }
-                                let sh = if shadows {
-                                    t.shadow_states(&sf, &mut c)
-                                } else {
-                                    0
-                                };
-                                let ao = t.ambient_occlusion(&sf, &mut c);
-                                let parts = t.parts(&sf, sh, ao);
-                                let m = parts.mirror;
-                                let reflects =
-                                    m > 0.0 && secondary_shading && t.reflection_depth > 0;
-                                if layout.single {
-                                    let diffuse = parts.diffuse(lights);
-                                    v[0] = if reflects {
-                                        c.secondary += 1;
-                                        let r = t.radiance(
-                                            sf.p + sf.ng * t.eps,
-                                            Tracer::reflect(d, sf.n),
-                                            1,
-                                            &mut c,
-                                        );
-                                        (1.0 - m) * diffuse + m * r
-                                    } else if m > 0.0 {
-                                        (1.0 - m) * diffuse
-                                    } else {
-                                        diffuse
-                                    };
-                                    continue;
-                                }
-                                // SRAA-RT layers: primary base, then one per light.
-                                if layout.lights > 0 {
-                                    shadow[i] = sh;
-                                    v[0] = (1.0 - m) * parts.base;
-                                    for l in 0..layout.lights {
-                                        v[1 + l] = (1.0 - m) * parts.direct[l];
-                                    }
-                                } else {
-                                    v[0] = (1.0 - m) * parts.diffuse(lights);
-                                }
-                                if !reflects {
-                                    continue;
-                                }
-                                c.secondary += 1;
-                                let rd = Tracer::reflect(d, sf.n);
-                                let sb = layout.secondary_base();
-                                match t.intersect(sf.p + sf.ng * t.eps, rd, 0.0) {
-                                    None => {
-                                        if let Some(g2) = geo2.get_mut(i) {
-                                            *g2 = Geometry::MISS;
-                                        }
-                                        let bg = m * t.scene.background;
-                                        if layout.secondary {
-                                            v[sb] = bg;
-                                        } else {
-                                            v[0] += bg;
-                                        }
-                                    }
-                                    Some(s2) => {
-                                        c.shaded += 1;
-                                        let sh2 = if shadows {
-                                            t.shadow_states(&s2, &mut c)
-                                        } else {
-                                            0
-                                        };
-                                        // No ambient occlusion at mirror hits.
-                                        let p2 = t.parts(&s2, sh2, 1.0);
-                                        let m2 = p2.mirror;
-                                        let deeper = if m2 > 0.0 && t.reflection_depth > 1 {
-                                            c.secondary += 1;
-                                            t.radiance(
-                                                s2.p + s2.ng * t.eps,
-                                                Tracer::reflect(rd, s2.n),
-                                                2,
-                                                &mut c,
-                                            )
-                                        } else {
-                                            Vec3::ZERO
-                                        };
-                                        if layout.secondary {
-                                            geo2[i] = Geometry::new(s2.n, sf.t + s2.t);
-                                            if layout.lights > 0 {
-                                                shadow2[i] = sh2;
-                                                v[sb] = m * ((1.0 - m2) * p2.base + m2 * deeper);
-                                                for l in 0..layout.lights {
-                                                    v[sb + 1 + l] = m * (1.0 - m2) * p2.direct[l];
-                                                }
-                                            } else {
-                                                v[sb] = m
-                                                    * ((1.0 - m2) * p2.diffuse(lights)
-                                                        + m2 * deeper);
-                                            }
-                                        } else {
-                                            // Reflections forced off: fold them into the primary base.
-                                            v[0] +=
-                                                m * ((1.0 - m2) * p2.diffuse(lights) + m2 * deeper);
-                                        }
-                                    }
-                                }
-                            }
-                            c
-                        },
-                    )
-                },
-            )
-            .reduce(Counts::default, |a, b| a + b)
-    };
+    let shaded_counts = shading_pass(t, &plan, &cam, &mut b);
     timings.push(PassTiming {
         name: "shading",
         time: start.elapsed(),
     });
 
-    // Pass 1 of the paper: subpixel geometry.
     let start = Instant::now();
-    let radius = method.sraa().radius();
-    let adaptive = !t.exhaustive_subpixel_shadows;
-    let geo_counts = {
-        let (geo, shadow, geo2, shadow2) = (&b.geo, &b.shadow, &b.geo2, &b.shadow2);
-        let albedo = &b.albedo;
-        let values = &b.values;
-        // Which lights' subpixel shadow rays can change the image, from the
-        // shaded samples the pixel's subsamples are reconstructed from (primary
-        // layers, then secondary ones); `None`: cast every ray.
-        let agree = |x: usize, y: usize, bits: &[u32], first: usize| -> (u32, u32) {
-            if !adaptive || bits.is_empty() {
-                return (u32::MAX, 0);
-            }
-            shadow_agreement(bits, values, nl, first, layout.lights, x, y, radius, w, h)
-        };
-        bands(&mut b.sub_geo, band, nb)
-            .into_par_iter()
-            .zip(bands(&mut b.sub_shadow, band, nb))
-            .zip(bands(&mut b.sub_geo2, band, nb))
-            .zip(bands(&mut b.sub_shadow2, band, nb))
-            .zip(bands(&mut b.sub_albedo, band, nb))
-            .enumerate()
-            .map(
-                |(bi, ((((sub_geo, sub_shadow), sub_geo2), sub_shadow2), sub_albedo))| {
-                    t.isa.run(
-                        #[inline(always)]
-                        || {
-                            let mut c = Counts::default();
-                            for i in 0..sub_geo.len() {
-                                let (x, y) = (i % w, bi * BAND + i / w);
-                                let j = bi * band + i;
-                                // Computed on first use: a pixel whose subsamples all miss
-                                // needs neither.
-                                let mut primary_agree = None;
-                                let mut secondary_agree = None;
-                                for k in 0..4 {
-                                    if Some(k) == shaded_subsample {
-                                        sub_geo[i][k] = geo[j];
-                                        if let Some(ss) = sub_shadow.get_mut(i) {
-                                            ss[k] = shadow[j];
-                                        }
-                                        if let Some(g2) = sub_geo2.get_mut(i) {
-                                            g2[k] = geo2.get(j).copied().unwrap_or(NO_SECONDARY);
-                                        }
-                                        if let Some(s2) = sub_shadow2.get_mut(i) {
-                                            s2[k] = shadow2.get(j).copied().unwrap_or(0);
-                                        }
-                                        if let Some(a) = sub_albedo.get_mut(i) {
-                                            a[k] = albedo[j];
-                                        }
-                                        continue;
-                                    }
-                                    let p = pixel_centre(x, y) + SUBPIXEL_OFFSETS[k];
-                                    let (o, d) = cam.ray(p);
-                                    c.geometry += 1;
-                                    let sf = t.intersect(o, d, 0.0);
-                                    sub_geo[i][k] = t.primary_geometry(sf.as_ref());
-                                    if let Some(a) = sub_albedo.get_mut(i) {
-                                        a[k] = t.primary_albedo(sf.as_ref());
-                                    }
-                                    let Some(sf) = sf else { continue };
-                                    if let Some(ss) = sub_shadow.get_mut(i) {
-                                        let (cast, inherited) = *primary_agree
-                                            .get_or_insert_with(|| agree(x, y, shadow, 0));
-                                        ss[k] =
-                                            t.shadow_states_masked(&sf, cast, inherited, &mut c);
-                                    }
-                                    if let Some(g2) = sub_geo2.get_mut(i) {
-                                        let mat = &t.scene.materials[sf.material as usize];
-                                        if mat.mirror > 0.0 && t.reflection_depth > 0 {
-                                            c.geometry += 1;
-                                            let rd = Tracer::reflect(d, sf.n);
-                                            g2[k] = match t.intersect(sf.p + sf.ng * t.eps, rd, 0.0)
-                                            {
-                                                None => Geometry::MISS,
-                                                Some(s2) => {
-                                                    if let Some(sh2) = sub_shadow2.get_mut(i) {
-                                                        let (cast, inherited) = *secondary_agree
-                                                            .get_or_insert_with(|| {
-                                                                agree(
-                                                                    x,
-                                                                    y,
-                                                                    shadow2,
-                                                                    layout.secondary_base(),
-                                                                )
-                                                            });
-                                                        sh2[k] = t.shadow_states_masked(
-                                                            &s2, cast, inherited, &mut c,
-                                                        );
-                                                    }
-                                                    Geometry::new(s2.n, sf.t + s2.t)
-                                                }
-                                            };
-                                        }
-                                    }
-                                }
-                            }
-                            c
-                        },
-                    )
-                },
-            )
-            .reduce(Counts::default, |a, b| a + b)
-    };
+    let geo_counts = geometry_pass(t, &plan, &cam, &mut b);
     timings.push(PassTiming {
         name: "geometry",
         time: start.elapsed(),
@@ -677,7 +376,16 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
     // Pass 2 of the paper: reconstruction and resolve.
     let start = Instant::now();
     let mut frame = Frame::new(s.width, s.height);
-    reconstruct_frame_on(t.isa, &b, &layout, &method.sraa(), &mut frame.color, w, h);
+    let (w, h) = (plan.w, plan.h);
+    reconstruct_frame_on(
+        t.isa,
+        &b,
+        &plan.layout,
+        &method.sraa(),
+        &mut frame.color,
+        w,
+        h,
+    );
     timings.push(PassTiming {
         name: "antialiasing",
         time: start.elapsed(),
@@ -695,9 +403,466 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
     };
     if s.aovs {
         centre_aovs(t, s, &mut frame);
-        frame.samples_per_pixel = Some(vec![1.0; n]);
+        frame.samples_per_pixel = Some(vec![1.0; w * h]);
     }
     frame
+}
+
+/// What one frame of [`subpixel`] computes, decided once from its method,
+/// planned passes and scene: which buffers exist and which rays each pass
+/// casts.
+struct SubpixelPlan {
+    /// The image's width in pixels.
+    w: usize,
+    /// Its height in pixels.
+    h: usize,
+    /// Lights the shading reads (at most [`MAX_LIGHTS`]).
+    lights: usize,
+    /// The layers each shaded sample keeps.
+    layout: LayerLayout,
+    /// `layout.len()`: layers per pixel in [`Buffers::values`].
+    nl: usize,
+    /// Shadow rays from the shaded samples ([`Passes::SHADOW`]).
+    shadows: bool,
+    /// SRAA-RT's subpixel shadow rays (§3.2, [`Passes::SUBPIXEL_SHADOW`]).
+    sub_shadows: bool,
+    /// SRAA-RT's subpixel reflection rays (§3.3,
+    /// [`Passes::SUBPIXEL_SECONDARY_GEOMETRY`]).
+    sub_secondary: bool,
+    /// Mirrors shade what they reflect ([`Passes::SECONDARY`]).
+    secondary_shading: bool,
+    /// `+mat`: the albedo of shaded samples and subsamples is kept for the
+    /// material gate.
+    material: bool,
+    /// Where the shaded sample lies from the pixel centre.
+    shaded_offset: Vec2,
+    /// The subsample that is also the shaded sample, if one is.
+    shaded_subsample: Option<usize>,
+    /// The reconstruction's neighbourhood radius, in pixels.
+    radius: u32,
+    /// Subpixel shadow rays only where the shaded samples around disagree
+    /// ([`shadow_agreement`]).
+    adaptive: bool,
+}
+
+impl SubpixelPlan {
+    fn new(t: &Tracer, method: &Method, passes: Passes, s: &RenderSettings) -> Self {
+        let rt = method.technique() == Technique::SraaRt;
+        let lights = t.scene.lights.len().min(MAX_LIGHTS);
+        let layout = LayerLayout::new(method.technique(), passes, lights);
+        let sraa = method.sraa();
+        SubpixelPlan {
+            w: s.width as usize,
+            h: s.height as usize,
+            lights,
+            layout,
+            nl: layout.len(),
+            shadows: passes.contains(Passes::SHADOW),
+            sub_shadows: rt && passes.contains(Passes::SUBPIXEL_SHADOW),
+            sub_secondary: rt && passes.contains(Passes::SUBPIXEL_SECONDARY_GEOMETRY),
+            secondary_shading: passes.contains(Passes::SECONDARY),
+            material: method.gates_material(),
+            shaded_offset: sraa.shaded_offset(),
+            shaded_subsample: sraa.shaded_subsample(),
+            radius: sraa.radius(),
+            adaptive: !t.exhaustive_subpixel_shadows,
+        }
+    }
+
+    /// The frame's buffers, each allocated only when a pass of the plan
+    /// writes it (an empty one costs nothing: see [`bands`]).
+    fn buffers(&self) -> Buffers {
+        let n = self.w * self.h;
+        let layout = &self.layout;
+        let lit = layout.lights > 0;
+        fn allocated_if<T: Clone>(on: bool, value: T, n: usize) -> Vec<T> {
+            if on {
+                vec![value; n]
+            } else {
+                Vec::new()
+            }
+        }
+        Buffers {
+            geo: vec![Geometry::MISS; n],
+            values: vec![Vec3::ZERO; n * self.nl],
+            shadow: allocated_if(lit, 0, n),
+            geo2: allocated_if(layout.secondary, NO_SECONDARY, n),
+            shadow2: allocated_if(layout.secondary && lit, 0, n),
+            sub_geo: vec![[Geometry::MISS; 4]; n],
+            sub_shadow: allocated_if(self.sub_shadows && lit, [0; 4], n),
+            sub_geo2: allocated_if(self.sub_secondary, [NO_SECONDARY; 4], n),
+            sub_shadow2: allocated_if(self.sub_secondary && lit, [0; 4], n),
+            albedo: allocated_if(self.material, Vec3::ZERO, n),
+            sub_albedo: allocated_if(self.material, [Vec3::ZERO; 4], n),
+        }
+    }
+
+    /// [`shadow_agreement`] for a subsample of pixel `(x, y)` whose group's
+    /// shaded shadow states are `bits` and base layer `first`; every light's
+    /// ray is cast when the plan is exhaustive or the group has no shadow
+    /// states.
+    #[inline(always)]
+    fn agreement(
+        &self,
+        values: &[Vec3],
+        bits: &[u32],
+        first: usize,
+        x: usize,
+        y: usize,
+    ) -> (u32, u32) {
+        if !self.adaptive || bits.is_empty() {
+            return (u32::MAX, 0);
+        }
+        let (nl, lights, radius) = (self.nl, self.layout.lights, self.radius);
+        shadow_agreement(
+            bits, values, nl, first, lights, x, y, radius, self.w, self.h,
+        )
+    }
+}
+
+/// One band of the shading pass's outputs (the rows from `band · BAND` on):
+/// per pixel the shaded sample's geometry, its layers and, where their
+/// passes run, its shadow states, its mirror hit's geometry and shadow
+/// states, and its albedo (empty slices where they do not).
+struct ShadedBand<'a> {
+    geo: &'a mut [Geometry],
+    values: &'a mut [Vec3],
+    shadow: &'a mut [u32],
+    geo2: &'a mut [Geometry],
+    shadow2: &'a mut [u32],
+    albedo: &'a mut [Vec3],
+}
+
+/// Pass "shading": one shaded sample per pixel, band by band on the
+/// tracer's instruction-set path; returns its ray counts.
+fn shading_pass(t: &Tracer, plan: &SubpixelPlan, cam: &CameraRays, b: &mut Buffers) -> Counts {
+    let nb = plan.h.div_ceil(BAND);
+    let band = plan.w * BAND;
+    bands(&mut b.geo, band, nb)
+        .into_par_iter()
+        .zip(bands(&mut b.values, band * plan.nl, nb))
+        .zip(bands(&mut b.shadow, band, nb))
+        .zip(bands(&mut b.geo2, band, nb))
+        .zip(bands(&mut b.shadow2, band, nb))
+        .zip(bands(&mut b.albedo, band, nb))
+        .enumerate()
+        .map(
+            |(bi, (((((geo, values), shadow), geo2), shadow2), albedo))| {
+                t.isa.run(
+                    #[inline(always)]
+                    || {
+                        // Built inside the instruction-set path's function:
+                        // a local there, its slices stay in registers (a
+                        // struct borrowed from outside would be reloaded
+                        // after every store).
+                        let mut out = ShadedBand {
+                            geo,
+                            values,
+                            shadow,
+                            geo2,
+                            shadow2,
+                            albedo,
+                        };
+                        let mut c = Counts::default();
+                        for i in 0..out.geo.len() {
+                            let (x, y) = (i % plan.w, bi * BAND + i / plan.w);
+                            shade_pixel(t, plan, cam, &mut out, i, x, y, &mut c);
+                        }
+                        c
+                    },
+                )
+            },
+        )
+        .reduce(Counts::default, |a, b| a + b)
+}
+
+/// The shaded sample of pixel `(x, y)`, index `i` of its band: traced,
+/// shaded (shadow rays, ambient occlusion, the mirror's reflection) and kept
+/// as the plan's layers.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn shade_pixel(
+    t: &Tracer,
+    plan: &SubpixelPlan,
+    cam: &CameraRays,
+    out: &mut ShadedBand,
+    i: usize,
+    x: usize,
+    y: usize,
+    c: &mut Counts,
+) {
+    let (layout, nl, lights) = (&plan.layout, plan.nl, plan.lights);
+    let p = pixel_centre(x, y) + plan.shaded_offset;
+    let (o, d) = cam.ray(p);
+    c.primary += 1;
+    let v = &mut out.values[i * nl..(i + 1) * nl];
+    let Some(sf) = t.intersect(o, d, 0.0) else {
+        out.geo[i] = Geometry::MISS;
+        v[0] = t.scene.background;
+        if let Some(g2) = out.geo2.get_mut(i) {
+            *g2 = NO_SECONDARY;
+        }
+        return;
+    };
+    c.shaded += 1;
+    out.geo[i] = t.primary_geometry(Some(&sf));
+    if let Some(a) = out.albedo.get_mut(i) {
+        *a = t.primary_albedo(Some(&sf));
+    }
+    let sh = if plan.shadows {
+        t.shadow_states(&sf, c)
+    } else {
+        0
+    };
+    let ao = t.ambient_occlusion(&sf, c);
+    let parts = t.parts(&sf, sh, ao);
+    let m = parts.mirror;
+    let reflects = m > 0.0 && plan.secondary_shading && t.reflection_depth > 0;
+    if layout.single {
+        let diffuse = parts.diffuse(lights);
+        v[0] = if reflects {
+            c.secondary += 1;
+            let r = t.radiance(sf.p + sf.ng * t.eps, Tracer::reflect(d, sf.n), 1, c);
+            (1.0 - m) * diffuse + m * r
+        } else if m > 0.0 {
+            (1.0 - m) * diffuse
+        } else {
+            diffuse
+        };
+        return;
+    }
+    // SRAA-RT layers: primary base, then one per light.
+    if layout.lights > 0 {
+        out.shadow[i] = sh;
+        v[0] = (1.0 - m) * parts.base;
+        for l in 0..layout.lights {
+            v[1 + l] = (1.0 - m) * parts.direct[l];
+        }
+    } else {
+        v[0] = (1.0 - m) * parts.diffuse(lights);
+    }
+    if !reflects {
+        return;
+    }
+    c.secondary += 1;
+    let rd = Tracer::reflect(d, sf.n);
+    let secondary = (&mut *out.geo2, &mut *out.shadow2);
+    shade_reflection(t, plan, (&sf, rd, m), v, secondary, i, c);
+}
+
+/// SRAA-RT's secondary layers of a shaded sample on a mirror `sf` of
+/// reflectance `m` (§3.3): the reflection ray along `rd` traced and shaded, its hit's geometry and
+/// shadow states kept for the subsamples' reflected layers, its radiance
+/// split as the primary's (times the mirror's reflectance), or folded into
+/// the primary base when the layout has no secondary layers.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn shade_reflection(
+    t: &Tracer,
+    plan: &SubpixelPlan,
+    (sf, rd, m): (&Surface, Vec3, f32),
+    v: &mut [Vec3],
+    (geo2, shadow2): (&mut [Geometry], &mut [u32]),
+    i: usize,
+    c: &mut Counts,
+) {
+    let (layout, lights) = (&plan.layout, plan.lights);
+    let sb = layout.secondary_base();
+    match t.intersect(sf.p + sf.ng * t.eps, rd, 0.0) {
+        None => {
+            if let Some(g2) = geo2.get_mut(i) {
+                *g2 = Geometry::MISS;
+            }
+            let bg = m * t.scene.background;
+            if layout.secondary {
+                v[sb] = bg;
+            } else {
+                v[0] += bg;
+            }
+        }
+        Some(s2) => {
+            c.shaded += 1;
+            let sh2 = if plan.shadows {
+                t.shadow_states(&s2, c)
+            } else {
+                0
+            };
+            // No ambient occlusion at mirror hits.
+            let p2 = t.parts(&s2, sh2, 1.0);
+            let m2 = p2.mirror;
+            let deeper = if m2 > 0.0 && t.reflection_depth > 1 {
+                c.secondary += 1;
+                t.radiance(s2.p + s2.ng * t.eps, Tracer::reflect(rd, s2.n), 2, c)
+            } else {
+                Vec3::ZERO
+            };
+            if layout.secondary {
+                geo2[i] = Geometry::new(s2.n, sf.t + s2.t);
+                if layout.lights > 0 {
+                    shadow2[i] = sh2;
+                    v[sb] = m * ((1.0 - m2) * p2.base + m2 * deeper);
+                    for l in 0..layout.lights {
+                        v[sb + 1 + l] = m * (1.0 - m2) * p2.direct[l];
+                    }
+                } else {
+                    v[sb] = m * ((1.0 - m2) * p2.diffuse(lights) + m2 * deeper);
+                }
+            } else {
+                // Reflections forced off: fold them into the primary base.
+                v[0] += m * ((1.0 - m2) * p2.diffuse(lights) + m2 * deeper);
+            }
+        }
+    }
+}
+
+/// What the geometry pass reads of the shading pass's outputs, for the
+/// subsample that is also the shaded sample and for the shadow agreement of
+/// the others.
+struct ShadedSamples<'a> {
+    geo: &'a [Geometry],
+    values: &'a [Vec3],
+    shadow: &'a [u32],
+    geo2: &'a [Geometry],
+    shadow2: &'a [u32],
+    albedo: &'a [Vec3],
+}
+
+/// One band of the geometry pass's outputs: per pixel its four subsamples'
+/// geometry and, where their passes run, their shadow states, their mirror
+/// hits' geometry and shadow states, and their albedo (empty slices where
+/// they do not).
+struct SubsampleBand<'a> {
+    geo: &'a mut [[Geometry; 4]],
+    shadow: &'a mut [[u32; 4]],
+    geo2: &'a mut [[Geometry; 4]],
+    shadow2: &'a mut [[u32; 4]],
+    albedo: &'a mut [[Vec3; 4]],
+}
+
+/// Pass "geometry" (the paper's pass 1, "geometric information
+/// generation"): every pixel's four subsamples, band by band on the tracer's
+/// instruction-set path; returns its ray counts.
+fn geometry_pass(t: &Tracer, plan: &SubpixelPlan, cam: &CameraRays, b: &mut Buffers) -> Counts {
+    let nb = plan.h.div_ceil(BAND);
+    let band = plan.w * BAND;
+    let shaded = ShadedSamples {
+        geo: &b.geo,
+        values: &b.values,
+        shadow: &b.shadow,
+        geo2: &b.geo2,
+        shadow2: &b.shadow2,
+        albedo: &b.albedo,
+    };
+    let shaded = &shaded;
+    bands(&mut b.sub_geo, band, nb)
+        .into_par_iter()
+        .zip(bands(&mut b.sub_shadow, band, nb))
+        .zip(bands(&mut b.sub_geo2, band, nb))
+        .zip(bands(&mut b.sub_shadow2, band, nb))
+        .zip(bands(&mut b.sub_albedo, band, nb))
+        .enumerate()
+        .map(|(bi, ((((geo, shadow), geo2), shadow2), albedo))| {
+            t.isa.run(
+                #[inline(always)]
+                || {
+                    // A local of the instruction-set path's function, as in
+                    // the shading pass.
+                    let mut out = SubsampleBand {
+                        geo,
+                        shadow,
+                        geo2,
+                        shadow2,
+                        albedo,
+                    };
+                    let mut c = Counts::default();
+                    for i in 0..out.geo.len() {
+                        let (x, y) = (i % plan.w, bi * BAND + i / plan.w);
+                        let j = bi * band + i;
+                        trace_subsamples(t, plan, cam, shaded, &mut out, (i, j), x, y, &mut c);
+                    }
+                    c
+                },
+            )
+        })
+        .reduce(Counts::default, |a, b| a + b)
+}
+
+/// The four subsamples of pixel `(x, y)`, index `i` of its band and `j` of
+/// the frame: each traced for geometry, albedo, shadow states and its
+/// mirror's reflection as the plan asks, or, for the shaded sample's
+/// subsample, copied from the shading pass.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn trace_subsamples(
+    t: &Tracer,
+    plan: &SubpixelPlan,
+    cam: &CameraRays,
+    shaded: &ShadedSamples,
+    out: &mut SubsampleBand,
+    (i, j): (usize, usize),
+    x: usize,
+    y: usize,
+    c: &mut Counts,
+) {
+    // Computed on first use: a pixel whose subsamples all miss needs
+    // neither.
+    let mut primary_agree = None;
+    let mut secondary_agree = None;
+    // The same for the four subsamples: computed once per pixel (the
+    // compiler does not hoist it out of the loop by itself here).
+    let centre = pixel_centre(x, y);
+    for k in 0..4 {
+        if Some(k) == plan.shaded_subsample {
+            out.geo[i][k] = shaded.geo[j];
+            if let Some(ss) = out.shadow.get_mut(i) {
+                ss[k] = shaded.shadow[j];
+            }
+            if let Some(g2) = out.geo2.get_mut(i) {
+                g2[k] = shaded.geo2.get(j).copied().unwrap_or(NO_SECONDARY);
+            }
+            if let Some(s2) = out.shadow2.get_mut(i) {
+                s2[k] = shaded.shadow2.get(j).copied().unwrap_or(0);
+            }
+            if let Some(a) = out.albedo.get_mut(i) {
+                a[k] = shaded.albedo[j];
+            }
+            continue;
+        }
+        let p = centre + SUBPIXEL_OFFSETS[k];
+        let (o, d) = cam.ray(p);
+        c.geometry += 1;
+        let sf = t.intersect(o, d, 0.0);
+        out.geo[i][k] = t.primary_geometry(sf.as_ref());
+        if let Some(a) = out.albedo.get_mut(i) {
+            a[k] = t.primary_albedo(sf.as_ref());
+        }
+        let Some(sf) = sf else { continue };
+        if let Some(ss) = out.shadow.get_mut(i) {
+            let (cast, inherited) = *primary_agree
+                .get_or_insert_with(|| plan.agreement(shaded.values, shaded.shadow, 0, x, y));
+            ss[k] = t.shadow_states_masked(&sf, cast, inherited, c);
+        }
+        if let Some(g2) = out.geo2.get_mut(i) {
+            let mat = &t.scene.materials[sf.material as usize];
+            if mat.mirror > 0.0 && t.reflection_depth > 0 {
+                c.geometry += 1;
+                let rd = Tracer::reflect(d, sf.n);
+                g2[k] = match t.intersect(sf.p + sf.ng * t.eps, rd, 0.0) {
+                    None => Geometry::MISS,
+                    Some(s2) => {
+                        if let Some(sh2) = out.shadow2.get_mut(i) {
+                            let (cast, inherited) = *secondary_agree.get_or_insert_with(|| {
+                                let first = plan.layout.secondary_base();
+                                plan.agreement(shaded.values, shaded.shadow2, first, x, y)
+                            });
+                            sh2[k] = t.shadow_states_masked(&s2, cast, inherited, c);
+                        }
+                        Geometry::new(s2.n, sf.t + s2.t)
+                    }
+                };
+            }
+        }
+    }
 }
 
 /// Split a per-pixel buffer into bands of `band` elements; a buffer that was not

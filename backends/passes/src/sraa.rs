@@ -288,26 +288,190 @@ pub struct SraaInputs<'a> {
     pub output: &'a wgpu::Texture,
 }
 
-/// Check a pair of shadow textures: `R32Uint`, one layer at the shaded
-/// sample, four at the subsamples.
-fn check_shadows(
-    s: &ShadowTextures<'_>,
-    one: &dyn Fn(&'static str, u32) -> Expect,
-) -> Result<(), PassError> {
-    for (what, t, layers) in [
-        ("shaded shadows", s.shaded, 1),
-        ("subsample shadows", s.subsamples, 4),
-    ] {
-        bind::check(t, &one(what, layers))?;
-        if t.format() != wgpu::TextureFormat::R32Uint {
-            return Err(PassError::Format {
-                what,
-                found: t.format(),
-                expected: "R32Uint",
-            });
+/// What the input textures of one frame must be, for one configuration
+/// and the frame's `size` ([`SraaResolve::check`]).
+struct InputRules<'a> {
+    desc: &'a SraaResolveDesc,
+    size: (u32, u32),
+}
+
+impl InputRules<'_> {
+    /// A texture at the geometric subsamples, in the desc's geometry
+    /// layout: 4x multisampled, or a one-sample array of 4 layers.
+    fn sub(&self, what: &'static str) -> Expect {
+        let ms = self.desc.geometry == GeometryLayout::Multisampled;
+        Expect {
+            what,
+            size: self.size,
+            samples: if ms { 4 } else { 1 },
+            layers: if ms { 1 } else { 4 },
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
         }
     }
-    Ok(())
+
+    /// A one-sample texture of `layers` layers.
+    fn one(&self, what: &'static str, layers: u32) -> Expect {
+        Expect {
+            what,
+            size: self.size,
+            samples: 1,
+            layers,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+        }
+    }
+
+    /// A depth texture's format for the desc's [`DepthKind`].
+    fn depth_format(&self, what: &'static str, t: &wgpu::Texture) -> Result<(), PassError> {
+        let ok = match self.desc.depth {
+            DepthKind::Hardware => t.format().has_depth_aspect(),
+            DepthKind::LinearView => bind::is_float_color(t.format()),
+        };
+        if ok {
+            Ok(())
+        } else {
+            Err(PassError::Format {
+                what,
+                found: t.format(),
+                expected: match self.desc.depth {
+                    DepthKind::Hardware => "a depth format (DepthKind::Hardware)",
+                    DepthKind::LinearView => "a float colour format such as R32Float",
+                },
+            })
+        }
+    }
+
+    /// A texture read as `f32`: a float, unorm or snorm colour format.
+    fn float_format(&self, what: &'static str, t: &wgpu::Texture) -> Result<(), PassError> {
+        if bind::is_float_color(t.format()) {
+            Ok(())
+        } else {
+            Err(PassError::Format {
+                what,
+                found: t.format(),
+                expected: "a float, unorm or snorm colour format",
+            })
+        }
+    }
+
+    /// The subsamples' depth and normals: one packed texture, or a depth
+    /// and a normal texture.
+    fn subsample_geometry(&self, inputs: &SraaInputs<'_>) -> Result<(), PassError> {
+        bind::check(inputs.subsample_depth, &self.sub("subsample depth"))?;
+        if self.desc.geometry == GeometryLayout::Packed {
+            self.float_format("subsample depth", inputs.subsample_depth)?;
+            if inputs.subsample_normal.is_some() {
+                return Err(PassError::Unexpected(
+                    "subsample normal (GeometryLayout::Packed holds the normals)",
+                ));
+            }
+        } else {
+            self.depth_format("subsample depth", inputs.subsample_depth)?;
+            let n = inputs
+                .subsample_normal
+                .ok_or(PassError::Missing("subsample normal"))?;
+            bind::check(n, &self.sub("subsample normal"))?;
+            self.float_format("subsample normal", n)?;
+        }
+        Ok(())
+    }
+
+    /// The centre geometry: present exactly when the preset shades the
+    /// pixel centre.
+    fn centre_geometry(&self, inputs: &SraaInputs<'_>) -> Result<(), PassError> {
+        match (self.desc.shaded_at_centre(), &inputs.centre) {
+            (true, Some(c)) => {
+                bind::check(c.depth, &self.one("centre depth", 1))?;
+                self.depth_format("centre depth", c.depth)?;
+                bind::check(c.normal, &self.one("centre normal", 1))?;
+                self.float_format("centre normal", c.normal)?;
+            }
+            (true, None) => {
+                return Err(PassError::Missing(
+                    "centre geometry (the preset shades the pixel centre)",
+                ))
+            }
+            (false, Some(_)) => {
+                return Err(PassError::Unexpected(
+                    "centre geometry (the preset shades subsample 0)",
+                ))
+            }
+            (false, None) => {}
+        }
+        Ok(())
+    }
+
+    /// A pair of shadow textures: `R32Uint`, one layer at the shaded
+    /// sample, four at the subsamples.
+    fn shadows(&self, s: &ShadowTextures<'_>) -> Result<(), PassError> {
+        for (what, t, layers) in [
+            ("shaded shadows", s.shaded, 1),
+            ("subsample shadows", s.subsamples, 4),
+        ] {
+            bind::check(t, &self.one(what, layers))?;
+            if t.format() != wgpu::TextureFormat::R32Uint {
+                return Err(PassError::Format {
+                    what,
+                    found: t.format(),
+                    expected: "R32Uint",
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// The secondary hits (§3.3): present exactly when the desc has
+    /// `secondary`, with their shadows exactly when it has lights.
+    fn secondary(&self, inputs: &SraaInputs<'_>) -> Result<(), PassError> {
+        let d = self.desc;
+        match (d.secondary, &inputs.secondary) {
+            (true, Some(s)) => {
+                bind::check(s.shaded_depth, &self.one("secondary shaded depth", 1))?;
+                self.float_format("secondary shaded depth", s.shaded_depth)?;
+                bind::check(s.shaded_normal, &self.one("secondary shaded normal", 1))?;
+                self.float_format("secondary shaded normal", s.shaded_normal)?;
+                bind::check(s.subsample_depth, &self.sub("secondary subsample depth"))?;
+                self.float_format("secondary subsample depth", s.subsample_depth)?;
+                bind::check(s.subsample_normal, &self.sub("secondary subsample normal"))?;
+                self.float_format("secondary subsample normal", s.subsample_normal)?;
+                match (d.lights > 0, &s.shadows) {
+                    (true, Some(sh)) => self.shadows(sh)?,
+                    (true, None) => {
+                        return Err(PassError::Missing("secondary shadow textures (lights > 0)"))
+                    }
+                    (false, Some(_)) => {
+                        return Err(PassError::Unexpected(
+                            "secondary shadow textures (0 lights)",
+                        ))
+                    }
+                    (false, None) => {}
+                }
+            }
+            (true, None) => return Err(PassError::Missing("secondary inputs (secondary on)")),
+            (false, Some(_)) => {
+                return Err(PassError::Unexpected("secondary inputs (secondary off)"))
+            }
+            (false, None) => {}
+        }
+        Ok(())
+    }
+
+    /// The albedo textures: present exactly when the albedo gate is on.
+    fn albedo(&self, inputs: &SraaInputs<'_>) -> Result<(), PassError> {
+        match (self.desc.albedo_gate, &inputs.albedo) {
+            (true, Some(a)) => {
+                bind::check(a.shaded, &self.one("shaded albedo", 1))?;
+                self.float_format("shaded albedo", a.shaded)?;
+                bind::check(a.subsamples, &self.sub("subsample albedo"))?;
+                self.float_format("subsample albedo", a.subsamples)?;
+            }
+            (true, None) => return Err(PassError::Missing("albedo textures (albedo gate on)")),
+            (false, Some(_)) => {
+                return Err(PassError::Unexpected("albedo textures (albedo gate off)"))
+            }
+            (false, None) => {}
+        }
+        Ok(())
+    }
 }
 
 /// SRAA's antialiasing pass on the host's device. See the module docs of
@@ -568,10 +732,33 @@ impl SraaResolve {
         .concat())
     }
 
-    /// Check `inputs` against the configuration; the frame's size.
+    /// Check `inputs` against the configuration; the frame's size. Each
+    /// input in turn, in the order of [`SraaInputs`]' roles: the output and
+    /// the depth convention, the subsample geometry, the centre geometry,
+    /// the colour, the shadows, the secondary hits, the albedo.
     fn check(&self, inputs: &SraaInputs<'_>) -> Result<(u32, u32), PassError> {
         let d = &self.desc;
-        let read = wgpu::TextureUsages::TEXTURE_BINDING;
+        let size = self.check_output(inputs)?;
+        let rules = InputRules { desc: d, size };
+        rules.subsample_geometry(inputs)?;
+        rules.centre_geometry(inputs)?;
+        bind::check(inputs.color, &rules.one("colour", d.color_layers()))?;
+        rules.float_format("colour", inputs.color)?;
+        match (d.lights > 0, &inputs.shadows) {
+            (true, Some(s)) => rules.shadows(s)?,
+            (true, None) => return Err(PassError::Missing("shadow textures (lights > 0)")),
+            (false, Some(_)) => return Err(PassError::Unexpected("shadow textures (0 lights)")),
+            (false, None) => {}
+        }
+        rules.secondary(inputs)?;
+        rules.albedo(inputs)?;
+        Ok(size)
+    }
+
+    /// Check the output texture (its size is the frame's, returned) and
+    /// that the frame's depth convention is the one the pass was built for.
+    fn check_output(&self, inputs: &SraaInputs<'_>) -> Result<(u32, u32), PassError> {
+        let d = &self.desc;
         let out = inputs.output;
         let size = (out.width(), out.height());
         bind::check(
@@ -597,135 +784,6 @@ impl SraaResolve {
                 inputs.depth.kind(),
                 d.depth
             )));
-        }
-        let ms = d.geometry == GeometryLayout::Multisampled;
-        let sub = |what| Expect {
-            what,
-            size,
-            samples: if ms { 4 } else { 1 },
-            layers: if ms { 1 } else { 4 },
-            usage: read,
-        };
-        let one = |what, layers| Expect {
-            what,
-            size,
-            samples: 1,
-            layers,
-            usage: read,
-        };
-        let depth_format = |what, t: &wgpu::Texture| {
-            let ok = match d.depth {
-                DepthKind::Hardware => t.format().has_depth_aspect(),
-                DepthKind::LinearView => bind::is_float_color(t.format()),
-            };
-            if ok {
-                Ok(())
-            } else {
-                Err(PassError::Format {
-                    what,
-                    found: t.format(),
-                    expected: match d.depth {
-                        DepthKind::Hardware => "a depth format (DepthKind::Hardware)",
-                        DepthKind::LinearView => "a float colour format such as R32Float",
-                    },
-                })
-            }
-        };
-        let float_format = |what, t: &wgpu::Texture| {
-            if bind::is_float_color(t.format()) {
-                Ok(())
-            } else {
-                Err(PassError::Format {
-                    what,
-                    found: t.format(),
-                    expected: "a float, unorm or snorm colour format",
-                })
-            }
-        };
-        bind::check(inputs.subsample_depth, &sub("subsample depth"))?;
-        if d.geometry == GeometryLayout::Packed {
-            float_format("subsample depth", inputs.subsample_depth)?;
-            if inputs.subsample_normal.is_some() {
-                return Err(PassError::Unexpected(
-                    "subsample normal (GeometryLayout::Packed holds the normals)",
-                ));
-            }
-        } else {
-            depth_format("subsample depth", inputs.subsample_depth)?;
-            let n = inputs
-                .subsample_normal
-                .ok_or(PassError::Missing("subsample normal"))?;
-            bind::check(n, &sub("subsample normal"))?;
-            float_format("subsample normal", n)?;
-        }
-        match (d.shaded_at_centre(), &inputs.centre) {
-            (true, Some(c)) => {
-                bind::check(c.depth, &one("centre depth", 1))?;
-                depth_format("centre depth", c.depth)?;
-                bind::check(c.normal, &one("centre normal", 1))?;
-                float_format("centre normal", c.normal)?;
-            }
-            (true, None) => {
-                return Err(PassError::Missing(
-                    "centre geometry (the preset shades the pixel centre)",
-                ))
-            }
-            (false, Some(_)) => {
-                return Err(PassError::Unexpected(
-                    "centre geometry (the preset shades subsample 0)",
-                ))
-            }
-            (false, None) => {}
-        }
-        bind::check(inputs.color, &one("colour", d.color_layers()))?;
-        float_format("colour", inputs.color)?;
-        match (d.lights > 0, &inputs.shadows) {
-            (true, Some(s)) => check_shadows(s, &one)?,
-            (true, None) => return Err(PassError::Missing("shadow textures (lights > 0)")),
-            (false, Some(_)) => return Err(PassError::Unexpected("shadow textures (0 lights)")),
-            (false, None) => {}
-        }
-        match (d.secondary, &inputs.secondary) {
-            (true, Some(s)) => {
-                bind::check(s.shaded_depth, &one("secondary shaded depth", 1))?;
-                float_format("secondary shaded depth", s.shaded_depth)?;
-                bind::check(s.shaded_normal, &one("secondary shaded normal", 1))?;
-                float_format("secondary shaded normal", s.shaded_normal)?;
-                bind::check(s.subsample_depth, &sub("secondary subsample depth"))?;
-                float_format("secondary subsample depth", s.subsample_depth)?;
-                bind::check(s.subsample_normal, &sub("secondary subsample normal"))?;
-                float_format("secondary subsample normal", s.subsample_normal)?;
-                match (d.lights > 0, &s.shadows) {
-                    (true, Some(sh)) => check_shadows(sh, &one)?,
-                    (true, None) => {
-                        return Err(PassError::Missing("secondary shadow textures (lights > 0)"))
-                    }
-                    (false, Some(_)) => {
-                        return Err(PassError::Unexpected(
-                            "secondary shadow textures (0 lights)",
-                        ))
-                    }
-                    (false, None) => {}
-                }
-            }
-            (true, None) => return Err(PassError::Missing("secondary inputs (secondary on)")),
-            (false, Some(_)) => {
-                return Err(PassError::Unexpected("secondary inputs (secondary off)"))
-            }
-            (false, None) => {}
-        }
-        match (d.albedo_gate, &inputs.albedo) {
-            (true, Some(a)) => {
-                bind::check(a.shaded, &one("shaded albedo", 1))?;
-                float_format("shaded albedo", a.shaded)?;
-                bind::check(a.subsamples, &sub("subsample albedo"))?;
-                float_format("subsample albedo", a.subsamples)?;
-            }
-            (true, None) => return Err(PassError::Missing("albedo textures (albedo gate on)")),
-            (false, Some(_)) => {
-                return Err(PassError::Unexpected("albedo textures (albedo gate off)"))
-            }
-            (false, None) => {}
         }
         Ok(size)
     }

@@ -53,7 +53,9 @@ use bytemuck::{Pod, Zeroable};
 
 use subcone_kernels::passes::{Passes, Technique};
 use subcone_scene::sdf::wgsl::WgslField;
-use subcone_scene::{Frame, FrameStats, Method, RayCounts, RenderError, UnsupportedReason};
+use subcone_scene::{
+    Frame, FrameStats, Method, PassTiming, RayCounts, RenderError, UnsupportedReason,
+};
 use wgpu::util::DeviceExt;
 
 use crate::compute::{self, Access, Bindings, Program};
@@ -201,22 +203,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     } else {
         ASAP_BATCH
     };
-    let frame_constants = SdfFrame {
-        position: camera.position.to_array(),
-        width: w,
-        forward: camera.forward.to_array(),
-        height: h,
-        right: camera.right().to_array(),
-        half: (0.5 * camera.fov_y).tan(),
-        up: camera.up.to_array(),
-        max_distance,
-        background: scene.background.to_array(),
-        max_steps,
-        ambient: scene.ambient.to_array(),
-        side,
-        cone: cone as u32,
-        _pad: [0; 3],
-    };
+    let frame_constants = SdfFrame::new(job, (max_distance, max_steps), side, cone);
     let field = g.root.to_wgsl();
     let table = scatter_table(ctx, &field)?;
     let mut b = Bindings::new(0);
@@ -235,19 +222,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     }
     let shading = shading::shading_wgsl(&scene.materials, &scene.lights, shadows)?;
     let pending = format!("const subcone_CTSS_BATCH: u32 = {batch}u;\n");
-    let mut sources: Vec<&str> = KERNELS.to_vec();
-    sources.extend([field.source.as_str(), &shading, &pending, TRACE_WGSL]);
-    // Semi-transparent materials take the K-mask path (CTSS §5.3), as on
-    // the CPU (`SdfView::render`); opaque scenes never compile it.
-    let translucent = scene.has_translucency();
-    sources.push(if translucent {
-        TRANSLUCENT_WGSL
-    } else {
-        OPAQUE_SAMPLERS
-    });
-    if settings.aovs {
-        sources.push(AOVS_WGSL);
-    }
+    let sources = shader_sources(job, &field, &shading, &pending);
     let mut program = Program::new(ctx, "sdf", &sources, &[&b])?;
     let trace = program.pipeline("sdf_render")?;
     let name = if cone {
@@ -259,19 +234,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     ctx.timed_pass(name, &mut timings, |enc| {
         program.dispatch(enc, &trace, groups)
     })?;
-    let (color, post_buffers) = if passes.contains(Passes::POST_PROCESS) {
-        crate::post::fxaa::run(
-            ctx,
-            b.get("color_out")?,
-            w,
-            h,
-            &subcone_kernels::fxaa::FxaaParams::QUALITY,
-            &mut timings,
-        )?
-    } else {
-        (b.get("color_out")?.clone(), Vec::new())
-    };
-    let color_px: Vec<[f32; 4]> = compute::read(ctx, &color, pixels as usize)?;
+    let (color_px, post_buffers) = final_colour(ctx, job, &b, &mut timings)?;
     let count_px: Vec<[u32; 4]> = compute::read(ctx, b.get("counts_out")?, pixels as usize)?;
 
     let mut frame = Frame::new(w, h);
@@ -279,15 +242,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         *c = glam::Vec3::new(p[0], p[1], p[2]);
     }
     let per_pixel = side * side;
-    let (mut steps, mut samples, mut shadow, mut multi) = (0u64, 0u64, 0u64, 0u64);
-    for c in &count_px {
-        steps += c[0] as u64;
-        samples += c[1] as u64;
-        shadow += c[2] as u64;
-        if c[1] > per_pixel {
-            multi += 1;
-        }
-    }
+    let totals = Totals::of(&count_px, per_pixel);
     let mut buffers = vec![("color", px_bytes as usize), ("counts", px_bytes as usize)];
     buffers.extend(post_buffers);
     if table.is_some() {
@@ -295,17 +250,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     }
 
     if settings.aovs {
-        let aovs = program.pipeline("sdf_aovs")?;
-        ctx.timed_pass("aovs", &mut Vec::new(), |enc| {
-            program.dispatch(enc, &aovs, groups)
-        })?;
-        let g: Vec<[f32; 4]> = compute::read(ctx, b.get("aov_out")?, pixels as usize)?;
-        frame.depth = Some(g.iter().map(|a| a[3]).collect());
-        frame.normal = Some(
-            g.iter()
-                .map(|a| glam::Vec3::new(a[0], a[1], a[2]))
-                .collect(),
-        );
+        centre_aovs(ctx, &mut program, &b, groups, pixels as usize, &mut frame)?;
         frame.samples_per_pixel = Some(count_px.iter().map(|c| c[1] as f32).collect());
         buffers.push(("aovs", px_bytes as usize));
     }
@@ -316,12 +261,147 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         buffers,
         rays: RayCounts {
             primary: pixels * per_pixel as u64,
-            shadow,
+            shadow: totals.shadow,
             ..Default::default()
         },
-        shaded_samples: samples,
-        sdf_evaluations: steps,
-        multi_sample_pixels: multi,
+        shaded_samples: totals.samples,
+        sdf_evaluations: totals.steps,
+        multi_sample_pixels: totals.multi,
     };
     Ok(frame)
+}
+
+/// Buffers by name and size in bytes ([`FrameStats::buffers`]).
+type BufferSizes = Vec<(&'static str, usize)>;
+
+/// The frame's colours, read back after the post-process (FXAA) when it is
+/// planned, and the buffers the post-process allocated.
+fn final_colour(
+    ctx: &GpuContext,
+    job: &Job,
+    b: &Bindings,
+    timings: &mut Vec<PassTiming>,
+) -> Result<(Vec<[f32; 4]>, BufferSizes), RenderError> {
+    let (w, h) = (job.settings.width, job.settings.height);
+    let pixels = w as u64 * h as u64;
+    let (color, post_buffers) = if job.passes.contains(Passes::POST_PROCESS) {
+        crate::post::fxaa::run(
+            ctx,
+            b.get("color_out")?,
+            w,
+            h,
+            &subcone_kernels::fxaa::FxaaParams::QUALITY,
+            timings,
+        )?
+    } else {
+        (b.get("color_out")?.clone(), Vec::new())
+    };
+    let color_px: Vec<[f32; 4]> = compute::read(ctx, &color, pixels as usize)?;
+    Ok((color_px, post_buffers))
+}
+
+impl SdfFrame {
+    /// The constants of `job`'s frame: its camera and size, the scene's
+    /// background and ambient, the march's `(max_distance, max_steps)`,
+    /// `side` samples per pixel side, cone or sphere tracing.
+    fn new(job: &Job, (max_distance, max_steps): (f32, u32), side: u32, cone: bool) -> Self {
+        let (scene, camera, settings) = (job.scene, job.camera, job.settings);
+        SdfFrame {
+            position: camera.position.to_array(),
+            width: settings.width,
+            forward: camera.forward.to_array(),
+            height: settings.height,
+            right: camera.right().to_array(),
+            half: (0.5 * camera.fov_y).tan(),
+            up: camera.up.to_array(),
+            max_distance,
+            background: scene.background.to_array(),
+            max_steps,
+            ambient: scene.ambient.to_array(),
+            side,
+            cone: cone as u32,
+            _pad: [0; 3],
+        }
+    }
+}
+
+/// The shader of `job`'s frame, in order: the kernels, the compiled
+/// `field`, the scene's `shading`, the batch constant (`pending`), the
+/// entry points, the samplers of the opaque or semi-transparent path, and
+/// the AOV entry point when AOVs are asked for.
+fn shader_sources<'a>(
+    job: &Job,
+    field: &'a WgslField,
+    shading: &'a str,
+    pending: &'a str,
+) -> Vec<&'a str> {
+    let mut sources: Vec<&str> = KERNELS.to_vec();
+    sources.extend([field.source.as_str(), shading, pending, TRACE_WGSL]);
+    // Semi-transparent materials take the K-mask path (CTSS §5.3), as on
+    // the CPU (`SdfView::render`); opaque scenes never compile it.
+    let translucent = job.scene.has_translucency();
+    sources.push(if translucent {
+        TRANSLUCENT_WGSL
+    } else {
+        OPAQUE_SAMPLERS
+    });
+    if job.settings.aovs {
+        sources.push(AOVS_WGSL);
+    }
+    sources
+}
+
+/// The frame's counters summed over its pixels (`counts_out`: steps,
+/// shaded samples, shadow rays per pixel).
+struct Totals {
+    steps: u64,
+    samples: u64,
+    shadow: u64,
+    /// Pixels that shaded more samples than `per_pixel`
+    /// (`FrameStats::multi_sample_pixels`).
+    multi: u64,
+}
+
+impl Totals {
+    fn of(count_px: &[[u32; 4]], per_pixel: u32) -> Self {
+        let (mut steps, mut samples, mut shadow, mut multi) = (0u64, 0u64, 0u64, 0u64);
+        for c in count_px {
+            steps += c[0] as u64;
+            samples += c[1] as u64;
+            shadow += c[2] as u64;
+            if c[1] > per_pixel {
+                multi += 1;
+            }
+        }
+        Totals {
+            steps,
+            samples,
+            shadow,
+            multi,
+        }
+    }
+}
+
+/// The AOV pass (not timed): depth and normal through each of the
+/// `pixels` pixel centres into `frame`.
+fn centre_aovs(
+    ctx: &GpuContext,
+    program: &mut Program,
+    b: &Bindings,
+    groups: (u32, u32),
+    pixels: usize,
+    frame: &mut Frame,
+) -> Result<(), RenderError> {
+    let aovs = program.pipeline("sdf_aovs")?;
+    ctx.timed_pass("aovs", &mut Vec::new(), |enc| {
+        program.dispatch(enc, &aovs, groups)
+    })?;
+    let g: Vec<[f32; 4]> = compute::read(ctx, b.get("aov_out")?, pixels)?;
+    frame.depth = Some(g.iter().map(|a| a[3]).collect());
+    frame.normal = Some(
+        g.iter()
+            .map(|a| glam::Vec3::new(a[0], a[1], a[2]))
+            .collect(),
+    );
+    Ok(())
 }

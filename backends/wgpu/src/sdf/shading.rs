@@ -40,75 +40,104 @@ pub(crate) fn shading_wgsl(
     if materials.is_empty() {
         return Err(err("the scene has no materials"));
     }
-    let mut s = format!(
-        "const MATERIAL_COUNT: u32 = {}u;\n\n\
-         // Material::albedo_at's cell: (floor(x / size), floor(z / size)).\n\
-         fn material_cell(p: vec3<f32>, size: f32) -> vec2<i32> {{\n    \
-         return vec2<i32>(i32(floor(p.x / size)), i32(floor(p.z / size)));\n}}\n\n\
-         // Material::albedo_at (SDF scenes have no texture coordinates: uv = 0).\n\
-         fn material_albedo(m: u32, p: vec3<f32>) -> vec3<f32> {{\n    switch m {{\n",
+    let mut s = String::new();
+    push_material_albedo(&mut s, materials);
+    push_material_emission(&mut s, materials);
+    push_material_opacity(&mut s, materials);
+    push_shade_lights(&mut s, &light_rows(lights), shadows);
+    Ok(s)
+}
+
+/// `MATERIAL_COUNT`, `material_cell` and `material_albedo`: a switch over
+/// the materials' [`albedo_body`]s.
+fn push_material_albedo(s: &mut String, materials: &[Material]) {
+    let _ = write!(
+        s,
+        concat!(
+            "const MATERIAL_COUNT: u32 = {}u;\n\n",
+            "// Material::albedo_at's cell: (floor(x / size), floor(z / size)).\n",
+            "fn material_cell(p: vec3<f32>, size: f32) -> vec2<i32> {{\n",
+            "    return vec2<i32>(i32(floor(p.x / size)), i32(floor(p.z / size)));\n",
+            "}}\n\n",
+            "// Material::albedo_at (SDF scenes have no texture coordinates: uv = 0).\n",
+            "fn material_albedo(m: u32, p: vec3<f32>) -> vec3<f32> {{\n",
+            "    switch m {{\n",
+        ),
         materials.len()
     );
     for (i, m) in materials.iter().enumerate() {
-        let body = match &m.albedo {
-            Albedo::Solid(c) => format!("return {};", v3(*c)),
-            Albedo::Checker { a, b, size } => {
+        let body = albedo_body(&m.albedo);
+        let _ = writeln!(s, "        case {i}u: {{\n            {body}\n        }}");
+    }
+    s.push_str("        default: { return vec3<f32>(0.5); }\n    }\n}\n\n");
+}
+
+/// The WGSL statements of `Material::albedo_at` for one albedo at point `p`.
+fn albedo_body(albedo: &Albedo) -> String {
+    match albedo {
+        Albedo::Solid(c) => format!("return {};", v3(*c)),
+        Albedo::Checker { a, b, size } => {
+            let size = if *size > 0.0 && size.is_finite() {
+                *size
+            } else {
+                1.0
+            };
+            format!(
+                "let c = material_cell(p, {}); if ((c.x + c.y) & 1) == 0 {{ return {}; }} return {};",
+                f(size),
+                v3(*a),
+                v3(*b)
+            )
+        }
+        Albedo::Patches { palette, size } => {
+            if palette.is_empty() {
+                "return vec3<f32>(0.5);".to_string()
+            } else {
                 let size = if *size > 0.0 && size.is_finite() {
                     *size
                 } else {
                     1.0
                 };
-                format!(
-                    "let c = material_cell(p, {}); if ((c.x + c.y) & 1) == 0 {{ return {}; }} return {};",
+                let mut b = format!(
+                    concat!(
+                        "let c = bitcast<vec2<u32>>(material_cell(p, {}));\n",
+                        "            var h = (c.x * 0x9E3779B1u) ^ (c.y * 0x85EBCA77u);\n",
+                        "            h = (h ^ (h >> 15u)) * 0x2C1B3C6Du;\n",
+                        "            switch (h >> 7u) % {}u {{\n",
+                    ),
                     f(size),
-                    v3(*a),
-                    v3(*b)
-                )
-            }
-            Albedo::Patches { palette, size } => {
-                if palette.is_empty() {
-                    "return vec3<f32>(0.5);".to_string()
-                } else {
-                    let size = if *size > 0.0 && size.is_finite() {
-                        *size
-                    } else {
-                        1.0
-                    };
-                    let mut b = format!(
-                        "let c = bitcast<vec2<u32>>(material_cell(p, {}));\n            \
-                         var h = (c.x * 0x9E3779B1u) ^ (c.y * 0x85EBCA77u);\n            \
-                         h = (h ^ (h >> 15u)) * 0x2C1B3C6Du;\n            \
-                         switch (h >> 7u) % {}u {{\n",
-                        f(size),
-                        palette.len()
-                    );
-                    for (j, c) in palette.iter().enumerate() {
-                        let _ = writeln!(b, "                case {j}u: {{ return {}; }}", v3(*c));
-                    }
-                    b.push_str(
-                        "                default: { return vec3<f32>(0.5); }\n            }",
-                    );
-                    b
+                    palette.len()
+                );
+                for (j, c) in palette.iter().enumerate() {
+                    let _ = writeln!(b, "                case {j}u: {{ return {}; }}", v3(*c));
                 }
+                b.push_str("                default: { return vec3<f32>(0.5); }\n            }");
+                b
             }
-            // Without texture coordinates every point samples uv = (0, 0).
-            Albedo::Texture(t) => format!("return {};", v3(t.sample(Vec2::ZERO))),
-        };
-        let _ = writeln!(s, "        case {i}u: {{\n            {body}\n        }}");
+        }
+        // Without texture coordinates every point samples uv = (0, 0).
+        Albedo::Texture(t) => format!("return {};", v3(t.sample(Vec2::ZERO))),
     }
-    s.push_str("        default: { return vec3<f32>(0.5); }\n    }\n}\n\n");
+}
+
+/// `material_emission`: a switch over the materials' emission.
+fn push_material_emission(s: &mut String, materials: &[Material]) {
     s.push_str("fn material_emission(m: u32) -> vec3<f32> {\n    switch m {\n");
     for (i, m) in materials.iter().enumerate() {
         let _ = writeln!(s, "        case {i}u: {{ return {}; }}", v3(m.emission));
     }
     s.push_str("        default: { return vec3<f32>(0.0); }\n    }\n}\n\n");
-    // Material::opacity (NaN is 1); ids past the list read the last
-    // material, as SdfView::material_opacity does. The semi-transparent path
-    // (translucent.wgsl, CTSS §5.3) is its only caller.
-    s.push_str(
-        "// SdfView::material_opacity: the object's opacity along a ray.\n\
-         fn material_opacity(m: u32) -> f32 {\n    switch m {\n",
-    );
+}
+
+/// `material_opacity`: Material::opacity (NaN is 1); ids past the list read
+/// the last material, as SdfView::material_opacity does. The
+/// semi-transparent path (translucent.wgsl, CTSS §5.3) is its only caller.
+fn push_material_opacity(s: &mut String, materials: &[Material]) {
+    s.push_str(concat!(
+        "// SdfView::material_opacity: the object's opacity along a ray.\n",
+        "fn material_opacity(m: u32) -> f32 {\n",
+        "    switch m {\n",
+    ));
     for (i, m) in materials.iter().enumerate().take(materials.len() - 1) {
         let _ = writeln!(s, "        case {i}u: {{ return {}; }}", f(m.opacity()));
     }
@@ -118,10 +147,14 @@ pub(crate) fn shading_wgsl(
         "        default: {{ return {}; }}\n    }}\n}}\n",
         f(last)
     );
+}
 
-    // Lights: (position or unit direction, kind 0 = point / 1 = directional),
-    // (intensity or irradiance, 0). Directions are normalised here as
-    // Light::incident does (normalize_or_zero); zero ones never light anything.
+/// One row of the `LIGHTS` table per light that can light anything:
+/// (position or unit direction, kind 0 = point / 1 = directional,
+/// intensity or irradiance). Directions are normalised here as
+/// Light::incident does (normalize_or_zero); zero ones never light
+/// anything and get no row.
+fn light_rows(lights: &[Light]) -> Vec<(Vec3, f32, Vec3)> {
     let mut rows = Vec::new();
     for l in lights {
         match *l {
@@ -140,23 +173,41 @@ pub(crate) fn shading_wgsl(
             }
         }
     }
-    s.push_str(
-        "// SdfView::shade's light loop: Lambert, hard shadows by sphere tracing.\n\
-         fn shade_lights(p: vec3<f32>, n: vec3<f32>, albedo: vec3<f32>, c: ptr<function, vec3<f32>>, count: ptr<function, u32>) {\n",
-    );
+    rows
+}
+
+/// `shade_lights` (SdfView::shade's light loop over the `LIGHTS` table
+/// `rows`, with hard shadows) and the table itself; without `shadows` or
+/// lights, an empty loop and no table.
+fn push_shade_lights(s: &mut String, rows: &[(Vec3, f32, Vec3)], shadows: bool) {
+    s.push_str(concat!(
+        "// SdfView::shade's light loop: Lambert, hard shadows by sphere tracing.\n",
+        "fn shade_lights(p: vec3<f32>, n: vec3<f32>, albedo: vec3<f32>, c: ptr<function, vec3<f32>>, count: ptr<function, u32>) {\n",
+    ));
     if shadows && !rows.is_empty() {
         let _ = writeln!(
             s,
-            "    for (var i = 0u; i < {}u; i++) {{\n        \
-             let a = LIGHTS[2u * i];\n        let e = LIGHTS[2u * i + 1u].xyz;\n        \
-             var dir = a.xyz;\n        var dist = subcone_inf();\n        var irr = e;\n        \
-             if a.w == 0.0 {{\n            // Light::incident of a point light.\n            \
-             let to = a.xyz - p;\n            let d2 = dot(to, to);\n            \
-             if !(subcone_is_finite(d2) && d2 > 0.0) {{ continue; }}\n            \
-             dist = sqrt(d2);\n            dir = to / dist;\n            irr = e / d2;\n        }}\n        \
-             let cos = dot(dir, n);\n        \
-             if cos <= 0.0 || shadowed(p, n, dir, dist, count) {{ continue; }}\n        \
-             *c += albedo * 0.31830987f * cos * irr;\n    }}",
+            concat!(
+                "    for (var i = 0u; i < {}u; i++) {{\n",
+                "        let a = LIGHTS[2u * i];\n",
+                "        let e = LIGHTS[2u * i + 1u].xyz;\n",
+                "        var dir = a.xyz;\n",
+                "        var dist = subcone_inf();\n",
+                "        var irr = e;\n",
+                "        if a.w == 0.0 {{\n",
+                "            // Light::incident of a point light.\n",
+                "            let to = a.xyz - p;\n",
+                "            let d2 = dot(to, to);\n",
+                "            if !(subcone_is_finite(d2) && d2 > 0.0) {{ continue; }}\n",
+                "            dist = sqrt(d2);\n",
+                "            dir = to / dist;\n",
+                "            irr = e / d2;\n",
+                "        }}\n",
+                "        let cos = dot(dir, n);\n",
+                "        if cos <= 0.0 || shadowed(p, n, dir, dist, count) {{ continue; }}\n",
+                "        *c += albedo * 0.31830987f * cos * irr;\n",
+                "    }}",
+            ),
             rows.len()
         );
     } else {
@@ -170,7 +221,7 @@ pub(crate) fn shading_wgsl(
             2 * rows.len(),
             2 * rows.len()
         );
-        for (a, kind, e) in &rows {
+        for (a, kind, e) in rows {
             let _ = writeln!(
                 s,
                 "    vec4<f32>({}, {}, {}, {}), vec4<f32>({}, {}, {}, 0.0),",
@@ -185,5 +236,4 @@ pub(crate) fn shading_wgsl(
         }
         s.push_str(");\n");
     }
-    Ok(s)
 }

@@ -9,9 +9,10 @@ use std::time::Duration;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use obvhs::bvh2::builder::build_bvh2_from_tris;
+use obvhs::bvh2::Bvh2;
 use obvhs::triangle::Triangle;
 use obvhs::BvhBuildParams;
-use subcone_scene::{Albedo, Light, RenderError, Scene};
+use subcone_scene::{Albedo, Light, RenderError, Scene, TriangleMesh};
 use wgpu::util::DeviceExt;
 
 use crate::compute::{Access, Bindings};
@@ -139,6 +140,54 @@ fn upload(ctx: &GpuContext, scene: &Scene) -> Result<SceneGpu, RenderError> {
         .mesh()
         .filter(|m| !m.is_empty())
         .ok_or_else(|| err(format!("scene {:?} has no triangles", scene.name)))?;
+    let (bvh, nodes) = build_bvh(ctx, mesh)?;
+    let order = &bvh.primitive_indices;
+    let (tri_data, attr_data) = triangle_data(scene, mesh, order)?;
+    let (materials, texels) = materials_and_texels(ctx, scene)?;
+    let lights = gpu_lights(scene);
+    let sizes = [
+        ("BVH nodes", std::mem::size_of_val(nodes.as_slice())),
+        ("triangles", std::mem::size_of_val(tri_data.as_slice())),
+        (
+            "triangle attributes",
+            std::mem::size_of_val(attr_data.as_slice()),
+        ),
+        ("texels", std::mem::size_of_val(texels.as_slice())),
+    ];
+    for (what, bytes) in sizes {
+        ctx.check_buffer_size(what, bytes as u64)?;
+    }
+    let scale = mesh
+        .bounds()
+        .map(|(lo, hi)| (hi - lo).length())
+        .unwrap_or(1.0)
+        .max(f32::MIN_POSITIVE);
+    let usage = wgpu::BufferUsages::STORAGE;
+    let buffer = |label: &str, contents: &[u8]| {
+        ctx.device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage,
+            })
+    };
+    ctx.scoped("scene upload", || SceneGpu {
+        nodes: buffer("BVH nodes", bytemuck::cast_slice(&nodes)),
+        tris: buffer("triangles", bytemuck::cast_slice(&tri_data)),
+        attrs: buffer("triangle attributes", bytemuck::cast_slice(&attr_data)),
+        materials: buffer("materials", bytemuck::cast_slice(&materials)),
+        texels: buffer("texels", bytemuck::cast_slice(&texels)),
+        lights: buffer("lights", bytemuck::cast_slice(&lights)),
+        node_count: nodes.len() as u32,
+        triangle_count: order.len() as u32,
+        scale,
+    })
+}
+
+/// The mesh's obvhs BVH2 and its nodes as [`GpuNode`]s; refuses a mesh too
+/// large for 32-bit indices or the buffer budget, and a BVH deeper than the
+/// traversal stack.
+fn build_bvh(ctx: &GpuContext, mesh: &TriangleMesh) -> Result<(Bvh2, Vec<GpuNode>), RenderError> {
     let n = mesh.len();
     if n > (u32::MAX / 4) as usize {
         return Err(err(format!("{n} triangles are too many for one mesh")));
@@ -178,6 +227,22 @@ fn upload(ctx: &GpuContext, scene: &Scene) -> Result<SceneGpu, RenderError> {
             index: nd.first_index,
         })
         .collect();
+    Ok((bvh, nodes))
+}
+
+/// A storage buffer's contents as `vec4<f32>` elements.
+type Vec4s = Vec<[f32; 4]>;
+
+/// The triangles in BVH `order`: their vertices (`SceneGpu::tris`, with the
+/// material, whether they cast shadows and their mesh index in the `w`s)
+/// and their normals and texture coordinates (`SceneGpu::attrs`).
+fn triangle_data(
+    scene: &Scene,
+    mesh: &TriangleMesh,
+    order: &[u32],
+) -> Result<(Vec4s, Vec4s), RenderError> {
+    let n = mesh.len();
+    // Emitters cast no shadows.
     let casts = |i: usize| {
         let m = mesh.materials[i] as usize;
         scene
@@ -185,7 +250,6 @@ fn upload(ctx: &GpuContext, scene: &Scene) -> Result<SceneGpu, RenderError> {
             .get(m)
             .is_none_or(|m| m.emission == Vec3::ZERO)
     };
-    let order = &bvh.primitive_indices;
     let mut tri_data: Vec<[f32; 4]> = Vec::with_capacity(order.len() * 3);
     let mut attr_data: Vec<[f32; 4]> = Vec::with_capacity(order.len() * 4);
     for &pi in order {
@@ -205,6 +269,17 @@ fn upload(ctx: &GpuContext, scene: &Scene) -> Result<SceneGpu, RenderError> {
         attr_data.push([nv[2].x, nv[2].y, nv[2].z, uv[1].x]);
         attr_data.push([uv[1].y, uv[2].x, uv[2].y, 0.0]);
     }
+    Ok((tri_data, attr_data))
+}
+
+/// The scene's materials as [`GpuMaterial`]s and the texels their palettes
+/// and textures read (one black texel when none does, so the buffer is not
+/// empty); refuses a scene without materials, a texture with fewer texels
+/// than its size, and texels over the buffer budget.
+fn materials_and_texels(
+    ctx: &GpuContext,
+    scene: &Scene,
+) -> Result<(Vec<GpuMaterial>, Vec4s), RenderError> {
     if scene.materials.is_empty() {
         return Err(err(format!("scene {:?} has no materials", scene.name)));
     }
@@ -261,6 +336,12 @@ fn upload(ctx: &GpuContext, scene: &Scene) -> Result<SceneGpu, RenderError> {
     if texels.is_empty() {
         texels.push([0.0; 4]);
     }
+    Ok((materials, texels))
+}
+
+/// The scene's lights as [`GpuLight`]s (one of kind "none" when it has
+/// none, so the buffer is not empty).
+fn gpu_lights(scene: &Scene) -> Vec<GpuLight> {
     // `WgpuBackend::render` has refused more than MAX_LIGHTS lights before
     // uploading.
     let mut lights: Vec<GpuLight> = scene
@@ -293,41 +374,5 @@ fn upload(ctx: &GpuContext, scene: &Scene) -> Result<SceneGpu, RenderError> {
     if lights.is_empty() {
         lights.push(GpuLight::zeroed());
     }
-    let sizes = [
-        ("BVH nodes", std::mem::size_of_val(nodes.as_slice())),
-        ("triangles", std::mem::size_of_val(tri_data.as_slice())),
-        (
-            "triangle attributes",
-            std::mem::size_of_val(attr_data.as_slice()),
-        ),
-        ("texels", std::mem::size_of_val(texels.as_slice())),
-    ];
-    for (what, bytes) in sizes {
-        ctx.check_buffer_size(what, bytes as u64)?;
-    }
-    let scale = mesh
-        .bounds()
-        .map(|(lo, hi)| (hi - lo).length())
-        .unwrap_or(1.0)
-        .max(f32::MIN_POSITIVE);
-    let usage = wgpu::BufferUsages::STORAGE;
-    let buffer = |label: &str, contents: &[u8]| {
-        ctx.device
-            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage,
-            })
-    };
-    ctx.scoped("scene upload", || SceneGpu {
-        nodes: buffer("BVH nodes", bytemuck::cast_slice(&nodes)),
-        tris: buffer("triangles", bytemuck::cast_slice(&tri_data)),
-        attrs: buffer("triangle attributes", bytemuck::cast_slice(&attr_data)),
-        materials: buffer("materials", bytemuck::cast_slice(&materials)),
-        texels: buffer("texels", bytemuck::cast_slice(&texels)),
-        lights: buffer("lights", bytemuck::cast_slice(&lights)),
-        node_count: nodes.len() as u32,
-        triangle_count: order.len() as u32,
-        scale,
-    })
+    lights
 }

@@ -396,25 +396,69 @@ fn supersample(f: &Setup) -> Result<Frame, RenderError> {
     Ok(frame)
 }
 
+/// Which of SRAA's and SRAA-RT's frame buffers exist, from the frame's
+/// method and planned passes (render.rs `SubpixelPlan` on the CPU).
+struct SubpixelPlan {
+    /// Pixels.
+    n: u64,
+    /// SRAA-RT: subsamples traced into buffers; else SRAA's raster pass.
+    rt: bool,
+    /// The layers of each shaded sample.
+    layout: LayerLayout,
+    /// Shadow rays from the shaded samples ([`Passes::SHADOW`]).
+    shadows: bool,
+    /// Subpixel shadow rays (§3.2).
+    sub_shadows: bool,
+    /// Subpixel reflection rays (§3.3).
+    sub_secondary: bool,
+    /// Mirrors shade what they reflect ([`Passes::SECONDARY`]).
+    secondary_shading: bool,
+    /// `+mat`: albedo kept for the material gate.
+    material: bool,
+}
+
+impl SubpixelPlan {
+    fn new(f: &Setup) -> Self {
+        let (scene, method, s, passes) = (f.job.scene, f.job.method, f.job.settings, f.job.passes);
+        let rt = method.technique() == Technique::SraaRt;
+        let lights = scene.lights.len().min(MAX_LIGHTS);
+        SubpixelPlan {
+            n: (s.width as usize * s.height as usize) as u64,
+            rt,
+            layout: LayerLayout::new(method.technique(), passes, lights),
+            shadows: passes.contains(Passes::SHADOW),
+            sub_shadows: rt && passes.contains(Passes::SUBPIXEL_SHADOW),
+            sub_secondary: rt && passes.contains(Passes::SUBPIXEL_SECONDARY_GEOMETRY),
+            secondary_shading: passes.contains(Passes::SECONDARY),
+            material: method.gates_material(),
+        }
+    }
+}
+
 /// The frame buffers of SRAA and SRAA-RT for `passes` (group 1), the WGSL
 /// header that declares which exist, and the raster pass that fills the
-/// subsamples for SRAA (hybrid, §3.1).
+/// subsamples for SRAA (hybrid, §3.1). The buffers are bound in the order
+/// of the steps: the shaded samples', the subsamples' geometry, the gates'.
 fn subpixel_bindings(f: &Setup) -> Result<(Bindings, String, Option<raster::Raster>), RenderError> {
-    let (ctx, sg, uniform) = (f.ctx, &f.sg, &f.uniform);
-    let (scene, method, s, passes) = (f.job.scene, f.job.method, f.job.settings, f.job.passes);
-    let n = s.width as usize * s.height as usize;
-    let rt = method.technique() == Technique::SraaRt;
-    let lights = scene.lights.len().min(MAX_LIGHTS);
-    let layout = LayerLayout::new(method.technique(), passes, lights);
-    let shadows = passes.contains(Passes::SHADOW);
-    let sub_shadows = rt && passes.contains(Passes::SUBPIXEL_SHADOW);
-    let sub_secondary = rt && passes.contains(Passes::SUBPIXEL_SECONDARY_GEOMETRY);
-    let secondary_shading = passes.contains(Passes::SECONDARY);
-    let material = method.gates_material();
-    let nl = layout.len();
-    let n64 = n as u64;
-
+    let plan = SubpixelPlan::new(f);
     let mut fb = Bindings::new(1);
+    shaded_sample_buffers(f.ctx, &mut fb, &plan)?;
+    let raster = subsample_geometry(f, &mut fb, &plan)?;
+    gate_buffers(f.ctx, &mut fb, &plan)?;
+    let header = subpixel_header(&fb, &plan);
+    Ok((fb, header, raster))
+}
+
+/// What the shading pass writes: the colour, and per shaded sample its
+/// geometry, its layers and, where planned, its shadow states and its
+/// mirror hit's geometry and shadow states.
+fn shaded_sample_buffers(
+    ctx: &GpuContext,
+    fb: &mut Bindings,
+    plan: &SubpixelPlan,
+) -> Result<(), RenderError> {
+    let (n64, layout) = (plan.n, &plan.layout);
+    let nl = layout.len();
     fb.storage(ctx, "color", "color", "array<vec4<f32>>", n64 * 16)?;
     fb.storage(ctx, "geometry", "geo", "array<subcone_Geometry>", n64 * 16)?;
     fb.storage(
@@ -445,7 +489,19 @@ fn subpixel_bindings(f: &Setup) -> Result<(Bindings, String, Option<raster::Rast
             )?;
         }
     }
-    let raster = if rt {
+    Ok(())
+}
+
+/// Where the subsamples' geometry comes from: SRAA-RT traces it into a
+/// buffer (one subsample per dispatch, its index in `subsample`); SRAA
+/// rasterises it (§3.1's hybrid), and the raster pass is returned.
+fn subsample_geometry(
+    f: &Setup,
+    fb: &mut Bindings,
+    plan: &SubpixelPlan,
+) -> Result<Option<raster::Raster>, RenderError> {
+    let (ctx, s, n64) = (f.ctx, f.job.settings, plan.n);
+    if plan.rt {
         fb.storage(
             ctx,
             "subpixel geometry",
@@ -454,21 +510,31 @@ fn subpixel_bindings(f: &Setup) -> Result<(Bindings, String, Option<raster::Rast
             n64 * 64,
         )?;
         fb.storage(ctx, "subsample index", "subsample", "array<u32>", 4)?;
-        None
-    } else {
-        let r = raster::Raster::new(ctx, sg, uniform, s.width, s.height, material)?;
-        fb.texture("sub_tex", r.view());
-        fb.stats.push(("subpixel geometry", r.target_bytes()));
-        fb.stats.push(("raster depth", r.depth_bytes()));
-        if let Some(albedo) = r.albedo_view() {
-            fb.texture("sub_alb_tex", albedo);
-            fb.stats.push(("subpixel albedo", r.target_bytes()));
-        }
-        Some(r)
-    };
-    if material {
+        return Ok(None);
+    }
+    let r = raster::Raster::new(ctx, &f.sg, &f.uniform, s.width, s.height, plan.material)?;
+    fb.texture("sub_tex", r.view());
+    fb.stats.push(("subpixel geometry", r.target_bytes()));
+    fb.stats.push(("raster depth", r.depth_bytes()));
+    if let Some(albedo) = r.albedo_view() {
+        fb.texture("sub_alb_tex", albedo);
+        fb.stats.push(("subpixel albedo", r.target_bytes()));
+    }
+    Ok(Some(r))
+}
+
+/// What the reconstruction's gates read besides geometry: the albedo of
+/// shaded samples and traced subsamples (`+mat`), the subsamples' shadow
+/// states (eq. 2) and their mirror hits' geometry and shadow states (§3.3).
+fn gate_buffers(
+    ctx: &GpuContext,
+    fb: &mut Bindings,
+    plan: &SubpixelPlan,
+) -> Result<(), RenderError> {
+    let (n64, lights) = (plan.n, plan.layout.lights);
+    if plan.material {
         fb.storage(ctx, "albedo", "albedo_buf", "array<vec4<f32>>", n64 * 16)?;
-        if rt {
+        if plan.rt {
             fb.storage(
                 ctx,
                 "subpixel albedo",
@@ -478,7 +544,7 @@ fn subpixel_bindings(f: &Setup) -> Result<(Bindings, String, Option<raster::Rast
             )?;
         }
     }
-    if sub_shadows && layout.lights > 0 {
+    if plan.sub_shadows && lights > 0 {
         fb.storage(
             ctx,
             "subpixel shadow states",
@@ -487,7 +553,7 @@ fn subpixel_bindings(f: &Setup) -> Result<(Bindings, String, Option<raster::Rast
             n64 * 16,
         )?;
     }
-    if sub_secondary {
+    if plan.sub_secondary {
         fb.storage(
             ctx,
             "subpixel secondary geometry",
@@ -495,7 +561,7 @@ fn subpixel_bindings(f: &Setup) -> Result<(Bindings, String, Option<raster::Rast
             "array<subcone_Geometry>",
             n64 * 64,
         )?;
-        if layout.lights > 0 {
+        if lights > 0 {
             fb.storage(
                 ctx,
                 "subpixel secondary shadow states",
@@ -505,7 +571,15 @@ fn subpixel_bindings(f: &Setup) -> Result<(Bindings, String, Option<raster::Rast
             )?;
         }
     }
+    Ok(())
+}
 
+/// The WGSL header of `subpixel.wgsl` for the buffers bound in `fb`: the
+/// plan's constants and an accessor pair per optional buffer (reads of the
+/// CPU's initial value where it is absent).
+fn subpixel_header(fb: &Bindings, plan: &SubpixelPlan) -> String {
+    let (layout, rt, material) = (&plan.layout, plan.rt, plan.material);
+    let (nl, shadows, secondary_shading) = (layout.len(), plan.shadows, plan.secondary_shading);
     let no_secondary = "subcone_Geometry(vec3<f32>(0.0), bitcast<f32>(0x7fc00000u))";
     let mut header = String::new();
     header += &format!(
@@ -530,13 +604,13 @@ fn subpixel_bindings(f: &Setup) -> Result<(Bindings, String, Option<raster::Rast
         ("sub_shadow2", "sub_shadow2_buf", "u32", 4, "0u"),
         ("albedo", "albedo_buf", "vec4<f32>", 1, "vec4<f32>(0.0)"),
     ] {
-        header += &accessors(&fb, name, var, ty, per, default);
+        header += &accessors(fb, name, var, ty, per, default);
     }
     if !rt && material {
         header += raster::SUB_ALBEDO_ACCESSORS;
     } else {
         header += &accessors(
-            &fb,
+            fb,
             "sub_albedo",
             "sub_albedo_buf",
             "vec4<f32>",
@@ -546,7 +620,7 @@ fn subpixel_bindings(f: &Setup) -> Result<(Bindings, String, Option<raster::Rast
     }
     if rt {
         header += &accessors(
-            &fb,
+            fb,
             "sub_geo",
             "sub_geo_buf",
             "subcone_Geometry",
@@ -557,7 +631,7 @@ fn subpixel_bindings(f: &Setup) -> Result<(Bindings, String, Option<raster::Rast
         header += raster::SUB_GEO_ACCESSORS;
         header += "var<private> subsample: array<u32, 1>;\n";
     }
-    Ok((fb, header, raster))
+    header
 }
 
 /// SRAA (hybrid: raster subpixel geometry) and SRAA-RT (render.rs `subpixel`):
