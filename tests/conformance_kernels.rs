@@ -35,8 +35,8 @@ use subcone::vectors::tolerance::{
     Tol, CTSS_TRACE_FLIPS_PER_200, MASK_NEAR, MASK_NEAR_ROWS_PER_100, MATERIAL_GATE_NEAR,
     NEEDS_NORMAL_NEAR, SDF_MATERIAL_TIES_PER_200, TOL_AGGREGATE, TOL_ALBEDO_DIFFERENCE,
     TOL_AO_DIRECTION, TOL_AO_FRACTION, TOL_CONE, TOL_CTSS_TRACE, TOL_FXAA_ENCODE, TOL_FXAA_PIXEL,
-    TOL_OCCLUSION, TOL_PROJECT_NORMAL, TOL_RESOLVE, TOL_SAMPLE_WEIGHT, TOL_SDF_FIELD, TOL_STEPPER,
-    TOL_TRANSPARENCY_WEIGHT, TOL_WEIGHT, TRANSPARENCY_NEAR,
+    TOL_OCCLUSION, TOL_PROJECT_NORMAL, TOL_RECONSTRUCT, TOL_RESOLVE, TOL_SAMPLE_WEIGHT,
+    TOL_SDF_FIELD, TOL_STEPPER, TOL_TRANSPARENCY_WEIGHT, TOL_WEIGHT, TRANSPARENCY_NEAR,
 };
 use subcone_kernels::aggregate::{sample_weight, Aggregate, Weighting};
 use subcone_kernels::ao::{ao_direction, ao_fraction};
@@ -47,9 +47,10 @@ use subcone_kernels::mask::{
     needs_normal, project_normal, visibility_mask, MaskPlacement, FARTHEST_CENTRE,
 };
 use subcone_kernels::sraa::{
-    albedo_difference, bilateral_weight, material_gated_weight, reconstruction_weight,
-    resolve_pixel, shadow_gated_weight, DepthMetric, Geometry, SraaParams, WeightForm,
-    ALBEDO_TOLERANCE,
+    albedo_difference, bilateral_weight, material_gated_weight, neighbourhood, reconstruct_layers,
+    reconstruct_layers_material, reconstruction_weight, resolve_pixel, shadow_gated_weight,
+    DepthMetric, Geometry, LayeredSample, Resolver, ShadedFrame, ShadedGroup, SraaParams,
+    Subsamples, WeightForm, ALBEDO_TOLERANCE,
 };
 use subcone_wgpu::test_util::{gpu_or_skip, run_wgsl, Kernel, Table};
 use subcone_wgpu::GpuContext;
@@ -278,6 +279,9 @@ fn floats(w: &[u32]) -> Vec<f32> {
 /// prelude, `wgsl::PARAMS`, first).
 struct Library {
     sraa: String,
+    /// `sraa::RECONSTRUCT_WGSL` with the test's hooks ([`RECONSTRUCT_HOOKS`]);
+    /// run after `sraa`.
+    reconstruct: String,
     ctss: String,
     /// `transparency::WGSL` (the stepper carries the K masks), `ctss::WGSL` and `ctss::TRACE_WGSL` with the test's hooks
     /// ([`TRACE_HOOKS`]); run after `ctss`.
@@ -293,6 +297,7 @@ impl Library {
         use subcone_kernels::*;
         Library {
             sraa: [sraa::WGSL, SRAA_PARAMS_AT].concat(),
+            reconstruct: [RECONSTRUCT_HOOKS, sraa::RECONSTRUCT_WGSL].concat(),
             ctss: [cone::WGSL, mask::WGSL, aggregate::WGSL].concat(),
             trace: [
                 transparency::WGSL,
@@ -640,6 +645,371 @@ fn check_resolve(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
         }
     }
     r.finish()
+}
+
+/// The image of a [`check_reconstruct`] record: `RECON_W × RECON_H` pixels.
+const RECON_W: u32 = 4;
+const RECON_H: u32 = 3;
+/// Layers per group in [`check_reconstruct`]: layer 0 ungated, layer `1 + l`
+/// gated by light `l`'s shadow bit (eq. 2), as `SRAA_GATES` says.
+const RECON_GATES: [Option<u8>; 3] = [None, Some(0), Some(1)];
+/// Words of a [`check_reconstruct`] record before its pixels, and per pixel.
+const RECON_HEADER: usize = 44;
+const RECON_PIXEL: usize = 17;
+
+/// The hooks `sraa::RECONSTRUCT_WGSL` expects from its including shader,
+/// over a [`check_reconstruct`] record: words 0..8 the parameters, 11 the
+/// albedo tolerance, then from word 44 the 4×3 image's shaded samples, 17
+/// words each (normal, depth, shadow bits, albedo, three colour layers).
+/// The secondary group reads the same samples: the record says which group
+/// runs, so the loop's one difference between them, the material gate, is
+/// what it exercises.
+const RECONSTRUCT_HOOKS: &str = "
+const SRAA_GATES: u32 = 3u;
+const SRAA_MATERIAL: bool = true;
+fn sraa_params() -> subcone_SraaParams { return sraa_params_at(0u); }
+fn sraa_size() -> vec2<u32> { return vec2<u32>(4u, 3u); }
+fn sraa_albedo_tolerance() -> f32 { return f(11u); }
+fn recon_pixel(x: u32, y: u32) -> u32 { return 44u + (y * 4u + x) * 17u; }
+fn sraa_shaded_geometry(x: u32, y: u32, secondary: bool) -> subcone_Geometry {
+    let b = recon_pixel(x, y);
+    return subcone_Geometry(v3(b), f(b + 3u));
+}
+fn sraa_shaded_shadow(x: u32, y: u32, secondary: bool) -> u32 { return u(recon_pixel(x, y) + 4u); }
+fn sraa_shaded_albedo(x: u32, y: u32) -> vec3<f32> { return v3(recon_pixel(x, y) + 5u); }
+fn sraa_shaded_value(x: u32, y: u32, layer: u32) -> vec3<f32> { return v3(recon_pixel(x, y) + 8u + 3u * layer); }
+";
+
+/// One shaded sample of a [`check_reconstruct`] image.
+#[derive(Clone, Debug)]
+struct ReconPixel {
+    geometry: Geometry,
+    shadow: u32,
+    albedo: Vec3,
+    colors: [Vec3; 3],
+}
+
+/// One [`check_reconstruct`] record: a pixel `(x, y)` of a 4×3 image, its
+/// four subsamples and the image's shaded samples.
+#[derive(Clone, Debug)]
+struct ReconCase {
+    params: SraaParams,
+    x: u32,
+    y: u32,
+    /// The material gate (the primary group with `SRAA_MATERIAL`), or none
+    /// (the secondary group).
+    gate: bool,
+    tolerance: f32,
+    targets: Subsamples,
+    pixels: Vec<ReconPixel>,
+}
+
+/// Geometry that mostly lies on one of three surfaces (so that neighbours
+/// weigh something and a few weigh nearly nothing), sometimes a miss, and
+/// sometimes anything ([`geometry`]'s extremes: NaN normals, `∞` and NaN
+/// depths).
+fn surface() -> BoxedStrategy<Geometry> {
+    let normals = [Vec3::Z, Vec3::new(0.6, 0.0, 0.8), Vec3::new(0.0, -0.8, 0.6)];
+    prop_oneof![
+        6 => (0usize..3, prop::sample::select(vec![1.0f32, 1.05, 2.0]), -0.01f32..0.01)
+            .prop_map(move |(n, z, dz)| Geometry::new(normals[n], z + dz)),
+        1 => Just(Geometry::MISS),
+        2 => geometry(),
+    ]
+    .boxed()
+}
+
+/// An albedo of one of three materials (two within the default tolerance of
+/// each other, one far), or anything ([`albedo`]).
+fn material() -> BoxedStrategy<Vec3> {
+    prop_oneof![
+        4 => prop::sample::select(vec![
+            Vec3::new(0.8, 0.2, 0.2),
+            Vec3::new(0.8, 0.25, 0.2),
+            Vec3::new(0.1, 0.5, 0.9),
+        ]),
+        1 => albedo(),
+    ]
+    .boxed()
+}
+
+/// A shaded colour: radiance, so not negative; mostly in `[0, 4]`, exactly
+/// black, tiny, as bright as half floats go (65504), or not finite (excluded
+/// by both sides). Not brighter: a GPU may flush a subnormal weight (below
+/// 2⁻¹²⁶, which eq. 1 reaches on far neighbours) to zero, and times a colour
+/// of 1e30 such a weight still moves the mean (see `TOL_RECONSTRUCT`).
+fn radiance() -> BoxedStrategy<Vec3> {
+    let channel = prop_oneof![
+        6 => 0.0f32..4.0,
+        1 => Just(0.0f32),
+        1 => prop::sample::select(vec![
+            1e-30f32, 1e-38, 1.4e-45, 65504.0, f32::NAN, f32::INFINITY, f32::NEG_INFINITY,
+        ]),
+    ];
+    (channel.clone(), channel.clone(), channel)
+        .prop_map(|(r, g, b)| Vec3::new(r, g, b))
+        .boxed()
+}
+
+fn shadow_bits() -> BoxedStrategy<u32> {
+    prop_oneof![6 => 0u32..4, 1 => any::<u32>()].boxed()
+}
+
+fn recon_case() -> BoxedStrategy<ReconCase> {
+    let pixel = (
+        surface(),
+        shadow_bits(),
+        material(),
+        [radiance(), radiance(), radiance()],
+    )
+        .prop_map(|(geometry, shadow, albedo, colors)| ReconPixel {
+            geometry,
+            shadow,
+            albedo,
+            colors,
+        });
+    let radius = prop_oneof![8 => Just(1u16), 1 => Just(0u16), 1 => Just(2u16)];
+    let tolerance = prop_oneof![6 => Just(ALBEDO_TOLERANCE), 2 => any_f32(0.0, 1.0)];
+    (
+        (
+            sraa_params(),
+            radius,
+            0..RECON_W,
+            0..RECON_H,
+            any::<bool>(),
+            tolerance,
+        ),
+        [surface(), surface(), surface(), surface()],
+        [shadow_bits(), shadow_bits(), shadow_bits(), shadow_bits()],
+        [material(), material(), material(), material()],
+        prop::collection::vec(pixel, (RECON_W * RECON_H) as usize),
+    )
+        .prop_map(
+            |((params, radius, x, y, gate, tolerance), geometry, shadow, albedo, pixels)| {
+                ReconCase {
+                    params: params.with_radius(radius),
+                    x,
+                    y,
+                    gate,
+                    tolerance,
+                    targets: Subsamples {
+                        geometry,
+                        shadow,
+                        albedo: Some(albedo),
+                    },
+                    pixels,
+                }
+            },
+        )
+        .boxed()
+}
+
+impl ReconCase {
+    fn words(&self) -> Vec<u32> {
+        let mut w = Vec::with_capacity(RECON_HEADER + RECON_PIXEL * self.pixels.len());
+        w.extend(params_words(&self.params));
+        w.extend([self.x, self.y, self.gate as u32, self.tolerance.to_bits()]);
+        for g in &self.targets.geometry {
+            w.extend(geometry_words(g));
+        }
+        w.extend(self.targets.shadow);
+        for a in self.targets.albedo.unwrap() {
+            w.extend(words(&a.to_array()));
+        }
+        assert_eq!(w.len(), RECON_HEADER);
+        for p in &self.pixels {
+            w.extend(geometry_words(&p.geometry));
+            w.push(p.shadow);
+            w.extend(words(&p.albedo.to_array()));
+            for c in &p.colors {
+                w.extend(words(&c.to_array()));
+            }
+        }
+        w
+    }
+
+    /// The neighbourhood of subsample `k`, as `Resolver` reads it.
+    fn hood(&self, k: usize) -> subcone_kernels::sraa::Neighbourhood {
+        let p = &self.params;
+        neighbourhood(
+            self.x,
+            self.y,
+            k,
+            p.shaded_offset(),
+            p.radius(),
+            RECON_W,
+            RECON_H,
+        )
+    }
+
+    /// Whether the material gate's decision for some subsample and
+    /// neighbour lies within [`MATERIAL_GATE_NEAR`] of the tolerance, where
+    /// a few ulps of WGSL `sqrt` decide it.
+    fn gate_near_tolerance(&self) -> bool {
+        let tol = self.tolerance;
+        self.gate
+            && tol.is_finite()
+            && (0..4).any(|k| {
+                let ai = self.targets.albedo.unwrap()[k];
+                self.hood(k).any(|np| {
+                    let aj = self.pixels[(np.y * RECON_W + np.x) as usize].albedo;
+                    let d = albedo_difference(ai, aj);
+                    // Equal albedos differ by exactly 0 on both sides.
+                    ai != aj && d.is_finite() && (d - tol).abs() <= MATERIAL_GATE_NEAR
+                })
+            })
+    }
+
+    /// Subsample `k`'s layers, reconstructed and summed: what
+    /// `subcone_sraa_reconstruct_run` returns.
+    fn subsample(&self, k: usize) -> Vec3 {
+        let samples = self.hood(k).map(|np| {
+            let px = &self.pixels[(np.y * RECON_W + np.x) as usize];
+            let s = LayeredSample {
+                geometry: px.geometry,
+                shadow: px.shadow,
+                distance2: np.distance2,
+                colors: &px.colors,
+            };
+            (s, px.albedo)
+        });
+        let (p, t) = (&self.params, &self.targets);
+        let mut out = [Vec3::ZERO; 3];
+        if self.gate {
+            reconstruct_layers_material(
+                p,
+                &t.geometry[k],
+                t.shadow[k],
+                t.albedo.unwrap()[k],
+                self.tolerance,
+                &RECON_GATES,
+                samples,
+                &mut out,
+            );
+        } else {
+            reconstruct_layers(
+                p,
+                &t.geometry[k],
+                t.shadow[k],
+                &RECON_GATES,
+                samples.map(|(s, _)| s),
+                &mut out,
+            );
+        }
+        out.iter().fold(Vec3::ZERO, |a, c| a + *c)
+    }
+
+    /// The pixel through the kernels' `Resolver`, as the CPU backend runs it.
+    fn resolve(&self) -> Vec3 {
+        let geometry: Vec<Geometry> = self.pixels.iter().map(|p| p.geometry).collect();
+        let shadow: Vec<u32> = self.pixels.iter().map(|p| p.shadow).collect();
+        let albedo: Vec<Vec3> = if self.gate {
+            self.pixels.iter().map(|p| p.albedo).collect()
+        } else {
+            Vec::new()
+        };
+        let colors: Vec<Vec3> = self.pixels.iter().flat_map(|p| p.colors).collect();
+        let frame = ShadedFrame {
+            width: RECON_W,
+            height: RECON_H,
+            colors: &colors,
+            layers: RECON_GATES.len(),
+            albedo: &albedo,
+            primary: ShadedGroup {
+                geometry: &geometry,
+                shadow: &shadow,
+                first_layer: 0,
+            },
+            secondary: None,
+        };
+        Resolver::new(&self.params, &RECON_GATES, self.tolerance).resolve(
+            &frame,
+            self.x,
+            self.y,
+            &self.targets,
+            None,
+        )
+    }
+}
+
+/// The reconstruction loop every GPU resolve runs (`sraa::RECONSTRUCT_WGSL`,
+/// `subcone_sraa_reconstruct_run`) against its Rust twin, on generated
+/// pixels of a 4×3 image: each of the four subsamples' sum of layers
+/// against [`reconstruct_layers`] (with the material gate,
+/// [`reconstruct_layers_material`]) over [`neighbourhood`], within
+/// [`TOL_RECONSTRUCT`], and their box resolve (`subcone_resolve_pixel`)
+/// against the kernels' `Resolver`, the CPU backend's pass, within the same.
+/// Eq. 1 with the spatial term, eq. 2's gate on two lights, the material
+/// gate, misses, NaN geometry, non-finite colours, the fallback to the
+/// nearest sample, radii 0 to 2 and pixels at the image's edges are all
+/// drawn. Records where a material gate decision lies within
+/// [`MATERIAL_GATE_NEAR`] of the tolerance are skipped and counted.
+fn check_reconstruct(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
+    let cases = generate(recon_case(), 12);
+    let input: Vec<u32> = cases.iter().flat_map(|c| c.words()).collect();
+    let in_words = RECON_HEADER + RECON_PIXEL * (RECON_W * RECON_H) as usize;
+    let library = [lib.sraa.as_str(), &lib.reconstruct].concat();
+    let out = run(
+        ctx,
+        &library,
+        "let x = u(8u);
+         let y = u(9u);
+         let secondary = u(10u) == 0u;
+         var s: array<vec3<f32>, 4>;
+         for (var k = 0u; k < 4u; k++) {
+             let tgt = subcone_Geometry(v3(12u + 4u * k), f(15u + 4u * k));
+             s[k] = subcone_sraa_reconstruct_run(tgt, u(28u + k), v3(32u + 3u * k), secondary, 0u, x, y, k);
+             out[o + 3u * k] = bitcast<u32>(s[k].x);
+             out[o + 3u * k + 1u] = bitcast<u32>(s[k].y);
+             out[o + 3u * k + 2u] = bitcast<u32>(s[k].z);
+         }
+         let c = subcone_resolve_pixel(s[0], s[1], s[2], s[3]);
+         out[o + 12u] = bitcast<u32>(c.x); out[o + 13u] = bitcast<u32>(c.y); out[o + 14u] = bitcast<u32>(c.z);",
+        in_words,
+        15,
+        &input,
+    )?;
+    let mut subsamples = Report::new("subcone_sraa_reconstruct_run");
+    let mut pixels = Report::new("reconstruct_run + resolve_pixel (Resolver)");
+    let (mut near, mut gated, mut fell_back) = (0usize, 0usize, 0usize);
+    for (i, c) in cases.iter().enumerate() {
+        if c.gate_near_tolerance() {
+            near += 1;
+            continue;
+        }
+        gated += c.gate as usize;
+        let g = floats(&out[15 * i..15 * i + 15]);
+        let case = (c.params, c.x, c.y, c.gate, c.tolerance);
+        for k in 0..4 {
+            let rust = c.subsample(k).to_array();
+            subsamples.floats(TOL_RECONSTRUCT, &(case, k), &rust, &g[3 * k..3 * k + 3]);
+        }
+        pixels.floats(TOL_RECONSTRUCT, &case, &c.resolve().to_array(), &g[12..15]);
+        // How often the weights underflow everywhere (the fallback).
+        let t = &c.targets.geometry[0];
+        if c.hood(0).all(|np| {
+            let px = &c.pixels[(np.y * RECON_W + np.x) as usize];
+            reconstruction_weight(&c.params, t, &px.geometry, np.distance2) == 0.0
+        }) {
+            fell_back += 1;
+        }
+    }
+    let p = pixels.finish().map(|s| {
+        format!(
+            "{s} | {gated} records material-gated, {fell_back} whose subsample 0 has \
+             no weight (the fallback); {near} within {MATERIAL_GATE_NEAR:e} of the tolerance \
+             skipped"
+        )
+    });
+    if fell_back * 100 < cases.len() || gated * 4 < cases.len() {
+        return join(
+            join(subsamples.finish(), p),
+            Err(format!(
+                "reconstruction: too few fallbacks ({fell_back}) or gated records ({gated})"
+            )),
+        );
+    }
+    join(subsamples.finish(), p)
 }
 
 /// CTSS eq. 4, 5, the minimum step, the advance, eq. 9–10 and §3.6's hard
@@ -1986,10 +2356,11 @@ fn check_ctss_trace(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
     join(d, colour.finish())
 }
 
-const CHECKS: [(&str, Check); 11] = [
+const CHECKS: [(&str, Check); 12] = [
     ("weights", check_weights),
     ("material", check_material),
     ("resolve", check_resolve),
+    ("reconstruction", check_reconstruct),
     ("cone", check_cone),
     ("mask", check_mask),
     ("aggregate", check_aggregate),
@@ -2028,7 +2399,7 @@ fn wgsl_kernels_match_the_rust_kernels() {
 fn perturbed_kernels_are_caught() {
     let Some(gpu) = gpu() else { return };
     let ctx = gpu.context();
-    let perturbations: [(&str, &str, &str, Check); 14] = [
+    let perturbations: [(&str, &str, &str, Check); 16] = [
         (
             "bilateral weight off by 1e-3",
             "return subcone_saturate(w);",
@@ -2064,6 +2435,18 @@ fn perturbed_kernels_are_caught() {
             "return d <= tolerance && d < subcone_inf();",
             "return true;",
             check_material,
+        ),
+        (
+            "the reconstruction loop never gates a layer by its light's shadow (eq. 2)",
+            "subcone_reconstruct_layers_add(&layer, w, i > 0u,",
+            "subcone_reconstruct_layers_add(&layer, w, false,",
+            check_reconstruct,
+        ),
+        (
+            "the reconstruction loop ignores the material gate",
+            "if !(SRAA_MATERIAL && !secondary) ||",
+            "if true ||",
+            check_reconstruct,
         ),
         (
             "FXAA's sub-pixel low-pass over 8 instead of 12 weights",
@@ -2118,6 +2501,7 @@ fn perturbed_kernels_are_caught() {
         let shipped = Library::shipped();
         assert!(
             shipped.sraa.contains(from)
+                || shipped.reconstruct.contains(from)
                 || shipped.ctss.contains(from)
                 || shipped.trace.contains(from)
                 || shipped.fxaa.contains(from)
@@ -2128,6 +2512,7 @@ fn perturbed_kernels_are_caught() {
         );
         let lib = Library {
             sraa: shipped.sraa.replacen(from, to, 1),
+            reconstruct: shipped.reconstruct.replacen(from, to, 1),
             ctss: shipped.ctss.replacen(from, to, 1),
             trace: shipped.trace.replacen(from, to, 1),
             fxaa: shipped.fxaa.replacen(from, to, 1),

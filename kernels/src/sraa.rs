@@ -25,6 +25,35 @@ pub use resolver::{
 /// differences in rounding (GPU `exp`, compensated f32 sums instead of f64).
 pub const WGSL: &str = include_str!("sraa.wgsl");
 
+/// The WGSL twin of [`reconstruct_layers`] (and, with the albedo gate, of
+/// [`reconstruct_layers_material`]) over [`neighbourhood`]: the SRAA
+/// reconstruction loop, eq. 1 with the spatial term ([`reconstruction_weight`])
+/// gated per light by eq. 2 (§3.1–3.2), on the primary or, for mirrors, the
+/// secondary hits' geometry (§3.3). `subcone_sraa_reconstruct_run(tgt,
+/// target_shadow, ta, secondary, first, x, y, k) -> vec3<f32>` reconstructs
+/// subsample `k` of pixel `(x, y)` from one group of layers (`first ..
+/// first + SRAA_GATES`: layer 0 ungated, layer `1 + l` gated by light `l`'s
+/// shadow bit) and returns the sum of the group's layers, as [`Resolver`]
+/// sums a subsample's layers. It drives [`WGSL`]'s
+/// `subcone_reconstruct_layers_begin/add/end` in the order of the Rust loop.
+/// Every GPU resolve runs it (`subcone_passes::SraaResolve` and the wgpu
+/// backend's SRAA-RT resolve); `tests/conformance_kernels.rs` holds it to
+/// [`reconstruct_layers`] and [`Resolver`].
+///
+/// Concatenate after [`crate::wgsl::PARAMS`], [`WGSL`] and the hooks the
+/// including shader defines (the source's header lists them):
+///
+/// - `const SRAA_GATES: u32`: layers per group, `1 +` gated lights (≤ 9);
+/// - `const SRAA_MATERIAL: bool`: the albedo gate on the primary group;
+/// - `fn sraa_params() -> subcone_SraaParams`, `fn sraa_size() -> vec2<u32>`
+///   (the image's width and height), `fn sraa_albedo_tolerance() -> f32`;
+/// - `fn sraa_shaded_geometry(x, y, secondary) -> subcone_Geometry`,
+///   `fn sraa_shaded_shadow(x, y, secondary) -> u32`,
+///   `fn sraa_shaded_albedo(x, y) -> vec3<f32>`,
+///   `fn sraa_shaded_value(x, y, layer) -> vec3<f32>`: pixel `(x, y)`'s
+///   shaded sample (its geometry, shadow bits, albedo and colour layers).
+pub const RECONSTRUCT_WGSL: &str = include_str!("sraa/reconstruct.wgsl");
+
 /// The four subpixel offsets of the 4x rotated grid on a 4×4 grid (§3.1, Fig. 2),
 /// relative to the pixel's centre, in pixels.
 ///

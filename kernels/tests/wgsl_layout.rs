@@ -21,6 +21,13 @@ use subcone_kernels::wgsl;
 /// per kernel module.
 const KERNELS: &[(&str, &str)] = &[
     ("sraa::WGSL", subcone_kernels::sraa::WGSL),
+    // The reconstruction loop's hooks are the including shader's: a 4×4
+    // image of one surface, unshadowed, grey, stands in for them.
+    ("the caller's sraa_params etc.", SRAA_RECONSTRUCT_HOOKS),
+    (
+        "sraa::RECONSTRUCT_WGSL",
+        subcone_kernels::sraa::RECONSTRUCT_WGSL,
+    ),
     ("cone::WGSL", subcone_kernels::cone::WGSL),
     ("mask::WGSL", subcone_kernels::mask::WGSL),
     ("aggregate::WGSL", subcone_kernels::aggregate::WGSL),
@@ -37,6 +44,19 @@ const KERNELS: &[(&str, &str)] = &[
     ("fxaa::WGSL", subcone_kernels::fxaa::WGSL),
     ("ao::WGSL", subcone_kernels::ao::WGSL),
 ];
+
+/// The hooks `sraa/reconstruct.wgsl` expects its including shader to define.
+const SRAA_RECONSTRUCT_HOOKS: &str = "
+const SRAA_GATES: u32 = 3u;
+const SRAA_MATERIAL: bool = true;
+fn sraa_params() -> subcone_SraaParams { return subcone_SraaParams(10.0, 1.0, 1.0, 1u << 16u, 0.4, 1u, 0u, 0u); }
+fn sraa_size() -> vec2<u32> { return vec2<u32>(4u, 4u); }
+fn sraa_albedo_tolerance() -> f32 { return 0.1; }
+fn sraa_shaded_geometry(x: u32, y: u32, secondary: bool) -> subcone_Geometry { return subcone_Geometry(vec3<f32>(0.0, 0.0, 1.0), 1.0); }
+fn sraa_shaded_shadow(x: u32, y: u32, secondary: bool) -> u32 { return 0u; }
+fn sraa_shaded_albedo(x: u32, y: u32) -> vec3<f32> { return vec3<f32>(0.5); }
+fn sraa_shaded_value(x: u32, y: u32, layer: u32) -> vec3<f32> { return vec3<f32>(0.5); }
+";
 
 /// The hook `fxaa.wgsl` expects its including shader to define.
 const FXAA_FETCH: &str =
@@ -260,6 +280,49 @@ fn params_and_kernels_validate() {
     }
 }
 
+/// The SRAA sources export what the GPU resolves call: the weights (eq. 1,
+/// eq. 2, the material gate), the neighbourhood, the per-layer
+/// reconstruction steps and the box resolve from `sraa::WGSL`, and the loop
+/// that drives them, `subcone_sraa_reconstruct_run`, from
+/// `sraa::RECONSTRUCT_WGSL`.
+#[test]
+fn sraa_wgsl_exports_the_resolve() {
+    let source = [
+        wgsl::PARAMS,
+        subcone_kernels::sraa::WGSL,
+        SRAA_RECONSTRUCT_HOOKS,
+        subcone_kernels::sraa::RECONSTRUCT_WGSL,
+    ]
+    .join("\n");
+    let module = validate("sraa::WGSL + sraa::RECONSTRUCT_WGSL", &source);
+    for f in [
+        "subcone_bilateral_weight",
+        "subcone_shadow_gated_weight",
+        "subcone_reconstruction_weight",
+        "subcone_albedo_difference",
+        "subcone_material_gated_weight",
+        "subcone_material_gate",
+        "subcone_depth_difference",
+        "subcone_gaussian",
+        "subcone_saturate",
+        "subcone_neighbourhood",
+        "subcone_neighbour_distance2",
+        "subcone_reconstruct_layers_begin",
+        "subcone_reconstruct_layers_add",
+        "subcone_reconstruct_layers_end",
+        "subcone_resolve_pixel",
+        "subcone_sraa_reconstruct_run",
+    ] {
+        assert!(
+            module
+                .functions
+                .iter()
+                .any(|(_, g)| g.name.as_deref() == Some(f)),
+            "{f} missing"
+        );
+    }
+}
+
 /// A kernel source that parses but does not validate fails the check.
 #[test]
 #[should_panic(expected = "is invalid")]
@@ -274,7 +337,19 @@ fn an_invalid_kernel_fails_validation() {
 
 /// The hooks a kernel source expects its including shader to define: the
 /// only names the kernels use that they do not export.
-const HOOKS: &[&str] = &["fxaa_fetch", "ctss_field"];
+const HOOKS: &[&str] = &[
+    "fxaa_fetch",
+    "ctss_field",
+    "SRAA_GATES",
+    "SRAA_MATERIAL",
+    "sraa_params",
+    "sraa_size",
+    "sraa_albedo_tolerance",
+    "sraa_shaded_geometry",
+    "sraa_shaded_shadow",
+    "sraa_shaded_albedo",
+    "sraa_shaded_value",
+];
 
 /// Every function, struct and constant the kernels export is `subcone_` +
 /// its Rust name (ARCHITECTURE.md rule 10), so that a host shader including

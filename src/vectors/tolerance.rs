@@ -113,6 +113,20 @@ pub const TOL_WEIGHT: Tol = Tol::Abs(2e-6);
 pub const TOL_ALBEDO_DIFFERENCE: Tol = Tol::Abs(1e-6);
 /// `resolve_pixel`: one rounding per add and the scale.
 pub const TOL_RESOLVE: Tol = Tol::Abs(1e-6);
+/// `sraa::RECONSTRUCT_WGSL`'s loop (`reconstruct_layers` of a subsample,
+/// its layers summed) and the pixel's box resolve of four such sums
+/// (`sraa::Resolver`): weighted means of non-negative colours, relative to
+/// the larger of 1 and the values. A relative error `ε` in the weights moves
+/// such a mean by at most `2ε` of it. A weight is `exp(−s)` with `s < 105`:
+/// WGSL's `exp` may be off by `3 + 2|s|` ulps (up to 1.3e-5 relative), and
+/// `s`, a sum of squares, may round (or fuse) one ulp apart (up to 1.3e-5
+/// more), so `2ε` stays below 6e-5; the compensated f32 sums add about one
+/// f32 ulp against Rust's f64: 1e-4. A subnormal weight that a GPU flushes
+/// to zero moves the mean by less than `2⁻⁶²·C` (`2⁻¹²⁶` over the least
+/// total weight that does not fall back, `NEGLIGIBLE_WEIGHT = 2⁻⁶⁴`):
+/// nothing for colours `C` of ordinary range (the suite draws them up to
+/// 65504). Lavapipe's worst is 3e-6.
+pub const TOL_RECONSTRUCT: Tol = Tol::Rel(1e-4);
 /// `cone_radius`, `min_step`, `advance`, `backtrace_cone_entry`,
 /// `backtrace_hard_hit`: a multiply, an add or a division each. 2 ulps, the
 /// tighter of the two bounds earlier tests used (2 and 4 ulps). WGSL allows a

@@ -15,10 +15,10 @@
 //!   of the host's own signed distance field, written in WGSL.
 //! - [`FxaaPass`]: FXAA 3.11 (`subcone_kernels::fxaa`) over a host texture.
 //!
-//! Every pass runs the kernels' WGSL (`subcone_kernels::sraa::WGSL`,
-//! `subcone_kernels::ctss::TRACE_WGSL`, `subcone_kernels::fxaa::WGSL`): the
-//! mathematics is written once, in the kernels crate, and this crate only
-//! binds textures to it. Each GPU pass is one `.rs` beside one `.wgsl`.
+//! Every pass runs the kernels' WGSL (`subcone_kernels::sraa::WGSL` and
+//! `RECONSTRUCT_WGSL`, `subcone_kernels::ctss::TRACE_WGSL`,
+//! `subcone_kernels::fxaa::WGSL`): the mathematics is written once, in the
+//! kernels crate, and this crate only binds textures to it. Each GPU pass is one `.rs` beside one `.wgsl`.
 //!
 //! Inputs are checked before anything is recorded: a texture of the wrong
 //! size, format, sample count, layer count or usage is a [`PassError`], never

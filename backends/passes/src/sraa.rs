@@ -13,7 +13,8 @@
 //! sample `k` at offset `k`. So a host's 4x multisampled depth + normal
 //! prepass already holds SRAA's geometric subsamples.
 //!
-//! The maths is the kernels' WGSL (`subcone_kernels::sraa::WGSL`); this
+//! The maths is the kernels' WGSL (`subcone_kernels::sraa::WGSL` and the
+//! reconstruction loop, `subcone_kernels::sraa::RECONSTRUCT_WGSL`); this
 //! module binds the host's textures to it (`sraa.wgsl`).
 
 use bytemuck::{Pod, Zeroable};
@@ -26,17 +27,15 @@ use crate::PassError;
 
 pub(crate) const SRAA_WGSL: &str = include_str!("sraa.wgsl");
 
-/// The SRAA reconstruction loop in WGSL, shared by every GPU resolve
-/// ([`SraaResolve`] and the wgpu backend's own): `sraa_reconstruct_run`,
-/// `sraa::reconstruct_layers` (with the albedo gate,
-/// `sraa::reconstruct_layers_material`) of one subsample over the
-/// neighbourhood's shaded samples of one group, driving the kernels' WGSL in
-/// the CPU's order. Concatenate after `subcone_kernels::wgsl::PARAMS`,
-/// `subcone_kernels::sraa::WGSL` and the hooks the source's header lists
-/// (`SRAA_GATES`, `SRAA_MATERIAL`, `sraa_params`, `sraa_size`,
-/// `sraa_albedo_tolerance`, `sraa_shaded_geometry`, `sraa_shaded_shadow`,
-/// `sraa_shaded_albedo`, `sraa_shaded_value`).
-pub const RECONSTRUCT_WGSL: &str = include_str!("reconstruct.wgsl");
+/// The SRAA reconstruction loop every GPU resolve shares ([`SraaResolve`]
+/// and the wgpu backend's own), `subcone_sraa_reconstruct_run`: the
+/// kernels' WGSL twin of `sraa::reconstruct_layers` (with the albedo gate,
+/// `sraa::reconstruct_layers_material`), re-exported from
+/// [`subcone_kernels::sraa::RECONSTRUCT_WGSL`], whose documentation lists
+/// the hooks the including shader defines. `sraa.wgsl` defines them over
+/// the host's textures.
+pub use subcone_kernels::sraa::RECONSTRUCT_WGSL;
+
 const WORKGROUP: u32 = 8;
 
 /// The pass's constants; `SraaFrame` in `sraa.wgsl` (64 bytes).

@@ -3,13 +3,15 @@
 // resolve (backends/wgpu/src/triangles/sraa.wgsl) and the kernels' Resolver:
 // for each of the four geometric subsamples, sraa::reconstruct_layers over
 // the neighbourhood's shaded samples (eq. 1, eq. 2 per light, the material
-// gate; reconstruct.wgsl, shared with the backend), then
-// sraa::resolve_pixel. All the mathematics is the kernels'
-// (subcone_kernels::sraa::WGSL); this file only reads the host's textures.
+// gate; the kernels' loop subcone_kernels::sraa::RECONSTRUCT_WGSL, shared
+// with the backend), then sraa::resolve_pixel. All the mathematics is the
+// kernels' (subcone_kernels::sraa::WGSL and RECONSTRUCT_WGSL); this file
+// only reads the host's textures.
 //
 // Follows subcone_kernels::wgsl::PARAMS, subcone_kernels::sraa::WGSL and the
-// header sraa.rs generates, and before reconstruct.wgsl (the loop, whose
-// hooks this file defines): the constants LIGHTS, MATERIAL, HARDWARE_DEPTH,
+// header sraa.rs generates, and comes before
+// subcone_kernels::sraa::RECONSTRUCT_WGSL (the loop, whose hooks this file
+// defines): the constants LIGHTS, MATERIAL, HARDWARE_DEPTH,
 // UNSIGNED_NORMALS, SHADED_AT_CENTRE, SECONDARY, the bindings, and the loaders
 // sraa_load_sub_depth/normal/shadow/albedo (subsample k of pixel p),
 // sraa_load_sec_shaded / sraa_load_sec_sub (secondary normal and path
@@ -99,7 +101,7 @@ fn sraa_secondary_geometry(v: vec4<f32>) -> subcone_Geometry {
     return subcone_Geometry(sraa_decode_normal(v.xyz), v.w);
 }
 
-// The hooks of reconstruct.wgsl (subcone_passes::RECONSTRUCT_WGSL).
+// The hooks of the reconstruction loop (subcone_kernels::sraa::RECONSTRUCT_WGSL).
 const SRAA_GATES: u32 = 1u + LIGHTS;
 const SRAA_MATERIAL: bool = MATERIAL;
 
@@ -143,11 +145,11 @@ fn sraa_shaded_value(x: u32, y: u32, layer: u32) -> vec3<f32> {
 // secondary layers where it sees a mirror (§3.3).
 fn sraa_reconstruct_subsample(x: u32, y: u32, k: u32) -> vec3<f32> {
     let p = vec2<i32>(i32(x), i32(y));
-    var c = sraa_reconstruct_run(sraa_sub_geo(p, k), sraa_load_sub_shadow(p, k), sraa_load_sub_albedo(p, k), false, 0u, x, y, k);
+    var c = subcone_sraa_reconstruct_run(sraa_sub_geo(p, k), sraa_load_sub_shadow(p, k), sraa_load_sub_albedo(p, k), false, 0u, x, y, k);
     if SECONDARY {
         let tgt2 = sraa_secondary_geometry(sraa_load_sec_sub(p, k));
         if !subcone_is_nan(tgt2.depth) {
-            c = c + sraa_reconstruct_run(tgt2, sraa_load_sec_sub_shadow(p, k), vec3<f32>(0.0), true, SRAA_GATES, x, y, k);
+            c = c + subcone_sraa_reconstruct_run(tgt2, sraa_load_sec_sub_shadow(p, k), vec3<f32>(0.0), true, SRAA_GATES, x, y, k);
         }
     }
     return c;

@@ -353,41 +353,6 @@ fn timings_128() {
     }
 }
 
-/// The SRAA kernels' WGSL parses and validates on its own (no GPU needed).
-#[test]
-fn sraa_wgsl_validates() {
-    let source = [subcone_kernels::wgsl::PARAMS, subcone_kernels::sraa::WGSL].concat();
-    let module = naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| panic!("{e}"));
-    naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::empty(),
-    )
-    .validate(&module)
-    .unwrap_or_else(|e| panic!("{e:?}"));
-    for f in [
-        "subcone_bilateral_weight",
-        "subcone_shadow_gated_weight",
-        "subcone_albedo_difference",
-        "subcone_material_gated_weight",
-        "subcone_depth_difference",
-        "subcone_gaussian",
-        "subcone_saturate",
-        "subcone_neighbourhood",
-        "subcone_reconstruct_layers_begin",
-        "subcone_reconstruct_layers_add",
-        "subcone_reconstruct_layers_end",
-        "subcone_resolve_pixel",
-    ] {
-        assert!(
-            module
-                .functions
-                .iter()
-                .any(|(_, g)| g.name.as_deref() == Some(f)),
-            "{f} missing"
-        );
-    }
-}
-
 /// Uploaded scenes and pipelines are cached per device: a second device
 /// (its own wgpu instance, whose ids repeat the first's) renders the same
 /// image from its own buffers.

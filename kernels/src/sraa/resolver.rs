@@ -23,9 +23,13 @@
 //!   secondary layers of a pixel none of whose subsamples sees a mirror, and
 //!   the search for the fallback sample unless the weights underflowed.
 //!
-//! This is the CPU side of the pass: the GPU passes drive the WGSL twins of
-//! the same functions (`subcone_reconstruct_layers_begin/add/end`) in the
-//! same order themselves, so this function has no WGSL twin of its own.
+//! This is the CPU side of the pass. The GPU side is the per-subsample path
+//! in WGSL, [`RECONSTRUCT_WGSL`](super::RECONSTRUCT_WGSL)
+//! (`subcone_sraa_reconstruct_run`, which drives the twins of the same
+//! functions, `subcone_reconstruct_layers_begin/add/end`, in the same order),
+//! and the pixel's box resolve (`subcone_resolve_pixel`); the kernel
+//! conformance suite (`tests/conformance_kernels.rs`) holds them to
+//! [`reconstruct_layers`] and to this resolver.
 
 use glam::{BVec4A, Vec2, Vec3, Vec3A, Vec4};
 

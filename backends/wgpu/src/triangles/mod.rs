@@ -36,8 +36,9 @@ const SUBPIXEL_WGSL: &str = include_str!("subpixel.wgsl");
 /// SRAA-RT's resolve (hybrid SRAA's is `resolve.rs`, through
 /// `subcone_passes::SraaResolve`).
 const SRAA_WGSL: &str = include_str!("sraa.wgsl");
-/// The resolve's reconstruction loop, shared with `subcone_passes::SraaResolve`.
-const RECONSTRUCT_WGSL: &str = subcone_passes::RECONSTRUCT_WGSL;
+/// The resolve's reconstruction loop, the kernels' twin of
+/// `sraa::reconstruct_layers`, shared with `subcone_passes::SraaResolve`.
+const RECONSTRUCT_WGSL: &str = subcone_kernels::sraa::RECONSTRUCT_WGSL;
 
 /// The frame's constants; `FrameUniform` in frame.wgsl (160 bytes), read
 /// by the compute passes and the raster pass.

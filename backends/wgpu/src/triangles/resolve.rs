@@ -5,7 +5,8 @@
 //! pass's storage buffers) are copied into textures first, and the output
 //! back into the frame's colour buffer (`resolve.wgsl`). SRAA-RT, whose
 //! subsamples are traced into buffers, keeps its resolve in `sraa.wgsl`;
-//! both run the one reconstruction loop, `subcone_passes::RECONSTRUCT_WGSL`.
+//! both run the one reconstruction loop, the kernels'
+//! `sraa::RECONSTRUCT_WGSL`.
 
 use std::sync::Arc;
 

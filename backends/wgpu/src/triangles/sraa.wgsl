@@ -1,9 +1,9 @@
 // Pass "antialiasing" (the paper's pass 2): render.rs `reconstruct_subsample`
 // for each of the four subsamples, then sraa::resolve_pixel. Follows
 // subpixel.wgsl and the generated frame header, and comes before
-// subcone_passes::RECONSTRUCT_WGSL (`sraa_reconstruct_run`, the loop every
-// GPU resolve shares, SraaResolve's included), whose hooks it defines over
-// this backend's buffers.
+// subcone_kernels::sraa::RECONSTRUCT_WGSL (`subcone_sraa_reconstruct_run`,
+// the loop every GPU resolve shares, SraaResolve's included), whose hooks it
+// defines over this backend's buffers.
 
 // Layers per group: layer 0 ungated and layer 1 + l gated by light l's
 // shadow bit (eq. 2); the final colour alone with SINGLE, where the layout
@@ -52,11 +52,11 @@ fn sraa_shaded_value(x: u32, y: u32, layer: u32) -> vec3<f32> {
 
 fn reconstruct_subsample(x: u32, y: u32, j: u32, k: u32) -> vec3<f32> {
     let tgt = get_sub_geo(j, k);
-    var c = sraa_reconstruct_run(tgt, get_sub_shadow(j, k), get_sub_albedo(j, k).xyz, false, 0u, x, y, k);
+    var c = subcone_sraa_reconstruct_run(tgt, get_sub_shadow(j, k), get_sub_albedo(j, k).xyz, false, 0u, x, y, k);
     if SECONDARY_LAYERS {
         let tgt2 = get_sub_geo2(j, k);
         if !subcone_is_nan(tgt2.depth) {
-            c = c + sraa_reconstruct_run(tgt2, get_sub_shadow2(j, k), vec3<f32>(0.0), true, 1u + LAYER_LIGHTS, x, y, k);
+            c = c + subcone_sraa_reconstruct_run(tgt2, get_sub_shadow2(j, k), vec3<f32>(0.0), true, 1u + LAYER_LIGHTS, x, y, k);
         }
     }
     return c;

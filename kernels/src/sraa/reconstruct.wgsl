@@ -1,12 +1,17 @@
-// The SRAA reconstruction loop shared by every GPU resolve: SraaResolve
-// (sraa.wgsl) and the wgpu backend's own SRAA and SRAA-RT resolve
-// (backends/wgpu/src/triangles/sraa.wgsl), so there is one GPU resolve.
-// subcone_passes::RECONSTRUCT_WGSL. It drives the kernels' WGSL
-// (subcone_kernels::sraa::WGSL) in the order of the CPU's
-// sraa::reconstruct_layers / reconstruct_layers_material.
+// The SRAA reconstruction loop (Chiu et al., §3.1–3.3: eq. 1 with the
+// spatial term, gated by eq. 2 per light), in WGSL: the twin of
+// subcone_kernels::sraa::reconstruct_layers (and, with the albedo gate,
+// sraa::reconstruct_layers_material) over sraa::neighbourhood, its layers
+// summed, as sraa::Resolver sums a subsample's layers of one group.
+// Shipped as subcone_kernels::sraa::RECONSTRUCT_WGSL (re-exported as
+// subcone_passes::RECONSTRUCT_WGSL). Every GPU resolve runs it:
+// subcone_passes::SraaResolve and the wgpu backend's SRAA-RT resolve
+// (backends/wgpu/src/triangles/sraa.wgsl), so there is one GPU resolve. It
+// drives the kernels' WGSL (subcone_kernels::sraa::WGSL) in the order of the
+// CPU's sraa::reconstruct_layers / reconstruct_layers_material.
 //
 // Follows subcone_kernels::wgsl::PARAMS and subcone_kernels::sraa::WGSL. The
-// including shader defines:
+// including shader defines these hooks:
 //     const SRAA_GATES: u32             layers per group: 1 + gated lights (≤ 9)
 //     const SRAA_MATERIAL: bool         the albedo gate on the primary group
 //     fn sraa_params() -> subcone_SraaParams
@@ -18,15 +23,22 @@
 //     fn sraa_shaded_value(x: u32, y: u32, layer: u32) -> vec3<f32>
 // the shaded sample of pixel (x, y): its geometry, shadow bits (bit l: light
 // l's shadow), albedo, and colour layer `layer`.
+//
+// Differences from the Rust, all in the rounding: those of sraa.wgsl (the
+// GPU's exp, compensated f32 sums instead of f64), and a GPU may flush a
+// subnormal weight (below 2^-126) to zero: as the weights sum to at least
+// 2^-64 (below, the nearest sample is taken), that moves the mean by less
+// than 2^-62 times the neighbour's colour, visible only for colours above
+// ~1e14.
 
-// sraa::reconstruct_layers (sraa::reconstruct_layers_material with
+// Mirrors sraa::reconstruct_layers (sraa::reconstruct_layers_material with
 // SRAA_MATERIAL, on the primary group) of subsample k of pixel (x, y), whose
 // geometry is `tgt`, shadow bits `target_shadow` and albedo `ta`, over the
 // neighbourhood's shaded samples of one group (`secondary`: the secondary
 // hits', §3.3), layers first .. first + SRAA_GATES: layer 0 of the group
 // ungated, layer 1 + l gated by light l's shadow bit (eq. 2). Returns the sum
 // of the group's reconstructed layers.
-fn sraa_reconstruct_run(tgt: subcone_Geometry, target_shadow: u32, ta: vec3<f32>, secondary: bool, first: u32, x: u32, y: u32, k: u32) -> vec3<f32> {
+fn subcone_sraa_reconstruct_run(tgt: subcone_Geometry, target_shadow: u32, ta: vec3<f32>, secondary: bool, first: u32, x: u32, y: u32, k: u32) -> vec3<f32> {
     let params = sraa_params();
     let size = sraa_size();
     var st: array<subcone_LayerState, 9>;
