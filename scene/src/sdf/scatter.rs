@@ -163,25 +163,34 @@ fn random_rotation(rng: &mut Rng) -> Quat {
 }
 
 fn invalid(reason: String) -> SdfError {
-    SdfError::Invalid {
-        node: "scatter",
-        reason,
-    }
+    SdfError::Invalid { node: NAME, reason }
 }
 
-impl Scatter {
-    pub(crate) fn new(c: ScatterConfig, templates: Vec<SdfNode>) -> Result<Scatter, SdfError> {
-        const NAME: &str = "scatter";
-        if templates.is_empty() {
-            return Err(SdfError::Empty { node: NAME });
-        }
-        if !c.origin.is_finite() {
+/// The name errors give.
+const NAME: &str = "scatter";
+
+/// What a cell without an object holds.
+const VACANT: Instance = Instance {
+    template: EMPTY,
+    material: EMPTY,
+    inv_rotation: Quat::IDENTITY,
+    offset: Vec3::ZERO,
+    scale: 1.0,
+    inv_scale: 1.0,
+    radius: 0.0,
+};
+
+impl ScatterConfig {
+    /// The number of cells along each axis, once the origin, the cell size and
+    /// the cell range are checked.
+    fn checked_dims(&self) -> Result<[u64; 3], SdfError> {
+        if !self.origin.is_finite() {
             return Err(SdfError::NonFinite {
                 node: NAME,
                 param: "origin",
             });
         }
-        for v in c.cell.to_array() {
+        for v in self.cell.to_array() {
             if !v.is_finite() {
                 return Err(SdfError::NonFinite {
                     node: NAME,
@@ -196,116 +205,153 @@ impl Scatter {
                 });
             }
         }
-        if (0..3).any(|k| c.lo[k] > c.hi[k]) {
-            return Err(invalid(format!("empty cell range {:?}..={:?}", c.lo, c.hi)));
+        if (0..3).any(|k| self.lo[k] > self.hi[k]) {
+            return Err(invalid(format!(
+                "empty cell range {:?}..={:?}",
+                self.lo, self.hi
+            )));
         }
         let dims64: [u64; 3] =
-            std::array::from_fn(|k| (c.hi[k] as i64 - c.lo[k] as i64 + 1) as u64);
+            std::array::from_fn(|k| (self.hi[k] as i64 - self.lo[k] as i64 + 1) as u64);
         let cells = dims64.iter().try_fold(1u64, |acc, &n| acc.checked_mul(n));
         match cells {
-            Some(n) if n <= MAX_SCATTER_CELLS => {}
-            _ => {
-                return Err(invalid(format!(
-                    "{:?}..={:?} is more than {MAX_SCATTER_CELLS} cells",
-                    c.lo, c.hi
-                )))
-            }
+            Some(n) if n <= MAX_SCATTER_CELLS => Ok(dims64),
+            _ => Err(invalid(format!(
+                "{:?}..={:?} is more than {MAX_SCATTER_CELLS} cells",
+                self.lo, self.hi
+            ))),
         }
-        if !(c.fill.is_finite() && (0.0..=1.0).contains(&c.fill)) {
-            return Err(invalid(format!("fill {} is not in [0, 1]", c.fill)));
+    }
+
+    /// The largest bounding-sphere radius an object may have (`R`), once the
+    /// fill, the margin and the sizes are checked.
+    fn checked_r_max(&self) -> Result<f32, SdfError> {
+        if !(self.fill.is_finite() && (0.0..=1.0).contains(&self.fill)) {
+            return Err(invalid(format!("fill {} is not in [0, 1]", self.fill)));
         }
-        if !c.margin.is_finite() {
+        if !self.margin.is_finite() {
             return Err(SdfError::NonFinite {
                 node: NAME,
                 param: "margin",
             });
         }
-        if c.margin < 0.0 {
+        if self.margin < 0.0 {
             return Err(SdfError::Negative {
                 node: NAME,
                 param: "margin",
-                value: c.margin,
+                value: self.margin,
             });
         }
-        let r_max = 0.5 * c.cell.min_element() - c.margin;
+        let r_max = 0.5 * self.cell.min_element() - self.margin;
         if r_max <= 0.0 {
             return Err(invalid(format!(
                 "margin {} leaves no room in cells of {}",
-                c.margin, c.cell
+                self.margin, self.cell
             )));
         }
-        if !(c.min_size > 0.0 && c.min_size <= c.max_size && c.max_size <= 1.0) {
+        if !(self.min_size > 0.0 && self.min_size <= self.max_size && self.max_size <= 1.0) {
             return Err(invalid(format!(
                 "sizes {}..{} are not within (0, 1]",
-                c.min_size, c.max_size
+                self.min_size, self.max_size
             )));
         }
-        let mut radii = Vec::with_capacity(templates.len());
-        for t in &templates {
-            let r = t.bounds().radius_about_origin();
-            if !(r.is_finite() && r > 0.0) {
-                return Err(invalid(format!(
-                    "a template has no finite, non-zero extent about the origin (radius {r})"
-                )));
-            }
-            radii.push(r);
-        }
+        Ok(r_max)
+    }
 
-        let dims = dims64.map(|n| n as usize);
-        let mut instances = Vec::with_capacity(dims[0] * dims[1] * dims[2]);
-        let mut objects: u64 = 0;
-        for z in c.lo[2]..=c.hi[2] {
-            for y in c.lo[1]..=c.hi[1] {
-                for x in c.lo[0]..=c.hi[0] {
-                    let mut rng = cell_rng(c.seed, [x, y, z]);
-                    let occupied = rng.unit() < c.fill;
-                    let template = rng.below(templates.len());
-                    let u = c.min_size + (c.max_size - c.min_size) * rng.unit();
-                    let radius = u * r_max;
-                    let scale = radius / radii[template];
-                    let rotation = if c.rotate {
-                        random_rotation(&mut rng)
-                    } else {
-                        Quat::IDENTITY
-                    };
-                    let mut offset = Vec3::ZERO;
-                    if c.jitter {
-                        for k in 0..3 {
-                            let slack = (0.5 * c.cell[k] - c.margin - radius).max(0.0);
-                            offset[k] = (2.0 * rng.unit() - 1.0) * slack;
-                        }
+    /// Cell `i`'s object, drawn from the cell's own random stream (see the
+    /// type's docs); `None` when the cell is empty. Every draw is made whether
+    /// the cell is occupied or not.
+    fn place(&self, i: [i32; 3], radii: &[f32], r_max: f32) -> Option<Instance> {
+        let mut rng = cell_rng(self.seed, i);
+        let occupied = rng.unit() < self.fill;
+        let template = rng.below(radii.len());
+        let u = self.min_size + (self.max_size - self.min_size) * rng.unit();
+        let radius = u * r_max;
+        let scale = radius / radii[template];
+        let rotation = if self.rotate {
+            random_rotation(&mut rng)
+        } else {
+            Quat::IDENTITY
+        };
+        let mut offset = Vec3::ZERO;
+        if self.jitter {
+            for k in 0..3 {
+                let slack = (0.5 * self.cell[k] - self.margin - radius).max(0.0);
+                offset[k] = (2.0 * rng.unit() - 1.0) * slack;
+            }
+        }
+        let material = if self.palette.is_empty() {
+            EMPTY
+        } else {
+            self.palette[rng.below(self.palette.len())]
+        };
+        (occupied && scale.is_finite() && scale > 0.0).then(|| Instance {
+            template: template as u32,
+            material,
+            inv_rotation: rotation.conjugate(),
+            offset,
+            scale,
+            inv_scale: 1.0 / scale,
+            radius,
+        })
+    }
+}
+
+/// Each template's bounding-sphere radius about its origin, which must be
+/// finite and non-zero for a template to be scaled to a cell.
+fn template_radii(templates: &[SdfNode]) -> Result<Vec<f32>, SdfError> {
+    let mut radii = Vec::with_capacity(templates.len());
+    for t in templates {
+        let r = t.bounds().radius_about_origin();
+        if !(r.is_finite() && r > 0.0) {
+            return Err(invalid(format!(
+                "a template has no finite, non-zero extent about the origin (radius {r})"
+            )));
+        }
+        radii.push(r);
+    }
+    Ok(radii)
+}
+
+/// The per-cell table, `x` fastest, and the number of objects it places.
+fn fill_cells(
+    c: &ScatterConfig,
+    templates: &[SdfNode],
+    radii: &[f32],
+    r_max: f32,
+    dims: [usize; 3],
+) -> (Vec<Instance>, u64) {
+    let mut instances = Vec::with_capacity(dims[0] * dims[1] * dims[2]);
+    let mut objects: u64 = 0;
+    for z in c.lo[2]..=c.hi[2] {
+        for y in c.lo[1]..=c.hi[1] {
+            for x in c.lo[0]..=c.hi[0] {
+                match c.place([x, y, z], radii, r_max) {
+                    Some(instance) => {
+                        let template = &templates[instance.template as usize];
+                        objects =
+                            objects.saturating_add(template.object_count().unwrap_or(u64::MAX));
+                        instances.push(instance);
                     }
-                    let material = if c.palette.is_empty() {
-                        EMPTY
-                    } else {
-                        c.palette[rng.below(c.palette.len())]
-                    };
-                    if occupied && scale.is_finite() && scale > 0.0 {
-                        objects = objects
-                            .saturating_add(templates[template].object_count().unwrap_or(u64::MAX));
-                        instances.push(Instance {
-                            template: template as u32,
-                            material,
-                            inv_rotation: rotation.conjugate(),
-                            offset,
-                            scale,
-                            inv_scale: 1.0 / scale,
-                            radius,
-                        });
-                    } else {
-                        instances.push(Instance {
-                            template: EMPTY,
-                            material: EMPTY,
-                            inv_rotation: Quat::IDENTITY,
-                            offset: Vec3::ZERO,
-                            scale: 1.0,
-                            inv_scale: 1.0,
-                            radius: 0.0,
-                        });
-                    }
+                    None => instances.push(VACANT),
                 }
             }
         }
+    }
+    (instances, objects)
+}
+
+impl Scatter {
+    pub(crate) fn new(c: ScatterConfig, templates: Vec<SdfNode>) -> Result<Scatter, SdfError> {
+        if templates.is_empty() {
+            return Err(SdfError::Empty { node: NAME });
+        }
+        let dims64 = c.checked_dims()?;
+        let r_max = c.checked_r_max()?;
+        let radii = template_radii(&templates)?;
+
+        let dims = dims64.map(|n| n as usize);
+        let (instances, objects) = fill_cells(&c, &templates, &radii, r_max, dims);
         if objects == 0 {
             return Err(invalid(format!(
                 "no cell is occupied (fill {}): the scatter would be empty",

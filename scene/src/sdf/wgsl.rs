@@ -33,9 +33,9 @@
 
 use std::fmt::Write;
 
-use glam::{Quat, Vec3};
+use glam::{Quat, Vec3, Vec4};
 
-use super::node::{Op, SdfNode};
+use super::node::{Op, Repeat, SdfNode, Transform};
 use super::scatter::Scatter;
 use super::shape::Shape;
 
@@ -271,14 +271,7 @@ impl Gen {
             }
             Op::Transform(t) => {
                 let child = self.eval(&t.child);
-                let mut s = format!(
-                    "    var q = (p - {}) * {};\n",
-                    v3(t.translation),
-                    f(t.inv_scale)
-                );
-                if t.rotated {
-                    let _ = writeln!(s, "    q = sdf_rotate({}, q);", quat(t.inv_rotation));
-                }
+                let mut s = Self::transform_point(t);
                 let _ = write!(
                     s,
                     "    let r = {child}(q);\n    return vec2<f32>(r.x * {}, r.y);\n",
@@ -286,51 +279,9 @@ impl Gen {
                 );
                 s
             }
-            Op::Union { children, spheres } => {
-                let names: Vec<String> = children.iter().map(|c| self.eval(c)).collect();
-                let mut s = format!("    var best = vec2<f32>(subcone_inf(), {own});\n");
-                for (name, sp) in names.iter().zip(spheres) {
-                    // A child whose bounding sphere is no nearer than the best so far is skipped.
-                    let _ = write!(
-                        s,
-                        "    {{\n        let reach = best.x + {};\n        let dp = p - {};\n        \
-                         if !(reach >= 0.0 && dot(dp, dp) >= reach * reach) {{\n            \
-                         let r = {name}(p);\n            if r.x < best.x {{ best = r; }}\n        }}\n    }}\n",
-                        f(sp.w),
-                        v3(sp.truncate())
-                    );
-                }
-                s.push_str("    return best;\n");
-                s
-            }
-            Op::Intersection(children) => {
-                let names: Vec<String> = children.iter().map(|c| self.eval(c)).collect();
-                let mut s = format!("    var best = vec2<f32>(-subcone_inf(), {own});\n");
-                for name in names {
-                    let _ = writeln!(
-                        s,
-                        "    {{ let r = {name}(p); if r.x > best.x {{ best = r; }} }}"
-                    );
-                }
-                s.push_str("    return best;\n");
-                s
-            }
-            Op::SmoothUnion { k, children } => {
-                let names: Vec<String> = children.iter().map(|c| self.eval(c)).collect();
-                let mut s = format!("    var acc = {}(p);\n", names[0]);
-                for name in &names[1..] {
-                    let _ = write!(
-                        s,
-                        "    {{\n        let r = {name}(p);\n        \
-                         let h = max({k} - abs(acc.x - r.x), 0.0) / {k};\n        \
-                         let m = select(acc.y, r.y, r.x < acc.x);\n        \
-                         acc = vec2<f32>(min(acc.x, r.x) - 0.25 * {k} * h * h, m);\n    }}\n",
-                        k = f(*k)
-                    );
-                }
-                s.push_str("    return acc;\n");
-                s
-            }
+            Op::Union { children, spheres } => self.eval_union(children, spheres, &own),
+            Op::Intersection(children) => self.eval_intersection(children, &own),
+            Op::SmoothUnion { k, children } => self.eval_smooth_union(*k, children),
             Op::Subtract(ab) => {
                 let a = self.eval(&ab.0);
                 let b = self.eval(&ab.1);
@@ -339,17 +290,7 @@ impl Gen {
                      if a.x >= -b.x {{ return a; }}\n    return vec2<f32>(-b.x, b.y);\n"
                 )
             }
-            Op::Mirror { axes, child } => {
-                let c = self.eval(child);
-                let mut s = "    var q = p;\n".to_string();
-                for (k, axis) in ["x", "y", "z"].iter().enumerate() {
-                    if axes[k] {
-                        let _ = writeln!(s, "    q.{axis} = abs(q.{axis});");
-                    }
-                }
-                let _ = writeln!(s, "    return {c}(q);");
-                s
-            }
+            Op::Mirror { axes, child } => self.eval_mirror(axes, child),
             Op::Repeat(r) => {
                 let c = self.eval(&r.child);
                 let mut s = Self::repeat_cell(r);
@@ -419,42 +360,130 @@ impl Gen {
         name
     }
 
+    /// `Transform`'s point in the child's frame: declares `q`.
+    fn transform_point(t: &Transform) -> String {
+        let mut s = format!(
+            "    var q = (p - {}) * {};\n",
+            v3(t.translation),
+            f(t.inv_scale)
+        );
+        if t.rotated {
+            let _ = writeln!(s, "    q = sdf_rotate({}, q);", quat(t.inv_rotation));
+        }
+        s
+    }
+
+    /// A union's `eval` body: the nearest child.
+    fn eval_union(&mut self, children: &[SdfNode], spheres: &[Vec4], own: &str) -> String {
+        let names: Vec<String> = children.iter().map(|c| self.eval(c)).collect();
+        let mut s = format!("    var best = vec2<f32>(subcone_inf(), {own});\n");
+        for (name, sp) in names.iter().zip(spheres) {
+            // A child whose bounding sphere is no nearer than the best so far is skipped.
+            let _ = write!(
+                s,
+                "    {{\n        let reach = best.x + {};\n        let dp = p - {};\n        \
+                 if !(reach >= 0.0 && dot(dp, dp) >= reach * reach) {{\n            \
+                 let r = {name}(p);\n            if r.x < best.x {{ best = r; }}\n        }}\n    }}\n",
+                f(sp.w),
+                v3(sp.truncate())
+            );
+        }
+        s.push_str("    return best;\n");
+        s
+    }
+
+    /// An intersection's `eval` body: the farthest child.
+    fn eval_intersection(&mut self, children: &[SdfNode], own: &str) -> String {
+        let names: Vec<String> = children.iter().map(|c| self.eval(c)).collect();
+        let mut s = format!("    var best = vec2<f32>(-subcone_inf(), {own});\n");
+        for name in names {
+            let _ = writeln!(
+                s,
+                "    {{ let r = {name}(p); if r.x > best.x {{ best = r; }} }}"
+            );
+        }
+        s.push_str("    return best;\n");
+        s
+    }
+
+    /// A smooth union's `eval` body: the children folded in order.
+    fn eval_smooth_union(&mut self, k: f32, children: &[SdfNode]) -> String {
+        let names: Vec<String> = children.iter().map(|c| self.eval(c)).collect();
+        let mut s = format!("    var acc = {}(p);\n", names[0]);
+        for name in &names[1..] {
+            let _ = write!(
+                s,
+                "    {{\n        let r = {name}(p);\n        \
+                 let h = max({k} - abs(acc.x - r.x), 0.0) / {k};\n        \
+                 let m = select(acc.y, r.y, r.x < acc.x);\n        \
+                 acc = vec2<f32>(min(acc.x, r.x) - 0.25 * {k} * h * h, m);\n    }}\n",
+                k = f(k)
+            );
+        }
+        s.push_str("    return acc;\n");
+        s
+    }
+
+    /// A mirror's `eval` body: the child at `p` with the axes mirrored.
+    fn eval_mirror(&mut self, axes: &[bool; 3], child: &SdfNode) -> String {
+        let c = self.eval(child);
+        let mut s = "    var q = p;\n".to_string();
+        for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+            if axes[k] {
+                let _ = writeln!(s, "    q.{axis} = abs(q.{axis});");
+            }
+        }
+        let _ = writeln!(s, "    return {c}(q);");
+        s
+    }
+
     /// `Repeat::cell`: declares `q` and `wall`.
-    fn repeat_cell(r: &super::node::Repeat) -> String {
+    fn repeat_cell(r: &Repeat) -> String {
         let mut s = "    var q = p;\n    var wall = subcone_inf();\n".to_string();
         for (k, axis) in ["x", "y", "z"].iter().enumerate() {
             let c = r.period[k];
             if c > 0.0 {
-                let (lo, hi) = (r.lo[k], r.hi[k]);
-                let _ = writeln!(
-                    s,
-                    "    {{\n        let i = min(max(floor(p.{axis} / {c} + 0.5), {lo}), {hi});\n        \
-                     q.{axis} = p.{axis} - {c} * i;",
-                    c = f(c),
-                    lo = f(lo),
-                    hi = f(hi)
-                );
-                if r.guard {
-                    let _ = writeln!(
-                        s,
-                        "        if i < {hi} {{ wall = min(wall, 0.5 * {c} - q.{axis}); }}\n        \
-                         if i > {lo} {{ wall = min(wall, 0.5 * {c} + q.{axis}); }}",
-                        c = f(c),
-                        lo = f(lo),
-                        hi = f(hi)
-                    );
-                }
-                s.push_str("    }\n");
+                s.push_str(&Self::repeat_axis(axis, c, r.lo[k], r.hi[k], r.guard));
             }
         }
         s
     }
 
+    /// One repeated axis of [`Gen::repeat_cell`], a block of its own: the
+    /// cell index `i` (period `c`, limits `lo..=hi`), the point in the cell,
+    /// and (`guard`) the walls that have a neighbouring cell.
+    fn repeat_axis(axis: &str, c: f32, lo: f32, hi: f32, guard: bool) -> String {
+        let (c, lo, hi) = (f(c), f(lo), f(hi));
+        let walls = if guard {
+            format!(
+                "        if i < {hi} {{ wall = min(wall, 0.5 * {c} - q.{axis}); }}\n        \
+                 if i > {lo} {{ wall = min(wall, 0.5 * {c} + q.{axis}); }}\n"
+            )
+        } else {
+            String::new()
+        };
+        format!(
+            "    {{\n        let i = min(max(floor(p.{axis} / {c} + 0.5), {lo}), {hi});\n        \
+             q.{axis} = p.{axis} - {c} * i;\n{walls}    }}\n"
+        )
+    }
+
     /// `Scatter::eval_split` as a function `(p) -> vec3<f32>`; returns its name.
     fn scatter(&mut self, sc: &Scatter) -> String {
         let templates: Vec<String> = sc.templates().iter().map(|t| self.eval(t)).collect();
+        let base = self.scatter_table(sc);
+        let mut s = Self::scatter_cell(sc);
+        s.push_str(&Self::scatter_instance(sc, base, templates.len()));
+        s.push_str(&Self::scatter_dispatch(&templates));
+        let name = self.name("scatter");
+        let _ = write!(self.out, "fn {name}(p: vec3<f32>) -> vec3<f32> {{\n{s}}}\n");
+        name
+    }
+
+    /// Appends the scatter's instance table to `sdf_data`, three `vec4`s a
+    /// cell; returns where it starts.
+    fn scatter_table(&mut self, sc: &Scatter) -> usize {
         let base = self.data.len();
-        let count = sc.instances().len();
         for i in sc.instances() {
             let q = i.inv_rotation;
             self.data.push([q.x, q.y, q.z, q.w]);
@@ -467,9 +496,14 @@ impl Gen {
                 f32::from_bits(i.material),
             ]);
         }
+        base
+    }
+
+    /// The cell of `p`, clamped to the grid: declares `fi` (its index), `q`
+    /// (the point in it) and `wall` (the distance to the walls that have a
+    /// neighbouring cell).
+    fn scatter_cell(sc: &Scatter) -> String {
         let (origin, cell, inv_cell, lo, hi) = sc.grid();
-        let dims = sc.dims();
-        let default = mat(sc.default_material());
         let mut s = format!(
             "    let rel = p - {origin};\n    let fc = rel * {inv_cell};\n    \
              let fi = min(max(floor(fc + vec3<f32>(0.5)), {lo}), {hi});\n    \
@@ -490,8 +524,18 @@ impl Gen {
                 hi = f(hi[k])
             );
         }
-        let _ = write!(
-            s,
+        s
+    }
+
+    /// The cell's instance, read from the table at `base`: returns the bound
+    /// where the cell is empty or `p` is outside the instance's sphere;
+    /// otherwise declares `lp`, `p` in the instance's frame.
+    fn scatter_instance(sc: &Scatter, base: usize, template_count: usize) -> String {
+        let (_, _, _, lo, _) = sc.grid();
+        let dims = sc.dims();
+        let count = sc.instances().len();
+        let default = mat(sc.default_material());
+        format!(
             "    let guard = wall + {margin};\n    let ii = fi - {lo};\n    \
              let idx = u32(ii.x) + {d0}u * (u32(ii.y) + {d1}u * u32(ii.z));\n    \
              if idx >= {count}u {{ return vec3<f32>(guard, subcone_inf(), {default}); }}\n    \
@@ -504,25 +548,28 @@ impl Gen {
              let own = select(f32(material), {default}, material == 0xffffffffu);\n    \
              let sphere = length(local) - ic.y;\n    \
              if sphere >= guard {{ return vec3<f32>(guard, sphere, own); }}\n    \
-             let lp = sdf_rotate(ia, local) * ic.x;\n    var r = vec2<f32>(0.0);\n    \
-             switch tpl {{\n",
+             let lp = sdf_rotate(ia, local) * ic.x;\n",
             margin = f(sc.margin()),
             lo = v3(lo),
             d0 = dims[0],
             d1 = dims[1],
-            nt = templates.len(),
-        );
+            nt = template_count,
+        )
+    }
+
+    /// The instance's template at `lp`, scaled back: the guard caps the safe
+    /// step, and the instance's material, if any, is the object's.
+    fn scatter_dispatch(templates: &[String]) -> String {
+        let mut cases = String::new();
         for (i, t) in templates.iter().enumerate() {
-            let _ = writeln!(s, "        case {i}u: {{ r = {t}(lp); }}");
+            let _ = writeln!(cases, "        case {i}u: {{ r = {t}(lp); }}");
         }
-        s.push_str(
-            "        default: {}\n    }\n    let d = r.x * ib.w;\n    \
+        format!(
+            "    var r = vec2<f32>(0.0);\n    switch tpl {{\n{cases}        default: {{}}\n    }}\n    \
+             let d = r.x * ib.w;\n    \
              let m = select(f32(material), r.y, material == 0xffffffffu);\n    \
-             return vec3<f32>(min(guard, d), d, m);\n",
-        );
-        let name = self.name("scatter");
-        let _ = write!(self.out, "fn {name}(p: vec3<f32>) -> vec3<f32> {{\n{s}}}\n");
-        name
+             return vec3<f32>(min(guard, d), d, m);\n"
+        )
     }
 
     /// `SdfNode::eval_split` of `n` as a function `(p) -> vec3<f32>`.
@@ -536,14 +583,7 @@ impl Gen {
             ),
             Op::Transform(t) => {
                 let child = self.split(&t.child);
-                let mut s = format!(
-                    "    var q = (p - {}) * {};\n",
-                    v3(t.translation),
-                    f(t.inv_scale)
-                );
-                if t.rotated {
-                    let _ = writeln!(s, "    q = sdf_rotate({}, q);", quat(t.inv_rotation));
-                }
+                let mut s = Self::transform_point(t);
                 let _ = write!(
                     s,
                     "    let r = {child}(q);\n    return vec3<f32>(r.x * {sc}, r.y * {sc}, r.z);\n",
