@@ -371,6 +371,40 @@ struct Group {
     dip: f32,
 }
 
+impl Group {
+    /// The group as a sample to shade, its exit at `t_exit` (Algorithm 1,
+    /// lines 15–17).
+    #[inline(always)]
+    fn sample(&self, t_exit: f32) -> GroupSample {
+        GroupSample {
+            t: self.t_sample,
+            t_entry: self.t_entry,
+            t_exit,
+            occlusion: self.occlusion,
+            t_occlusion: self.t_occlusion,
+            t_first: self.t_first,
+            t_last: self.t_last,
+            hard: self.hard,
+        }
+    }
+}
+
+/// One step's cone against the field ([`ConeStepper::advance_object`]).
+#[derive(Clone, Copy, Debug)]
+struct Contact {
+    /// The cone's radius `R_c` at the step (eq. 4).
+    rc: f32,
+    /// Its occlusion `ω` (eq. 5).
+    omega: f32,
+    /// A soft hit: `ω > 0 − ε`.
+    soft: bool,
+    /// A hard hit: `ω > 0.5 − ε`.
+    hard: bool,
+    /// The occlusion rule ends the trace here: full occlusion, or CTSS-R's
+    /// hard hit.
+    stop: bool,
+}
+
 /// The object id of [`ConeStepper::advance_split`]: not known, never a
 /// reason to end a group.
 pub const NO_OBJECT: u32 = u32::MAX;
@@ -494,16 +528,7 @@ impl ConeStepper {
         match self.group.take() {
             Some(g) => {
                 self.samples += 1;
-                Event::Sample(GroupSample {
-                    t: g.t_sample,
-                    t_entry: g.t_entry,
-                    t_exit,
-                    occlusion: g.occlusion,
-                    t_occlusion: g.t_occlusion,
-                    t_first: g.t_first,
-                    t_last: g.t_last,
-                    hard: g.hard,
-                })
+                Event::Sample(g.sample(t_exit))
             }
             None => Event::Stop(reason),
         }
@@ -532,27 +557,87 @@ impl ConeStepper {
     /// object over the pixel). [`NO_OBJECT`] never changes groups.
     #[inline]
     pub fn advance_object(&mut self, d: f32, step: f32, object: u32) -> Event {
+        if let Some(event) = self.loop_ends(d) {
+            return event;
+        }
+        self.steps += 1;
+        let t = self.t;
+        // Lines 9–10: the cone and its occlusion.
+        let contact = self.contact(t, d);
+        // Lines 11–14: the hit groups.
+        let closed = self.close_on_new_surface(t, &contact, object);
+        if contact.soft && (!self.prev_soft || closed.is_some()) {
+            self.open_group(t, &contact, object, closed.is_some());
+        }
+        if contact.soft {
+            self.extend_group(t, &contact);
+        }
+        let exit = !contact.soft && self.prev_soft;
+        if exit {
+            self.passing = false;
+        }
+        self.prev_soft = contact.soft;
+        self.prev_hard = contact.hard;
+
+        // Lines 15–24: sample a group that ended, stop on the rule.
+        if let Some(c) = closed {
+            return self.sample_closed(c, t, d, step, &contact);
+        }
+        let event = if exit || contact.stop {
+            self.sample_at_exit(t, contact.stop)
+        } else {
+            Event::March
+        };
+        self.remember(t, d);
+        // Line 26: advance by at least α·R_c.
+        if self.stop.is_none() {
+            // Through a semi-transparent object's inside, `−d` is a safe step.
+            let s = if self.passing && d < 0.0 {
+                -d
+            } else {
+                step.min(d)
+            };
+            self.t = advance(t, s, self.params.alpha, contact.rc);
+        }
+        event
+    }
+
+    /// The loop's conditions before an evaluation is counted (Algorithm 1,
+    /// line 6: `while t < D`, with the step budget, a NaN distance, and the
+    /// decisions of earlier steps): the event that ends this call, or `None`
+    /// to go on with `d` at `t`.
+    #[inline(always)]
+    fn loop_ends(&mut self, d: f32) -> Option<Event> {
         if let Some(r) = self.stop {
-            return Event::Stop(r);
+            return Some(Event::Stop(r));
         }
         if self.pending_stop {
             self.pending_stop = false;
             let reason = self.occlusion_stop();
             let t_exit = backtrace_cone_entry(self.t, self.params.tan_theta);
-            return self.end(reason, t_exit);
+            return Some(self.end(reason, t_exit));
         }
         let t = self.t;
         if self.steps >= self.params.max_steps {
-            return self.end(StopReason::StepBudget, t);
+            return Some(self.end(StopReason::StepBudget, t));
         }
         if !(t < self.params.t_max) {
-            return self.end(StopReason::MaxDistance, t);
+            return Some(self.end(StopReason::MaxDistance, t));
         }
         if d.is_nan() {
-            return self.end(StopReason::InvalidDistance, t);
+            return Some(self.end(StopReason::InvalidDistance, t));
         }
-        self.steps += 1;
+        None
+    }
 
+    /// The cone at `t` against the field's `d` (Algorithm 1, lines 9–11 and
+    /// 15's full occlusion): its radius `R_c` (eq. 4), its occlusion `ω`
+    /// (eq. 5), and which of the soft-hit, hard-hit and stop thresholds `ω`
+    /// exceeds (CTSS-R stops at the hard hit, §4). Passing through a
+    /// semi-transparent object (§5.3) holds the stop back, until the distance
+    /// outside it shrinks again.
+    #[inline(always)]
+    fn contact(&mut self, t: f32, d: f32) -> Contact {
         let tan = self.params.tan_theta;
         let rc = cone_radius(t, tan);
         let omega = cone_occlusion(d, rc);
@@ -579,138 +664,147 @@ impl ConeStepper {
                 stop = false;
             }
         }
+        Contact {
+            rc,
+            omega,
+            soft,
+            hard,
+            stop,
+        }
+    }
 
-        // Beyond the paper: one surface per group. A group ends (and a new
-        // one opens here) where the nearest object changes, or where the
-        // occlusion rises by GROUP_DIP after falling by as much below the
-        // group's peak: the cone has passed one surface and meets another.
-        let mut closed = None;
-        if soft && self.prev_soft && !self.params.is_paper() && !self.passing {
-            if let Some(g) = self.group.as_mut() {
-                g.dip = g.dip.min(omega);
-                let other = object != g.object && object != NO_OBJECT && g.object != NO_OBJECT;
-                let rises = g.dip < g.occlusion - GROUP_DIP && omega > g.dip + GROUP_DIP;
-                if other || rises {
-                    let g = *g;
-                    self.group = None;
-                    self.samples += 1;
-                    closed = Some(GroupSample {
-                        t: g.t_sample,
-                        t_entry: g.t_entry,
-                        t_exit: t,
-                        occlusion: g.occlusion,
-                        t_occlusion: g.t_occlusion,
-                        t_first: g.t_first,
-                        t_last: g.t_last,
-                        hard: g.hard,
-                    });
-                    self.prev_hard = false;
-                    self.have_prev = false;
-                }
-            }
+    /// Beyond the paper: one surface per group. A group ends (and a new one
+    /// opens here) where the nearest object changes, or where the occlusion
+    /// rises by [`GROUP_DIP`] after falling by as much below the group's
+    /// peak: the cone has passed one surface and meets another. Returns the
+    /// group so closed, exit at `t`, counted as a sample.
+    #[inline(always)]
+    fn close_on_new_surface(
+        &mut self,
+        t: f32,
+        contact: &Contact,
+        object: u32,
+    ) -> Option<GroupSample> {
+        let omega = contact.omega;
+        if !contact.soft || !self.prev_soft || self.params.is_paper() || self.passing {
+            return None;
         }
-        if soft && (!self.prev_soft || closed.is_some()) {
-            let te = if closed.is_some() {
-                t
-            } else {
-                backtrace_cone_entry(t, tan)
-            };
-            self.group = Some(Group {
-                t_entry: te,
-                t_sample: te,
-                occlusion: omega,
-                t_occlusion: t,
-                t_first: t,
-                t_last: t,
-                hard: false,
-                object,
-                dip: omega,
-            });
+        let g = self.group.as_mut()?;
+        g.dip = g.dip.min(omega);
+        let other = object != g.object && object != NO_OBJECT && g.object != NO_OBJECT;
+        let rises = g.dip < g.occlusion - GROUP_DIP && omega > g.dip + GROUP_DIP;
+        if !(other || rises) {
+            return None;
         }
-        if soft {
-            if let Some(g) = self.group.as_mut() {
-                g.t_last = t;
-                if omega > g.occlusion {
-                    g.occlusion = omega;
-                    g.t_occlusion = t;
-                    g.dip = omega;
-                }
-                if hard && !self.prev_hard && !g.hard {
-                    g.hard = true;
-                    g.t_sample = if self.have_prev {
-                        backtrace_hard_hit(self.t_prev, self.d_prev, t)
-                    } else {
-                        t
-                    };
-                }
-            }
-        }
-        let exit = !soft && self.prev_soft;
-        if exit {
-            self.passing = false;
-        }
-        self.prev_soft = soft;
-        self.prev_hard = hard;
+        let g = *g;
+        self.group = None;
+        self.samples += 1;
+        self.prev_hard = false;
+        self.have_prev = false;
+        Some(g.sample(t))
+    }
 
-        let mut event = Event::March;
-        if let Some(c) = closed {
-            // The closed group is sampled now; the one opened at this step
-            // is sampled when it ends (its stop, if this step stops, waits
-            // for the next call: `end` samples an open group).
-            self.t_prev = t;
-            self.d_prev = d;
-            self.have_prev = true;
-            if self.samples >= self.params.max_samples {
-                // The cap holds even when this step also met the occlusion
-                // rule: the group opened here is dropped unsampled.
-                self.group = None;
-                self.stop = Some(StopReason::SampleCap);
-            } else if stop {
-                self.pending_stop = true;
+    /// A soft hit's entry opens a hit group (Algorithm 1, lines 13–14), its
+    /// sample at the entry backtraced by eq. 10, or, where
+    /// [`close_on_new_surface`](Self::close_on_new_surface) just closed the
+    /// group before it (`after_close`), at `t`.
+    #[inline(always)]
+    fn open_group(&mut self, t: f32, contact: &Contact, object: u32, after_close: bool) {
+        let te = if after_close {
+            t
+        } else {
+            backtrace_cone_entry(t, self.params.tan_theta)
+        };
+        self.group = Some(Group {
+            t_entry: te,
+            t_sample: te,
+            occlusion: contact.omega,
+            t_occlusion: t,
+            t_first: t,
+            t_last: t,
+            hard: false,
+            object,
+            dip: contact.omega,
+        });
+    }
+
+    /// A soft hit inside the open group: its maximum occlusion `ω_max`
+    /// (Algorithm 1, line 12) and where it was measured, and at the group's
+    /// first hard hit its sample moves there (line 13), backtraced between
+    /// the two steps around it (§3.6).
+    #[inline(always)]
+    fn extend_group(&mut self, t: f32, contact: &Contact) {
+        if let Some(g) = self.group.as_mut() {
+            g.t_last = t;
+            if contact.omega > g.occlusion {
+                g.occlusion = contact.omega;
+                g.t_occlusion = t;
+                g.dip = contact.omega;
             }
-            if self.stop.is_none() && !self.pending_stop {
-                self.t = advance(t, step.min(d), self.params.alpha, rc);
-            }
-            return Event::Sample(c);
-        }
-        if exit || stop {
-            if let Some(g) = self.group.take() {
-                self.samples += 1;
-                event = Event::Sample(GroupSample {
-                    t: g.t_sample,
-                    t_entry: g.t_entry,
-                    t_exit: backtrace_cone_entry(t, tan),
-                    occlusion: g.occlusion,
-                    t_occlusion: g.t_occlusion,
-                    t_first: g.t_first,
-                    t_last: g.t_last,
-                    hard: g.hard,
-                });
-            }
-            if stop {
-                self.stop = Some(if self.params.is_relaxed() {
-                    StopReason::HardHit
+            if contact.hard && !self.prev_hard && !g.hard {
+                g.hard = true;
+                g.t_sample = if self.have_prev {
+                    backtrace_hard_hit(self.t_prev, self.d_prev, t)
                 } else {
-                    StopReason::FullOcclusion
-                });
-            } else if self.samples >= self.params.max_samples {
-                self.stop = Some(StopReason::SampleCap);
+                    t
+                };
             }
         }
+    }
 
+    /// The step that closed group `closed` on a new surface: the closed group
+    /// is sampled now; the one opened at this step is sampled when it ends
+    /// (its stop, if this step stops, waits for the next call: `end` samples
+    /// an open group).
+    #[inline(always)]
+    fn sample_closed(
+        &mut self,
+        closed: GroupSample,
+        t: f32,
+        d: f32,
+        step: f32,
+        contact: &Contact,
+    ) -> Event {
+        self.remember(t, d);
+        if self.samples >= self.params.max_samples {
+            // The cap holds even when this step also met the occlusion
+            // rule: the group opened here is dropped unsampled.
+            self.group = None;
+            self.stop = Some(StopReason::SampleCap);
+        } else if contact.stop {
+            self.pending_stop = true;
+        }
+        if self.stop.is_none() && !self.pending_stop {
+            self.t = advance(t, step.min(d), self.params.alpha, contact.rc);
+        }
+        Event::Sample(closed)
+    }
+
+    /// A soft hit's exit or the occlusion rule (Algorithm 1, lines 15–16 and
+    /// 23–24): the open group is sampled, its exit backtraced by eq. 10
+    /// (§3.6), and the trace stops on the rule (`stop`) or the sample cap.
+    #[inline(always)]
+    fn sample_at_exit(&mut self, t: f32, stop: bool) -> Event {
+        let mut event = Event::March;
+        if let Some(g) = self.group.take() {
+            self.samples += 1;
+            event = Event::Sample(g.sample(backtrace_cone_entry(t, self.params.tan_theta)));
+        }
+        if stop {
+            self.stop = Some(self.occlusion_stop());
+        } else if self.samples >= self.params.max_samples {
+            self.stop = Some(StopReason::SampleCap);
+        }
+        event
+    }
+
+    /// The step just taken, for the next one's backtrace (§3.6) and its
+    /// test of a shrinking distance.
+    #[inline(always)]
+    fn remember(&mut self, t: f32, d: f32) {
         self.t_prev = t;
         self.d_prev = d;
         self.have_prev = true;
-        if self.stop.is_none() {
-            // Through a semi-transparent object's inside, `−d` is a safe step.
-            let s = if self.passing && d < 0.0 {
-                -d
-            } else {
-                step.min(d)
-            };
-            self.t = advance(t, s, self.params.alpha, rc);
-        }
-        event
     }
 
     /// The free-space step of [`advance_object`](Self::advance_object) alone

@@ -201,9 +201,56 @@ fn bilinear(fetch: &impl Fn(i32, i32) -> Vec4, px: f32, py: f32) -> Vec4 {
 /// any parameter values (even NaN) from producing garbage. A flat
 /// neighbourhood (zero contrast) always exits early, whatever the thresholds.
 pub fn fxaa_pixel(fetch: &impl Fn(i32, i32) -> Vec4, x: i32, y: i32, p: &FxaaParams) -> Vec3 {
-    let (pos_m_x, pos_m_y) = (x as f32, y as f32);
+    // The shader's steps, in its order: the early exit on low contrast, the
+    // edge's orientation, the sub-pixel blend, the side of the edge, the
+    // search for the edge's ends along it, and the offset across it.
+    let pos_m = (x as f32, y as f32);
     let rgby_m = tap(fetch, x, y);
-    let luma_m = rgby_m.w;
+    let Some(contrast) = local_contrast(fetch, x, y, rgby_m.w, p) else {
+        return rgby_m.truncate();
+    };
+    let l = Lumas::around(fetch, x, y, &contrast);
+    let horz_span = l.horizontal_span();
+    let subpix_h = subpixel_blend(l.subpix_a(), l.m, contrast.range, p);
+    let side = EdgeSide::new(&l, horz_span);
+    let ends = search_edge_ends(fetch, pos_m, horz_span, &side);
+    let pixel_offset_good = ends.pixel_offset(pos_m, horz_span, &side);
+
+    // The final tap, by the larger of the two offsets across the edge. The
+    // clamp is ours (see the doc comment): a no-op in the domain.
+    let pixel_offset_subpix = clean01(pixel_offset_good.max(subpix_h));
+    let (mut px, mut py) = pos_m;
+    if !horz_span {
+        px += pixel_offset_subpix * side.length_sign;
+    } else {
+        py += pixel_offset_subpix * side.length_sign;
+    }
+    bilinear(fetch, px, py).truncate()
+}
+
+/// The centre and its four direct neighbours' lumas when their contrast
+/// passes FXAA 3.11's early exit.
+struct LocalContrast {
+    luma_m: f32,
+    luma_n: f32,
+    luma_s: f32,
+    luma_e: f32,
+    luma_w: f32,
+    /// `range`: the largest minus the smallest of the five, `> 0`.
+    range: f32,
+}
+
+/// FXAA 3.11's early exit: the local contrast of the centre (luma `luma_m`)
+/// and its four direct neighbours, or `None` where it is below
+/// `max(edge_threshold_min, edge_threshold · the largest luma)`, or zero.
+#[inline(always)]
+fn local_contrast(
+    fetch: &impl Fn(i32, i32) -> Vec4,
+    x: i32,
+    y: i32,
+    luma_m: f32,
+    p: &FxaaParams,
+) -> Option<LocalContrast> {
     let luma_s = tap(fetch, x, y + 1).w;
     let luma_e = tap(fetch, x + 1, y).w;
     let luma_n = tap(fetch, x, y - 1).w;
@@ -223,87 +270,196 @@ pub fn fxaa_pixel(fetch: &impl Fn(i32, i32) -> Vec4, x: i32, y: i32, p: &FxaaPar
     // `range < rangeMaxClamped` in the original; a zero range also exits (its
     // reciprocal below would be infinite when the thresholds are 0).
     if !(range >= range_max_clamped) || !(range > 0.0) {
-        return rgby_m.truncate();
+        return None;
+    }
+    Some(LocalContrast {
+        luma_m,
+        luma_n,
+        luma_s,
+        luma_e,
+        luma_w,
+        range,
+    })
+}
+
+/// The lumas of the centre's 3×3 neighbourhood (FXAA 3.11's `lumaM`,
+/// `lumaN`, …, `lumaSE`), with the pair sums that both the edge test
+/// ([`Lumas::horizontal_span`]) and the sub-pixel low-pass
+/// ([`Lumas::subpix_a`]) read, each computed once.
+struct Lumas {
+    m: f32,
+    n: f32,
+    s: f32,
+    e: f32,
+    w: f32,
+    /// `lumaNS`, `lumaWE`, `lumaNESE`, `lumaNWNE`, `lumaNWSW`, `lumaSWSE`.
+    ns: f32,
+    we: f32,
+    nese: f32,
+    nwne: f32,
+    nwsw: f32,
+    swse: f32,
+}
+
+impl Lumas {
+    /// The four corners fetched (`lumaNW`, `lumaSE`, `lumaNE`, `lumaSW`, in
+    /// the original's order) beside the contrast's five lumas, and the pair
+    /// sums.
+    #[inline(always)]
+    fn around(fetch: &impl Fn(i32, i32) -> Vec4, x: i32, y: i32, c: &LocalContrast) -> Self {
+        let luma_nw = tap(fetch, x - 1, y - 1).w;
+        let luma_se = tap(fetch, x + 1, y + 1).w;
+        let luma_ne = tap(fetch, x + 1, y - 1).w;
+        let luma_sw = tap(fetch, x - 1, y + 1).w;
+        Self {
+            m: c.luma_m,
+            n: c.luma_n,
+            s: c.luma_s,
+            e: c.luma_e,
+            w: c.luma_w,
+            ns: c.luma_n + c.luma_s,
+            we: c.luma_w + c.luma_e,
+            nese: luma_ne + luma_se,
+            nwne: luma_nw + luma_ne,
+            nwsw: luma_nw + luma_sw,
+            swse: luma_sw + luma_se,
+        }
     }
 
-    let luma_nw = tap(fetch, x - 1, y - 1).w;
-    let luma_se = tap(fetch, x + 1, y + 1).w;
-    let luma_ne = tap(fetch, x + 1, y - 1).w;
-    let luma_sw = tap(fetch, x - 1, y + 1).w;
+    /// FXAA 3.11's edge orientation (`horzSpan`): whether the luma changes
+    /// more across rows than across columns (second differences of the 3×3
+    /// neighbourhood, the centre row and column weighted twice), so that the
+    /// edge runs horizontally.
+    #[inline(always)]
+    fn horizontal_span(&self) -> bool {
+        let edge_horz1 = -2.0 * self.m + self.ns;
+        let edge_vert1 = -2.0 * self.m + self.we;
+        let edge_horz2 = -2.0 * self.e + self.nese;
+        let edge_vert2 = -2.0 * self.n + self.nwne;
+        let edge_horz4 = edge_horz1.abs() * 2.0 + edge_horz2.abs();
+        let edge_vert4 = edge_vert1.abs() * 2.0 + edge_vert2.abs();
+        let edge_horz3 = -2.0 * self.w + self.nwsw;
+        let edge_vert3 = -2.0 * self.s + self.swse;
+        let edge_horz = edge_horz3.abs() + edge_horz4;
+        let edge_vert = edge_vert3.abs() + edge_vert4;
+        edge_horz >= edge_vert
+    }
 
-    let luma_ns = luma_n + luma_s;
-    let luma_we = luma_w + luma_e;
+    /// `subpixA`: twelve times the low-pass luma of the neighbourhood (the
+    /// direct neighbours weighted 2, the corners 1).
+    #[inline(always)]
+    fn subpix_a(&self) -> f32 {
+        let subpix_nswe = self.ns + self.we;
+        let subpix_nwswnese = self.nwsw + self.nese;
+        subpix_nswe * 2.0 + subpix_nwswnese
+    }
+}
+
+/// FXAA 3.11's sub-pixel aliasing removal (`subpixB` … `subpixH`): how far
+/// the centre's luma lies from the neighbourhood's low-pass (`subpix_a`
+/// over 12), relative to the local contrast `range`, smoothstepped, squared
+/// and scaled by `fxaaQualitySubpix`: the blend toward the neighbour that a
+/// one-pixel feature gets whatever the edge search finds.
+#[inline(always)]
+fn subpixel_blend(subpix_a: f32, luma_m: f32, range: f32, p: &FxaaParams) -> f32 {
     let subpix_rcp_range = 1.0 / range;
-    let subpix_nswe = luma_ns + luma_we;
-    let edge_horz1 = -2.0 * luma_m + luma_ns;
-    let edge_vert1 = -2.0 * luma_m + luma_we;
-
-    let luma_nese = luma_ne + luma_se;
-    let luma_nwne = luma_nw + luma_ne;
-    let edge_horz2 = -2.0 * luma_e + luma_nese;
-    let edge_vert2 = -2.0 * luma_n + luma_nwne;
-
-    let luma_nwsw = luma_nw + luma_sw;
-    let luma_swse = luma_sw + luma_se;
-    let edge_horz4 = edge_horz1.abs() * 2.0 + edge_horz2.abs();
-    let edge_vert4 = edge_vert1.abs() * 2.0 + edge_vert2.abs();
-    let edge_horz3 = -2.0 * luma_w + luma_nwsw;
-    let edge_vert3 = -2.0 * luma_s + luma_swse;
-    let edge_horz = edge_horz3.abs() + edge_horz4;
-    let edge_vert = edge_vert3.abs() + edge_vert4;
-
-    let subpix_nwswnese = luma_nwsw + luma_nese;
-    let mut length_sign = 1.0f32; // fxaaQualityRcpFrame.x, in pixels
-    let horz_span = edge_horz >= edge_vert;
-    let subpix_a = subpix_nswe * 2.0 + subpix_nwswnese;
-
-    // The original overwrites lumaN and lumaS here; new names keep every
-    // value single-assignment (as in the WGSL twin).
-    let (luma_n_span, luma_s_span) = if horz_span {
-        (luma_n, luma_s)
-    } else {
-        (luma_w, luma_e)
-    };
-    // (if horzSpan, lengthSign = fxaaQualityRcpFrame.y: also 1 pixel)
     let subpix_b = subpix_a * (1.0 / 12.0) - luma_m;
-
-    let gradient_n = luma_n_span - luma_m;
-    let gradient_s = luma_s_span - luma_m;
-    let mut luma_nn = luma_n_span + luma_m;
-    let luma_ss = luma_s_span + luma_m;
-    let pair_n = gradient_n.abs() >= gradient_s.abs();
-    let gradient = gradient_n.abs().max(gradient_s.abs());
-    if pair_n {
-        length_sign = -length_sign;
-    }
     let subpix_c = clean01((subpix_b).abs() * subpix_rcp_range);
+    let subpix_d = -2.0 * subpix_c + 3.0;
+    let subpix_e = subpix_c * subpix_c;
+    let subpix_f = subpix_d * subpix_e;
+    let subpix_g = subpix_f * subpix_f;
+    subpix_g * p.subpix
+}
 
+/// The side of the edge FXAA 3.11 blends toward: of the two neighbours
+/// across the edge, the one of the steeper luma gradient (`pairN`).
+struct EdgeSide {
+    /// `lengthSign`: one pixel toward that neighbour, across the edge.
+    length_sign: f32,
+    /// `lumaNN`: the centre's luma plus that neighbour's (twice their mean,
+    /// the luma on the edge).
+    luma_nn: f32,
+    /// `gradientScaled`: a quarter of the steeper gradient, the change in
+    /// luma that ends the search along the edge.
+    gradient_scaled: f32,
+    /// `lumaMLTZero`: the centre is darker than the edge's mean luma.
+    luma_m_lt_zero: bool,
+}
+
+impl EdgeSide {
+    #[inline(always)]
+    fn new(l: &Lumas, horz_span: bool) -> Self {
+        let luma_m = l.m;
+        // The original overwrites lumaN and lumaS here; new names keep every
+        // value single-assignment (as in the WGSL twin).
+        let (luma_n_span, luma_s_span) = if horz_span { (l.n, l.s) } else { (l.w, l.e) };
+        // fxaaQualityRcpFrame.x, in pixels (if horzSpan, lengthSign =
+        // fxaaQualityRcpFrame.y: also 1 pixel).
+        let mut length_sign = 1.0f32;
+        let gradient_n = luma_n_span - luma_m;
+        let gradient_s = luma_s_span - luma_m;
+        let mut luma_nn = luma_n_span + luma_m;
+        let luma_ss = luma_s_span + luma_m;
+        let pair_n = gradient_n.abs() >= gradient_s.abs();
+        let gradient = gradient_n.abs().max(gradient_s.abs());
+        if pair_n {
+            length_sign = -length_sign;
+        }
+        if !pair_n {
+            luma_nn = luma_ss;
+        }
+        let gradient_scaled = gradient * 1.0 / 4.0;
+        let luma_mm = luma_m - luma_nn * 0.5;
+        Self {
+            length_sign,
+            luma_nn,
+            gradient_scaled,
+            luma_m_lt_zero: luma_mm < 0.0,
+        }
+    }
+}
+
+/// Where FXAA 3.11's search along the edge stopped on each side (`posN`,
+/// `posP`) and the luma found there, relative to the edge's
+/// (`lumaEndN`, `lumaEndP`).
+struct EdgeEnds {
+    pos_n: (f32, f32),
+    pos_p: (f32, f32),
+    luma_end_n: f32,
+    luma_end_p: f32,
+}
+
+/// FXAA 3.11's search for the two ends of the edge: from half a pixel
+/// across the edge (`posB`, toward the [`EdgeSide`]), it walks both ways
+/// along it by [`SEARCH_STEPS`] (preset 12), bilinear taps straddling the
+/// edge, until the luma departs from the edge's by the scaled gradient.
+#[inline(always)]
+fn search_edge_ends(
+    fetch: &impl Fn(i32, i32) -> Vec4,
+    pos_m: (f32, f32),
+    horz_span: bool,
+    side: &EdgeSide,
+) -> EdgeEnds {
+    let (pos_m_x, pos_m_y) = pos_m;
+    let luma_nn = side.luma_nn;
+    let gradient_scaled = side.gradient_scaled;
     // Along the edge: the unit step `off_np`; `pos_b` is half a pixel across,
     // between the centre and the neighbour of the steeper gradient.
     let (off_x, off_y) = if horz_span { (1.0, 0.0) } else { (0.0, 1.0) };
     let (mut pos_b_x, mut pos_b_y) = (pos_m_x, pos_m_y);
     if !horz_span {
-        pos_b_x += length_sign * 0.5;
+        pos_b_x += side.length_sign * 0.5;
     } else {
-        pos_b_y += length_sign * 0.5;
+        pos_b_y += side.length_sign * 0.5;
     }
 
     let mut pos_n_x = pos_b_x - off_x * SEARCH_STEPS[0];
     let mut pos_n_y = pos_b_y - off_y * SEARCH_STEPS[0];
     let mut pos_p_x = pos_b_x + off_x * SEARCH_STEPS[0];
     let mut pos_p_y = pos_b_y + off_y * SEARCH_STEPS[0];
-    let subpix_d = -2.0 * subpix_c + 3.0;
     let mut luma_end_n = bilinear(fetch, pos_n_x, pos_n_y).w;
-    let subpix_e = subpix_c * subpix_c;
     let mut luma_end_p = bilinear(fetch, pos_p_x, pos_p_y).w;
-
-    if !pair_n {
-        luma_nn = luma_ss;
-    }
-    let gradient_scaled = gradient * 1.0 / 4.0;
-    let luma_mm = luma_m - luma_nn * 0.5;
-    let subpix_f = subpix_d * subpix_e;
-    let luma_m_lt_zero = luma_mm < 0.0;
 
     luma_end_n -= luma_nn * 0.5;
     luma_end_p -= luma_nn * 0.5;
@@ -340,38 +496,46 @@ pub fn fxaa_pixel(fetch: &impl Fn(i32, i32) -> Vec4, x: i32, y: i32, p: &FxaaPar
             pos_p_y += off_y * step;
         }
     }
-
-    let (dst_n, dst_p) = if horz_span {
-        (pos_m_x - pos_n_x, pos_p_x - pos_m_x)
-    } else {
-        (pos_m_y - pos_n_y, pos_p_y - pos_m_y)
-    };
-    let good_span_n = (luma_end_n < 0.0) != luma_m_lt_zero;
-    let span_length = dst_p + dst_n;
-    let good_span_p = (luma_end_p < 0.0) != luma_m_lt_zero;
-    let span_length_rcp = 1.0 / span_length;
-
-    let direction_n = dst_n < dst_p;
-    let dst = dst_n.min(dst_p);
-    let good_span = if direction_n {
-        good_span_n
-    } else {
-        good_span_p
-    };
-    let subpix_g = subpix_f * subpix_f;
-    let pixel_offset = dst * -span_length_rcp + 0.5;
-    let subpix_h = subpix_g * p.subpix;
-
-    let pixel_offset_good = if good_span { pixel_offset } else { 0.0 };
-    // The clamp is ours (see the doc comment): a no-op in the domain.
-    let pixel_offset_subpix = clean01(pixel_offset_good.max(subpix_h));
-    let (mut px, mut py) = (pos_m_x, pos_m_y);
-    if !horz_span {
-        px += pixel_offset_subpix * length_sign;
-    } else {
-        py += pixel_offset_subpix * length_sign;
+    EdgeEnds {
+        pos_n: (pos_n_x, pos_n_y),
+        pos_p: (pos_p_x, pos_p_y),
+        luma_end_n,
+        luma_end_p,
     }
-    bilinear(fetch, px, py).truncate()
+}
+
+impl EdgeEnds {
+    /// FXAA 3.11's offset across the edge (`pixelOffsetGood`): from the
+    /// nearer end, `0.5 − distance / span length`, the coverage of the
+    /// centre by the polygon the edge bounds, where the luma at that end
+    /// changes toward the centre's side (`goodSpan`); otherwise 0.
+    #[inline(always)]
+    fn pixel_offset(&self, pos_m: (f32, f32), horz_span: bool, side: &EdgeSide) -> f32 {
+        let (pos_m_x, pos_m_y) = pos_m;
+        let (dst_n, dst_p) = if horz_span {
+            (pos_m_x - self.pos_n.0, self.pos_p.0 - pos_m_x)
+        } else {
+            (pos_m_y - self.pos_n.1, self.pos_p.1 - pos_m_y)
+        };
+        let good_span_n = (self.luma_end_n < 0.0) != side.luma_m_lt_zero;
+        let span_length = dst_p + dst_n;
+        let good_span_p = (self.luma_end_p < 0.0) != side.luma_m_lt_zero;
+        let span_length_rcp = 1.0 / span_length;
+
+        let direction_n = dst_n < dst_p;
+        let dst = dst_n.min(dst_p);
+        let good_span = if direction_n {
+            good_span_n
+        } else {
+            good_span_p
+        };
+        let pixel_offset = dst * -span_length_rcp + 0.5;
+        if good_span {
+            pixel_offset
+        } else {
+            0.0
+        }
+    }
 }
 
 #[cfg(test)]

@@ -207,9 +207,15 @@ impl<'g> Resolver<'g> {
     }
 
     /// One group of layers for the four subsamples: `out[k]` is the sum of
-    /// subsample `k`'s layers, in layer order, from `Vec3::ZERO`.
-    // Layer `i` indexes bit masks and the per-layer arrays alike.
-    #[allow(clippy::needless_range_loop)]
+    /// subsample `k`'s layers, in layer order, from `Vec3::ZERO`. Each layer
+    /// is [`reconstruct_layers`]' (eq. 1 with the spatial term, eq. 2's gate
+    /// for a light's layer, §3.1–3.2; the material gate with `albedo`, §4.1)
+    /// for the four subsamples at once: the neighbourhood's colours scanned
+    /// first ([`LayerScan`]), each neighbour's weights for the four lanes
+    /// next ([`Resolver::neighbour_weights`]), then, layer by layer, the
+    /// gated weighted mean ([`NeighbourWeights::gated_sum`]) or, where the
+    /// weights underflowed, the nearest finite colour
+    /// ([`Resolver::nearest_finite`]).
     #[inline(always)]
     fn add_group(
         &self,
@@ -221,54 +227,56 @@ impl<'g> Resolver<'g> {
         out: &mut [Vec3; 4],
     ) {
         let n = self.gates.len();
-        // Gather: which layers have a colour that is not exactly black (and
-        // finite) anywhere in the neighbourhood (`live`; a layer without one
-        // reconstructs to black whatever the weights), and which have one
-        // colour, bit for bit, wherever it is finite (`varied` clear; such a
-        // layer reconstructs to that colour whatever the weights: each
-        // product w·C is exact in f64 and the normalised sum is within a few
-        // f64 ulps of C, which rounds back to C in f32; the fallback is C too).
-        let mut live = 0u32;
-        let mut varied = 0u32;
-        let mut seen = 0u32;
-        let mut uniform = [Vec3A::ZERO; MAX_LAYERS];
-        let mut base = [0usize; SLOTS];
-        let mut finite = [0u32; SLOTS];
-        for slot in hood.slots() {
-            base[slot] = hood.index[slot] * frame.layers + group.first_layer;
-            for i in 0..n {
-                // In one vector register: three lanes compared at once.
-                let c = Vec3A::from(color_at(frame, base[slot] + i));
-                if c.is_finite_mask().all() {
-                    finite[slot] |= 1 << i;
-                    if c.cmpne(Vec3A::ZERO).any() {
-                        live |= 1 << i;
-                    }
-                    if seen & (1 << i) == 0 {
-                        seen |= 1 << i;
-                        uniform[i] = c;
-                    } else if c.cmpne(uniform[i]).any() {
-                        // (−0 and +0 count as one colour: either adds
-                        // nothing to a subsample's sum of layers.)
-                        varied |= 1 << i;
-                    }
-                }
-            }
-        }
-        if live == 0 {
+        let scan = LayerScan::new(frame, hood, group, n);
+        if scan.live == 0 {
             return;
         }
-        if live & varied == 0 {
+        if scan.live & scan.varied == 0 {
             // Every layer that is not black is uniform: no weight needed.
-            for i in 0..n {
-                if live & (1 << i) != 0 {
-                    for sum in out.iter_mut() {
-                        *sum += Vec3::from(uniform[i]);
-                    }
+            for (i, &uniform) in scan.uniform[..n].iter().enumerate() {
+                if scan.live & (1 << i) != 0 {
+                    add_to_each(out, uniform);
                 }
             }
             return;
         }
+        let weights = self.neighbour_weights(frame, hood, group, targets, albedo);
+        for (i, gate) in self.gates.iter().enumerate() {
+            if scan.live & (1 << i) == 0 {
+                continue;
+            }
+            if scan.varied & (1 << i) == 0 {
+                add_to_each(out, scan.uniform[i]);
+                continue;
+            }
+            let bit = match *gate {
+                Some(bit) if bit < 32 => Some(bit as usize),
+                _ => None,
+            };
+            let acc = weights.gated_sum(frame, &scan, hood.valid, i, bit, &targets.shadow);
+            for (k, sum) in out.iter_mut().enumerate() {
+                *sum += match acc.mean(k) {
+                    Some(c) => c,
+                    None => self.nearest_finite(frame, hood, &scan, i, k),
+                };
+            }
+        }
+    }
+
+    /// The weights of every neighbour of the 3×3 neighbourhood for the four
+    /// subsamples, one lane each: [`reconstruction_weight`] (eq. 1 times the
+    /// spatial term, or the Chajdas form), zeroed in the lanes the material
+    /// gate closes (`albedo`: the subsamples' albedos, §4.1, Fig. 6), with
+    /// each neighbour's shadow bits for eq. 2.
+    #[inline(always)]
+    fn neighbour_weights(
+        &self,
+        frame: &ShadedFrame,
+        hood: &Hood,
+        group: &ShadedGroup,
+        targets: &Subsamples,
+        albedo: Option<[Vec3; 4]>,
+    ) -> NeighbourWeights {
         let mut geometry = [Geometry::MISS; SLOTS];
         let mut shadow = [0u32; SLOTS];
         for slot in hood.slots() {
@@ -306,76 +314,37 @@ impl<'g> Resolver<'g> {
                 nonzero |= 1 << slot;
             }
         }
+        NeighbourWeights {
+            weights,
+            nonzero,
+            shadow,
+        }
+    }
 
-        for (i, gate) in self.gates.iter().enumerate() {
-            if live & (1 << i) == 0 {
-                continue;
-            }
-            if varied & (1 << i) == 0 {
-                for sum in out.iter_mut() {
-                    *sum += Vec3::from(uniform[i]);
-                }
-                continue;
-            }
-            let bit = match *gate {
-                Some(bit) if bit < 32 => Some(bit as usize),
-                _ => None,
-            };
-            // Bit k: subsample k's shadow bit of this layer's light.
-            let mine = bit.map_or(0, |b| {
-                let t = &targets.shadow;
-                ((t[0] >> b) & 1)
-                    | ((t[1] >> b) & 1) << 1
-                    | ((t[2] >> b) & 1) << 2
-                    | ((t[3] >> b) & 1) << 3
-            });
-            let mut acc = WeightedSum4::ZERO;
-            for slot in slots(hood.valid & nonzero) {
-                if finite[slot] & (1 << i) == 0 {
-                    continue;
-                }
-                let w = match bit {
-                    // Eq. 2: lanes whose shadow bit differs from the
-                    // neighbour's weigh 0.
-                    Some(b) => {
-                        let theirs = if (shadow[slot] >> b) & 1 != 0 { 0xf } else { 0 };
-                        let differ = (mine ^ theirs) as usize;
-                        if differ == 0xf {
-                            continue;
-                        }
-                        let (w, keep) = (weights[slot], KEEP_LANES[differ]);
-                        [
-                            w[0] * keep[0],
-                            w[1] * keep[1],
-                            w[2] * keep[2],
-                            w[3] * keep[3],
-                        ]
-                    }
-                    None => weights[slot],
-                };
-                acc.add(w, color_at(frame, base[slot] + i));
-            }
-            for (k, sum) in out.iter_mut().enumerate() {
-                *sum += match acc.mean(k) {
-                    Some(c) => c,
-                    None => {
-                        // The nearest finite colour, first on ties.
-                        let mut nearest = Vec3::ZERO;
-                        let mut nearest_d2 = f32::INFINITY;
-                        let mut any = false;
-                        for slot in hood.slots() {
-                            let d2 = self.distance2[k][slot];
-                            if finite[slot] & (1 << i) != 0 && (!any || d2 < nearest_d2) {
-                                nearest = color_at(frame, base[slot] + i);
-                                nearest_d2 = d2;
-                                any = true;
-                            }
-                        }
-                        nearest
-                    }
-                };
+    /// [`reconstruct_layers`]' fallback for subsample `k`'s layer `i` when
+    /// its weights underflowed: the nearest shaded sample with a finite
+    /// colour, the first on ties (black with none).
+    #[inline(always)]
+    fn nearest_finite(
+        &self,
+        frame: &ShadedFrame,
+        hood: &Hood,
+        scan: &LayerScan,
+        i: usize,
+        k: usize,
+    ) -> Vec3 {
+        let mut nearest = Vec3::ZERO;
+        let mut nearest_d2 = f32::INFINITY;
+        let mut any = false;
+        for slot in hood.slots() {
+            let d2 = self.distance2[k][slot];
+            if scan.finite[slot] & (1 << i) != 0 && (!any || d2 < nearest_d2) {
+                nearest = color_at(frame, scan.base[slot] + i);
+                nearest_d2 = d2;
+                any = true;
             }
         }
+        nearest
     }
 
     /// Any radius: the per-subsample path over [`neighbourhood`].
@@ -460,6 +429,150 @@ impl<'g> Resolver<'g> {
             }
         }
         out[..n].iter().fold(Vec3::ZERO, |a, c| a + *c)
+    }
+}
+
+/// `out[k] += c` for the four subsamples: a layer that reconstructs to `c`
+/// whatever the weights.
+#[inline(always)]
+fn add_to_each(out: &mut [Vec3; 4], c: Vec3A) {
+    for sum in out.iter_mut() {
+        *sum += Vec3::from(c);
+    }
+}
+
+/// One pass over a group's colours in the 3×3 neighbourhood, before any
+/// weight: which layers can change a subsample's sum of layers and which
+/// reconstruct to one colour whatever the weights.
+///
+/// A layer without a colour that is finite and not exactly black anywhere
+/// in the neighbourhood (`live` clear) reconstructs to black. A layer with
+/// one colour, bit for bit, wherever it is finite (`varied` clear)
+/// reconstructs to that colour: each product `w·C` is exact in f64 and the
+/// normalised sum is within a few f64 ulps of `C`, which rounds back to `C`
+/// in f32; the fallback is `C` too.
+struct LayerScan {
+    /// Bit `i`: layer `i` has a finite colour that is not black.
+    live: u32,
+    /// Bit `i`: layer `i`'s finite colours are not all one colour.
+    varied: u32,
+    /// Layer `i`'s colour, where `varied` is clear.
+    uniform: [Vec3A; MAX_LAYERS],
+    /// Each slot's index, in `frame.colors`, of the group's first layer.
+    base: [usize; SLOTS],
+    /// Bit `i` of a slot: its colour of layer `i` is finite.
+    finite: [u32; SLOTS],
+}
+
+impl LayerScan {
+    /// The scan of layers `0..n` of `group` over the valid slots of `hood`.
+    // Layer `i` indexes bit masks and the per-layer arrays alike.
+    #[allow(clippy::needless_range_loop)]
+    #[inline(always)]
+    fn new(frame: &ShadedFrame, hood: &Hood, group: &ShadedGroup, n: usize) -> Self {
+        let mut live = 0u32;
+        let mut varied = 0u32;
+        let mut seen = 0u32;
+        let mut uniform = [Vec3A::ZERO; MAX_LAYERS];
+        let mut base = [0usize; SLOTS];
+        let mut finite = [0u32; SLOTS];
+        for slot in hood.slots() {
+            base[slot] = hood.index[slot] * frame.layers + group.first_layer;
+            for i in 0..n {
+                // In one vector register: three lanes compared at once.
+                let c = Vec3A::from(color_at(frame, base[slot] + i));
+                if c.is_finite_mask().all() {
+                    finite[slot] |= 1 << i;
+                    if c.cmpne(Vec3A::ZERO).any() {
+                        live |= 1 << i;
+                    }
+                    if seen & (1 << i) == 0 {
+                        seen |= 1 << i;
+                        uniform[i] = c;
+                    } else if c.cmpne(uniform[i]).any() {
+                        // (−0 and +0 count as one colour: either adds
+                        // nothing to a subsample's sum of layers.)
+                        varied |= 1 << i;
+                    }
+                }
+            }
+        }
+        Self {
+            live,
+            varied,
+            uniform,
+            base,
+            finite,
+        }
+    }
+}
+
+/// Every neighbour's weights for the four subsamples
+/// ([`Resolver::neighbour_weights`]) and its shadow bits.
+struct NeighbourWeights {
+    /// Slot by slot, one lane per subsample, widened to f64.
+    weights: [[f64; 4]; SLOTS],
+    /// The slots with a weight above 0 in some lane.
+    nonzero: u32,
+    /// Each slot's shadow bits (bit `b`: in light `b`'s shadow).
+    shadow: [u32; SLOTS],
+}
+
+impl NeighbourWeights {
+    /// Layer `i`'s weighted sums for the four subsamples over the valid
+    /// slots (`valid`) with a finite colour, in row-major order (that of
+    /// [`neighbourhood`]), each neighbour's weight gated by eq. 2 on shadow
+    /// bit `bit` (`None`: ungated): 0 in the lanes whose subsample's bit in
+    /// `target_shadow` differs from the neighbour's.
+    #[inline(always)]
+    fn gated_sum(
+        &self,
+        frame: &ShadedFrame,
+        scan: &LayerScan,
+        valid: u32,
+        i: usize,
+        bit: Option<usize>,
+        target_shadow: &[u32; 4],
+    ) -> WeightedSum4 {
+        // Bit k: subsample k's shadow bit of this layer's light.
+        let mine = bit.map_or(0, |b| {
+            let t = target_shadow;
+            ((t[0] >> b) & 1)
+                | ((t[1] >> b) & 1) << 1
+                | ((t[2] >> b) & 1) << 2
+                | ((t[3] >> b) & 1) << 3
+        });
+        let mut acc = WeightedSum4::ZERO;
+        for slot in slots(valid & self.nonzero) {
+            if scan.finite[slot] & (1 << i) == 0 {
+                continue;
+            }
+            let w = match bit {
+                // Eq. 2: lanes whose shadow bit differs from the
+                // neighbour's weigh 0.
+                Some(b) => {
+                    let theirs = if (self.shadow[slot] >> b) & 1 != 0 {
+                        0xf
+                    } else {
+                        0
+                    };
+                    let differ = (mine ^ theirs) as usize;
+                    if differ == 0xf {
+                        continue;
+                    }
+                    let (w, keep) = (self.weights[slot], KEEP_LANES[differ]);
+                    [
+                        w[0] * keep[0],
+                        w[1] * keep[1],
+                        w[2] * keep[2],
+                        w[3] * keep[3],
+                    ]
+                }
+                None => self.weights[slot],
+            };
+            acc.add(w, color_at(frame, scan.base[slot] + i));
+        }
+        acc
     }
 }
 
