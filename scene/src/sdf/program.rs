@@ -813,149 +813,32 @@ impl<'a> Compiler<'a> {
     /// leaves one value on the stack.
     fn node(&mut self, node: &'a SdfNode, split: bool) {
         if let Some(leaf) = Leaf::of(node) {
-            self.code.push(Inst::Leaf(leaf));
-            self.push(VALUES, 1);
+            self.leaf(leaf);
             return;
         }
         match &node.op {
             // Taken by `Leaf::of` above; kept for completeness.
-            Op::Shape { shape, material } => {
-                self.code.push(Inst::Leaf(Leaf {
-                    shape: *shape,
-                    material: *material,
-                    transform: None,
-                }));
-                self.push(VALUES, 1);
-            }
-            Op::Transform(t) => {
-                self.code.push(Inst::PushTransform {
-                    translation: t.translation,
-                    inv_scale: t.inv_scale,
-                    inv_rotation: t.rotated.then_some(t.inv_rotation),
-                });
-                self.push(POINTS, 1);
-                self.node(&t.child, split);
-                self.code.push(Inst::PopTransform { scale: t.scale });
-                self.push(POINTS, -1);
-            }
+            Op::Shape { shape, material } => self.leaf(Leaf {
+                shape: *shape,
+                material: *material,
+                transform: None,
+            }),
+            Op::Transform(t) => self.transform(t, split),
             Op::Union { children, spheres } => {
-                self.code.push(Inst::UnionBegin {
-                    material: node.info.material,
-                });
-                self.push(VALUES, 1);
-                for (c, s) in children.iter().zip(spheres) {
-                    if let Some(leaf) = Leaf::of(c) {
-                        self.code.push(Inst::UnionLeaf {
-                            sphere: *s,
-                            leaf,
-                            split,
-                        });
-                        continue;
-                    }
-                    let at = self.code.len();
-                    self.code.push(Inst::UnionChild {
-                        sphere: *s,
-                        skip: 0,
-                        split,
-                    });
-                    self.push(MASKS, 1);
-                    self.node(c, split);
-                    self.code.push(Inst::UnionMerge { split });
-                    self.push(VALUES, -1);
-                    self.push(MASKS, -1);
-                    let skip = (self.code.len() - at) as u32;
-                    if let Inst::UnionChild { skip: s, .. } = &mut self.code[at] {
-                        *s = skip;
-                    }
-                }
-                self.code.push(Inst::UnionEnd { split });
+                self.union(node.info.material, children, spheres, split)
             }
             Op::Repeat(r) if split && r.guard => {
                 self.repeat(r, true);
             }
-            Op::Scatter(s) => {
-                if self.nested {
-                    self.tree(node, split);
-                    return;
-                }
-                let templates = s
-                    .templates
-                    .iter()
-                    .map(|t| compile(t, false, true))
-                    .collect();
-                self.code.push(Inst::Scatter {
-                    scatter: s,
-                    templates,
-                    split,
-                });
-                self.push(VALUES, 1);
-            }
-            Op::Bounded { pad, child } if split => {
-                self.code.push(Inst::BoundedSplitBegin {
-                    bounds: child.info.bounds,
-                });
-                self.push(WALLS, 1);
-                self.node(child, true);
-                self.code.push(Inst::BoundedSplitEnd { pad: *pad });
-                self.push(WALLS, -1);
-            }
+            Op::Scatter(s) => self.scatter(node, s, split),
+            Op::Bounded { pad, child } if split => self.bounded_split(*pad, child),
             // Below here: the tree's `eval` (split falls back to it).
-            Op::Bounded { pad, child } => {
-                let at = self.code.len();
-                self.code.push(Inst::BoundedBegin {
-                    bounds: child.info.bounds,
-                    pad: *pad,
-                    material: node.info.material,
-                    skip: 0,
-                });
-                self.push(VALUES, 1);
-                self.push(MASKS, 1);
-                self.node(child, false);
-                self.code.push(Inst::BoundedMerge);
-                self.push(VALUES, -1);
-                self.push(MASKS, -1);
-                let skip = (self.code.len() - at) as u32;
-                if let Inst::BoundedBegin { skip: s, .. } = &mut self.code[at] {
-                    *s = skip;
-                }
-            }
+            Op::Bounded { pad, child } => self.bounded(node.info.material, *pad, child),
             Op::Repeat(r) => self.repeat(r, false),
-            Op::Intersection(children) => {
-                self.code.push(Inst::IntersectionBegin {
-                    material: node.info.material,
-                });
-                self.push(VALUES, 1);
-                for c in children {
-                    self.node(c, false);
-                    self.code.push(Inst::IntersectionMerge);
-                    self.push(VALUES, -1);
-                }
-            }
-            Op::SmoothUnion { k, children } => {
-                for (i, c) in children.iter().enumerate() {
-                    self.node(c, false);
-                    self.code.push(Inst::SmoothMerge {
-                        k: *k,
-                        first: i == 0,
-                    });
-                    if i > 0 {
-                        self.push(VALUES, -1);
-                    }
-                }
-            }
-            Op::Subtract(ab) => {
-                self.node(&ab.0, false);
-                self.node(&ab.1, false);
-                self.code.push(Inst::SubtractMerge);
-                self.push(VALUES, -1);
-            }
-            Op::Mirror { axes, child } => {
-                self.code.push(Inst::PushMirror { axes: *axes });
-                self.push(POINTS, 1);
-                self.node(child, false);
-                self.code.push(Inst::PopPoint);
-                self.push(POINTS, -1);
-            }
+            Op::Intersection(children) => self.intersection(node.info.material, children),
+            Op::SmoothUnion { k, children } => self.smooth_union(*k, children),
+            Op::Subtract(ab) => self.subtract(&ab.0, &ab.1),
+            Op::Mirror { axes, child } => self.mirror(*axes, child),
             Op::Round { radius, child } => {
                 self.node(child, false);
                 self.code.push(Inst::Round { radius: *radius });
@@ -972,6 +855,144 @@ impl<'a> Compiler<'a> {
             }
             Op::Displace { .. } => self.tree(node, false),
         }
+    }
+
+    fn leaf(&mut self, leaf: Leaf) {
+        self.code.push(Inst::Leaf(leaf));
+        self.push(VALUES, 1);
+    }
+
+    fn transform(&mut self, t: &'a super::node::Transform, split: bool) {
+        self.code.push(Inst::PushTransform {
+            translation: t.translation,
+            inv_scale: t.inv_scale,
+            inv_rotation: t.rotated.then_some(t.inv_rotation),
+        });
+        self.push(POINTS, 1);
+        self.node(&t.child, split);
+        self.code.push(Inst::PopTransform { scale: t.scale });
+        self.push(POINTS, -1);
+    }
+
+    /// A union: leaf children as one instruction each, others between a
+    /// cull that may skip them and a merge.
+    fn union(&mut self, material: u32, children: &'a [SdfNode], spheres: &[Vec4], split: bool) {
+        self.code.push(Inst::UnionBegin { material });
+        self.push(VALUES, 1);
+        for (c, s) in children.iter().zip(spheres) {
+            if let Some(leaf) = Leaf::of(c) {
+                self.code.push(Inst::UnionLeaf {
+                    sphere: *s,
+                    leaf,
+                    split,
+                });
+                continue;
+            }
+            let at = self.code.len();
+            self.code.push(Inst::UnionChild {
+                sphere: *s,
+                skip: 0,
+                split,
+            });
+            self.push(MASKS, 1);
+            self.node(c, split);
+            self.code.push(Inst::UnionMerge { split });
+            self.push(VALUES, -1);
+            self.push(MASKS, -1);
+            let skip = (self.code.len() - at) as u32;
+            if let Inst::UnionChild { skip: s, .. } = &mut self.code[at] {
+                *s = skip;
+            }
+        }
+        self.code.push(Inst::UnionEnd { split });
+    }
+
+    /// A scatter with its templates compiled as nested programs; inside a
+    /// template, through the tree.
+    fn scatter(&mut self, node: &'a SdfNode, s: &'a Scatter, split: bool) {
+        if self.nested {
+            self.tree(node, split);
+            return;
+        }
+        let templates = s
+            .templates
+            .iter()
+            .map(|t| compile(t, false, true))
+            .collect();
+        self.code.push(Inst::Scatter {
+            scatter: s,
+            templates,
+            split,
+        });
+        self.push(VALUES, 1);
+    }
+
+    /// `bounded` in split mode: the child always, then the box distance.
+    fn bounded_split(&mut self, pad: f32, child: &'a SdfNode) {
+        self.code.push(Inst::BoundedSplitBegin {
+            bounds: child.info.bounds,
+        });
+        self.push(WALLS, 1);
+        self.node(child, true);
+        self.code.push(Inst::BoundedSplitEnd { pad });
+        self.push(WALLS, -1);
+    }
+
+    /// `bounded` in eval mode: the box distance, and the child in the lanes
+    /// near the box.
+    fn bounded(&mut self, material: u32, pad: f32, child: &'a SdfNode) {
+        let at = self.code.len();
+        self.code.push(Inst::BoundedBegin {
+            bounds: child.info.bounds,
+            pad,
+            material,
+            skip: 0,
+        });
+        self.push(VALUES, 1);
+        self.push(MASKS, 1);
+        self.node(child, false);
+        self.code.push(Inst::BoundedMerge);
+        self.push(VALUES, -1);
+        self.push(MASKS, -1);
+        let skip = (self.code.len() - at) as u32;
+        if let Inst::BoundedBegin { skip: s, .. } = &mut self.code[at] {
+            *s = skip;
+        }
+    }
+
+    fn intersection(&mut self, material: u32, children: &'a [SdfNode]) {
+        self.code.push(Inst::IntersectionBegin { material });
+        self.push(VALUES, 1);
+        for c in children {
+            self.node(c, false);
+            self.code.push(Inst::IntersectionMerge);
+            self.push(VALUES, -1);
+        }
+    }
+
+    fn smooth_union(&mut self, k: f32, children: &'a [SdfNode]) {
+        for (i, c) in children.iter().enumerate() {
+            self.node(c, false);
+            self.code.push(Inst::SmoothMerge { k, first: i == 0 });
+            if i > 0 {
+                self.push(VALUES, -1);
+            }
+        }
+    }
+
+    fn subtract(&mut self, a: &'a SdfNode, b: &'a SdfNode) {
+        self.node(a, false);
+        self.node(b, false);
+        self.code.push(Inst::SubtractMerge);
+        self.push(VALUES, -1);
+    }
+
+    fn mirror(&mut self, axes: [bool; 3], child: &'a SdfNode) {
+        self.code.push(Inst::PushMirror { axes });
+        self.push(POINTS, 1);
+        self.node(child, false);
+        self.code.push(Inst::PopPoint);
+        self.push(POINTS, -1);
     }
 
     fn repeat(&mut self, r: &'a super::node::Repeat, split: bool) {
@@ -1099,291 +1120,427 @@ impl<'a> SdfProgram<'a> {
     /// into the caller's loop.
     #[inline(always)]
     fn run<const NESTED: bool>(&self, p: V3, active: LaneMask, s: &mut Scratch) -> Value {
-        let (mut vs, mut ps, mut ms, mut ws) = (0usize, 0usize, 0usize, 0usize);
         s.points[0] = p;
         s.masks[0] = W8::of_bits(active);
+        let mut m = Machine {
+            s,
+            vs: 0,
+            ps: 0,
+            ms: 0,
+            ws: 0,
+        };
         let code = &self.code;
         let mut pc = 0;
         while pc < code.len() {
             match &code[pc] {
-                Inst::Leaf(leaf) => {
-                    let d = leaf.distance(&s.points[ps]);
-                    s.values[vs] = Value::both(d, [leaf.material; LANES]);
-                    vs += 1;
-                }
+                Inst::Leaf(leaf) => m.leaf(leaf),
                 Inst::UnionLeaf {
                     sphere,
                     leaf,
                     split,
-                } => {
-                    let p = &s.points[ps];
-                    let acc = &mut s.values[vs - 1];
-                    let lanes = cull(sphere, p, acc, s.masks[ms], *split);
-                    if lanes.any() {
-                        let d = leaf.distance(p);
-                        if *split {
-                            acc.safe = lanes.select(acc.safe.min(d), acc.safe);
-                        }
-                        let better = lanes.and(W8::from_fn(|k| d.0[k] < acc.surf.0[k]));
-                        acc.surf = better.select(d, acc.surf);
-                        acc.mat = better.select_u([leaf.material; LANES], acc.mat);
-                        if !*split {
-                            acc.safe = acc.surf;
-                        }
-                    }
-                }
+                } => m.union_leaf(sphere, leaf, *split),
                 Inst::PushTransform {
                     translation,
                     inv_scale,
                     inv_rotation,
-                } => {
-                    let p = s.points[ps];
-                    let mut q = p.sub(V3::splat(*translation)).scale(F8::splat(*inv_scale));
-                    if let Some(r) = inv_rotation {
-                        q = q.rotate(*r);
-                    }
-                    ps += 1;
-                    s.points[ps] = q;
-                }
-                Inst::PopTransform { scale } => {
-                    ps -= 1;
-                    let v = &mut s.values[vs - 1];
-                    v.safe = v.safe * *scale;
-                    v.surf = v.surf * *scale;
-                }
-                Inst::PushMirror { axes } => {
-                    let p = s.points[ps];
-                    let mut q = p;
-                    if axes[0] {
-                        q.x = q.x.abs();
-                    }
-                    if axes[1] {
-                        q.y = q.y.abs();
-                    }
-                    if axes[2] {
-                        q.z = q.z.abs();
-                    }
-                    ps += 1;
-                    s.points[ps] = q;
-                }
-                Inst::PopPoint => ps -= 1,
+                } => m.push_transform(*translation, *inv_scale, *inv_rotation),
+                Inst::PopTransform { scale } => m.pop_transform(*scale),
+                Inst::PushMirror { axes } => m.push_mirror(axes),
+                Inst::PopPoint => m.ps -= 1,
                 Inst::PushRepeat {
                     period,
                     lo,
                     hi,
                     guard,
-                } => {
-                    let p = s.points[ps];
-                    let mut q = [p.x, p.y, p.z];
-                    let mut wall = F8::splat(f32::INFINITY);
-                    for (k, qk) in q.iter_mut().enumerate() {
-                        let c = period[k];
-                        if c > 0.0 {
-                            let i = round_cell(*qk / c).clamp(F8::splat(lo[k]), F8::splat(hi[k]));
-                            let pk = *qk;
-                            *qk = pk - c * i;
-                            if *guard {
-                                let below = i.lt(F8::splat(hi[k]));
-                                wall = F8::select(below, wall.min(0.5 * c - *qk), wall);
-                                let above = i.gt(F8::splat(lo[k]));
-                                wall = F8::select(above, wall.min(0.5 * c + *qk), wall);
-                            }
-                        }
-                    }
-                    ps += 1;
-                    s.points[ps] = V3::new(q[0], q[1], q[2]);
-                    s.walls[ws] = wall;
-                    ws += 1;
-                }
-                Inst::PopRepeat { margin, split } => {
-                    ps -= 1;
-                    ws -= 1;
-                    let g = s.walls[ws] + *margin;
-                    let v = &mut s.values[vs - 1];
-                    if *split {
-                        v.safe = v.safe.min(g);
-                    } else {
-                        let d = F8::select(g.lt(v.surf), g, v.surf);
-                        v.safe = d;
-                        v.surf = d;
-                    }
-                }
-                Inst::UnionBegin { material } => {
-                    let inf = F8::splat(f32::INFINITY);
-                    s.values[vs] = Value {
-                        safe: inf,
-                        surf: inf,
-                        mat: [*material; LANES],
-                    };
-                    vs += 1;
-                }
+                } => m.push_repeat(period, lo, hi, *guard),
+                Inst::PopRepeat { margin, split } => m.pop_repeat(*margin, *split),
+                Inst::UnionBegin { material } => m.union_begin(*material),
                 Inst::UnionChild {
                     sphere,
                     skip,
                     split,
                 } => {
-                    let p = s.points[ps];
-                    let acc = &mut s.values[vs - 1];
-                    let needed = cull(sphere, &p, acc, s.masks[ms], *split);
-                    if !needed.any() {
+                    if !m.union_child(sphere, *split) {
                         pc += *skip as usize;
                         continue;
                     }
-                    ms += 1;
-                    s.masks[ms] = needed;
                 }
-                Inst::UnionMerge { split } => {
-                    vs -= 1;
-                    let c = s.values[vs];
-                    let lanes = s.masks[ms];
-                    ms -= 1;
-                    let acc = &mut s.values[vs - 1];
-                    if *split {
-                        acc.safe = lanes.select(acc.safe.min(c.safe), acc.safe);
-                    }
-                    let better = lanes.and(W8::from_fn(|k| c.surf.0[k] < acc.surf.0[k]));
-                    acc.surf = better.select(c.surf, acc.surf);
-                    acc.mat = better.select_u(c.mat, acc.mat);
-                    if !*split {
-                        acc.safe = acc.surf;
-                    }
-                }
-                Inst::UnionEnd { split } => {
-                    let acc = &mut s.values[vs - 1];
-                    if *split {
-                        acc.safe = acc.safe.min(acc.surf);
-                    } else {
-                        acc.safe = acc.surf;
-                    }
-                }
-                Inst::IntersectionBegin { material } => {
-                    s.values[vs] = Value::both(F8::splat(f32::NEG_INFINITY), [*material; LANES]);
-                    vs += 1;
-                }
-                Inst::IntersectionMerge => {
-                    vs -= 1;
-                    let c = s.values[vs];
-                    let acc = &mut s.values[vs - 1];
-                    *acc = Value::select(c.surf.gt(acc.surf), c, *acc);
-                }
+                Inst::UnionMerge { split } => m.union_merge(*split),
+                Inst::UnionEnd { split } => m.union_end(*split),
+                Inst::IntersectionBegin { material } => m.intersection_begin(*material),
+                Inst::IntersectionMerge => m.intersection_merge(),
                 Inst::SmoothMerge { k, first } => {
                     if !*first {
-                        vs -= 1;
-                        let c = s.values[vs];
-                        let acc = &mut s.values[vs - 1];
-                        let k = *k;
-                        let h = (k - (acc.surf - c.surf).abs()).max(F8::splat(0.0)) / k;
-                        let mat = c.surf.lt(acc.surf).select_u(c.mat, acc.mat);
-                        let d = acc.surf.min(c.surf) - 0.25 * k * h * h;
-                        *acc = Value::both(d, mat);
+                        m.smooth_merge(*k);
                     }
                 }
-                Inst::SubtractMerge => {
-                    vs -= 1;
-                    let b = s.values[vs];
-                    let a = s.values[vs - 1];
-                    let nb = -b.surf;
-                    s.values[vs - 1] = Value::select(a.surf.ge(nb), a, Value::both(nb, b.mat));
-                }
-                Inst::Round { radius } => {
-                    let v = &mut s.values[vs - 1];
-                    *v = Value::both(v.surf - *radius, v.mat);
-                }
-                Inst::Onion { thickness } => {
-                    let v = &mut s.values[vs - 1];
-                    *v = Value::both(v.surf.abs() - *thickness, v.mat);
-                }
-                Inst::ScaleDistance { factor } => {
-                    let v = &mut s.values[vs - 1];
-                    *v = Value::both(v.surf * *factor, v.mat);
-                }
+                Inst::SubtractMerge => m.subtract_merge(),
+                Inst::Round { radius } => m.round(*radius),
+                Inst::Onion { thickness } => m.onion(*thickness),
+                Inst::ScaleDistance { factor } => m.scale_distance(*factor),
                 Inst::BoundedBegin {
                     bounds,
                     pad,
                     material,
                     skip,
                 } => {
-                    let p = s.points[ps];
-                    let b = aabb_distance(bounds, p);
-                    s.values[vs] = Value::both(b, [*material; LANES]);
-                    vs += 1;
-                    let needed = s.masks[ms].and_not(W8::from_fn(|k| b.0[k] > *pad));
-                    if !needed.any() {
+                    if !m.bounded_begin(bounds, *pad, *material) {
                         pc += *skip as usize;
                         continue;
                     }
-                    ms += 1;
-                    s.masks[ms] = needed;
                 }
-                Inst::BoundedMerge => {
-                    vs -= 1;
-                    let c = s.values[vs];
-                    let lanes = s.masks[ms];
-                    ms -= 1;
-                    let acc = &mut s.values[vs - 1];
-                    *acc = Value::select(lanes, c, *acc);
-                }
-                Inst::BoundedSplitBegin { bounds } => {
-                    let p = s.points[ps];
-                    s.walls[ws] = aabb_distance(bounds, p);
-                    ws += 1;
-                }
-                Inst::BoundedSplitEnd { pad } => {
-                    ws -= 1;
-                    let b = s.walls[ws];
-                    let v = &mut s.values[vs - 1];
-                    let far = b.gt(F8::splat(*pad));
-                    v.safe = F8::select(far, v.safe.max(b).min(v.surf), v.safe);
-                }
+                Inst::BoundedMerge => m.bounded_merge(),
+                Inst::BoundedSplitBegin { bounds } => m.bounded_split_begin(bounds),
+                Inst::BoundedSplitEnd { pad } => m.bounded_split_end(*pad),
                 Inst::Scatter {
                     scatter,
                     templates,
                     split,
-                } => {
-                    let p = s.points[ps];
-                    let v = if NESTED {
-                        // Never compiled: nested scatters fall back to the tree.
-                        Value::default()
-                    } else {
-                        scatter_lanes(
-                            scatter,
-                            templates,
-                            p,
-                            s.masks[ms].bits(),
-                            &mut s.nested,
-                            *split,
-                        )
-                    };
-                    s.values[vs] = v;
-                    vs += 1;
-                }
-                Inst::Tree { node, split } => {
-                    let p = s.points[ps];
-                    let mut v = Value::default();
-                    let m = s.masks[ms].bits();
-                    for k in 0..LANES {
-                        if m & (1 << k) == 0 {
-                            continue;
-                        }
-                        let q = Vec3::new(p.x.0[k], p.y.0[k], p.z.0[k]);
-                        let (a, b, mat) = if *split {
-                            let r = node.eval_split(q);
-                            (r.safe, r.surface, r.material)
-                        } else {
-                            let (d, mat) = node.eval(q);
-                            (d, d, mat)
-                        };
-                        v.safe.0[k] = a;
-                        v.surf.0[k] = b;
-                        v.mat[k] = mat;
-                    }
-                    s.values[vs] = v;
-                    vs += 1;
-                }
+                } => m.scatter::<NESTED>(scatter, templates, *split),
+                Inst::Tree { node, split } => m.tree(node, *split),
             }
             pc += 1;
         }
-        s.values[0]
+        m.s.values[0]
+    }
+}
+
+/// A running [`SdfProgram`]: its stacks, in a [`Scratch`], and their tops.
+/// One method per instruction, each always inlined into
+/// [`SdfProgram::run`]'s loop (the tops stay in registers).
+struct Machine<'s> {
+    s: &'s mut Scratch,
+    /// Number of values on the stack.
+    vs: usize,
+    /// Index of the current point.
+    ps: usize,
+    /// Index of the current lane mask.
+    ms: usize,
+    /// Number of walls kept.
+    ws: usize,
+}
+
+impl Machine<'_> {
+    #[inline(always)]
+    fn leaf(&mut self, leaf: &Leaf) {
+        let s = &mut *self.s;
+        let d = leaf.distance(&s.points[self.ps]);
+        s.values[self.vs] = Value::both(d, [leaf.material; LANES]);
+        self.vs += 1;
+    }
+
+    #[inline(always)]
+    fn union_leaf(&mut self, sphere: &Vec4, leaf: &Leaf, split: bool) {
+        let s = &mut *self.s;
+        let p = &s.points[self.ps];
+        let acc = &mut s.values[self.vs - 1];
+        let lanes = cull(sphere, p, acc, s.masks[self.ms], split);
+        if lanes.any() {
+            let d = leaf.distance(p);
+            if split {
+                acc.safe = lanes.select(acc.safe.min(d), acc.safe);
+            }
+            let better = lanes.and(W8::from_fn(|k| d.0[k] < acc.surf.0[k]));
+            acc.surf = better.select(d, acc.surf);
+            acc.mat = better.select_u([leaf.material; LANES], acc.mat);
+            if !split {
+                acc.safe = acc.surf;
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn push_transform(&mut self, translation: Vec3, inv_scale: f32, inv_rotation: Option<Quat>) {
+        let s = &mut *self.s;
+        let p = s.points[self.ps];
+        let mut q = p.sub(V3::splat(translation)).scale(F8::splat(inv_scale));
+        if let Some(r) = inv_rotation {
+            q = q.rotate(r);
+        }
+        self.ps += 1;
+        s.points[self.ps] = q;
+    }
+
+    #[inline(always)]
+    fn pop_transform(&mut self, scale: f32) {
+        self.ps -= 1;
+        let v = &mut self.s.values[self.vs - 1];
+        v.safe = v.safe * scale;
+        v.surf = v.surf * scale;
+    }
+
+    #[inline(always)]
+    fn push_mirror(&mut self, axes: &[bool; 3]) {
+        let s = &mut *self.s;
+        let p = s.points[self.ps];
+        let mut q = p;
+        if axes[0] {
+            q.x = q.x.abs();
+        }
+        if axes[1] {
+            q.y = q.y.abs();
+        }
+        if axes[2] {
+            q.z = q.z.abs();
+        }
+        self.ps += 1;
+        s.points[self.ps] = q;
+    }
+
+    /// `Repeat::cell`: the point in its cell, and the distance to the walls
+    /// that have a neighbouring cell (`guard`; ∞ otherwise).
+    #[inline(always)]
+    fn push_repeat(&mut self, period: &Vec3, lo: &Vec3, hi: &Vec3, guard: bool) {
+        let s = &mut *self.s;
+        let p = s.points[self.ps];
+        let mut q = [p.x, p.y, p.z];
+        let mut wall = F8::splat(f32::INFINITY);
+        for (k, qk) in q.iter_mut().enumerate() {
+            let c = period[k];
+            if c > 0.0 {
+                let i = round_cell(*qk / c).clamp(F8::splat(lo[k]), F8::splat(hi[k]));
+                let pk = *qk;
+                *qk = pk - c * i;
+                if guard {
+                    let below = i.lt(F8::splat(hi[k]));
+                    wall = F8::select(below, wall.min(0.5 * c - *qk), wall);
+                    let above = i.gt(F8::splat(lo[k]));
+                    wall = F8::select(above, wall.min(0.5 * c + *qk), wall);
+                }
+            }
+        }
+        self.ps += 1;
+        s.points[self.ps] = V3::new(q[0], q[1], q[2]);
+        s.walls[self.ws] = wall;
+        self.ws += 1;
+    }
+
+    #[inline(always)]
+    fn pop_repeat(&mut self, margin: f32, split: bool) {
+        self.ps -= 1;
+        self.ws -= 1;
+        let s = &mut *self.s;
+        let g = s.walls[self.ws] + margin;
+        let v = &mut s.values[self.vs - 1];
+        if split {
+            v.safe = v.safe.min(g);
+        } else {
+            let d = F8::select(g.lt(v.surf), g, v.surf);
+            v.safe = d;
+            v.surf = d;
+        }
+    }
+
+    #[inline(always)]
+    fn union_begin(&mut self, material: u32) {
+        let inf = F8::splat(f32::INFINITY);
+        self.s.values[self.vs] = Value {
+            safe: inf,
+            surf: inf,
+            mat: [material; LANES],
+        };
+        self.vs += 1;
+    }
+
+    /// Culls the next child; whether any lane needs it (then its lanes are
+    /// the current mask).
+    #[inline(always)]
+    fn union_child(&mut self, sphere: &Vec4, split: bool) -> bool {
+        let s = &mut *self.s;
+        let p = s.points[self.ps];
+        let acc = &mut s.values[self.vs - 1];
+        let needed = cull(sphere, &p, acc, s.masks[self.ms], split);
+        if !needed.any() {
+            return false;
+        }
+        self.ms += 1;
+        s.masks[self.ms] = needed;
+        true
+    }
+
+    #[inline(always)]
+    fn union_merge(&mut self, split: bool) {
+        let s = &mut *self.s;
+        self.vs -= 1;
+        let c = s.values[self.vs];
+        let lanes = s.masks[self.ms];
+        self.ms -= 1;
+        let acc = &mut s.values[self.vs - 1];
+        if split {
+            acc.safe = lanes.select(acc.safe.min(c.safe), acc.safe);
+        }
+        let better = lanes.and(W8::from_fn(|k| c.surf.0[k] < acc.surf.0[k]));
+        acc.surf = better.select(c.surf, acc.surf);
+        acc.mat = better.select_u(c.mat, acc.mat);
+        if !split {
+            acc.safe = acc.surf;
+        }
+    }
+
+    #[inline(always)]
+    fn union_end(&mut self, split: bool) {
+        let acc = &mut self.s.values[self.vs - 1];
+        if split {
+            acc.safe = acc.safe.min(acc.surf);
+        } else {
+            acc.safe = acc.surf;
+        }
+    }
+
+    #[inline(always)]
+    fn intersection_begin(&mut self, material: u32) {
+        self.s.values[self.vs] = Value::both(F8::splat(f32::NEG_INFINITY), [material; LANES]);
+        self.vs += 1;
+    }
+
+    #[inline(always)]
+    fn intersection_merge(&mut self) {
+        let s = &mut *self.s;
+        self.vs -= 1;
+        let c = s.values[self.vs];
+        let acc = &mut s.values[self.vs - 1];
+        *acc = Value::select(c.surf.gt(acc.surf), c, *acc);
+    }
+
+    /// Folds a smooth union's later child into the accumulator.
+    #[inline(always)]
+    fn smooth_merge(&mut self, k: f32) {
+        let s = &mut *self.s;
+        self.vs -= 1;
+        let c = s.values[self.vs];
+        let acc = &mut s.values[self.vs - 1];
+        let h = (k - (acc.surf - c.surf).abs()).max(F8::splat(0.0)) / k;
+        let mat = c.surf.lt(acc.surf).select_u(c.mat, acc.mat);
+        let d = acc.surf.min(c.surf) - 0.25 * k * h * h;
+        *acc = Value::both(d, mat);
+    }
+
+    #[inline(always)]
+    fn subtract_merge(&mut self) {
+        let s = &mut *self.s;
+        self.vs -= 1;
+        let b = s.values[self.vs];
+        let a = s.values[self.vs - 1];
+        let nb = -b.surf;
+        s.values[self.vs - 1] = Value::select(a.surf.ge(nb), a, Value::both(nb, b.mat));
+    }
+
+    #[inline(always)]
+    fn round(&mut self, radius: f32) {
+        let v = &mut self.s.values[self.vs - 1];
+        *v = Value::both(v.surf - radius, v.mat);
+    }
+
+    #[inline(always)]
+    fn onion(&mut self, thickness: f32) {
+        let v = &mut self.s.values[self.vs - 1];
+        *v = Value::both(v.surf.abs() - thickness, v.mat);
+    }
+
+    #[inline(always)]
+    fn scale_distance(&mut self, factor: f32) {
+        let v = &mut self.s.values[self.vs - 1];
+        *v = Value::both(v.surf * factor, v.mat);
+    }
+
+    /// Pushes the box distance; whether any lane is near enough to need the
+    /// child (then its lanes are the current mask).
+    #[inline(always)]
+    fn bounded_begin(&mut self, bounds: &Aabb, pad: f32, material: u32) -> bool {
+        let s = &mut *self.s;
+        let p = s.points[self.ps];
+        let b = aabb_distance(bounds, p);
+        s.values[self.vs] = Value::both(b, [material; LANES]);
+        self.vs += 1;
+        let needed = s.masks[self.ms].and_not(W8::from_fn(|k| b.0[k] > pad));
+        if !needed.any() {
+            return false;
+        }
+        self.ms += 1;
+        s.masks[self.ms] = needed;
+        true
+    }
+
+    #[inline(always)]
+    fn bounded_merge(&mut self) {
+        let s = &mut *self.s;
+        self.vs -= 1;
+        let c = s.values[self.vs];
+        let lanes = s.masks[self.ms];
+        self.ms -= 1;
+        let acc = &mut s.values[self.vs - 1];
+        *acc = Value::select(lanes, c, *acc);
+    }
+
+    #[inline(always)]
+    fn bounded_split_begin(&mut self, bounds: &Aabb) {
+        let s = &mut *self.s;
+        let p = s.points[self.ps];
+        s.walls[self.ws] = aabb_distance(bounds, p);
+        self.ws += 1;
+    }
+
+    #[inline(always)]
+    fn bounded_split_end(&mut self, pad: f32) {
+        let s = &mut *self.s;
+        self.ws -= 1;
+        let b = s.walls[self.ws];
+        let v = &mut s.values[self.vs - 1];
+        let far = b.gt(F8::splat(pad));
+        v.safe = F8::select(far, v.safe.max(b).min(v.surf), v.safe);
+    }
+
+    #[inline(always)]
+    fn scatter<const NESTED: bool>(
+        &mut self,
+        scatter: &Scatter,
+        templates: &[SdfProgram<'_>],
+        split: bool,
+    ) {
+        let s = &mut *self.s;
+        let p = s.points[self.ps];
+        let v = if NESTED {
+            // Never compiled: nested scatters fall back to the tree.
+            Value::default()
+        } else {
+            scatter_lanes(
+                scatter,
+                templates,
+                p,
+                s.masks[self.ms].bits(),
+                &mut s.nested,
+                split,
+            )
+        };
+        s.values[self.vs] = v;
+        self.vs += 1;
+    }
+
+    /// What has no lane-wise form: the tree, lane by lane.
+    #[inline(always)]
+    fn tree(&mut self, node: &SdfNode, split: bool) {
+        let s = &mut *self.s;
+        let p = s.points[self.ps];
+        let mut v = Value::default();
+        let m = s.masks[self.ms].bits();
+        for k in 0..LANES {
+            if m & (1 << k) == 0 {
+                continue;
+            }
+            let q = Vec3::new(p.x.0[k], p.y.0[k], p.z.0[k]);
+            let (a, b, mat) = if split {
+                let r = node.eval_split(q);
+                (r.safe, r.surface, r.material)
+            } else {
+                let (d, mat) = node.eval(q);
+                (d, d, mat)
+            };
+            v.safe.0[k] = a;
+            v.surf.0[k] = b;
+            v.mat[k] = mat;
+        }
+        s.values[self.vs] = v;
+        self.vs += 1;
     }
 }
 
