@@ -1036,6 +1036,314 @@ fn compile(root: &SdfNode, split: bool, nested: bool) -> SdfProgram<'_> {
     }
 }
 
+// ------------------------------------------------------------------ steps
+
+// The interpreter's steps: one per instruction ([`Inst`] says what each
+// does), each expanded into `SdfProgram::run`'s loop. Macros, not functions:
+// expanded, they are exactly the loop body the interpreter always had. As
+// methods of a struct holding the stacks, or as functions taking them (always
+// inlined either way), the same steps changed the register allocation around
+// the loop's dispatch: a few more register moves at every instruction, and the
+// `primitives` scene took 5 % more CPU time on the AVX-512 path.
+//
+// Each takes the scratch stacks `s`, the stack tops it reads or moves (`vs`
+// values on the stack, `ps` the current point, `ms` the current lane mask,
+// `ws` walls kept), then the instruction's fields. Those that may skip a
+// subtree also take `pc`, and `continue` the loop themselves.
+
+macro_rules! leaf {
+    ($s:ident, $vs:ident, $ps:ident; $leaf:ident) => {{
+        let d = $leaf.distance(&$s.points[$ps]);
+        $s.values[$vs] = Value::both(d, [$leaf.material; LANES]);
+        $vs += 1;
+    }};
+}
+
+macro_rules! union_leaf {
+    ($s:ident, $vs:ident, $ps:ident, $ms:ident; $sphere:ident, $leaf:ident, $split:ident) => {{
+        let p = &$s.points[$ps];
+        let acc = &mut $s.values[$vs - 1];
+        let lanes = cull($sphere, p, acc, $s.masks[$ms], *$split);
+        if lanes.any() {
+            let d = $leaf.distance(p);
+            if *$split {
+                acc.safe = lanes.select(acc.safe.min(d), acc.safe);
+            }
+            let better = lanes.and(W8::from_fn(|k| d.0[k] < acc.surf.0[k]));
+            acc.surf = better.select(d, acc.surf);
+            acc.mat = better.select_u([$leaf.material; LANES], acc.mat);
+            if !*$split {
+                acc.safe = acc.surf;
+            }
+        }
+    }};
+}
+
+macro_rules! push_transform {
+    ($s:ident, $ps:ident; $translation:ident, $inv_scale:ident, $inv_rotation:ident) => {{
+        let p = $s.points[$ps];
+        let mut q = p
+            .sub(V3::splat(*$translation))
+            .scale(F8::splat(*$inv_scale));
+        if let Some(r) = $inv_rotation {
+            q = q.rotate(*r);
+        }
+        $ps += 1;
+        $s.points[$ps] = q;
+    }};
+}
+
+macro_rules! pop_transform {
+    ($s:ident, $vs:ident, $ps:ident; $scale:ident) => {{
+        $ps -= 1;
+        let v = &mut $s.values[$vs - 1];
+        v.safe = v.safe * *$scale;
+        v.surf = v.surf * *$scale;
+    }};
+}
+
+macro_rules! push_mirror {
+    ($s:ident, $ps:ident; $axes:ident) => {{
+        let p = $s.points[$ps];
+        let mut q = p;
+        if $axes[0] {
+            q.x = q.x.abs();
+        }
+        if $axes[1] {
+            q.y = q.y.abs();
+        }
+        if $axes[2] {
+            q.z = q.z.abs();
+        }
+        $ps += 1;
+        $s.points[$ps] = q;
+    }};
+}
+
+/// `Repeat::cell`: the point in its cell and, with `guard`, the distance to
+/// the walls that have a neighbouring cell (∞ otherwise).
+macro_rules! push_repeat {
+    ($s:ident, $ps:ident, $ws:ident; $period:ident, $lo:ident, $hi:ident, $guard:ident) => {{
+        let p = $s.points[$ps];
+        let mut q = [p.x, p.y, p.z];
+        let mut wall = F8::splat(f32::INFINITY);
+        for (k, qk) in q.iter_mut().enumerate() {
+            let c = $period[k];
+            if c > 0.0 {
+                let i = round_cell(*qk / c).clamp(F8::splat($lo[k]), F8::splat($hi[k]));
+                let pk = *qk;
+                *qk = pk - c * i;
+                if *$guard {
+                    let below = i.lt(F8::splat($hi[k]));
+                    wall = F8::select(below, wall.min(0.5 * c - *qk), wall);
+                    let above = i.gt(F8::splat($lo[k]));
+                    wall = F8::select(above, wall.min(0.5 * c + *qk), wall);
+                }
+            }
+        }
+        $ps += 1;
+        $s.points[$ps] = V3::new(q[0], q[1], q[2]);
+        $s.walls[$ws] = wall;
+        $ws += 1;
+    }};
+}
+
+macro_rules! pop_repeat {
+    ($s:ident, $vs:ident, $ps:ident, $ws:ident; $margin:ident, $split:ident) => {{
+        $ps -= 1;
+        $ws -= 1;
+        let g = $s.walls[$ws] + *$margin;
+        let v = &mut $s.values[$vs - 1];
+        if *$split {
+            v.safe = v.safe.min(g);
+        } else {
+            let d = F8::select(g.lt(v.surf), g, v.surf);
+            v.safe = d;
+            v.surf = d;
+        }
+    }};
+}
+
+macro_rules! union_begin {
+    ($s:ident, $vs:ident; $material:ident) => {{
+        let inf = F8::splat(f32::INFINITY);
+        $s.values[$vs] = Value {
+            safe: inf,
+            surf: inf,
+            mat: [*$material; LANES],
+        };
+        $vs += 1;
+    }};
+}
+
+/// Culls the next child: skips it (`$skip` on, past its merge) when no lane
+/// needs it, else pushes the lanes that do as the current mask.
+macro_rules! union_child {
+    ($s:ident, $vs:ident, $ps:ident, $ms:ident, $pc:ident; $sphere:ident, $skip:ident, $split:ident) => {{
+        let p = $s.points[$ps];
+        let acc = &mut $s.values[$vs - 1];
+        let needed = cull($sphere, &p, acc, $s.masks[$ms], *$split);
+        if !needed.any() {
+            $pc += *$skip as usize;
+            continue;
+        }
+        $ms += 1;
+        $s.masks[$ms] = needed;
+    }};
+}
+
+macro_rules! union_merge {
+    ($s:ident, $vs:ident, $ms:ident; $split:ident) => {{
+        $vs -= 1;
+        let c = $s.values[$vs];
+        let lanes = $s.masks[$ms];
+        $ms -= 1;
+        let acc = &mut $s.values[$vs - 1];
+        if *$split {
+            acc.safe = lanes.select(acc.safe.min(c.safe), acc.safe);
+        }
+        let better = lanes.and(W8::from_fn(|k| c.surf.0[k] < acc.surf.0[k]));
+        acc.surf = better.select(c.surf, acc.surf);
+        acc.mat = better.select_u(c.mat, acc.mat);
+        if !*$split {
+            acc.safe = acc.surf;
+        }
+    }};
+}
+
+macro_rules! union_end {
+    ($s:ident, $vs:ident; $split:ident) => {{
+        let acc = &mut $s.values[$vs - 1];
+        if *$split {
+            acc.safe = acc.safe.min(acc.surf);
+        } else {
+            acc.safe = acc.surf;
+        }
+    }};
+}
+
+macro_rules! intersection_merge {
+    ($s:ident, $vs:ident) => {{
+        $vs -= 1;
+        let c = $s.values[$vs];
+        let acc = &mut $s.values[$vs - 1];
+        *acc = Value::select(c.surf.gt(acc.surf), c, *acc);
+    }};
+}
+
+macro_rules! smooth_merge {
+    ($s:ident, $vs:ident; $k:ident, $first:ident) => {{
+        if !*$first {
+            $vs -= 1;
+            let c = $s.values[$vs];
+            let acc = &mut $s.values[$vs - 1];
+            let k = *$k;
+            let h = (k - (acc.surf - c.surf).abs()).max(F8::splat(0.0)) / k;
+            let mat = c.surf.lt(acc.surf).select_u(c.mat, acc.mat);
+            let d = acc.surf.min(c.surf) - 0.25 * k * h * h;
+            *acc = Value::both(d, mat);
+        }
+    }};
+}
+
+macro_rules! subtract_merge {
+    ($s:ident, $vs:ident) => {{
+        $vs -= 1;
+        let b = $s.values[$vs];
+        let a = $s.values[$vs - 1];
+        let nb = -b.surf;
+        $s.values[$vs - 1] = Value::select(a.surf.ge(nb), a, Value::both(nb, b.mat));
+    }};
+}
+
+/// Pushes the box distance; skips the child (`$skip` on, past its merge)
+/// when no lane is near enough to need it, else pushes the lanes that do as
+/// the current mask.
+macro_rules! bounded_begin {
+    ($s:ident, $vs:ident, $ps:ident, $ms:ident, $pc:ident; $bounds:ident, $pad:ident, $material:ident, $skip:ident) => {{
+        let p = $s.points[$ps];
+        let b = aabb_distance($bounds, p);
+        $s.values[$vs] = Value::both(b, [*$material; LANES]);
+        $vs += 1;
+        let needed = $s.masks[$ms].and_not(W8::from_fn(|k| b.0[k] > *$pad));
+        if !needed.any() {
+            $pc += *$skip as usize;
+            continue;
+        }
+        $ms += 1;
+        $s.masks[$ms] = needed;
+    }};
+}
+
+macro_rules! bounded_merge {
+    ($s:ident, $vs:ident, $ms:ident) => {{
+        $vs -= 1;
+        let c = $s.values[$vs];
+        let lanes = $s.masks[$ms];
+        $ms -= 1;
+        let acc = &mut $s.values[$vs - 1];
+        *acc = Value::select(lanes, c, *acc);
+    }};
+}
+
+macro_rules! bounded_split_end {
+    ($s:ident, $vs:ident, $ws:ident; $pad:ident) => {{
+        $ws -= 1;
+        let b = $s.walls[$ws];
+        let v = &mut $s.values[$vs - 1];
+        let far = b.gt(F8::splat(*$pad));
+        v.safe = F8::select(far, v.safe.max(b).min(v.surf), v.safe);
+    }};
+}
+
+/// What has no lane-wise form: the tree, lane by lane.
+macro_rules! tree {
+    ($s:ident, $vs:ident, $ps:ident, $ms:ident; $node:ident, $split:ident) => {{
+        let p = $s.points[$ps];
+        let mut v = Value::default();
+        let m = $s.masks[$ms].bits();
+        for k in 0..LANES {
+            if m & (1 << k) == 0 {
+                continue;
+            }
+            let q = Vec3::new(p.x.0[k], p.y.0[k], p.z.0[k]);
+            let (a, b, mat) = if *$split {
+                let r = $node.eval_split(q);
+                (r.safe, r.surface, r.material)
+            } else {
+                let (d, mat) = $node.eval(q);
+                (d, d, mat)
+            };
+            v.safe.0[k] = a;
+            v.surf.0[k] = b;
+            v.mat[k] = mat;
+        }
+        $s.values[$vs] = v;
+        $vs += 1;
+    }};
+}
+
+macro_rules! scatter {
+    ($s:ident, $vs:ident, $ps:ident, $ms:ident, $nested:ident; $scatter:ident, $templates:ident, $split:ident) => {{
+        let p = $s.points[$ps];
+        let v = if $nested {
+            // Never compiled: nested scatters fall back to the tree.
+            Value::default()
+        } else {
+            scatter_lanes(
+                $scatter,
+                $templates,
+                p,
+                $s.masks[$ms].bits(),
+                &mut $s.nested,
+                *$split,
+            )
+        };
+        $s.values[$vs] = v;
+        $vs += 1;
+    }};
+}
+
 impl<'a> SdfProgram<'a> {
     /// Compiles `root` for [`SdfNode::eval_split`]'s values.
     pub fn compile(root: &'a SdfNode) -> SdfProgram<'a> {
@@ -1120,427 +1428,84 @@ impl<'a> SdfProgram<'a> {
     /// into the caller's loop.
     #[inline(always)]
     fn run<const NESTED: bool>(&self, p: V3, active: LaneMask, s: &mut Scratch) -> Value {
+        let (mut vs, mut ps, mut ms, mut ws) = (0usize, 0usize, 0usize, 0usize);
         s.points[0] = p;
         s.masks[0] = W8::of_bits(active);
-        let mut m = Machine {
-            s,
-            vs: 0,
-            ps: 0,
-            ms: 0,
-            ws: 0,
-        };
         let code = &self.code;
         let mut pc = 0;
         while pc < code.len() {
             match &code[pc] {
-                Inst::Leaf(leaf) => m.leaf(leaf),
+                Inst::Leaf(leaf) => leaf!(s, vs, ps; leaf),
                 Inst::UnionLeaf {
                     sphere,
                     leaf,
                     split,
-                } => m.union_leaf(sphere, leaf, *split),
+                } => union_leaf!(s, vs, ps, ms; sphere, leaf, split),
                 Inst::PushTransform {
                     translation,
                     inv_scale,
                     inv_rotation,
-                } => m.push_transform(*translation, *inv_scale, *inv_rotation),
-                Inst::PopTransform { scale } => m.pop_transform(*scale),
-                Inst::PushMirror { axes } => m.push_mirror(axes),
-                Inst::PopPoint => m.ps -= 1,
+                } => push_transform!(s, ps; translation, inv_scale, inv_rotation),
+                Inst::PopTransform { scale } => pop_transform!(s, vs, ps; scale),
+                Inst::PushMirror { axes } => push_mirror!(s, ps; axes),
+                Inst::PopPoint => ps -= 1,
                 Inst::PushRepeat {
                     period,
                     lo,
                     hi,
                     guard,
-                } => m.push_repeat(period, lo, hi, *guard),
-                Inst::PopRepeat { margin, split } => m.pop_repeat(*margin, *split),
-                Inst::UnionBegin { material } => m.union_begin(*material),
+                } => push_repeat!(s, ps, ws; period, lo, hi, guard),
+                Inst::PopRepeat { margin, split } => pop_repeat!(s, vs, ps, ws; margin, split),
+                Inst::UnionBegin { material } => union_begin!(s, vs; material),
                 Inst::UnionChild {
                     sphere,
                     skip,
                     split,
-                } => {
-                    if !m.union_child(sphere, *split) {
-                        pc += *skip as usize;
-                        continue;
-                    }
+                } => union_child!(s, vs, ps, ms, pc; sphere, skip, split),
+                Inst::UnionMerge { split } => union_merge!(s, vs, ms; split),
+                Inst::UnionEnd { split } => union_end!(s, vs; split),
+                Inst::IntersectionBegin { material } => {
+                    s.values[vs] = Value::both(F8::splat(f32::NEG_INFINITY), [*material; LANES]);
+                    vs += 1;
                 }
-                Inst::UnionMerge { split } => m.union_merge(*split),
-                Inst::UnionEnd { split } => m.union_end(*split),
-                Inst::IntersectionBegin { material } => m.intersection_begin(*material),
-                Inst::IntersectionMerge => m.intersection_merge(),
-                Inst::SmoothMerge { k, first } => {
-                    if !*first {
-                        m.smooth_merge(*k);
-                    }
+                Inst::IntersectionMerge => intersection_merge!(s, vs),
+                Inst::SmoothMerge { k, first } => smooth_merge!(s, vs; k, first),
+                Inst::SubtractMerge => subtract_merge!(s, vs),
+                Inst::Round { radius } => {
+                    let v = &mut s.values[vs - 1];
+                    *v = Value::both(v.surf - *radius, v.mat);
                 }
-                Inst::SubtractMerge => m.subtract_merge(),
-                Inst::Round { radius } => m.round(*radius),
-                Inst::Onion { thickness } => m.onion(*thickness),
-                Inst::ScaleDistance { factor } => m.scale_distance(*factor),
+                Inst::Onion { thickness } => {
+                    let v = &mut s.values[vs - 1];
+                    *v = Value::both(v.surf.abs() - *thickness, v.mat);
+                }
+                Inst::ScaleDistance { factor } => {
+                    let v = &mut s.values[vs - 1];
+                    *v = Value::both(v.surf * *factor, v.mat);
+                }
                 Inst::BoundedBegin {
                     bounds,
                     pad,
                     material,
                     skip,
-                } => {
-                    if !m.bounded_begin(bounds, *pad, *material) {
-                        pc += *skip as usize;
-                        continue;
-                    }
+                } => bounded_begin!(s, vs, ps, ms, pc; bounds, pad, material, skip),
+                Inst::BoundedMerge => bounded_merge!(s, vs, ms),
+                Inst::BoundedSplitBegin { bounds } => {
+                    let p = s.points[ps];
+                    s.walls[ws] = aabb_distance(bounds, p);
+                    ws += 1;
                 }
-                Inst::BoundedMerge => m.bounded_merge(),
-                Inst::BoundedSplitBegin { bounds } => m.bounded_split_begin(bounds),
-                Inst::BoundedSplitEnd { pad } => m.bounded_split_end(*pad),
+                Inst::BoundedSplitEnd { pad } => bounded_split_end!(s, vs, ws; pad),
                 Inst::Scatter {
                     scatter,
                     templates,
                     split,
-                } => m.scatter::<NESTED>(scatter, templates, *split),
-                Inst::Tree { node, split } => m.tree(node, *split),
+                } => scatter!(s, vs, ps, ms, NESTED; scatter, templates, split),
+                Inst::Tree { node, split } => tree!(s, vs, ps, ms; node, split),
             }
             pc += 1;
         }
-        m.s.values[0]
-    }
-}
-
-/// A running [`SdfProgram`]: its stacks, in a [`Scratch`], and their tops.
-/// One method per instruction, each always inlined into
-/// [`SdfProgram::run`]'s loop (the tops stay in registers).
-struct Machine<'s> {
-    s: &'s mut Scratch,
-    /// Number of values on the stack.
-    vs: usize,
-    /// Index of the current point.
-    ps: usize,
-    /// Index of the current lane mask.
-    ms: usize,
-    /// Number of walls kept.
-    ws: usize,
-}
-
-impl Machine<'_> {
-    #[inline(always)]
-    fn leaf(&mut self, leaf: &Leaf) {
-        let s = &mut *self.s;
-        let d = leaf.distance(&s.points[self.ps]);
-        s.values[self.vs] = Value::both(d, [leaf.material; LANES]);
-        self.vs += 1;
-    }
-
-    #[inline(always)]
-    fn union_leaf(&mut self, sphere: &Vec4, leaf: &Leaf, split: bool) {
-        let s = &mut *self.s;
-        let p = &s.points[self.ps];
-        let acc = &mut s.values[self.vs - 1];
-        let lanes = cull(sphere, p, acc, s.masks[self.ms], split);
-        if lanes.any() {
-            let d = leaf.distance(p);
-            if split {
-                acc.safe = lanes.select(acc.safe.min(d), acc.safe);
-            }
-            let better = lanes.and(W8::from_fn(|k| d.0[k] < acc.surf.0[k]));
-            acc.surf = better.select(d, acc.surf);
-            acc.mat = better.select_u([leaf.material; LANES], acc.mat);
-            if !split {
-                acc.safe = acc.surf;
-            }
-        }
-    }
-
-    #[inline(always)]
-    fn push_transform(&mut self, translation: Vec3, inv_scale: f32, inv_rotation: Option<Quat>) {
-        let s = &mut *self.s;
-        let p = s.points[self.ps];
-        let mut q = p.sub(V3::splat(translation)).scale(F8::splat(inv_scale));
-        if let Some(r) = inv_rotation {
-            q = q.rotate(r);
-        }
-        self.ps += 1;
-        s.points[self.ps] = q;
-    }
-
-    #[inline(always)]
-    fn pop_transform(&mut self, scale: f32) {
-        self.ps -= 1;
-        let v = &mut self.s.values[self.vs - 1];
-        v.safe = v.safe * scale;
-        v.surf = v.surf * scale;
-    }
-
-    #[inline(always)]
-    fn push_mirror(&mut self, axes: &[bool; 3]) {
-        let s = &mut *self.s;
-        let p = s.points[self.ps];
-        let mut q = p;
-        if axes[0] {
-            q.x = q.x.abs();
-        }
-        if axes[1] {
-            q.y = q.y.abs();
-        }
-        if axes[2] {
-            q.z = q.z.abs();
-        }
-        self.ps += 1;
-        s.points[self.ps] = q;
-    }
-
-    /// `Repeat::cell`: the point in its cell, and the distance to the walls
-    /// that have a neighbouring cell (`guard`; ∞ otherwise).
-    #[inline(always)]
-    fn push_repeat(&mut self, period: &Vec3, lo: &Vec3, hi: &Vec3, guard: bool) {
-        let s = &mut *self.s;
-        let p = s.points[self.ps];
-        let mut q = [p.x, p.y, p.z];
-        let mut wall = F8::splat(f32::INFINITY);
-        for (k, qk) in q.iter_mut().enumerate() {
-            let c = period[k];
-            if c > 0.0 {
-                let i = round_cell(*qk / c).clamp(F8::splat(lo[k]), F8::splat(hi[k]));
-                let pk = *qk;
-                *qk = pk - c * i;
-                if guard {
-                    let below = i.lt(F8::splat(hi[k]));
-                    wall = F8::select(below, wall.min(0.5 * c - *qk), wall);
-                    let above = i.gt(F8::splat(lo[k]));
-                    wall = F8::select(above, wall.min(0.5 * c + *qk), wall);
-                }
-            }
-        }
-        self.ps += 1;
-        s.points[self.ps] = V3::new(q[0], q[1], q[2]);
-        s.walls[self.ws] = wall;
-        self.ws += 1;
-    }
-
-    #[inline(always)]
-    fn pop_repeat(&mut self, margin: f32, split: bool) {
-        self.ps -= 1;
-        self.ws -= 1;
-        let s = &mut *self.s;
-        let g = s.walls[self.ws] + margin;
-        let v = &mut s.values[self.vs - 1];
-        if split {
-            v.safe = v.safe.min(g);
-        } else {
-            let d = F8::select(g.lt(v.surf), g, v.surf);
-            v.safe = d;
-            v.surf = d;
-        }
-    }
-
-    #[inline(always)]
-    fn union_begin(&mut self, material: u32) {
-        let inf = F8::splat(f32::INFINITY);
-        self.s.values[self.vs] = Value {
-            safe: inf,
-            surf: inf,
-            mat: [material; LANES],
-        };
-        self.vs += 1;
-    }
-
-    /// Culls the next child; whether any lane needs it (then its lanes are
-    /// the current mask).
-    #[inline(always)]
-    fn union_child(&mut self, sphere: &Vec4, split: bool) -> bool {
-        let s = &mut *self.s;
-        let p = s.points[self.ps];
-        let acc = &mut s.values[self.vs - 1];
-        let needed = cull(sphere, &p, acc, s.masks[self.ms], split);
-        if !needed.any() {
-            return false;
-        }
-        self.ms += 1;
-        s.masks[self.ms] = needed;
-        true
-    }
-
-    #[inline(always)]
-    fn union_merge(&mut self, split: bool) {
-        let s = &mut *self.s;
-        self.vs -= 1;
-        let c = s.values[self.vs];
-        let lanes = s.masks[self.ms];
-        self.ms -= 1;
-        let acc = &mut s.values[self.vs - 1];
-        if split {
-            acc.safe = lanes.select(acc.safe.min(c.safe), acc.safe);
-        }
-        let better = lanes.and(W8::from_fn(|k| c.surf.0[k] < acc.surf.0[k]));
-        acc.surf = better.select(c.surf, acc.surf);
-        acc.mat = better.select_u(c.mat, acc.mat);
-        if !split {
-            acc.safe = acc.surf;
-        }
-    }
-
-    #[inline(always)]
-    fn union_end(&mut self, split: bool) {
-        let acc = &mut self.s.values[self.vs - 1];
-        if split {
-            acc.safe = acc.safe.min(acc.surf);
-        } else {
-            acc.safe = acc.surf;
-        }
-    }
-
-    #[inline(always)]
-    fn intersection_begin(&mut self, material: u32) {
-        self.s.values[self.vs] = Value::both(F8::splat(f32::NEG_INFINITY), [material; LANES]);
-        self.vs += 1;
-    }
-
-    #[inline(always)]
-    fn intersection_merge(&mut self) {
-        let s = &mut *self.s;
-        self.vs -= 1;
-        let c = s.values[self.vs];
-        let acc = &mut s.values[self.vs - 1];
-        *acc = Value::select(c.surf.gt(acc.surf), c, *acc);
-    }
-
-    /// Folds a smooth union's later child into the accumulator.
-    #[inline(always)]
-    fn smooth_merge(&mut self, k: f32) {
-        let s = &mut *self.s;
-        self.vs -= 1;
-        let c = s.values[self.vs];
-        let acc = &mut s.values[self.vs - 1];
-        let h = (k - (acc.surf - c.surf).abs()).max(F8::splat(0.0)) / k;
-        let mat = c.surf.lt(acc.surf).select_u(c.mat, acc.mat);
-        let d = acc.surf.min(c.surf) - 0.25 * k * h * h;
-        *acc = Value::both(d, mat);
-    }
-
-    #[inline(always)]
-    fn subtract_merge(&mut self) {
-        let s = &mut *self.s;
-        self.vs -= 1;
-        let b = s.values[self.vs];
-        let a = s.values[self.vs - 1];
-        let nb = -b.surf;
-        s.values[self.vs - 1] = Value::select(a.surf.ge(nb), a, Value::both(nb, b.mat));
-    }
-
-    #[inline(always)]
-    fn round(&mut self, radius: f32) {
-        let v = &mut self.s.values[self.vs - 1];
-        *v = Value::both(v.surf - radius, v.mat);
-    }
-
-    #[inline(always)]
-    fn onion(&mut self, thickness: f32) {
-        let v = &mut self.s.values[self.vs - 1];
-        *v = Value::both(v.surf.abs() - thickness, v.mat);
-    }
-
-    #[inline(always)]
-    fn scale_distance(&mut self, factor: f32) {
-        let v = &mut self.s.values[self.vs - 1];
-        *v = Value::both(v.surf * factor, v.mat);
-    }
-
-    /// Pushes the box distance; whether any lane is near enough to need the
-    /// child (then its lanes are the current mask).
-    #[inline(always)]
-    fn bounded_begin(&mut self, bounds: &Aabb, pad: f32, material: u32) -> bool {
-        let s = &mut *self.s;
-        let p = s.points[self.ps];
-        let b = aabb_distance(bounds, p);
-        s.values[self.vs] = Value::both(b, [material; LANES]);
-        self.vs += 1;
-        let needed = s.masks[self.ms].and_not(W8::from_fn(|k| b.0[k] > pad));
-        if !needed.any() {
-            return false;
-        }
-        self.ms += 1;
-        s.masks[self.ms] = needed;
-        true
-    }
-
-    #[inline(always)]
-    fn bounded_merge(&mut self) {
-        let s = &mut *self.s;
-        self.vs -= 1;
-        let c = s.values[self.vs];
-        let lanes = s.masks[self.ms];
-        self.ms -= 1;
-        let acc = &mut s.values[self.vs - 1];
-        *acc = Value::select(lanes, c, *acc);
-    }
-
-    #[inline(always)]
-    fn bounded_split_begin(&mut self, bounds: &Aabb) {
-        let s = &mut *self.s;
-        let p = s.points[self.ps];
-        s.walls[self.ws] = aabb_distance(bounds, p);
-        self.ws += 1;
-    }
-
-    #[inline(always)]
-    fn bounded_split_end(&mut self, pad: f32) {
-        let s = &mut *self.s;
-        self.ws -= 1;
-        let b = s.walls[self.ws];
-        let v = &mut s.values[self.vs - 1];
-        let far = b.gt(F8::splat(pad));
-        v.safe = F8::select(far, v.safe.max(b).min(v.surf), v.safe);
-    }
-
-    #[inline(always)]
-    fn scatter<const NESTED: bool>(
-        &mut self,
-        scatter: &Scatter,
-        templates: &[SdfProgram<'_>],
-        split: bool,
-    ) {
-        let s = &mut *self.s;
-        let p = s.points[self.ps];
-        let v = if NESTED {
-            // Never compiled: nested scatters fall back to the tree.
-            Value::default()
-        } else {
-            scatter_lanes(
-                scatter,
-                templates,
-                p,
-                s.masks[self.ms].bits(),
-                &mut s.nested,
-                split,
-            )
-        };
-        s.values[self.vs] = v;
-        self.vs += 1;
-    }
-
-    /// What has no lane-wise form: the tree, lane by lane.
-    #[inline(always)]
-    fn tree(&mut self, node: &SdfNode, split: bool) {
-        let s = &mut *self.s;
-        let p = s.points[self.ps];
-        let mut v = Value::default();
-        let m = s.masks[self.ms].bits();
-        for k in 0..LANES {
-            if m & (1 << k) == 0 {
-                continue;
-            }
-            let q = Vec3::new(p.x.0[k], p.y.0[k], p.z.0[k]);
-            let (a, b, mat) = if split {
-                let r = node.eval_split(q);
-                (r.safe, r.surface, r.material)
-            } else {
-                let (d, mat) = node.eval(q);
-                (d, d, mat)
-            };
-            v.safe.0[k] = a;
-            v.surf.0[k] = b;
-            v.mat[k] = mat;
-        }
-        s.values[self.vs] = v;
-        self.vs += 1;
+        s.values[0]
     }
 }
 
