@@ -19,7 +19,7 @@ use anyhow::{Context, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::classes::{Class, ClassFlip};
+use super::classes::{Class, ClassError};
 use super::metrics::{self, Rgb8};
 use super::named::{NOAA, SRAA_RT, SSAA4};
 use super::plot::{method_colour, save_chart, Chart, FAMILY, PLOT_SIZE};
@@ -80,10 +80,10 @@ pub struct AoSweepRow {
 
 /// The mean FLIP over the pixels of `classes` together: each class's mean
 /// weighted by its pixel count (the classes are disjoint).
-pub fn pooled_flip(k: &ClassFlip, classes: &[Class]) -> Option<f64> {
+pub fn pooled_flip(k: &ClassError, classes: &[Class]) -> Option<f64> {
     let (mut sum, mut px) = (0.0, 0u64);
     for c in classes {
-        if let Some(f) = k.flip[c.index()] {
+        if let Some(f) = k.mean[c.index()] {
             sum += f * k.px[c.index()] as f64;
             px += k.px[c.index()];
         }
@@ -502,7 +502,7 @@ impl Runner<'_> {
                             let fl = metrics::flip(r, &Rgb8::from_frame(&frame)?)?;
                             row.flip_mean = Some(fl.mean);
                             row.edge_flip =
-                                pooled_flip(&ClassFlip::measure(&fl.map, k), &AO_SWEEP_CLASSES);
+                                pooled_flip(&ClassError::measure(&fl.map, k), &AO_SWEEP_CLASSES);
                         }
                         sweep.rows.push(row);
                     }
@@ -560,15 +560,15 @@ mod tests {
 
     #[test]
     fn pooled_flip_weights_by_pixels() {
-        let mut k = ClassFlip::default();
-        k.flip[Class::Silhouette.index()] = Some(0.1);
+        let mut k = ClassError::default();
+        k.mean[Class::Silhouette.index()] = Some(0.1);
         k.px[Class::Silhouette.index()] = 3;
-        k.flip[Class::Shadow.index()] = Some(0.5);
+        k.mean[Class::Shadow.index()] = Some(0.5);
         k.px[Class::Shadow.index()] = 1;
-        k.flip[Class::Flat.index()] = Some(9.0);
+        k.mean[Class::Flat.index()] = Some(9.0);
         k.px[Class::Flat.index()] = 100;
         let p = pooled_flip(&k, &AO_SWEEP_CLASSES).unwrap();
         assert!((p - 0.2).abs() < 1e-12);
-        assert_eq!(pooled_flip(&ClassFlip::default(), &AO_SWEEP_CLASSES), None);
+        assert_eq!(pooled_flip(&ClassError::default(), &AO_SWEEP_CLASSES), None);
     }
 }

@@ -74,6 +74,17 @@ pub struct ReportArgs {
     /// killed and counted as a failure (default 60).
     #[arg(long, value_name = "SECONDS")]
     pub post_timeout: Option<f64>,
+    /// Add the section "Motion": each scene's camera pans and dollies by
+    /// sub-pixel steps over --motion-frames frames at 320x180; noaa, ssaa4,
+    /// sraa-rt and ctss (where they apply) are compared with each frame's
+    /// ssaa64 reference (FLIP per frame, temporal instability per edge
+    /// class, an animated crop). The quick report always runs a small
+    /// version (4 frames at its size).
+    #[arg(long)]
+    pub motion: bool,
+    /// Frames of the motion path (default 16; 4 in the quick report).
+    #[arg(long, value_name = "N")]
+    pub motion_frames: Option<u32>,
 }
 
 impl Default for ReportArgs {
@@ -98,6 +109,8 @@ impl Default for ReportArgs {
             sraa_sweep: false,
             post_processes: Vec::new(),
             post_timeout: None,
+            motion: false,
+            motion_frames: None,
         }
     }
 }

@@ -233,50 +233,104 @@ pub fn claimed(method: &str) -> Vec<Class> {
     }
 }
 
-/// A method beats NoAA on a class when its FLIP there is at most this
-/// factor of NoAA's.
+/// A method beats NoAA on a class when its error there (FLIP, or 1 − SSIM)
+/// is at most this factor of NoAA's.
 pub const BEAT_FACTOR: f64 = 0.95;
-/// A method holds on flat pixels when its flat FLIP is at most this factor
+/// A method holds on flat pixels when its flat error is at most this factor
 /// of NoAA's.
 pub const FLAT_FACTOR: f64 = 1.02;
+/// The smallest difference of mean `1 − SSIM` that counts, on either side
+/// of a verdict. Chosen from the metric before any method was measured:
+/// rounding an image to 8 bits alone adds noise of variance `(1/255)² / 12`,
+/// which lowers SSIM on a flat window by about that over `C2 = 0.03²`,
+/// 0.0014; a difference smaller than that is quantisation, not
+/// antialiasing. FLIP has no floor (its verdicts are the ones the report
+/// always gave).
+pub const DSSIM_FLOOR: f64 = 0.0015;
 
-/// The per-class FLIP of one result: `flip[c]` is the mean FLIP over the
-/// pixels of class `c` (`None` where the class has no pixel), `px[c]` their
-/// count, both indexed by [`Class::index`].
+/// An error metric the verdicts are computed under, by the same rules.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Metric {
+    /// LDR-FLIP ([`metrics::flip`](super::metrics::flip)).
+    Flip,
+    /// `1 − SSIM` on luminance ([`ssim`](super::ssim)).
+    Ssim,
+}
+
+impl Metric {
+    /// Both, in the order the report shows them.
+    pub const ALL: [Metric; 2] = [Metric::Flip, Metric::Ssim];
+
+    /// The name the report prints.
+    pub fn name(self) -> &'static str {
+        match self {
+            Metric::Flip => "FLIP",
+            Metric::Ssim => "SSIM",
+        }
+    }
+
+    /// The absolute difference below which a difference does not count.
+    pub fn floor(self) -> f64 {
+        match self {
+            Metric::Flip => 0.0,
+            Metric::Ssim => DSSIM_FLOOR,
+        }
+    }
+
+    /// Whether an error `a` beats NoAA's `n`: at most [`BEAT_FACTOR`] of it,
+    /// and lower by at least the floor.
+    pub fn beats(self, a: f64, n: f64) -> bool {
+        a <= BEAT_FACTOR * n && n - a >= self.floor()
+    }
+
+    /// Whether a flat error `a` holds against NoAA's `n`: at most
+    /// [`FLAT_FACTOR`] of it, or higher by less than the floor.
+    pub fn holds(self, a: f64, n: f64) -> bool {
+        a <= FLAT_FACTOR * n || a - n < self.floor()
+    }
+}
+
+/// The per-class error of one result under one metric: `mean[c]` is the
+/// mean of the error map (FLIP, or `1 − SSIM`) over the pixels of class `c`
+/// (`None` where the class has no pixel), `px[c]` their count, both indexed
+/// by [`Class::index`].
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct ClassFlip {
-    /// Mean FLIP per class.
-    pub flip: [Option<f64>; 6],
+pub struct ClassError {
+    /// Mean error per class.
+    pub mean: [Option<f64>; 6],
     /// Pixels per class.
     pub px: [u64; 6],
 }
 
-impl ClassFlip {
-    /// Mean FLIP map values per class.
+impl ClassError {
+    /// Mean error map values per class.
     pub fn measure(map: &[f32], masks: &ClassMasks) -> Self {
-        let mut out = ClassFlip::default();
+        let mut out = ClassError::default();
         for c in CLASSES {
-            out.flip[c.index()] = super::metrics::masked_mean(map, masks.mask(c));
+            out.mean[c.index()] = super::metrics::masked_mean(map, masks.mask(c));
             out.px[c.index()] = masks.count(c);
         }
         out
     }
 }
 
-/// How one method fares against NoAA on one scene and backend.
+/// How one method fares against NoAA on one scene and backend, under one
+/// metric.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Verdict {
     /// The method.
     pub method: String,
+    /// The metric the errors are in.
+    pub metric: Metric,
     /// The classes it claims.
     pub claims: Vec<Class>,
-    /// Claimed classes it beats: (class, its FLIP, NoAA's).
+    /// Claimed classes it beats: (class, its error, NoAA's).
     pub beats: Vec<(Class, f64, f64)>,
     /// Claimed classes it does not beat.
     pub misses: Vec<(Class, f64, f64)>,
     /// Claimed classes with no pixel in the scene.
     pub absent: Vec<Class>,
-    /// Flat pixels: (its FLIP, NoAA's), when the scene has any.
+    /// Flat pixels: (its error, NoAA's), when the scene has any.
     pub flat: Option<(f64, f64)>,
 }
 
@@ -284,20 +338,23 @@ impl Verdict {
     /// Judge `method` from its per-class FLIP against NoAA's on the same
     /// scene, backend and class masks, on the classes its name claims
     /// ([`claimed`]).
-    pub fn judge(method: &str, it: &ClassFlip, noaa: &ClassFlip) -> Verdict {
-        Verdict::judge_claims(method, claimed(method), it, noaa)
+    pub fn judge(method: &str, it: &ClassError, noaa: &ClassError) -> Verdict {
+        Verdict::judge_claims(method, claimed(method), Metric::Flip, it, noaa)
     }
 
     /// Judge the row `method` on the classes in `claims` (a post-process
-    /// row's, say), by the same rules as [`Verdict::judge`].
+    /// row's, say) from its per-class error under `metric`, by the same
+    /// rules as [`Verdict::judge`] ([`Metric::beats`], [`Metric::holds`]).
     pub fn judge_claims(
         method: &str,
         claims: Vec<Class>,
-        it: &ClassFlip,
-        noaa: &ClassFlip,
+        metric: Metric,
+        it: &ClassError,
+        noaa: &ClassError,
     ) -> Verdict {
         let mut v = Verdict {
             method: method.to_string(),
+            metric,
             claims: claims.clone(),
             beats: Vec::new(),
             misses: Vec::new(),
@@ -305,14 +362,14 @@ impl Verdict {
             flat: None,
         };
         for c in claims {
-            match (it.flip[c.index()], noaa.flip[c.index()]) {
-                (Some(a), Some(n)) if a <= BEAT_FACTOR * n => v.beats.push((c, a, n)),
+            match (it.mean[c.index()], noaa.mean[c.index()]) {
+                (Some(a), Some(n)) if metric.beats(a, n) => v.beats.push((c, a, n)),
                 (Some(a), Some(n)) => v.misses.push((c, a, n)),
                 _ => v.absent.push(c),
             }
         }
         let f = Class::Flat.index();
-        if let (Some(a), Some(n)) = (it.flip[f], noaa.flip[f]) {
+        if let (Some(a), Some(n)) = (it.mean[f], noaa.mean[f]) {
             v.flat = Some((a, n));
         }
         v
@@ -320,12 +377,12 @@ impl Verdict {
 
     /// Whether it holds on flat pixels (true without flat pixels).
     pub fn holds_on_flat(&self) -> bool {
-        self.flat.is_none_or(|(a, n)| a <= FLAT_FACTOR * n)
+        self.flat.is_none_or(|(a, n)| self.metric.holds(a, n))
     }
 
-    /// The verdict as one Markdown list item, e.g. `- **sraa-rt** (cpu):
-    /// beats NoAA on silhouette (0.081 vs 0.120); does not beat NoAA on
-    /// shadow (0.200 vs 0.201); no pixels of reflection; flat: holds
+    /// The verdict as one Markdown list item, e.g. `- **sraa-rt** (cpu,
+    /// FLIP): beats NoAA on silhouette (0.081 vs 0.120); does not beat NoAA
+    /// on shadow (0.200 vs 0.201); no pixels of reflection; flat: holds
     /// (0.0101 vs 0.0100).`
     pub fn line(&self, backend: &str) -> String {
         let list = |v: &[(Class, f64, f64)]| {
@@ -353,7 +410,12 @@ impl Verdict {
             Some((a, n)) => format!("flat: loses ({a:.4} vs {n:.4})"),
             None => "flat: no pixels".to_string(),
         });
-        format!("- **{}** ({backend}): {}.", self.method, parts.join("; "))
+        format!(
+            "- **{}** ({backend}, {}): {}.",
+            self.method,
+            self.metric.name(),
+            parts.join("; ")
+        )
     }
 }
 
@@ -393,9 +455,9 @@ mod tests {
         assert!(!claimed("ssaa16").contains(&Flat));
     }
 
-    fn cf(flips: [Option<f64>; 6]) -> ClassFlip {
-        ClassFlip {
-            flip: flips,
+    fn cf(flips: [Option<f64>; 6]) -> ClassError {
+        ClassError {
+            mean: flips,
             px: flips.map(|f| f.map_or(0, |_| 10)),
         }
     }
@@ -427,12 +489,53 @@ mod tests {
         assert!(!Verdict::judge("sraa", &worse, &noaa).holds_on_flat());
         let line = v.line("cpu");
         assert!(
-            line.starts_with("- **sraa-rt** (cpu): beats NoAA on silhouette (0.1900 vs 0.2000)")
+            line.starts_with(
+                "- **sraa-rt** (cpu, FLIP): beats NoAA on silhouette (0.1900 vs 0.2000)"
+            ),
+            "{line}"
         );
         assert!(line.contains("flat: holds"));
         // A texture claim without texture pixels is absent.
         let v = Verdict::judge("sraa+mat", &it, &noaa);
         assert_eq!(v.absent, vec![Class::Texture]);
+    }
+
+    #[test]
+    fn ssim_differences_under_the_floor_do_not_count() {
+        let f = DSSIM_FLOOR;
+        let noaa = cf([Some(0.02), Some(0.01), None, None, None, Some(0.001)]);
+        // Silhouette: 0.95× and more than the floor lower, beats. Crease:
+        // 0.94×, but lower by less than the floor, does not.
+        let it = cf([
+            Some(0.02 * 0.95 - f),
+            Some(0.0094),
+            None,
+            None,
+            None,
+            Some(0.001 + f * 0.9),
+        ]);
+        let v = Verdict::judge_claims("sraa", claimed("sraa"), Metric::Ssim, &it, &noaa);
+        assert_eq!(
+            v.beats.iter().map(|b| b.0).collect::<Vec<_>>(),
+            vec![Class::Silhouette]
+        );
+        assert_eq!(
+            v.misses.iter().map(|b| b.0).collect::<Vec<_>>(),
+            vec![Class::Crease]
+        );
+        // Flat: twice NoAA's, but higher by less than the floor: holds.
+        assert!(v.holds_on_flat());
+        assert!(v
+            .line("cpu")
+            .starts_with("- **sraa** (cpu, SSIM): beats NoAA on silhouette"));
+        let worse = cf([None, None, None, None, None, Some(0.001 + f * 1.1)]);
+        assert!(
+            !Verdict::judge_claims("sraa", vec![], Metric::Ssim, &worse, &noaa).holds_on_flat()
+        );
+        // Under FLIP the same figures are judged by the factors alone.
+        let v = Verdict::judge_claims("sraa", claimed("sraa"), Metric::Flip, &it, &noaa);
+        assert_eq!(v.beats.len(), 2);
+        assert!(!v.holds_on_flat());
     }
 
     /// A 2×1-pixel sub-sample frame (8×4 sub-samples), every AOV uniform.

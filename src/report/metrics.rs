@@ -53,7 +53,9 @@ impl Rgb8 {
     }
 }
 
-fn same_size(a: &Rgb8, b: &Rgb8) -> Result<()> {
+/// Errors unless `a` and `b` are non-empty images of one size whose data
+/// matches it.
+pub(crate) fn same_size(a: &Rgb8, b: &Rgb8) -> Result<()> {
     if a.width != b.width || a.height != b.height {
         bail!(
             "images differ in size: {}x{} against {}x{}",

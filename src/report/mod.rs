@@ -61,6 +61,7 @@ pub mod crops;
 pub mod kernel_timing;
 pub mod load;
 pub mod metrics;
+pub mod motion;
 pub mod named;
 pub mod output;
 pub mod papers;
@@ -68,6 +69,7 @@ pub mod plot;
 pub mod post;
 pub mod reference;
 pub mod smaa;
+pub mod ssim;
 pub mod timing;
 
 use std::fmt;
@@ -165,7 +167,13 @@ pub struct ResultRow {
     pub edge_flip_mean: Option<f64>,
     /// Mean FLIP and pixel count per edge class ([`classes`](mod@classes)),
     /// when the error was measured.
-    pub classes: Option<classes::ClassFlip>,
+    pub classes: Option<classes::ClassError>,
+    /// Mean SSIM against the reference ([`ssim`](mod@ssim), luminance,
+    /// 11×11 Gaussian window of σ = 1.5).
+    pub ssim_mean: Option<f64>,
+    /// Mean `1 − SSIM` and pixel count per edge class, when the error was
+    /// measured: the second metric the verdicts are computed under.
+    pub classes_ssim: Option<classes::ClassError>,
     /// Shaded samples per pixel: the mean of the samples-per-pixel AOV of the
     /// quality render, or, without one, shading evaluations per pixel.
     pub samples_per_pixel: f64,
@@ -222,6 +230,8 @@ impl ResultRow {
             psnr_db: None,
             edge_flip_mean: None,
             classes: None,
+            ssim_mean: None,
+            classes_ssim: None,
             samples_per_pixel: 0.0,
             rays_per_pixel: 0.0,
             buffer_mib: 0.0,
@@ -231,6 +241,14 @@ impl ResultRow {
             pass_ms: t.pass_medians(),
             round_ms: Vec::new(),
             post_process: None,
+        }
+    }
+
+    /// The row's per-class error under `metric`, when it was measured.
+    pub fn class_error(&self, metric: classes::Metric) -> Option<classes::ClassError> {
+        match metric {
+            classes::Metric::Flip => self.classes,
+            classes::Metric::Ssim => self.classes_ssim,
         }
     }
 
@@ -322,6 +340,9 @@ pub struct ReportSummary {
     pub sweep: Vec<ResultRow>,
     /// "Where SRAA pays", the ambient-occlusion sweep (`--sraa-sweep`).
     pub ao_sweep: ao_sweep::AoSweep,
+    /// Antialiasing in motion (`--motion`; a small version in the quick
+    /// report).
+    pub motion: motion::Motion,
     /// Methods not run, with the reason.
     pub skipped: Vec<Skipped>,
     /// Renders that failed (only with `--keep-going`).
@@ -480,6 +501,8 @@ struct Plan {
     ao: u32,
     /// Run the "Where SRAA pays" section (`--sraa-sweep`).
     sraa_sweep: bool,
+    /// Frames of the motion section, when it runs.
+    motion_frames: Option<u32>,
 }
 
 /// A method that some backend renders on a scene, with the indices (in the
@@ -620,6 +643,23 @@ impl Plan {
             bail!("--no-paper-scenes leaves no scene: add at least one --scene");
         }
         let cache = args.cache.clone().unwrap_or_else(|| args.out.join("cache"));
+        let motion_frames = if args.motion || mode == Mode::Quick {
+            if mode == Mode::TimingOnly {
+                bail!("--motion compares frames with references: it cannot run with --timing-only");
+            }
+            let default = if mode == Mode::Quick {
+                motion::QUICK_FRAMES
+            } else {
+                motion::FRAMES
+            };
+            let frames = args.motion_frames.unwrap_or(default);
+            if !(2..=1000).contains(&frames) {
+                bail!("--motion-frames {frames}: a path needs 2 to 1000 frames");
+            }
+            Some(frames)
+        } else {
+            None
+        };
         let sweep =
             mode != Mode::Quick && size.is_none() && !args.no_sweep && methods.contains(&SRAA_RT);
         Ok(Plan {
@@ -637,6 +677,7 @@ impl Plan {
             post,
             ao: args.ao,
             sraa_sweep: args.sraa_sweep,
+            motion_frames,
         })
     }
 
@@ -721,9 +762,20 @@ fn render(
     method: &Method,
     settings: &RenderSettings,
 ) -> Result<(Frame, Duration)> {
+    render_from(backend, scene, &scene.camera, method, settings)
+}
+
+/// [`render`] from `camera` instead of the scene's.
+fn render_from(
+    backend: &dyn Backend,
+    scene: &Scene,
+    camera: &subcone_scene::Camera,
+    method: &Method,
+    settings: &RenderSettings,
+) -> Result<(Frame, Duration)> {
     let start = Instant::now();
     let frame = backend
-        .render(scene, &scene.camera, method, settings)
+        .render(scene, camera, method, settings)
         .map_err(|e| anyhow!("{} {} {}: {e}", backend.name(), scene.name, method))?;
     let wall = start.elapsed();
     let n = settings.width as usize * settings.height as usize;
@@ -1029,8 +1081,9 @@ fn post_measured(
 }
 
 /// Measure the error of `img` (the quality render of `row`'s method) against
-/// the scene's reference: mean, PSNR, edge and per-class FLIP; writes the
-/// image and its FLIP map beside the reference.
+/// the scene's reference: mean, PSNR, edge and per-class FLIP, mean and
+/// per-class SSIM; writes the image, its FLIP map and its `1 − SSIM` map
+/// beside the reference.
 fn measure(
     row: &mut ResultRow,
     img: &Rgb8,
@@ -1043,7 +1096,13 @@ fn measure(
     row.flip_mean = Some(fl.mean);
     row.psnr_db = Some(metrics::psnr(&q.reference, img)?);
     row.edge_flip_mean = metrics::masked_mean(&fl.map, &q.edges);
-    row.classes = Some(classes::ClassFlip::measure(&fl.map, &q.classes));
+    row.classes = Some(classes::ClassError::measure(&fl.map, &q.classes));
+    let ss = ssim::ssim(&q.reference, img)?;
+    row.ssim_mean = Some(ss.mean);
+    row.classes_ssim = Some(classes::ClassError::measure(
+        &ss.dissimilarity(),
+        &q.classes,
+    ));
     row.quality_width = Some(img.width);
     row.quality_height = Some(img.height);
     row.reference = Some(plan.reference.to_string());
@@ -1059,6 +1118,15 @@ fn measure(
             first_backend,
         )),
         &fl.magma,
+    )?;
+    output::save_png(
+        &img_dir.join(image_name(
+            "ssim_",
+            &row.method,
+            &row.backend,
+            first_backend,
+        )),
+        &ss.image(img.width, img.height),
     )?;
     Ok(())
 }
@@ -1116,6 +1184,10 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
     } else {
         ao_sweep::AoSweep::default()
     };
+    let motion = match plan.motion_frames {
+        Some(frames) => runner.motion(&jobs, frames)?,
+        None => motion::Motion::default(),
+    };
     let (throughput, kernels) = runner.cpu_targets(&jobs);
     runner.progress.bar.finish_and_clear();
 
@@ -1128,6 +1200,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
         rows: runner.rows,
         sweep,
         ao_sweep,
+        motion,
         skipped,
         failures: runner.failures,
         unavailable_scenes: unavailable,

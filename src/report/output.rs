@@ -19,7 +19,7 @@ use anyhow::{anyhow, Result};
 use image::ImageEncoder;
 use serde_json::{json, Map, Value};
 
-use super::classes::{self, Class, Verdict, CLASSES};
+use super::classes::{self, Class, Metric, Verdict, CLASSES};
 use super::metrics::Rgb8;
 use super::named::{CTSS, CTSS_R, NOAA, SRAA, SRAA_RT, SSAA16, SSAA4, SSAA4_CTSS};
 use super::reference::{code_version, write_atomic};
@@ -27,7 +27,7 @@ use super::{crops, file_safe, kernel_timing, load, timing, Mode, ReportSummary, 
 use subcone_scene::Method;
 
 /// The columns every results file has, in order.
-pub const BASE_COLUMNS: [&str; 34] = [
+pub const BASE_COLUMNS: [&str; 41] = [
     "scene",
     "method",
     "backend",
@@ -43,6 +43,7 @@ pub const BASE_COLUMNS: [&str; 34] = [
     "flip_mean",
     "psnr_db",
     "edge_flip_mean",
+    "ssim_mean",
     "samples_per_pixel",
     "rays_per_pixel",
     "buffer_mib",
@@ -61,6 +62,12 @@ pub const BASE_COLUMNS: [&str; 34] = [
     "px_texture",
     "px_reflection",
     "px_flat",
+    "dssim_silhouette",
+    "dssim_crease",
+    "dssim_shadow",
+    "dssim_texture",
+    "dssim_reflection",
+    "dssim_flat",
     "post_process",
 ];
 
@@ -175,6 +182,7 @@ fn row_cells(r: &ResultRow, passes: &[String]) -> Vec<Cell> {
         opt(r.flip_mean),
         opt(r.psnr_db),
         opt(r.edge_flip_mean),
+        opt(r.ssim_mean),
         Cell::Num(r.samples_per_pixel),
         Cell::Num(r.rays_per_pixel),
         Cell::Num(r.buffer_mib),
@@ -186,9 +194,10 @@ fn row_cells(r: &ResultRow, passes: &[String]) -> Vec<Cell> {
             .unwrap_or(Cell::Empty),
         r.reference.clone().map(Cell::Text).unwrap_or(Cell::Empty),
     ];
-    // flip_<class> then px_<class>, in `classes::CLASSES` order.
+    // flip_<class>, px_<class>, then dssim_<class>, in `classes::CLASSES`
+    // order.
     for class in CLASSES {
-        c.push(opt(r.classes.and_then(|k| k.flip[class.index()])));
+        c.push(opt(r.classes.and_then(|k| k.mean[class.index()])));
     }
     for class in CLASSES {
         c.push(
@@ -196,6 +205,9 @@ fn row_cells(r: &ResultRow, passes: &[String]) -> Vec<Cell> {
                 .map(|k| Cell::Int(k.px[class.index()]))
                 .unwrap_or(Cell::Empty),
         );
+    }
+    for class in CLASSES {
+        c.push(opt(r.classes_ssim.and_then(|k| k.mean[class.index()])));
     }
     c.push(
         r.post_process
@@ -310,6 +322,7 @@ pub fn json(s: &ReportSummary, ctx: &Context) -> Value {
         "columns": columns,
         "results": results,
         "sweep": sweep,
+        "motion": super::motion::json(&s.motion),
         "ao_sweep": s.ao_sweep.rows.iter().map(|r| json!({
             "scene": r.scene, "method": r.method, "backend": r.backend, "ao_rays": r.ao,
             "ms_median": r.ms_median, "rays_per_pixel": r.rays_per_pixel,
@@ -441,13 +454,13 @@ fn scene_section(md: &mut String, s: &ReportSummary, sc: &SceneInfo) {
     } else {
         let _ = writeln!(
             md,
-            "| method | backend | median ms | min–max ms | × NoAA | FLIP | PSNR dB | edge FLIP | spp | rays/px | buffers MiB |"
+            "| method | backend | median ms | min–max ms | × NoAA | FLIP | SSIM | PSNR dB | edge FLIP | spp | rays/px | buffers MiB |"
         );
-        let _ = writeln!(md, "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
+        let _ = writeln!(md, "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
         for r in &rows {
             let _ = writeln!(
                 md,
-                "| {} | {} | {} | {}–{} | {} | {} | {} | {} | {} | {} | {} |",
+                "| {} | {} | {} | {}–{} | {} | {} | {} | {} | {} | {} | {} | {} |",
                 r.method,
                 r.backend,
                 ms(r.ms_median),
@@ -455,6 +468,7 @@ fn scene_section(md: &mut String, s: &ReportSummary, sc: &SceneInfo) {
                 ms(r.ms_max),
                 ratio_cell(r),
                 f(r.flip_mean, 4),
+                f(r.ssim_mean, 4),
                 f(r.psnr_db, 2),
                 f(r.edge_flip_mean, 4),
                 f(Some(r.samples_per_pixel), 2),
@@ -668,6 +682,7 @@ faster method beats.\n"
         &s.ao_sweep,
         (ctx.mode != Mode::TimingOnly).then_some(ctx.reference.as_str()),
     ));
+    md.push_str(&super::motion::section(&s.motion));
     md.push_str(&targets(s, ctx));
 
     let _ = writeln!(
@@ -705,6 +720,11 @@ seen by a sub-sample. The classes may overlap; *flat* is a pixel in none of the 
 | flat | none of the above |\n\n\
 `flip_<class>` is the mean FLIP over the class's pixels and `px_<class>` their count (in \
 `results.csv` and `results.json`).\n\n\
+The second metric is SSIM (Wang et al. 2004): an 11×11 Gaussian window of σ = 1.5, K1 = 0.01, \
+K2 = 0.03, on the luminance of the same tone-mapped 8-bit images FLIP compares, one value per \
+pixel (the window renormalised where it leaves the image). `ssim_mean` is its mean over the \
+image and `dssim_<class>` the mean of 1 − SSIM over the class's pixels; the `ssim_<method>.png` \
+images show 1 − SSIM from 0 (black) to 0.5 or more (white).\n\n\
 Which classes each method claims to fix:\n\n\
 | method | claimed classes |\n|---|---|\n\
 | ssaaN, ssaaN+ctss | all |\n\
@@ -714,97 +734,123 @@ Which classes each method claims to fix:\n\n\
 | ctss, ctss-r, ctss-delayed | silhouette |\n\
 | ctss+edges | silhouette, crease |\n\
 | fxaa, smaa | silhouette, crease, shadow, texture (luminance edges of any origin) |\n\n\
-A method **beats NoAA** on a class when its FLIP there is at most {b} × NoAA's (same scene and \
-backend). It **holds on flat** when its flat FLIP is at most {f} × NoAA's, and **loses** on \
-flat otherwise. Each scene's verdict lines are computed from the rows by these rules; a claimed \
-class with no pixel in the scene is listed as having none.\n",
+Verdicts are computed under each metric by the same rules. A method **beats NoAA** on a class \
+when its error there (FLIP, or 1 − SSIM) is at most {b} × NoAA's (same scene and backend). It \
+**holds on flat** when its flat error is at most {f} × NoAA's, and **loses** on flat otherwise. \
+Under SSIM a difference of mean 1 − SSIM below {floor} does not count either way (to beat, a \
+method must also be at least that much lower; to lose on flat, at least that much higher): that \
+is what rounding to 8 bits alone does to a flat window ((1/255)²/12 over K2², about 0.0014), \
+chosen before any method was measured. Each scene's verdict lines are computed from the rows by \
+these rules, and list where the two metrics disagree; a claimed class with no pixel in the scene \
+is listed as having none.\n",
         s = classes::SUBSAMPLES,
         d = classes::SILHOUETTE_DEPTH,
         c = classes::CREASE_COS,
         t = classes::TEXTURE_ALBEDO,
         b = classes::BEAT_FACTOR,
         f = classes::FLAT_FACTOR,
+        floor = classes::DSSIM_FLOOR,
     );
     md
 }
 
-/// Every verdict of the run in one table: a row per method and backend, a
-/// column per scene, each cell the claimed classes beaten (of those with
-/// pixels) and whether flat holds.
+/// Every verdict of the run in one table: a row per method, backend and
+/// metric, a column per scene, each cell the claimed classes beaten (of
+/// those with pixels) and whether flat holds.
 pub fn verdict_summary(s: &ReportSummary, ctx: &Context) -> String {
     let mut md = String::new();
     let scenes: Vec<&str> = ctx.scenes.iter().map(|sc| sc.name.as_str()).collect();
-    let mut keys: Vec<(String, String)> = Vec::new();
-    let mut cells: Vec<((String, String, String), String)> = Vec::new();
+    let mut keys: Vec<(String, String, Metric)> = Vec::new();
+    let mut cells: Vec<((String, String, Metric, String), String)> = Vec::new();
     for sc in &scenes {
         let rows: Vec<&ResultRow> = s.rows.iter().filter(|r| r.scene == *sc).collect();
-        for (backend, v) in verdicts(&rows) {
-            let key = (v.method.clone(), backend.clone());
-            if !keys.contains(&key) {
-                keys.push(key);
+        for metric in Metric::ALL {
+            for (backend, v) in verdicts(&rows, metric) {
+                let key = (v.method.clone(), backend.clone(), metric);
+                if !keys.contains(&key) {
+                    keys.push(key);
+                }
+                let with = v.beats.len() + v.misses.len();
+                cells.push((
+                    (v.method.clone(), backend, metric, sc.to_string()),
+                    format!(
+                        "{}/{} · {}",
+                        v.beats.len(),
+                        with,
+                        match v.flat {
+                            None => "no flat",
+                            Some(_) if v.holds_on_flat() => "holds",
+                            Some(_) => "**loses**",
+                        }
+                    ),
+                ));
             }
-            let with = v.beats.len() + v.misses.len();
-            cells.push((
-                (v.method.clone(), backend, sc.to_string()),
-                format!(
-                    "{}/{} · {}",
-                    v.beats.len(),
-                    with,
-                    match v.flat {
-                        None => "no flat",
-                        Some(_) if v.holds_on_flat() => "holds",
-                        Some(_) => "**loses**",
-                    }
-                ),
-            ));
         }
     }
     if keys.is_empty() {
         return md;
     }
+    // Each method's FLIP row, then its SSIM row.
+    let order = keys.clone();
+    keys.sort_by_key(|k| {
+        let first = order.iter().position(|f| f.0 == k.0 && f.1 == k.1);
+        (first, k.2 == Metric::Ssim)
+    });
     let _ = writeln!(
         md,
         "## Verdicts at a glance\n\n\
-Per scene: how many of the claimed classes present in the scene the method beats NoAA on, and \
-whether it holds or loses on flat pixels (the lines under each scene give the classes and \
-figures).\n"
+Per scene and metric: how many of the claimed classes present in the scene the method beats NoAA \
+on, and whether it holds or loses on flat pixels (the lines under each scene give the classes \
+and figures, and where the two metrics disagree).\n"
     );
-    let _ = writeln!(md, "| method | backend | {} |", scenes.join(" | "));
-    let _ = writeln!(md, "|---|---|{}", "--:|".repeat(scenes.len()));
-    for (method, backend) in &keys {
+    let _ = writeln!(md, "| method | backend | metric | {} |", scenes.join(" | "));
+    let _ = writeln!(md, "|---|---|---|{}", "--:|".repeat(scenes.len()));
+    for (method, backend, metric) in &keys {
         let row: Vec<String> = scenes
             .iter()
             .map(|sc| {
                 cells
                     .iter()
-                    .find(|(k, _)| k.0 == *method && k.1 == *backend && k.2 == *sc)
+                    .find(|(k, _)| {
+                        k.0 == *method && k.1 == *backend && k.2 == *metric && k.3 == *sc
+                    })
                     .map(|(_, c)| c.clone())
                     .unwrap_or_else(|| "–".into())
             })
             .collect();
-        let _ = writeln!(md, "| {method} | {backend} | {} |", row.join(" | "));
+        let _ = writeln!(
+            md,
+            "| {method} | {backend} | {} | {} |",
+            metric.name(),
+            row.join(" | ")
+        );
     }
     let _ = writeln!(md);
     md
 }
 
-/// A scene's FLIP by class (table and chart) and its verdict lines.
-fn class_section(scene: &str, rows: &[&ResultRow]) -> String {
-    let mut md = String::new();
-    let with: Vec<&&ResultRow> = rows.iter().filter(|r| r.classes.is_some()).collect();
-    let Some(first) = with.first().and_then(|r| r.classes) else {
-        return md;
+/// A table of one metric's per-class error, a row per measured method.
+fn class_table(md: &mut String, rows: &[&&ResultRow], metric: Metric) {
+    let Some(first) = rows.first().and_then(|r| r.class_error(metric)) else {
+        return;
     };
-    let _ = writeln!(md, "FLIP by edge class (pixels per class in the header):\n");
+    let what = match metric {
+        Metric::Flip => "FLIP",
+        Metric::Ssim => "1 − SSIM",
+    };
+    let _ = writeln!(
+        md,
+        "{what} by edge class (pixels per class in the header):\n"
+    );
     let head: Vec<String> = CLASSES
         .iter()
         .map(|c| format!("{c} ({} px)", first.px[c.index()]))
         .collect();
     let _ = writeln!(md, "| method | backend | {} |", head.join(" | "));
     let _ = writeln!(md, "|---|---|{}", "--:|".repeat(CLASSES.len()));
-    for r in &with {
-        let k = r.classes.unwrap_or_default();
-        let cells: Vec<String> = CLASSES.iter().map(|c| f(k.flip[c.index()], 4)).collect();
+    for r in rows {
+        let k = r.class_error(metric).unwrap_or_default();
+        let cells: Vec<String> = CLASSES.iter().map(|c| f(k.mean[c.index()], 4)).collect();
         let _ = writeln!(
             md,
             "| {} | {} | {} |",
@@ -813,25 +859,98 @@ fn class_section(scene: &str, rows: &[&ResultRow]) -> String {
             cells.join(" | ")
         );
     }
+    let _ = writeln!(md);
+}
+
+/// A scene's error by class under each metric (tables and the FLIP chart),
+/// its verdict lines under each, and where the two disagree.
+fn class_section(scene: &str, rows: &[&ResultRow]) -> String {
+    let mut md = String::new();
+    let with: Vec<&&ResultRow> = rows.iter().filter(|r| r.classes.is_some()).collect();
+    if with.is_empty() {
+        return md;
+    }
+    class_table(&mut md, &with, Metric::Flip);
     let _ = writeln!(
         md,
-        "\n![{scene}: FLIP by edge class](plots/{}_classes.png)\n",
+        "![{scene}: FLIP by edge class](plots/{}_classes.png)\n",
         file_safe(scene)
     );
-    let verdicts = verdicts(rows);
-    if !verdicts.is_empty() {
+    class_table(&mut md, &with, Metric::Ssim);
+    let flip = verdicts(rows, Metric::Flip);
+    let ssim = verdicts(rows, Metric::Ssim);
+    if !flip.is_empty() || !ssim.is_empty() {
         let _ = writeln!(md, "Verdicts against NoAA:\n");
-        for (backend, v) in &verdicts {
+        for (backend, v) in flip.iter().chain(&ssim) {
             let _ = writeln!(md, "{}", v.line(backend));
         }
         let _ = writeln!(md);
+        let disagree: Vec<String> = flip
+            .iter()
+            .filter_map(|(b, fv)| {
+                let (_, sv) = ssim
+                    .iter()
+                    .find(|(sb, sv)| sb == b && sv.method == fv.method)?;
+                disagreement(fv, sv).map(|d| format!("- **{}** ({b}): {d}.", fv.method))
+            })
+            .collect();
+        if disagree.is_empty() {
+            let _ = writeln!(md, "FLIP and SSIM agree on every verdict of this scene.\n");
+        } else {
+            let _ = writeln!(
+                md,
+                "Where FLIP and SSIM disagree:\n\n{}\n",
+                disagree.join("\n")
+            );
+        }
     }
     md
 }
 
-/// The verdict of every method but NoAA among `rows` (one scene), against
-/// NoAA on the same backend: (backend, verdict).
-pub fn verdicts(rows: &[&ResultRow]) -> Vec<(String, Verdict)> {
+/// Where the verdicts of one row under FLIP (`flip`) and SSIM (`ssim`)
+/// differ, class by class, with both metrics' figures; `None` when they
+/// agree.
+fn disagreement(flip: &Verdict, ssim: &Verdict) -> Option<String> {
+    let beaten = |v: &Verdict, c: Class| v.beats.iter().find(|b| b.0 == c).copied();
+    let figures = |v: &Verdict, c: Class| {
+        v.beats
+            .iter()
+            .chain(&v.misses)
+            .find(|b| b.0 == c)
+            .map(|(_, a, n)| format!("{a:.4} vs {n:.4}"))
+            .unwrap_or_default()
+    };
+    let mut parts = Vec::new();
+    for &c in &flip.claims {
+        let (f, s) = (beaten(flip, c).is_some(), beaten(ssim, c).is_some());
+        let present = |v: &Verdict| !v.absent.contains(&c);
+        if f != s && present(flip) && present(ssim) {
+            let (yes, no) = if f { (flip, ssim) } else { (ssim, flip) };
+            parts.push(format!(
+                "{c} beaten under {} ({}) but not under {} ({})",
+                yes.metric.name(),
+                figures(yes, c),
+                no.metric.name(),
+                figures(no, c)
+            ));
+        }
+    }
+    if let (Some((fa, fna)), Some((sa, sna))) = (flip.flat, ssim.flat) {
+        if flip.holds_on_flat() != ssim.holds_on_flat() {
+            let word = |v: &Verdict| if v.holds_on_flat() { "holds" } else { "loses" };
+            parts.push(format!(
+                "flat {} under FLIP ({fa:.4} vs {fna:.4}) and {} under SSIM ({sa:.4} vs {sna:.4})",
+                word(flip),
+                word(ssim)
+            ));
+        }
+    }
+    (!parts.is_empty()).then(|| parts.join("; "))
+}
+
+/// The verdict under `metric` of every method but NoAA among `rows` (one
+/// scene), against NoAA on the same backend: (backend, verdict).
+pub fn verdicts(rows: &[&ResultRow], metric: Metric) -> Vec<(String, Verdict)> {
     let mut out = Vec::new();
     for r in rows {
         if r.method == NOAA.to_string().as_str() {
@@ -844,9 +963,9 @@ pub fn verdicts(rows: &[&ResultRow]) -> Vec<(String, Verdict)> {
                     && n.backend == r.backend
                     && n.scene == r.scene
             })
-            .and_then(|n| n.classes);
-        if let (Some(it), Some(noaa)) = (r.classes, noaa) {
-            let v = Verdict::judge_claims(&r.method, r.claims(), &it, &noaa);
+            .and_then(|n| n.class_error(metric));
+        if let (Some(it), Some(noaa)) = (r.class_error(metric), noaa) {
+            let v = Verdict::judge_claims(&r.method, r.claims(), metric, &it, &noaa);
             out.push((r.backend.clone(), v));
         }
     }
@@ -939,7 +1058,7 @@ fn sraa_targets(s: &ReportSummary, sdf: &[&str], b: &str, md: &mut String) {
             let mut figures = Vec::new();
             let mut met = true;
             for c in [Class::Silhouette, Class::Crease, Class::Shadow] {
-                if let (Some(x), Some(y)) = (a.flip[c.index()], e.flip[c.index()]) {
+                if let (Some(x), Some(y)) = (a.mean[c.index()], e.mean[c.index()]) {
                     let ratio = x / y;
                     met &= ratio <= SRAA_RT_SSAA4_FACTOR;
                     figures.push(format!("{c} {ratio:.2}x"));
@@ -991,7 +1110,7 @@ fn ctss_targets(s: &ReportSummary, b: &str, md: &mut String) {
             .map(|(x, y)| format!("flat {x:.4} vs {y:.4}"))
             .unwrap_or_else(|| "no flat pixels".into());
         let sil = Class::Silhouette.index();
-        let silhouettes = match (it.flip[sil], n.flip[sil]) {
+        let silhouettes = match (it.mean[sil], n.mean[sil]) {
             (Some(x), Some(y)) => format!("silhouette {x:.4} vs {y:.4}"),
             _ => "no silhouette pixels".into(),
         };
@@ -1002,7 +1121,7 @@ fn ctss_targets(s: &ReportSummary, b: &str, md: &mut String) {
             yes(met)
         );
         if let Some(ss) = find(SSAA4.to_string().as_str(), scene).and_then(|x| x.classes) {
-            if let (Some(x), Some(y)) = (it.flip[sil], ss.flip[sil]) {
+            if let (Some(x), Some(y)) = (it.mean[sil], ss.mean[sil]) {
                 let ratio = x / y;
                 let _ = writeln!(
                     md,
@@ -1452,6 +1571,8 @@ mod tests {
             psnr_db: Some(f64::INFINITY),
             edge_flip_mean: None,
             classes: None,
+            ssim_mean: None,
+            classes_ssim: None,
             samples_per_pixel: 1.0,
             rays_per_pixel: 2.0,
             buffer_mib: 0.5,
@@ -1471,9 +1592,9 @@ mod tests {
     }
 
     #[test]
-    fn every_class_has_its_two_columns() {
+    fn every_class_has_its_three_columns() {
         for c in CLASSES {
-            for col in [format!("flip_{c}"), format!("px_{c}")] {
+            for col in [format!("flip_{c}"), format!("px_{c}"), format!("dssim_{c}")] {
                 assert!(BASE_COLUMNS.contains(&col.as_str()), "no column {col}");
             }
         }
@@ -1493,14 +1614,15 @@ mod tests {
         let mut lines = text.lines();
         let header = lines.next().unwrap();
         assert!(header.starts_with("scene,method,backend,width,height,runs,ms_median"));
-        assert!(header.ends_with(",px_flat,post_process,ms_geometry,ms_shading"));
+        assert!(header.ends_with(",dssim_flat,post_process,ms_geometry,ms_shading"));
         assert!(header.contains(",ms_max,ratio_to_noaa,ratio_min,ratio_max,flip_mean,"));
         let first = lines.next().unwrap();
-        // No ratios, no classes (12 empty columns), no post-process adapter,
-        // no geometry pass: 14 empty fields between the reference and shading.
+        // No ratios, no SSIM, no classes (18 empty columns), no post-process
+        // adapter, no geometry pass: 20 empty fields between the reference
+        // and shading.
         let expected = format!(
-            "\"s,1\",noaa,cpu,4,2,3,2.5,2,3,,,,0.125,inf,,1,2,0.5,4,2,ssaa64{}1",
-            ",".repeat(15)
+            "\"s,1\",noaa,cpu,4,2,3,2.5,2,3,,,,0.125,inf,,,1,2,0.5,4,2,ssaa64{}1",
+            ",".repeat(21)
         );
         assert_eq!(first, expected);
         let second = lines.next().unwrap();

@@ -11,7 +11,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::{register_font, FontStyle};
 
-use super::classes::{ClassFlip, CLASSES};
+use super::classes::{ClassError, CLASSES};
 use super::metrics::Rgb8;
 use super::{file_safe, output, ResultRow};
 
@@ -366,13 +366,13 @@ where
     let e = "edge-class plot";
     root.fill(&WHITE).map_err(pe(e))?;
     let backends = backend_count(rows);
-    let bars: Vec<(String, String, ClassFlip)> = rows
+    let bars: Vec<(String, String, ClassError)> = rows
         .iter()
         .filter_map(|r| r.classes.map(|k| (label(r, backends), r.method.clone(), k)))
         .collect();
     let ymax = bars
         .iter()
-        .flat_map(|b| b.2.flip.iter().flatten().copied())
+        .flat_map(|b| b.2.mean.iter().flatten().copied())
         .fold(0.0, f64::max);
     let size = (PLOT_SIZE.1 / 32) as i32;
     let n = CLASSES.len();
@@ -409,7 +409,7 @@ where
         let rects: Vec<_> = CLASSES
             .iter()
             .filter_map(|cl| {
-                let v = flips.flip[cl.index()]?;
+                let v = flips.mean[cl.index()]?;
                 let x0 = cl.index() as f64 + 0.1 + bi as f64 * width;
                 Some(Rectangle::new([(x0, 0.0), (x0 + width, v)], c.filled()))
             })

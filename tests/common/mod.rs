@@ -1,7 +1,7 @@
 //! What the quality tests share: a scene judged as the quick report judges
 //! it, on the CPU backend.
 
-use subcone::report::classes::{self, ClassFlip, ClassMasks};
+use subcone::report::classes::{self, ClassError, ClassMasks};
 use subcone::report::metrics::{self, Rgb8};
 use subcone_cpu::CpuBackend;
 use subcone_scene::{Backend, Frame, Method, RenderSettings, Scene};
@@ -43,9 +43,9 @@ impl<'a> Judged<'a> {
 
     /// The whole-image mean FLIP of `method` against the reference, and its
     /// FLIP per class.
-    pub fn measure(&self, method: &str) -> (f64, ClassFlip) {
+    pub fn measure(&self, method: &str) -> (f64, ClassError) {
         let image = Rgb8::from_frame(&render(self.scene, method, &self.settings)).unwrap();
         let f = metrics::flip(&self.reference, &image).unwrap();
-        (f.mean, ClassFlip::measure(&f.map, &self.masks))
+        (f.mean, ClassError::measure(&f.map, &self.masks))
     }
 }

@@ -1,0 +1,734 @@
+//! Antialiasing in motion (`report --motion`; the quick report runs a small
+//! version).
+//!
+//! Neither paper measures temporal stability, yet motion is what viewers
+//! see: a sub-pixel feature that one frame's sample catches and the next
+//! misses flickers. Each scene's camera follows a short path of sub-pixel
+//! steps ([`camera_path`]: a pan of [`PAN_PIXELS`] and a dolly that moves
+//! the image edge by [`DOLLY_PIXELS`] per frame), and every frame of each
+//! method is compared with that frame's reference:
+//!
+//! - **FLIP per frame** against the reference, averaged over the frames;
+//! - **temporal instability** per edge class: for frames `1..N`, the mean
+//!   over the class's pixels (classes from each frame's own sub-sample
+//!   AOVs, as in the still report) of `|Δmethod − Δreference|`, where `Δ` is
+//!   a pixel's change of luminance from the previous frame. A method that
+//!   changes as the reference changes scores 0; one that adds flicker the
+//!   reference does not have is penalised, and one that follows the
+//!   reference's own change is not.
+//!
+//! The section has a table and a chart (FLIP per frame) per scene, and an
+//! animated PNG of the window where NoAA is least stable: NoAA, each method
+//! and the reference side by side, in the frames' order.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use anyhow::{anyhow, Context, Result};
+use glam::Quat;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use super::classes::{self, ClassMasks, CLASSES};
+use super::metrics::{self, Rgb8};
+use super::named::{CTSS, NOAA, SRAA_RT, SSAA4};
+use super::plot::{method_colour, save_chart, Chart, FAMILY, PLOT_SIZE};
+use super::{file_safe, render_from, Runner, SceneJob};
+use crate::setup;
+use subcone_scene::{Backend, Camera, Frame, Method, RenderSettings};
+
+/// Frames of the path with `--motion`.
+pub const FRAMES: u32 = 16;
+/// Frames of the quick report's small version.
+pub const QUICK_FRAMES: u32 = 4;
+/// Image size with `--motion` (the quick version uses the quick size).
+pub const MOTION_SIZE: (u32, u32) = (320, 180);
+/// The methods followed (each where the CPU backend runs it).
+pub const MOTION_METHODS: [Method; 4] = [NOAA, SSAA4, SRAA_RT, CTSS];
+/// The reference of every frame: 64 samples per pixel, a quarter of the
+/// still report's ssaa256, to keep a run of N frames affordable.
+pub const MOTION_REFERENCE: Method = Method::ssaa_grid(8);
+/// Pan per frame, in pixels at the image centre (a yaw about the camera's
+/// up axis).
+pub const PAN_PIXELS: f32 = 0.37;
+/// Dolly per frame: the camera moves forward so that a point at the subject
+/// distance on the image's left or right edge moves by this many pixels.
+pub const DOLLY_PIXELS: f32 = 0.25;
+/// Side of the window the animation shows, in pixels (smaller on small
+/// images).
+pub const CROP_SIDE: u32 = 24;
+/// Zoom of the animation (nearest neighbour).
+pub const CROP_ZOOM: u32 = 4;
+/// Frames per second of the animation.
+pub const ANIMATION_FPS: u16 = 4;
+
+/// One method in motion on one scene (cpu backend).
+#[derive(Clone, Debug, PartialEq)]
+pub struct MotionRow {
+    /// Scene name.
+    pub scene: String,
+    /// Method.
+    pub method: String,
+    /// FLIP of each frame against that frame's reference.
+    pub flip: Vec<f64>,
+    /// Temporal instability per class, pooled over frames `1..N`, and the
+    /// pixel count it is pooled over (class-frames).
+    pub instability: classes::ClassError,
+    /// Median wall time of one frame, ms.
+    pub ms_per_frame: f64,
+}
+
+impl MotionRow {
+    /// Mean FLIP over the frames.
+    pub fn flip_mean(&self) -> f64 {
+        self.flip.iter().sum::<f64>() / self.flip.len().max(1) as f64
+    }
+}
+
+/// The window of a scene the animation shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MotionCrop {
+    /// Left column.
+    pub x: u32,
+    /// Top row.
+    pub y: u32,
+    /// Side in pixels.
+    pub side: u32,
+}
+
+/// The motion section's data.
+#[derive(Clone, Debug, Default)]
+pub struct Motion {
+    /// Whether it ran.
+    pub ran: bool,
+    /// Frames per path.
+    pub frames: u32,
+    /// Image size.
+    pub size: (u32, u32),
+    /// One row per scene and method.
+    pub rows: Vec<MotionRow>,
+    /// The animation's window per scene.
+    pub crops: Vec<(String, MotionCrop)>,
+    /// Wall time of the whole section.
+    pub elapsed: Duration,
+}
+
+/// The camera of each frame: frame `t` is `base` turned about its up axis
+/// by `t · PAN_PIXELS` pixels' worth of angle and moved forward along its
+/// view axis by `t` dolly steps, a step being the distance that moves a point
+/// at `subject` on the image's side edge by [`DOLLY_PIXELS`] (for a point at
+/// distance `d` and half-width `w/2`, moving by `Δ` scales its image
+/// position by `d / (d − Δ)`). Errors when the path leaves a valid camera
+/// (a non-finite subject distance, say).
+pub fn camera_path(
+    base: &Camera,
+    frames: u32,
+    (w, h): (u32, u32),
+    subject: f32,
+) -> Result<Vec<Camera>> {
+    let pixel_angle = base.fov_y / h.max(1) as f32;
+    let step = subject * 2.0 * DOLLY_PIXELS / w.max(1) as f32;
+    (0..frames)
+        .map(|t| {
+            let t = t as f32;
+            let turn = Quat::from_axis_angle(base.up, t * PAN_PIXELS * pixel_angle);
+            let forward = turn * base.forward;
+            let position = base.position + base.forward * (t * step);
+            Camera::look_at(position, position + forward, base.up, base.fov_y)
+                .map_err(|e| anyhow!("motion path, frame {t}: {e}"))
+        })
+        .collect()
+}
+
+/// The median finite view depth of `frame`'s depth AOV: the distance the
+/// dolly is scaled to (1 when nothing is hit).
+pub fn subject_distance(frame: &Frame) -> f32 {
+    let mut d: Vec<f32> = frame
+        .depth
+        .as_deref()
+        .unwrap_or(&[])
+        .iter()
+        .copied()
+        .filter(|d| d.is_finite() && *d > 0.0)
+        .collect();
+    if d.is_empty() {
+        return 1.0;
+    }
+    let mid = d.len() / 2;
+    *d.select_nth_unstable_by(mid, f32::total_cmp).1
+}
+
+/// Per pixel, `|Δmethod − Δreference|` between two consecutive frames, on
+/// luminance; errors on mismatched sizes.
+pub fn instability(method: (&Rgb8, &Rgb8), reference: (&Rgb8, &Rgb8)) -> Result<Vec<f32>> {
+    let change = |(before, after): (&Rgb8, &Rgb8)| -> Result<Vec<f32>> {
+        metrics::same_size(before, after)?;
+        Ok(after
+            .luma()
+            .iter()
+            .zip(before.luma())
+            .map(|(a, b)| a - b)
+            .collect())
+    };
+    let (dm, dr) = (change(method)?, change(reference)?);
+    metrics::same_size(method.0, reference.0)?;
+    Ok(dm.iter().zip(&dr).map(|(m, r)| (m - r).abs()).collect())
+}
+
+/// Running per-class sums of an error map over frames.
+#[derive(Default)]
+struct Pooled {
+    sum: [f64; 6],
+    px: [u64; 6],
+}
+
+impl Pooled {
+    fn add(&mut self, map: &[f32], masks: &ClassMasks) {
+        for c in CLASSES {
+            for (v, &m) in map.iter().zip(masks.mask(c)) {
+                if m {
+                    self.sum[c.index()] += f64::from(*v);
+                    self.px[c.index()] += 1;
+                }
+            }
+        }
+    }
+
+    fn mean(&self) -> classes::ClassError {
+        classes::ClassError {
+            mean: std::array::from_fn(|i| {
+                (self.px[i] > 0).then(|| self.sum[i] / self.px[i] as f64)
+            }),
+            px: self.px,
+        }
+    }
+}
+
+/// The `side × side` window (on a half-side grid) where `map`, summed, is
+/// largest.
+fn worst_window(map: &[f32], w: u32, h: u32, side: u32) -> MotionCrop {
+    let side = side.min(w).min(h).max(1);
+    let stride = (side / 2).max(1);
+    let mut best = (f64::NEG_INFINITY, MotionCrop { x: 0, y: 0, side });
+    let mut y = 0;
+    while y + side <= h {
+        let mut x = 0;
+        while x + side <= w {
+            let s: f64 = (y..y + side)
+                .flat_map(|yy| (x..x + side).map(move |xx| (yy * w + xx) as usize))
+                .map(|i| f64::from(map[i]))
+                .sum();
+            if s > best.0 {
+                best = (s, MotionCrop { x, y, side });
+            }
+            x += stride;
+        }
+        y += stride;
+    }
+    best.1
+}
+
+/// One animation frame: the crop of each image, zoomed, side by side with
+/// a 2-pixel grey gap.
+fn strip(images: &[&Rgb8], crop: MotionCrop) -> Rgb8 {
+    let tile = crop.side * CROP_ZOOM;
+    let gap = 2;
+    let n = images.len() as u32;
+    let (w, h) = (n * tile + (n.saturating_sub(1)) * gap, tile);
+    let mut data = vec![128u8; (w * h * 3) as usize];
+    for (k, img) in images.iter().enumerate() {
+        let x0 = k as u32 * (tile + gap);
+        for y in 0..tile {
+            for x in 0..tile {
+                let (sx, sy) = (crop.x + x / CROP_ZOOM, crop.y + y / CROP_ZOOM);
+                let s = ((sy * img.width + sx) * 3) as usize;
+                let d = ((y * w + x0 + x) * 3) as usize;
+                data[d..d + 3].copy_from_slice(&img.data[s..s + 3]);
+            }
+        }
+    }
+    Rgb8 {
+        width: w,
+        height: h,
+        data,
+    }
+}
+
+/// Write `frames` (all one size) as an animated PNG that loops forever.
+pub fn save_apng(path: &Path, frames: &[Rgb8]) -> Result<()> {
+    let first = frames
+        .first()
+        .ok_or_else(|| anyhow!("{}: no frame to animate", path.display()))?;
+    let file =
+        std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
+    let pe = |e: png::EncodingError| anyhow!("cannot write {}: {e}", path.display());
+    let mut enc = png::Encoder::new(std::io::BufWriter::new(file), first.width, first.height);
+    enc.set_color(png::ColorType::Rgb);
+    enc.set_depth(png::BitDepth::Eight);
+    enc.set_animated(frames.len() as u32, 0).map_err(pe)?;
+    enc.set_frame_delay(1, ANIMATION_FPS).map_err(pe)?;
+    let mut writer = enc.write_header().map_err(pe)?;
+    for f in frames {
+        if (f.width, f.height) != (first.width, first.height) {
+            return Err(anyhow!(
+                "{}: animation frames differ in size",
+                path.display()
+            ));
+        }
+        writer.write_image_data(&f.data).map_err(pe)?;
+    }
+    writer.finish().map_err(pe)
+}
+
+/// The frames of one method along the path, and their times.
+struct Followed {
+    method: Method,
+    images: Vec<Rgb8>,
+    ms: Vec<f64>,
+}
+
+impl Runner<'_> {
+    /// The motion section over `jobs`: [`FRAMES`] (or `frames`) frames at
+    /// [`MOTION_SIZE`] (or the quick size) on the cpu backend.
+    pub(super) fn motion(&mut self, jobs: &[SceneJob], frames: u32) -> Result<Motion> {
+        let start = Instant::now();
+        let quick = self.plan.mode == super::Mode::Quick;
+        let mut motion = Motion {
+            ran: true,
+            frames,
+            ..Default::default()
+        };
+        let cpu = setup::backend("cpu")?;
+        let dir = self.plan.out.join("images");
+        for job in jobs {
+            let size = if quick { job.quality_size } else { MOTION_SIZE };
+            motion.size = size;
+            self.progress.note(&format!(
+                "{}: motion, {frames} frames at {}x{}",
+                job.name, size.0, size.1
+            ));
+            let (rows, crop) = self.follow(cpu.as_ref(), job, frames, size, &dir)?;
+            motion.rows.extend(rows);
+            motion.crops.push((job.name.clone(), crop));
+        }
+        motion.elapsed = start.elapsed();
+        self.plots
+            .extend(plots(&self.plan.out.join("plots"), &motion)?);
+        Ok(motion)
+    }
+
+    /// One scene along its path: every method's frames, the references, the
+    /// classes, the rows and the animation.
+    fn follow(
+        &mut self,
+        cpu: &(dyn Backend + Send + Sync),
+        job: &SceneJob,
+        frames: u32,
+        (w, h): (u32, u32),
+        dir: &Path,
+    ) -> Result<(Vec<MotionRow>, MotionCrop)> {
+        let mut aov = RenderSettings::new(w, h);
+        aov.aovs = true;
+        let (first, _) = render_from(cpu, &job.scene, &job.scene.camera, &NOAA, &aov)?;
+        let path = camera_path(&job.scene.camera, frames, (w, h), subject_distance(&first))?;
+        let side = (1..=classes::SUBSAMPLES)
+            .rev()
+            .find(|s| {
+                let mut t = RenderSettings::new(w * s, h * s);
+                t.aovs = true;
+                t.validate().is_ok()
+            })
+            .unwrap_or(1);
+        let plain = RenderSettings::new(w, h);
+        let mut references = Vec::new();
+        let mut masks = Vec::new();
+        let mut followed: Vec<Followed> = MOTION_METHODS
+            .iter()
+            .filter(|m| cpu.supports(&job.scene, m).is_ok())
+            .map(|&method| Followed {
+                method,
+                images: Vec::new(),
+                ms: Vec::new(),
+            })
+            .collect();
+        for (t, cam) in path.iter().enumerate() {
+            self.progress
+                .bar
+                .set_message(format!("{}: motion frame {}/{frames}", job.name, t + 1));
+            let (r, _) = render_from(cpu, &job.scene, cam, &MOTION_REFERENCE, &plain)?;
+            references.push(Rgb8::from_frame(&r)?);
+            let mut sub = RenderSettings::new(w * side, h * side);
+            sub.aovs = true;
+            let (s, _) = render_from(cpu, &job.scene, cam, &NOAA, &sub)?;
+            masks.push(classes::classify(&s, side)?);
+            for f in &mut followed {
+                let (img, wall) = render_from(cpu, &job.scene, cam, &f.method, &plain)?;
+                f.images.push(Rgb8::from_frame(&img)?);
+                f.ms.push(wall.as_secs_f64() * 1e3);
+            }
+        }
+        let mut rows = Vec::new();
+        let mut noaa_unstable = vec![0.0f32; (w * h) as usize];
+        for f in &followed {
+            let mut pooled = Pooled::default();
+            for t in 1..f.images.len() {
+                let map = instability(
+                    (&f.images[t - 1], &f.images[t]),
+                    (&references[t - 1], &references[t]),
+                )?;
+                pooled.add(&map, &masks[t]);
+                if f.method == NOAA {
+                    noaa_unstable
+                        .iter_mut()
+                        .zip(&map)
+                        .for_each(|(a, b)| *a += b);
+                }
+            }
+            let flip = f
+                .images
+                .iter()
+                .zip(&references)
+                .map(|(i, r)| metrics::flip(r, i).map(|fl| fl.mean))
+                .collect::<Result<Vec<f64>>>()?;
+            let mut ms = f.ms.clone();
+            ms.sort_by(f64::total_cmp);
+            rows.push(MotionRow {
+                scene: job.name.clone(),
+                method: f.method.to_string(),
+                flip,
+                instability: pooled.mean(),
+                ms_per_frame: ms[ms.len() / 2],
+            });
+        }
+        let crop = worst_window(&noaa_unstable, w, h, CROP_SIDE.min(w / 3).min(h / 3));
+        let strips: Vec<Rgb8> = (0..references.len())
+            .map(|t| {
+                let mut images: Vec<&Rgb8> = followed.iter().map(|f| &f.images[t]).collect();
+                images.push(&references[t]);
+                strip(&images, crop)
+            })
+            .collect();
+        let scene_dir = dir.join(file_safe(&job.name));
+        std::fs::create_dir_all(&scene_dir)
+            .with_context(|| format!("cannot create {}", scene_dir.display()))?;
+        save_apng(&scene_dir.join("motion.png"), &strips)?;
+        Ok((rows, crop))
+    }
+}
+
+fn opt(v: Option<f64>) -> String {
+    v.map_or("–".into(), |v| format!("{v:.4}"))
+}
+
+/// The "Motion" section of report.md.
+pub fn section(m: &Motion) -> String {
+    let mut md = String::new();
+    if !m.ran {
+        return md;
+    }
+    let _ = writeln!(md, "## Motion\n");
+    let _ = writeln!(
+        md,
+        "Each scene's camera follows a path of {} frames at {}x{} on the cpu backend: per frame it \
+turns about its up axis by {PAN_PIXELS} pixel (at the image centre) and dollies forward so that \
+a point at the scene's median depth on the image's side edge moves by {DOLLY_PIXELS} pixel. \
+Every frame is compared with its own {MOTION_REFERENCE} reference. *FLIP* is the mean over the \
+frames. *Instability* is, over frames 2 to {} and the pixels of each class (classes from each \
+frame's own sub-samples), the mean of |Δmethod − Δreference|, Δ being a pixel's change of \
+luminance (0 to 1) from the previous frame: 0 when a method changes exactly as the reference \
+does. *ms/frame* is the median wall time of one frame. The section took {:.1} s on this machine \
+(references and classes included).\n",
+        m.frames,
+        m.size.0,
+        m.size.1,
+        m.frames,
+        m.elapsed.as_secs_f64()
+    );
+    let mut scenes: Vec<&str> = Vec::new();
+    for r in &m.rows {
+        if !scenes.contains(&r.scene.as_str()) {
+            scenes.push(&r.scene);
+        }
+    }
+    for scene in scenes {
+        let _ = writeln!(md, "### {scene} in motion\n");
+        let head: Vec<String> = CLASSES.iter().map(|c| format!("instability {c}")).collect();
+        let _ = writeln!(md, "| method | FLIP | {} | ms/frame |", head.join(" | "));
+        let _ = writeln!(md, "|---|--:|{}--:|", "--:|".repeat(CLASSES.len()));
+        let rows: Vec<&MotionRow> = m.rows.iter().filter(|r| r.scene == scene).collect();
+        for r in &rows {
+            let cells: Vec<String> = CLASSES
+                .iter()
+                .map(|c| opt(r.instability.mean[c.index()]))
+                .collect();
+            let _ = writeln!(
+                md,
+                "| {} | {:.4} | {} | {:.1} |",
+                r.method,
+                r.flip_mean(),
+                cells.join(" | "),
+                r.ms_per_frame
+            );
+        }
+        let stem = file_safe(scene);
+        let _ = writeln!(
+            md,
+            "\n![{scene}: FLIP per frame](plots/{stem}_motion_flip.png)\n"
+        );
+        if let Some((_, c)) = m.crops.iter().find(|(s, _)| s == scene) {
+            let order: Vec<&str> = rows.iter().map(|r| r.method.as_str()).collect();
+            let _ = writeln!(
+                md,
+                "Animated ({}×, {} frames per second): the {}×{} window at ({}, {}) where NoAA is \
+least stable; left to right {}, reference.\n\n![{scene} in motion](images/{stem}/motion.png)\n",
+                CROP_ZOOM,
+                ANIMATION_FPS,
+                c.side,
+                c.side,
+                c.x,
+                c.y,
+                order.join(", ")
+            );
+        }
+    }
+    md
+}
+
+/// The section's rows for results.json.
+pub fn json(m: &Motion) -> serde_json::Value {
+    let rows: Vec<serde_json::Value> = m
+        .rows
+        .iter()
+        .map(|r| {
+            let mut o = serde_json::Map::new();
+            o.insert("scene".into(), r.scene.clone().into());
+            o.insert("method".into(), r.method.clone().into());
+            o.insert("flip_mean".into(), r.flip_mean().into());
+            o.insert("flip_per_frame".into(), r.flip.clone().into());
+            for c in CLASSES {
+                o.insert(
+                    format!("instability_{c}"),
+                    r.instability.mean[c.index()].map_or(serde_json::Value::Null, Into::into),
+                );
+            }
+            o.insert("ms_per_frame".into(), r.ms_per_frame.into());
+            serde_json::Value::Object(o)
+        })
+        .collect();
+    serde_json::json!({
+        "ran": m.ran,
+        "frames": m.frames,
+        "width": m.size.0,
+        "height": m.size.1,
+        "reference": MOTION_REFERENCE.to_string(),
+        "seconds": m.elapsed.as_secs_f64(),
+        "rows": rows,
+    })
+}
+
+/// FLIP per frame of each method on one scene.
+struct FlipPerFrame<'a> {
+    scene: &'a str,
+    rows: Vec<&'a MotionRow>,
+}
+
+impl Chart for FlipPerFrame<'_> {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
+    where
+        DB::ErrorType: 'static,
+    {
+        let pe = |e: DrawingAreaErrorKind<DB::ErrorType>| anyhow!("motion plot: {e:?}");
+        root.fill(&WHITE).map_err(pe)?;
+        let frames = self.rows.iter().map(|r| r.flip.len()).max().unwrap_or(1);
+        let ymax = self
+            .rows
+            .iter()
+            .flat_map(|r| r.flip.iter().copied())
+            .filter(|v| v.is_finite())
+            .fold(0.0, f64::max);
+        let size = (PLOT_SIZE.1 / 32) as i32;
+        let mut chart = ChartBuilder::on(root)
+            .caption(
+                format!("{}: FLIP per frame in motion", self.scene),
+                (FAMILY, size + 4),
+            )
+            .margin(16)
+            .x_label_area_size(50)
+            .y_label_area_size(80)
+            .build_cartesian_2d(
+                0.0..(frames.max(2) - 1) as f64,
+                0.0..(ymax * 1.15).max(1e-3),
+            )
+            .map_err(pe)?;
+        chart
+            .configure_mesh()
+            .x_desc("frame")
+            .y_desc("mean FLIP against the frame's reference")
+            .x_label_formatter(&|v| format!("{:.0}", v + 1.0))
+            .y_label_formatter(&|v| format!("{v:.3}"))
+            .label_style((FAMILY, size - 4))
+            .axis_desc_style((FAMILY, size - 2))
+            .draw()
+            .map_err(pe)?;
+        for r in &self.rows {
+            let c = method_colour(&r.method);
+            let pts: Vec<(f64, f64)> = r
+                .flip
+                .iter()
+                .enumerate()
+                .map(|(t, &v)| (t as f64, v))
+                .collect();
+            chart
+                .draw_series(LineSeries::new(pts.clone(), c.stroke_width(3)))
+                .map_err(pe)?
+                .label(r.method.as_str())
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(3))
+                });
+            chart
+                .draw_series(pts.iter().map(|&p| Circle::new(p, 4, c.filled())))
+                .map_err(pe)?;
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK.mix(0.4))
+            .label_font((FAMILY, size - 4))
+            .draw()
+            .map_err(pe)?;
+        root.present().map_err(pe)?;
+        Ok(())
+    }
+}
+
+/// One chart per scene: FLIP per frame of each method.
+pub fn plots(dir: &Path, m: &Motion) -> Result<Vec<PathBuf>> {
+    let mut out = Vec::new();
+    if m.rows.is_empty() {
+        return Ok(out);
+    }
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let mut scenes: Vec<&str> = Vec::new();
+    for r in &m.rows {
+        if !scenes.contains(&r.scene.as_str()) {
+            scenes.push(&r.scene);
+        }
+    }
+    for scene in scenes {
+        let chart = FlipPerFrame {
+            scene,
+            rows: m.rows.iter().filter(|r| r.scene == scene).collect(),
+        };
+        out.extend(save_chart(
+            dir,
+            &format!("{}_motion_flip", file_safe(scene)),
+            &chart,
+        )?);
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    #[test]
+    fn the_path_starts_at_the_camera_and_moves_by_sub_pixel_steps() {
+        let base = Camera::look_at(Vec3::new(0.0, 1.0, 5.0), Vec3::ZERO, Vec3::Y, 0.8).unwrap();
+        let (w, h) = (320, 180);
+        let path = camera_path(&base, 16, (w, h), 5.0).unwrap();
+        assert_eq!(path.len(), 16);
+        assert!((path[0].position - base.position).length() < 1e-6);
+        assert!((path[0].forward - base.forward).length() < 1e-6);
+        // The pan: the angle between consecutive view directions is
+        // PAN_PIXELS pixels' worth of the vertical field of view.
+        // (The sine, from the cross product: acos near 1 has no precision
+        // left in f32.)
+        let step = path[1].forward.cross(path[0].forward).length();
+        let want = (PAN_PIXELS * 0.8 / h as f32).sin();
+        assert!((step - want).abs() < 1e-3 * want, "{step} {want}");
+        // The dolly: 2 · DOLLY_PIXELS / w of the subject distance per frame.
+        let moved = (path[1].position - path[0].position).length();
+        assert!((moved - 5.0 * 2.0 * DOLLY_PIXELS / w as f32).abs() < 1e-5);
+        // A non-finite subject distance is an error, not a NaN camera.
+        assert!(camera_path(&base, 4, (w, h), f32::NAN).is_err());
+    }
+
+    fn grey(w: u32, h: u32, v: impl Fn(u32, u32) -> u8) -> Rgb8 {
+        let data = (0..w * h).flat_map(|i| [v(i % w, i / w); 3]).collect();
+        Rgb8 {
+            width: w,
+            height: h,
+            data,
+        }
+    }
+
+    #[test]
+    fn following_the_reference_change_is_stable_and_flicker_is_not() {
+        let (a, b) = (
+            grey(4, 1, |x, _| x as u8 * 10),
+            grey(4, 1, |x, _| x as u8 * 10 + 20),
+        );
+        // The method changes as the reference does: 0 everywhere.
+        let same = instability((&a, &b), (&a, &b)).unwrap();
+        assert!(same.iter().all(|v| v.abs() < 1e-6));
+        // The method flickers where the reference stays still.
+        let still = instability((&a, &b), (&a, &a)).unwrap();
+        assert!(
+            still.iter().all(|v| (v - 20.0 / 255.0).abs() < 1e-4),
+            "{still:?}"
+        );
+        assert!(instability((&a, &b), (&a, &grey(2, 1, |_, _| 0))).is_err());
+    }
+
+    #[test]
+    fn the_worst_window_holds_the_largest_sum() {
+        let mut map = vec![0.0f32; 40 * 30];
+        map[25 * 40 + 33] = 1.0;
+        let c = worst_window(&map, 40, 30, 8);
+        assert!(
+            c.x <= 33 && 33 < c.x + 8 && c.y <= 25 && 25 < c.y + 8,
+            "{c:?}"
+        );
+        // A window larger than the image shrinks to it.
+        assert_eq!(worst_window(&map, 40, 30, 100).side, 30);
+    }
+
+    #[test]
+    fn the_animation_is_an_animated_png_with_every_frame() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("m.png");
+        let crop = MotionCrop {
+            x: 1,
+            y: 0,
+            side: 2,
+        };
+        let frames: Vec<Rgb8> = (0..3u8)
+            .map(|t| {
+                strip(
+                    &[&grey(4, 2, move |x, _| x as u8 + t), &grey(4, 2, |_, _| 9)],
+                    crop,
+                )
+            })
+            .collect();
+        assert_eq!(frames[0].width, 2 * 2 * CROP_ZOOM + 2);
+        save_apng(&path, &frames).unwrap();
+        let dec = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&path).unwrap()));
+        let reader = dec.read_info().unwrap();
+        let anim = reader.info().animation_control().unwrap();
+        assert_eq!((anim.num_frames, anim.num_plays), (3, 0));
+        assert!(save_apng(&path, &[]).is_err());
+    }
+
+    #[test]
+    fn the_subject_is_the_median_finite_depth() {
+        let mut f = Frame::new(4, 1);
+        f.depth = Some(vec![f32::INFINITY, 2.0, 8.0, 4.0]);
+        assert_eq!(subject_distance(&f), 4.0);
+        f.depth = Some(vec![f32::NAN; 4]);
+        assert_eq!(subject_distance(&f), 1.0);
+    }
+}
