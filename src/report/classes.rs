@@ -65,6 +65,19 @@ impl ClassMasks {
     pub fn count(&self, class: Class) -> u64 {
         self.mask(class).iter().filter(|&&m| m).count() as u64
     }
+
+    /// One byte per pixel, row-major, bit `i` set when the pixel is in
+    /// class `i` ([`Class::index`]): every class of a pixel in one lookup,
+    /// as the interactive page reads them.
+    pub fn bits(&self) -> Vec<u8> {
+        let mut out = vec![0u8; (self.width * self.height) as usize];
+        for (i, mask) in self.masks.iter().enumerate() {
+            for (b, &m) in out.iter_mut().zip(mask) {
+                *b |= u8::from(m) << i;
+            }
+        }
+        out
+    }
 }
 
 /// The AOVs a classification needs, checked against the frame size.
