@@ -377,11 +377,17 @@
     });
   }
 
+  // The columns with a value on some row of the scene.
+  function columnsOf(sc) {
+    return R.columns.filter((c) => sc.rows.some((r) => r[c] !== null && r[c] !== undefined));
+  }
+
   function renderTable(sc) {
     $("results-title").textContent = "Results: " + sc.name;
     const [col, dir] = state.sort.split(":");
+    const columns = columnsOf(sc);
     const head = document.createElement("tr");
-    for (const c of R.columns) {
+    for (const c of columns) {
       const th = document.createElement("th");
       th.textContent = c;
       th.dataset.column = c;
@@ -396,7 +402,7 @@
     for (const r of sortedRows(sc.rows)) {
       const tr = document.createElement("tr");
       tr.dataset.key = r.method + "/" + r.backend;
-      for (const c of R.columns) {
+      for (const c of columns) {
         const td = document.createElement("td");
         td.textContent = cellText(r[c]);
         if (typeof r[c] === "number") td.className = "num";
@@ -495,7 +501,7 @@
     const twice = state.sort;
     check(once.startsWith("ms_median:") && twice.startsWith("ms_median:") && once !== twice &&
       location.hash.includes("sort=" + twice), "sorting by a header");
-    const col = R.columns.indexOf("ms_median");
+    const col = columnsOf(sc).indexOf("ms_median");
     const times = [...$("results-table").tBodies[0].rows].map((tr) => parseFloat(tr.cells[col].textContent));
     const up = twice.endsWith(":asc");
     check(times.every((t, i) => i === 0 || (up ? times[i - 1] <= t : times[i - 1] >= t)), "sorted rows");
