@@ -375,6 +375,21 @@ mod tests {
     use super::*;
 
     #[test]
+    fn bits_hold_each_pixels_classes() {
+        let mut masks: [Vec<bool>; 6] = Default::default();
+        for (i, m) in masks.iter_mut().enumerate() {
+            // Pixel p is in class i when bit i of p is set.
+            *m = (0..64u32).map(|p| p & (1 << i) != 0).collect();
+        }
+        let c = ClassMasks {
+            width: 8,
+            height: 8,
+            masks,
+        };
+        assert_eq!(c.bits(), (0..64u8).collect::<Vec<_>>());
+    }
+
+    #[test]
     fn claims_follow_the_table() {
         use Class::*;
         assert_eq!(claimed("noaa"), vec![]);
