@@ -472,8 +472,12 @@
     const z = state.zoom;
     $(z < MAX_ZOOM ? "zoom-in" : "zoom-out").click();
     check(state.zoom !== z && imgA.style.width === sc.width * state.zoom + "px", "zoom buttons");
-    $("mode-split").click();
     const r = viewport.getBoundingClientRect();
+    const [ox, oy] = offset();
+    pointer("pointermove", viewport, r.left + ox + 2.5 * state.zoom, r.top + oy + 1.5 * state.zoom);
+    const info = $("pixel-info").dataset;
+    check(info.x === "2" && info.y === "1" && info.classes === (classesAt(sc, 2, 1) || []).join(" "), "pixel under the cursor");
+    $("mode-split").click();
     const hx = r.left + handle.offsetLeft;
     pointer("pointerdown", handle, hx, r.top + 10);
     pointer("pointermove", window, r.left + r.width * 0.25, r.top + 10);
