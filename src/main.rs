@@ -104,7 +104,11 @@ fn run() -> Result<()> {
     match Cli::parse().command {
         Command::Report(args) => {
             let summary = subcone::report::run(&args)?;
-            println!("report written to {}", summary.report_md.display());
+            println!(
+                "report written to {} (interactive: {})",
+                summary.report_md.display(),
+                summary.report_html.display()
+            );
             if !summary.failures.is_empty() {
                 eprintln!(
                     "{} renders failed (--keep-going): listed under Failures in {}",

@@ -401,6 +401,9 @@ fn quick_report_on_every_paper_scene() {
     );
     check_verdicts(&json["results"], &md);
 
+    // The interactive page (tests/report_html.rs opens it in a browser).
+    nonempty(&out.join("report.html"));
+
     // Plots and images.
     for (name, _) in &loaded {
         for stem in ["flip_vs_time", "passes", "classes"] {

@@ -65,6 +65,19 @@ impl ClassMasks {
     pub fn count(&self, class: Class) -> u64 {
         self.mask(class).iter().filter(|&&m| m).count() as u64
     }
+
+    /// One byte per pixel, row-major, bit `i` set when the pixel is in
+    /// class `i` ([`Class::index`]): every class of a pixel in one lookup,
+    /// as the interactive page reads them.
+    pub fn bits(&self) -> Vec<u8> {
+        let mut out = vec![0u8; (self.width * self.height) as usize];
+        for (i, mask) in self.masks.iter().enumerate() {
+            for (b, &m) in out.iter_mut().zip(mask) {
+                *b |= u8::from(m) << i;
+            }
+        }
+        out
+    }
 }
 
 /// The AOVs a classification needs, checked against the frame size.
@@ -422,6 +435,21 @@ impl Verdict {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn bits_hold_each_pixels_classes() {
+        let mut masks: [Vec<bool>; 6] = Default::default();
+        for (i, m) in masks.iter_mut().enumerate() {
+            // Pixel p is in class i when bit i of p is set.
+            *m = (0..64u32).map(|p| p & (1 << i) != 0).collect();
+        }
+        let c = ClassMasks {
+            width: 8,
+            height: 8,
+            masks,
+        };
+        assert_eq!(c.bits(), (0..64u8).collect::<Vec<_>>());
+    }
 
     #[test]
     fn claims_follow_the_table() {

@@ -58,6 +58,7 @@ pub mod ao_sweep;
 mod args;
 pub mod classes;
 pub mod crops;
+pub mod html;
 pub mod kernel_timing;
 pub mod load;
 pub mod metrics;
@@ -321,6 +322,16 @@ pub struct SceneCrops {
     pub regions: Vec<crops::Region>,
 }
 
+/// The edge classes of a scene at its quality size, kept for the
+/// interactive page, which shows a pixel's classes under the cursor.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneClasses {
+    /// Scene.
+    pub scene: String,
+    /// Its class masks.
+    pub masks: classes::ClassMasks,
+}
+
 /// What a report run did and wrote.
 #[derive(Clone, Debug)]
 pub struct ReportSummary {
@@ -332,6 +343,8 @@ pub struct ReportSummary {
     pub results_csv: PathBuf,
     /// `results.json`.
     pub results_json: PathBuf,
+    /// `report.html`, the interactive page.
+    pub report_html: PathBuf,
     /// Plots written (PNG and SVG).
     pub plots: Vec<PathBuf>,
     /// One row per scene, backend and method run.
@@ -351,6 +364,8 @@ pub struct ReportSummary {
     pub unavailable_scenes: Unavailable,
     /// Crop regions chosen per scene.
     pub crops: Vec<SceneCrops>,
+    /// Edge classes per scene whose errors were measured.
+    pub classes: Vec<SceneClasses>,
     /// References rendered in this run.
     pub references_rendered: usize,
     /// References read from the cache.
@@ -399,6 +414,7 @@ impl fmt::Display for ReportSummary {
         )?;
         writeln!(f, "  {}", self.report_md.display())?;
         writeln!(f, "  {}", self.results_csv.display())?;
+        writeln!(f, "  {}", self.report_html.display())?;
         write!(f, "  {}", self.results_json.display())
     }
 }
@@ -836,6 +852,7 @@ struct Runner<'a> {
     rows: Vec<ResultRow>,
     failures: Vec<Failure>,
     crops: Vec<SceneCrops>,
+    classes: Vec<SceneClasses>,
     plots: Vec<PathBuf>,
     /// Other processes' CPU time over the timed rounds, summed over scenes
     /// and backends.
@@ -1169,6 +1186,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
         rows: Vec::new(),
         failures: Vec::new(),
         crops: Vec::new(),
+        classes: Vec::new(),
         plots: Vec::new(),
         load: load::OtherCpu::default(),
     };
@@ -1196,6 +1214,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
         report_md: plan.out.join("report.md"),
         results_csv: plan.out.join("results.csv"),
         results_json: plan.out.join("results.json"),
+        report_html: plan.out.join("report.html"),
         plots: runner.plots,
         rows: runner.rows,
         sweep,
@@ -1205,6 +1224,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
         failures: runner.failures,
         unavailable_scenes: unavailable,
         crops: runner.crops,
+        classes: runner.classes,
         references_rendered: runner.references_rendered,
         references_cached: runner.references_cached,
         throughput,
@@ -1462,6 +1482,10 @@ impl Runner<'_> {
             self.crops.push(SceneCrops {
                 scene: job.name.clone(),
                 regions,
+            });
+            self.classes.push(SceneClasses {
+                scene: job.name.clone(),
+                masks: q.classes.clone(),
             });
         }
         let scene_rows: Vec<&ResultRow> = self.rows[first..].iter().collect();

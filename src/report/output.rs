@@ -271,7 +271,9 @@ pub fn csv(rows: &[ResultRow]) -> String {
     out
 }
 
-fn json_rows(rows: &[ResultRow]) -> (Vec<String>, Vec<Value>) {
+/// The columns of `rows` and each row as an object of them, as in
+/// `results.json`.
+pub(super) fn json_rows(rows: &[ResultRow]) -> (Vec<String>, Vec<Value>) {
     let passes = pass_columns(rows);
     let mut cols: Vec<String> = BASE_COLUMNS.iter().map(|s| s.to_string()).collect();
     cols.extend(passes.iter().cloned());
@@ -1546,7 +1548,8 @@ pub fn write_all(s: &ReportSummary, ctx: &Context) -> Result<()> {
     let j = serde_json::to_string_pretty(&json(s, ctx))
         .map_err(|e| anyhow!("cannot encode results.json: {e}"))?;
     write_atomic(&s.results_json, j.as_bytes())?;
-    write_atomic(&s.report_md, markdown(s, ctx).as_bytes())
+    write_atomic(&s.report_md, markdown(s, ctx).as_bytes())?;
+    write_atomic(&s.report_html, super::html::page(s, ctx).as_bytes())
 }
 
 #[cfg(test)]

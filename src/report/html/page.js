@@ -1,0 +1,540 @@
+// The report page: per scene, a viewer of any two of its images (split or
+// alone, zoom, pan, the classes of the pixel under the cursor), the sortable
+// results table and the plots. The whole state lives in the URL fragment, so
+// a link (or a headless browser) opens any view. Plain DOM, no build step.
+"use strict";
+
+(function () {
+  const body = document.body;
+  const $ = (id) => document.getElementById(id);
+
+  function fail(message) {
+    body.dataset.error = message;
+    $("error").textContent = "Error: " + message;
+    $("error").hidden = false;
+  }
+  window.addEventListener("error", (e) => fail(e.message || "script error"));
+  window.addEventListener("unhandledrejection", (e) => fail(String(e.reason)));
+
+  const R = JSON.parse($("report-data").textContent);
+  const ZOOMS = [1, 2, 3, 4, 6, 8, 12, 16];
+  const MAX_ZOOM = 16;
+  const viewport = $("viewport");
+  const imgA = $("img-a");
+  const imgB = $("img-b");
+  const clipA = $("clip-a");
+  const canvas = $("highlight-canvas");
+  const handle = $("split-handle");
+
+  // The view: the fragment's keys. `cx`, `cy` is the image point at the
+  // viewport's centre (`x + 0.5`, `y + 0.5` for the fragment's pixel).
+  const state = {
+    scene: "", a: "", b: "", mode: "split", split: 0.5, zoom: 1,
+    cx: 0, cy: 0, highlight: "", sort: "", selftest: false,
+  };
+
+  const sceneOf = (name) => R.scenes.find((s) => s.name === name);
+  const scene = () => sceneOf(state.scene);
+  const layerOf = (sc, id) => sc.layers.find((l) => l.id === id);
+  const clamp = (v, lo, hi) => Math.min(hi, Math.max(lo, v));
+
+  // Zoom that fits the image in the viewport, in whole steps.
+  function fitZoom(sc) {
+    const z = Math.floor(Math.min(viewport.clientWidth / sc.width, viewport.clientHeight / sc.height));
+    return clamp(z, 1, MAX_ZOOM);
+  }
+
+  // The first method image as A, the reference as B.
+  function defaultLayers(sc) {
+    const ids = sc.layers.map((l) => l.id);
+    const b = ids.includes("reference") ? "reference" : ids[0] || "";
+    const a = (sc.layers.find((l) => l.kind === "image" && l.id !== b) || sc.layers[0] || {}).id || "";
+    return [a, b];
+  }
+
+  function centre(sc) {
+    state.cx = sc.width / 2;
+    state.cy = sc.height / 2;
+  }
+
+  // Read the fragment into `state`, replacing what is missing or invalid
+  // by defaults.
+  function readHash() {
+    const p = new URLSearchParams(location.hash.replace(/^#/, ""));
+    const sc = sceneOf(p.get("scene")) || R.scenes[0];
+    if (!sc) return;
+    const sceneChanged = sc.name !== state.scene;
+    state.scene = sc.name;
+    const [da, db] = defaultLayers(sc);
+    state.a = layerOf(sc, p.get("a")) ? p.get("a") : sceneChanged || !layerOf(sc, state.a) ? da : state.a;
+    state.b = layerOf(sc, p.get("b")) ? p.get("b") : sceneChanged || !layerOf(sc, state.b) ? db : state.b;
+    state.mode = ["split", "a", "b"].includes(p.get("mode")) ? p.get("mode") : "split";
+    const split = parseFloat(p.get("split"));
+    state.split = Number.isFinite(split) ? clamp(split, 0, 1) : 0.5;
+    const zoom = parseInt(p.get("zoom"), 10);
+    state.zoom = Number.isFinite(zoom) ? clamp(zoom, 1, MAX_ZOOM) : fitZoom(sc);
+    const x = parseInt(p.get("x"), 10);
+    const y = parseInt(p.get("y"), 10);
+    centre(sc);
+    if (Number.isFinite(x)) state.cx = clamp(x, 0, sc.width - 1) + 0.5;
+    if (Number.isFinite(y)) state.cy = clamp(y, 0, sc.height - 1) + 0.5;
+    state.highlight = R.classes.includes(p.get("highlight")) ? p.get("highlight") : "";
+    const [col, dir] = (p.get("sort") || "").split(":");
+    state.sort = R.columns.includes(col) ? col + ":" + (dir === "asc" ? "asc" : "desc") : "";
+    state.selftest = p.get("selftest") === "1";
+  }
+
+  // The fragment of `state`; `:` kept readable.
+  function hash() {
+    const keys = {
+      scene: state.scene, a: state.a, b: state.b, mode: state.mode,
+      split: +state.split.toFixed(3), zoom: state.zoom,
+      x: Math.floor(state.cx), y: Math.floor(state.cy),
+      highlight: state.highlight, sort: state.sort,
+    };
+    return "#" + Object.entries(keys)
+      .filter(([, v]) => v !== "")
+      .map(([k, v]) => k + "=" + encodeURIComponent(v).replace(/%3A/g, ":"))
+      .join("&");
+  }
+
+  function writeHash() {
+    history.replaceState(null, "", hash());
+    body.dataset.state = hash().slice(1);
+  }
+
+  // --- Scenes -------------------------------------------------------------
+
+  function buildSceneButtons() {
+    const nav = $("scenes");
+    for (const sc of R.scenes) {
+      const b = document.createElement("button");
+      b.type = "button";
+      b.textContent = sc.name;
+      b.dataset.scene = sc.name;
+      b.addEventListener("click", () => showScene(sc));
+      nav.appendChild(b);
+    }
+  }
+
+  // Another scene: its defaults, but the same layers where it has them.
+  function showScene(sc) {
+    const [da, db] = defaultLayers(sc);
+    state.scene = sc.name;
+    state.a = layerOf(sc, state.a) ? state.a : da;
+    state.b = layerOf(sc, state.b) ? state.b : db;
+    state.zoom = fitZoom(sc);
+    centre(sc);
+    render();
+  }
+
+  // --- Viewer -------------------------------------------------------------
+
+  function fillLayerSelect(select, sc, value) {
+    select.textContent = "";
+    const groups = new Map();
+    for (const l of sc.layers) {
+      if (!groups.has(l.group)) {
+        const g = document.createElement("optgroup");
+        g.label = l.group;
+        groups.set(l.group, g);
+        select.appendChild(g);
+      }
+      groups.get(l.group).appendChild(new Option(l.label, l.id));
+    }
+    select.value = value;
+  }
+
+  function setImage(img, layer) {
+    const src = layer ? layer.src : "";
+    if (img.getAttribute("src") !== src) img.src = src;
+  }
+
+  // The class bitmask of a scene, decoded once.
+  const classBits = new Map();
+  function bitsOf(sc) {
+    if (!sc.classes) return null;
+    if (!classBits.has(sc.name)) {
+      const s = atob(sc.classes);
+      const a = new Uint8Array(s.length);
+      for (let i = 0; i < s.length; i++) a[i] = s.charCodeAt(i);
+      classBits.set(sc.name, a);
+    }
+    return classBits.get(sc.name);
+  }
+
+  function classesAt(sc, x, y) {
+    const bits = bitsOf(sc);
+    if (!bits) return null;
+    const v = bits[y * sc.width + x];
+    return R.classes.filter((_, i) => v & (1 << i));
+  }
+
+  function drawHighlight(sc) {
+    const bit = R.classes.indexOf(state.highlight);
+    const bits = bitsOf(sc);
+    canvas.hidden = bit < 0 || !bits;
+    if (canvas.hidden) return;
+    canvas.width = sc.width;
+    canvas.height = sc.height;
+    const ctx = canvas.getContext("2d");
+    const img = ctx.createImageData(sc.width, sc.height);
+    for (let i = 0; i < bits.length; i++) {
+      if (bits[i] & (1 << bit)) img.data.set([255, 0, 255, 140], 4 * i);
+    }
+    ctx.putImageData(img, 0, 0);
+    canvas.dataset.highlight = state.highlight;
+  }
+
+  // Image position: the image point (cx, cy) at the viewport's centre,
+  // rounded to whole screen pixels so each image pixel covers exactly
+  // zoom x zoom of them.
+  function offset() {
+    return [
+      Math.round(viewport.clientWidth / 2 - state.cx * state.zoom),
+      Math.round(viewport.clientHeight / 2 - state.cy * state.zoom),
+    ];
+  }
+
+  function layout() {
+    const sc = scene();
+    const [ox, oy] = offset();
+    for (const el of [imgA, imgB, canvas]) {
+      el.style.width = sc.width * state.zoom + "px";
+      el.style.height = sc.height * state.zoom + "px";
+      el.style.left = ox + "px";
+      el.style.top = oy + "px";
+    }
+    const vw = viewport.clientWidth;
+    const splitX = Math.round(state.split * vw);
+    clipA.style.width = (state.mode === "split" ? splitX : state.mode === "a" ? vw : 0) + "px";
+    imgB.style.visibility = state.mode === "a" ? "hidden" : "visible";
+    handle.style.left = splitX + "px";
+    handle.hidden = state.mode !== "split";
+    $("label-a").hidden = state.mode === "b";
+    $("label-b").hidden = state.mode === "a";
+    $("zoom-label").textContent = state.zoom + "\u00d7";
+    viewport.dataset.box = [viewport.getBoundingClientRect().left + window.scrollX,
+      viewport.getBoundingClientRect().top + window.scrollY, vw, viewport.clientHeight]
+      .map(Math.round).join(" ");
+    viewport.dataset.offset = ox + " " + oy;
+  }
+
+  function showPixel(x, y, hovered) {
+    const sc = scene();
+    const info = $("pixel-info");
+    if (x < 0 || y < 0 || x >= sc.width || y >= sc.height) {
+      info.textContent = "outside the image";
+      return;
+    }
+    const cls = classesAt(sc, x, y);
+    info.dataset.x = x;
+    info.dataset.y = y;
+    info.dataset.classes = cls ? cls.join(" ") : "";
+    info.textContent = (hovered ? "pixel " : "centre pixel ") + "(" + x + ", " + y + ")" +
+      (cls ? ": " + (cls.length ? cls.join(", ") : "no class") : ": no classes (not measured)");
+  }
+
+  function showCentre() {
+    showPixel(Math.floor(state.cx), Math.floor(state.cy), false);
+  }
+
+  // Everything the state shows, after any change.
+  function render() {
+    const sc = scene();
+    for (const b of $("scenes").children) b.setAttribute("aria-pressed", String(b.dataset.scene === sc.name));
+    const hasImages = sc.layers.length > 0;
+    $("viewer").hidden = !hasImages;
+    if (hasImages) {
+      fillLayerSelect($("layer-a"), sc, state.a);
+      fillLayerSelect($("layer-b"), sc, state.b);
+      setImage(imgA, layerOf(sc, state.a));
+      setImage(imgB, layerOf(sc, state.b));
+      $("label-a").textContent = "A: " + layerOf(sc, state.a).label;
+      $("label-b").textContent = "B: " + layerOf(sc, state.b).label;
+      for (const b of document.querySelectorAll("[data-mode]")) {
+        b.setAttribute("aria-pressed", String(b.dataset.mode === state.mode));
+      }
+      $("highlight").value = state.highlight;
+      drawHighlight(sc);
+      layout();
+      showCentre();
+    }
+    renderTable(sc);
+    renderPlots(sc);
+    writeHash();
+  }
+
+  function setZoom(z, atX, atY) {
+    // Keep the image point under (atX, atY) (viewport pixels) in place.
+    const vw = viewport.clientWidth;
+    const vh = viewport.clientHeight;
+    const [ox, oy] = offset();
+    const px = (atX - ox) / state.zoom;
+    const py = (atY - oy) / state.zoom;
+    state.zoom = clamp(z, 1, MAX_ZOOM);
+    state.cx = clamp(px - (atX - vw / 2) / state.zoom, 0, scene().width);
+    state.cy = clamp(py - (atY - vh / 2) / state.zoom, 0, scene().height);
+    render();
+  }
+
+  function stepZoom(dir, atX, atY) {
+    const next = dir > 0 ? ZOOMS.find((z) => z > state.zoom) : [...ZOOMS].reverse().find((z) => z < state.zoom);
+    if (next) setZoom(next, atX ?? viewport.clientWidth / 2, atY ?? viewport.clientHeight / 2);
+  }
+
+  function toggle() {
+    state.mode = state.mode === "a" ? "b" : "a";
+    render();
+  }
+
+  function bindViewer() {
+    $("layer-a").addEventListener("change", (e) => { state.a = e.target.value; render(); });
+    $("layer-b").addEventListener("change", (e) => { state.b = e.target.value; render(); });
+    for (const b of document.querySelectorAll("[data-mode]")) {
+      b.addEventListener("click", () => { state.mode = b.dataset.mode; render(); });
+    }
+    $("toggle").addEventListener("click", toggle);
+    $("zoom-in").addEventListener("click", () => stepZoom(1));
+    $("zoom-out").addEventListener("click", () => stepZoom(-1));
+    $("highlight").addEventListener("change", (e) => { state.highlight = e.target.value; render(); });
+    for (const [img, which] of [[imgA, "A"], [imgB, "B"]]) {
+      img.addEventListener("error", () => fail("cannot load layer " + which + ": " + img.getAttribute("src")));
+    }
+
+    // Dragging: the split handle moves the split, anywhere else pans. The
+    // move and up listeners sit on the window for the drag's length.
+    viewport.addEventListener("pointerdown", (e) => {
+      if (e.button !== 0) return;
+      e.preventDefault();
+      viewport.focus();
+      const onHandle = e.target === handle;
+      const start = { x: e.clientX, y: e.clientY, cx: state.cx, cy: state.cy };
+      const rect = viewport.getBoundingClientRect();
+      viewport.classList.toggle("panning", !onHandle);
+      const move = (m) => {
+        if (onHandle) {
+          state.split = clamp((m.clientX - rect.left) / rect.width, 0, 1);
+        } else {
+          const sc = scene();
+          state.cx = clamp(start.cx - (m.clientX - start.x) / state.zoom, 0, sc.width);
+          state.cy = clamp(start.cy - (m.clientY - start.y) / state.zoom, 0, sc.height);
+        }
+        layout();
+      };
+      const up = () => {
+        window.removeEventListener("pointermove", move);
+        window.removeEventListener("pointerup", up);
+        viewport.classList.remove("panning");
+        render();
+      };
+      window.addEventListener("pointermove", move);
+      window.addEventListener("pointerup", up);
+    });
+    viewport.addEventListener("pointermove", (e) => {
+      const r = viewport.getBoundingClientRect();
+      const [ox, oy] = offset();
+      showPixel(Math.floor((e.clientX - r.left - ox) / state.zoom),
+        Math.floor((e.clientY - r.top - oy) / state.zoom), true);
+    });
+    viewport.addEventListener("pointerleave", showCentre);
+    viewport.addEventListener("wheel", (e) => {
+      e.preventDefault();
+      const r = viewport.getBoundingClientRect();
+      stepZoom(e.deltaY < 0 ? 1 : -1, e.clientX - r.left, e.clientY - r.top);
+    }, { passive: false });
+    viewport.addEventListener("keydown", (e) => {
+      if (e.key === "t") toggle();
+      else if (e.key === "+" || e.key === "=") stepZoom(1);
+      else if (e.key === "-") stepZoom(-1);
+    });
+  }
+
+  // --- Results table ------------------------------------------------------
+
+  function cellText(v) {
+    if (v === null || v === undefined) return "";
+    if (typeof v !== "number") return String(v);
+    if (Number.isInteger(v)) return String(v);
+    const a = Math.abs(v);
+    return a >= 100 ? v.toFixed(1) : a >= 0.001 ? v.toPrecision(4) : v.toExponential(2);
+  }
+
+  // Rows in the state's order: missing values last either way, ties in the
+  // results' order.
+  function sortedRows(rows) {
+    if (!state.sort) return rows;
+    const [col, dir] = state.sort.split(":");
+    const sign = dir === "asc" ? 1 : -1;
+    return rows.slice().sort((p, q) => {
+      const a = p[col];
+      const b = q[col];
+      const na = a === null || a === undefined;
+      const nb = b === null || b === undefined;
+      if (na || nb) return na - nb;
+      if (typeof a === "number" && typeof b === "number") return sign * (a - b);
+      return sign * String(a).localeCompare(String(b));
+    });
+  }
+
+  // The columns with a value on some row of the scene.
+  function columnsOf(sc) {
+    return R.columns.filter((c) => sc.rows.some((r) => r[c] !== null && r[c] !== undefined));
+  }
+
+  function renderTable(sc) {
+    $("results-title").textContent = "Results: " + sc.name;
+    const [col, dir] = state.sort.split(":");
+    const columns = columnsOf(sc);
+    const head = document.createElement("tr");
+    for (const c of columns) {
+      const th = document.createElement("th");
+      th.textContent = c;
+      th.dataset.column = c;
+      if (c === col) th.setAttribute("aria-sort", dir === "asc" ? "ascending" : "descending");
+      head.appendChild(th);
+    }
+    const thead = $("results-table").tHead;
+    thead.textContent = "";
+    thead.appendChild(head);
+    const tbody = $("results-table").tBodies[0];
+    tbody.textContent = "";
+    for (const r of sortedRows(sc.rows)) {
+      const tr = document.createElement("tr");
+      tr.dataset.key = r.method + "/" + r.backend;
+      for (const c of columns) {
+        const td = document.createElement("td");
+        td.textContent = cellText(r[c]);
+        if (typeof r[c] === "number") td.className = "num";
+        tr.appendChild(td);
+      }
+      tbody.appendChild(tr);
+    }
+  }
+
+  function bindTable() {
+    // Numbers sort descending first (largest error or time on top), text
+    // ascending.
+    $("results-table").tHead.addEventListener("click", (e) => {
+      const c = e.target.dataset && e.target.dataset.column;
+      if (!c) return;
+      const [col, dir] = state.sort.split(":");
+      const numeric = scene().rows.some((r) => typeof r[c] === "number");
+      const first = numeric ? "desc" : "asc";
+      state.sort = c + ":" + (col === c ? (dir === "asc" ? "desc" : "asc") : first);
+      render();
+    });
+  }
+
+  // --- Plots --------------------------------------------------------------
+
+  function figures(into, plots) {
+    into.textContent = "";
+    for (const p of plots) {
+      const f = document.createElement("figure");
+      const img = document.createElement("img");
+      img.src = p.src;
+      img.alt = p.title;
+      img.loading = "lazy";
+      const cap = document.createElement("figcaption");
+      cap.textContent = p.title;
+      f.append(img, cap);
+      into.appendChild(f);
+    }
+  }
+
+  function renderPlots(sc) {
+    figures($("scene-plots"), sc.plots);
+  }
+
+  // --- Self-test ----------------------------------------------------------
+
+  // `selftest=1` in the fragment: work every control as a user would and
+  // check that the view changes; `data-selftest="pass"` on the body, or
+  // `data-error` naming the control that did nothing.
+  function selftest() {
+    const check = (ok, what) => { if (!ok) throw new Error("selftest: " + what); };
+    const pointer = (type, el, x, y) => el.dispatchEvent(new PointerEvent(type, {
+      bubbles: true, cancelable: true, clientX: x, clientY: y, button: 0, pointerId: 1, isPrimary: true,
+    }));
+    const select = (id, value) => {
+      $(id).value = value;
+      $(id).dispatchEvent(new Event("change", { bubbles: true }));
+    };
+    const sc = scene();
+    const other = sc.layers.find((l) => l.id !== state.a && l.id !== state.b);
+    if (other) {
+      select("layer-a", other.id);
+      check(state.a === other.id && imgA.getAttribute("src") === other.src, "layer A");
+      select("layer-b", other.id);
+      check(state.b === other.id && imgB.getAttribute("src") === other.src, "layer B");
+    }
+    const z = state.zoom;
+    $(z < MAX_ZOOM ? "zoom-in" : "zoom-out").click();
+    check(state.zoom !== z && imgA.style.width === sc.width * state.zoom + "px", "zoom buttons");
+    const r = viewport.getBoundingClientRect();
+    const [ox, oy] = offset();
+    pointer("pointermove", viewport, r.left + ox + 2.5 * state.zoom, r.top + oy + 1.5 * state.zoom);
+    const info = $("pixel-info").dataset;
+    check(info.x === "2" && info.y === "1" && info.classes === (classesAt(sc, 2, 1) || []).join(" "), "pixel under the cursor");
+    $("mode-split").click();
+    const hx = r.left + handle.offsetLeft;
+    pointer("pointerdown", handle, hx, r.top + 10);
+    pointer("pointermove", window, r.left + r.width * 0.25, r.top + 10);
+    pointer("pointerup", window, r.left + r.width * 0.25, r.top + 10);
+    check(Math.abs(state.split - 0.25) < 0.01 && clipA.style.width === Math.round(r.width * 0.25) + "px", "split drag");
+    const cx = state.cx;
+    pointer("pointerdown", viewport, r.left + 100, r.top + 100);
+    pointer("pointermove", window, r.left + 100 - 4 * state.zoom, r.top + 100);
+    pointer("pointerup", window, r.left + 100 - 4 * state.zoom, r.top + 100);
+    check(state.cx !== cx || cx === sc.width, "pan drag");
+    $("toggle").click();
+    const m = state.mode;
+    $("toggle").click();
+    check(m !== state.mode && ["a", "b"].includes(state.mode), "toggle");
+    $("mode-split").click();
+    check(state.mode === "split" && !handle.hidden, "split button");
+    if (sc.classes) {
+      select("highlight", R.classes[0]);
+      check(!canvas.hidden && canvas.dataset.highlight === R.classes[0], "highlight");
+    }
+    const header = () => $("results-table").tHead.querySelector("th[data-column='ms_median']");
+    header().click();
+    const once = state.sort;
+    header().click();
+    const twice = state.sort;
+    check(once.startsWith("ms_median:") && twice.startsWith("ms_median:") && once !== twice &&
+      location.hash.includes("sort=" + twice), "sorting by a header");
+    const col = columnsOf(sc).indexOf("ms_median");
+    const times = [...$("results-table").tBodies[0].rows].map((tr) => parseFloat(tr.cells[col].textContent));
+    const up = twice.endsWith(":asc");
+    check(times.every((t, i) => i === 0 || (up ? times[i - 1] <= t : times[i - 1] >= t)), "sorted rows");
+    const next = R.scenes.find((s) => s.name !== sc.name);
+    if (next) {
+      document.querySelector("#scenes button[data-scene='" + next.name + "']").click();
+      check(state.scene === next.name && $("results-title").textContent.includes(next.name) &&
+        imgB.getAttribute("src").includes("/" + next.name + "/"), "scene buttons");
+    }
+    body.dataset.selftest = "pass";
+  }
+
+  // --- Start --------------------------------------------------------------
+
+  try {
+    if (!R.scenes.length) throw new Error("the report has no scene");
+    $("run").textContent = R.run;
+    buildSceneButtons();
+    for (const c of R.classes) $("highlight").appendChild(new Option(c, c));
+    bindViewer();
+    bindTable();
+    figures($("other-plots"), R.plots);
+    readHash();
+    render();
+    window.addEventListener("hashchange", () => { readHash(); render(); });
+    window.addEventListener("resize", () => { if (!$("viewer").hidden) layout(); });
+    if (state.selftest) selftest();
+    body.dataset.ready = "1";
+  } catch (e) {
+    fail(e.message || String(e));
+  }
+})();
