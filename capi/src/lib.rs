@@ -81,6 +81,26 @@ pub enum SubconeStatus {
     Panic = 4,
 }
 
+/// `From` both ways between a C struct and the kernels' struct it mirrors,
+/// from one list of `c_field: kernels_field` pairs: both directions convert
+/// the same fields, and a field added to either struct and not listed is a
+/// compile error (a struct literal must name every field).
+macro_rules! mirror_conversions {
+    ($c:ident <=> $k:ident { $($cf:ident: $kf:ident),+ $(,)? }) => {
+        impl From<$c> for $k {
+            fn from(p: $c) -> $k {
+                $k { $($kf: p.$cf),+ }
+            }
+        }
+
+        impl From<$k> for $c {
+            fn from(p: $k) -> $c {
+                $c { $($cf: p.$kf),+ }
+            }
+        }
+    };
+}
+
 /// A 3-vector: a point, a direction or a linear RGB colour.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -152,33 +172,15 @@ pub struct SubconeSraaParams {
     pub pad: [u32; 2],
 }
 
-impl From<SubconeSraaParams> for SraaParams {
-    fn from(p: SubconeSraaParams) -> SraaParams {
-        SraaParams {
-            sigma_z: p.sigma_z,
-            sigma_n: p.sigma_n,
-            scale: p.scale,
-            packed: p.packed,
-            sigma_s: p.sigma_s,
-            shading: p.shading,
-            _pad: p.pad,
-        }
-    }
-}
-
-impl From<SraaParams> for SubconeSraaParams {
-    fn from(p: SraaParams) -> SubconeSraaParams {
-        SubconeSraaParams {
-            sigma_z: p.sigma_z,
-            sigma_n: p.sigma_n,
-            scale: p.scale,
-            packed: p.packed,
-            sigma_s: p.sigma_s,
-            shading: p.shading,
-            pad: p._pad,
-        }
-    }
-}
+mirror_conversions!(SubconeSraaParams <=> SraaParams {
+    sigma_z: sigma_z,
+    sigma_n: sigma_n,
+    scale: scale,
+    packed: packed,
+    sigma_s: sigma_s,
+    shading: shading,
+    pad: _pad,
+});
 
 /// The CTSS trace parameters, the layout of the kernels' `CtssParams`
 /// (48 bytes). Fill it with [`subcone_ctss_params_default`].
@@ -211,41 +213,19 @@ pub struct SubconeCtssParams {
     pub pad: [u32; 2],
 }
 
-impl From<SubconeCtssParams> for CtssParams {
-    fn from(p: SubconeCtssParams) -> CtssParams {
-        CtssParams {
-            tan_theta: p.tan_theta,
-            alpha: p.alpha,
-            eps: p.eps,
-            t_min: p.t_min,
-            t_max: p.t_max,
-            min_sample_weight: p.min_sample_weight,
-            max_steps: p.max_steps,
-            max_samples: p.max_samples,
-            visibility_k: p.visibility_k,
-            flags: p.flags,
-            _pad: p.pad,
-        }
-    }
-}
-
-impl From<CtssParams> for SubconeCtssParams {
-    fn from(p: CtssParams) -> SubconeCtssParams {
-        SubconeCtssParams {
-            tan_theta: p.tan_theta,
-            alpha: p.alpha,
-            eps: p.eps,
-            t_min: p.t_min,
-            t_max: p.t_max,
-            min_sample_weight: p.min_sample_weight,
-            max_steps: p.max_steps,
-            max_samples: p.max_samples,
-            visibility_k: p.visibility_k,
-            flags: p.flags,
-            pad: p._pad,
-        }
-    }
-}
+mirror_conversions!(SubconeCtssParams <=> CtssParams {
+    tan_theta: tan_theta,
+    alpha: alpha,
+    eps: eps,
+    t_min: t_min,
+    t_max: t_max,
+    min_sample_weight: min_sample_weight,
+    max_steps: max_steps,
+    max_samples: max_samples,
+    visibility_k: visibility_k,
+    flags: flags,
+    pad: _pad,
+});
 
 // The mirrored structs have the kernels' layouts (a host may hand the same
 // bytes to the WGSL kernels).

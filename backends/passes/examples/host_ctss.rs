@@ -20,9 +20,10 @@ use subcone_kernels::ctss::{
 use subcone_passes::{CtssCamera, CtssFrame, CtssPass, CtssPassDesc};
 use wgpu::util::DeviceExt;
 
-// Device, read-back and sRGB helpers shared with the other host example.
+// Device, texture, read-back and sRGB helpers shared with the other host
+// example and the tests.
 #[path = "host/mod.rs"]
-mod host;
+pub mod host;
 pub use host::{open_device, to_srgb8};
 
 /// Colour of the part of a pixel no surface covers.
@@ -168,32 +169,13 @@ pub fn render_gpu(
     height: u32,
 ) -> Result<Vec<Vec3>, String> {
     // The host's own bind group: the light direction.
-    let host_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("host"),
-        entries: &[wgpu::BindGroupLayoutEntry {
-            binding: 0,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        }],
-    });
+    let host_layout = host::uniform_layout(device, wgpu::ShaderStages::COMPUTE);
     let light_buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("host light"),
         contents: bytemuck::bytes_of(&light().extend(0.0)),
         usage: wgpu::BufferUsages::UNIFORM,
     });
-    let host_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("host"),
-        layout: &host_layout,
-        entries: &[wgpu::BindGroupEntry {
-            binding: 0,
-            resource: light_buf.as_entire_binding(),
-        }],
-    });
+    let host_group = host::uniform_group(device, &host_layout, &light_buf);
     let format = wgpu::TextureFormat::Rgba32Float;
     let pass = CtssPass::new(
         device,
@@ -205,20 +187,14 @@ pub fn render_gpu(
         },
     )
     .map_err(|e| e.to_string())?;
-    let output = device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("ctss output"),
-        size: wgpu::Extent3d {
-            width,
-            height,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
+    let output = host::texture(
+        device,
+        "ctss output",
+        (width, height, 1),
+        1,
         format,
-        usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    });
+        wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+    );
     let mut enc = device.create_command_encoder(&Default::default());
     pass.encode(
         device,
@@ -247,14 +223,5 @@ fn main() -> Result<(), String> {
     let (device, queue) = open_device()?;
     let (w, h) = (192, 128);
     let pixels = render_gpu(&device, &queue, w, h)?;
-    image::save_buffer(
-        &out,
-        &to_srgb8(&pixels),
-        w,
-        h,
-        image::ExtendedColorType::Rgb8,
-    )
-    .map_err(|e| e.to_string())?;
-    println!("wrote {out}");
-    Ok(())
+    host::save_png(&out, w, h, &pixels)
 }

@@ -23,10 +23,12 @@ use subcone_kernels::sraa::{ShadedPosition, SraaParams};
 use subcone_passes::{CentreGeometry, DepthConvention, SraaInputs, SraaResolve, SraaResolveDesc};
 use wgpu::util::DeviceExt;
 
-// Device, read-back and sRGB helpers shared with the other host example.
+// Device, texture, read-back and sRGB helpers shared with the other host
+// example and the tests.
 #[path = "host/mod.rs"]
-mod host;
-pub use host::{open_device, read_rgba32f, to_srgb8};
+pub mod host;
+use host::texture;
+pub use host::{open_device, read_rgba32f};
 
 /// The eye, the point it looks at, up, the vertical field of view.
 pub const EYE: Vec3 = Vec3::new(0.0, 0.4, 4.0);
@@ -279,30 +281,6 @@ fn jittered(width: u32, height: u32, offset: Vec2) -> Mat4 {
     shift * projection(width, height)
 }
 
-fn texture(
-    device: &wgpu::Device,
-    label: &str,
-    (width, height): (u32, u32),
-    samples: u32,
-    format: wgpu::TextureFormat,
-    usage: wgpu::TextureUsages,
-) -> wgpu::Texture {
-    device.create_texture(&wgpu::TextureDescriptor {
-        label: Some(label),
-        size: wgpu::Extent3d {
-            width,
-            height,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: samples,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage,
-        view_formats: &[],
-    })
-}
-
 /// Render the scene at `width × height` with SRAA under `params` on the
 /// host's device: linear RGB, row-major.
 pub fn render(
@@ -312,7 +290,7 @@ pub fn render(
     width: u32,
     height: u32,
 ) -> Result<Vec<Vec3>, String> {
-    let size = (width, height);
+    let size = (width, height, 1);
     let tris = scene_triangles();
     let vertices: Vec<Vertex> = tris
         .iter()
@@ -351,30 +329,11 @@ pub fn render(
         label: Some("host"),
         source: wgpu::ShaderSource::Wgsl(HOST_WGSL.into()),
     });
-    let bgl = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("host"),
-        entries: &[wgpu::BindGroupLayoutEntry {
-            binding: 0,
-            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        }],
-    });
-    let group = |b: &wgpu::Buffer| {
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("host"),
-            layout: &bgl,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: b.as_entire_binding(),
-            }],
-        })
-    };
-    let (geometry_g, shaded_g) = (group(&geometry_u), group(&shaded_u));
+    let bgl = host::uniform_layout(device, wgpu::ShaderStages::VERTEX_FRAGMENT);
+    let (geometry_g, shaded_g) = (
+        host::uniform_group(device, &bgl, &geometry_u),
+        host::uniform_group(device, &bgl, &shaded_u),
+    );
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some("host"),
         bind_group_layouts: &[Some(&bgl)],
@@ -555,14 +514,5 @@ fn main() -> Result<(), String> {
     let (device, queue) = open_device()?;
     let (w, h) = (192, 128);
     let pixels = render(&device, &queue, params, w, h)?;
-    image::save_buffer(
-        &out,
-        &to_srgb8(&pixels),
-        w,
-        h,
-        image::ExtendedColorType::Rgb8,
-    )
-    .map_err(|e| e.to_string())?;
-    println!("wrote {out}");
-    Ok(())
+    host::save_png(&out, w, h, &pixels)
 }

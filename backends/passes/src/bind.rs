@@ -1,7 +1,8 @@
 //! One bind group declared once: the WGSL declarations and the wgpu layout
 //! come from the same list, so a binding number cannot drift between them
 //! (the rule of `subcone-wgpu`'s `compute::Bindings`, for textures).
-//! Shared checks of the host's textures.
+//! Shared checks of the host's textures, and what every pass records
+//! through: its compiled pipeline ([`PassPipeline`]) and uniform buffers.
 
 use crate::PassError;
 
@@ -208,6 +209,49 @@ pub(crate) fn check(t: &wgpu::Texture, e: &Expect) -> Result<(), PassError> {
     Ok(())
 }
 
+/// Check a pass's output texture: one-sample 2D, one layer, writable as a
+/// storage texture, of the `format` the pass was built for (`expected` says
+/// where that format was given). Its size is the frame's, returned.
+pub(crate) fn check_output(
+    output: &wgpu::Texture,
+    format: wgpu::TextureFormat,
+    expected: &'static str,
+) -> Result<(u32, u32), PassError> {
+    let size = (output.width(), output.height());
+    check(
+        output,
+        &Expect {
+            what: "output",
+            size,
+            samples: 1,
+            layers: 1,
+            usage: wgpu::TextureUsages::STORAGE_BINDING,
+        },
+    )?;
+    if output.format() != format {
+        return Err(PassError::Format {
+            what: "output",
+            found: output.format(),
+            expected,
+        });
+    }
+    Ok(size)
+}
+
+/// Refuse a texture `what` that `textureLoad` does not read as `f32`
+/// ([`is_float_color`]).
+pub(crate) fn check_float_color(what: &'static str, t: &wgpu::Texture) -> Result<(), PassError> {
+    if is_float_color(t.format()) {
+        Ok(())
+    } else {
+        Err(PassError::Format {
+            what,
+            found: t.format(),
+            expected: "a float, unorm or snorm colour format",
+        })
+    }
+}
+
 /// Whether `format` is read as `f32` by `textureLoad` (a colour format with
 /// a float, unorm or snorm sample type).
 pub(crate) fn is_float_color(format: wgpu::TextureFormat) -> bool {
@@ -235,34 +279,99 @@ pub(crate) fn view(t: &wgpu::Texture, dimension: wgpu::TextureViewDimension) -> 
     })
 }
 
-/// A compute pipeline of `source`'s `entry` over the one group `layout`.
-pub(crate) fn pipeline(
+/// Pixels per side of every pass's workgroup: `@workgroup_size(8, 8)` in
+/// each pass's WGSL.
+const WORKGROUP: u32 = 8;
+
+/// The compiled side of one pass: its group 0, that group's layout and the
+/// compute pipeline over it (and over the host's group 1, for a pass that
+/// reads one). Built once by the pass's `new`; each frame's `encode` binds
+/// its resources and dispatches one invocation per output pixel.
+pub(crate) struct PassPipeline {
+    label: &'static str,
+    group: Group,
+    layout: wgpu::BindGroupLayout,
+    pipeline: wgpu::ComputePipeline,
+}
+
+impl PassPipeline {
+    /// Compile `source`'s `entry` over `group` (group 0) and `host_layout`
+    /// (group 1, when the host binds one). `source` is the whole shader,
+    /// the group's declarations included. `label` names every object made.
+    pub(crate) fn new(
+        device: &wgpu::Device,
+        label: &'static str,
+        group: Group,
+        source: String,
+        host_layout: Option<&wgpu::BindGroupLayout>,
+        entry: &str,
+    ) -> Self {
+        let layout = group.layout(device, label);
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(label),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let layouts = [Some(&layout), host_layout];
+        let count = if host_layout.is_some() { 2 } else { 1 };
+        let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(label),
+            bind_group_layouts: &layouts[..count],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(label),
+            layout: Some(&pl),
+            module: &module,
+            entry_point: Some(entry),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        PassPipeline {
+            label,
+            group,
+            layout,
+            pipeline,
+        }
+    }
+
+    /// Record one compute pass over `size` pixels: group 0 of `resources`
+    /// (by name, [`Group::bind_group`]), `host_group` as group 1. On an
+    /// error nothing is recorded.
+    pub(crate) fn encode(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        (width, height): (u32, u32),
+        resources: &[(&'static str, wgpu::BindingResource<'_>)],
+        host_group: Option<&wgpu::BindGroup>,
+    ) -> Result<(), PassError> {
+        let group = self
+            .group
+            .bind_group(device, &self.layout, self.label, resources)?;
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some(self.label),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &group, &[]);
+        if let Some(h) = host_group {
+            pass.set_bind_group(1, h, &[]);
+        }
+        pass.dispatch_workgroups(width.div_ceil(WORKGROUP), height.div_ceil(WORKGROUP), 1);
+        Ok(())
+    }
+}
+
+/// A uniform buffer holding `value`, made for one frame's bind group.
+pub(crate) fn uniform_buffer<T: bytemuck::Pod>(
     device: &wgpu::Device,
     label: &str,
-    source: String,
-    layout: &wgpu::BindGroupLayout,
-    entries: &[&str],
-) -> Vec<wgpu::ComputePipeline> {
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+    value: &T,
+) -> wgpu::Buffer {
+    use wgpu::util::DeviceExt;
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(source.into()),
-    });
-    let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(label),
-        bind_group_layouts: &[Some(layout)],
-        immediate_size: 0,
-    });
-    entries
-        .iter()
-        .map(|e| {
-            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(label),
-                layout: Some(&pl),
-                module: &module,
-                entry_point: Some(e),
-                compilation_options: Default::default(),
-                cache: None,
-            })
-        })
-        .collect()
+        contents: bytemuck::bytes_of(value),
+        usage: wgpu::BufferUsages::UNIFORM,
+    })
 }

@@ -12,13 +12,11 @@
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use subcone_kernels::ctss::CtssParams;
-use wgpu::util::DeviceExt;
 
-use crate::bind::{self, Expect, Group};
+use crate::bind::{self, Group, PassPipeline};
 use crate::PassError;
 
 pub(crate) const CTSS_WGSL: &str = include_str!("ctss.wgsl");
-const WORKGROUP: u32 = 8;
 /// Most hit groups a trace may march ahead of shading them.
 pub const MAX_BATCH: u32 = 64;
 
@@ -180,9 +178,7 @@ pub struct CtssFrame<'a> {
 pub struct CtssPass {
     output_format: wgpu::TextureFormat,
     host_group: bool,
-    group: Group,
-    layout: wgpu::BindGroupLayout,
-    pipeline: wgpu::ComputePipeline,
+    pipeline: PassPipeline,
 }
 
 impl std::fmt::Debug for CtssPass {
@@ -212,32 +208,18 @@ impl CtssPass {
             )));
         }
         let group = Self::group(desc.output_format);
-        let layout = group.layout(device, "subcone ctss");
         let source = Self::source(host_wgsl, desc.batch, &group);
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("subcone ctss"),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
-        let layouts = [Some(&layout), desc.host_layout];
-        let n = if desc.host_layout.is_some() { 2 } else { 1 };
-        let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("subcone ctss"),
-            bind_group_layouts: &layouts[..n],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("subcone ctss"),
-            layout: Some(&pl),
-            module: &module,
-            entry_point: Some("subcone_pass_ctss_main"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
+        let pipeline = PassPipeline::new(
+            device,
+            "subcone ctss",
+            group,
+            source,
+            desc.host_layout,
+            "subcone_pass_ctss_main",
+        );
         Ok(CtssPass {
             output_format: desc.output_format,
             host_group: desc.host_layout.is_some(),
-            group,
-            layout,
             pipeline,
         })
     }
@@ -293,24 +275,7 @@ impl CtssPass {
         frame: &CtssFrame<'_>,
     ) -> Result<(), PassError> {
         let out = frame.output;
-        let size = (out.width(), out.height());
-        bind::check(
-            out,
-            &Expect {
-                what: "output",
-                size,
-                samples: 1,
-                layers: 1,
-                usage: wgpu::TextureUsages::STORAGE_BINDING,
-            },
-        )?;
-        if out.format() != self.output_format {
-            return Err(PassError::Format {
-                what: "output",
-                found: out.format(),
-                expected: "the desc's output_format",
-            });
-        }
+        let size = bind::check_output(out, self.output_format, "the desc's output_format")?;
         match (self.host_group, frame.host_group) {
             (true, None) => return Err(PassError::Missing("host bind group")),
             (false, Some(_)) => return Err(PassError::Unexpected("host bind group")),
@@ -329,20 +294,13 @@ impl CtssPass {
             background: frame.background.into(),
             _pad1: 0,
         };
-        let buffer = |label, bytes: &[u8]| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents: bytes,
-                usage: wgpu::BufferUsages::UNIFORM,
-            })
-        };
-        let u = buffer("subcone ctss frame", bytemuck::bytes_of(&uniform));
-        let p = buffer("subcone ctss params", bytemuck::bytes_of(&frame.params));
+        let u = bind::uniform_buffer(device, "subcone ctss frame", &uniform);
+        let p = bind::uniform_buffer(device, "subcone ctss params", &frame.params);
         let view = bind::view(out, wgpu::TextureViewDimension::D2);
-        let group = self.group.bind_group(
+        self.pipeline.encode(
             device,
-            &self.layout,
-            "subcone ctss",
+            encoder,
+            size,
             &[
                 ("subcone_pass_frame", u.as_entire_binding()),
                 ("subcone_pass_params", p.as_entire_binding()),
@@ -351,18 +309,7 @@ impl CtssPass {
                     wgpu::BindingResource::TextureView(&view),
                 ),
             ],
-        )?;
-        let (gx, gy) = crate::workgroups(size.0, size.1, WORKGROUP);
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("subcone ctss"),
-            timestamp_writes: None,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &group, &[]);
-        if let Some(h) = frame.host_group {
-            pass.set_bind_group(1, h, &[]);
-        }
-        pass.dispatch_workgroups(gx, gy, 1);
-        Ok(())
+            frame.host_group,
+        )
     }
 }

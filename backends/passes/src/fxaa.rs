@@ -3,13 +3,11 @@
 
 use bytemuck::{Pod, Zeroable};
 use subcone_kernels::fxaa::FxaaParams;
-use wgpu::util::DeviceExt;
 
-use crate::bind::{self, Expect, Group};
+use crate::bind::{self, Expect, Group, PassPipeline};
 use crate::PassError;
 
 pub(crate) const FXAA_WGSL: &str = include_str!("fxaa.wgsl");
-const WORKGROUP: u32 = 8;
 
 /// The frame's size; `FxaaFrame` in `fxaa.wgsl` (16 bytes).
 #[repr(C)]
@@ -28,9 +26,7 @@ pub(crate) struct FxaaFrame {
 pub struct FxaaPass {
     params: FxaaParams,
     output_format: wgpu::TextureFormat,
-    group: Group,
-    layout: wgpu::BindGroupLayout,
-    pipeline: wgpu::ComputePipeline,
+    pipeline: PassPipeline,
 }
 
 impl std::fmt::Debug for FxaaPass {
@@ -53,20 +49,11 @@ impl FxaaPass {
     ) -> Result<Self, PassError> {
         bind::check_output_format(output_format)?;
         let group = Self::group(output_format);
-        let layout = group.layout(device, "subcone fxaa");
-        let pipeline = bind::pipeline(
-            device,
-            "subcone fxaa",
-            Self::source(&group),
-            &layout,
-            &["fxaa_main"],
-        )
-        .remove(0);
+        let source = Self::source(&group);
+        let pipeline = PassPipeline::new(device, "subcone fxaa", group, source, None, "fxaa_main");
         Ok(FxaaPass {
             params: *params,
             output_format,
-            group,
-            layout,
             pipeline,
         })
     }
@@ -110,24 +97,7 @@ impl FxaaPass {
         input: &wgpu::Texture,
         output: &wgpu::Texture,
     ) -> Result<(), PassError> {
-        let size = (output.width(), output.height());
-        bind::check(
-            output,
-            &Expect {
-                what: "output",
-                size,
-                samples: 1,
-                layers: 1,
-                usage: wgpu::TextureUsages::STORAGE_BINDING,
-            },
-        )?;
-        if output.format() != self.output_format {
-            return Err(PassError::Format {
-                what: "output",
-                found: output.format(),
-                expected: "the pass's output format",
-            });
-        }
+        let size = bind::check_output(output, self.output_format, "the pass's output format")?;
         bind::check(
             input,
             &Expect {
@@ -138,54 +108,32 @@ impl FxaaPass {
                 usage: wgpu::TextureUsages::TEXTURE_BINDING,
             },
         )?;
-        if !bind::is_float_color(input.format()) {
-            return Err(PassError::Format {
-                what: "input",
-                found: input.format(),
-                expected: "a float, unorm or snorm colour format",
-            });
-        }
+        bind::check_float_color("input", input)?;
         if input == output {
             return Err(PassError::Config(
                 "FXAA cannot filter a texture in place".into(),
             ));
         }
-        let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("subcone fxaa params"),
-            contents: bytemuck::bytes_of(&self.params),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
+        let params = bind::uniform_buffer(device, "subcone fxaa params", &self.params);
         let frame = FxaaFrame {
             width: size.0,
             height: size.1,
             _pad: [0; 2],
         };
-        let frame = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("subcone fxaa frame"),
-            contents: bytemuck::bytes_of(&frame),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
+        let frame = bind::uniform_buffer(device, "subcone fxaa frame", &frame);
         let src = bind::view(input, wgpu::TextureViewDimension::D2);
         let dst = bind::view(output, wgpu::TextureViewDimension::D2);
-        let group = self.group.bind_group(
+        self.pipeline.encode(
             device,
-            &self.layout,
-            "subcone fxaa",
+            encoder,
+            size,
             &[
                 ("fxaa_params", params.as_entire_binding()),
                 ("fxaa_frame", frame.as_entire_binding()),
                 ("fxaa_src", wgpu::BindingResource::TextureView(&src)),
                 ("fxaa_dst", wgpu::BindingResource::TextureView(&dst)),
             ],
-        )?;
-        let (gx, gy) = crate::workgroups(size.0, size.1, WORKGROUP);
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("subcone fxaa"),
-            timestamp_writes: None,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &group, &[]);
-        pass.dispatch_workgroups(gx, gy, 1);
-        Ok(())
+            None,
+        )
     }
 }

@@ -39,6 +39,19 @@ macro_rules! members {
     }};
 }
 
+/// One struct to check: the WGSL source declaring it, its WGSL name, the
+/// Rust struct's size and members (`members!`).
+pub(crate) type Check<'a> = (&'a str, &'a str, usize, Vec<Member>);
+
+/// [`compare`] every struct of `checks`; panics listing every mismatch.
+pub(crate) fn assert_all_match(checks: &[Check<'_>]) {
+    let errors: Vec<String> = checks
+        .iter()
+        .filter_map(|(src, name, size, m)| compare(src, name, *size, m).err())
+        .collect();
+    assert!(errors.is_empty(), "{}", errors.join("\n"));
+}
+
 /// Compare the WGSL struct `wgsl_name` (declared in `source`, after the
 /// kernels' shared structs) with the Rust layout `members` of total `size`.
 pub(crate) fn compare(

@@ -4,7 +4,7 @@
 //! it mirrors, and the same total size. And every shader the passes build,
 //! for every configuration, parses and validates.
 
-use crate::layout_check::{compare, Member};
+use crate::layout_check::{assert_all_match, compare, Member};
 
 use crate::ctss::{CtssPass, CtssUniform, CTSS_WGSL};
 use crate::fxaa::{FxaaFrame, FxaaPass, FXAA_WGSL};
@@ -12,7 +12,7 @@ use crate::sraa::{SraaFrame, SRAA_WGSL};
 
 #[test]
 fn pass_gpu_structs_match_their_wgsl() {
-    let checks: Vec<(&str, &str, usize, Vec<Member>)> = vec![
+    assert_all_match(&[
         (
             SRAA_WGSL,
             "SraaFrame",
@@ -32,16 +32,12 @@ fn pass_gpu_structs_match_their_wgsl() {
             size_of::<FxaaFrame>(),
             members!(FxaaFrame: width, height, _pad[2 as u32]),
         ),
-    ];
-    let errors: Vec<String> = checks
-        .iter()
-        .filter_map(|(src, name, size, m)| compare(src, name, *size, m).err())
-        .collect();
-    assert!(errors.is_empty(), "{}", errors.join("\n"));
+    ]);
 }
 
 /// The comparison can fail: fields out of order, a field at another offset
-/// and another total size are each caught.
+/// and another total size are each caught. (The one test of the checker:
+/// `subcone-wgpu`'s layout tests include this crate's.)
 #[test]
 fn a_mismatched_layout_is_caught() {
     let good = members!(FxaaFrame: width, height, _pad[2 as u32]);

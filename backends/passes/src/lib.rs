@@ -156,8 +156,3 @@ impl std::fmt::Display for PassError {
 }
 
 impl std::error::Error for PassError {}
-
-/// Workgroups of `size`×`size` covering `width × height`.
-pub(crate) fn workgroups(width: u32, height: u32, size: u32) -> (u32, u32) {
-    (width.div_ceil(size), height.div_ceil(size))
-}

@@ -20,9 +20,8 @@
 use bytemuck::{Pod, Zeroable};
 use subcone_kernels::passes::MAX_LIGHTS;
 use subcone_kernels::sraa::{ShadedPosition, SraaParams, ALBEDO_TOLERANCE};
-use wgpu::util::DeviceExt;
 
-use crate::bind::{self, Expect, Group};
+use crate::bind::{self, Expect, Group, PassPipeline};
 use crate::PassError;
 
 pub(crate) const SRAA_WGSL: &str = include_str!("sraa.wgsl");
@@ -35,8 +34,6 @@ pub(crate) const SRAA_WGSL: &str = include_str!("sraa.wgsl");
 /// the hooks the including shader defines. `sraa.wgsl` defines them over
 /// the host's textures.
 pub use subcone_kernels::sraa::RECONSTRUCT_WGSL;
-
-const WORKGROUP: u32 = 8;
 
 /// The pass's constants; `SraaFrame` in `sraa.wgsl` (64 bytes).
 #[repr(C)]
@@ -339,25 +336,12 @@ impl InputRules<'_> {
         }
     }
 
-    /// A texture read as `f32`: a float, unorm or snorm colour format.
-    fn float_format(&self, what: &'static str, t: &wgpu::Texture) -> Result<(), PassError> {
-        if bind::is_float_color(t.format()) {
-            Ok(())
-        } else {
-            Err(PassError::Format {
-                what,
-                found: t.format(),
-                expected: "a float, unorm or snorm colour format",
-            })
-        }
-    }
-
     /// The subsamples' depth and normals: one packed texture, or a depth
     /// and a normal texture.
     fn subsample_geometry(&self, inputs: &SraaInputs<'_>) -> Result<(), PassError> {
         bind::check(inputs.subsample_depth, &self.sub("subsample depth"))?;
         if self.desc.geometry == GeometryLayout::Packed {
-            self.float_format("subsample depth", inputs.subsample_depth)?;
+            bind::check_float_color("subsample depth", inputs.subsample_depth)?;
             if inputs.subsample_normal.is_some() {
                 return Err(PassError::Unexpected(
                     "subsample normal (GeometryLayout::Packed holds the normals)",
@@ -369,7 +353,7 @@ impl InputRules<'_> {
                 .subsample_normal
                 .ok_or(PassError::Missing("subsample normal"))?;
             bind::check(n, &self.sub("subsample normal"))?;
-            self.float_format("subsample normal", n)?;
+            bind::check_float_color("subsample normal", n)?;
         }
         Ok(())
     }
@@ -382,7 +366,7 @@ impl InputRules<'_> {
                 bind::check(c.depth, &self.one("centre depth", 1))?;
                 self.depth_format("centre depth", c.depth)?;
                 bind::check(c.normal, &self.one("centre normal", 1))?;
-                self.float_format("centre normal", c.normal)?;
+                bind::check_float_color("centre normal", c.normal)?;
             }
             (true, None) => {
                 return Err(PassError::Missing(
@@ -425,13 +409,13 @@ impl InputRules<'_> {
         match (d.secondary, &inputs.secondary) {
             (true, Some(s)) => {
                 bind::check(s.shaded_depth, &self.one("secondary shaded depth", 1))?;
-                self.float_format("secondary shaded depth", s.shaded_depth)?;
+                bind::check_float_color("secondary shaded depth", s.shaded_depth)?;
                 bind::check(s.shaded_normal, &self.one("secondary shaded normal", 1))?;
-                self.float_format("secondary shaded normal", s.shaded_normal)?;
+                bind::check_float_color("secondary shaded normal", s.shaded_normal)?;
                 bind::check(s.subsample_depth, &self.sub("secondary subsample depth"))?;
-                self.float_format("secondary subsample depth", s.subsample_depth)?;
+                bind::check_float_color("secondary subsample depth", s.subsample_depth)?;
                 bind::check(s.subsample_normal, &self.sub("secondary subsample normal"))?;
-                self.float_format("secondary subsample normal", s.subsample_normal)?;
+                bind::check_float_color("secondary subsample normal", s.subsample_normal)?;
                 match (d.lights > 0, &s.shadows) {
                     (true, Some(sh)) => self.shadows(sh)?,
                     (true, None) => {
@@ -459,9 +443,9 @@ impl InputRules<'_> {
         match (self.desc.albedo_gate, &inputs.albedo) {
             (true, Some(a)) => {
                 bind::check(a.shaded, &self.one("shaded albedo", 1))?;
-                self.float_format("shaded albedo", a.shaded)?;
+                bind::check_float_color("shaded albedo", a.shaded)?;
                 bind::check(a.subsamples, &self.sub("subsample albedo"))?;
-                self.float_format("subsample albedo", a.subsamples)?;
+                bind::check_float_color("subsample albedo", a.subsamples)?;
             }
             (true, None) => return Err(PassError::Missing("albedo textures (albedo gate on)")),
             (false, Some(_)) => {
@@ -497,9 +481,7 @@ impl InputRules<'_> {
 /// ```
 pub struct SraaResolve {
     desc: SraaResolveDesc,
-    group: Group,
-    layout: wgpu::BindGroupLayout,
-    pipeline: wgpu::ComputePipeline,
+    pipeline: PassPipeline,
 }
 
 impl std::fmt::Debug for SraaResolve {
@@ -522,20 +504,17 @@ impl SraaResolve {
     pub fn new(device: &wgpu::Device, desc: &SraaResolveDesc) -> Result<Self, PassError> {
         let source = Self::source(desc)?;
         let group = Self::group(desc);
-        let layout = group.layout(device, "subcone sraa resolve");
         let source = [source, group.declarations()].concat();
-        let pipeline = bind::pipeline(
+        let pipeline = PassPipeline::new(
             device,
             "subcone sraa resolve",
+            group,
             source,
-            &layout,
-            &["sraa_resolve_main"],
-        )
-        .remove(0);
+            None,
+            "sraa_resolve_main",
+        );
         Ok(SraaResolve {
             desc: *desc,
-            group,
-            layout,
             pipeline,
         })
     }
@@ -742,7 +721,7 @@ impl SraaResolve {
         rules.subsample_geometry(inputs)?;
         rules.centre_geometry(inputs)?;
         bind::check(inputs.color, &rules.one("colour", d.color_layers()))?;
-        rules.float_format("colour", inputs.color)?;
+        bind::check_float_color("colour", inputs.color)?;
         match (d.lights > 0, &inputs.shadows) {
             (true, Some(s)) => rules.shadows(s)?,
             (true, None) => return Err(PassError::Missing("shadow textures (lights > 0)")),
@@ -758,25 +737,7 @@ impl SraaResolve {
     /// that the frame's depth convention is the one the pass was built for.
     fn check_output(&self, inputs: &SraaInputs<'_>) -> Result<(u32, u32), PassError> {
         let d = &self.desc;
-        let out = inputs.output;
-        let size = (out.width(), out.height());
-        bind::check(
-            out,
-            &Expect {
-                what: "output",
-                size,
-                samples: 1,
-                layers: 1,
-                usage: wgpu::TextureUsages::STORAGE_BINDING,
-            },
-        )?;
-        if out.format() != d.output_format {
-            return Err(PassError::Format {
-                what: "output",
-                found: out.format(),
-                expected: "the desc's output_format",
-            });
-        }
+        let size = bind::check_output(inputs.output, d.output_format, "the desc's output_format")?;
         if inputs.depth.kind() != d.depth {
             return Err(PassError::Config(format!(
                 "the frame's depth convention is {:?}, the pass was built for {:?}",
@@ -815,11 +776,7 @@ impl SraaResolve {
             depth_miss,
             albedo_tolerance: ALBEDO_TOLERANCE,
         };
-        let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("subcone sraa frame"),
-            contents: bytemuck::bytes_of(&frame),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
+        let uniform = bind::uniform_buffer(device, "subcone sraa frame", &frame);
         let sub_dim = if d.geometry == GeometryLayout::Multisampled {
             D2
         } else {
@@ -861,18 +818,8 @@ impl SraaResolve {
                 .iter()
                 .map(|(n, v)| (*n, wgpu::BindingResource::TextureView(v))),
         );
-        let group =
-            self.group
-                .bind_group(device, &self.layout, "subcone sraa resolve", &resources)?;
-        let (gx, gy) = crate::workgroups(width, height, WORKGROUP);
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("subcone sraa resolve"),
-            timestamp_writes: None,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &group, &[]);
-        pass.dispatch_workgroups(gx, gy, 1);
-        Ok(())
+        self.pipeline
+            .encode(device, encoder, (width, height), &resources, None)
     }
 }
 

@@ -19,59 +19,22 @@ use subcone_passes::{
     DepthConvention, FxaaPass, PassError, SraaInputs, SraaResolve, SraaResolveDesc,
 };
 
-fn texture(
-    device: &wgpu::Device,
-    (w, h): (u32, u32),
-    samples: u32,
-    format: wgpu::TextureFormat,
-    usage: wgpu::TextureUsages,
-) -> wgpu::Texture {
-    device.create_texture(&wgpu::TextureDescriptor {
-        label: None,
-        size: wgpu::Extent3d {
-            width: w,
-            height: h,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: samples,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage,
-        view_formats: &[],
-    })
+use host_sraa::host::{self, texture};
+
+/// Install the host's own uncaptured-error handler on `device`: it counts
+/// the errors it sees.
+fn count_uncaptured_errors(device: &wgpu::Device) -> Arc<AtomicUsize> {
+    let seen = Arc::new(AtomicUsize::new(0));
+    let counter = seen.clone();
+    device.on_uncaptured_error(Arc::new(move |_e: wgpu::Error| {
+        counter.fetch_add(1, Ordering::SeqCst);
+    }));
+    seen
 }
 
-/// `host_sraa::open_device` with the adapter's own limits.
-fn open_device_with_adapter_limits() -> Result<(wgpu::Device, wgpu::Queue), String> {
-    let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
-    desc.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::PRIMARY);
-    let instance = wgpu::Instance::new(desc);
-    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-        power_preference: wgpu::PowerPreference::HighPerformance,
-        force_fallback_adapter: false,
-        compatible_surface: None,
-        apply_limit_buckets: false,
-    }))
-    .map_err(|e| format!("no GPU adapter: {e}"))?;
-    pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-        label: Some("host, adapter limits"),
-        required_features: wgpu::Features::empty(),
-        required_limits: adapter.limits(),
-        experimental_features: wgpu::ExperimentalFeatures::disabled(),
-        memory_hints: wgpu::MemoryHints::Performance,
-        trace: wgpu::Trace::Off,
-    }))
-    .map_err(|e| format!("cannot open a device: {e}"))
-}
-
+/// Wait for the device (the host's poll), panicking on a timeout.
 fn wait(device: &wgpu::Device) {
-    device
-        .poll(wgpu::PollType::Wait {
-            submission_index: None,
-            timeout: Some(std::time::Duration::from_secs(60)),
-        })
-        .expect("poll");
+    host::wait(device).expect("poll");
 }
 
 #[test]
@@ -80,11 +43,7 @@ fn the_hosts_uncaptured_error_handler_stays_the_hosts() {
     else {
         return;
     };
-    let seen = Arc::new(AtomicUsize::new(0));
-    let counter = seen.clone();
-    device.on_uncaptured_error(Arc::new(move |_e: wgpu::Error| {
-        counter.fetch_add(1, Ordering::SeqCst);
-    }));
+    let seen = count_uncaptured_errors(&device);
     // subcone's own context on the host's device: no callback installed.
     let ctx = Arc::new(subcone_wgpu::GpuContext::from_device(
         device.clone(),
@@ -118,7 +77,7 @@ fn the_hosts_uncaptured_error_handler_stays_the_hosts() {
     );
     // A host device with the adapter's limits (as `GpuContext::new` asks)
     // renders the frame the backend's own device renders.
-    let (big, big_queue) = open_device_with_adapter_limits().expect("device");
+    let (big, big_queue) = host::open_device_with_adapter_limits().expect("device");
     let hosted = subcone_wgpu::WgpuBackend::with_context(Arc::new(
         subcone_wgpu::GpuContext::from_device(big, big_queue),
     ))
@@ -139,10 +98,18 @@ fn the_hosts_uncaptured_error_handler_stays_the_hosts() {
     )
     .expect("fxaa");
     let read = wgpu::TextureUsages::TEXTURE_BINDING;
-    let src = texture(&device, (16, 8), 1, wgpu::TextureFormat::Rgba16Float, read);
+    let src = texture(
+        &device,
+        "src",
+        (16, 8, 1),
+        1,
+        wgpu::TextureFormat::Rgba16Float,
+        read,
+    );
     let dst = texture(
         &device,
-        (16, 8),
+        "dst",
+        (16, 8, 1),
         1,
         wgpu::TextureFormat::Rgba16Float,
         wgpu::TextureUsages::STORAGE_BINDING,
@@ -180,22 +147,18 @@ fn inputs_that_do_not_fit_are_typed_errors() {
     else {
         return;
     };
-    let seen = Arc::new(AtomicUsize::new(0));
-    let counter = seen.clone();
-    device.on_uncaptured_error(Arc::new(move |_e: wgpu::Error| {
-        counter.fetch_add(1, Ordering::SeqCst);
-    }));
+    let seen = count_uncaptured_errors(&device);
     use wgpu::TextureFormat::{Depth32Float, R32Float, Rgba16Float, Rgba8UnormSrgb};
     let read = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT;
     let store = wgpu::TextureUsages::STORAGE_BINDING;
-    let size = (8, 4);
-    let depth = texture(&device, size, 4, Depth32Float, read);
-    let normal = texture(&device, size, 4, Rgba16Float, read);
-    let normal1 = texture(&device, size, 1, Rgba16Float, read);
-    let small = texture(&device, (4, 4), 4, Rgba16Float, read);
-    let color = texture(&device, size, 1, Rgba16Float, read);
-    let linear = texture(&device, size, 4, R32Float, read);
-    let output = texture(&device, size, 1, Rgba16Float, store);
+    let size = (8, 4, 1);
+    let depth = texture(&device, "depth", size, 4, Depth32Float, read);
+    let normal = texture(&device, "normal", size, 4, Rgba16Float, read);
+    let normal1 = texture(&device, "normal1", size, 1, Rgba16Float, read);
+    let small = texture(&device, "small", (4, 4, 1), 4, Rgba16Float, read);
+    let color = texture(&device, "color", size, 1, Rgba16Float, read);
+    let linear = texture(&device, "linear", size, 4, R32Float, read);
+    let output = texture(&device, "output", size, 1, Rgba16Float, store);
     let sraa = SraaResolve::new(&device, &SraaResolveDesc::msaa()).expect("pass");
     let good = SraaInputs {
         subsample_depth: &depth,
@@ -296,20 +259,7 @@ fn inputs_that_do_not_fit_are_typed_errors() {
     )
     .expect("secondary pass");
     // (with the colour's two groups of layers, as it needs).
-    let color2 = device.create_texture(&wgpu::TextureDescriptor {
-        label: None,
-        size: wgpu::Extent3d {
-            width: size.0,
-            height: size.1,
-            depth_or_array_layers: 2,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: Rgba16Float,
-        usage: read,
-        view_formats: &[],
-    });
+    let color2 = texture(&device, "color2", (size.0, size.1, 2), 1, Rgba16Float, read);
     assert!(matches!(
         mirrors.encode(&device, &mut enc, &good),
         Err(PassError::Layers {

@@ -77,7 +77,7 @@ fn host_sraa_matches_the_cpu_backend() {
         (SraaParams::TUNED, "sraa"),
     ] {
         let host = host_sraa::render(&device, &queue, params, W, H).expect("host render");
-        let host = host_sraa::to_srgb8(&host);
+        let host = host_sraa::host::to_srgb8(&host);
         let cpu = cpu_frame(&scene, method);
         let (mean, p99) = common::flip(W, H, &cpu, &host);
         let (noaa_mean, _) = common::flip(W, H, &noaa, &host);
@@ -160,24 +160,16 @@ fn fxaa_pass_matches_the_cpu_post_process() {
     let mut cpu = frame.clone();
     subcone_cpu::post::fxaa(&mut cpu, &subcone_kernels::fxaa::FxaaParams::QUALITY);
     let format = wgpu::TextureFormat::Rgba32Float;
-    let texture = |usage| {
-        device.create_texture(&wgpu::TextureDescriptor {
-            label: None,
-            size: wgpu::Extent3d {
-                width: W,
-                height: H,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage,
-            view_formats: &[],
-        })
-    };
-    let input = texture(wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST);
-    let output = texture(wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC);
+    let texture =
+        |label, usage| host_sraa::host::texture(&device, label, (W, H, 1), 1, format, usage);
+    let input = texture(
+        "fxaa input",
+        wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+    );
+    let output = texture(
+        "fxaa output",
+        wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+    );
     let texels: Vec<[f32; 4]> = frame.color.iter().map(|c| c.extend(1.0).into()).collect();
     queue.write_texture(
         input.as_image_copy(),
@@ -199,7 +191,7 @@ fn fxaa_pass_matches_the_cpu_post_process() {
         .iter()
         .map(|p| glam::Vec3::new(p[0], p[1], p[2]))
         .collect();
-    let (g8, c8) = (host_sraa::to_srgb8(&gpu), cpu.to_srgb8());
+    let (g8, c8) = (host_sraa::host::to_srgb8(&gpu), cpu.to_srgb8());
     let (mean, p99) = common::flip(W, H, &c8, &g8);
     let worst = g8
         .iter()

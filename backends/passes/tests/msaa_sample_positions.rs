@@ -89,20 +89,14 @@ fn msaa_sample_positions_are_subpixel_offsets() {
         compilation_options: Default::default(),
         cache: None,
     });
-    let target = device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("4x target"),
-        size: wgpu::Extent3d {
-            width: SIZE,
-            height: SIZE,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 4,
-        dimension: wgpu::TextureDimension::D2,
+    let target = host_sraa::host::texture(
+        &device,
+        "4x target",
+        (SIZE, SIZE, 1),
+        4,
         format,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
-        view_formats: &[],
-    });
+        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+    );
     let view = target.create_view(&Default::default());
     let n = (SIZE * SIZE * 4) as usize;
     let out = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -164,21 +158,8 @@ fn msaa_sample_positions_are_subpixel_offsets() {
     }
     enc.copy_buffer_to_buffer(&out, 0, &staging, 0, (n * 16) as u64);
     queue.submit([enc.finish()]);
-    let (tx, rx) = std::sync::mpsc::channel();
-    staging.map_async(wgpu::MapMode::Read, .., move |r| {
-        let _ = tx.send(r);
-    });
-    device
-        .poll(wgpu::PollType::Wait {
-            submission_index: None,
-            timeout: Some(std::time::Duration::from_secs(60)),
-        })
-        .expect("poll");
-    rx.recv_timeout(std::time::Duration::from_secs(5))
-        .expect("mapped")
-        .expect("map");
-    let data = staging.get_mapped_range(..).expect("range");
-    let v: &[[f32; 4]] = bytemuck::cast_slice(&data);
+    let data = host_sraa::host::read_buffer(&device, &staging).expect("read-back");
+    let v: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&data);
     for p in 0..(SIZE * SIZE) as usize {
         for (k, offset) in SUBPIXEL_OFFSETS.iter().enumerate() {
             let s = v[p * 4 + k];

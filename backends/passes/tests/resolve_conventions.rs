@@ -210,34 +210,30 @@ struct Case {
     secondary: bool,
 }
 
-fn upload(
+/// A one-sample `W × H` array of `layers` layers of `format` holding
+/// `texel(pixel, layer)`.
+fn upload<T: bytemuck::Pod>(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     format: wgpu::TextureFormat,
-    layers: u32,
-    bytes: &[u8],
+    layers: usize,
+    texel: impl Fn(usize, usize) -> T,
 ) -> wgpu::Texture {
-    let t = device.create_texture(&wgpu::TextureDescriptor {
-        label: None,
-        size: wgpu::Extent3d {
-            width: W,
-            height: H,
-            depth_or_array_layers: layers,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
+    let t = host_sraa::host::texture(
+        device,
+        "input",
+        (W, H, layers as u32),
+        1,
         format,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-        view_formats: &[],
-    });
-    let texel = format.block_copy_size(None).expect("colour format");
+        wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+    );
+    let texel_size = format.block_copy_size(None).expect("colour format");
     queue.write_texture(
         t.as_image_copy(),
-        bytes,
+        &layered(layers, texel),
         wgpu::TexelCopyBufferLayout {
             offset: 0,
-            bytes_per_row: Some(W * texel),
+            bytes_per_row: Some(W * texel_size),
             rows_per_image: Some(H),
         },
         t.size(),
@@ -268,84 +264,32 @@ fn gpu(device: &wgpu::Device, queue: &wgpu::Queue, d: &Data, c: &Case) -> Vec<Ve
     };
     let (sub_depth, sub_normal) = match c.geometry {
         GeometryLayout::Packed => {
-            let bytes = layered(4, |j, k| -> [f32; 4] {
+            let texel = |j: usize, k: usize| -> [f32; 4] {
                 let g = &d.sub[j][k];
                 let w = if g.depth.is_finite() { g.depth } else { -1.0 };
                 g.normal.extend(w).into()
-            });
-            (upload(device, queue, Rgba32Float, 4, &bytes), None)
+            };
+            (upload(device, queue, Rgba32Float, 4, texel), None)
         }
         _ => (
-            upload(
-                device,
-                queue,
-                R32Float,
-                4,
-                &layered(4, |j, k| linear(&d.sub[j][k])),
-            ),
-            Some(upload(
-                device,
-                queue,
-                Rgba32Float,
-                4,
-                &layered(4, |j, k| normal(&d.sub[j][k])),
-            )),
+            upload(device, queue, R32Float, 4, |j, k| linear(&d.sub[j][k])),
+            Some(upload(device, queue, Rgba32Float, 4, |j, k| {
+                normal(&d.sub[j][k])
+            })),
         ),
     };
     let centre = c.params.shaded_position() == ShadedPosition::Centre;
-    let centre_depth = upload(
-        device,
-        queue,
-        R32Float,
-        1,
-        &layered(1, |j, _| linear(&d.shaded[j])),
-    );
-    let centre_normal = upload(
-        device,
-        queue,
-        Rgba32Float,
-        1,
-        &layered(1, |j, _| normal(&d.shaded[j])),
-    );
+    let centre_depth = upload(device, queue, R32Float, 1, |j, _| linear(&d.shaded[j]));
+    let centre_normal = upload(device, queue, Rgba32Float, 1, |j, _| normal(&d.shaded[j]));
     let layers = (1 + c.lights) * if c.secondary { 2 } else { 1 };
-    let color = upload(
-        device,
-        queue,
-        Rgba32Float,
-        layers as u32,
-        &layered(layers, |j, l| -> [f32; 4] {
-            d.colors[j * layers + l].extend(0.0).into()
-        }),
-    );
-    let shaded_shadow = upload(
-        device,
-        queue,
-        R32Uint,
-        1,
-        &layered(1, |j, _| d.shaded_shadow[j]),
-    );
-    let sub_shadow = upload(
-        device,
-        queue,
-        R32Uint,
-        4,
-        &layered(4, |j, k| d.sub_shadow[j][k]),
-    );
+    let color = upload(device, queue, Rgba32Float, layers, |j, l| -> [f32; 4] {
+        d.colors[j * layers + l].extend(0.0).into()
+    });
+    let shaded_shadow = upload(device, queue, R32Uint, 1, |j, _| d.shaded_shadow[j]);
+    let sub_shadow = upload(device, queue, R32Uint, 4, |j, k| d.sub_shadow[j][k]);
     let v4 = |a: Vec3| -> [f32; 4] { Vec4::from((a, 0.0)).into() };
-    let shaded_albedo = upload(
-        device,
-        queue,
-        Rgba32Float,
-        1,
-        &layered(1, |j, _| v4(d.shaded_albedo[j])),
-    );
-    let sub_albedo = upload(
-        device,
-        queue,
-        Rgba32Float,
-        4,
-        &layered(4, |j, k| v4(d.sub_albedo[j][k])),
-    );
+    let shaded_albedo = upload(device, queue, Rgba32Float, 1, |j, _| v4(d.shaded_albedo[j]));
+    let sub_albedo = upload(device, queue, Rgba32Float, 4, |j, k| v4(d.sub_albedo[j][k]));
     // Secondary path length: negative for no mirror, 0 for a miss.
     let path = |g: &Geometry| {
         if g.depth.is_nan() {
@@ -356,62 +300,20 @@ fn gpu(device: &wgpu::Device, queue: &wgpu::Queue, d: &Data, c: &Case) -> Vec<Ve
             0.0
         }
     };
-    let sec_shaded_depth = upload(
+    let sec_shaded_depth = upload(device, queue, R32Float, 1, |j, _| path(&d.shaded2[j]));
+    let sec_shaded_normal = upload(device, queue, Rgba32Float, 1, |j, _| normal(&d.shaded2[j]));
+    let sec_sub_depth = upload(device, queue, R32Float, 4, |j, k| path(&d.sub2[j][k]));
+    let sec_sub_normal = upload(device, queue, Rgba32Float, 4, |j, k| normal(&d.sub2[j][k]));
+    let sec_shaded_shadow = upload(device, queue, R32Uint, 1, |j, _| d.shaded_shadow2[j]);
+    let sec_sub_shadow = upload(device, queue, R32Uint, 4, |j, k| d.sub_shadow2[j][k]);
+    let output = host_sraa::host::texture(
         device,
-        queue,
-        R32Float,
+        "output",
+        (W, H, 1),
         1,
-        &layered(1, |j, _| path(&d.shaded2[j])),
-    );
-    let sec_shaded_normal = upload(
-        device,
-        queue,
         Rgba32Float,
-        1,
-        &layered(1, |j, _| normal(&d.shaded2[j])),
+        wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
     );
-    let sec_sub_depth = upload(
-        device,
-        queue,
-        R32Float,
-        4,
-        &layered(4, |j, k| path(&d.sub2[j][k])),
-    );
-    let sec_sub_normal = upload(
-        device,
-        queue,
-        Rgba32Float,
-        4,
-        &layered(4, |j, k| normal(&d.sub2[j][k])),
-    );
-    let sec_shaded_shadow = upload(
-        device,
-        queue,
-        R32Uint,
-        1,
-        &layered(1, |j, _| d.shaded_shadow2[j]),
-    );
-    let sec_sub_shadow = upload(
-        device,
-        queue,
-        R32Uint,
-        4,
-        &layered(4, |j, k| d.sub_shadow2[j][k]),
-    );
-    let output = device.create_texture(&wgpu::TextureDescriptor {
-        label: None,
-        size: wgpu::Extent3d {
-            width: W,
-            height: H,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: Rgba32Float,
-        usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    });
     let pass = SraaResolve::new(
         device,
         &SraaResolveDesc {

@@ -635,19 +635,30 @@ fn subpixel_header(fb: &Bindings, plan: &SubpixelPlan) -> String {
     header
 }
 
+/// The program of SRAA and SRAA-RT ([`subpixel`]): the frame buffers and
+/// header of [`subpixel_bindings`], the subpixel entry points and the
+/// kernels' reconstruction loop.
+fn subpixel_program<'a>(
+    f: &Setup<'a>,
+    fb: &Bindings,
+    header: &str,
+) -> Result<Program<'a>, RenderError> {
+    program(
+        f.ctx,
+        &f.scene,
+        fb,
+        header,
+        &[SUBPIXEL_WGSL, SRAA_WGSL, RECONSTRUCT_WGSL],
+    )
+}
+
 /// SRAA (hybrid: raster subpixel geometry) and SRAA-RT (render.rs `subpixel`):
 /// passes "shading", "geometry" and "antialiasing".
 fn subpixel(f: &Setup) -> Result<Frame, RenderError> {
     let (ctx, s) = (f.ctx, f.job.settings);
     let n = s.width as usize * s.height as usize;
     let (fb, header, raster) = subpixel_bindings(f)?;
-    let mut prog = program(
-        ctx,
-        &f.scene,
-        &fb,
-        &header,
-        &[SUBPIXEL_WGSL, SRAA_WGSL, RECONSTRUCT_WGSL],
-    )?;
+    let mut prog = subpixel_program(f, &fb, &header)?;
     let shade = prog.pipeline("shade_main")?;
     let geometry = match raster {
         None => Some(prog.pipeline("geometry_main")?),
@@ -750,13 +761,7 @@ pub(crate) fn subpixel_geometry_both(
         uniform,
     };
     let (fb, header, _) = subpixel_bindings(&f)?;
-    let mut prog = program(
-        ctx,
-        &f.scene,
-        &fb,
-        &header,
-        &[SUBPIXEL_WGSL, SRAA_WGSL, RECONSTRUCT_WGSL],
-    )?;
+    let mut prog = subpixel_program(&f, &fb, &header)?;
     let shade = prog.pipeline("shade_main")?;
     let geometry = prog.pipeline("geometry_main")?;
     let groups = workgroups(ctx, &s)?;
