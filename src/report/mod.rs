@@ -781,6 +781,36 @@ fn render(
     render_from(backend, scene, &scene.camera, method, settings)
 }
 
+/// Sub-samples per pixel side for the classes of a `w × h` image:
+/// [`classes::SUBSAMPLES`], fewer when that frame would be beyond
+/// [`subcone_scene::backend::MAX_PIXELS`].
+fn sub_sample_side(w: u32, h: u32) -> u32 {
+    (1..=classes::SUBSAMPLES)
+        .rev()
+        .find(|s| {
+            let mut t = RenderSettings::new(w * s, h * s);
+            t.aovs = true;
+            t.validate().is_ok()
+        })
+        .unwrap_or(1)
+}
+
+/// The edge classes of a `w × h` image of `scene` seen from `camera`, from
+/// the AOVs of a NoAA frame of `backend` (the cpu's: it records them all)
+/// at [`sub_sample_side`]× the size per side.
+fn classes_at(
+    backend: &dyn Backend,
+    scene: &Scene,
+    camera: &subcone_scene::Camera,
+    (w, h): (u32, u32),
+) -> Result<classes::ClassMasks> {
+    let side = sub_sample_side(w, h);
+    let mut settings = RenderSettings::new(w * side, h * side);
+    settings.aovs = true;
+    let (sub, _) = render_from(backend, scene, camera, &NOAA, &settings)?;
+    classes::classify(&sub, side)
+}
+
 /// [`render`] from `camera` instead of the scene's.
 fn render_from(
     backend: &dyn Backend,
@@ -932,29 +962,16 @@ impl Runner<'_> {
         Ok(frame)
     }
 
-    /// The edge classes of a scene at its quality size, from the AOVs of a
-    /// CPU NoAA frame at [`classes::SUBSAMPLES`]× the size per side (fewer
-    /// when that frame would be beyond [`subcone_scene::backend::MAX_PIXELS`]).
+    /// The edge classes of a scene at its quality size ([`classes_at`]).
     fn classes(&mut self, job: &SceneJob) -> Result<classes::ClassMasks> {
         let (w, h) = job.quality_size;
-        let side = (1..=classes::SUBSAMPLES)
-            .rev()
-            .find(|s| {
-                let mut t = RenderSettings::new(w * s, h * s);
-                t.aovs = true;
-                t.validate().is_ok()
-            })
-            .unwrap_or(1);
+        let side = sub_sample_side(w, h);
         self.progress.bar.set_message(format!(
             "{}: edge classes from {side}x{side} sub-samples per pixel",
             job.name
         ));
-        let mut settings = RenderSettings::new(w * side, h * side);
-        settings.aovs = true;
         let cpu = setup::backend("cpu")?;
-        let noaa = NOAA;
-        let (sub, _) = render(cpu.as_ref(), &job.scene, &noaa, &settings)?;
-        classes::classify(&sub, side)
+        classes_at(cpu.as_ref(), &job.scene, &job.scene.camera, (w, h))
     }
 
     /// Reference, edge mask and the masks the crop heuristics need.

@@ -34,7 +34,7 @@ use super::classes::{self, ClassMasks, CLASSES};
 use super::metrics::{self, Rgb8};
 use super::named::{CTSS, NOAA, SRAA_RT, SSAA4};
 use super::plot::{method_colour, save_chart, Chart, FAMILY, PLOT_SIZE};
-use super::{file_safe, render_from, Runner, SceneJob};
+use super::{classes_at, file_safe, render_from, Runner, SceneJob};
 use crate::setup;
 use subcone_scene::{Backend, Camera, Frame, Method, RenderSettings};
 
@@ -332,14 +332,6 @@ impl Runner<'_> {
         aov.aovs = true;
         let (first, _) = render_from(cpu, &job.scene, &job.scene.camera, &NOAA, &aov)?;
         let path = camera_path(&job.scene.camera, frames, (w, h), subject_distance(&first))?;
-        let side = (1..=classes::SUBSAMPLES)
-            .rev()
-            .find(|s| {
-                let mut t = RenderSettings::new(w * s, h * s);
-                t.aovs = true;
-                t.validate().is_ok()
-            })
-            .unwrap_or(1);
         let plain = RenderSettings::new(w, h);
         let mut references = Vec::new();
         let mut masks = Vec::new();
@@ -358,10 +350,7 @@ impl Runner<'_> {
                 .set_message(format!("{}: motion frame {}/{frames}", job.name, t + 1));
             let (r, _) = render_from(cpu, &job.scene, cam, &MOTION_REFERENCE, &plain)?;
             references.push(Rgb8::from_frame(&r)?);
-            let mut sub = RenderSettings::new(w * side, h * side);
-            sub.aovs = true;
-            let (s, _) = render_from(cpu, &job.scene, cam, &NOAA, &sub)?;
-            masks.push(classes::classify(&s, side)?);
+            masks.push(classes_at(cpu, &job.scene, cam, (w, h))?);
             for f in &mut followed {
                 let (img, wall) = render_from(cpu, &job.scene, cam, &f.method, &plain)?;
                 f.images.push(Rgb8::from_frame(&img)?);
