@@ -475,6 +475,40 @@ pub const AWKWARD_WEIGHT_PARAMS: [SraaParams; 4] = [
     ),
 ];
 
+/// The normals of the ambient-occlusion grids (here and in the conformance
+/// suite): the signed axes, signed and unsigned zero, NaN, ∞, huge and tiny
+/// vectors, and one unit vector off the axes.
+pub fn ao_grid_normals() -> [Vec3; 13] {
+    [
+        Vec3::X,
+        -Vec3::X,
+        Vec3::Y,
+        -Vec3::Y,
+        Vec3::Z,
+        -Vec3::Z,
+        Vec3::new(0.0, 0.0, -0.0),
+        Vec3::ZERO,
+        Vec3::NAN,
+        Vec3::new(f32::INFINITY, 0.0, 1.0),
+        Vec3::splat(f32::MAX),
+        Vec3::splat(1e-30),
+        Vec3::new(0.6, 0.0, -0.8),
+    ]
+}
+
+/// The (index, count) pairs of the ambient-occlusion grids: a zero count,
+/// the first index of one and the last of 4, 64 and 256, indices beyond
+/// their count (`u32::MAX` among them).
+pub const AO_GRID_INDICES: [(u32, u32); 7] = [
+    (0, 0),
+    (0, 1),
+    (3, 4),
+    (63, 64),
+    (255, 256),
+    (9, 4),
+    (u32::MAX, 16),
+];
+
 /// Generated cases per kernel, before its fixed grids.
 const GENERATED: usize = 1024;
 
@@ -1198,32 +1232,8 @@ pub const KERNELS: &[KernelVectors] = &[
                         .0
                 })
                 .collect();
-            let axes = [
-                Vec3::X,
-                -Vec3::X,
-                Vec3::Y,
-                -Vec3::Y,
-                Vec3::Z,
-                -Vec3::Z,
-                Vec3::new(0.0, 0.0, -0.0),
-                Vec3::ZERO,
-                Vec3::NAN,
-                Vec3::new(f32::INFINITY, 0.0, 1.0),
-                Vec3::splat(f32::MAX),
-                Vec3::splat(1e-30),
-                Vec3::new(0.6, 0.0, -0.8),
-            ];
-            let pairs = [
-                (0, 0),
-                (0, 1),
-                (3, 4),
-                (63, 64),
-                (255, 256),
-                (9, 4),
-                (u32::MAX, 16),
-            ];
-            for n in axes {
-                for (i, c) in pairs {
+            for n in ao_grid_normals() {
+                for (i, c) in AO_GRID_INDICES {
                     v.push(W::default().v(&n.to_array()).u(i).u(c).0);
                 }
             }

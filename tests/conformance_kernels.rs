@@ -38,7 +38,7 @@ use subcone::vectors::tolerance::{
     TOL_OCCLUSION, TOL_PROJECT_NORMAL, TOL_RECONSTRUCT, TOL_RESOLVE, TOL_SAMPLE_WEIGHT,
     TOL_SDF_FIELD, TOL_STEPPER, TOL_TRANSPARENCY_WEIGHT, TOL_WEIGHT, TRANSPARENCY_NEAR,
 };
-use subcone::vectors::{AWKWARD_DEPTHS, AWKWARD_WEIGHT_PARAMS};
+use subcone::vectors::{ao_grid_normals, AO_GRID_INDICES, AWKWARD_DEPTHS, AWKWARD_WEIGHT_PARAMS};
 use subcone_kernels::aggregate::{sample_weight, Aggregate, Weighting};
 use subcone_kernels::ao::{ao_direction, ao_fraction};
 use subcone_kernels::cone::{
@@ -1672,31 +1672,8 @@ fn generated_sdf_wgsl_evaluates_the_same_field() {
 /// [`TOL_AO_FRACTION`]. Every output must be finite on both sides.
 fn check_ao(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
     let mut cases: Vec<(Vec3, u32, u32)> = generate((unit_vec(), 0u32..300, 0u32..300), 9);
-    let axes = [
-        Vec3::X,
-        -Vec3::X,
-        Vec3::Y,
-        -Vec3::Y,
-        Vec3::Z,
-        -Vec3::Z,
-        Vec3::new(0.0, 0.0, -0.0),
-        Vec3::ZERO,
-        Vec3::NAN,
-        Vec3::new(f32::INFINITY, 0.0, 1.0),
-        Vec3::splat(f32::MAX),
-        Vec3::splat(1e-30),
-        Vec3::new(0.6, 0.0, -0.8),
-    ];
-    for n in axes {
-        for (i, count) in [
-            (0, 0),
-            (0, 1),
-            (3, 4),
-            (63, 64),
-            (255, 256),
-            (9, 4),
-            (u32::MAX, 16),
-        ] {
+    for n in ao_grid_normals() {
+        for (i, count) in AO_GRID_INDICES {
             cases.push((n, i, count));
         }
     }
