@@ -444,6 +444,71 @@ pub const SPECIALS: [f32; 18] = [
     f32::NAN,
 ];
 
+/// The depths of the weight grids (here and in the conformance suite): equal,
+/// close and double, 0, a subnormal, near `f32::MAX`, ∞, NaN and a miss-like
+/// 1e6.
+pub const AWKWARD_DEPTHS: [f32; 9] = [
+    1.0,
+    1.05,
+    2.0,
+    0.0,
+    1e-40,
+    3e38,
+    f32::INFINITY,
+    f32::NAN,
+    1e6,
+];
+
+/// The parameter sets of the weight grids: both weight forms, both depth
+/// metrics, and sigmas so large that every exponent is ~0.
+pub const AWKWARD_WEIGHT_PARAMS: [SraaParams; 4] = [
+    SraaParams::PAPER,
+    SraaParams::CHAJDAS,
+    SraaParams::PAPER.with_depth_metric(DepthMetric::Absolute),
+    SraaParams::new(
+        1e20,
+        1e20,
+        1.0,
+        WeightForm::Product,
+        DepthMetric::Relative,
+        1,
+    ),
+];
+
+/// The normals of the ambient-occlusion grids (here and in the conformance
+/// suite): the signed axes, signed and unsigned zero, NaN, ∞, huge and tiny
+/// vectors, and one unit vector off the axes.
+pub fn ao_grid_normals() -> [Vec3; 13] {
+    [
+        Vec3::X,
+        -Vec3::X,
+        Vec3::Y,
+        -Vec3::Y,
+        Vec3::Z,
+        -Vec3::Z,
+        Vec3::new(0.0, 0.0, -0.0),
+        Vec3::ZERO,
+        Vec3::NAN,
+        Vec3::new(f32::INFINITY, 0.0, 1.0),
+        Vec3::splat(f32::MAX),
+        Vec3::splat(1e-30),
+        Vec3::new(0.6, 0.0, -0.8),
+    ]
+}
+
+/// The (index, count) pairs of the ambient-occlusion grids: a zero count,
+/// the first index of one and the last of 4, 64 and 256, indices beyond
+/// their count (`u32::MAX` among them).
+pub const AO_GRID_INDICES: [(u32, u32); 7] = [
+    (0, 0),
+    (0, 1),
+    (3, 4),
+    (63, 64),
+    (255, 256),
+    (9, 4),
+    (u32::MAX, 16),
+];
+
 /// Generated cases per kernel, before its fixed grids.
 const GENERATED: usize = 1024;
 
@@ -561,7 +626,7 @@ fn geometry(rng: &mut Rng) -> Geometry {
 /// opposite) against depths (0, subnormal, 3e38, ∞, NaN, a miss-like 1e6),
 /// over four parameter sets (both forms, both metrics, huge sigmas).
 fn weight_grid() -> Vec<(SraaParams, Geometry, Geometry)> {
-    let (nan, inf) = (f32::NAN, f32::INFINITY);
+    let nan = f32::NAN;
     let normals = [
         (Vec3::Z, Vec3::Z),
         (Vec3::Z, Vec3::new(0.0, 0.6, 0.8)),
@@ -570,25 +635,11 @@ fn weight_grid() -> Vec<(SraaParams, Geometry, Geometry)> {
         (Vec3::new(nan, 0.0, 1.0), Vec3::Z),
         (Vec3::ZERO, Vec3::Z),
     ];
-    let depths = [1.0, 1.05, 2.0, 0.0, 1e-40, 3e38, inf, nan, 1e6];
-    let params = [
-        SraaParams::PAPER,
-        SraaParams::CHAJDAS,
-        SraaParams::PAPER.with_depth_metric(DepthMetric::Absolute),
-        SraaParams::new(
-            1e20,
-            1e20,
-            1.0,
-            WeightForm::Product,
-            DepthMetric::Relative,
-            1,
-        ),
-    ];
     let mut cases = Vec::new();
     for (na, nb) in normals {
-        for za in depths {
-            for zb in depths {
-                let p = params[cases.len() % params.len()];
+        for za in AWKWARD_DEPTHS {
+            for zb in AWKWARD_DEPTHS {
+                let p = AWKWARD_WEIGHT_PARAMS[cases.len() % AWKWARD_WEIGHT_PARAMS.len()];
                 cases.push((p, Geometry::new(na, za), Geometry::new(nb, zb)));
             }
         }
@@ -1181,32 +1232,8 @@ pub const KERNELS: &[KernelVectors] = &[
                         .0
                 })
                 .collect();
-            let axes = [
-                Vec3::X,
-                -Vec3::X,
-                Vec3::Y,
-                -Vec3::Y,
-                Vec3::Z,
-                -Vec3::Z,
-                Vec3::new(0.0, 0.0, -0.0),
-                Vec3::ZERO,
-                Vec3::NAN,
-                Vec3::new(f32::INFINITY, 0.0, 1.0),
-                Vec3::splat(f32::MAX),
-                Vec3::splat(1e-30),
-                Vec3::new(0.6, 0.0, -0.8),
-            ];
-            let pairs = [
-                (0, 0),
-                (0, 1),
-                (3, 4),
-                (63, 64),
-                (255, 256),
-                (9, 4),
-                (u32::MAX, 16),
-            ];
-            for n in axes {
-                for (i, c) in pairs {
+            for n in ao_grid_normals() {
+                for (i, c) in AO_GRID_INDICES {
                     v.push(W::default().v(&n.to_array()).u(i).u(c).0);
                 }
             }

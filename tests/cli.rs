@@ -1,19 +1,12 @@
 //! The command line, end to end: every method on the built-in scenes, and bad
 //! input answered with a clear error and a failure exit code, never a panic or a
 //! half-written file.
+mod binary;
+
 use std::path::Path;
 use std::process::Command;
 
-fn subcone(args: &[&str]) -> (bool, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_subcone"))
-        .args(args)
-        .output()
-        .expect("run subcone");
-    let text =
-        String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
-    assert!(!text.contains("panicked"), "subcone panicked: {text}");
-    (out.status.success(), text)
-}
+use binary::subcone;
 
 #[test]
 fn render_writes_png_and_exr_for_every_triangle_method() {

@@ -3,21 +3,18 @@
 //! byte for byte; the example scenes render with `ctss` and go through
 //! `report --quick` on both backends.
 
+mod binary;
+
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use subcone_cpu::CpuBackend;
 use subcone_scene::sdf::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
 use subcone_scene::{scene_from_arg, Backend, Frame, Method, RenderSettings, Scene};
 
+/// Runs `subcone args…`, which must succeed: its output.
 fn subcone(args: &[&str]) -> String {
-    let out = Command::new(env!("CARGO_BIN_EXE_subcone"))
-        .args(args)
-        .output()
-        .expect("run subcone");
-    let text =
-        String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "subcone {args:?}: {text}");
+    let (ok, text) = binary::subcone(args);
+    assert!(ok, "subcone {args:?}: {text}");
     text
 }
 
@@ -216,12 +213,8 @@ fn bad_scene_files_and_export_names_are_clear_errors() {
     .unwrap();
     let out = dir.path().join("x.png");
     let run = |args: &[&str]| {
-        let o = Command::new(env!("CARGO_BIN_EXE_subcone"))
-            .args(args)
-            .output()
-            .unwrap();
-        let text = String::from_utf8_lossy(&o.stderr).to_string();
-        assert!(!o.status.success() && !text.contains("panicked"), "{text}");
+        let (ok, text) = binary::subcone(args);
+        assert!(!ok, "{text}");
         text
     };
     let text = run(&[

@@ -529,12 +529,8 @@ fn check_program(node: &SdfNode, points: &[Vec3]) {
         for k in (0..LANES).filter(|k| active & (1 << k) != 0) {
             let want = node.eval_split(pts.get(k));
             let got = out.get(k);
-            // Bit for bit; a NaN's payload is not part of the contract.
-            let same = |a: f32, b: f32| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
             assert!(
-                same(want.safe, got.safe)
-                    && same(want.surface, got.surface)
-                    && want.material == got.material,
+                got.same_bits(&want),
                 "program at {}: {got:?}, tree: {want:?}",
                 pts.get(k)
             );
@@ -560,13 +556,7 @@ fn check_scene(root: SdfNode, input: &Input) {
         return;
     };
     let max = root.max_material() as usize;
-    let lights_ok = lights.iter().all(|l| match *l {
-        Light::Point {
-            position,
-            intensity,
-        } => position.is_finite() && intensity.is_finite(),
-        Light::Directional { .. } => unreachable!(),
-    });
+    let lights_ok = lights.iter().all(Light::is_finite);
     match SdfScene::new("fuzz", root, materials, lights, camera) {
         Ok(scene) => {
             assert!(

@@ -177,31 +177,26 @@ impl CtssParams {
     }
 
     /// CTSS-R (§4): terminate at the first hard hit (half cone occlusion).
-    pub const fn relaxed(mut self, on: bool) -> Self {
-        self.flags = if on {
-            self.flags | FLAG_RELAXED
-        } else {
-            self.flags & !FLAG_RELAXED
-        };
-        self
+    pub const fn relaxed(self, on: bool) -> Self {
+        self.with_flag(FLAG_RELAXED, on)
     }
 
     /// Subdivide hit groups at internal edges (§5.3, [`FLAG_SPLIT_GROUPS`]).
-    pub const fn with_split_groups(mut self, on: bool) -> Self {
-        self.flags = if on {
-            self.flags | FLAG_SPLIT_GROUPS
-        } else {
-            self.flags & !FLAG_SPLIT_GROUPS
-        };
-        self
+    pub const fn with_split_groups(self, on: bool) -> Self {
+        self.with_flag(FLAG_SPLIT_GROUPS, on)
     }
 
     /// The paper's hit groups and masks ([`FLAG_PAPER`]).
-    pub const fn paper(mut self, on: bool) -> Self {
+    pub const fn paper(self, on: bool) -> Self {
+        self.with_flag(FLAG_PAPER, on)
+    }
+
+    /// `flag` (one of the `FLAG_*` bits) set or cleared, the other bits kept.
+    const fn with_flag(mut self, flag: u32, on: bool) -> Self {
         self.flags = if on {
-            self.flags | FLAG_PAPER
+            self.flags | flag
         } else {
-            self.flags & !FLAG_PAPER
+            self.flags & !flag
         };
         self
     }
@@ -1516,6 +1511,21 @@ pub struct SplitRay {
     pub right: Vec3,
     /// Cross-section axis `y` of the mask.
     pub up: Vec3,
+}
+
+impl SplitRay {
+    /// The ray from `origin` along the unit `dir`, its cross-section axes
+    /// taken from the camera's `up_hint` by [`cross_section_frame`].
+    #[inline]
+    pub fn new(origin: Vec3, dir: Vec3, up_hint: Vec3) -> Self {
+        let (right, up) = cross_section_frame(dir, up_hint);
+        Self {
+            origin,
+            dir,
+            right,
+            up,
+        }
+    }
 }
 
 /// One sub-sample of a split group.

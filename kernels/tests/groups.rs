@@ -3,8 +3,8 @@
 use glam::Vec3;
 use subcone_kernels::cone::cone_radius;
 use subcone_kernels::ctss::{
-    cross_section_frame, group_normal_depths, trace_field, ConeField, ConeStepper, CtssParams,
-    Event, FieldSample, GroupSample, SplitRay, StopReason, NO_OBJECT,
+    group_normal_depths, trace_field, ConeField, ConeStepper, CtssParams, Event, FieldSample,
+    GroupSample, SplitRay, StopReason, NO_OBJECT,
 };
 use subcone_kernels::mask::FULL_MASK;
 
@@ -105,13 +105,7 @@ impl ConeField for BoxBeforeWall {
 }
 
 fn trace_box(params: &CtssParams, field: &mut BoxBeforeWall, dir: Vec3) -> Vec3 {
-    let (right, up) = cross_section_frame(dir, Vec3::Y);
-    let ray = SplitRay {
-        origin: Vec3::ZERO,
-        dir,
-        right,
-        up,
-    };
+    let ray = SplitRay::new(Vec3::ZERO, dir, Vec3::Y);
     // The box white, the wall red.
     trace_field(
         params,

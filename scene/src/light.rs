@@ -35,6 +35,21 @@ pub struct Incident {
 }
 
 impl Light {
+    /// Whether every number of the light is finite (a non-finite one would
+    /// put NaN or ∞ into every pixel it lights).
+    pub fn is_finite(&self) -> bool {
+        match *self {
+            Light::Point {
+                position,
+                intensity,
+            } => position.is_finite() && intensity.is_finite(),
+            Light::Directional {
+                direction,
+                irradiance,
+            } => direction.is_finite() && irradiance.is_finite(),
+        }
+    }
+
     /// The light arriving at `p`, or `None` when `p` is at the light.
     pub fn incident(&self, p: Vec3) -> Option<Incident> {
         match *self {

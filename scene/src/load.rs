@@ -772,26 +772,13 @@ fn scene_from_mesh(
         position: centre + offset,
         intensity: Vec3::splat(3.0 * offset.length_squared()),
     };
-    if !light_is_finite(&light) {
+    if !light.is_finite() {
         return Err(load_err(
             path,
             "the model is too large to light (bounds overflow f32)",
         ));
     }
     Scene::triangles(&scene_name(path), mesh, materials, vec![light], camera)
-}
-
-fn light_is_finite(l: &Light) -> bool {
-    match *l {
-        Light::Point {
-            position,
-            intensity,
-        } => position.is_finite() && intensity.is_finite(),
-        Light::Directional {
-            direction,
-            irradiance,
-        } => direction.is_finite() && irradiance.is_finite(),
-    }
 }
 
 /// Height above the lowest upward-facing point within which an upward-facing

@@ -1,20 +1,15 @@
 //! `ctss+edges` (CTSS §5.3, hit groups subdivided at internal edges) on the
 //! CPU backend: a box edge seen between two faces of one box, where plain
 //! CTSS gives each pixel one face's colour.
+mod common;
+
+use common::{front_camera, render, white};
 use glam::{Quat, Vec3};
-use subcone_cpu::CpuBackend;
 use subcone_scene::sdf::{SdfNode, SdfScene};
-use subcone_scene::{Backend, Camera, Frame, Light, Material, Method, RenderSettings, Scene};
+use subcone_scene::{Frame, Light, Scene};
 
 const W: u32 = 48;
 const H: u32 = 48;
-
-fn render(scene: &Scene, method: &str) -> Frame {
-    let m: Method = method.parse().unwrap();
-    CpuBackend::new()
-        .render(scene, &scene.camera, &m, &RenderSettings::new(W, H))
-        .unwrap()
-}
 
 /// A white cube turned 45° about the vertical, then tilted 0.15 rad about
 /// the view axis, seen from +z: its front is a nearly vertical edge through
@@ -26,22 +21,18 @@ fn turned_box() -> Scene {
         .unwrap()
         .rotate(Quat::from_rotation_z(0.15) * Quat::from_rotation_y(std::f32::consts::FRAC_PI_4))
         .unwrap();
-    let white = Material {
-        emission: Vec3::ZERO,
-        ..Material::diffuse("white", Vec3::ONE)
-    };
     let light = Light::Directional {
         direction: Vec3::new(1.0, 0.2, 0.4).normalize(),
         irradiance: Vec3::splat(std::f32::consts::PI),
     };
-    let cam = Camera::look_at(
-        Vec3::new(0.0, 0.0, 6.0),
-        Vec3::ZERO,
-        Vec3::Y,
-        30f32.to_radians(),
+    let mut s = SdfScene::new(
+        "turned-box",
+        root,
+        vec![white()],
+        vec![light],
+        front_camera(),
     )
     .unwrap();
-    let mut s = SdfScene::new("turned-box", root, vec![white], vec![light], cam).unwrap();
     s.ambient = Vec3::splat(0.1);
     s.background = Vec3::ZERO;
     Scene::sdf(s).unwrap()
@@ -74,9 +65,9 @@ fn internal_edge_error(a: &Frame, reference: &Frame, lo: f32, hi: f32) -> (f64, 
 #[test]
 fn ctss_edges_resolves_an_internal_box_edge() {
     let scene = turned_box();
-    let reference = render(&scene, "ssaa256");
-    let ctss = render(&scene, "ctss");
-    let edges = render(&scene, "ctss+edges");
+    let reference = render(&scene, "ssaa256", W, H);
+    let ctss = render(&scene, "ctss", W, H);
+    let edges = render(&scene, "ctss+edges", W, H);
     for f in [&ctss, &edges] {
         assert!(f
             .color
@@ -113,7 +104,10 @@ fn ctss_edges_resolves_an_internal_box_edge() {
 #[test]
 fn ctss_edges_leaves_flat_faces_alone() {
     let scene = turned_box();
-    let (a, b) = (render(&scene, "ctss"), render(&scene, "ctss+edges"));
+    let (a, b) = (
+        render(&scene, "ctss", W, H),
+        render(&scene, "ctss+edges", W, H),
+    );
     for (x, y) in [(W / 2 - 6, H / 2), (W / 2 + 5, H / 2)] {
         assert_eq!(a.pixel(x, y), b.pixel(x, y), "pixel ({x}, {y})");
     }

@@ -1,18 +1,13 @@
 //! Material-aware SRAA (SRAA §4.1, Fig. 6): on `checker`, whose colour edges
 //! are texture edges on one flat surface, the albedo gate brings the edge
 //! error of `sraa-rt` and `sraa` towards the supersampled reference.
-use subcone_cpu::CpuBackend;
-use subcone_scene::{builtin::builtin, Backend, Frame, Method, RenderSettings, Scene};
+mod common;
+
+use common::render;
+use subcone_scene::{builtin::builtin, Frame};
 
 const W: u32 = 96;
 const H: u32 = 64;
-
-fn render(scene: &Scene, method: &str) -> Frame {
-    let m: Method = method.parse().unwrap();
-    CpuBackend::new()
-        .render(scene, &scene.camera, &m, &RenderSettings::new(W, H))
-        .unwrap()
-}
 
 /// Display value of a linear colour channel, as the error is seen.
 fn display(c: f32) -> f32 {
@@ -43,8 +38,8 @@ fn error(frame: &Frame, reference: &Frame, mask: &[bool]) -> f64 {
 #[test]
 fn the_albedo_gate_lowers_the_edge_error_on_checker() {
     let scene = builtin("checker").unwrap();
-    let reference = render(&scene, "ssaa64");
-    let noaa = render(&scene, "noaa");
+    let reference = render(&scene, "ssaa64", W, H);
+    let noaa = render(&scene, "noaa", W, H);
     let mask: Vec<bool> = noaa
         .color
         .iter()
@@ -55,8 +50,8 @@ fn the_albedo_gate_lowers_the_edge_error_on_checker() {
     assert!(edges > 100, "only {edges} edge pixels");
     let e_noaa = error(&noaa, &reference, &mask);
     for (plain, gated) in [("sraa-rt", "sraa-rt+mat"), ("sraa", "sraa+mat")] {
-        let e_plain = error(&render(&scene, plain), &reference, &mask);
-        let e_gated = error(&render(&scene, gated), &reference, &mask);
+        let e_plain = error(&render(&scene, plain, W, H), &reference, &mask);
+        let e_gated = error(&render(&scene, gated, W, H), &reference, &mask);
         println!(
             "checker {edges} edge pixels: noaa {e_noaa:.4}, {plain} {e_plain:.4}, {gated} {e_gated:.4}"
         );

@@ -1,22 +1,20 @@
 //! The CPU backend on SDF scenes: CTSS edge profiles against supersampling,
 //! CTSS-R's termination, the stiff scenes, CTSS against NoAA on every paper
 //! scene, delayed shading against ASAP, and SRAA-RT on SDF scenes.
+mod common;
+
+use common::{front_camera, white};
 use glam::{Quat, Vec3};
-use subcone_cpu::CpuBackend;
 use subcone_kernels::ctss::{sphere_trace, CtssParams, StopReason};
 use subcone_kernels::passes::Passes;
 use subcone_scene::sdf::{SdfNode, SdfScene, SDF_SCENES, STIFF_SCENES};
-use subcone_scene::{
-    builtin::builtin, Backend, Camera, Frame, Material, Method, RenderSettings, Scene,
-};
+use subcone_scene::{builtin::builtin, Frame, Material, Method, RenderSettings, Scene};
 
+/// [`common::render`] with the AOVs, which [`edge_mask`] reads.
 fn render(scene: &Scene, method: &str, w: u32, h: u32) -> Frame {
-    let m: Method = method.parse().unwrap();
     let mut s = RenderSettings::new(w, h);
     s.aovs = true;
-    CpuBackend::new()
-        .render(scene, &scene.camera, &m, &s)
-        .unwrap()
+    common::render_with(scene, method, &s)
 }
 
 /// A flat white object (ambient 1, no lights) on black: the contrast is 1 and
@@ -28,19 +26,8 @@ fn silhouette(root: SdfNode) -> Scene {
 /// `root` with a white material 0 and `extra` materials after it, lit by an
 /// ambient light of 1 only, on a black background, seen from +z.
 fn lit_by_ambient(root: SdfNode, extra: Vec<Material>) -> Scene {
-    let white = Material {
-        emission: Vec3::ZERO,
-        ..Material::diffuse("white", Vec3::ONE)
-    };
-    let cam = Camera::look_at(
-        Vec3::new(0.0, 0.0, 6.0),
-        Vec3::ZERO,
-        Vec3::Y,
-        30f32.to_radians(),
-    )
-    .unwrap();
-    let materials = std::iter::once(white).chain(extra).collect();
-    let mut s = SdfScene::new("silhouette", root, materials, vec![], cam).unwrap();
+    let materials = std::iter::once(white()).chain(extra).collect();
+    let mut s = SdfScene::new("silhouette", root, materials, vec![], front_camera()).unwrap();
     s.ambient = Vec3::ONE;
     s.background = Vec3::ZERO;
     Scene::sdf(s).unwrap()
@@ -225,6 +212,33 @@ fn masked_error(a: &Frame, r: &Frame, mask: &[bool]) -> f64 {
     sum / n.max(1) as f64
 }
 
+/// How NoAA and another method do on the edges of a scene.
+struct EdgeErrors {
+    /// NoAA's mean |Δ| sRGB against ssaa16 over the edge pixels.
+    noaa: f64,
+    /// The other method's.
+    method: f64,
+    /// How many edge pixels there are.
+    edges: usize,
+    /// The other method's frame.
+    frame: Frame,
+}
+
+/// NoAA and `method` on `scene` at `w × h`, each against ssaa16 over the
+/// depth/normal edges of NoAA's image ([`edge_mask`]).
+fn edge_errors(scene: &Scene, method: &str, w: u32, h: u32) -> EdgeErrors {
+    let reference = render(scene, "ssaa16", w, h);
+    let noaa = render(scene, "noaa", w, h);
+    let mask = edge_mask(&noaa);
+    let frame = render(scene, method, w, h);
+    EdgeErrors {
+        noaa: masked_error(&noaa, &reference, &mask),
+        method: masked_error(&frame, &reference, &mask),
+        edges: mask.iter().filter(|&&m| m).count(),
+        frame,
+    }
+}
+
 /// CTSS has a lower edge error than NoAA on every paper scene (against ssaa16
 /// at 240×135, over the reference's depth/normal edges). Smaller sizes, where
 /// the atrium's banners (3 cm thick) are thinner than a pixel's cone and the
@@ -235,11 +249,12 @@ fn ctss_beats_noaa_on_edges_of_every_paper_scene() {
     for name in SDF_SCENES {
         let scene = builtin(name).unwrap();
         let (w, h) = (240, 135);
-        let reference = render(&scene, "ssaa16", w, h);
-        let mask = edge_mask(&render(&scene, "noaa", w, h));
-        let noaa = masked_error(&render(&scene, "noaa", w, h), &reference, &mask);
-        let ctss = masked_error(&render(&scene, "ctss", w, h), &reference, &mask);
-        let edges = mask.iter().filter(|&&m| m).count();
+        let EdgeErrors {
+            noaa,
+            method: ctss,
+            edges,
+            ..
+        } = edge_errors(&scene, "ctss", w, h);
         println!("[{name:<12} {w}x{h}, {edges} edge pixels] mean |Δ| sRGB vs ssaa16: noaa {noaa:.4}, ctss {ctss:.4}");
         assert!(ctss < noaa, "{name}: CTSS {ctss} is not below NoAA {noaa}");
     }
@@ -288,12 +303,12 @@ fn sraa_rt_beats_noaa_on_edges_of_every_sdf_scene() {
     for name in SDF_SCENES {
         let scene = builtin(name).unwrap();
         let (w, h) = (160, 90);
-        let reference = render(&scene, "ssaa16", w, h);
-        let noaa_frame = render(&scene, "noaa", w, h);
-        let mask = edge_mask(&noaa_frame);
-        let noaa = masked_error(&noaa_frame, &reference, &mask);
-        let f = render(&scene, "sraa-rt", w, h);
-        let sraa = masked_error(&f, &reference, &mask);
+        let EdgeErrors {
+            noaa,
+            method: sraa,
+            frame: f,
+            ..
+        } = edge_errors(&scene, "sraa-rt", w, h);
         println!("[{name:<12} {w}x{h}] mean |Δ| sRGB on edges vs ssaa16: noaa {noaa:.4}, sraa-rt {sraa:.4}");
         assert!(
             sraa < noaa,

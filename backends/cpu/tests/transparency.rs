@@ -1,6 +1,9 @@
 //! Semi-transparent SDF materials (CTSS §5.3) on the `glass` scene: CTSS with
 //! the `K` masks against SSAA16 with alpha blending, and a half-opaque pane
 //! that shows both what it is and what lies behind it.
+mod common;
+
+use common::render;
 use subcone_cpu::CpuBackend;
 use subcone_scene::{builtin::builtin, Backend, Frame, Method, RenderSettings, Scene};
 
@@ -8,13 +11,6 @@ const W: u32 = 64;
 const H: u32 = 36;
 /// The pane's material in the `glass` scene.
 const PANE: usize = 4;
-
-fn render(scene: &Scene, method: &str) -> Frame {
-    let m: Method = method.parse().unwrap();
-    CpuBackend::new()
-        .render(scene, &scene.camera, &m, &RenderSettings::new(W, H))
-        .unwrap()
-}
 
 fn mean_abs_error(a: &Frame, b: &Frame) -> f64 {
     let sum: f64 = a
@@ -39,9 +35,9 @@ fn with_pane_alpha(scene: &Scene, alpha: f32) -> Scene {
 fn ctss_on_glass_is_close_to_ssaa16() {
     let scene = builtin("glass").unwrap();
     assert!(scene.has_translucency());
-    let reference = render(&scene, "ssaa16");
-    let ctss = render(&scene, "ctss");
-    let noaa = render(&scene, "noaa");
+    let reference = render(&scene, "ssaa16", W, H);
+    let ctss = render(&scene, "ctss", W, H);
+    let noaa = render(&scene, "noaa", W, H);
     let (e_ctss, e_noaa) = (
         mean_abs_error(&ctss, &reference),
         mean_abs_error(&noaa, &reference),
@@ -78,9 +74,9 @@ fn half_opaque_pane_shows_front_and_back() {
         ("ssaa4+ctss", 0.4, 0.6),
         ("noaa", 0.4, 0.6),
     ] {
-        let front = render(&with_pane_alpha(&scene, 1.0), method);
-        let back = render(&with_pane_alpha(&scene, 0.0), method);
-        let img = render(&scene, method);
+        let front = render(&with_pane_alpha(&scene, 1.0), method, W, H);
+        let back = render(&with_pane_alpha(&scene, 0.0), method, W, H);
+        let img = render(&scene, method, W, H);
         let differs = |x: i32, y: i32| {
             let i = (y * w + x) as usize;
             (front.color[i] - back.color[i]).abs().max_element() >= 0.1
@@ -120,18 +116,18 @@ fn half_opaque_pane_shows_front_and_back() {
 #[test]
 fn out_of_range_alpha_is_clamped() {
     let scene = builtin("glass").unwrap();
-    let opaque = render(&with_pane_alpha(&scene, 1.0), "ctss");
-    let none = render(&with_pane_alpha(&scene, 0.0), "ctss");
+    let opaque = render(&with_pane_alpha(&scene, 1.0), "ctss", W, H);
+    let none = render(&with_pane_alpha(&scene, 0.0), "ctss", W, H);
     assert_eq!(
-        render(&with_pane_alpha(&scene, f32::NAN), "ctss").color,
+        render(&with_pane_alpha(&scene, f32::NAN), "ctss", W, H).color,
         opaque.color
     );
     assert_eq!(
-        render(&with_pane_alpha(&scene, 7.0), "ctss").color,
+        render(&with_pane_alpha(&scene, 7.0), "ctss", W, H).color,
         opaque.color
     );
     assert_eq!(
-        render(&with_pane_alpha(&scene, -1.0), "ctss").color,
+        render(&with_pane_alpha(&scene, -1.0), "ctss", W, H).color,
         none.color
     );
 }

@@ -12,7 +12,7 @@ use subcone_kernels::cone::{
     advance, backtrace_cone_entry, backtrace_hard_hit, cone_occlusion, cone_radius, cone_tan_theta,
     PixelFootprint,
 };
-use subcone_kernels::ctss::{cross_section_frame, trace_field, CtssParams, FieldSample, SplitRay};
+use subcone_kernels::ctss::{trace_field, CtssParams, FieldSample, SplitRay};
 use subcone_kernels::mask::{project_normal, visibility_mask, MaskPlacement};
 use subcone_kernels::sraa::{
     albedo_difference, bilateral_weight, reconstruction_weight, resolve_pixel, shadow_gated_weight,
@@ -135,13 +135,7 @@ fn the_c_smoke_test_matches_the_kernels_and_gets_every_error_code() {
 
     // The CTSS trace of smoke.c: a unit sphere at z = 5, the ray along its edge.
     let dir = Vec3::new(0.204_124_1, 0.0, 1.0).normalize();
-    let (right, up) = cross_section_frame(dir, Vec3::Y);
-    let ray = SplitRay {
-        origin: Vec3::ZERO,
-        dir,
-        right,
-        up,
-    };
+    let ray = SplitRay::new(Vec3::ZERO, dir, Vec3::Y);
     struct Sphere;
     impl subcone_kernels::ctss::ConeField for Sphere {
         fn sample(&mut self, p: Vec3) -> FieldSample {

@@ -6,7 +6,7 @@
 //!
 //! ```
 //! use glam::Vec3;
-//! use subcone_kernels::ctss::{cross_section_frame, trace_field, CtssParams, FieldSample, ConeField, SplitRay};
+//! use subcone_kernels::ctss::{trace_field, CtssParams, FieldSample, ConeField, SplitRay};
 //!
 //! /// A unit sphere 5 units down +z, object 7.
 //! struct Sphere;
@@ -17,8 +17,7 @@
 //!     }
 //! }
 //! let dir = Vec3::new(0.2, 0.0, 1.0).normalize();
-//! let (right, up) = cross_section_frame(dir, Vec3::Y);
-//! let ray = SplitRay { origin: Vec3::ZERO, dir, right, up };
+//! let ray = SplitRay::new(Vec3::ZERO, dir, Vec3::Y);
 //! let r = trace_field(&CtssParams::new(0.02), &ray, &mut Sphere, |_, _, _| Vec3::ONE, Vec3::ZERO);
 //! // The pixel is partly sphere (white), partly background (black).
 //! assert!(r.color.x > 0.0 && r.color.x < 1.0, "{:?}", r);

@@ -254,17 +254,10 @@ impl SdfScene {
             });
         }
         for l in &self.lights {
-            let ok = match *l {
-                Light::Point {
-                    position,
-                    intensity,
-                } => position.is_finite() && intensity.is_finite(),
-                Light::Directional {
-                    direction,
-                    irradiance,
-                } => direction.is_finite() && direction != Vec3::ZERO && irradiance.is_finite(),
-            };
-            if !ok {
+            // A directional light needs a direction as well.
+            let pointless =
+                matches!(*l, Light::Directional { direction, .. } if direction == Vec3::ZERO);
+            if !l.is_finite() || pointless {
                 return Err(bad(format!("light {l:?} is not finite")));
             }
         }

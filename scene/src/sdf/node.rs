@@ -30,6 +30,18 @@ pub struct SplitDistance {
     pub material: u32,
 }
 
+impl SplitDistance {
+    /// The same evaluation bit for bit (what the compiled program promises
+    /// of the tree), any NaN matching any NaN: a NaN's payload is not part
+    /// of the result, constant folding may choose another one.
+    pub fn same_bits(&self, other: &SplitDistance) -> bool {
+        let same = |a: f32, b: f32| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
+        same(self.safe, other.safe)
+            && same(self.surface, other.surface)
+            && self.material == other.material
+    }
+}
+
 /// A node of an SDF tree, and the tree below it.
 ///
 /// Nodes are built by the constructors below, which validate their parameters
