@@ -22,7 +22,7 @@ use plotters::prelude::*;
 use super::classes::{Class, ClassError};
 use super::metrics::{self, Rgb8};
 use super::named::{NOAA, SRAA_RT, SSAA4};
-use super::plot::{method_colour, save_chart, Chart, FAMILY, PLOT_SIZE};
+use super::plot::{legend, method_line, save_chart, Chart, FAMILY, PLOT_SIZE};
 use super::timing::Timings;
 use super::{file_safe, render, Failure, Runner, SceneJob};
 use subcone_scene::{Method, RenderSettings};
@@ -318,24 +318,14 @@ where
         if pts.is_empty() {
             continue;
         }
-        let c = method_colour(&m);
-        chart
-            .draw_series(LineSeries::new(pts.clone(), c.stroke_width(3)))
-            .map_err(pe)?
-            .label(m.as_str())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(3)));
-        chart
-            .draw_series(pts.iter().map(|&p| Circle::new(p, 5, c.filled())))
-            .map_err(pe)?;
+        method_line(&mut chart, &m, &pts, 5)?;
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.4))
-        .label_font((FAMILY, size - 4))
-        .draw()
-        .map_err(pe)?;
+    legend(
+        &mut chart,
+        SeriesLabelPosition::UpperLeft,
+        size - 4,
+        "AO sweep plot",
+    )?;
     root.present().map_err(pe)?;
     Ok(())
 }

@@ -33,7 +33,7 @@ use plotters::prelude::*;
 use super::classes::{self, ClassMasks, CLASSES};
 use super::metrics::{self, Rgb8};
 use super::named::{CTSS, NOAA, SRAA_RT, SSAA4};
-use super::plot::{method_colour, save_chart, Chart, FAMILY, PLOT_SIZE};
+use super::plot::{legend, method_line, save_chart, Chart, FAMILY, PLOT_SIZE};
 use super::{classes_at, file_safe, render_from, Runner, SceneJob};
 use crate::setup;
 use subcone_scene::{Backend, Camera, Frame, Method, RenderSettings};
@@ -561,32 +561,20 @@ impl Chart for FlipPerFrame<'_> {
             .draw()
             .map_err(pe)?;
         for r in &self.rows {
-            let c = method_colour(&r.method);
             let pts: Vec<(f64, f64)> = r
                 .flip
                 .iter()
                 .enumerate()
                 .map(|(t, &v)| (t as f64, v))
                 .collect();
-            chart
-                .draw_series(LineSeries::new(pts.clone(), c.stroke_width(3)))
-                .map_err(pe)?
-                .label(r.method.as_str())
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(3))
-                });
-            chart
-                .draw_series(pts.iter().map(|&p| Circle::new(p, 4, c.filled())))
-                .map_err(pe)?;
+            method_line(&mut chart, &r.method, &pts, 4)?;
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK.mix(0.4))
-            .label_font((FAMILY, size - 4))
-            .draw()
-            .map_err(pe)?;
+        legend(
+            &mut chart,
+            SeriesLabelPosition::UpperRight,
+            size - 4,
+            "motion plot",
+        )?;
         root.present().map_err(pe)?;
         Ok(())
     }

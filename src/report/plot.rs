@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 use anyhow::{anyhow, Context, Result};
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::{register_font, FontStyle};
@@ -44,6 +45,33 @@ fn pe<E: std::fmt::Debug>(what: &str) -> impl FnOnce(E) -> anyhow::Error + '_ {
 
 /// Plot size in pixels.
 pub const PLOT_SIZE: (u32, u32) = (960, 640);
+
+/// A line chart over two `f64` axes, as the report's line plots build it.
+pub type LineChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// One method's line through `pts` in its colour ([`method_colour`]), a dot
+/// of radius `dot` at each point, and its legend entry.
+pub fn method_line<DB: DrawingBackend>(
+    chart: &mut LineChart<'_, DB>,
+    method: &str,
+    pts: &[(f64, f64)],
+    dot: u32,
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let pe = |e: DrawingAreaErrorKind<DB::ErrorType>| anyhow!("plot of {method}: {e:?}");
+    let c = method_colour(method);
+    chart
+        .draw_series(LineSeries::new(pts.to_vec(), c.stroke_width(3)))
+        .map_err(pe)?
+        .label(method)
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(3)));
+    chart
+        .draw_series(pts.iter().map(|&p| Circle::new(p, dot, c.filled())))
+        .map_err(pe)?;
+    Ok(())
+}
 
 /// A fixed colour per method, so every plot agrees: the registry's
 /// ([`subcone_scene::registry::plot_colour`]) for the default comparison,
@@ -334,8 +362,9 @@ where
     Ok(())
 }
 
-/// The legend of a bar chart, in the plots' one style.
-fn legend<'a, DB: DrawingBackend + 'a, CT: plotters::coord::CoordTranslate>(
+/// The legend of a chart, in the plots' one style (`e` names the plot in
+/// errors).
+pub fn legend<'a, DB: DrawingBackend + 'a, CT: plotters::coord::CoordTranslate>(
     chart: &mut ChartContext<'a, DB, CT>,
     position: SeriesLabelPosition,
     font_size: i32,
