@@ -554,7 +554,15 @@ impl Chart for FlipPerFrame<'_> {
             .configure_mesh()
             .x_desc("frame")
             .y_desc("mean FLIP against the frame's reference")
-            .x_label_formatter(&|v| format!("{:.0}", v + 1.0))
+            .x_labels(frames.min(16))
+            // Frames are whole numbers: no label between two of them.
+            .x_label_formatter(&|v| {
+                if v.fract().abs() < 1e-6 {
+                    format!("{:.0}", v + 1.0)
+                } else {
+                    String::new()
+                }
+            })
             .y_label_formatter(&|v| format!("{v:.3}"))
             .label_style((FAMILY, size - 4))
             .axis_desc_style((FAMILY, size - 2))
