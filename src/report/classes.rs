@@ -38,6 +38,17 @@ pub const CREASE_COS: f32 = 0.9;
 /// a texture step counts and texture noise of a few codes does not.
 pub const TEXTURE_ALBEDO: f32 = 0.05;
 
+/// A class mean as the verdict lines print it: 4 decimals, or 3 significant
+/// digits below 0.001, so that two small errors a verdict tells apart do
+/// not both read 0.0000.
+pub fn figure(v: f64) -> String {
+    if v != 0.0 && v.abs() < 1e-3 {
+        format!("{v:.2e}")
+    } else {
+        format!("{v:.4}")
+    }
+}
+
 /// An edge class: the registry's ([`subcone_scene::EdgeClass`]), which
 /// also says which classes each method claims.
 pub use subcone_scene::registry::EdgeClass as Class;
@@ -400,7 +411,7 @@ impl Verdict {
     pub fn line(&self, backend: &str) -> String {
         let list = |v: &[(Class, f64, f64)]| {
             v.iter()
-                .map(|(c, a, n)| format!("{c} ({a:.4} vs {n:.4})"))
+                .map(|(c, a, n)| format!("{c} ({} vs {})", figure(*a), figure(*n)))
                 .collect::<Vec<_>>()
                 .join(", ")
         };
@@ -419,8 +430,10 @@ impl Verdict {
             parts.push(format!("no pixels of {}", a.join(", ")));
         }
         parts.push(match self.flat {
-            Some((a, n)) if self.holds_on_flat() => format!("flat: holds ({a:.4} vs {n:.4})"),
-            Some((a, n)) => format!("flat: loses ({a:.4} vs {n:.4})"),
+            Some((a, n)) if self.holds_on_flat() => {
+                format!("flat: holds ({} vs {})", figure(a), figure(n))
+            }
+            Some((a, n)) => format!("flat: loses ({} vs {})", figure(a), figure(n)),
             None => "flat: no pixels".to_string(),
         });
         format!(
@@ -526,6 +539,14 @@ mod tests {
         // A texture claim without texture pixels is absent.
         let v = Verdict::judge("sraa+mat", &it, &noaa);
         assert_eq!(v.absent, vec![Class::Texture]);
+    }
+
+    #[test]
+    fn small_figures_keep_three_significant_digits() {
+        assert_eq!(figure(0.12345), "0.1235");
+        assert_eq!(figure(0.0), "0.0000");
+        assert_eq!(figure(2.5e-5), "2.50e-5");
+        assert_eq!(figure(0.001), "0.0010");
     }
 
     #[test]

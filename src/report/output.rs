@@ -919,7 +919,7 @@ fn disagreement(flip: &Verdict, ssim: &Verdict) -> Option<String> {
             .iter()
             .chain(&v.misses)
             .find(|b| b.0 == c)
-            .map(|(_, a, n)| format!("{a:.4} vs {n:.4}"))
+            .map(|(_, a, n)| format!("{} vs {}", classes::figure(*a), classes::figure(*n)))
             .unwrap_or_default()
     };
     let mut parts = Vec::new();
@@ -941,9 +941,13 @@ fn disagreement(flip: &Verdict, ssim: &Verdict) -> Option<String> {
         if flip.holds_on_flat() != ssim.holds_on_flat() {
             let word = |v: &Verdict| if v.holds_on_flat() { "holds" } else { "loses" };
             parts.push(format!(
-                "flat {} under FLIP ({fa:.4} vs {fna:.4}) and {} under SSIM ({sa:.4} vs {sna:.4})",
+                "flat {} under FLIP ({} vs {}) and {} under SSIM ({} vs {})",
                 word(flip),
-                word(ssim)
+                classes::figure(fa),
+                classes::figure(fna),
+                word(ssim),
+                classes::figure(sa),
+                classes::figure(sna)
             ));
         }
     }
