@@ -83,11 +83,15 @@ impl RenderReport {
             out += &format!("cpu path: {isa}\n");
         }
         out += &format!("passes: {:?}\n", s.passes);
+        for source in s.timing_sources() {
+            out += &format!("timed by: {source}\n");
+        }
         for t in &s.timings {
             out += &format!(
-                "  pass {:<14} {:>9.2} ms\n",
+                "  pass {:<14} {:>9.2} ms  [{}]\n",
                 t.name,
-                t.time.as_secs_f64() * 1e3
+                t.time.as_secs_f64() * 1e3,
+                t.source.tag()
             );
         }
         let r = s.rays;

@@ -9,13 +9,70 @@ use subcone_kernels::passes::Passes;
 
 use crate::error::RenderError;
 
-/// Wall time of one pass.
+/// Where the time of a pass comes from. A figure is only comparable with
+/// figures of the same source: GPU timestamps measure the GPU's work alone,
+/// a wall clock also counts submission, driver and waiting.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum TimingSource {
+    /// The CPU backend: the wall clock around the pass, on this CPU.
+    Cpu,
+    /// GPU timestamp queries written before and after the pass, converted
+    /// with the queue's timestamp period.
+    GpuTimestamps,
+    /// A GPU pass timed by the CPU's wall clock from submission to
+    /// completion, because its timestamps are not used; `why` says why
+    /// (e.g. a software adapter, whose timestamps are not trusted).
+    GpuWallClock {
+        /// Why the GPU's timestamps were not used.
+        why: &'static str,
+    },
+}
+
+impl TimingSource {
+    /// A short tag for tables and CSV: `cpu`, `gpu-timestamps` or
+    /// `gpu-wall-clock`.
+    pub fn tag(&self) -> &'static str {
+        match self {
+            TimingSource::Cpu => "cpu",
+            TimingSource::GpuTimestamps => "gpu-timestamps",
+            TimingSource::GpuWallClock { .. } => "gpu-wall-clock",
+        }
+    }
+}
+
+impl std::fmt::Display for TimingSource {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            TimingSource::Cpu => f.write_str("CPU wall clock"),
+            TimingSource::GpuTimestamps => f.write_str("GPU timestamps"),
+            TimingSource::GpuWallClock { why } => {
+                write!(f, "wall clock from submission to completion ({why})")
+            }
+        }
+    }
+}
+
+/// The time of one pass and where it comes from.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PassTiming {
     /// Pass name, e.g. `"geometry"` (SRAA-RT's pass 1) or `"antialiasing"` (pass 2).
     pub name: &'static str,
-    /// Wall time.
+    /// The pass's time.
     pub time: Duration,
+    /// How `time` was measured.
+    pub source: TimingSource,
+}
+
+impl PassTiming {
+    /// A pass of the CPU backend, timed by the wall clock.
+    pub fn cpu(name: &'static str, time: Duration) -> Self {
+        PassTiming {
+            name,
+            time,
+            source: TimingSource::Cpu,
+        }
+    }
 }
 
 /// Rays cast, by kind.
@@ -46,7 +103,7 @@ impl RayCounts {
 pub struct FrameStats {
     /// The passes run (from `subcone_kernels::passes::required_passes`).
     pub passes: Passes,
-    /// Wall time per pass, in the order run.
+    /// Time per pass, in the order run, each with its source.
     pub timings: Vec<PassTiming>,
     /// Bytes of each buffer allocated for the frame, by name.
     pub buffers: Vec<(&'static str, usize)>,
@@ -66,9 +123,21 @@ impl FrameStats {
         self.buffers.iter().map(|b| b.1).sum()
     }
 
-    /// Total wall time of all passes.
+    /// Total time of all passes.
     pub fn total_time(&self) -> Duration {
         self.timings.iter().map(|t| t.time).sum()
+    }
+
+    /// The distinct sources of the pass times, in the order first seen (a
+    /// frame whose passes mix sources says so).
+    pub fn timing_sources(&self) -> Vec<TimingSource> {
+        let mut out: Vec<TimingSource> = Vec::new();
+        for t in &self.timings {
+            if !out.contains(&t.source) {
+                out.push(t.source);
+            }
+        }
+        out
     }
 }
 

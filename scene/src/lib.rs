@@ -32,7 +32,7 @@ pub mod sdf;
 pub use backend::{Backend, RenderSettings, Unsupported, UnsupportedReason};
 pub use camera::Camera;
 pub use error::{RenderError, SceneError};
-pub use frame::{Frame, FrameStats, PassTiming, RayCounts};
+pub use frame::{Frame, FrameStats, PassTiming, RayCounts, TimingSource};
 pub use light::Light;
 pub use load::{
     data_dir, load_mesh_bytes, load_mesh_file, load_scene, load_scene_bytes, scene_from_arg, sponza,

@@ -200,6 +200,10 @@ pub struct ResultRow {
     /// NoAA's frame, where, and what its time covers
     /// ([`PostProcess::describe`](post::PostProcess::describe)).
     pub post_process: Option<String>,
+    /// How the row's passes were timed (distinct sources, in the order
+    /// first seen): the CPU's wall clock, GPU timestamps, or the wall clock
+    /// around GPU work whose timestamps are not used.
+    pub timed_by: Vec<subcone_scene::TimingSource>,
 }
 
 impl ResultRow {
@@ -242,6 +246,7 @@ impl ResultRow {
             pass_ms: t.pass_medians(),
             round_ms: Vec::new(),
             post_process: None,
+            timed_by: t.sources.clone(),
         }
     }
 
@@ -1068,8 +1073,13 @@ fn post_measured(
     };
     step.apply(&input)?;
     let mut ms: Vec<f64> = Vec::new();
+    let mut timed_by = noaa.row.timed_by.clone();
     for _ in 0..plan.runs.max(1) {
-        ms.push(step.apply(&input)?.1.as_secs_f64() * 1e3);
+        let (_, timing) = step.apply(&input)?;
+        ms.push(timing.time.as_secs_f64() * 1e3);
+        if !timed_by.contains(&timing.source) {
+            timed_by.push(timing.source);
+        }
     }
     ms.sort_by(f64::total_cmp);
     let median = ms[ms.len() / 2];
@@ -1083,6 +1093,7 @@ fn post_measured(
         ms_max: base.ms_max + ms[ms.len() - 1],
         pass_ms,
         post_process: Some(step.describe()),
+        timed_by,
         ..ResultRow::timed(
             &base.scene,
             name,

@@ -27,7 +27,7 @@ use super::{crops, file_safe, kernel_timing, load, timing, Mode, ReportSummary, 
 use subcone_scene::Method;
 
 /// The columns every results file has, in order.
-pub const BASE_COLUMNS: [&str; 41] = [
+pub const BASE_COLUMNS: [&str; 42] = [
     "scene",
     "method",
     "backend",
@@ -69,6 +69,7 @@ pub const BASE_COLUMNS: [&str; 41] = [
     "dssim_reflection",
     "dssim_flat",
     "post_process",
+    "timed_by",
 ];
 
 pub use super::papers::{CTSS_TABLE1, SRAA_SPEEDUP_OVER_SSAA16, SRAA_TABLE1};
@@ -215,10 +216,44 @@ fn row_cells(r: &ResultRow, passes: &[String]) -> Vec<Cell> {
             .map(Cell::Text)
             .unwrap_or(Cell::Empty),
     );
+    c.push(Cell::Text(timed_by_tags(r)));
     for p in passes {
         c.push(opt(r.pass(p.trim_start_matches("ms_"))));
     }
     c
+}
+
+/// The row's timing sources as tags joined by `+` (`cpu`, `gpu-timestamps`,
+/// `gpu-wall-clock`): the `timed_by` column.
+fn timed_by_tags(r: &ResultRow) -> String {
+    r.timed_by
+        .iter()
+        .map(|s| s.tag())
+        .collect::<Vec<_>>()
+        .join("+")
+}
+
+/// One line per distinct backend and timing source of `rows`: how their
+/// times were measured, so a GPU time is never read as a CPU one.
+fn timed_by_lines(md: &mut String, rows: &[&ResultRow]) {
+    let mut seen: Vec<(String, subcone_scene::TimingSource)> = Vec::new();
+    for r in rows {
+        let who = if r.post_process.is_some() {
+            format!("{} ({})", r.method, r.backend)
+        } else {
+            r.backend.clone()
+        };
+        for s in &r.timed_by {
+            if !seen.iter().any(|(w, t)| *w == who && t == s) {
+                seen.push((who.clone(), *s));
+            }
+        }
+    }
+    if seen.is_empty() {
+        return;
+    }
+    let parts: Vec<String> = seen.iter().map(|(w, s)| format!("{w}: {s}")).collect();
+    let _ = writeln!(md, "Timed by: {}.\n", parts.join("; "));
 }
 
 fn csv_field(s: &str) -> String {
@@ -479,6 +514,7 @@ fn scene_section(md: &mut String, s: &ReportSummary, sc: &SceneInfo) {
             );
         }
         let _ = writeln!(md);
+        timed_by_lines(md, &rows);
         for r in rows.iter().filter(|r| r.post_process.is_some()) {
             let _ = writeln!(
                 md,
@@ -1589,6 +1625,7 @@ mod tests {
             pass_ms: passes.iter().map(|(n, v)| (n.to_string(), *v)).collect(),
             round_ms: Vec::new(),
             post_process: None,
+            timed_by: vec![subcone_scene::TimingSource::Cpu],
         }
     }
 
@@ -1621,7 +1658,7 @@ mod tests {
         let mut lines = text.lines();
         let header = lines.next().unwrap();
         assert!(header.starts_with("scene,method,backend,width,height,runs,ms_median"));
-        assert!(header.ends_with(",dssim_flat,post_process,ms_geometry,ms_shading"));
+        assert!(header.ends_with(",dssim_flat,post_process,timed_by,ms_geometry,ms_shading"));
         assert!(header.contains(",ms_max,ratio_to_noaa,ratio_min,ratio_max,flip_mean,"));
         let first = lines.next().unwrap();
         // No ratios, no SSIM, no classes (18 empty columns), no post-process

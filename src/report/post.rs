@@ -56,7 +56,7 @@ use std::time::{Duration, Instant};
 
 use anyhow::{anyhow, bail, Context, Result};
 use glam::Vec3;
-use subcone_scene::Frame;
+use subcone_scene::{Frame, PassTiming};
 
 use super::metrics::Rgb8;
 
@@ -83,8 +83,9 @@ pub trait PostProcess: Send + Sync {
     fn needs_aovs(&self) -> bool {
         false
     }
-    /// The filtered image, of the input's size, and the time the step took.
-    fn apply(&self, input: &PostInput<'_>) -> Result<(Rgb8, Duration)>;
+    /// The filtered image, of the input's size, and the time the step took
+    /// with how it was measured (a pass named `post-process`).
+    fn apply(&self, input: &PostInput<'_>) -> Result<(Rgb8, PassTiming)>;
 }
 
 impl PostProcess for super::smaa::SmaaPost {
@@ -100,10 +101,13 @@ impl PostProcess for super::smaa::SmaaPost {
         )
     }
 
-    fn apply(&self, input: &PostInput<'_>) -> Result<(Rgb8, Duration)> {
+    fn apply(&self, input: &PostInput<'_>) -> Result<(Rgb8, PassTiming)> {
         super::smaa::SmaaPost::apply(self, input.image)
     }
 }
+
+/// The name of a post-process step's pass in its [`PassTiming`].
+pub const POST_PASS: &str = "post-process";
 
 /// How long one run of a command may take before it is killed, unless
 /// `--post-timeout` says otherwise.
@@ -247,11 +251,12 @@ impl PostProcess for CommandPost {
         true
     }
 
-    fn apply(&self, input: &PostInput<'_>) -> Result<(Rgb8, Duration)> {
+    fn apply(&self, input: &PostInput<'_>) -> Result<(Rgb8, PassTiming)> {
         let files = InputFiles::write(self, input)?;
         let result = self.run(&files);
         let _ = std::fs::remove_dir_all(&files.dir);
-        result
+        // An outside program: the wall clock from process start to exit.
+        result.map(|(image, wall)| (image, PassTiming::cpu(POST_PASS, wall)))
     }
 }
 

@@ -40,9 +40,11 @@ use std::time::{Duration, Instant};
 
 use anyhow::{anyhow, bail, Context, Result};
 use smaa::{SmaaMode, SmaaTarget};
+use subcone_scene::{PassTiming, TimingSource};
 use subcone_wgpu::GpuContext;
 
 use crate::report::metrics::Rgb8;
+use crate::report::post::POST_PASS;
 
 /// The format of every texture of the post-process; see the module doc.
 const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
@@ -74,6 +76,10 @@ pub struct SmaaPost {
     blit_layout: wgpu::BindGroupLayout,
     blit: wgpu::RenderPipeline,
     state: Mutex<Option<State>>,
+    /// Two timestamps around the blit and SMAA's passes, and the buffer
+    /// they resolve to, where the device's timestamps are trusted
+    /// ([`GpuContext::timing_source`]).
+    timestamps: Option<(wgpu::QuerySet, wgpu::Buffer)>,
 }
 
 impl std::fmt::Debug for SmaaPost {
@@ -187,11 +193,26 @@ impl SmaaPost {
                 (layout, pipeline)
             })
             .map_err(|e| anyhow!("{e}"))?;
+        let timestamps = ctx.timestamps.then(|| {
+            let set = device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("smaa timestamps"),
+                ty: wgpu::QueryType::Timestamp,
+                count: 2,
+            });
+            let resolve = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("smaa timestamp resolve"),
+                size: 16,
+                usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            });
+            (set, resolve)
+        });
         Ok(SmaaPost {
             ctx,
             blit_layout,
             blit,
             state: Mutex::new(None),
+            timestamps,
         })
     }
 
@@ -203,9 +224,12 @@ impl SmaaPost {
         self.ctx.describe()
     }
 
-    /// SMAA 1x of `image`. Returns the result and the wall time of one frame:
-    /// RGBA packing, upload, blit, SMAA's three passes, copy and read-back to
-    /// an [`Rgb8`]. The one-off setup for a new size (targets, and on the
+    /// SMAA 1x of `image`. Returns the result and the time of one frame. On
+    /// a device with trusted timestamps ([`GpuContext::timing_source`]) it is
+    /// the GPU's time from before the blit to after SMAA's three passes,
+    /// from timestamps written between the submissions; elsewhere (software
+    /// adapters) the wall time of RGBA packing, upload, blit, SMAA's three
+    /// passes, copy and read-back to an [`Rgb8`]. The one-off setup for a new size (targets, and on the
     /// first call the compilation of SMAA's shaders) is not counted, as a
     /// renderer pays it once, not per frame. The first frame can still be
     /// slower (lavapipe: 71 ms against 45 ms at 512×512, its pipelines being
@@ -214,7 +238,7 @@ impl SmaaPost {
     /// Fails, without touching the GPU, on an empty image or one whose bytes
     /// do not match its size; fails on a size beyond the device's texture or
     /// buffer limits, and on any GPU error.
-    pub fn apply(&self, image: &Rgb8) -> Result<(Rgb8, Duration)> {
+    pub fn apply(&self, image: &Rgb8) -> Result<(Rgb8, PassTiming)> {
         check_input(image)?;
         let (w, h) = (image.width, image.height);
         let ctx = &self.ctx;
@@ -266,6 +290,9 @@ impl SmaaPost {
                 let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
                     label: Some("smaa blit"),
                 });
+                if let Some((set, _)) = &self.timestamps {
+                    encoder.write_timestamp(set, 0);
+                }
                 {
                     let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                         label: Some("smaa blit"),
@@ -300,6 +327,10 @@ impl SmaaPost {
                 let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
                     label: Some("smaa read-back"),
                 });
+                if let Some((set, resolve)) = &self.timestamps {
+                    encoder.write_timestamp(set, 1);
+                    encoder.resolve_query_set(set, 0..2, resolve, 0);
+                }
                 encoder.copy_texture_to_buffer(
                     wgpu::TexelCopyTextureInfo {
                         texture: &state.output,
@@ -343,14 +374,49 @@ impl SmaaPost {
             }
         }
         readback.unmap();
-        let time = start.elapsed();
+        let wall = start.elapsed();
+        let timing = match &self.timestamps {
+            Some((_, resolve)) => {
+                let bytes = ctx
+                    .read_buffer(resolve, 0, 16)
+                    .map_err(|e| anyhow!("{e}"))?;
+                let stamp = |i: usize| {
+                    bytes
+                        .get(8 * i..8 * i + 8)
+                        .and_then(|b| b.try_into().ok())
+                        .map_or(0, u64::from_le_bytes)
+                };
+                let ns = stamp(1).saturating_sub(stamp(0)) as f64
+                    * ctx.queue.get_timestamp_period() as f64;
+                if ns > 0.0 {
+                    PassTiming {
+                        name: POST_PASS,
+                        time: Duration::from_nanos(ns as u64),
+                        source: TimingSource::GpuTimestamps,
+                    }
+                } else {
+                    PassTiming {
+                        name: POST_PASS,
+                        time: wall,
+                        source: TimingSource::GpuWallClock {
+                            why: "the pass's timestamps read zero",
+                        },
+                    }
+                }
+            }
+            None => PassTiming {
+                name: POST_PASS,
+                time: wall,
+                source: ctx.timing_source(),
+            },
+        };
         Ok((
             Rgb8 {
                 width: w,
                 height: h,
                 data,
             },
-            time,
+            timing,
         ))
     }
 
@@ -469,10 +535,12 @@ mod tests {
         assert!(max_diff(&out, &flat) <= 1, "flat image changed");
 
         let ramp = image(37, 23, |x, y| [(x * 2) as u8, (y * 2 + 60) as u8, 100]);
-        let (out, time) = post.apply(&ramp).unwrap();
+        let (out, timing) = post.apply(&ramp).unwrap();
         let d = max_diff(&out, &ramp);
         assert!(d <= 1, "gradient changed by up to {d} codes");
-        assert!(time > Duration::ZERO);
+        assert!(timing.time > Duration::ZERO);
+        // The source is the device's: timestamps only where they are trusted.
+        assert_eq!(timing.source, post.ctx.timing_source());
     }
 
     /// A black/white staircase (the boundary `y = 20 + x/4`: steps of four

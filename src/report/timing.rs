@@ -12,7 +12,7 @@
 
 use std::time::Duration;
 
-use subcone_scene::Frame;
+use subcone_scene::{Frame, TimingSource};
 
 /// A method whose timed render is predicted (its quality render's time,
 /// scaled by pixels) to take less than this also gets a warm-up render at
@@ -132,12 +132,20 @@ pub struct Timings {
     /// in each run that had it, in ms. Passes of the same name in one frame
     /// are added up.
     pub passes: Vec<(String, Vec<f64>)>,
+    /// How the passes were timed: the distinct sources, in the order first
+    /// seen.
+    pub sources: Vec<TimingSource>,
 }
 
 impl Timings {
     /// Record one run.
     pub fn push(&mut self, wall: Duration, frame: &Frame) {
         self.wall_ms.push(wall.as_secs_f64() * 1e3);
+        for source in frame.stats.timing_sources() {
+            if !self.sources.contains(&source) {
+                self.sources.push(source);
+            }
+        }
         let mut this: Vec<(String, f64)> = Vec::new();
         for t in &frame.stats.timings {
             let name = column_safe(t.name);
@@ -281,14 +289,8 @@ mod tests {
         for ms in [1u64, 3, 2] {
             let mut f = Frame::new(1, 1);
             f.stats.timings = vec![
-                PassTiming {
-                    name: "shading",
-                    time: Duration::from_millis(ms),
-                },
-                PassTiming {
-                    name: "shading",
-                    time: Duration::from_millis(1),
-                },
+                PassTiming::cpu("shading", Duration::from_millis(ms)),
+                PassTiming::cpu("shading", Duration::from_millis(1)),
             ];
             t.push(Duration::from_millis(10 * ms), &f);
         }

@@ -37,10 +37,10 @@ pub fn fxaa(frame: &mut Frame, params: &FxaaParams) {
                 *out = fxaa_decode(fxaa_pixel(&fetch, x as i32, y as i32, params));
             }
         });
-    frame.stats.timings.push(PassTiming {
-        name: "post-process",
-        time: start.elapsed(),
-    });
+    frame
+        .stats
+        .timings
+        .push(PassTiming::cpu("post-process", start.elapsed()));
     frame.stats.buffers.push((
         "post-process input",
         std::mem::size_of_val(encoded.as_slice()),

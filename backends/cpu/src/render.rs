@@ -65,10 +65,7 @@ pub fn supersample(t: &Tracer, method: &Method, s: &RenderSettings, passes: Pass
         .reduce(Counts::default, |a, b| a + b);
     frame.stats = FrameStats {
         passes,
-        timings: vec![PassTiming {
-            name: "shading",
-            time: start.elapsed(),
-        }],
+        timings: vec![PassTiming::cpu("shading", start.elapsed())],
         buffers: vec![("color", frame.color.len() * std::mem::size_of::<Vec3>())],
         rays: to_ray_counts(counts),
         shaded_samples: counts.shaded,
@@ -361,17 +358,11 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
 
     let start = Instant::now();
     let shaded_counts = shading_pass(t, &plan, &cam, &mut b);
-    timings.push(PassTiming {
-        name: "shading",
-        time: start.elapsed(),
-    });
+    timings.push(PassTiming::cpu("shading", start.elapsed()));
 
     let start = Instant::now();
     let geo_counts = geometry_pass(t, &plan, &cam, &mut b);
-    timings.push(PassTiming {
-        name: "geometry",
-        time: start.elapsed(),
-    });
+    timings.push(PassTiming::cpu("geometry", start.elapsed()));
 
     // Pass 2 of the paper: reconstruction and resolve.
     let start = Instant::now();
@@ -386,10 +377,7 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
         w,
         h,
     );
-    timings.push(PassTiming {
-        name: "antialiasing",
-        time: start.elapsed(),
-    });
+    timings.push(PassTiming::cpu("antialiasing", start.elapsed()));
 
     let counts = shaded_counts + geo_counts;
     let buffers = b.list(&frame.color);

@@ -495,17 +495,11 @@ impl<F: SdfField> SdfView<'_, F> {
 
         let start = Instant::now();
         let shaded = self.sraa_shading_pass(method, s, &params, (shadows, split, nl), &mut b);
-        timings.push(PassTiming {
-            name: "shading",
-            time: start.elapsed(),
-        });
+        timings.push(PassTiming::cpu("shading", start.elapsed()));
 
         let start = Instant::now();
         let geometry = self.sraa_geometry_pass(method, s, &params, &layout, &mut b);
-        timings.push(PassTiming {
-            name: "geometry",
-            time: start.elapsed(),
-        });
+        timings.push(PassTiming::cpu("geometry", start.elapsed()));
 
         // Pass 2 of the paper: reconstruction and resolve.
         let start = Instant::now();
@@ -519,10 +513,7 @@ impl<F: SdfField> SdfView<'_, F> {
             w,
             h,
         );
-        timings.push(PassTiming {
-            name: "antialiasing",
-            time: start.elapsed(),
-        });
+        timings.push(PassTiming::cpu("antialiasing", start.elapsed()));
 
         let tally = shaded + geometry;
         frame.stats = FrameStats {
@@ -889,10 +880,7 @@ impl<F: SdfField> SdfView<'_, F> {
         };
         frame.stats = FrameStats {
             passes,
-            timings: vec![PassTiming {
-                name,
-                time: start.elapsed(),
-            }],
+            timings: vec![PassTiming::cpu(name, start.elapsed())],
             buffers: vec![("color", std::mem::size_of_val(frame.color.as_slice()))],
             rays: RayCounts {
                 primary: (w * h) as u64 * (side * side) as u64,

@@ -1,4 +1,5 @@
-//! Print the adapter subcone's wgpu backend opens, and the limits it got.
+//! Print the adapter subcone's wgpu backend opens, the limits it got and how
+//! its passes are timed (`scripts/gpu-check` writes the same as JSON).
 //!
 //! `WGPU_BACKEND=vulkan cargo run -p subcone-wgpu --example adapter`
 fn main() {
@@ -6,7 +7,7 @@ fn main() {
         Ok(ctx) => {
             let l = ctx.device.limits();
             println!("{}", ctx.describe());
-            println!("GPU timestamps: {}", ctx.timestamps);
+            println!("passes timed by: {}", ctx.timing_source());
             println!(
                 "largest 2D texture {}, storage binding {} bytes, buffer {} bytes, {} storage buffers per stage",
                 l.max_texture_dimension_2d,

@@ -13,7 +13,7 @@ use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
-use subcone_scene::{PassTiming, RenderError};
+use subcone_scene::{PassTiming, RenderError, TimingSource};
 
 /// Longest a single pass may run before the render is abandoned. Lavapipe
 /// renders a 1280×720 SSAA16 frame in seconds; a minute means a hang.
@@ -25,6 +25,28 @@ const BACKEND: &str = "wgpu";
 pub const NO_ADAPTER: &str = "no GPU adapter found. Install a Vulkan driver \
     (on Debian or Ubuntu: `apt-get install libvulkan1 mesa-vulkan-drivers` for the \
     software driver, lavapipe) or select another API with WGPU_BACKEND=vulkan|metal|dx12";
+
+/// Whether a device's GPU timestamps time its passes, and why not when they
+/// do not. Both timestamp features are needed (the backend writes
+/// timestamps between passes in an encoder). A software adapter (lavapipe,
+/// WARP, SwiftShader) runs the shaders on this CPU: the wall time from
+/// submission to completion is what the pass costs, and lavapipe's emulated
+/// timestamps were seen to report 20–80 µs for multi-millisecond compute
+/// passes once a render pass had run in the process. Timestamps are used on
+/// hardware adapters only.
+pub fn timestamp_trust(info: &wgpu::AdapterInfo, features: wgpu::Features) -> (bool, &'static str) {
+    let want = wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS;
+    if info.device_type == wgpu::DeviceType::Cpu {
+        (false, "software adapter: its timestamps are not trusted")
+    } else if !features.contains(want) {
+        (
+            false,
+            "the device lacks TIMESTAMP_QUERY and TIMESTAMP_QUERY_INSIDE_ENCODERS",
+        )
+    } else {
+        (true, "")
+    }
+}
 
 pub(crate) fn err(reason: impl Into<String>) -> RenderError {
     RenderError::Backend {
@@ -42,8 +64,10 @@ pub struct GpuContext {
     /// The adapter's name, driver and API.
     pub info: wgpu::AdapterInfo,
     /// Passes are timed by GPU timestamps (else on the CPU, from submission
-    /// to completion).
+    /// to completion: see [`GpuContext::timing_source`]).
     pub timestamps: bool,
+    /// Why timestamps are not used, when they are not.
+    no_timestamps: &'static str,
     lost: Arc<Mutex<Option<String>>>,
     /// Objects built for this device and reused across frames (compiled
     /// pipelines), by a key of the pass's choosing.
@@ -84,13 +108,9 @@ impl GpuContext {
         let want =
             wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS;
         let features = adapter.features() & want;
-        // A software adapter (lavapipe, WARP, SwiftShader) runs the shaders on
-        // this CPU: the wall time from submission to completion is what the
-        // pass costs, and lavapipe's emulated timestamps were seen to report
-        // 20–80 µs for multi-millisecond compute passes once a render pass had
-        // run in the process. Timestamps are used on hardware adapters only.
-        let software = info.device_type == wgpu::DeviceType::Cpu;
-        let timestamps = features.contains(want) && !software;
+        // Requested wherever the adapter has them (a host of the same device
+        // may use them); used only where `timestamp_trust` says so.
+        let (timestamps, no_timestamps) = timestamp_trust(&info, features);
         // The defaults (e.g. 128 MiB storage bindings, 8 storage buffers per
         // stage) are too small for fat G-buffers and large BVHs: ask for all
         // the adapter has.
@@ -127,6 +147,7 @@ impl GpuContext {
             queue,
             info,
             timestamps,
+            no_timestamps,
             lost,
             cache: Mutex::new(HashMap::new()),
         })
@@ -140,7 +161,9 @@ impl GpuContext {
     /// passes are still caught by the error scopes around each pass
     /// ([`GpuContext::scoped`]); device loss shows up as the failure of the
     /// next pass or wait, not through [`GpuContext::check_lost`]. Passes are
-    /// timed on the CPU (no timestamp queries are assumed).
+    /// timed by GPU timestamps when the host opened the device with
+    /// `TIMESTAMP_QUERY` and `TIMESTAMP_QUERY_INSIDE_ENCODERS` on a hardware
+    /// adapter, else by the wall clock ([`GpuContext::timing_source`]).
     ///
     /// The renderers need more than wgpu's default limits (the triangle
     /// passes bind more than 8 storage buffers per stage): open the device
@@ -149,11 +172,13 @@ impl GpuContext {
     /// with a [`RenderError`] naming the limit.
     pub fn from_device(device: wgpu::Device, queue: wgpu::Queue) -> Self {
         let info = device.adapter_info();
+        let (timestamps, no_timestamps) = timestamp_trust(&info, device.features());
         GpuContext {
             device,
             queue,
             info,
-            timestamps: false,
+            timestamps,
+            no_timestamps,
             lost: Arc::new(Mutex::new(None)),
             cache: Mutex::new(HashMap::new()),
         }
@@ -287,6 +312,19 @@ impl GpuContext {
         self.check_lost()
     }
 
+    /// How this context times its passes: [`TimingSource::GpuTimestamps`]
+    /// where the device has trusted timestamps, else
+    /// [`TimingSource::GpuWallClock`] saying why not.
+    pub fn timing_source(&self) -> TimingSource {
+        if self.timestamps {
+            TimingSource::GpuTimestamps
+        } else {
+            TimingSource::GpuWallClock {
+                why: self.no_timestamps,
+            }
+        }
+    }
+
     /// Record one pass with `record`, submit it, wait for it and time it: on
     /// the GPU with timestamps where the adapter has them, else on the CPU
     /// from submission to completion. The timing is pushed onto `timings`.
@@ -328,7 +366,7 @@ impl GpuContext {
         })?;
         self.wait(name)?;
         let wall = start.elapsed();
-        let time = match resolve {
+        let (time, source) = match resolve {
             Some(buf) => {
                 let bytes = self.read_buffer(buf, 0, 16)?;
                 let t: &[u64] = bytemuck::cast_slice(&bytes);
@@ -336,14 +374,19 @@ impl GpuContext {
                     t[1].saturating_sub(t[0]) as f64 * self.queue.get_timestamp_period() as f64;
                 // Some drivers report zeros; the wall time is then the honest figure.
                 if ns > 0.0 {
-                    Duration::from_nanos(ns as u64)
+                    (Duration::from_nanos(ns as u64), TimingSource::GpuTimestamps)
                 } else {
-                    wall
+                    (
+                        wall,
+                        TimingSource::GpuWallClock {
+                            why: "the pass's timestamps read zero",
+                        },
+                    )
                 }
             }
-            None => wall,
+            None => (wall, self.timing_source()),
         };
-        timings.push(PassTiming { name, time });
+        timings.push(PassTiming { name, time, source });
         Ok(())
     }
 
