@@ -259,6 +259,26 @@ fn summary(a: Args) -> Result<()> {
             "\nTimed by: {} (per pass, in `timing/results.csv`; the full report is `timing/report.md`).\n",
             timed_by.join(", ")
         );
+        let skipped: Vec<String> = timing
+            .as_ref()
+            .and_then(|t| t["skipped"].as_array().cloned())
+            .unwrap_or_default()
+            .iter()
+            .map(|k| {
+                format!(
+                    "{} on {}: {}",
+                    k["method"].as_str().unwrap_or("?"),
+                    k["scene"].as_str().unwrap_or("?"),
+                    k["reason"].as_str().unwrap_or("?")
+                )
+            })
+            .collect();
+        if !skipped.is_empty() {
+            md += "\nNot timed (the report's *Skipped*):\n\n";
+            for k in skipped {
+                md += &format!("- {k}\n");
+            }
+        }
     }
     let summary = json!({
         "size": a.size,
@@ -275,6 +295,7 @@ fn summary(a: Args) -> Result<()> {
             "width": r["width"], "height": r["height"], "ms_median": r["ms_median"],
             "ratio_to_noaa": r["ratio_to_noaa"], "timed_by": r["timed_by"],
         })).collect::<Vec<_>>(),
+        "skipped": timing.as_ref().map_or(Value::Null, |t| t["skipped"].clone()),
     });
     std::fs::write(a.out.join("summary.md"), md)?;
     std::fs::write(

@@ -96,8 +96,13 @@ impl PostProcess for super::smaa::SmaaPost {
     fn describe(&self) -> String {
         format!(
             "SMAA 1x (the `smaa` crate, quality High) on {}; its time is NoAA's plus the \
-             post-process (upload, SMAA, read-back)",
-            self.adapter()
+             post-process ({})",
+            self.adapter(),
+            if self.timed_by_timestamps() {
+                "blit and SMAA's three passes, by GPU timestamps"
+            } else {
+                "upload, SMAA, read-back, by the wall clock"
+            }
         )
     }
 

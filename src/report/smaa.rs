@@ -224,6 +224,12 @@ impl SmaaPost {
         self.ctx.describe()
     }
 
+    /// Whether [`SmaaPost::apply`] times the post-process by GPU timestamps
+    /// (the device's are trusted) rather than by the wall clock.
+    pub fn timed_by_timestamps(&self) -> bool {
+        self.timestamps.is_some()
+    }
+
     /// SMAA 1x of `image`. Returns the result and the time of one frame. On
     /// a device with trusted timestamps ([`GpuContext::timing_source`]) it is
     /// the GPU's time from before the blit to after SMAA's three passes,
