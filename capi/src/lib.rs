@@ -615,9 +615,12 @@ pub unsafe extern "C" fn subcone_cone_radius(
     guard(|| unsafe { write(out, cone_radius(t, tan_theta)) })
 }
 
-/// CTSS eq. 5: the cone occlusion `ω` of a surface at distance `d` from the
-/// axis for a cone of radius `rc`, in `[0, 1]` (clamped; NaN input gives the
-/// documented clamp of the Rust `cone_occlusion`).
+/// CTSS eq. 5: the cone occlusion `ω = (1 − d/rc)/2` of a surface at
+/// distance `d` from the axis for a cone of radius `rc`, clamped to
+/// `[−1, 2]` (below 0 the cone misses, above 1 the whole cross-section is
+/// inside); never NaN or infinite: a NaN `d` gives −1, and outside the
+/// domain (`d` finite, `rc > 0` finite) the limits of the Rust
+/// `cone_occlusion`.
 ///
 /// # Safety
 /// `out` is null or writable.

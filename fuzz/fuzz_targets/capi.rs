@@ -1016,7 +1016,7 @@ fn call(c: Call) {
                 subcone_cone_occlusion(d.0, rc.0, o)
             });
             if let Some(w) = w {
-                assert!((0.0..=1.0).contains(&w), "{what}: {w}");
+                assert!((-1.0..=2.0).contains(&w), "{what}: {w}");
             }
         }
         Call::Advance {
