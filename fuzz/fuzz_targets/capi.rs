@@ -779,7 +779,7 @@ extern "C" fn host_shade(
     let host = unsafe { &mut *user.cast::<Host>() };
     host.shaded += 1;
     let length = ((dir.x as f64).powi(2) + (dir.y as f64).powi(2) + (dir.z as f64).powi(2)).sqrt();
-    if host.bad_dir.is_none() && !((length - 1.0).abs() < 1e-5) {
+    if host.bad_dir.is_none() && ((length - 1.0).abs() >= 1e-5 || length.is_nan()) {
         host.bad_dir = Some(dir);
     }
     match host.colors.len() {
