@@ -86,6 +86,17 @@ impl<'a> Arbitrary<'a> for Size {
     }
 }
 
+/// `true` for one input in eight: pointers a call needs are null that
+/// often, so most calls get past the null checks to the work behind them.
+#[derive(Clone, Copy, Debug)]
+struct Rarely(bool);
+
+impl<'a> Arbitrary<'a> for Rarely {
+    fn arbitrary(u: &mut Unstructured<'a>) -> arbitrary::Result<Self> {
+        Ok(Rarely(u.ratio(1u8, 8u8)?))
+    }
+}
+
 fn v3(a: [F; 3]) -> SubconeVec3 {
     SubconeVec3 {
         x: a[0].0,
@@ -252,8 +263,9 @@ impl CtssParams {
     }
 }
 
-/// The length passed with a buffer, relative to the one the sizes require.
-#[derive(Arbitrary, Clone, Copy, Debug)]
+/// The length passed with a buffer, relative to the one the sizes require
+/// (that one half the time).
+#[derive(Clone, Copy, Debug)]
 enum Len {
     Needed,
     NeededMinus(u8),
@@ -261,6 +273,19 @@ enum Len {
     Zero,
     Small(u8),
     Huge(usize),
+}
+
+impl<'a> Arbitrary<'a> for Len {
+    fn arbitrary(u: &mut Unstructured<'a>) -> arbitrary::Result<Self> {
+        Ok(match u.int_in_range(0u8..=9)? {
+            0 => Len::NeededMinus(u.arbitrary()?),
+            1 => Len::NeededPlus(u.arbitrary()?),
+            2 => Len::Zero,
+            3 => Len::Small(u.arbitrary()?),
+            4 => Len::Huge(u.arbitrary()?),
+            _ => Len::Needed,
+        })
+    }
 }
 
 impl Len {
@@ -283,7 +308,7 @@ impl Len {
 #[derive(Arbitrary, Clone, Debug)]
 struct Buf<T> {
     len: Len,
-    null: bool,
+    null: Rarely,
     values: Vec<T>,
 }
 
@@ -311,7 +336,7 @@ impl<T: Copy> Passed<T> {
 impl<T> Buf<T> {
     fn pass<U: Copy + Default>(&self, needed: Option<usize>, f: impl Fn(&T) -> U) -> Passed<U> {
         let len = self.len.get(needed);
-        if self.null || len > MAX_ALLOC {
+        if self.null.0 || len > MAX_ALLOC {
             return Passed { data: None, len };
         }
         let data = (0..len)
@@ -332,6 +357,9 @@ impl<T> Buf<T> {
 
 #[derive(Arbitrary, Debug)]
 struct Frame {
+    /// Every buffer of the length the sizes require, none null: the resolve
+    /// itself runs whenever the sizes and gates are valid.
+    consistent: bool,
     width: Size,
     height: Size,
     layers: Size,
@@ -362,12 +390,12 @@ struct Trace {
     origin: [F; 3],
     dir: [F; 3],
     up_hint: [F; 3],
-    distance: bool,
+    no_distance: Rarely,
     /// Null: differences of the distance; else replayed normals.
     normal: Option<Vec<[F; 3]>>,
-    shade: bool,
+    no_shade: Rarely,
     background: [F; 3],
-    out: bool,
+    no_out: Rarely,
     shape: Shape,
     colors: Vec<[F; 3]>,
 }
@@ -623,6 +651,25 @@ fn sraa_resolve(params: Option<SraaParams>, frame: Option<Frame>) {
         assert_eq!(bytes(&o[0]), bytes(&SENTINEL_V3), "{what}: wrote on {s:?}");
         return;
     };
+    let mut fr = fr;
+    if fr.consistent {
+        fr.colors.len = Len::Needed;
+        fr.shaded_geometry.len = Len::Needed;
+        fr.shaded_shadow.len = Len::Needed;
+        fr.subsample_geometry.len = Len::Needed;
+        fr.subsample_shadow.len = Len::Needed;
+        fr.out.len = Len::Needed;
+        for null in [
+            &mut fr.colors.null,
+            &mut fr.shaded_geometry.null,
+            &mut fr.shaded_shadow.null,
+            &mut fr.subsample_geometry.null,
+            &mut fr.subsample_shadow.null,
+            &mut fr.out.null,
+        ] {
+            null.0 = false;
+        }
+    }
     let (w, h, layers) = (
         fr.width.0 as usize,
         fr.height.0 as usize,
@@ -650,7 +697,7 @@ fn sraa_resolve(params: Option<SraaParams>, frame: Option<Frame>) {
     });
     let out_len = fr.out.len.get(n);
     let mut out: Option<Vec<SubconeVec3>> =
-        (!fr.out.null && out_len <= MAX_ALLOC).then(|| vec![SENTINEL_V3; out_len]);
+        (!fr.out.null.0 && out_len <= MAX_ALLOC).then(|| vec![SENTINEL_V3; out_len]);
     let frame = SubconeSraaFrame {
         width: fr.width.0,
         height: fr.height.0,
@@ -806,7 +853,7 @@ fn ctss_trace(t: Trace) {
     };
     let (origin, dir, up_hint) = (v3(t.origin), v3(t.dir), v3(t.up_hint));
     let mut o = Out::new(
-        t.out,
+        !t.no_out.0,
         SubconeCtssResult {
             color: SENTINEL_V3,
             samples: 0xdead,
@@ -821,9 +868,9 @@ fn ctss_trace(t: Trace) {
             origin,
             dir,
             up_hint,
-            t.distance.then_some(host_distance as _),
+            (!t.no_distance.0).then_some(host_distance as _),
             t.normal.is_some().then_some(host_normal as _),
-            t.shade.then_some(host_shade as _),
+            (!t.no_shade.0).then_some(host_shade as _),
             (&mut host as *mut Host).cast::<c_void>(),
             v3(t.background),
             o.ptr(),
@@ -845,7 +892,7 @@ fn ctss_trace(t: Trace) {
     }) || !(finite3(origin) && finite3(dir) && finite3(up_hint))
         || [dir.x, dir.y, dir.z].iter().all(|&c| c == 0.0);
     Defects {
-        null: p.is_none() || !t.distance || !t.shade || o.is_null(),
+        null: p.is_none() || t.no_distance.0 || t.no_shade.0 || o.is_null(),
         invalid,
         size: false,
     }
