@@ -53,12 +53,15 @@ typedef struct SubconeSraaParams {
   float sigma_n;
   // The Chajdas form's scale (unused by eq. 1's product form).
   float scale;
-  // Bits 0..8: weight form; 8..16: depth metric; 16..32: radius in pixels.
+  // Bits 0..8: weight form (0 eq. 1's product, 1 the Chajdas form);
+  // 8..16: depth metric (0 relative, 1 absolute); 16..32: radius in
+  // pixels. Other codes read as 0, as the kernels (and their WGSL twins)
+  // read them.
   uint32_t packed;
   // σs, the spatial falloff in pixels (0: off, as in eq. 1).
   float sigma_s;
   // Where the shaded sample lies: 0 on subsample 0 (the paper), 1 at the
-  // pixel centre.
+  // pixel centre; other codes read as 0.
   uint32_t shading;
   // Padding; write 0.
   uint32_t pad[2];
@@ -87,7 +90,10 @@ typedef struct SubconeCtssParams {
   uint32_t visibility_k;
   // Bit 0: CTSS-R (stop at the first hard hit). Bit 1: split groups at
   // internal edges (§5.3). Bit 2: the paper's groups and masks. Bits
-  // 8..16: mask placement. Bits 16..24: sample weighting.
+  // 8..16: mask placement (as [`subcone_visibility_mask`]'s; codes above
+  // 2 read as 0). Bits 16..24: sample weighting (as
+  // [`subcone_sample_weight`]'s; codes above 1 read as 0). Other bits are
+  // ignored.
   uint32_t flags;
   // Padding; write 0.
   uint32_t pad[2];
@@ -295,9 +301,12 @@ enum SubconeStatus subcone_cone_tan_theta(float fov_y,
 // `out` is null or writable.
 enum SubconeStatus subcone_cone_radius(float t, float tan_theta, float *out);
 
-// CTSS eq. 5: the cone occlusion `ω` of a surface at distance `d` from the
-// axis for a cone of radius `rc`, in `[0, 1]` (clamped; NaN input gives the
-// documented clamp of the Rust `cone_occlusion`).
+// CTSS eq. 5: the cone occlusion `ω = (1 − d/rc)/2` of a surface at
+// distance `d` from the axis for a cone of radius `rc`, clamped to
+// `[−1, 2]` (below 0 the cone misses, above 1 the whole cross-section is
+// inside); never NaN or infinite: a NaN `d` gives −1, and outside the
+// domain (`d` finite, `rc > 0` finite) the limits of the Rust
+// `cone_occlusion`.
 //
 // # Safety
 // `out` is null or writable.
@@ -374,7 +383,8 @@ enum SubconeStatus subcone_sraa_resolve(const struct SubconeSraaParams *params,
 
 // One pixel's CTSS trace (Algorithm 1 with subcone's default groups, or the
 // paper's with bit 2 of `flags`): the cone from `origin` along `dir`
-// (normalised unless unit), its cross-section oriented by `up_hint`, through the caller's
+// (normalised unless unit; any finite non-zero length), its cross-section
+// oriented by `up_hint`, through the caller's
 // field `distance` (and `normal`, or NULL for differences of `distance`),
 // each hit group shaded by `shade` as it closes (ASAP, §5.1), resolved by
 // eq. 6 against `background`. The same loop, to the bit, as the CPU

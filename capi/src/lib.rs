@@ -161,12 +161,15 @@ pub struct SubconeSraaParams {
     pub sigma_n: f32,
     /// The Chajdas form's scale (unused by eq. 1's product form).
     pub scale: f32,
-    /// Bits 0..8: weight form; 8..16: depth metric; 16..32: radius in pixels.
+    /// Bits 0..8: weight form (0 eq. 1's product, 1 the Chajdas form);
+    /// 8..16: depth metric (0 relative, 1 absolute); 16..32: radius in
+    /// pixels. Other codes read as 0, as the kernels (and their WGSL twins)
+    /// read them.
     pub packed: u32,
     /// σs, the spatial falloff in pixels (0: off, as in eq. 1).
     pub sigma_s: f32,
     /// Where the shaded sample lies: 0 on subsample 0 (the paper), 1 at the
-    /// pixel centre.
+    /// pixel centre; other codes read as 0.
     pub shading: u32,
     /// Padding; write 0.
     pub pad: [u32; 2],
@@ -207,7 +210,10 @@ pub struct SubconeCtssParams {
     pub visibility_k: u32,
     /// Bit 0: CTSS-R (stop at the first hard hit). Bit 1: split groups at
     /// internal edges (§5.3). Bit 2: the paper's groups and masks. Bits
-    /// 8..16: mask placement. Bits 16..24: sample weighting.
+    /// 8..16: mask placement (as [`subcone_visibility_mask`]'s; codes above
+    /// 2 read as 0). Bits 16..24: sample weighting (as
+    /// [`subcone_sample_weight`]'s; codes above 1 read as 0). Other bits are
+    /// ignored.
     pub flags: u32,
     /// Padding; write 0.
     pub pad: [u32; 2],
@@ -323,14 +329,12 @@ unsafe fn write<T>(p: *mut T, v: T) -> SubconeStatus {
     }
 }
 
-/// `len` elements at `p`: empty for `len == 0`, an error for a null `p` with
-/// `len > 0` or a length that overflows the address space.
-///
-/// # Safety
-/// `p` is null or points to `len` valid, initialised `T`.
-unsafe fn slice<'a, T>(p: *const T, len: usize) -> Result<&'a [T], SubconeStatus> {
+/// Whether `len` elements at `p` can be a slice: `Ok` for `len == 0`, an
+/// error for a null `p` with `len > 0` or a length that overflows the
+/// address space.
+fn extent<T>(p: *const T, len: usize) -> Result<(), SubconeStatus> {
     if len == 0 {
-        return Ok(&[]);
+        return Ok(());
     }
     if p.is_null() {
         return Err(SubconeStatus::NullPointer);
@@ -341,8 +345,34 @@ unsafe fn slice<'a, T>(p: *const T, len: usize) -> Result<&'a [T], SubconeStatus
     {
         return Err(SubconeStatus::SizeMismatch);
     }
-    // SAFETY: non-null, the caller's contract on length and validity.
+    Ok(())
+}
+
+/// `len` elements at `p`: empty for `len == 0`, else checked by [`extent`].
+///
+/// # Safety
+/// `p` is null or points to `len` valid, initialised `T`.
+unsafe fn slice<'a, T>(p: *const T, len: usize) -> Result<&'a [T], SubconeStatus> {
+    extent(p, len)?;
+    if len == 0 {
+        return Ok(&[]);
+    }
+    // SAFETY: non-null, a length that fits (checked), the caller's contract
+    // on validity.
     Ok(unsafe { std::slice::from_raw_parts(p, len) })
+}
+
+/// `len` writable elements at `p`, checked as [`slice`] checks.
+///
+/// # Safety
+/// `p` is null or points to `len` writable `T`, not otherwise borrowed.
+unsafe fn slice_mut<'a, T>(p: *mut T, len: usize) -> Result<&'a mut [T], SubconeStatus> {
+    extent(p.cast_const(), len)?;
+    if len == 0 {
+        return Ok(&mut []);
+    }
+    // SAFETY: as `slice`.
+    Ok(unsafe { std::slice::from_raw_parts_mut(p, len) })
 }
 
 fn finite(values: &[f32]) -> Result<(), SubconeStatus> {
@@ -350,6 +380,21 @@ fn finite(values: &[f32]) -> Result<(), SubconeStatus> {
         Ok(())
     } else {
         Err(SubconeStatus::InvalidArgument)
+    }
+}
+
+/// `v`, or, when its squared length overflows f32 or is subnormal (a
+/// component of 10²⁰ or 10⁻²⁰), `v` divided by its largest component: the
+/// same direction, whose length then normalises (`(10³⁰, 0, 0)` normalised
+/// as it is gives the zero vector, `(10⁻³⁰, 0, 0)` a division by zero).
+/// Vectors of ordinary length are returned unchanged, so their bits are the
+/// renderers'.
+fn in_normal_range(v: Vec3) -> Vec3 {
+    let m = v.abs().max_element();
+    if v.length_squared().is_normal() || !(m > 0.0 && m.is_finite()) {
+        v
+    } else {
+        v / m
     }
 }
 
@@ -570,9 +615,12 @@ pub unsafe extern "C" fn subcone_cone_radius(
     guard(|| unsafe { write(out, cone_radius(t, tan_theta)) })
 }
 
-/// CTSS eq. 5: the cone occlusion `ω` of a surface at distance `d` from the
-/// axis for a cone of radius `rc`, in `[0, 1]` (clamped; NaN input gives the
-/// documented clamp of the Rust `cone_occlusion`).
+/// CTSS eq. 5: the cone occlusion `ω = (1 − d/rc)/2` of a surface at
+/// distance `d` from the axis for a cone of radius `rc`, clamped to
+/// `[−1, 2]` (below 0 the cone misses, above 1 the whole cross-section is
+/// inside); never NaN or infinite: a NaN `d` gives −1, and outside the
+/// domain (`d` finite, `rc > 0` finite) the limits of the Rust
+/// `cone_occlusion`.
 ///
 /// # Safety
 /// `out` is null or writable.
@@ -810,9 +858,9 @@ unsafe fn sraa_resolve(
             },
         )
     };
-    if out.is_null() {
-        return Err(SubconeStatus::NullPointer);
-    }
+    // SAFETY: `out` is null or holds `out_len` values (the caller's
+    // contract), and `out_len` is `n` (checked above).
+    let out = unsafe { slice_mut(out, out_len) }?;
     let mut layer_gates = [None; MAX_LAYERS];
     for (g, &l) in layer_gates.iter_mut().zip(gates) {
         *g = match l {
@@ -839,8 +887,6 @@ unsafe fn sraa_resolve(
         },
         secondary: None,
     };
-    // SAFETY: `out` is non-null and holds `n` values (checked above).
-    let out = unsafe { std::slice::from_raw_parts_mut(out, n) };
     for (j, o) in out.iter_mut().enumerate() {
         let g = &sub_geometry[4 * j..4 * j + 4];
         let subsamples = Subsamples {
@@ -884,7 +930,8 @@ impl ConeField for Callbacks {
 
 /// One pixel's CTSS trace (Algorithm 1 with subcone's default groups, or the
 /// paper's with bit 2 of `flags`): the cone from `origin` along `dir`
-/// (normalised unless unit), its cross-section oriented by `up_hint`, through the caller's
+/// (normalised unless unit; any finite non-zero length), its cross-section
+/// oriented by `up_hint`, through the caller's
 /// field `distance` (and `normal`, or NULL for differences of `distance`),
 /// each hit group shaded by `shade` as it closes (ASAP, §5.1), resolved by
 /// eq. 6 against `background`. The same loop, to the bit, as the CPU
@@ -931,7 +978,7 @@ pub unsafe extern "C" fn subcone_ctss_trace(
             ])?;
             let (origin, dir, up_hint) = (Vec3::from(origin), Vec3::from(dir), Vec3::from(up_hint));
             if !(origin.is_finite() && dir.is_finite() && up_hint.is_finite())
-                || dir.length_squared() == 0.0
+                || dir == Vec3::ZERO
                 || p.tan_theta < 0.0
                 || !(1..=32).contains(&p.visibility_k)
             {
@@ -939,10 +986,11 @@ pub unsafe extern "C" fn subcone_ctss_trace(
             }
             // A unit direction is used as given (as the renderers pass it).
             let dir = if (dir.length_squared() - 1.0).abs() > 4.0 * f32::EPSILON {
-                dir.normalize()
+                in_normal_range(dir).normalize()
             } else {
                 dir
             };
+            let up_hint = in_normal_range(up_hint);
             let (right, up) = cross_section_frame(dir, up_hint);
             let ray = SplitRay {
                 origin,
