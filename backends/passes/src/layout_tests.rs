@@ -70,7 +70,7 @@ fn validate(label: &str, source: &str) -> Result<(), String> {
 /// CTSS (with and without the host's normal) and FXAA shaders.
 #[test]
 fn every_pass_shader_validates() {
-    use crate::sraa::{test_source, DepthKind, GeometryLayout, NormalEncoding, SraaResolveDesc};
+    use crate::sraa::{test_source, DepthKind, GeometryLayout, NormalEncoding, SraaPassDesc};
     use subcone_kernels::sraa::SraaParams;
     let mut errors = Vec::new();
     for geometry in [
@@ -78,7 +78,7 @@ fn every_pass_shader_validates() {
         GeometryLayout::Layers,
         GeometryLayout::Packed,
     ] {
-        for depth in [DepthKind::Hardware, DepthKind::LinearView] {
+        for depth in [DepthKind::Hardware { miss: 0.0 }, DepthKind::LinearView] {
             for normal in [NormalEncoding::Signed, NormalEncoding::Unsigned] {
                 if geometry == GeometryLayout::Packed
                     && (depth != DepthKind::LinearView || normal != NormalEncoding::Signed)
@@ -92,7 +92,7 @@ fn every_pass_shader_validates() {
                         (8, false, true),
                         (0, false, true),
                     ] {
-                        let desc = SraaResolveDesc {
+                        let desc = SraaPassDesc {
                             lights,
                             albedo_gate,
                             secondary,
@@ -100,7 +100,7 @@ fn every_pass_shader_validates() {
                             geometry,
                             depth,
                             normal,
-                            ..SraaResolveDesc::msaa()
+                            ..SraaPassDesc::msaa()
                         };
                         if let Err(e) = validate(&format!("{desc:?}"), &test_source(&desc)) {
                             errors.push(e);
