@@ -252,24 +252,6 @@ pub(crate) fn is_float_color(format: wgpu::TextureFormat) -> bool {
         )
 }
 
-
-/// A view of the whole texture `t` as `dimension` (the depth aspect of a
-/// depth format): what a host passes for an input it made as a texture.
-#[cfg(test)]
-pub(crate) fn view(t: &wgpu::Texture, dimension: wgpu::TextureViewDimension) -> wgpu::TextureView {
-    let aspect = if t.format().is_depth_stencil_format() {
-        wgpu::TextureAspect::DepthOnly
-    } else {
-        wgpu::TextureAspect::All
-    };
-    t.create_view(&wgpu::TextureViewDescriptor {
-        dimension: Some(dimension),
-        aspect,
-        mip_level_count: Some(1),
-        ..Default::default()
-    })
-}
-
 /// Pixels per side of every pass's workgroup: `@workgroup_size(8, 8)` in
 /// each pass's WGSL.
 const WORKGROUP: u32 = 8;
@@ -490,7 +472,9 @@ impl PassPipeline {
         let mut offsets = Vec::with_capacity(uniforms.len());
         for (u, (value, ring)) in uniforms.iter().zip(&self.uniforms).enumerate() {
             let slots = &mut state.slots[u];
-            let held = slots.iter().position(|s| s.value.as_deref() == Some(*value));
+            let held = slots
+                .iter()
+                .position(|s| s.value.as_deref() == Some(*value));
             let s = match held {
                 Some(s) => s,
                 None => {

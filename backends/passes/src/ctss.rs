@@ -164,8 +164,13 @@ pub struct CtssFrame<'a> {
 /// `subcone_` function, e.g. `subcone_tetra_normal`):
 ///
 /// - `fn subcone_field(p: vec3<f32>) -> vec3<f32>`: (signed distance, a safe
-///   step `≤` distance, object id: an integer-valued `f32`, e.g. a material
-///   index; negative for none). A group of hits ends where the id changes.
+///   step `≤` distance, object id). The id is the `u32` of the kernels'
+///   `ctss::FieldSample::object` and the C ABI's `SubconeFieldSample::object`
+///   (a material index, say), carried in an `f32`: an integer below 2²⁴ is
+///   exact; a negative or NaN value reads as
+///   `subcone_kernels::ctss::NO_OBJECT` (`0xFFFFFFFF`, `subcone_NO_OBJECT`
+///   in WGSL), no object, which never ends a group. A group of hits ends
+///   where the id changes (CTSS §3.4: one group, one surface).
 /// - `fn subcone_shade(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> vec3<f32>`:
 ///   the linear colour of surface point `p` with unit normal `n` seen along
 ///   `dir`.

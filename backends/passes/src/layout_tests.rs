@@ -130,3 +130,25 @@ fn every_pass_shader_validates() {
     }
     assert!(errors.is_empty(), "{}", errors.join("\n\n"));
 }
+
+/// The object id that means "none" is one constant: the WGSL the CTSS pass
+/// runs declares `subcone_NO_OBJECT` with the value of the kernels'
+/// `ctss::NO_OBJECT` (which the C ABI's `SubconeFieldSample::object`
+/// documents as `0xFFFFFFFF`).
+#[test]
+fn the_wgsl_no_object_is_the_kernels_constant() {
+    let source = [subcone_kernels::wgsl::PARAMS, subcone_kernels::ctss::WGSL].concat();
+    let module = naga::front::wgsl::parse_str(&source).expect("ctss.wgsl parses");
+    let (_, constant) = module
+        .constants
+        .iter()
+        .find(|(_, c)| c.name.as_deref() == Some("subcone_NO_OBJECT"))
+        .expect("ctss.wgsl declares subcone_NO_OBJECT");
+    match module.global_expressions[constant.init] {
+        naga::Expression::Literal(naga::Literal::U32(v)) => {
+            assert_eq!(v, subcone_kernels::ctss::NO_OBJECT)
+        }
+        ref other => panic!("subcone_NO_OBJECT is {other:?}, not a u32 literal"),
+    }
+    assert_eq!(subcone_kernels::ctss::NO_OBJECT, 0xFFFF_FFFF);
+}

@@ -449,12 +449,10 @@ impl InputRules<'_> {
                         .into(),
                 ))
             }
-            (false, SubsampleGeometry::Packed(_)) => {
-                return Err(PassError::Config(
-                    "SubsampleGeometry::Packed given to a pass built for separate depth and normals"
-                        .into(),
-                ))
-            }
+            (false, SubsampleGeometry::Packed(_)) => return Err(PassError::Config(
+                "SubsampleGeometry::Packed given to a pass built for separate depth and normals"
+                    .into(),
+            )),
         }
         Ok(())
     }

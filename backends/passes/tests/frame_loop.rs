@@ -381,6 +381,11 @@ fn each_pass_writes_the_hosts_timestamps() {
             pair[1].wrapping_sub(pair[0]) as f64 * f64::from(period) / 1000.0
         );
         assert!(pair[0] > 0, "{name}: no start timestamp written");
-        assert!(pair[1] >= pair[0], "{name}: end {} < start {}", pair[1], pair[0]);
+        assert!(
+            pair[1] >= pair[0],
+            "{name}: end {} < start {}",
+            pair[1],
+            pair[0]
+        );
     }
 }

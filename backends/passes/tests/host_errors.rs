@@ -140,8 +140,7 @@ fn the_hosts_uncaptured_error_handler_stays_the_hosts() {
 /// host's handler sees no error).
 #[test]
 fn inputs_that_do_not_fit_are_typed_errors() {
-    let Some((device, queue)) =
-        common::device_or_skip("pass input checks", host_sraa::open_device)
+    let Some((device, queue)) = common::device_or_skip("pass input checks", host_sraa::open_device)
     else {
         return;
     };
@@ -239,8 +238,8 @@ fn inputs_that_do_not_fit_are_typed_errors() {
         Err(PassError::Missing(_))
     ));
     // Secondary shading needs the secondary hits.
-    let mirrors = SraaPass::new(&device, &SraaPassDesc::msaa().with_secondary(true))
-        .expect("secondary pass");
+    let mirrors =
+        SraaPass::new(&device, &SraaPassDesc::msaa().with_secondary(true)).expect("secondary pass");
     // (with the colour's two groups of layers, as it needs).
     let color2 = texture(&device, "color2", (size.0, size.1, 2), 1, Rgba16Float, read)
         .create_view(&Default::default());

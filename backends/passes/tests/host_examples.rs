@@ -181,8 +181,8 @@ fn fxaa_pass_matches_the_cpu_post_process() {
         },
         input.size(),
     );
-    let pass = FxaaPass::new(&device, &FxaaPassDesc::default().with_output_format(format))
-        .expect("pass");
+    let pass =
+        FxaaPass::new(&device, &FxaaPassDesc::default().with_output_format(format)).expect("pass");
     let mut enc = device.create_command_encoder(&Default::default());
     let (input_view, output_view) = (
         input.create_view(&Default::default()),

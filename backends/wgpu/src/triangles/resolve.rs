@@ -11,7 +11,9 @@
 use std::sync::Arc;
 
 use subcone_kernels::sraa::{ShadedPosition, SraaParams};
-use subcone_passes::{AlbedoTextures, CentreGeometry, SraaInputs, SraaPass, SraaPassDesc, SubsampleGeometry};
+use subcone_passes::{
+    AlbedoTextures, CentreGeometry, SraaInputs, SraaPass, SraaPassDesc, SubsampleGeometry,
+};
 use subcone_scene::RenderError;
 
 use super::raster::Raster;
