@@ -573,7 +573,7 @@ fn check_timestamps(
             "timestamps: the device was opened without Features::TIMESTAMP_QUERY".into(),
         ));
     }
-    if t.query_set.ty() != wgpu::QueryType::Timestamp {
+    if !matches!(t.query_set.ty(), wgpu::QueryType::Timestamp) {
         return Err(PassError::Config(
             "timestamps: the query set is not of QueryType::Timestamp".into(),
         ));

@@ -136,8 +136,13 @@ impl Host {
             ctss: CtssPass::new(device, FIELD_WGSL, &CtssPassDesc::default()).expect("ctss"),
             fxaa: FxaaPass::new(device, &FxaaPassDesc::default()).expect("fxaa"),
             views,
-            projection: glam::Mat4::perspective_infinite_reverse_rh(0.9, 1.0, 0.05)
-                .to_cols_array_2d(),
+            // Reversed Z, infinite far plane, near 0.05.
+            projection: [
+                [1.0, 0.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0, 0.0],
+                [0.0, 0.0, 0.0, -1.0],
+                [0.0, 0.0, 0.05, 0.0],
+            ],
         }
     }
 
@@ -317,7 +322,10 @@ fn encodes_in_one_submission_each_read_their_own_uniforms() {
     }
     queue.submit([enc.finish()]);
     let bytes = host::read_buffer(&device, &read).expect("read-back");
-    let texels: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes);
+    let texels: Vec<[f32; 4]> = bytes
+        .chunks_exact(16)
+        .map(bytemuck::pod_read_unaligned)
+        .collect();
     let per_frame = (W * H) as usize;
     for i in 0..UNIFORM_SLOTS {
         let want = background(i);
@@ -372,7 +380,10 @@ fn each_pass_writes_the_hosts_timestamps() {
     enc.copy_buffer_to_buffer(&resolve, 0, &read, 0, 6 * 8);
     queue.submit([enc.finish()]);
     let bytes = host::read_buffer(&device, &read).expect("read-back");
-    let ticks: Vec<u64> = bytemuck::pod_collect_to_vec(&bytes);
+    let ticks: Vec<u64> = bytes
+        .chunks_exact(8)
+        .map(bytemuck::pod_read_unaligned)
+        .collect();
     let period = queue.get_timestamp_period();
     for (name, pair) in ["sraa", "ctss", "fxaa"].iter().zip(ticks.chunks(2)) {
         eprintln!(

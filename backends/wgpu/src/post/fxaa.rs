@@ -125,7 +125,7 @@ pub(crate) fn run(
         program.dispatch(enc, &from_texture, groups);
     })?;
     encoded.map_err(|e| err(format!("FXAA: {e}")))?;
-    let mut stats = b.stats;
+    let mut stats = b.stats.clone();
     stats.push(("post-process input", px_bytes as usize));
     stats.push(("post-process output", px_bytes as usize));
     Ok((b.get("fxaa_dst")?.clone(), stats))
