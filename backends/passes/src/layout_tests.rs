@@ -137,8 +137,11 @@ fn every_pass_shader_validates() {
 /// documents as `0xFFFFFFFF`).
 #[test]
 fn the_wgsl_no_object_is_the_kernels_constant() {
-    let source = [subcone_kernels::wgsl::PARAMS, subcone_kernels::ctss::WGSL].concat();
-    let module = naga::front::wgsl::parse_str(&source).expect("ctss.wgsl parses");
+    let host = "fn subcone_field(p: vec3<f32>) -> vec3<f32> { let d = length(p) - 1.0; return vec3<f32>(d, d, 0.0); }\n\
+                fn subcone_shade(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> vec3<f32> { return n; }\n";
+    let g = CtssPass::group_for_tests(wgpu::TextureFormat::Rgba16Float);
+    let source = CtssPass::source(host, 8, &g);
+    let module = naga::front::wgsl::parse_str(&source).expect("the CTSS pass's shader parses");
     let (_, constant) = module
         .constants
         .iter()

@@ -381,7 +381,7 @@ fn gpu(device: &wgpu::Device, queue: &wgpu::Queue, d: &Data, c: &Case) -> Vec<Ve
 }
 
 #[test]
-fn sraa_resolve_matches_the_cpu_resolver_in_every_convention() {
+fn sraa_pass_matches_the_cpu_resolver_in_every_convention() {
     let Some((device, queue)) =
         common::device_or_skip("resolve conventions", host_sraa::open_device)
     else {
