@@ -122,6 +122,9 @@ pub(crate) fn run(
         // filter and the copy out.
         program.dispatch(enc, &to_texture, groups);
         encoded = fxaa.encode(&ctx.device, &ctx.queue, enc, &input, &output, None);
+        // The textures are this frame's: the shared pass need not keep them
+        // (the encoder holds what it recorded).
+        fxaa.release_views();
         program.dispatch(enc, &from_texture, groups);
     })?;
     encoded.map_err(|e| err(format!("FXAA: {e}")))?;

@@ -206,6 +206,8 @@ impl<'a> HybridResolve<'a> {
                 None,
             )
             .map_err(|e| err(format!("sraa resolve: {e}")))?;
+        // This frame's textures are its own: the pass need not keep them.
+        self.sraa.release_views();
         self.program.dispatch(enc, &self.from_texture, groups);
         Ok(())
     }
