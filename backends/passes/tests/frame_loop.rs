@@ -8,7 +8,6 @@
 
 mod common;
 
-#[allow(dead_code)]
 #[path = "../examples/host/mod.rs"]
 mod host;
 
