@@ -163,8 +163,8 @@ typedef struct SubconeFieldSample {
   float distance;
   // A safe step, at most `distance` (return the distance when in doubt).
   float step;
-  // Id of the nearest object (a material, say); `0xFFFFFFFF` for none. A
-  // hit group ends where it changes.
+  // Id of the nearest object (a material, say); `0xFFFFFFFF` for none (the
+  // kernels' `ctss::NO_OBJECT`). A hit group ends where it changes.
   uint32_t object;
 } SubconeFieldSample;
 

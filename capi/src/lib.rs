@@ -254,8 +254,8 @@ pub struct SubconeFieldSample {
     pub distance: f32,
     /// A safe step, at most `distance` (return the distance when in doubt).
     pub step: f32,
-    /// Id of the nearest object (a material, say); `0xFFFFFFFF` for none. A
-    /// hit group ends where it changes.
+    /// Id of the nearest object (a material, say); `0xFFFFFFFF` for none (the
+    /// kernels' `ctss::NO_OBJECT`). A hit group ends where it changes.
     pub object: u32,
 }
 

@@ -400,8 +400,15 @@ struct Contact {
     stop: bool,
 }
 
-/// The object id of [`ConeStepper::advance_split`]: not known, never a
-/// reason to end a group.
+/// The object id that means no object (not known, never a reason to end a
+/// group): the id of [`ConeStepper::advance_split`], and the one "none" of
+/// every object id. Rust's [`FieldSample::object`] and the C ABI's
+/// `SubconeFieldSample::object` are this `u32`; the WGSL twins declare it
+/// as `subcone_NO_OBJECT` (`ctss.wgsl`, checked equal by
+/// `subcone-passes`' layout tests); the WGSL field hook `subcone_field`
+/// returns the id in an `f32` (its third component), where a negative or
+/// NaN value reads as `NO_OBJECT` (`subcone_field_sample` in
+/// `ctss/trace.wgsl`).
 pub const NO_OBJECT: u32 = u32::MAX;
 
 /// Algorithm 1 as a state machine, generic over nobody's SDF.

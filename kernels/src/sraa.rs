@@ -36,7 +36,7 @@ pub const WGSL: &str = include_str!("sraa.wgsl");
 /// shadow bit) and returns the sum of the group's layers, as [`Resolver`]
 /// sums a subsample's layers. It drives [`WGSL`]'s
 /// `subcone_reconstruct_layers_begin/add/end` in the order of the Rust loop.
-/// Every GPU resolve runs it (`subcone_passes::SraaResolve` and the wgpu
+/// Every GPU resolve runs it (`subcone_passes::SraaPass` and the wgpu
 /// backend's SRAA-RT resolve); `tests/conformance_kernels.rs` holds it to
 /// [`reconstruct_layers`] and [`Resolver`].
 ///

@@ -180,11 +180,10 @@ pub fn render_gpu(
     let pass = CtssPass::new(
         device,
         HOST_WGSL,
-        &CtssPassDesc {
-            batch: 8,
-            output_format: format,
-            host_layout: Some(&host_layout),
-        },
+        &CtssPassDesc::default()
+            .with_batch(8)
+            .with_output_format(format)
+            .with_host_layout(&host_layout),
     )
     .map_err(|e| e.to_string())?;
     let output = host::texture(
@@ -195,17 +194,20 @@ pub fn render_gpu(
         format,
         wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
     );
+    let output_view = output.create_view(&Default::default());
     let mut enc = device.create_command_encoder(&Default::default());
     pass.encode(
         device,
+        queue,
         &mut enc,
         &CtssFrame {
             camera: camera(),
             params: params(height),
             background: BACKGROUND,
             host_group: Some(&host_group),
-            output: &output,
+            output: &output_view,
         },
+        None,
     )
     .map_err(|e| e.to_string())?;
     let pixels = host::read_rgba32f(device, queue, enc, &output)?;

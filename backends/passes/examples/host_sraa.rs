@@ -11,7 +11,7 @@
 //!    (`SraaParams::shaded_offset`: subsample 0 for `SraaParams::PAPER`, the
 //!    pixel centre for `SraaParams::TUNED`), with its depth and normal (the
 //!    centre geometry the tuned preset needs);
-//! 3. `SraaResolve` into an `Rgba32Float` storage texture, read back.
+//! 3. `SraaPass` into an `Rgba32Float` storage texture, read back.
 //!
 //! `cargo run -p subcone-passes --example host_sraa [out.png] [paper|tuned]`
 //! writes the image. The test `tests/host_examples.rs` runs [`render`] and
@@ -20,7 +20,7 @@
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 use subcone_kernels::sraa::{ShadedPosition, SraaParams};
-use subcone_passes::{CentreGeometry, DepthConvention, SraaInputs, SraaResolve, SraaResolveDesc};
+use subcone_passes::{CentreGeometry, SraaInputs, SraaPass, SraaPassDesc, SubsampleGeometry};
 use wgpu::util::DeviceExt;
 
 // Device, texture, read-back and sRGB helpers shared with the other host
@@ -404,13 +404,11 @@ pub fn render(
         wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
     );
     let centre = params.shaded_position() == ShadedPosition::Centre;
-    let sraa = SraaResolve::new(
+    let sraa = SraaPass::new(
         device,
-        &SraaResolveDesc {
-            params,
-            output_format: Rgba32Float,
-            ..SraaResolveDesc::msaa()
-        },
+        &SraaPassDesc::msaa()
+            .with_params(params)
+            .with_output_format(Rgba32Float),
     )
     .map_err(|e| e.to_string())?;
 
@@ -475,28 +473,34 @@ pub fn render(
         pass.set_vertex_buffer(0, vbuf.slice(..));
         pass.draw(0..vertices.len() as u32, 0..1);
     }
+    // The views the pass reads: whole textures (the depth aspect of the
+    // depth textures).
+    let [ms_depth_v, ms_normal_v, color_v, normal_v, depth_v, output_v] =
+        [&ms_depth, &ms_normal, &color, &normal, &depth, &output]
+            .map(|t| t.create_view(&Default::default()));
     sraa.encode(
         device,
+        queue,
         &mut enc,
         &SraaInputs {
-            subsample_depth: &ms_depth,
-            subsample_normal: Some(&ms_normal),
+            geometry: SubsampleGeometry::Separate {
+                depth: &ms_depth_v,
+                normal: &ms_normal_v,
+            },
             // The centre geometry's depth went through the jittered
             // projection, whose z row is the same: one inversion serves both.
-            depth: DepthConvention::Hardware {
-                projection: projection(width, height).to_cols_array_2d(),
-                miss: 0.0,
-            },
+            projection: projection(width, height).to_cols_array_2d(),
             centre: centre.then_some(CentreGeometry {
-                depth: &depth,
-                normal: &normal,
+                depth: &depth_v,
+                normal: &normal_v,
             }),
-            color: &color,
+            color: &color_v,
             shadows: None,
             albedo: None,
             secondary: None,
-            output: &output,
+            output: &output_v,
         },
+        None,
     )
     .map_err(|e| e.to_string())?;
     let pixels = read_rgba32f(device, queue, enc, &output)?;

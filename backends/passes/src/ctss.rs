@@ -84,8 +84,12 @@ impl CtssCamera {
     }
 }
 
-/// The configuration of a [`CtssPass`], fixed for its life.
+/// The configuration of a [`CtssPass`], fixed for its life. Start from
+/// `CtssPassDesc::default()` and change what differs with the `with_`
+/// methods (or assign the public fields): the struct is
+/// `#[non_exhaustive]`, so a field added later breaks no host.
 #[derive(Clone, Copy, Debug)]
+#[non_exhaustive]
 pub struct CtssPassDesc<'a> {
     /// `subcone_CTSS_BATCH`: hit groups marched ahead of shading them, in
     /// `1..=MAX_BATCH` (64). 8 suits shading that is cheap; the result does
@@ -101,12 +105,34 @@ pub struct CtssPassDesc<'a> {
 }
 
 impl Default for CtssPassDesc<'_> {
+    /// A batch of 8, `Rgba16Float` output, no host bind group.
     fn default() -> Self {
         CtssPassDesc {
             batch: 8,
             output_format: wgpu::TextureFormat::Rgba16Float,
             host_layout: None,
         }
+    }
+}
+
+impl<'a> CtssPassDesc<'a> {
+    /// With `batch` hit groups marched ahead of shading ([`Self::batch`]).
+    pub fn with_batch(mut self, batch: u32) -> Self {
+        self.batch = batch;
+        self
+    }
+
+    /// Writing `format` ([`Self::output_format`]).
+    pub fn with_output_format(mut self, format: wgpu::TextureFormat) -> Self {
+        self.output_format = format;
+        self
+    }
+
+    /// With the host's own bind group `layout` as `@group(1)`
+    /// ([`Self::host_layout`]).
+    pub fn with_host_layout(mut self, layout: &'a wgpu::BindGroupLayout) -> Self {
+        self.host_layout = Some(layout);
+        self
     }
 }
 
@@ -126,8 +152,10 @@ pub struct CtssFrame<'a> {
     pub background: Vec3,
     /// The host's bind group: given exactly when the desc had a layout.
     pub host_group: Option<&'a wgpu::BindGroup>,
-    /// Where the image is written (level 0, layer 0; `STORAGE_BINDING`).
-    pub output: &'a wgpu::Texture,
+    /// Where the image is written: a view of a whole one-sample 2D texture
+    /// of one layer, with `STORAGE_BINDING` (checked on
+    /// `TextureView::texture`).
+    pub output: &'a wgpu::TextureView,
 }
 
 /// CTSS of the host's field on the host's device.
@@ -136,8 +164,13 @@ pub struct CtssFrame<'a> {
 /// `subcone_` function, e.g. `subcone_tetra_normal`):
 ///
 /// - `fn subcone_field(p: vec3<f32>) -> vec3<f32>`: (signed distance, a safe
-///   step `≤` distance, object id: an integer-valued `f32`, e.g. a material
-///   index; negative for none). A group of hits ends where the id changes.
+///   step `≤` distance, object id). The id is the `u32` of the kernels'
+///   `ctss::FieldSample::object` and the C ABI's `SubconeFieldSample::object`
+///   (a material index, say), carried in an `f32`: an integer below 2²⁴ is
+///   exact; a negative or NaN value reads as
+///   `subcone_kernels::ctss::NO_OBJECT` (`0xFFFFFFFF`, `subcone_NO_OBJECT`
+///   in WGSL), no object, which never ends a group. A group of hits ends
+///   where the id changes (CTSS §3.4: one group, one surface).
 /// - `fn subcone_shade(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> vec3<f32>`:
 ///   the linear colour of surface point `p` with unit normal `n` seen along
 ///   `dir`.
@@ -150,8 +183,15 @@ pub struct CtssFrame<'a> {
 /// It must not declare `@group(0)` bindings, `subcone_CTSS_BATCH` or names
 /// starting with `subcone_pass_`.
 ///
+/// Built once, encoded every frame: after the first frame with a given
+/// output view, `encode` creates no buffer, texture, bind group or
+/// pipeline (the camera and parameters go into slots of uniform buffers
+/// made in `new`, [`crate::UNIFORM_SLOTS`]; the bind group of the output
+/// view is cached, [`crate::BIND_GROUP_CACHE`]).
+///
 /// ```no_run
-/// # fn f(device: &wgpu::Device, encoder: &mut wgpu::CommandEncoder, output: &wgpu::Texture)
+/// # fn f(device: &wgpu::Device, queue: &wgpu::Queue, encoder: &mut wgpu::CommandEncoder,
+/// #      output: &wgpu::TextureView)
 /// # -> Result<(), subcone_passes::PassError> {
 /// use glam::Vec3;
 /// use subcone_kernels::ctss::CtssParams;
@@ -166,13 +206,13 @@ pub struct CtssFrame<'a> {
 ///     }";
 /// let pass = CtssPass::new(device, host_wgsl, &CtssPassDesc::default())?;
 /// let camera = CtssCamera::new(Vec3::ZERO, Vec3::Z, Vec3::Y, 0.8);
-/// pass.encode(device, encoder, &CtssFrame {
+/// pass.encode(device, queue, encoder, &CtssFrame {
 ///     camera,
 ///     params: CtssParams::new(0.002).with_range(0.0, 100.0).with_max_steps(256),
 ///     background: Vec3::ZERO,
 ///     host_group: None,
 ///     output,
-/// })?;
+/// }, None)?;
 /// # Ok(()) }
 /// ```
 pub struct CtssPass {
@@ -231,8 +271,8 @@ impl CtssPass {
 
     fn group(output_format: wgpu::TextureFormat) -> Group {
         let mut g = Group::default();
-        g.uniform("subcone_pass_frame", "CtssUniform");
-        g.uniform("subcone_pass_params", "subcone_CtssParams");
+        g.uniform::<CtssUniform>("subcone_pass_frame", "CtssUniform");
+        g.uniform::<CtssParams>("subcone_pass_params", "subcone_CtssParams");
         g.storage_texture("subcone_pass_output", output_format);
         g
     }
@@ -265,14 +305,21 @@ impl CtssPass {
         .concat()
     }
 
-    /// Record the trace of one frame into `encoder` (one compute pass).
-    /// Checks the output and the host group first: on an error nothing is
-    /// recorded.
+    /// Record the trace of one frame into `encoder` (one compute pass), its
+    /// camera and parameters written through `queue`. Checks the output and
+    /// the host group first: on an error nothing is recorded or written.
+    ///
+    /// `timestamps`, when given, are written at the start and end of the
+    /// compute pass: the host creates the query set (`QueryType::Timestamp`,
+    /// on a device with `Features::TIMESTAMP_QUERY`), resolves it and reads
+    /// it back.
     pub fn encode(
         &self,
         device: &wgpu::Device,
+        queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
         frame: &CtssFrame<'_>,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), PassError> {
         let out = frame.output;
         let size = bind::check_output(out, self.output_format, "the desc's output_format")?;
@@ -294,22 +341,24 @@ impl CtssPass {
             background: frame.background.into(),
             _pad1: 0,
         };
-        let u = bind::uniform_buffer(device, "subcone ctss frame", &uniform);
-        let p = bind::uniform_buffer(device, "subcone ctss params", &frame.params);
-        let view = bind::view(out, wgpu::TextureViewDimension::D2);
         self.pipeline.encode(
             device,
+            queue,
             encoder,
             size,
             &[
-                ("subcone_pass_frame", u.as_entire_binding()),
-                ("subcone_pass_params", p.as_entire_binding()),
-                (
-                    "subcone_pass_output",
-                    wgpu::BindingResource::TextureView(&view),
-                ),
+                bytemuck::bytes_of(&uniform),
+                bytemuck::bytes_of(&frame.params),
             ],
+            &[("subcone_pass_output", out)],
             frame.host_group,
+            timestamps,
         )
+    }
+
+    /// Drop the bind groups cached for the output views seen so far, and
+    /// with them the pass's clones of those views.
+    pub fn release_views(&self) {
+        self.pipeline.release_views();
     }
 }

@@ -18,44 +18,84 @@ pub(crate) struct FxaaFrame {
     pub(crate) _pad: [u32; 2],
 }
 
+/// The configuration of a [`FxaaPass`], fixed for its life. Start from
+/// `FxaaPassDesc::default()` and change what differs with the `with_`
+/// methods (or assign the public fields): the struct is
+/// `#[non_exhaustive]`, so a field added later breaks no host.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct FxaaPassDesc {
+    /// FXAA's thresholds: `FxaaParams::QUALITY`, the defaults of FXAA 3.11.
+    pub params: FxaaParams,
+    /// The output texture's format: `Rgba8Unorm`, `Rgba16Float` or
+    /// `Rgba32Float` (a storage texture; linear colour, alpha 1).
+    pub output_format: wgpu::TextureFormat,
+}
+
+impl Default for FxaaPassDesc {
+    /// `FxaaParams::QUALITY`, writing `Rgba16Float`.
+    fn default() -> Self {
+        FxaaPassDesc {
+            params: FxaaParams::QUALITY,
+            output_format: wgpu::TextureFormat::Rgba16Float,
+        }
+    }
+}
+
+impl FxaaPassDesc {
+    /// With FXAA's thresholds `params` ([`Self::params`]).
+    pub fn with_params(mut self, params: FxaaParams) -> Self {
+        self.params = params;
+        self
+    }
+
+    /// Writing `format` ([`Self::output_format`]).
+    pub fn with_output_format(mut self, format: wgpu::TextureFormat) -> Self {
+        self.output_format = format;
+        self
+    }
+}
+
 /// FXAA on the host's device: reads a one-sample texture of linear RGB
 /// (`.xyz`, any float, unorm or snorm format, `TEXTURE_BINDING`) and writes
 /// the filtered linear RGB, alpha 1, into a storage texture of the same size
-/// (`STORAGE_BINDING`, the pass's output format). Pixels outside the image
-/// are clamped to its edge. Input and output must be different textures.
+/// (`STORAGE_BINDING`, the desc's output format). Pixels outside the image
+/// are clamped to its edge. Input and output must be views of different
+/// textures, each of the whole texture (checked on `TextureView::texture`).
+///
+/// Built once, encoded every frame: after the first frame with given views,
+/// `encode` creates no buffer, texture, bind group or pipeline
+/// ([`crate::UNIFORM_SLOTS`], [`crate::BIND_GROUP_CACHE`]).
 pub struct FxaaPass {
-    params: FxaaParams,
-    output_format: wgpu::TextureFormat,
+    desc: FxaaPassDesc,
     pipeline: PassPipeline,
 }
 
 impl std::fmt::Debug for FxaaPass {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("FxaaPass")
-            .field("params", &self.params)
-            .field("output_format", &self.output_format)
+            .field("desc", &self.desc)
             .finish()
     }
 }
 
 impl FxaaPass {
-    /// Build the pass (compile its pipeline) for `params`
-    /// (`FxaaParams::QUALITY`, the defaults of FXAA 3.11) writing
-    /// `output_format` (`Rgba8Unorm`, `Rgba16Float` or `Rgba32Float`).
-    pub fn new(
-        device: &wgpu::Device,
-        params: &FxaaParams,
-        output_format: wgpu::TextureFormat,
-    ) -> Result<Self, PassError> {
-        bind::check_output_format(output_format)?;
-        let group = Self::group(output_format);
+    /// Build the pass (compile its pipeline, make its uniform buffers) for
+    /// `desc`. Refuses an output format it cannot write.
+    pub fn new(device: &wgpu::Device, desc: &FxaaPassDesc) -> Result<Self, PassError> {
+        bind::check_output_format(desc.output_format)?;
+        let group = Self::group(desc.output_format);
         let source = Self::source(&group);
         let pipeline = PassPipeline::new(device, "subcone fxaa", group, source, None, "fxaa_main");
         Ok(FxaaPass {
-            params: *params,
-            output_format,
+            desc: *desc,
             pipeline,
         })
+    }
+
+    /// The configuration.
+    pub fn desc(&self) -> &FxaaPassDesc {
+        &self.desc
     }
 
     #[cfg(test)]
@@ -65,8 +105,8 @@ impl FxaaPass {
 
     fn group(output_format: wgpu::TextureFormat) -> Group {
         let mut g = Group::default();
-        g.uniform("fxaa_params", "subcone_FxaaParams");
-        g.uniform("fxaa_frame", "FxaaFrame");
+        g.uniform::<FxaaParams>("fxaa_params", "subcone_FxaaParams");
+        g.uniform::<FxaaFrame>("fxaa_frame", "FxaaFrame");
         g.texture(
             "fxaa_src",
             "texture_2d<f32>",
@@ -88,16 +128,24 @@ impl FxaaPass {
         .concat()
     }
 
-    /// Record FXAA of `input` into `output` (one compute pass). Checks both
-    /// first: on an error nothing is recorded.
+    /// Record FXAA of `input` into `output` (one compute pass), the frame's
+    /// size written through `queue`. Checks both first: on an error nothing
+    /// is recorded or written.
+    ///
+    /// `timestamps`, when given, are written at the start and end of the
+    /// compute pass: the host creates the query set (`QueryType::Timestamp`,
+    /// on a device with `Features::TIMESTAMP_QUERY`), resolves it and reads
+    /// it back.
     pub fn encode(
         &self,
         device: &wgpu::Device,
+        queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
-        input: &wgpu::Texture,
-        output: &wgpu::Texture,
+        input: &wgpu::TextureView,
+        output: &wgpu::TextureView,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), PassError> {
-        let size = bind::check_output(output, self.output_format, "the pass's output format")?;
+        let size = bind::check_output(output, self.desc.output_format, "the desc's output_format")?;
         bind::check(
             input,
             &Expect {
@@ -109,31 +157,34 @@ impl FxaaPass {
             },
         )?;
         bind::check_float_color("input", input)?;
-        if input == output {
+        if input.texture() == output.texture() {
             return Err(PassError::Config(
                 "FXAA cannot filter a texture in place".into(),
             ));
         }
-        let params = bind::uniform_buffer(device, "subcone fxaa params", &self.params);
         let frame = FxaaFrame {
             width: size.0,
             height: size.1,
             _pad: [0; 2],
         };
-        let frame = bind::uniform_buffer(device, "subcone fxaa frame", &frame);
-        let src = bind::view(input, wgpu::TextureViewDimension::D2);
-        let dst = bind::view(output, wgpu::TextureViewDimension::D2);
         self.pipeline.encode(
             device,
+            queue,
             encoder,
             size,
             &[
-                ("fxaa_params", params.as_entire_binding()),
-                ("fxaa_frame", frame.as_entire_binding()),
-                ("fxaa_src", wgpu::BindingResource::TextureView(&src)),
-                ("fxaa_dst", wgpu::BindingResource::TextureView(&dst)),
+                bytemuck::bytes_of(&self.desc.params),
+                bytemuck::bytes_of(&frame),
             ],
+            &[("fxaa_src", input), ("fxaa_dst", output)],
             None,
+            timestamps,
         )
+    }
+
+    /// Drop the bind groups cached for the views seen so far, and with them
+    /// the pass's clones of those views.
+    pub fn release_views(&self) {
+        self.pipeline.release_views();
     }
 }

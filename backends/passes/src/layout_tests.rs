@@ -70,7 +70,7 @@ fn validate(label: &str, source: &str) -> Result<(), String> {
 /// CTSS (with and without the host's normal) and FXAA shaders.
 #[test]
 fn every_pass_shader_validates() {
-    use crate::sraa::{test_source, DepthKind, GeometryLayout, NormalEncoding, SraaResolveDesc};
+    use crate::sraa::{test_source, DepthKind, GeometryLayout, NormalEncoding, SraaPassDesc};
     use subcone_kernels::sraa::SraaParams;
     let mut errors = Vec::new();
     for geometry in [
@@ -78,7 +78,7 @@ fn every_pass_shader_validates() {
         GeometryLayout::Layers,
         GeometryLayout::Packed,
     ] {
-        for depth in [DepthKind::Hardware, DepthKind::LinearView] {
+        for depth in [DepthKind::Hardware { miss: 0.0 }, DepthKind::LinearView] {
             for normal in [NormalEncoding::Signed, NormalEncoding::Unsigned] {
                 if geometry == GeometryLayout::Packed
                     && (depth != DepthKind::LinearView || normal != NormalEncoding::Signed)
@@ -92,7 +92,7 @@ fn every_pass_shader_validates() {
                         (8, false, true),
                         (0, false, true),
                     ] {
-                        let desc = SraaResolveDesc {
+                        let desc = SraaPassDesc {
                             lights,
                             albedo_gate,
                             secondary,
@@ -100,7 +100,7 @@ fn every_pass_shader_validates() {
                             geometry,
                             depth,
                             normal,
-                            ..SraaResolveDesc::msaa()
+                            ..SraaPassDesc::msaa()
                         };
                         if let Err(e) = validate(&format!("{desc:?}"), &test_source(&desc)) {
                             errors.push(e);
@@ -129,4 +129,29 @@ fn every_pass_shader_validates() {
         errors.push(e);
     }
     assert!(errors.is_empty(), "{}", errors.join("\n\n"));
+}
+
+/// The object id that means "none" is one constant: the WGSL the CTSS pass
+/// runs declares `subcone_NO_OBJECT` with the value of the kernels'
+/// `ctss::NO_OBJECT` (which the C ABI's `SubconeFieldSample::object`
+/// documents as `0xFFFFFFFF`).
+#[test]
+fn the_wgsl_no_object_is_the_kernels_constant() {
+    let host = "fn subcone_field(p: vec3<f32>) -> vec3<f32> { let d = length(p) - 1.0; return vec3<f32>(d, d, 0.0); }\n\
+                fn subcone_shade(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> vec3<f32> { return n; }\n";
+    let g = CtssPass::group_for_tests(wgpu::TextureFormat::Rgba16Float);
+    let source = CtssPass::source(host, 8, &g);
+    let module = naga::front::wgsl::parse_str(&source).expect("the CTSS pass's shader parses");
+    let (_, constant) = module
+        .constants
+        .iter()
+        .find(|(_, c)| c.name.as_deref() == Some("subcone_NO_OBJECT"))
+        .expect("ctss.wgsl declares subcone_NO_OBJECT");
+    match module.global_expressions[constant.init] {
+        naga::Expression::Literal(naga::Literal::U32(v)) => {
+            assert_eq!(v, subcone_kernels::ctss::NO_OBJECT)
+        }
+        ref other => panic!("subcone_NO_OBJECT is {other:?}, not a u32 literal"),
+    }
+    assert_eq!(subcone_kernels::ctss::NO_OBJECT, 0xFFFF_FFFF);
 }

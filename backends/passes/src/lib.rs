@@ -1,13 +1,24 @@
 //! subcone's GPU passes for a host wgpu renderer.
 //!
-//! Each pass works on the host's `wgpu::Device`, queue and textures and never
-//! opens a device of its own, never installs a device-lost or uncaptured-error
-//! callback and never waits on the GPU: it records into the host's
-//! `wgpu::CommandEncoder` and the host submits. Like the `smaa` crate, a pass
-//! is built once for a configuration (`new`, which compiles its pipeline) and
-//! recorded every frame (`encode`).
+//! Each pass works on the host's `wgpu::Device`, `wgpu::Queue` and texture
+//! views and never opens a device of its own, never installs a device-lost or
+//! uncaptured-error callback and never waits on the GPU: it records into the
+//! host's `wgpu::CommandEncoder` and the host submits. Like the `smaa` crate,
+//! a pass is built once for a configuration (`new`, which compiles its
+//! pipeline and makes its uniform buffers) and recorded every frame
+//! (`encode(&device, &queue, &mut encoder, inputs, timestamps)`).
 //!
-//! - [`SraaResolve`]: SRAA's antialiasing pass (Chiu et al., §3, eq. 1–2,
+//! A pass lives in the host's frame loop: after the first frame with given
+//! views, `encode` creates no buffer, texture, bind group or pipeline. Its
+//! per-frame constants are written with `Queue::write_buffer` into one of
+//! [`UNIFORM_SLOTS`] slots (so a submission may hold many encodes of a pass,
+//! with up to that many distinct values of each constant), and its bind
+//! groups are cached per set of input views, at most [`BIND_GROUP_CACHE`]
+//! of them. Each `encode` takes optional `wgpu::ComputePassTimestampWrites`
+//! for a host that times the pass on the GPU (its own query set, which it
+//! resolves).
+//!
+//! - [`SraaPass`]: SRAA's antialiasing pass (Chiu et al., §3, eq. 1–2,
 //!   secondary hits §3.3) from the host's subsample geometry (a 4x MSAA
 //!   depth + normal prepass, or four layers) and its one shaded colour per
 //!   pixel.
@@ -20,9 +31,12 @@
 //! `subcone_kernels::fxaa::WGSL`): the mathematics is written once, in the
 //! kernels crate, and this crate only binds textures to it. Each GPU pass is one `.rs` beside one `.wgsl`.
 //!
-//! Inputs are checked before anything is recorded: a texture of the wrong
-//! size, format, sample count, layer count or usage is a [`PassError`], never
-//! a wgpu validation error raised on the host's device.
+//! Inputs are checked before anything is recorded: a view of a texture of the
+//! wrong size, format, sample count, layer count or usage is a [`PassError`],
+//! never a wgpu validation error raised on the host's device. (wgpu 30
+//! exposes a view's texture, `TextureView::texture`, but not the view's
+//! dimension, aspect or range: a view of the whole texture, as
+//! `create_view(&Default::default())` makes, is the host's part.)
 
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
@@ -37,11 +51,12 @@ mod layout_check;
 mod layout_tests;
 mod sraa;
 
+pub use bind::{BIND_GROUP_CACHE, UNIFORM_SLOTS};
 pub use ctss::{CtssCamera, CtssFrame, CtssPass, CtssPassDesc, MAX_BATCH};
-pub use fxaa::FxaaPass;
+pub use fxaa::{FxaaPass, FxaaPassDesc};
 pub use sraa::{
-    AlbedoTextures, CentreGeometry, DepthConvention, DepthKind, GeometryLayout, NormalEncoding,
-    SecondaryInputs, ShadowTextures, SraaInputs, SraaResolve, SraaResolveDesc, RECONSTRUCT_WGSL,
+    AlbedoTextures, CentreGeometry, DepthKind, GeometryLayout, NormalEncoding, SecondaryInputs,
+    ShadowTextures, SraaInputs, SraaPass, SraaPassDesc, SubsampleGeometry, RECONSTRUCT_WGSL,
 };
 
 /// README.md's code blocks (its "Embedding" section), compiled as doctests.
@@ -50,7 +65,10 @@ pub use sraa::{
 pub struct ReadmeSnippets;
 
 /// Why a pass refused its configuration or its inputs. Nothing was recorded.
+/// `#[non_exhaustive]`: a new kind of refusal is not a breaking change, so a
+/// host's `match` keeps a wildcard arm.
 #[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum PassError {
     /// A texture has the wrong size.
     Size {

@@ -1,4 +1,4 @@
-//! [`SraaResolve`]: SRAA's antialiasing pass (Chiu et al., *Subpixel
+//! [`SraaPass`]: SRAA's antialiasing pass (Chiu et al., *Subpixel
 //! Reconstruction Antialiasing for Ray Tracing*, §3, the paper's pass 2) over
 //! a host renderer's textures.
 //!
@@ -26,7 +26,7 @@ use crate::PassError;
 
 pub(crate) const SRAA_WGSL: &str = include_str!("sraa.wgsl");
 
-/// The SRAA reconstruction loop every GPU resolve shares ([`SraaResolve`]
+/// The SRAA reconstruction loop every GPU resolve shares ([`SraaPass`]
 /// and the wgpu backend's own), `subcone_sraa_reconstruct_run`: the
 /// kernels' WGSL twin of `sraa::reconstruct_layers` (with the albedo gate,
 /// `sraa::reconstruct_layers_material`), re-exported from
@@ -67,47 +67,36 @@ pub enum GeometryLayout {
     Packed,
 }
 
-/// How depth is stored (the binding type): chosen at [`SraaResolve::new`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// How depth is stored, fixed for the pass's life (it selects the binding
+/// type and how a depth is read): the one depth convention of a
+/// [`SraaPass`]. The projection of hardware depth, which changes from frame
+/// to frame (a jittered or moving camera), is [`SraaInputs::projection`].
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum DepthKind {
     /// A colour texture (e.g. `R32Float`) of linear view depth: the distance
     /// from the eye along the view direction, `> 0`; `0`, negative or
     /// non-finite values are a miss (nothing drawn).
     LinearView,
-    /// A depth texture (`Depth32Float`, `Depth24Plus`, …) written by the
-    /// hardware through a projection, given per frame in
-    /// [`DepthConvention::Hardware`].
-    Hardware,
-}
-
-/// How the depth of one frame is converted to view depth.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum DepthConvention {
-    /// The textures hold linear view depth ([`DepthKind::LinearView`]).
-    LinearView,
-    /// The textures hold hardware depth `d` produced by `projection`
-    /// (column-major, `glam::Mat4::to_cols_array_2d`, clip = P · view,
-    /// depth range 0..1, right- or left-handed). View depth is
+    /// A depth texture (`Depth32Float`, `Depth24Plus`, …) of hardware depth
+    /// `d` written through the frame's projection `P`
+    /// ([`SraaInputs::projection`]: column-major,
+    /// `glam::Mat4::to_cols_array_2d`, clip = P · view, depth range 0..1,
+    /// right- or left-handed). View depth is
     /// `|(m32 − d·m33) / (d·m23 − m22)|` (`m[c][r]`), which inverts
     /// perspective projections with forward or reversed Z and finite or
     /// infinite far planes, and orthographic ones. The projection's
     /// `m[0][2]` and `m[1][2]` must be 0 (no x or y in clip z), as in every
     /// standard projection, jittered ones included.
     Hardware {
-        /// The projection the depth was rendered with.
-        projection: [[f32; 4]; 4],
         /// The depth of a sample nothing was drawn at (the clear value):
         /// `0.0` for reversed Z, `1.0` for forward Z. A miss.
         miss: f32,
     },
 }
 
-impl DepthConvention {
-    fn kind(&self) -> DepthKind {
-        match self {
-            DepthConvention::LinearView => DepthKind::LinearView,
-            DepthConvention::Hardware { .. } => DepthKind::Hardware,
-        }
+impl DepthKind {
+    fn is_hardware(&self) -> bool {
+        matches!(self, DepthKind::Hardware { .. })
     }
 }
 
@@ -124,10 +113,16 @@ pub enum NormalEncoding {
     Unsigned,
 }
 
-/// The configuration of a [`SraaResolve`]: what the host renders and how it
+/// The configuration of a [`SraaPass`]: what the host renders and how it
 /// stores it. Fixed for the pass's life (it selects the pipeline).
-#[derive(Clone, Copy, Debug)]
-pub struct SraaResolveDesc {
+///
+/// Start from a preset ([`SraaPassDesc::msaa`], [`SraaPassDesc::packed`])
+/// and change what differs with the `with_` methods (or assign the public
+/// fields): the struct is `#[non_exhaustive]`, so a field added in a later
+/// release, with its default in the presets, breaks no host.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct SraaPassDesc {
     /// Lights whose shadows gate the reconstruction (SRAA eq. 2), at most
     /// `subcone_kernels::passes::MAX_LIGHTS` (8). With 0, the shaded colour
     /// is one layer and nothing is gated (SRAA's eq. 1 alone); with `L > 0`
@@ -156,7 +151,7 @@ pub struct SraaResolveDesc {
     pub params: SraaParams,
     /// How the subsamples are stored.
     pub geometry: GeometryLayout,
-    /// How depth is stored.
+    /// How depth is stored (for the subsamples and the centre geometry).
     pub depth: DepthKind,
     /// How normals are stored.
     pub normal: NormalEncoding,
@@ -165,22 +160,96 @@ pub struct SraaResolveDesc {
     pub output_format: wgpu::TextureFormat,
 }
 
-impl SraaResolveDesc {
-    /// The default configuration for a host's 4x MSAA prepass of hardware
-    /// depth and signed normals, no lights, no gate, `SraaParams::PAPER`
-    /// (shaded at subsample 0, so no centre geometry is needed), writing
+impl SraaPassDesc {
+    /// The configuration for a host's 4x MSAA prepass of reversed-Z
+    /// hardware depth (`DepthKind::Hardware { miss: 0.0 }`) and signed
+    /// normals: no lights, no gate, `SraaParams::PAPER`, writing
     /// `Rgba16Float`.
+    ///
+    /// It keeps the paper's preset, whose shaded sample lies on subsample 0
+    /// (`SHADED_SUBSAMPLE`), rather than the tuned one
+    /// (`SraaParams::TUNED`), which shades the pixel centre: a plain MSAA
+    /// prepass has no sample at the pixel centre, so the tuned preset would
+    /// need the host to render the centre's geometry in an extra pass
+    /// ([`CentreGeometry`]). Subsample 0's geometry is MSAA sample 0, which
+    /// the prepass already holds (SRAA §3: the shaded sample is one of the
+    /// geometric subsamples).
     pub fn msaa() -> Self {
-        SraaResolveDesc {
+        SraaPassDesc {
             lights: 0,
             secondary: false,
             albedo_gate: false,
             params: SraaParams::PAPER,
             geometry: GeometryLayout::Multisampled,
-            depth: DepthKind::Hardware,
+            depth: DepthKind::Hardware { miss: 0.0 },
             normal: NormalEncoding::Signed,
             output_format: wgpu::TextureFormat::Rgba16Float,
         }
+    }
+
+    /// The configuration for [`GeometryLayout::Packed`] layers (what
+    /// `subcone-wgpu` rasterises): linear view depth and signed normals in
+    /// one `Rgba32Float` array, `params`, no lights, no gate, writing
+    /// `Rgba32Float`.
+    pub fn packed(params: SraaParams) -> Self {
+        SraaPassDesc {
+            lights: 0,
+            secondary: false,
+            albedo_gate: false,
+            params,
+            geometry: GeometryLayout::Packed,
+            depth: DepthKind::LinearView,
+            normal: NormalEncoding::Signed,
+            output_format: wgpu::TextureFormat::Rgba32Float,
+        }
+    }
+
+    /// With `lights` lights gating the reconstruction ([`Self::lights`]).
+    pub fn with_lights(mut self, lights: u32) -> Self {
+        self.lights = lights;
+        self
+    }
+
+    /// With or without secondary shading ([`Self::secondary`]).
+    pub fn with_secondary(mut self, secondary: bool) -> Self {
+        self.secondary = secondary;
+        self
+    }
+
+    /// With or without the material gate ([`Self::albedo_gate`]).
+    pub fn with_albedo_gate(mut self, albedo_gate: bool) -> Self {
+        self.albedo_gate = albedo_gate;
+        self
+    }
+
+    /// With the weights' preset `params` ([`Self::params`]).
+    pub fn with_params(mut self, params: SraaParams) -> Self {
+        self.params = params;
+        self
+    }
+
+    /// With the subsamples stored as `geometry` ([`Self::geometry`]).
+    pub fn with_geometry(mut self, geometry: GeometryLayout) -> Self {
+        self.geometry = geometry;
+        self
+    }
+
+    /// With depth stored as `depth` ([`Self::depth`]).
+    pub fn with_depth(mut self, depth: DepthKind) -> Self {
+        self.depth = depth;
+        self
+    }
+
+    /// With normals stored as `normal` ([`Self::normal`]).
+    pub fn with_normal(mut self, normal: NormalEncoding) -> Self {
+        self.normal = normal;
+        self
+    }
+
+    /// Writing `format` ([`Self::output_format`]).
+    pub fn with_output_format(mut self, format: wgpu::TextureFormat) -> Self {
+        self.output_format = format;
+        self
     }
 
     /// Colour layers: `1 + lights`, twice that with secondary shading.
@@ -196,84 +265,106 @@ impl SraaResolveDesc {
 /// Geometry at the pixel centres (one sample per pixel, the same size as
 /// the output), needed when the preset shades the pixel centre
 /// (`ShadedPosition::Centre`, e.g. `SraaParams::TUNED`): the geometry of
-/// the shaded sample. Depth as [`SraaResolveDesc::depth`], normals as
-/// [`SraaResolveDesc::normal`].
+/// the shaded sample. Depth as [`SraaPassDesc::depth`], normals as
+/// [`SraaPassDesc::normal`].
 #[derive(Clone, Copy, Debug)]
 pub struct CentreGeometry<'a> {
     /// Depth at the pixel centres.
-    pub depth: &'a wgpu::Texture,
+    pub depth: &'a wgpu::TextureView,
     /// Normals at the pixel centres.
-    pub normal: &'a wgpu::Texture,
+    pub normal: &'a wgpu::TextureView,
 }
 
-/// Shadow states for eq. 2 (`SraaResolveDesc::lights > 0`): `R32Uint`, bit
+/// Shadow states for eq. 2 (`SraaPassDesc::lights > 0`): `R32Uint`, bit
 /// `l` set where light `l`'s shadow ray is blocked.
 #[derive(Clone, Copy, Debug)]
 pub struct ShadowTextures<'a> {
     /// At the shaded sample of each pixel (one sample, one layer).
-    pub shaded: &'a wgpu::Texture,
+    pub shaded: &'a wgpu::TextureView,
     /// At each geometric subsample: a one-sample 2D array of exactly 4
     /// layers, layer `k` subsample `k` (whatever the geometry layout:
     /// integer formats cannot be multisampled everywhere).
-    pub subsamples: &'a wgpu::Texture,
+    pub subsamples: &'a wgpu::TextureView,
 }
 
-/// Diffuse albedo for the material gate (`SraaResolveDesc::albedo_gate`):
+/// Diffuse albedo for the material gate (`SraaPassDesc::albedo_gate`):
 /// `.xyz` linear RGB, any float format.
 #[derive(Clone, Copy, Debug)]
 pub struct AlbedoTextures<'a> {
     /// At the shaded sample of each pixel (one sample, one layer).
-    pub shaded: &'a wgpu::Texture,
+    pub shaded: &'a wgpu::TextureView,
     /// At each geometric subsample, in the geometry's layout: 4x
     /// multisampled for [`GeometryLayout::Multisampled`], else a 4-layer
     /// array.
-    pub subsamples: &'a wgpu::Texture,
+    pub subsamples: &'a wgpu::TextureView,
 }
 
 /// The secondary hits (SRAA-RT §3.3: where a mirror reflects the ray) for
-/// [`SraaResolveDesc::secondary`]. Depth is always the linear length of the
+/// [`SraaPassDesc::secondary`]. Depth is always the linear length of the
 /// reflected path (eye to mirror plus mirror to hit), in a float colour
 /// format (e.g. `R32Float`), whatever the primary depth's kind: a value
 /// `> 0` and finite is a hit; `0` or `+inf` a miss (the reflection left the
 /// scene: its layers hold the background); negative or NaN means no mirror
 /// at that sample (its secondary layers are not used). Normals as
-/// [`SraaResolveDesc::normal`].
+/// [`SraaPassDesc::normal`].
 #[derive(Clone, Copy, Debug)]
 pub struct SecondaryInputs<'a> {
     /// At the shaded sample of each pixel (one sample, one layer).
-    pub shaded_depth: &'a wgpu::Texture,
+    pub shaded_depth: &'a wgpu::TextureView,
     /// Normals at the shaded sample.
-    pub shaded_normal: &'a wgpu::Texture,
+    pub shaded_normal: &'a wgpu::TextureView,
     /// At each geometric subsample: 4x multisampled for
     /// [`GeometryLayout::Multisampled`], else a 4-layer array.
-    pub subsample_depth: &'a wgpu::Texture,
+    pub subsample_depth: &'a wgpu::TextureView,
     /// Normals at each geometric subsample, in the same layout.
-    pub subsample_normal: &'a wgpu::Texture,
+    pub subsample_normal: &'a wgpu::TextureView,
     /// The secondary hits' shadow bits: required exactly when `lights > 0`.
     pub shadows: Option<ShadowTextures<'a>>,
 }
 
-/// One frame's textures for [`SraaResolve::encode`]. Every texture is the
-/// output's size, 2D, one mip level read (level 0), and has
-/// `TEXTURE_BINDING`; the output has `STORAGE_BINDING`.
+/// The geometric subsamples of one frame, in the desc's
+/// [`GeometryLayout`]: a depth and a normal view
+/// ([`GeometryLayout::Multisampled`], [`GeometryLayout::Layers`]), or the
+/// one packed view ([`GeometryLayout::Packed`]).
+#[derive(Clone, Copy, Debug)]
+pub enum SubsampleGeometry<'a> {
+    /// Depth (as [`SraaPassDesc::depth`]) and normals (as
+    /// [`SraaPassDesc::normal`]) in two textures.
+    Separate {
+        /// Subsample depth.
+        depth: &'a wgpu::TextureView,
+        /// Subsample normals.
+        normal: &'a wgpu::TextureView,
+    },
+    /// Normals in `.xyz` and linear view depth in `.w` of one texture.
+    Packed(&'a wgpu::TextureView),
+}
+
+/// One frame's views for [`SraaPass::encode`]. Each view is of a whole
+/// texture of one mip level (`Texture::create_view(&Default::default())`
+/// gives the right view of every input; of a depth-stencil format, its
+/// `TextureAspect::DepthOnly`); the sizes, formats, sample counts, layer
+/// counts and usages are checked on the views' textures
+/// (`TextureView::texture`). Every texture is the output's size, 2D, and
+/// has `TEXTURE_BINDING`; the output has `STORAGE_BINDING`.
 #[derive(Clone, Copy, Debug)]
 pub struct SraaInputs<'a> {
-    /// Subsample depth ([`GeometryLayout`]; for [`GeometryLayout::Packed`],
-    /// the packed normal + depth texture).
-    pub subsample_depth: &'a wgpu::Texture,
-    /// Subsample normals; `None` exactly for [`GeometryLayout::Packed`].
-    pub subsample_normal: Option<&'a wgpu::Texture>,
-    /// How to read depth this frame (its kind must be the desc's).
-    pub depth: DepthConvention,
+    /// The geometric subsamples.
+    pub geometry: SubsampleGeometry<'a>,
+    /// The projection this frame's hardware depth was rendered with
+    /// (column-major, `glam::Mat4::to_cols_array_2d`; see
+    /// [`DepthKind::Hardware`]). Only its z and w rows are read, and only
+    /// with [`DepthKind::Hardware`]; a pass of linear view depth ignores it.
+    pub projection: [[f32; 4]; 4],
     /// Geometry at the pixel centres: required exactly when the preset
     /// shades the pixel centre.
     pub centre: Option<CentreGeometry<'a>>,
     /// The shaded colour, linear RGB in `.xyz`, one sample per pixel, shaded
     /// where the preset puts the shaded sample (see
-    /// [`SraaResolveDesc::params`]). With 0 lights and no secondary shading
+    /// [`SraaPassDesc::params`]). With 0 lights and no secondary shading
     /// one layer (a 2D texture); else a 2D array of exactly `1 + L` layers,
     /// `2·(1 + L)` with secondary shading.
-    pub color: &'a wgpu::Texture,
+    pub color: &'a wgpu::TextureView,
     /// Shadow bits: required exactly when `lights > 0`.
     pub shadows: Option<ShadowTextures<'a>>,
     /// Albedo: required exactly when the albedo gate is on.
@@ -281,13 +372,13 @@ pub struct SraaInputs<'a> {
     /// The secondary hits: required exactly when the desc has `secondary`.
     pub secondary: Option<SecondaryInputs<'a>>,
     /// Where the antialiased colour is written (level 0, layer 0).
-    pub output: &'a wgpu::Texture,
+    pub output: &'a wgpu::TextureView,
 }
 
 /// What the input textures of one frame must be, for one configuration
-/// and the frame's `size` ([`SraaResolve::check`]).
+/// and the frame's `size` ([`SraaPass::check`]).
 struct InputRules<'a> {
-    desc: &'a SraaResolveDesc,
+    desc: &'a SraaPassDesc,
     size: (u32, u32),
 }
 
@@ -317,19 +408,20 @@ impl InputRules<'_> {
     }
 
     /// A depth texture's format for the desc's [`DepthKind`].
-    fn depth_format(&self, what: &'static str, t: &wgpu::Texture) -> Result<(), PassError> {
+    fn depth_format(&self, what: &'static str, v: &wgpu::TextureView) -> Result<(), PassError> {
+        let format = v.texture().format();
         let ok = match self.desc.depth {
-            DepthKind::Hardware => t.format().has_depth_aspect(),
-            DepthKind::LinearView => bind::is_float_color(t.format()),
+            DepthKind::Hardware { .. } => format.has_depth_aspect(),
+            DepthKind::LinearView => bind::is_float_color(format),
         };
         if ok {
             Ok(())
         } else {
             Err(PassError::Format {
                 what,
-                found: t.format(),
+                found: format,
                 expected: match self.desc.depth {
-                    DepthKind::Hardware => "a depth format (DepthKind::Hardware)",
+                    DepthKind::Hardware { .. } => "a depth format (DepthKind::Hardware)",
                     DepthKind::LinearView => "a float colour format such as R32Float",
                 },
             })
@@ -339,21 +431,28 @@ impl InputRules<'_> {
     /// The subsamples' depth and normals: one packed texture, or a depth
     /// and a normal texture.
     fn subsample_geometry(&self, inputs: &SraaInputs<'_>) -> Result<(), PassError> {
-        bind::check(inputs.subsample_depth, &self.sub("subsample depth"))?;
-        if self.desc.geometry == GeometryLayout::Packed {
-            bind::check_float_color("subsample depth", inputs.subsample_depth)?;
-            if inputs.subsample_normal.is_some() {
-                return Err(PassError::Unexpected(
-                    "subsample normal (GeometryLayout::Packed holds the normals)",
-                ));
+        let packed = self.desc.geometry == GeometryLayout::Packed;
+        match (packed, inputs.geometry) {
+            (true, SubsampleGeometry::Packed(p)) => {
+                bind::check(p, &self.sub("packed subsamples"))?;
+                bind::check_float_color("packed subsamples", p)?;
             }
-        } else {
-            self.depth_format("subsample depth", inputs.subsample_depth)?;
-            let n = inputs
-                .subsample_normal
-                .ok_or(PassError::Missing("subsample normal"))?;
-            bind::check(n, &self.sub("subsample normal"))?;
-            bind::check_float_color("subsample normal", n)?;
+            (false, SubsampleGeometry::Separate { depth, normal }) => {
+                bind::check(depth, &self.sub("subsample depth"))?;
+                self.depth_format("subsample depth", depth)?;
+                bind::check(normal, &self.sub("subsample normal"))?;
+                bind::check_float_color("subsample normal", normal)?;
+            }
+            (true, SubsampleGeometry::Separate { .. }) => {
+                return Err(PassError::Config(
+                    "SubsampleGeometry::Separate given to a pass built for GeometryLayout::Packed"
+                        .into(),
+                ))
+            }
+            (false, SubsampleGeometry::Packed(_)) => return Err(PassError::Config(
+                "SubsampleGeometry::Packed given to a pass built for separate depth and normals"
+                    .into(),
+            )),
         }
         Ok(())
     }
@@ -391,10 +490,10 @@ impl InputRules<'_> {
             ("subsample shadows", s.subsamples, 4),
         ] {
             bind::check(t, &self.one(what, layers))?;
-            if t.format() != wgpu::TextureFormat::R32Uint {
+            if t.texture().format() != wgpu::TextureFormat::R32Uint {
                 return Err(PassError::Format {
                     what,
-                    found: t.format(),
+                    found: t.texture().format(),
                     expected: "R32Uint",
                 });
             }
@@ -458,35 +557,42 @@ impl InputRules<'_> {
 }
 
 /// SRAA's antialiasing pass on the host's device. See the module docs of
-/// the crate and [`SraaResolveDesc`] for the conventions.
+/// the crate and [`SraaPassDesc`] for the conventions.
+///
+/// Built once (`new` compiles the pipeline and makes the uniform buffer),
+/// encoded every frame: after the first frame with given views, `encode`
+/// creates no buffer, texture, bind group or pipeline (it writes the frame's
+/// constants into a slot of its uniform buffer, [`crate::UNIFORM_SLOTS`],
+/// and reuses the bind group of those views, [`crate::BIND_GROUP_CACHE`]).
 ///
 /// ```no_run
-/// # fn f(device: &wgpu::Device, encoder: &mut wgpu::CommandEncoder, depth: &wgpu::Texture,
-/// #      normal: &wgpu::Texture, color: &wgpu::Texture, output: &wgpu::Texture, projection: [[f32; 4]; 4])
+/// # fn f(device: &wgpu::Device, queue: &wgpu::Queue, encoder: &mut wgpu::CommandEncoder,
+/// #      depth: &wgpu::TextureView, normal: &wgpu::TextureView, color: &wgpu::TextureView,
+/// #      output: &wgpu::TextureView, projection: [[f32; 4]; 4])
 /// # -> Result<(), subcone_passes::PassError> {
-/// use subcone_passes::{DepthConvention, SraaInputs, SraaResolve, SraaResolveDesc};
-/// let sraa = SraaResolve::new(device, &SraaResolveDesc::msaa())?;
-/// sraa.encode(device, encoder, &SraaInputs {
-///     subsample_depth: depth,   // Depth32Float, 4x MSAA, reversed Z
-///     subsample_normal: Some(normal), // Rgba16Float, 4x MSAA
-///     depth: DepthConvention::Hardware { projection, miss: 0.0 },
+/// use subcone_passes::{SraaInputs, SraaPass, SraaPassDesc, SubsampleGeometry};
+/// let sraa = SraaPass::new(device, &SraaPassDesc::msaa())?;
+/// sraa.encode(device, queue, encoder, &SraaInputs {
+///     // Depth32Float (reversed Z) and Rgba16Float, 4x MSAA
+///     geometry: SubsampleGeometry::Separate { depth, normal },
+///     projection,               // this frame's
 ///     centre: None,
 ///     color,                    // shaded at SUBPIXEL_OFFSETS[0]
 ///     shadows: None,
 ///     albedo: None,
 ///     secondary: None,
 ///     output,                   // Rgba16Float, STORAGE_BINDING
-/// })?;
+/// }, None)?;
 /// # Ok(()) }
 /// ```
-pub struct SraaResolve {
-    desc: SraaResolveDesc,
+pub struct SraaPass {
+    desc: SraaPassDesc,
     pipeline: PassPipeline,
 }
 
-impl std::fmt::Debug for SraaResolve {
+impl std::fmt::Debug for SraaPass {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("SraaResolve")
+        f.debug_struct("SraaPass")
             .field("desc", &self.desc)
             .finish()
     }
@@ -496,12 +602,12 @@ fn float_sample() -> wgpu::TextureSampleType {
     wgpu::TextureSampleType::Float { filterable: false }
 }
 
-impl SraaResolve {
+impl SraaPass {
     /// Build the pass (compile its pipeline) on the host's device. Refuses
     /// more than `MAX_LIGHTS` lights, an output format
     /// it cannot write, and [`GeometryLayout::Packed`] with hardware depth
     /// or unsigned normals.
-    pub fn new(device: &wgpu::Device, desc: &SraaResolveDesc) -> Result<Self, PassError> {
+    pub fn new(device: &wgpu::Device, desc: &SraaPassDesc) -> Result<Self, PassError> {
         let source = Self::source(desc)?;
         let group = Self::group(desc);
         let source = [source, group.declarations()].concat();
@@ -513,23 +619,23 @@ impl SraaResolve {
             None,
             "sraa_resolve_main",
         );
-        Ok(SraaResolve {
+        Ok(SraaPass {
             desc: *desc,
             pipeline,
         })
     }
 
     /// The configuration.
-    pub fn desc(&self) -> &SraaResolveDesc {
+    pub fn desc(&self) -> &SraaPassDesc {
         &self.desc
     }
 
     /// The bindings, in order.
-    fn group(desc: &SraaResolveDesc) -> Group {
+    fn group(desc: &SraaPassDesc) -> Group {
         use wgpu::TextureViewDimension::{D2Array, D2};
         let mut g = Group::default();
-        g.uniform("frame", "SraaFrame");
-        let hw = desc.depth == DepthKind::Hardware;
+        g.uniform::<SraaFrame>("frame", "SraaFrame");
+        let hw = desc.depth.is_hardware();
         let (dim, ms) = match desc.geometry {
             GeometryLayout::Multisampled => (D2, true),
             _ => (D2Array, false),
@@ -612,7 +718,7 @@ impl SraaResolve {
 
     /// The shader: the kernels, the generated header (constants, loaders),
     /// `sraa.wgsl`; the declarations are appended by [`Self::new`].
-    fn source(desc: &SraaResolveDesc) -> Result<String, PassError> {
+    fn source(desc: &SraaPassDesc) -> Result<String, PassError> {
         if desc.lights as usize > MAX_LIGHTS {
             return Err(PassError::Config(format!(
                 "{} lights: SRAA's eq. 2 gates at most {MAX_LIGHTS}",
@@ -628,7 +734,7 @@ impl SraaResolve {
                 "GeometryLayout::Packed holds linear view depth and signed normals".into(),
             ));
         }
-        let hw = desc.depth == DepthKind::Hardware;
+        let hw = desc.depth.is_hardware();
         let ms = desc.geometry == GeometryLayout::Multisampled;
         // textureLoad's trailing arguments: sample index, or layer and level.
         let sub_at = if ms { "i32(k)" } else { "i32(k), 0" };
@@ -711,12 +817,12 @@ impl SraaResolve {
     }
 
     /// Check `inputs` against the configuration; the frame's size. Each
-    /// input in turn, in the order of [`SraaInputs`]' roles: the output and
-    /// the depth convention, the subsample geometry, the centre geometry,
-    /// the colour, the shadows, the secondary hits, the albedo.
+    /// input in turn, in the order of [`SraaInputs`]' roles: the output, the
+    /// subsample geometry, the centre geometry, the colour, the shadows, the
+    /// secondary hits, the albedo.
     fn check(&self, inputs: &SraaInputs<'_>) -> Result<(u32, u32), PassError> {
         let d = &self.desc;
-        let size = self.check_output(inputs)?;
+        let size = bind::check_output(inputs.output, d.output_format, "the desc's output_format")?;
         let rules = InputRules { desc: d, size };
         rules.subsample_geometry(inputs)?;
         rules.centre_geometry(inputs)?;
@@ -733,40 +839,29 @@ impl SraaResolve {
         Ok(size)
     }
 
-    /// Check the output texture (its size is the frame's, returned) and
-    /// that the frame's depth convention is the one the pass was built for.
-    fn check_output(&self, inputs: &SraaInputs<'_>) -> Result<(u32, u32), PassError> {
-        let d = &self.desc;
-        let size = bind::check_output(inputs.output, d.output_format, "the desc's output_format")?;
-        if inputs.depth.kind() != d.depth {
-            return Err(PassError::Config(format!(
-                "the frame's depth convention is {:?}, the pass was built for {:?}",
-                inputs.depth.kind(),
-                d.depth
-            )));
-        }
-        Ok(size)
-    }
-
     /// Record the resolve of one frame into `encoder` (one compute pass of
-    /// 8×8 workgroups, one invocation per pixel). Checks every input first:
-    /// on an error nothing is recorded. Each call creates a 64-byte uniform
-    /// buffer and a bind group (the frame's size, preset and projection).
+    /// 8×8 workgroups, one invocation per pixel), its constants (size,
+    /// preset, projection) written through `queue`. Checks every input
+    /// first: on an error nothing is recorded or written.
+    ///
+    /// `timestamps`, when given, are written at the start and end of the
+    /// compute pass: the host creates the query set (`QueryType::Timestamp`,
+    /// on a device with `Features::TIMESTAMP_QUERY`), resolves it
+    /// (`CommandEncoder::resolve_query_set`) and reads it back.
     pub fn encode(
         &self,
         device: &wgpu::Device,
+        queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
         inputs: &SraaInputs<'_>,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), PassError> {
-        use wgpu::TextureViewDimension::{D2Array, D2};
         let (width, height) = self.check(inputs)?;
         let d = &self.desc;
-        let (projection, depth_miss) = match inputs.depth {
-            DepthConvention::LinearView => ([0.0; 4], 0.0),
-            DepthConvention::Hardware {
-                projection: m,
-                miss,
-            } => ([m[2][2], m[3][2], m[2][3], m[3][3]], miss),
+        let m = inputs.projection;
+        let (projection, depth_miss) = match d.depth {
+            DepthKind::LinearView => ([0.0; 4], 0.0),
+            DepthKind::Hardware { miss } => ([m[2][2], m[3][2], m[2][3], m[3][3]], miss),
         };
         let frame = SraaFrame {
             sraa: d.params,
@@ -776,58 +871,63 @@ impl SraaResolve {
             depth_miss,
             albedo_tolerance: ALBEDO_TOLERANCE,
         };
-        let uniform = bind::uniform_buffer(device, "subcone sraa frame", &frame);
-        let sub_dim = if d.geometry == GeometryLayout::Multisampled {
-            D2
-        } else {
-            D2Array
-        };
-        let mut views: Vec<(&'static str, wgpu::TextureView)> = Vec::new();
-        views.push(("sub_depth", bind::view(inputs.subsample_depth, sub_dim)));
-        if let Some(n) = inputs.subsample_normal {
-            views.push(("sub_normal", bind::view(n, sub_dim)));
+        let mut views: Vec<(&'static str, &wgpu::TextureView)> = Vec::with_capacity(16);
+        match inputs.geometry {
+            SubsampleGeometry::Separate { depth, normal } => {
+                views.push(("sub_depth", depth));
+                views.push(("sub_normal", normal));
+            }
+            SubsampleGeometry::Packed(p) => views.push(("sub_depth", p)),
         }
         if let Some(c) = &inputs.centre {
-            views.push(("centre_depth", bind::view(c.depth, D2)));
-            views.push(("centre_normal", bind::view(c.normal, D2)));
+            views.push(("centre_depth", c.depth));
+            views.push(("centre_normal", c.normal));
         }
-        let color_dim = if d.color_layers() == 1 { D2 } else { D2Array };
-        views.push(("color", bind::view(inputs.color, color_dim)));
+        views.push(("color", inputs.color));
         if let Some(s) = &inputs.shadows {
-            views.push(("shaded_shadow", bind::view(s.shaded, D2)));
-            views.push(("sub_shadow", bind::view(s.subsamples, D2Array)));
+            views.push(("shaded_shadow", s.shaded));
+            views.push(("sub_shadow", s.subsamples));
         }
         if let Some(s) = &inputs.secondary {
-            views.push(("sec_shaded_depth", bind::view(s.shaded_depth, D2)));
-            views.push(("sec_shaded_normal", bind::view(s.shaded_normal, D2)));
-            views.push(("sec_sub_depth", bind::view(s.subsample_depth, sub_dim)));
-            views.push(("sec_sub_normal", bind::view(s.subsample_normal, sub_dim)));
+            views.push(("sec_shaded_depth", s.shaded_depth));
+            views.push(("sec_shaded_normal", s.shaded_normal));
+            views.push(("sec_sub_depth", s.subsample_depth));
+            views.push(("sec_sub_normal", s.subsample_normal));
             if let Some(sh) = &s.shadows {
-                views.push(("sec_shaded_shadow", bind::view(sh.shaded, D2)));
-                views.push(("sec_sub_shadow", bind::view(sh.subsamples, D2Array)));
+                views.push(("sec_shaded_shadow", sh.shaded));
+                views.push(("sec_sub_shadow", sh.subsamples));
             }
         }
         if let Some(a) = &inputs.albedo {
-            views.push(("shaded_albedo", bind::view(a.shaded, D2)));
-            views.push(("sub_albedo", bind::view(a.subsamples, sub_dim)));
+            views.push(("shaded_albedo", a.shaded));
+            views.push(("sub_albedo", a.subsamples));
         }
-        views.push(("sraa_output", bind::view(inputs.output, D2)));
-        let mut resources = vec![("frame", uniform.as_entire_binding())];
-        resources.extend(
-            views
-                .iter()
-                .map(|(n, v)| (*n, wgpu::BindingResource::TextureView(v))),
-        );
-        self.pipeline
-            .encode(device, encoder, (width, height), &resources, None)
+        views.push(("sraa_output", inputs.output));
+        self.pipeline.encode(
+            device,
+            queue,
+            encoder,
+            (width, height),
+            &[bytemuck::bytes_of(&frame)],
+            &views,
+            None,
+            timestamps,
+        )
+    }
+
+    /// Drop the bind groups cached for the views seen so far, and with them
+    /// the pass's clones of the host's views (so textures the host has
+    /// dropped are freed now rather than when evicted).
+    pub fn release_views(&self) {
+        self.pipeline.release_views();
     }
 }
 
 #[cfg(test)]
-pub(crate) fn test_source(desc: &SraaResolveDesc) -> String {
-    let group = SraaResolve::group(desc);
+pub(crate) fn test_source(desc: &SraaPassDesc) -> String {
+    let group = SraaPass::group(desc);
     [
-        SraaResolve::source(desc).expect("valid desc"),
+        SraaPass::source(desc).expect("valid desc"),
         group.declarations(),
     ]
     .concat()

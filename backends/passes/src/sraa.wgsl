@@ -1,4 +1,4 @@
-// SraaResolve (sraa.rs): SRAA's antialiasing pass (Chiu et al., §3, the
+// SraaPass (sraa.rs): SRAA's antialiasing pass (Chiu et al., §3, the
 // paper's pass 2) over the host's textures. The loop is the wgpu backend's
 // resolve (backends/wgpu/src/triangles/sraa.wgsl) and the kernels' Resolver:
 // for each of the four geometric subsamples, sraa::reconstruct_layers over

@@ -13,10 +13,9 @@ mod host_sraa;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 
-use subcone_kernels::fxaa::FxaaParams;
 use subcone_kernels::sraa::SraaParams;
 use subcone_passes::{
-    DepthConvention, FxaaPass, PassError, SraaInputs, SraaResolve, SraaResolveDesc,
+    FxaaPass, FxaaPassDesc, PassError, SraaInputs, SraaPass, SraaPassDesc, SubsampleGeometry,
 };
 
 use host_sraa::host::{self, texture};
@@ -91,12 +90,7 @@ fn the_hosts_uncaptured_error_handler_stays_the_hosts() {
     // The passes run (SRAA through the host example, FXAA on its output).
     let image = host_sraa::render(&device, &queue, SraaParams::PAPER, 16, 8).expect("host render");
     assert_eq!(image.len(), 16 * 8);
-    let fxaa = FxaaPass::new(
-        &device,
-        &FxaaParams::QUALITY,
-        wgpu::TextureFormat::Rgba16Float,
-    )
-    .expect("fxaa");
+    let fxaa = FxaaPass::new(&device, &FxaaPassDesc::default()).expect("fxaa");
     let read = wgpu::TextureUsages::TEXTURE_BINDING;
     let src = texture(
         &device,
@@ -114,8 +108,12 @@ fn the_hosts_uncaptured_error_handler_stays_the_hosts() {
         wgpu::TextureFormat::Rgba16Float,
         wgpu::TextureUsages::STORAGE_BINDING,
     );
+    let (src, dst) = (
+        src.create_view(&Default::default()),
+        dst.create_view(&Default::default()),
+    );
     let mut enc = device.create_command_encoder(&Default::default());
-    fxaa.encode(&device, &mut enc, &src, &dst)
+    fxaa.encode(&device, &queue, &mut enc, &src, &dst, None)
         .expect("fxaa encode");
     queue.submit([enc.finish()]);
     wait(&device);
@@ -142,8 +140,7 @@ fn the_hosts_uncaptured_error_handler_stays_the_hosts() {
 /// host's handler sees no error).
 #[test]
 fn inputs_that_do_not_fit_are_typed_errors() {
-    let Some((device, _queue)) =
-        common::device_or_skip("pass input checks", host_sraa::open_device)
+    let Some((device, queue)) = common::device_or_skip("pass input checks", host_sraa::open_device)
     else {
         return;
     };
@@ -159,14 +156,14 @@ fn inputs_that_do_not_fit_are_typed_errors() {
     let color = texture(&device, "color", size, 1, Rgba16Float, read);
     let linear = texture(&device, "linear", size, 4, R32Float, read);
     let output = texture(&device, "output", size, 1, Rgba16Float, store);
-    let sraa = SraaResolve::new(&device, &SraaResolveDesc::msaa()).expect("pass");
+    let [depth, normal, normal1, small, color, linear, output] =
+        [&depth, &normal, &normal1, &small, &color, &linear, &output]
+            .map(|t| t.create_view(&Default::default()));
+    let sraa = SraaPass::new(&device, &SraaPassDesc::msaa()).expect("pass");
+    let separate = |depth, normal| SubsampleGeometry::Separate { depth, normal };
     let good = SraaInputs {
-        subsample_depth: &depth,
-        subsample_normal: Some(&normal),
-        depth: DepthConvention::Hardware {
-            projection: glam::Mat4::IDENTITY.to_cols_array_2d(),
-            miss: 0.0,
-        },
+        geometry: separate(&depth, &normal),
+        projection: glam::Mat4::IDENTITY.to_cols_array_2d(),
         centre: None,
         color: &color,
         shadows: None,
@@ -175,12 +172,12 @@ fn inputs_that_do_not_fit_are_typed_errors() {
         output: &output,
     };
     let mut enc = device.create_command_encoder(&Default::default());
-    assert_eq!(sraa.encode(&device, &mut enc, &good), Ok(()));
+    assert_eq!(sraa.encode(&device, &queue, &mut enc, &good, None), Ok(()));
     type Case<'a> = (SraaInputs<'a>, fn(&PassError) -> bool);
     let cases: Vec<Case<'_>> = vec![
         (
             SraaInputs {
-                subsample_normal: Some(&normal1),
+                geometry: separate(&depth, &normal1),
                 ..good
             },
             |e| {
@@ -196,28 +193,22 @@ fn inputs_that_do_not_fit_are_typed_errors() {
         ),
         (
             SraaInputs {
-                subsample_normal: Some(&small),
+                geometry: separate(&depth, &small),
                 ..good
             },
             |e| matches!(e, PassError::Size { .. }),
         ),
         (
             SraaInputs {
-                subsample_depth: &linear,
+                geometry: separate(&linear, &normal),
                 ..good
             },
             |e| matches!(e, PassError::Format { .. }),
         ),
         (
+            // Packed geometry to a pass built for depth + normals.
             SraaInputs {
-                subsample_normal: None,
-                ..good
-            },
-            |e| matches!(e, PassError::Missing(_)),
-        ),
-        (
-            SraaInputs {
-                depth: DepthConvention::LinearView,
+                geometry: SubsampleGeometry::Packed(&normal),
                 ..good
             },
             |e| matches!(e, PassError::Config(_)),
@@ -231,37 +222,29 @@ fn inputs_that_do_not_fit_are_typed_errors() {
         ),
     ];
     for (i, (inputs, expected)) in cases.iter().enumerate() {
-        match sraa.encode(&device, &mut enc, inputs) {
+        match sraa.encode(&device, &queue, &mut enc, inputs, None) {
             Err(e) if expected(&e) => {}
             other => panic!("case {i}: {other:?}"),
         }
     }
     // The tuned preset shades the centre: its geometry is required.
-    let tuned = SraaResolve::new(
+    let tuned = SraaPass::new(
         &device,
-        &SraaResolveDesc {
-            params: SraaParams::TUNED,
-            ..SraaResolveDesc::msaa()
-        },
+        &SraaPassDesc::msaa().with_params(SraaParams::TUNED),
     )
     .expect("tuned pass");
     assert!(matches!(
-        tuned.encode(&device, &mut enc, &good),
+        tuned.encode(&device, &queue, &mut enc, &good, None),
         Err(PassError::Missing(_))
     ));
     // Secondary shading needs the secondary hits.
-    let mirrors = SraaResolve::new(
-        &device,
-        &SraaResolveDesc {
-            secondary: true,
-            ..SraaResolveDesc::msaa()
-        },
-    )
-    .expect("secondary pass");
+    let mirrors =
+        SraaPass::new(&device, &SraaPassDesc::msaa().with_secondary(true)).expect("secondary pass");
     // (with the colour's two groups of layers, as it needs).
-    let color2 = texture(&device, "color2", (size.0, size.1, 2), 1, Rgba16Float, read);
+    let color2 = texture(&device, "color2", (size.0, size.1, 2), 1, Rgba16Float, read)
+        .create_view(&Default::default());
     assert!(matches!(
-        mirrors.encode(&device, &mut enc, &good),
+        mirrors.encode(&device, &queue, &mut enc, &good, None),
         Err(PassError::Layers {
             expected: 2,
             found: 1,
@@ -271,26 +254,40 @@ fn inputs_that_do_not_fit_are_typed_errors() {
     assert!(matches!(
         mirrors.encode(
             &device,
+            &queue,
             &mut enc,
             &SraaInputs {
                 color: &color2,
                 ..good
-            }
+            },
+            None,
         ),
         Err(PassError::Missing(_))
     ));
     // Configurations out of range.
     for desc in [
-        SraaResolveDesc {
-            lights: 9,
-            ..SraaResolveDesc::msaa()
-        },
-        SraaResolveDesc {
-            output_format: Rgba8UnormSrgb,
-            ..SraaResolveDesc::msaa()
-        },
+        SraaPassDesc::msaa().with_lights(9),
+        SraaPassDesc::msaa().with_output_format(Rgba8UnormSrgb),
     ] {
-        assert!(SraaResolve::new(&device, &desc).is_err(), "{desc:?}");
+        assert!(SraaPass::new(&device, &desc).is_err(), "{desc:?}");
+    }
+    // Timestamps on a device opened without TIMESTAMP_QUERY are refused
+    // before anything is recorded.
+    if !device.features().contains(wgpu::Features::TIMESTAMP_QUERY) {
+        let set = device.create_query_set(&wgpu::QuerySetDescriptor {
+            label: Some("timestamps"),
+            ty: wgpu::QueryType::Occlusion,
+            count: 2,
+        });
+        let writes = wgpu::ComputePassTimestampWrites {
+            query_set: &set,
+            beginning_of_pass_write_index: Some(0),
+            end_of_pass_write_index: Some(1),
+        };
+        assert!(matches!(
+            sraa.encode(&device, &queue, &mut enc, &good, Some(writes)),
+            Err(PassError::Config(_))
+        ));
     }
     drop(enc);
     wait(&device);

@@ -56,7 +56,7 @@ fn cpu_frame(scene: &Scene, method: &str) -> Vec<u8> {
 }
 
 /// `host_sraa`: a host's 4x MSAA prepass and one shaded sample per pixel,
-/// resolved by `SraaResolve`, against the CPU backend's SRAA of the same
+/// resolved by `SraaPass`, against the CPU backend's SRAA of the same
 /// triangles (ray-traced subsamples and shaded samples, the kernels'
 /// `Resolver`), for the paper's preset (shaded on subsample 0, so the
 /// shaded geometry is MSAA sample 0) and the tuned one (shaded at the
@@ -148,7 +148,7 @@ fn host_ctss_matches_the_cpu_trace() {
 /// frame (edges are blended).
 #[test]
 fn fxaa_pass_matches_the_cpu_post_process() {
-    use subcone_passes::FxaaPass;
+    use subcone_passes::{FxaaPass, FxaaPassDesc};
     let Some((device, queue)) = common::device_or_skip("fxaa pass", host_sraa::open_device) else {
         return;
     };
@@ -182,9 +182,13 @@ fn fxaa_pass_matches_the_cpu_post_process() {
         input.size(),
     );
     let pass =
-        FxaaPass::new(&device, &subcone_kernels::fxaa::FxaaParams::QUALITY, format).expect("pass");
+        FxaaPass::new(&device, &FxaaPassDesc::default().with_output_format(format)).expect("pass");
     let mut enc = device.create_command_encoder(&Default::default());
-    pass.encode(&device, &mut enc, &input, &output)
+    let (input_view, output_view) = (
+        input.create_view(&Default::default()),
+        output.create_view(&Default::default()),
+    );
+    pass.encode(&device, &queue, &mut enc, &input_view, &output_view, None)
         .expect("encode");
     let gpu = host_sraa::read_rgba32f(&device, &queue, enc, &output).expect("read-back");
     let gpu: Vec<glam::Vec3> = gpu

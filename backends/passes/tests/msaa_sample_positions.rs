@@ -2,7 +2,7 @@
 //! sample `k` of a 4x multisampled target lies at
 //! `subcone_kernels::sraa::SUBPIXEL_OFFSETS[k]` from the pixel centre (x
 //! right, y down), so a host's 4x MSAA prepass is SRAA's geometry pass
-//! (`SraaResolve`'s `GeometryLayout::Multisampled` relies on it).
+//! (`SraaPass`'s `GeometryLayout::Multisampled` relies on it).
 //!
 //! Measured on the device: a per-sample-shaded pass (`@builtin(sample_index)`
 //! forces one fragment per sample) writes each sample's

@@ -1,4 +1,4 @@
-//! `SraaResolve` against the kernels' CPU resolve (`sraa::Resolver`, what the
+//! `SraaPass` against the kernels' CPU resolve (`sraa::Resolver`, what the
 //! CPU backend runs) on the same synthetic inputs, for the input
 //! conventions a host MSAA prepass does not exercise (`host_sraa` covers
 //! 4x MSAA with hardware depth): four-layer arrays and the packed layout,
@@ -22,8 +22,8 @@ use subcone_kernels::sraa::{
     ALBEDO_TOLERANCE,
 };
 use subcone_passes::{
-    AlbedoTextures, CentreGeometry, DepthConvention, DepthKind, GeometryLayout, NormalEncoding,
-    SecondaryInputs, ShadowTextures, SraaInputs, SraaResolve, SraaResolveDesc,
+    AlbedoTextures, CentreGeometry, DepthKind, GeometryLayout, NormalEncoding, SecondaryInputs,
+    ShadowTextures, SraaInputs, SraaPass, SraaPassDesc, SubsampleGeometry,
 };
 
 const W: u32 = 12;
@@ -218,7 +218,7 @@ fn upload<T: bytemuck::Pod>(
     format: wgpu::TextureFormat,
     layers: usize,
     texel: impl Fn(usize, usize) -> T,
-) -> wgpu::Texture {
+) -> wgpu::TextureView {
     let t = host_sraa::host::texture(
         device,
         "input",
@@ -238,7 +238,8 @@ fn upload<T: bytemuck::Pod>(
         },
         t.size(),
     );
-    t
+    // The whole texture: 2D for one layer, a 2D array for more.
+    t.create_view(&Default::default())
 }
 
 /// Layer-major texels of `f(pixel, layer)`.
@@ -278,6 +279,13 @@ fn gpu(device: &wgpu::Device, queue: &wgpu::Queue, d: &Data, c: &Case) -> Vec<Ve
             })),
         ),
     };
+    let geometry = match &sub_normal {
+        Some(normal) => SubsampleGeometry::Separate {
+            depth: &sub_depth,
+            normal,
+        },
+        None => SubsampleGeometry::Packed(&sub_depth),
+    };
     let centre = c.params.shaded_position() == ShadedPosition::Centre;
     let centre_depth = upload(device, queue, R32Float, 1, |j, _| linear(&d.shaded[j]));
     let centre_normal = upload(device, queue, Rgba32Float, 1, |j, _| normal(&d.shaded[j]));
@@ -314,28 +322,29 @@ fn gpu(device: &wgpu::Device, queue: &wgpu::Queue, d: &Data, c: &Case) -> Vec<Ve
         Rgba32Float,
         wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
     );
-    let pass = SraaResolve::new(
+    let output_view = output.create_view(&Default::default());
+    let pass = SraaPass::new(
         device,
-        &SraaResolveDesc {
-            lights: c.lights as u32,
-            secondary: c.secondary,
-            albedo_gate: c.gate,
-            params: c.params,
-            geometry: c.geometry,
-            depth: DepthKind::LinearView,
-            normal: c.normal,
-            output_format: Rgba32Float,
-        },
+        &SraaPassDesc::msaa()
+            .with_lights(c.lights as u32)
+            .with_secondary(c.secondary)
+            .with_albedo_gate(c.gate)
+            .with_params(c.params)
+            .with_geometry(c.geometry)
+            .with_depth(DepthKind::LinearView)
+            .with_normal(c.normal)
+            .with_output_format(Rgba32Float),
     )
     .expect("pass");
     let mut enc = device.create_command_encoder(&Default::default());
     pass.encode(
         device,
+        queue,
         &mut enc,
         &SraaInputs {
-            subsample_depth: &sub_depth,
-            subsample_normal: sub_normal.as_ref(),
-            depth: DepthConvention::LinearView,
+            geometry,
+            // Linear view depth: no projection is read.
+            projection: glam::Mat4::IDENTITY.to_cols_array_2d(),
             centre: centre.then_some(CentreGeometry {
                 depth: &centre_depth,
                 normal: &centre_normal,
@@ -359,8 +368,9 @@ fn gpu(device: &wgpu::Device, queue: &wgpu::Queue, d: &Data, c: &Case) -> Vec<Ve
                     subsamples: &sec_sub_shadow,
                 }),
             }),
-            output: &output,
+            output: &output_view,
         },
+        None,
     )
     .unwrap_or_else(|e| panic!("{}: {e}", c.name));
     host_sraa::read_rgba32f(device, queue, enc, &output)
@@ -371,7 +381,7 @@ fn gpu(device: &wgpu::Device, queue: &wgpu::Queue, d: &Data, c: &Case) -> Vec<Ve
 }
 
 #[test]
-fn sraa_resolve_matches_the_cpu_resolver_in_every_convention() {
+fn sraa_pass_matches_the_cpu_resolver_in_every_convention() {
     let Some((device, queue)) =
         common::device_or_skip("resolve conventions", host_sraa::open_device)
     else {

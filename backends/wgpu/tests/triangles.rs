@@ -449,7 +449,7 @@ fn ambient_occlusion_matches_cpu() {
 }
 
 /// Hybrid SRAA (`sraa`, `sraa-paper`, `sraa+mat`) resolves through
-/// `subcone_passes::SraaResolve`, the pass a host renderer runs (its
+/// `subcone_passes::SraaPass`, the pass a host renderer runs (its
 /// textures are listed among the frame's buffers: the shaded colour, the
 /// output, the centre geometry where the preset shades the centre, the
 /// albedo with `+mat`); SRAA-RT keeps its own resolve over its traced

@@ -5,7 +5,7 @@
 // summed, as sraa::Resolver sums a subsample's layers of one group.
 // Shipped as subcone_kernels::sraa::RECONSTRUCT_WGSL (re-exported as
 // subcone_passes::RECONSTRUCT_WGSL). Every GPU resolve runs it:
-// subcone_passes::SraaResolve and the wgpu backend's SRAA-RT resolve
+// subcone_passes::SraaPass and the wgpu backend's SRAA-RT resolve
 // (backends/wgpu/src/triangles/sraa.wgsl), so there is one GPU resolve. It
 // drives the kernels' WGSL (subcone_kernels::sraa::WGSL) in the order of the
 // CPU's sraa::reconstruct_layers / reconstruct_layers_material.

@@ -1,11 +1,16 @@
-//! FXAA 3.11 (`subcone_kernels::fxaa`, preset 12) on the GPU: two compute
-//! passes over a frame's colour buffer (`array<vec4<f32>>`, linear RGB),
-//! encode (clamp, sRGB, luma) then filter and decode, timed together as the
-//! pass `"post-process"`. The input buffer is left untouched; the filtered
-//! frame is a new buffer for the caller to read back.
+//! FXAA 3.11 (`subcone_kernels::fxaa`, preset 12) on the GPU through
+//! [`subcone_passes::FxaaPass`], the pass a host renderer runs: the frame's
+//! colour buffer (`array<vec4<f32>>`, linear RGB) is copied into the pass's
+//! input texture, filtered into its output texture and copied into a new
+//! buffer (`fxaa.wgsl`), timed together as the pass `"post-process"`. The
+//! input buffer is left untouched; the filtered frame is a new buffer for
+//! the caller to read back.
+
+use std::sync::Arc;
 
 use bytemuck::{Pod, Zeroable};
 use subcone_kernels::fxaa::FxaaParams;
+use subcone_passes::{FxaaPass, FxaaPassDesc};
 use subcone_scene::{PassTiming, RenderError};
 
 use crate::compute::{self, Access, Bindings, Program};
@@ -13,6 +18,7 @@ use crate::context::{err, GpuContext};
 
 pub(crate) const FXAA_WGSL: &str = include_str!("fxaa.wgsl");
 const WORKGROUP: u32 = 8;
+const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
 /// The frame's size; `FxaaFrame` in fxaa.wgsl (16 bytes).
 #[repr(C)]
@@ -23,13 +29,32 @@ pub(crate) struct FxaaFrame {
     pub(crate) _pad: [u32; 2],
 }
 
-/// The filtered frame and the buffers a pass allocated, by name and bytes.
+/// The filtered frame and the buffers and textures a pass allocated, by
+/// name and bytes.
 type Filtered = (wgpu::Buffer, Vec<(&'static str, usize)>);
+
+/// The pass on this device for `params`, compiled once per device and
+/// parameters.
+fn pass(ctx: &GpuContext, params: &FxaaParams) -> Result<Arc<FxaaPass>, RenderError> {
+    let desc = FxaaPassDesc::default()
+        .with_params(*params)
+        .with_output_format(FORMAT);
+    let key = compute::pipeline_key("fxaa pass", format!("{desc:?}"));
+    if let Some(p) = ctx.cached::<FxaaPass>(key) {
+        return Ok(p);
+    }
+    let p = ctx
+        .scoped("fxaa", || FxaaPass::new(&ctx.device, &desc))?
+        .map_err(|e| err(format!("FXAA: {e}")))?;
+    let p = Arc::new(p);
+    ctx.cache_insert(key, p.clone());
+    Ok(p)
+}
 
 /// FXAA of the `width`×`height` frame in `color` (16 bytes per pixel, needs
 /// `STORAGE`): the filtered frame (`STORAGE | COPY_SRC`, same layout) and the
-/// buffers the pass allocated, by name. Pushes the pass's timing onto
-/// `timings`.
+/// buffers and textures the pass allocated, by name. Pushes the pass's
+/// timing onto `timings`.
 pub(crate) fn run(
     ctx: &GpuContext,
     color: &wgpu::Buffer,
@@ -46,42 +71,65 @@ pub(crate) fn run(
         )));
     }
     let groups = compute::workgroups(ctx, "FXAA", width, height, WORKGROUP)?;
+    let fxaa = pass(ctx, params)?;
+    let texture = |label: &'static str| {
+        ctx.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: FORMAT,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::STORAGE_BINDING,
+            view_formats: &[],
+        })
+    };
+    let (input, output) = ctx.scoped("post-process textures", || {
+        (
+            texture("post-process input"),
+            texture("post-process output"),
+        )
+    })?;
+    let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+    let (input, output) = (view(&input), view(&output));
     let frame = FxaaFrame {
         width,
         height,
         _pad: [0; 2],
     };
     let mut b = Bindings::new(0);
-    b.uniform(ctx, "fxaa_params", "subcone_FxaaParams", params)?;
     b.uniform(ctx, "fxaa_frame", "FxaaFrame", &frame)?;
     b.buffer("fxaa_src", "array<vec4<f32>>", Access::Read, color);
+    b.storage_texture("fxaa_in", FORMAT, "rgba32float", input.clone());
+    b.texture_2d("fxaa_out", output.clone());
     b.storage(
         ctx,
-        "post-process input",
-        "fxaa_encoded",
-        "array<vec4<f32>>",
-        px_bytes,
-    )?;
-    b.storage(
-        ctx,
-        "post-process output",
+        "post-process output buffer",
         "fxaa_dst",
         "array<vec4<f32>>",
         px_bytes,
     )?;
-    let mut program = Program::new(
-        ctx,
-        "fxaa",
-        &[subcone_kernels::fxaa::WGSL, FXAA_WGSL],
-        &[&b],
-    )?;
-    let encode = program.pipeline("fxaa_encode_main")?;
-    let filter = program.pipeline("fxaa_main")?;
+    let mut program = Program::new(ctx, "fxaa copies", &[FXAA_WGSL], &[&b])?;
+    let to_texture = program.pipeline("fxaa_to_texture_main")?;
+    let from_texture = program.pipeline("fxaa_from_texture_main")?;
+    let mut encoded = Ok(());
     ctx.timed_pass("post-process", timings, |enc| {
-        // Two compute passes, so that every encoded pixel is written before
-        // any is read (the pass boundary orders them).
-        program.dispatch(enc, &encode, groups);
-        program.dispatch(enc, &filter, groups);
+        // Three compute passes: the pass boundaries order the copy in, the
+        // filter and the copy out.
+        program.dispatch(enc, &to_texture, groups);
+        encoded = fxaa.encode(&ctx.device, &ctx.queue, enc, &input, &output, None);
+        // The textures are this frame's: the shared pass need not keep them
+        // (the encoder holds what it recorded).
+        fxaa.release_views();
+        program.dispatch(enc, &from_texture, groups);
     })?;
-    Ok((b.get("fxaa_dst")?.clone(), b.stats))
+    encoded.map_err(|e| err(format!("FXAA: {e}")))?;
+    let mut stats = b.stats.clone();
+    stats.push(("post-process input", px_bytes as usize));
+    stats.push(("post-process output", px_bytes as usize));
+    Ok((b.get("fxaa_dst")?.clone(), stats))
 }

@@ -1,6 +1,11 @@
-// FXAA over a frame's colour buffer (backends/wgpu/src/post/fxaa.rs): the
-// CPU backend's post::fxaa. Appended to params.wgsl and fxaa.wgsl.
+// The frame's way into and out of subcone_passes::FxaaPass (post/fxaa.rs):
+// the backend's frames are colour buffers (array<vec4<f32>>, linear RGB) and
+// FxaaPass reads and writes textures, so fxaa_to_texture_main copies the
+// frame into the pass's input texture and fxaa_from_texture_main copies the
+// pass's output into a new buffer. FXAA itself is FxaaPass's
+// (backends/passes/src/fxaa.wgsl), the kernels' subcone_kernels::fxaa.
 
+// post/fxaa.rs `FxaaFrame` (16 bytes).
 struct FxaaFrame {
     width: u32,
     height: u32,
@@ -8,33 +13,24 @@ struct FxaaFrame {
     _pad1: u32,
 }
 
-// Bindings (fxaa.rs): fxaa_params (subcone_FxaaParams), fxaa_frame
-// (FxaaFrame); fxaa_src, the rendered frame, linear RGB (w unused);
-// fxaa_encoded, subcone_fxaa_encode of every pixel (displayed sRGB colour
-// and luma); fxaa_dst, the filtered frame, linear RGB.
-
-// The hook fxaa.wgsl reads pixels through: clamp to edge.
-fn fxaa_fetch(x: i32, y: i32) -> vec4<f32> {
-    let cx = u32(clamp(x, 0, i32(fxaa_frame.width) - 1));
-    let cy = u32(clamp(y, 0, i32(fxaa_frame.height) - 1));
-    return fxaa_encoded[cy * fxaa_frame.width + cx];
-}
+// Bindings (fxaa.rs): fxaa_frame (FxaaFrame); fxaa_src, the rendered frame;
+// fxaa_in, FxaaPass's input texture (storage, written here); fxaa_out, its
+// output texture (read here); fxaa_dst, the filtered frame.
 
 @compute @workgroup_size(8, 8)
-fn fxaa_encode_main(@builtin(global_invocation_id) gid: vec3<u32>) {
+fn fxaa_to_texture_main(@builtin(global_invocation_id) gid: vec3<u32>) {
     if gid.x >= fxaa_frame.width || gid.y >= fxaa_frame.height {
         return;
     }
     let i = gid.y * fxaa_frame.width + gid.x;
-    fxaa_encoded[i] = subcone_fxaa_encode(fxaa_src[i].xyz);
+    textureStore(fxaa_in, vec2<i32>(i32(gid.x), i32(gid.y)), vec4<f32>(fxaa_src[i].xyz, 1.0));
 }
 
 @compute @workgroup_size(8, 8)
-fn fxaa_main(@builtin(global_invocation_id) gid: vec3<u32>) {
+fn fxaa_from_texture_main(@builtin(global_invocation_id) gid: vec3<u32>) {
     if gid.x >= fxaa_frame.width || gid.y >= fxaa_frame.height {
         return;
     }
     let i = gid.y * fxaa_frame.width + gid.x;
-    let c = subcone_fxaa_pixel(i32(gid.x), i32(gid.y), fxaa_params);
-    fxaa_dst[i] = vec4<f32>(subcone_fxaa_decode(c), 1.0);
+    fxaa_dst[i] = textureLoad(fxaa_out, vec2<i32>(i32(gid.x), i32(gid.y)), 0);
 }

@@ -34,10 +34,10 @@ pub(crate) const ALBEDO_WGSL: &str = include_str!("albedo.wgsl");
 const SUPERSAMPLE_WGSL: &str = include_str!("supersample.wgsl");
 const SUBPIXEL_WGSL: &str = include_str!("subpixel.wgsl");
 /// SRAA-RT's resolve (hybrid SRAA's is `resolve.rs`, through
-/// `subcone_passes::SraaResolve`).
+/// `subcone_passes::SraaPass`).
 const SRAA_WGSL: &str = include_str!("sraa.wgsl");
 /// The resolve's reconstruction loop, the kernels' twin of
-/// `sraa::reconstruct_layers`, shared with `subcone_passes::SraaResolve`.
+/// `sraa::reconstruct_layers`, shared with `subcone_passes::SraaPass`.
 const RECONSTRUCT_WGSL: &str = subcone_kernels::sraa::RECONSTRUCT_WGSL;
 
 /// The frame's constants; `FrameUniform` in frame.wgsl (160 bytes), read
@@ -664,7 +664,7 @@ fn subpixel(f: &Setup) -> Result<Frame, RenderError> {
         None => Some(prog.pipeline("geometry_main")?),
         Some(_) => None,
     };
-    // Hybrid SRAA resolves through subcone_passes::SraaResolve (resolve.rs);
+    // Hybrid SRAA resolves through subcone_passes::SraaPass (resolve.rs);
     // SRAA-RT through its own entry point over the traced subsamples.
     let hybrid = match &raster {
         Some(_) => Some(resolve::HybridResolve::new(

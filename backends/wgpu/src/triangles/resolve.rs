@@ -1,5 +1,5 @@
 //! Hybrid SRAA's pass "antialiasing" (the paper's pass 2) through
-//! [`subcone_passes::SraaResolve`], the resolve a host renderer runs: the
+//! [`subcone_passes::SraaPass`], the resolve a host renderer runs: the
 //! rasterised subsamples are its `GeometryLayout::Packed` input (the
 //! `Rgba32Float` layers of `raster.rs`), the shaded samples (the shading
 //! pass's storage buffers) are copied into textures first, and the output
@@ -12,8 +12,7 @@ use std::sync::Arc;
 
 use subcone_kernels::sraa::{ShadedPosition, SraaParams};
 use subcone_passes::{
-    AlbedoTextures, CentreGeometry, DepthConvention, DepthKind, GeometryLayout, NormalEncoding,
-    SraaInputs, SraaResolve, SraaResolveDesc,
+    AlbedoTextures, CentreGeometry, SraaInputs, SraaPass, SraaPassDesc, SubsampleGeometry,
 };
 use subcone_scene::RenderError;
 
@@ -28,13 +27,13 @@ const FLOAT1: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 
 /// The pass on this device for `desc`, compiled once per device and
 /// configuration.
-fn pass(ctx: &GpuContext, desc: &SraaResolveDesc) -> Result<Arc<SraaResolve>, RenderError> {
+fn pass(ctx: &GpuContext, desc: &SraaPassDesc) -> Result<Arc<SraaPass>, RenderError> {
     let key = compute::pipeline_key("sraa resolve", format!("{desc:?}"));
-    if let Some(p) = ctx.cached::<SraaResolve>(key) {
+    if let Some(p) = ctx.cached::<SraaPass>(key) {
         return Ok(p);
     }
     let p = ctx
-        .scoped("sraa resolve", || SraaResolve::new(&ctx.device, desc))?
+        .scoped("sraa resolve", || SraaPass::new(&ctx.device, desc))?
         .map_err(|e| err(format!("sraa resolve: {e}")))?;
     let p = Arc::new(p);
     ctx.cache_insert(key, p.clone());
@@ -43,7 +42,7 @@ fn pass(ctx: &GpuContext, desc: &SraaResolveDesc) -> Result<Arc<SraaResolve>, Re
 
 /// The textures of one frame's resolve and what fills and empties them.
 pub(crate) struct HybridResolve<'a> {
-    sraa: Arc<SraaResolve>,
+    sraa: Arc<SraaPass>,
     color: wgpu::Texture,
     centre: Option<(wgpu::Texture, wgpu::Texture)>,
     albedo: Option<wgpu::Texture>,
@@ -66,16 +65,9 @@ impl<'a> HybridResolve<'a> {
         width: u32,
         height: u32,
     ) -> Result<Self, RenderError> {
-        let desc = SraaResolveDesc {
-            lights: 0,
-            secondary: false,
-            albedo_gate: material,
-            params: *params,
-            geometry: GeometryLayout::Packed,
-            depth: DepthKind::LinearView,
-            normal: NormalEncoding::Signed,
-            output_format: FLOAT4,
-        };
+        let desc = SraaPassDesc::packed(*params)
+            .with_albedo_gate(material)
+            .with_output_format(FLOAT4);
         let sraa = pass(ctx, &desc)?;
         let centre = params.shaded_position() == ShadedPosition::Centre;
         let texture = |label: &'static str, format, usage| {
@@ -183,31 +175,39 @@ impl<'a> HybridResolve<'a> {
         groups: (u32, u32),
     ) -> Result<(), RenderError> {
         self.program.dispatch(enc, &self.to_textures, groups);
+        let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+        let packed = view(raster.texture());
+        let centre = self.centre.as_ref().map(|(d, n)| (view(d), view(n)));
+        let albedo = match (&self.albedo, raster.albedo_texture()) {
+            (Some(shaded), Some(subsamples)) => Some((view(shaded), view(subsamples))),
+            _ => None,
+        };
+        let (color, output) = (view(&self.color), view(&self.output));
         self.sraa
             .encode(
                 &ctx.device,
+                &ctx.queue,
                 enc,
                 &SraaInputs {
-                    subsample_depth: raster.texture(),
-                    subsample_normal: None,
-                    depth: DepthConvention::LinearView,
-                    centre: self
-                        .centre
+                    geometry: SubsampleGeometry::Packed(&packed),
+                    // Linear view depth: no projection is read.
+                    projection: [[0.0; 4]; 4],
+                    centre: centre
                         .as_ref()
                         .map(|(depth, normal)| CentreGeometry { depth, normal }),
-                    color: &self.color,
+                    color: &color,
                     shadows: None,
-                    albedo: match (&self.albedo, raster.albedo_texture()) {
-                        (Some(shaded), Some(subsamples)) => {
-                            Some(AlbedoTextures { shaded, subsamples })
-                        }
-                        _ => None,
-                    },
+                    albedo: albedo
+                        .as_ref()
+                        .map(|(shaded, subsamples)| AlbedoTextures { shaded, subsamples }),
                     secondary: None,
-                    output: &self.output,
+                    output: &output,
                 },
+                None,
             )
             .map_err(|e| err(format!("sraa resolve: {e}")))?;
+        // This frame's textures are its own: the pass need not keep them.
+        self.sraa.release_views();
         self.program.dispatch(enc, &self.from_texture, groups);
         Ok(())
     }

@@ -2,7 +2,7 @@
 // for each of the four subsamples, then sraa::resolve_pixel. Follows
 // subpixel.wgsl and the generated frame header, and comes before
 // subcone_kernels::sraa::RECONSTRUCT_WGSL (`subcone_sraa_reconstruct_run`,
-// the loop every GPU resolve shares, SraaResolve's included), whose hooks it
+// the loop every GPU resolve shares, SraaPass's included), whose hooks it
 // defines over this backend's buffers.
 
 // Layers per group: layer 0 ungated and layer 1 + l gated by light l's
