@@ -462,16 +462,23 @@ fn hybrid_sraa_resolves_through_the_pass_crate_without_copies() {
     let scene = builtin("cornell").unwrap();
     let (w, h) = (16, 12);
     let n = (w * h) as usize;
-    let buffers =
-        |method: &str| -> Vec<(&'static str, usize)> { render(&g, &scene, method, w, h).stats.buffers };
-    let names = |b: &[(&'static str, usize)]| -> Vec<&'static str> { b.iter().map(|b| b.0).collect() };
-    let size = |b: &[(&'static str, usize)], name: &str| b.iter().find(|b| b.0 == name).map(|b| b.1);
+    let buffers = |method: &str| -> Vec<(&'static str, usize)> {
+        render(&g, &scene, method, w, h).stats.buffers
+    };
+    let names =
+        |b: &[(&'static str, usize)]| -> Vec<&'static str> { b.iter().map(|b| b.0).collect() };
+    let size =
+        |b: &[(&'static str, usize)], name: &str| b.iter().find(|b| b.0 == name).map(|b| b.1);
     let rt_resolve_inputs = ["color", "geometry", "shading layers", "albedo"];
 
     let tuned = buffers("sraa");
     assert_eq!(size(&tuned, "shaded colour"), Some(n * 16), "{tuned:?}");
     // R32Float depth and Rgba16Float normal (resolve.rs).
-    assert_eq!(size(&tuned, "shaded centre geometry"), Some(n * 12), "{tuned:?}");
+    assert_eq!(
+        size(&tuned, "shaded centre geometry"),
+        Some(n * 12),
+        "{tuned:?}"
+    );
     assert_eq!(size(&tuned, "sraa output"), Some(n * 16), "{tuned:?}");
     assert_eq!(size(&tuned, "shaded albedo"), None, "{tuned:?}");
     let paper = buffers("sraa-paper");
@@ -482,11 +489,18 @@ fn hybrid_sraa_resolves_through_the_pass_crate_without_copies() {
         "sraa-paper shades subsample 0: {paper:?}"
     );
     let material = buffers("sraa+mat");
-    assert_eq!(size(&material, "shaded albedo"), Some(n * 16), "{material:?}");
+    assert_eq!(
+        size(&material, "shaded albedo"),
+        Some(n * 16),
+        "{material:?}"
+    );
     for b in [&tuned, &paper, &material] {
         let names = names(b);
         for copy in rt_resolve_inputs {
-            assert!(!names.contains(&copy), "hybrid SRAA allocated {copy:?}: {names:?}");
+            assert!(
+                !names.contains(&copy),
+                "hybrid SRAA allocated {copy:?}: {names:?}"
+            );
         }
         let mut unique = names.clone();
         unique.sort();

@@ -502,7 +502,11 @@ fn subpixel_bindings<'a>(
             Some(Hybrid { raster, resolve })
         }
         (None, None) => None,
-        _ => return Err(err("hybrid SRAA needs both its raster pass and its resolve")),
+        _ => {
+            return Err(err(
+                "hybrid SRAA needs both its raster pass and its resolve",
+            ))
+        }
     };
     Ok((fb, header, hybrid))
 }
@@ -670,14 +674,7 @@ fn subpixel_header(fb: &Bindings, plan: &SubpixelPlan) -> String {
                    fn put_geo(j: u32, g: subcone_Geometry) { geo[j] = g; }\n\
                    fn get_value(j: u32, l: u32) -> vec3<f32> { return values[j * NL + l].xyz; }\n\
                    fn put_value(j: u32, l: u32, v: vec3<f32>) { values[j * NL + l] = vec4<f32>(v, 0.0); }\n";
-        header += &accessors(
-            fb,
-            "albedo",
-            "albedo_buf",
-            "vec4<f32>",
-            1,
-            "vec4<f32>(0.0)",
-        );
+        header += &accessors(fb, "albedo", "albedo_buf", "vec4<f32>", 1, "vec4<f32>(0.0)");
     }
     if !rt && material {
         header += raster::SUB_ALBEDO_ACCESSORS;
