@@ -323,21 +323,36 @@ fn each_index(
     }
 }
 
+/// Where a frame's colour is once its passes have run.
+enum FrameColor<'r, 'a> {
+    /// The frame group's buffer `color`.
+    Buffer,
+    /// Hybrid SRAA's resolve output (a texture), or the colour buffer it
+    /// copied the output into for a post-process.
+    Resolved(&'r resolve::HybridResolve<'a>),
+}
+
 /// The end of every frame: FXAA when planned, the colour read back, the ray
 /// counters checked and the stats filled (`extra` lists buffers allocated
 /// besides the two groups).
 fn finish(
     f: &Setup,
     fb: &Bindings,
+    color: FrameColor<'_, '_>,
     mut timings: Vec<subcone_scene::PassTiming>,
     extra: &[(&'static str, usize)],
 ) -> Result<Frame, RenderError> {
     let (ctx, s, passes, scene) = (f.ctx, f.job.settings, f.job.passes, &f.scene);
     let n = s.width as usize * s.height as usize;
-    let color = fb.get("color")?;
     let mut buffers = fb.stats.clone();
     let mut frame = Frame::new(s.width, s.height);
     if passes.contains(Passes::POST_PROCESS) {
+        let color = match color {
+            FrameColor::Buffer => fb.get("color")?,
+            FrameColor::Resolved(h) => h.post_process_input().ok_or_else(|| {
+                err("post-process: the resolve was built without its colour buffer")
+            })?,
+        };
         // FXAA on the GPU, then one read-back of the filtered frame.
         let (filtered, post_buffers) = crate::post::fxaa::run(
             ctx,
@@ -350,7 +365,10 @@ fn finish(
         buffers.extend(post_buffers);
         frame.color = read_vec4(ctx, &filtered, n)?;
     } else {
-        frame.color = read_vec4(ctx, color, n)?;
+        frame.color = match color {
+            FrameColor::Buffer => read_vec4(ctx, fb.get("color")?, n)?,
+            FrameColor::Resolved(h) => h.read_output(ctx)?,
+        };
     }
     let c = counts(ctx, scene)?;
     buffers.extend_from_slice(extra);
@@ -386,7 +404,13 @@ fn supersample(f: &Setup) -> Result<Frame, RenderError> {
     ctx.timed_pass("shading", &mut timings, |enc| {
         each_index(enc, &rows, row, |enc| prog.dispatch(enc, &p, groups))
     })?;
-    let mut frame = finish(f, &fb, timings, &[("sample rows", side as usize * 4)])?;
+    let mut frame = finish(
+        f,
+        &fb,
+        FrameColor::Buffer,
+        timings,
+        &[("sample rows", side as usize * 4)],
+    )?;
     if s.aovs {
         let side = f.uniform.ssaa_side as f32;
         frame.samples_per_pixel = Some(vec![side * side; n]);
@@ -436,22 +460,59 @@ impl SubpixelPlan {
     }
 }
 
-/// The frame buffers of SRAA and SRAA-RT for `passes` (group 1), the WGSL
-/// header that declares which exist, and the raster pass that fills the
-/// subsamples for SRAA (hybrid, §3.1). The buffers are bound in the order
-/// of the steps: the shaded samples', the subsamples' geometry, the gates'.
-fn subpixel_bindings(f: &Setup) -> Result<(Bindings, String, Option<raster::Raster>), RenderError> {
-    let plan = SubpixelPlan::new(f);
-    let mut fb = Bindings::new(1);
-    shaded_sample_buffers(f.ctx, &mut fb, &plan)?;
-    let raster = subsample_geometry(f, &mut fb, &plan)?;
-    gate_buffers(f.ctx, &mut fb, &plan)?;
-    let header = subpixel_header(&fb, &plan);
-    Ok((fb, header, raster))
+/// Hybrid SRAA's (§3.1) own passes: the raster pass that fills the
+/// subsamples and the resolve that reads them.
+struct Hybrid<'a> {
+    raster: raster::Raster,
+    resolve: resolve::HybridResolve<'a>,
 }
 
-/// What the shading pass writes: the colour, and per shaded sample its
-/// geometry, its layers and, where planned, its shadow states and its
+/// The frame group of SRAA and SRAA-RT for `passes` (group 1), the WGSL
+/// header that declares what it holds, and hybrid SRAA's raster pass and
+/// resolve. The group is bound in the order of the steps: the shaded
+/// samples', the subsamples' geometry, the gates'. Hybrid SRAA's shaded
+/// samples are the resolve's textures, not buffers.
+fn subpixel_bindings<'a>(
+    f: &Setup<'a>,
+) -> Result<(Bindings, String, Option<Hybrid<'a>>), RenderError> {
+    let plan = SubpixelPlan::new(f);
+    let mut fb = Bindings::new(1);
+    let resolve = if plan.rt {
+        shaded_sample_buffers(f.ctx, &mut fb, &plan)?;
+        None
+    } else {
+        let s = f.job.settings;
+        let r = resolve::HybridResolve::new(
+            f.ctx,
+            &f.job.method.sraa(),
+            plan.material,
+            f.job.passes.contains(Passes::POST_PROCESS),
+            s.width,
+            s.height,
+        )?;
+        r.bind_shading_targets(&mut fb);
+        Some(r)
+    };
+    let raster = subsample_geometry(f, &mut fb, &plan)?;
+    gate_buffers(f.ctx, &mut fb, &plan)?;
+    let mut header = subpixel_header(&fb, &plan);
+    let hybrid = match (raster, resolve) {
+        (Some(raster), Some(resolve)) => {
+            header += &resolve.shading_accessors();
+            Some(Hybrid { raster, resolve })
+        }
+        (None, None) => None,
+        _ => {
+            return Err(err(
+                "hybrid SRAA needs both its raster pass and its resolve",
+            ))
+        }
+    };
+    Ok((fb, header, hybrid))
+}
+
+/// What SRAA-RT's shading pass writes: the colour, and per shaded sample
+/// its geometry, its layers and, where planned, its shadow states and its
 /// mirror hit's geometry and shadow states.
 fn shaded_sample_buffers(
     ctx: &GpuContext,
@@ -533,17 +594,17 @@ fn gate_buffers(
     plan: &SubpixelPlan,
 ) -> Result<(), RenderError> {
     let (n64, lights) = (plan.n, plan.layout.lights);
-    if plan.material {
+    // Hybrid SRAA's shaded albedo is the resolve's texture, its
+    // subsamples' the raster pass's layers.
+    if plan.material && plan.rt {
         fb.storage(ctx, "albedo", "albedo_buf", "array<vec4<f32>>", n64 * 16)?;
-        if plan.rt {
-            fb.storage(
-                ctx,
-                "subpixel albedo",
-                "sub_albedo_buf",
-                "array<vec4<f32>>",
-                n64 * 64,
-            )?;
-        }
+        fb.storage(
+            ctx,
+            "subpixel albedo",
+            "sub_albedo_buf",
+            "array<vec4<f32>>",
+            n64 * 64,
+        )?;
     }
     if plan.sub_shadows && lights > 0 {
         fb.storage(
@@ -577,7 +638,9 @@ fn gate_buffers(
 
 /// The WGSL header of `subpixel.wgsl` for the buffers bound in `fb`: the
 /// plan's constants and an accessor pair per optional buffer (reads of the
-/// CPU's initial value where it is absent).
+/// CPU's initial value where it is absent). SRAA-RT's shaded samples are
+/// buffers; hybrid SRAA's accessors of them, and of its shaded albedo, are
+/// the resolve's (`HybridResolve::shading_accessors`).
 fn subpixel_header(fb: &Bindings, plan: &SubpixelPlan) -> String {
     let (layout, rt, material) = (&plan.layout, plan.rt, plan.material);
     let (nl, shadows, secondary_shading) = (layout.len(), plan.shadows, plan.secondary_shading);
@@ -603,9 +666,15 @@ fn subpixel_header(fb: &Bindings, plan: &SubpixelPlan) -> String {
             no_secondary,
         ),
         ("sub_shadow2", "sub_shadow2_buf", "u32", 4, "0u"),
-        ("albedo", "albedo_buf", "vec4<f32>", 1, "vec4<f32>(0.0)"),
     ] {
         header += &accessors(fb, name, var, ty, per, default);
+    }
+    if rt {
+        header += "fn get_geo(j: u32) -> subcone_Geometry { return geo[j]; }\n\
+                   fn put_geo(j: u32, g: subcone_Geometry) { geo[j] = g; }\n\
+                   fn get_value(j: u32, l: u32) -> vec3<f32> { return values[j * NL + l].xyz; }\n\
+                   fn put_value(j: u32, l: u32, v: vec3<f32>) { values[j * NL + l] = vec4<f32>(v, 0.0); }\n";
+        header += &accessors(fb, "albedo", "albedo_buf", "vec4<f32>", 1, "vec4<f32>(0.0)");
     }
     if !rt && material {
         header += raster::SUB_ALBEDO_ACCESSORS;
@@ -636,20 +705,20 @@ fn subpixel_header(fb: &Bindings, plan: &SubpixelPlan) -> String {
 }
 
 /// The program of SRAA and SRAA-RT ([`subpixel`]): the frame buffers and
-/// header of [`subpixel_bindings`], the subpixel entry points and the
-/// kernels' reconstruction loop.
+/// header of [`subpixel_bindings`], the subpixel entry points and, for
+/// SRAA-RT (`rt`), its resolve with the kernels' reconstruction loop.
 fn subpixel_program<'a>(
     f: &Setup<'a>,
     fb: &Bindings,
     header: &str,
+    rt: bool,
 ) -> Result<Program<'a>, RenderError> {
-    program(
-        f.ctx,
-        &f.scene,
-        fb,
-        header,
-        &[SUBPIXEL_WGSL, SRAA_WGSL, RECONSTRUCT_WGSL],
-    )
+    let entries: &[&str] = if rt {
+        &[SUBPIXEL_WGSL, SRAA_WGSL, RECONSTRUCT_WGSL]
+    } else {
+        &[SUBPIXEL_WGSL]
+    };
+    program(f.ctx, &f.scene, fb, header, entries)
 }
 
 /// SRAA (hybrid: raster subpixel geometry) and SRAA-RT (render.rs `subpixel`):
@@ -657,64 +726,46 @@ fn subpixel_program<'a>(
 fn subpixel(f: &Setup) -> Result<Frame, RenderError> {
     let (ctx, s) = (f.ctx, f.job.settings);
     let n = s.width as usize * s.height as usize;
-    let (fb, header, raster) = subpixel_bindings(f)?;
-    let mut prog = subpixel_program(f, &fb, &header)?;
+    let (fb, header, hybrid) = subpixel_bindings(f)?;
+    let mut prog = subpixel_program(f, &fb, &header, hybrid.is_none())?;
     let shade = prog.pipeline("shade_main")?;
-    let geometry = match raster {
-        None => Some(prog.pipeline("geometry_main")?),
-        Some(_) => None,
-    };
-    // Hybrid SRAA resolves through subcone_passes::SraaPass (resolve.rs);
-    // SRAA-RT through its own entry point over the traced subsamples.
-    let hybrid = match &raster {
-        Some(_) => Some(resolve::HybridResolve::new(
-            ctx,
-            &fb,
-            &f.job.method.sraa(),
-            f.job.method.gates_material(),
-            s.width,
-            s.height,
-        )?),
-        None => None,
-    };
-    let resolve = match &hybrid {
-        None => Some(prog.pipeline("resolve_main")?),
-        Some(_) => None,
-    };
     let groups = workgroups(ctx, s)?;
-    let subsamples = indices(ctx, "subsample indices", 4)?;
     let mut timings = Vec::new();
     ctx.timed_pass("shading", &mut timings, |enc| {
         prog.dispatch(enc, &shade, groups)
     })?;
-    match (&geometry, &raster) {
-        (Some(p), _) => {
-            let k = fb.get("subsample")?;
-            ctx.timed_pass("geometry", &mut timings, |enc| {
-                each_index(enc, &subsamples, k, |enc| prog.dispatch(enc, p, groups))
-            })?
-        }
-        (None, Some(r)) => ctx.timed_pass("geometry", &mut timings, |enc| r.record(enc))?,
-        (None, None) => unreachable!("one of the two is set above"),
-    }
-    match (&hybrid, &raster, &resolve) {
-        (Some(h), Some(r), _) => {
+    let (color, extra) = match &hybrid {
+        // Hybrid SRAA: the raster pass, then subcone_passes::SraaPass
+        // (resolve.rs) over the raster layers and the shading pass's
+        // textures.
+        Some(h) => {
+            ctx.timed_pass("geometry", &mut timings, |enc| h.raster.record(enc))?;
             let mut recorded = Ok(());
             ctx.timed_pass("antialiasing", &mut timings, |enc| {
-                recorded = h.record(ctx, enc, r, groups);
+                recorded = h.resolve.record(ctx, enc, &h.raster, groups);
             })?;
             recorded?;
+            (FrameColor::Resolved(&h.resolve), h.resolve.stats.clone())
         }
-        (_, _, Some(p)) => ctx.timed_pass("antialiasing", &mut timings, |enc| {
-            prog.dispatch(enc, p, groups)
-        })?,
-        _ => return Err(crate::context::err("antialiasing: no resolve was built")),
-    }
-    let mut extra = vec![("subsample indices", 16)];
-    if let Some(h) = &hybrid {
-        extra.extend_from_slice(&h.stats);
-    }
-    let mut frame = finish(f, &fb, timings, &extra)?;
+        // SRAA-RT: the subsamples traced one dispatch per subsample, then
+        // its own resolve over them.
+        None => {
+            let geometry = prog.pipeline("geometry_main")?;
+            let resolve = prog.pipeline("resolve_main")?;
+            let subsamples = indices(ctx, "subsample indices", 4)?;
+            let k = fb.get("subsample")?;
+            ctx.timed_pass("geometry", &mut timings, |enc| {
+                each_index(enc, &subsamples, k, |enc| {
+                    prog.dispatch(enc, &geometry, groups)
+                })
+            })?;
+            ctx.timed_pass("antialiasing", &mut timings, |enc| {
+                prog.dispatch(enc, &resolve, groups)
+            })?;
+            (FrameColor::Buffer, vec![("subsample indices", 16)])
+        }
+    };
+    let mut frame = finish(f, &fb, color, timings, &extra)?;
     if s.aovs {
         let (d, nn) = centre_geometry(f)?;
         frame.depth = Some(d);
@@ -761,7 +812,7 @@ pub(crate) fn subpixel_geometry_both(
         uniform,
     };
     let (fb, header, _) = subpixel_bindings(&f)?;
-    let mut prog = subpixel_program(&f, &fb, &header)?;
+    let mut prog = subpixel_program(&f, &fb, &header, true)?;
     let shade = prog.pipeline("shade_main")?;
     let geometry = prog.pipeline("geometry_main")?;
     let groups = workgroups(ctx, &s)?;

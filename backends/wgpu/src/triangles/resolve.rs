@@ -1,15 +1,22 @@
 //! Hybrid SRAA's pass "antialiasing" (the paper's pass 2) through
-//! [`subcone_passes::SraaPass`], the resolve a host renderer runs: the
-//! rasterised subsamples are its `GeometryLayout::Packed` input (the
-//! `Rgba32Float` layers of `raster.rs`), the shaded samples (the shading
-//! pass's storage buffers) are copied into textures first, and the output
-//! back into the frame's colour buffer (`resolve.wgsl`). SRAA-RT, whose
-//! subsamples are traced into buffers, keeps its resolve in `sraa.wgsl`;
-//! both run the one reconstruction loop, the kernels'
-//! `sraa::RECONSTRUCT_WGSL`.
+//! [`subcone_passes::SraaPass`], the resolve a host renderer runs, with
+//! no copy on either side: the rasterised subsamples are its
+//! `GeometryLayout::Packed` input (the `Rgba32Float` layers of `raster.rs`),
+//! the shading pass writes the shaded colour, the centre geometry (when the
+//! preset shades the pixel centre) and the albedo (`+mat`) straight into the
+//! storage textures the resolve reads ([`HybridResolve::bind_shading_targets`]
+//! and [`HybridResolve::shading_accessors`]), and the frame is read back from
+//! the resolve's output texture. No buffer holds what a texture holds. Only
+//! a post-process after the resolve (FXAA forced onto an SRAA frame), which
+//! reads a colour buffer, gets the output copied into one
+//! (`resolve.wgsl`). SRAA-RT, whose subsamples are traced into buffers,
+//! keeps its resolve in `sraa.wgsl`; both run the one reconstruction loop,
+//! the kernels' `sraa::RECONSTRUCT_WGSL`.
 
 use std::sync::Arc;
+use std::time::Duration;
 
+use glam::Vec3;
 use subcone_kernels::sraa::{ShadedPosition, SraaParams};
 use subcone_passes::{
     AlbedoTextures, CentreGeometry, SraaInputs, SraaPass, SraaPassDesc, SubsampleGeometry,
@@ -17,13 +24,21 @@ use subcone_passes::{
 use subcone_scene::RenderError;
 
 use super::raster::Raster;
-use crate::compute::{self, Access, Bindings, Program};
+use crate::compute::{self, Bindings, Program};
 use crate::context::{err, GpuContext};
 
 const RESOLVE_WGSL: &str = include_str!("resolve.wgsl");
 
 const FLOAT4: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 const FLOAT1: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
+/// The centre normals' format. Half floats keep the frame within the memory
+/// of the buffers it replaces (the depth has a texture of its own, so a
+/// 32-bit normal would cost 20 bytes a pixel where the buffer took 16), and
+/// cost the weights next to nothing: a component rounds by at most 2⁻¹², the
+/// resolve renormalises, and eq. 1 reads `1 − cos`, second order in that
+/// error (≤ 9·10⁻⁸ between equal normals, below `NORMAL_COS_SNAP`, so they
+/// still weigh 1).
+const HALF4: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
 /// The pass on this device for `desc`, compiled once per device and
 /// configuration.
@@ -40,31 +55,43 @@ fn pass(ctx: &GpuContext, desc: &SraaPassDesc) -> Result<Arc<SraaPass>, RenderEr
     Ok(p)
 }
 
-/// The textures of one frame's resolve and what fills and empties them.
+/// The copy of the output into a colour buffer, for a post-process that
+/// follows the resolve.
+struct PostProcessInput<'a> {
+    program: Program<'a>,
+    pipeline: Arc<wgpu::ComputePipeline>,
+    color: wgpu::Buffer,
+}
+
+/// The textures of one frame's resolve: what the shading pass writes and
+/// the resolve reads, and the resolve's output, which is the frame.
 pub(crate) struct HybridResolve<'a> {
     sraa: Arc<SraaPass>,
     color: wgpu::Texture,
     centre: Option<(wgpu::Texture, wgpu::Texture)>,
     albedo: Option<wgpu::Texture>,
     output: wgpu::Texture,
-    program: Program<'a>,
-    to_textures: Arc<wgpu::ComputePipeline>,
-    from_texture: Arc<wgpu::ComputePipeline>,
-    /// Bytes of the textures, by name (for `FrameStats`).
+    post: Option<PostProcessInput<'a>>,
+    width: u32,
+    height: u32,
+    /// Bytes of the textures (and the post-process's colour buffer), by
+    /// name (for `FrameStats`).
     pub(crate) stats: Vec<(&'static str, usize)>,
 }
 
 impl<'a> HybridResolve<'a> {
-    /// The resolve of a `width × height` frame with `params`, reading the
-    /// shading pass's `geo`, `values` and (`+mat`) `albedo_buf` of `fb`.
+    /// The resolve of a `width × height` frame with `params`; with
+    /// `post_process`, the colour buffer a post-process reads from the
+    /// output ([`Self::post_process_input`]).
     pub(crate) fn new(
         ctx: &'a GpuContext,
-        fb: &Bindings,
         params: &SraaParams,
         material: bool,
+        post_process: bool,
         width: u32,
         height: u32,
     ) -> Result<Self, RenderError> {
+        ctx.check_texture_size(width, height)?;
         let desc = SraaPassDesc::packed(*params)
             .with_albedo_gate(material)
             .with_output_format(FLOAT4);
@@ -86,87 +113,115 @@ impl<'a> HybridResolve<'a> {
                 view_formats: &[],
             })
         };
-        let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::STORAGE_BINDING;
+        // Written by the shading pass, read by the resolve.
+        let shaded = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::STORAGE_BINDING;
+        // Written by the resolve, read back (copied out).
+        let out = wgpu::TextureUsages::STORAGE_BINDING
+            | wgpu::TextureUsages::TEXTURE_BINDING
+            | wgpu::TextureUsages::COPY_SRC;
         let (color, centre, albedo, output) = ctx.scoped("sraa resolve textures", || {
             (
-                texture("resolve colour", FLOAT4, usage),
+                texture("shaded colour", FLOAT4, shaded),
                 centre.then(|| {
                     (
-                        texture("resolve centre depth", FLOAT1, usage),
-                        texture("resolve centre normal", FLOAT4, usage),
+                        texture("shaded centre depth", FLOAT1, shaded),
+                        texture("shaded centre normal", HALF4, shaded),
                     )
                 }),
-                material.then(|| texture("resolve albedo", FLOAT4, usage)),
-                texture("resolve output", FLOAT4, usage),
+                material.then(|| texture("shaded albedo", FLOAT4, shaded)),
+                texture("sraa output", FLOAT4, out),
             )
         })?;
         let px = width as usize * height as usize;
-        let mut stats = vec![("resolve colour", px * 16), ("resolve output", px * 16)];
-        let view = |t: &wgpu::Texture| t.create_view(&Default::default());
-        let mut b = Bindings::new(0);
-        b.buffer(
-            "geo",
-            "array<subcone_Geometry>",
-            Access::Read,
-            fb.get("geo")?,
-        );
-        b.buffer(
-            "values",
-            "array<vec4<f32>>",
-            Access::Read,
-            fb.get("values")?,
-        );
-        b.storage_texture("res_color", FLOAT4, "rgba32float", view(&color));
-        let mut header = String::new();
-        if let Some((d, n)) = &centre {
-            b.storage_texture("res_centre_depth", FLOAT1, "r32float", view(d));
-            b.storage_texture("res_centre_normal", FLOAT4, "rgba32float", view(n));
-            stats.push(("resolve centre geometry", px * 20));
-            header += "fn put_centre(p: vec2<i32>, j: u32) {\n\
-                       textureStore(res_centre_depth, p, vec4<f32>(geo[j].depth, 0.0, 0.0, 0.0));\n\
-                       textureStore(res_centre_normal, p, vec4<f32>(geo[j].normal, 0.0));\n}\n";
-        } else {
-            header += "fn put_centre(p: vec2<i32>, j: u32) { }\n";
+        let mut stats = vec![("shaded colour", px * 16)];
+        if centre.is_some() {
+            stats.push(("shaded centre geometry", px * 12));
         }
-        if let Some(a) = &albedo {
-            b.buffer(
-                "albedo_buf",
-                "array<vec4<f32>>",
-                Access::Read,
-                fb.get("albedo_buf")?,
-            );
-            b.storage_texture("res_albedo", FLOAT4, "rgba32float", view(a));
-            stats.push(("resolve albedo", px * 16));
-            header += "fn put_albedo(p: vec2<i32>, j: u32) { textureStore(res_albedo, p, albedo_buf[j]); }\n";
-        } else {
-            header += "fn put_albedo(p: vec2<i32>, j: u32) { }\n";
+        if albedo.is_some() {
+            stats.push(("shaded albedo", px * 16));
         }
-        b.texture_2d("res_output", view(&output));
-        b.buffer(
-            "color",
-            "array<vec4<f32>>",
-            Access::ReadWrite,
-            fb.get("color")?,
-        );
-        let mut program =
-            Program::new(ctx, "sraa resolve copies", &[&header, RESOLVE_WGSL], &[&b])?;
-        let to_textures = program.pipeline("to_textures_main")?;
-        let from_texture = program.pipeline("from_texture_main")?;
+        stats.push(("sraa output", px * 16));
+        let post = if post_process {
+            let mut b = Bindings::new(0);
+            b.texture_2d("sraa_output", view(&output));
+            b.storage(ctx, "color", "color", "array<vec4<f32>>", px as u64 * 16)?;
+            stats.extend_from_slice(&b.stats);
+            let mut program = Program::new(ctx, "sraa output copy", &[RESOLVE_WGSL], &[&b])?;
+            let pipeline = program.pipeline("output_to_buffer_main")?;
+            let color = b.get("color")?.clone();
+            Some(PostProcessInput {
+                program,
+                pipeline,
+                color,
+            })
+        } else {
+            None
+        };
         Ok(HybridResolve {
             sraa,
             color,
             centre,
             albedo,
             output,
-            program,
-            to_textures,
-            from_texture,
+            post,
+            width,
+            height,
             stats,
         })
     }
 
-    /// Record the copies in and out and the resolve, reading the raster
-    /// pass's layers.
+    /// Bind what the shading pass writes, as storage textures of the frame
+    /// group `fb`: `shaded_color`, and as configured `shaded_centre_depth`,
+    /// `shaded_centre_normal` and `shaded_albedo`.
+    pub(crate) fn bind_shading_targets(&self, fb: &mut Bindings) {
+        fb.storage_texture("shaded_color", FLOAT4, "rgba32float", view(&self.color));
+        if let Some((d, n)) = &self.centre {
+            fb.storage_texture("shaded_centre_depth", FLOAT1, "r32float", view(d));
+            fb.storage_texture("shaded_centre_normal", HALF4, "rgba16float", view(n));
+        }
+        if let Some(a) = &self.albedo {
+            fb.storage_texture("shaded_albedo", FLOAT4, "rgba32float", view(a));
+        }
+    }
+
+    /// The shading pass's accessors (`subpixel.wgsl`) over those textures:
+    /// `put_value` (hybrid SRAA shades one layer, the final colour),
+    /// `put_geo` (the centre geometry; nothing when the preset shades
+    /// subsample 0, whose geometry the resolve takes from the raster
+    /// layers) and `put_albedo`. The shading pass only writes them; the
+    /// reads, which only SRAA-RT's passes make, return the CPU's initial
+    /// values.
+    pub(crate) fn shading_accessors(&self) -> String {
+        let mut s = String::from(
+            "fn shaded_texel(j: u32) -> vec2<i32> {\n\
+             \x20   return vec2<i32>(i32(j % frame.width), i32(j / frame.width));\n}\n\
+             fn put_value(j: u32, l: u32, v: vec3<f32>) {\n\
+             \x20   textureStore(shaded_color, shaded_texel(j), vec4<f32>(v, 0.0));\n}\n\
+             fn get_value(j: u32, l: u32) -> vec3<f32> { return vec3<f32>(0.0); }\n\
+             fn get_geo(j: u32) -> subcone_Geometry {\n\
+             \x20   return subcone_Geometry(vec3<f32>(0.0), subcone_inf());\n}\n",
+        );
+        if self.centre.is_some() {
+            s += "fn put_geo(j: u32, g: subcone_Geometry) {\n\
+                  \x20   textureStore(shaded_centre_depth, shaded_texel(j), vec4<f32>(g.depth, 0.0, 0.0, 0.0));\n\
+                  \x20   textureStore(shaded_centre_normal, shaded_texel(j), vec4<f32>(g.normal, 0.0));\n}\n";
+        } else {
+            s += "fn put_geo(j: u32, g: subcone_Geometry) { }\n";
+        }
+        if self.albedo.is_some() {
+            s += "const HAS_ALBEDO: bool = true;\n\
+                  fn put_albedo(j: u32, v: vec4<f32>) { textureStore(shaded_albedo, shaded_texel(j), v); }\n";
+        } else {
+            s += "const HAS_ALBEDO: bool = false;\n\
+                  fn put_albedo(j: u32, v: vec4<f32>) { }\n";
+        }
+        s += "fn get_albedo(j: u32) -> vec4<f32> { return vec4<f32>(0.0); }\n";
+        s
+    }
+
+    /// Record the resolve, reading the raster pass's layers and the shading
+    /// pass's textures; then, for a post-process, the copy of the output
+    /// into its colour buffer.
     pub(crate) fn record(
         &self,
         ctx: &GpuContext,
@@ -174,7 +229,6 @@ impl<'a> HybridResolve<'a> {
         raster: &Raster,
         groups: (u32, u32),
     ) -> Result<(), RenderError> {
-        self.program.dispatch(enc, &self.to_textures, groups);
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
         let packed = view(raster.texture());
         let centre = self.centre.as_ref().map(|(d, n)| (view(d), view(n)));
@@ -208,7 +262,83 @@ impl<'a> HybridResolve<'a> {
             .map_err(|e| err(format!("sraa resolve: {e}")))?;
         // This frame's textures are its own: the pass need not keep them.
         self.sraa.release_views();
-        self.program.dispatch(enc, &self.from_texture, groups);
+        if let Some(p) = &self.post {
+            p.program.dispatch(enc, &p.pipeline, groups);
+        }
         Ok(())
     }
+
+    /// The colour buffer holding the output, when built for a post-process.
+    pub(crate) fn post_process_input(&self) -> Option<&wgpu::Buffer> {
+        self.post.as_ref().map(|p| &p.color)
+    }
+
+    /// The output on the CPU, row-major: one copy from the texture into a
+    /// mappable buffer (rows padded to wgpu's 256-byte alignment), as
+    /// `GpuContext::read_buffer` does from a buffer.
+    pub(crate) fn read_output(&self, ctx: &GpuContext) -> Result<Vec<Vec3>, RenderError> {
+        let (w, h) = (self.width as usize, self.height as usize);
+        let row = (w * 16).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT as usize);
+        let size = (row * h) as u64;
+        ctx.check_buffer_size("sraa output read-back", size)?;
+        let staging = ctx.scoped("sraa output read-back", || {
+            let staging = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("sraa output read-back"),
+                size,
+                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            let mut enc = ctx
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("sraa output read-back"),
+                });
+            enc.copy_texture_to_buffer(
+                wgpu::TexelCopyTextureInfo {
+                    texture: &self.output,
+                    mip_level: 0,
+                    origin: wgpu::Origin3d::ZERO,
+                    aspect: wgpu::TextureAspect::All,
+                },
+                wgpu::TexelCopyBufferInfo {
+                    buffer: &staging,
+                    layout: wgpu::TexelCopyBufferLayout {
+                        offset: 0,
+                        bytes_per_row: Some(row as u32),
+                        rows_per_image: Some(self.height),
+                    },
+                },
+                self.output.size(),
+            );
+            ctx.queue.submit([enc.finish()]);
+            staging
+        })?;
+        let (tx, rx) = std::sync::mpsc::channel();
+        staging.map_async(wgpu::MapMode::Read, .., move |r| {
+            let _ = tx.send(r);
+        });
+        ctx.wait("sraa output read-back")?;
+        match rx.recv_timeout(Duration::from_secs(1)) {
+            Ok(Ok(())) => {}
+            Ok(Err(e)) => return Err(err(format!("sraa output read-back failed: {e}"))),
+            Err(_) => return Err(err("sraa output read-back did not complete")),
+        }
+        let bytes = staging
+            .get_mapped_range(..)
+            .map_err(|e| err(format!("sraa output read-back failed: {e}")))?;
+        let mut color = Vec::with_capacity(w * h);
+        for r in bytes.chunks(row).take(h) {
+            color.extend(r[..w * 16].chunks_exact(16).map(|texel| {
+                let c: [f32; 4] = bytemuck::pod_read_unaligned(texel);
+                Vec3::new(c[0], c[1], c[2])
+            }));
+        }
+        drop(bytes);
+        staging.unmap();
+        Ok(color)
+    }
+}
+
+fn view(t: &wgpu::Texture) -> wgpu::TextureView {
+    t.create_view(&Default::default())
 }

@@ -31,7 +31,7 @@ fn sraa_shaded_geometry(x: u32, y: u32, secondary: bool) -> subcone_Geometry {
     if secondary {
         return get_geo2(j);
     }
-    return geo[j];
+    return get_geo(j);
 }
 
 fn sraa_shaded_shadow(x: u32, y: u32, secondary: bool) -> u32 {

@@ -3,6 +3,10 @@
 // frame header (layout constants NL, LAYER_LIGHTS, SINGLE, SECONDARY_LAYERS,
 // SHADOWS, SECONDARY_SHADING, and accessors get_/put_ for the optional
 // buffers: absent buffers read as the CPU's initial values and ignore writes).
+// The shaded samples' geometry (get_geo/put_geo) and layers
+// (get_value/put_value, layer l of pixel j) go through the header too:
+// SRAA-RT keeps them in buffers for its resolve (sraa.wgsl), hybrid SRAA
+// writes them into the textures SraaPass reads (resolve.rs).
 
 fn geometry_miss() -> subcone_Geometry {
     return subcone_Geometry(vec3<f32>(0.0), subcone_inf());
@@ -11,14 +15,6 @@ fn geometry_miss() -> subcone_Geometry {
 // render.rs NO_SECONDARY: NaN depth, which the bilateral weight excludes.
 fn no_secondary() -> subcone_Geometry {
     return subcone_Geometry(vec3<f32>(0.0), bitcast<f32>(0x7fc00000u));
-}
-
-fn put_value(j: u32, l: u32, v: vec3<f32>) {
-    values[j * NL + l] = vec4<f32>(v, 0.0);
-}
-
-fn get_value(j: u32, l: u32) -> vec3<f32> {
-    return values[j * NL + l].xyz;
 }
 
 fn pixel_centre(x: u32, y: u32) -> vec2<f32> {
@@ -45,12 +41,12 @@ fn shade_pixel(x: u32, y: u32, j: u32, c: ptr<function, Counts>) {
         put_albedo(j, vec4<f32>(primary_albedo(sf), 0.0));
     }
     if !sf.hit {
-        geo[j] = geometry_miss();
+        put_geo(j, geometry_miss());
         put_value(j, 0u, frame.background);
         return;
     }
     (*c).shaded += 1u;
-    geo[j] = primary_geometry(sf);
+    put_geo(j, primary_geometry(sf));
     var sh = 0u;
     if SHADOWS {
         sh = shadow_states(sf, c);
@@ -183,7 +179,7 @@ fn shadow_agreement(x: u32, y: u32, secondary: bool, first: u32) -> vec2<u32> {
 // subsample that is the shaded sample copies the shaded ray's, not traced again.
 fn geometry_pixel(x: u32, y: u32, j: u32, k: u32, c: ptr<function, Counts>) {
     if subcone_sraa_is_shaded_subsample(frame.sraa, k) {
-        put_sub_geo(j, k, geo[j]);
+        put_sub_geo(j, k, get_geo(j));
         put_sub_shadow(j, k, get_shadow(j));
         put_sub_geo2(j, k, get_geo2(j));
         put_sub_shadow2(j, k, get_shadow2(j));
