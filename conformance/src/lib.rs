@@ -641,7 +641,12 @@ pub fn ao_reference_frame(scene: &Scene) -> Arc<Frame> {
     };
     let frame = subcone_cpu::CpuBackend::new()
         .render(scene, &scene.camera, &method, &settings)
-        .unwrap_or_else(|e| panic!("{REFERENCE_METHOD} reference of {} with AO: {e}", scene.name));
+        .unwrap_or_else(|e| {
+            panic!(
+                "{REFERENCE_METHOD} reference of {} with AO: {e}",
+                scene.name
+            )
+        });
     let frame = Arc::new(frame);
     cache
         .lock()

@@ -381,6 +381,7 @@ impl<F: SdfField> SdfView<'_, F> {
             self.background,
         );
         tally.shadow += shadow.shadow;
+        tally.ao += shadow.ao;
         tally.steps += r.steps as u64;
         tally.samples += r.samples as u64;
         (r.color, r.samples)

@@ -375,7 +375,8 @@ struct Totals {
 
 impl Totals {
     fn of(count_px: &[[u32; 4]], per_pixel: u32) -> Self {
-        let (mut steps, mut samples, mut shadow, mut ao, mut multi) = (0u64, 0u64, 0u64, 0u64, 0u64);
+        let (mut steps, mut samples, mut shadow, mut ao, mut multi) =
+            (0u64, 0u64, 0u64, 0u64, 0u64);
         for c in count_px {
             steps += c[0] as u64;
             samples += c[1] as u64;

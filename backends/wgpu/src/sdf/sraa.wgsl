@@ -53,9 +53,9 @@ fn view_depth(q: vec3<f32>) -> f32 {
 
 // SdfView::shadow_states: bit l set = light l shadowed at q (normal n facing
 // the ray). A light facing away shadows without a ray, a light that does not
-// reach q leaves it lit; only the lights in `cast` are traced, the others
+// reach q leaves it lit; only the lights in `cast_mask` are traced, the others
 // take their bit from `inherited` (adaptive subpixel shadows).
-fn shadow_states(q: vec3<f32>, n: vec3<f32>, cast: u32, inherited: u32, count: ptr<function, u32>) -> u32 {
+fn shadow_states(q: vec3<f32>, n: vec3<f32>, cast_mask: u32, inherited: u32, count: ptr<function, u32>) -> u32 {
     var bits = 0u;
     for (var l = 0u; l < SCENE_LIGHTS; l++) {
         let inc = light_incident(l, q);
@@ -64,7 +64,7 @@ fn shadow_states(q: vec3<f32>, n: vec3<f32>, cast: u32, inherited: u32, count: p
         }
         if dot(inc.direction, n) <= 0.0 {
             bits |= 1u << l;
-        } else if (cast & (1u << l)) == 0u {
+        } else if (cast_mask & (1u << l)) == 0u {
             bits |= inherited & (1u << l);
         } else if shadowed(q, n, inc.direction, inc.distance, count) {
             bits |= 1u << l;

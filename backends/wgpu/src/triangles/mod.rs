@@ -115,7 +115,7 @@ impl FrameUniform {
 /// `get_`/`put_` accessors of an optional per-pixel buffer `var` (element
 /// `ty`, `per` elements per pixel): real ones when it is bound, else reads of
 /// `default` and ignored writes. `HAS_<NAME>` says which.
-pub(crate) fn accessors(fb: &Bindings, name: &str, var: &str, ty: &str, per: u32, default: &str) -> String {
+fn accessors(fb: &Bindings, name: &str, var: &str, ty: &str, per: u32, default: &str) -> String {
     let has = fb.has(var);
     let upper = name.to_uppercase();
     let (args, index) = if per == 1 {
