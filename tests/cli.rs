@@ -177,9 +177,9 @@ fn every_method_name_is_documented() {
     }
 }
 
-/// `--ao N` on `render` and `report`: accepted up to the cap (the rays are
-/// listed with `--verbose`), refused above it, and on an SDF scene, with a
-/// message naming what to change.
+/// `--ao N` on `render` and `report`: accepted up to the cap on triangle and
+/// SDF scenes (the rays are listed with `--verbose`), refused above it, with
+/// a message naming what to change.
 #[test]
 fn ambient_occlusion_flag() {
     let dir = tempfile::tempdir().unwrap();
@@ -202,6 +202,27 @@ fn ambient_occlusion_flag() {
     assert!(ok, "{text}");
     assert!(text.contains("ao "), "--verbose counts the AO rays: {text}");
     assert!(out.exists());
+    let sdf_out = dir.path().join("ao-sdf.png");
+    let (ok, text) = subcone(&[
+        "render",
+        "--scene",
+        "primitives",
+        "--method",
+        "sraa-rt",
+        "--size",
+        "24x16",
+        "--ao",
+        "4",
+        "--verbose",
+        "-o",
+        sdf_out.to_str().unwrap(),
+    ]);
+    assert!(ok, "{text}");
+    assert!(
+        text.contains("ao ") && !text.contains("ao 0.00"),
+        "--verbose counts the SDF scene's AO rays: {text}"
+    );
+    assert!(sdf_out.exists());
     for (args, needle) in [
         (
             vec!["render", "--size", "8x8", "--ao", "257"],
@@ -209,20 +230,6 @@ fn ambient_occlusion_flag() {
         ),
         (vec!["render", "--size", "8x8", "--ao", "many"], "--ao"),
         (vec!["report", "--quick", "--ao", "1000"], "at most 256"),
-        (
-            vec![
-                "render",
-                "--size",
-                "8x8",
-                "--scene",
-                "primitives",
-                "--method",
-                "noaa",
-                "--ao",
-                "4",
-            ],
-            "triangle scenes only",
-        ),
     ] {
         let bad = dir.path().join("bad.png");
         let mut args = args.clone();

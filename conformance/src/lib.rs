@@ -94,7 +94,7 @@ pub fn left_out() -> [(Method, LeftOutOf, &'static str); 4] {
         (
             gated(sraa_rt),
             LeftOutOf::SdfScenes,
-            "the material gate on SDF scenes: `cpu_only_methods`' scene invariants cover sraa-rt",
+            "the material gate, which SDF scenes refuse on every backend (MaterialGateOnSdf); sraa-rt runs there",
         ),
         (
             gated(paper(Method::new(Technique::Sraa))),
@@ -125,34 +125,6 @@ pub fn methods_for(scene: &Scene) -> Vec<&'static str> {
         })
         .collect()
 }
-
-/// Methods only the CPU reference renders on SDF scenes, with the reason. Not
-/// skipped: `cpu_only_methods` renders them on the CPU (every SDF and stiff
-/// scene, frame invariants and the `ssaa64` bound) and requires every other
-/// backend to plan and make the refusal ([`Backend::supports`], then
-/// `render`) as [`UnsupportedReason::CpuOnly`], saying "CPU backend only";
-/// where they are also in [`methods_for`] an SDF scene, the per-scene cases check the
-/// refusal too. Any other refusal of a method in the scene lists, but a
-/// technique that does not apply to the scene, fails the suite.
-///
-/// They are the methods of [`METHOD_NAMES`] whose technique needs
-/// sphere-traced subpixel geometry on SDF scenes
-/// ([`registry::Needs::sdf_subpixel_geometry`]), but the material gate's
-/// (which SDF scenes refuse on every backend).
-pub fn cpu_only_on_sdf() -> Vec<(&'static str, &'static str)> {
-    METHOD_NAMES
-        .into_iter()
-        .filter(|m| {
-            let m: Method = m.parse().expect("METHOD_NAMES parse");
-            registry::info(m.technique()).needs.sdf_subpixel_geometry && !m.gates_material()
-        })
-        .map(|m| (m, CPU_ONLY_WHY))
-        .collect()
-}
-
-/// Why [`cpu_only_on_sdf`] methods are the CPU backend's only.
-pub const CPU_ONLY_WHY: &str =
-    "sphere-traced subpixel geometry and its reconstruction exist on the CPU only";
 
 /// How close a backend's frame must be to the CPU backend's, in LDR-FLIP.
 ///
@@ -547,15 +519,8 @@ pub fn check_scene(backend: &dyn Backend, scene_name: &str) {
     let mut ran = 0;
     for m in &methods {
         let method: Method = m.parse().expect("method name");
-        let sdf = scene.features().contains(SceneFeatures::IS_SDF);
-        let cpu_only = cpu_only_on_sdf()
-            .into_iter()
-            .find(|(n, _)| sdf && *n == *m && name != "cpu");
         match backend.supports(&scene, &method) {
-            Ok(()) => assert!(
-                cpu_only.is_none(),
-                "{name}: {scene_name} {m} is listed as CPU-only but supported; compare it instead"
-            ),
+            Ok(()) => {}
             Err(u) => {
                 // The plan is what render does.
                 match backend.render(&scene, &scene.camera, &method, &settings) {
@@ -568,24 +533,16 @@ pub fn check_scene(backend: &dyn Backend, scene_name: &str) {
                         other.map(|_| "a frame")
                     ),
                 }
-                match (&u.reason, cpu_only) {
+                match &u.reason {
                     // The technique does not apply: no backend renders it.
-                    (UnsupportedReason::Technique(_), _) => {
+                    UnsupportedReason::Technique(_) => {
                         assert!(
                             required_passes(method.technique(), scene.features()).is_err(),
                             "{u}"
                         );
                     }
-                    (UnsupportedReason::CpuOnly { .. }, Some((_, why))) => {
-                        assert!(u.to_string().contains("CPU backend only"), "{u}");
-                        ran += 1;
-                        println!(
-                            "{name:>5} {scene_name:>16} {m:>12}: CPU-only ({why}), refused: {u}"
-                        );
-                    }
-                    _ => panic!(
-                        "{name}: {scene_name} {m} refused, and not as listed in cpu_only_on_sdf: {u}"
-                    ),
+                    // Every other method of the suite renders on every backend.
+                    _ => panic!("{name}: {scene_name} {m} refused: {u}"),
                 }
                 continue;
             }
@@ -654,55 +611,124 @@ pub fn check_extreme_settings(backend: &dyn Backend) {
     }
 }
 
-/// [`cpu_only_on_sdf`]: finite, invariant-abiding frames within the `ssaa64`
-/// bound on the CPU on every SDF scene; a clear error on any other backend.
-pub fn check_cpu_only(backend: &dyn Backend) {
-    let settings = RenderSettings::new(W, H);
+/// The SDF scenes of the ambient-occlusion case ([`check_ambient_occlusion`]):
+/// open ground with objects standing on it, and a closed court with walls,
+/// steps and a fountain.
+pub const AO_SCENES: [&str; 2] = ["primitives", "sdf-atrium"];
+
+/// The methods of the ambient-occlusion case: no antialiasing, SRAA-RT
+/// (which reconstructs the occluded ambient term from its shaded samples)
+/// and CTSS (which shades, and occludes, once per hit group).
+pub const AO_METHODS: [&str; 3] = ["noaa", "sraa-rt", "ctss"];
+
+/// Occlusion rays per shaded point in the ambient-occlusion case: few, so
+/// that the `ssaa64` reference (64 shaded samples per pixel, each with its
+/// rays) stays quick, and enough that the ambient term takes several levels.
+pub const AO_RAYS: u32 = 4;
+
+/// The `ssaa64` reference of `scene` with [`AO_RAYS`] occlusion rays, on the
+/// CPU backend (rendered once per scene and kept).
+pub fn ao_reference_frame(scene: &Scene) -> Arc<Frame> {
+    static CACHE: OnceLock<Mutex<HashMap<String, Arc<Frame>>>> = OnceLock::new();
+    let cache = CACHE.get_or_init(Default::default);
+    if let Some(f) = cache.lock().expect("cache lock").get(&scene.name) {
+        return f.clone();
+    }
+    let method: Method = REFERENCE_METHOD.parse().expect("reference method");
+    let settings = RenderSettings {
+        ao_rays: AO_RAYS,
+        ..RenderSettings::new(W, H)
+    };
+    let frame = subcone_cpu::CpuBackend::new()
+        .render(scene, &scene.camera, &method, &settings)
+        .unwrap_or_else(|e| {
+            panic!(
+                "{REFERENCE_METHOD} reference of {} with AO: {e}",
+                scene.name
+            )
+        });
+    let frame = Arc::new(frame);
+    cache
+        .lock()
+        .expect("cache lock")
+        .entry(scene.name.clone())
+        .or_insert(frame)
+        .clone()
+}
+
+/// Ambient occlusion ([`RenderSettings::ao_rays`]) on SDF scenes: every
+/// [`AO_METHODS`] frame of every [`AO_SCENES`] scene with [`AO_RAYS`] rays
+/// casts occlusion rays, is darker than the same method without them
+/// (occlusion only ever removes ambient light), keeps the frame invariants,
+/// agrees with the CPU backend's frame within [`FRAME_TOLERANCE`] (the
+/// occlusion rays are sphere traced with the shadow rays' march on both), and
+/// is within its family's [`REFERENCE_BOUNDS`] mean of the CPU's `ssaa64`
+/// frame with the same occlusion ([`ao_reference_frame`]): the bounds hold
+/// with occlusion as without, as it changes the shading, not the edges the
+/// methods antialias.
+pub fn check_ambient_occlusion(backend: &dyn Backend) {
     let name = backend.name();
+    let cpu = subcone_cpu::CpuBackend::new();
+    let settings = RenderSettings {
+        ao_rays: AO_RAYS,
+        ..RenderSettings::new(W, H)
+    };
     let mut failures = Vec::new();
-    for (m, why) in cpu_only_on_sdf() {
-        let method: Method = m.parse().expect("method name");
-        for scene_name in SDF_SCENES.iter().chain(&STIFF_SCENES) {
-            let scene = builtin(scene_name).expect("built-in scene");
-            let plan = backend.supports(&scene, &method);
-            match backend.render(&scene, &scene.camera, &method, &settings) {
-                Ok(frame) => {
-                    assert_eq!(
-                        name, "cpu",
-                        "{m} is CPU-only ({why}) but {name} rendered it"
-                    );
-                    assert_eq!(
-                        plan,
-                        Ok(()),
-                        "cpu: {scene_name} {m}: rendered what it refused"
-                    );
-                    check_invariants(name, &scene, &method, &frame);
-                    match check_against_reference(name, &scene, m, &frame) {
-                        Ok(v) => println!(
-                            "{name:>5} {scene_name:>16} {m:>12}: vs {REFERENCE_METHOD} mean {v:.5} (≤ {})",
-                            family(m).mean
-                        ),
-                        Err(e) => failures.push(format!("{scene_name}: {e}")),
-                    }
-                }
-                Err(e) => {
-                    assert_ne!(name, "cpu", "cpu: {scene_name} {m}: {e}");
-                    let planned = plan.expect_err("refused by render, so by supports");
-                    assert!(
-                        matches!(planned.reason, UnsupportedReason::CpuOnly { .. }),
-                        "{name}: {scene_name} {m} refused without saying it is CPU-only: {planned}"
-                    );
-                    assert!(
-                        matches!(&e, RenderError::NotSupported(u) if *u == planned),
-                        "{name}: {scene_name} {m}: render refused otherwise than planned: {e}"
-                    );
-                    assert!(
-                        e.to_string().contains("CPU backend only"),
-                        "{name}: {scene_name} {m} refused without saying why: {e}"
-                    );
-                    break;
-                }
+    for scene_name in AO_SCENES {
+        let scene = builtin(scene_name).expect("built-in scene");
+        let reference = ao_reference_frame(&scene);
+        for m in AO_METHODS {
+            let method: Method = m.parse().expect("method name");
+            let frame = backend
+                .render(&scene, &scene.camera, &method, &settings)
+                .unwrap_or_else(|e| panic!("{name}: {scene_name} {m} with AO: {e}"));
+            check_invariants(name, &scene, &method, &frame);
+            assert!(
+                frame.stats.rays.ao > 0,
+                "{name}: {scene_name} {m}: no occlusion rays counted"
+            );
+            let plain = backend
+                .render(&scene, &scene.camera, &method, &RenderSettings::new(W, H))
+                .unwrap_or_else(|e| panic!("{name}: {scene_name} {m}: {e}"));
+            let sum = |f: &Frame| f.color.iter().map(|c| c.element_sum() as f64).sum::<f64>();
+            assert!(
+                sum(&frame) < sum(&plain),
+                "{name}: {scene_name} {m}: occlusion did not darken the frame"
+            );
+            let expected = cpu
+                .render(&scene, &scene.camera, &method, &settings)
+                .unwrap_or_else(|e| panic!("cpu reference: {scene_name} {m} with AO: {e}"));
+            let f = flip(&expected, &frame);
+            let t = FRAME_TOLERANCE;
+            let label = format!("{m}+ao{AO_RAYS}");
+            if f.mean > t.mean || f.p99 > t.p99 {
+                let stem = save_failure(name, scene_name, &label, "cpu", &expected, &frame, &f);
+                failures.push(format!(
+                    "{scene_name} {label} against the cpu backend: FLIP mean {:.5} (limit {}), p99 {:.4} (limit {}); images in {stem}-*.png",
+                    f.mean, t.mean, f.p99, t.p99
+                ));
             }
+            let r = flip(&reference, &frame);
+            let fam = family(m);
+            if r.mean > fam.mean {
+                let stem = save_failure(
+                    name,
+                    scene_name,
+                    &label,
+                    REFERENCE_METHOD,
+                    &reference,
+                    &frame,
+                    &r,
+                );
+                failures.push(format!(
+                    "{scene_name} {label} against {REFERENCE_METHOD} with AO: FLIP mean {:.5} (limit {} for the {} family: {}); images in {stem}-*.png",
+                    r.mean, fam.mean, fam.name, fam.why
+                ));
+            }
+            println!(
+                "{name:>5} {scene_name:>16} {label:>12}: vs cpu FLIP mean {:.5} (≤ {}), p99 {:.4} (≤ {}); vs {REFERENCE_METHOD}+ao{AO_RAYS} mean {:.5} (≤ {}); {} occlusion rays",
+                f.mean, t.mean, f.p99, t.p99, r.mean, fam.mean, frame.stats.rays.ao
+            );
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
@@ -758,9 +784,9 @@ pub fn check_errors(backend: &dyn Backend) {
 /// backend plans renders, every refusal is planned and made alike (a typed
 /// [`subcone_scene::Unsupported`]); and the refusals the suite can judge
 /// without knowing the backend are honest: "the technique does not apply" only
-/// where [`required_passes`] says so, "CPU backend only" never from the CPU
-/// backend and always saying so. What each backend refuses besides is its own
-/// `tests/supports.rs`'s to assert.
+/// where [`required_passes`] says so, and never "CPU backend only" (both
+/// backends render every method the suite lists). What each backend refuses
+/// besides is its own `tests/supports.rs`'s to assert.
 pub fn check_supports(backend: &dyn Backend) {
     let name = backend.name();
     let check = plan_matches_render(backend).unwrap_or_else(|e| panic!("{e}"));
@@ -784,8 +810,7 @@ pub fn check_supports(backend: &dyn Backend) {
                 );
             }
             UnsupportedReason::CpuOnly { .. } => {
-                assert_ne!(name, "cpu", "the CPU backend refuses as CPU-only: {u}");
-                assert!(u.to_string().contains("CPU backend only"), "{u}");
+                panic!("{name}: refused as CPU-only, which no method is: {u}");
             }
             _ => {}
         }
@@ -945,9 +970,9 @@ macro_rules! conformance_suite {
             }
 
             #[test]
-            fn cpu_only_methods() {
+            fn ambient_occlusion_on_sdf() {
                 if let Some(b) = backend() {
-                    $crate::check_cpu_only(b.as_ref());
+                    $crate::check_ambient_occlusion(b.as_ref());
                 }
             }
 

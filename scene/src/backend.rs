@@ -45,8 +45,10 @@ pub struct RenderSettings {
     /// scene's ambient term by the unoccluded fraction. SSAA shades it per
     /// subsample; SRAA and SRAA-RT reconstruct it with the shadow-independent
     /// shading. Not applied at mirror hits (secondary shading keeps the full
-    /// ambient term). Triangle scenes only: SDF scenes refuse it at render
-    /// time ([`RenderError::Method`]).
+    /// ambient term). On SDF scenes every shaded sample (each CTSS hit group's
+    /// too) sphere traces its occlusion rays through the field, up to
+    /// [`AO_RADIUS_FRACTION`] of the field's size
+    /// ([`SdfGeometry::ao_radius`](crate::scene::SdfGeometry::ao_radius)).
     pub ao_rays: u32,
 }
 
@@ -133,7 +135,11 @@ pub enum UnsupportedReason {
         /// What renders such scenes instead.
         instead: String,
     },
-    /// Implemented by the CPU backend only.
+    /// Implemented by the CPU backend only: what a backend whose
+    /// [`Capabilities`] lack something the technique [`registry::Needs`]
+    /// refuses with. No backend of this workspace returns it (both render
+    /// SRAA-RT on SDF scenes); it stays for backends outside it that declare
+    /// such a lack.
     CpuOnly {
         /// What only the CPU backend renders (e.g. `"sraa-rt on SDF scenes"`).
         what: &'static str,

@@ -398,7 +398,7 @@ pub fn grammar() -> String {
 
 /// What [`UnsupportedReason::CpuOnly`](crate::UnsupportedReason::CpuOnly)
 /// names when a backend lacks sphere-traced subpixel geometry
-/// ([`Needs::sdf_subpixel_geometry`]).
+/// ([`Needs::sdf_subpixel_geometry`]); the CPU and wgpu backends have it.
 pub const SDF_SUBPIXEL_GEOMETRY: &str = "sraa-rt on SDF scenes";
 
 /// The method `subcone render` uses when none is named.

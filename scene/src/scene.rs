@@ -34,6 +34,32 @@ pub struct SdfGeometry {
     pub max_steps: u32,
 }
 
+impl SdfGeometry {
+    /// The field's size, as a triangle scene's is its mesh's bounding-box
+    /// diagonal: the diagonal of the box of its bounded objects
+    /// ([`SdfNode::finite_bounds`]: an infinite floor plane does not count),
+    /// or, when no part of the field is bounded or that diagonal is zero or
+    /// not finite, [`max_distance`](Self::max_distance) (the reach of its
+    /// rays). Always finite and positive for a validated scene.
+    pub fn size(&self) -> f32 {
+        let diagonal = self
+            .root
+            .finite_bounds()
+            .map(|b| subcone_kernels::math::Euclidean::norm(b.max - b.min))
+            .filter(|d| d.is_finite() && *d > 0.0);
+        diagonal.unwrap_or(self.max_distance)
+    }
+
+    /// The length of ambient-occlusion rays
+    /// ([`RenderSettings::ao_rays`](crate::RenderSettings::ao_rays)):
+    /// [`AO_RADIUS_FRACTION`](crate::backend::AO_RADIUS_FRACTION) of
+    /// [`size`](Self::size), as triangle scenes take it of their bounding
+    /// diagonal. Every backend reads it here.
+    pub fn ao_radius(&self) -> f32 {
+        self.size() * subcone_kernels::ao::AO_RADIUS_FRACTION
+    }
+}
+
 /// A scene.
 #[derive(Clone, Debug)]
 pub struct Scene {

@@ -1169,3 +1169,33 @@ fn offsets_over_capped_fields_stay_within_the_margin() {
     assert!(boxed.clone().onion(0.5).is_ok());
     assert!(matches!(boxed.onion(0.6), Err(SdfError::Overlap { .. })));
 }
+
+/// The field's size for ambient occlusion: the box of its bounded objects,
+/// an infinite floor plane left out; the reach of its rays when nothing is
+/// bounded; the radius a tenth of it.
+#[test]
+fn sdf_size_is_the_bounded_objects_box() {
+    use subcone_scene::scene::SdfGeometry;
+    let geometry = |root: SdfNode| SdfGeometry {
+        root,
+        max_distance: 80.0,
+        max_steps: 64,
+    };
+    let sphere = SdfNode::sphere(1.0).unwrap();
+    let alone = geometry(sphere.clone());
+    // The box of a unit sphere: 2 × 2 × 2, diagonal 2√3 (bounds may be padded).
+    let d = 2.0 * 3f32.sqrt();
+    assert!(
+        alone.size() >= d && alone.size() < d * 1.01,
+        "{}",
+        alone.size()
+    );
+    let floor = SdfNode::plane(Vec3::Y, 0.0).unwrap();
+    let with_floor = geometry(SdfNode::union(vec![floor.clone(), sphere]).unwrap());
+    assert_eq!(with_floor.size(), alone.size());
+    assert_eq!(geometry(floor).size(), 80.0);
+    assert_eq!(
+        with_floor.ao_radius(),
+        with_floor.size() * subcone_kernels::ao::AO_RADIUS_FRACTION
+    );
+}

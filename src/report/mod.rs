@@ -703,7 +703,8 @@ impl Plan {
     }
 
     /// The settings of a `w × h` render of the run: the run's ambient
-    /// occlusion, on triangle scenes (SDF scenes refuse it).
+    /// occlusion, on triangle scenes (the report's SDF scenes render without
+    /// it, though both backends render it there).
     fn settings(&self, w: u32, h: u32, sdf: bool) -> RenderSettings {
         let mut s = RenderSettings::new(w, h);
         if !sdf {

@@ -172,15 +172,16 @@ impl Backend for CpuBackend {
         // passes on an SDF scene is refused as its mirrors would be.
         let passes = plan_forced(scene, method, &CAPABILITIES, settings.force_passes)?;
         if let Some(g) = scene.sdf_geometry() {
-            if settings.ao_rays > 0 {
-                return Err(ao_on_sdf());
-            }
+            let of_scene = SdfView::of_scene(scene, camera).expect("an SDF scene");
             let view = SdfView {
                 max_distance: settings.max_distance.unwrap_or(g.max_distance),
                 max_steps: settings.max_steps.unwrap_or(g.max_steps),
                 exhaustive_subpixel_shadows: self.exhaustive_subpixel_shadows,
                 isa: self.isa(),
-                ..SdfView::of_scene(scene, camera).expect("an SDF scene")
+                ao_rays: settings.ao_rays,
+                // Occlusion rays are traced one ray at a time (`SdfView::ao_rays`).
+                program: of_scene.program.filter(|_| settings.ao_rays == 0),
+                ..of_scene
             };
             let mut frame = view.render(method, settings, passes);
             post_process(&mut frame, passes);
@@ -204,15 +205,6 @@ impl Backend for CpuBackend {
         post_process(&mut frame, passes);
         Ok(frame)
     }
-}
-
-/// Ambient occlusion asked for on an SDF scene: a setting, not the scene
-/// and method, so a runtime error of `render` (ARCHITECTURE.md, "Adding a
-/// backend"), not an `Unsupported`.
-pub(crate) fn ao_on_sdf() -> RenderError {
-    RenderError::Method(
-        "ambient occlusion (--ao) is implemented for triangle scenes only, not SDF scenes".into(),
-    )
 }
 
 /// The planned post-process pass (FXAA), after the frame is rendered.

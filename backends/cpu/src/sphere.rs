@@ -133,6 +133,13 @@ pub struct SdfView<'a, F: SdfField> {
     pub program: Option<SdfProgram<'a>>,
     /// The instruction-set path of the hot loops ([`Isa::run`]).
     pub isa: Isa,
+    /// Ambient-occlusion rays per shaded point
+    /// ([`RenderSettings::ao_rays`]; 0: off). Occlusion rays are traced one
+    /// at a time: with rays, set [`program`](Self::program) to `None`, as
+    /// `CpuBackend::render` does (the packets shade without occlusion).
+    pub ao_rays: u32,
+    /// Their length ([`SdfGeometry::ao_radius`](subcone_scene::scene::SdfGeometry::ao_radius)).
+    pub ao_radius: f32,
 }
 
 /// A hit-group sample waiting to be shaded (delayed shading).
@@ -154,6 +161,8 @@ impl<'a> SdfView<'a, subcone_scene::sdf::SdfNode> {
             exhaustive_subpixel_shadows: false,
             program: Some(SdfProgram::compile(&g.root)),
             isa: Isa::detected(),
+            ao_rays: 0,
+            ao_radius: g.ao_radius(),
         })
     }
 }
@@ -178,6 +187,7 @@ struct Tally {
     samples: u64,
     multi: u64,
     shadow: u64,
+    ao: u64,
 }
 
 impl std::ops::Add for Tally {
@@ -188,6 +198,7 @@ impl std::ops::Add for Tally {
             samples: self.samples + o.samples,
             multi: self.multi + o.multi,
             shadow: self.shadow + o.shadow,
+            ao: self.ao + o.ao,
         }
     }
 }
@@ -246,14 +257,71 @@ impl<F: SdfField> SdfView<'_, F> {
         }
     }
 
-    /// Lambert shading with hard shadows and ambient light.
+    /// Whether the any-hit ray from `p` (normal `n`, facing the ray) along
+    /// unit `d` meets the field within [`ao_radius`](Self::ao_radius): an
+    /// occlusion ray of ambient occlusion ([`subcone_kernels::ao`]), sphere
+    /// traced exactly as a shadow ray towards a light that far
+    /// ([`shadowed`](Self::shadowed): origin lifted off the surface, hit
+    /// threshold, the safe step, at least an ulp per step).
+    ///
+    /// Domain: a march that reaches the radius (or the scene's
+    /// `max_distance`, if nearer) without coming within the threshold of the
+    /// surface is a miss, unoccluded; so is a NaN distance (the field is
+    /// undefined there: the ray stops, as shadow rays stop, and counts as
+    /// open) and a march that spends the scene's step budget first (a ray
+    /// that grazes a surface for that long is not taken as blocked). A NaN
+    /// radius is taken as 0, which ends the march at once: unoccluded. Every
+    /// march ends within the step budget.
+    fn ao_occluded(&self, p: Vec3, n: Vec3, d: Vec3, tally: &mut Tally) -> bool {
+        tally.ao += 1;
+        let radius = if self.ao_radius.is_nan() {
+            0.0
+        } else {
+            self.ao_radius
+        };
+        let mut ray = ShadowRay::new(p, n, d, radius, self.max_distance);
+        loop {
+            let q = match ray.next(self.max_steps) {
+                Ok(q) => q,
+                Err(blocked) => return blocked,
+            };
+            let SplitDistance { safe, surface, .. } = self.field.eval_split(q);
+            if let Some(blocked) = ray.feed(safe, surface) {
+                return blocked;
+            }
+        }
+    }
+
+    /// The unoccluded fraction at `p` with unit normal `n` facing the ray:
+    /// of [`ao_rays`](Self::ao_rays) fixed directions around `n`
+    /// ([`ao_direction`](subcone_kernels::ao::ao_direction), all above the
+    /// surface: on a field the shading normal is the geometric one), those
+    /// whose [`ao_occluded`](Self::ao_occluded) ray is open
+    /// ([`ao_fraction`](subcone_kernels::ao::ao_fraction)). Exactly 1 when
+    /// occlusion is off.
+    fn ambient_occlusion(&self, p: Vec3, n: Vec3, tally: &mut Tally) -> f32 {
+        let count = self.ao_rays;
+        let mut open = 0;
+        for i in 0..count {
+            let d = subcone_kernels::ao::ao_direction(n, i, count);
+            if !self.ao_occluded(p, n, d, tally) {
+                open += 1;
+            }
+        }
+        subcone_kernels::ao::ao_fraction(open, count)
+    }
+
+    /// Lambert shading with hard shadows and ambient light (times the
+    /// [`ambient_occlusion`](Self::ambient_occlusion), bit for bit the
+    /// plain term when it is off).
     fn shade(&self, p: Vec3, n: Vec3, dir: Vec3, tally: &mut Tally) -> Vec3 {
         let SplitDistance { material: m, .. } = self.field.eval_split(p);
         let mat = self.material(m);
         let albedo = mat.albedo_at(p, Vec2::ZERO);
         // Shade the side facing the ray.
         let n = if n.dot(dir) > 0.0 { -n } else { n };
-        let mut c = mat.emission + self.ambient * albedo;
+        let ao = self.ambient_occlusion(p, n, tally);
+        let mut c = mat.emission + self.ambient * ao * albedo;
         for light in self.lights {
             let Some(inc) = light.incident(p) else {
                 continue;
@@ -313,6 +381,7 @@ impl<F: SdfField> SdfView<'_, F> {
             self.background,
         );
         tally.shadow += shadow.shadow;
+        tally.ao += shadow.ao;
         tally.steps += r.steps as u64;
         tally.samples += r.samples as u64;
         (r.color, r.samples)
@@ -435,17 +504,35 @@ impl<F: SdfField> SdfView<'_, F> {
     /// `out[1 + l]` light `l`'s direct part where `bits` says it is lit. With
     /// `split` false, everything goes to `out[0]`; the sum is `shade`'s colour
     /// in the same order.
-    fn shade_layers(&self, q: Vec3, n: Vec3, bits: u32, split: bool, out: &mut [Vec3]) {
+    fn shade_layers(
+        &self,
+        q: Vec3,
+        n: Vec3,
+        bits: u32,
+        split: bool,
+        out: &mut [Vec3],
+        tally: &mut Tally,
+    ) {
         let SplitDistance { material: m, .. } = self.field.eval_split(q);
-        self.shade_layers_of(m, q, n, bits, split, out);
+        let ao = self.ambient_occlusion(q, n, tally);
+        self.shade_layers_of(m, q, n, bits, (split, ao), out);
     }
 
     /// [`shade_layers`](Self::shade_layers) with the field's material at `q`
-    /// already known (the packets read it off the program).
-    fn shade_layers_of(&self, m: u32, q: Vec3, n: Vec3, bits: u32, split: bool, out: &mut [Vec3]) {
+    /// already known (the packets read it off the program) and the
+    /// ambient term's unoccluded fraction `ao` (1 without occlusion rays).
+    fn shade_layers_of(
+        &self,
+        m: u32,
+        q: Vec3,
+        n: Vec3,
+        bits: u32,
+        (split, ao): (bool, f32),
+        out: &mut [Vec3],
+    ) {
         let mat = self.material(m);
         let albedo = mat.albedo_at(q, Vec2::ZERO);
-        out[0] = mat.emission + self.ambient * albedo;
+        out[0] = mat.emission + self.ambient * ao * albedo;
         for (l, light) in self.lights.iter().enumerate().take(MAX_LIGHTS) {
             let mut direct = Vec3::ZERO;
             if bits & (1 << l) == 0 {
@@ -524,6 +611,7 @@ impl<F: SdfField> SdfView<'_, F> {
                 primary: n as u64,
                 geometry: 3 * n as u64,
                 shadow: tally.shadow,
+                ao: tally.ao,
                 ..Default::default()
             },
             shaded_samples: tally.samples,
@@ -595,7 +683,7 @@ impl<F: SdfField> SdfView<'_, F> {
                     if let Some(sh) = shadow.get_mut(i) {
                         *sh = bits;
                     }
-                    self.shade_layers(q, nrm, bits, split, v);
+                    self.shade_layers(q, nrm, bits, split, v, &mut t);
                 }
                 t
             })
@@ -885,6 +973,7 @@ impl<F: SdfField> SdfView<'_, F> {
             rays: RayCounts {
                 primary: (w * h) as u64 * (side * side) as u64,
                 shadow: tally.shadow,
+                ao: tally.ao,
                 ..Default::default()
             },
             shaded_samples: tally.samples,

@@ -1,12 +1,12 @@
 //! Ambient occlusion (`RenderSettings::ao_rays`) on the CPU backend: off
 //! changes nothing, the unoccluded fraction is in [0, 1] and never rises
-//! when occluders are added, the rays are counted, and what it refuses.
+//! when occluders are added, the rays are counted, on triangle and SDF
+//! scenes.
 use glam::{Vec2, Vec3};
 use subcone_cpu::shade::{Counts, Surface, Tracer};
 use subcone_cpu::CpuBackend;
 use subcone_scene::{
-    builtin::builtin, Backend, Camera, Frame, Material, Method, RenderError, RenderSettings, Scene,
-    TriangleMesh,
+    builtin::builtin, Backend, Camera, Frame, Material, Method, RenderSettings, Scene, TriangleMesh,
 };
 
 fn render(scene: &Scene, method: &str, w: u32, h: u32, ao: u32) -> Frame {
@@ -191,13 +191,40 @@ fn ao_settings_are_checked() {
     s.ao_rays += 1;
     let e = s.validate().unwrap_err().to_string();
     assert!(e.contains("at most 256"), "{e}");
-    // SDF scenes refuse AO at render time, with a message naming it.
-    let sdf = builtin("primitives").unwrap();
-    let mut s = RenderSettings::new(8, 8);
-    s.ao_rays = 4;
-    let m: Method = "noaa".parse().unwrap();
-    match CpuBackend::new().render(&sdf, &sdf.camera, &m, &s) {
-        Err(RenderError::Method(e)) => assert!(e.contains("triangle scenes only"), "{e}"),
-        other => panic!("AO on an SDF scene: {:?}", other.map(|f| f.width)),
+}
+
+/// Ambient occlusion on an SDF scene: every SDF method casts its rays (one
+/// per direction per shaded sample at most), never brightens a pixel and
+/// darkens the frame. (With AO off the scalar path multiplies the ambient
+/// term by exactly 1 and the packets, which have no occlusion, must give its
+/// frames bit for bit: `tests/packets.rs`.)
+#[test]
+fn ao_on_sdf_scenes_darkens() {
+    let scene = builtin("primitives").unwrap();
+    let radius = scene.sdf_geometry().unwrap().ao_radius();
+    // The objects' box (about 9.5 × 1.7 × 6.9), not the infinite floor.
+    assert!(radius > 0.5 && radius < 2.0, "AO radius {radius}");
+    for method in ["noaa", "ssaa4", "sraa-rt", "ctss", "ctss-r"] {
+        let plain = render(&scene, method, 32, 24, 0);
+        assert_eq!(plain.stats.rays.ao, 0, "{method}: AO rays with AO off");
+        let ao = render(&scene, method, 32, 24, 8);
+        let rays = ao.stats.rays.ao;
+        assert!(
+            rays > 0 && rays <= 8 * ao.stats.shaded_samples,
+            "{method}: {rays} AO rays for {} shaded samples",
+            ao.stats.shaded_samples
+        );
+        let mut darker = 0;
+        for (i, (a, p)) in ao.color.iter().zip(&plain.color).enumerate() {
+            // SRAA-RT's reconstruction mixes neighbours by weights that do
+            // not depend on the colour: darker layers give a darker pixel,
+            // up to rounding.
+            assert!(
+                a.cmple(*p + Vec3::splat(1e-5)).all(),
+                "{method}: pixel {i} brighter with AO: {a} > {p}"
+            );
+            darker += (a.element_sum() < p.element_sum()) as u32;
+        }
+        assert!(darker > 32 * 24 / 10, "{method}: {darker} pixels darker");
     }
 }

@@ -15,12 +15,23 @@ mod layout_check;
 use layout_check::{assert_all_match, Member};
 
 use crate::post::fxaa::{FxaaFrame, FXAA_WGSL};
-use crate::sdf::{SdfFrame, TRACE_WGSL as SDF_WGSL};
+use crate::sdf::{sraa_frame_struct, SdfFrame, SdfSraaFrame, TRACE_WGSL as SDF_WGSL};
 use crate::triangles::bvh::{GpuLight, GpuMaterial, GpuNode};
 use crate::triangles::{FrameUniform, ALBEDO_WGSL, FRAME_WGSL, TRACE_WGSL};
 
 #[test]
 fn backend_gpu_structs_match_their_wgsl() {
+    // SdfFrame's members (at the same offsets: it comes first), then the
+    // SRAA parameters; the struct is generated from trace.wgsl's SdfFrame.
+    let sraa_frame = sraa_frame_struct().expect("SdfFrame in trace.wgsl");
+    let mut sdf_sraa_members = members!(SdfFrame: position, width, forward, height, right,
+        half, up, max_distance, background, max_steps, ambient, side, cone, ao_rays, ao_radius,
+        _pad);
+    sdf_sraa_members.push((
+        "sraa".to_string(),
+        core::mem::offset_of!(SdfSraaFrame, sraa),
+        size_of::<subcone_kernels::sraa::SraaParams>(),
+    ));
     assert_all_match(&[
         (
             FRAME_WGSL,
@@ -53,7 +64,14 @@ fn backend_gpu_structs_match_their_wgsl() {
             "SdfFrame",
             size_of::<SdfFrame>(),
             members!(SdfFrame: position, width, forward, height, right, half, up,
-                max_distance, background, max_steps, ambient, side, cone, _pad[3 as u32]),
+                max_distance, background, max_steps, ambient, side, cone, ao_rays, ao_radius,
+                _pad),
+        ),
+        (
+            sraa_frame.as_str(),
+            "SdfSraaFrame",
+            size_of::<SdfSraaFrame>(),
+            sdf_sraa_members,
         ),
         (
             FXAA_WGSL,

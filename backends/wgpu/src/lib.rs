@@ -84,8 +84,8 @@ pub(crate) struct Job<'a> {
     pub(crate) passes: Passes,
 }
 
-/// What the wgpu backend renders: the kernels' techniques but SRAA-RT on
-/// SDF scenes ([`sdf::SRAA_RT_CPU_ONLY`]), up to [`MAX_LIGHTS`] lights on
+/// What the wgpu backend renders: the kernels' techniques (SRAA-RT on SDF
+/// scenes included), up to [`MAX_LIGHTS`] lights on
 /// triangle scenes, up to [`sdf::MAX_SIDE_SAMPLES`] samples per pixel side on
 /// SDF scenes; the refusals are the one plan's
 /// ([`subcone_scene::backend::plan`]).
@@ -93,7 +93,7 @@ pub const CAPABILITIES: Capabilities = Capabilities {
     backend: "wgpu",
     max_lights_triangles: Some(MAX_LIGHTS),
     max_lights_sdf: None,
-    sdf_subpixel_geometry: Err(sdf::SRAA_RT_WHY),
+    sdf_subpixel_geometry: Ok(()),
     max_sdf_side_samples: Some(sdf::MAX_SIDE_SAMPLES),
 };
 
@@ -105,7 +105,7 @@ impl Backend for WgpuBackend {
     /// Refuses what the kernels refuse (`required_passes`) and
     /// semi-transparent materials; on triangle scenes more than
     /// [`MAX_LIGHTS`] lights; on SDF scenes mirror reflections, the material
-    /// gate, the CPU-only method sraa-rt ([`sdf::SRAA_RT_CPU_ONLY`]) and more than
+    /// gate and more than
     /// [`sdf::MAX_SIDE_SAMPLES`] samples per pixel side.
     fn supports(&self, scene: &Scene, method: &Method) -> Result<(), Unsupported> {
         plan(scene, method, &CAPABILITIES).map(|_| ())
@@ -134,14 +134,6 @@ impl Backend for WgpuBackend {
             passes: plan_forced(scene, method, &CAPABILITIES, settings.force_passes)?,
         };
         if scene.sdf_geometry().is_some() {
-            // A setting, not the scene and method: a runtime error, as on
-            // the CPU backend.
-            if settings.ao_rays > 0 {
-                return Err(RenderError::Method(
-                    "ambient occlusion (--ao) is implemented for triangle scenes only, not SDF scenes"
-                        .into(),
-                ));
-            }
             sdf::render(&self.ctx, &job)
         } else {
             triangles::render(&self.ctx, &job)

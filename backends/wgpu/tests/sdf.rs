@@ -33,9 +33,11 @@ fn compare(a: &Frame, b: &Frame) -> (f32, f32) {
     ((sum / (3 * n) as f64) as f32, bad as f32 / n as f32)
 }
 
-const METHODS: [&str; 7] = [
+const METHODS: [&str; 9] = [
     "noaa",
     "ssaa4",
+    "sraa-rt",
+    "sraa-rt-paper",
     "ctss",
     "ctss-paper",
     "ctss+edges",
@@ -54,11 +56,16 @@ const MAX_MEAN: f32 = 0.002;
 const MAX_BAD: f32 = 0.01;
 
 fn agree(names: &[&str], w: u32, h: u32) {
+    agree_with(names, &METHODS, w, h, 0);
+}
+
+/// [`agree`] on `methods`, with `ao` ambient-occlusion rays per shaded point.
+fn agree_with(names: &[&str], methods: &[&str], w: u32, h: u32, ao: u32) {
     let Some(gpu) = gpu() else { return };
     let cpu = CpuBackend::new();
     for name in names {
         let scene = builtin(name).unwrap();
-        for m in METHODS {
+        for &m in methods {
             let method: Method = m.parse().unwrap();
             // What the reference refuses on a scene (`ctss+edges` on the
             // semi-transparent ones) the GPU refuses too.
@@ -71,6 +78,7 @@ fn agree(names: &[&str], w: u32, h: u32) {
             }
             let mut s = RenderSettings::new(w, h);
             s.aovs = true;
+            s.ao_rays = ao;
             let t0 = Instant::now();
             let want = cpu.render(&scene, &scene.camera, &method, &s).unwrap();
             let t1 = Instant::now();
@@ -114,9 +122,18 @@ fn agree(names: &[&str], w: u32, h: u32) {
                 want.stats.shaded_samples,
                 got.stats.shaded_samples
             );
+            assert!(
+                close(want.stats.rays.ao, got.stats.rays.ao),
+                "{name} {m}: occlusion rays {} vs {}",
+                want.stats.rays.ao,
+                got.stats.rays.ao
+            );
+            assert_eq!(ao > 0, got.stats.rays.ao > 0, "{name} {m}: occlusion rays");
             assert_eq!(want.stats.passes, got.stats.passes);
             assert_eq!(want.stats.rays.primary, got.stats.rays.primary);
-            assert_eq!(got.stats.timings.len(), 1);
+            assert_eq!(want.stats.rays.geometry, got.stats.rays.geometry);
+            let names = |f: &Frame| f.stats.timings.iter().map(|t| t.name).collect::<Vec<_>>();
+            assert_eq!(names(&want), names(&got), "{name} {m}: passes timed");
             // AOVs: hits agree on ≥ 98 % of pixels, normals of agreeing hits within 0.05.
             let (dw, dg) = (want.depth.as_ref().unwrap(), got.depth.as_ref().unwrap());
             let (nw, ng) = (want.normal.as_ref().unwrap(), got.normal.as_ref().unwrap());
@@ -141,6 +158,20 @@ fn agree(names: &[&str], w: u32, h: u32) {
 #[test]
 fn paper_scenes_match_the_cpu() {
     agree(&SDF_SCENES, 64, 48);
+}
+
+/// Ambient occlusion on SDF scenes (4 rays per shaded point) against the
+/// CPU, with the thresholds of [`agree`] (occlusion rays are sphere traced as
+/// shadow rays are: the same flipped decisions, no others).
+#[test]
+fn ambient_occlusion_matches_the_cpu() {
+    agree_with(
+        &["primitives", "sdf-atrium"],
+        &["noaa", "sraa-rt", "ctss", "ctss-r"],
+        64,
+        48,
+        4,
+    );
 }
 
 #[test]

@@ -1062,6 +1062,25 @@ impl SdfNode {
         self.info.bounds
     }
 
+    /// The box of the tree's bounded objects: [`bounds`](Self::bounds) when
+    /// it is finite; for a union (sharp or smooth) whose box is not, the
+    /// union of its children's finite boxes, found the same way, so that an
+    /// infinite floor plane beside bounded objects leaves the objects' box;
+    /// `None` when no part of the tree is bounded (a lone plane, infinite
+    /// repetition, an unbounded intersection or transform of one).
+    pub fn finite_bounds(&self) -> Option<Aabb> {
+        if self.info.bounds.is_finite() {
+            return Some(self.info.bounds);
+        }
+        match &self.op {
+            Op::Union { children, .. } | Op::SmoothUnion { children, .. } => children
+                .iter()
+                .filter_map(SdfNode::finite_bounds)
+                .reduce(|a, b| a.union(&b)),
+            _ => None,
+        }
+    }
+
     /// Depth of the tree (a single primitive is 1).
     pub fn depth(&self) -> u32 {
         self.info.depth

@@ -948,7 +948,7 @@ impl<F: SdfField> Packets<'_, '_, F> {
                 if let Some(sh) = shadow.get_mut(i) {
                     *sh = bits[k];
                 }
-                view.shade_layers_of(material[k], q, n, bits[k], split, v);
+                view.shade_layers_of(material[k], q, n, bits[k], (split, 1.0), v);
             }
         }
         self.rays = rays;

@@ -1,8 +1,15 @@
 //! SDF scenes on the GPU: NoAA, SSAA, CTSS (with `ctss+edges`' group splits,
 //! §5.3), CTSS-R and SSAA+CTSS as one compute
 //! pass each, producing the images of the CPU reference
-//! (`subcone_cpu::sphere::SdfView`). SRAA-RT on SDF scenes is CPU-only
-//! ([`SRAA_RT_CPU_ONLY`]).
+//! (`subcone_cpu::sphere::SdfView`); SRAA-RT as the CPU's three passes
+//! (`sraa.rs`: sphere-traced shaded samples and subsamples, and the triangle
+//! path's resolve through the kernels' reconstruction loop).
+//!
+//! Ambient occlusion (`RenderSettings::ao_rays`) multiplies the ambient term
+//! of every shaded sample by the unoccluded fraction of the kernels' fixed
+//! directions (`subcone_kernels::ao`), each an any-hit ray sphere traced
+//! through the field up to `SdfGeometry::ao_radius` (trace.wgsl's
+//! `ambient_occlusion`, the twin of `SdfView::ambient_occlusion`).
 //!
 //! Scenes with semi-transparent materials run `translucent.wgsl` instead of
 //! `trace.wgsl`'s entry point, the twins of the CPU's semi-transparent path:
@@ -46,6 +53,10 @@
 //! bounds them more loosely, for other GPUs).
 
 mod shading;
+mod sraa;
+
+#[cfg(test)]
+pub(crate) use sraa::{sraa_frame_struct, SdfSraaFrame};
 
 use std::sync::Arc;
 
@@ -53,9 +64,7 @@ use bytemuck::{Pod, Zeroable};
 
 use subcone_kernels::passes::{Passes, Technique};
 use subcone_scene::sdf::wgsl::WgslField;
-use subcone_scene::{
-    Frame, FrameStats, Method, PassTiming, RayCounts, RenderError, UnsupportedReason,
-};
+use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderError};
 use wgpu::util::DeviceExt;
 
 use crate::compute::{self, Access, Bindings, Program};
@@ -73,24 +82,14 @@ const ASAP_BATCH: u32 = 8;
 /// the built-in SDF scenes to be traced completely before it is shaded.
 pub const DELAYED_BATCH: u32 = 32;
 
-/// Why SRAA-RT is refused on SDF scenes: its sphere-traced subsamples and
-/// their reconstruction exist on the CPU only (`subcone_cpu::sphere`); this
-/// backend would need a subpixel geometry pass in the generated SDF shader
-/// feeding the triangle path's reconstruction pass.
-pub const SRAA_RT_CPU_ONLY: UnsupportedReason = UnsupportedReason::CpuOnly {
-    what: subcone_scene::backend::SDF_SUBPIXEL_GEOMETRY,
-    why: SRAA_RT_WHY,
-};
-
-/// What this backend lacks for SRAA-RT on SDF scenes.
-pub const SRAA_RT_WHY: &str = "sphere-traced subsamples and their reconstruction have no WGSL twin";
-
 /// Most samples per pixel side (`ssaaN`, `ssaaN+ctss`) one invocation traces.
 pub const MAX_SIDE_SAMPLES: u32 = 64;
 
 /// The kernels' WGSL every SDF shader includes, after the prelude (the
-/// stepper carries the K masks of CTSS §5.3, `transparency`).
-const KERNELS: [&str; 6] = [
+/// stepper carries the K masks of CTSS §5.3, `transparency`; `ao` the
+/// occlusion directions).
+const KERNELS: [&str; 7] = [
+    subcone_kernels::ao::WGSL,
     subcone_kernels::cone::WGSL,
     subcone_kernels::mask::WGSL,
     subcone_kernels::aggregate::WGSL,
@@ -165,7 +164,11 @@ pub(crate) struct SdfFrame {
     pub(crate) side: u32,
     /// 1: cone tracing (the CTSS family), 0: sphere tracing.
     pub(crate) cone: u32,
-    pub(crate) _pad: [u32; 3],
+    /// Ambient-occlusion rays per shaded point (0: off).
+    pub(crate) ao_rays: u32,
+    /// Their length ([`subcone_scene::scene::SdfGeometry::ao_radius`]; a NaN is 0).
+    pub(crate) ao_radius: f32,
+    pub(crate) _pad: u32,
 }
 
 pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> {
@@ -179,8 +182,11 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     let g = scene
         .sdf_geometry()
         .ok_or_else(|| err("not an SDF scene"))?;
-    // `WgpuBackend::plan` has refused mirrors, SRAA-RT and more than
+    // `WgpuBackend::plan` has refused mirrors and more than
     // MAX_SIDE_SAMPLES samples per side.
+    if method.technique() == Technique::SraaRt {
+        return sraa::render(ctx, job);
+    }
     let max_distance = settings.max_distance.unwrap_or(g.max_distance);
     let max_steps = settings.max_steps.unwrap_or(g.max_steps);
     if max_distance.is_nan() {
@@ -262,6 +268,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         rays: RayCounts {
             primary: pixels * per_pixel as u64,
             shadow: totals.shadow,
+            ao: totals.ao,
             ..Default::default()
         },
         shaded_samples: totals.samples,
@@ -306,6 +313,7 @@ impl SdfFrame {
     /// `side` samples per pixel side, cone or sphere tracing.
     fn new(job: &Job, (max_distance, max_steps): (f32, u32), side: u32, cone: bool) -> Self {
         let (scene, camera, settings) = (job.scene, job.camera, job.settings);
+        let ao_radius = scene.sdf_geometry().map_or(0.0, |g| g.ao_radius());
         SdfFrame {
             position: camera.position.to_array(),
             width: settings.width,
@@ -320,7 +328,9 @@ impl SdfFrame {
             ambient: scene.ambient.to_array(),
             side,
             cone: cone as u32,
-            _pad: [0; 3],
+            ao_rays: settings.ao_rays,
+            ao_radius: if ao_radius.is_nan() { 0.0 } else { ao_radius },
+            _pad: 0,
         }
     }
 }
@@ -352,11 +362,12 @@ fn shader_sources<'a>(
 }
 
 /// The frame's counters summed over its pixels (`counts_out`: steps,
-/// shaded samples, shadow rays per pixel).
+/// shaded samples, shadow rays, occlusion rays per pixel).
 struct Totals {
     steps: u64,
     samples: u64,
     shadow: u64,
+    ao: u64,
     /// Pixels that shaded more samples than `per_pixel`
     /// (`FrameStats::multi_sample_pixels`).
     multi: u64,
@@ -364,11 +375,13 @@ struct Totals {
 
 impl Totals {
     fn of(count_px: &[[u32; 4]], per_pixel: u32) -> Self {
-        let (mut steps, mut samples, mut shadow, mut multi) = (0u64, 0u64, 0u64, 0u64);
+        let (mut steps, mut samples, mut shadow, mut ao, mut multi) =
+            (0u64, 0u64, 0u64, 0u64, 0u64);
         for c in count_px {
             steps += c[0] as u64;
             samples += c[1] as u64;
             shadow += c[2] as u64;
+            ao += c[3] as u64;
             if c[1] > per_pixel {
                 multi += 1;
             }
@@ -377,6 +390,7 @@ impl Totals {
             steps,
             samples,
             shadow,
+            ao,
             multi,
         }
     }

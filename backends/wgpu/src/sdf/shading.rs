@@ -237,3 +237,69 @@ fn push_shade_lights(s: &mut String, rows: &[(Vec3, f32, Vec3)], shadows: bool) 
         s.push_str(");\n");
     }
 }
+
+/// `SdfIncident`, `SCENE_LIGHTS` and `light_incident(l, p)`: `Light::incident`
+/// of the scene's light `l` (indexed as the scene lists them, up to the
+/// kernels' `MAX_LIGHTS`, as SRAA-RT's shadow bits and light layers are),
+/// `ok` false where it lights nothing (a point light at `p`, a zero
+/// direction). Directions are made unit here as `Light::incident` makes them.
+pub(crate) fn light_incident_wgsl(lights: &[Light]) -> String {
+    use subcone_kernels::math::Euclidean;
+    let lights = &lights[..lights.len().min(subcone_kernels::passes::MAX_LIGHTS)];
+    let mut s = format!(
+        concat!(
+            "const SCENE_LIGHTS: u32 = {}u;\n\n",
+            "struct SdfIncident {{\n",
+            "    direction: vec3<f32>,\n",
+            "    distance: f32,\n",
+            "    irradiance: vec3<f32>,\n",
+            "    ok: bool,\n",
+            "}}\n\n",
+            "// Light::incident of the scene's light l at p.\n",
+            "fn light_incident(l: u32, p: vec3<f32>) -> SdfIncident {{\n",
+            "    var r: SdfIncident;\n",
+            "    r.ok = false;\n",
+            "    switch l {{\n",
+        ),
+        lights.len()
+    );
+    for (i, l) in lights.iter().enumerate() {
+        let body = match *l {
+            Light::Point {
+                position,
+                intensity,
+            } => format!(
+                concat!(
+                    "let to = {} - p;\n",
+                    "            let d2 = dot(to, to);\n",
+                    "            if subcone_is_finite(d2) && d2 > 0.0 {{\n",
+                    "                r.ok = true;\n",
+                    "                r.distance = sqrt(d2);\n",
+                    "                r.direction = to / r.distance;\n",
+                    "                r.irradiance = {} / d2;\n",
+                    "            }}"
+                ),
+                v3(position),
+                v3(intensity)
+            ),
+            Light::Directional {
+                direction,
+                irradiance,
+            } => {
+                let d = direction.unit_or_zero();
+                if d == Vec3::ZERO {
+                    "// A zero direction lights nothing.".to_string()
+                } else {
+                    format!(
+                        "r.ok = true;\n            r.direction = {};\n            r.distance = subcone_inf();\n            r.irradiance = {};",
+                        v3(d),
+                        v3(irradiance)
+                    )
+                }
+            }
+        };
+        let _ = writeln!(s, "        case {i}u: {{\n            {body}\n        }}");
+    }
+    s.push_str("        default: {}\n    }\n    return r;\n}\n");
+    s
+}

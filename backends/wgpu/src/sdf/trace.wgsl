@@ -23,14 +23,15 @@ struct SdfFrame {
     side: u32,
     // 1: cone tracing (CTSS family), 0: sphere tracing.
     cone: u32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
+    // Ambient-occlusion rays per shaded point (0: off) and their length.
+    ao_rays: u32,
+    ao_radius: f32,
+    _pad: u32,
 }
 
 // Bindings (sdf/mod.rs): frame (SdfFrame); ctss (subcone_CtssParams);
 // color_out, the pixels' colours; counts_out, per pixel (SDF evaluations,
-// shaded samples, shadow rays, 0); sdf_data, the field's scatter table, when
+// shaded samples, shadow rays, occlusion rays); sdf_data, the field's scatter table, when
 // it has one.
 
 // The field as the kernels' subcone_sphere_trace_split wants it: (surface, safe step).
@@ -115,7 +116,32 @@ fn shadowed(p: vec3<f32>, n: vec3<f32>, l: vec3<f32>, dist: f32, count: ptr<func
     return false;
 }
 
-// SdfView::shade: Lambert with hard shadows and ambient light.
+// Occlusion rays traced in the current invocation (SdfView's Tally::ao);
+// the entry points hand them on to counts_out.
+var<private> ao_rays_traced: u32;
+
+// SdfView::ambient_occlusion: of frame.ao_rays fixed directions around the
+// normal n (facing the ray; subcone_ao_direction, all above the surface),
+// the fraction whose any-hit ray of length frame.ao_radius meets nothing.
+// Each is SdfView::ao_occluded, a shadow ray towards a light that far
+// (`shadowed`): a march that reaches the radius (or max_distance), a NaN
+// distance or a spent step budget is open. Exactly 1 when off.
+fn ambient_occlusion(p: vec3<f32>, n: vec3<f32>) -> f32 {
+    let count = frame.ao_rays;
+    var open = 0u;
+    var traced = 0u;
+    for (var i = 0u; i < count; i++) {
+        let d = subcone_ao_direction(n, i, count);
+        if !shadowed(p, n, d, frame.ao_radius, &traced) {
+            open += 1u;
+        }
+    }
+    ao_rays_traced += traced;
+    return subcone_ao_fraction(open, count);
+}
+
+// SdfView::shade: Lambert with hard shadows and ambient light (times the
+// unoccluded fraction).
 fn shade(p: vec3<f32>, n0: vec3<f32>, dir: vec3<f32>, count: ptr<function, u32>) -> vec3<f32> {
     let m = min(u32(scene_sdf_split(p).z), MATERIAL_COUNT - 1u);
     let albedo = material_albedo(m, p);
@@ -123,7 +149,8 @@ fn shade(p: vec3<f32>, n0: vec3<f32>, dir: vec3<f32>, count: ptr<function, u32>)
     if dot(n0, dir) > 0.0 {
         n = -n0;
     }
-    var c = material_emission(m) + frame.ambient * albedo;
+    let ao = ambient_occlusion(p, n);
+    var c = material_emission(m) + frame.ambient * ao * albedo;
     shade_lights(p, n, albedo, &c, count);
     return c;
 }
@@ -192,6 +219,7 @@ fn sdf_render(@builtin(global_invocation_id) gid: vec3<u32>) {
     var steps = 0u;
     var samples = 0u;
     var shadow = 0u;
+    ao_rays_traced = 0u;
     var sum = vec3<f32>(0.0);
     for (var sy = 0u; sy < side; sy++) {
         for (var sx = 0u; sx < side; sx++) {
@@ -206,5 +234,5 @@ fn sdf_render(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let i = gid.y * frame.width + gid.x;
     color_out[i] = vec4<f32>(sum / f32(side * side), 1.0);
-    counts_out[i] = vec4<u32>(steps, samples, shadow, 0u);
+    counts_out[i] = vec4<u32>(steps, samples, shadow, ao_rays_traced);
 }

@@ -1,0 +1,292 @@
+//! SRAA for ray tracing (Chiu et al., §3) on SDF scenes: the three passes of
+//! `subcone_cpu::sphere::SdfView::sraa_rt`, every ray sphere traced.
+//!
+//! Pass "shading" (`sdf_sraa_shade`, `sraa.wgsl`): one sample per pixel at
+//! the preset's shaded offset, sphere traced and shaded as NoAA shades (hard
+//! shadows through the field, ambient occlusion when asked for), kept in
+//! layers: the shadow-independent part and one per light with its shadow
+//! state (§3.2). Pass "geometry" (`sdf_sraa_geometry`, the paper's pass 1):
+//! the subsamples sphere traced for geometry (normal facing the ray, view
+//! depth) and, with lights, their shadow states by subpixel shadow rays (eq.
+//! 2's gate, cast only where the shaded samples around disagree). Pass
+//! "antialiasing" (pass 2): the triangle path's `resolve_main`
+//! (`triangles/sraa.wgsl`), which runs the kernels' reconstruction loop
+//! (`subcone_kernels::sraa::RECONSTRUCT_WGSL`: eq. 1 and eq. 2's weights,
+//! written once) and `subcone_resolve_pixel` over these buffers. SDF scenes
+//! have no mirrors (the plan refuses them), so there are no secondary passes.
+
+use bytemuck::{Pod, Zeroable};
+use subcone_kernels::passes::{LayerLayout, Passes, Technique, MAX_LIGHTS};
+use subcone_kernels::sraa::SraaParams;
+use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderError};
+
+use super::{
+    centre_aovs, scatter_table, shading, SdfFrame, Totals, AOVS_WGSL, ASAP_BATCH, KERNELS,
+    OPAQUE_SAMPLERS, TRACE_WGSL, WORKGROUP,
+};
+use crate::compute::{self, Access, Bindings, Program};
+use crate::context::{err, GpuContext};
+use crate::Job;
+
+/// This module's entry points (`sdf_sraa_shade`, `sdf_sraa_geometry`).
+const SDF_SRAA_WGSL: &str = include_str!("sraa.wgsl");
+/// The triangle path's SRAA-RT resolve: the hooks of the kernels'
+/// reconstruction loop over the shaded samples' and subsamples' buffers, and
+/// `resolve_main`.
+const RESOLVE_WGSL: &str = include_str!("../triangles/sraa.wgsl");
+
+/// The frame's constants of SRAA-RT: [`SdfFrame`] and the method's SRAA
+/// parameters (`frame.sraa`, which `triangles/sraa.wgsl` reads);
+/// `SdfSraaFrame` in WGSL ([`sraa_frame_struct`]).
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+pub(crate) struct SdfSraaFrame {
+    pub(crate) frame: SdfFrame,
+    pub(crate) sraa: SraaParams,
+}
+
+/// `struct SdfSraaFrame`: trace.wgsl's `SdfFrame`, member for member, and
+/// `sraa: subcone_SraaParams` after them.
+pub(crate) fn sraa_frame_struct() -> Result<String, RenderError> {
+    let start = TRACE_WGSL
+        .find("struct SdfFrame {")
+        .ok_or_else(|| err("trace.wgsl declares no SdfFrame"))?;
+    let len = TRACE_WGSL[start..]
+        .find("\n}")
+        .ok_or_else(|| err("trace.wgsl's SdfFrame does not end"))?;
+    Ok(format!(
+        "{}\n    sraa: subcone_SraaParams,\n}}\n",
+        TRACE_WGSL[start..start + len].replace("struct SdfFrame", "struct SdfSraaFrame")
+    ))
+}
+
+/// `get_`/`put_` accessors of an optional per-pixel buffer `var` (element
+/// `ty`, `per` elements per pixel) with the names `triangles/sraa.wgsl`
+/// reads, as the triangle path's header declares them: real ones when it is
+/// bound, else reads of `default` and ignored writes; `HAS_<NAME>` says which.
+fn accessors(b: &Bindings, (name, var, ty): (&str, &str, &str), per: u32, default: &str) -> String {
+    let upper = name.to_uppercase();
+    let (args, index) = if per == 1 {
+        ("j: u32", "j".to_string())
+    } else {
+        ("j: u32, k: u32", format!("j * {per}u + k"))
+    };
+    if b.has(var) {
+        format!(
+            "const HAS_{upper}: bool = true;\n\
+             fn get_{name}({args}) -> {ty} {{ return {var}[{index}]; }}\n\
+             fn put_{name}({args}, v: {ty}) {{ {var}[{index}] = v; }}\n"
+        )
+    } else {
+        format!(
+            "const HAS_{upper}: bool = false;\n\
+             fn get_{name}({args}) -> {ty} {{ return {default}; }}\n\
+             fn put_{name}({args}, v: {ty}) {{ }}\n"
+        )
+    }
+}
+
+/// The WGSL header of the frame's buffers (as `triangles::subpixel_header`
+/// writes it for SRAA-RT on triangles): the layout constants and an accessor
+/// pair per optional buffer, reads of the CPU's initial value where absent.
+/// `color_out` belongs to trace.wgsl's `sdf_render`, which this program
+/// does not run.
+fn header(b: &Bindings, layout: &LayerLayout, shadows: bool) -> String {
+    let no_secondary = "subcone_Geometry(vec3<f32>(0.0), bitcast<f32>(0x7fc00000u))";
+    let mut h = format!(
+        "const NL: u32 = {}u;\nconst LAYER_LIGHTS: u32 = {}u;\nconst SINGLE: bool = false;\n\
+         const SECONDARY_LAYERS: bool = false;\nconst SHADOWS: bool = {shadows};\n\
+         const MATERIAL: bool = false;\n\
+         var<private> color_out: array<vec4<f32>, 1>;\n",
+        layout.len(),
+        layout.lights
+    );
+    for (name, var, ty, per, default) in [
+        ("shadow", "shadow_buf", "u32", 1, "0u"),
+        ("geo2", "geo2_buf", "subcone_Geometry", 1, no_secondary),
+        ("shadow2", "shadow2_buf", "u32", 1, "0u"),
+        ("sub_shadow", "sub_shadow_buf", "u32", 4, "0u"),
+        (
+            "sub_geo2",
+            "sub_geo2_buf",
+            "subcone_Geometry",
+            4,
+            no_secondary,
+        ),
+        ("sub_shadow2", "sub_shadow2_buf", "u32", 4, "0u"),
+        ("albedo", "albedo_buf", "vec4<f32>", 1, "vec4<f32>(0.0)"),
+        (
+            "sub_albedo",
+            "sub_albedo_buf",
+            "vec4<f32>",
+            4,
+            "vec4<f32>(0.0)",
+        ),
+        (
+            "sub_geo",
+            "sub_geo_buf",
+            "subcone_Geometry",
+            4,
+            "subcone_Geometry(vec3<f32>(0.0), subcone_inf())",
+        ),
+    ] {
+        h += &accessors(b, (name, var, ty), per, default);
+    }
+    h
+}
+
+/// SRAA-RT on an SDF scene: passes "shading", "geometry" and
+/// "antialiasing" (see the module's documentation).
+pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> {
+    let Job {
+        scene,
+        camera,
+        method,
+        settings,
+        passes,
+    } = *job;
+    let g = scene
+        .sdf_geometry()
+        .ok_or_else(|| err("not an SDF scene"))?;
+    let max_distance = settings.max_distance.unwrap_or(g.max_distance);
+    let max_steps = settings.max_steps.unwrap_or(g.max_steps);
+    if max_distance.is_nan() {
+        return Err(err("the maximum ray distance is NaN"));
+    }
+    let (w, h) = (settings.width, settings.height);
+    let n = w as u64 * h as u64;
+    let lights = scene.lights.len().min(MAX_LIGHTS);
+    let layout = LayerLayout::new(Technique::SraaRt, passes, lights);
+    let shadows = passes.contains(Passes::SHADOW);
+    let sub_shadows = passes.contains(Passes::SUBPIXEL_SHADOW) && layout.lights > 0;
+    let params = method.ctss_params(camera, h, max_distance, max_steps);
+    let groups = compute::workgroups(ctx, "SDF", w, h, WORKGROUP)?;
+    for (what, bytes) in [
+        ("the colour buffer", n * 16),
+        ("the shading layers", n * layout.len() as u64 * 16),
+        ("the subpixel geometry", n * 64),
+    ] {
+        ctx.check_buffer_size(what, bytes)?;
+    }
+
+    let frame = SdfSraaFrame {
+        frame: SdfFrame::new(job, (max_distance, max_steps), 1, false),
+        sraa: method.sraa(),
+    };
+    let field = g.root.to_wgsl();
+    let table = scatter_table(ctx, &field)?;
+    let mut b = Bindings::new(0);
+    b.uniform(ctx, "frame", "SdfSraaFrame", &frame)?;
+    b.uniform(ctx, "ctss", "subcone_CtssParams", &params)?;
+    b.storage(ctx, "color", "color", "array<vec4<f32>>", n * 16)?;
+    b.storage(ctx, "counts", "counts_out", "array<vec4<u32>>", n * 16)?;
+    if let Some(t) = &table {
+        b.buffer("sdf_data", "array<vec4<f32>>", Access::Read, t);
+    }
+    b.storage(ctx, "geometry", "geo", "array<subcone_Geometry>", n * 16)?;
+    b.storage(
+        ctx,
+        "shading layers",
+        "values",
+        "array<vec4<f32>>",
+        n * layout.len() as u64 * 16,
+    )?;
+    if layout.lights > 0 {
+        b.storage(ctx, "shadow states", "shadow_buf", "array<u32>", n * 4)?;
+    }
+    b.storage(
+        ctx,
+        "subpixel geometry",
+        "sub_geo_buf",
+        "array<subcone_Geometry>",
+        n * 64,
+    )?;
+    if sub_shadows {
+        b.storage(
+            ctx,
+            "subpixel shadow states",
+            "sub_shadow_buf",
+            "array<u32>",
+            n * 16,
+        )?;
+    }
+    if settings.aovs {
+        // Depth and normal through each pixel centre (not timed, as on the CPU).
+        let plain = Method::new(Technique::NoAa).ctss_params(camera, h, max_distance, max_steps);
+        b.uniform(ctx, "aov_params", "subcone_CtssParams", &plain)?;
+        b.storage(ctx, "aovs", "aov_out", "array<vec4<f32>>", n * 16)?;
+    }
+
+    let shading = shading::shading_wgsl(&scene.materials, &scene.lights, shadows)?;
+    let incident = shading::light_incident_wgsl(&scene.lights);
+    let pending = format!("const subcone_CTSS_BATCH: u32 = {ASAP_BATCH}u;\n");
+    let frame_struct = sraa_frame_struct()?;
+    let head = header(&b, &layout, shadows);
+    let mut sources: Vec<&str> = KERNELS.to_vec();
+    sources.extend([
+        subcone_kernels::sraa::WGSL,
+        field.source.as_str(),
+        &shading,
+        &incident,
+        &pending,
+        TRACE_WGSL,
+        OPAQUE_SAMPLERS,
+    ]);
+    if settings.aovs {
+        sources.push(AOVS_WGSL);
+    }
+    sources.extend([
+        frame_struct.as_str(),
+        head.as_str(),
+        SDF_SRAA_WGSL,
+        RESOLVE_WGSL,
+        subcone_kernels::sraa::RECONSTRUCT_WGSL,
+    ]);
+    let mut program = Program::new(ctx, "sdf sraa-rt", &sources, &[&b])?;
+    let shade = program.pipeline("sdf_sraa_shade")?;
+    let geometry = program.pipeline("sdf_sraa_geometry")?;
+    let resolve = program.pipeline("resolve_main")?;
+    let mut timings: Vec<PassTiming> = Vec::new();
+    ctx.timed_pass("shading", &mut timings, |enc| {
+        program.dispatch(enc, &shade, groups)
+    })?;
+    ctx.timed_pass("geometry", &mut timings, |enc| {
+        program.dispatch(enc, &geometry, groups)
+    })?;
+    ctx.timed_pass("antialiasing", &mut timings, |enc| {
+        program.dispatch(enc, &resolve, groups)
+    })?;
+
+    let pixels = n as usize;
+    let color_px: Vec<[f32; 4]> = compute::read(ctx, b.get("color")?, pixels)?;
+    let count_px: Vec<[u32; 4]> = compute::read(ctx, b.get("counts_out")?, pixels)?;
+    let mut out = Frame::new(w, h);
+    for (c, p) in out.color.iter_mut().zip(&color_px) {
+        *c = glam::Vec3::new(p[0], p[1], p[2]);
+    }
+    let totals = Totals::of(&count_px, 1);
+    let mut buffers = b.stats.clone();
+    if table.is_some() {
+        buffers.push(("sdf scatter table", field.data.len() * 16));
+    }
+    if settings.aovs {
+        centre_aovs(ctx, &mut program, &b, groups, pixels, &mut out)?;
+        out.samples_per_pixel = Some(vec![1.0; pixels]);
+    }
+    out.stats = FrameStats {
+        passes,
+        timings,
+        buffers,
+        rays: RayCounts {
+            primary: n,
+            geometry: 3 * n,
+            shadow: totals.shadow,
+            ao: totals.ao,
+            ..Default::default()
+        },
+        shaded_samples: totals.samples,
+        sdf_evaluations: totals.steps,
+        multi_sample_pixels: 0,
+    };
+    Ok(out)
+}
