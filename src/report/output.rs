@@ -1662,11 +1662,11 @@ mod tests {
         assert!(header.contains(",ms_max,ratio_to_noaa,ratio_min,ratio_max,flip_mean,"));
         let first = lines.next().unwrap();
         // No ratios, no SSIM, no classes (18 empty columns), no post-process
-        // adapter, no geometry pass: 20 empty fields between the reference
-        // and shading.
+        // adapter: 19 empty fields between the reference and the timing
+        // source; then no geometry pass, and the shading pass.
         let expected = format!(
-            "\"s,1\",noaa,cpu,4,2,3,2.5,2,3,,,,0.125,inf,,,1,2,0.5,4,2,ssaa64{}1",
-            ",".repeat(21)
+            "\"s,1\",noaa,cpu,4,2,3,2.5,2,3,,,,0.125,inf,,,1,2,0.5,4,2,ssaa64{}cpu,,1",
+            ",".repeat(20)
         );
         assert_eq!(first, expected);
         let second = lines.next().unwrap();

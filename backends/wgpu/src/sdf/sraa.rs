@@ -26,6 +26,7 @@ use super::{
 };
 use crate::compute::{self, Access, Bindings, Program};
 use crate::context::{err, GpuContext};
+use crate::triangles::{accessors, SHADED_SAMPLE_ACCESSORS};
 use crate::Job;
 
 /// This module's entry points (`sdf_sraa_shade`, `sdf_sraa_geometry`).
@@ -58,32 +59,6 @@ pub(crate) fn sraa_frame_struct() -> Result<String, RenderError> {
         "{}\n    sraa: subcone_SraaParams,\n}}\n",
         TRACE_WGSL[start..start + len].replace("struct SdfFrame", "struct SdfSraaFrame")
     ))
-}
-
-/// `get_`/`put_` accessors of an optional per-pixel buffer `var` (element
-/// `ty`, `per` elements per pixel) with the names `triangles/sraa.wgsl`
-/// reads, as the triangle path's header declares them: real ones when it is
-/// bound, else reads of `default` and ignored writes; `HAS_<NAME>` says which.
-fn accessors(b: &Bindings, (name, var, ty): (&str, &str, &str), per: u32, default: &str) -> String {
-    let upper = name.to_uppercase();
-    let (args, index) = if per == 1 {
-        ("j: u32", "j".to_string())
-    } else {
-        ("j: u32, k: u32", format!("j * {per}u + k"))
-    };
-    if b.has(var) {
-        format!(
-            "const HAS_{upper}: bool = true;\n\
-             fn get_{name}({args}) -> {ty} {{ return {var}[{index}]; }}\n\
-             fn put_{name}({args}, v: {ty}) {{ {var}[{index}] = v; }}\n"
-        )
-    } else {
-        format!(
-            "const HAS_{upper}: bool = false;\n\
-             fn get_{name}({args}) -> {ty} {{ return {default}; }}\n\
-             fn put_{name}({args}, v: {ty}) {{ }}\n"
-        )
-    }
 }
 
 /// The WGSL header of the frame's buffers (as `triangles::subpixel_header`
@@ -130,8 +105,9 @@ fn header(b: &Bindings, layout: &LayerLayout, shadows: bool) -> String {
             "subcone_Geometry(vec3<f32>(0.0), subcone_inf())",
         ),
     ] {
-        h += &accessors(b, (name, var, ty), per, default);
+        h += &accessors(b, name, var, ty, per, default);
     }
+    h += SHADED_SAMPLE_ACCESSORS;
     h
 }
 

@@ -102,14 +102,6 @@ fn shade_layers(j: u32, q: vec3<f32>, n: vec3<f32>, bits: u32) {
     put_value(j, 0u, base);
 }
 
-fn put_value(j: u32, l: u32, v: vec3<f32>) {
-    values[j * NL + l] = vec4<f32>(v, 0.0);
-}
-
-fn get_value(j: u32, l: u32) -> vec3<f32> {
-    return values[j * NL + l].xyz;
-}
-
 fn pixel_centre(x: u32, y: u32) -> vec2<f32> {
     return vec2<f32>(f32(x) + 0.5, f32(y) + 0.5);
 }

@@ -115,7 +115,14 @@ impl FrameUniform {
 /// `get_`/`put_` accessors of an optional per-pixel buffer `var` (element
 /// `ty`, `per` elements per pixel): real ones when it is bound, else reads of
 /// `default` and ignored writes. `HAS_<NAME>` says which.
-fn accessors(fb: &Bindings, name: &str, var: &str, ty: &str, per: u32, default: &str) -> String {
+pub(crate) fn accessors(
+    fb: &Bindings,
+    name: &str,
+    var: &str,
+    ty: &str,
+    per: u32,
+    default: &str,
+) -> String {
     let has = fb.has(var);
     let upper = name.to_uppercase();
     let (args, index) = if per == 1 {
@@ -636,6 +643,15 @@ fn gate_buffers(
     Ok(())
 }
 
+/// The accessors of SRAA-RT's shaded samples in its buffers `geo` and
+/// `values` (triangles and SDF scenes alike; hybrid SRAA's are the
+/// resolve's textures, `HybridResolve::shading_accessors`).
+pub(crate) const SHADED_SAMPLE_ACCESSORS: &str =
+    "fn get_geo(j: u32) -> subcone_Geometry { return geo[j]; }\n\
+     fn put_geo(j: u32, g: subcone_Geometry) { geo[j] = g; }\n\
+     fn get_value(j: u32, l: u32) -> vec3<f32> { return values[j * NL + l].xyz; }\n\
+     fn put_value(j: u32, l: u32, v: vec3<f32>) { values[j * NL + l] = vec4<f32>(v, 0.0); }\n";
+
 /// The WGSL header of `subpixel.wgsl` for the buffers bound in `fb`: the
 /// plan's constants and an accessor pair per optional buffer (reads of the
 /// CPU's initial value where it is absent). SRAA-RT's shaded samples are
@@ -670,10 +686,7 @@ fn subpixel_header(fb: &Bindings, plan: &SubpixelPlan) -> String {
         header += &accessors(fb, name, var, ty, per, default);
     }
     if rt {
-        header += "fn get_geo(j: u32) -> subcone_Geometry { return geo[j]; }\n\
-                   fn put_geo(j: u32, g: subcone_Geometry) { geo[j] = g; }\n\
-                   fn get_value(j: u32, l: u32) -> vec3<f32> { return values[j * NL + l].xyz; }\n\
-                   fn put_value(j: u32, l: u32, v: vec3<f32>) { values[j * NL + l] = vec4<f32>(v, 0.0); }\n";
+        header += SHADED_SAMPLE_ACCESSORS;
         header += &accessors(fb, "albedo", "albedo_buf", "vec4<f32>", 1, "vec4<f32>(0.0)");
     }
     if !rt && material {
