@@ -26,7 +26,7 @@ use super::{
 };
 use crate::compute::{self, Access, Bindings, Program};
 use crate::context::{err, GpuContext};
-use crate::triangles::{accessors, SHADED_SAMPLE_ACCESSORS};
+use crate::triangles::{accessors, shadow_and_secondary_accessors, SHADED_SAMPLE_ACCESSORS};
 use crate::Job;
 
 /// This module's entry points (`sdf_sraa_shade`, `sdf_sraa_geometry`).
@@ -67,7 +67,6 @@ pub(crate) fn sraa_frame_struct() -> Result<String, RenderError> {
 /// `color_out` belongs to trace.wgsl's `sdf_render`, which this program
 /// does not run.
 fn header(b: &Bindings, layout: &LayerLayout, shadows: bool) -> String {
-    let no_secondary = "subcone_Geometry(vec3<f32>(0.0), bitcast<f32>(0x7fc00000u))";
     let mut h = format!(
         "const NL: u32 = {}u;\nconst LAYER_LIGHTS: u32 = {}u;\nconst SINGLE: bool = false;\n\
          const SECONDARY_LAYERS: bool = false;\nconst SHADOWS: bool = {shadows};\n\
@@ -76,19 +75,8 @@ fn header(b: &Bindings, layout: &LayerLayout, shadows: bool) -> String {
         layout.len(),
         layout.lights
     );
+    h += &shadow_and_secondary_accessors(b);
     for (name, var, ty, per, default) in [
-        ("shadow", "shadow_buf", "u32", 1, "0u"),
-        ("geo2", "geo2_buf", "subcone_Geometry", 1, no_secondary),
-        ("shadow2", "shadow2_buf", "u32", 1, "0u"),
-        ("sub_shadow", "sub_shadow_buf", "u32", 4, "0u"),
-        (
-            "sub_geo2",
-            "sub_geo2_buf",
-            "subcone_Geometry",
-            4,
-            no_secondary,
-        ),
-        ("sub_shadow2", "sub_shadow2_buf", "u32", 4, "0u"),
         ("albedo", "albedo_buf", "vec4<f32>", 1, "vec4<f32>(0.0)"),
         (
             "sub_albedo",

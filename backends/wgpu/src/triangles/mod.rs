@@ -643,6 +643,32 @@ fn gate_buffers(
     Ok(())
 }
 
+/// The accessors of the optional shadow and secondary-hit buffers SRAA-RT's
+/// shaders read (`triangles/sraa.wgsl`), triangles and SDF scenes alike:
+/// real ones where `fb` binds the buffer, else reads of the CPU's initial
+/// value.
+pub(crate) fn shadow_and_secondary_accessors(fb: &Bindings) -> String {
+    let no_secondary = "subcone_Geometry(vec3<f32>(0.0), bitcast<f32>(0x7fc00000u))";
+    // (name, buffer, element type, elements per pixel, value when absent)
+    [
+        ("shadow", "shadow_buf", "u32", 1, "0u"),
+        ("geo2", "geo2_buf", "subcone_Geometry", 1, no_secondary),
+        ("shadow2", "shadow2_buf", "u32", 1, "0u"),
+        ("sub_shadow", "sub_shadow_buf", "u32", 4, "0u"),
+        (
+            "sub_geo2",
+            "sub_geo2_buf",
+            "subcone_Geometry",
+            4,
+            no_secondary,
+        ),
+        ("sub_shadow2", "sub_shadow2_buf", "u32", 4, "0u"),
+    ]
+    .iter()
+    .map(|&(name, var, ty, per, default)| accessors(fb, name, var, ty, per, default))
+    .collect()
+}
+
 /// The accessors of SRAA-RT's shaded samples in its buffers `geo` and
 /// `values` (triangles and SDF scenes alike; hybrid SRAA's are the
 /// resolve's textures, `HybridResolve::shading_accessors`).
@@ -660,7 +686,6 @@ pub(crate) const SHADED_SAMPLE_ACCESSORS: &str =
 fn subpixel_header(fb: &Bindings, plan: &SubpixelPlan) -> String {
     let (layout, rt, material) = (&plan.layout, plan.rt, plan.material);
     let (nl, shadows, secondary_shading) = (layout.len(), plan.shadows, plan.secondary_shading);
-    let no_secondary = "subcone_Geometry(vec3<f32>(0.0), bitcast<f32>(0x7fc00000u))";
     let mut header = String::new();
     header += &format!(
         "const NL: u32 = {nl}u;\nconst LAYER_LIGHTS: u32 = {}u;\nconst SINGLE: bool = {};\n\
@@ -668,23 +693,7 @@ fn subpixel_header(fb: &Bindings, plan: &SubpixelPlan) -> String {
          const SECONDARY_SHADING: bool = {secondary_shading};\nconst MATERIAL: bool = {material};\n",
         layout.lights, layout.single, layout.secondary
     );
-    // (name, buffer, element type, elements per pixel, value when absent)
-    for (name, var, ty, per, default) in [
-        ("shadow", "shadow_buf", "u32", 1, "0u"),
-        ("geo2", "geo2_buf", "subcone_Geometry", 1, no_secondary),
-        ("shadow2", "shadow2_buf", "u32", 1, "0u"),
-        ("sub_shadow", "sub_shadow_buf", "u32", 4, "0u"),
-        (
-            "sub_geo2",
-            "sub_geo2_buf",
-            "subcone_Geometry",
-            4,
-            no_secondary,
-        ),
-        ("sub_shadow2", "sub_shadow2_buf", "u32", 4, "0u"),
-    ] {
-        header += &accessors(fb, name, var, ty, per, default);
-    }
+    header += &shadow_and_secondary_accessors(fb);
     if rt {
         header += SHADED_SAMPLE_ACCESSORS;
         header += &accessors(fb, "albedo", "albedo_buf", "vec4<f32>", 1, "vec4<f32>(0.0)");
