@@ -312,6 +312,31 @@ impl GpuContext {
         self.check_lost()
     }
 
+    /// A `width × height` 2D texture of one sample, one layer and one mip
+    /// level: the shape of every per-frame texture the passes exchange.
+    pub(crate) fn frame_texture(
+        &self,
+        label: &'static str,
+        (width, height): (u32, u32),
+        format: wgpu::TextureFormat,
+        usage: wgpu::TextureUsages,
+    ) -> wgpu::Texture {
+        self.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage,
+            view_formats: &[],
+        })
+    }
+
     /// How this context times its passes: [`TimingSource::GpuTimestamps`]
     /// where the device has trusted timestamps, else
     /// [`TimingSource::GpuWallClock`] saying why not.

@@ -73,20 +73,12 @@ pub(crate) fn run(
     let groups = compute::workgroups(ctx, "FXAA", width, height, WORKGROUP)?;
     let fxaa = pass(ctx, params)?;
     let texture = |label: &'static str| {
-        ctx.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: FORMAT,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::STORAGE_BINDING,
-            view_formats: &[],
-        })
+        ctx.frame_texture(
+            label,
+            (width, height),
+            FORMAT,
+            wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::STORAGE_BINDING,
+        )
     };
     let (input, output) = ctx.scoped("post-process textures", || {
         (

@@ -192,19 +192,12 @@ impl Raster {
                 })
             };
             let target = layers("subpixel geometry");
-            let depth = ctx.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("raster depth"),
-                size: wgpu::Extent3d {
-                    depth_or_array_layers: 1,
-                    ..size
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: DEPTH,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-                view_formats: &[],
-            });
+            let depth = ctx.frame_texture(
+                "raster depth",
+                (width, height),
+                DEPTH,
+                wgpu::TextureUsages::RENDER_ATTACHMENT,
+            );
             let layer_of = |target: &wgpu::Texture, k: u32| {
                 target.create_view(&wgpu::TextureViewDescriptor {
                     label: Some("subpixel geometry layer"),

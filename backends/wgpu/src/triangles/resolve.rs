@@ -97,22 +97,8 @@ impl<'a> HybridResolve<'a> {
             .with_output_format(FLOAT4);
         let sraa = pass(ctx, &desc)?;
         let centre = params.shaded_position() == ShadedPosition::Centre;
-        let texture = |label: &'static str, format, usage| {
-            ctx.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size: wgpu::Extent3d {
-                    width,
-                    height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage,
-                view_formats: &[],
-            })
-        };
+        let texture =
+            |label, format, usage| ctx.frame_texture(label, (width, height), format, usage);
         // Written by the shading pass, read by the resolve.
         let shaded = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::STORAGE_BINDING;
         // Written by the resolve, read back (copied out).
