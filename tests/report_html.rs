@@ -217,8 +217,9 @@ fn report_page_in_a_browser() {
             !required,
             "SUBCONE_REQUIRE_BROWSER=1 but no browser: install chromium or set SUBCONE_BROWSER"
         );
-        println!(
-            "skipped: no chromium on the PATH (set SUBCONE_REQUIRE_BROWSER=1 to fail instead)"
+        subcone_scene::conformance::print_skipped(
+            subcone_scene::conformance::SKIP_NO_BROWSER,
+            "no chromium on the PATH; set SUBCONE_REQUIRE_BROWSER=1 to fail instead",
         );
         return;
     };

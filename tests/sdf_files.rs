@@ -74,11 +74,24 @@ fn examples() -> Vec<PathBuf> {
     files
 }
 
+/// The backends a test that runs the binary can use here: the CPU always,
+/// wgpu when it has an adapter. Without one the wgpu half skips, printing
+/// why, unless `SUBCONE_REQUIRE_GPU` is set, when it fails.
+fn backends(test: &str) -> Vec<&'static str> {
+    let gpu = subcone_wgpu::test_util::gpu_or_skip(test).is_some();
+    if gpu {
+        vec!["cpu", "wgpu"]
+    } else {
+        vec!["cpu"]
+    }
+}
+
 #[test]
 fn the_example_scenes_render_with_ctss_on_both_backends() {
     let dir = tempfile::tempdir().unwrap();
+    let backends = backends("ctss on the wgpu backend");
     for file in examples() {
-        for backend in ["cpu", "wgpu"] {
+        for &backend in &backends {
             let out = dir.path().join("out.png");
             let text = subcone(&[
                 "render",
@@ -113,6 +126,8 @@ fn the_example_scenes_go_through_the_quick_report_on_both_backends() {
         .find(|f| f.ends_with("few-primitives.sdf.ron"))
         .unwrap();
     let out = tempfile::tempdir().unwrap();
+    let backends = backends("the quick report on the wgpu backend");
+    let backend_arg = backends.join(",");
     subcone(&[
         "report",
         "--quick",
@@ -121,7 +136,7 @@ fn the_example_scenes_go_through_the_quick_report_on_both_backends() {
         "--scene",
         file.to_str().unwrap(),
         "--backend",
-        "cpu,wgpu",
+        &backend_arg,
         "--method",
         "noaa,ssaa4,ctss,ctss-r",
         "--out",
@@ -134,7 +149,7 @@ fn the_example_scenes_go_through_the_quick_report_on_both_backends() {
         .next()
         .and_then(|h| h.split(',').position(|c| c == "flip_mean"))
         .unwrap_or_else(|| panic!("no flip_mean column:\n{csv}"));
-    for backend in ["cpu", "wgpu"] {
+    for &backend in &backends {
         for method in ["noaa", "ssaa4", "ctss", "ctss-r"] {
             // scene,method,backend,…, with a measured FLIP.
             let row = csv

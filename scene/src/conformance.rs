@@ -133,8 +133,10 @@ pub fn gpu_required() -> bool {
 
 /// What a GPU test opened (`opened`), or `None` when it could not be opened
 /// and no GPU is required ([`gpu_required`]): the test then skips, printing
-/// `what` and why, so machines without a GPU still run the rest. Panics,
-/// naming `what` and the error, when a GPU is required.
+/// one line, `skipped: <test>: no GPU adapter (<what>: <why>)`
+/// ([`print_skipped`]), so machines without a GPU still run the rest and a
+/// reader can count what checked nothing. Panics, naming `what` and the
+/// error, when a GPU is required.
 ///
 /// ```
 /// use subcone_scene::conformance::or_skip;
@@ -149,9 +151,38 @@ pub fn or_skip<T, E: std::fmt::Display>(what: &str, opened: Result<T, E>) -> Opt
     match opened {
         Ok(t) => Some(t),
         Err(e) if !gpu_required() => {
-            eprintln!("SKIPPED ({what}): no GPU adapter and SUBCONE_REQUIRE_GPU unset: {e}");
+            print_skipped(SKIP_NO_GPU, &format!("{what}: {e}"));
             None
         }
         Err(e) => panic!("{what}: no GPU adapter, and SUBCONE_REQUIRE_GPU is set: {e}"),
     }
+}
+
+/// The reason a test skips without a GPU adapter, as [`print_skipped`]
+/// prints it (and as `.ci/run` counts it).
+pub const SKIP_NO_GPU: &str = "no GPU adapter";
+
+/// The reason a test skips without a browser, as [`print_skipped`] prints it.
+pub const SKIP_NO_BROWSER: &str = "no browser";
+
+/// Print the one line of a test that skips for want of a resource:
+/// `skipped: <test>: <reason> (<detail>)`, where `<test>` is the running
+/// test's name (libtest names each test's thread after it; `detail` alone
+/// outside a test).
+///
+/// The line goes straight to the process's standard error, past the test
+/// harness's capture, so that `cargo test` shows it even for a test that
+/// passes: "470 passed" must not hide the tests that checked nothing.
+/// `.ci/run` counts these lines after the README's test command.
+pub fn print_skipped(reason: &str, detail: &str) {
+    use std::io::Write;
+    let thread = std::thread::current();
+    let test = match thread.name() {
+        Some(name) if name != "main" => name,
+        _ => "(outside a test)",
+    };
+    let line = format!("skipped: {test}: {reason} ({detail})\n");
+    // One write of the whole line, so that lines of parallel tests do not
+    // interleave; nothing to do if standard error is gone.
+    let _ = std::io::stderr().lock().write_all(line.as_bytes());
 }
