@@ -9,8 +9,15 @@
 //! [`AO_SWEEP_SIZE`], times `noaa`, `ssaa4` and `sraa-rt` and measures their
 //! FLIP on the silhouette, crease and shadow pixels (the report's edge
 //! classes) against a reference rendered with the same AO, and sets the
-//! ray-count ratio `ssaa4 / sraa-rt` beside the measured time ratio. It
-//! runs only when asked: never in the default or quick report.
+//! ray-count ratio `ssaa4 / sraa-rt` beside the measured time ratio, and
+//! the crossover ([`crossover`]): the fewest AO rays at which `sraa-rt`
+//! takes less time than `ssaa4`.
+//!
+//! Two sizes of it ([`SweepSpec`]): the default report runs
+//! [`SweepSpec::default_report`] (atrium, AO 0, 4 and 16, its AO rows judged
+//! against a smaller reference so that the section stays short); `--sraa-sweep`
+//! runs [`SweepSpec::full`] (atrium and Sponza, AO 0 to 64, the run's
+//! reference). The quick report runs neither.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -54,6 +61,138 @@ pub const AO_EDGE_FACTOR: f64 = 1.2;
 /// The AO ray count of the speed-up and quality targets.
 pub const AO_SPEEDUP_AT: u32 = 64;
 
+/// Which sweep a report runs: its AO ray counts, its scenes and the
+/// reference its AO rows are judged against.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SweepSpec {
+    /// AO rays per shaded point, increasing.
+    pub aos: Vec<u32>,
+    /// The scenes swept, when the run has them.
+    pub scenes: Vec<&'static str>,
+    /// The reference of the rows with AO (`None`: the run's reference). The
+    /// AO 0 row uses the run's reference too, so it shares the main
+    /// comparison's cached frame.
+    pub ao_reference: Option<Method>,
+}
+
+impl SweepSpec {
+    /// `--sraa-sweep`: [`AO_SWEEP`] on [`AO_SWEEP_SCENES`], the run's
+    /// reference throughout.
+    pub fn full() -> Self {
+        Self {
+            aos: AO_SWEEP.to_vec(),
+            scenes: AO_SWEEP_SCENES.to_vec(),
+            ao_reference: None,
+        }
+    }
+
+    /// The default report's: atrium with AO 0, 4 and 16; the AO rows are
+    /// judged against SSAA64 (8×8 samples per pixel), not the run's SSAA256,
+    /// which with AO would take minutes.
+    pub fn default_report() -> Self {
+        Self {
+            aos: vec![0, 4, 16],
+            scenes: vec!["atrium"],
+            ao_reference: Some(Method::ssaa_grid(8)),
+        }
+    }
+}
+
+/// The crossover on one scene and backend: where `sraa-rt` starts to take
+/// less time than `ssaa4`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Crossover {
+    /// Scene.
+    pub scene: String,
+    /// Backend.
+    pub backend: String,
+    /// The fewest swept AO rays at which sraa-rt is faster, with the row
+    /// values there: `(ao, sraa-rt ms, ssaa4 ms, sraa-rt edge FLIP, ssaa4
+    /// edge FLIP)`; `None` when it is faster at no swept count.
+    pub first_faster: Option<(u32, f64, f64, Option<f64>, Option<f64>)>,
+    /// The AO ray count where the two times meet, by linear interpolation of
+    /// `ssaa4 − sraa-rt` between the last swept count where sraa-rt is slower
+    /// and the first where it is faster (`None` when they do not cross
+    /// inside the sweep, or sraa-rt is faster from the first count on).
+    pub interpolated: Option<f64>,
+}
+
+/// The crossover of every scene and backend of the sweep.
+pub fn crossovers(sweep: &AoSweep) -> Vec<Crossover> {
+    groups(&sweep.rows)
+        .into_iter()
+        .map(|(scene, backend)| crossover(sweep, &scene, &backend))
+        .collect()
+}
+
+/// The crossover on `scene` and `backend` (see [`Crossover`]).
+pub fn crossover(sweep: &AoSweep, scene: &str, backend: &str) -> Crossover {
+    let (ss, rt) = (SSAA4.to_string(), SRAA_RT.to_string());
+    // (ao, ssaa4 − sraa-rt in ms) where both were timed.
+    let mut gaps: Vec<(u32, f64)> = Vec::new();
+    let mut first_faster = None;
+    let mut aos: Vec<u32> = sweep
+        .rows
+        .iter()
+        .filter(|r| r.scene == scene && r.backend == backend)
+        .map(|r| r.ao)
+        .collect();
+    aos.sort_unstable();
+    aos.dedup();
+    for ao in aos {
+        let (Some(a), Some(b)) = (
+            find(&sweep.rows, scene, backend, &ss, ao),
+            find(&sweep.rows, scene, backend, &rt, ao),
+        ) else {
+            continue;
+        };
+        gaps.push((ao, a.ms_median - b.ms_median));
+        if first_faster.is_none() && b.ms_median < a.ms_median {
+            first_faster = Some((ao, b.ms_median, a.ms_median, b.edge_flip, a.edge_flip));
+        }
+    }
+    let interpolated = first_faster.and_then(|(ao, ..)| {
+        let at = gaps.iter().position(|g| g.0 == ao)?;
+        let (lo, hi) = (gaps.get(at.checked_sub(1)?)?, gaps[at]);
+        // lo.1 ≤ 0 < hi.1: the gap crosses 0 between them.
+        let f = -lo.1 / (hi.1 - lo.1);
+        Some(lo.0 as f64 + f * (hi.0 - lo.0) as f64)
+    });
+    Crossover {
+        scene: scene.into(),
+        backend: backend.into(),
+        first_faster,
+        interpolated,
+    }
+}
+
+/// The crossover as a sentence of the report.
+pub fn crossover_sentence(c: &Crossover) -> String {
+    let flip = |v: Option<f64>| opt(v, 4);
+    match c.first_faster {
+        None => format!(
+            "**Crossover, {} ({}):** sraa-rt is faster than ssaa4 at no swept AO ray count.",
+            c.scene, c.backend
+        ),
+        Some((ao, rt_ms, ss_ms, rt_f, ss_f)) => {
+            let meet = match c.interpolated {
+                Some(x) => format!(
+                    " The two times meet at about {x:.1} AO rays per shaded point (linear between the swept counts)."
+                ),
+                None if ao == 0 => " It is faster without any AO.".into(),
+                None => String::new(),
+            };
+            format!(
+                "**Crossover, {} ({}):** sraa-rt is faster than ssaa4 from {ao} AO rays per shaded point on (the fewest swept): {rt_ms:.1} ms against {ss_ms:.1} ms, with edge FLIP {} against ssaa4's {}.{meet}",
+                c.scene,
+                c.backend,
+                flip(rt_f),
+                flip(ss_f),
+            )
+        }
+    }
+}
+
 /// One method at one AO ray count on one scene and backend.
 #[derive(Clone, Debug, PartialEq)]
 pub struct AoSweepRow {
@@ -94,8 +233,12 @@ pub fn pooled_flip(k: &ClassError, classes: &[Class]) -> Option<f64> {
 /// What the section has: its rows and the scenes it could not sweep.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct AoSweep {
-    /// Whether it was asked for (`--sraa-sweep`).
+    /// Whether it ran (the default report, or `--sraa-sweep`).
     pub ran: bool,
+    /// The AO ray counts swept, increasing.
+    pub aos: Vec<u32>,
+    /// The reference of the rows with AO, when it is not the run's.
+    pub ao_reference: Option<String>,
     /// One row per scene, backend, method and AO ray count.
     pub rows: Vec<AoSweepRow>,
     /// Scenes of [`AO_SWEEP_SCENES`] not swept, with the reason.
@@ -162,11 +305,18 @@ pixel over sraa-rt's, *time* ratio the same for the median time.\n",
         AO_SWEEP_SIZE.0,
         AO_SWEEP_SIZE.1,
         AO_SWEEP_METHODS.map(|m| m.to_string()).join(", "),
-        match reference {
-            Some(r) => format!(" against {r} rendered with the same N"),
-            None => " (timing only: no errors)".into(),
+        match (reference, &sweep.ao_reference) {
+            (Some(r), Some(ao_r)) => format!(
+                " against {r} at N = 0 and {ao_r} rendered with the same N above (a smaller \
+reference, so that the section takes seconds, not minutes)"
+            ),
+            (Some(r), None) => format!(" against {r} rendered with the same N"),
+            (None, _) => " (timing only: no errors)".into(),
         },
     );
+    for c in crossovers(sweep) {
+        let _ = writeln!(md, "{}\n", crossover_sentence(&c));
+    }
     for (scene, why) in &sweep.missing {
         let _ = writeln!(md, "- `{scene}` not swept: {why}");
     }
@@ -180,7 +330,7 @@ pixel over sraa-rt's, *time* ratio the same for the median time.\n",
             "| AO rays | noaa ms | ssaa4 ms | sraa-rt ms | noaa edge FLIP | ssaa4 edge FLIP | sraa-rt edge FLIP | rays ratio | time ratio | time / rays |"
         );
         let _ = writeln!(md, "|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
-        for ao in AO_SWEEP {
+        for &ao in &sweep.aos {
             let get = |m: &str| find(&sweep.rows, &scene, &backend, m, ao);
             if AO_SWEEP_METHODS
                 .iter()
@@ -282,7 +432,7 @@ where
         .filter_map(|r| value(r))
         .filter(|v| v.is_finite())
         .fold(0.0, f64::max);
-    let xmax = *AO_SWEEP.last().unwrap_or(&64) as f64;
+    let xmax = rows.iter().map(|r| r.ao).max().unwrap_or(64).max(1) as f64;
     let size = (PLOT_SIZE.1 / 32) as i32;
     let mut chart = ChartBuilder::on(root)
         .caption(title, (FAMILY, size + 4))
@@ -308,13 +458,12 @@ where
         .draw()
         .map_err(pe)?;
     for m in AO_SWEEP_METHODS.map(|m| m.to_string()) {
-        let pts: Vec<(f64, f64)> = AO_SWEEP
+        let mut pts: Vec<(f64, f64)> = rows
             .iter()
-            .filter_map(|&ao| {
-                let r = rows.iter().find(|r| r.method == m && r.ao == ao)?;
-                value(r).filter(|v| v.is_finite()).map(|v| (ao as f64, v))
-            })
+            .filter(|r| r.method == m)
+            .filter_map(|r| value(r).filter(|v| v.is_finite()).map(|v| (r.ao as f64, v)))
             .collect();
+        pts.sort_by(|a, b| a.0.total_cmp(&b.0));
         if pts.is_empty() {
             continue;
         }
@@ -403,15 +552,17 @@ pub fn plots(dir: &Path, sweep: &AoSweep) -> Result<Vec<PathBuf>> {
 impl Runner<'_> {
     /// The "Where SRAA pays" sweep over the run's scenes named in
     /// [`AO_SWEEP_SCENES`] (triangle scenes), every backend of the run.
-    pub(super) fn ao_sweep(&mut self, jobs: &[SceneJob]) -> Result<AoSweep> {
+    pub(super) fn ao_sweep(&mut self, jobs: &[SceneJob], spec: &SweepSpec) -> Result<AoSweep> {
         let plan = self.plan;
         let mut sweep = AoSweep {
             ran: true,
+            aos: spec.aos.clone(),
+            ao_reference: spec.ao_reference.map(|m| m.to_string()),
             ..Default::default()
         };
         let methods: Vec<Method> = AO_SWEEP_METHODS.to_vec();
         let quality = plan.mode != super::Mode::TimingOnly;
-        for name in AO_SWEEP_SCENES {
+        for &name in &spec.scenes {
             let Some(base) = jobs.iter().find(|j| j.arg == name && !j.sdf) else {
                 sweep.missing.push((
                     name.to_string(),
@@ -429,7 +580,7 @@ impl Runner<'_> {
             };
             self.progress.note(&format!(
                 "{}: where SRAA pays (noaa, ssaa4, sraa-rt with AO {:?} at {}x{})",
-                job.name, AO_SWEEP, AO_SWEEP_SIZE.0, AO_SWEEP_SIZE.1
+                job.name, spec.aos, AO_SWEEP_SIZE.0, AO_SWEEP_SIZE.1
             ));
             let masks = if quality {
                 Some(self.classes(&job)?)
@@ -437,12 +588,13 @@ impl Runner<'_> {
                 None
             };
             let (w, h) = AO_SWEEP_SIZE;
-            for ao in AO_SWEEP {
+            for &ao in &spec.aos {
                 let reference = match &masks {
                     Some(_) => {
                         let mut s = RenderSettings::new(w, h);
                         s.ao_rays = ao;
-                        Some(Rgb8::from_frame(&self.reference_with(&job, &s)?)?)
+                        let by = spec.ao_reference.filter(|_| ao > 0);
+                        Some(Rgb8::from_frame(&self.reference_by(&job, &s, by)?)?)
                     }
                     None => None,
                 };
@@ -526,6 +678,8 @@ mod tests {
     fn targets_are_computed_from_the_rows() {
         let sweep = AoSweep {
             ran: true,
+            aos: AO_SWEEP.to_vec(),
+            ao_reference: None,
             rows: vec![
                 row("ssaa4", 16, 400.0, 80.0, 0.05),
                 row("sraa-rt", 16, 200.0, 20.0, 0.05),

@@ -56,10 +56,11 @@ pub struct ReportArgs {
     /// (triangle scenes; 0: off, at most 256). Part of the reference cache key.
     #[arg(long = "ao", value_name = "N", default_value_t = 0, value_parser = parse_ao)]
     pub ao: u32,
-    /// Add the section "Where SRAA pays": on atrium and Sponza at 512²,
+    /// The full section "Where SRAA pays": on atrium and Sponza at 512²,
     /// noaa, ssaa4 and sraa-rt with ambient occlusion 0, 4, 16 and 64 rays
-    /// (time, silhouette + crease + shadow FLIP, ray-count and time ratios).
-    /// Never part of the default or quick report.
+    /// (time, silhouette + crease + shadow FLIP, ray-count and time ratios,
+    /// the crossover). The default report has a short form of it (atrium,
+    /// AO 0, 4 and 16); the quick report has neither.
     #[arg(long)]
     pub sraa_sweep: bool,
     /// Add a post-process row NAME: NoAA's frame filtered by COMMAND, judged

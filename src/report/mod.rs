@@ -520,8 +520,9 @@ struct Plan {
     post: Vec<PostPlan>,
     /// Ambient-occlusion rays per shaded point of every render (`--ao`).
     ao: u32,
-    /// Run the "Where SRAA pays" section (`--sraa-sweep`).
-    sraa_sweep: bool,
+    /// The "Where SRAA pays" section, when it runs: the default report's
+    /// short sweep, or `--sraa-sweep`'s full one.
+    sraa_sweep: Option<ao_sweep::SweepSpec>,
     /// Frames of the motion section, when it runs.
     motion_frames: Option<u32>,
 }
@@ -683,6 +684,15 @@ impl Plan {
         };
         let sweep =
             mode != Mode::Quick && size.is_none() && !args.no_sweep && methods.contains(&SRAA_RT);
+        // "Where SRAA pays": the full sweep when asked; otherwise a short one
+        // in the default (full-mode) report wherever the parameter sweep runs.
+        let sraa_sweep = if args.sraa_sweep {
+            Some(ao_sweep::SweepSpec::full())
+        } else if sweep && mode == Mode::Full {
+            Some(ao_sweep::SweepSpec::default_report())
+        } else {
+            None
+        };
         Ok(Plan {
             mode,
             out: args.out.clone(),
@@ -697,7 +707,7 @@ impl Plan {
             keep_going: args.keep_going,
             post,
             ao: args.ao,
-            sraa_sweep: args.sraa_sweep,
+            sraa_sweep,
             motion_frames,
         })
     }
@@ -926,12 +936,24 @@ impl Runner<'_> {
     /// The scene's reference at `settings` (size and ambient occlusion),
     /// from the cache or rendered on the CPU and cached.
     fn reference_with(&mut self, job: &SceneJob, settings: &RenderSettings) -> Result<Frame> {
+        self.reference_by(job, settings, None)
+    }
+
+    /// [`Self::reference_with`] by `method` instead of the run's reference
+    /// (`None`: the run's), cached under its own key.
+    fn reference_by(
+        &mut self,
+        job: &SceneJob,
+        settings: &RenderSettings,
+        method: Option<Method>,
+    ) -> Result<Frame> {
+        let reference = method.unwrap_or(self.plan.reference);
         let (w, h) = (settings.width, settings.height);
         let key = reference::ReferenceKey {
             scene: reference::scene_identity(&job.arg),
             width: w,
             height: h,
-            method: self.plan.reference.to_string(),
+            method: reference.to_string(),
             reflection_depth: settings.reflection_depth,
             ao_rays: settings.ao_rays,
             backend: "cpu".into(),
@@ -947,14 +969,14 @@ impl Runner<'_> {
         }
         self.progress.bar.set_message(format!(
             "{}: reference {} at {w}x{h}",
-            job.name, self.plan.reference
+            job.name, reference
         ));
         let cpu = setup::backend("cpu")?;
-        let (frame, wall) = render(cpu.as_ref(), &job.scene, &self.plan.reference, settings)?;
+        let (frame, wall) = render(cpu.as_ref(), &job.scene, &reference, settings)?;
         self.progress.note(&format!(
             "{}: rendered reference {} at {w}x{h}{} in {:.1} s",
             job.name,
-            self.plan.reference,
+            reference,
             if settings.ao_rays > 0 {
                 format!(" with {} AO rays", settings.ao_rays)
             } else {
@@ -1226,10 +1248,9 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
         Some(job) => runner.sweep(job)?,
         None => Vec::new(),
     };
-    let ao_sweep = if plan.sraa_sweep {
-        runner.ao_sweep(&jobs)?
-    } else {
-        ao_sweep::AoSweep::default()
+    let ao_sweep = match &plan.sraa_sweep {
+        Some(spec) => runner.ao_sweep(&jobs, spec)?,
+        None => ao_sweep::AoSweep::default(),
     };
     let motion = match plan.motion_frames {
         Some(frames) => runner.motion(&jobs, frames)?,

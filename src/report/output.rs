@@ -360,6 +360,15 @@ pub fn json(s: &ReportSummary, ctx: &Context) -> Value {
         "results": results,
         "sweep": sweep,
         "motion": super::motion::json(&s.motion),
+        "ao_crossover": super::ao_sweep::crossovers(&s.ao_sweep).iter().map(|c| json!({
+            "scene": c.scene, "backend": c.backend,
+            "first_faster_ao": c.first_faster.map(|f| f.0),
+            "sraa_rt_ms": c.first_faster.map(|f| f.1),
+            "ssaa4_ms": c.first_faster.map(|f| f.2),
+            "sraa_rt_edge_flip": c.first_faster.and_then(|f| f.3),
+            "ssaa4_edge_flip": c.first_faster.and_then(|f| f.4),
+            "interpolated_ao": c.interpolated,
+        })).collect::<Vec<_>>(),
         "ao_sweep": s.ao_sweep.rows.iter().map(|r| json!({
             "scene": r.scene, "method": r.method, "backend": r.backend, "ao_rays": r.ao,
             "ms_median": r.ms_median, "rays_per_pixel": r.rays_per_pixel,

@@ -76,7 +76,14 @@ pub struct CpuBackend {
     exhaustive_subpixel_shadows: bool,
     /// `None`: the widest path the CPU supports.
     isa: Option<isa::Isa>,
+    /// `None`: [`TILE`].
+    tile: Option<usize>,
 }
+
+/// The side, in pixels, of the tiles SRAA and SRAA-RT render a triangle
+/// scene in (each tile's passes run before the next; see
+/// [`CpuBackend::with_tile`]).
+pub const TILE: usize = render::TILE;
 
 impl CpuBackend {
     /// A backend with an empty BVH cache.
@@ -98,6 +105,30 @@ impl CpuBackend {
     /// testing them.
     pub fn with_isa(mut self, isa: isa::Isa) -> Self {
         self.isa = Some(isa);
+        self
+    }
+
+    /// SRAA and SRAA-RT on triangle scenes render in `side`×`side` tiles
+    /// (at least 1) instead of [`TILE`]×[`TILE`]. Every tile size renders
+    /// the same image bit for bit; what changes is the memory (buffers of
+    /// one tile per thread), the cache traffic, and the shaded samples of
+    /// the tiles' aprons, shaded once per tile that reads them. For
+    /// measuring and testing; a side as large as the image is the
+    /// whole-frame pipeline.
+    ///
+    /// ```
+    /// use subcone_cpu::CpuBackend;
+    /// use subcone_scene::{builtin::builtin, Backend, Method, RenderSettings};
+    ///
+    /// let scene = builtin("cornell").unwrap();
+    /// let method: Method = "sraa-rt".parse().unwrap();
+    /// let s = RenderSettings::new(40, 24);
+    /// let tiled = CpuBackend::new().with_tile(16).render(&scene, &scene.camera, &method, &s);
+    /// let whole = CpuBackend::new().with_tile(40).render(&scene, &scene.camera, &method, &s);
+    /// assert_eq!(tiled.unwrap().color, whole.unwrap().color);
+    /// ```
+    pub fn with_tile(mut self, side: usize) -> Self {
+        self.tile = Some(side.max(1));
         self
     }
 
@@ -193,6 +224,7 @@ impl Backend for CpuBackend {
         tracer.exhaustive_subpixel_shadows = self.exhaustive_subpixel_shadows;
         tracer.ao_rays = settings.ao_rays;
         tracer.isa = self.isa();
+        tracer.tile = self.tile.unwrap_or(TILE);
         let mut frame = match method.technique() {
             Technique::NoAa | Technique::Ssaa | Technique::Fxaa => {
                 render::supersample(&tracer, method, settings, passes)

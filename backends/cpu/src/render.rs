@@ -324,9 +324,9 @@ fn bytes<T>(v: &[T]) -> usize {
 }
 
 /// SRAA (Chajdas et al.) and SRAA for ray tracing (Chiu et al., §3), in the
-/// passes named after what they compute.
+/// passes named after what they compute, run tile by tile.
 ///
-/// Pass "shading" ([`shading_pass`]): one shaded sample per pixel, where the
+/// Pass "shading" ([`shade_region`]): one shaded sample per pixel, where the
 /// method's [`SraaParams::shaded_offset`] puts it: subsample
 /// [`SHADED_SUBSAMPLE`](subcone_kernels::sraa::SHADED_SUBSAMPLE) of the
 /// rotated grid (the paper) or the pixel centre (the default). For SRAA-RT its
@@ -339,48 +339,99 @@ fn bytes<T>(v: &[T]) -> usize {
 /// subsample's colour is the sum of its layers. SRAA keeps one layer, the
 /// final colour, reconstructed with eq. 1 on primary geometry.
 ///
-/// Pass "geometry" ([`geometry_pass`], the paper's pass 1): the subsamples,
-/// traced for geometry only (normal and view depth); for SRAA-RT also their
-/// shadow states (subpixel shadow rays) and, on mirrors, the geometry and
-/// shadow states of their reflection rays. A subsample that is also the shaded
-/// sample (the paper's layout) reuses the shaded ray's, not traced again.
+/// Pass "geometry" ([`trace_tile_subsamples`], the paper's pass 1): the
+/// subsamples, traced for geometry only (normal and view depth); for SRAA-RT
+/// also their shadow states (subpixel shadow rays) and, on mirrors, the
+/// geometry and shadow states of their reflection rays. A subsample that is
+/// also the shaded sample (the paper's layout) reuses the shaded ray's, not
+/// traced again. The rays go in batches, as SSAA's do ([`supersample_band`]):
+/// traversal for the batch, then surfaces, then shadow rays, then reflection
+/// rays, so that each loop stays hot.
 ///
-/// Pass "antialiasing" ([`reconstruct_frame_on`], pass 2): every layer of
-/// every subsample reconstructed from the 3×3 neighbourhood's shaded samples
-/// by the kernels, then the box resolve of the four subsamples.
+/// Pass "antialiasing" ([`resolve_tile`], pass 2): every layer of every
+/// subsample reconstructed from the 3×3 neighbourhood's shaded samples by the
+/// kernels, then the box resolve of the four subsamples.
+///
+/// **Tiles.** The frame is cut into [`TILE`]×[`TILE`] tiles (the tracer's
+/// `tile`, `CpuBackend::with_tile`); each runs the
+/// three passes before the next, on every thread, so the per-subsample data
+/// stays in cache and the buffers are one tile's per thread, not the frame's
+/// per layer. The shaded samples of a tile's apron (the neighbourhood's
+/// radius around it, inside the image) are shaded with it: a pixel's
+/// reconstruction reads exactly the samples it reads over the whole frame,
+/// so the image is the same bits; the apron's samples are shaded twice (once
+/// per tile that reads them), which [`FrameStats::rays`] counts. Each pass's
+/// time is its share of the threads' time, scaled to the frame's wall time.
 pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes) -> Frame {
     let plan = SubpixelPlan::new(t, method, passes, s);
-    let mut b = plan.buffers();
-    let mut timings = Vec::new();
     // The camera's per-image constants, once (`CameraRays::ray` is
     // `Camera::ray` bit for bit).
     let cam = t.camera.rays(s.width, s.height);
-
-    let start = Instant::now();
-    let shaded_counts = shading_pass(t, &plan, &cam, &mut b);
-    timings.push(PassTiming::cpu("shading", start.elapsed()));
-
-    let start = Instant::now();
-    let geo_counts = geometry_pass(t, &plan, &cam, &mut b);
-    timings.push(PassTiming::cpu("geometry", start.elapsed()));
-
-    // Pass 2 of the paper: reconstruction and resolve.
-    let start = Instant::now();
-    let mut frame = Frame::new(s.width, s.height);
     let (w, h) = (plan.w, plan.h);
-    reconstruct_frame_on(
-        t.isa,
-        &b,
-        &plan.layout,
-        &method.sraa(),
-        &mut frame.color,
-        w,
-        h,
-    );
-    timings.push(PassTiming::cpu("antialiasing", start.elapsed()));
+    let gates = plan.gates();
+    let resolver = Resolver::new(&method.sraa(), &gates, ALBEDO_TOLERANCE);
+    let mut frame = Frame::new(s.width, s.height);
 
-    let counts = shaded_counts + geo_counts;
-    let buffers = b.list(&frame.color);
+    let start = Instant::now();
+    let side = plan.tile;
+    let tile_rows = h.div_ceil(side);
+    let work = frame
+        .color
+        .par_chunks_mut(w * side)
+        .enumerate()
+        .map(|(row, out)| {
+            // One tile row per task; its buffers are reused tile to tile.
+            let mut b = plan.tile_buffers();
+            let mut work = TileWork::default();
+            let y0 = row * side;
+            let y1 = (y0 + side).min(h);
+            for x0 in (0..w).step_by(side) {
+                let tile = Rect {
+                    x0,
+                    y0,
+                    x1: (x0 + side).min(w),
+                    y1,
+                };
+                t.isa.run(
+                    #[inline(always)]
+                    || subpixel_tile(t, &plan, &cam, &resolver, &mut b, tile, out, &mut work),
+                );
+            }
+            work
+        })
+        .reduce(TileWork::default, |a, b| a + b);
+    let wall = start.elapsed();
+
+    let mut timings = Vec::new();
+    let busy = work.shading + work.geometry + work.antialiasing;
+    for (name, d) in [
+        ("shading", work.shading),
+        ("geometry", work.geometry),
+        ("antialiasing", work.antialiasing),
+    ] {
+        let share = if busy.is_zero() {
+            1.0 / 3.0
+        } else {
+            d.as_secs_f64() / busy.as_secs_f64()
+        };
+        timings.push(PassTiming::cpu(name, wall.mul_f64(share)));
+    }
+
+    let counts = work.counts;
+    // What is allocated at once: one tile's buffers per task in flight.
+    let in_flight = rayon::current_num_threads().min(tile_rows).max(1);
+    let buffers = plan
+        .tile_buffers()
+        .list(&frame.color)
+        .into_iter()
+        .map(|(name, bytes)| {
+            if name == "color" {
+                (name, bytes)
+            } else {
+                (name, bytes * in_flight)
+            }
+        })
+        .collect();
     frame.stats = FrameStats {
         passes,
         timings,
@@ -396,6 +447,224 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
     frame
 }
 
+/// Side of [`subpixel`]'s tiles, in pixels: 64×64 pixels' subsamples and the
+/// 66×66 shaded samples around them fit in a core's L2 cache.
+pub(crate) const TILE: usize = 64;
+
+/// A rectangle of pixels, `[x0, x1) × [y0, y1)`.
+#[derive(Clone, Copy, Debug)]
+struct Rect {
+    x0: usize,
+    y0: usize,
+    x1: usize,
+    y1: usize,
+}
+
+impl Rect {
+    fn width(&self) -> usize {
+        self.x1 - self.x0
+    }
+
+    fn height(&self) -> usize {
+        self.y1 - self.y0
+    }
+
+    fn len(&self) -> usize {
+        self.width() * self.height()
+    }
+
+    /// Grown by `r` pixels on every side, clipped to a `w × h` image.
+    fn grown(&self, r: usize, w: usize, h: usize) -> Rect {
+        Rect {
+            x0: self.x0.saturating_sub(r),
+            y0: self.y0.saturating_sub(r),
+            x1: (self.x1 + r).min(w),
+            y1: (self.y1 + r).min(h),
+        }
+    }
+}
+
+/// What a task of [`subpixel`] did: its rays and the time of each pass.
+#[derive(Clone, Copy, Default)]
+struct TileWork {
+    counts: Counts,
+    shading: std::time::Duration,
+    geometry: std::time::Duration,
+    antialiasing: std::time::Duration,
+}
+
+impl std::ops::Add for TileWork {
+    type Output = TileWork;
+    fn add(self, o: TileWork) -> TileWork {
+        TileWork {
+            counts: self.counts + o.counts,
+            shading: self.shading + o.shading,
+            geometry: self.geometry + o.geometry,
+            antialiasing: self.antialiasing + o.antialiasing,
+        }
+    }
+}
+
+/// The first `n` entries of a buffer, or nothing where it was not allocated
+/// (its pass does not run).
+fn first<T>(v: &mut [T], n: usize) -> &mut [T] {
+    let n = n.min(v.len());
+    &mut v[..n]
+}
+
+/// [`first`] of a buffer that is only read.
+fn head<T>(v: &[T], n: usize) -> &[T] {
+    &v[..n.min(v.len())]
+}
+
+/// The three passes of [`subpixel`] on one tile, writing its pixels into
+/// `out`, the tile row's colours (`plan.tile` rows of the frame from
+/// `tile.y0`).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn subpixel_tile(
+    t: &Tracer,
+    plan: &SubpixelPlan,
+    cam: &CameraRays,
+    resolver: &Resolver,
+    b: &mut Buffers,
+    tile: Rect,
+    out: &mut [Vec3],
+    work: &mut TileWork,
+) {
+    let region = tile.grown(plan.radius as usize, plan.w, plan.h);
+    let (n, nl) = (region.len(), plan.nl);
+
+    let start = Instant::now();
+    let mut shaded = ShadedBand {
+        geo: first(&mut b.geo, n),
+        values: first(&mut b.values, n * nl),
+        shadow: first(&mut b.shadow, n),
+        geo2: first(&mut b.geo2, n),
+        shadow2: first(&mut b.shadow2, n),
+        albedo: first(&mut b.albedo, n),
+    };
+    shade_region(t, plan, cam, &mut shaded, region, &mut work.counts);
+    let geometry_start = Instant::now();
+    work.shading += geometry_start - start;
+
+    let m = tile.len();
+    let samples = ShadedSamples {
+        geo: head(&b.geo, n),
+        values: head(&b.values, n * nl),
+        shadow: head(&b.shadow, n),
+        geo2: head(&b.geo2, n),
+        shadow2: head(&b.shadow2, n),
+        albedo: head(&b.albedo, n),
+    };
+    let mut subs = SubsampleBand {
+        geo: first(&mut b.sub_geo, m),
+        shadow: first(&mut b.sub_shadow, m),
+        geo2: first(&mut b.sub_geo2, m),
+        shadow2: first(&mut b.sub_shadow2, m),
+        albedo: first(&mut b.sub_albedo, m),
+    };
+    trace_tile_subsamples(
+        t,
+        plan,
+        cam,
+        &samples,
+        &mut subs,
+        tile,
+        region,
+        &mut work.counts,
+    );
+    let resolve_start = Instant::now();
+    work.geometry += resolve_start - geometry_start;
+
+    resolve_tile(plan, resolver, b, tile, region, out);
+    work.antialiasing += resolve_start.elapsed();
+}
+
+/// Pass "shading" over `region`: the shaded sample of every pixel in it, at
+/// the region's row-major index in `out`.
+#[inline(always)]
+fn shade_region(
+    t: &Tracer,
+    plan: &SubpixelPlan,
+    cam: &CameraRays,
+    out: &mut ShadedBand,
+    region: Rect,
+    c: &mut Counts,
+) {
+    let (rw, nl) = (region.width(), plan.nl);
+    for i in 0..region.len() {
+        // What `shade_pixel` leaves unwritten (a miss, no mirror, no light)
+        // is what a fresh buffer holds; these hold the previous tile's.
+        out.values[i * nl..(i + 1) * nl].fill(Vec3::ZERO);
+        if let Some(s) = out.shadow.get_mut(i) {
+            *s = 0;
+        }
+        if let Some(g2) = out.geo2.get_mut(i) {
+            *g2 = NO_SECONDARY;
+        }
+        if let Some(s2) = out.shadow2.get_mut(i) {
+            *s2 = 0;
+        }
+        if let Some(a) = out.albedo.get_mut(i) {
+            *a = Vec3::ZERO;
+        }
+        let (x, y) = (region.x0 + i % rw, region.y0 + i / rw);
+        shade_pixel(t, plan, cam, out, i, x, y, c);
+    }
+}
+
+/// Pass "antialiasing" on `tile`: each pixel's subsamples reconstructed from
+/// the shaded samples of `region` (the tile and its apron) by the kernels'
+/// [`Resolver`], in the region's own coordinates. The region holds every
+/// in-image neighbour of the tile's pixels and ends where the image ends, so
+/// each reconstruction sees the neighbourhood it sees in the whole frame.
+#[inline(always)]
+fn resolve_tile(
+    plan: &SubpixelPlan,
+    resolver: &Resolver,
+    b: &Buffers,
+    tile: Rect,
+    region: Rect,
+    out: &mut [Vec3],
+) {
+    let (n, nl, layout) = (region.len(), plan.nl, &plan.layout);
+    let frame = ShadedFrame {
+        width: region.width() as u32,
+        height: region.height() as u32,
+        colors: head(&b.values, n * nl),
+        layers: layout.len(),
+        albedo: head(&b.albedo, n),
+        primary: ShadedGroup {
+            geometry: head(&b.geo, n),
+            shadow: head(&b.shadow, n),
+            first_layer: 0,
+        },
+        secondary: layout.secondary.then(|| ShadedGroup {
+            geometry: head(&b.geo2, n),
+            shadow: head(&b.shadow2, n),
+            first_layer: layout.secondary_base(),
+        }),
+    };
+    let tw = tile.width();
+    for i in 0..tile.len() {
+        let (x, y) = (tile.x0 + i % tw, tile.y0 + i / tw);
+        let primary = Subsamples {
+            geometry: b.sub_geo[i],
+            shadow: b.sub_shadow.get(i).copied().unwrap_or([0; 4]),
+            albedo: b.sub_albedo.get(i).copied(),
+        };
+        let secondary = layout.secondary.then(|| Subsamples {
+            geometry: b.sub_geo2.get(i).copied().unwrap_or([NO_SECONDARY; 4]),
+            shadow: b.sub_shadow2.get(i).copied().unwrap_or([0; 4]),
+            albedo: None,
+        });
+        let (lx, ly) = ((x - region.x0) as u32, (y - region.y0) as u32);
+        out[(y - tile.y0) * plan.w + x] =
+            resolver.resolve(&frame, lx, ly, &primary, secondary.as_ref());
+    }
+}
+
 /// What one frame of [`subpixel`] computes, decided once from its method,
 /// planned passes and scene: which buffers exist and which rays each pass
 /// casts.
@@ -404,6 +673,8 @@ struct SubpixelPlan {
     w: usize,
     /// Its height in pixels.
     h: usize,
+    /// The side of the tiles the passes run on.
+    tile: usize,
     /// Lights the shading reads (at most [`MAX_LIGHTS`]).
     lights: usize,
     /// The layers each shaded sample keeps.
@@ -442,6 +713,7 @@ impl SubpixelPlan {
         SubpixelPlan {
             w: s.width as usize,
             h: s.height as usize,
+            tile: t.tile.max(1),
             lights,
             layout,
             nl: layout.len(),
@@ -457,10 +729,15 @@ impl SubpixelPlan {
         }
     }
 
-    /// The frame's buffers, each allocated only when a pass of the plan
-    /// writes it (an empty one costs nothing: see [`bands`]).
-    fn buffers(&self) -> Buffers {
-        let n = self.w * self.h;
+    /// One tile's buffers (`tile`×`tile` subsamples, the shaded samples
+    /// of the tile and its apron), each allocated only when a pass of the
+    /// plan writes it (an empty one costs nothing), and no larger than the
+    /// image.
+    fn tile_buffers(&self) -> Buffers {
+        let apron = 2 * self.radius as usize;
+        let (tw, th) = (self.tile.min(self.w), self.tile.min(self.h));
+        let n = (tw + apron).min(self.w) * (th + apron).min(self.h);
+        let m = tw * th;
         let layout = &self.layout;
         let lit = layout.lights > 0;
         fn allocated_if<T: Clone>(on: bool, value: T, n: usize) -> Vec<T> {
@@ -476,40 +753,51 @@ impl SubpixelPlan {
             shadow: allocated_if(lit, 0, n),
             geo2: allocated_if(layout.secondary, NO_SECONDARY, n),
             shadow2: allocated_if(layout.secondary && lit, 0, n),
-            sub_geo: vec![[Geometry::MISS; 4]; n],
-            sub_shadow: allocated_if(self.sub_shadows && lit, [0; 4], n),
-            sub_geo2: allocated_if(self.sub_secondary, [NO_SECONDARY; 4], n),
-            sub_shadow2: allocated_if(self.sub_secondary && lit, [0; 4], n),
+            sub_geo: vec![[Geometry::MISS; 4]; m],
+            sub_shadow: allocated_if(self.sub_shadows && lit, [0; 4], m),
+            sub_geo2: allocated_if(self.sub_secondary, [NO_SECONDARY; 4], m),
+            sub_shadow2: allocated_if(self.sub_secondary && lit, [0; 4], m),
             albedo: allocated_if(self.material, Vec3::ZERO, n),
-            sub_albedo: allocated_if(self.material, [Vec3::ZERO; 4], n),
+            sub_albedo: allocated_if(self.material, [Vec3::ZERO; 4], m),
         }
     }
 
-    /// [`shadow_agreement`] for a subsample of pixel `(x, y)` whose group's
-    /// shaded shadow states are `bits` and base layer `first`; every light's
-    /// ray is cast when the plan is exhaustive or the group has no shadow
-    /// states.
+    /// The shadow bit gating each layer of a group: layer 0 ungated, layer
+    /// `1 + l` gated by light `l` (eq. 2); one ungated layer for SRAA.
+    fn gates(&self) -> Vec<Option<u8>> {
+        let layout = &self.layout;
+        if layout.single {
+            vec![None]
+        } else {
+            (0..1 + layout.lights)
+                .map(|l| l.checked_sub(1).map(|l| l as u8))
+                .collect()
+        }
+    }
+
+    /// [`shadow_agreement`] for a subsample of the pixel at `(x, y)` of a
+    /// `w × h` region of shaded samples, whose group's shadow states are
+    /// `bits` and base layer `first`; every light's ray is cast when the
+    /// plan is exhaustive or the group has no shadow states.
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn agreement(
         &self,
         values: &[Vec3],
         bits: &[u32],
         first: usize,
-        x: usize,
-        y: usize,
+        (x, y): (usize, usize),
+        (w, h): (usize, usize),
     ) -> (u32, u32) {
         if !self.adaptive || bits.is_empty() {
             return (u32::MAX, 0);
         }
         let (nl, lights, radius) = (self.nl, self.layout.lights, self.radius);
-        shadow_agreement(
-            bits, values, nl, first, lights, x, y, radius, self.w, self.h,
-        )
+        shadow_agreement(bits, values, nl, first, lights, x, y, radius, w, h)
     }
 }
 
-/// One band of the shading pass's outputs (the rows from `band · BAND` on):
-/// per pixel the shaded sample's geometry, its layers and, where their
+/// The shading pass's outputs over a tile's region, row-major: per pixel the shaded sample's geometry, its layers and, where their
 /// passes run, its shadow states, its mirror hit's geometry and shadow
 /// states, and its albedo (empty slices where they do not).
 struct ShadedBand<'a> {
@@ -521,50 +809,7 @@ struct ShadedBand<'a> {
     albedo: &'a mut [Vec3],
 }
 
-/// Pass "shading": one shaded sample per pixel, band by band on the
-/// tracer's instruction-set path; returns its ray counts.
-fn shading_pass(t: &Tracer, plan: &SubpixelPlan, cam: &CameraRays, b: &mut Buffers) -> Counts {
-    let nb = plan.h.div_ceil(BAND);
-    let band = plan.w * BAND;
-    bands(&mut b.geo, band, nb)
-        .into_par_iter()
-        .zip(bands(&mut b.values, band * plan.nl, nb))
-        .zip(bands(&mut b.shadow, band, nb))
-        .zip(bands(&mut b.geo2, band, nb))
-        .zip(bands(&mut b.shadow2, band, nb))
-        .zip(bands(&mut b.albedo, band, nb))
-        .enumerate()
-        .map(
-            |(bi, (((((geo, values), shadow), geo2), shadow2), albedo))| {
-                t.isa.run(
-                    #[inline(always)]
-                    || {
-                        // Built inside the instruction-set path's function:
-                        // a local there, its slices stay in registers (a
-                        // struct borrowed from outside would be reloaded
-                        // after every store).
-                        let mut out = ShadedBand {
-                            geo,
-                            values,
-                            shadow,
-                            geo2,
-                            shadow2,
-                            albedo,
-                        };
-                        let mut c = Counts::default();
-                        for i in 0..out.geo.len() {
-                            let (x, y) = (i % plan.w, bi * BAND + i / plan.w);
-                            shade_pixel(t, plan, cam, &mut out, i, x, y, &mut c);
-                        }
-                        c
-                    },
-                )
-            },
-        )
-        .reduce(Counts::default, |a, b| a + b)
-}
-
-/// The shaded sample of pixel `(x, y)`, index `i` of its band: traced,
+/// The shaded sample of pixel `(x, y)`, index `i` of its region: traced,
 /// shaded (shadow rays, ambient occlusion, the mirror's reflection) and kept
 /// as the plan's layers.
 #[allow(clippy::too_many_arguments)]
@@ -727,128 +972,179 @@ struct SubsampleBand<'a> {
     albedo: &'a mut [[Vec3; 4]],
 }
 
-/// Pass "geometry" (the paper's pass 1, "geometric information
-/// generation"): every pixel's four subsamples, band by band on the tracer's
-/// instruction-set path; returns its ray counts.
-fn geometry_pass(t: &Tracer, plan: &SubpixelPlan, cam: &CameraRays, b: &mut Buffers) -> Counts {
-    let nb = plan.h.div_ceil(BAND);
-    let band = plan.w * BAND;
-    let shaded = ShadedSamples {
-        geo: &b.geo,
-        values: &b.values,
-        shadow: &b.shadow,
-        geo2: &b.geo2,
-        shadow2: &b.shadow2,
-        albedo: &b.albedo,
-    };
-    let shaded = &shaded;
-    bands(&mut b.sub_geo, band, nb)
-        .into_par_iter()
-        .zip(bands(&mut b.sub_shadow, band, nb))
-        .zip(bands(&mut b.sub_geo2, band, nb))
-        .zip(bands(&mut b.sub_shadow2, band, nb))
-        .zip(bands(&mut b.sub_albedo, band, nb))
-        .enumerate()
-        .map(|(bi, ((((geo, shadow), geo2), shadow2), albedo))| {
-            t.isa.run(
-                #[inline(always)]
-                || {
-                    // A local of the instruction-set path's function, as in
-                    // the shading pass.
-                    let mut out = SubsampleBand {
-                        geo,
-                        shadow,
-                        geo2,
-                        shadow2,
-                        albedo,
-                    };
-                    let mut c = Counts::default();
-                    for i in 0..out.geo.len() {
-                        let (x, y) = (i % plan.w, bi * BAND + i / plan.w);
-                        let j = bi * band + i;
-                        trace_subsamples(t, plan, cam, shaded, &mut out, (i, j), x, y, &mut c);
-                    }
-                    c
-                },
-            )
-        })
-        .reduce(Counts::default, |a, b| a + b)
-}
+/// Rays of [`trace_tile_subsamples`] traced together, as [`BATCH`] for SSAA.
+const GEO_BATCH: usize = 64;
 
-/// The four subsamples of pixel `(x, y)`, index `i` of its band and `j` of
-/// the frame: each traced for geometry, albedo, shadow states and its
-/// mirror's reflection as the plan asks, or, for the shaded sample's
-/// subsample, copied from the shading pass.
+/// Pass "geometry" (the paper's pass 1, "geometric information
+/// generation") on `tile`: the four subsamples of each of its pixels, at the
+/// tile's row-major index in `out`, each traced for geometry, albedo, shadow
+/// states and its mirror's reflection as the plan asks, or, for the shaded
+/// sample's subsample, copied from the shading pass (`shaded`, over
+/// `region`).
+///
+/// The subsample rays go in batches of [`GEO_BATCH`]: generated, traversed,
+/// their surfaces reconstructed and their geometry written, then their
+/// shadow rays cast, then their mirrors' reflection rays generated,
+/// traversed and reconstructed, then those hits' shadow rays. Every ray is
+/// the one the subsample-at-a-time loop casts, with the same inputs, so every
+/// value is the same bits; only the order of the work differs.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn trace_subsamples(
+fn trace_tile_subsamples(
     t: &Tracer,
     plan: &SubpixelPlan,
     cam: &CameraRays,
     shaded: &ShadedSamples,
     out: &mut SubsampleBand,
-    (i, j): (usize, usize),
-    x: usize,
-    y: usize,
+    tile: Rect,
+    region: Rect,
     c: &mut Counts,
 ) {
-    // Computed on first use: a pixel whose subsamples all miss needs
-    // neither.
-    let mut primary_agree = None;
-    let mut secondary_agree = None;
-    // The same for the four subsamples: computed once per pixel (the
-    // compiler does not hoist it out of the loop by itself here).
-    let centre = pixel_centre(x, y);
-    for k in 0..4 {
-        if Some(k) == plan.shaded_subsample {
-            out.geo[i][k] = shaded.geo[j];
+    let (tw, rw) = (tile.width(), region.width());
+    let dims = (rw, region.height());
+    // Region coordinates and index of tile pixel `i`.
+    let local = |i: usize| {
+        let (lx, ly) = (tile.x0 - region.x0 + i % tw, tile.y0 - region.y0 + i / tw);
+        (lx, ly, ly * rw + lx)
+    };
+    // The subsample each batch slot holds: pixel `i` of the tile, subsample
+    // `k`.
+    let mut job = [(0usize, 0usize); GEO_BATCH];
+    let mut ray = [(Vec3::ZERO, Vec3::ZERO); GEO_BATCH];
+    let mut hit: [Option<Hit>; GEO_BATCH] = [None; GEO_BATCH];
+    let mut surface: [Option<Surface>; GEO_BATCH] = [None; GEO_BATCH];
+    // Reflection rays of the batch's mirror hits: batch slot, origin,
+    // direction; their hits.
+    let mut reflection = [(0usize, Vec3::ZERO, Vec3::ZERO); GEO_BATCH];
+    let mut hit2: [Option<Hit>; GEO_BATCH] = [None; GEO_BATCH];
+    // Adaptive subpixel shadows: the last pixel's (cast, inherited) masks,
+    // computed on first use (a pixel whose subsamples all miss needs none).
+    let mut primary_agree: Option<(usize, (u32, u32))> = None;
+    let mut secondary_agree: Option<(usize, (u32, u32))> = None;
+    let reflects = !out.geo2.is_empty() && t.reflection_depth > 0;
+
+    let (mut next_i, mut next_k) = (0usize, 0usize);
+    let total = tile.len();
+    while next_i < total {
+        // Generate: the shaded sample's subsample is copied, not traced.
+        let mut m = 0;
+        while m < GEO_BATCH && next_i < total {
+            let (i, k) = (next_i, next_k);
+            next_k += 1;
+            if next_k == 4 {
+                (next_i, next_k) = (next_i + 1, 0);
+            }
+            if Some(k) == plan.shaded_subsample {
+                let (_, _, j) = local(i);
+                out.geo[i][k] = shaded.geo[j];
+                if let Some(ss) = out.shadow.get_mut(i) {
+                    ss[k] = shaded.shadow[j];
+                }
+                if let Some(g2) = out.geo2.get_mut(i) {
+                    g2[k] = shaded.geo2.get(j).copied().unwrap_or(NO_SECONDARY);
+                }
+                if let Some(s2) = out.shadow2.get_mut(i) {
+                    s2[k] = shaded.shadow2.get(j).copied().unwrap_or(0);
+                }
+                if let Some(a) = out.albedo.get_mut(i) {
+                    a[k] = shaded.albedo[j];
+                }
+                continue;
+            }
+            // What a subsample that misses, or hits no mirror, keeps (the
+            // buffers hold the previous tile's).
             if let Some(ss) = out.shadow.get_mut(i) {
-                ss[k] = shaded.shadow[j];
+                ss[k] = 0;
             }
             if let Some(g2) = out.geo2.get_mut(i) {
-                g2[k] = shaded.geo2.get(j).copied().unwrap_or(NO_SECONDARY);
+                g2[k] = NO_SECONDARY;
             }
             if let Some(s2) = out.shadow2.get_mut(i) {
-                s2[k] = shaded.shadow2.get(j).copied().unwrap_or(0);
+                s2[k] = 0;
             }
+            let (x, y) = (tile.x0 + i % tw, tile.y0 + i / tw);
+            job[m] = (i, k);
+            ray[m] = cam.ray(pixel_centre(x, y) + SUBPIXEL_OFFSETS[k]);
+            m += 1;
+        }
+        c.geometry += m as u64;
+        // Traverse.
+        for (h, (o, d)) in hit[..m].iter_mut().zip(&ray[..m]) {
+            *h = t.bvh.closest(*o, *d, 0.0, f32::INFINITY);
+        }
+        // Surfaces, geometry and albedo.
+        for q in 0..m {
+            let (i, k) = job[q];
+            let (o, d) = ray[q];
+            surface[q] = hit[q].map(|h| t.surface(o, d, h));
+            out.geo[i][k] = t.primary_geometry(surface[q].as_ref());
             if let Some(a) = out.albedo.get_mut(i) {
-                a[k] = shaded.albedo[j];
+                a[k] = t.primary_albedo(surface[q].as_ref());
             }
-            continue;
         }
-        let p = centre + SUBPIXEL_OFFSETS[k];
-        let (o, d) = cam.ray(p);
-        c.geometry += 1;
-        let sf = t.intersect(o, d, 0.0);
-        out.geo[i][k] = t.primary_geometry(sf.as_ref());
-        if let Some(a) = out.albedo.get_mut(i) {
-            a[k] = t.primary_albedo(sf.as_ref());
-        }
-        let Some(sf) = sf else { continue };
-        if let Some(ss) = out.shadow.get_mut(i) {
-            let (cast, inherited) = *primary_agree
-                .get_or_insert_with(|| plan.agreement(shaded.values, shaded.shadow, 0, x, y));
-            ss[k] = t.shadow_states_masked(&sf, cast, inherited, c);
-        }
-        if let Some(g2) = out.geo2.get_mut(i) {
-            let mat = &t.scene.materials[sf.material as usize];
-            if mat.mirror > 0.0 && t.reflection_depth > 0 {
-                c.geometry += 1;
-                let rd = Tracer::reflect(d, sf.n);
-                g2[k] = match t.intersect(sf.p + sf.ng * t.eps, rd, 0.0) {
-                    None => Geometry::MISS,
-                    Some(s2) => {
-                        if let Some(sh2) = out.shadow2.get_mut(i) {
-                            let (cast, inherited) = *secondary_agree.get_or_insert_with(|| {
-                                let first = plan.layout.secondary_base();
-                                plan.agreement(shaded.values, shaded.shadow2, first, x, y)
-                            });
-                            sh2[k] = t.shadow_states_masked(&s2, cast, inherited, c);
-                        }
-                        Geometry::new(s2.n, sf.t + s2.t)
+        // Subpixel shadow rays.
+        if !out.shadow.is_empty() {
+            for q in 0..m {
+                let Some(sf) = &surface[q] else { continue };
+                let (i, k) = job[q];
+                let (cast, inherited) = match primary_agree {
+                    Some((p, a)) if p == i => a,
+                    _ => {
+                        let (lx, ly, _) = local(i);
+                        let a = plan.agreement(shaded.values, shaded.shadow, 0, (lx, ly), dims);
+                        primary_agree = Some((i, a));
+                        a
                     }
                 };
+                out.shadow[i][k] = t.shadow_states_masked(sf, cast, inherited, c);
             }
+        }
+        if !reflects {
+            continue;
+        }
+        // Reflection rays of the mirror hits.
+        let mut r = 0;
+        for q in 0..m {
+            let Some(sf) = &surface[q] else { continue };
+            if t.scene.materials[sf.material as usize].mirror > 0.0 {
+                let rd = Tracer::reflect(ray[q].1, sf.n);
+                reflection[r] = (q, sf.p + sf.ng * t.eps, rd);
+                r += 1;
+            }
+        }
+        c.geometry += r as u64;
+        for (h, (_, o, d)) in hit2[..r].iter_mut().zip(&reflection[..r]) {
+            *h = t.bvh.closest(*o, *d, 0.0, f32::INFINITY);
+        }
+        for (h, &(q, o, d)) in hit2[..r].iter().zip(&reflection[..r]) {
+            let (i, k) = job[q];
+            out.geo2[i][k] = match h {
+                None => Geometry::MISS,
+                Some(h) => {
+                    let s2 = t.surface(o, d, *h);
+                    if !out.shadow2.is_empty() {
+                        let (cast, inherited) = match secondary_agree {
+                            Some((p, a)) if p == i => a,
+                            _ => {
+                                let (lx, ly, _) = local(i);
+                                let first = plan.layout.secondary_base();
+                                let a = plan.agreement(
+                                    shaded.values,
+                                    shaded.shadow2,
+                                    first,
+                                    (lx, ly),
+                                    dims,
+                                );
+                                secondary_agree = Some((i, a));
+                                a
+                            }
+                        };
+                        out.shadow2[i][k] = t.shadow_states_masked(&s2, cast, inherited, c);
+                    }
+                    let sf_t = surface[q].as_ref().map_or(0.0, |s| s.t);
+                    Geometry::new(s2.n, sf_t + s2.t)
+                }
+            };
         }
     }
 }

@@ -108,6 +108,8 @@ pub struct Tracer<'a> {
     /// The instruction-set path the passes run on (the widest the CPU
     /// supports unless set); every path gives the same bits.
     pub isa: Isa,
+    /// Side of the tiles SRAA renders in (`CpuBackend::with_tile`).
+    pub tile: usize,
 }
 
 impl<'a> Tracer<'a> {
@@ -130,6 +132,7 @@ impl<'a> Tracer<'a> {
             ao_rays: 0,
             ao_radius: bvh.scale * AO_RADIUS_FRACTION,
             isa: Isa::detected(),
+            tile: crate::render::TILE,
         }
     }
 
