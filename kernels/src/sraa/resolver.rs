@@ -766,6 +766,9 @@ const LN2_LO: f32 = 1.428_606_8e-6; // 0x35bfbe8e
 const INV_LN2: f32 = 1.442_695_1; // 0x3fb8aa3b
 const P1: f32 = 1.666_662_5e-1; // 0xaaaa8f.0p-26
 const P2: f32 = -2.766_733_3e-3; // -0xb55215.0p-32
+/// `1.5·2²³`: `(t + ROUND_MAGIC) − ROUND_MAGIC` is `t` rounded to the
+/// nearest integer (ties to even), exactly, for `|t| < 2²²`.
+const ROUND_MAGIC: f32 = 12_582_912.0;
 
 /// `exp(−s)` of `gaussian_sum` in four lanes: exactly 1 for `s = 0`,
 /// 0 for `s ≥ 105`, `+∞` or NaN, and `libm::expf(−s)` in between:
@@ -845,19 +848,30 @@ fn saturate_lane(x: f32) -> f32 {
     }
 }
 
-/// [`gaussian_sum_lanes`] for one lane, branch-free: every branch of
-/// libm's `expf` is computed and the lane's result selected, so that a loop
-/// of it over an array vectorises at the width of the target (see
-/// [`gaussian_sum_wide`]). The same f32 operations in the same order as
-/// [`gaussian_sum_lanes`]; only `trunc` is written differently.
+/// `gaussian_sum` for one lane, branch-free: every branch of libm's `expf`
+/// is computed and the lane's result selected, so that a loop of it over an
+/// array vectorises at the width of the target (see [`gaussian_sum_wide`]).
+/// The same f32 operations in the same order as libm's `expf` for
+/// `x = −s ≤ 0`; only `trunc` and `scalbnf` are written differently, to the
+/// same values.
 #[inline(always)]
 fn gaussian_sum_lane(s: f32) -> f32 {
+    // s ≥ 103.972084 (libm's underflow: x ≤ −103.972084 gives 0), ∞ and
+    // NaN give 0. Those lanes are computed on s = 0 instead and selected
+    // out at the end: their garbage would otherwise hold subnormals (and
+    // NaNs), which cost microcode assists on some cores even when unused.
+    let live = s < f32::from_bits(0x42cf_f1b5);
+    let s = if live { s } else { 0.0 };
     let x = -s;
-    // k = (int)(x/ln 2 − 0.5) where |x| > 1.5 ln 2: there (x > −105, or the
-    // lane is selected out below) the argument lies in (−152, −1.5), where
-    // the round trip through i32 truncates exactly. Anywhere else (and for
-    // NaN, which converts to 0) the value is selected out.
-    let k_big = ((INV_LN2 * x + -0.5) as i32) as f32;
+    // k = (int)(x/ln 2 − 0.5) where |x| > 1.5 ln 2: there (−104 < x) the
+    // argument t lies in (−151, −1.5). Adding and subtracting 1.5·2²³
+    // rounds |t| < 2²² to the nearest integer, exactly; a negative t
+    // rounded down is then moved up by 1: truncation, in float operations
+    // only (a saturating f32 → i32 conversion does not vectorise).
+    // Elsewhere (|x| ≤ 1.5 ln 2, negative s) the value is not used.
+    let t = INV_LN2 * x + -0.5;
+    let nearest = (t + ROUND_MAGIC) - ROUND_MAGIC;
+    let k_big = if nearest < t { nearest + 1.0 } else { nearest };
     let k = if s > f32::from_bits(0x3f85_1592) {
         k_big
     } else {
@@ -882,9 +896,10 @@ fn gaussian_sum_lane(s: f32) -> f32 {
         y
     };
     let k = if deep { k + 102.0 } else { k };
-    // 2^k from the bits of k + 127 + 2²³ (see `gaussian_sum_lanes`); the
-    // wrapping integer operations keep lanes selected out below (huge k)
-    // from overflowing.
+    // 2^k from the bits of k + 127 + 2²³ (exact: an integer below 2²⁴, so
+    // its low mantissa bits are k + 127, in [1, 127] here), moved into the
+    // exponent field: a bit cast, a subtraction and a shift per lane, no
+    // float-to-int conversion. Wrapping, so that no lane can panic.
     let m = (k + (127.0 + 8_388_608.0)).to_bits();
     let y = y * f32::from_bits(m.wrapping_sub(0x4b00_0000) << 23);
     // |x| ≤ 2⁻¹⁴ (and s = 0): 1 + x.
@@ -893,8 +908,8 @@ fn gaussian_sum_lane(s: f32) -> f32 {
     } else {
         1.0 + x
     };
-    // s ≥ 103.972084 (libm's underflow), ∞ and NaN: 0.
-    if s < f32::from_bits(0x42cf_f1b5) {
+    // s ≥ 103.972084, ∞ and NaN: 0 (see above).
+    if live {
         y
     } else {
         0.0
@@ -917,8 +932,8 @@ fn gaussian_sum_lane(s: f32) -> f32 {
 /// `e_expf.c`: reduction by `k·ln 2` in two parts, a degree-2 rational
 /// approximation, `scalbnf`) with its branches turned into lane selects; for
 /// `x = −s ≤ 0` every branch is the same f32 operations in the same order,
-/// `k = (int)(x/ln 2 − 0.5)` is truncated exactly (through i32, on the
-/// range `(−152, −1.5)` where it is used), and `scalbnf(y, k)` is
+/// `k = (int)(x/ln 2 − 0.5)` is truncated exactly (by rounding with
+/// `1.5·2²³`, on the range `(−152, −1.5)` where it is used), and `scalbnf(y, k)` is
 /// `y·2⁻¹⁰²·2^(k+102)` below `k = −126` and `y·2^k` above, as libm computes
 /// it, so each lane equals `libm::expf(−s)` bit for bit
 /// (`kernels/tests/lanes.rs` compares the f32s of `[0, ∞]` at a stride and
