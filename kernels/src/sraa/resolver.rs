@@ -12,7 +12,8 @@
 //!   per pixel, not once per subsample and layer group;
 //! - the product-form weights of all nine neighbours for the four
 //!   subsamples are computed together, one (neighbour, subsample) pair per
-//!   lane, in chunks of [`WIDE_LANES`] = 16 lanes ([`weights_product_wide`],
+//!   lane, in two chunks of [`WIDE_LANES`] = 16 lanes and one of 4
+//!   ([`Resolver::weights_product`] over [`weights_product_wide`] and
 //!   [`gaussian_sum_wide`]: branch-free loops that vectorise 8 or 16 wide
 //!   in AVX2 or AVX-512 code), in the same f32 operations as
 //!   [`reconstruction_weight`], so to the same bits;
@@ -92,11 +93,29 @@ pub struct Subsamples {
 /// Slots of the 3×3 neighbourhood, row-major.
 const SLOTS: usize = 9;
 
-/// (slot, subsample) pairs of one slot: its four subsamples' lanes.
-const PAIR_LANES: usize = 4;
+/// The lanes of [`Resolver::weights_product`], one per (slot, subsample)
+/// pair, slot-major: slots 0–3 and slots 4–7 in two chunks of
+/// [`WIDE_LANES`] = 16 lanes (lane `4·(slot mod 4) + k`), slot 8 in four.
+/// Exactly the 36 pairs, no padding: at 16 lanes (AVX-512) two full
+/// registers and a quarter one, at 8 (AVX2) four and a half.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct PairLanes {
+    low: [f32; WIDE_LANES],
+    high: [f32; WIDE_LANES],
+    last: [f32; 4],
+}
 
-/// Slots padded to whole chunks of [`WIDE_LANES`] pairs.
-const PADDED_SLOTS: usize = CHUNKS * WIDE_LANES / PAIR_LANES;
+impl PairLanes {
+    /// Pair (slot, k) is `f(slot, k)`.
+    #[inline(always)]
+    fn from_fn(mut f: impl FnMut(usize, usize) -> f32) -> Self {
+        Self {
+            low: core::array::from_fn(|l| f(l / 4, l % 4)),
+            high: core::array::from_fn(|l| f(4 + l / 4, l % 4)),
+            last: core::array::from_fn(|k| f(8, k)),
+        }
+    }
+}
 
 /// Lane factors that zero the lanes set in a 4-bit mask and keep the others:
 /// `w · KEEP_LANES[m]` is `w` (exactly: `w · 1`) or 0 per lane.
@@ -125,11 +144,9 @@ pub struct Resolver<'g> {
     /// `distance2` of each (subsample, slot): what [`neighbourhood`] yields.
     distance2: [[f32; SLOTS]; 4],
     /// The spatial exponent `d²/σs²` of each (slot, subsample), as
-    /// [`reconstruction_weight`] computes it: pair `4·slot + k` in lane
-    /// `(4·slot + k) mod 16` of chunk `(4·slot + k) / 16`, the lanes of
-    /// [`weights_product_wide`] in [`Resolver::neighbour_weights`] (0 in the
-    /// padding).
-    spatial: [[f32; WIDE_LANES]; CHUNKS],
+    /// [`reconstruction_weight`] computes it, in the lanes of
+    /// [`Resolver::weights_product`].
+    spatial: PairLanes,
 }
 
 impl<'g> Resolver<'g> {
@@ -140,7 +157,7 @@ impl<'g> Resolver<'g> {
     pub fn new(params: &SraaParams, gates: &'g [Option<u8>], tolerance: f32) -> Self {
         let shaded = params.shaded_offset();
         let mut distance2 = [[0.0; SLOTS]; 4];
-        let mut spatial = [[0.0; WIDE_LANES]; CHUNKS];
+        let mut spatial = [[0.0; 4]; SLOTS];
         for (k, row) in distance2.iter_mut().enumerate() {
             let offset = SUBPIXEL_OFFSETS[k] - shaded;
             for (slot, d2) in row.iter_mut().enumerate() {
@@ -153,8 +170,7 @@ impl<'g> Resolver<'g> {
                 } else {
                     0.0
                 };
-                let pair = PAIR_LANES * slot + k;
-                spatial[pair / WIDE_LANES][pair % WIDE_LANES] = s;
+                spatial[slot][k] = s;
             }
         }
         Self {
@@ -162,7 +178,7 @@ impl<'g> Resolver<'g> {
             gates: &gates[..gates.len().min(MAX_LAYERS)],
             tolerance,
             distance2,
-            spatial,
+            spatial: PairLanes::from_fn(|slot, k| spatial[slot][k]),
         }
     }
 
@@ -289,8 +305,7 @@ impl<'g> Resolver<'g> {
         targets: &Subsamples,
         albedo: Option<[Vec3; 4]>,
     ) -> NeighbourWeights {
-        // Padded to whole chunks of pairs: the padding slots are misses.
-        let mut geometry = [Geometry::MISS; PADDED_SLOTS];
+        let mut geometry = [Geometry::MISS; SLOTS];
         let mut shadow = [0u32; SLOTS];
         for slot in hood.slots() {
             let j = hood.index[slot];
@@ -303,27 +318,16 @@ impl<'g> Resolver<'g> {
         let mut weights = [[0.0f64; 4]; SLOTS];
         let mut nonzero = 0u32;
         let form = self.params.form();
-        // The product form: all (slot, subsample) pairs at once, slot-major
-        // (pair `4·slot + k`), in chunks of `WIDE_LANES` lanes; the slots
+        // The product form: all (slot, subsample) pairs at once; the slots
         // outside the image are computed too (as misses) and dropped below.
-        let mut wide = [0.0f32; CHUNKS * WIDE_LANES];
-        if let WeightForm::Product = form {
-            let gi = GeometryWide::from_fn(|l| targets.geometry[l % PAIR_LANES]);
-            for (c, out) in wide.chunks_exact_mut(WIDE_LANES).enumerate() {
-                let first = c * WIDE_LANES / PAIR_LANES;
-                let gj = GeometryWide::from_fn(|l| geometry[first + l / PAIR_LANES]);
-                out.copy_from_slice(&weights_product_wide(
-                    &self.params,
-                    &gi,
-                    &gj,
-                    &self.spatial[c],
-                ));
-            }
-        }
+        let product = match form {
+            WeightForm::Product => self.weights_product(&targets.geometry, &geometry),
+            WeightForm::ChajdasMax => [[0.0; 4]; SLOTS],
+        };
         let gate = albedo.map(|a| MaterialGateLanes::new(a, self.tolerance));
         for slot in hood.slots() {
             let mut w = match form {
-                WeightForm::Product => Vec4::from_slice(&wide[PAIR_LANES * slot..][..PAIR_LANES]),
+                WeightForm::Product => Vec4::from_array(product[slot]),
                 WeightForm::ChajdasMax => Vec4::from_array(core::array::from_fn(|k| {
                     reconstruction_weight(
                         &self.params,
@@ -347,6 +351,49 @@ impl<'g> Resolver<'g> {
             nonzero,
             shadow,
         }
+    }
+
+    /// The product-form weights (§3.1, eq. 1 times the spatial term) of the
+    /// nine shaded samples of the 3×3 neighbourhood, `neighbours` (row-major:
+    /// slot `3·(dy + 1) + dx + 1` is pixel `(x + dx, y + dy)`), for the four
+    /// subsamples of pixel `(x, y)`, `targets`: `w[slot][k]` is
+    /// [`reconstruction_weight`] for `params.with_form(WeightForm::Product)`
+    /// (whatever the resolver's form and radius), `targets[k]` against
+    /// `neighbours[slot]` at the squared distance [`neighbourhood`] gives
+    /// subsample `k` from that sample, bit for bit.
+    ///
+    /// The 36 (slot, subsample) pairs are computed together, one per lane
+    /// ([`weights_product_wide`]: two chunks of [`WIDE_LANES`] = 16 lanes and
+    /// one of 4, branch-free), so that inside AVX2 or AVX-512 code (this is
+    /// `#[inline(always)]`) they vectorise 8 or 16 wide.
+    ///
+    /// Domain and out-of-domain behaviour are [`reconstruction_weight`]'s,
+    /// pair by pair (a NaN gives 0, two misses 1; never a panic).
+    #[inline(always)]
+    pub fn weights_product(
+        &self,
+        targets: &[Geometry; 4],
+        neighbours: &[Geometry; SLOTS],
+    ) -> [[f32; 4]; SLOTS] {
+        let p = &self.params;
+        let sp = &self.spatial;
+        // Targets repeat every four lanes; a neighbour fills four lanes.
+        let gi = GeometryWide::<WIDE_LANES>::from_fn(|l| targets[l % 4]);
+        let low = GeometryWide::from_fn(|l| neighbours[l / 4]);
+        let high = GeometryWide::from_fn(|l| neighbours[4 + l / 4]);
+        let low = weights_product_wide(p, &gi, &low, &sp.low);
+        let high = weights_product_wide(p, &gi, &high, &sp.high);
+        let last = weights_product_wide(
+            p,
+            &GeometryWide::from_fn(|k| targets[k]),
+            &GeometryWide::from_fn(|_| neighbours[8]),
+            &sp.last,
+        );
+        core::array::from_fn(|slot| match slot {
+            0..4 => core::array::from_fn(|k| low[4 * slot + k]),
+            4..8 => core::array::from_fn(|k| high[4 * (slot - 4) + k]),
+            _ => last,
+        })
     }
 
     /// [`reconstruct_layers`]' fallback for subsample `k`'s layer `i` when
@@ -787,14 +834,11 @@ pub fn gaussian_sum_lanes(s: Vec4) -> Vec4 {
     Vec4::from_array(gaussian_sum_wide(&s.to_array()))
 }
 
-/// Lanes of one chunk of [`weights_product_wide`] in the resolver: 16 f32
-/// lanes, one AVX-512 register (two AVX2 registers, four SSE ones). A
-/// pixel's 36 (slot, subsample) pairs are three chunks (the last 12 lanes
-/// of the third are padding).
+/// Lanes of a full chunk of [`weights_product_wide`] in
+/// [`Resolver::weights_product`]: 16 f32 lanes, one AVX-512 register (two
+/// AVX2 registers, four SSE ones). A pixel's 36 (slot, subsample) pairs are
+/// two such chunks and one of 4 lanes.
 pub const WIDE_LANES: usize = 16;
-
-/// Chunks of [`WIDE_LANES`] pairs per pixel: `⌈9·4 / 16⌉`.
-const CHUNKS: usize = (SLOTS * 4).div_ceil(WIDE_LANES);
 
 /// `N` geometries in lanes, one array per component (structure of arrays),
 /// for [`weights_product_wide`].
