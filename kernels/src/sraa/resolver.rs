@@ -807,12 +807,14 @@ pub fn weights_product_lanes(
     Vec4::from_array(weights_product_wide(p, &gi, &gj, &spatial.to_array()))
 }
 
-// libm's expf (FreeBSD's e_expf.c), constants and thresholds.
-const LN2_HI: f32 = 6.931_457_5e-1; // 0x3f317200
-const LN2_LO: f32 = 1.428_606_8e-6; // 0x35bfbe8e
-const INV_LN2: f32 = 1.442_695_1; // 0x3fb8aa3b
-const P1: f32 = 1.666_662_5e-1; // 0xaaaa8f.0p-26
-const P2: f32 = -2.766_733_3e-3; // -0xb55215.0p-32
+// libm's expf (FreeBSD's e_expf.c), constants and thresholds, by their
+// bits: a shortest decimal can name the neighbouring f32 (1.442_695_1 is
+// 0x3fb8aa3c, one ulp above libm's 1/ln 2).
+const LN2_HI: f32 = f32::from_bits(0x3f31_7200); // 6.9314575195e-01
+const LN2_LO: f32 = f32::from_bits(0x35bf_be8e); // 1.4286067653e-06
+const INV_LN2: f32 = f32::from_bits(0x3fb8_aa3b); // 1.4426950216e+00
+const P1: f32 = f32::from_bits(0x3e2a_aa8f); // 0xaaaa8f.0p-26
+const P2: f32 = f32::from_bits(0xbb35_5215); // -0xb55215.0p-32
 /// `1.5·2²³`: `(t + ROUND_MAGIC) − ROUND_MAGIC` is `t` rounded to the
 /// nearest integer (ties to even), exactly, for `|t| < 2²²`.
 const ROUND_MAGIC: f32 = 12_582_912.0;
