@@ -967,10 +967,9 @@ impl Runner<'_> {
                 return Ok(f);
             }
         }
-        self.progress.bar.set_message(format!(
-            "{}: reference {} at {w}x{h}",
-            job.name, reference
-        ));
+        self.progress
+            .bar
+            .set_message(format!("{}: reference {} at {w}x{h}", job.name, reference));
         let cpu = setup::backend("cpu")?;
         let (frame, wall) = render(cpu.as_ref(), &job.scene, &reference, settings)?;
         self.progress.note(&format!(

@@ -6,8 +6,8 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use subcone_kernels::passes::{LayerLayout, Passes, Technique};
 use subcone_kernels::sraa::{
-    neighbourhood, Geometry, Resolver, ShadedFrame, ShadedGroup, SraaParams, Subsamples,
-    ALBEDO_TOLERANCE, SHADED_SAMPLE, SUBPIXEL_OFFSETS,
+    Geometry, Resolver, ShadedFrame, ShadedGroup, SraaParams, Subsamples, ALBEDO_TOLERANCE,
+    SUBPIXEL_OFFSETS,
 };
 use subcone_scene::camera::CameraRays;
 use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderSettings};
@@ -1199,24 +1199,26 @@ pub fn shadow_agreement(
         (1u32 << lights) - 1
     };
     let (mut all_shadowed, mut any_shadowed, mut dark) = (u32::MAX, 0u32, all_lights);
-    // Only which pixels: the distances (and so the shaded position) are
-    // not read.
-    for np in neighbourhood(
-        x as u32,
-        y as u32,
-        SHADED_SAMPLE,
-        Vec2::ZERO,
-        radius,
-        w as u32,
-        h as u32,
-    ) {
-        let jj = np.y as usize * w + np.x as usize;
-        let b = bits.get(jj).copied().unwrap_or(0);
-        all_shadowed &= b;
-        any_shadowed |= b;
-        for l in 0..lights {
-            if values.get(jj * nl + first + 1 + l) != Some(&Vec3::ZERO) {
-                dark &= !(1 << l);
+    // The pixels of [`neighbourhood`] (`radius` around `(x, y)`, inside the
+    // image), indexed directly: only which pixels matters here, and the
+    // masks below do not depend on their order.
+    let r = radius as usize;
+    let (x0, y0) = (x.saturating_sub(r), y.saturating_sub(r));
+    let (x1, y1) = (
+        x.saturating_add(r + 1).min(w),
+        y.saturating_add(r + 1).min(h),
+    );
+    for py in y0..y1 {
+        for px in x0..x1 {
+            let jj = py * w + px;
+            let b = bits.get(jj).copied().unwrap_or(0);
+            all_shadowed &= b;
+            any_shadowed |= b;
+            let layers = values.get(jj * nl + first + 1..).unwrap_or(&[]);
+            for l in 0..lights {
+                if layers.get(l) != Some(&Vec3::ZERO) {
+                    dark &= !(1 << l);
+                }
             }
         }
     }

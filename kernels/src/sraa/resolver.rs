@@ -282,8 +282,9 @@ impl<'g> Resolver<'g> {
                 _ => None,
             };
             let acc = weights.gated_sum(frame, &scan, hood.valid, i, bit, &targets.shadow);
+            let means = acc.means();
             for (k, sum) in out.iter_mut().enumerate() {
-                *sum += match acc.mean(k) {
+                *sum += match means[k] {
                     Some(c) => c,
                     None => self.nearest_finite(frame, hood, &scan, i, k),
                 };
