@@ -193,8 +193,9 @@ fn centre_aovs(t: &Tracer, s: &RenderSettings, frame: &mut Frame) {
     frame.mirror = Some(g.iter().map(|g| g.3).collect());
 }
 
-/// Buffers of one frame, allocated only for the passes it runs (shared with
-/// SRAA-RT on SDF scenes, `sphere.rs`, which leaves the secondary ones empty).
+/// Buffers of one frame (SRAA-RT on SDF scenes, `sphere.rs`, which leaves the
+/// secondary ones empty) or of one tile and its apron ([`subpixel`]),
+/// allocated only for the passes it runs.
 pub(crate) struct Buffers {
     pub(crate) geo: Vec<Geometry>,
     pub(crate) values: Vec<Vec3>,
@@ -960,8 +961,8 @@ struct ShadedSamples<'a> {
     albedo: &'a [Vec3],
 }
 
-/// One band of the geometry pass's outputs: per pixel its four subsamples'
-/// geometry and, where their passes run, their shadow states, their mirror
+/// The geometry pass's outputs over a tile, row-major: per pixel its four
+/// subsamples' geometry and, where their passes run, their shadow states, their mirror
 /// hits' geometry and shadow states, and their albedo (empty slices where
 /// they do not).
 struct SubsampleBand<'a> {
