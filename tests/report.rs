@@ -223,7 +223,8 @@ fn quick_report_on_every_paper_scene() {
         start.elapsed().as_secs_f64()
     );
 
-    // "Where SRAA pays" runs only with --sraa-sweep, never in the quick report.
+    // "Where SRAA pays" runs in the default (full) report and with
+    // --sraa-sweep, never in the quick report.
     assert!(!summary.ao_sweep.ran && summary.ao_sweep.rows.is_empty());
     let md_text = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(!md_text.contains("## Where SRAA pays"));

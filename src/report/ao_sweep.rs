@@ -106,15 +106,29 @@ pub struct Crossover {
     pub scene: String,
     /// Backend.
     pub backend: String,
-    /// The fewest swept AO rays at which sraa-rt is faster, with the row
-    /// values there: `(ao, sraa-rt ms, ssaa4 ms, sraa-rt edge FLIP, ssaa4
-    /// edge FLIP)`; `None` when it is faster at no swept count.
-    pub first_faster: Option<(u32, f64, f64, Option<f64>, Option<f64>)>,
+    /// The fewest swept AO rays at which sraa-rt is faster, with both
+    /// methods' rows there; `None` when it is faster at no swept count.
+    pub first_faster: Option<FirstFaster>,
     /// The AO ray count where the two times meet, by linear interpolation of
     /// `ssaa4 − sraa-rt` between the last swept count where sraa-rt is slower
     /// and the first where it is faster (`None` when they do not cross
     /// inside the sweep, or sraa-rt is faster from the first count on).
     pub interpolated: Option<f64>,
+}
+
+/// Where sraa-rt first takes less time than ssaa4 ([`Crossover`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FirstFaster {
+    /// AO rays per shaded point.
+    pub ao: u32,
+    /// sraa-rt's median time there, ms.
+    pub sraa_rt_ms: f64,
+    /// ssaa4's median time there, ms.
+    pub ssaa4_ms: f64,
+    /// sraa-rt's edge FLIP there.
+    pub sraa_rt_edge_flip: Option<f64>,
+    /// ssaa4's edge FLIP there.
+    pub ssaa4_edge_flip: Option<f64>,
 }
 
 /// The crossover of every scene and backend of the sweep.
@@ -148,11 +162,17 @@ pub fn crossover(sweep: &AoSweep, scene: &str, backend: &str) -> Crossover {
         };
         gaps.push((ao, a.ms_median - b.ms_median));
         if first_faster.is_none() && b.ms_median < a.ms_median {
-            first_faster = Some((ao, b.ms_median, a.ms_median, b.edge_flip, a.edge_flip));
+            first_faster = Some(FirstFaster {
+                ao,
+                sraa_rt_ms: b.ms_median,
+                ssaa4_ms: a.ms_median,
+                sraa_rt_edge_flip: b.edge_flip,
+                ssaa4_edge_flip: a.edge_flip,
+            });
         }
     }
-    let interpolated = first_faster.and_then(|(ao, ..)| {
-        let at = gaps.iter().position(|g| g.0 == ao)?;
+    let interpolated = first_faster.and_then(|f| {
+        let at = gaps.iter().position(|g| g.0 == f.ao)?;
         let (lo, hi) = (gaps.get(at.checked_sub(1)?)?, gaps[at]);
         // lo.1 ≤ 0 < hi.1: the gap crosses 0 between them.
         let f = -lo.1 / (hi.1 - lo.1);
@@ -174,7 +194,13 @@ pub fn crossover_sentence(c: &Crossover) -> String {
             "**Crossover, {} ({}):** sraa-rt is faster than ssaa4 at no swept AO ray count.",
             c.scene, c.backend
         ),
-        Some((ao, rt_ms, ss_ms, rt_f, ss_f)) => {
+        Some(FirstFaster {
+            ao,
+            sraa_rt_ms: rt_ms,
+            ssaa4_ms: ss_ms,
+            sraa_rt_edge_flip: rt_f,
+            ssaa4_edge_flip: ss_f,
+        }) => {
             let meet = match c.interpolated {
                 Some(x) => format!(
                     " The two times meet at about {x:.1} AO rays per shaded point (linear between the swept counts)."
@@ -700,6 +726,56 @@ mod tests {
         assert!(lines[3].contains("1.10x") && lines[3].ends_with("| met |"));
         assert!(section(&sweep, Some("ssaa256")).contains("## Where SRAA pays"));
         assert!(section(&AoSweep::default(), Some("ssaa256")).is_empty());
+    }
+
+    #[test]
+    fn the_crossover_is_computed_from_the_rows() {
+        let sweep = |rows| AoSweep {
+            ran: true,
+            aos: vec![0, 4, 16],
+            ao_reference: None,
+            rows,
+            missing: vec![],
+        };
+        // sraa-rt 40 ms slower at AO 0, 120 ms faster at AO 4: the gap
+        // crosses 0 a quarter of the way, at AO 1.
+        let s = sweep(vec![
+            row("ssaa4", 0, 100.0, 8.0, 0.07),
+            row("sraa-rt", 0, 140.0, 6.0, 0.08),
+            row("ssaa4", 4, 300.0, 20.0, 0.08),
+            row("sraa-rt", 4, 180.0, 9.0, 0.09),
+            row("ssaa4", 16, 800.0, 70.0, 0.08),
+            row("sraa-rt", 16, 300.0, 20.0, 0.09),
+        ]);
+        let c = crossover(&s, "atrium", "cpu");
+        let f = c.first_faster.unwrap();
+        assert_eq!((f.ao, f.sraa_rt_ms, f.ssaa4_ms), (4, 180.0, 300.0));
+        assert_eq!(
+            (f.sraa_rt_edge_flip, f.ssaa4_edge_flip),
+            (Some(0.09), Some(0.08))
+        );
+        assert_eq!(c.interpolated, Some(1.0));
+        let text = crossover_sentence(&c);
+        assert!(
+            text.contains("from 4 AO rays") && text.contains("about 1.0 AO rays"),
+            "{text}"
+        );
+        assert!(section(&s, Some("ssaa256")).contains("**Crossover, atrium (cpu):**"));
+
+        // Faster from the first count: no interpolation; never faster: none.
+        let s = sweep(vec![
+            row("ssaa4", 0, 100.0, 8.0, 0.07),
+            row("sraa-rt", 0, 90.0, 6.0, 0.08),
+        ]);
+        let c = crossover(&s, "atrium", "cpu");
+        assert_eq!((c.first_faster.unwrap().ao, c.interpolated), (0, None));
+        let s = sweep(vec![
+            row("ssaa4", 0, 100.0, 8.0, 0.07),
+            row("sraa-rt", 0, 190.0, 6.0, 0.08),
+        ]);
+        let c = crossover(&s, "atrium", "cpu");
+        assert!(c.first_faster.is_none());
+        assert!(crossover_sentence(&c).contains("at no swept AO ray count"));
     }
 
     #[test]

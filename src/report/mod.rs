@@ -2034,6 +2034,40 @@ mod tests {
     }
 
     #[test]
+    fn where_sraa_pays_runs_short_in_the_default_report_and_full_when_asked() {
+        let plan = |args: ReportArgs| Plan::new(&args).unwrap().sraa_sweep;
+        assert_eq!(
+            plan(ReportArgs::default()),
+            Some(ao_sweep::SweepSpec::default_report())
+        );
+        let asked = ReportArgs {
+            sraa_sweep: true,
+            ..Default::default()
+        };
+        assert_eq!(plan(asked), Some(ao_sweep::SweepSpec::full()));
+        for args in [
+            ReportArgs {
+                quick: true,
+                ..Default::default()
+            },
+            ReportArgs {
+                size: Some("64x64".into()),
+                ..Default::default()
+            },
+            ReportArgs {
+                no_sweep: true,
+                ..Default::default()
+            },
+            ReportArgs {
+                methods: vec!["noaa".into(), "ssaa4".into()],
+                ..Default::default()
+            },
+        ] {
+            assert_eq!(plan(args), None);
+        }
+    }
+
+    #[test]
     fn progress_counts_a_warm_up_and_every_round() {
         let args = ReportArgs {
             quick: true,

@@ -362,11 +362,11 @@ pub fn json(s: &ReportSummary, ctx: &Context) -> Value {
         "motion": super::motion::json(&s.motion),
         "ao_crossover": super::ao_sweep::crossovers(&s.ao_sweep).iter().map(|c| json!({
             "scene": c.scene, "backend": c.backend,
-            "first_faster_ao": c.first_faster.map(|f| f.0),
-            "sraa_rt_ms": c.first_faster.map(|f| f.1),
-            "ssaa4_ms": c.first_faster.map(|f| f.2),
-            "sraa_rt_edge_flip": c.first_faster.and_then(|f| f.3),
-            "ssaa4_edge_flip": c.first_faster.and_then(|f| f.4),
+            "first_faster_ao": c.first_faster.map(|f| f.ao),
+            "sraa_rt_ms": c.first_faster.map(|f| f.sraa_rt_ms),
+            "ssaa4_ms": c.first_faster.map(|f| f.ssaa4_ms),
+            "sraa_rt_edge_flip": c.first_faster.and_then(|f| f.sraa_rt_edge_flip),
+            "ssaa4_edge_flip": c.first_faster.and_then(|f| f.ssaa4_edge_flip),
             "interpolated_ao": c.interpolated,
         })).collect::<Vec<_>>(),
         "ao_sweep": s.ao_sweep.rows.iter().map(|r| json!({
