@@ -89,39 +89,8 @@ fn lanes_exp_is_libm_expf_everywhere() {
 
 #[test]
 fn lanes_weights_are_the_scalar_weights() {
-    let normals = [
-        Vec3::Z,
-        Vec3::new(0.0, 0.6, 0.8),
-        Vec3::new(0.6, 0.0, -0.8),
-        Vec3::new(f32::NAN, 0.0, 1.0),
-        Vec3::new(0.0, 1.0, 1e-4).normalize(),
-        Vec3::ZERO,
-    ];
-    let depths = [
-        1.0,
-        1.0001,
-        1.1,
-        3.0,
-        0.0,
-        1e-40,
-        f32::INFINITY,
-        f32::NAN,
-        3e38,
-    ];
-    let geometries: Vec<Geometry> = normals
-        .iter()
-        .flat_map(|&n| depths.iter().map(move |&z| Geometry::new(n, z)))
-        .collect();
-    let params = [
-        SraaParams::TUNED,
-        SraaParams::PAPER,
-        SraaParams::PAPER.with_depth_metric(DepthMetric::Absolute),
-        SraaParams {
-            sigma_z: 0.0,
-            ..SraaParams::TUNED
-        },
-        SraaParams::TUNED.with_spatial(1e-20),
-    ];
+    let geometries = extreme_geometries();
+    let params = extreme_params();
     let spatial = Vec4::new(0.0, 0.25, 10.0, 200.0);
     for p in &params {
         for quad in geometries.chunks(4).filter(|c| c.len() == 4) {
