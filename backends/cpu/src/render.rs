@@ -375,31 +375,44 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
 
     let start = Instant::now();
     let side = plan.tile;
-    let tile_rows = h.div_ceil(side);
-    let work = frame
-        .color
-        .par_chunks_mut(w * side)
-        .enumerate()
-        .map(|(row, out)| {
-            // One tile row per task; its buffers are reused tile to tile.
-            let mut b = plan.tile_buffers();
-            let mut work = TileWork::default();
-            let y0 = row * side;
-            let y1 = (y0 + side).min(h);
-            for x0 in (0..w).step_by(side) {
-                let tile = Rect {
-                    x0,
-                    y0,
-                    x1: (x0 + side).min(w),
-                    y1,
-                };
+    // Every tile, with its pixels' rows of the frame (disjoint borrows), so
+    // that the tiles, not just the tile rows, are rayon's tasks: a 1024²
+    // frame has 256 tiles to balance over the threads, not 16 rows.
+    let mut tiles: Vec<(Rect, Vec<&mut [Vec3]>)> = Vec::new();
+    for (row, rows) in frame.color.chunks_mut(w * side).enumerate() {
+        let y0 = row * side;
+        let y1 = (y0 + side).min(h);
+        let first = tiles.len();
+        for x0 in (0..w).step_by(side) {
+            let tile = Rect {
+                x0,
+                y0,
+                x1: (x0 + side).min(w),
+                y1,
+            };
+            tiles.push((tile, Vec::with_capacity(y1 - y0)));
+        }
+        for line in rows.chunks_mut(w) {
+            for (k, piece) in line.chunks_mut(side).enumerate() {
+                tiles[first + k].1.push(piece);
+            }
+        }
+    }
+    let in_flight = rayon::current_num_threads().min(tiles.len()).max(1);
+    let work = tiles
+        .into_par_iter()
+        // Buffers reused from tile to tile within a rayon job.
+        .map_init(
+            || plan.tile_buffers(),
+            |b, (tile, mut out)| {
+                let mut work = TileWork::default();
                 t.isa.run(
                     #[inline(always)]
-                    || subpixel_tile(t, &plan, &cam, &resolver, &mut b, tile, out, &mut work),
+                    || subpixel_tile(t, &plan, &cam, &resolver, b, tile, &mut out, &mut work),
                 );
-            }
-            work
-        })
+                work
+            },
+        )
         .reduce(TileWork::default, |a, b| a + b);
     let wall = start.elapsed();
 
@@ -419,8 +432,7 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
     }
 
     let counts = work.counts;
-    // What is allocated at once: one tile's buffers per task in flight.
-    let in_flight = rayon::current_num_threads().min(tile_rows).max(1);
+    // What is allocated at once: one tile's buffers per thread.
     let buffers = plan
         .tile_buffers()
         .list(&frame.color)
@@ -519,8 +531,7 @@ fn head<T>(v: &[T], n: usize) -> &[T] {
 }
 
 /// The three passes of [`subpixel`] on one tile, writing its pixels into
-/// `out`, the tile row's colours (`plan.tile` rows of the frame from
-/// `tile.y0`).
+/// `out`, the tile's part of each of its rows of the frame.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn subpixel_tile(
@@ -530,7 +541,7 @@ fn subpixel_tile(
     resolver: &Resolver,
     b: &mut Buffers,
     tile: Rect,
-    out: &mut [Vec3],
+    out: &mut [&mut [Vec3]],
     work: &mut TileWork,
 ) {
     let region = tile.grown(plan.radius as usize, plan.w, plan.h);
@@ -627,7 +638,7 @@ fn resolve_tile(
     b: &Buffers,
     tile: Rect,
     region: Rect,
-    out: &mut [Vec3],
+    out: &mut [&mut [Vec3]],
 ) {
     let (n, nl, layout) = (region.len(), plan.nl, &plan.layout);
     let frame = ShadedFrame {
@@ -661,7 +672,7 @@ fn resolve_tile(
             albedo: None,
         });
         let (lx, ly) = ((x - region.x0) as u32, (y - region.y0) as u32);
-        out[(y - tile.y0) * plan.w + x] =
+        out[y - tile.y0][x - tile.x0] =
             resolver.resolve(&frame, lx, ly, &primary, secondary.as_ref());
     }
 }
