@@ -93,26 +93,13 @@ impl WeightedSum4 {
         s[3] += w[3];
     }
 
-    /// Every lane's mean, as [`WeightedSum::mean`] lane by lane: the same
-    /// f64 operations (one reciprocal, three products, three roundings to
-    /// f32 per lane), written lane-wise so that the four reciprocals are one
-    /// vector division.
+    /// Lane `k`'s mean, as [`WeightedSum::mean`].
     #[inline]
-    #[allow(clippy::needless_range_loop)]
-    pub(crate) fn means(&self) -> [Option<Vec3>; 4] {
-        let mut inv = [0.0f64; 4];
-        for k in 0..4 {
-            inv[k] = 1.0 / self.weight[k];
+    pub(crate) fn mean(&self, k: usize) -> Option<Vec3> {
+        WeightedSum {
+            sum: [self.sum[0][k], self.sum[1][k], self.sum[2][k]],
+            weight: self.weight[k],
         }
-        let mut c = [[0.0f32; 4]; 3];
-        for ch in 0..3 {
-            for k in 0..4 {
-                c[ch][k] = (self.sum[ch][k] * inv[k]) as f32;
-            }
-        }
-        core::array::from_fn(|k| {
-            let v = Vec3::new(c[0][k], c[1][k], c[2][k]);
-            (self.weight[k] >= NEGLIGIBLE_WEIGHT as f64 && v.is_finite()).then_some(v)
-        })
+        .mean()
     }
 }

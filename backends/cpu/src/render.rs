@@ -6,8 +6,8 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use subcone_kernels::passes::{LayerLayout, Passes, Technique};
 use subcone_kernels::sraa::{
-    Geometry, Resolver, ShadedFrame, ShadedGroup, SraaParams, Subsamples, ALBEDO_TOLERANCE,
-    SUBPIXEL_OFFSETS,
+    neighbourhood, Geometry, Resolver, ShadedFrame, ShadedGroup, SraaParams, Subsamples,
+    ALBEDO_TOLERANCE, SHADED_SAMPLE, SUBPIXEL_OFFSETS,
 };
 use subcone_scene::camera::CameraRays;
 use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderSettings};
@@ -238,6 +238,18 @@ impl Buffers {
     }
 }
 
+/// The shadow bit gating each layer of a group (eq. 2): layer 0 ungated,
+/// layer `1 + l` gated by light `l`; SRAA's one layer ungated.
+fn layer_gates(layout: &LayerLayout) -> Vec<Option<u8>> {
+    if layout.single {
+        vec![None]
+    } else {
+        (0..1 + layout.lights.min(MAX_LIGHTS))
+            .map(|l| l.checked_sub(1).map(|l| l as u8))
+            .collect()
+    }
+}
+
 /// Pass 2 of SRAA (the paper's antialiasing pass) on instruction-set path
 /// `isa`: every layer of every subsample reconstructed from the
 /// neighbourhood's shaded samples (eq. 1, gated by eq. 2 per light), then the
@@ -252,17 +264,8 @@ pub(crate) fn reconstruct_frame_on(
     w: usize,
     h: usize,
 ) {
-    // Layer 0 of each group ungated, layer `1 + l` gated by light `l`.
-    let mut gates = [None; MAX_LIGHTS + 1];
-    for (l, g) in gates.iter_mut().enumerate().skip(1).take(layout.lights) {
-        *g = Some((l - 1) as u8);
-    }
-    let gates = if layout.single {
-        &gates[..1]
-    } else {
-        &gates[..1 + layout.lights]
-    };
-    let resolver = Resolver::new(params, gates, ALBEDO_TOLERANCE);
+    let gates = layer_gates(layout);
+    let resolver = Resolver::new(params, &gates, ALBEDO_TOLERANCE);
     let frame = ShadedFrame {
         width: w as u32,
         height: h as u32,
@@ -369,7 +372,7 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
     // `Camera::ray` bit for bit).
     let cam = t.camera.rays(s.width, s.height);
     let (w, h) = (plan.w, plan.h);
-    let gates = plan.gates();
+    let gates = layer_gates(&plan.layout);
     let resolver = Resolver::new(&method.sraa(), &gates, ALBEDO_TOLERANCE);
     let mut frame = Frame::new(s.width, s.height);
 
@@ -548,7 +551,7 @@ fn subpixel_tile(
     let (n, nl) = (region.len(), plan.nl);
 
     let start = Instant::now();
-    let mut shaded = ShadedBand {
+    let mut shaded = ShadedRegion {
         geo: first(&mut b.geo, n),
         values: first(&mut b.values, n * nl),
         shadow: first(&mut b.shadow, n),
@@ -569,7 +572,7 @@ fn subpixel_tile(
         shadow2: head(&b.shadow2, n),
         albedo: head(&b.albedo, n),
     };
-    let mut subs = SubsampleBand {
+    let mut subs = TileSubsamples {
         geo: first(&mut b.sub_geo, m),
         shadow: first(&mut b.sub_shadow, m),
         geo2: first(&mut b.sub_geo2, m),
@@ -600,7 +603,7 @@ fn shade_region(
     t: &Tracer,
     plan: &SubpixelPlan,
     cam: &CameraRays,
-    out: &mut ShadedBand,
+    out: &mut ShadedRegion,
     region: Rect,
     c: &mut Counts,
 ) {
@@ -774,24 +777,10 @@ impl SubpixelPlan {
         }
     }
 
-    /// The shadow bit gating each layer of a group: layer 0 ungated, layer
-    /// `1 + l` gated by light `l` (eq. 2); one ungated layer for SRAA.
-    fn gates(&self) -> Vec<Option<u8>> {
-        let layout = &self.layout;
-        if layout.single {
-            vec![None]
-        } else {
-            (0..1 + layout.lights)
-                .map(|l| l.checked_sub(1).map(|l| l as u8))
-                .collect()
-        }
-    }
-
     /// [`shadow_agreement`] for a subsample of the pixel at `(x, y)` of a
     /// `w × h` region of shaded samples, whose group's shadow states are
     /// `bits` and base layer `first`; every light's ray is cast when the
     /// plan is exhaustive or the group has no shadow states.
-    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn agreement(
         &self,
@@ -809,10 +798,11 @@ impl SubpixelPlan {
     }
 }
 
-/// The shading pass's outputs over a tile's region, row-major: per pixel the shaded sample's geometry, its layers and, where their
-/// passes run, its shadow states, its mirror hit's geometry and shadow
-/// states, and its albedo (empty slices where they do not).
-struct ShadedBand<'a> {
+/// The shading pass's outputs over a tile's region, row-major: per pixel
+/// the shaded sample's geometry, its layers and, where their passes run, its
+/// shadow states, its mirror hit's geometry and shadow states, and its
+/// albedo (empty slices where they do not).
+struct ShadedRegion<'a> {
     geo: &'a mut [Geometry],
     values: &'a mut [Vec3],
     shadow: &'a mut [u32],
@@ -830,7 +820,7 @@ fn shade_pixel(
     t: &Tracer,
     plan: &SubpixelPlan,
     cam: &CameraRays,
-    out: &mut ShadedBand,
+    out: &mut ShadedRegion,
     i: usize,
     x: usize,
     y: usize,
@@ -973,10 +963,10 @@ struct ShadedSamples<'a> {
 }
 
 /// The geometry pass's outputs over a tile, row-major: per pixel its four
-/// subsamples' geometry and, where their passes run, their shadow states, their mirror
-/// hits' geometry and shadow states, and their albedo (empty slices where
-/// they do not).
-struct SubsampleBand<'a> {
+/// subsamples' geometry and, where their passes run, their shadow states,
+/// their mirror hits' geometry and shadow states, and their albedo (empty
+/// slices where they do not).
+struct TileSubsamples<'a> {
     geo: &'a mut [[Geometry; 4]],
     shadow: &'a mut [[u32; 4]],
     geo2: &'a mut [[Geometry; 4]],
@@ -1007,7 +997,7 @@ fn trace_tile_subsamples(
     plan: &SubpixelPlan,
     cam: &CameraRays,
     shaded: &ShadedSamples,
-    out: &mut SubsampleBand,
+    out: &mut TileSubsamples,
     tile: Rect,
     region: Rect,
     c: &mut Counts,
@@ -1025,14 +1015,25 @@ fn trace_tile_subsamples(
     let mut ray = [(Vec3::ZERO, Vec3::ZERO); GEO_BATCH];
     let mut hit: [Option<Hit>; GEO_BATCH] = [None; GEO_BATCH];
     let mut surface: [Option<Surface>; GEO_BATCH] = [None; GEO_BATCH];
-    // Reflection rays of the batch's mirror hits: batch slot, origin,
-    // direction; their hits.
-    let mut reflection = [(0usize, Vec3::ZERO, Vec3::ZERO); GEO_BATCH];
+    // Reflection rays of the batch's mirror hits: batch slot, the mirror
+    // hit's distance, origin, direction; their hits.
+    let mut reflection = [(0usize, 0.0f32, Vec3::ZERO, Vec3::ZERO); GEO_BATCH];
     let mut hit2: [Option<Hit>; GEO_BATCH] = [None; GEO_BATCH];
-    // Adaptive subpixel shadows: the last pixel's (cast, inherited) masks,
-    // computed on first use (a pixel whose subsamples all miss needs none).
+    // Adaptive subpixel shadows: the last pixel's (cast, inherited) masks
+    // per group, computed on first use (a pixel whose subsamples all miss
+    // needs none); a pixel's subsamples are consecutive in the batches.
     let mut primary_agree: Option<(usize, (u32, u32))> = None;
     let mut secondary_agree: Option<(usize, (u32, u32))> = None;
+    let agreement =
+        |cache: &mut Option<(usize, (u32, u32))>, i: usize, bits: &[u32], first| match *cache {
+            Some((p, a)) if p == i => a,
+            _ => {
+                let (lx, ly, _) = local(i);
+                let a = plan.agreement(shaded.values, bits, first, (lx, ly), dims);
+                *cache = Some((i, a));
+                a
+            }
+        };
     let reflects = !out.geo2.is_empty() && t.reflection_depth > 0;
 
     let (mut next_i, mut next_k) = (0usize, 0usize);
@@ -1099,15 +1100,7 @@ fn trace_tile_subsamples(
             for q in 0..m {
                 let Some(sf) = &surface[q] else { continue };
                 let (i, k) = job[q];
-                let (cast, inherited) = match primary_agree {
-                    Some((p, a)) if p == i => a,
-                    _ => {
-                        let (lx, ly, _) = local(i);
-                        let a = plan.agreement(shaded.values, shaded.shadow, 0, (lx, ly), dims);
-                        primary_agree = Some((i, a));
-                        a
-                    }
-                };
+                let (cast, inherited) = agreement(&mut primary_agree, i, shaded.shadow, 0);
                 out.shadow[i][k] = t.shadow_states_masked(sf, cast, inherited, c);
             }
         }
@@ -1120,41 +1113,27 @@ fn trace_tile_subsamples(
             let Some(sf) = &surface[q] else { continue };
             if t.scene.materials[sf.material as usize].mirror > 0.0 {
                 let rd = Tracer::reflect(ray[q].1, sf.n);
-                reflection[r] = (q, sf.p + sf.ng * t.eps, rd);
+                reflection[r] = (q, sf.t, sf.p + sf.ng * t.eps, rd);
                 r += 1;
             }
         }
         c.geometry += r as u64;
-        for (h, (_, o, d)) in hit2[..r].iter_mut().zip(&reflection[..r]) {
+        for (h, (_, _, o, d)) in hit2[..r].iter_mut().zip(&reflection[..r]) {
             *h = t.bvh.closest(*o, *d, 0.0, f32::INFINITY);
         }
-        for (h, &(q, o, d)) in hit2[..r].iter().zip(&reflection[..r]) {
+        for (h, &(q, t1, o, d)) in hit2[..r].iter().zip(&reflection[..r]) {
             let (i, k) = job[q];
             out.geo2[i][k] = match h {
                 None => Geometry::MISS,
                 Some(h) => {
                     let s2 = t.surface(o, d, *h);
                     if !out.shadow2.is_empty() {
-                        let (cast, inherited) = match secondary_agree {
-                            Some((p, a)) if p == i => a,
-                            _ => {
-                                let (lx, ly, _) = local(i);
-                                let first = plan.layout.secondary_base();
-                                let a = plan.agreement(
-                                    shaded.values,
-                                    shaded.shadow2,
-                                    first,
-                                    (lx, ly),
-                                    dims,
-                                );
-                                secondary_agree = Some((i, a));
-                                a
-                            }
-                        };
+                        let first = plan.layout.secondary_base();
+                        let (cast, inherited) =
+                            agreement(&mut secondary_agree, i, shaded.shadow2, first);
                         out.shadow2[i][k] = t.shadow_states_masked(&s2, cast, inherited, c);
                     }
-                    let sf_t = surface[q].as_ref().map_or(0.0, |s| s.t);
-                    Geometry::new(s2.n, sf_t + s2.t)
+                    Geometry::new(s2.n, t1 + s2.t)
                 }
             };
         }
@@ -1211,26 +1190,24 @@ pub fn shadow_agreement(
         (1u32 << lights) - 1
     };
     let (mut all_shadowed, mut any_shadowed, mut dark) = (u32::MAX, 0u32, all_lights);
-    // The pixels of [`neighbourhood`] (`radius` around `(x, y)`, inside the
-    // image), indexed directly: only which pixels matters here, and the
-    // masks below do not depend on their order.
-    let r = radius as usize;
-    let (x0, y0) = (x.saturating_sub(r), y.saturating_sub(r));
-    let (x1, y1) = (
-        x.saturating_add(r + 1).min(w),
-        y.saturating_add(r + 1).min(h),
-    );
-    for py in y0..y1 {
-        for px in x0..x1 {
-            let jj = py * w + px;
-            let b = bits.get(jj).copied().unwrap_or(0);
-            all_shadowed &= b;
-            any_shadowed |= b;
-            let layers = values.get(jj * nl + first + 1..).unwrap_or(&[]);
-            for l in 0..lights {
-                if layers.get(l) != Some(&Vec3::ZERO) {
-                    dark &= !(1 << l);
-                }
+    // Only which pixels: the distances (and so the shaded position) are
+    // not read.
+    for np in neighbourhood(
+        x as u32,
+        y as u32,
+        SHADED_SAMPLE,
+        Vec2::ZERO,
+        radius,
+        w as u32,
+        h as u32,
+    ) {
+        let jj = np.y as usize * w + np.x as usize;
+        let b = bits.get(jj).copied().unwrap_or(0);
+        all_shadowed &= b;
+        any_shadowed |= b;
+        for l in 0..lights {
+            if values.get(jj * nl + first + 1 + l) != Some(&Vec3::ZERO) {
+                dark &= !(1 << l);
             }
         }
     }

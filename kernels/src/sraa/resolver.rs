@@ -282,9 +282,8 @@ impl<'g> Resolver<'g> {
                 _ => None,
             };
             let acc = weights.gated_sum(frame, &scan, hood.valid, i, bit, &targets.shadow);
-            let means = acc.means();
             for (k, sum) in out.iter_mut().enumerate() {
-                *sum += match means[k] {
+                *sum += match acc.mean(k) {
                     Some(c) => c,
                     None => self.nearest_finite(frame, hood, &scan, i, k),
                 };
