@@ -19,9 +19,42 @@ use bitflags::bitflags;
 /// An antialiasing technique, with nothing beyond what decides its passes.
 /// (The scene crate's `Method` wraps it with its parameters: sample counts, cone
 /// coverage, k, …)
+///
+/// Deliberately not `#[non_exhaustive]`: every backend routes techniques
+/// with a `match` that names each one, so a technique added here does not
+/// compile until each backend says what it does with it (renders it, or
+/// refuses it with a typed reason), instead of falling through to another
+/// technique's path. A match that leaves one out is an error:
+///
+/// ```compile_fail,E0004
+/// use subcone_kernels::passes::Technique;
+///
+/// // A backend that forgot FXAA.
+/// fn path(t: Technique) -> &'static str {
+///     match t {
+///         Technique::NoAa | Technique::Ssaa => "samples",
+///         Technique::Sraa | Technique::SraaRt => "subpixel",
+///         Technique::Ctss | Technique::CtssR | Technique::SsaaCtss => "cones",
+///     }
+/// }
+/// ```
+///
+/// and naming every technique compiles:
+///
+/// ```
+/// use subcone_kernels::passes::Technique;
+///
+/// fn path(t: Technique) -> &'static str {
+///     match t {
+///         Technique::NoAa | Technique::Ssaa | Technique::Fxaa => "samples",
+///         Technique::Sraa | Technique::SraaRt => "subpixel",
+///         Technique::Ctss | Technique::CtssR | Technique::SsaaCtss => "cones",
+///     }
+/// }
+/// assert!(Technique::ALL.iter().all(|&t| !path(t).is_empty()));
+/// ```
 #[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[non_exhaustive]
 pub enum Technique {
     /// One sample per pixel.
     NoAa = 0,

@@ -19,7 +19,9 @@ const H: u32 = 180;
 fn frame(scene: &Scene, method: &Method, translucent: bool) -> f32 {
     let view = SdfView::of_scene(scene, &scene.camera).expect("an SDF scene");
     let passes = required_passes(method.technique(), scene.features()).unwrap();
-    let f = view.render_with(method, &RenderSettings::new(W, H), passes, translucent);
+    let f = view
+        .render_with(method, &RenderSettings::new(W, H), passes, translucent)
+        .expect("a CTSS method renders on an SDF scene");
     f.color[f.color.len() / 2].x
 }
 

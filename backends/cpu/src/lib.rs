@@ -214,7 +214,7 @@ impl Backend for CpuBackend {
                 program: of_scene.program.filter(|_| settings.ao_rays == 0),
                 ..of_scene
             };
-            let mut frame = view.render(method, settings, passes);
+            let mut frame = view.render(method, settings, passes)?;
             post_process(&mut frame, passes);
             return Ok(frame);
         }
@@ -232,7 +232,10 @@ impl Backend for CpuBackend {
             Technique::Sraa | Technique::SraaRt => {
                 render::subpixel(&tracer, method, settings, passes)
             }
-            t => return Err(RenderError::Method(format!("{t:?} needs an SDF scene"))),
+            // Named one by one (no wildcard): a new technique must be routed.
+            t @ (Technique::Ctss | Technique::CtssR | Technique::SsaaCtss) => {
+                return Err(RenderError::Method(format!("{t:?} needs an SDF scene")))
+            }
         };
         post_process(&mut frame, passes);
         Ok(frame)

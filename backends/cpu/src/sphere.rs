@@ -27,7 +27,8 @@ use subcone_kernels::passes::{LayerLayout, Passes, Technique, MAX_LIGHTS};
 use subcone_kernels::sraa::{Geometry, SUBPIXEL_OFFSETS};
 use subcone_scene::sdf::SplitDistance;
 use subcone_scene::{
-    Camera, Frame, FrameStats, Light, Material, Method, PassTiming, RayCounts, RenderSettings,
+    Camera, Frame, FrameStats, Light, Material, Method, PassTiming, RayCounts, RenderError,
+    RenderSettings,
 };
 
 mod packet;
@@ -851,21 +852,45 @@ impl<F: SdfField> SdfView<'_, F> {
 
     /// Render a frame (the semi-transparent path when the scene has
     /// [translucency](Self::has_translucency)).
-    pub fn render(&self, method: &Method, s: &RenderSettings, passes: Passes) -> Frame {
+    ///
+    /// # Errors
+    /// [`RenderError::Method`] for a technique without a sphere-traced path
+    /// (plain SRAA, which the plan already refuses on SDF scenes).
+    pub fn render(
+        &self,
+        method: &Method,
+        s: &RenderSettings,
+        passes: Passes,
+    ) -> Result<Frame, RenderError> {
         self.render_with(method, s, passes, self.has_translucency())
     }
 
     /// Render a frame, on the semi-transparent path (CTSS §5.3) when
     /// `translucent`; with every opacity 1 both paths give the same image.
+    ///
+    /// # Errors
+    /// As [`render`](Self::render).
     pub fn render_with(
         &self,
         method: &Method,
         s: &RenderSettings,
         passes: Passes,
         translucent: bool,
-    ) -> Frame {
-        if method.technique() == Technique::SraaRt {
-            return self.sraa_rt(method, s, passes);
+    ) -> Result<Frame, RenderError> {
+        // Every technique named (no wildcard): a new one must be routed.
+        match method.technique() {
+            Technique::SraaRt => return Ok(self.sraa_rt(method, s, passes)),
+            Technique::NoAa
+            | Technique::Ssaa
+            | Technique::Fxaa
+            | Technique::Ctss
+            | Technique::CtssR
+            | Technique::SsaaCtss => {}
+            t @ Technique::Sraa => {
+                return Err(RenderError::Method(format!(
+                    "{t:?} has no sphere-traced path (sraa-rt renders SDF scenes)"
+                )))
+            }
         }
         let (w, h) = (s.width as usize, s.height as usize);
         // Samples per pixel side (1 without supersampling), and whether a
@@ -984,6 +1009,6 @@ impl<F: SdfField> SdfView<'_, F> {
             frame.samples_per_pixel = Some(spp);
             self.centre_aovs(&mut frame, s);
         }
-        frame
+        Ok(frame)
     }
 }

@@ -5,7 +5,7 @@
 //! counters), on every paper scene, the stiff scenes and glass.
 
 use subcone_cpu::sphere::SdfView;
-use subcone_kernels::passes::required_passes;
+use subcone_kernels::passes::{required_passes, Passes};
 use subcone_scene::sdf::{SDF_SCENES, STIFF_SCENES};
 use subcone_scene::{builtin::builtin, Frame, Method, RenderSettings};
 
@@ -26,8 +26,8 @@ fn frames(name: &str, method: &str, w: u32, h: u32) -> (Frame, Frame) {
         ..SdfView::of_scene(&scene, &scene.camera).unwrap()
     };
     (
-        packets.render(&m, &s, passes),
-        one_by_one.render(&m, &s, passes),
+        packets.render(&m, &s, passes).unwrap(),
+        one_by_one.render(&m, &s, passes).unwrap(),
     )
 }
 
@@ -116,7 +116,7 @@ fn packets_cast_every_subpixel_shadow_ray_single_rays_cast() {
             if !program {
                 v.program = None;
             }
-            v.render(&m, &s, passes)
+            v.render(&m, &s, passes).unwrap()
         };
         let (a, b) = (exhaustive(true), exhaustive(false));
         assert!(bits(&a) == bits(&b), "{name}: the colours differ");
@@ -130,4 +130,19 @@ fn packets_cast_every_subpixel_shadow_ray_single_rays_cast() {
             "{name}: shadow rays without lights"
         );
     }
+}
+
+/// Plain SRAA has no sphere-traced path: the view says so as a value (the
+/// plan refuses it before any backend renders), rather than rendering it as
+/// another technique.
+#[test]
+fn a_technique_without_a_sphere_traced_path_is_an_error() {
+    let scene = builtin("primitives").unwrap();
+    let view = SdfView::of_scene(&scene, &scene.camera).unwrap();
+    let m: Method = "sraa".parse().unwrap();
+    let passes = Passes::PRIMARY | Passes::SHADING;
+    let err = view
+        .render(&m, &RenderSettings::new(8, 8), passes)
+        .unwrap_err();
+    assert!(err.to_string().contains("no sphere-traced path"), "{err}");
 }

@@ -192,8 +192,8 @@ mod translucent_path {
             let s = RenderSettings::new(32, 18);
             for m in &methods {
                 let passes = required_passes(m.technique(), scene.features()).unwrap();
-                let a = view.render_with(m, &s, passes, false);
-                let b = view.render_with(m, &s, passes, true);
+                let a = view.render_with(m, &s, passes, false).unwrap();
+                let b = view.render_with(m, &s, passes, true).unwrap();
                 let same =
                     a.color.iter().zip(&b.color).all(|(x, y)| {
                         x.to_array().map(f32::to_bits) == y.to_array().map(f32::to_bits)

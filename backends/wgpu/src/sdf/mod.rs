@@ -184,8 +184,20 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         .ok_or_else(|| err("not an SDF scene"))?;
     // `WgpuBackend::plan` has refused mirrors and more than
     // MAX_SIDE_SAMPLES samples per side.
-    if method.technique() == Technique::SraaRt {
-        return sraa::render(ctx, job);
+    // Every technique named (no wildcard): a new one must be routed.
+    match method.technique() {
+        Technique::SraaRt => return sraa::render(ctx, job),
+        Technique::NoAa
+        | Technique::Ssaa
+        | Technique::Fxaa
+        | Technique::Ctss
+        | Technique::CtssR
+        | Technique::SsaaCtss => {}
+        t @ Technique::Sraa => {
+            return Err(RenderError::Method(format!(
+                "{t:?} has no sphere-traced path (sraa-rt renders SDF scenes)"
+            )))
+        }
     }
     let max_distance = settings.max_distance.unwrap_or(g.max_distance);
     let max_steps = settings.max_steps.unwrap_or(g.max_steps);

@@ -222,14 +222,14 @@ fn read_vec4(ctx: &GpuContext, buf: &wgpu::Buffer, n: usize) -> Result<Vec<Vec3>
 
 pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> {
     // `WgpuBackend::plan` has refused more than MAX_LIGHTS lights.
-    match job.method.technique() {
-        Technique::NoAa
-        | Technique::Ssaa
-        | Technique::Sraa
-        | Technique::SraaRt
-        | Technique::Fxaa => {}
-        t => return Err(RenderError::Method(format!("{t:?} needs an SDF scene"))),
-    }
+    // Every technique named (no wildcard): a new one must be routed.
+    let subpixel = match job.method.technique() {
+        Technique::NoAa | Technique::Ssaa | Technique::Fxaa => false,
+        Technique::Sraa | Technique::SraaRt => true,
+        t @ (Technique::Ctss | Technique::CtssR | Technique::SsaaCtss) => {
+            return Err(RenderError::Method(format!("{t:?} needs an SDF scene")))
+        }
+    };
     let sg = bvh::scene_gpu(ctx, job.scene)?;
     let uniform = FrameUniform::new(job.scene, &sg, job.camera, job.method, job.settings);
     let setup = Setup {
@@ -239,9 +239,10 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         sg,
         uniform,
     };
-    match job.method.technique() {
-        Technique::NoAa | Technique::Ssaa | Technique::Fxaa => supersample(&setup),
-        _ => subpixel(&setup),
+    if subpixel {
+        self::subpixel(&setup)
+    } else {
+        supersample(&setup)
     }
 }
 
