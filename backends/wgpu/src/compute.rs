@@ -7,8 +7,8 @@
 //! declarations (`@group(g) @binding(i) var…`) and the bind group from the
 //! same list, so a binding number cannot drift between the two. A
 //! [`Program`] assembles the shader ([`PRELUDE`], the pass's sources, the
-//! declarations), compiles it once per device and source (the key scheme of
-//! [`pipeline_key`]), and dispatches its entry points with every group bound.
+//! declarations), compiles it once per device and source (cached under a
+//! [`ComputePipelineKey`]), and dispatches its entry points with every group bound.
 //! Work runs inside the context's error scopes, so a shader that fails to
 //! validate is a [`RenderError`], never a panic.
 //!
@@ -16,26 +16,29 @@
 //! (`post/`) and the kernel test harness (`test_util`) all go through here;
 //! the raster pass declares its bind group through [`Bindings`] too.
 
-use std::hash::{Hash, Hasher};
 use std::sync::Arc;
 
 use bytemuck::Pod;
 use subcone_scene::RenderError;
 use wgpu::util::DeviceExt;
 
-use crate::context::{err, GpuContext};
+use crate::context::{err, CacheKey, GpuContext};
 
 /// What every shader starts with: the kernels' shared structs and the one
 /// WGSL spelling of infinity and of the NaN and finiteness tests
 /// (`subcone_inf`, `subcone_is_nan`, `subcone_is_finite`).
 pub(crate) const PRELUDE: &str = subcone_kernels::wgsl::PARAMS;
 
-/// The one cache key scheme: what kind of object, and everything it is
-/// built from (the assembled source, an entry point, a variant flag).
-pub(crate) fn pipeline_key(kind: &str, parts: impl Hash) -> u64 {
-    let mut h = std::collections::hash_map::DefaultHasher::new();
-    (kind, parts).hash(&mut h);
-    h.finish()
+/// A compute pipeline's cache key: the program's whole assembled source
+/// (prelude, sources and binding declarations) and the entry point.
+#[derive(Clone, PartialEq, Eq, Hash)]
+pub(crate) struct ComputePipelineKey {
+    source: Arc<str>,
+    entry: &'static str,
+}
+
+impl CacheKey for ComputePipelineKey {
+    type Value = wgpu::ComputePipeline;
 }
 
 /// How a shader reads a binding.
@@ -336,8 +339,7 @@ impl Bindings {
 pub(crate) struct Program<'a> {
     ctx: &'a GpuContext,
     label: &'static str,
-    source: String,
-    key: u64,
+    source: Arc<str>,
     module: Option<wgpu::ShaderModule>,
     layout: wgpu::PipelineLayout,
     groups: Vec<wgpu::BindGroup>,
@@ -369,7 +371,7 @@ impl<'a> Program<'a> {
         for g in groups {
             source.push_str(&g.declarations());
         }
-        let key = pipeline_key("compute", &source);
+        let source: Arc<str> = source.into();
         ctx.scoped(label, || {
             let layouts: Vec<wgpu::BindGroupLayout> =
                 groups.iter().map(|g| g.layout(ctx)).collect();
@@ -389,7 +391,6 @@ impl<'a> Program<'a> {
                 ctx,
                 label,
                 source,
-                key,
                 module: None,
                 layout,
                 groups: bound,
@@ -403,8 +404,11 @@ impl<'a> Program<'a> {
         entry: &'static str,
     ) -> Result<Arc<wgpu::ComputePipeline>, RenderError> {
         let ctx = self.ctx;
-        let key = pipeline_key("compute pipeline", (self.key, entry));
-        if let Some(p) = ctx.cached::<wgpu::ComputePipeline>(key) {
+        let key = ComputePipelineKey {
+            source: self.source.clone(),
+            entry,
+        };
+        if let Some(p) = ctx.cached(&key) {
             return Ok(p);
         }
         if self.module.is_none() {
@@ -413,7 +417,7 @@ impl<'a> Program<'a> {
                 ctx.device
                     .create_shader_module(wgpu::ShaderModuleDescriptor {
                         label: Some(label),
-                        source: wgpu::ShaderSource::Wgsl(source.as_str().into()),
+                        source: wgpu::ShaderSource::Wgsl(source.as_ref().into()),
                     })
             })?);
         }

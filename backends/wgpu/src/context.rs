@@ -70,8 +70,55 @@ pub struct GpuContext {
     no_timestamps: &'static str,
     lost: Arc<Mutex<Option<String>>>,
     /// Objects built for this device and reused across frames (compiled
-    /// pipelines), by a key of the pass's choosing.
-    pub(crate) cache: Mutex<HashMap<u64, Arc<dyn Any + Send + Sync>>>,
+    /// pipelines, uploaded scenes), by typed key ([`CacheKey`]).
+    pub(crate) cache: Mutex<DeviceCache>,
+}
+
+/// The key of an object kept per device: a struct per kind of object, holding
+/// everything the object is built from and compared by value, so that two
+/// kinds never share an entry and two keys of a kind find one object only
+/// when they are equal (not merely when their hashes are).
+pub(crate) trait CacheKey: std::hash::Hash + Eq + Send + Sync + 'static {
+    /// The object the key finds.
+    type Value: Send + Sync + 'static;
+}
+
+/// The per-device cache: one map per key type, `HashMap<K, Arc<K::Value>>`,
+/// found by the key type's `TypeId`.
+#[derive(Default)]
+pub(crate) struct DeviceCache {
+    maps: HashMap<std::any::TypeId, Box<dyn Any + Send + Sync>>,
+    entries: usize,
+}
+
+impl DeviceCache {
+    /// Most entries kept: past them the cache starts afresh (scenes and
+    /// pipelines are few in practice, and a long-running process rendering
+    /// many would otherwise grow it).
+    const MAX_ENTRIES: usize = 64;
+
+    fn get<K: CacheKey>(&self, key: &K) -> Option<Arc<K::Value>> {
+        let map = self.maps.get(&std::any::TypeId::of::<K>())?;
+        map.downcast_ref::<HashMap<K, Arc<K::Value>>>()?
+            .get(key)
+            .cloned()
+    }
+
+    fn insert<K: CacheKey>(&mut self, key: K, value: Arc<K::Value>) {
+        if self.entries >= Self::MAX_ENTRIES {
+            *self = DeviceCache::default();
+        }
+        let map = self
+            .maps
+            .entry(std::any::TypeId::of::<K>())
+            .or_insert_with(|| Box::new(HashMap::<K, Arc<K::Value>>::new()));
+        // The map under K's TypeId was made here, as K's.
+        if let Some(map) = map.downcast_mut::<HashMap<K, Arc<K::Value>>>() {
+            if map.insert(key, value).is_none() {
+                self.entries += 1;
+            }
+        }
+    }
 }
 
 impl std::fmt::Debug for GpuContext {
@@ -149,7 +196,7 @@ impl GpuContext {
             timestamps,
             no_timestamps,
             lost,
-            cache: Mutex::new(HashMap::new()),
+            cache: Mutex::new(DeviceCache::default()),
         })
     }
 
@@ -180,27 +227,20 @@ impl GpuContext {
             timestamps,
             no_timestamps,
             lost: Arc::new(Mutex::new(None)),
-            cache: Mutex::new(HashMap::new()),
+            cache: Mutex::new(DeviceCache::default()),
         }
     }
 
-    /// The object cached under `key` on this device, if it has type `T`.
-    pub(crate) fn cached<T: std::any::Any + Send + Sync>(&self, key: u64) -> Option<Arc<T>> {
+    /// The object cached under `key` on this device.
+    pub(crate) fn cached<K: CacheKey>(&self, key: &K) -> Option<Arc<K::Value>> {
         let cache = self.cache.lock().unwrap_or_else(|e| e.into_inner());
-        cache
-            .get(&key)
-            .cloned()
-            .and_then(|a| a.downcast::<T>().ok())
+        cache.get(key)
     }
 
-    /// Keep `value` for this device under `key`. The cache is bounded: past
-    /// 64 entries it starts afresh (scenes and pipelines are few in practice,
-    /// and a long-running process rendering many would otherwise grow it).
-    pub(crate) fn cache_insert<T: std::any::Any + Send + Sync>(&self, key: u64, value: Arc<T>) {
+    /// Keep `value` for this device under `key` (at most
+    /// [`DeviceCache::MAX_ENTRIES`] objects).
+    pub(crate) fn cache_insert<K: CacheKey>(&self, key: K, value: Arc<K::Value>) {
         let mut cache = self.cache.lock().unwrap_or_else(|e| e.into_inner());
-        if cache.len() > 64 {
-            cache.clear();
-        }
         cache.insert(key, value);
     }
 
@@ -455,5 +495,49 @@ impl GpuContext {
             .to_vec();
         staging.unmap();
         Ok(data)
+    }
+}
+
+#[cfg(test)]
+mod cache_tests {
+    use super::*;
+
+    /// Two kinds of key with the same contents (and so the same hash).
+    #[derive(PartialEq, Eq, Hash)]
+    struct Pipeline(u64);
+    impl CacheKey for Pipeline {
+        type Value = &'static str;
+    }
+    #[derive(PartialEq, Eq, Hash)]
+    struct Scene(u64);
+    impl CacheKey for Scene {
+        type Value = u32;
+    }
+
+    #[test]
+    fn keys_of_two_kinds_never_share_an_entry() {
+        let mut c = DeviceCache::default();
+        c.insert(Pipeline(7), Arc::new("pipeline"));
+        assert_eq!(c.get(&Scene(7)), None);
+        c.insert(Scene(7), Arc::new(3));
+        assert_eq!(c.get(&Pipeline(7)).as_deref(), Some(&"pipeline"));
+        assert_eq!(c.get(&Scene(7)).as_deref(), Some(&3));
+        assert_eq!(c.get(&Pipeline(8)), None);
+        assert_eq!(c.entries, 2);
+    }
+
+    #[test]
+    fn the_cache_is_bounded() {
+        let mut c = DeviceCache::default();
+        for i in 0..(DeviceCache::MAX_ENTRIES as u64 + 10) {
+            c.insert(Scene(i), Arc::new(i as u32));
+            assert!(c.entries <= DeviceCache::MAX_ENTRIES);
+        }
+        // The newest survives the restart; a replaced key is not counted twice.
+        let last = DeviceCache::MAX_ENTRIES as u64 + 9;
+        assert_eq!(c.get(&Scene(last)).as_deref(), Some(&(last as u32)));
+        let before = c.entries;
+        c.insert(Scene(last), Arc::new(0));
+        assert_eq!(c.entries, before);
     }
 }

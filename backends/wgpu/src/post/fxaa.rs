@@ -14,7 +14,7 @@ use subcone_passes::{FxaaPass, FxaaPassDesc};
 use subcone_scene::{PassTiming, RenderError};
 
 use crate::compute::{self, Access, Bindings, Program};
-use crate::context::{err, GpuContext};
+use crate::context::{err, CacheKey, GpuContext};
 
 pub(crate) const FXAA_WGSL: &str = include_str!("fxaa.wgsl");
 const WORKGROUP: u32 = 8;
@@ -33,14 +33,23 @@ pub(crate) struct FxaaFrame {
 /// name and bytes.
 type Filtered = (wgpu::Buffer, Vec<(&'static str, usize)>);
 
+/// The FXAA pass's cache key: the bits of its parameters, the one input
+/// of its descriptor ([`pass`] fixes the rest).
+#[derive(PartialEq, Eq, Hash)]
+struct FxaaPassKey([u32; size_of::<FxaaParams>() / 4]);
+
+impl CacheKey for FxaaPassKey {
+    type Value = FxaaPass;
+}
+
 /// The pass on this device for `params`, compiled once per device and
 /// parameters.
 fn pass(ctx: &GpuContext, params: &FxaaParams) -> Result<Arc<FxaaPass>, RenderError> {
     let desc = FxaaPassDesc::default()
         .with_params(*params)
         .with_output_format(FORMAT);
-    let key = compute::pipeline_key("fxaa pass", format!("{desc:?}"));
-    if let Some(p) = ctx.cached::<FxaaPass>(key) {
+    let key = FxaaPassKey(bytemuck::cast(*params));
+    if let Some(p) = ctx.cached(&key) {
         return Ok(p);
     }
     let p = ctx

@@ -56,7 +56,7 @@ mod shading;
 mod sraa;
 
 #[cfg(test)]
-pub(crate) use sraa::{sraa_frame_struct, SdfSraaFrame};
+pub(crate) use sraa::{SdfSraaFrame, SRAA_FRAME_WGSL};
 
 use std::sync::Arc;
 
@@ -68,10 +68,12 @@ use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderErro
 use wgpu::util::DeviceExt;
 
 use crate::compute::{self, Access, Bindings, Program};
-use crate::context::{err, GpuContext};
+use crate::context::{err, CacheKey, GpuContext};
 use crate::Job;
 
 pub(crate) const TRACE_WGSL: &str = include_str!("trace.wgsl");
+/// The CTSS / sphere-tracing frame's entry point (`sdf_render`).
+const RENDER_WGSL: &str = include_str!("render.wgsl");
 const AOVS_WGSL: &str = include_str!("aovs.wgsl");
 const WORKGROUP: u32 = 8;
 /// Hit groups a cone marches ahead of shading them (the
@@ -118,6 +120,14 @@ fn pixel_sphere_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, sa
 
 /// The field's scatter table on the device, uploaded once per device and
 /// table (`None` when the field has none).
+/// A field's scatter table's cache key: its values' bits.
+#[derive(PartialEq, Eq, Hash)]
+struct ScatterTableKey(Vec<u32>);
+
+impl CacheKey for ScatterTableKey {
+    type Value = wgpu::Buffer;
+}
+
 fn scatter_table(
     ctx: &GpuContext,
     f: &WgslField,
@@ -126,8 +136,8 @@ fn scatter_table(
         return Ok(None);
     }
     let bits: Vec<u32> = f.data.iter().flatten().map(|x| x.to_bits()).collect();
-    let key = compute::pipeline_key("sdf scatter table", &bits);
-    if let Some(b) = ctx.cached::<wgpu::Buffer>(key) {
+    let key = ScatterTableKey(bits);
+    if let Some(b) = ctx.cached(&key) {
         return Ok(Some(b));
     }
     let bytes: &[u8] = bytemuck::cast_slice(&f.data);
@@ -358,7 +368,14 @@ fn shader_sources<'a>(
     pending: &'a str,
 ) -> Vec<&'a str> {
     let mut sources: Vec<&str> = KERNELS.to_vec();
-    sources.extend([field.source.as_str(), shading, pending, TRACE_WGSL]);
+    // The entry point right after trace.wgsl, where it was written first.
+    sources.extend([
+        field.source.as_str(),
+        shading,
+        pending,
+        TRACE_WGSL,
+        RENDER_WGSL,
+    ]);
     // Semi-transparent materials take the K-mask path (CTSS §5.3), as on
     // the CPU (`SdfView::render`); opaque scenes never compile it.
     let translucent = job.scene.has_translucency();

@@ -37,8 +37,8 @@ const SDF_SRAA_WGSL: &str = include_str!("sraa.wgsl");
 const RESOLVE_WGSL: &str = include_str!("../triangles/sraa.wgsl");
 
 /// The frame's constants of SRAA-RT: [`SdfFrame`] and the method's SRAA
-/// parameters (`frame.sraa`, which `triangles/sraa.wgsl` reads);
-/// `SdfSraaFrame` in WGSL ([`sraa_frame_struct`]).
+/// parameters (`frame.sraa`, which the resolve's hooks read);
+/// `SdfSraaFrame` in WGSL ([`SRAA_FRAME_WGSL`]).
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
 pub(crate) struct SdfSraaFrame {
@@ -46,32 +46,18 @@ pub(crate) struct SdfSraaFrame {
     pub(crate) sraa: SraaParams,
 }
 
-/// `struct SdfSraaFrame`: trace.wgsl's `SdfFrame`, member for member, and
-/// `sraa: subcone_SraaParams` after them.
-pub(crate) fn sraa_frame_struct() -> Result<String, RenderError> {
-    let start = TRACE_WGSL
-        .find("struct SdfFrame {")
-        .ok_or_else(|| err("trace.wgsl declares no SdfFrame"))?;
-    let len = TRACE_WGSL[start..]
-        .find("\n}")
-        .ok_or_else(|| err("trace.wgsl's SdfFrame does not end"))?;
-    Ok(format!(
-        "{}\n    sraa: subcone_SraaParams,\n}}\n",
-        TRACE_WGSL[start..start + len].replace("struct SdfFrame", "struct SdfSraaFrame")
-    ))
-}
+/// `struct SdfSraaFrame`, written out: trace.wgsl's `SdfFrame` member for
+/// member, then `sraa`.
+pub(crate) const SRAA_FRAME_WGSL: &str = include_str!("sraa_frame.wgsl");
 
 /// The WGSL header of the frame's buffers (as `triangles::subpixel_header`
 /// writes it for SRAA-RT on triangles): the layout constants and an accessor
 /// pair per optional buffer, reads of the CPU's initial value where absent.
-/// `color_out` belongs to trace.wgsl's `sdf_render`, which this program
-/// does not run.
 fn header(b: &Bindings, layout: &LayerLayout, shadows: bool) -> String {
     let mut h = format!(
         "const NL: u32 = {}u;\nconst LAYER_LIGHTS: u32 = {}u;\nconst SINGLE: bool = false;\n\
          const SECONDARY_LAYERS: bool = false;\nconst SHADOWS: bool = {shadows};\n\
-         const MATERIAL: bool = false;\n\
-         var<private> color_out: array<vec4<f32>, 1>;\n",
+         const MATERIAL: bool = false;\n",
         layout.len(),
         layout.lights
     );
@@ -184,7 +170,6 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     let shading = shading::shading_wgsl(&scene.materials, &scene.lights, shadows)?;
     let incident = shading::light_incident_wgsl(&scene.lights);
     let pending = format!("const subcone_CTSS_BATCH: u32 = {ASAP_BATCH}u;\n");
-    let frame_struct = sraa_frame_struct()?;
     let head = header(&b, &layout, shadows);
     let mut sources: Vec<&str> = KERNELS.to_vec();
     sources.extend([
@@ -200,7 +185,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         sources.push(AOVS_WGSL);
     }
     sources.extend([
-        frame_struct.as_str(),
+        SRAA_FRAME_WGSL,
         head.as_str(),
         SDF_SRAA_WGSL,
         RESOLVE_WGSL,

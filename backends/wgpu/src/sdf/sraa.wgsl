@@ -3,8 +3,8 @@
 // sraa_geometry_pass, hit, shadow_states, shade_layers}, one invocation per
 // pixel. Follows trace.wgsl (camera_dir, normal_at, shadowed,
 // ambient_occlusion), the scene's materials and `light_incident`
-// (shading.rs), the frame struct SdfSraaFrame (sdf/sraa.rs: SdfFrame and the
-// SRAA parameters) and the generated header (NL, LAYER_LIGHTS, SCENE_LIGHTS,
+// (shading.rs), the frame struct SdfSraaFrame (sraa_frame.wgsl: SdfFrame's
+// members and the SRAA parameters) and the generated header (NL, LAYER_LIGHTS, SCENE_LIGHTS,
 // SINGLE, SHADOWS, MATERIAL and the get_/put_ accessors of the optional
 // buffers). Pass "antialiasing" (the paper's pass 2) is triangles/sraa.wgsl's
 // resolve_main over these buffers: the kernels' reconstruction loop
@@ -18,6 +18,11 @@
 // values, their NL layers; shadow_buf, their shadow states (with light
 // layers); sub_geo_buf and sub_shadow_buf, the four subsamples' geometry and
 // shadow states; sdf_data, the field's scatter table, when it has one.
+
+// The SRAA parameters the resolve's hooks (triangles/sraa.wgsl) read.
+fn sraa_params() -> subcone_SraaParams {
+    return frame.sraa;
+}
 
 struct SdfHit {
     q: vec3<f32>,

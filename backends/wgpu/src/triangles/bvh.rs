@@ -16,7 +16,7 @@ use subcone_scene::{Albedo, Light, RenderError, Scene, TriangleMesh};
 use wgpu::util::DeviceExt;
 
 use crate::compute::{Access, Bindings};
-use crate::context::{err, GpuContext};
+use crate::context::{err, CacheKey, GpuContext};
 
 /// Entries of the traversal stack in `trace.wgsl`. A BVH deeper than this is
 /// refused at upload (obvhs' builds stay far below it).
@@ -99,12 +99,18 @@ impl SceneGpu {
     }
 }
 
+/// An uploaded triangle scene's cache key: the scene's identity
+/// ([`Scene::id`], renewed by [`Scene::touch`] when the scene changes).
+#[derive(PartialEq, Eq, Hash)]
+struct SceneKey(u64);
+
+impl CacheKey for SceneKey {
+    type Value = SceneGpu;
+}
+
 pub(crate) fn scene_gpu(ctx: &GpuContext, scene: &Scene) -> Result<Arc<SceneGpu>, RenderError> {
-    use std::hash::{DefaultHasher, Hash, Hasher};
-    let mut h = DefaultHasher::new();
-    ("triangle scene", scene.id()).hash(&mut h);
-    let key = h.finish();
-    if let Some(s) = ctx.cached::<SceneGpu>(key) {
+    let key = SceneKey(scene.id());
+    if let Some(s) = ctx.cached(&key) {
         return Ok(s);
     }
     let s = Arc::new(upload(ctx, scene)?);

@@ -30,3 +30,8 @@ struct FrameUniform {
     sraa: subcone_SraaParams,
 }
 
+// The SRAA parameters the resolve's hooks (sraa.wgsl) read.
+fn sraa_params() -> subcone_SraaParams {
+    return frame.sraa;
+}
+

@@ -32,7 +32,11 @@ pub(crate) const TRACE_WGSL: &str = include_str!("trace.wgsl");
 pub(crate) const FRAME_WGSL: &str = include_str!("frame.wgsl");
 pub(crate) const ALBEDO_WGSL: &str = include_str!("albedo.wgsl");
 const SUPERSAMPLE_WGSL: &str = include_str!("supersample.wgsl");
+/// The AOV pass's entry point (`centre_main`).
+const CENTRE_WGSL: &str = include_str!("centre.wgsl");
 const SUBPIXEL_WGSL: &str = include_str!("subpixel.wgsl");
+/// SRAA-RT's traced subsamples' entry point (`geometry_main`).
+const GEOMETRY_WGSL: &str = include_str!("geometry.wgsl");
 /// SRAA-RT's resolve (hybrid SRAA's is `resolve.rs`, through
 /// `subcone_passes::SraaPass`).
 const SRAA_WGSL: &str = include_str!("sraa.wgsl");
@@ -170,6 +174,13 @@ fn scene_bindings(
     Ok(b)
 }
 
+/// The host's limits trace.wgsl sizes its arrays by, as WGSL constants
+/// (`STACK_SIZE`, `MAX_LIGHTS`): declared, not substituted into its text.
+/// (Override constants cannot size a private array.)
+pub(crate) fn limits_wgsl() -> String {
+    format!("const STACK_SIZE: u32 = {STACK_SIZE}u;\nconst MAX_LIGHTS: u32 = {MAX_LIGHTS}u;\n")
+}
+
 /// A frame's compute program: group 0 the scene ([`scene_bindings`]), group
 /// 1 the frame buffers `fb`, sources the SRAA kernels, trace.wgsl, `header`
 /// and the entry-point files `entries`.
@@ -180,15 +191,14 @@ fn program<'a>(
     header: &str,
     entries: &[&str],
 ) -> Result<Program<'a>, RenderError> {
-    let trace = TRACE_WGSL
-        .replace("__STACK_SIZE__", &STACK_SIZE.to_string())
-        .replace("__MAX_LIGHTS__", &MAX_LIGHTS.to_string());
+    let limits = limits_wgsl();
     let mut sources = vec![
         subcone_kernels::sraa::WGSL,
         subcone_kernels::ao::WGSL,
         FRAME_WGSL,
         ALBEDO_WGSL,
-        &trace,
+        &limits,
+        TRACE_WGSL,
         header,
     ];
     sources.extend(entries);
@@ -281,12 +291,7 @@ fn centre_geometry(f: &Setup) -> Result<(Vec<f32>, Vec<Vec3>), RenderError> {
         "array<subcone_Geometry>",
         n as u64 * 16,
     )?;
-    // `color` and `sample_row` belong to supersample_main, which this
-    // program does not run.
-    let header = "fn put_aov(j: u32, g: subcone_Geometry) { aov[j] = g; }\n\
-                  var<private> color: array<vec4<f32>, 1>;\n\
-                  var<private> sample_row: array<u32, 1>;\n";
-    let mut prog = program(ctx, &scene, &fb, header, &[SUPERSAMPLE_WGSL])?;
+    let mut prog = program(ctx, &scene, &fb, "", &[CENTRE_WGSL])?;
     let p = prog.pipeline("centre_main")?;
     let groups = workgroups(ctx, s)?;
     ctx.timed_pass("aov", &mut Vec::new(), |enc| prog.dispatch(enc, &p, groups))?;
@@ -400,8 +405,7 @@ fn supersample(f: &Setup) -> Result<Frame, RenderError> {
     let mut fb = Bindings::new(1);
     fb.storage(ctx, "color", "color", "array<vec4<f32>>", n as u64 * 16)?;
     fb.storage(ctx, "sample row", "sample_row", "array<u32>", 4)?;
-    let header = "fn put_aov(j: u32, g: subcone_Geometry) { }\n";
-    let mut prog = program(ctx, scene, &fb, header, &[SUPERSAMPLE_WGSL])?;
+    let mut prog = program(ctx, scene, &fb, "", &[SUPERSAMPLE_WGSL])?;
     let p = prog.pipeline("supersample_main")?;
     let groups = workgroups(ctx, s)?;
     // The grid rows 0..side, one dispatch each.
@@ -722,7 +726,6 @@ fn subpixel_header(fb: &Bindings, plan: &SubpixelPlan) -> String {
         );
     } else {
         header += raster::SUB_GEO_ACCESSORS;
-        header += "var<private> subsample: array<u32, 1>;\n";
     }
     header
 }
@@ -737,7 +740,7 @@ fn subpixel_program<'a>(
     rt: bool,
 ) -> Result<Program<'a>, RenderError> {
     let entries: &[&str] = if rt {
-        &[SUBPIXEL_WGSL, SRAA_WGSL, RECONSTRUCT_WGSL]
+        &[SUBPIXEL_WGSL, GEOMETRY_WGSL, SRAA_WGSL, RECONSTRUCT_WGSL]
     } else {
         &[SUBPIXEL_WGSL]
     };

@@ -13,7 +13,7 @@ use subcone_scene::RenderError;
 use super::bvh::SceneGpu;
 use super::FrameUniform;
 use crate::compute::{self, Bindings};
-use crate::context::{err, GpuContext};
+use crate::context::{err, CacheKey, GpuContext};
 
 const RASTER_WGSL: &str = include_str!("raster.wgsl");
 
@@ -53,6 +53,17 @@ fn bindings(ctx: &GpuContext, sg: &SceneGpu, u: &FrameUniform) -> Result<Binding
     Ok(b)
 }
 
+/// The G-buffer pipeline's cache key: its whole source and the variant.
+#[derive(PartialEq, Eq, Hash)]
+struct RasterPipelineKey {
+    source: String,
+    albedo: bool,
+}
+
+impl CacheKey for RasterPipelineKey {
+    type Value = wgpu::RenderPipeline;
+}
+
 /// The G-buffer pipeline for the bind group `b` of [`bindings`], compiled
 /// once per device (in the device's own cache: device ids repeat across
 /// wgpu instances) and source; with `albedo`, the variant with the albedo
@@ -72,8 +83,8 @@ fn pipeline(
         &b.declarations(),
     ]
     .concat();
-    let key = compute::pipeline_key("raster pipeline", (&source, albedo));
-    if let Some(p) = ctx.cached::<wgpu::RenderPipeline>(key) {
+    let key = RasterPipelineKey { source, albedo };
+    if let Some(p) = ctx.cached(&key) {
         return Ok((*p).clone());
     }
     let target = Some(wgpu::ColorTargetState {
@@ -92,7 +103,7 @@ fn pipeline(
             .device
             .create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some("raster"),
-                source: wgpu::ShaderSource::Wgsl(source.into()),
+                source: wgpu::ShaderSource::Wgsl(key.source.as_str().into()),
             });
         let pl = ctx
             .device

@@ -24,8 +24,8 @@ use subcone_passes::{
 use subcone_scene::RenderError;
 
 use super::raster::Raster;
-use crate::compute::{self, Bindings, Program};
-use crate::context::{err, GpuContext};
+use crate::compute::{Bindings, Program};
+use crate::context::{err, CacheKey, GpuContext};
 
 const RESOLVE_WGSL: &str = include_str!("resolve.wgsl");
 
@@ -40,15 +40,37 @@ const FLOAT1: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 /// still weigh 1).
 const HALF4: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
-/// The pass on this device for `desc`, compiled once per device and
+/// The hybrid resolve's cache key: what its descriptor is built from
+/// ([`SraaPassKey::desc`]), the parameters by their bits.
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+struct SraaPassKey {
+    params: [u32; size_of::<SraaParams>() / 4],
+    material: bool,
+}
+
+impl SraaPassKey {
+    /// The packed-geometry resolve with the albedo gate where `material`,
+    /// writing [`FLOAT4`].
+    fn desc(&self) -> SraaPassDesc {
+        SraaPassDesc::packed(bytemuck::cast(self.params))
+            .with_albedo_gate(self.material)
+            .with_output_format(FLOAT4)
+    }
+}
+
+impl CacheKey for SraaPassKey {
+    type Value = SraaPass;
+}
+
+/// The pass on this device for `key`, compiled once per device and
 /// configuration.
-fn pass(ctx: &GpuContext, desc: &SraaPassDesc) -> Result<Arc<SraaPass>, RenderError> {
-    let key = compute::pipeline_key("sraa resolve", format!("{desc:?}"));
-    if let Some(p) = ctx.cached::<SraaPass>(key) {
+fn pass(ctx: &GpuContext, key: SraaPassKey) -> Result<Arc<SraaPass>, RenderError> {
+    if let Some(p) = ctx.cached(&key) {
         return Ok(p);
     }
+    let desc = key.desc();
     let p = ctx
-        .scoped("sraa resolve", || SraaPass::new(&ctx.device, desc))?
+        .scoped("sraa resolve", || SraaPass::new(&ctx.device, &desc))?
         .map_err(|e| err(format!("sraa resolve: {e}")))?;
     let p = Arc::new(p);
     ctx.cache_insert(key, p.clone());
@@ -92,10 +114,11 @@ impl<'a> HybridResolve<'a> {
         height: u32,
     ) -> Result<Self, RenderError> {
         ctx.check_texture_size(width, height)?;
-        let desc = SraaPassDesc::packed(*params)
-            .with_albedo_gate(material)
-            .with_output_format(FLOAT4);
-        let sraa = pass(ctx, &desc)?;
+        let key = SraaPassKey {
+            params: bytemuck::cast(*params),
+            material,
+        };
+        let sraa = pass(ctx, key)?;
         let centre = params.shaded_position() == ShadedPosition::Centre;
         let texture =
             |label, format, usage| ctx.frame_texture(label, (width, height), format, usage);

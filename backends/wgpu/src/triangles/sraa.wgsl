@@ -12,10 +12,6 @@
 const SRAA_GATES: u32 = 1u + LAYER_LIGHTS;
 const SRAA_MATERIAL: bool = MATERIAL;
 
-fn sraa_params() -> subcone_SraaParams {
-    return frame.sraa;
-}
-
 fn sraa_size() -> vec2<u32> {
     return vec2<u32>(frame.width, frame.height);
 }

@@ -228,13 +228,3 @@ fn geometry_pixel(x: u32, y: u32, j: u32, k: u32, c: ptr<function, Counts>) {
         }
     }
 }
-
-@compute @workgroup_size(8, 8)
-fn geometry_main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if id.x >= frame.width || id.y >= frame.height {
-        return;
-    }
-    var c = counts_zero();
-    geometry_pixel(id.x, id.y, id.y * frame.width + id.x, min(subsample[0], 3u), &c);
-    counts_flush(c);
-}

@@ -1,6 +1,5 @@
 // NoAA and SSAA: subcone-cpu render.rs `supersample`, one invocation per pixel.
-// Also the AOV pass (`centre_geometry`). Follows trace.wgsl and the generated
-// frame bindings (`color`, optional `aov`).
+// Follows trace.wgsl and the generated frame bindings (`color`, `sample_row`).
 
 // render.rs `supersample`: a regular n×n grid of rays through the pixel
 // (n = 1 for NoAA), Whitted radiance, box filter. One dispatch per row `sy`
@@ -35,16 +34,4 @@ fn supersample_main(@builtin(global_invocation_id) id: vec3<u32>) {
         color[j] = vec4<f32>(sum, 0.0);
     }
     counts_flush(c);
-}
-
-// render.rs `centre_geometry`: depth and normal of the ray through each pixel
-// centre (AOVs; not counted).
-@compute @workgroup_size(8, 8)
-fn centre_main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if id.x >= frame.width || id.y >= frame.height {
-        return;
-    }
-    let j = id.y * frame.width + id.x;
-    let p = vec2<f32>(f32(id.x) + 0.5, f32(id.y) + 0.5);
-    put_aov(j, primary_geometry(intersect(frame.cam_pos, camera_ray(p), 0.0)));
 }

@@ -19,8 +19,8 @@ struct LightGpu {
 // Group 0 (triangles/mod.rs scene_bindings): frame, nodes, tris, attrs,
 // materials, texels, lights and the ray counters.
 
-const STACK_SIZE: u32 = __STACK_SIZE__u;
-const MAX_LIGHTS: u32 = __MAX_LIGHTS__u;
+// STACK_SIZE and MAX_LIGHTS are the host's constants, declared by the
+// source triangles/mod.rs `limits_wgsl` puts before this file.
 // Mirror bounces a shader follows at most (reflection_depth is clamped to it).
 const MAX_BOUNCES: u32 = 64u;
 const FRAC_1_PI: f32 = 0.31830987;
