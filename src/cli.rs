@@ -13,12 +13,13 @@ pub use crate::setup::{backend, backend_on, parse_ao, parse_isa, parse_size, sce
 /// [`subcone_scene::sdf::file`]); errors name the built-in SDF scenes when
 /// `name` is none of them.
 pub fn export_sdf_scene(name: &str) -> Result<String> {
-    use subcone_scene::sdf::{sdf_builtin, SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
+    use subcone_scene::builtin::SCENES;
+    use subcone_scene::sdf::sdf_builtin;
     let Some(scene) = sdf_builtin(name) else {
-        let known: Vec<&str> = SDF_SCENES
-            .into_iter()
-            .chain(STIFF_SCENES)
-            .chain(TRANSPARENT_SCENES)
+        let known: Vec<&str> = SCENES
+            .iter()
+            .filter(|e| e.is_sdf())
+            .map(|e| e.name)
             .collect();
         anyhow::bail!(
             "no built-in SDF scene named {name:?} (built-in SDF scenes: {})",

@@ -26,10 +26,8 @@ enum Command {
     /// Write a built-in SDF scene as an SDF scene file (`.sdf.ron`), which
     /// `--scene PATH` reads back as the same scene.
     Scene {
-        /// The built-in SDF scene to write: a paper scene (primitives,
-        /// random-box, random-shape, sdf-atrium, sparse-shape), a stiff scene
-        /// (thin, grazing, far, non-eikonal) or glass.
-        #[arg(long, value_name = "NAME")]
+        /// The built-in SDF scene to write (the names: --help).
+        #[arg(long, value_name = "NAME", long_help = scene_export_help())]
         export: String,
         /// The file to write (a name ending in .sdf.ron); standard output when
         /// omitted.
@@ -46,8 +44,8 @@ enum Command {
     },
     /// Render one scene with one method.
     Render {
-        /// A built-in scene name, `sponza`/`sponza-mirror`, or a path to an .obj, .gltf, .glb or .sdf.ron (SDF scene) file.
-        #[arg(long, default_value = "cornell")]
+        /// A built-in scene name, `sponza`/`sponza-mirror`, or a path to an .obj, .gltf, .glb or .sdf.ron (SDF scene) file (the names: --help).
+        #[arg(long, default_value = "cornell", long_help = scene_help())]
         scene: String,
         /// The antialiasing method (the names: --help).
         #[arg(long, default_value = subcone_scene::registry::DEFAULT_METHOD, long_help = subcone_scene::registry::method_help())]
@@ -200,4 +198,19 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// `render --scene`'s long help: the built-in scenes from the registry.
+fn scene_help() -> String {
+    subcone_scene::builtin::scene_help(
+        "The scene: a built-in scene, a data scene or a file.",
+        false,
+        "sponza, sponza-mirror: Sponza from the data directory ($SUBCONE_DATA_DIR), the second with a mirror floor.\n\
+         Or a path to an .obj, .gltf, .glb or .sdf.ron (SDF scene) file.",
+    )
+}
+
+/// `scene --export`'s long help: the built-in SDF scenes.
+fn scene_export_help() -> String {
+    subcone_scene::builtin::scene_help("The built-in SDF scene to write.", true, "")
 }

@@ -864,8 +864,9 @@ pub fn sponza(data_dir: &Path, reflective_floor: bool) -> Result<Scene, SceneErr
 /// ([`builtin::TRIANGLE_SCENES`]), `sponza` or `sponza-mirror` (loaded from
 /// [`data_dir`]), or a path to a `.obj`, `.gltf`, `.glb` or `.sdf.ron` file.
 pub fn scene_from_arg(arg: &str) -> Result<Scene, SceneError> {
-    if builtin::TRIANGLE_SCENES.contains(&arg) || crate::sdf::sdf_builtin(arg).is_some() {
-        return builtin::builtin(arg);
+    // The name alone decides: nothing is built to test it.
+    if let Some(entry) = builtin::find(arg) {
+        return entry.build();
     }
     match arg {
         "sponza" => return sponza(&data_dir(), false),
@@ -883,11 +884,8 @@ pub fn scene_from_arg(arg: &str) -> Result<Scene, SceneError> {
     if has_mesh_ext || path.exists() {
         return load_scene(path);
     }
-    let mut known: Vec<&str> = builtin::TRIANGLE_SCENES.to_vec();
+    let mut known: Vec<&str> = builtin::names().collect();
     known.extend(DATA_SCENES);
-    known.extend(crate::sdf::SDF_SCENES);
-    known.extend(crate::sdf::STIFF_SCENES);
-    known.extend(crate::sdf::TRANSPARENT_SCENES);
     Err(SceneError::UnknownScene {
         name: arg.into(),
         known: format!(

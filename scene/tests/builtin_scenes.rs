@@ -188,3 +188,47 @@ fn atrium_is_a_few_thousand_triangles_with_a_mirror_floor_and_a_sun() {
     assert!(s.camera.position.cmpgt(lo).all() && s.camera.position.cmplt(hi).all());
     assert!(s.camera.position.y < 5.0);
 }
+
+/// The registry is the one list: every derived list holds its entries of the
+/// right kind in order, every name is unique, the paper scenes are entries,
+/// and every entry builds a scene of its kind.
+#[test]
+fn the_scene_registry_is_the_one_list() {
+    use subcone_scene::builtin::{find, names, SceneKind, PAPER_SCENES, SCENES, TRIANGLE_SCENES};
+    use subcone_scene::sdf::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
+    let of = |kind: SceneKind| -> Vec<&str> {
+        SCENES
+            .iter()
+            .filter(|e| e.kind == kind)
+            .map(|e| e.name)
+            .collect()
+    };
+    assert_eq!(TRIANGLE_SCENES.to_vec(), of(SceneKind::Triangles));
+    assert_eq!(SDF_SCENES.to_vec(), of(SceneKind::PaperSdf));
+    assert_eq!(STIFF_SCENES.to_vec(), of(SceneKind::Stiff));
+    assert_eq!(TRANSPARENT_SCENES.to_vec(), of(SceneKind::Transparent));
+    let all: Vec<&str> = names().collect();
+    let mut unique = all.clone();
+    unique.sort();
+    unique.dedup();
+    assert_eq!(
+        unique.len(),
+        all.len(),
+        "a name is registered twice: {all:?}"
+    );
+    for name in PAPER_SCENES {
+        assert!(find(name).is_some(), "paper scene {name} is not registered");
+    }
+    for e in &SCENES {
+        assert!(!e.description.is_empty(), "{}", e.name);
+        let scene = e.build().unwrap_or_else(|err| panic!("{}: {err}", e.name));
+        assert_eq!(
+            scene.sdf_geometry().is_some(),
+            e.is_sdf(),
+            "{} builds the wrong kind of scene",
+            e.name
+        );
+        assert_eq!(e.is_sdf(), e.kind != SceneKind::Triangles, "{}", e.name);
+    }
+    assert!(find("no-such-scene").is_none());
+}

@@ -310,40 +310,30 @@ impl SdfScene {
     }
 }
 
-/// The paper's scenes (CTSS §4, Table 1), in its order.
-pub const SDF_SCENES: [&str; 5] = [
-    "primitives",
-    "random-box",
-    "random-shape",
-    "sdf-atrium",
-    "sparse-shape",
-];
+/// The paper's scenes (CTSS §4, Table 1), in its order: the
+/// [`SceneKind::PaperSdf`](crate::builtin::SceneKind) entries of
+/// [`crate::builtin::SCENES`].
+pub const SDF_SCENES: [&str; crate::builtin::PAPER_SDF_COUNT] =
+    crate::builtin::names_of(crate::builtin::SceneKind::PaperSdf);
 
-/// Scenes for the stability suite.
-pub const STIFF_SCENES: [&str; 4] = ["thin", "grazing", "far", "non-eikonal"];
+/// Scenes for the stability suite ([`SceneKind::Stiff`](crate::builtin::SceneKind)).
+pub const STIFF_SCENES: [&str; crate::builtin::STIFF_COUNT] =
+    crate::builtin::names_of(crate::builtin::SceneKind::Stiff);
 
 /// Scenes with semi-transparent materials (CTSS §5.3): rendered by both
 /// backends with the SDF methods that support them (not `ctss+edges`, not
 /// delayed shading); kept apart from [`SDF_SCENES`] (the paper's scenes) and
 /// checked against the CPU by the conformance suite's
-/// `transparent_scenes_match_the_cpu`.
-pub const TRANSPARENT_SCENES: [&str; 1] = ["glass"];
+/// `transparent_scenes_match_the_cpu`
+/// ([`SceneKind::Transparent`](crate::builtin::SceneKind)).
+pub const TRANSPARENT_SCENES: [&str; crate::builtin::TRANSPARENT_COUNT] =
+    crate::builtin::names_of(crate::builtin::SceneKind::Transparent);
 
 /// A built-in SDF scene by name ([`SDF_SCENES`], [`STIFF_SCENES`] or
-/// [`TRANSPARENT_SCENES`]); `None`
-/// when no scene has that name.
+/// [`TRANSPARENT_SCENES`]); `None` when no SDF scene has that name.
 pub fn sdf_builtin(name: &str) -> Option<Result<SdfScene, SdfError>> {
-    Some(match name {
-        "primitives" => primitives(),
-        "random-box" => random_box(),
-        "random-shape" => random_shape(),
-        "sdf-atrium" => atrium(),
-        "sparse-shape" => sparse_shape(),
-        "thin" => thin(),
-        "grazing" => grazing(),
-        "far" => far(),
-        "non-eikonal" => non_eikonal(),
-        "glass" => glass(),
-        _ => return None,
-    })
+    match crate::builtin::find(name)?.constructor {
+        crate::builtin::Constructor::Sdf(f) => Some(f()),
+        crate::builtin::Constructor::Triangles(_) => None,
+    }
 }
