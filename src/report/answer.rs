@@ -6,7 +6,7 @@
 //! 1. [`exclusions`]: rows that add no point of their own to a time–error
 //!    plane. A row whose quality image is byte-identical to another row's of
 //!    the same scene and backend is *same image as* the fastest of them (it
-//!    would repeat that row's error at a worse time); a row part of whose
+//!    would repeat that row's error); a row part of whose
 //!    time was measured by a timing source that NoAA's row of the same scene
 //!    and backend does not use (the SMAA post-process on a GPU adapter,
 //!    beside CPU rows) is *timed on another device*, and its time does not
@@ -66,7 +66,7 @@ pub fn error_name(metric: Metric) -> &'static str {
 #[derive(Clone, Debug, PartialEq)]
 pub enum Why {
     /// Its image is byte-identical to `as_method`'s (same scene and
-    /// backend), which is faster or first in table order.
+    /// backend), which comes first in table order.
     SameImage {
         /// The row it repeats.
         as_method: String,
@@ -108,7 +108,7 @@ impl Excluded {
     pub fn reason(&self) -> String {
         match &self.why {
             Why::SameImage { as_method } => format!(
-                "its image is byte-identical to {as_method}'s, which is no slower, so it adds no point"
+                "its image is byte-identical to {as_method}'s, so it adds no error of its own (its time is in the scene's table)"
             ),
             Why::OtherDevice { sources, noaa } => format!(
                 "part of its time is measured by {}, not by the {} every {} row without a post-process is timed by, so its time is not on their axis",
@@ -138,9 +138,10 @@ pub fn digest(width: u32, height: u32, data: &[u8]) -> u64 {
 }
 
 /// The rows of `rows` left out of the fronts and the picks, in row order.
-/// A row that repeats another's image is named after the fastest row of its
-/// group (first in table order on a tie, a row timed on another device
-/// last), whatever else is true of it.
+/// A row that repeats another's image is named after the first row of its
+/// group in table order (a row timed on another device last), whatever else
+/// is true of it: the name stays the same from scene to scene, whichever of
+/// the two the clock favoured.
 pub fn exclusions(rows: &[&ResultRow]) -> Vec<Excluded> {
     let noaa = NOAA.to_string();
     let base = |r: &ResultRow| {
@@ -166,13 +167,7 @@ pub fn exclusions(rows: &[&ResultRow]) -> Vec<Excluded> {
                 .filter(|(_, x)| {
                     x.scene == r.scene && x.backend == r.backend && x.image_digest == Some(d)
                 })
-                .min_by(|(a, x), (b, y)| {
-                    other(x)
-                        .is_some()
-                        .cmp(&other(y).is_some())
-                        .then(x.ms_median.total_cmp(&y.ms_median))
-                        .then(a.cmp(b))
-                })
+                .min_by_key(|(j, x)| (other(x).is_some(), *j))
                 .filter(|(j, _)| *j != i)
                 .map(|(_, x)| x.method.clone())
         });
@@ -976,17 +971,18 @@ mod tests {
             })),
             ["noaa", "ctss"]
         );
-        // Were the delayed one faster, it would stand for the image.
+        // Were the delayed one faster, the name would not change with the
+        // clock: ctss, first in table order, stands for the image.
         rows[2].ms_median = 1.1;
         let all: Vec<&ResultRow> = rows.iter().collect();
         let ex = exclusions(&all);
         assert_eq!(ex.len(), 1);
-        assert_eq!(ex[0].method, "ctss");
+        assert_eq!(ex[0].method, "ctss-delayed");
         let a = Answer::of(&rows, &[scene("s", true)]);
         let md = section(&a, &rows, &context(&[scene("s", true)]));
-        assert!(md.contains("ctss-delayed (= ctss) 1.10 ms"), "{md}");
+        assert!(md.contains("ctss (= ctss-delayed) 1.20 ms"), "{md}");
         assert!(
-            md.contains("ctss (same image as ctss-delayed) on cpu (s)"),
+            md.contains("ctss-delayed (same image as ctss) on cpu (s): its image is byte-identical to ctss's"),
             "{md}"
         );
     }

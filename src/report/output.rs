@@ -1732,6 +1732,43 @@ mod tests {
     }
 
     #[test]
+    fn timed_by_names_each_source_once() {
+        let noaa = row("noaa", &[]);
+        let mut smaa = row("smaa", &[]);
+        smaa.post_process = Some("SMAA 1x".into());
+        let gpu = subcone_scene::TimingSource::GpuWallClock { why: "software" };
+        smaa.timed_by = vec![subcone_scene::TimingSource::Cpu, gpu];
+        let mut md = String::new();
+        timed_by_lines(&mut md, &[&noaa, &smaa]);
+        assert_eq!(
+            md,
+            format!("Timed by: cpu: CPU wall clock; smaa (cpu), its post-process: {gpu}.\n\n")
+        );
+        assert_eq!(md.matches("CPU wall clock").count(), 1, "{md}");
+        // A post-process timed like its backend adds no entry of its own.
+        smaa.timed_by = vec![subcone_scene::TimingSource::Cpu];
+        let mut md = String::new();
+        timed_by_lines(&mut md, &[&noaa, &smaa]);
+        assert_eq!(md, "Timed by: cpu: CPU wall clock.\n\n");
+    }
+
+    #[test]
+    fn ray_throughput_is_judged_only_where_raw_traversal_is_a_bound() {
+        let small = 96 * 64;
+        assert!(throughput_judged(small, 0.5)
+            .unwrap_err()
+            .starts_with("not judged at this size"));
+        assert!(throughput_judged(small, 1.1).is_err());
+        let big = RAY_THROUGHPUT_MIN_RAYS;
+        assert_eq!(throughput_judged(big, 0.8), Ok(true));
+        assert_eq!(throughput_judged(big, 0.6), Ok(false));
+        assert!(throughput_judged(big, 1.1)
+            .unwrap_err()
+            .contains("outran raw traversal"));
+        assert!(throughput_judged(big, f64::NAN).is_err());
+    }
+
+    #[test]
     fn every_class_has_its_three_columns() {
         for c in CLASSES {
             for col in [format!("flip_{c}"), format!("px_{c}"), format!("dssim_{c}")] {
