@@ -54,6 +54,7 @@
 //! println!("{summary}");
 //! ```
 
+pub mod answer;
 pub mod ao_sweep;
 mod args;
 pub mod classes;
@@ -204,6 +205,11 @@ pub struct ResultRow {
     /// first seen): the CPU's wall clock, GPU timestamps, or the wall clock
     /// around GPU work whose timestamps are not used.
     pub timed_by: Vec<subcone_scene::TimingSource>,
+    /// A hash of the quality image's size and bytes
+    /// ([`answer::digest`]), when the error was measured: rows of one scene
+    /// and backend with equal digests rendered the same image. Not a results
+    /// column.
+    pub image_digest: Option<u64>,
 }
 
 impl ResultRow {
@@ -247,6 +253,7 @@ impl ResultRow {
             round_ms: Vec::new(),
             post_process: None,
             timed_by: t.sources.clone(),
+            image_digest: None,
         }
     }
 
@@ -1173,6 +1180,7 @@ fn measure(
     row.quality_width = Some(img.width);
     row.quality_height = Some(img.height);
     row.reference = Some(plan.reference.to_string());
+    row.image_digest = Some(answer::digest(img.width, img.height, &img.data));
     output::save_png(
         &img_dir.join(image_name("", &row.method, &row.backend, first_backend)),
         img,

@@ -233,26 +233,55 @@ fn timed_by_tags(r: &ResultRow) -> String {
         .join("+")
 }
 
-/// One line per distinct backend and timing source of `rows`: how their
-/// times were measured, so a GPU time is never read as a CPU one.
+/// One line naming each backend's timing sources, and each post-process
+/// row's sources beyond its backend's NoAA frame (its post-process), so a
+/// GPU time is never read as a CPU one and no source is listed twice.
 fn timed_by_lines(md: &mut String, rows: &[&ResultRow]) {
-    let mut seen: Vec<(String, subcone_scene::TimingSource)> = Vec::new();
+    let mut seen: Vec<(String, Vec<subcone_scene::TimingSource>)> = Vec::new();
     for r in rows {
-        let who = if r.post_process.is_some() {
-            format!("{} ({})", r.method, r.backend)
+        let (who, sources) = if r.post_process.is_some() {
+            // A post-process row is NoAA's frame plus the step: only the
+            // step's sources are its own.
+            let base: Vec<_> = rows
+                .iter()
+                .filter(|x| x.backend == r.backend && x.post_process.is_none())
+                .flat_map(|x| x.timed_by.iter().copied())
+                .collect();
+            (
+                format!("{} ({}), its post-process", r.method, r.backend),
+                r.timed_by
+                    .iter()
+                    .filter(|s| !base.contains(s))
+                    .copied()
+                    .collect::<Vec<_>>(),
+            )
         } else {
-            r.backend.clone()
+            (r.backend.clone(), r.timed_by.clone())
         };
-        for s in &r.timed_by {
-            if !seen.iter().any(|(w, t)| *w == who && t == s) {
-                seen.push((who.clone(), *s));
+        let i = match seen.iter().position(|(w, _)| *w == who) {
+            Some(i) => i,
+            None => {
+                seen.push((who, Vec::new()));
+                seen.len() - 1
+            }
+        };
+        for s in sources {
+            if !seen[i].1.contains(&s) {
+                seen[i].1.push(s);
             }
         }
     }
-    if seen.is_empty() {
+    let parts: Vec<String> = seen
+        .iter()
+        .filter(|(_, s)| !s.is_empty())
+        .map(|(w, s)| {
+            let s: Vec<String> = s.iter().map(|s| s.to_string()).collect();
+            format!("{w}: {}", s.join(" and "))
+        })
+        .collect();
+    if parts.is_empty() {
         return;
     }
-    let parts: Vec<String> = seen.iter().map(|(w, s)| format!("{w}: {s}")).collect();
     let _ = writeln!(md, "Timed by: {}.\n", parts.join("; "));
 }
 
@@ -390,6 +419,7 @@ pub fn json(s: &ReportSummary, ctx: &Context) -> Value {
                 "kind": r.kind, "x": r.window.x, "y": r.window.y, "side": r.window.side, "rule": r.rule,
             })).collect::<Vec<_>>(),
         })).collect::<Vec<_>>(),
+        "answer": super::answer::json(&super::answer::Answer::of(&s.rows, &ctx.scenes)),
         "elapsed_s": s.elapsed.as_secs_f64(),
     })
 }
@@ -466,7 +496,7 @@ impl MeanRatio {
     }
 }
 
-fn ms(v: f64) -> String {
+pub(super) fn ms(v: f64) -> String {
     if !v.is_finite() {
         "–".into()
     } else if v >= 100.0 {
@@ -503,11 +533,15 @@ fn scene_section(md: &mut String, s: &ReportSummary, sc: &SceneInfo) {
             "| method | backend | median ms | min–max ms | × NoAA | FLIP | SSIM | PSNR dB | edge FLIP | spp | rays/px | buffers MiB |"
         );
         let _ = writeln!(md, "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
+        let left_out = super::answer::exclusions(&rows);
         for r in &rows {
             let _ = writeln!(
                 md,
                 "| {} | {} | {} | {}–{} | {} | {} | {} | {} | {} | {} | {} | {} |",
-                r.method,
+                match super::answer::excluded(&left_out, r) {
+                    Some(e) => format!("{} {}", r.method, e.mark()),
+                    None => r.method.clone(),
+                },
                 r.backend,
                 ms(r.ms_median),
                 ms(r.ms_min),
@@ -524,6 +558,15 @@ fn scene_section(md: &mut String, s: &ReportSummary, sc: &SceneInfo) {
         }
         let _ = writeln!(md);
         timed_by_lines(md, &rows);
+        for e in &left_out {
+            let _ = writeln!(
+                md,
+                "{} {}: {}; it is left out of the Pareto fronts and the answer.\n",
+                e.method,
+                e.mark(),
+                e.reason()
+            );
+        }
         for r in rows.iter().filter(|r| r.post_process.is_some()) {
             let _ = writeln!(
                 md,
@@ -648,6 +691,9 @@ alike. Code {}, {} hardware threads ({}).{}{} {}\n",
     if let Some(w) = ctx.other_cpu.warning() {
         let _ = writeln!(md, "{w}\n");
     }
+    // The answer first; the definitions it rests on follow.
+    let answer = super::answer::Answer::of(&s.rows, &ctx.scenes);
+    md.push_str(&super::answer::section(&answer, &s.rows, ctx));
     let _ = writeln!(
         md,
         "Times are the median (and range) over the rounds of the wall time of `Backend::render` at the \
@@ -867,13 +913,40 @@ and figures, and where the two metrics disagree).\n"
             .collect();
         let _ = writeln!(
             md,
-            "| {method} | {backend} | {} | {} |",
+            "| {} | {backend} | {} | {} |",
+            same_image_name(s, method, backend),
             metric.name(),
             row.join(" | ")
         );
     }
     let _ = writeln!(md);
     md
+}
+
+/// `method`, or `method (same image as ctss)` when on every scene where it
+/// has an error on `backend` its image is byte-identical to one other
+/// method's ([`answer::exclusions`](super::answer::exclusions)).
+fn same_image_name(s: &ReportSummary, method: &str, backend: &str) -> String {
+    let rows: Vec<&ResultRow> = s.rows.iter().collect();
+    let left_out = super::answer::exclusions(&rows);
+    let measured = rows
+        .iter()
+        .filter(|r| r.method == method && r.backend == backend && r.flip_mean.is_some())
+        .count();
+    let same: Vec<&str> = left_out
+        .iter()
+        .filter(|e| e.method == method && e.backend == backend)
+        .filter_map(|e| match &e.why {
+            super::answer::Why::SameImage { as_method } => Some(as_method.as_str()),
+            _ => None,
+        })
+        .collect();
+    match same.first() {
+        Some(first) if same.len() == measured && same.iter().all(|m| m == first) => {
+            format!("{method} (same image as {first})")
+        }
+        _ => method.to_string(),
+    }
 }
 
 /// A table of one metric's per-class error, a row per measured method.
@@ -1049,6 +1122,30 @@ pub const SRAA_RT_EDGE_FACTOR: f64 = 1.25;
 /// Ray throughput target: the pipeline's rate at least this share of obvhs'
 /// raw traversal on the same rays.
 pub const RAY_THROUGHPUT_SHARE: f64 = 0.70;
+/// Fewest rays per pass at which a ray-throughput figure is judged: 16 of
+/// the raw passes' rayon tasks ([`subcone_cpu::throughput::CHUNK`] rays
+/// each). With fewer, the raw pass is a few uneven tasks that cannot keep
+/// the threads busy, so its rate is no bound on the pipeline's (which
+/// splits its frame into tiles of its own).
+pub const RAY_THROUGHPUT_MIN_RAYS: usize = 16 * subcone_cpu::throughput::CHUNK;
+
+/// Whether a ray-throughput target is judged on a pass of `rays` rays whose
+/// pipeline rate is `ratio` of raw traversal's: `Ok(met)`, or `Err(why
+/// not)`. Raw traversal is a bound on the pipeline (which runs the same
+/// traversal and more) only on a pass long enough for it to use the
+/// threads; where the pipeline still outruns it, it bounds nothing.
+pub fn throughput_judged(rays: usize, ratio: f64) -> Result<bool, String> {
+    if rays < RAY_THROUGHPUT_MIN_RAYS {
+        Err(format!(
+            "not judged at this size: {rays} rays are under {RAY_THROUGHPUT_MIN_RAYS}, 16 of raw traversal's {}-ray tasks, so raw traversal is no bound",
+            subcone_cpu::throughput::CHUNK
+        ))
+    } else if !ratio.is_finite() || ratio > 1.0 {
+        Err("not judged: the pipeline outran raw traversal, which is then no bound".into())
+    } else {
+        Ok(ratio >= RAY_THROUGHPUT_SHARE)
+    }
+}
 
 /// SRAA's quality bar against NoAA: on every triangle scene, `sraa` and
 /// `sraa-rt` beat NoAA on each class they claim and hold on flat pixels (the
@@ -1219,7 +1316,8 @@ pub fn targets(s: &ReportSummary, ctx: &Context) -> String {
 1280x720 on the CTSS scenes and 1024x1024 on `cornell` and Sponza). Ray throughput is \
 measured on the CPU backend, on every instruction-set path this machine runs ({}; the \
 default is the widest), at each triangle scene's timing size (median of \
-the run's timed passes, raw and pipeline on the same path; `cargo bench -p subcone-cpu --bench rays` measures the same passes with criterion), \
+the run's timed passes, raw and pipeline on the same path; `cargo bench -p subcone-cpu --bench rays` measures the same passes with criterion; judged only where raw traversal is a bound: on a pass of at least {min} rays, \
+16 of raw traversal's rayon tasks, on which the pipeline does not outrun it), \
 ns per kernel call on one thread (\"a few ns\" read as ≤ {} ns; `cargo bench --bench kernels` \
 has the full set). Time ratios between methods are medians of per-round ratios (the methods of \
 a scene are timed in interleaved rounds); a target is judged on them. In brackets: for one scene, \
@@ -1231,7 +1329,8 @@ lowest or its highest round.\n",
             .map(|i| i.name())
             .collect::<Vec<_>>()
             .join(", "),
-        kernel_timing::FEW_NS
+        kernel_timing::FEW_NS,
+        min = RAY_THROUGHPUT_MIN_RAYS
     );
     let _ = writeln!(md, "| target | backend | scenes | figure | met |");
     let _ = writeln!(md, "|---|---|---|--:|---|");
@@ -1314,7 +1413,8 @@ lowest or its highest round.\n",
             r.pipeline_primary / 1e6,
             r.raw_primary / 1e6,
             pct(r.primary_ratio()),
-            yes(r.primary_ratio() >= RAY_THROUGHPUT_SHARE)
+            throughput_judged(r.primary_rays, r.primary_ratio())
+                .map_or_else(|why| why, |met| yes(met).to_string())
         );
         if let (Some(p), Some(raw), Some(ratio)) =
             (r.pipeline_shadow, r.raw_shadow, r.shadow_ratio())
@@ -1329,7 +1429,8 @@ lowest or its highest round.\n",
                 p / 1e6,
                 raw / 1e6,
                 pct(ratio),
-                yes(ratio >= RAY_THROUGHPUT_SHARE)
+                throughput_judged(r.shadow_rays, ratio)
+                    .map_or_else(|why| why, |met| yes(met).to_string())
             );
         }
     }
@@ -1486,7 +1587,7 @@ the means of the scenes' smallest and of their largest per-round ratios.\n"
 }
 
 /// SRAA-RT (sphere-traced samples) against CTSS on the SDF scenes: error and
-/// time side by side, and which to pick, as measured by this run.
+/// time side by side, and which of the two are on each scene's Pareto fronts.
 pub fn sdf_pick(s: &ReportSummary, ctx: &Context) -> String {
     let mut md = String::new();
     let sdf: Vec<&str> = ctx
@@ -1507,8 +1608,11 @@ pub fn sdf_pick(s: &ReportSummary, ctx: &Context) -> String {
         md,
         "SRAA-RT here takes its one shaded sample and four geometric subsamples per pixel by \
 sphere tracing; CTSS cone traces one ray per pixel. Error: mean FLIP against the reference (whole \
-image and edge mask); time: median ms at the timing size.\n"
+image and edge mask); time: median ms at the timing size. *On the front* names which of the two \
+are on the scene's Pareto front under FLIP and under SSIM; which method to use at each cost, \
+these two and every other, is *The answer* at the top, computed from the fronts.\n"
     );
+    let answer = super::answer::Answer::of(&s.rows, &ctx.scenes);
     for b in &ctx.backends {
         let find = |scene: &str, method: &str| {
             s.rows
@@ -1516,8 +1620,6 @@ image and edge mask); time: median ms at the timing size.\n"
                 .find(|r| r.backend == *b && r.scene == scene && r.method == method)
         };
         let mut lines = Vec::new();
-        // (scenes where each has the lower FLIP, where each is faster)
-        let (mut sraa_better, mut ctss_better, mut sraa_faster, mut ctss_faster) = (0, 0, 0, 0);
         for sc in &sdf {
             let (Some(rt), Some(ct)) = (
                 find(sc, SRAA_RT.to_string().as_str()),
@@ -1525,36 +1627,28 @@ image and edge mask); time: median ms at the timing size.\n"
             ) else {
                 continue;
             };
-            let (Some(er), Some(ec)) = (rt.flip_mean, ct.flip_mean) else {
+            if rt.flip_mean.is_none() || ct.flip_mean.is_none() {
                 continue;
-            };
-            let rt_q = er < ec;
-            let rt_t = rt.ms_median < ct.ms_median;
-            if rt_q {
-                sraa_better += 1;
-            } else {
-                ctss_better += 1;
             }
-            if rt_t {
-                sraa_faster += 1;
-            } else {
-                ctss_faster += 1;
-            }
-            let pick = match (rt_q, rt_t) {
-                (true, true) => "sraa-rt (lower error, faster)".to_string(),
-                (false, false) => "ctss (lower error, faster)".to_string(),
-                (true, false) => format!(
-                    "sraa-rt for quality, ctss for speed ({:.2}× faster)",
-                    rt.ms_median / ct.ms_median
-                ),
-                (false, true) => format!(
-                    "ctss for quality, sraa-rt for speed ({:.2}× faster)",
-                    ct.ms_median / rt.ms_median
-                ),
+            let on_front = |metric: Metric| {
+                let on: Vec<&str> = [rt, ct]
+                    .iter()
+                    .map(|r| r.method.as_str())
+                    .filter(|m| {
+                        answer
+                            .front(sc, b, metric)
+                            .is_some_and(|f| f.points.iter().any(|p| p.method == *m))
+                    })
+                    .collect();
+                if on.is_empty() {
+                    "neither".to_string()
+                } else {
+                    on.join(", ")
+                }
             };
             let noaa = find(sc, NOAA.to_string().as_str()).and_then(|r| r.flip_mean);
             lines.push(format!(
-                "| {sc} | {} | {} | {} | {} | {} | {} | {} | {pick} |",
+                "| {sc} | {} | {} | {} | {} | {} | {} | {} | {} / {} |",
                 f(noaa, 4),
                 f(rt.flip_mean, 4),
                 f(ct.flip_mean, 4),
@@ -1562,6 +1656,8 @@ image and edge mask); time: median ms at the timing size.\n"
                 f(ct.edge_flip_mean, 4),
                 ms(rt.ms_median),
                 ms(ct.ms_median),
+                on_front(Metric::Flip),
+                on_front(Metric::Ssim),
             ));
         }
         if lines.is_empty() {
@@ -1570,24 +1666,13 @@ image and edge mask); time: median ms at the timing size.\n"
         }
         let _ = writeln!(
             md,
-            "| scene ({b}) | noaa FLIP | sraa-rt FLIP | ctss FLIP | sraa-rt edge FLIP | ctss edge FLIP | sraa-rt ms | ctss ms | pick |"
+            "| scene ({b}) | noaa FLIP | sraa-rt FLIP | ctss FLIP | sraa-rt edge FLIP | ctss edge FLIP | sraa-rt ms | ctss ms | on the front (FLIP / SSIM) |"
         );
         let _ = writeln!(md, "|---|--:|--:|--:|--:|--:|--:|--:|---|");
         for l in &lines {
             let _ = writeln!(md, "{l}");
         }
-        let n = lines.len();
-        let _ = writeln!(
-            md,
-            "\n**Which to pick ({b}):** ctss has the lower FLIP on {ctss_better} of {n} SDF scenes \
-(sraa-rt on {sraa_better}); ctss is faster on {ctss_faster} of {n} (sraa-rt on {sraa_faster}). {}\n",
-            match (ctss_better >= sraa_better, ctss_faster >= sraa_faster) {
-                (true, true) => "On this run's SDF content, pick CTSS.",
-                (false, false) => "On this run's SDF content, pick SRAA-RT.",
-                (true, false) => "Pick CTSS for quality, SRAA-RT for speed.",
-                (false, true) => "Pick SRAA-RT for quality, CTSS for speed.",
-            }
-        );
+        let _ = writeln!(md);
     }
     md
 }
@@ -1636,6 +1721,7 @@ mod tests {
             round_ms: Vec::new(),
             post_process: None,
             timed_by: vec![subcone_scene::TimingSource::Cpu],
+            image_digest: None,
         }
     }
 
@@ -1643,6 +1729,43 @@ mod tests {
         r.ratio_to_noaa = Some(median);
         (r.ratio_min, r.ratio_max) = (range.map(|r| r.0), range.map(|r| r.1));
         r
+    }
+
+    #[test]
+    fn timed_by_names_each_source_once() {
+        let noaa = row("noaa", &[]);
+        let mut smaa = row("smaa", &[]);
+        smaa.post_process = Some("SMAA 1x".into());
+        let gpu = subcone_scene::TimingSource::GpuWallClock { why: "software" };
+        smaa.timed_by = vec![subcone_scene::TimingSource::Cpu, gpu];
+        let mut md = String::new();
+        timed_by_lines(&mut md, &[&noaa, &smaa]);
+        assert_eq!(
+            md,
+            format!("Timed by: cpu: CPU wall clock; smaa (cpu), its post-process: {gpu}.\n\n")
+        );
+        assert_eq!(md.matches("CPU wall clock").count(), 1, "{md}");
+        // A post-process timed like its backend adds no entry of its own.
+        smaa.timed_by = vec![subcone_scene::TimingSource::Cpu];
+        let mut md = String::new();
+        timed_by_lines(&mut md, &[&noaa, &smaa]);
+        assert_eq!(md, "Timed by: cpu: CPU wall clock.\n\n");
+    }
+
+    #[test]
+    fn ray_throughput_is_judged_only_where_raw_traversal_is_a_bound() {
+        let small = 96 * 64;
+        assert!(throughput_judged(small, 0.5)
+            .unwrap_err()
+            .starts_with("not judged at this size"));
+        assert!(throughput_judged(small, 1.1).is_err());
+        let big = RAY_THROUGHPUT_MIN_RAYS;
+        assert_eq!(throughput_judged(big, 0.8), Ok(true));
+        assert_eq!(throughput_judged(big, 0.6), Ok(false));
+        assert!(throughput_judged(big, 1.1)
+            .unwrap_err()
+            .contains("outran raw traversal"));
+        assert!(throughput_judged(big, f64::NAN).is_err());
     }
 
     #[test]

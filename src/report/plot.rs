@@ -159,8 +159,17 @@ where
 {
     let e = "error-against-time plot";
     root.fill(&WHITE).map_err(pe(e))?;
+    // A row repeating another's image adds no point (the other's label names
+    // it); a row timed on another device is drawn hollow, off the front.
+    let left_out = super::answer::exclusions(rows);
     let pts: Vec<(&ResultRow, f64, f64)> = rows
         .iter()
+        .filter(|r| {
+            !matches!(
+                super::answer::excluded(&left_out, r).map(|e| &e.why),
+                Some(super::answer::Why::SameImage { .. })
+            )
+        })
         .filter_map(|r| {
             let f = r.flip_mean?;
             (r.ms_median.is_finite() && r.ms_median > 0.0 && f.is_finite()).then_some((
@@ -200,7 +209,11 @@ where
         .x_label_formatter(&|v| format_ms(*v))
         .draw()
         .map_err(pe(e))?;
-    let front = pareto_front(&pts.iter().map(|p| (p.1, p.2)).collect::<Vec<_>>());
+    let front: Vec<(f64, f64)> =
+        super::answer::front(rows, &left_out, super::classes::Metric::Flip)
+            .iter()
+            .map(|p| (p.ms, p.error))
+            .collect();
     if front.len() > 1 {
         // A staircase: no method is better than the front between its points.
         let mut stairs = Vec::new();
@@ -222,7 +235,15 @@ where
     for (r, t, f) in &pts {
         let c = method_colour(&r.method);
         let on_front = front.iter().any(|p| p.0 == *t && p.1 == *f);
-        let text = label(r, backends);
+        let other_device = super::answer::excluded(&left_out, r).is_some();
+        let mut text = label(r, backends);
+        let twins = super::answer::same_image_twins(&left_out, r);
+        if !twins.is_empty() {
+            text = format!("{text} (= {})", twins.join(", "));
+        }
+        if other_device {
+            text = format!("{text} † other device");
+        }
         let (px, py) = chart.backend_coord(&(*t, *f));
         let w = (text.chars().count() as i32 * font_px * 6) / 10 + 2;
         let h = font_px + 2;
@@ -248,7 +269,15 @@ where
         chart
             .draw_series(std::iter::once(
                 EmptyElement::at((*t, *f))
-                    + Circle::new((0, 0), if on_front { 7 } else { 5 }, c.filled())
+                    + Circle::new(
+                        (0, 0),
+                        if on_front { 7 } else { 5 },
+                        if other_device {
+                            c.stroke_width(2)
+                        } else {
+                            c.filled()
+                        },
+                    )
                     + Text::new(text, (dx, dy), (FAMILY, font_px).into_font().color(&c)),
             ))
             .map_err(pe(e))?;

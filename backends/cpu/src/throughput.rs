@@ -45,7 +45,7 @@ use crate::shade::{Surface, Tracer};
 use crate::{CpuBackend, SceneBvh};
 
 /// Rays per rayon task: four image rows of a 1024-wide frame.
-const CHUNK: usize = 4096;
+pub const CHUNK: usize = 4096;
 
 /// One scene's primary and shadow rays, ready to be traced.
 pub struct RayWorkload<'a> {
