@@ -218,7 +218,7 @@ fn shown(shot: &RgbImage, bx: (u32, u32, u32, u32), k: i32) -> [u8; 3] {
 fn check_colour(got: [u8; 3], want: [u8; 3], what: &str) {
     assert!(
         !differ(got, want, TOLERANCE),
-        "{what}: the screenshot shows {got:?}, the PNG has {want:?} (tolerance {TOLERANCE})"
+        "{what}: the screenshot shows {got:?}, the PNGs give {want:?} (tolerance {TOLERANCE})"
     );
 }
 
