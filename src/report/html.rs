@@ -1,7 +1,7 @@
 //! `report.html`: the report as one interactive page beside `report.md`.
 //!
 //! At the top, report.md's first section (the report's answer), converted
-//! from its Markdown here ([`SECTIONS`]); below the plots, its "Verdicts at a
+//! from its Markdown here (`SECTIONS`); below the plots, its "Verdicts at a
 //! glance". Per scene, a viewer of any two of its images, each labelled with
 //! its kind (render, FLIP map, 1 − SSIM map): a draggable split, one alone,
 //! or their difference (`|A − B|` or signed, times a scale), zoom 1× to 16×
@@ -126,7 +126,7 @@ const SCRIPT: &str = include_str!("html/page.js");
 pub const PIXELS_FILE: &str = "pixels.js";
 
 /// Write `report.html` of a run, and per scene its images' pixels
-/// ([`PIXELS_FILE`]); `md` is the run's `report.md`, whose [`SECTIONS`] the
+/// ([`PIXELS_FILE`]); `md` is the run's `report.md`, whose `SECTIONS` the
 /// page shows.
 pub fn write(s: &ReportSummary, ctx: &Context, md: &str) -> Result<()> {
     let first_backend = ctx.backends.first().map(String::as_str).unwrap_or("");
