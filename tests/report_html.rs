@@ -34,8 +34,9 @@ const TOLERANCE: i32 = 2;
 const SCENE: &str = "cornell";
 const ZOOM: u32 = 8;
 
-/// Virtual time the page gets to decode its images' pixels (from the
-/// `data:` URLs of `images/<scene>/pixels.js`) before a dump or screenshot.
+/// Virtual time the page gets to load and decode its images' pixels (the
+/// `data:` URLs of `images/<scene>/pixels/<image>.js`) before a dump or
+/// screenshot.
 const SETTLE_MS: u32 = 5000;
 
 fn settle() -> String {

@@ -17,9 +17,10 @@
 //! an inline JSON block, and images and plots are linked by relative paths.
 //! A page from `file://` may not read the pixels of an image it loads by
 //! path, so the classes travel in the data (per scene, one byte per pixel,
-//! bit `i` is class `i` of [`CLASSES`], base64), and the images' pixels in a
-//! script beside them ([`PIXELS_FILE`]) that hands the page the PNGs as
-//! `data:` URLs, which it may read. The values under the cursor are decoded
+//! bit `i` is class `i` of [`CLASSES`], base64), and each image's pixels in a
+//! script beside it ([`PIXELS_DIR`]) that hands the page the PNG as a
+//! `data:` URL, which it may read; the page loads the scripts of the layers
+//! it shows only. The values under the cursor are decoded
 //! from those PNGs: FLIP by inverting FLIP's colour map (256 colours, so
 //! within 0.5/255 of the measured error), 1 − SSIM from its grey (within
 //! 0.5/510; white is 0.5 or more).
@@ -121,12 +122,13 @@ const TEMPLATE: &str = include_str!("html/page.html");
 const STYLE: &str = include_str!("html/page.css");
 const SCRIPT: &str = include_str!("html/page.js");
 
-/// The file beside a scene's images that carries their pixels for the
-/// page's readout and difference mode (`images/<scene>/pixels.js`).
-pub const PIXELS_FILE: &str = "pixels.js";
+/// The directory beside a scene's images whose scripts carry their pixels
+/// for the page's readout and difference mode, one per image
+/// (`images/<scene>/pixels/<stem>.js`).
+pub const PIXELS_DIR: &str = "pixels";
 
 /// Write `report.html` of a run, and per scene its images' pixels
-/// ([`PIXELS_FILE`]); `md` is the run's `report.md`, whose `SECTIONS` the
+/// ([`PIXELS_DIR`]); `md` is the run's `report.md`, whose `SECTIONS` the
 /// page shows.
 pub fn write(s: &ReportSummary, ctx: &Context, md: &str) -> Result<()> {
     let first_backend = ctx.backends.first().map(String::as_str).unwrap_or("");
@@ -137,7 +139,7 @@ pub fn write(s: &ReportSummary, ctx: &Context, md: &str) -> Result<()> {
             .filter(|l| l["kind"] != "mask")
             .filter_map(|l| l["id"].as_str().map(String::from))
             .collect();
-        pixels_file(&s.out_dir, &sc.name, &ids)?;
+        pixel_files(&s.out_dir, &sc.name, &ids)?;
     }
     write_atomic(&s.report_html, page(s, ctx, md).as_bytes())
 }
@@ -154,34 +156,33 @@ pub fn page(s: &ReportSummary, ctx: &Context, md: &str) -> String {
         .replace("/*DATA*/", &data)
 }
 
-/// `images/<scene>/pixels.js`: a script that hands the page every PNG of the
-/// scene's viewer layers (renders, maps, the reference) as a `data:` URL,
-/// `subconePixels("<scene>", {"<stem>": "data:image/png;base64,…"})`. A page
+/// `images/<scene>/pixels/<stem>.js` for each of the scene's viewer layers
+/// (`ids`, their file stems: renders, maps, the reference): a script that
+/// hands the page the layer's PNG as a `data:` URL,
+/// `subconePixels("<scene>", "<stem>", "data:image/png;base64,…")`. A page
 /// opened from `file://` may not read the pixels of an image it loads by
 /// path, but it may run a script beside it and read the pixels of a
-/// `data:` image; the bytes are the PNG files' own, so the values the page
-/// shows are decoded from the very images it displays. No file when the
-/// scene has no layer (`ids`, the layers' file stems).
-fn pixels_file(out: &Path, scene: &str, ids: &[String]) -> Result<()> {
-    let dir = out.join("images").join(scene);
+/// `data:` image; the bytes are the PNG file's own, so the values the page
+/// shows are decoded from the very images it displays.
+fn pixel_files(out: &Path, scene: &str, ids: &[String]) -> Result<()> {
     if ids.is_empty() {
         return Ok(());
     }
-    let mut layers = Map::new();
+    let dir = out.join("images").join(scene);
+    let to = dir.join(PIXELS_DIR);
+    std::fs::create_dir_all(&to).with_context(|| format!("cannot create {}", to.display()))?;
     for id in ids {
         let p = dir.join(format!("{id}.png"));
         let bytes = std::fs::read(&p).with_context(|| format!("cannot read {}", p.display()))?;
-        layers.insert(
-            id.clone(),
-            Value::String(format!("data:image/png;base64,{}", base64(&bytes))),
+        let js = format!(
+            "subconePixels({}, {}, \"data:image/png;base64,{}\");\n",
+            Value::String(scene.to_string()),
+            Value::String(id.clone()),
+            base64(&bytes)
         );
+        write_atomic(&to.join(format!("{id}.js")), js.as_bytes())?;
     }
-    let js = format!(
-        "subconePixels({}, {});\n",
-        Value::String(scene.to_string()),
-        Value::Object(layers)
-    );
-    write_atomic(&dir.join(PIXELS_FILE), js.as_bytes())
+    Ok(())
 }
 
 /// Everything the page shows, as its script reads it.
@@ -244,8 +245,8 @@ fn data(s: &ReportSummary, ctx: &Context, md: &str) -> Value {
                 "width": width,
                 "height": height,
                 "layers": layers(&s.out_dir, &sc.name, &scene_rows, first_backend, &ctx.reference),
-                "pixels": dir.join(PIXELS_FILE).is_file()
-                    .then(|| format!("images/{}/{PIXELS_FILE}", sc.name)),
+                "pixels": dir.join(PIXELS_DIR).is_dir()
+                    .then(|| format!("images/{}/{PIXELS_DIR}/", sc.name)),
                 "classes": masks.map(|c| base64(&c.masks.bits())),
                 "rows": rows,
                 "plots": plots(s, |scene| scene == Some(sc.name.as_str()), &scene_names),

@@ -187,24 +187,26 @@
   // --- Pixel values -------------------------------------------------------
 
   // A page from file:// may not read the pixels of the images it shows, so
-  // each scene's PNGs also come as data: URLs in images/<scene>/pixels.js,
-  // loaded when the scene is first shown; each layer is decoded once, when
-  // first needed. `decoded` maps "scene/id" to { data, width } once decoded,
-  // { error } when it cannot be, {} while decoding.
+  // each of a scene's PNGs also comes as a data: URL in a script,
+  // images/<scene>/pixels/<id>.js, loaded when the layer is first needed and
+  // decoded once. `pixelUrls` maps "scene/id" to the URL (null when the
+  // script cannot be loaded); `decoded` maps "scene/id" to { data, width }
+  // once decoded, { error } when it cannot be, {} while decoding.
   const pixelUrls = new Map();
   const requested = new Set();
   const decoded = new Map();
-  window.subconePixels = (name, layers) => {
-    pixelUrls.set(name, layers);
+  window.subconePixels = (name, id, url) => {
+    pixelUrls.set(name + "/" + id, url);
     refreshValues();
   };
 
-  function loadPixels(sc) {
-    if (!sc.pixels || requested.has(sc.name)) return;
-    requested.add(sc.name);
+  function loadPixels(sc, id) {
+    const key = sc.name + "/" + id;
+    if (!sc.pixels || requested.has(key)) return;
+    requested.add(key);
     const s = document.createElement("script");
-    s.src = sc.pixels;
-    s.addEventListener("error", () => { pixelUrls.set(sc.name, null); refreshValues(); });
+    s.src = sc.pixels + encodeURIComponent(id) + ".js";
+    s.addEventListener("error", () => { pixelUrls.set(key, null); refreshValues(); });
     document.head.appendChild(s);
   }
 
@@ -214,8 +216,11 @@
     const key = sc.name + "/" + id;
     const have = decoded.get(key);
     if (have) return have.data ? have : null;
-    const urls = pixelUrls.get(sc.name);
-    if (!urls || !urls[id]) return null;
+    const url = pixelUrls.get(key);
+    if (!url) {
+      loadPixels(sc, id);
+      return null;
+    }
     const entry = {};
     decoded.set(key, entry);
     const img = new Image();
@@ -231,15 +236,16 @@
       refreshValues();
     });
     img.addEventListener("error", () => { entry.error = true; refreshValues(); });
-    img.src = urls[id];
+    img.src = url;
     return null;
   }
 
-  // Whether the layer's pixels will not come: no pixel file, or not in it.
+  // Whether the layer's pixels will not come: no pixel scripts, the
+  // layer's failed to load, or its PNG to decode.
   function unavailable(sc, id) {
-    const urls = pixelUrls.get(sc.name);
-    const d = decoded.get(sc.name + "/" + id);
-    return !sc.pixels || urls === null || (urls && !urls[id]) || (d && d.error);
+    const key = sc.name + "/" + id;
+    const d = decoded.get(key);
+    return !sc.pixels || pixelUrls.get(key) === null || (d && d.error);
   }
 
   function rgbAt(sc, id, x, y) {
@@ -501,7 +507,6 @@
       $("label-b").textContent = "B: " + layerOf(sc, state.b).label;
       $("scale").value = String(state.scale);
       $("scale").disabled = !isDiff();
-      loadPixels(sc);
       drawDiff(sc);
       showBars(sc);
       for (const b of document.querySelectorAll("[data-mode]")) {
