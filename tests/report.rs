@@ -367,6 +367,19 @@ fn quick_report_on_every_paper_scene() {
             assert_eq!(r["flip_per_frame"].as_array().unwrap().len(), 4);
             let flat = r["instability_flat"].as_f64().unwrap();
             assert!(flat.is_finite() && flat >= 0.0, "{r}");
+            // The pixels it pools over: frames 2 to 4 of the scene's flat
+            // class, the same for every method.
+            let px = r["px_flat"].as_u64().unwrap();
+            let (w, h) = (
+                motion["width"].as_u64().unwrap(),
+                motion["height"].as_u64().unwrap(),
+            );
+            assert!(px > 0 && px <= 3 * w * h, "{r}");
+            let noaa = mrows
+                .iter()
+                .find(|n| n["scene"] == name.as_str() && n["method"] == "noaa")
+                .unwrap();
+            assert_eq!(r["px_flat"], noaa["px_flat"], "{r}");
         }
         let apng = std::fs::read(out.join(format!("images/{name}/motion.png"))).unwrap();
         assert!(

@@ -1,7 +1,14 @@
 //! `report.html` in a real browser: a small quick report (two scenes, three
 //! methods) opened in headless Chromium, put into a state by its URL
 //! fragment; the screenshot's pixels and the dumped DOM are checked against
-//! the report's own images, rows and edge classes.
+//! the report's own images, rows, edge classes and error maps (the values
+//! under the cursor, the difference modes), its report.md sections, its
+//! Pareto front and its motion animation.
+//!
+//! Apart from the browser, a check that the committed screenshot
+//! `docs/quick/report-html.png` is of the committed page: the build recorded
+//! beside it (`docs/quick/report-html.build`, written by
+//! `scripts/report-screenshot`) is the page's.
 //!
 //! Without a browser the test skips with a message, unless
 //! `SUBCONE_REQUIRE_BROWSER=1` (CI), where it fails. `SUBCONE_BROWSER` names
@@ -15,8 +22,9 @@ use std::time::Instant;
 use image::RgbImage;
 use subcone::report::{self, ReportArgs, ReportSummary};
 
-/// Browser window size in CSS pixels (and screenshot pixels: scale 1).
-const WINDOW: (u32, u32) = (1100, 900);
+/// Browser window size in CSS pixels (and screenshot pixels: scale 1): tall
+/// enough for the viewer below report.md's first section.
+const WINDOW: (u32, u32) = (1100, 1400);
 /// Largest difference per 8-bit channel between a screenshot pixel and the
 /// image pixel it shows: the page draws the PNG unscaled in colour (sRGB
 /// profile forced) and by nearest neighbour, so any difference is the
@@ -25,6 +33,23 @@ const TOLERANCE: i32 = 2;
 /// The scene the checks look at and the zoom they use.
 const SCENE: &str = "cornell";
 const ZOOM: u32 = 8;
+
+/// Virtual time the page gets to load and decode its images' pixels (the
+/// `data:` URLs of `images/<scene>/pixels/<image>.js`) before a dump or
+/// screenshot.
+const SETTLE_MS: u32 = 5000;
+
+fn settle() -> String {
+    format!("--virtual-time-budget={SETTLE_MS}")
+}
+
+/// FLIP maps draw an error `e` as colour `round(255 e)` of the colour map:
+/// a decoded value is within half a step of the error.
+const FLIP_STEP: f64 = 1.0 / 255.0;
+/// 1 − SSIM maps draw `d` as grey `round(255 · 2d)` (white from 0.5 on).
+const SSIM_STEP: f64 = 1.0 / 510.0;
+/// The page prints values to 4 decimals.
+const PRINTED: f64 = 0.5e-4;
 
 fn find_browser() -> Option<PathBuf> {
     if let Some(b) = std::env::var_os("SUBCONE_BROWSER") {
@@ -83,7 +108,19 @@ impl Browser {
     /// The page's DOM once loaded at `#fragment`, checked to have set
     /// itself up without an error.
     fn dom(&self, fragment: &str) -> String {
-        let out = self.run(&["--dump-dom".into()], fragment);
+        self.dom_with(&[], fragment)
+    }
+
+    /// [`Browser::dom`] once the page's asynchronous work (decoding the
+    /// images' pixels) has had [`SETTLE_MS`] of virtual time.
+    fn dom_settled(&self, fragment: &str) -> String {
+        self.dom_with(&[settle()], fragment)
+    }
+
+    fn dom_with(&self, extra: &[String], fragment: &str) -> String {
+        let mut args = vec!["--dump-dom".to_string()];
+        args.extend(extra.iter().cloned());
+        let out = self.run(&args, fragment);
         let dom = String::from_utf8(out.stdout).expect("DOM is UTF-8");
         let body = tag(&dom, "<body");
         assert_eq!(
@@ -101,8 +138,14 @@ impl Browser {
 
     /// A screenshot of the page at `#fragment`.
     fn screenshot(&self, fragment: &str, name: &str) -> RgbImage {
+        self.screenshot_with(&[], fragment, name)
+    }
+
+    fn screenshot_with(&self, extra: &[String], fragment: &str, name: &str) -> RgbImage {
         let path = self.tmp.join(name);
-        self.run(&[format!("--screenshot={}", path.display())], fragment);
+        let mut args = vec![format!("--screenshot={}", path.display())];
+        args.extend(extra.iter().cloned());
+        self.run(&args, fragment);
         let img = image::open(&path)
             .unwrap_or_else(|e| panic!("screenshot {}: {e}", path.display()))
             .to_rgb8();
@@ -176,7 +219,7 @@ fn shown(shot: &RgbImage, bx: (u32, u32, u32, u32), k: i32) -> [u8; 3] {
 fn check_colour(got: [u8; 3], want: [u8; 3], what: &str) {
     assert!(
         !differ(got, want, TOLERANCE),
-        "{what}: the screenshot shows {got:?}, the PNG has {want:?} (tolerance {TOLERANCE})"
+        "{what}: the screenshot shows {got:?}, the PNGs give {want:?} (tolerance {TOLERANCE})"
     );
 }
 
@@ -191,6 +234,39 @@ fn file_url(path: &Path) -> String {
         }
     }
     url
+}
+
+/// The body of the results table (the page's other tables are report.md's).
+fn results_body(dom: &str) -> &str {
+    let table = &dom[dom.find("id=\"results-table\"").expect("the results table")..];
+    let tbody = &table[table.find("<tbody").expect("a table body")..];
+    &tbody[..tbody.find("</tbody>").unwrap()]
+}
+
+/// The text of the element with `id` (no nested tags).
+fn text_of<'a>(dom: &'a str, id: &str) -> &'a str {
+    let t = tag(dom, &format!("id=\"{id}\""));
+    let at = dom.find(t).unwrap() + t.len();
+    &dom[at..at + dom[at..].find('<').unwrap()]
+}
+
+/// The number an element shows (`≥ ` dropped).
+fn shown_number(dom: &str, id: &str) -> f64 {
+    let t = text_of(dom, id);
+    t.trim_start_matches("≥ ")
+        .parse()
+        .unwrap_or_else(|e| panic!("#{id} shows {t:?}: {e}"))
+}
+
+/// FLIP's error for a colour of its colour map (the map the report draws
+/// `flip_<method>.png` with): the colour's index over 255.
+fn decode_flip(rgb: [u8; 3]) -> f64 {
+    let lut = nv_flip::magma_lut().to_vec();
+    let k = lut
+        .chunks(3)
+        .position(|c| c == rgb)
+        .unwrap_or_else(|| panic!("{rgb:?} is not a colour of FLIP's colour map"));
+    k as f64 / 255.0
 }
 
 /// The class names of pixel `(x, y)` of the scene, from the summary.
@@ -321,8 +397,7 @@ fn report_page_in_a_browser() {
     for (col, desc) in [("flip_mean", true), ("ms_median", false)] {
         let dir = if desc { "desc" } else { "asc" };
         let dom = browser.dom(&format!("scene={SCENE}&sort={col}:{dir}"));
-        let tbody = &dom[dom.find("<tbody").expect("a table body")..];
-        let tbody = &tbody[..tbody.find("</tbody>").unwrap()];
+        let tbody = results_body(&dom);
         let shown: Vec<String> = tbody
             .split("<tr ")
             .skip(1)
@@ -347,6 +422,178 @@ fn report_page_in_a_browser() {
         assert_eq!(shown, want, "rows sorted by {col}:{dir}");
     }
 
+    // (5) The values under the cursor: A's and B's RGB from their PNGs; the
+    // FLIP and 1 − SSIM shown equal the maps' decoded values (to the printed
+    // digits), which are within the maps' quantisation of the errors the
+    // report measured.
+    let fragment = format!("scene={SCENE}&a=sraa&b=reference&mode=a&zoom={ZOOM}&x={x}&y={y}");
+    let dom = browser.dom_settled(&fragment);
+    let values = tag(&dom, "id=\"values\"");
+    assert_eq!(
+        attr(values, "data-state").as_deref(),
+        Some("ready"),
+        "the values of ({x}, {y}) are not shown: {values}"
+    );
+    let rgb = |p: [u8; 3]| format!("{} {} {}", p[0], p[1], p[2]);
+    assert_eq!(
+        attr(values, "data-rgb-a"),
+        Some(rgb(sraa.get_pixel(x, y).0)),
+        "A's RGB"
+    );
+    assert_eq!(
+        text_of(&dom, "rgb-a"),
+        rgb(sraa.get_pixel(x, y).0),
+        "A's RGB on screen"
+    );
+    assert_eq!(
+        text_of(&dom, "rgb-b"),
+        rgb(reference.get_pixel(x, y).0),
+        "B's RGB on screen"
+    );
+    let flip_png = png(&out, "flip_sraa.png");
+    let decoded = decode_flip(flip_png.get_pixel(x, y).0);
+    let on_screen = shown_number(&dom, "flip-a");
+    assert!(
+        (on_screen - decoded).abs() <= PRINTED + 1e-9,
+        "FLIP at ({x}, {y}): the page shows {on_screen}, flip_sraa.png decodes to {decoded}"
+    );
+    let measured = subcone_conformance::flip_srgb8(width, height, reference.as_raw(), sraa.as_raw())
+        .map[(y * width + x) as usize] as f64;
+    assert!(
+        (decoded - measured).abs() <= FLIP_STEP / 2.0 + 1e-6,
+        "FLIP at ({x}, {y}): decoded {decoded}, measured {measured}"
+    );
+    let grey = png(&out, "ssim_sraa.png").get_pixel(x, y).0[0];
+    let ssim_decoded = f64::from(grey) * SSIM_STEP;
+    let on_screen = shown_number(&dom, "ssim-a");
+    assert!(
+        (on_screen - ssim_decoded).abs() <= PRINTED + 1e-9,
+        "1 − SSIM at ({x}, {y}): the page shows {on_screen}, ssim_sraa.png decodes to {ssim_decoded}"
+    );
+    let to_rgb8 = |i: &RgbImage| report::metrics::Rgb8 {
+        width,
+        height,
+        data: i.as_raw().clone(),
+    };
+    let dssim = 1.0
+        - report::ssim::ssim(&to_rgb8(&reference), &to_rgb8(&sraa))
+            .unwrap()
+            .map[(y * width + x) as usize] as f64;
+    if dssim < 0.5 {
+        assert!(
+            (ssim_decoded - dssim).abs() <= SSIM_STEP / 2.0 + 1e-6,
+            "1 − SSIM at ({x}, {y}): decoded {ssim_decoded}, measured {dssim}"
+        );
+    }
+    // Every label names the kind of image; a FLIP map and a 1 − SSIM map
+    // side by side show both colour bars, a render none.
+    assert!(text_of(&dom, "label-a").ends_with("sraa · render"));
+    for kind in [
+        "sraa · render",
+        "sraa · FLIP map",
+        "sraa · 1 − SSIM map",
+        "· render</option>",
+    ] {
+        assert!(dom.contains(kind), "no {kind:?} in the layer lists");
+    }
+    assert_eq!(
+        attr(tag(&dom, "id=\"bars\""), "data-shown").as_deref(),
+        Some("")
+    );
+    let dom = browser.dom(&format!("scene={SCENE}&a=flip_sraa&b=ssim_sraa&mode=split"));
+    assert_eq!(
+        attr(tag(&dom, "id=\"bars\""), "data-shown").as_deref(),
+        Some("flip ssim"),
+        "colour bars of a FLIP and a 1 − SSIM map"
+    );
+
+    // (6) The difference modes at scale 4: the viewer's centre shows
+    // 4 |A − B|, and 128 + 4 (A − B) / 2, of the PNGs' pixel, per channel.
+    let (a, b) = (sraa.get_pixel(x, y).0, reference.get_pixel(x, y).0);
+    let scale = 4;
+    for (mode, f) in [
+        (
+            "diff",
+            (|d: i32, k: i32| k * d.abs()) as fn(i32, i32) -> i32,
+        ),
+        ("signed", |d: i32, k: i32| {
+            (128.0 + f64::from(k * d) / 2.0).round() as i32
+        }),
+    ] {
+        let want: [u8; 3] = std::array::from_fn(|c| {
+            f(i32::from(a[c]) - i32::from(b[c]), scale).clamp(0, 255) as u8
+        });
+        let fragment = format!(
+            "scene={SCENE}&a=sraa&b=reference&mode={mode}&scale={scale}&zoom={ZOOM}&x={x}&y={y}"
+        );
+        let dom = browser.dom_settled(&fragment);
+        assert_eq!(
+            attr(tag(&dom, "id=\"diff-canvas\""), "data-ready").as_deref(),
+            Some("1"),
+            "the {mode} mode draws no difference"
+        );
+        let shot = browser.screenshot_with(&[settle()], &fragment, &format!("{mode}.png"));
+        check_colour(
+            shown(&shot, bx, 0),
+            want,
+            &format!("{mode} ×{scale} of sraa {a:?} and reference {b:?} at ({x}, {y})"),
+        );
+    }
+
+    // (7) The table: the Pareto mark on the methods of the scene's FLIP-time
+    // front, a verdict cell for every method but NoAA, and report.md's
+    // answer and verdict sections on the page.
+    let dom = browser.dom(&format!("scene={SCENE}"));
+    let rows: Vec<&report::ResultRow> = summary.rows.iter().filter(|r| r.scene == SCENE).collect();
+    let front = report::plot::pareto_front(
+        &rows
+            .iter()
+            .filter_map(|r| Some((r.ms_median, r.flip_mean?)))
+            .collect::<Vec<_>>(),
+    );
+    let tbody = results_body(&dom);
+    for tr in tbody.split("<tr ").skip(1) {
+        let key = attr(&format!(" {tr}"), "data-key").unwrap();
+        let r = rows
+            .iter()
+            .find(|r| format!("{}/{}", r.method, r.backend) == key)
+            .unwrap();
+        let on_front = front.contains(&(r.ms_median, r.flip_mean.unwrap()));
+        assert_eq!(
+            tr.contains("data-column=\"pareto\">◆ front<"),
+            on_front,
+            "Pareto mark of {key}"
+        );
+        let verdict = tr
+            .split("data-column=\"verdict_flip\">")
+            .nth(1)
+            .map(|c| &c[..c.find("</td>").unwrap()])
+            .unwrap_or("");
+        assert_eq!(
+            verdict.contains(" · "),
+            r.method != "noaa",
+            "FLIP verdict of {key}: {verdict:?}"
+        );
+    }
+    assert!(front.len() >= 2, "a front of one point checks little");
+    let body = tag(&dom, "<body");
+    assert_eq!(
+        attr(body, "data-missing-sections"),
+        None,
+        "sections missing"
+    );
+    let sections = attr(body, "data-sections").unwrap();
+    assert!(
+        sections.ends_with("|Verdicts at a glance") && !sections.starts_with('|'),
+        "the answer and the verdicts: {sections}"
+    );
+    assert!(dom.contains("<section class=\"md\" data-heading=\"Verdicts at a glance\">"));
+    if summary.motion.ran {
+        let motion = tag(&dom, "id=\"motion\"");
+        assert!(!motion.contains(" hidden"), "the motion section is hidden");
+        assert!(text_of(&dom, "motion-caption").contains("left to right noaa"));
+    }
+
     // (4) Every control changes the view (the page's own self-test works
     // them as a user would), and a fragment of nonsense falls back to
     // defaults without an error.
@@ -367,4 +614,25 @@ fn report_page_in_a_browser() {
         browser.bin.display(),
         start.elapsed().as_secs_f64() - report_s
     );
+}
+
+/// The committed screenshot is of the committed page: the build recorded
+/// beside it by `scripts/report-screenshot` is the one `docs/quick/report.html`
+/// names. Regenerating the quick report without the screenshot fails here.
+#[test]
+fn the_committed_screenshot_is_of_the_committed_page() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/quick");
+    let page = std::fs::read_to_string(dir.join("report.html")).expect("docs/quick/report.html");
+    let meta = tag(&page, "name=\"subcone-code\"");
+    let code = attr(meta, "content").expect("the page names its build");
+    let shot = std::fs::read_to_string(dir.join("report-html.build"))
+        .expect("docs/quick/report-html.build: run scripts/report-screenshot");
+    assert_eq!(
+        shot.trim(),
+        code,
+        "docs/quick/report-html.png is of build {}, the page is of build {code}: run \
+         scripts/report-screenshot",
+        shot.trim()
+    );
+    assert!(dir.join("report-html.png").is_file());
 }

@@ -19,7 +19,10 @@
 //!
 //! The section has a table and a chart (FLIP per frame) per scene, and an
 //! animated PNG of the window where NoAA is least stable: NoAA, each method
-//! and the reference side by side, in the frames' order.
+//! and the reference side by side, each tile named above it and the frame's
+//! number below, the frames played forward then backward ([`ping_pong`]), so
+//! that the loop steps back from the last frame to the one before it instead
+//! of jumping to the first (a jump of `N − 1` camera steps).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -62,6 +65,9 @@ pub const CROP_SIDE: u32 = 24;
 pub const CROP_ZOOM: u32 = 4;
 /// Frames per second of the animation.
 pub const ANIMATION_FPS: u16 = 4;
+/// Height of the animation's label bands (method names above the tiles, the
+/// frame's number below), in pixels.
+pub const LABEL_BAND: u32 = 14;
 
 /// One method in motion on one scene (cpu backend).
 #[derive(Clone, Debug, PartialEq)]
@@ -230,29 +236,65 @@ fn worst_window(map: &[f32], w: u32, h: u32, side: u32) -> MotionCrop {
 }
 
 /// One animation frame: the crop of each image, zoomed, side by side with
-/// a 2-pixel grey gap.
-fn strip(images: &[&Rgb8], crop: MotionCrop) -> Rgb8 {
+/// a 2-pixel grey gap, under a band naming each tile (`names`, one per
+/// image) and over a band with `caption` (the frame's number).
+fn strip(images: &[&Rgb8], names: &[&str], caption: &str, crop: MotionCrop) -> Result<Rgb8> {
     let tile = crop.side * CROP_ZOOM;
     let gap = 2;
     let n = images.len() as u32;
-    let (w, h) = (n * tile + (n.saturating_sub(1)) * gap, tile);
+    let (w, h) = (
+        n * tile + (n.saturating_sub(1)) * gap,
+        tile + 2 * LABEL_BAND,
+    );
     let mut data = vec![128u8; (w * h * 3) as usize];
+    // The label bands are white, the tiles' gaps grey.
+    let band = (w * LABEL_BAND * 3) as usize;
+    data[..band].fill(255);
+    let below = ((LABEL_BAND + tile) * w * 3) as usize;
+    data[below..].fill(255);
     for (k, img) in images.iter().enumerate() {
         let x0 = k as u32 * (tile + gap);
         for y in 0..tile {
             for x in 0..tile {
                 let (sx, sy) = (crop.x + x / CROP_ZOOM, crop.y + y / CROP_ZOOM);
                 let s = ((sy * img.width + sx) * 3) as usize;
-                let d = ((y * w + x0 + x) * 3) as usize;
+                let d = (((y + LABEL_BAND) * w + x0 + x) * 3) as usize;
                 data[d..d + 3].copy_from_slice(&img.data[s..s + 3]);
             }
         }
     }
-    Rgb8 {
+    super::plot::register_fonts()?;
+    {
+        let pe = |e| anyhow!("motion labels: {e:?}");
+        let root = BitMapBackend::with_buffer(&mut data, (w, h)).into_drawing_area();
+        let size = (LABEL_BAND - 3) as i32;
+        for (k, name) in names.iter().enumerate() {
+            let font = (FAMILY, size).into_font().color(&BLACK);
+            let x0 = (k as u32 * (tile + gap)) as i32 + 1;
+            root.draw(&Text::new(name.to_string(), (x0, 1), font))
+                .map_err(pe)?;
+        }
+        let font = (FAMILY, size).into_font().color(&BLACK);
+        root.draw(&Text::new(
+            caption.to_string(),
+            (1, (LABEL_BAND + tile) as i32 + 1),
+            font,
+        ))
+        .map_err(pe)?;
+        root.present().map_err(pe)?;
+    }
+    Ok(Rgb8 {
         width: w,
         height: h,
         data,
-    }
+    })
+}
+
+/// The order the animation plays `n` frames in: forward, then backward
+/// without repeating either end (`0 1 2 3 2 1` for 4), so that each step of
+/// the loop, the one back to the start included, is one camera step.
+pub fn ping_pong(n: usize) -> Vec<usize> {
+    (0..n).chain((1..n.saturating_sub(1)).rev()).collect()
 }
 
 /// Write `frames` (all one size) as an animated PNG that loops forever.
@@ -391,13 +433,18 @@ impl Runner<'_> {
             });
         }
         let crop = worst_window(&noaa_unstable, w, h, CROP_SIDE.min(w / 3).min(h / 3));
-        let strips: Vec<Rgb8> = (0..references.len())
+        let mut names: Vec<String> = followed.iter().map(|f| f.method.to_string()).collect();
+        names.push("reference".into());
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
+        let n = references.len();
+        let strips: Vec<Rgb8> = ping_pong(n)
+            .into_iter()
             .map(|t| {
                 let mut images: Vec<&Rgb8> = followed.iter().map(|f| &f.images[t]).collect();
                 images.push(&references[t]);
-                strip(&images, crop)
+                strip(&images, &names, &format!("frame {} of {n}", t + 1), crop)
             })
-            .collect();
+            .collect::<Result<_>>()?;
         let scene_dir = dir.join(file_safe(&job.name));
         std::fs::create_dir_all(&scene_dir)
             .with_context(|| format!("cannot create {}", scene_dir.display()))?;
@@ -426,7 +473,8 @@ Every frame is compared with its own {MOTION_REFERENCE} reference. *FLIP* is the
 frames. *Instability* is, over frames 2 to {} and the pixels of each class (classes from each \
 frame's own sub-samples), the mean of |Δmethod − Δreference|, Δ being a pixel's change of \
 luminance (0 to 1) from the previous frame: 0 when a method changes exactly as the reference \
-does. *ms/frame* is the median wall time of one frame. The section took {:.1} s on this machine \
+does; the last row gives the pixels each class's instability is pooled over, summed over those \
+frames. *ms/frame* is the median wall time of one frame. The section took {:.1} s on this machine \
 (references and classes included).\n",
         m.frames,
         m.size.0,
@@ -460,6 +508,20 @@ does. *ms/frame* is the median wall time of one frame. The section took {:.1} s 
                 r.ms_per_frame
             );
         }
+        // The pixels each class's instability is pooled over: the same
+        // frames' classes for every method, so one row.
+        if let Some(r) = rows.first() {
+            let px: Vec<String> = CLASSES
+                .iter()
+                .map(|c| r.instability.px[c.index()].to_string())
+                .collect();
+            let _ = writeln!(
+                md,
+                "| *pixels (frames 2 to {})* | | {} | |",
+                m.frames,
+                px.join(" | ")
+            );
+        }
         let stem = file_safe(scene);
         let _ = writeln!(
             md,
@@ -469,10 +531,12 @@ does. *ms/frame* is the median wall time of one frame. The section took {:.1} s 
             let order: Vec<&str> = rows.iter().map(|r| r.method.as_str()).collect();
             let _ = writeln!(
                 md,
-                "Animated ({}×, {} frames per second): the {}×{} window at ({}, {}) where NoAA is \
-least stable; left to right {}, reference.\n\n![{scene} in motion](images/{stem}/motion.png)\n",
+                "Animated ({}×, {} frames per second, frames 1 to {} and back, each labelled with \
+its number): the {}×{} window at ({}, {}) where NoAA is least stable; left to right {}, \
+reference.\n\n![{scene} in motion](images/{stem}/motion.png)\n",
                 CROP_ZOOM,
                 ANIMATION_FPS,
+                m.frames,
                 c.side,
                 c.side,
                 c.x,
@@ -500,6 +564,9 @@ pub fn json(m: &Motion) -> serde_json::Value {
                     format!("instability_{c}"),
                     r.instability.mean[c.index()].map_or(serde_json::Value::Null, Into::into),
                 );
+            }
+            for c in CLASSES {
+                o.insert(format!("px_{c}"), r.instability.px[c.index()].into());
             }
             o.insert("ms_per_frame".into(), r.ms_per_frame.into());
             serde_json::Value::Object(o)
@@ -695,17 +762,64 @@ mod tests {
             .map(|t| {
                 strip(
                     &[&grey(4, 2, move |x, _| x as u8 + t), &grey(4, 2, |_, _| 9)],
+                    &["noaa", "reference"],
+                    &format!("frame {} of 3", t + 1),
                     crop,
                 )
+                .unwrap()
             })
             .collect();
         assert_eq!(frames[0].width, 2 * 2 * CROP_ZOOM + 2);
+        assert_eq!(frames[0].height, 2 * CROP_ZOOM + 2 * LABEL_BAND);
         save_apng(&path, &frames).unwrap();
         let dec = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&path).unwrap()));
         let reader = dec.read_info().unwrap();
         let anim = reader.info().animation_control().unwrap();
         assert_eq!((anim.num_frames, anim.num_plays), (3, 0));
         assert!(save_apng(&path, &[]).is_err());
+    }
+
+    #[test]
+    fn the_loop_steps_back_one_frame_at_a_time() {
+        assert_eq!(ping_pong(4), vec![0, 1, 2, 3, 2, 1]);
+        assert_eq!(ping_pong(2), vec![0, 1]);
+        assert_eq!(ping_pong(1), vec![0]);
+        assert!(ping_pong(0).is_empty());
+        // Every step, the wrap from the last back to the first included,
+        // moves by one frame.
+        let order = ping_pong(16);
+        for (i, &t) in order.iter().enumerate() {
+            let next = order[(i + 1) % order.len()];
+            assert_eq!(t.abs_diff(next), 1, "{order:?}");
+        }
+    }
+
+    #[test]
+    fn every_frame_is_labelled() {
+        let crop = MotionCrop {
+            x: 0,
+            y: 0,
+            side: 4,
+        };
+        let img = grey(8, 8, |_, _| 60);
+        let a = strip(&[&img, &img], &["noaa", "reference"], "frame 1 of 4", crop).unwrap();
+        let b = strip(&[&img, &img], &["noaa", "reference"], "frame 2 of 4", crop).unwrap();
+        let row = |f: &Rgb8, y: u32| {
+            f.data[(y * f.width * 3) as usize..((y + 1) * f.width * 3) as usize].to_vec()
+        };
+        // Dark text in the top band over each tile, and in the bottom band.
+        let tile = 4 * CROP_ZOOM;
+        let dark_in = |f: &Rgb8, ys: std::ops::Range<u32>, xs: std::ops::Range<u32>| {
+            ys.flat_map(|y| xs.clone().map(move |x| (x, y)))
+                .any(|(x, y)| f.data[((y * f.width + x) * 3) as usize] < 100)
+        };
+        assert!(dark_in(&a, 0..LABEL_BAND, 0..tile));
+        assert!(dark_in(&a, 0..LABEL_BAND, tile + 2..2 * tile + 2));
+        let bottom = LABEL_BAND + tile..a.height;
+        assert!(dark_in(&a, bottom.clone(), 0..a.width));
+        // The frames differ in their bottom band only (the number).
+        assert!((0..LABEL_BAND + tile).all(|y| row(&a, y) == row(&b, y)));
+        assert!(bottom.clone().any(|y| row(&a, y) != row(&b, y)));
     }
 
     #[test]

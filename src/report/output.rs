@@ -1677,14 +1677,15 @@ these two and every other, is *The answer* at the top, computed from the fronts.
     md
 }
 
-/// Write `results.csv`, `results.json` and `report.md`.
+/// Write `results.csv`, `results.json`, `report.md` and `report.html`.
 pub fn write_all(s: &ReportSummary, ctx: &Context) -> Result<()> {
     write_atomic(&s.results_csv, csv(&s.rows).as_bytes())?;
     let j = serde_json::to_string_pretty(&json(s, ctx))
         .map_err(|e| anyhow!("cannot encode results.json: {e}"))?;
     write_atomic(&s.results_json, j.as_bytes())?;
-    write_atomic(&s.report_md, markdown(s, ctx).as_bytes())?;
-    write_atomic(&s.report_html, super::html::page(s, ctx).as_bytes())
+    let md = markdown(s, ctx);
+    write_atomic(&s.report_md, md.as_bytes())?;
+    super::html::write(s, ctx, &md)
 }
 
 #[cfg(test)]

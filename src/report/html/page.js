@@ -1,7 +1,9 @@
-// The report page: per scene, a viewer of any two of its images (split or
-// alone, zoom, pan, the classes of the pixel under the cursor), the sortable
-// results table and the plots. The whole state lives in the URL fragment, so
-// a link (or a headless browser) opens any view. Plain DOM, no build step.
+// The report page: report.md's answer and verdict sections; per scene, a
+// viewer of any two of its images (split, alone or their difference, zoom,
+// pan, the classes and values of the pixel under the cursor, a colour bar
+// per map), the sortable results table, the motion animation and the plots.
+// The whole state lives in the URL fragment, so a link (or a headless
+// browser) opens any view. Plain DOM, no build step.
 "use strict";
 
 (function () {
@@ -19,6 +21,12 @@
   const R = JSON.parse($("report-data").textContent);
   const ZOOMS = [1, 2, 3, 4, 6, 8, 12, 16];
   const MAX_ZOOM = 16;
+  // Difference modes and their scales: |A − B| · scale, and
+  // 128 + scale · (A − B) / 2, per 8-bit channel, clamped.
+  const DIFF_MODES = ["diff", "signed"];
+  const SCALES = [1, 2, 4, 8, 16, 32];
+  const DEFAULT_SCALE = 4;
+  const diffCanvas = $("diff-canvas");
   const viewport = $("viewport");
   const imgA = $("img-a");
   const imgB = $("img-b");
@@ -31,7 +39,9 @@
   const state = {
     scene: "", a: "", b: "", mode: "split", split: 0.5, zoom: 1,
     cx: 0, cy: 0, highlight: "", sort: "", selftest: false,
+    scale: DEFAULT_SCALE, raw: false,
   };
+  const isDiff = () => DIFF_MODES.includes(state.mode);
 
   const sceneOf = (name) => R.scenes.find((s) => s.name === name);
   const scene = () => sceneOf(state.scene);
@@ -48,7 +58,7 @@
   function defaultLayers(sc) {
     const ids = sc.layers.map((l) => l.id);
     const b = ids.includes("reference") ? "reference" : ids[0] || "";
-    const a = (sc.layers.find((l) => l.kind === "image" && l.id !== b) || sc.layers[0] || {}).id || "";
+    const a = (sc.layers.find((l) => l.kind === "render" && l.id !== b) || sc.layers[0] || {}).id || "";
     return [a, b];
   }
 
@@ -68,7 +78,10 @@
     const [da, db] = defaultLayers(sc);
     state.a = layerOf(sc, p.get("a")) ? p.get("a") : sceneChanged || !layerOf(sc, state.a) ? da : state.a;
     state.b = layerOf(sc, p.get("b")) ? p.get("b") : sceneChanged || !layerOf(sc, state.b) ? db : state.b;
-    state.mode = ["split", "a", "b"].includes(p.get("mode")) ? p.get("mode") : "split";
+    state.mode = ["split", "a", "b", ...DIFF_MODES].includes(p.get("mode")) ? p.get("mode") : "split";
+    const scale = parseInt(p.get("scale"), 10);
+    state.scale = SCALES.includes(scale) ? scale : DEFAULT_SCALE;
+    state.raw = p.get("raw") === "1";
     const split = parseFloat(p.get("split"));
     state.split = Number.isFinite(split) ? clamp(split, 0, 1) : 0.5;
     const zoom = parseInt(p.get("zoom"), 10);
@@ -80,7 +93,7 @@
     if (Number.isFinite(y)) state.cy = clamp(y, 0, sc.height - 1) + 0.5;
     state.highlight = R.classes.includes(p.get("highlight")) ? p.get("highlight") : "";
     const [col, dir] = (p.get("sort") || "").split(":");
-    state.sort = R.columns.includes(col) ? col + ":" + (dir === "asc" ? "asc" : "desc") : "";
+    state.sort = allColumns().includes(col) ? col + ":" + (dir === "asc" ? "asc" : "desc") : "";
     state.selftest = p.get("selftest") === "1";
   }
 
@@ -91,6 +104,7 @@
       split: +state.split.toFixed(3), zoom: state.zoom,
       x: Math.floor(state.cx), y: Math.floor(state.cy),
       highlight: state.highlight, sort: state.sort,
+      scale: isDiff() ? state.scale : "", raw: state.raw ? 1 : "",
     };
     return "#" + Object.entries(keys)
       .filter(([, v]) => v !== "")
@@ -170,6 +184,116 @@
     return R.classes.filter((_, i) => v & (1 << i));
   }
 
+  // --- Pixel values -------------------------------------------------------
+
+  // A page from file:// may not read the pixels of the images it shows, so
+  // each of a scene's PNGs also comes as a data: URL in a script,
+  // images/<scene>/pixels/<id>.js, loaded when the layer is first needed and
+  // decoded once. `pixelUrls` maps "scene/id" to the URL (null when the
+  // script cannot be loaded); `decoded` maps "scene/id" to { data, width }
+  // once decoded, { error } when it cannot be, {} while decoding.
+  const pixelUrls = new Map();
+  const requested = new Set();
+  const decoded = new Map();
+  window.subconePixels = (name, id, url) => {
+    pixelUrls.set(name + "/" + id, url);
+    refreshValues();
+  };
+
+  function loadPixels(sc, id) {
+    const key = sc.name + "/" + id;
+    if (!sc.pixels || requested.has(key)) return;
+    requested.add(key);
+    const s = document.createElement("script");
+    s.src = sc.pixels + encodeURIComponent(id) + ".js";
+    s.addEventListener("error", () => { pixelUrls.set(key, null); refreshValues(); });
+    document.head.appendChild(s);
+  }
+
+  // The decoded RGBA of a layer, or null while it is not (yet) there.
+  function pixelsOf(sc, id) {
+    if (!id) return null;
+    const key = sc.name + "/" + id;
+    const have = decoded.get(key);
+    if (have) return have.data ? have : null;
+    const url = pixelUrls.get(key);
+    if (!url) {
+      loadPixels(sc, id);
+      return null;
+    }
+    const entry = {};
+    decoded.set(key, entry);
+    const img = new Image();
+    img.addEventListener("load", () => {
+      const c = document.createElement("canvas");
+      c.width = img.naturalWidth;
+      c.height = img.naturalHeight;
+      const ctx = c.getContext("2d", { willReadFrequently: true });
+      ctx.drawImage(img, 0, 0);
+      entry.data = ctx.getImageData(0, 0, c.width, c.height).data;
+      entry.width = c.width;
+      entry.height = c.height;
+      refreshValues();
+    });
+    img.addEventListener("error", () => { entry.error = true; refreshValues(); });
+    img.src = url;
+    return null;
+  }
+
+  // Whether the layer's pixels will not come: no pixel scripts, the
+  // layer's failed to load, or its PNG to decode.
+  function unavailable(sc, id) {
+    const key = sc.name + "/" + id;
+    const d = decoded.get(key);
+    return !sc.pixels || pixelUrls.get(key) === null || (d && d.error);
+  }
+
+  function rgbAt(sc, id, x, y) {
+    const p = pixelsOf(sc, id);
+    if (!p || x >= p.width || y >= p.height) return null;
+    const i = 4 * (y * p.width + x);
+    return [p.data[i], p.data[i + 1], p.data[i + 2]];
+  }
+
+  // FLIP's colour map as [r, g, b] triples: colour k is the error k / 255.
+  const LUT = [];
+  for (let k = 0; k < 256; k++) {
+    LUT.push([0, 2, 4].map((o) => parseInt(R.flip_lut.substr(6 * k + o, 2), 16)));
+  }
+
+  // The FLIP error a map pixel's colour stands for: the index of the
+  // nearest colour of the map over 255 (exact for the map's own colours),
+  // null for a colour far from every one.
+  function decodeFlip(rgb) {
+    let best = -1;
+    let dist = Infinity;
+    LUT.forEach((c, k) => {
+      const d = (c[0] - rgb[0]) ** 2 + (c[1] - rgb[1]) ** 2 + (c[2] - rgb[2]) ** 2;
+      if (d < dist) { dist = d; best = k; }
+    });
+    return dist <= 27 ? best / 255 : null;
+  }
+
+  // 1 − SSIM from its map's grey: 0 black, R.ssim_white and more white.
+  function decodeSsim(rgb) {
+    if (Math.max(...rgb) - Math.min(...rgb) > 2) return null;
+    return (rgb[1] / 255) * R.ssim_white;
+  }
+
+  // A layer's values at (x, y): its RGB, and for a method's layer (render or
+  // map) the FLIP and 1 − SSIM of the method there, from its maps.
+  function valuesAt(sc, layer, x, y) {
+    const v = { rgb: rgbAt(sc, layer.id, x, y), flip: null, ssim: null };
+    const maps = layer.maps || {};
+    const flip = maps.flip && rgbAt(sc, maps.flip, x, y);
+    const ssim = maps.ssim && rgbAt(sc, maps.ssim, x, y);
+    if (flip) v.flip = decodeFlip(flip);
+    if (ssim) v.ssim = decodeSsim(ssim);
+    v.ready = !!v.rgb && (!maps.flip || !!flip) && (!maps.ssim || !!ssim);
+    v.missing = [layer.id, maps.flip, maps.ssim].some((id) => id && unavailable(sc, id));
+    return v;
+  }
+
   function drawHighlight(sc) {
     const bit = R.classes.indexOf(state.highlight);
     const bits = bitsOf(sc);
@@ -199,7 +323,7 @@
   function layout() {
     const sc = scene();
     const [ox, oy] = offset();
-    for (const el of [imgA, imgB, canvas]) {
+    for (const el of [imgA, imgB, canvas, diffCanvas]) {
       el.style.width = sc.width * state.zoom + "px";
       el.style.height = sc.height * state.zoom + "px";
       el.style.left = ox + "px";
@@ -208,7 +332,7 @@
     const vw = viewport.clientWidth;
     const splitX = Math.round(state.split * vw);
     clipA.style.width = (state.mode === "split" ? splitX : state.mode === "a" ? vw : 0) + "px";
-    imgB.style.visibility = state.mode === "a" ? "hidden" : "visible";
+    imgB.style.visibility = state.mode === "a" || isDiff() ? "hidden" : "visible";
     handle.style.left = splitX + "px";
     handle.hidden = state.mode !== "split";
     $("label-a").hidden = state.mode === "b";
@@ -220,19 +344,146 @@
     viewport.dataset.offset = ox + " " + oy;
   }
 
+  let shownPixel = null;
+
   function showPixel(x, y, hovered) {
     const sc = scene();
     const info = $("pixel-info");
+    shownPixel = [x, y, hovered];
     if (x < 0 || y < 0 || x >= sc.width || y >= sc.height) {
       info.textContent = "outside the image";
+      $("values").textContent = "";
       return;
     }
+    showValues(sc, x, y);
     const cls = classesAt(sc, x, y);
     info.dataset.x = x;
     info.dataset.y = y;
     info.dataset.classes = cls ? cls.join(" ") : "";
     info.textContent = (hovered ? "pixel " : "centre pixel ") + "(" + x + ", " + y + ")" +
       (cls ? ": " + (cls.length ? cls.join(", ") : "no class") : ": no classes (not measured)");
+  }
+
+  // The values of A and B at (x, y), as text with the numbers in spans
+  // (`#rgb-a`, `#flip-a`, `#ssim-a`, and `-b`), and as data attributes of
+  // `#values` (`data-state` ready, loading or unavailable).
+  function showValues(sc, x, y) {
+    const out = $("values");
+    out.textContent = "";
+    const ds = out.dataset;
+    for (const k of Object.keys(ds)) delete ds[k];
+    ds.x = x;
+    ds.y = y;
+    let state_ = "ready";
+    const span = (id, text) => {
+      const s = document.createElement("span");
+      s.id = id;
+      s.textContent = text;
+      return s;
+    };
+    for (const [which, id] of [["a", state.a], ["b", state.b]]) {
+      const layer = layerOf(sc, id);
+      if (!layer) continue;
+      const v = valuesAt(sc, layer, x, y);
+      if (!v.ready) state_ = v.missing && state_ !== "loading" ? "unavailable" : "loading";
+      const part = document.createElement("span");
+      part.className = "value-part";
+      part.append(which.toUpperCase() + " (" + layer.label + "): RGB ");
+      part.append(span("rgb-" + which, v.rgb ? v.rgb.join(" ") : v.missing ? "n/a" : "…"));
+      if (v.rgb) ds["rgb" + which.toUpperCase()] = v.rgb.join(" ");
+      if (layer.maps && layer.maps.flip) {
+        part.append(", FLIP ");
+        part.append(span("flip-" + which, v.flip === null ? (v.ready ? "?" : "…") : v.flip.toFixed(4)));
+        if (v.flip !== null) ds["flip" + which.toUpperCase()] = String(v.flip);
+      }
+      if (layer.maps && layer.maps.ssim) {
+        part.append(", 1 \u2212 SSIM ");
+        const white = v.ssim !== null && v.ssim >= R.ssim_white;
+        part.append(span("ssim-" + which, v.ssim === null ? (v.ready ? "?" : "…") :
+          (white ? "\u2265 " : "") + v.ssim.toFixed(4)));
+        if (v.ssim !== null) ds["ssim" + which.toUpperCase()] = String(v.ssim);
+      }
+      out.appendChild(part);
+    }
+    ds.state = state_;
+  }
+
+  // New pixels decoded: the readout and the difference again.
+  function refreshValues() {
+    if (!R.scenes.length || !state.scene) return;
+    if (shownPixel) {
+      const [x, y, hovered] = shownPixel;
+      showPixel(x, y, hovered);
+    }
+    if (isDiff()) drawDiff(scene());
+  }
+
+  // The difference of A and B into the difference canvas, once both are
+  // decoded; `data-ready` says when it shows them.
+  function drawDiff(sc) {
+    const pa = pixelsOf(sc, state.a);
+    const pb = pixelsOf(sc, state.b);
+    const key = [sc.name, state.a, state.b, state.mode, state.scale].join("/");
+    diffCanvas.hidden = !isDiff();
+    if (!isDiff()) return;
+    if (!pa || !pb || pa.width !== pb.width || pa.height !== pb.height) {
+      diffCanvas.dataset.ready = "";
+      diffCanvas.dataset.key = "";
+      return;
+    }
+    if (diffCanvas.dataset.key === key) return;
+    diffCanvas.width = pa.width;
+    diffCanvas.height = pa.height;
+    const ctx = diffCanvas.getContext("2d");
+    const img = ctx.createImageData(pa.width, pa.height);
+    const k = state.scale;
+    const signed = state.mode === "signed";
+    for (let i = 0; i < pa.data.length; i += 4) {
+      for (let c = 0; c < 3; c++) {
+        const d = pa.data[i + c] - pb.data[i + c];
+        img.data[i + c] = signed ? Math.round(128 + (k * d) / 2) : k * Math.abs(d);
+      }
+      img.data[i + 3] = 255;
+    }
+    ctx.putImageData(img, 0, 0);
+    diffCanvas.dataset.key = key;
+    diffCanvas.dataset.ready = "1";
+  }
+
+  // --- Colour bars --------------------------------------------------------
+
+  // One bar per kind of map: FLIP's colour map over 0 to 1, 1 − SSIM's grey
+  // over 0 to R.ssim_white; shown while a visible layer is such a map.
+  function buildBars() {
+    const bars = [
+      ["flip", "FLIP", "0", "1", (t) => LUT[Math.round(t * 255)]],
+      ["ssim", "1 \u2212 SSIM", "0", "\u2265 " + R.ssim_white, (t) => [0, 1, 2].map(() => Math.round(t * 255))],
+    ];
+    for (const [kind, name, lo, hi, colour] of bars) {
+      const div = document.createElement("div");
+      div.className = "bar";
+      div.id = "bar-" + kind;
+      div.dataset.kind = kind;
+      const c = document.createElement("canvas");
+      c.width = 256;
+      c.height = 1;
+      const ctx = c.getContext("2d");
+      const img = ctx.createImageData(256, 1);
+      for (let i = 0; i < 256; i++) img.data.set([...colour(i / 255), 255], 4 * i);
+      ctx.putImageData(img, 0, 0);
+      const mid = kind === "flip" ? "0.5" : String(R.ssim_white / 2);
+      div.append(name + " map: ", lo + " ", c, " " + hi, " (middle " + mid + ")");
+      $("bars").appendChild(div);
+    }
+  }
+
+  function showBars(sc) {
+    const visible = [];
+    if (state.mode === "split" || state.mode === "a") visible.push(layerOf(sc, state.a));
+    if (state.mode === "split" || state.mode === "b") visible.push(layerOf(sc, state.b));
+    const kinds = visible.filter(Boolean).map((l) => l.kind);
+    for (const bar of $("bars").children) bar.hidden = !kinds.includes(bar.dataset.kind);
+    $("bars").dataset.shown = ["flip", "ssim"].filter((k) => kinds.includes(k)).join(" ");
   }
 
   function showCentre() {
@@ -250,8 +501,14 @@
       fillLayerSelect($("layer-b"), sc, state.b);
       setImage(imgA, layerOf(sc, state.a));
       setImage(imgB, layerOf(sc, state.b));
-      $("label-a").textContent = "A: " + layerOf(sc, state.a).label;
+      const diffText = state.mode === "diff" ? "|A \u2212 B| \u00d7 " + state.scale :
+        "128 + " + state.scale + " (A \u2212 B) / 2";
+      $("label-a").textContent = (isDiff() ? diffText + ", A: " : "A: ") + layerOf(sc, state.a).label;
       $("label-b").textContent = "B: " + layerOf(sc, state.b).label;
+      $("scale").value = String(state.scale);
+      $("scale").disabled = !isDiff();
+      drawDiff(sc);
+      showBars(sc);
       for (const b of document.querySelectorAll("[data-mode]")) {
         b.setAttribute("aria-pressed", String(b.dataset.mode === state.mode));
       }
@@ -261,6 +518,7 @@
       showCentre();
     }
     renderTable(sc);
+    renderMotion(sc);
     renderPlots(sc);
     writeHash();
   }
@@ -298,6 +556,8 @@
     $("zoom-in").addEventListener("click", () => stepZoom(1));
     $("zoom-out").addEventListener("click", () => stepZoom(-1));
     $("highlight").addEventListener("change", (e) => { state.highlight = e.target.value; render(); });
+    for (const k of SCALES) $("scale").appendChild(new Option("\u00d7" + k, String(k)));
+    $("scale").addEventListener("change", (e) => { state.scale = parseInt(e.target.value, 10); render(); });
     for (const [img, which] of [[imgA, "A"], [imgB, "B"]]) {
       img.addEventListener("error", () => fail("cannot load layer " + which + ": " + img.getAttribute("src")));
     }
@@ -377,19 +637,29 @@
     });
   }
 
-  // The columns with a value on some row of the scene.
+  // Every column the table may show: the summary's, then the raw ones.
+  function allColumns() {
+    return [...R.summary_columns.map(([k]) => k), ...R.columns];
+  }
+
+  const titleOf = (c) => (state.raw ? c : (R.summary_columns.find(([k]) => k === c) || [c, c])[1]);
+
+  // The columns (the summary's, or with `raw` every one) with a value on
+  // some row of the scene.
   function columnsOf(sc) {
-    return R.columns.filter((c) => sc.rows.some((r) => r[c] !== null && r[c] !== undefined));
+    const cols = state.raw ? R.columns : R.summary_columns.map(([k]) => k);
+    return cols.filter((c) => sc.rows.some((r) => r[c] !== null && r[c] !== undefined));
   }
 
   function renderTable(sc) {
     $("results-title").textContent = "Results: " + sc.name;
+    $("raw").checked = state.raw;
     const [col, dir] = state.sort.split(":");
     const columns = columnsOf(sc);
     const head = document.createElement("tr");
     for (const c of columns) {
       const th = document.createElement("th");
-      th.textContent = c;
+      th.textContent = titleOf(c);
       th.dataset.column = c;
       if (c === col) th.setAttribute("aria-sort", dir === "asc" ? "ascending" : "descending");
       head.appendChild(th);
@@ -404,8 +674,11 @@
       tr.dataset.key = r.method + "/" + r.backend;
       for (const c of columns) {
         const td = document.createElement("td");
-        td.textContent = cellText(r[c]);
+        // Verdict cells are report.md's, converted by the report (escaped).
+        if (R.html_columns.includes(c)) td.innerHTML = r[c] || "";
+        else td.textContent = cellText(r[c]);
         if (typeof r[c] === "number") td.className = "num";
+        td.dataset.column = c;
         tr.appendChild(td);
       }
       tbody.appendChild(tr);
@@ -413,6 +686,7 @@
   }
 
   function bindTable() {
+    $("raw").addEventListener("change", (e) => { state.raw = e.target.checked; render(); });
     // Numbers sort descending first (largest error or time on top), text
     // ascending.
     $("results-table").tHead.addEventListener("click", (e) => {
@@ -424,6 +698,40 @@
       state.sort = c + ":" + (col === c ? (dir === "asc" ? "desc" : "asc") : first);
       render();
     });
+  }
+
+  // --- Motion and report.md's sections -------------------------------------
+
+  function renderMotion(sc) {
+    $("motion").hidden = !sc.motion;
+    if (!sc.motion) return;
+    const img = $("motion-img");
+    if (img.getAttribute("src") !== sc.motion.src) img.src = sc.motion.src;
+    img.alt = sc.motion.caption;
+    $("motion-caption").textContent = sc.motion.caption;
+  }
+
+  // The first section (the report's answer) at the top, the others below
+  // the plots; a section asked for that report.md lacks is named.
+  function buildSections() {
+    R.sections.forEach((s, i) => {
+      const sec = document.createElement("section");
+      sec.className = "md";
+      sec.dataset.heading = s.heading;
+      const h = document.createElement("h2");
+      h.textContent = s.heading;
+      const div = document.createElement("div");
+      div.innerHTML = s.html;
+      sec.append(h, div);
+      $(i === 0 ? "answer" : "sections").appendChild(sec);
+    });
+    body.dataset.sections = R.sections.map((s) => s.heading).join("|");
+    if (R.missing_sections.length) {
+      body.dataset.missingSections = R.missing_sections.join("|");
+      $("missing").textContent = "report.md has no section " +
+        R.missing_sections.map((m) => "\u201c" + m + "\u201d").join(", ") + ": not shown here.";
+      $("missing").hidden = false;
+    }
   }
 
   // --- Plots --------------------------------------------------------------
@@ -498,6 +806,19 @@
       select("highlight", R.classes[0]);
       check(!canvas.hidden && canvas.dataset.highlight === R.classes[0], "highlight");
     }
+    $("mode-diff").click();
+    check(state.mode === "diff" && clipA.style.width === "0px" && imgB.style.visibility === "hidden" &&
+      !diffCanvas.hidden && location.hash.includes("mode=diff"), "difference button");
+    select("scale", "8");
+    check(state.scale === 8 && location.hash.includes("scale=8"), "scale");
+    $("mode-signed").click();
+    check(state.mode === "signed" && location.hash.includes("mode=signed"), "signed difference button");
+    $("mode-split").click();
+    const narrow = $("results-table").tHead.rows[0].cells.length;
+    $("raw").click();
+    const wide = $("results-table").tHead.rows[0].cells.length;
+    $("raw").click();
+    check(wide > narrow && $("results-table").tHead.rows[0].cells.length === narrow, "every-column toggle");
     const header = () => $("results-table").tHead.querySelector("th[data-column='ms_median']");
     header().click();
     const once = state.sort;
@@ -523,6 +844,10 @@
   try {
     if (!R.scenes.length) throw new Error("the report has no scene");
     $("run").textContent = R.run;
+    $("build").textContent = "build " + R.code;
+    body.dataset.code = R.code;
+    buildSections();
+    buildBars();
     buildSceneButtons();
     for (const c of R.classes) $("highlight").appendChild(new Option(c, c));
     bindViewer();
