@@ -494,19 +494,17 @@ impl Judged {
     /// Its figures: `0.1900 vs 0.2000`, with the per-offset ratio range
     /// when there is more than one offset.
     pub fn figures(&self) -> String {
-        let mut s = format!("{} vs {}", figure(self.it), figure(self.noaa));
+        let figures = format!("{} vs {}", figure(self.it), figure(self.noaa));
         if self.offsets > 1 {
-            let _ = std::fmt::Write::write_fmt(
-                &mut s,
-                format_args!(
-                    ", {}–{}× over {} offsets",
-                    ratio_text(self.ratio.0),
-                    ratio_text(self.ratio.1),
-                    self.offsets
-                ),
-            );
+            format!(
+                "{figures}, {}–{}× over {} offsets",
+                ratio_text(self.ratio.0),
+                ratio_text(self.ratio.1),
+                self.offsets
+            )
+        } else {
+            figures
         }
-        s
     }
 }
 

@@ -386,6 +386,8 @@ pub struct ErrorOffsets {
     /// The offsets after the first are measured at the quality size divided
     /// by this on each side.
     pub divisor: u32,
+    /// The reference method of the offsets after the first.
+    pub reference: String,
     /// Wall time the offsets after the first took (their references,
     /// classes, renders and errors).
     pub elapsed: Duration,
@@ -649,6 +651,8 @@ struct Plan {
     /// The offsets after the first are measured at the quality size over
     /// this on each side.
     offset_divisor: u32,
+    /// The reference of the offsets after the first.
+    offset_reference: Method,
 }
 
 /// A method that some backend renders on a scene, with the indices (in the
@@ -842,6 +846,12 @@ impl Plan {
                 offsets::FULL_OFFSET_DIVISOR
             } else {
                 1
+            },
+            offset_reference: if mode == Mode::Full && size.is_none() && args.reference.is_none()
+            {
+                offsets::FULL_OFFSET_REFERENCE
+            } else {
+                reference
             },
         })
     }
@@ -1245,7 +1255,8 @@ impl Runner<'_> {
         for &offset in plan.offsets.iter().skip(1) {
             let camera = offsets::offset_camera(&job.scene.camera, offset, size.1)?;
             let settings = plan.settings(size.0, size.1, job.sdf);
-            let reference = self.reference_from(job, &settings, None, Some(&camera))?;
+            let by = Some(plan.offset_reference);
+            let reference = self.reference_from(job, &settings, by, Some(&camera))?;
             self.progress.bar.set_message(format!(
                 "{}: edge classes at offset {}",
                 job.name,
@@ -1501,6 +1512,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
         error_offsets: ErrorOffsets {
             offsets: plan.offsets.clone(),
             divisor: plan.offset_divisor,
+            reference: plan.offset_reference.to_string(),
             elapsed: runner.offsets_elapsed,
         },
         elapsed: start.elapsed(),
@@ -2380,7 +2392,10 @@ mod tests {
         let noaa = Method::new(Technique::NoAa);
         // Scene 0: two methods on backend 0; scene 1: nothing applies.
         let work = vec![(0, vec![(noaa, vec![0]), (noaa, vec![0])]), (1, vec![])];
-        // 2 methods × (1 warm-up + 4 rounds) + reference and masks.
-        assert_eq!(progress_length(&plan, &work, false), 2 * 5 + 2);
+        // 2 methods × (1 warm-up + 4 rounds) + reference and masks, then
+        // at each of the 3 further camera offsets a reference, classes and
+        // each method's render.
+        assert_eq!(plan.offsets.len(), 4);
+        assert_eq!(progress_length(&plan, &work, false), 2 * 5 + 2 + 3 * (2 + 2));
     }
 }

@@ -974,10 +974,12 @@ further offsets took {secs:.1} s of this run's {total:.1} s ({share:.1} %).",
         size = if o.divisor > 1 {
             format!(
                 "The offsets after the first are measured at 1/{d} of the quality size on each side \
-(1/{d2} of the pixels), so that they fit the run's time; the range over the offsets includes \
-the effect of that size.",
+(1/{d2} of the pixels) against a {r} reference, so that they fit the run's time; the range over \
+the offsets includes the effect of that size and reference (a method and NoAA are always compared \
+at one size, against one reference).",
                 d = o.divisor,
-                d2 = o.divisor * o.divisor
+                d2 = o.divisor * o.divisor,
+                r = o.reference
             )
         } else {
             "Every offset is measured at the quality size.".into()
@@ -1433,12 +1435,19 @@ fn sraa_targets(s: &ReportSummary, sdf: &[&str], b: &str, md: &mut String) {
             let Some(noaa) = find(NOAA.to_string().as_str(), &r.scene) else {
                 continue;
             };
-            let (Some(it), Some(n), Some(a), Some(na)) =
+            let (Some(_), Some(_), Some(a), Some(na)) =
                 (r.classes, noaa.classes, r.flip_mean, noaa.flip_mean)
             else {
                 continue;
             };
-            let v = Verdict::judge(method, &it, &n);
+            // Paired by camera offset, as the verdict lines.
+            let v = Verdict::judge_claims(
+                method,
+                classes::claimed(method),
+                Metric::Flip,
+                &r.class_errors_at(Metric::Flip),
+                &noaa.class_errors_at(Metric::Flip),
+            );
             let flat = v
                 .flat
                 .map(|(x, y)| format!("flat {x:.4} vs {y:.4}"))
@@ -1511,7 +1520,14 @@ fn ctss_targets(s: &ReportSummary, b: &str, md: &mut String) {
         else {
             continue;
         };
-        let v = Verdict::judge(CTSS.to_string().as_str(), &it, &n);
+        let ctss = CTSS.to_string();
+        let v = Verdict::judge_claims(
+            &ctss,
+            classes::claimed(&ctss),
+            Metric::Flip,
+            &r.class_errors_at(Metric::Flip),
+            &noaa.class_errors_at(Metric::Flip),
+        );
         let flat = v
             .flat
             .map(|(x, y)| format!("flat {x:.4} vs {y:.4}"))
