@@ -131,7 +131,11 @@ fn check_verdicts(results: &serde_json::Value, md: &str) {
         let Some(at) = r["errors_at"].as_array() else {
             continue;
         };
-        assert_eq!(at.len(), 4, "{scene} {method}: the quick report measures 4 offsets");
+        assert_eq!(
+            at.len(),
+            4,
+            "{scene} {method}: the quick report measures 4 offsets"
+        );
         assert_eq!(r["offsets"].as_u64(), Some(4));
         // The means over the offsets are the columns.
         let mean = |k: &str| at.iter().map(|e| e[k].as_f64().unwrap()).sum::<f64>() / 4.0;
@@ -403,8 +407,17 @@ fn quick_report_on_every_paper_scene() {
     // The near-edge band: its columns, and pixels that leave flat for it
     // (every scene has edges, so some flat-looking pixel is within 2 px of
     // one), at every camera offset.
-    for name in ["flip_near_edge", "px_near_edge", "dssim_near_edge", "flip_min", "flip_max"] {
-        assert!(header.iter().any(|h| h == name), "results.csv lacks column {name}");
+    for name in [
+        "flip_near_edge",
+        "px_near_edge",
+        "dssim_near_edge",
+        "flip_min",
+        "flip_max",
+    ] {
+        assert!(
+            header.iter().any(|h| h == name),
+            "results.csv lacks column {name}"
+        );
     }
     let band = col("px_near_edge");
     for r in rows.iter().filter(|r| !r[col("flip_mean")].is_empty()) {

@@ -704,8 +704,7 @@ impl Verdict {
     /// Whether it holds on flat pixels: not a loss at every offset (true
     /// without flat pixels, or with too few for a verdict).
     pub fn holds_on_flat(&self) -> bool {
-        self.flat_judged
-            .is_none_or(|j| j.outcome != Outcome::Loses)
+        self.flat_judged.is_none_or(|j| j.outcome != Outcome::Loses)
     }
 
     /// The judged classes with `outcome`.
@@ -759,7 +758,10 @@ impl Verdict {
             .map(|j| format!("{} ({} px)", j.class, j.px))
             .collect();
         if !few.is_empty() {
-            parts.push(format!("too few pixels for a verdict on {}", few.join(", ")));
+            parts.push(format!(
+                "too few pixels for a verdict on {}",
+                few.join(", ")
+            ));
         }
         if !self.absent.is_empty() {
             let a: Vec<&str> = self.absent.iter().map(|c| c.name()).collect();
@@ -949,18 +951,35 @@ mod tests {
             e.mean[Class::Shadow.index()] = Some(0.2);
             e.px[Class::Shadow.index()] = 8;
         }
-        let claims = vec![Class::Silhouette, Class::Crease, Class::Shadow, Class::Texture];
+        let claims = vec![
+            Class::Silhouette,
+            Class::Crease,
+            Class::Shadow,
+            Class::Texture,
+        ];
         let v = Verdict::judge_claims("x", claims, Metric::Flip, &it, &noaa);
         let line = v.line("cpu");
-        assert!(line.contains("tie (within noise) on crease (1.0000 vs 1.0000, 0.90–1.10× over 4 offsets)"), "{line}");
+        assert!(
+            line.contains(
+                "tie (within noise) on crease (1.0000 vs 1.0000, 0.90–1.10× over 4 offsets)"
+            ),
+            "{line}"
+        );
         // The mean ratio: (0.26 + 0.275 + 0.252 + 0.273) / 0.81 = 1.33.
         assert!(line.contains("loses by 1.3× on silhouette"), "{line}");
-        assert!(line.contains("too few pixels for a verdict on shadow (8 px)"), "{line}");
+        assert!(
+            line.contains("too few pixels for a verdict on shadow (8 px)"),
+            "{line}"
+        );
         assert!(line.contains("no pixels of texture"), "{line}");
         assert!(line.contains("flat: loses by 1.3×"), "{line}");
         assert!(!line.contains("does not beat"));
         assert_eq!(v.beats.len(), 0);
-        assert_eq!(v.misses.len(), 2, "noise and loss are misses; too few pixels is not");
+        assert_eq!(
+            v.misses.len(),
+            2,
+            "noise and loss are misses; too few pixels is not"
+        );
         assert!(!v.holds_on_flat());
         assert_eq!(loss_text(1.06), "1.06×");
         assert_eq!(loss_text(2.0), "2.0×");
@@ -1017,7 +1036,9 @@ mod tests {
         assert_eq!(m.near_edge.iter().filter(|&&b| b).count(), 24);
         assert_eq!(m.count(Class::Flat), 49 - 25);
         // The band's error is measured apart from flat's.
-        let map: Vec<f32> = (0..49).map(|p| if m.near_edge[p] { 0.5 } else { 0.1 }).collect();
+        let map: Vec<f32> = (0..49)
+            .map(|p| if m.near_edge[p] { 0.5 } else { 0.1 })
+            .collect();
         let e = ClassError::measure(&map, &m);
         assert_eq!((e.near_edge, e.near_edge_px), (Some(0.5), 24));
         assert!((e.mean[Class::Flat.index()].unwrap() - 0.1).abs() < 1e-7);

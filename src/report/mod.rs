@@ -311,7 +311,8 @@ impl ResultRow {
         }
         self.flip_mean = Some(self.errors_at.iter().map(|e| e.flip).sum::<f64>() / n as f64);
         self.ssim_mean = Some(self.errors_at.iter().map(|e| e.ssim).sum::<f64>() / n as f64);
-        self.classes = classes::ClassError::over_offsets(&self.class_errors_at(classes::Metric::Flip));
+        self.classes =
+            classes::ClassError::over_offsets(&self.class_errors_at(classes::Metric::Flip));
         self.classes_ssim =
             classes::ClassError::over_offsets(&self.class_errors_at(classes::Metric::Ssim));
     }
@@ -847,8 +848,7 @@ impl Plan {
             } else {
                 1
             },
-            offset_reference: if mode == Mode::Full && size.is_none() && args.reference.is_none()
-            {
+            offset_reference: if mode == Mode::Full && size.is_none() && args.reference.is_none() {
                 offsets::FULL_OFFSET_REFERENCE
             } else {
                 reference
@@ -1860,7 +1860,8 @@ impl Runner<'_> {
                 match self.offset_qualities(job) {
                     Ok(o) => q.offsets = o,
                     Err(e) => {
-                        let what = format!("reference {} at the camera offsets", self.plan.reference);
+                        let what =
+                            format!("reference {} at the camera offsets", self.plan.reference);
                         self.fail(Failure::new(&job.name, what, "cpu", &e))?;
                     }
                 }
@@ -2396,6 +2397,9 @@ mod tests {
         // at each of the 3 further camera offsets a reference, classes and
         // each method's render.
         assert_eq!(plan.offsets.len(), 4);
-        assert_eq!(progress_length(&plan, &work, false), 2 * 5 + 2 + 3 * (2 + 2));
+        assert_eq!(
+            progress_length(&plan, &work, false),
+            2 * 5 + 2 + 3 * (2 + 2)
+        );
     }
 }

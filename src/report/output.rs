@@ -488,7 +488,10 @@ pub fn json(s: &ReportSummary, ctx: &Context) -> Value {
 /// `dssim_<class>` and `px_<class>`, so that every verdict can be derived
 /// again from the file.
 fn errors_at_json(r: &ResultRow) -> Value {
-    let num = |v: Option<f64>| v.filter(|x| x.is_finite()).map_or(Value::Null, |x| json!(x));
+    let num = |v: Option<f64>| {
+        v.filter(|x| x.is_finite())
+            .map_or(Value::Null, |x| json!(x))
+    };
     Value::Array(
         r.errors_at
             .iter()
@@ -894,7 +897,7 @@ seen by a sub-sample. The classes may overlap; *flat* is a pixel in none of the 
 | texture | no silhouette or crease in the pixel, and its surface sub-samples' albedo differs by more than {t} in some channel of √albedo |\n\
 | reflection | a sub-sample sees a mirror (reflectance above 0) |\n\
 | near edge | none of the above, but within {r} px of a pixel that is (Chebyshev distance: in the {side}×{side} square around it); measured and reported, not judged |\n\
-| flat | none of the above, near edge included |\n\n\
+| flat | none of the above, and not near edge |\n\n\
 The near-edge band holds the pixels an error metric with a spatial filter (FLIP's) charges with \
 a neighbouring edge's error; flat is judged without them. \
 `flip_<class>` is the mean FLIP over the class's pixels and `px_<class>` their count (in \
@@ -2131,7 +2134,10 @@ mod tests {
         let share = near_edge_share(&fx, &noaa).unwrap();
         assert!((share.share().unwrap() - 12.0 / 12.6).abs() < 1e-9);
         assert!((share.px_share() - 0.25).abs() < 1e-12);
-        assert!(md.contains("Near-edge band: 95 % of the method's FLIP excess"), "{md}");
+        assert!(
+            md.contains("Near-edge band: 95 % of the method's FLIP excess"),
+            "{md}"
+        );
         assert!(md.contains("which holds 25 % of those pixels"), "{md}");
         // Noise: FLIP wins at two offsets and not at the others.
         let noisy = measured(
@@ -2142,7 +2148,10 @@ mod tests {
             [0.08; 4],
         );
         let md = class_section("s", &[&noaa, &noisy]);
-        assert!(md.contains("silhouette: tie (within noise) under FLIP"), "{md}");
+        assert!(
+            md.contains("silhouette: tie (within noise) under FLIP"),
+            "{md}"
+        );
         assert!(md.contains("Cause: noise: the per-offset ratio to NoAA, FLIP's (0.90–1.00×), does not stay on one side"), "{md}");
         // Agreement: no disagreement section.
         let same = measured("fxaa", [0.1; 4], [0.05; 4], [0.1; 4], [0.05; 4]);
@@ -2170,7 +2179,13 @@ mod tests {
 
     #[test]
     fn spread_columns_hold_the_offsets_range() {
-        let r = measured("noaa", [0.2, 0.3, 0.25, 0.2], [0.05; 4], [0.1, 0.2, 0.1, 0.1], [0.1; 4]);
+        let r = measured(
+            "noaa",
+            [0.2, 0.3, 0.25, 0.2],
+            [0.05; 4],
+            [0.1, 0.2, 0.1, 0.1],
+            [0.1; 4],
+        );
         let (cols, vals) = json_rows(std::slice::from_ref(&r));
         assert!(cols.iter().any(|c| c == "flip_near_edge_max"));
         let v = &vals[0];
@@ -2181,7 +2196,10 @@ mod tests {
         assert_eq!(v["flip_near_edge_max"], json!(0.2));
         assert_eq!(v["px_near_edge"], json!(100));
         assert_eq!(v["dssim_near_edge"], Value::Null);
-        assert_eq!(with_range(Some(0.2375), r.range(Metric::Flip)), "0.2375 (0.2000–0.3000)");
+        assert_eq!(
+            with_range(Some(0.2375), r.range(Metric::Flip)),
+            "0.2375 (0.2000–0.3000)"
+        );
     }
 
     #[test]
