@@ -471,10 +471,26 @@ fn quick_report_on_every_paper_scene() {
             .find(|s| s.starts_with(&format!("{sc}\n")))
             .unwrap();
         assert!(
-            section.contains("Where FLIP and SSIM disagree:")
+            section.contains("Where FLIP and SSIM disagree, each with its computed cause:")
                 || section.contains("FLIP and SSIM agree on every verdict of this scene."),
             "{sc}"
         );
+        // Every disagreement has its cause line.
+        if let Some((_, list)) = section.split_once("Where FLIP and SSIM disagree") {
+            let list = list.split("\n\n").nth(1).unwrap_or("");
+            let items = list
+                .lines()
+                .filter(|l| l.starts_with("  - ") && !l.starts_with("  - Near-edge band"))
+                .count();
+            let causes = list
+                .lines()
+                .filter(|l| l.starts_with("    Cause: "))
+                .count();
+            assert!(
+                items > 0 && items == causes,
+                "{sc}: {items} disagreements, {causes} causes"
+            );
+        }
         assert!(section.contains("1 − SSIM by edge class"), "{sc}");
     }
     let post = col("post_process");

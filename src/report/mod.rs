@@ -838,10 +838,15 @@ impl Plan {
             ao: args.ao,
             sraa_sweep,
             motion_frames,
-            offsets: if mode == Mode::TimingOnly {
-                Vec::new()
-            } else {
-                offsets::ERROR_OFFSETS.to_vec()
+            offsets: match (mode, args.error_offsets) {
+                (Mode::TimingOnly, _) => Vec::new(),
+                (_, Some(k)) if !(1..=offsets::ERROR_OFFSETS.len()).contains(&k) => bail!(
+                    "--error-offsets {k}: expected 1 to {}",
+                    offsets::ERROR_OFFSETS.len()
+                ),
+                (_, k) => {
+                    offsets::ERROR_OFFSETS[..k.unwrap_or(offsets::ERROR_OFFSETS.len())].to_vec()
+                }
             },
             offset_divisor: if mode == Mode::Full && size.is_none() {
                 offsets::FULL_OFFSET_DIVISOR
@@ -2379,6 +2384,46 @@ mod tests {
         ] {
             assert_eq!(plan(args), None);
         }
+    }
+
+    #[test]
+    fn errors_are_measured_at_the_offsets_asked() {
+        let plan = |args: ReportArgs| Plan::new(&args);
+        // The default report: 4 offsets, the further ones at half size
+        // against ssaa64.
+        let p = plan(ReportArgs::default()).unwrap();
+        assert_eq!(p.offsets, offsets::ERROR_OFFSETS.to_vec());
+        assert_eq!(p.offset_divisor, offsets::FULL_OFFSET_DIVISOR);
+        assert_eq!(p.offset_reference, offsets::FULL_OFFSET_REFERENCE);
+        // The quick report: every offset at its size, its own reference.
+        let quick = ReportArgs {
+            quick: true,
+            ..Default::default()
+        };
+        let p = plan(quick.clone()).unwrap();
+        assert_eq!((p.offsets.len(), p.offset_divisor), (4, 1));
+        assert_eq!(p.offset_reference, p.reference);
+        let two = ReportArgs {
+            error_offsets: Some(2),
+            ..quick.clone()
+        };
+        assert_eq!(
+            plan(two).unwrap().offsets,
+            offsets::ERROR_OFFSETS[..2].to_vec()
+        );
+        for k in [0, 5] {
+            let bad = ReportArgs {
+                error_offsets: Some(k),
+                ..quick.clone()
+            };
+            let e = plan(bad).err().expect("an error");
+            assert!(e.to_string().contains("--error-offsets"), "{e}");
+        }
+        let timing = ReportArgs {
+            timing_only: true,
+            ..Default::default()
+        };
+        assert!(plan(timing).unwrap().offsets.is_empty());
     }
 
     #[test]
