@@ -61,6 +61,19 @@ pub fn describe(c: &Camera) -> String {
     )
 }
 
+/// In the default report (no `--size`), the offsets after the first are
+/// measured at the quality size divided by this on each side (a quarter of
+/// the pixels) against [`FULL_OFFSET_REFERENCE`] (a quarter of the
+/// samples): the references dominate the error's cost, and the default
+/// report has little time to spare. The quick report measures every offset
+/// at its quality size against its own reference.
+pub const FULL_OFFSET_DIVISOR: u32 = 2;
+
+/// The reference of the default report's offsets after the first (without
+/// `--reference`): the quick report's ssaa64. Each offset's method and NoAA
+/// are compared against the same reference, so the verdicts stay paired.
+pub const FULL_OFFSET_REFERENCE: subcone_scene::Method = subcone_scene::Method::ssaa_grid(8);
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -90,16 +103,3 @@ mod tests {
         assert!(offset_camera(&base, (f32::NAN, 0.0), h).is_err());
     }
 }
-
-/// In the default report (no `--size`), the offsets after the first are
-/// measured at the quality size divided by this on each side (a quarter of
-/// the pixels) against [`FULL_OFFSET_REFERENCE`] (a quarter of the
-/// samples): the references dominate the error's cost, and the default
-/// report has little time to spare. The quick report measures every offset
-/// at its quality size against its own reference.
-pub const FULL_OFFSET_DIVISOR: u32 = 2;
-
-/// The reference of the default report's offsets after the first (without
-/// `--reference`): the quick report's ssaa64. Each offset's method and NoAA
-/// are compared against the same reference, so the verdicts stay paired.
-pub const FULL_OFFSET_REFERENCE: subcone_scene::Method = subcone_scene::Method::ssaa_grid(8);
