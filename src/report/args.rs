@@ -86,6 +86,11 @@ pub struct ReportArgs {
     /// Frames of the motion path (default 16; 4 in the quick report).
     #[arg(long, value_name = "N")]
     pub motion_frames: Option<u32>,
+    /// Camera offsets the error is measured at, 1 to 4 (default 4): the
+    /// first N of `report::offsets::ERROR_OFFSETS`. Fewer offsets cost less
+    /// time; with 1, verdicts rest on one frame.
+    #[arg(long, value_name = "N")]
+    pub error_offsets: Option<usize>,
 }
 
 impl Default for ReportArgs {
@@ -112,6 +117,7 @@ impl Default for ReportArgs {
             post_timeout: None,
             motion: false,
             motion_frames: None,
+            error_offsets: None,
         }
     }
 }

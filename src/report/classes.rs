@@ -19,7 +19,13 @@
 //! | shadow | no silhouette or crease in the pixel, and the per-light visibility of its surface sub-samples differs (some see a light that others do not) |
 //! | texture | no silhouette or crease in the pixel, and the albedo of its surface sub-samples differs by more than [`TEXTURE_ALBEDO`] in some channel of `√albedo` |
 //! | reflection | a sub-sample sees a mirror (reflectance above 0) |
-//! | flat | none of the above |
+//! | flat | none of the above, and no pixel of the above within [`NEAR_EDGE_RADIUS`] pixels (Chebyshev distance: the 5×5 square around it) |
+//!
+//! A pixel in none of the five classes but within [`NEAR_EDGE_RADIUS`] of
+//! one is in the *near edge* band ([`ClassMasks::near_edge`]), not flat: an
+//! error metric with a spatial filter (FLIP's) spreads an edge's error onto
+//! its neighbours, so a method that changes the edge changes the error
+//! there too. The band is measured and reported but not judged.
 
 use anyhow::{bail, Result};
 use glam::Vec3;
@@ -37,6 +43,14 @@ pub const CREASE_COS: f32 = 0.9;
 /// inside the pixel: about 13 sRGB codes at mid-grey, so a printed pattern or
 /// a texture step counts and texture noise of a few codes does not.
 pub const TEXTURE_ALBEDO: f32 = 0.05;
+/// Pixels in none of the classes within this Chebyshev distance of a
+/// classed pixel (silhouette, crease, shadow, texture or reflection) are in
+/// the near-edge band, not flat.
+pub const NEAR_EDGE_RADIUS: u32 = 2;
+/// A class with fewer pixels than this (at some camera offset) gets no
+/// verdict: a mean over a handful of pixels moves with a sub-pixel shift of
+/// the camera by more than the thresholds the verdicts use.
+pub const MIN_VERDICT_PIXELS: u64 = 64;
 
 /// A class mean as the verdict lines print it: 4 decimals, or 3 significant
 /// digits below 0.001, so that two small errors a verdict tells apart do
@@ -64,6 +78,9 @@ pub struct ClassMasks {
     pub height: u32,
     /// The masks, indexed by [`Class::index`], row-major.
     pub masks: [Vec<bool>; 6],
+    /// The near-edge band, row-major: pixels in none of the classes within
+    /// [`NEAR_EDGE_RADIUS`] of a classed pixel (and so not flat).
+    pub near_edge: Vec<bool>,
 }
 
 impl ClassMasks {
@@ -75,6 +92,46 @@ impl ClassMasks {
     /// Pixels in `class`.
     pub fn count(&self, class: Class) -> u64 {
         self.mask(class).iter().filter(|&&m| m).count() as u64
+    }
+
+    /// Split the pixels in no class into the near-edge band (within
+    /// [`NEAR_EDGE_RADIUS`] of a classed pixel, Chebyshev) and flat (the
+    /// rest): sets [`ClassMasks::near_edge`] and clears those pixels from
+    /// the flat mask.
+    fn split_near_edge(&mut self) {
+        let (w, h) = (self.width as usize, self.height as usize);
+        let r = NEAR_EDGE_RADIUS as usize;
+        if w == 0 || h == 0 {
+            self.near_edge = Vec::new();
+            return;
+        }
+        let classed: Vec<bool> = (0..w * h)
+            .map(|p| {
+                CLASSES
+                    .iter()
+                    .any(|&c| c != Class::Flat && self.masks[c.index()][p])
+            })
+            .collect();
+        // Separable dilation by a (2r+1)² square: rows, then columns.
+        let mut rows = vec![false; w * h];
+        for y in 0..h {
+            for x in 0..w {
+                let (a, b) = (x.saturating_sub(r), (x + r).min(w - 1));
+                rows[y * w + x] = classed[y * w + a..=y * w + b].iter().any(|&c| c);
+            }
+        }
+        let mut near = vec![false; w * h];
+        for y in 0..h {
+            let (a, b) = (y.saturating_sub(r), (y + r).min(h - 1));
+            for x in 0..w {
+                near[y * w + x] = !classed[y * w + x] && (a..=b).any(|yy| rows[yy * w + x]);
+            }
+        }
+        let flat = &mut self.masks[Class::Flat.index()];
+        for (f, &n) in flat.iter_mut().zip(&near) {
+            *f &= !n;
+        }
+        self.near_edge = near;
     }
 
     /// One byte per pixel, row-major, bit `i` set when the pixel is in
@@ -237,11 +294,14 @@ pub fn classify(sub: &Frame, side: u32) -> Result<ClassMasks> {
             masks[Class::Flat.index()][p] = !(silhouette || crease || shadow || texture || mirror);
         }
     }
-    Ok(ClassMasks {
+    let mut out = ClassMasks {
         width: w as u32,
         height: h as u32,
         masks,
-    })
+        near_edge: Vec::new(),
+    };
+    out.split_near_edge();
+    Ok(out)
 }
 
 /// The classes a method claims to fix: where it should beat NoAA. A method
@@ -258,8 +318,12 @@ pub fn claimed(method: &str) -> Vec<Class> {
 }
 
 /// A method beats NoAA on a class when its error there (FLIP, or 1 − SSIM)
-/// is at most this factor of NoAA's.
+/// is at most this factor of NoAA's (at every camera offset).
 pub const BEAT_FACTOR: f64 = 0.95;
+/// A method loses to NoAA on a claimed class when its error there is at
+/// least this factor of NoAA's (at every camera offset): the beat factor's
+/// inverse, so that a loss is as far above NoAA as a win is below.
+pub const LOSE_FACTOR: f64 = 1.0 / BEAT_FACTOR;
 /// A method holds on flat pixels when its flat error is at most this factor
 /// of NoAA's.
 pub const FLAT_FACTOR: f64 = 1.02;
@@ -307,6 +371,12 @@ impl Metric {
         a <= BEAT_FACTOR * n && n - a >= self.floor()
     }
 
+    /// Whether an error `a` on a claimed class loses to NoAA's `n`: at
+    /// least [`LOSE_FACTOR`] of it, and higher by at least the floor.
+    pub fn loses(self, a: f64, n: f64) -> bool {
+        a >= LOSE_FACTOR * n && a - n >= self.floor() && a > n
+    }
+
     /// Whether a flat error `a` holds against NoAA's `n`: at most
     /// [`FLAT_FACTOR`] of it, or higher by less than the floor.
     pub fn holds(self, a: f64, n: f64) -> bool {
@@ -317,13 +387,17 @@ impl Metric {
 /// The per-class error of one result under one metric: `mean[c]` is the
 /// mean of the error map (FLIP, or `1 − SSIM`) over the pixels of class `c`
 /// (`None` where the class has no pixel), `px[c]` their count, both indexed
-/// by [`Class::index`].
+/// by [`Class::index`]; the near-edge band's alike.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ClassError {
     /// Mean error per class.
     pub mean: [Option<f64>; 6],
     /// Pixels per class.
     pub px: [u64; 6],
+    /// Mean error over the near-edge band ([`ClassMasks::near_edge`]).
+    pub near_edge: Option<f64>,
+    /// Pixels in the near-edge band.
+    pub near_edge_px: u64,
 }
 
 impl ClassError {
@@ -334,12 +408,183 @@ impl ClassError {
             out.mean[c.index()] = super::metrics::masked_mean(map, masks.mask(c));
             out.px[c.index()] = masks.count(c);
         }
+        out.near_edge = super::metrics::masked_mean(map, &masks.near_edge);
+        out.near_edge_px = masks.near_edge.iter().filter(|&&m| m).count() as u64;
         out
+    }
+
+    /// The errors of several camera offsets in one: per class the mean over
+    /// the offsets where the class has pixels, and the smallest pixel count
+    /// of any offset (a class is only as well sampled as its thinnest
+    /// offset). `None` without an offset.
+    pub fn over_offsets(at: &[ClassError]) -> Option<ClassError> {
+        if at.is_empty() {
+            return None;
+        }
+        let mean = |v: &dyn Fn(&ClassError) -> Option<f64>| {
+            let got: Vec<f64> = at.iter().filter_map(v).collect();
+            (!got.is_empty()).then(|| got.iter().sum::<f64>() / got.len() as f64)
+        };
+        Some(ClassError {
+            mean: std::array::from_fn(|i| mean(&|e| e.mean[i])),
+            px: std::array::from_fn(|i| at.iter().map(|e| e.px[i]).min().unwrap_or(0)),
+            near_edge: mean(&|e| e.near_edge),
+            near_edge_px: at.iter().map(|e| e.near_edge_px).min().unwrap_or(0),
+        })
+    }
+
+    /// The smallest and largest value of `v` over the offsets `at` where it
+    /// is measured.
+    pub fn range(at: &[ClassError], v: impl Fn(&ClassError) -> Option<f64>) -> Option<(f64, f64)> {
+        at.iter().filter_map(v).fold(None, |r, x| match r {
+            None => Some((x, x)),
+            Some((lo, hi)) => Some((x.min(lo), x.max(hi))),
+        })
+    }
+}
+
+/// A verdict on one class (or on flat pixels) against NoAA, over the
+/// camera offsets.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Outcome {
+    /// Beats NoAA at every offset ([`Metric::beats`]).
+    Beats,
+    /// Neither beats nor loses at any offset.
+    Ties,
+    /// The offsets disagree: the margin does not clear the spread.
+    Noise,
+    /// Loses at every offset ([`Metric::loses`]; on flat, does not hold).
+    Loses,
+    /// Flat only: holds at every offset ([`Metric::holds`]).
+    Holds,
+    /// Fewer than [`MIN_VERDICT_PIXELS`] pixels at some offset: no verdict.
+    FewPixels,
+}
+
+/// One judged class: the outcome and its figures.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Judged {
+    /// The class.
+    pub class: Class,
+    /// The outcome.
+    pub outcome: Outcome,
+    /// The method's error, mean over the offsets.
+    pub it: f64,
+    /// NoAA's, mean over the offsets.
+    pub noaa: f64,
+    /// Smallest and largest per-offset ratio of the method's error to
+    /// NoAA's (paired by offset).
+    pub ratio: (f64, f64),
+    /// Offsets compared.
+    pub offsets: usize,
+    /// Pixels of the class (the smallest count over the offsets).
+    pub px: u64,
+}
+
+impl Judged {
+    /// The ratio of the mean errors, the `N` of "loses by N×".
+    pub fn mean_ratio(&self) -> f64 {
+        if self.noaa > 0.0 {
+            self.it / self.noaa
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// Its figures: `0.1900 vs 0.2000`, with the per-offset ratio range
+    /// when there is more than one offset.
+    pub fn figures(&self) -> String {
+        let figures = format!("{} vs {}", figure(self.it), figure(self.noaa));
+        if self.offsets > 1 {
+            format!(
+                "{figures}, {}–{}× over {} offsets",
+                ratio_text(self.ratio.0),
+                ratio_text(self.ratio.1),
+                self.offsets
+            )
+        } else {
+            figures
+        }
+    }
+}
+
+/// A ratio as the verdicts print it: 2 decimals (`∞` when NoAA's error is
+/// 0).
+pub fn ratio_text(r: f64) -> String {
+    if r.is_finite() {
+        format!("{r:.2}")
+    } else {
+        "∞".into()
+    }
+}
+
+/// "loses by N×": one decimal from 1.1 on, two below (so a loss never
+/// reads "1.0×").
+pub fn loss_text(r: f64) -> String {
+    if !r.is_finite() {
+        "∞×".into()
+    } else if r >= 1.1 {
+        format!("{r:.1}×")
+    } else {
+        format!("{r:.2}×")
+    }
+}
+
+/// Judge one class from the paired per-offset errors `pairs` (the method's,
+/// NoAA's) and its smallest pixel count, by `per`: per offset, `Some(true)`
+/// for a win (a hold on flat), `Some(false)` for a loss, `None` for
+/// neither.
+fn judge_class(
+    class: Class,
+    pairs: &[(f64, f64)],
+    px: u64,
+    flat: bool,
+    per: impl Fn(f64, f64) -> Option<bool>,
+) -> Judged {
+    let n = pairs.len().max(1) as f64;
+    let it = pairs.iter().map(|p| p.0).sum::<f64>() / n;
+    let noaa = pairs.iter().map(|p| p.1).sum::<f64>() / n;
+    let ratios = pairs.iter().map(|&(a, b)| {
+        if b > 0.0 {
+            a / b
+        } else if a > 0.0 {
+            f64::INFINITY
+        } else {
+            1.0
+        }
+    });
+    let ratio = ratios.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), r| {
+        (lo.min(r), hi.max(r))
+    });
+    let calls: Vec<Option<bool>> = pairs.iter().map(|&(a, b)| per(a, b)).collect();
+    let outcome = if px < MIN_VERDICT_PIXELS {
+        Outcome::FewPixels
+    } else if calls.iter().all(|c| *c == Some(true)) {
+        if flat {
+            Outcome::Holds
+        } else {
+            Outcome::Beats
+        }
+    } else if calls.iter().all(|c| *c == Some(false)) {
+        Outcome::Loses
+    } else if calls.iter().all(|c| c.is_none()) {
+        Outcome::Ties
+    } else {
+        Outcome::Noise
+    };
+    Judged {
+        class,
+        outcome,
+        it,
+        noaa,
+        ratio,
+        offsets: pairs.len(),
+        px,
     }
 }
 
 /// How one method fares against NoAA on one scene and backend, under one
-/// metric.
+/// metric, over the camera offsets its error was measured at.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Verdict {
     /// The method.
@@ -348,33 +593,56 @@ pub struct Verdict {
     pub metric: Metric,
     /// The classes it claims.
     pub claims: Vec<Class>,
-    /// Claimed classes it beats: (class, its error, NoAA's).
+    /// Claimed classes it beats at every offset: (class, its mean error,
+    /// NoAA's).
     pub beats: Vec<(Class, f64, f64)>,
-    /// Claimed classes it does not beat.
+    /// Claimed classes with a verdict that it does not beat (ties, ties
+    /// within noise, losses).
     pub misses: Vec<(Class, f64, f64)>,
     /// Claimed classes with no pixel in the scene.
     pub absent: Vec<Class>,
-    /// Flat pixels: (its error, NoAA's), when the scene has any.
+    /// Flat pixels: (its mean error, NoAA's), when the scene has any.
     pub flat: Option<(f64, f64)>,
+    /// Every claimed class with pixels, judged, in claim order (including
+    /// those with too few pixels for a verdict).
+    pub judged: Vec<Judged>,
+    /// Flat pixels, judged.
+    pub flat_judged: Option<Judged>,
 }
 
 impl Verdict {
     /// Judge `method` from its per-class FLIP against NoAA's on the same
-    /// scene, backend and class masks, on the classes its name claims
-    /// ([`claimed`]).
+    /// scene, backend and class masks (one offset), on the classes its name
+    /// claims ([`claimed`]).
     pub fn judge(method: &str, it: &ClassError, noaa: &ClassError) -> Verdict {
-        Verdict::judge_claims(method, claimed(method), Metric::Flip, it, noaa)
+        Verdict::judge_claims(
+            method,
+            claimed(method),
+            Metric::Flip,
+            std::slice::from_ref(it),
+            std::slice::from_ref(noaa),
+        )
     }
 
     /// Judge the row `method` on the classes in `claims` (a post-process
-    /// row's, say) from its per-class error under `metric`, by the same
-    /// rules as [`Verdict::judge`] ([`Metric::beats`], [`Metric::holds`]).
+    /// row's, say) from its per-class error under `metric` at each camera
+    /// offset (`it[k]` and `noaa[k]` measured at offset `k`; offsets past
+    /// the shorter of the two are left out).
+    ///
+    /// Per class, paired by offset: it **beats** NoAA when it beats at
+    /// every offset ([`Metric::beats`]), **loses** when it loses at every
+    /// offset ([`Metric::loses`]), **ties** when it does neither at any
+    /// offset, and is a **tie within noise** otherwise; flat pixels
+    /// **hold** when they hold at every offset ([`Metric::holds`]), **lose**
+    /// when they hold at none, and are a tie within noise otherwise. A class
+    /// with fewer than [`MIN_VERDICT_PIXELS`] pixels at some offset gets no
+    /// verdict.
     pub fn judge_claims(
         method: &str,
         claims: Vec<Class>,
         metric: Metric,
-        it: &ClassError,
-        noaa: &ClassError,
+        it: &[ClassError],
+        noaa: &[ClassError],
     ) -> Verdict {
         let mut v = Verdict {
             method: method.to_string(),
@@ -384,56 +652,126 @@ impl Verdict {
             misses: Vec::new(),
             absent: Vec::new(),
             flat: None,
+            judged: Vec::new(),
+            flat_judged: None,
+        };
+        let pairs = |c: Class| -> (Vec<(f64, f64)>, u64) {
+            let i = c.index();
+            let pairs: Vec<(f64, f64)> = it
+                .iter()
+                .zip(noaa)
+                .filter_map(|(a, n)| a.mean[i].zip(n.mean[i]))
+                .collect();
+            let px = it
+                .iter()
+                .zip(noaa)
+                .map(|(a, n)| a.px[i].min(n.px[i]))
+                .min()
+                .unwrap_or(0);
+            (pairs, px)
         };
         for c in claims {
-            match (it.mean[c.index()], noaa.mean[c.index()]) {
-                (Some(a), Some(n)) if metric.beats(a, n) => v.beats.push((c, a, n)),
-                (Some(a), Some(n)) => v.misses.push((c, a, n)),
-                _ => v.absent.push(c),
+            let (p, px) = pairs(c);
+            if p.is_empty() {
+                v.absent.push(c);
+                continue;
             }
+            let j = judge_class(c, &p, px, false, |a, n| {
+                if metric.beats(a, n) {
+                    Some(true)
+                } else if metric.loses(a, n) {
+                    Some(false)
+                } else {
+                    None
+                }
+            });
+            match j.outcome {
+                Outcome::Beats => v.beats.push((c, j.it, j.noaa)),
+                Outcome::FewPixels => {}
+                _ => v.misses.push((c, j.it, j.noaa)),
+            }
+            v.judged.push(j);
         }
-        let f = Class::Flat.index();
-        if let (Some(a), Some(n)) = (it.mean[f], noaa.mean[f]) {
-            v.flat = Some((a, n));
+        let (p, px) = pairs(Class::Flat);
+        if !p.is_empty() {
+            let j = judge_class(Class::Flat, &p, px, true, |a, n| Some(metric.holds(a, n)));
+            v.flat = Some((j.it, j.noaa));
+            v.flat_judged = Some(j);
         }
         v
     }
 
-    /// Whether it holds on flat pixels (true without flat pixels).
+    /// Whether it holds on flat pixels: not a loss at every offset (true
+    /// without flat pixels, or with too few for a verdict).
     pub fn holds_on_flat(&self) -> bool {
-        self.flat.is_none_or(|(a, n)| self.metric.holds(a, n))
+        self.flat_judged.is_none_or(|j| j.outcome != Outcome::Loses)
+    }
+
+    /// The judged classes with `outcome`.
+    pub fn with(&self, outcome: Outcome) -> impl Iterator<Item = &Judged> {
+        self.judged.iter().filter(move |j| j.outcome == outcome)
+    }
+
+    /// The flat verdict's word: `holds`, `loses by 1.3×`, `tie (within
+    /// noise)`, `too few pixels`; `no pixels` without flat pixels.
+    pub fn flat_word(&self) -> String {
+        match &self.flat_judged {
+            None => "no pixels".into(),
+            Some(j) => outcome_word(j),
+        }
     }
 
     /// The verdict as one Markdown list item, e.g. `- **sraa-rt** (cpu,
-    /// FLIP): beats NoAA on silhouette (0.081 vs 0.120); does not beat NoAA
-    /// on shadow (0.200 vs 0.201); no pixels of reflection; flat: holds
-    /// (0.0101 vs 0.0100).`
+    /// FLIP): beats NoAA on silhouette (0.0810 vs 0.1200, 0.62–0.71× over
+    /// 4 offsets); tie (within noise) on shadow (…); no pixels of
+    /// reflection; flat: holds (…).`
     pub fn line(&self, backend: &str) -> String {
-        let list = |v: &[(Class, f64, f64)]| {
-            v.iter()
-                .map(|(c, a, n)| format!("{c} ({} vs {})", figure(*a), figure(*n)))
+        let list = |o: Outcome| {
+            self.with(o)
+                .map(|j| format!("{} ({})", j.class, j.figures()))
                 .collect::<Vec<_>>()
-                .join(", ")
         };
         let mut parts = Vec::new();
         if self.claims.is_empty() {
             parts.push("claims no class".to_string());
         }
-        if !self.beats.is_empty() {
-            parts.push(format!("beats NoAA on {}", list(&self.beats)));
+        for (o, lead) in [
+            (Outcome::Beats, "beats NoAA on"),
+            (Outcome::Ties, "ties NoAA on"),
+            (Outcome::Noise, "tie (within noise) on"),
+        ] {
+            let l = list(o);
+            if !l.is_empty() {
+                parts.push(format!("{lead} {}", l.join(", ")));
+            }
         }
-        if !self.misses.is_empty() {
-            parts.push(format!("does not beat NoAA on {}", list(&self.misses)));
+        for j in self.with(Outcome::Loses) {
+            parts.push(format!(
+                "loses by {} on {} ({})",
+                loss_text(j.mean_ratio()),
+                j.class,
+                j.figures()
+            ));
+        }
+        let few: Vec<String> = self
+            .with(Outcome::FewPixels)
+            .map(|j| format!("{} ({} px)", j.class, j.px))
+            .collect();
+        if !few.is_empty() {
+            parts.push(format!(
+                "too few pixels for a verdict on {}",
+                few.join(", ")
+            ));
         }
         if !self.absent.is_empty() {
             let a: Vec<&str> = self.absent.iter().map(|c| c.name()).collect();
             parts.push(format!("no pixels of {}", a.join(", ")));
         }
-        parts.push(match self.flat {
-            Some((a, n)) if self.holds_on_flat() => {
-                format!("flat: holds ({} vs {})", figure(a), figure(n))
+        parts.push(match &self.flat_judged {
+            Some(j) if j.outcome == Outcome::FewPixels => {
+                format!("flat: too few pixels ({} px)", j.px)
             }
-            Some((a, n)) => format!("flat: loses ({} vs {})", figure(a), figure(n)),
+            Some(j) => format!("flat: {} ({})", outcome_word(j), j.figures()),
             None => "flat: no pixels".to_string(),
         });
         format!(
@@ -442,6 +780,19 @@ impl Verdict {
             self.metric.name(),
             parts.join("; ")
         )
+    }
+}
+
+/// One outcome in words: `beats`, `ties`, `tie (within noise)`, `loses by
+/// 1.3×`, `holds`, `too few pixels`.
+pub fn outcome_word(j: &Judged) -> String {
+    match j.outcome {
+        Outcome::Beats => "beats".into(),
+        Outcome::Ties => "ties".into(),
+        Outcome::Noise => "tie (within noise)".into(),
+        Outcome::Loses => format!("loses by {}", loss_text(j.mean_ratio())),
+        Outcome::Holds => "holds".into(),
+        Outcome::FewPixels => "too few pixels".into(),
     }
 }
 
@@ -460,6 +811,7 @@ mod tests {
             width: 8,
             height: 8,
             masks,
+            near_edge: vec![false; 64],
         };
         assert_eq!(c.bits(), (0..64u8).collect::<Vec<_>>());
     }
@@ -499,7 +851,8 @@ mod tests {
     fn cf(flips: [Option<f64>; 6]) -> ClassError {
         ClassError {
             mean: flips,
-            px: flips.map(|f| f.map_or(0, |_| 10)),
+            px: flips.map(|f| f.map_or(0, |_| 100)),
+            ..Default::default()
         }
     }
 
@@ -541,6 +894,156 @@ mod tests {
         assert_eq!(v.absent, vec![Class::Texture]);
     }
 
+    /// NoAA's error at four offsets, and a method's at `ratios` of it,
+    /// per offset, on silhouette and flat alike.
+    fn offsets(ratios: [f64; 4], px: u64) -> (Vec<ClassError>, Vec<ClassError>) {
+        let base = [0.20, 0.22, 0.18, 0.21];
+        let at = |k: usize, r: f64| {
+            let mut e = cf([Some(base[k] * r), None, None, None, None, Some(base[k] * r)]);
+            e.px[Class::Silhouette.index()] = px;
+            e.px[Class::Flat.index()] = px;
+            e
+        };
+        (
+            (0..4).map(|k| at(k, ratios[k])).collect(),
+            (0..4).map(|k| at(k, 1.0)).collect(),
+        )
+    }
+
+    fn outcome(ratios: [f64; 4], px: u64) -> (Outcome, Outcome) {
+        let (it, noaa) = offsets(ratios, px);
+        let v = Verdict::judge_claims("sraa", vec![Class::Silhouette], Metric::Flip, &it, &noaa);
+        (v.judged[0].outcome, v.flat_judged.unwrap().outcome)
+    }
+
+    #[test]
+    fn a_verdict_needs_every_offset_to_agree() {
+        use Outcome::*;
+        // Wins at every offset: beats; flat holds (at most 1.02×) too.
+        assert_eq!(outcome([0.9, 0.8, 0.95, 0.7], 100), (Beats, Holds));
+        // One offset short of the factor: a tie within noise, not a win.
+        assert_eq!(outcome([0.9, 0.8, 0.96, 0.7], 100), (Noise, Holds));
+        // Worse beyond 1/0.95 at every offset: a loss, on flat too.
+        assert_eq!(outcome([1.3, 1.25, 1.4, 1.06], 100), (Loses, Loses));
+        // Inside the band at every offset: a tie; flat straddles 1.02×.
+        assert_eq!(outcome([1.0, 0.97, 1.03, 1.01], 100), (Ties, Noise));
+        // Win at one offset, loss at another: noise.
+        assert_eq!(outcome([0.9, 1.1, 1.0, 1.0], 100).0, Noise);
+        // 63 pixels at some offset: no verdict, whatever the figures.
+        assert_eq!(outcome([0.5, 0.5, 0.5, 0.5], 63), (FewPixels, FewPixels));
+        assert_eq!(outcome([0.5, 0.5, 0.5, 0.5], MIN_VERDICT_PIXELS).0, Beats);
+    }
+
+    #[test]
+    fn verdict_lines_use_one_word_per_outcome() {
+        let (mut it, noaa) = offsets([1.3, 1.25, 1.4, 1.3], 100);
+        // Crease: noise; shadow: too few pixels.
+        for (k, e) in it.iter_mut().enumerate() {
+            e.mean[Class::Crease.index()] = Some([0.9, 1.1, 1.0, 1.0][k]);
+            e.px[Class::Crease.index()] = 100;
+            e.mean[Class::Shadow.index()] = Some(0.1);
+            e.px[Class::Shadow.index()] = 8;
+        }
+        let mut noaa = noaa;
+        for e in &mut noaa {
+            e.mean[Class::Crease.index()] = Some(1.0);
+            e.px[Class::Crease.index()] = 100;
+            e.mean[Class::Shadow.index()] = Some(0.2);
+            e.px[Class::Shadow.index()] = 8;
+        }
+        let claims = vec![
+            Class::Silhouette,
+            Class::Crease,
+            Class::Shadow,
+            Class::Texture,
+        ];
+        let v = Verdict::judge_claims("x", claims, Metric::Flip, &it, &noaa);
+        let line = v.line("cpu");
+        assert!(
+            line.contains(
+                "tie (within noise) on crease (1.0000 vs 1.0000, 0.90–1.10× over 4 offsets)"
+            ),
+            "{line}"
+        );
+        // The mean ratio: (0.26 + 0.275 + 0.252 + 0.273) / 0.81 = 1.33.
+        assert!(line.contains("loses by 1.3× on silhouette"), "{line}");
+        assert!(
+            line.contains("too few pixels for a verdict on shadow (8 px)"),
+            "{line}"
+        );
+        assert!(line.contains("no pixels of texture"), "{line}");
+        assert!(line.contains("flat: loses by 1.3×"), "{line}");
+        assert!(!line.contains("does not beat"));
+        assert_eq!(v.beats.len(), 0);
+        assert_eq!(
+            v.misses.len(),
+            2,
+            "noise and loss are misses; too few pixels is not"
+        );
+        assert!(!v.holds_on_flat());
+        assert_eq!(loss_text(1.06), "1.06×");
+        assert_eq!(loss_text(2.0), "2.0×");
+    }
+
+    #[test]
+    fn errors_over_offsets_average_and_keep_the_fewest_pixels() {
+        let mut a = cf([Some(0.1), None, None, None, None, Some(0.02)]);
+        let mut b = cf([Some(0.3), Some(0.5), None, None, None, Some(0.04)]);
+        a.px[0] = 120;
+        b.px[0] = 80;
+        (a.near_edge, a.near_edge_px) = (Some(0.05), 30);
+        (b.near_edge, b.near_edge_px) = (Some(0.07), 20);
+        let m = ClassError::over_offsets(&[a, b]).unwrap();
+        assert!((m.mean[0].unwrap() - 0.2).abs() < 1e-12);
+        assert_eq!(m.px[0], 80);
+        // A class at one offset only: its mean there, its fewest pixels 0.
+        assert_eq!(m.mean[1], Some(0.5));
+        assert_eq!(m.px[1], 0);
+        assert!((m.near_edge.unwrap() - 0.06).abs() < 1e-12);
+        assert_eq!(m.near_edge_px, 20);
+        assert_eq!(
+            ClassError::range(&[a, b], |e| e.mean[5]),
+            Some((0.02, 0.04))
+        );
+        assert_eq!(ClassError::over_offsets(&[]), None);
+    }
+
+    #[test]
+    fn pixels_within_two_of_a_class_are_near_edge_not_flat() {
+        // 7×7 pixels, a one-sub-sample pole in the centre pixel only.
+        let (pw, s) = (7usize, 4usize);
+        let mut f = uniform((pw * s) as u32, (pw * s) as u32);
+        let w = pw * s;
+        let mut depth = vec![2.0f32; w * w];
+        for j in 0..s {
+            depth[(3 * s + j) * w + 3 * s + 1] = 1.0;
+        }
+        f.depth = Some(depth);
+        let m = classify(&f, s as u32).unwrap();
+        let at = |x: usize, y: usize| y * pw + x;
+        assert!(m.mask(Class::Silhouette)[at(3, 3)]);
+        assert_eq!(m.count(Class::Silhouette), 1);
+        // Chebyshev: the 5×5 square around it, corners included.
+        for (x, y) in [(2, 3), (1, 3), (5, 5), (1, 1), (5, 1)] {
+            assert!(m.near_edge[at(x, y)], "({x}, {y}) is within 2");
+            assert!(!m.mask(Class::Flat)[at(x, y)]);
+        }
+        for (x, y) in [(0, 3), (6, 6), (3, 0), (6, 2)] {
+            assert!(!m.near_edge[at(x, y)], "({x}, {y}) is 3 away");
+            assert!(m.mask(Class::Flat)[at(x, y)]);
+        }
+        assert!(!m.near_edge[at(3, 3)], "a classed pixel is not in the band");
+        assert_eq!(m.near_edge.iter().filter(|&&b| b).count(), 24);
+        assert_eq!(m.count(Class::Flat), 49 - 25);
+        // The band's error is measured apart from flat's.
+        let map: Vec<f32> = (0..49)
+            .map(|p| if m.near_edge[p] { 0.5 } else { 0.1 })
+            .collect();
+        let e = ClassError::measure(&map, &m);
+        assert_eq!((e.near_edge, e.near_edge_px), (Some(0.5), 24));
+        assert!((e.mean[Class::Flat.index()].unwrap() - 0.1).abs() < 1e-7);
+    }
+
     #[test]
     fn small_figures_keep_three_significant_digits() {
         assert_eq!(figure(0.12345), "0.1235");
@@ -563,7 +1066,7 @@ mod tests {
             None,
             Some(0.001 + f * 0.9),
         ]);
-        let v = Verdict::judge_claims("sraa", claimed("sraa"), Metric::Ssim, &it, &noaa);
+        let v = Verdict::judge_claims("sraa", claimed("sraa"), Metric::Ssim, &[it], &[noaa]);
         assert_eq!(
             v.beats.iter().map(|b| b.0).collect::<Vec<_>>(),
             vec![Class::Silhouette]
@@ -579,10 +1082,10 @@ mod tests {
             .starts_with("- **sraa** (cpu, SSIM): beats NoAA on silhouette"));
         let worse = cf([None, None, None, None, None, Some(0.001 + f * 1.1)]);
         assert!(
-            !Verdict::judge_claims("sraa", vec![], Metric::Ssim, &worse, &noaa).holds_on_flat()
+            !Verdict::judge_claims("sraa", vec![], Metric::Ssim, &[worse], &[noaa]).holds_on_flat()
         );
         // Under FLIP the same figures are judged by the factors alone.
-        let v = Verdict::judge_claims("sraa", claimed("sraa"), Metric::Flip, &it, &noaa);
+        let v = Verdict::judge_claims("sraa", claimed("sraa"), Metric::Flip, &[it], &[noaa]);
         assert_eq!(v.beats.len(), 2);
         assert!(!v.holds_on_flat());
     }
@@ -682,8 +1185,15 @@ mod tests {
         f.light_visibility = Some(vis);
         f.mirror = Some(mirror);
         let m = classify(&f, s as u32).unwrap();
-        let of =
-            |p: usize| -> Vec<Class> { CLASSES.into_iter().filter(|c| m.mask(*c)[p]).collect() };
+        // Near edge reads as flat here: this test is about the five classes
+        // (every pixel of this small frame is within 2 of one).
+        let of = |p: usize| -> Vec<Class> {
+            let mut v: Vec<Class> = CLASSES.into_iter().filter(|c| m.mask(*c)[p]).collect();
+            if m.near_edge[p] {
+                v.push(Flat);
+            }
+            v
+        };
         use Class::*;
         let expected = [
             vec![Flat],
@@ -705,6 +1215,7 @@ mod tests {
             assert_eq!(of(p), vec![Flat], "pixel {} of the grazing floor", p - pw);
         }
         assert_eq!(m.count(Silhouette), 3);
-        assert_eq!(m.count(Flat), 4 + pw as u64);
+        let near = m.near_edge.iter().filter(|&&b| b).count() as u64;
+        assert_eq!(m.count(Flat) + near, 4 + pw as u64);
     }
 }

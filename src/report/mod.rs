@@ -26,7 +26,10 @@
 //!    CPU time other processes took during the rounds ([`load`](mod@load));
 //! 2. measures its error at the *quality size* against a supersampled reference
 //!    (SSAA256; cached on disk, see [`reference`](mod@reference)): mean FLIP, PSNR and mean FLIP
-//!    on the edge mask, all on the tone-mapped 8-bit sRGB images;
+//!    on the edge mask, all on the tone-mapped 8-bit sRGB images; FLIP and
+//!    SSIM, whole and per class, again at the sub-pixel camera offsets of
+//!    [`offsets`](mod@offsets) (quality renders only, each offset against
+//!    its own reference), reported as the mean and range over the offsets;
 //! 3. classifies every pixel into edge classes from sub-sample AOVs
 //!    ([`classes`](mod@classes)) and measures FLIP per class, then judges
 //!    each method against NoAA on the classes it claims;
@@ -65,6 +68,7 @@ pub mod load;
 pub mod metrics;
 pub mod motion;
 pub mod named;
+pub mod offsets;
 pub mod output;
 pub mod papers;
 pub mod plot;
@@ -176,6 +180,14 @@ pub struct ResultRow {
     /// Mean `1 − SSIM` and pixel count per edge class, when the error was
     /// measured: the second metric the verdicts are computed under.
     pub classes_ssim: Option<classes::ClassError>,
+    /// The error at each camera offset it was measured at
+    /// ([`offsets::ERROR_OFFSETS`], in order; offset 0 is the scene's
+    /// camera, the one the images show). `flip_mean`, `ssim_mean`,
+    /// `classes` and `classes_ssim` are their means (class pixel counts the
+    /// smallest over the offsets); PSNR and edge FLIP are offset 0's. Not a
+    /// results column itself: `offsets` and the `_min`/`_max` columns come
+    /// from it.
+    pub errors_at: Vec<OffsetError>,
     /// Shaded samples per pixel: the mean of the samples-per-pixel AOV of the
     /// quality render, or, without one, shading evaluations per pixel.
     pub samples_per_pixel: f64,
@@ -243,6 +255,7 @@ impl ResultRow {
             classes: None,
             ssim_mean: None,
             classes_ssim: None,
+            errors_at: Vec::new(),
             samples_per_pixel: 0.0,
             rays_per_pixel: 0.0,
             buffer_mib: 0.0,
@@ -265,6 +278,52 @@ impl ResultRow {
         }
     }
 
+    /// The row's per-class error under `metric` at each camera offset, in
+    /// offset order: [`ResultRow::errors_at`]'s, or without them the one
+    /// [`ResultRow::class_error`] (empty when not measured).
+    pub fn class_errors_at(&self, metric: classes::Metric) -> Vec<classes::ClassError> {
+        if self.errors_at.is_empty() {
+            return self.class_error(metric).into_iter().collect();
+        }
+        self.errors_at
+            .iter()
+            .map(|e| match metric {
+                classes::Metric::Flip => e.classes,
+                classes::Metric::Ssim => e.classes_ssim,
+            })
+            .collect()
+    }
+
+    /// Smallest and largest whole-image error under `metric` (mean FLIP,
+    /// or mean SSIM) over the offsets, when measured at more than one.
+    pub fn range(&self, metric: classes::Metric) -> Option<(f64, f64)> {
+        if self.errors_at.len() < 2 {
+            return None;
+        }
+        let v = self.errors_at.iter().map(|e| match metric {
+            classes::Metric::Flip => e.flip,
+            classes::Metric::Ssim => e.ssim,
+        });
+        Some(v.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+            (lo.min(x), hi.max(x))
+        }))
+    }
+
+    /// Set the means over the offsets (`flip_mean`, `ssim_mean`, `classes`,
+    /// `classes_ssim`) from [`ResultRow::errors_at`]; nothing without them.
+    pub fn settle_offsets(&mut self) {
+        let n = self.errors_at.len();
+        if n == 0 {
+            return;
+        }
+        self.flip_mean = Some(self.errors_at.iter().map(|e| e.flip).sum::<f64>() / n as f64);
+        self.ssim_mean = Some(self.errors_at.iter().map(|e| e.ssim).sum::<f64>() / n as f64);
+        self.classes =
+            classes::ClassError::over_offsets(&self.class_errors_at(classes::Metric::Flip));
+        self.classes_ssim =
+            classes::ClassError::over_offsets(&self.class_errors_at(classes::Metric::Ssim));
+    }
+
     /// The classes the row claims to fix: a post-process row's
     /// ([`POST_PROCESS_CLAIMS`](subcone_scene::registry::POST_PROCESS_CLAIMS)),
     /// else what its method's name claims ([`classes::claimed`]).
@@ -280,6 +339,66 @@ impl ResultRow {
     pub fn pass(&self, name: &str) -> Option<f64> {
         self.pass_ms.iter().find(|p| p.0 == name).map(|p| p.1)
     }
+}
+
+/// A method's error at one camera offset.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OffsetError {
+    /// The offset ([`offsets::ERROR_OFFSETS`]), pixels.
+    pub offset: (f32, f32),
+    /// Mean FLIP.
+    pub flip: f64,
+    /// Mean SSIM.
+    pub ssim: f64,
+    /// Mean FLIP per class (the offset's own classes).
+    pub classes: classes::ClassError,
+    /// Mean `1 − SSIM` per class.
+    pub classes_ssim: classes::ClassError,
+}
+
+impl OffsetError {
+    /// The error of `img` against `reference` at `offset`, with the
+    /// offset's class masks.
+    pub fn measure(
+        offset: (f32, f32),
+        reference: &Rgb8,
+        img: &Rgb8,
+        masks: &classes::ClassMasks,
+    ) -> Result<OffsetError> {
+        let fl = metrics::flip(reference, img)?;
+        let ss = ssim::ssim(reference, img)?;
+        Ok(OffsetError::of(offset, &fl, &ss, masks))
+    }
+
+    fn of(
+        offset: (f32, f32),
+        fl: &metrics::Flip,
+        ss: &ssim::Ssim,
+        masks: &classes::ClassMasks,
+    ) -> OffsetError {
+        OffsetError {
+            offset,
+            flip: fl.mean,
+            ssim: ss.mean,
+            classes: classes::ClassError::measure(&fl.map, masks),
+            classes_ssim: classes::ClassError::measure(&ss.dissimilarity(), masks),
+        }
+    }
+}
+
+/// The error offsets of a run: which, at what size, and what they cost.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ErrorOffsets {
+    /// The offsets measured ([`offsets::ERROR_OFFSETS`], a prefix).
+    pub offsets: Vec<(f32, f32)>,
+    /// The offsets after the first are measured at the quality size divided
+    /// by this on each side.
+    pub divisor: u32,
+    /// The reference method of the offsets after the first.
+    pub reference: String,
+    /// Wall time the offsets after the first took (their references,
+    /// classes, renders and errors).
+    pub elapsed: Duration,
 }
 
 /// A method that was not run on a scene, and why.
@@ -389,6 +508,8 @@ pub struct ReportSummary {
     /// ns per call of the hot kernels (empty when the CPU backend is not in the
     /// run: they are CPU figures).
     pub kernels: Vec<kernel_timing::KernelTiming>,
+    /// The camera offsets errors were measured at, and their cost.
+    pub error_offsets: ErrorOffsets,
     /// Wall time of the whole run.
     pub elapsed: Duration,
 }
@@ -532,6 +653,14 @@ struct Plan {
     sraa_sweep: Option<ao_sweep::SweepSpec>,
     /// Frames of the motion section, when it runs.
     motion_frames: Option<u32>,
+    /// Camera offsets the error is measured at (a prefix of
+    /// [`offsets::ERROR_OFFSETS`]).
+    offsets: Vec<(f32, f32)>,
+    /// The offsets after the first are measured at the quality size over
+    /// this on each side.
+    offset_divisor: u32,
+    /// The reference of the offsets after the first.
+    offset_reference: Method,
 }
 
 /// A method that some backend renders on a scene, with the indices (in the
@@ -716,7 +845,34 @@ impl Plan {
             ao: args.ao,
             sraa_sweep,
             motion_frames,
+            offsets: match (mode, args.error_offsets) {
+                (Mode::TimingOnly, _) => Vec::new(),
+                (_, Some(k)) if !(1..=offsets::ERROR_OFFSETS.len()).contains(&k) => bail!(
+                    "--error-offsets {k}: expected 1 to {}",
+                    offsets::ERROR_OFFSETS.len()
+                ),
+                (_, k) => {
+                    offsets::ERROR_OFFSETS[..k.unwrap_or(offsets::ERROR_OFFSETS.len())].to_vec()
+                }
+            },
+            offset_divisor: if mode == Mode::Full && size.is_none() {
+                offsets::FULL_OFFSET_DIVISOR
+            } else {
+                1
+            },
+            offset_reference: if mode == Mode::Full && size.is_none() && args.reference.is_none() {
+                offsets::FULL_OFFSET_REFERENCE
+            } else {
+                reference
+            },
         })
+    }
+
+    /// The size the offsets after the first are measured at for `job`.
+    fn offset_size(&self, job: &SceneJob) -> (u32, u32) {
+        let (w, h) = job.quality_size;
+        let d = self.offset_divisor.max(1);
+        ((w / d).max(1), (h / d).max(1))
     }
 
     /// The settings of a `w × h` render of the run: the run's ambient
@@ -873,6 +1029,18 @@ struct SceneQuality {
     shadow: Option<Vec<bool>>,
     reflective: Option<Vec<bool>>,
     classes: classes::ClassMasks,
+    /// The camera offsets after the first, each with its reference and
+    /// classes.
+    offsets: Vec<OffsetQuality>,
+}
+
+/// What the error needs at one camera offset.
+struct OffsetQuality {
+    offset: (f32, f32),
+    camera: subcone_scene::Camera,
+    size: (u32, u32),
+    reference: Rgb8,
+    classes: classes::ClassMasks,
 }
 
 struct Progress {
@@ -910,6 +1078,8 @@ struct Runner<'a> {
     /// Other processes' CPU time over the timed rounds, summed over scenes
     /// and backends.
     load: load::OtherCpu,
+    /// Wall time spent on the camera offsets after the first.
+    offsets_elapsed: Duration,
 }
 
 impl Runner<'_> {
@@ -954,6 +1124,18 @@ impl Runner<'_> {
         settings: &RenderSettings,
         method: Option<Method>,
     ) -> Result<Frame> {
+        self.reference_from(job, settings, method, None)
+    }
+
+    /// [`Self::reference_by`] seen from `camera` instead of the scene's
+    /// (`None`: the scene's), cached under its own key.
+    fn reference_from(
+        &mut self,
+        job: &SceneJob,
+        settings: &RenderSettings,
+        method: Option<Method>,
+        camera: Option<&subcone_scene::Camera>,
+    ) -> Result<Frame> {
         let reference = method.unwrap_or(self.plan.reference);
         let (w, h) = (settings.width, settings.height);
         let key = reference::ReferenceKey {
@@ -965,6 +1147,7 @@ impl Runner<'_> {
             ao_rays: settings.ao_rays,
             backend: "cpu".into(),
             version: reference::code_version(),
+            camera: camera.map(offsets::describe),
         };
         let path = key.path(&self.plan.cache);
         if !self.plan.refresh {
@@ -978,7 +1161,8 @@ impl Runner<'_> {
             .bar
             .set_message(format!("{}: reference {} at {w}x{h}", job.name, reference));
         let cpu = setup::backend("cpu")?;
-        let (frame, wall) = render(cpu.as_ref(), &job.scene, &reference, settings)?;
+        let camera = camera.unwrap_or(&job.scene.camera);
+        let (frame, wall) = render_from(cpu.as_ref(), &job.scene, camera, &reference, settings)?;
         self.progress.note(&format!(
             "{}: rendered reference {} at {w}x{h}{} in {:.1} s",
             job.name,
@@ -1067,7 +1251,41 @@ impl Runner<'_> {
             shadow,
             reflective,
             classes,
+            offsets: Vec::new(),
         })
+    }
+
+    /// The reference and classes at each camera offset after the first
+    /// ([`Plan::offset_size`]); the time they take is added to
+    /// `offsets_elapsed`.
+    fn offset_qualities(&mut self, job: &SceneJob) -> Result<Vec<OffsetQuality>> {
+        let start = Instant::now();
+        let plan = self.plan;
+        let size = plan.offset_size(job);
+        let cpu = setup::backend("cpu")?;
+        let mut out = Vec::new();
+        for &offset in plan.offsets.iter().skip(1) {
+            let camera = offsets::offset_camera(&job.scene.camera, offset, size.1)?;
+            let settings = plan.settings(size.0, size.1, job.sdf);
+            let by = Some(plan.offset_reference);
+            let reference = self.reference_from(job, &settings, by, Some(&camera))?;
+            self.progress.bar.set_message(format!(
+                "{}: edge classes at offset {}",
+                job.name,
+                offsets::label(offset)
+            ));
+            let classes = classes_at(cpu.as_ref(), &job.scene, &camera, size)?;
+            self.progress.bar.inc(1);
+            out.push(OffsetQuality {
+                offset,
+                camera,
+                size,
+                reference: Rgb8::from_frame(&reference)?,
+                classes,
+            });
+        }
+        self.offsets_elapsed += start.elapsed();
+        Ok(out)
     }
 }
 
@@ -1092,6 +1310,7 @@ fn post_measured(
     timing: &Frame,
     at: &PostAt<'_>,
     plan: &Plan,
+    offsets_spent: &mut Duration,
 ) -> Result<Measured> {
     let name = step.name();
     let image = Rgb8::from_frame(timing)?;
@@ -1146,6 +1365,26 @@ fn post_measured(
         let (out, _) = step.apply(&input)?;
         measure(&mut row, &out, q, plan, at.img_dir, at.bi == 0)?;
         quality = Some(out);
+        // The same step on NoAA's frame at each further offset.
+        let start = Instant::now();
+        let frames = noaa.noaa.as_ref().map_or(&[][..], |f| &f.offsets[..]);
+        for (oq, frame) in q.offsets.iter().zip(frames) {
+            let image = Rgb8::from_frame(frame)?;
+            let input = post::PostInput {
+                scene: &at.job.name,
+                image: &image,
+                frame,
+            };
+            let (out, _) = step.apply(&input)?;
+            row.errors_at.push(OffsetError::measure(
+                oq.offset,
+                &oq.reference,
+                &out,
+                &oq.classes,
+            )?);
+        }
+        row.settle_offsets();
+        *offsets_spent += start.elapsed();
     }
     Ok(Measured {
         row,
@@ -1167,16 +1406,12 @@ fn measure(
     first_backend: bool,
 ) -> Result<()> {
     let fl = metrics::flip(&q.reference, img)?;
-    row.flip_mean = Some(fl.mean);
     row.psnr_db = Some(metrics::psnr(&q.reference, img)?);
     row.edge_flip_mean = metrics::masked_mean(&fl.map, &q.edges);
-    row.classes = Some(classes::ClassError::measure(&fl.map, &q.classes));
     let ss = ssim::ssim(&q.reference, img)?;
-    row.ssim_mean = Some(ss.mean);
-    row.classes_ssim = Some(classes::ClassError::measure(
-        &ss.dissimilarity(),
-        &q.classes,
-    ));
+    let first = plan.offsets.first().copied().unwrap_or((0.0, 0.0));
+    row.errors_at = vec![OffsetError::of(first, &fl, &ss, &q.classes)];
+    row.settle_offsets();
     row.quality_width = Some(img.width);
     row.quality_height = Some(img.height);
     row.reference = Some(plan.reference.to_string());
@@ -1247,6 +1482,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
         classes: Vec::new(),
         plots: Vec::new(),
         load: load::OtherCpu::default(),
+        offsets_elapsed: Duration::ZERO,
     };
     for (i, methods) in &work {
         runner.scene(&jobs[*i], methods)?;
@@ -1286,6 +1522,12 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
         references_cached: runner.references_cached,
         throughput,
         kernels,
+        error_offsets: ErrorOffsets {
+            offsets: plan.offsets.clone(),
+            divisor: plan.offset_divisor,
+            reference: plan.offset_reference.to_string(),
+            elapsed: runner.offsets_elapsed,
+        },
         elapsed: start.elapsed(),
     };
     output::write_all(&summary, &context(&plan, &jobs, runner.load))?;
@@ -1383,12 +1625,15 @@ fn applicable(
 fn progress_length(plan: &Plan, work: &[(usize, Vec<Applicable>)], sweep: bool) -> u64 {
     let quality = plan.mode != Mode::TimingOnly;
     let per_method = 1 + plan.runs as u64;
+    let extra = plan.offsets.len().saturating_sub(1) as u64;
     let mut total: u64 = 0;
     for (_, ms) in work {
         let renders: u64 = ms.iter().map(|(_, b)| b.len() as u64).sum();
         total += renders * per_method;
         if quality && !ms.is_empty() {
-            total += 2;
+            // Reference and masks, then a reference and classes and each
+            // method's render at every further camera offset.
+            total += 2 + extra * (2 + renders);
         }
     }
     if sweep {
@@ -1413,6 +1658,8 @@ struct NoaaFrames {
     timing: Frame,
     /// The quality render, with its AOVs (when errors are measured).
     quality: Option<Frame>,
+    /// The renders at the camera offsets after the first, with AOVs.
+    offsets: Vec<Frame>,
 }
 
 /// The per-pixel figures of a timed frame.
@@ -1512,7 +1759,7 @@ impl Runner<'_> {
             let mut noaa: Option<Measured> = None;
             for c in contenders.into_iter().filter(|c| !c.dropped) {
                 let is_noaa = c.method.technique() == Technique::NoAa;
-                let done = self.finish(job, bi, c, sq.as_ref(), &img_dir)?;
+                let done = self.finish(job, bi, backend.as_ref(), c, sq.as_ref(), &img_dir)?;
                 if let (0, Some(img)) = (bi, &done.quality) {
                     crop_images.push((done.row.method.clone(), img.clone()));
                 }
@@ -1601,7 +1848,8 @@ impl Runner<'_> {
                 (true, Some(Err(e))) => Err(anyhow!("the NoAA frame with AOVs: {e:#}")),
                 _ => Ok(&frames.timing),
             };
-            match timing.and_then(|t| post_measured(step, &noaa, t, at, plan)) {
+            let spent = &mut self.offsets_elapsed;
+            match timing.and_then(|t| post_measured(step, &noaa, t, at, plan, spent)) {
                 Ok(done) => {
                     if let (0, Some(img)) = (at.bi, done.quality) {
                         crops.push((name.to_string(), img));
@@ -1621,7 +1869,15 @@ impl Runner<'_> {
         std::fs::create_dir_all(img_dir)
             .with_context(|| format!("cannot create {}", img_dir.display()))?;
         match self.quality(job) {
-            Ok(q) => {
+            Ok(mut q) => {
+                match self.offset_qualities(job) {
+                    Ok(o) => q.offsets = o,
+                    Err(e) => {
+                        let what =
+                            format!("reference {} at the camera offsets", self.plan.reference);
+                        self.fail(Failure::new(&job.name, what, "cpu", &e))?;
+                    }
+                }
                 output::save_png(&img_dir.join("reference.png"), &q.reference)?;
                 output::save_png(
                     &img_dir.join("edge_mask.png"),
@@ -1777,9 +2033,10 @@ impl Runner<'_> {
     /// error, measured on its quality image (images written beside the
     /// reference).
     fn finish(
-        &self,
+        &mut self,
         job: &SceneJob,
         bi: usize,
+        backend: &dyn Backend,
         c: Contender,
         sq: Option<&SceneQuality>,
         img_dir: &Path,
@@ -1801,18 +2058,80 @@ impl Runner<'_> {
         row.samples_per_pixel = c.quality_spp.unwrap_or(fig.spp);
         row.rays_per_pixel = fig.rays_per_pixel;
         row.buffer_mib = fig.buffer_mib;
-        let noaa = c.last_noaa.map(|timing| NoaaFrames {
+        let mut noaa = c.last_noaa.map(|timing| NoaaFrames {
             timing,
             quality: c.noaa_quality,
+            offsets: Vec::new(),
         });
         let quality = match (sq, c.quality) {
             (Some(q), Some(img)) => {
                 measure(&mut row, &img, q, plan, img_dir, bi == 0)?;
+                let frames = self.measure_offsets(job, bi, backend, &c.method, &mut row, q)?;
+                if let Some(n) = &mut noaa {
+                    n.offsets = frames;
+                }
                 Some(img)
             }
             _ => None,
         };
         Ok(Measured { row, quality, noaa })
+    }
+
+    /// The error of `method` at the camera offsets after the first: a
+    /// quality render from each offset's camera, measured against that
+    /// offset's reference and classes, pushed to `row.errors_at`, and the
+    /// row's means set over the offsets. Returns NoAA's renders (with
+    /// AOVs) when the run has post-process rows, which filter them. A
+    /// failed render is listed (with `--keep-going`) and ends the row's
+    /// offsets there.
+    fn measure_offsets(
+        &mut self,
+        job: &SceneJob,
+        bi: usize,
+        backend: &dyn Backend,
+        method: &Method,
+        row: &mut ResultRow,
+        q: &SceneQuality,
+    ) -> Result<Vec<Frame>> {
+        let start = Instant::now();
+        let plan = self.plan;
+        let keep = method.technique() == Technique::NoAa && !plan.post.is_empty();
+        let mut frames = Vec::new();
+        for oq in &q.offsets {
+            self.progress.bar.set_message(format!(
+                "{}: {method} on {}, offset {}",
+                job.name,
+                plan.backends[bi].0,
+                offsets::label(oq.offset)
+            ));
+            let mut settings = plan.settings(oq.size.0, oq.size.1, job.sdf);
+            settings.aovs = keep;
+            let r = render_from(backend, &job.scene, &oq.camera, method, &settings);
+            self.progress.bar.inc(1);
+            match r {
+                Ok((f, _)) => {
+                    let img = Rgb8::from_frame(&f)?;
+                    row.errors_at.push(OffsetError::measure(
+                        oq.offset,
+                        &oq.reference,
+                        &img,
+                        &oq.classes,
+                    )?);
+                    if keep {
+                        frames.push(f);
+                    }
+                }
+                Err(e) => {
+                    let what = format!("{method} (offset {})", offsets::label(oq.offset));
+                    let bname = plan.backends[bi].0.clone();
+                    self.fail(Failure::new(&job.name, what, bname, &e))?;
+                    break;
+                }
+            }
+        }
+        row.settle_offsets();
+        self.offsets_elapsed += start.elapsed();
+        Ok(frames)
     }
 
     /// The SRAA Table 1 sweep on `job`: timing only, 256² to 1024².
@@ -2076,6 +2395,46 @@ mod tests {
     }
 
     #[test]
+    fn errors_are_measured_at_the_offsets_asked() {
+        let plan = |args: ReportArgs| Plan::new(&args);
+        // The default report: 4 offsets, the further ones at half size
+        // against ssaa64.
+        let p = plan(ReportArgs::default()).unwrap();
+        assert_eq!(p.offsets, offsets::ERROR_OFFSETS.to_vec());
+        assert_eq!(p.offset_divisor, offsets::FULL_OFFSET_DIVISOR);
+        assert_eq!(p.offset_reference, offsets::FULL_OFFSET_REFERENCE);
+        // The quick report: every offset at its size, its own reference.
+        let quick = ReportArgs {
+            quick: true,
+            ..Default::default()
+        };
+        let p = plan(quick.clone()).unwrap();
+        assert_eq!((p.offsets.len(), p.offset_divisor), (4, 1));
+        assert_eq!(p.offset_reference, p.reference);
+        let two = ReportArgs {
+            error_offsets: Some(2),
+            ..quick.clone()
+        };
+        assert_eq!(
+            plan(two).unwrap().offsets,
+            offsets::ERROR_OFFSETS[..2].to_vec()
+        );
+        for k in [0, 5] {
+            let bad = ReportArgs {
+                error_offsets: Some(k),
+                ..quick.clone()
+            };
+            let e = plan(bad).err().expect("an error");
+            assert!(e.to_string().contains("--error-offsets"), "{e}");
+        }
+        let timing = ReportArgs {
+            timing_only: true,
+            ..Default::default()
+        };
+        assert!(plan(timing).unwrap().offsets.is_empty());
+    }
+
+    #[test]
     fn progress_counts_a_warm_up_and_every_round() {
         let args = ReportArgs {
             quick: true,
@@ -2087,7 +2446,13 @@ mod tests {
         let noaa = Method::new(Technique::NoAa);
         // Scene 0: two methods on backend 0; scene 1: nothing applies.
         let work = vec![(0, vec![(noaa, vec![0]), (noaa, vec![0])]), (1, vec![])];
-        // 2 methods × (1 warm-up + 4 rounds) + reference and masks.
-        assert_eq!(progress_length(&plan, &work, false), 2 * 5 + 2);
+        // 2 methods × (1 warm-up + 4 rounds) + reference and masks, then
+        // at each of the 3 further camera offsets a reference, classes and
+        // each method's render.
+        assert_eq!(plan.offsets.len(), 4);
+        assert_eq!(
+            progress_length(&plan, &work, false),
+            2 * 5 + 2 + 3 * (2 + 2)
+        );
     }
 }

@@ -207,6 +207,7 @@ impl Pooled {
                 (self.px[i] > 0).then(|| self.sum[i] / self.px[i] as f64)
             }),
             px: self.px,
+            ..Default::default()
         }
     }
 }

@@ -7,6 +7,14 @@
 //! JSON; an infinite PSNR (identical images) is `inf` in CSV and `null` in
 //! JSON.
 //!
+//! Errors are means over the camera offsets they were measured at
+//! ([`offsets`](super::offsets), `offsets` of them): `flip_min`/`flip_max`,
+//! `ssim_min`/`ssim_max` and the `_min`/`_max` of each class column are the
+//! smallest and largest value over the offsets (empty with one offset);
+//! `px_<class>` is the class's smallest pixel count over the offsets. The
+//! near-edge band (`flip_near_edge`, `px_near_edge`, `dssim_near_edge`) is
+//! measured like a class but not judged.
+//!
 //! Time ratios to NoAA are medians of per-round ratios (the methods of a
 //! scene and backend are timed in interleaved rounds, see [`timing`]);
 //! `ratio_min` and `ratio_max` are the smallest and largest per-round
@@ -27,7 +35,7 @@ use super::{crops, file_safe, kernel_timing, load, timing, Mode, ReportSummary, 
 use subcone_scene::Method;
 
 /// The columns every results file has, in order.
-pub const BASE_COLUMNS: [&str; 42] = [
+pub const BASE_COLUMNS: [&str; 78] = [
     "scene",
     "method",
     "backend",
@@ -70,6 +78,42 @@ pub const BASE_COLUMNS: [&str; 42] = [
     "dssim_flat",
     "post_process",
     "timed_by",
+    "offsets",
+    "flip_min",
+    "flip_max",
+    "ssim_min",
+    "ssim_max",
+    "flip_near_edge",
+    "px_near_edge",
+    "dssim_near_edge",
+    "flip_silhouette_min",
+    "flip_silhouette_max",
+    "flip_crease_min",
+    "flip_crease_max",
+    "flip_shadow_min",
+    "flip_shadow_max",
+    "flip_texture_min",
+    "flip_texture_max",
+    "flip_reflection_min",
+    "flip_reflection_max",
+    "flip_flat_min",
+    "flip_flat_max",
+    "flip_near_edge_min",
+    "flip_near_edge_max",
+    "dssim_silhouette_min",
+    "dssim_silhouette_max",
+    "dssim_crease_min",
+    "dssim_crease_max",
+    "dssim_shadow_min",
+    "dssim_shadow_max",
+    "dssim_texture_min",
+    "dssim_texture_max",
+    "dssim_reflection_min",
+    "dssim_reflection_max",
+    "dssim_flat_min",
+    "dssim_flat_max",
+    "dssim_near_edge_min",
+    "dssim_near_edge_max",
 ];
 
 pub use super::papers::{CTSS_TABLE1, SRAA_SPEEDUP_OVER_SSAA16, SRAA_TABLE1};
@@ -217,6 +261,45 @@ fn row_cells(r: &ResultRow, passes: &[String]) -> Vec<Cell> {
             .unwrap_or(Cell::Empty),
     );
     c.push(Cell::Text(timed_by_tags(r)));
+    let measured = !r.errors_at.is_empty();
+    c.push(if measured {
+        Cell::Int(r.errors_at.len() as u64)
+    } else {
+        Cell::Empty
+    });
+    for metric in Metric::ALL {
+        let range = r.range(metric);
+        c.push(opt(range.map(|x| x.0)));
+        c.push(opt(range.map(|x| x.1)));
+    }
+    c.push(opt(r.classes.and_then(|k| k.near_edge)));
+    c.push(
+        r.classes
+            .map(|k| Cell::Int(k.near_edge_px))
+            .unwrap_or(Cell::Empty),
+    );
+    c.push(opt(r.classes_ssim.and_then(|k| k.near_edge)));
+    // flip_<class>_min/_max (the band last), then dssim_'s.
+    for metric in Metric::ALL {
+        let at = r.class_errors_at(metric);
+        let spread = at.len() > 1;
+        let slots = CLASSES
+            .iter()
+            .map(|c| Some(c.index()))
+            .chain(std::iter::once(None));
+        for slot in slots {
+            let range = spread
+                .then(|| {
+                    classes::ClassError::range(&at, |e| match slot {
+                        Some(i) => e.mean[i],
+                        None => e.near_edge,
+                    })
+                })
+                .flatten();
+            c.push(opt(range.map(|x| x.0)));
+            c.push(opt(range.map(|x| x.1)));
+        }
+    }
     for p in passes {
         c.push(opt(r.pass(p.trim_start_matches("ms_"))));
     }
@@ -362,7 +445,12 @@ pub(super) fn json_rows(rows: &[ResultRow]) -> (Vec<String>, Vec<Value>) {
 
 /// `results.json`: the run, the columns, the rows, the sweep, what was skipped.
 pub fn json(s: &ReportSummary, ctx: &Context) -> Value {
-    let (columns, results) = json_rows(&s.rows);
+    let (columns, mut results) = json_rows(&s.rows);
+    for (v, r) in results.iter_mut().zip(&s.rows) {
+        if let (Value::Object(m), false) = (v, r.errors_at.is_empty()) {
+            m.insert("errors_at".into(), errors_at_json(r));
+        }
+    }
     let (_, sweep) = json_rows(&s.sweep);
     json!({
         "version": code_version(),
@@ -422,6 +510,39 @@ pub fn json(s: &ReportSummary, ctx: &Context) -> Value {
         "answer": super::answer::json(&super::answer::Answer::of(&s.rows, &ctx.scenes)),
         "elapsed_s": s.elapsed.as_secs_f64(),
     })
+}
+
+/// A row's error at each camera offset, as `results.json` gives it beside
+/// the columns (`errors_at`): per offset its `offset` (pixels), `flip`,
+/// `ssim`, and per class (the near-edge band included) `flip_<class>`,
+/// `dssim_<class>` and `px_<class>`, so that every verdict can be derived
+/// again from the file.
+fn errors_at_json(r: &ResultRow) -> Value {
+    let num = |v: Option<f64>| {
+        v.filter(|x| x.is_finite())
+            .map_or(Value::Null, |x| json!(x))
+    };
+    Value::Array(
+        r.errors_at
+            .iter()
+            .map(|e| {
+                let mut m = Map::new();
+                m.insert("offset".into(), json!([e.offset.0, e.offset.1]));
+                m.insert("flip".into(), num(Some(e.flip)));
+                m.insert("ssim".into(), num(Some(e.ssim)));
+                for c in CLASSES {
+                    let i = c.index();
+                    m.insert(format!("flip_{c}"), num(e.classes.mean[i]));
+                    m.insert(format!("dssim_{c}"), num(e.classes_ssim.mean[i]));
+                    m.insert(format!("px_{c}"), json!(e.classes.px[i]));
+                }
+                m.insert("flip_near_edge".into(), num(e.classes.near_edge));
+                m.insert("dssim_near_edge".into(), num(e.classes_ssim.near_edge));
+                m.insert("px_near_edge".into(), json!(e.classes.near_edge_px));
+                Value::Object(m)
+            })
+            .collect(),
+    )
 }
 
 fn f(v: Option<f64>, digits: usize) -> String {
@@ -496,6 +617,15 @@ impl MeanRatio {
     }
 }
 
+/// A mean error with its range over the camera offsets, `0.0769
+/// (0.0712–0.0801)`; the mean alone without a range.
+fn with_range(v: Option<f64>, range: Option<(f64, f64)>) -> String {
+    match (v, range) {
+        (Some(_), Some((lo, hi))) => format!("{} ({lo:.4}–{hi:.4})", f(v, 4)),
+        _ => f(v, 4),
+    }
+}
+
 pub(super) fn ms(v: f64) -> String {
     if !v.is_finite() {
         "–".into()
@@ -547,8 +677,8 @@ fn scene_section(md: &mut String, s: &ReportSummary, sc: &SceneInfo) {
                 ms(r.ms_min),
                 ms(r.ms_max),
                 ratio_cell(r),
-                f(r.flip_mean, 4),
-                f(r.ssim_mean, 4),
+                with_range(r.flip_mean, r.range(Metric::Flip)),
+                with_range(r.ssim_mean, r.range(Metric::Ssim)),
                 f(r.psnr_db, 2),
                 f(r.edge_flip_mean, 4),
                 f(Some(r.samples_per_pixel), 2),
@@ -711,7 +841,7 @@ faster method beats.\n"
     );
 
     if ctx.mode != Mode::TimingOnly {
-        md.push_str(&rules());
+        md.push_str(&rules(&s.error_offsets, s.elapsed));
         md.push_str(&verdict_summary(s, ctx));
     }
 
@@ -794,8 +924,10 @@ away from the shadow window.\n"
     md
 }
 
-/// The edge classes' definitions and thresholds, and the rules of judgement.
-pub fn rules() -> String {
+/// The edge classes' definitions and thresholds, the camera offsets the
+/// errors are measured at (`offsets`, with what they cost of a run of
+/// `elapsed`), and the rules of judgement.
+pub fn rules(offsets: &super::ErrorOffsets, elapsed: std::time::Duration) -> String {
     let mut md = String::new();
     let _ = writeln!(
         md,
@@ -810,9 +942,14 @@ seen by a sub-sample. The classes may overlap; *flat* is a pixel in none of the 
 | shadow | no silhouette or crease in the pixel, and the per-light visibility of its surface sub-samples differs (a light that faces away counts as visible) |\n\
 | texture | no silhouette or crease in the pixel, and its surface sub-samples' albedo differs by more than {t} in some channel of √albedo |\n\
 | reflection | a sub-sample sees a mirror (reflectance above 0) |\n\
-| flat | none of the above |\n\n\
+| near edge | none of the above, but within {r} px of a pixel that is (Chebyshev distance: in the {side}×{side} square around it); measured and reported, not judged |\n\
+| flat | none of the above, and not near edge |\n\n\
+The near-edge band holds the pixels an error metric with a spatial filter (FLIP's) charges with \
+a neighbouring edge's error; flat is judged without them. \
 `flip_<class>` is the mean FLIP over the class's pixels and `px_<class>` their count (in \
-`results.csv` and `results.json`).\n\n\
+`results.csv` and `results.json`; the band's columns are `flip_near_edge`, `px_near_edge`, \
+`dssim_near_edge`).\n\n\
+{offsets_text}\n\n\
 The second metric is SSIM (Wang et al. 2004): an 11×11 Gaussian window of σ = 1.5, K1 = 0.01, \
 K2 = 0.03, on the luminance of the same tone-mapped 8-bit images FLIP compares, one value per \
 pixel (the window renormalised where it leaves the image). `ssim_mean` is its mean over the \
@@ -827,24 +964,79 @@ Which classes each method claims to fix:\n\n\
 | ctss, ctss-r, ctss-delayed | silhouette |\n\
 | ctss+edges | silhouette, crease |\n\
 | fxaa, smaa | silhouette, crease, shadow, texture (luminance edges of any origin) |\n\n\
-Verdicts are computed under each metric by the same rules. A method **beats NoAA** on a class \
-when its error there (FLIP, or 1 − SSIM) is at most {b} × NoAA's (same scene and backend). It \
-**holds on flat** when its flat error is at most {f} × NoAA's, and **loses** on flat otherwise. \
-Under SSIM a difference of mean 1 − SSIM below {floor} does not count either way (to beat, a \
-method must also be at least that much lower; to lose on flat, at least that much higher): that \
-is what rounding to 8 bits alone does to a flat window ((1/255)²/12 over K2², about 0.0014), \
-chosen before any method was measured. Each scene's verdict lines are computed from the rows by \
-these rules, and list where the two metrics disagree; a claimed class with no pixel in the scene \
-is listed as having none.\n",
+Verdicts are computed under each metric by the same rules, comparing a method with NoAA (same \
+scene and backend) at each camera offset, paired: the method's error at an offset against NoAA's \
+at the same offset. On a claimed class, at one offset, the method *wins* when its error there \
+(FLIP, or 1 − SSIM) is at most {b} × NoAA's and *loses* when it is at least {l:.4} × (1/{b}) \
+NoAA's. It **beats** NoAA on the class when it wins at every offset, **loses by N×** when it \
+loses at every offset (N the ratio of its mean error to NoAA's), **ties** when it neither wins nor \
+loses at any offset, and is a **tie (within noise)** when the offsets disagree: the margin does \
+not clear the spread over the offsets. On flat pixels, at one offset, it *holds* when its flat \
+error is at most {f} × NoAA's; it **holds** when it holds at every offset, **loses by N×** when \
+it holds at none, and is a **tie (within noise)** otherwise. A class (or flat) with fewer than \
+{min_px} pixels at some offset gets no verdict (**too few pixels**). Under SSIM a difference of \
+mean 1 − SSIM below {floor} does not count either way (to win, a method must also be at least \
+that much lower; to lose, at least that much higher): that is what rounding to 8 bits alone does \
+to a flat window ((1/255)²/12 over K2², about 0.0014), chosen before any method was measured. \
+Each scene's verdict lines are computed from the rows by these rules, with the range of the \
+per-offset ratios to NoAA, and list where the two metrics disagree, each with a computed cause \
+line; a claimed class with no pixel in the scene is listed as having none.\n",
         s = classes::SUBSAMPLES,
         d = classes::SILHOUETTE_DEPTH,
         c = classes::CREASE_COS,
         t = classes::TEXTURE_ALBEDO,
         b = classes::BEAT_FACTOR,
+        l = classes::LOSE_FACTOR,
         f = classes::FLAT_FACTOR,
         floor = classes::DSSIM_FLOOR,
+        r = classes::NEAR_EDGE_RADIUS,
+        side = 2 * classes::NEAR_EDGE_RADIUS + 1,
+        min_px = classes::MIN_VERDICT_PIXELS,
+        offsets_text = offsets_text(offsets, elapsed),
     );
     md
+}
+
+/// What the rules say about the camera offsets of this run, and their cost.
+fn offsets_text(o: &super::ErrorOffsets, elapsed: std::time::Duration) -> String {
+    if o.offsets.len() < 2 {
+        return "Errors are measured from the scene's camera alone (one offset): verdicts are \
+judged on that one frame."
+            .into();
+    }
+    let list: Vec<String> = o
+        .offsets
+        .iter()
+        .map(|&(x, y)| format!("({x}, {y})"))
+        .collect();
+    let secs = o.elapsed.as_secs_f64();
+    format!(
+        "Errors are measured at K = {k} sub-pixel camera offsets: the scene's camera turned right \
+and down by {list} pixels' worth of angle at the image centre, each offset against its own \
+reference and with its own classes (only the quality render is repeated; the timing rounds are \
+not). FLIP, SSIM and every class error are the mean over the offsets, with the smallest and \
+largest in brackets (`_min` and `_max` columns); PSNR, edge FLIP and the images are the first \
+offset's; `px_<class>` is the fewest pixels the class has at any offset. {size} The {extra} \
+further offsets took {secs:.1} s of this run's {total:.1} s ({share:.1} %).",
+        k = o.offsets.len(),
+        list = list.join(", "),
+        size = if o.divisor > 1 {
+            format!(
+                "The offsets after the first are measured at 1/{d} of the quality size on each side \
+(1/{d2} of the pixels) against a {r} reference, so that they fit the run's time; the range over \
+the offsets includes the effect of that size and reference (a method and NoAA are always compared \
+at one size, against one reference).",
+                d = o.divisor,
+                d2 = o.divisor * o.divisor,
+                r = o.reference
+            )
+        } else {
+            "Every offset is measured at the quality size.".into()
+        },
+        extra = o.offsets.len() - 1,
+        total = elapsed.as_secs_f64(),
+        share = 100.0 * secs / elapsed.as_secs_f64().max(1e-9),
+    )
 }
 
 /// Every verdict of the run in one table: a row per method, backend and
@@ -863,19 +1055,9 @@ pub fn verdict_summary(s: &ReportSummary, ctx: &Context) -> String {
                 if !keys.contains(&key) {
                     keys.push(key);
                 }
-                let with = v.beats.len() + v.misses.len();
                 cells.push((
                     (v.method.clone(), backend, metric, sc.to_string()),
-                    format!(
-                        "{}/{} · {}",
-                        v.beats.len(),
-                        with,
-                        match v.flat {
-                            None => "no flat",
-                            Some(_) if v.holds_on_flat() => "holds",
-                            Some(_) => "**loses**",
-                        }
-                    ),
+                    glance_cell(&v),
                 ));
             }
         }
@@ -892,9 +1074,10 @@ pub fn verdict_summary(s: &ReportSummary, ctx: &Context) -> String {
     let _ = writeln!(
         md,
         "## Verdicts at a glance\n\n\
-Per scene and metric: how many of the claimed classes present in the scene the method beats NoAA \
-on, and whether it holds or loses on flat pixels (the lines under each scene give the classes \
-and figures, and where the two metrics disagree).\n"
+Per scene and metric: how many of the claimed classes with a verdict the method beats NoAA on \
+(*b*/*n*), then how many it ties, ties within noise or loses, and how many have too few pixels \
+for a verdict; then its flat verdict (holds, **loses N×**, tie (noise), few px). The lines under \
+each scene give the classes and figures, and where the two metrics disagree, with the cause.\n"
     );
     let _ = writeln!(md, "| method | backend | metric | {} |", scenes.join(" | "));
     let _ = writeln!(md, "|---|---|---|{}", "--:|".repeat(scenes.len()));
@@ -949,6 +1132,39 @@ fn same_image_name(s: &ReportSummary, method: &str, backend: &str) -> String {
     }
 }
 
+/// One cell of "Verdicts at a glance": `3/4 · 1 noise · holds`.
+pub fn glance_cell(v: &Verdict) -> String {
+    use classes::Outcome;
+    let judged = v
+        .judged
+        .iter()
+        .filter(|j| j.outcome != Outcome::FewPixels)
+        .count();
+    let mut cell = format!("{}/{judged}", v.beats.len());
+    for (o, word) in [
+        (Outcome::Ties, "tie"),
+        (Outcome::Noise, "noise"),
+        (Outcome::Loses, "**lost**"),
+        (Outcome::FewPixels, "few px"),
+    ] {
+        let n = v.with(o).count();
+        if n > 0 {
+            let _ = write!(cell, " · {n} {word}");
+        }
+    }
+    let flat = match &v.flat_judged {
+        None => "no flat".to_string(),
+        Some(j) => match j.outcome {
+            Outcome::Holds => "holds".into(),
+            Outcome::Loses => format!("**loses {}**", classes::loss_text(j.mean_ratio())),
+            Outcome::Noise => "tie (noise)".into(),
+            _ => "few px".into(),
+        },
+    };
+    let _ = write!(cell, " · {flat}");
+    cell
+}
+
 /// A table of one metric's per-class error, a row per measured method.
 fn class_table(md: &mut String, rows: &[&&ResultRow], metric: Metric) {
     let Some(first) = rows.first().and_then(|r| r.class_error(metric)) else {
@@ -958,19 +1174,39 @@ fn class_table(md: &mut String, rows: &[&&ResultRow], metric: Metric) {
         Metric::Flip => "FLIP",
         Metric::Ssim => "1 − SSIM",
     };
+    let offsets = rows.iter().map(|r| r.errors_at.len()).max().unwrap_or(0);
     let _ = writeln!(
         md,
-        "{what} by edge class (pixels per class in the header):\n"
+        "{what} by edge class (pixels per class in the header{}; *near edge* is measured, not judged):\n",
+        if offsets > 1 {
+            format!(
+                ", the fewest over the {offsets} camera offsets; each cell the mean over the offsets and, in brackets, the smallest and largest"
+            )
+        } else {
+            String::new()
+        }
     );
-    let head: Vec<String> = CLASSES
+    let mut head: Vec<String> = CLASSES
         .iter()
         .map(|c| format!("{c} ({} px)", first.px[c.index()]))
         .collect();
+    head.push(format!("near edge ({} px)", first.near_edge_px));
     let _ = writeln!(md, "| method | backend | {} |", head.join(" | "));
-    let _ = writeln!(md, "|---|---|{}", "--:|".repeat(CLASSES.len()));
+    let _ = writeln!(md, "|---|---|{}", "--:|".repeat(CLASSES.len() + 1));
     for r in rows {
         let k = r.class_error(metric).unwrap_or_default();
-        let cells: Vec<String> = CLASSES.iter().map(|c| f(k.mean[c.index()], 4)).collect();
+        let at = r.class_errors_at(metric);
+        let cell = |v: Option<f64>, get: &dyn Fn(&classes::ClassError) -> Option<f64>| {
+            let range = (at.len() > 1)
+                .then(|| classes::ClassError::range(&at, get))
+                .flatten();
+            with_range(v, range)
+        };
+        let mut cells: Vec<String> = CLASSES
+            .iter()
+            .map(|c| cell(k.mean[c.index()], &|e| e.mean[c.index()]))
+            .collect();
+        cells.push(cell(k.near_edge, &|e| e.near_edge));
         let _ = writeln!(
             md,
             "| {} | {} | {} |",
@@ -1011,7 +1247,27 @@ fn class_section(scene: &str, rows: &[&ResultRow]) -> String {
                 let (_, sv) = ssim
                     .iter()
                     .find(|(sb, sv)| sb == b && sv.method == fv.method)?;
-                disagreement(fv, sv).map(|d| format!("- **{}** ({b}): {d}.", fv.method))
+                let items = disagreement(fv, sv);
+                if items.is_empty() {
+                    return None;
+                }
+                let find = |m: &str| {
+                    rows.iter()
+                        .find(|r| r.method == m && r.backend == *b)
+                        .copied()
+                };
+                let band = match (find(&fv.method), find(NOAA.to_string().as_str())) {
+                    (Some(it), Some(noaa)) => near_edge_share(it, noaa),
+                    _ => None,
+                };
+                let mut text = format!("- **{}** ({b}):\n", fv.method);
+                for (what, cause) in items {
+                    let _ = writeln!(text, "  - {what}.\n    Cause: {cause}.");
+                }
+                if let Some(band) = band {
+                    let _ = writeln!(text, "  - Near-edge band: {}.", band.sentence());
+                }
+                Some(text)
             })
             .collect();
         if disagree.is_empty() {
@@ -1019,8 +1275,8 @@ fn class_section(scene: &str, rows: &[&ResultRow]) -> String {
         } else {
             let _ = writeln!(
                 md,
-                "Where FLIP and SSIM disagree:\n\n{}\n",
-                disagree.join("\n")
+                "Where FLIP and SSIM disagree, each with its computed cause:\n\n{}",
+                disagree.join("")
             );
         }
     }
@@ -1028,48 +1284,151 @@ fn class_section(scene: &str, rows: &[&ResultRow]) -> String {
 }
 
 /// Where the verdicts of one row under FLIP (`flip`) and SSIM (`ssim`)
-/// differ, class by class, with both metrics' figures; `None` when they
-/// agree.
-fn disagreement(flip: &Verdict, ssim: &Verdict) -> Option<String> {
-    let beaten = |v: &Verdict, c: Class| v.beats.iter().find(|b| b.0 == c).copied();
-    let figures = |v: &Verdict, c: Class| {
-        v.beats
+/// differ, class by class and on flat, with both metrics' words and
+/// figures, each with its computed cause: noise when one metric's
+/// per-offset ratios straddle its thresholds, else a disagreement at every
+/// offset, with both ranges. Empty when they agree (a class with too few
+/// pixels under either metric is not compared).
+fn disagreement(flip: &Verdict, ssim: &Verdict) -> Vec<(String, String)> {
+    use classes::{outcome_word, Judged, Outcome};
+    let mut out = Vec::new();
+    let mut compare = |what: String, f: &Judged, s: &Judged| {
+        let few = |j: &Judged| j.outcome == Outcome::FewPixels;
+        if f.outcome == s.outcome || few(f) || few(s) {
+            return;
+        }
+        let range = |j: &Judged| {
+            format!(
+                "{}–{}×",
+                classes::ratio_text(j.ratio.0),
+                classes::ratio_text(j.ratio.1)
+            )
+        };
+        let thresholds = if f.class == Class::Flat {
+            format!("holds at ≤ {}×", classes::FLAT_FACTOR)
+        } else {
+            format!(
+                "wins at ≤ {}×, loses at ≥ {:.2}×",
+                classes::BEAT_FACTOR,
+                classes::LOSE_FACTOR
+            )
+        };
+        let noisy: Vec<String> = [(f, "FLIP"), (s, "SSIM")]
             .iter()
-            .chain(&v.misses)
-            .find(|b| b.0 == c)
-            .map(|(_, a, n)| format!("{} vs {}", classes::figure(*a), classes::figure(*n)))
-            .unwrap_or_default()
+            .filter(|(j, _)| j.outcome == Outcome::Noise)
+            .map(|(j, m)| format!("{m}'s ({})", range(j)))
+            .collect();
+        let cause = if !noisy.is_empty() {
+            format!(
+                "noise: the per-offset ratio to NoAA, {}, does not stay on one side of the \
+thresholds ({thresholds}), so the call changes with the offset; FLIP's ratios are {}, SSIM's {}",
+                noisy.join(" and "),
+                range(f),
+                range(s)
+            )
+        } else {
+            format!(
+                "not noise: each metric gives the same call at each of the {} offsets (FLIP ratio \
+to NoAA {}, SSIM {}); the two metrics weigh the change differently",
+                f.offsets,
+                range(f),
+                range(s)
+            )
+        };
+        out.push((
+            format!(
+                "{what}: {} under FLIP ({}) but {} under SSIM ({})",
+                outcome_word(f),
+                f.figures(),
+                outcome_word(s),
+                s.figures()
+            ),
+            cause,
+        ));
     };
-    let mut parts = Vec::new();
-    for &c in &flip.claims {
-        let (f, s) = (beaten(flip, c).is_some(), beaten(ssim, c).is_some());
-        let present = |v: &Verdict| !v.absent.contains(&c);
-        if f != s && present(flip) && present(ssim) {
-            let (yes, no) = if f { (flip, ssim) } else { (ssim, flip) };
-            parts.push(format!(
-                "{c} beaten under {} ({}) but not under {} ({})",
-                yes.metric.name(),
-                figures(yes, c),
-                no.metric.name(),
-                figures(no, c)
-            ));
+    for j in &flip.judged {
+        if let Some(s) = ssim.judged.iter().find(|s| s.class == j.class) {
+            compare(j.class.to_string(), j, s);
         }
     }
-    if let (Some((fa, fna)), Some((sa, sna))) = (flip.flat, ssim.flat) {
-        if flip.holds_on_flat() != ssim.holds_on_flat() {
-            let word = |v: &Verdict| if v.holds_on_flat() { "holds" } else { "loses" };
-            parts.push(format!(
-                "flat {} under FLIP ({} vs {}) and {} under SSIM ({} vs {})",
-                word(flip),
-                classes::figure(fa),
-                classes::figure(fna),
-                word(ssim),
-                classes::figure(sa),
-                classes::figure(sna)
-            ));
+    if let (Some(f), Some(s)) = (&flip.flat_judged, &ssim.flat_judged) {
+        compare("flat".into(), f, s);
+    }
+    out
+}
+
+/// How a method's FLIP excess over NoAA on the pixels in no class splits
+/// between the near-edge band and flat: sums over the pixels and the
+/// camera offsets (paired, each offset's own masks).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BandShare {
+    /// Σ (method − NoAA) FLIP over the band's pixels.
+    pub band_excess: f64,
+    /// Σ (method − NoAA) FLIP over the flat pixels.
+    pub flat_excess: f64,
+    /// Band pixels, summed over the offsets.
+    pub band_px: u64,
+    /// Flat pixels, summed over the offsets.
+    pub flat_px: u64,
+}
+
+impl BandShare {
+    /// The band's share of the excess, when the excess is positive.
+    pub fn share(&self) -> Option<f64> {
+        let total = self.band_excess + self.flat_excess;
+        (total > 0.0).then(|| self.band_excess / total)
+    }
+
+    /// The band's share of the pixels in no class.
+    pub fn px_share(&self) -> f64 {
+        self.band_px as f64 / (self.band_px + self.flat_px).max(1) as f64
+    }
+
+    /// In words, for a cause line.
+    pub fn sentence(&self) -> String {
+        let px = 100.0 * self.px_share();
+        match self.share() {
+            Some(share) if self.band_excess >= 0.0 && self.flat_excess >= 0.0 => format!(
+                "{:.0} % of the method's FLIP excess over NoAA on the pixels in no class (flat and \
+near edge, summed over the pixels and the offsets) lies in the near-edge band, which holds {px:.0} % \
+of those pixels; flat, judged above, carries {:.0} %",
+                100.0 * share,
+                100.0 * (1.0 - share)
+            ),
+            _ => format!(
+                "the method's FLIP minus NoAA's, summed over the pixels and the offsets, is {:+.2} on \
+the near-edge band ({px:.0} % of the pixels in no class) and {:+.2} on flat",
+                self.band_excess, self.flat_excess
+            ),
         }
     }
-    (!parts.is_empty()).then(|| parts.join("; "))
+}
+
+/// [`BandShare`] of row `it` against `noaa` (FLIP, paired by offset);
+/// `None` when either has no per-class errors or no pixel lies in no class.
+pub fn near_edge_share(it: &ResultRow, noaa: &ResultRow) -> Option<BandShare> {
+    let (a, n) = (
+        it.class_errors_at(Metric::Flip),
+        noaa.class_errors_at(Metric::Flip),
+    );
+    let mut out = BandShare {
+        band_excess: 0.0,
+        flat_excess: 0.0,
+        band_px: 0,
+        flat_px: 0,
+    };
+    let flat = Class::Flat.index();
+    for (a, n) in a.iter().zip(&n) {
+        if let (Some(x), Some(y)) = (a.near_edge, n.near_edge) {
+            out.band_excess += (x - y) * a.near_edge_px as f64;
+            out.band_px += a.near_edge_px;
+        }
+        if let (Some(x), Some(y)) = (a.mean[flat], n.mean[flat]) {
+            out.flat_excess += (x - y) * a.px[flat] as f64;
+            out.flat_px += a.px[flat];
+        }
+    }
+    (out.band_px + out.flat_px > 0).then_some(out)
 }
 
 /// The verdict under `metric` of every method but NoAA among `rows` (one
@@ -1087,8 +1446,10 @@ pub fn verdicts(rows: &[&ResultRow], metric: Metric) -> Vec<(String, Verdict)> {
                     && n.backend == r.backend
                     && n.scene == r.scene
             })
-            .and_then(|n| n.class_error(metric));
-        if let (Some(it), Some(noaa)) = (r.class_error(metric), noaa) {
+            .map(|n| n.class_errors_at(metric))
+            .unwrap_or_default();
+        let it = r.class_errors_at(metric);
+        if !it.is_empty() && !noaa.is_empty() {
             let v = Verdict::judge_claims(&r.method, r.claims(), metric, &it, &noaa);
             out.push((r.backend.clone(), v));
         }
@@ -1174,12 +1535,19 @@ fn sraa_targets(s: &ReportSummary, sdf: &[&str], b: &str, md: &mut String) {
             let Some(noaa) = find(NOAA.to_string().as_str(), &r.scene) else {
                 continue;
             };
-            let (Some(it), Some(n), Some(a), Some(na)) =
+            let (Some(_), Some(_), Some(a), Some(na)) =
                 (r.classes, noaa.classes, r.flip_mean, noaa.flip_mean)
             else {
                 continue;
             };
-            let v = Verdict::judge(method, &it, &n);
+            // Paired by camera offset, as the verdict lines.
+            let v = Verdict::judge_claims(
+                method,
+                classes::claimed(method),
+                Metric::Flip,
+                &r.class_errors_at(Metric::Flip),
+                &noaa.class_errors_at(Metric::Flip),
+            );
             let flat = v
                 .flat
                 .map(|(x, y)| format!("flat {x:.4} vs {y:.4}"))
@@ -1252,7 +1620,14 @@ fn ctss_targets(s: &ReportSummary, b: &str, md: &mut String) {
         else {
             continue;
         };
-        let v = Verdict::judge(CTSS.to_string().as_str(), &it, &n);
+        let ctss = CTSS.to_string();
+        let v = Verdict::judge_claims(
+            &ctss,
+            classes::claimed(&ctss),
+            Metric::Flip,
+            &r.class_errors_at(Metric::Flip),
+            &noaa.class_errors_at(Metric::Flip),
+        );
         let flat = v
             .flat
             .map(|(x, y)| format!("flat {x:.4} vs {y:.4}"))
@@ -1712,6 +2087,7 @@ mod tests {
             classes: None,
             ssim_mean: None,
             classes_ssim: None,
+            errors_at: Vec::new(),
             samples_per_pixel: 1.0,
             rays_per_pixel: 2.0,
             buffer_mib: 0.5,
@@ -1792,15 +2168,17 @@ mod tests {
         let mut lines = text.lines();
         let header = lines.next().unwrap();
         assert!(header.starts_with("scene,method,backend,width,height,runs,ms_median"));
-        assert!(header.ends_with(",dssim_flat,post_process,timed_by,ms_geometry,ms_shading"));
+        assert!(header.contains(",dssim_flat,post_process,timed_by,offsets,flip_min,"));
+        assert!(header.ends_with(",dssim_near_edge_min,dssim_near_edge_max,ms_geometry,ms_shading"));
         assert!(header.contains(",ms_max,ratio_to_noaa,ratio_min,ratio_max,flip_mean,"));
         let first = lines.next().unwrap();
         // No ratios, no SSIM, no classes (18 empty columns), no post-process
         // adapter: 19 empty fields between the reference and the timing
         // source; then no geometry pass, and the shading pass.
         let expected = format!(
-            "\"s,1\",noaa,cpu,4,2,3,2.5,2,3,,,,0.125,inf,,,1,2,0.5,4,2,ssaa64{}cpu,,1",
-            ",".repeat(20)
+            "\"s,1\",noaa,cpu,4,2,3,2.5,2,3,,,,0.125,inf,,,1,2,0.5,4,2,ssaa64{}cpu{},1",
+            ",".repeat(20),
+            ",".repeat(BASE_COLUMNS.len() - 42 + 1)
         );
         assert_eq!(first, expected);
         let second = lines.next().unwrap();
@@ -1819,6 +2197,132 @@ mod tests {
         assert_eq!(
             (&vals[0]["ratio_min"], &vals[0]["ratio_max"]),
             (&json!(1.1), &json!(1.3))
+        );
+    }
+
+    /// A row measured at four offsets: per offset `k`, FLIP `flip[k]` on
+    /// silhouette, `flat[k]` on flat and `band[k]` on the near-edge band,
+    /// and 1 − SSIM `dssim[k]` on silhouette and flat; 100 pixels in each
+    /// (300 flat).
+    fn measured(
+        method: &str,
+        flip: [f64; 4],
+        flat: [f64; 4],
+        band: [f64; 4],
+        dssim: [f64; 4],
+    ) -> ResultRow {
+        let mut r = row(method, &[]);
+        r.scene = "s".into();
+        let err = |sil: f64, fl: f64, ne: Option<f64>| {
+            let mut e = classes::ClassError::default();
+            e.mean[Class::Silhouette.index()] = Some(sil);
+            e.px[Class::Silhouette.index()] = 100;
+            e.mean[Class::Flat.index()] = Some(fl);
+            e.px[Class::Flat.index()] = 300;
+            (e.near_edge, e.near_edge_px) = (ne, 100);
+            e
+        };
+        r.errors_at = (0..4)
+            .map(|k| super::super::OffsetError {
+                offset: super::super::offsets::ERROR_OFFSETS[k],
+                flip: flip[k],
+                ssim: 1.0 - dssim[k],
+                classes: err(flip[k], flat[k], Some(band[k])),
+                classes_ssim: err(dssim[k], dssim[k], None),
+            })
+            .collect();
+        r.settle_offsets();
+        r
+    }
+
+    #[test]
+    fn flip_and_ssim_disagreements_get_a_computed_cause() {
+        let noaa = measured("noaa", [0.2; 4], [0.05; 4], [0.1; 4], [0.1; 4]);
+        // fxaa-like: FLIP loses on silhouette at every offset, SSIM beats;
+        // flat holds under both; the band carries most of the excess.
+        let fx = measured(
+            "fxaa",
+            [0.24, 0.25, 0.23, 0.24],
+            [0.0505, 0.0505, 0.0505, 0.0505],
+            [0.13, 0.14, 0.13, 0.12],
+            [0.08; 4],
+        );
+        let rows = [&noaa, &fx];
+        let md = class_section("s", &rows);
+        assert!(
+            md.contains("silhouette: loses by 1.2× under FLIP (0.2400 vs 0.2000, 1.15–1.25× over 4 offsets) but beats under SSIM"),
+            "{md}"
+        );
+        assert!(md.contains("Cause: not noise: each metric gives the same call at each of the 4 offsets (FLIP ratio to NoAA 1.15–1.25×, SSIM 0.80–0.80×)"), "{md}");
+        // Band: 0.03 × 100 per offset; flat: 0.0005 × 300: 12 / 12.6.
+        let share = near_edge_share(&fx, &noaa).unwrap();
+        assert!((share.share().unwrap() - 12.0 / 12.6).abs() < 1e-9);
+        assert!((share.px_share() - 0.25).abs() < 1e-12);
+        assert!(
+            md.contains("Near-edge band: 95 % of the method's FLIP excess"),
+            "{md}"
+        );
+        assert!(md.contains("which holds 25 % of those pixels"), "{md}");
+        // Noise: FLIP wins at two offsets and not at the others.
+        let noisy = measured(
+            "fxaa",
+            [0.18, 0.2, 0.18, 0.2],
+            [0.05; 4],
+            [0.1; 4],
+            [0.08; 4],
+        );
+        let md = class_section("s", &[&noaa, &noisy]);
+        assert!(
+            md.contains("silhouette: tie (within noise) under FLIP"),
+            "{md}"
+        );
+        assert!(md.contains("Cause: noise: the per-offset ratio to NoAA, FLIP's (0.90–1.00×), does not stay on one side"), "{md}");
+        // Agreement: no disagreement section.
+        let same = measured("fxaa", [0.1; 4], [0.05; 4], [0.1; 4], [0.05; 4]);
+        let md = class_section("s", &[&noaa, &same]);
+        assert!(md.contains("FLIP and SSIM agree on every verdict"), "{md}");
+        // The table shows the spread and the band.
+        assert!(md.contains("near edge (100 px)"), "{md}");
+        // No excess: said so, not a share.
+        let better = measured("fxaa", [0.1; 4], [0.04; 4], [0.05; 4], [0.05; 4]);
+        let b = near_edge_share(&better, &noaa).unwrap();
+        assert_eq!(b.share(), None);
+        assert!(b.sentence().contains("is -20.00 on the near-edge band (25 % of the pixels in no class) and -12.00 on flat"), "{}", b.sentence());
+    }
+
+    #[test]
+    fn glance_cells_count_each_outcome() {
+        let noaa = measured("noaa", [0.2; 4], [0.05; 4], [0.1; 4], [0.1; 4]);
+        let it = measured("sraa", [0.1, 0.2, 0.1, 0.1], [0.06; 4], [0.1; 4], [0.05; 4]);
+        let v = &verdicts(&[&noaa, &it], Metric::Flip)[0].1;
+        // sraa claims silhouette and crease; crease has no pixels.
+        assert_eq!(glance_cell(v), "0/1 · 1 noise · **loses 1.2×**");
+        let v = &verdicts(&[&noaa, &it], Metric::Ssim)[0].1;
+        assert_eq!(glance_cell(v), "1/1 · holds");
+    }
+
+    #[test]
+    fn spread_columns_hold_the_offsets_range() {
+        let r = measured(
+            "noaa",
+            [0.2, 0.3, 0.25, 0.2],
+            [0.05; 4],
+            [0.1, 0.2, 0.1, 0.1],
+            [0.1; 4],
+        );
+        let (cols, vals) = json_rows(std::slice::from_ref(&r));
+        assert!(cols.iter().any(|c| c == "flip_near_edge_max"));
+        let v = &vals[0];
+        assert_eq!(v["offsets"], json!(4));
+        assert_eq!((&v["flip_min"], &v["flip_max"]), (&json!(0.2), &json!(0.3)));
+        assert!((v["flip_mean"].as_f64().unwrap() - 0.2375).abs() < 1e-12);
+        assert_eq!(v["flip_silhouette_max"], json!(0.3));
+        assert_eq!(v["flip_near_edge_max"], json!(0.2));
+        assert_eq!(v["px_near_edge"], json!(100));
+        assert_eq!(v["dssim_near_edge"], Value::Null);
+        assert_eq!(
+            with_range(Some(0.2375), r.range(Metric::Flip)),
+            "0.2375 (0.2000–0.3000)"
         );
     }
 

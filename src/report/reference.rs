@@ -4,8 +4,10 @@
 //! canonical path, modification time and length), the image size, the reference
 //! method, the reflection depth, the backend that rendered it, and the code
 //! version (`CARGO_PKG_VERSION` plus the git HEAD of the source tree when `git`
-//! can tell it at run time, else `"unknown"`). It is re-rendered only when one
-//! of those changes (or with `--refresh-references`).
+//! can tell it at run time, else `"unknown"`), and for a camera other than the
+//! scene's (the error's sub-pixel camera offsets) that camera. It is
+//! re-rendered only when one of those changes (or with
+//! `--refresh-references`).
 //!
 //! The file is raw little-endian `f32` linear RGB after a small header
 //! (`SUBCONE-REF1`, width, height as `u32`), written to a temporary file and
@@ -91,12 +93,16 @@ pub struct ReferenceKey {
     pub backend: String,
     /// [`code_version`].
     pub version: String,
+    /// The camera, when it is not the scene's: a description of the
+    /// offset camera (its position, view and up vectors and field of view).
+    /// `None` keeps the key of the scene's own camera unchanged.
+    pub camera: Option<String>,
 }
 
 impl ReferenceKey {
     /// The text hashed into the key (also written beside the cache file).
     pub fn describe(&self) -> String {
-        format!(
+        let mut s = format!(
             "scene={}\nsize={}x{}\nmethod={}\nreflection_depth={}\nao_rays={}\nbackend={}\nversion={}\n",
             self.scene,
             self.width,
@@ -106,7 +112,11 @@ impl ReferenceKey {
             self.ao_rays,
             self.backend,
             self.version
-        )
+        );
+        if let Some(c) = &self.camera {
+            s.push_str(&format!("camera={c}\n"));
+        }
+        s
     }
 
     /// Hex SHA-256 of [`ReferenceKey::describe`].
@@ -218,6 +228,7 @@ mod tests {
             ao_rays: 0,
             backend: "cpu".into(),
             version: "0.1.0+abc".into(),
+            camera: None,
         }
     }
 
@@ -225,7 +236,7 @@ mod tests {
     fn key_changes_with_every_input() {
         let k = key();
         let mut others = vec![];
-        for i in 0..7 {
+        for i in 0..9 {
             let mut o = k.clone();
             match i {
                 0 => o.scene = "name:checker".into(),
@@ -234,6 +245,12 @@ mod tests {
                 3 => o.method = "ssaa256".into(),
                 4 => o.reflection_depth = 2,
                 5 => o.ao_rays = 4,
+                6 => o.camera = Some("offset 0.5,0.5".into()),
+                7 => {
+                    o.camera = Some("offset 0.25,0.75".into());
+                    others.push(o.hash());
+                    o.camera = Some("offset 0.75,0.25".into());
+                }
                 _ => o.version = "0.1.0+def".into(),
             }
             others.push(o.hash());
@@ -241,6 +258,14 @@ mod tests {
         for h in &others {
             assert_ne!(h, &k.hash());
         }
+        // Every offset camera has its own file.
+        let mut sorted = others.clone();
+        sorted.sort();
+        sorted.dedup();
+        assert_eq!(sorted.len(), others.len());
+        // The scene's own camera keeps the key it had before cameras were
+        // part of it.
+        assert!(!k.describe().contains("camera="));
     }
 
     #[test]
