@@ -545,12 +545,11 @@ fn report_page_in_a_browser() {
     // answer and verdict sections on the page.
     let dom = browser.dom(&format!("scene={SCENE}"));
     let rows: Vec<&report::ResultRow> = summary.rows.iter().filter(|r| r.scene == SCENE).collect();
-    let front = report::plot::pareto_front(
-        &rows
-            .iter()
-            .filter_map(|r| Some((r.ms_median, r.flip_mean?)))
-            .collect::<Vec<_>>(),
-    );
+    // The answer section's FLIP front (one backend here), without the rows it
+    // leaves out.
+    let all: Vec<&report::ResultRow> = summary.rows.iter().collect();
+    let left_out = report::answer::exclusions(&all);
+    let front = report::answer::front(&rows, &left_out, report::classes::Metric::Flip);
     let tbody = results_body(&dom);
     for tr in tbody.split("<tr ").skip(1) {
         let key = attr(&format!(" {tr}"), "data-key").unwrap();
@@ -558,7 +557,7 @@ fn report_page_in_a_browser() {
             .iter()
             .find(|r| format!("{}/{}", r.method, r.backend) == key)
             .unwrap();
-        let on_front = front.contains(&(r.ms_median, r.flip_mean.unwrap()));
+        let on_front = front.iter().any(|p| p.method == r.method);
         assert_eq!(
             tr.contains("data-column=\"pareto\">◆ front<"),
             on_front,

@@ -236,7 +236,7 @@ pub struct Front {
 /// rows not in `ex` with a time and an error, in time order, each with less
 /// error than every faster one (on equal times, the lower error first).
 pub fn front(rows: &[&ResultRow], ex: &[Excluded], metric: Metric) -> Vec<Point> {
-    let mut p: Vec<Point> = rows
+    let p: Vec<Point> = rows
         .iter()
         .filter(|r| excluded(ex, r).is_none())
         .filter(|r| r.ms_median.is_finite() && r.ms_median > 0.0)
@@ -249,10 +249,27 @@ pub fn front(rows: &[&ResultRow], ex: &[Excluded], metric: Metric) -> Vec<Point>
             })
         })
         .collect();
-    p.sort_by(|a, b| a.ms.total_cmp(&b.ms).then(a.error.total_cmp(&b.error)));
-    let mut out: Vec<Point> = Vec::new();
+    pareto_by(p, |q| (q.ms, q.error))
+}
+
+/// The Pareto front of `items` by `key` = (time, error): the items with a
+/// finite time and error, sorted by time (on equal times, the lower error
+/// first), each kept when its error is below every faster kept one's.
+pub fn pareto_by<T>(items: Vec<T>, key: impl Fn(&T) -> (f64, f64)) -> Vec<T> {
+    let mut p: Vec<T> = items
+        .into_iter()
+        .filter(|i| {
+            let (t, e) = key(i);
+            t.is_finite() && e.is_finite()
+        })
+        .collect();
+    p.sort_by(|a, b| {
+        let (ka, kb) = (key(a), key(b));
+        ka.0.total_cmp(&kb.0).then(ka.1.total_cmp(&kb.1))
+    });
+    let mut out: Vec<T> = Vec::new();
     for q in p {
-        if out.last().is_none_or(|l| q.error < l.error) {
+        if out.last().is_none_or(|l| key(&q).1 < key(l).1) {
             out.push(q);
         }
     }
@@ -801,6 +818,17 @@ mod tests {
     use crate::report::timing::Timings;
 
     const WHY: &str = "software adapter";
+
+    #[test]
+    fn pareto_front_keeps_only_improvements() {
+        let key = |p: &(f64, f64)| *p;
+        let f = pareto_by(
+            vec![(10.0, 0.2), (1.0, 0.5), (5.0, 0.6), (20.0, 0.1), (2.0, 0.3)],
+            key,
+        );
+        assert_eq!(f, vec![(1.0, 0.5), (2.0, 0.3), (10.0, 0.2), (20.0, 0.1)]);
+        assert!(pareto_by(vec![(f64::NAN, 0.1)], key).is_empty());
+    }
 
     fn row(scene: &str, method: &str, ms: f64, flip: f64, ssim: f64) -> ResultRow {
         let mut r = ResultRow::timed(scene, method, "cpu", (4, 4), 3, &Timings::default());

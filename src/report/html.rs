@@ -42,10 +42,10 @@ use std::path::Path;
 use anyhow::{Context as _, Result};
 use serde_json::{json, Map, Value};
 
-use super::classes::CLASSES;
+use super::answer;
+use super::classes::{Metric, CLASSES};
 use super::motion::{self, CROP_ZOOM};
 use super::output::{json_rows, Context};
-use super::plot::pareto_front;
 use super::reference::{code_version, write_atomic};
 use super::{file_safe, Mode, ReportSummary, ResultRow};
 
@@ -198,6 +198,7 @@ fn data(s: &ReportSummary, ctx: &Context, md: &str) -> Value {
     let (sections, missing) = sections(md);
     let verdicts = section_of(md, VERDICTS).and_then(|v| markdown_table(&v));
     let mut metrics: Vec<String> = Vec::new();
+    let left_out = answer::exclusions(&s.rows.iter().collect::<Vec<_>>());
     let scenes: Vec<Value> = ctx
         .scenes
         .iter()
@@ -207,12 +208,16 @@ fn data(s: &ReportSummary, ctx: &Context, md: &str) -> Value {
                 s.rows.iter().filter(|r| r.scene == sc.name).collect();
             let (width, height) = sc.quality_size.unwrap_or(sc.timing_size);
             let masks = s.classes.iter().find(|c| c.scene == sc.name);
-            let front = pareto_front(
-                &scene_rows
+            // The answer section's fronts: per backend, without the rows
+            // it leaves out (timed on another device, a repeated image).
+            let front = |r: &ResultRow| {
+                let same_backend: Vec<&ResultRow> = scene_rows
                     .iter()
-                    .filter_map(|r| Some((r.ms_median, r.flip_mean?)))
-                    .collect::<Vec<_>>(),
-            );
+                    .copied()
+                    .filter(|x| x.backend == r.backend)
+                    .collect();
+                answer::front(&same_backend, &left_out, Metric::Flip)
+            };
             let rows: Vec<Value> = s
                 .rows
                 .iter()
@@ -220,9 +225,7 @@ fn data(s: &ReportSummary, ctx: &Context, md: &str) -> Value {
                 .filter(|(r, _)| r.scene == sc.name)
                 .map(|(r, v)| {
                     let mut v = v.clone();
-                    let on_front = r
-                        .flip_mean
-                        .is_some_and(|f| front.contains(&(r.ms_median, f)));
+                    let on_front = front(r).iter().any(|p| p.method == r.method);
                     v["pareto"] = if on_front {
                         json!("◆ front")
                     } else {

@@ -114,24 +114,6 @@ pub fn pass_colour(pass: &str, i: usize) -> RGBColor {
     }
 }
 
-/// The points on the Pareto front of (time, error): sorted by time, each with
-/// less error than every faster point.
-pub fn pareto_front(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
-    let mut p: Vec<(f64, f64)> = points
-        .iter()
-        .copied()
-        .filter(|(t, e)| t.is_finite() && e.is_finite())
-        .collect();
-    p.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
-    let mut front: Vec<(f64, f64)> = Vec::new();
-    for q in p {
-        if front.last().is_none_or(|l| q.1 < l.1) {
-            front.push(q);
-        }
-    }
-    front
-}
-
 /// How many backends `rows` come from (labels name the backend when more
 /// than one).
 fn backend_count(rows: &[&ResultRow]) -> usize {
@@ -646,13 +628,6 @@ pub fn label_panel(tiles: &[(String, Rgb8)]) -> Result<Rgb8> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn pareto_front_keeps_only_improvements() {
-        let f = pareto_front(&[(10.0, 0.2), (1.0, 0.5), (5.0, 0.6), (20.0, 0.1), (2.0, 0.3)]);
-        assert_eq!(f, vec![(1.0, 0.5), (2.0, 0.3), (10.0, 0.2), (20.0, 0.1)]);
-        assert!(pareto_front(&[(f64::NAN, 0.1)]).is_empty());
-    }
 
     #[test]
     fn font_registers() {

@@ -45,13 +45,13 @@ impl CacheKey for FxaaPassKey {
 /// The pass on this device for `params`, compiled once per device and
 /// parameters.
 fn pass(ctx: &GpuContext, params: &FxaaParams) -> Result<Arc<FxaaPass>, RenderError> {
-    let desc = FxaaPassDesc::default()
-        .with_params(*params)
-        .with_output_format(FORMAT);
     let key = FxaaPassKey(bytemuck::cast(*params));
     if let Some(p) = ctx.cached(&key) {
         return Ok(p);
     }
+    let desc = FxaaPassDesc::default()
+        .with_params(*params)
+        .with_output_format(FORMAT);
     let p = ctx
         .scoped("fxaa", || FxaaPass::new(&ctx.device, &desc))?
         .map_err(|e| err(format!("FXAA: {e}")))?;
