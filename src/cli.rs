@@ -7,7 +7,7 @@ use anyhow::{anyhow, Result};
 use subcone_cpu::isa::Isa;
 use subcone_scene::{Frame, Method, RenderSettings};
 
-pub use crate::setup::{backend, backend_on, parse_ao, parse_isa, parse_size, scene};
+pub use subcone_report::setup::{backend, backend_on, parse_ao, parse_isa, parse_size, scene};
 
 /// A built-in SDF scene written as an SDF scene file (see
 /// [`subcone_scene::sdf::file`]); errors name the built-in SDF scenes when

@@ -1,7 +1,7 @@
 //! `subcone`: geometry-aware antialiasing for ray tracing and sphere tracing.
 //!
-//! This crate holds the CLI (`subcone render`; `subcone report` comes with the
-//! report) and re-exports the kernels, [`subcone_kernels`], which engine
+//! This crate holds the CLI (`subcone render`; `subcone report` runs
+//! [`subcone_report`]) and re-exports the kernels, [`subcone_kernels`], which engine
 //! developers can also depend on directly in `no_std` code.
 //!
 //! ```
@@ -13,8 +13,6 @@
 #![deny(missing_docs)]
 
 pub mod cli;
-pub mod report;
-pub mod setup;
 pub mod vectors;
 
 pub use subcone_kernels as kernels;

@@ -22,7 +22,7 @@ struct Cli {
 enum Command {
     /// The main job: every method on every scene, image error against run time,
     /// as tables (report.md, results.csv, results.json), plots and images.
-    Report(subcone::report::ReportArgs),
+    Report(subcone_report::ReportArgs),
     /// Write a built-in SDF scene as an SDF scene file (`.sdf.ron`), which
     /// `--scene PATH` reads back as the same scene.
     Scene {
@@ -101,7 +101,7 @@ enum Command {
 fn run() -> Result<()> {
     match Cli::parse().command {
         Command::Report(args) => {
-            let summary = subcone::report::run(&args)?;
+            let summary = subcone_report::run(&args)?;
             println!(
                 "report written to {} (interactive: {})",
                 summary.report_md.display(),

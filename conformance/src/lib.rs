@@ -269,66 +269,20 @@ pub fn unavailable(backend: &str, e: &dyn Display) -> Option<Box<dyn Backend>> {
     subcone_scene::conformance::or_skip(backend, Err(e))
 }
 
-/// A FLIP comparison: the per-pixel error map in `[0, 1]`, its mean, and the
-/// map through FLIP's magma colour map (8-bit RGB) for failure images.
-pub struct Flip {
-    /// Per-pixel FLIP error, row-major.
-    pub map: Vec<f32>,
-    /// Mean FLIP over all pixels.
-    pub mean: f64,
-    /// 99th percentile of `map`.
-    pub p99: f32,
-    /// `map` coloured, 8-bit RGB.
-    pub magma: Vec<u8>,
-}
+/// A FLIP comparison ([`subcone_metrics::Flip`]): the per-pixel error map,
+/// its mean and 99th percentile, and the map through FLIP's magma colour map.
+pub use subcone_metrics::Flip;
 
 /// LDR-FLIP of `test` against `reference`, on the 8-bit sRGB images a user
 /// sees ([`Frame::to_srgb8`]), at the default 67 pixels per degree: the
-/// metric of `subcone report`. Panics on frames of different sizes.
+/// metric of `subcone report` ([`subcone_metrics::flip`]). Panics on frames
+/// of different sizes or whose data does not match their size: a test
+/// helper, whose frames come from a backend under test.
 pub fn flip(reference: &Frame, test: &Frame) -> Flip {
-    let (w, h) = (reference.width, reference.height);
-    assert_eq!((test.width, test.height), (w, h), "frames differ in size");
-    let n = (w * h) as usize;
-    assert!(
-        n > 0 && reference.color.len() == n && test.color.len() == n,
-        "frame data does not match the frame size"
-    );
-    flip_srgb8(w, h, &reference.to_srgb8(), &test.to_srgb8())
-}
-
-/// LDR-FLIP of two `w × h` 8-bit sRGB images (RGB, row-major) at the
-/// default 67 pixels per degree: the one call of `nv-flip` that the suite,
-/// the report and the passes' tests share. Panics when a buffer is not
-/// `3 · w · h` bytes or the image is empty.
-pub fn flip_srgb8(w: u32, h: u32, reference: &[u8], test: &[u8]) -> Flip {
-    let n = w as usize * h as usize;
-    assert!(
-        n > 0 && reference.len() == 3 * n && test.len() == 3 * n,
-        "{w}x{h} images need {} bytes each, got {} and {}",
-        3 * n,
-        reference.len(),
-        test.len()
-    );
-    let r = nv_flip::FlipImageRgb8::with_data(w, h, reference);
-    let t = nv_flip::FlipImageRgb8::with_data(w, h, test);
-    let error = nv_flip::flip(r, t, nv_flip::DEFAULT_PIXELS_PER_DEGREE);
-    let map = error.to_vec();
-    let mean = map.iter().map(|&v| v as f64).sum::<f64>() / map.len() as f64;
-    let p99 = percentile(&map, 0.99);
-    let magma = error.apply_color_lut(&nv_flip::magma_lut()).to_vec();
-    Flip {
-        map,
-        mean,
-        p99,
-        magma,
-    }
-}
-
-fn percentile(values: &[f32], q: f64) -> f32 {
-    let mut v = values.to_vec();
-    v.sort_by(f32::total_cmp);
-    let i = ((v.len() as f64 - 1.0) * q).round() as usize;
-    v[i.min(v.len() - 1)]
+    let srgb8 = |f: &Frame| {
+        subcone_metrics::Rgb8::from_frame(f).unwrap_or_else(|e| panic!("frame: {e}"))
+    };
+    subcone_metrics::flip(&srgb8(reference), &srgb8(test)).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// The `ssaa64` frame of `scene` at the suite's size, rendered once per scene
@@ -424,7 +378,7 @@ fn save_failure(
     for (suffix, data) in [
         ("reference", reference.to_srgb8()),
         ("actual", actual.to_srgb8()),
-        ("flip", f.magma.clone()),
+        ("flip", f.magma.data.clone()),
     ] {
         let mut p = stem.clone().into_os_string();
         p.push(format!("-{suffix}.png"));
@@ -557,11 +511,11 @@ pub fn check_scene(backend: &dyn Backend, scene_name: &str) {
         check_invariants(name, &scene, &method, &actual);
         let f = flip(&expected, &actual);
         let t = FRAME_TOLERANCE;
-        if f.mean > t.mean || f.p99 > t.p99 {
+        if f.mean > t.mean || f.p99() > t.p99 {
             let stem = save_failure(name, scene_name, m, "cpu", &expected, &actual, &f);
             failures.push(format!(
                 "{m} against the cpu backend: FLIP mean {:.5} (limit {}), p99 {:.4} (limit {}); images in {stem}-*.png",
-                f.mean, t.mean, f.p99, t.p99
+                f.mean, t.mean, f.p99(), t.p99
             ));
         }
         let high = check_against_reference(name, &scene, m, &actual);
@@ -573,7 +527,7 @@ pub fn check_scene(backend: &dyn Backend, scene_name: &str) {
             "{name:>5} {scene_name:>16} {m:>12}: vs cpu FLIP mean {:.5} (≤ {}), p99 {:.4} (≤ {}); vs {REFERENCE_METHOD} mean {} (≤ {})",
             f.mean,
             t.mean,
-            f.p99,
+            f.p99(),
             t.p99,
             high.map_or_else(|_| "over".to_string(), |v| format!("{v:.5}")),
             family(m).mean,
@@ -701,11 +655,11 @@ pub fn check_ambient_occlusion(backend: &dyn Backend) {
             let f = flip(&expected, &frame);
             let t = FRAME_TOLERANCE;
             let label = format!("{m}+ao{AO_RAYS}");
-            if f.mean > t.mean || f.p99 > t.p99 {
+            if f.mean > t.mean || f.p99() > t.p99 {
                 let stem = save_failure(name, scene_name, &label, "cpu", &expected, &frame, &f);
                 failures.push(format!(
                     "{scene_name} {label} against the cpu backend: FLIP mean {:.5} (limit {}), p99 {:.4} (limit {}); images in {stem}-*.png",
-                    f.mean, t.mean, f.p99, t.p99
+                    f.mean, t.mean, f.p99(), t.p99
                 ));
             }
             let r = flip(&reference, &frame);
@@ -727,7 +681,7 @@ pub fn check_ambient_occlusion(backend: &dyn Backend) {
             }
             println!(
                 "{name:>5} {scene_name:>16} {label:>12}: vs cpu FLIP mean {:.5} (≤ {}), p99 {:.4} (≤ {}); vs {REFERENCE_METHOD}+ao{AO_RAYS} mean {:.5} (≤ {}); {} occlusion rays",
-                f.mean, t.mean, f.p99, t.p99, r.mean, fam.mean, frame.stats.rays.ao
+                f.mean, t.mean, f.p99(), t.p99, r.mean, fam.mean, frame.stats.rays.ao
             );
         }
     }
@@ -852,13 +806,13 @@ pub fn check_transparent(backend: &dyn Backend) {
                     let t = FRAME_TOLERANCE;
                     println!(
                         "{name:>5} {scene_name:>16} {m:>12}: vs cpu FLIP mean {:.5} (≤ {}), p99 {:.4} (≤ {})",
-                        f.mean, t.mean, f.p99, t.p99
+                        f.mean, t.mean, f.p99(), t.p99
                     );
-                    if f.mean > t.mean || f.p99 > t.p99 {
+                    if f.mean > t.mean || f.p99() > t.p99 {
                         let stem = save_failure(name, scene_name, m, "cpu", &expected, &frame, &f);
                         failures.push(format!(
                             "{scene_name} {m} against the cpu backend: FLIP mean {:.5} (limit {}), p99 {:.4} (limit {}); images in {stem}-*.png",
-                            f.mean, t.mean, f.p99, t.p99
+                            f.mean, t.mean, f.p99(), t.p99
                         ));
                     }
                 }

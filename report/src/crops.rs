@@ -25,7 +25,7 @@
 
 use anyhow::{bail, Result};
 
-use super::metrics::Rgb8;
+use subcone_metrics::Rgb8;
 
 /// The region kinds, in output order.
 pub const KINDS: [&str; 3] = ["edge", "shadow", "reflection"];

@@ -8,7 +8,7 @@
 //! a filter over the finished image can act on any luminance edge). Its time
 //! is NoAA's plus the step's.
 //!
-//! Two kinds ship: SMAA 1x on the GPU ([`SmaaPost`](super::smaa::SmaaPost),
+//! Two kinds ship: SMAA 1x on the GPU ([`SmaaPost`](crate::smaa::SmaaPost),
 //! the `smaa` row) and any outside program ([`CommandPost`], `report
 //! --post-process NAME=COMMAND`). FXAA is not one: it is a backend technique,
 //! timed inside the frame. A library caller can implement [`PostProcess`]
@@ -58,7 +58,7 @@ use anyhow::{anyhow, bail, Context, Result};
 use glam::Vec3;
 use subcone_scene::{Frame, PassTiming};
 
-use super::metrics::Rgb8;
+use subcone_metrics::Rgb8;
 
 /// What a post-process step gets: NoAA's frame on one scene and backend.
 #[derive(Clone, Copy, Debug)]
@@ -88,9 +88,9 @@ pub trait PostProcess: Send + Sync {
     fn apply(&self, input: &PostInput<'_>) -> Result<(Rgb8, PassTiming)>;
 }
 
-impl PostProcess for super::smaa::SmaaPost {
+impl PostProcess for crate::smaa::SmaaPost {
     fn name(&self) -> &str {
-        super::SMAA
+        crate::SMAA
     }
 
     fn describe(&self) -> String {
@@ -107,7 +107,7 @@ impl PostProcess for super::smaa::SmaaPost {
     }
 
     fn apply(&self, input: &PostInput<'_>) -> Result<(Rgb8, PassTiming)> {
-        super::smaa::SmaaPost::apply(self, input.image)
+        crate::smaa::SmaaPost::apply(self, input.image)
     }
 }
 
@@ -151,7 +151,7 @@ impl CommandPost {
                  digits, '-', '_', '+' or '.' (it names the row and its image files)"
             );
         }
-        if name == super::SMAA || name.parse::<subcone_scene::Method>().is_ok() {
+        if name == crate::SMAA || name.parse::<subcone_scene::Method>().is_ok() {
             bail!("--post-process {spec:?}: {name:?} is already a method's name; choose another");
         }
         let words = shlex::split(command)
@@ -335,7 +335,7 @@ impl InputFiles {
             values.push((key, p.display().to_string()));
             p
         };
-        super::output::save_png(&file("color", "color.png"), input.image)?;
+        crate::output::save_png(&file("color", "color.png"), input.image)?;
         write_pfm3(&file("linear", "linear.pfm"), w, h, &f.color)?;
         let aov = |name: &str, present: bool| -> Result<bool> {
             if !present && post.uses(name) {

@@ -27,10 +27,10 @@ use std::fmt::Write as _;
 use serde_json::{json, Value};
 use subcone_scene::TimingSource;
 
-use super::classes::Metric;
-use super::named::NOAA;
-use super::output::{cpu_model, ms, Context, SceneInfo};
-use super::{Mode, ResultRow};
+use crate::classes::Metric;
+use crate::named::NOAA;
+use crate::output::{cpu_model, ms, Context, SceneInfo};
+use crate::{Mode, ResultRow};
 
 /// The cost budgets of the picks: time over NoAA's at most 1.5×, at most
 /// 4×, and any (`None`).
@@ -815,7 +815,7 @@ pub fn json(a: &Answer) -> Value {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::report::timing::Timings;
+    use crate::timing::Timings;
 
     const WHY: &str = "software adapter";
 

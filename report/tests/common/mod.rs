@@ -1,8 +1,8 @@
 //! What the quality tests share: a scene judged as the quick report judges
 //! it, on the CPU backend.
 
-use subcone::report::classes::{self, ClassError, ClassMasks};
-use subcone::report::metrics::{self, Rgb8};
+use subcone_report::classes::{self, ClassError, ClassMasks};
+use subcone_metrics::{self as metrics, Rgb8};
 use subcone_cpu::CpuBackend;
 use subcone_scene::{Backend, Frame, Method, RenderSettings, Scene};
 

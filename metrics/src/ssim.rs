@@ -1,6 +1,6 @@
 //! SSIM (Wang, Bovik, Sheikh and Simoncelli, "Image Quality Assessment:
 //! From Error Visibility to Structural Similarity", IEEE TIP 13(4), 2004),
-//! the report's second metric beside FLIP.
+//! the second metric beside FLIP.
 //!
 //! As in the paper's §III-C and its reference implementation: an 11×11
 //! circular-symmetric Gaussian window of σ = 1.5 (normalised to unit sum),
@@ -28,9 +28,7 @@
 //! The report averages `1 − SSIM` (0 for identical images; larger is
 //! worse, like FLIP) over each edge class.
 
-use anyhow::Result;
-
-use super::metrics::{same_size, Rgb8};
+use crate::{same_size, MetricError, Rgb8};
 
 /// Standard deviation of the Gaussian window, pixels (the paper's 1.5).
 pub const SIGMA: f64 = 1.5;
@@ -116,7 +114,7 @@ fn blur<const N: usize>(planes: [&[f64]; N], w: usize, h: usize) -> [Vec<f64>; N
 ///
 /// Inputs are 8-bit, so every value is finite and the map lies in
 /// `[-1, 1]`: the constants keep both denominators at least `C1` and `C2`.
-pub fn ssim(reference: &Rgb8, test: &Rgb8) -> Result<Ssim> {
+pub fn ssim(reference: &Rgb8, test: &Rgb8) -> Result<Ssim, MetricError> {
     same_size(reference, test)?;
     let (w, h) = (reference.width as usize, reference.height as usize);
     let x: Vec<f64> = reference.luma().into_iter().map(f64::from).collect();

@@ -1,127 +1,10 @@
-//! Image metrics on tone-mapped 8-bit sRGB images: FLIP, PSNR, and the edge
-//! mask that edge FLIP is averaged over.
-//!
-//! Every function checks its sizes and returns an error instead of panicking
-//! (nv-flip asserts equal sizes; we check first).
+//! The report's masks and means over metric maps: the edge mask that edge
+//! FLIP is averaged over and the class means. The metrics themselves (FLIP,
+//! SSIM, PSNR) are [`subcone_metrics`]'s.
 
 use anyhow::{bail, Result};
+use subcone_metrics::{same_size, Rgb8};
 use subcone_scene::Frame;
-
-/// An 8-bit sRGB RGB image, row-major from the top-left pixel.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Rgb8 {
-    /// Width in pixels.
-    pub width: u32,
-    /// Height in pixels.
-    pub height: u32,
-    /// `3 · width · height` bytes.
-    pub data: Vec<u8>,
-}
-
-impl Rgb8 {
-    /// The image a user sees of `frame` ([`Frame::to_srgb8`]); fails when the
-    /// frame's pixels do not match its size.
-    pub fn from_frame(frame: &Frame) -> Result<Self> {
-        let n = frame.width as usize * frame.height as usize;
-        if frame.color.len() != n {
-            bail!(
-                "frame of {}x{} has {} pixels, expected {n}",
-                frame.width,
-                frame.height,
-                frame.color.len()
-            );
-        }
-        Ok(Rgb8 {
-            width: frame.width,
-            height: frame.height,
-            data: frame.to_srgb8(),
-        })
-    }
-
-    /// Number of pixels.
-    pub fn pixels(&self) -> usize {
-        self.width as usize * self.height as usize
-    }
-
-    /// Relative luminance in `[0, 1]` of the sRGB-encoded values (Rec. 709
-    /// weights on the encoded values: a perceptual, not a physical, luminance).
-    pub fn luma(&self) -> Vec<f32> {
-        self.data
-            .chunks_exact(3)
-            .map(|p| (0.2126 * p[0] as f32 + 0.7152 * p[1] as f32 + 0.0722 * p[2] as f32) / 255.0)
-            .collect()
-    }
-}
-
-/// Errors unless `a` and `b` are non-empty images of one size whose data
-/// matches it.
-pub(crate) fn same_size(a: &Rgb8, b: &Rgb8) -> Result<()> {
-    if a.width != b.width || a.height != b.height {
-        bail!(
-            "images differ in size: {}x{} against {}x{}",
-            a.width,
-            a.height,
-            b.width,
-            b.height
-        );
-    }
-    if a.data.len() != a.pixels() * 3 || b.data.len() != b.pixels() * 3 {
-        bail!("image data does not match the image size");
-    }
-    if a.pixels() == 0 {
-        bail!("empty image");
-    }
-    Ok(())
-}
-
-/// A FLIP comparison: the per-pixel error map in `[0, 1]` and its mean.
-pub struct Flip {
-    /// Per-pixel FLIP error, row-major.
-    pub map: Vec<f32>,
-    /// Mean FLIP over all pixels (the number the FLIP authors recommend).
-    pub mean: f64,
-    /// The error map through FLIP's magma colour map, 8-bit RGB.
-    pub magma: Rgb8,
-}
-
-/// LDR-FLIP of `test` against `reference` at the default 67 pixels per degree.
-pub fn flip(reference: &Rgb8, test: &Rgb8) -> Result<Flip> {
-    same_size(reference, test)?;
-    let (w, h) = (reference.width, reference.height);
-    // The suite's FLIP, so that the report and the conformance bounds
-    // measure the same thing.
-    let f = subcone_conformance::flip_srgb8(w, h, &reference.data, &test.data);
-    let magma = Rgb8 {
-        width: w,
-        height: h,
-        data: f.magma,
-    };
-    Ok(Flip {
-        map: f.map,
-        mean: f.mean,
-        magma,
-    })
-}
-
-/// PSNR in dB over the three 8-bit channels; `+∞` for identical images.
-pub fn psnr(reference: &Rgb8, test: &Rgb8) -> Result<f64> {
-    same_size(reference, test)?;
-    let se: f64 = reference
-        .data
-        .iter()
-        .zip(&test.data)
-        .map(|(&a, &b)| {
-            let d = a as f64 - b as f64;
-            d * d
-        })
-        .sum();
-    let mse = se / reference.data.len() as f64;
-    Ok(if mse == 0.0 {
-        f64::INFINITY
-    } else {
-        10.0 * (255.0f64 * 255.0 / mse).log10()
-    })
-}
 
 /// Mean of `values` where `mask` is set; `None` when the mask is empty or the
 /// lengths differ.
@@ -329,31 +212,6 @@ mod tests {
             height: h,
             data,
         }
-    }
-
-    #[test]
-    fn identical_images_have_zero_flip_and_infinite_psnr() {
-        let a = img(16, 8, |x, _| (x * 10) as u8);
-        let f = flip(&a, &a).unwrap();
-        assert!(f.mean < 1e-6);
-        assert_eq!(f.magma.data.len(), 16 * 8 * 3);
-        assert_eq!(psnr(&a, &a).unwrap(), f64::INFINITY);
-    }
-
-    #[test]
-    fn different_sizes_are_an_error() {
-        let a = img(4, 4, |_, _| 0);
-        let b = img(4, 5, |_, _| 0);
-        assert!(flip(&a, &b).is_err());
-        assert!(psnr(&a, &b).is_err());
-    }
-
-    #[test]
-    fn psnr_of_a_known_error() {
-        let a = img(4, 4, |_, _| 100);
-        let b = img(4, 4, |_, _| 110);
-        let p = psnr(&a, &b).unwrap();
-        assert!((p - 10.0 * (255.0f64 * 255.0 / 100.0).log10()).abs() < 1e-9);
     }
 
     #[test]

@@ -20,7 +20,7 @@ use std::process::Command;
 use std::time::Instant;
 
 use image::RgbImage;
-use subcone::report::{self, ReportArgs, ReportSummary};
+use subcone_report::{self as report, ReportArgs, ReportSummary};
 
 /// Browser window size in CSS pixels (and screenshot pixels: scale 1): tall
 /// enough for the viewer below report.md's first section.
@@ -261,9 +261,8 @@ fn shown_number(dom: &str, id: &str) -> f64 {
 /// FLIP's error for a colour of its colour map (the map the report draws
 /// `flip_<method>.png` with): the colour's index over 255.
 fn decode_flip(rgb: [u8; 3]) -> f64 {
-    let lut = nv_flip::magma_lut().to_vec();
-    let k = lut
-        .chunks(3)
+    let k = subcone_metrics::magma_lut()
+        .into_iter()
         .position(|c| c == rgb)
         .unwrap_or_else(|| panic!("{rgb:?} is not a colour of FLIP's colour map"));
     k as f64 / 255.0
@@ -457,7 +456,13 @@ fn report_page_in_a_browser() {
         (on_screen - decoded).abs() <= PRINTED + 1e-9,
         "FLIP at ({x}, {y}): the page shows {on_screen}, flip_sraa.png decodes to {decoded}"
     );
-    let measured = subcone_conformance::flip_srgb8(width, height, reference.as_raw(), sraa.as_raw())
+    let to_rgb8 = |i: &RgbImage| subcone_metrics::Rgb8 {
+        width,
+        height,
+        data: i.as_raw().clone(),
+    };
+    let measured = subcone_metrics::flip(&to_rgb8(&reference), &to_rgb8(&sraa))
+        .unwrap()
         .map[(y * width + x) as usize] as f64;
     assert!(
         (decoded - measured).abs() <= FLIP_STEP / 2.0 + 1e-6,
@@ -470,13 +475,8 @@ fn report_page_in_a_browser() {
         (on_screen - ssim_decoded).abs() <= PRINTED + 1e-9,
         "1 − SSIM at ({x}, {y}): the page shows {on_screen}, ssim_sraa.png decodes to {ssim_decoded}"
     );
-    let to_rgb8 = |i: &RgbImage| report::metrics::Rgb8 {
-        width,
-        height,
-        data: i.as_raw().clone(),
-    };
     let dssim = 1.0
-        - report::ssim::ssim(&to_rgb8(&reference), &to_rgb8(&sraa))
+        - subcone_metrics::ssim::ssim(&to_rgb8(&reference), &to_rgb8(&sraa))
             .unwrap()
             .map[(y * width + x) as usize] as f64;
     if dssim < 0.5 {
@@ -620,7 +620,7 @@ fn report_page_in_a_browser() {
 /// names. Regenerating the quick report without the screenshot fails here.
 #[test]
 fn the_committed_screenshot_is_of_the_committed_page() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/quick");
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/quick");
     let page = std::fs::read_to_string(dir.join("report.html")).expect("docs/quick/report.html");
     let meta = tag(&page, "name=\"subcone-code\"");
     let code = attr(meta, "content").expect("the page names its build");

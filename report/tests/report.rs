@@ -4,7 +4,7 @@
 use std::path::Path;
 use std::time::Instant;
 
-use subcone::report::{self, ReportArgs};
+use subcone_report::{self as report, ReportArgs};
 
 const REQUIRED: [&str; 16] = [
     "scene",
@@ -263,7 +263,7 @@ fn nonempty(path: &Path) {
     assert!(len > 0, "{} is empty", path.display());
 }
 
-/// The 3×3 box filter of `examples/box_filter.rs`: `cargo test` builds the
+/// The 3×3 box filter of `report/examples/box_filter.rs`: `cargo test` builds the
 /// examples before it runs any test; a narrower run builds it here.
 fn box_filter() -> std::path::PathBuf {
     let exe = std::env::current_exe().unwrap();
@@ -271,9 +271,9 @@ fn box_filter() -> std::path::PathBuf {
     let bin = dir.join(format!("box_filter{}", std::env::consts::EXE_SUFFIX));
     if !bin.exists() {
         let status = std::process::Command::new(env!("CARGO"))
-            .args(["build", "--example", "box_filter"])
+            .args(["build", "-p", "subcone-report", "--example", "box_filter"])
             .status()
-            .expect("cargo build --example box_filter");
+            .expect("cargo build -p subcone-report --example box_filter");
         assert!(status.success());
     }
     assert!(bin.exists(), "{} was not built", bin.display());

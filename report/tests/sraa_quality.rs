@@ -11,7 +11,7 @@
 
 mod common;
 
-use subcone::report::classes::Verdict;
+use subcone_report::classes::Verdict;
 use subcone_scene::builtin::{builtin, TRIANGLE_SCENES};
 
 const W: u32 = 96;

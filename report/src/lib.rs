@@ -1,4 +1,4 @@
-//! `subcone report`: image error against run time for every method, scene and
+//! `subcone-report`, the library behind `subcone report`: image error against run time for every method, scene and
 //! backend, with plots, zoomed crops and a comparison with the papers' numbers.
 //!
 //! For each scene (the built-in paper scenes by default, plus `--scene`), each
@@ -52,10 +52,12 @@
 //! `--method` keeps it.
 //!
 //! ```no_run
-//! let args = subcone::report::ReportArgs { quick: true, ..Default::default() };
-//! let summary = subcone::report::run(&args).unwrap();
+//! let args = subcone_report::ReportArgs { quick: true, ..Default::default() };
+//! let summary = subcone_report::run(&args).unwrap();
 //! println!("{summary}");
 //! ```
+#![forbid(unsafe_code)]
+#![deny(missing_docs)]
 
 pub mod answer;
 pub mod ao_sweep;
@@ -74,8 +76,8 @@ pub mod papers;
 pub mod plot;
 pub mod post;
 pub mod reference;
+pub mod setup;
 pub mod smaa;
-pub mod ssim;
 pub mod timing;
 
 use std::fmt;
@@ -90,8 +92,7 @@ use subcone_scene::{
     Albedo, Backend, Frame, Method, RenderSettings, Scene, Unsupported, UnsupportedReason,
 };
 
-use crate::setup;
-use metrics::Rgb8;
+use subcone_metrics::{ssim, Rgb8};
 use named::{NOAA, SRAA_RT, SSAA16};
 use timing::Timings;
 
@@ -365,14 +366,14 @@ impl OffsetError {
         img: &Rgb8,
         masks: &classes::ClassMasks,
     ) -> Result<OffsetError> {
-        let fl = metrics::flip(reference, img)?;
+        let fl = subcone_metrics::flip(reference, img)?;
         let ss = ssim::ssim(reference, img)?;
         Ok(OffsetError::of(offset, &fl, &ss, masks))
     }
 
     fn of(
         offset: (f32, f32),
-        fl: &metrics::Flip,
+        fl: &subcone_metrics::Flip,
         ss: &ssim::Ssim,
         masks: &classes::ClassMasks,
     ) -> OffsetError {
@@ -1405,8 +1406,8 @@ fn measure(
     img_dir: &Path,
     first_backend: bool,
 ) -> Result<()> {
-    let fl = metrics::flip(&q.reference, img)?;
-    row.psnr_db = Some(metrics::psnr(&q.reference, img)?);
+    let fl = subcone_metrics::flip(&q.reference, img)?;
+    row.psnr_db = Some(subcone_metrics::psnr(&q.reference, img)?);
     row.edge_flip_mean = metrics::masked_mean(&fl.map, &q.edges);
     let ss = ssim::ssim(&q.reference, img)?;
     let first = plan.offsets.first().copied().unwrap_or((0.0, 0.0));

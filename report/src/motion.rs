@@ -33,11 +33,11 @@ use glam::Quat;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::classes::{self, ClassMasks, CLASSES};
-use super::metrics::{self, Rgb8};
-use super::named::{CTSS, NOAA, SRAA_RT, SSAA4};
-use super::plot::{legend, method_line, save_chart, Chart, FAMILY, PLOT_SIZE};
-use super::{classes_at, file_safe, render_from, Runner, SceneJob};
+use crate::classes::{self, ClassMasks, CLASSES};
+use subcone_metrics::{self as metrics, Rgb8};
+use crate::named::{CTSS, NOAA, SRAA_RT, SSAA4};
+use crate::plot::{legend, method_line, save_chart, Chart, FAMILY, PLOT_SIZE};
+use crate::{classes_at, file_safe, render_from, Runner, SceneJob};
 use crate::setup;
 use subcone_scene::{Backend, Camera, Frame, Method, RenderSettings};
 
@@ -264,7 +264,7 @@ fn strip(images: &[&Rgb8], names: &[&str], caption: &str, crop: MotionCrop) -> R
             }
         }
     }
-    super::plot::register_fonts()?;
+    crate::plot::register_fonts()?;
     {
         let pe = |e| anyhow!("motion labels: {e:?}");
         let root = BitMapBackend::with_buffer(&mut data, (w, h)).into_drawing_area();
@@ -336,7 +336,7 @@ impl Runner<'_> {
     /// [`MOTION_SIZE`] (or the quick size) on the cpu backend.
     pub(super) fn motion(&mut self, jobs: &[SceneJob], frames: u32) -> Result<Motion> {
         let start = Instant::now();
-        let quick = self.plan.mode == super::Mode::Quick;
+        let quick = self.plan.mode == crate::Mode::Quick;
         let mut motion = Motion {
             ran: true,
             frames,
@@ -422,7 +422,7 @@ impl Runner<'_> {
                 .iter()
                 .zip(&references)
                 .map(|(i, r)| metrics::flip(r, i).map(|fl| fl.mean))
-                .collect::<Result<Vec<f64>>>()?;
+                .collect::<Result<Vec<f64>, _>>()?;
             let mut ms = f.ms.clone();
             ms.sort_by(f64::total_cmp);
             rows.push(MotionRow {

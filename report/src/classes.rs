@@ -203,11 +203,11 @@ impl<'a> Aovs<'a> {
     }
 
     /// Whether sub-samples `a` and `b` (4-neighbours) see different
-    /// surfaces ([`metrics::depth_discontinuity`](super::metrics::depth_discontinuity)
+    /// surfaces ([`metrics::depth_discontinuity`](crate::metrics::depth_discontinuity)
     /// at [`SILHOUETTE_DEPTH`]); `oa` and `ob` are their neighbours on the
     /// same line, away from each other.
     fn silhouette(&self, a: usize, b: usize, oa: Option<usize>, ob: Option<usize>) -> bool {
-        super::metrics::depth_discontinuity(self.depth, a, b, oa, ob, SILHOUETTE_DEPTH)
+        crate::metrics::depth_discontinuity(self.depth, a, b, oa, ob, SILHOUETTE_DEPTH)
     }
 
     /// Whether the normals of `a` and `b` (both surface points) fold.
@@ -308,7 +308,7 @@ pub fn classify(sub: &Frame, side: u32) -> Result<ClassMasks> {
 /// name claims what the registry says ([`subcone_scene::Method::claims`]:
 /// its technique's classes, texture with `+mat`, crease with `+edges`); any
 /// other name claims nothing. A post-process row (`smaa`, `--post-process`)
-/// is not named by a method: [`ResultRow::claims`](super::ResultRow::claims)
+/// is not named by a method: [`ResultRow::claims`](crate::ResultRow::claims)
 /// gives it what a post-process claims.
 pub fn claimed(method: &str) -> Vec<Class> {
     match method.parse::<subcone_scene::Method>() {
@@ -339,9 +339,9 @@ pub const DSSIM_FLOOR: f64 = 0.0015;
 /// An error metric the verdicts are computed under, by the same rules.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Metric {
-    /// LDR-FLIP ([`metrics::flip`](super::metrics::flip)).
+    /// LDR-FLIP ([`subcone_metrics::flip`]).
     Flip,
-    /// `1 − SSIM` on luminance ([`ssim`](super::ssim)).
+    /// `1 − SSIM` on luminance ([`subcone_metrics::ssim`]).
     Ssim,
 }
 
@@ -405,10 +405,10 @@ impl ClassError {
     pub fn measure(map: &[f32], masks: &ClassMasks) -> Self {
         let mut out = ClassError::default();
         for c in CLASSES {
-            out.mean[c.index()] = super::metrics::masked_mean(map, masks.mask(c));
+            out.mean[c.index()] = crate::metrics::masked_mean(map, masks.mask(c));
             out.px[c.index()] = masks.count(c);
         }
-        out.near_edge = super::metrics::masked_mean(map, &masks.near_edge);
+        out.near_edge = crate::metrics::masked_mean(map, &masks.near_edge);
         out.near_edge_px = masks.near_edge.iter().filter(|&&m| m).count() as u64;
         out
     }
@@ -839,7 +839,7 @@ mod tests {
         // A post-process row claims through its row, not its name.
         assert_eq!(claimed("smaa"), vec![]);
         let mut row =
-            crate::report::ResultRow::timed("s", "smaa", "cpu", (1, 1), 1, &Default::default());
+            crate::ResultRow::timed("s", "smaa", "cpu", (1, 1), 1, &Default::default());
         assert_eq!(row.claims(), vec![]);
         row.post_process = Some("SMAA".into());
         assert_eq!(row.claims(), vec![Silhouette, Crease, Shadow, Texture]);

@@ -1,7 +1,7 @@
 //! A 3×3 box filter as an outside post-process for `subcone report`.
 //!
 //! ```text
-//! cargo build --release --example box_filter
+//! cargo build --release -p subcone-report --example box_filter
 //! cargo run --release -- report --quick \
 //!     --post-process 'box=target/release/examples/box_filter {color} {output}'
 //! ```

@@ -3,7 +3,7 @@
 
 use subcone_scene::Method;
 
-use super::named::{CTSS, CTSS_R, SSAA4};
+use crate::named::{CTSS, CTSS_R, SSAA4};
 
 /// SRAA for ray tracing, Table 1: Sponza, (side, pass 1 ms, pass 2 ms, total ms).
 pub const SRAA_TABLE1: [(u32, f64, f64, f64); 4] = [

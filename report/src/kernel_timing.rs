@@ -27,7 +27,7 @@ use subcone_kernels::sraa::{
     ALBEDO_TOLERANCE,
 };
 
-use super::timing::median;
+use crate::timing::median;
 
 /// What the report calls "a few ns".
 pub const FEW_NS: f64 = 5.0;

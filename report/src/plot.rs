@@ -12,12 +12,12 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::{register_font, FontStyle};
 
-use super::classes::{ClassError, CLASSES};
-use super::metrics::Rgb8;
-use super::{file_safe, output, ResultRow};
+use crate::classes::{ClassError, CLASSES};
+use subcone_metrics::Rgb8;
+use crate::{file_safe, output, ResultRow};
 
 /// DejaVu Sans (licence: `assets/fonts/DejaVuSans-LICENSE.txt`).
-pub static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+pub static FONT: &[u8] = include_bytes!("../assets/fonts/DejaVuSans.ttf");
 
 /// The family name plots use.
 pub const FAMILY: &str = "sans-serif";
@@ -85,7 +85,7 @@ pub fn method_colour(method: &str) -> RGBColor {
     if let Some([r, g, b]) = registered {
         return RGBColor(r, g, b);
     }
-    if method == super::SMAA {
+    if method == crate::SMAA {
         return SMAA_COLOUR;
     }
     let h = method
@@ -143,13 +143,13 @@ where
     root.fill(&WHITE).map_err(pe(e))?;
     // A row repeating another's image adds no point (the other's label names
     // it); a row timed on another device is drawn hollow, off the front.
-    let left_out = super::answer::exclusions(rows);
+    let left_out = crate::answer::exclusions(rows);
     let pts: Vec<(&ResultRow, f64, f64)> = rows
         .iter()
         .filter(|r| {
             !matches!(
-                super::answer::excluded(&left_out, r).map(|e| &e.why),
-                Some(super::answer::Why::SameImage { .. })
+                crate::answer::excluded(&left_out, r).map(|e| &e.why),
+                Some(crate::answer::Why::SameImage { .. })
             )
         })
         .filter_map(|r| {
@@ -192,7 +192,7 @@ where
         .draw()
         .map_err(pe(e))?;
     let front: Vec<(f64, f64)> =
-        super::answer::front(rows, &left_out, super::classes::Metric::Flip)
+        crate::answer::front(rows, &left_out, crate::classes::Metric::Flip)
             .iter()
             .map(|p| (p.ms, p.error))
             .collect();
@@ -217,9 +217,9 @@ where
     for (r, t, f) in &pts {
         let c = method_colour(&r.method);
         let on_front = front.iter().any(|p| p.0 == *t && p.1 == *f);
-        let other_device = super::answer::excluded(&left_out, r).is_some();
+        let other_device = crate::answer::excluded(&left_out, r).is_some();
         let mut text = label(r, backends);
-        let twins = super::answer::same_image_twins(&left_out, r);
+        let twins = crate::answer::same_image_twins(&left_out, r);
         if !twins.is_empty() {
             text = format!("{text} (= {})", twins.join(", "));
         }
@@ -521,7 +521,7 @@ pub fn save_chart(dir: &Path, stem: &str, chart: &impl Chart) -> Result<Vec<Path
         chart.draw(&root)?;
     }
     let svg_path = dir.join(format!("{stem}.svg"));
-    super::reference::write_atomic(&svg_path, svg_text.as_bytes())?;
+    crate::reference::write_atomic(&svg_path, svg_text.as_bytes())?;
     Ok(vec![png_path, svg_path])
 }
 

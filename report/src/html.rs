@@ -42,12 +42,12 @@ use std::path::Path;
 use anyhow::{Context as _, Result};
 use serde_json::{json, Map, Value};
 
-use super::answer;
-use super::classes::{Metric, CLASSES};
-use super::motion::{self, CROP_ZOOM};
-use super::output::{json_rows, Context};
-use super::reference::{code_version, write_atomic};
-use super::{file_safe, Mode, ReportSummary, ResultRow};
+use crate::answer;
+use crate::classes::{Metric, CLASSES};
+use crate::motion::{self, CROP_ZOOM};
+use crate::output::{json_rows, Context};
+use crate::reference::{code_version, write_atomic};
+use crate::{file_safe, Mode, ReportSummary, ResultRow};
 
 /// The images every method row may have in its scene's directory, by
 /// file-name prefix (`<prefix><method>.png`): the name of their group in
@@ -280,7 +280,7 @@ fn data(s: &ReportSummary, ctx: &Context, md: &str) -> Value {
 /// index over 255, within ±0.5/255 of the error.
 fn flip_lut() -> String {
     let mut out = String::with_capacity(256 * 6);
-    for b in nv_flip::magma_lut().to_vec() {
+    for b in subcone_metrics::magma_lut().into_iter().flatten() {
         let _ = write!(out, "{b:02x}");
     }
     out

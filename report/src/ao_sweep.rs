@@ -26,12 +26,12 @@ use anyhow::{Context, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::classes::{Class, ClassError};
-use super::metrics::{self, Rgb8};
-use super::named::{NOAA, SRAA_RT, SSAA4};
-use super::plot::{legend, method_line, save_chart, Chart, FAMILY, PLOT_SIZE};
-use super::timing::Timings;
-use super::{file_safe, render, Failure, Runner, SceneJob};
+use crate::classes::{Class, ClassError};
+use subcone_metrics::{self as metrics, Rgb8};
+use crate::named::{NOAA, SRAA_RT, SSAA4};
+use crate::plot::{legend, method_line, save_chart, Chart, FAMILY, PLOT_SIZE};
+use crate::timing::Timings;
+use crate::{file_safe, render, Failure, Runner, SceneJob};
 use subcone_scene::{Method, RenderSettings};
 
 /// Ambient-occlusion rays per shaded point swept.
@@ -587,7 +587,7 @@ impl Runner<'_> {
             ..Default::default()
         };
         let methods: Vec<Method> = AO_SWEEP_METHODS.to_vec();
-        let quality = plan.mode != super::Mode::TimingOnly;
+        let quality = plan.mode != crate::Mode::TimingOnly;
         for &name in &spec.scenes {
             let Some(base) = jobs.iter().find(|j| j.arg == name && !j.sdf) else {
                 sweep.missing.push((

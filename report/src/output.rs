@@ -8,7 +8,7 @@
 //! JSON.
 //!
 //! Errors are means over the camera offsets they were measured at
-//! ([`offsets`](super::offsets), `offsets` of them): `flip_min`/`flip_max`,
+//! ([`offsets`](crate::offsets), `offsets` of them): `flip_min`/`flip_max`,
 //! `ssim_min`/`ssim_max` and the `_min`/`_max` of each class column are the
 //! smallest and largest value over the offsets (empty with one offset);
 //! `px_<class>` is the class's smallest pixel count over the offsets. The
@@ -27,11 +27,11 @@ use anyhow::{anyhow, Result};
 use image::ImageEncoder;
 use serde_json::{json, Map, Value};
 
-use super::classes::{self, Class, Metric, Verdict, CLASSES};
-use super::metrics::Rgb8;
-use super::named::{CTSS, CTSS_R, NOAA, SRAA, SRAA_RT, SSAA16, SSAA4, SSAA4_CTSS};
-use super::reference::{code_version, write_atomic};
-use super::{crops, file_safe, kernel_timing, load, timing, Mode, ReportSummary, ResultRow};
+use crate::classes::{self, Class, Metric, Verdict, CLASSES};
+use subcone_metrics::Rgb8;
+use crate::named::{CTSS, CTSS_R, NOAA, SRAA, SRAA_RT, SSAA16, SSAA4, SSAA4_CTSS};
+use crate::reference::{code_version, write_atomic};
+use crate::{crops, file_safe, kernel_timing, load, timing, Mode, ReportSummary, ResultRow};
 use subcone_scene::Method;
 
 /// The columns every results file has, in order.
@@ -116,7 +116,7 @@ pub const BASE_COLUMNS: [&str; 78] = [
     "dssim_near_edge_max",
 ];
 
-pub use super::papers::{CTSS_TABLE1, SRAA_SPEEDUP_OVER_SSAA16, SRAA_TABLE1};
+pub use crate::papers::{CTSS_TABLE1, SRAA_SPEEDUP_OVER_SSAA16, SRAA_TABLE1};
 
 /// What the report files say about the run besides the rows.
 pub struct Context {
@@ -476,8 +476,8 @@ pub fn json(s: &ReportSummary, ctx: &Context) -> Value {
         "columns": columns,
         "results": results,
         "sweep": sweep,
-        "motion": super::motion::json(&s.motion),
-        "ao_crossover": super::ao_sweep::crossovers(&s.ao_sweep).iter().map(|c| json!({
+        "motion": crate::motion::json(&s.motion),
+        "ao_crossover": crate::ao_sweep::crossovers(&s.ao_sweep).iter().map(|c| json!({
             "scene": c.scene, "backend": c.backend,
             "first_faster_ao": c.first_faster.map(|f| f.ao),
             "sraa_rt_ms": c.first_faster.map(|f| f.sraa_rt_ms),
@@ -507,7 +507,7 @@ pub fn json(s: &ReportSummary, ctx: &Context) -> Value {
                 "kind": r.kind, "x": r.window.x, "y": r.window.y, "side": r.window.side, "rule": r.rule,
             })).collect::<Vec<_>>(),
         })).collect::<Vec<_>>(),
-        "answer": super::answer::json(&super::answer::Answer::of(&s.rows, &ctx.scenes)),
+        "answer": crate::answer::json(&crate::answer::Answer::of(&s.rows, &ctx.scenes)),
         "elapsed_s": s.elapsed.as_secs_f64(),
     })
 }
@@ -663,12 +663,12 @@ fn scene_section(md: &mut String, s: &ReportSummary, sc: &SceneInfo) {
             "| method | backend | median ms | min–max ms | × NoAA | FLIP | SSIM | PSNR dB | edge FLIP | spp | rays/px | buffers MiB |"
         );
         let _ = writeln!(md, "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
-        let left_out = super::answer::exclusions(&rows);
+        let left_out = crate::answer::exclusions(&rows);
         for r in &rows {
             let _ = writeln!(
                 md,
                 "| {} | {} | {} | {}–{} | {} | {} | {} | {} | {} | {} | {} | {} |",
-                match super::answer::excluded(&left_out, r) {
+                match crate::answer::excluded(&left_out, r) {
                     Some(e) => format!("{} {}", r.method, e.mark()),
                     None => r.method.clone(),
                 },
@@ -797,7 +797,7 @@ alike. Code {}, {} hardware threads ({}).{}{} {}\n",
         } else {
             format!(
                 "the method's quality render, and a render at the timing size where that size differs and the frame is predicted under {} s",
-                super::timing::SHORT_RENDER.as_secs_f64()
+                crate::timing::SHORT_RENDER.as_secs_f64()
             )
         },
         code_version(),
@@ -822,8 +822,8 @@ alike. Code {}, {} hardware threads ({}).{}{} {}\n",
         let _ = writeln!(md, "{w}\n");
     }
     // The answer first; the definitions it rests on follow.
-    let answer = super::answer::Answer::of(&s.rows, &ctx.scenes);
-    md.push_str(&super::answer::section(&answer, &s.rows, ctx));
+    let answer = crate::answer::Answer::of(&s.rows, &ctx.scenes);
+    md.push_str(&crate::answer::section(&answer, &s.rows, ctx));
     let _ = writeln!(
         md,
         "Times are the median (and range) over the rounds of the wall time of `Backend::render` at the \
@@ -901,11 +901,11 @@ faster method beats.\n"
 
     md.push_str(&sdf_pick(s, ctx));
     md.push_str(&paper_comparison(s, ctx));
-    md.push_str(&super::ao_sweep::section(
+    md.push_str(&crate::ao_sweep::section(
         &s.ao_sweep,
         (ctx.mode != Mode::TimingOnly).then_some(ctx.reference.as_str()),
     ));
-    md.push_str(&super::motion::section(&s.motion));
+    md.push_str(&crate::motion::section(&s.motion));
     md.push_str(&targets(s, ctx));
 
     let _ = writeln!(
@@ -927,7 +927,7 @@ away from the shadow window.\n"
 /// The edge classes' definitions and thresholds, the camera offsets the
 /// errors are measured at (`offsets`, with what they cost of a run of
 /// `elapsed`), and the rules of judgement.
-pub fn rules(offsets: &super::ErrorOffsets, elapsed: std::time::Duration) -> String {
+pub fn rules(offsets: &crate::ErrorOffsets, elapsed: std::time::Duration) -> String {
     let mut md = String::new();
     let _ = writeln!(
         md,
@@ -998,7 +998,7 @@ line; a claimed class with no pixel in the scene is listed as having none.\n",
 }
 
 /// What the rules say about the camera offsets of this run, and their cost.
-fn offsets_text(o: &super::ErrorOffsets, elapsed: std::time::Duration) -> String {
+fn offsets_text(o: &crate::ErrorOffsets, elapsed: std::time::Duration) -> String {
     if o.offsets.len() < 2 {
         return "Errors are measured from the scene's camera alone (one offset): verdicts are \
 judged on that one frame."
@@ -1108,10 +1108,10 @@ each scene give the classes and figures, and where the two metrics disagree, wit
 
 /// `method`, or `method (same image as ctss)` when on every scene where it
 /// has an error on `backend` its image is byte-identical to one other
-/// method's ([`answer::exclusions`](super::answer::exclusions)).
+/// method's ([`answer::exclusions`](crate::answer::exclusions)).
 fn same_image_name(s: &ReportSummary, method: &str, backend: &str) -> String {
     let rows: Vec<&ResultRow> = s.rows.iter().collect();
-    let left_out = super::answer::exclusions(&rows);
+    let left_out = crate::answer::exclusions(&rows);
     let measured = rows
         .iter()
         .filter(|r| r.method == method && r.backend == backend && r.flip_mean.is_some())
@@ -1120,7 +1120,7 @@ fn same_image_name(s: &ReportSummary, method: &str, backend: &str) -> String {
         .iter()
         .filter(|e| e.method == method && e.backend == backend)
         .filter_map(|e| match &e.why {
-            super::answer::Why::SameImage { as_method } => Some(as_method.as_str()),
+            crate::answer::Why::SameImage { as_method } => Some(as_method.as_str()),
             _ => None,
         })
         .collect();
@@ -1773,7 +1773,7 @@ lowest or its highest round.\n",
             );
         }
     }
-    md.push_str(&super::ao_sweep::target_rows(&s.ao_sweep));
+    md.push_str(&crate::ao_sweep::target_rows(&s.ao_sweep));
     let pct = |x: f64| format!("{:.1}%", 100.0 * x);
     for t in &s.throughput {
         let r = &t.rates;
@@ -1987,7 +1987,7 @@ image and edge mask); time: median ms at the timing size. *On the front* names w
 are on the scene's Pareto front under FLIP and under SSIM; which method to use at each cost, \
 these two and every other, is *The answer* at the top, computed from the fronts.\n"
     );
-    let answer = super::answer::Answer::of(&s.rows, &ctx.scenes);
+    let answer = crate::answer::Answer::of(&s.rows, &ctx.scenes);
     for b in &ctx.backends {
         let find = |scene: &str, method: &str| {
             s.rows
@@ -2060,7 +2060,7 @@ pub fn write_all(s: &ReportSummary, ctx: &Context) -> Result<()> {
     write_atomic(&s.results_json, j.as_bytes())?;
     let md = markdown(s, ctx);
     write_atomic(&s.report_md, md.as_bytes())?;
-    super::html::write(s, ctx, &md)
+    crate::html::write(s, ctx, &md)
 }
 
 #[cfg(test)]
@@ -2223,8 +2223,8 @@ mod tests {
             e
         };
         r.errors_at = (0..4)
-            .map(|k| super::super::OffsetError {
-                offset: super::super::offsets::ERROR_OFFSETS[k],
+            .map(|k| crate::OffsetError {
+                offset: crate::offsets::ERROR_OFFSETS[k],
                 flip: flip[k],
                 ssim: 1.0 - dssim[k],
                 classes: err(flip[k], flat[k], Some(band[k])),

@@ -12,7 +12,7 @@
 
 mod common;
 
-use subcone::report::classes::Verdict;
+use subcone_report::classes::Verdict;
 use subcone_scene::builtin::builtin;
 use subcone_scene::sdf::SDF_SCENES;
 

@@ -5,13 +5,13 @@
 //! fraction of a pixel further, miss. So the report measures each method's
 //! error at [`ERROR_OFFSETS`]: the scene's camera and the same camera turned
 //! by a fraction of a pixel's angle (as the motion section's pan turns it,
-//! [`motion::camera_path`](super::motion::camera_path)), each offset against
-//! its own reference (cached, see [`reference`](super::reference)) and with
+//! [`motion::camera_path`](crate::motion::camera_path)), each offset against
+//! its own reference (cached, see [`reference`](crate::reference)) and with
 //! its own edge classes. Only the error is measured again; the timing rounds
 //! are not repeated.
 //!
 //! The verdicts compare a method with NoAA paired by offset
-//! ([`Verdict::judge_claims`](super::classes::Verdict::judge_claims)): a win
+//! ([`Verdict::judge_claims`](crate::classes::Verdict::judge_claims)): a win
 //! or a loss counts only when it holds at every offset.
 
 use anyhow::{anyhow, Result};

@@ -43,8 +43,8 @@ use smaa::{SmaaMode, SmaaTarget};
 use subcone_scene::{PassTiming, TimingSource};
 use subcone_wgpu::GpuContext;
 
-use crate::report::metrics::Rgb8;
-use crate::report::post::POST_PASS;
+use subcone_metrics::Rgb8;
+use crate::post::POST_PASS;
 
 /// The format of every texture of the post-process; see the module doc.
 const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
