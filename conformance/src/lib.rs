@@ -279,9 +279,8 @@ pub use subcone_metrics::Flip;
 /// of different sizes or whose data does not match their size: a test
 /// helper, whose frames come from a backend under test.
 pub fn flip(reference: &Frame, test: &Frame) -> Flip {
-    let srgb8 = |f: &Frame| {
-        subcone_metrics::Rgb8::from_frame(f).unwrap_or_else(|e| panic!("frame: {e}"))
-    };
+    let srgb8 =
+        |f: &Frame| subcone_metrics::Rgb8::from_frame(f).unwrap_or_else(|e| panic!("frame: {e}"));
     subcone_metrics::flip(&srgb8(reference), &srgb8(test)).unwrap_or_else(|e| panic!("{e}"))
 }
 

@@ -28,8 +28,8 @@ use serde_json::{json, Value};
 use subcone_scene::TimingSource;
 
 use crate::classes::Metric;
+use crate::context::{cpu_model, ms, Context, SceneInfo};
 use crate::named::NOAA;
-use crate::output::{cpu_model, ms, Context, SceneInfo};
 use crate::{Mode, ResultRow};
 
 /// The cost budgets of the picks: time over NoAA's at most 1.5×, at most

@@ -27,11 +27,11 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::classes::{Class, ClassError};
-use subcone_metrics::{self as metrics, Rgb8};
 use crate::named::{NOAA, SRAA_RT, SSAA4};
 use crate::plot::{legend, method_line, save_chart, Chart, FAMILY, PLOT_SIZE};
 use crate::timing::Timings;
 use crate::{file_safe, render, Failure, Runner, SceneJob};
+use subcone_metrics::{self as metrics, Rgb8};
 use subcone_scene::{Method, RenderSettings};
 
 /// Ambient-occlusion rays per shaded point swept.

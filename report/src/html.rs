@@ -44,8 +44,9 @@ use serde_json::{json, Map, Value};
 
 use crate::answer;
 use crate::classes::{Metric, CLASSES};
+use crate::context::Context;
 use crate::motion::{self, CROP_ZOOM};
-use crate::output::{json_rows, Context};
+use crate::output::json_rows;
 use crate::reference::{code_version, write_atomic};
 use crate::{file_safe, Mode, ReportSummary, ResultRow};
 

@@ -63,7 +63,9 @@ pub mod answer;
 pub mod ao_sweep;
 mod args;
 pub mod classes;
+pub mod context;
 pub mod crops;
+pub mod files;
 pub mod html;
 pub mod kernel_timing;
 pub mod load;
@@ -92,8 +94,8 @@ use subcone_scene::{
     Albedo, Backend, Frame, Method, RenderSettings, Scene, Unsupported, UnsupportedReason,
 };
 
-use subcone_metrics::{ssim, Rgb8};
 use named::{NOAA, SRAA_RT, SSAA16};
+use subcone_metrics::{ssim, Rgb8};
 use timing::Timings;
 
 /// The built-in scenes of the papers, which the report runs by default:
@@ -1068,6 +1070,12 @@ impl Progress {
 /// has been measured so far.
 struct Runner<'a> {
     plan: &'a Plan,
+    /// The CPU backend of every render that is not timed on the plan's
+    /// backends (references, edge classes, masks, motion): the plan's own
+    /// `cpu` backend when it times one, so that each scene's BVH is built
+    /// once for all its renders ([`CpuBackend`](subcone_cpu::CpuBackend)
+    /// caches one per scene).
+    cpu: &'a (dyn Backend + Send + Sync),
     progress: Progress,
     references_rendered: usize,
     references_cached: usize,
@@ -1161,9 +1169,8 @@ impl Runner<'_> {
         self.progress
             .bar
             .set_message(format!("{}: reference {} at {w}x{h}", job.name, reference));
-        let cpu = setup::backend("cpu")?;
         let camera = camera.unwrap_or(&job.scene.camera);
-        let (frame, wall) = render_from(cpu.as_ref(), &job.scene, camera, &reference, settings)?;
+        let (frame, wall) = render_from(self.cpu, &job.scene, camera, &reference, settings)?;
         self.progress.note(&format!(
             "{}: rendered reference {} at {w}x{h}{} in {:.1} s",
             job.name,
@@ -1189,22 +1196,20 @@ impl Runner<'_> {
             "{}: edge classes from {side}x{side} sub-samples per pixel",
             job.name
         ));
-        let cpu = setup::backend("cpu")?;
-        classes_at(cpu.as_ref(), &job.scene, &job.scene.camera, (w, h))
+        classes_at(self.cpu, &job.scene, &job.scene.camera, (w, h))
     }
 
     /// Reference, edge mask and the masks the crop heuristics need.
     fn quality(&mut self, job: &SceneJob) -> Result<SceneQuality> {
         let reference = Rgb8::from_frame(&self.reference(job)?)?;
         let (w, h) = job.quality_size;
-        let cpu = setup::backend("cpu")?;
         let noaa = NOAA;
         let mut aov_settings = self.plan.settings(w, h, job.sdf);
         aov_settings.aovs = true;
         self.progress
             .bar
             .set_message(format!("{}: edge mask and region masks", job.name));
-        let (aov, _) = render(cpu.as_ref(), &job.scene, &noaa, &aov_settings)?;
+        let (aov, _) = render(self.cpu, &job.scene, &noaa, &aov_settings)?;
         let geometric = metrics::geometric_edges(&aov)?;
         let edges = metrics::edge_mask(&aov, &reference)?;
         let noaa8 = Rgb8::from_frame(&aov)?;
@@ -1212,7 +1217,7 @@ impl Runner<'_> {
         let mut flat = RenderSettings::new(w, h);
         flat.reflection_depth = 0;
         let reflective = if features.contains(SceneFeatures::HAS_REFLECTIONS) {
-            let (f, _) = render(cpu.as_ref(), &job.scene, &noaa, &flat)?;
+            let (f, _) = render(self.cpu, &job.scene, &noaa, &flat)?;
             Some(metrics::differing_pixels(
                 &noaa8,
                 &Rgb8::from_frame(&f)?,
@@ -1226,7 +1231,7 @@ impl Runner<'_> {
             for m in &mut grey.materials {
                 m.albedo = Albedo::Solid(Vec3::splat(0.6));
             }
-            match render(cpu.as_ref(), &grey, &noaa, &flat) {
+            match render(self.cpu, &grey, &noaa, &flat) {
                 Ok((f, _)) => {
                     let g = metrics::gradient_edges(&Rgb8::from_frame(&f)?);
                     Some(g.iter().zip(&geometric).map(|(&g, &e)| g && !e).collect())
@@ -1263,7 +1268,6 @@ impl Runner<'_> {
         let start = Instant::now();
         let plan = self.plan;
         let size = plan.offset_size(job);
-        let cpu = setup::backend("cpu")?;
         let mut out = Vec::new();
         for &offset in plan.offsets.iter().skip(1) {
             let camera = offsets::offset_camera(&job.scene.camera, offset, size.1)?;
@@ -1275,7 +1279,7 @@ impl Runner<'_> {
                 job.name,
                 offsets::label(offset)
             ));
-            let classes = classes_at(cpu.as_ref(), &job.scene, &camera, size)?;
+            let classes = classes_at(self.cpu, &job.scene, &camera, size)?;
             self.progress.bar.inc(1);
             out.push(OffsetQuality {
                 offset,
@@ -1417,11 +1421,11 @@ fn measure(
     row.quality_height = Some(img.height);
     row.reference = Some(plan.reference.to_string());
     row.image_digest = Some(answer::digest(img.width, img.height, &img.data));
-    output::save_png(
+    files::save_png(
         &img_dir.join(image_name("", &row.method, &row.backend, first_backend)),
         img,
     )?;
-    output::save_png(
+    files::save_png(
         &img_dir.join(image_name(
             "flip_",
             &row.method,
@@ -1430,7 +1434,7 @@ fn measure(
         )),
         &fl.magma,
     )?;
-    output::save_png(
+    files::save_png(
         &img_dir.join(image_name(
             "ssim_",
             &row.method,
@@ -1472,8 +1476,17 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
         .iter()
         .find(|j| j.arg == SWEEP_SCENE && !j.sdf)
         .filter(|_| plan.sweep);
+    let own_cpu;
+    let cpu: &(dyn Backend + Send + Sync) = match plan.backends.iter().find(|(n, _)| n == "cpu") {
+        Some((_, b)) => b.as_ref(),
+        None => {
+            own_cpu = subcone_cpu::CpuBackend::new();
+            &own_cpu
+        }
+    };
     let mut runner = Runner {
         plan: &plan,
+        cpu,
         progress: Progress::new(progress_length(&plan, &work, sweep_job.is_some())),
         references_rendered: 0,
         references_cached: 0,
@@ -1531,13 +1544,24 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
         },
         elapsed: start.elapsed(),
     };
-    output::write_all(&summary, &context(&plan, &jobs, runner.load))?;
+    write_all(&summary, &context(&plan, &jobs, runner.load))?;
     Ok(summary)
 }
 
+/// Write `results.csv`, `results.json`, `report.md` and `report.html`.
+fn write_all(s: &ReportSummary, ctx: &context::Context) -> Result<()> {
+    reference::write_atomic(&s.results_csv, output::csv(&s.rows).as_bytes())?;
+    let j = serde_json::to_string_pretty(&output::json(s, ctx))
+        .map_err(|e| anyhow!("cannot encode results.json: {e}"))?;
+    reference::write_atomic(&s.results_json, j.as_bytes())?;
+    let md = output::markdown(s, ctx);
+    reference::write_atomic(&s.report_md, md.as_bytes())?;
+    html::write(s, ctx, &md)
+}
+
 /// What the output files say about the run besides its rows.
-fn context(plan: &Plan, jobs: &[SceneJob], other_cpu: load::OtherCpu) -> output::Context {
-    output::Context {
+fn context(plan: &Plan, jobs: &[SceneJob], other_cpu: load::OtherCpu) -> context::Context {
+    context::Context {
         other_cpu,
         mode: plan.mode,
         backends: plan.backends.iter().map(|b| b.0.clone()).collect(),
@@ -1547,7 +1571,7 @@ fn context(plan: &Plan, jobs: &[SceneJob], other_cpu: load::OtherCpu) -> output:
         ao: plan.ao,
         scenes: jobs
             .iter()
-            .map(|j| output::SceneInfo {
+            .map(|j| context::SceneInfo {
                 name: j.name.clone(),
                 arg: j.arg.clone(),
                 sdf: j.sdf,
@@ -1879,10 +1903,10 @@ impl Runner<'_> {
                         self.fail(Failure::new(&job.name, what, "cpu", &e))?;
                     }
                 }
-                output::save_png(&img_dir.join("reference.png"), &q.reference)?;
-                output::save_png(
+                files::save_png(&img_dir.join("reference.png"), &q.reference)?;
+                files::save_png(
                     &img_dir.join("edge_mask.png"),
-                    &output::mask_image(q.reference.width, q.reference.height, &q.edges),
+                    &files::mask_image(q.reference.width, q.reference.height, &q.edges),
                 )?;
                 Ok(Some(q))
             }
@@ -2290,9 +2314,9 @@ fn write_crops(
             .map(|(n, img)| Ok((n.clone(), crops::zoom(img, &r.window)?)))
             .collect::<Result<_>>()?;
         let panel = plot::label_panel(&zoomed)?;
-        output::save_png(&img_dir.join(format!("crops_{}.png", r.kind)), &panel)?;
+        files::save_png(&img_dir.join(format!("crops_{}.png", r.kind)), &panel)?;
     }
-    output::save_png(
+    files::save_png(
         &img_dir.join("crops_overview.png"),
         &crops::outline(&q.reference, &regions),
     )?;

@@ -34,11 +34,10 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::classes::{self, ClassMasks, CLASSES};
-use subcone_metrics::{self as metrics, Rgb8};
 use crate::named::{CTSS, NOAA, SRAA_RT, SSAA4};
 use crate::plot::{legend, method_line, save_chart, Chart, FAMILY, PLOT_SIZE};
 use crate::{classes_at, file_safe, render_from, Runner, SceneJob};
-use crate::setup;
+use subcone_metrics::{self as metrics, Rgb8};
 use subcone_scene::{Backend, Camera, Frame, Method, RenderSettings};
 
 /// Frames of the path with `--motion`.
@@ -342,7 +341,7 @@ impl Runner<'_> {
             frames,
             ..Default::default()
         };
-        let cpu = setup::backend("cpu")?;
+        let cpu = self.cpu;
         let dir = self.plan.out.join("images");
         for job in jobs {
             let size = if quick { job.quality_size } else { MOTION_SIZE };
@@ -351,7 +350,7 @@ impl Runner<'_> {
                 "{}: motion, {frames} frames at {}x{}",
                 job.name, size.0, size.1
             ));
-            let (rows, crop) = self.follow(cpu.as_ref(), job, frames, size, &dir)?;
+            let (rows, crop) = self.follow(cpu, job, frames, size, &dir)?;
             motion.rows.extend(rows);
             motion.crops.push((job.name.clone(), crop));
         }

@@ -21,17 +21,15 @@
 //! ratio, empty for rows not timed in NoAA's rounds.
 
 use std::fmt::Write as _;
-use std::path::Path;
 
-use anyhow::{anyhow, Result};
-use image::ImageEncoder;
+use anyhow::Result;
 use serde_json::{json, Map, Value};
 
 use crate::classes::{self, Class, Metric, Verdict, CLASSES};
-use subcone_metrics::Rgb8;
+use crate::context::{cpu_model, ms, Context, SceneInfo};
 use crate::named::{CTSS, CTSS_R, NOAA, SRAA, SRAA_RT, SSAA16, SSAA4, SSAA4_CTSS};
-use crate::reference::{code_version, write_atomic};
-use crate::{crops, file_safe, kernel_timing, load, timing, Mode, ReportSummary, ResultRow};
+use crate::reference::code_version;
+use crate::{crops, file_safe, kernel_timing, timing, Mode, ReportSummary, ResultRow};
 use subcone_scene::Method;
 
 /// The columns every results file has, in order.
@@ -117,75 +115,6 @@ pub const BASE_COLUMNS: [&str; 78] = [
 ];
 
 pub use crate::papers::{CTSS_TABLE1, SRAA_SPEEDUP_OVER_SSAA16, SRAA_TABLE1};
-
-/// What the report files say about the run besides the rows.
-pub struct Context {
-    /// Mode.
-    pub mode: Mode,
-    /// Backends.
-    pub backends: Vec<String>,
-    /// What each backend runs on (e.g. the GPU adapter), in the same order.
-    pub backend_descriptions: Vec<String>,
-    /// Timed runs per method.
-    pub runs: u32,
-    /// Reference method.
-    pub reference: String,
-    /// Scenes.
-    pub scenes: Vec<SceneInfo>,
-    /// Ambient-occlusion rays per shaded point of every render (`--ao`).
-    pub ao: u32,
-    /// Other processes' CPU time during the timed rounds.
-    pub other_cpu: load::OtherCpu,
-}
-
-/// A scene in the report.
-pub struct SceneInfo {
-    /// File-safe name.
-    pub name: String,
-    /// Argument it was loaded from.
-    pub arg: String,
-    /// SDF scene.
-    pub sdf: bool,
-    /// Timing size.
-    pub timing_size: (u32, u32),
-    /// Quality size, when errors were measured.
-    pub quality_size: Option<(u32, u32)>,
-}
-
-/// Save an 8-bit RGB image as PNG (atomically), creating its directory.
-pub fn save_png(path: &Path, img: &Rgb8) -> Result<()> {
-    if img.data.len() != img.pixels() * 3 {
-        return Err(anyhow!(
-            "image for {} does not match its size",
-            path.display()
-        ));
-    }
-    if let Some(d) = path.parent() {
-        std::fs::create_dir_all(d).map_err(|e| anyhow!("cannot create {}: {e}", d.display()))?;
-    }
-    let mut bytes = Vec::new();
-    image::codecs::png::PngEncoder::new(&mut bytes)
-        .write_image(
-            &img.data,
-            img.width,
-            img.height,
-            image::ExtendedColorType::Rgb8,
-        )
-        .map_err(|e| anyhow!("cannot encode {}: {e}", path.display()))?;
-    write_atomic(path, &bytes)
-}
-
-/// A mask as a black-and-white image.
-pub fn mask_image(width: u32, height: u32, mask: &[bool]) -> Rgb8 {
-    Rgb8 {
-        width,
-        height,
-        data: mask
-            .iter()
-            .flat_map(|&m| if m { [255u8; 3] } else { [0u8; 3] })
-            .collect(),
-    }
-}
 
 /// Every `ms_<pass>` column of `rows`, sorted.
 pub fn pass_columns(rows: &[ResultRow]) -> Vec<String> {
@@ -626,18 +555,6 @@ fn with_range(v: Option<f64>, range: Option<(f64, f64)>) -> String {
     }
 }
 
-pub(super) fn ms(v: f64) -> String {
-    if !v.is_finite() {
-        "–".into()
-    } else if v >= 100.0 {
-        format!("{v:.0}")
-    } else if v >= 10.0 {
-        format!("{v:.1}")
-    } else {
-        format!("{v:.2}")
-    }
-}
-
 /// One scene's section of `report.md`: the table, the plots, the class
 /// errors and verdicts, what was skipped, the crops.
 fn scene_section(md: &mut String, s: &ReportSummary, sc: &SceneInfo) {
@@ -759,21 +676,6 @@ fn scene_section(md: &mut String, s: &ReportSummary, sc: &SceneInfo) {
             );
         }
     }
-}
-
-/// The processor's model name (Linux: `/proc/cpuinfo`), or the
-/// architecture where that cannot be read.
-pub fn cpu_model() -> String {
-    std::fs::read_to_string("/proc/cpuinfo")
-        .ok()
-        .and_then(|t| {
-            t.lines()
-                .find(|l| l.starts_with("model name"))
-                .and_then(|l| l.split_once(':'))
-                .map(|(_, m)| m.trim().to_string())
-        })
-        .filter(|m| !m.is_empty())
-        .unwrap_or_else(|| std::env::consts::ARCH.to_string())
 }
 
 /// `report.md`.
@@ -2050,17 +1952,6 @@ these two and every other, is *The answer* at the top, computed from the fronts.
         let _ = writeln!(md);
     }
     md
-}
-
-/// Write `results.csv`, `results.json`, `report.md` and `report.html`.
-pub fn write_all(s: &ReportSummary, ctx: &Context) -> Result<()> {
-    write_atomic(&s.results_csv, csv(&s.rows).as_bytes())?;
-    let j = serde_json::to_string_pretty(&json(s, ctx))
-        .map_err(|e| anyhow!("cannot encode results.json: {e}"))?;
-    write_atomic(&s.results_json, j.as_bytes())?;
-    let md = markdown(s, ctx);
-    write_atomic(&s.report_md, md.as_bytes())?;
-    crate::html::write(s, ctx, &md)
 }
 
 #[cfg(test)]

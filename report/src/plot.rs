@@ -13,8 +13,8 @@ use plotters::prelude::*;
 use plotters::style::{register_font, FontStyle};
 
 use crate::classes::{ClassError, CLASSES};
+use crate::{file_safe, ResultRow};
 use subcone_metrics::Rgb8;
-use crate::{file_safe, output, ResultRow};
 
 /// DejaVu Sans (licence: `assets/fonts/DejaVuSans-LICENSE.txt`).
 pub static FONT: &[u8] = include_bytes!("../assets/fonts/DejaVuSans.ttf");
@@ -507,7 +507,7 @@ pub fn save_chart(dir: &Path, stem: &str, chart: &impl Chart) -> Result<Vec<Path
         chart.draw(&root)?;
     }
     let png_path = dir.join(format!("{stem}.png"));
-    output::save_png(
+    crate::files::save_png(
         &png_path,
         &Rgb8 {
             width: w,

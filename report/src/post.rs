@@ -88,29 +88,6 @@ pub trait PostProcess: Send + Sync {
     fn apply(&self, input: &PostInput<'_>) -> Result<(Rgb8, PassTiming)>;
 }
 
-impl PostProcess for crate::smaa::SmaaPost {
-    fn name(&self) -> &str {
-        crate::SMAA
-    }
-
-    fn describe(&self) -> String {
-        format!(
-            "SMAA 1x (the `smaa` crate, quality High) on {}; its time is NoAA's plus the \
-             post-process ({})",
-            self.adapter(),
-            if self.timed_by_timestamps() {
-                "blit and SMAA's three passes, by GPU timestamps"
-            } else {
-                "upload, SMAA, read-back, by the wall clock"
-            }
-        )
-    }
-
-    fn apply(&self, input: &PostInput<'_>) -> Result<(Rgb8, PassTiming)> {
-        crate::smaa::SmaaPost::apply(self, input.image)
-    }
-}
-
 /// The name of a post-process step's pass in its [`PassTiming`].
 pub const POST_PASS: &str = "post-process";
 
@@ -335,7 +312,7 @@ impl InputFiles {
             values.push((key, p.display().to_string()));
             p
         };
-        crate::output::save_png(&file("color", "color.png"), input.image)?;
+        crate::files::save_png(&file("color", "color.png"), input.image)?;
         write_pfm3(&file("linear", "linear.pfm"), w, h, &f.color)?;
         let aov = |name: &str, present: bool| -> Result<bool> {
             if !present && post.uses(name) {

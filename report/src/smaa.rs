@@ -43,8 +43,8 @@ use smaa::{SmaaMode, SmaaTarget};
 use subcone_scene::{PassTiming, TimingSource};
 use subcone_wgpu::GpuContext;
 
+use crate::post::{PostInput, PostProcess, POST_PASS};
 use subcone_metrics::Rgb8;
-use crate::post::POST_PASS;
 
 /// The format of every texture of the post-process; see the module doc.
 const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
@@ -490,6 +490,30 @@ impl SmaaPost {
             })
             .map_err(|e| anyhow!("{e}"))?;
         Ok(slot.insert(state))
+    }
+}
+
+/// The SMAA row: SMAA 1x on NoAA's frame, judged like a method.
+impl PostProcess for SmaaPost {
+    fn name(&self) -> &str {
+        crate::SMAA
+    }
+
+    fn describe(&self) -> String {
+        format!(
+            "SMAA 1x (the `smaa` crate, quality High) on {}; its time is NoAA's plus the \
+             post-process ({})",
+            self.adapter(),
+            if self.timed_by_timestamps() {
+                "blit and SMAA's three passes, by GPU timestamps"
+            } else {
+                "upload, SMAA, read-back, by the wall clock"
+            }
+        )
+    }
+
+    fn apply(&self, input: &PostInput<'_>) -> Result<(Rgb8, PassTiming)> {
+        SmaaPost::apply(self, input.image)
     }
 }
 

@@ -1,9 +1,9 @@
 //! What the quality tests share: a scene judged as the quick report judges
 //! it, on the CPU backend.
 
-use subcone_report::classes::{self, ClassError, ClassMasks};
-use subcone_metrics::{self as metrics, Rgb8};
 use subcone_cpu::CpuBackend;
+use subcone_metrics::{self as metrics, Rgb8};
+use subcone_report::classes::{self, ClassError, ClassMasks};
 use subcone_scene::{Backend, Frame, Method, RenderSettings, Scene};
 
 /// `method` on `scene` at `settings`, on the CPU backend.
