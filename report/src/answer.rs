@@ -29,6 +29,7 @@ use subcone_scene::TimingSource;
 
 use crate::classes::Metric;
 use crate::context::{cpu_model, ms, Context, SceneInfo};
+use crate::key::RowKey;
 use crate::named::NOAA;
 use crate::{Mode, ResultRow};
 
@@ -69,7 +70,7 @@ pub enum Why {
     /// backend), which comes first in table order.
     SameImage {
         /// The row it repeats.
-        as_method: String,
+        as_method: RowKey,
     },
     /// Part of its time was measured by `sources`, which NoAA's row of the
     /// same scene and backend (timed by `noaa`) does not use.
@@ -89,7 +90,7 @@ pub struct Excluded {
     /// Backend.
     pub backend: String,
     /// Method.
-    pub method: String,
+    pub method: RowKey,
     /// Why.
     pub why: Why,
 }
@@ -143,10 +144,9 @@ pub fn digest(width: u32, height: u32, data: &[u8]) -> u64 {
 /// is true of it: the name stays the same from scene to scene, whichever of
 /// the two the clock favoured.
 pub fn exclusions(rows: &[&ResultRow]) -> Vec<Excluded> {
-    let noaa = NOAA.to_string();
     let base = |r: &ResultRow| {
         rows.iter()
-            .find(|x| x.scene == r.scene && x.backend == r.backend && x.method == noaa)
+            .find(|x| x.scene == r.scene && x.backend == r.backend && x.method == NOAA)
             .map(|x| x.timed_by.clone())
     };
     let other = |r: &ResultRow| -> Option<Why> {
@@ -195,7 +195,7 @@ pub fn excluded<'a>(ex: &'a [Excluded], r: &ResultRow) -> Option<&'a Excluded> {
 
 /// The methods whose images `r`'s repeats, for its label (`ctss (=
 /// ctss-delayed)`): the rows left out as the same image as `r`.
-pub fn same_image_twins(ex: &[Excluded], r: &ResultRow) -> Vec<String> {
+pub fn same_image_twins(ex: &[Excluded], r: &ResultRow) -> Vec<RowKey> {
     ex.iter()
         .filter(|e| {
             e.scene == r.scene
@@ -210,7 +210,7 @@ pub fn same_image_twins(ex: &[Excluded], r: &ResultRow) -> Vec<String> {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Point {
     /// Method.
-    pub method: String,
+    pub method: RowKey,
     /// Median ms at the timing size.
     pub ms: f64,
     /// Time over NoAA's.
@@ -320,7 +320,7 @@ pub struct Pick {
     /// The scenes the pick is over (those of the kind with a NoAA error).
     pub scenes: Vec<String>,
     /// The method.
-    pub method: String,
+    pub method: RowKey,
     /// Mean over the scenes of its error over NoAA's.
     pub mean_error_ratio: f64,
     /// Its largest time over NoAA's over the scenes.
@@ -338,7 +338,7 @@ pub struct Partial {
     /// Backend.
     pub backend: String,
     /// Method.
-    pub method: String,
+    pub method: RowKey,
     /// The scenes of the kind it has no usable row on.
     pub missing: Vec<String>,
 }
@@ -428,17 +428,17 @@ pub fn picks(
     fronts: &[Front],
     scenes: &[SceneInfo],
 ) -> (Vec<Pick>, Vec<Partial>) {
-    let noaa = NOAA.to_string();
+    let noaa = RowKey::from(NOAA);
     let (mut out, mut partial) = (Vec::new(), Vec::new());
     for kind in Kind::ALL {
         for b in backends(rows) {
-            let usable = |scene: &str, method: &str, metric: Metric| {
+            let usable = |scene: &str, method: &RowKey, metric: Metric| {
                 rows.iter()
-                    .find(|r| r.scene == scene && r.backend == b && r.method == method)
+                    .find(|r| r.scene == scene && r.backend == b && r.method == *method)
                     .filter(|r| excluded(ex, r).is_none())
                     .and_then(|r| Some((*r, error(r, metric)?)))
             };
-            let mut methods: Vec<String> = Vec::new();
+            let mut methods: Vec<RowKey> = Vec::new();
             for r in rows.iter().filter(|r| r.backend == b) {
                 let of_kind = scenes
                     .iter()
@@ -601,10 +601,11 @@ pub fn regime(ctx: &Context) -> String {
     )
 }
 
-fn point(p: &Point, twins: &[String]) -> String {
+fn point(p: &Point, twins: &[RowKey]) -> String {
     let name = if twins.is_empty() {
-        p.method.clone()
+        p.method.to_string()
     } else {
+        let twins: Vec<String> = twins.iter().map(RowKey::to_string).collect();
         format!("{} (= {})", p.method, twins.join(", "))
     };
     format!("{name} {} ms · {:.4}", ms(p.ms), p.error)
@@ -624,9 +625,9 @@ pub fn section(a: &Answer, rows: &[ResultRow], ctx: &Context) -> String {
         );
         return md;
     }
-    let twins_of = |scene: &str, backend: &str, method: &str| -> Vec<String> {
+    let twins_of = |scene: &str, backend: &str, method: &RowKey| -> Vec<RowKey> {
         rows.iter()
-            .find(|r| r.scene == scene && r.backend == backend && r.method == method)
+            .find(|r| r.scene == scene && r.backend == backend && r.method == *method)
             .map(|r| same_image_twins(&a.excluded, r))
             .unwrap_or_default()
     };
@@ -831,7 +832,14 @@ mod tests {
     }
 
     fn row(scene: &str, method: &str, ms: f64, flip: f64, ssim: f64) -> ResultRow {
-        let mut r = ResultRow::timed(scene, method, "cpu", (4, 4), 3, &Timings::default());
+        let mut r = ResultRow::timed(
+            scene,
+            crate::key::named(method),
+            "cpu",
+            (4, 4),
+            3,
+            &Timings::default(),
+        );
         r.ms_median = ms;
         r.timed_by = vec![TimingSource::Cpu];
         r.flip_mean = Some(flip);
@@ -856,8 +864,8 @@ mod tests {
         }
     }
 
-    fn methods(f: Option<&Front>) -> Vec<&str> {
-        f.map(|f| f.points.iter().map(|p| p.method.as_str()).collect())
+    fn methods(f: Option<&Front>) -> Vec<String> {
+        f.map(|f| f.points.iter().map(|p| p.method.to_string()).collect())
             .unwrap_or_default()
     }
 
@@ -885,25 +893,30 @@ mod tests {
         let four = a
             .pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0))
             .unwrap();
-        assert_eq!(four.method, "ssaa4");
+        assert_eq!(four.method.to_string(), "ssaa4");
         assert!((four.mean_error_ratio - 0.5).abs() < 1e-12);
         assert_eq!(four.on_front, 1);
         assert_eq!(
             a.pick(Kind::Triangles, "cpu", Metric::Flip, Some(1.5))
                 .unwrap()
-                .method,
+                .method
+                .to_string(),
             "fxaa"
         );
         assert_eq!(
             a.pick(Kind::Triangles, "cpu", Metric::Flip, None)
                 .unwrap()
-                .method,
+                .method
+                .to_string(),
             "ssaa16"
         );
 
         // ssaa4 now takes 6× NoAA: sraa (5×, worse than ssaa4) joins the
         // front, and nothing but fxaa is left within 4×.
-        let s4 = rows.iter_mut().find(|r| r.method == "ssaa4").unwrap();
+        let s4 = rows
+            .iter_mut()
+            .find(|r| r.method.to_string() == "ssaa4")
+            .unwrap();
         s4.ms_median = 6.0;
         s4.ratio_to_noaa = Some(6.0);
         let b = Answer::of(&rows, &scenes);
@@ -914,7 +927,8 @@ mod tests {
         assert_eq!(
             b.pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0))
                 .unwrap()
-                .method,
+                .method
+                .to_string(),
             "fxaa"
         );
         let md = section(&b, &rows, &context(&scenes));
@@ -954,13 +968,15 @@ mod tests {
         assert_eq!(
             a.pick(Kind::Triangles, "cpu", Metric::Ssim, Some(4.0))
                 .unwrap()
-                .method,
+                .method
+                .to_string(),
             "fxaa"
         );
         assert_eq!(
             a.pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0))
                 .unwrap()
-                .method,
+                .method
+                .to_string(),
             "ssaa4"
         );
         let md = section(&a, &rows, &context(&scenes));
@@ -987,9 +1003,12 @@ mod tests {
         let all: Vec<&ResultRow> = rows.iter().collect();
         let ex = exclusions(&all);
         assert_eq!(ex.len(), 1);
-        assert_eq!(ex[0].method, "ctss-delayed");
+        assert_eq!(ex[0].method.to_string(), "ctss-delayed");
         assert_eq!(ex[0].mark(), "(same image as ctss)");
-        assert_eq!(same_image_twins(&ex, &rows[1]), ["ctss-delayed"]);
+        assert_eq!(
+            same_image_twins(&ex, &rows[1]),
+            [crate::key::named("ctss-delayed")]
+        );
         assert_eq!(
             methods(Some(&Front {
                 scene: "s".into(),
@@ -1005,7 +1024,7 @@ mod tests {
         let all: Vec<&ResultRow> = rows.iter().collect();
         let ex = exclusions(&all);
         assert_eq!(ex.len(), 1);
-        assert_eq!(ex[0].method, "ctss-delayed");
+        assert_eq!(ex[0].method.to_string(), "ctss-delayed");
         let a = Answer::of(&rows, &[scene("s", true)]);
         let md = section(&a, &rows, &context(&[scene("s", true)]));
         assert!(md.contains("ctss (= ctss-delayed) 1.20 ms"), "{md}");
@@ -1022,11 +1041,12 @@ mod tests {
         smaa.timed_by = vec![TimingSource::Cpu, TimingSource::GpuWallClock { why: WHY }];
         rows.push(smaa);
         let a = Answer::of(&rows, &[scene("t", false)]);
-        assert!(!methods(a.front("t", "cpu", Metric::Flip)).contains(&"smaa"));
+        assert!(!methods(a.front("t", "cpu", Metric::Flip)).contains(&"smaa".to_string()));
         assert_eq!(
             a.pick(Kind::Triangles, "cpu", Metric::Flip, Some(1.5))
                 .unwrap()
-                .method,
+                .method
+                .to_string(),
             "fxaa"
         );
         assert_eq!(a.excluded.len(), 1);
@@ -1037,7 +1057,7 @@ mod tests {
             "{reason}"
         );
         // Without NoAA there is no axis to be off.
-        rows.retain(|r| r.method != "noaa");
+        rows.retain(|r| r.method.to_string() != "noaa");
         let all: Vec<&ResultRow> = rows.iter().collect();
         assert!(exclusions(&all).is_empty());
     }
@@ -1058,31 +1078,33 @@ mod tests {
         let t = a
             .pick(Kind::Triangles, "cpu", Metric::Flip, Some(1.5))
             .unwrap();
-        assert_eq!((t.method.as_str(), t.scenes.len()), ("noaa", 2));
+        assert_eq!((t.method.to_string().as_str(), t.scenes.len()), ("noaa", 2));
         let t4 = a
             .pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0))
             .unwrap();
         // (0.05/0.10 + 0.12/0.20) / 2
-        assert_eq!(t4.method, "ssaa4");
+        assert_eq!(t4.method.to_string(), "ssaa4");
         assert!((t4.mean_error_ratio - 0.55).abs() < 1e-12);
         assert_eq!(t4.on_front, 2);
         assert_eq!(
             a.pick(Kind::Sdf, "cpu", Metric::Flip, Some(1.5))
                 .unwrap()
-                .method,
+                .method
+                .to_string(),
             "ctss"
         );
         assert_eq!(
             a.pick(Kind::Sdf, "cpu", Metric::Flip, Some(4.0))
                 .unwrap()
-                .method,
+                .method
+                .to_string(),
             "ssaa4"
         );
-        let missing: Vec<(&str, &[String])> = a
+        let missing: Vec<(String, &[String])> = a
             .partial
             .iter()
             .filter(|p| p.kind == Kind::Triangles)
-            .map(|p| (p.method.as_str(), p.missing.as_slice()))
+            .map(|p| (p.method.to_string(), p.missing.as_slice()))
             .collect();
         assert!(
             missing

@@ -838,11 +838,18 @@ mod tests {
         assert_eq!(claimed("ssaa4+ctss-paper").len(), 5);
         // A post-process row claims through its row, not its name.
         assert_eq!(claimed("smaa"), vec![]);
-        let mut row = crate::ResultRow::timed("s", "smaa", "cpu", (1, 1), 1, &Default::default());
+        let mut row = crate::ResultRow::timed(
+            "s",
+            crate::key::named("smaa"),
+            "cpu",
+            (1, 1),
+            1,
+            &Default::default(),
+        );
         assert_eq!(row.claims(), vec![]);
         row.post_process = Some("SMAA".into());
         assert_eq!(row.claims(), vec![Silhouette, Crease, Shadow, Texture]);
-        row.method = "sraa".into();
+        row.method = crate::key::named("sraa");
         assert_eq!(row.claims(), vec![Silhouette, Crease, Shadow, Texture]);
         assert!(!claimed("ssaa16").contains(&Flat));
     }

@@ -233,7 +233,9 @@ fn data(s: &ReportSummary, ctx: &Context, md: &str) -> Value {
                         Value::Null
                     };
                     if let Some(t) = &verdicts {
-                        for (metric, cell) in t.verdicts(&r.method, &r.backend, &sc.name) {
+                        for (metric, cell) in
+                            t.verdicts(&r.method.to_string(), &r.backend, &sc.name)
+                        {
                             if !metrics.contains(&metric) {
                                 metrics.push(metric.clone());
                             }
@@ -367,9 +369,13 @@ fn layers(
     }
     let stem_of = |prefix: &str, r: &ResultRow| {
         if r.backend == first_backend {
-            format!("{prefix}{}", file_safe(&r.method))
+            format!("{prefix}{}", file_safe(&r.method.to_string()))
         } else {
-            format!("{prefix}{}-{}", file_safe(&r.method), file_safe(&r.backend))
+            format!(
+                "{prefix}{}-{}",
+                file_safe(&r.method.to_string()),
+                file_safe(&r.backend)
+            )
         }
     };
     for (prefix, group, kind, words) in METHOD_LAYERS {
@@ -379,7 +385,7 @@ fn layers(
                 continue;
             }
             let name = if r.backend == first_backend {
-                r.method.clone()
+                r.method.to_string()
             } else {
                 format!("{} ({})", r.method, r.backend)
             };

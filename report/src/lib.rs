@@ -68,6 +68,7 @@ pub mod crops;
 pub mod files;
 pub mod html;
 pub mod kernel_timing;
+pub mod key;
 pub mod load;
 pub mod metrics;
 pub mod motion;
@@ -94,6 +95,7 @@ use subcone_scene::{
     Albedo, Backend, Frame, Method, RenderSettings, Scene, Unsupported, UnsupportedReason,
 };
 
+use key::RowKey;
 use named::{NOAA, SRAA_RT, SSAA16};
 use subcone_metrics::{ssim, Rgb8};
 use timing::Timings;
@@ -144,8 +146,8 @@ pub use args::ReportArgs;
 pub struct ResultRow {
     /// Scene name (as used in file names).
     pub scene: String,
-    /// Method, e.g. `sraa-rt`.
-    pub method: String,
+    /// What the row is of: a method (e.g. `sraa-rt`) or a post-process.
+    pub method: RowKey,
     /// Backend, e.g. `cpu`.
     pub backend: String,
     /// Timing width.
@@ -233,7 +235,7 @@ impl ResultRow {
     /// per-frame figures (spp, rays, buffers) 0 until the caller sets them.
     pub fn timed(
         scene: &str,
-        method: &str,
+        method: RowKey,
         backend: &str,
         size: (u32, u32),
         runs: u32,
@@ -241,7 +243,7 @@ impl ResultRow {
     ) -> Self {
         ResultRow {
             scene: scene.into(),
-            method: method.into(),
+            method,
             backend: backend.into(),
             width: size.0,
             height: size.1,
@@ -331,10 +333,10 @@ impl ResultRow {
     /// ([`POST_PROCESS_CLAIMS`](subcone_scene::registry::POST_PROCESS_CLAIMS)),
     /// else what its method's name claims ([`classes::claimed`]).
     pub fn claims(&self) -> Vec<classes::Class> {
-        if self.post_process.is_some() {
-            subcone_scene::registry::POST_PROCESS_CLAIMS.to_vec()
-        } else {
-            classes::claimed(&self.method)
+        match (&self.post_process, &self.method) {
+            (Some(_), _) => subcone_scene::registry::POST_PROCESS_CLAIMS.to_vec(),
+            (None, RowKey::Method(m)) => m.claims(),
+            (None, RowKey::Post(_)) => Vec::new(),
         }
     }
 
@@ -1340,7 +1342,6 @@ fn post_measured(
     let mut pass_ms = base.pass_ms.clone();
     pass_ms.push((file_safe(name), median));
     let mut row = ResultRow {
-        method: name.into(),
         ms_median: base.ms_median + median,
         ms_min: base.ms_min + ms[0],
         ms_max: base.ms_max + ms[ms.len() - 1],
@@ -1349,7 +1350,7 @@ fn post_measured(
         timed_by,
         ..ResultRow::timed(
             &base.scene,
-            name,
+            RowKey::Post(name.to_string()),
             &base.backend,
             (base.width, base.height),
             base.runs,
@@ -1422,13 +1423,18 @@ fn measure(
     row.reference = Some(plan.reference.to_string());
     row.image_digest = Some(answer::digest(img.width, img.height, &img.data));
     files::save_png(
-        &img_dir.join(image_name("", &row.method, &row.backend, first_backend)),
+        &img_dir.join(image_name(
+            "",
+            &row.method.to_string(),
+            &row.backend,
+            first_backend,
+        )),
         img,
     )?;
     files::save_png(
         &img_dir.join(image_name(
             "flip_",
-            &row.method,
+            &row.method.to_string(),
             &row.backend,
             first_backend,
         )),
@@ -1437,7 +1443,7 @@ fn measure(
     files::save_png(
         &img_dir.join(image_name(
             "ssim_",
-            &row.method,
+            &row.method.to_string(),
             &row.backend,
             first_backend,
         )),
@@ -1786,7 +1792,7 @@ impl Runner<'_> {
                 let is_noaa = c.method.technique() == Technique::NoAa;
                 let done = self.finish(job, bi, backend.as_ref(), c, sq.as_ref(), &img_dir)?;
                 if let (0, Some(img)) = (bi, &done.quality) {
-                    crop_images.push((done.row.method.clone(), img.clone()));
+                    crop_images.push((done.row.method.to_string(), img.clone()));
                 }
                 self.rows.push(done.row.clone());
                 if is_noaa {
@@ -2073,7 +2079,7 @@ impl Runner<'_> {
         };
         let mut row = ResultRow::timed(
             &job.name,
-            &mname,
+            c.method.into(),
             bname,
             job.timing_size,
             c.timings.wall_ms.len() as u32,
@@ -2194,9 +2200,14 @@ impl Runner<'_> {
                         }
                     }
                     if ok {
-                        let name = m.to_string();
-                        let mut row =
-                            ResultRow::timed(&job.name, &name, bname, (side, side), plan.runs, &t);
+                        let mut row = ResultRow::timed(
+                            &job.name,
+                            (*m).into(),
+                            bname,
+                            (side, side),
+                            plan.runs,
+                            &t,
+                        );
                         row.samples_per_pixel = f64::NAN;
                         row.rays_per_pixel = f64::NAN;
                         row.buffer_mib = f64::NAN;
@@ -2262,7 +2273,7 @@ impl Runner<'_> {
 fn ratios_to_noaa(rows: &mut [ResultRow]) {
     let noaa: Vec<(String, f64, Vec<f64>)> = rows
         .iter()
-        .filter(|r| r.method == NOAA.to_string().as_str())
+        .filter(|r| r.method == NOAA)
         .map(|r| (r.backend.clone(), r.ms_median, r.round_ms.clone()))
         .collect();
     for r in rows.iter_mut() {
@@ -2333,7 +2344,14 @@ mod tests {
     use super::*;
 
     fn row(method: &str, backend: &str, ms_median: f64, rounds: &[f64]) -> ResultRow {
-        let mut r = ResultRow::timed("s", method, backend, (4, 4), 3, &Timings::default());
+        let mut r = ResultRow::timed(
+            "s",
+            crate::key::named(method),
+            backend,
+            (4, 4),
+            3,
+            &Timings::default(),
+        );
         r.ms_median = ms_median;
         r.round_ms = rounds.to_vec();
         r

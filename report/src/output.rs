@@ -27,6 +27,7 @@ use serde_json::{json, Map, Value};
 
 use crate::classes::{self, Class, Metric, Verdict, CLASSES};
 use crate::context::{cpu_model, ms, Context, SceneInfo};
+use crate::key::RowKey;
 use crate::named::{CTSS, CTSS_R, NOAA, SRAA, SRAA_RT, SSAA16, SSAA4, SSAA4_CTSS};
 use crate::reference::code_version;
 use crate::{crops, file_safe, kernel_timing, timing, Mode, ReportSummary, ResultRow};
@@ -142,7 +143,7 @@ fn opt(v: Option<f64>) -> Cell {
 fn row_cells(r: &ResultRow, passes: &[String]) -> Vec<Cell> {
     let mut c = vec![
         Cell::Text(r.scene.clone()),
-        Cell::Text(r.method.clone()),
+        Cell::Text(r.method.to_string()),
         Cell::Text(r.backend.clone()),
         Cell::Int(r.width as u64),
         Cell::Int(r.height as u64),
@@ -587,7 +588,7 @@ fn scene_section(md: &mut String, s: &ReportSummary, sc: &SceneInfo) {
                 "| {} | {} | {} | {}–{} | {} | {} | {} | {} | {} | {} | {} | {} |",
                 match crate::answer::excluded(&left_out, r) {
                     Some(e) => format!("{} {}", r.method, e.mark()),
-                    None => r.method.clone(),
+                    None => r.method.to_string(),
                 },
                 r.backend,
                 ms(r.ms_median),
@@ -1016,13 +1017,14 @@ fn same_image_name(s: &ReportSummary, method: &str, backend: &str) -> String {
     let left_out = crate::answer::exclusions(&rows);
     let measured = rows
         .iter()
-        .filter(|r| r.method == method && r.backend == backend && r.flip_mean.is_some())
+        .filter(|r| r.method.to_string() == method && r.backend == backend && r.flip_mean.is_some())
         .count();
-    let same: Vec<&str> = left_out
+    // The verdict tables name their rows by the verdict's method name.
+    let same: Vec<&RowKey> = left_out
         .iter()
-        .filter(|e| e.method == method && e.backend == backend)
+        .filter(|e| e.method.to_string() == method && e.backend == backend)
         .filter_map(|e| match &e.why {
-            crate::answer::Why::SameImage { as_method } => Some(as_method.as_str()),
+            crate::answer::Why::SameImage { as_method } => Some(as_method),
             _ => None,
         })
         .collect();
@@ -1153,12 +1155,17 @@ fn class_section(scene: &str, rows: &[&ResultRow]) -> String {
                 if items.is_empty() {
                     return None;
                 }
-                let find = |m: &str| {
+                let find = |m: &RowKey| {
                     rows.iter()
-                        .find(|r| r.method == m && r.backend == *b)
+                        .find(|r| r.method == *m && r.backend == *b)
                         .copied()
                 };
-                let band = match (find(&fv.method), find(NOAA.to_string().as_str())) {
+                let band = match (
+                    rows.iter()
+                        .find(|r| r.method.to_string() == fv.method && r.backend == *b)
+                        .copied(),
+                    find(&NOAA.into()),
+                ) {
                     (Some(it), Some(noaa)) => near_edge_share(it, noaa),
                     _ => None,
                 };
@@ -1338,28 +1345,24 @@ pub fn near_edge_share(it: &ResultRow, noaa: &ResultRow) -> Option<BandShare> {
 pub fn verdicts(rows: &[&ResultRow], metric: Metric) -> Vec<(String, Verdict)> {
     let mut out = Vec::new();
     for r in rows {
-        if r.method == NOAA.to_string().as_str() {
+        if r.method == NOAA {
             continue;
         }
         let noaa = rows
             .iter()
-            .find(|n| {
-                n.method == NOAA.to_string().as_str()
-                    && n.backend == r.backend
-                    && n.scene == r.scene
-            })
+            .find(|n| n.method == NOAA && n.backend == r.backend && n.scene == r.scene)
             .map(|n| n.class_errors_at(metric))
             .unwrap_or_default();
         let it = r.class_errors_at(metric);
         if !it.is_empty() && !noaa.is_empty() {
-            let v = Verdict::judge_claims(&r.method, r.claims(), metric, &it, &noaa);
+            let v = Verdict::judge_claims(&r.method.to_string(), r.claims(), metric, &it, &noaa);
             out.push((r.backend.clone(), v));
         }
     }
     out
 }
 
-fn rows_for<'a>(s: &'a [ResultRow], method: &str, backend: &str) -> Vec<&'a ResultRow> {
+fn rows_for<'a>(s: &'a [ResultRow], method: Method, backend: &str) -> Vec<&'a ResultRow> {
     s.iter()
         .filter(|r| r.method == method && r.backend == backend)
         .collect()
@@ -1423,18 +1426,17 @@ pub const SRAA_RT_SSAA4_SCENES: [&str; 2] = ["atrium", "sponza"];
 /// The rows of the SRAA targets for backend `b` (triangle scenes only).
 fn sraa_targets(s: &ReportSummary, sdf: &[&str], b: &str, md: &mut String) {
     let yes = |ok: bool| if ok { "met" } else { "**not met**" };
-    let find = |method: &str, scene: &str| {
+    let find = |method: Method, scene: &str| {
         s.rows
             .iter()
             .find(|x| x.method == method && x.backend == b && x.scene == scene)
     };
-    for method in SRAA_METHODS.map(|m| m.to_string()) {
-        let method = method.as_str();
+    for method in SRAA_METHODS {
         for r in rows_for(&s.rows, method, b)
             .into_iter()
             .filter(|r| !sdf.contains(&r.scene.as_str()))
         {
-            let Some(noaa) = find(NOAA.to_string().as_str(), &r.scene) else {
+            let Some(noaa) = find(NOAA, &r.scene) else {
                 continue;
             };
             let (Some(_), Some(_), Some(a), Some(na)) =
@@ -1444,8 +1446,8 @@ fn sraa_targets(s: &ReportSummary, sdf: &[&str], b: &str, md: &mut String) {
             };
             // Paired by camera offset, as the verdict lines.
             let v = Verdict::judge_claims(
-                method,
-                classes::claimed(method),
+                &method.to_string(),
+                method.claims(),
                 Metric::Flip,
                 &r.class_errors_at(Metric::Flip),
                 &noaa.class_errors_at(Metric::Flip),
@@ -1466,10 +1468,7 @@ fn sraa_targets(s: &ReportSummary, sdf: &[&str], b: &str, md: &mut String) {
         }
     }
     for scene in SRAA_RT_SSAA4_SCENES {
-        let (Some(rt), Some(ss)) = (
-            find(SRAA_RT.to_string().as_str(), scene),
-            find(SSAA4.to_string().as_str(), scene),
-        ) else {
+        let (Some(rt), Some(ss)) = (find(SRAA_RT, scene), find(SSAA4, scene)) else {
             continue;
         };
         if let (Some(a), Some(e)) = (rt.classes, ss.classes) {
@@ -1505,16 +1504,13 @@ fn sraa_targets(s: &ReportSummary, sdf: &[&str], b: &str, md: &mut String) {
 fn ctss_targets(s: &ReportSummary, b: &str, md: &mut String) {
     use subcone_scene::sdf::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
     let yes = |ok: bool| if ok { "met" } else { "**not met**" };
-    let find = |method: &str, scene: &str| {
+    let find = |method: Method, scene: &str| {
         s.rows
             .iter()
             .find(|x| x.method == method && x.backend == b && x.scene == scene)
     };
     for scene in SDF_SCENES {
-        let (Some(r), Some(noaa)) = (
-            find(CTSS.to_string().as_str(), scene),
-            find(NOAA.to_string().as_str(), scene),
-        ) else {
+        let (Some(r), Some(noaa)) = (find(CTSS, scene), find(NOAA, scene)) else {
             continue;
         };
         let (Some(it), Some(n), Some(a), Some(na)) =
@@ -1545,7 +1541,7 @@ fn ctss_targets(s: &ReportSummary, b: &str, md: &mut String) {
             "| ctss beats NoAA on silhouettes, holds on flat, whole FLIP below NoAA's | {b} | {scene} | {silhouettes}, {flat}, whole {a:.4} vs {na:.4} | {} |",
             yes(met)
         );
-        if let Some(ss) = find(SSAA4.to_string().as_str(), scene).and_then(|x| x.classes) {
+        if let Some(ss) = find(SSAA4, scene).and_then(|x| x.classes) {
             if let (Some(x), Some(y)) = (it.mean[sil], ss.mean[sil]) {
                 let ratio = x / y;
                 let _ = writeln!(
@@ -1557,20 +1553,20 @@ fn ctss_targets(s: &ReportSummary, b: &str, md: &mut String) {
         }
     }
     for scene in STIFF_SCENES.iter().chain(&TRANSPARENT_SCENES) {
-        let Some(na) = find(NOAA.to_string().as_str(), scene).and_then(|x| x.flip_mean) else {
+        let Some(na) = find(NOAA, scene).and_then(|x| x.flip_mean) else {
             continue;
         };
-        let mut worst: Option<(&str, f64)> = None;
+        let mut worst: Option<(&RowKey, f64)> = None;
         for r in s.rows.iter().filter(|x| {
             x.backend == b
                 && x.scene == *scene
-                && x.method.contains(CTSS.to_string().as_str())
-                && !x.method.ends_with("-paper")
+                && x.method.to_string().contains(&CTSS.to_string())
+                && !x.method.to_string().ends_with("-paper")
                 && x.flip_mean.is_some()
         }) {
             let ratio = r.flip_mean.unwrap_or(0.0) / na.max(f64::MIN_POSITIVE);
             if worst.is_none_or(|(_, w)| ratio > w) {
-                worst = Some((r.method.as_str(), ratio));
+                worst = Some((&r.method, ratio));
             }
         }
         if let Some((m, ratio)) = worst {
@@ -1619,7 +1615,7 @@ lowest or its highest round.\n",
         .collect();
     let yes = |ok: bool| if ok { "met" } else { "**not met**" };
     for b in &ctx.backends {
-        for (method, limit) in CTSS_TARGETS.map(|(m, l)| (m.to_string(), l)) {
+        for (method, limit) in CTSS_TARGETS {
             let Some(avg) = MeanRatio::of(s.rows.iter().filter(|r| {
                 &r.backend == b && r.method == method && sdf.contains(&r.scene.as_str())
             })) else {
@@ -1641,13 +1637,15 @@ lowest or its highest round.\n",
         ctss_targets(s, b, &mut md);
         sraa_targets(s, &sdf, b, &mut md);
         // The SRAA-RT target is the paper's, on triangle scenes.
-        for rt in rows_for(&s.rows, SRAA_RT.to_string().as_str(), b)
+        for rt in rows_for(&s.rows, SRAA_RT, b)
             .into_iter()
             .filter(|r| !sdf.contains(&r.scene.as_str()))
         {
-            let Some(ss) = s.rows.iter().find(|x| {
-                x.method == SSAA16.to_string().as_str() && &x.backend == b && x.scene == rt.scene
-            }) else {
+            let Some(ss) = s
+                .rows
+                .iter()
+                .find(|x| x.method == SSAA16 && &x.backend == b && x.scene == rt.scene)
+            else {
                 continue;
             };
             // Per round where both were timed in the same rounds; else the
@@ -1754,10 +1752,10 @@ ssaa16's median time over sraa-rt's.\n"
     );
     let sdf_scene = |name: &str| ctx.scenes.iter().any(|sc| sc.sdf && sc.name == name);
     for b in &ctx.backends {
-        let sweep: Vec<&ResultRow> = rows_for(&s.sweep, SRAA_RT.to_string().as_str(), b);
+        let sweep: Vec<&ResultRow> = rows_for(&s.sweep, SRAA_RT, b);
         let (source, rows): (&[ResultRow], Vec<&ResultRow>) = if sweep.is_empty() {
             // Table 1 is about triangle scenes: SDF rows are in `sdf_pick`.
-            let rows = rows_for(&s.rows, SRAA_RT.to_string().as_str(), b)
+            let rows = rows_for(&s.rows, SRAA_RT, b)
                 .into_iter()
                 .filter(|r| !sdf_scene(&r.scene))
                 .collect();
@@ -1779,7 +1777,7 @@ ssaa16's median time over sraa-rt's.\n"
                 .iter()
                 .find(|p| p.0 == r.width && p.0 == r.height);
             let ss = source.iter().find(|x| {
-                x.method == SSAA16.to_string().as_str()
+                x.method == SSAA16
                     && x.backend == r.backend
                     && x.scene == r.scene
                     && x.width == r.width
@@ -1837,15 +1835,9 @@ the means of the scenes' smallest and of their largest per-round ratios.\n"
         let _ = writeln!(md, "|---|--:|--:|--:|");
         let mut lines = CTSS_TABLE1
             .iter()
-            .map(|(paper, ours, ratio)| {
-                (format!("{paper} / {ours}"), Some(*ratio), ours.to_string())
-            })
+            .map(|(paper, ours, ratio)| (format!("{paper} / {ours}"), Some(*ratio), *ours))
             .collect::<Vec<_>>();
-        lines.push((
-            format!("4x SS + CTSS / {SSAA4_CTSS}"),
-            None,
-            SSAA4_CTSS.to_string(),
-        ));
+        lines.push((format!("4x SS + CTSS / {SSAA4_CTSS}"), None, SSAA4_CTSS));
         for (name, paper, ours) in lines {
             let avg = MeanRatio::of(s.rows.iter().filter(|r| {
                 r.backend == *b && r.method == ours && sdf.contains(&r.scene.as_str())
@@ -1891,31 +1883,29 @@ these two and every other, is *The answer* at the top, computed from the fronts.
     );
     let answer = crate::answer::Answer::of(&s.rows, &ctx.scenes);
     for b in &ctx.backends {
-        let find = |scene: &str, method: &str| {
+        let find = |scene: &str, method: Method| {
             s.rows
                 .iter()
                 .find(|r| r.backend == *b && r.scene == scene && r.method == method)
         };
         let mut lines = Vec::new();
         for sc in &sdf {
-            let (Some(rt), Some(ct)) = (
-                find(sc, SRAA_RT.to_string().as_str()),
-                find(sc, CTSS.to_string().as_str()),
-            ) else {
+            let (Some(rt), Some(ct)) = (find(sc, SRAA_RT), find(sc, CTSS)) else {
                 continue;
             };
             if rt.flip_mean.is_none() || ct.flip_mean.is_none() {
                 continue;
             }
             let on_front = |metric: Metric| {
-                let on: Vec<&str> = [rt, ct]
+                let on: Vec<String> = [rt, ct]
                     .iter()
-                    .map(|r| r.method.as_str())
+                    .map(|r| &r.method)
                     .filter(|m| {
                         answer
                             .front(sc, b, metric)
-                            .is_some_and(|f| f.points.iter().any(|p| p.method == *m))
+                            .is_some_and(|f| f.points.iter().any(|p| p.method == **m))
                     })
+                    .map(RowKey::to_string)
                     .collect();
                 if on.is_empty() {
                     "neither".to_string()
@@ -1923,7 +1913,7 @@ these two and every other, is *The answer* at the top, computed from the fronts.
                     on.join(", ")
                 }
             };
-            let noaa = find(sc, NOAA.to_string().as_str()).and_then(|r| r.flip_mean);
+            let noaa = find(sc, NOAA).and_then(|r| r.flip_mean);
             lines.push(format!(
                 "| {sc} | {} | {} | {} | {} | {} | {} | {} | {} / {} |",
                 f(noaa, 4),
@@ -1961,7 +1951,7 @@ mod tests {
     fn row(method: &str, passes: &[(&str, f64)]) -> ResultRow {
         ResultRow {
             scene: "s,1".into(),
-            method: method.into(),
+            method: crate::key::named(method),
             backend: "cpu".into(),
             width: 4,
             height: 2,

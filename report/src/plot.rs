@@ -127,7 +127,7 @@ fn label(r: &ResultRow, backends: usize) -> String {
     if backends > 1 {
         format!("{} ({})", r.method, r.backend)
     } else {
-        r.method.clone()
+        r.method.to_string()
     }
 }
 
@@ -215,12 +215,13 @@ where
     let font_px = size - 4;
     let mut placed: Vec<(i32, i32, i32, i32)> = Vec::new();
     for (r, t, f) in &pts {
-        let c = method_colour(&r.method);
+        let c = method_colour(&r.method.to_string());
         let on_front = front.iter().any(|p| p.0 == *t && p.1 == *f);
         let other_device = crate::answer::excluded(&left_out, r).is_some();
         let mut text = label(r, backends);
         let twins = crate::answer::same_image_twins(&left_out, r);
         if !twins.is_empty() {
+            let twins: Vec<String> = twins.iter().map(|t| t.to_string()).collect();
             text = format!("{text} (= {})", twins.join(", "));
         }
         if other_device {
@@ -408,7 +409,10 @@ where
     let backends = backend_count(rows);
     let bars: Vec<(String, String, ClassError)> = rows
         .iter()
-        .filter_map(|r| r.classes.map(|k| (label(r, backends), r.method.clone(), k)))
+        .filter_map(|r| {
+            r.classes
+                .map(|k| (label(r, backends), r.method.to_string(), k))
+        })
         .collect();
     let ymax = bars
         .iter()

@@ -667,7 +667,11 @@ fn timing_only_writes_no_errors() {
     assert!(s.rows.iter().all(|r| r.flip_mean.is_none()));
     assert!(s.rows.iter().all(|r| (r.width, r.height) == (64, 48)));
     assert_eq!(s.references_rendered + s.references_cached, 0);
-    let sraa = s.rows.iter().find(|r| r.method == "sraa-rt").unwrap();
+    let sraa = s
+        .rows
+        .iter()
+        .find(|r| r.method.to_string() == "sraa-rt")
+        .unwrap();
     assert!(sraa.pass("geometry").is_some() && sraa.pass("antialiasing").is_some());
     nonempty(&out.join("plots/cornell_passes.svg"));
     assert!(!out.join("plots/cornell_flip_vs_time.png").exists());
@@ -704,7 +708,9 @@ fn report_with_both_backends() {
             let row = summary
                 .rows
                 .iter()
-                .find(|r| r.scene == scene && r.method == method && r.backend == backend)
+                .find(|r| {
+                    r.scene == scene && r.method.to_string() == method && r.backend == backend
+                })
                 .unwrap_or_else(|| panic!("no {backend} row for {scene} {method}"));
             assert!(row.ms_median > 0.0, "{backend} {scene} {method}: no time");
             assert!(
@@ -772,7 +778,10 @@ fn a_failing_post_process_is_an_error_naming_it() {
         );
         assert!(e.contains(why), "{spec}: {e}");
         let s = run(spec, true).expect(spec);
-        assert!(s.rows.iter().all(|r| r.method != name), "{spec}: a row");
+        assert!(
+            s.rows.iter().all(|r| r.method.to_string() != name),
+            "{spec}: a row"
+        );
         assert_eq!(s.failures.len(), 1, "{spec}");
         assert!(s.failures[0].error.contains(why), "{}", s.failures[0].error);
         let md = std::fs::read_to_string(dir.path().join("report/report.md")).unwrap();

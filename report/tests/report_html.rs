@@ -570,7 +570,7 @@ fn report_page_in_a_browser() {
             .unwrap_or("");
         assert_eq!(
             verdict.contains(" · "),
-            r.method != "noaa",
+            r.method.to_string() != "noaa",
             "FLIP verdict of {key}: {verdict:?}"
         );
     }
