@@ -141,7 +141,6 @@ pub fn crossovers(sweep: &AoSweep) -> Vec<Crossover> {
 
 /// The crossover on `scene` and `backend` (see [`Crossover`]).
 pub fn crossover(sweep: &AoSweep, scene: &str, backend: &str) -> Crossover {
-    let (ss, rt) = (SSAA4.to_string(), SRAA_RT.to_string());
     // (ao, ssaa4 − sraa-rt in ms) where both were timed.
     let mut gaps: Vec<(u32, f64)> = Vec::new();
     let mut first_faster = None;
@@ -155,8 +154,8 @@ pub fn crossover(sweep: &AoSweep, scene: &str, backend: &str) -> Crossover {
     aos.dedup();
     for ao in aos {
         let (Some(a), Some(b)) = (
-            find(&sweep.rows, scene, backend, &ss, ao),
-            find(&sweep.rows, scene, backend, &rt, ao),
+            find(&sweep.rows, scene, backend, SSAA4, ao),
+            find(&sweep.rows, scene, backend, SRAA_RT, ao),
         ) else {
             continue;
         };
@@ -225,7 +224,7 @@ pub struct AoSweepRow {
     /// Scene name.
     pub scene: String,
     /// Method.
-    pub method: String,
+    pub method: Method,
     /// Backend.
     pub backend: String,
     /// AO rays per shaded point.
@@ -276,7 +275,7 @@ fn find<'a>(
     rows: &'a [AoSweepRow],
     scene: &str,
     backend: &str,
-    method: &str,
+    method: Method,
     ao: u32,
 ) -> Option<&'a AoSweepRow> {
     rows.iter()
@@ -285,8 +284,8 @@ fn find<'a>(
 
 /// `(ray-count ratio, time ratio)` of ssaa4 over sraa-rt.
 pub fn ratios(rows: &[AoSweepRow], scene: &str, backend: &str, ao: u32) -> Option<(f64, f64)> {
-    let ss = find(rows, scene, backend, SSAA4.to_string().as_str(), ao)?;
-    let rt = find(rows, scene, backend, SRAA_RT.to_string().as_str(), ao)?;
+    let ss = find(rows, scene, backend, SSAA4, ao)?;
+    let rt = find(rows, scene, backend, SRAA_RT, ao)?;
     (rt.rays_per_pixel > 0.0 && rt.ms_median > 0.0).then(|| {
         (
             ss.rays_per_pixel / rt.rays_per_pixel,
@@ -357,25 +356,22 @@ reference, so that the section takes seconds, not minutes)"
         );
         let _ = writeln!(md, "|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
         for &ao in &sweep.aos {
-            let get = |m: &str| find(&sweep.rows, &scene, &backend, m, ao);
-            if AO_SWEEP_METHODS
-                .iter()
-                .all(|m| get(&m.to_string()).is_none())
-            {
+            let get = |m: Method| find(&sweep.rows, &scene, &backend, m, ao);
+            if AO_SWEEP_METHODS.iter().all(|m| get(*m).is_none()) {
                 continue;
             }
-            let ms = |m: &str| get(m).map_or("–".into(), |r| format!("{:.1}", r.ms_median));
-            let ef = |m: &str| opt(get(m).and_then(|r| r.edge_flip), 4);
+            let ms = |m: Method| get(m).map_or("–".into(), |r| format!("{:.1}", r.ms_median));
+            let ef = |m: Method| opt(get(m).and_then(|r| r.edge_flip), 4);
             let rat = ratios(&sweep.rows, &scene, &backend, ao);
             let _ = writeln!(
                 md,
                 "| {ao} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
-                ms(NOAA.to_string().as_str()),
-                ms(SSAA4.to_string().as_str()),
-                ms(SRAA_RT.to_string().as_str()),
-                ef(NOAA.to_string().as_str()),
-                ef(SSAA4.to_string().as_str()),
-                ef(SRAA_RT.to_string().as_str()),
+                ms(NOAA),
+                ms(SSAA4),
+                ms(SRAA_RT),
+                ef(NOAA),
+                ef(SSAA4),
+                ef(SRAA_RT),
                 opt(rat.map(|r| r.0), 2),
                 opt(rat.map(|r| r.1), 2),
                 opt(rat.map(|r| r.1 / r.0), 2),
@@ -420,13 +416,10 @@ pub fn target_rows(sweep: &AoSweep) -> String {
                 yes(time >= AO_SPEEDUP)
             );
         }
-        let edge = |m: &str| {
+        let edge = |m: Method| {
             find(&sweep.rows, &scene, &backend, m, AO_SPEEDUP_AT).and_then(|r| r.edge_flip)
         };
-        if let (Some(rt), Some(ss)) = (
-            edge(SRAA_RT.to_string().as_str()),
-            edge(SSAA4.to_string().as_str()),
-        ) {
+        if let (Some(rt), Some(ss)) = (edge(SRAA_RT), edge(SSAA4)) {
             let factor = rt / ss;
             let _ = writeln!(
                 md,
@@ -483,7 +476,7 @@ where
         .axis_desc_style((FAMILY, size - 2))
         .draw()
         .map_err(pe)?;
-    for m in AO_SWEEP_METHODS.map(|m| m.to_string()) {
+    for m in AO_SWEEP_METHODS {
         let mut pts: Vec<(f64, f64)> = rows
             .iter()
             .filter(|r| r.method == m)
@@ -493,7 +486,7 @@ where
         if pts.is_empty() {
             continue;
         }
-        method_line(&mut chart, &m, &pts, 5)?;
+        method_line(&mut chart, &m.to_string(), &pts, 5)?;
     }
     legend(
         &mut chart,
@@ -657,7 +650,7 @@ impl Runner<'_> {
                         let px = (w as f64 * h as f64).max(1.0);
                         let mut row = AoSweepRow {
                             scene: job.name.clone(),
-                            method: m.to_string(),
+                            method: *m,
                             backend: bname.clone(),
                             ao,
                             ms_median: t.median(),
@@ -689,7 +682,7 @@ mod tests {
     fn row(method: &str, ao: u32, ms: f64, rays: f64, edge: f64) -> AoSweepRow {
         AoSweepRow {
             scene: "atrium".into(),
-            method: method.into(),
+            method: method.parse().unwrap(),
             backend: "cpu".into(),
             ao,
             ms_median: ms,

@@ -766,7 +766,11 @@ impl Plan {
         }
         let mut methods: Vec<Method> = Vec::new();
         let post = PostPlan::all(&names, args)?;
-        if !post.is_empty() && !names.iter().any(|n| n == NOAA.to_string().as_str()) {
+        if !post.is_empty()
+            && !names
+                .iter()
+                .any(|n| n.parse::<Method>().is_ok_and(|m| m == NOAA))
+        {
             // A post-process filters the NoAA frame and is judged against it.
             methods.push(NOAA);
         }
@@ -1777,7 +1781,7 @@ impl Runner<'_> {
             None
         };
         // Quality images of the first backend, for the crops.
-        let mut crop_images: Vec<(String, Rgb8)> = Vec::new();
+        let mut crop_images: Vec<(RowKey, Rgb8)> = Vec::new();
         let first = self.rows.len();
         for (bi, (_, backend)) in plan.backends.iter().enumerate() {
             let mut contenders = Vec::new();
@@ -1792,7 +1796,7 @@ impl Runner<'_> {
                 let is_noaa = c.method.technique() == Technique::NoAa;
                 let done = self.finish(job, bi, backend.as_ref(), c, sq.as_ref(), &img_dir)?;
                 if let (0, Some(img)) = (bi, &done.quality) {
-                    crop_images.push((done.row.method.to_string(), img.clone()));
+                    crop_images.push((done.row.method.clone(), img.clone()));
                 }
                 self.rows.push(done.row.clone());
                 if is_noaa {
@@ -1843,7 +1847,7 @@ impl Runner<'_> {
         at: &PostAt<'_>,
         backend: &dyn Backend,
         noaa: Measured,
-    ) -> Result<Vec<(String, Rgb8)>> {
+    ) -> Result<Vec<(RowKey, Rgb8)>> {
         let plan = self.plan;
         let (job, bname) = (at.job, &plan.backends[at.bi].0);
         let steps: Vec<&dyn post::PostProcess> = plan
@@ -1883,7 +1887,7 @@ impl Runner<'_> {
             match timing.and_then(|t| post_measured(step, &noaa, t, at, plan, spent)) {
                 Ok(done) => {
                     if let (0, Some(img)) = (at.bi, done.quality) {
-                        crops.push((name.to_string(), img));
+                        crops.push((RowKey::Post(name.to_string()), img));
                     }
                     self.rows.push(done.row);
                 }
@@ -2294,7 +2298,7 @@ fn ratios_to_noaa(rows: &mut [ResultRow]) {
 /// then every method, then the reference) and the overview.
 fn write_crops(
     q: &SceneQuality,
-    images: &[(String, Rgb8)],
+    images: &[(RowKey, Rgb8)],
     plan: &Plan,
     img_dir: &Path,
 ) -> Result<Vec<crops::Region>> {
@@ -2309,14 +2313,11 @@ fn write_crops(
         reflective: q.reflective.as_deref(),
     })?;
     let mut tiles: Vec<(String, &Rgb8)> = Vec::new();
-    if let Some((n, img)) = images.iter().find(|(n, _)| n == NOAA.to_string().as_str()) {
-        tiles.push((n.clone(), img));
+    if let Some((n, img)) = images.iter().find(|(n, _)| *n == NOAA) {
+        tiles.push((n.to_string(), img));
     }
-    for (n, img) in images
-        .iter()
-        .filter(|(n, _)| n != NOAA.to_string().as_str())
-    {
-        tiles.push((n.clone(), img));
+    for (n, img) in images.iter().filter(|(n, _)| *n != NOAA) {
+        tiles.push((n.to_string(), img));
     }
     tiles.push((format!("reference ({})", plan.reference), &q.reference));
     for r in &regions {

@@ -417,7 +417,7 @@ pub fn json(s: &ReportSummary, ctx: &Context) -> Value {
             "interpolated_ao": c.interpolated,
         })).collect::<Vec<_>>(),
         "ao_sweep": s.ao_sweep.rows.iter().map(|r| json!({
-            "scene": r.scene, "method": r.method, "backend": r.backend, "ao_rays": r.ao,
+            "scene": r.scene, "method": r.method.to_string(), "backend": r.backend, "ao_rays": r.ao,
             "ms_median": r.ms_median, "rays_per_pixel": r.rays_per_pixel,
             "ao_rays_per_pixel": r.ao_rays_per_pixel, "edge_flip": r.edge_flip,
             "flip_mean": r.flip_mean,
