@@ -29,7 +29,7 @@ use subcone_scene::TimingSource;
 
 use crate::classes::Metric;
 use crate::context::{cpu_model, ms, Context, SceneInfo};
-use crate::key::RowKey;
+use crate::key::{RowKey, SceneId};
 use crate::named::NOAA;
 use crate::{Mode, ResultRow};
 
@@ -86,7 +86,7 @@ pub enum Why {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Excluded {
     /// Scene.
-    pub scene: String,
+    pub scene: SceneId,
     /// Backend.
     pub backend: String,
     /// Method.
@@ -381,7 +381,7 @@ impl Answer {
                     let points = front(&rb, &excluded, metric);
                     if !points.is_empty() {
                         fronts.push(Front {
-                            scene: sc.name.clone(),
+                            scene: sc.name.to_string(),
                             backend: b.clone(),
                             metric,
                             points,
@@ -856,7 +856,7 @@ mod tests {
 
     fn scene(name: &str, sdf: bool) -> SceneInfo {
         SceneInfo {
-            name: name.into(),
+            name: crate::key::SceneId::new(name),
             arg: name.into(),
             sdf,
             timing_size: (4, 4),

@@ -649,7 +649,7 @@ impl Runner<'_> {
                         };
                         let px = (w as f64 * h as f64).max(1.0);
                         let mut row = AoSweepRow {
-                            scene: job.name.clone(),
+                            scene: job.name.to_string(),
                             method: *m,
                             backend: bname.clone(),
                             ao,

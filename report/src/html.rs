@@ -245,7 +245,7 @@ fn data(s: &ReportSummary, ctx: &Context, md: &str) -> Value {
                     v
                 })
                 .collect();
-            let dir = s.out_dir.join("images").join(&sc.name);
+            let dir = s.out_dir.join("images").join(sc.name.as_str());
             json!({
                 "name": sc.name,
                 "width": width,

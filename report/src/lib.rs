@@ -95,7 +95,7 @@ use subcone_scene::{
     Albedo, Backend, Frame, Method, RenderSettings, Scene, Unsupported, UnsupportedReason,
 };
 
-use key::RowKey;
+use key::{RowKey, SceneId};
 use named::{NOAA, SRAA_RT, SSAA16};
 use subcone_metrics::{ssim, Rgb8};
 use timing::Timings;
@@ -144,8 +144,8 @@ pub use args::ReportArgs;
 /// One method on one scene with one backend: a row of `results.csv`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ResultRow {
-    /// Scene name (as used in file names).
-    pub scene: String,
+    /// The scene (its name is the one used in file names).
+    pub scene: SceneId,
     /// What the row is of: a method (e.g. `sraa-rt`) or a post-process.
     pub method: RowKey,
     /// Backend, e.g. `cpu`.
@@ -242,7 +242,7 @@ impl ResultRow {
         t: &Timings,
     ) -> Self {
         ResultRow {
-            scene: scene.into(),
+            scene: SceneId::new(scene),
             method,
             backend: backend.into(),
             width: size.0,
@@ -587,7 +587,7 @@ pub struct SceneJob {
     /// The argument it was loaded from.
     pub arg: String,
     /// Unique, file-name-safe name.
-    pub name: String,
+    pub name: SceneId,
     /// The scene.
     pub scene: Scene,
     /// Whether it is an SDF scene.
@@ -950,7 +950,7 @@ fn load_scenes(args: &ReportArgs, plan: &Plan) -> Result<(Vec<SceneJob>, Unavail
         let (timing_size, quality_size) = plan.sizes(sdf);
         jobs.push(SceneJob {
             arg,
-            name,
+            name: SceneId::new(name),
             scene,
             sdf,
             timing_size,
@@ -1603,7 +1603,7 @@ fn applicable(
     let mut skipped = Vec::new();
     let mut work = Vec::new();
     let skip = |job: &SceneJob, method: String, backend: &str, reason: String| Skipped {
-        scene: job.name.clone(),
+        scene: job.name.to_string(),
         method,
         backend: backend.into(),
         reason,
@@ -1774,7 +1774,7 @@ impl Runner<'_> {
                 String::new()
             }
         ));
-        let img_dir = plan.out.join("images").join(&job.name);
+        let img_dir = plan.out.join("images").join(job.name.as_str());
         let sq = if quality {
             self.scene_quality(job, &img_dir)?
         } else {
@@ -1819,11 +1819,11 @@ impl Runner<'_> {
         if let Some(q) = &sq {
             let regions = write_crops(q, &crop_images, plan, &img_dir)?;
             self.crops.push(SceneCrops {
-                scene: job.name.clone(),
+                scene: job.name.to_string(),
                 regions,
             });
             self.classes.push(SceneClasses {
-                scene: job.name.clone(),
+                scene: job.name.to_string(),
                 masks: q.classes.clone(),
             });
         }
@@ -2248,7 +2248,7 @@ impl Runner<'_> {
                 let (w, h) = job.timing_size;
                 match subcone_cpu::throughput::RayWorkload::new(&cpu, &job.scene, w, h) {
                     Ok(work) => throughput.push(ThroughputRow {
-                        scene: job.name.clone(),
+                        scene: job.name.to_string(),
                         isa,
                         width: w,
                         height: h,

@@ -352,7 +352,7 @@ impl Runner<'_> {
             ));
             let (rows, crop) = self.follow(cpu, job, frames, size, &dir)?;
             motion.rows.extend(rows);
-            motion.crops.push((job.name.clone(), crop));
+            motion.crops.push((job.name.to_string(), crop));
         }
         motion.elapsed = start.elapsed();
         self.plots
@@ -425,7 +425,7 @@ impl Runner<'_> {
             let mut ms = f.ms.clone();
             ms.sort_by(f64::total_cmp);
             rows.push(MotionRow {
-                scene: job.name.clone(),
+                scene: job.name.to_string(),
                 method: f.method.to_string(),
                 flip,
                 instability: pooled.mean(),

@@ -142,7 +142,7 @@ fn opt(v: Option<f64>) -> Cell {
 
 fn row_cells(r: &ResultRow, passes: &[String]) -> Vec<Cell> {
     let mut c = vec![
-        Cell::Text(r.scene.clone()),
+        Cell::Text(r.scene.to_string()),
         Cell::Text(r.method.to_string()),
         Cell::Text(r.backend.clone()),
         Cell::Int(r.width as u64),
@@ -1950,7 +1950,7 @@ mod tests {
 
     fn row(method: &str, passes: &[(&str, f64)]) -> ResultRow {
         ResultRow {
-            scene: "s,1".into(),
+            scene: crate::key::SceneId::new("s,1"),
             method: crate::key::named(method),
             backend: "cpu".into(),
             width: 4,
@@ -2093,7 +2093,7 @@ mod tests {
         dssim: [f64; 4],
     ) -> ResultRow {
         let mut r = row(method, &[]);
-        r.scene = "s".into();
+        r.scene = crate::key::SceneId::new("s");
         let err = |sil: f64, fl: f64, ne: Option<f64>| {
             let mut e = classes::ClassError::default();
             e.mean[Class::Silhouette.index()] = Some(sil);
