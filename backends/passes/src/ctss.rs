@@ -13,7 +13,7 @@ use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use subcone_kernels::ctss::CtssParams;
 
-use crate::bind::{self, Group, PassPipeline};
+use crate::bind::{self, Bound, Group, PassPipeline};
 use crate::PassError;
 
 pub(crate) const CTSS_WGSL: &str = include_str!("ctss.wgsl");
@@ -247,7 +247,7 @@ impl CtssPass {
                 desc.batch
             )));
         }
-        let group = Self::group(desc.output_format);
+        let group = Self::group(desc.output_format)?;
         let source = Self::source(host_wgsl, desc.batch, &group);
         let pipeline = PassPipeline::new(
             device,
@@ -266,15 +266,15 @@ impl CtssPass {
 
     #[cfg(test)]
     pub(crate) fn group_for_tests(output_format: wgpu::TextureFormat) -> Group {
-        Self::group(output_format)
+        Self::group(output_format).expect("an output format")
     }
 
-    fn group(output_format: wgpu::TextureFormat) -> Group {
+    fn group(output_format: wgpu::TextureFormat) -> Result<Group, PassError> {
         let mut g = Group::default();
-        g.uniform::<CtssUniform>("subcone_pass_frame", "CtssUniform");
-        g.uniform::<CtssParams>("subcone_pass_params", "subcone_CtssParams");
-        g.storage_texture("subcone_pass_output", output_format);
-        g
+        g.ring_uniform::<CtssUniform>("subcone_pass_frame", "CtssUniform");
+        g.ring_uniform::<CtssParams>("subcone_pass_params", "subcone_CtssParams");
+        g.storage_texture("subcone_pass_output", output_format)?;
+        Ok(g)
     }
 
     /// The whole shader: the kernels, the batch, the host's WGSL (and the
@@ -350,7 +350,7 @@ impl CtssPass {
                 bytemuck::bytes_of(&uniform),
                 bytemuck::bytes_of(&frame.params),
             ],
-            &[("subcone_pass_output", out)],
+            &[("subcone_pass_output", Bound::Texture(out))],
             frame.host_group,
             timestamps,
         )
