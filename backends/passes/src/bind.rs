@@ -130,7 +130,13 @@ impl Group {
         self.list.iter().any(|d| d.name == name)
     }
 
-    fn push(&mut self, name: Cow<'static, str>, wgsl: String, ty: wgpu::BindingType, ring: Option<u64>) {
+    fn push(
+        &mut self,
+        name: Cow<'static, str>,
+        wgsl: String,
+        ty: wgpu::BindingType,
+        ring: Option<u64>,
+    ) {
         self.list.push(Decl {
             name,
             wgsl,
@@ -168,7 +174,11 @@ impl Group {
 
     /// `var<uniform> name: ty`, of `T`'s size: one slot of a pass's
     /// uniform ring ([`UniformRing`]), bound at a dynamic offset.
-    pub(crate) fn ring_uniform<T: bytemuck::Pod>(&mut self, name: impl Into<Cow<'static, str>>, ty: &str) {
+    pub(crate) fn ring_uniform<T: bytemuck::Pod>(
+        &mut self,
+        name: impl Into<Cow<'static, str>>,
+        ty: &str,
+    ) {
         let size = size_of::<T>() as u64;
         let name = name.into();
         self.push(
@@ -341,7 +351,13 @@ impl Bindings {
     }
 
     /// Bind `buffer` whole as `var<…> name: ty` ([`Group::buffer`]).
-    pub fn buffer(&mut self, name: impl Into<Cow<'static, str>>, ty: &str, access: BufferAccess, buffer: &wgpu::Buffer) {
+    pub fn buffer(
+        &mut self,
+        name: impl Into<Cow<'static, str>>,
+        ty: &str,
+        access: BufferAccess,
+        buffer: &wgpu::Buffer,
+    ) {
         self.group.buffer(name, ty, access);
         self.resources.push(Resource::Buffer(buffer.clone()));
     }
@@ -901,7 +917,8 @@ impl PassPipeline {
                 })
             }
         });
-        self.group.bind_group(device, self.label, &self.layout, bound)
+        self.group
+            .bind_group(device, self.label, &self.layout, bound)
     }
 }
 

@@ -872,8 +872,10 @@ impl SraaPass {
 
         bind::check_output_format(desc.output_format)?;
         let buffers = desc.geometry == GeometryLayout::Buffers;
-        if matches!(desc.geometry, GeometryLayout::Packed | GeometryLayout::Buffers)
-            && (desc.depth != DepthKind::LinearView || desc.normal != NormalEncoding::Signed)
+        if matches!(
+            desc.geometry,
+            GeometryLayout::Packed | GeometryLayout::Buffers
+        ) && (desc.depth != DepthKind::LinearView || desc.normal != NormalEncoding::Signed)
         {
             return Err(PassError::Config(format!(
                 "GeometryLayout::{:?} holds linear view depth and signed normals",
@@ -1142,7 +1144,12 @@ impl SraaPass {
         let (geo, float4, word) = (16, 16, 4);
         check_buffer("shaded geometry", inputs.shaded, n, geo)?;
         check_buffer("subsample geometry", inputs.subsamples, 4 * n, geo)?;
-        check_buffer("colour", inputs.color, n * u64::from(d.color_layers()), float4)?;
+        check_buffer(
+            "colour",
+            inputs.color,
+            n * u64::from(d.color_layers()),
+            float4,
+        )?;
         check_buffer("output", inputs.output, n, float4)?;
         presence(inputs.shadows.is_some(), d.lights > 0, "shadow buffers")?;
         presence(inputs.albedo.is_some(), d.albedo_gate, "albedo buffers")?;
@@ -1161,12 +1168,21 @@ impl SraaPass {
         if let Some(s) = &inputs.secondary {
             check_buffer("secondary shaded geometry", s.shaded, n, geo)?;
             check_buffer("secondary subsample geometry", s.subsamples, 4 * n, geo)?;
-            presence(s.shadows.is_some(), d.lights > 0, "secondary shadow buffers")?;
+            presence(
+                s.shadows.is_some(),
+                d.lights > 0,
+                "secondary shadow buffers",
+            )?;
             bound.push(("sec_shaded_geo", Bound::Buffer(s.shaded)));
             bound.push(("sec_sub_geo", Bound::Buffer(s.subsamples)));
             if let Some(sh) = &s.shadows {
                 check_buffer("secondary shaded shadow bits", sh.shaded, n, word)?;
-                check_buffer("secondary subsample shadow bits", sh.subsamples, 4 * n, word)?;
+                check_buffer(
+                    "secondary subsample shadow bits",
+                    sh.subsamples,
+                    4 * n,
+                    word,
+                )?;
                 bound.push(("sec_shaded_shadow", Bound::Buffer(sh.shaded)));
                 bound.push(("sec_sub_shadow", Bound::Buffer(sh.subsamples)));
             }

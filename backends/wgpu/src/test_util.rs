@@ -8,7 +8,7 @@
 //! scopes, so a shader that fails to compile is an `Err`, not a panic) and one
 //! place to change when wgpu changes.
 
-use crate::compute::{self, Access, Bindings, Program};
+use crate::compute::{self, Allocate, Bindings, BufferAccess, Program};
 use crate::context::{err, GpuContext};
 use crate::WgpuBackend;
 use bytemuck::Pod;
@@ -104,9 +104,9 @@ pub fn run_wgsl<I: Pod, O: Pod>(
     b.storage_init(
         ctx,
         "run_wgsl inputs",
-        "run_wgsl_in",
+        "run_wgsl_in".into(),
         "array<u32>",
-        Access::Read,
+        BufferAccess::Read,
         bytes,
     )?;
     b.storage(ctx, "run_wgsl outputs", "out", "array<u32>", out_bytes)?;
@@ -114,9 +114,9 @@ pub fn run_wgsl<I: Pod, O: Pod>(
         b.storage_init(
             ctx,
             "run_wgsl table",
-            t.name,
+            t.name.to_string().into(),
             t.wgsl_type,
-            Access::Read,
+            BufferAccess::Read,
             t.bytes,
         )?;
     }

@@ -13,7 +13,7 @@ use subcone_kernels::fxaa::FxaaParams;
 use subcone_passes::{FxaaPass, FxaaPassDesc};
 use subcone_scene::{PassTiming, RenderError};
 
-use crate::compute::{self, Access, Bindings, Program};
+use crate::compute::{self, Allocate, Bindings, BufferAccess, Program};
 use crate::context::{err, CacheKey, GpuContext};
 
 pub(crate) const FXAA_WGSL: &str = include_str!("fxaa.wgsl");
@@ -104,9 +104,16 @@ pub(crate) fn run(
     };
     let mut b = Bindings::new(0);
     b.uniform(ctx, "fxaa_frame", "FxaaFrame", &frame)?;
-    b.buffer("fxaa_src", "array<vec4<f32>>", Access::Read, color);
-    b.storage_texture("fxaa_in", FORMAT, "rgba32float", input.clone());
-    b.texture_2d("fxaa_out", output.clone());
+    b.buffer("fxaa_src", "array<vec4<f32>>", BufferAccess::Read, color);
+    b.storage_texture("fxaa_in", FORMAT, &input)
+        .map_err(crate::compute::bind_err)?;
+    b.texture(
+        "fxaa_out",
+        crate::compute::FLOAT,
+        wgpu::TextureViewDimension::D2,
+        false,
+        &output,
+    );
     b.storage(
         ctx,
         "post-process output buffer",
@@ -129,7 +136,7 @@ pub(crate) fn run(
         program.dispatch(enc, &from_texture, groups);
     })?;
     encoded.map_err(|e| err(format!("FXAA: {e}")))?;
-    let mut stats = b.stats.clone();
+    let mut stats = b.accounts().to_vec();
     stats.push(("post-process input", px_bytes as usize));
     stats.push(("post-process output", px_bytes as usize));
     Ok((b.get("fxaa_dst")?.clone(), stats))

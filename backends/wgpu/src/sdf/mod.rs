@@ -67,7 +67,7 @@ use subcone_scene::sdf::wgsl::WgslField;
 use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderError};
 use wgpu::util::DeviceExt;
 
-use crate::compute::{self, Access, Bindings, Program};
+use crate::compute::{self, Allocate, Bindings, BufferAccess, Program};
 use crate::context::{err, CacheKey, GpuContext};
 use crate::Job;
 
@@ -240,7 +240,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     b.storage(ctx, "color", "color_out", "array<vec4<f32>>", px_bytes)?;
     b.storage(ctx, "counts", "counts_out", "array<vec4<u32>>", px_bytes)?;
     if let Some(t) = &table {
-        b.buffer("sdf_data", "array<vec4<f32>>", Access::Read, t);
+        b.buffer("sdf_data", "array<vec4<f32>>", BufferAccess::Read, t);
     }
     if settings.aovs {
         // Depth and normal through each pixel centre (not timed, as on the CPU).

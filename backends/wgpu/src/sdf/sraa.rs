@@ -24,7 +24,7 @@ use super::{
     centre_aovs, scatter_table, shading, SdfFrame, Totals, AOVS_WGSL, ASAP_BATCH, KERNELS,
     OPAQUE_SAMPLERS, TRACE_WGSL, WORKGROUP,
 };
-use crate::compute::{self, Access, Bindings, Program};
+use crate::compute::{self, Allocate, Bindings, BufferAccess, Program};
 use crate::context::{err, GpuContext};
 use crate::triangles::{accessors, shadow_and_secondary_accessors, SHADED_SAMPLE_ACCESSORS};
 use crate::Job;
@@ -131,7 +131,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     b.storage(ctx, "color", "color", "array<vec4<f32>>", n * 16)?;
     b.storage(ctx, "counts", "counts_out", "array<vec4<u32>>", n * 16)?;
     if let Some(t) = &table {
-        b.buffer("sdf_data", "array<vec4<f32>>", Access::Read, t);
+        b.buffer("sdf_data", "array<vec4<f32>>", BufferAccess::Read, t);
     }
     b.storage(ctx, "geometry", "geo", "array<subcone_Geometry>", n * 16)?;
     b.storage(
@@ -214,7 +214,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         *c = glam::Vec3::new(p[0], p[1], p[2]);
     }
     let totals = Totals::of(&count_px, 1);
-    let mut buffers = b.stats.clone();
+    let mut buffers = b.accounts().to_vec();
     if table.is_some() {
         buffers.push(("sdf scatter table", field.data.len() * 16));
     }

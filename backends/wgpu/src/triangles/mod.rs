@@ -23,7 +23,7 @@ use subcone_scene::{
     Camera, Frame, FrameStats, Method, RayCounts, RenderError, RenderSettings, Scene,
 };
 
-use crate::compute::{self, Access, Bindings, Program};
+use crate::compute::{self, Allocate, Bindings, BufferAccess, Program};
 use crate::context::{err, GpuContext};
 use crate::Job;
 use bvh::{SceneGpu, MAX_LIGHTS, STACK_SIZE};
@@ -127,7 +127,7 @@ pub(crate) fn accessors(
     per: u32,
     default: &str,
 ) -> String {
-    let has = fb.has(var);
+    let has = fb.contains(var);
     let upper = name.to_uppercase();
     let (args, index) = if per == 1 {
         ("j: u32", "j".to_string())
@@ -158,9 +158,9 @@ fn scene_bindings(
 ) -> Result<Bindings, RenderError> {
     let mut b = Bindings::new(0);
     b.uniform(ctx, "frame", "FrameUniform", uniform)?;
-    b.buffer("nodes", "array<BvhNode>", Access::Read, &sg.nodes);
+    b.buffer("nodes", "array<BvhNode>", BufferAccess::Read, &sg.nodes);
     sg.bind_surfaces(&mut b);
-    b.buffer("lights", "array<LightGpu>", Access::Read, &sg.lights);
+    b.buffer("lights", "array<LightGpu>", BufferAccess::Read, &sg.lights);
     // 64-bit as (lo, hi) pairs: primary, geometry, shadow, secondary,
     // shaded; then [10] traversals that ended before their stack emptied,
     // [11] unused; then [12, 13] ambient-occlusion rays.
@@ -357,7 +357,7 @@ fn finish(
 ) -> Result<Frame, RenderError> {
     let (ctx, s, passes, scene) = (f.ctx, f.job.settings, f.job.passes, &f.scene);
     let n = s.width as usize * s.height as usize;
-    let mut buffers = fb.stats.clone();
+    let mut buffers = fb.accounts().to_vec();
     let mut frame = Frame::new(s.width, s.height);
     if passes.contains(Passes::POST_PROCESS) {
         let color = match color {
@@ -385,7 +385,7 @@ fn finish(
     }
     let c = counts(ctx, scene)?;
     buffers.extend_from_slice(extra);
-    buffers.extend_from_slice(&scene.stats);
+    buffers.extend_from_slice(scene.accounts());
     frame.stats = FrameStats {
         passes,
         timings,
@@ -502,7 +502,7 @@ fn subpixel_bindings<'a>(
             s.width,
             s.height,
         )?;
-        r.bind_shading_targets(&mut fb);
+        r.bind_shading_targets(&mut fb)?;
         Some(r)
     };
     let raster = subsample_geometry(f, &mut fb, &plan)?;
@@ -587,12 +587,24 @@ fn subsample_geometry(
         return Ok(None);
     }
     let r = raster::Raster::new(ctx, &f.sg, &f.uniform, s.width, s.height, plan.material)?;
-    fb.texture("sub_tex", r.view());
-    fb.stats.push(("subpixel geometry", r.target_bytes()));
-    fb.stats.push(("raster depth", r.depth_bytes()));
+    fb.texture(
+        "sub_tex",
+        crate::compute::FLOAT,
+        wgpu::TextureViewDimension::D2Array,
+        false,
+        &r.view(),
+    );
+    fb.account("subpixel geometry", r.target_bytes());
+    fb.account("raster depth", r.depth_bytes());
     if let Some(albedo) = r.albedo_view() {
-        fb.texture("sub_alb_tex", albedo);
-        fb.stats.push(("subpixel albedo", r.target_bytes()));
+        fb.texture(
+            "sub_alb_tex",
+            crate::compute::FLOAT,
+            wgpu::TextureViewDimension::D2Array,
+            false,
+            &albedo,
+        );
+        fb.account("subpixel albedo", r.target_bytes());
     }
     Ok(Some(r))
 }

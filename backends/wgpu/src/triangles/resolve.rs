@@ -24,7 +24,7 @@ use subcone_passes::{
 use subcone_scene::RenderError;
 
 use super::raster::Raster;
-use crate::compute::{Bindings, Program};
+use crate::compute::{Allocate, Bindings, Program};
 use crate::context::{err, CacheKey, GpuContext};
 
 const RESOLVE_WGSL: &str = include_str!("resolve.wgsl");
@@ -152,9 +152,15 @@ impl<'a> HybridResolve<'a> {
         stats.push(("sraa output", px * 16));
         let post = if post_process {
             let mut b = Bindings::new(0);
-            b.texture_2d("sraa_output", view(&output));
+            b.texture(
+                "sraa_output",
+                crate::compute::FLOAT,
+                wgpu::TextureViewDimension::D2,
+                false,
+                &view(&output),
+            );
             b.storage(ctx, "color", "color", "array<vec4<f32>>", px as u64 * 16)?;
-            stats.extend_from_slice(&b.stats);
+            stats.extend_from_slice(b.accounts());
             let mut program = Program::new(ctx, "sraa output copy", &[RESOLVE_WGSL], &[&b])?;
             let pipeline = program.pipeline("output_to_buffer_main")?;
             let color = b.get("color")?.clone();
@@ -182,15 +188,20 @@ impl<'a> HybridResolve<'a> {
     /// Bind what the shading pass writes, as storage textures of the frame
     /// group `fb`: `shaded_color`, and as configured `shaded_centre_depth`,
     /// `shaded_centre_normal` and `shaded_albedo`.
-    pub(crate) fn bind_shading_targets(&self, fb: &mut Bindings) {
-        fb.storage_texture("shaded_color", FLOAT4, "rgba32float", view(&self.color));
+    pub(crate) fn bind_shading_targets(&self, fb: &mut Bindings) -> Result<(), RenderError> {
+        fb.storage_texture("shaded_color", FLOAT4, &view(&self.color))
+            .map_err(crate::compute::bind_err)?;
         if let Some((d, n)) = &self.centre {
-            fb.storage_texture("shaded_centre_depth", FLOAT1, "r32float", view(d));
-            fb.storage_texture("shaded_centre_normal", HALF4, "rgba16float", view(n));
+            fb.storage_texture("shaded_centre_depth", FLOAT1, &view(d))
+                .map_err(crate::compute::bind_err)?;
+            fb.storage_texture("shaded_centre_normal", HALF4, &view(n))
+                .map_err(crate::compute::bind_err)?;
         }
         if let Some(a) = &self.albedo {
-            fb.storage_texture("shaded_albedo", FLOAT4, "rgba32float", view(a));
+            fb.storage_texture("shaded_albedo", FLOAT4, &view(a))
+                .map_err(crate::compute::bind_err)?;
         }
+        Ok(())
     }
 
     /// The shading pass's accessors (`subpixel.wgsl`) over those textures:
