@@ -17,6 +17,21 @@ use crate::bind::{self, Bound, Group, PassPipeline};
 use crate::PassError;
 
 pub(crate) const CTSS_WGSL: &str = include_str!("ctss.wgsl");
+/// The kernels' WGSL a CTSS trace (`subcone_ctss_trace`) runs, in the order
+/// a shader includes them, after `subcone_kernels::wgsl::PARAMS`: the cone
+/// (eq. 3–5), the masks (eq. 7–8), the aggregate (eq. 6), §5.3's K masks,
+/// the stepper and the trace. [`CtssPass`] composes its shader from them;
+/// a renderer tracing CTSS in a shader of its own (`subcone-wgpu`'s SDF
+/// renderer) includes the same.
+pub const CTSS_KERNELS: [&str; 6] = [
+    subcone_kernels::cone::WGSL,
+    subcone_kernels::mask::WGSL,
+    subcone_kernels::aggregate::WGSL,
+    subcone_kernels::transparency::WGSL,
+    subcone_kernels::ctss::WGSL,
+    subcone_kernels::ctss::TRACE_WGSL,
+];
+
 /// Most hit groups a trace may march ahead of shading them.
 pub const MAX_BATCH: u32 = 64;
 
@@ -285,14 +300,15 @@ impl CtssPass {
         } else {
             "fn subcone_normal(p: vec3<f32>, h: f32) -> vec3<f32> { return subcone_tetra_normal(p, h); }\n"
         };
+        let [cone, mask, aggregate, transparency, ctss, trace] = CTSS_KERNELS;
         [
             subcone_kernels::wgsl::PARAMS,
-            subcone_kernels::cone::WGSL,
-            subcone_kernels::mask::WGSL,
-            subcone_kernels::aggregate::WGSL,
-            subcone_kernels::transparency::WGSL,
-            subcone_kernels::ctss::WGSL,
-            subcone_kernels::ctss::TRACE_WGSL,
+            cone,
+            mask,
+            aggregate,
+            transparency,
+            ctss,
+            trace,
             &format!("const subcone_CTSS_BATCH: u32 = {batch}u;\n"),
             // ctss::WGSL's NoAA hook, on the host's field.
             "fn ctss_field(p: vec3<f32>) -> vec2<f32> { let f = subcone_field(p); return f.xy; }\n",

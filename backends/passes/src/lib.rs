@@ -57,7 +57,7 @@ mod layout_tests;
 mod sraa;
 
 pub use bind::{BIND_GROUP_CACHE, UNIFORM_SLOTS};
-pub use ctss::{CtssCamera, CtssFrame, CtssPass, CtssPassDesc, MAX_BATCH};
+pub use ctss::{CtssCamera, CtssFrame, CtssPass, CtssPassDesc, CTSS_KERNELS, MAX_BATCH};
 pub use fxaa::{FxaaPass, FxaaPassDesc};
 pub use sraa::{
     AlbedoBuffers, AlbedoTextures, CentreGeometry, DepthKind, GeometryLayout, NormalEncoding,

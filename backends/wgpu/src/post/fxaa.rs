@@ -8,7 +8,6 @@
 
 use std::sync::Arc;
 
-use bytemuck::{Pod, Zeroable};
 use subcone_kernels::fxaa::FxaaParams;
 use subcone_passes::{FxaaPass, FxaaPassDesc};
 use subcone_scene::{PassTiming, RenderError};
@@ -19,15 +18,6 @@ use crate::context::{err, CacheKey, GpuContext};
 pub(crate) const FXAA_WGSL: &str = include_str!("fxaa.wgsl");
 const WORKGROUP: u32 = 8;
 const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
-
-/// The frame's size; `FxaaFrame` in fxaa.wgsl (16 bytes).
-#[repr(C)]
-#[derive(Clone, Copy, Pod, Zeroable)]
-pub(crate) struct FxaaFrame {
-    pub(crate) width: u32,
-    pub(crate) height: u32,
-    pub(crate) _pad: [u32; 2],
-}
 
 /// The filtered frame and the buffers and textures a pass allocated, by
 /// name and bytes.
@@ -97,13 +87,7 @@ pub(crate) fn run(
     })?;
     let view = |t: &wgpu::Texture| t.create_view(&Default::default());
     let (input, output) = (view(&input), view(&output));
-    let frame = FxaaFrame {
-        width,
-        height,
-        _pad: [0; 2],
-    };
     let mut b = Bindings::new(0);
-    b.uniform(ctx, "fxaa_frame", "FxaaFrame", &frame)?;
     b.buffer("fxaa_src", "array<vec4<f32>>", BufferAccess::Read, color);
     b.storage_texture("fxaa_in", FORMAT, &input)
         .map_err(crate::compute::bind_err)?;

@@ -11,7 +11,7 @@
 
 pub(crate) mod bvh;
 pub(crate) mod raster;
-mod resolve;
+pub(crate) mod resolve;
 
 use std::sync::Arc;
 
@@ -37,12 +37,6 @@ const CENTRE_WGSL: &str = include_str!("centre.wgsl");
 const SUBPIXEL_WGSL: &str = include_str!("subpixel.wgsl");
 /// SRAA-RT's traced subsamples' entry point (`geometry_main`).
 const GEOMETRY_WGSL: &str = include_str!("geometry.wgsl");
-/// SRAA-RT's resolve (hybrid SRAA's is `resolve.rs`, through
-/// `subcone_passes::SraaPass`).
-const SRAA_WGSL: &str = include_str!("sraa.wgsl");
-/// The resolve's reconstruction loop, the kernels' twin of
-/// `sraa::reconstruct_layers`, shared with `subcone_passes::SraaPass`.
-const RECONSTRUCT_WGSL: &str = subcone_kernels::sraa::RECONSTRUCT_WGSL;
 
 /// The frame's constants; `FrameUniform` in frame.wgsl (160 bytes), read
 /// by the compute passes and the raster pass.
@@ -744,7 +738,8 @@ fn subpixel_header(fb: &Bindings, plan: &SubpixelPlan) -> String {
 
 /// The program of SRAA and SRAA-RT ([`subpixel`]): the frame buffers and
 /// header of [`subpixel_bindings`], the subpixel entry points and, for
-/// SRAA-RT (`rt`), its resolve with the kernels' reconstruction loop.
+/// SRAA-RT (`rt`), its traced subsamples' (its resolve is
+/// `subcone_passes::SraaPass`, [`resolve::BufferResolve`]).
 fn subpixel_program<'a>(
     f: &Setup<'a>,
     fb: &Bindings,
@@ -752,7 +747,7 @@ fn subpixel_program<'a>(
     rt: bool,
 ) -> Result<Program<'a>, RenderError> {
     let entries: &[&str] = if rt {
-        &[SUBPIXEL_WGSL, GEOMETRY_WGSL, SRAA_WGSL, RECONSTRUCT_WGSL]
+        &[SUBPIXEL_WGSL, GEOMETRY_WGSL]
     } else {
         &[SUBPIXEL_WGSL]
     };
@@ -786,10 +781,19 @@ fn subpixel(f: &Setup) -> Result<Frame, RenderError> {
             (FrameColor::Resolved(&h.resolve), h.resolve.stats.clone())
         }
         // SRAA-RT: the subsamples traced one dispatch per subsample, then
-        // its own resolve over them.
+        // subcone_passes::SraaPass over the frame's buffers.
         None => {
             let geometry = prog.pipeline("geometry_main")?;
-            let resolve = prog.pipeline("resolve_main")?;
+            let plan = SubpixelPlan::new(f);
+            let resolve = resolve::BufferResolve::new(
+                ctx,
+                &f.job.method.sraa(),
+                plan.material,
+                resolve::BufferLayers {
+                    lights: plan.layout.lights as u32,
+                    secondary: plan.layout.secondary,
+                },
+            )?;
             let subsamples = indices(ctx, "subsample indices", 4)?;
             let k = fb.get("subsample")?;
             ctx.timed_pass("geometry", &mut timings, |enc| {
@@ -797,9 +801,11 @@ fn subpixel(f: &Setup) -> Result<Frame, RenderError> {
                     prog.dispatch(enc, &geometry, groups)
                 })
             })?;
+            let mut recorded = Ok(());
             ctx.timed_pass("antialiasing", &mut timings, |enc| {
-                prog.dispatch(enc, &resolve, groups)
+                recorded = resolve.record(ctx, enc, &fb, (s.width, s.height));
             })?;
+            recorded?;
             (FrameColor::Buffer, vec![("subsample indices", 16)])
         }
     };

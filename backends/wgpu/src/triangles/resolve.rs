@@ -9,9 +9,9 @@
 //! the resolve's output texture. No buffer holds what a texture holds. Only
 //! a post-process after the resolve (FXAA forced onto an SRAA frame), which
 //! reads a colour buffer, gets the output copied into one
-//! (`resolve.wgsl`). SRAA-RT, whose subsamples are traced into buffers,
-//! keeps its resolve in `sraa.wgsl`; both run the one reconstruction loop,
-//! the kernels' `sraa::RECONSTRUCT_WGSL`.
+//! (`resolve.wgsl`). SRAA-RT, whose subsamples are traced into buffers
+//! (on triangle and SDF scenes), runs the same pass on those buffers
+//! ([`BufferResolve`], `SraaPass::encode_buffers`).
 
 use std::sync::Arc;
 use std::time::Duration;
@@ -19,7 +19,8 @@ use std::time::Duration;
 use glam::Vec3;
 use subcone_kernels::sraa::{ShadedPosition, SraaParams};
 use subcone_passes::{
-    AlbedoTextures, CentreGeometry, SraaInputs, SraaPass, SraaPassDesc, SubsampleGeometry,
+    AlbedoBuffers, AlbedoTextures, CentreGeometry, SecondaryBuffers, ShadowBuffers, SraaBuffers,
+    SraaInputs, SraaPass, SraaPassDesc, SubsampleGeometry,
 };
 use subcone_scene::RenderError;
 
@@ -40,21 +41,37 @@ const FLOAT1: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 /// still weigh 1).
 const HALF4: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
-/// The hybrid resolve's cache key: what its descriptor is built from
+/// A resolve's cache key: what its descriptor is built from
 /// ([`SraaPassKey::desc`]), the parameters by their bits.
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
 struct SraaPassKey {
     params: [u32; size_of::<SraaParams>() / 4],
     material: bool,
+    /// SRAA-RT's buffers ([`BufferLayers`]), or hybrid SRAA's textures.
+    buffers: Option<BufferLayers>,
+}
+
+/// The layers of SRAA-RT's shading buffers (`passes::LayerLayout`): gated
+/// lights and secondary shading.
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+pub(crate) struct BufferLayers {
+    pub(crate) lights: u32,
+    pub(crate) secondary: bool,
 }
 
 impl SraaPassKey {
-    /// The packed-geometry resolve with the albedo gate where `material`,
-    /// writing [`FLOAT4`].
+    /// Hybrid SRAA's: the packed-geometry resolve with the albedo gate
+    /// where `material`, writing [`FLOAT4`]. SRAA-RT's: the buffer resolve
+    /// with its layers.
     fn desc(&self) -> SraaPassDesc {
-        SraaPassDesc::packed(bytemuck::cast(self.params))
-            .with_albedo_gate(self.material)
-            .with_output_format(FLOAT4)
+        let params = bytemuck::cast(self.params);
+        match self.buffers {
+            None => SraaPassDesc::packed(params).with_output_format(FLOAT4),
+            Some(l) => SraaPassDesc::buffers(params)
+                .with_lights(l.lights)
+                .with_secondary(l.secondary),
+        }
+        .with_albedo_gate(self.material)
     }
 }
 
@@ -117,6 +134,7 @@ impl<'a> HybridResolve<'a> {
         let key = SraaPassKey {
             params: bytemuck::cast(*params),
             material,
+            buffers: None,
         };
         let sraa = pass(ctx, key)?;
         let centre = params.shaded_position() == ShadedPosition::Centre;
@@ -361,4 +379,86 @@ impl<'a> HybridResolve<'a> {
 
 fn view(t: &wgpu::Texture) -> wgpu::TextureView {
     t.create_view(&Default::default())
+}
+
+/// SRAA-RT's pass "antialiasing" (the paper's pass 2) through
+/// [`subcone_passes::SraaPass`] on the frame's storage buffers
+/// (`GeometryLayout::Buffers`), triangles and SDF scenes alike: the shaded
+/// samples' geometry `geo` and layers `values`, the traced subsamples
+/// `sub_geo_buf`, and as planned their shadow bits, mirror hits and albedo,
+/// into the colour buffer `color`. The buffers are bound under these names
+/// in the frame's group.
+pub(crate) struct BufferResolve {
+    sraa: Arc<SraaPass>,
+}
+
+impl BufferResolve {
+    /// The resolve of `params` over `layers`, with the albedo gate where
+    /// `material`; compiled once per device and configuration, so build
+    /// it before timing the pass.
+    pub(crate) fn new(
+        ctx: &GpuContext,
+        params: &SraaParams,
+        material: bool,
+        layers: BufferLayers,
+    ) -> Result<Self, RenderError> {
+        let key = SraaPassKey {
+            params: bytemuck::cast(*params),
+            material,
+            buffers: Some(layers),
+        };
+        Ok(BufferResolve {
+            sraa: pass(ctx, key)?,
+        })
+    }
+
+    /// Record the resolve of the `width × height` frame whose buffers `fb`
+    /// binds.
+    pub(crate) fn record(
+        &self,
+        ctx: &GpuContext,
+        enc: &mut wgpu::CommandEncoder,
+        fb: &Bindings,
+        (width, height): (u32, u32),
+    ) -> Result<(), RenderError> {
+        let pair = |shaded: &str, subsamples: &str| match (
+            fb.buffer_named(shaded),
+            fb.buffer_named(subsamples),
+        ) {
+            (Some(a), Some(b)) => Ok(Some((a, b))),
+            (None, None) => Ok(None),
+            _ => Err(err(format!(
+                "sraa-rt resolve: `{shaded}` and `{subsamples}` are bound apart"
+            ))),
+        };
+        fn shadows<'b>(
+            s: Option<(&'b wgpu::Buffer, &'b wgpu::Buffer)>,
+        ) -> Option<ShadowBuffers<'b>> {
+            s.map(|(shaded, subsamples)| ShadowBuffers { shaded, subsamples })
+        }
+        let secondary = pair("geo2_buf", "sub_geo2_buf")?.map(|(shaded, subsamples)| {
+            Ok::<_, RenderError>(SecondaryBuffers {
+                shaded,
+                subsamples,
+                shadows: shadows(pair("shadow2_buf", "sub_shadow2_buf")?),
+            })
+        });
+        let inputs = SraaBuffers {
+            size: (width, height),
+            shaded: fb.get("geo")?,
+            subsamples: fb.get("sub_geo_buf")?,
+            color: fb.get("values")?,
+            shadows: shadows(pair("shadow_buf", "sub_shadow_buf")?),
+            albedo: pair("albedo_buf", "sub_albedo_buf")?
+                .map(|(shaded, subsamples)| AlbedoBuffers { shaded, subsamples }),
+            secondary: secondary.transpose()?,
+            output: fb.get("color")?,
+        };
+        self.sraa
+            .encode_buffers(&ctx.device, &ctx.queue, enc, &inputs, None)
+            .map_err(|e| err(format!("sraa-rt resolve: {e}")))?;
+        // This frame's buffers are its own: the pass need not keep them.
+        self.sraa.release_views();
+        Ok(())
+    }
 }
