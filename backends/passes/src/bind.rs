@@ -245,6 +245,49 @@ impl Group {
         Ok(())
     }
 
+    /// Refuse a group the device cannot bind: more storage buffers, sampled
+    /// textures or storage textures than its limits per shader stage
+    /// (`wgpu::Limits::max_storage_buffers_per_shader_stage` and its
+    /// neighbours; WebGPU's defaults are 8, 16 and 4).
+    pub fn check_limits(&self, device: &wgpu::Device) -> Result<(), PassError> {
+        let limits = device.limits();
+        let count = |f: fn(&wgpu::BindingType) -> bool| {
+            self.list.iter().filter(|d| f(&d.ty)).count() as u32
+        };
+        let kinds = [
+            (
+                "storage buffers",
+                count(|t| {
+                    matches!(
+                        t,
+                        wgpu::BindingType::Buffer {
+                            ty: wgpu::BufferBindingType::Storage { .. },
+                            ..
+                        }
+                    )
+                }),
+                limits.max_storage_buffers_per_shader_stage,
+            ),
+            (
+                "sampled textures",
+                count(|t| matches!(t, wgpu::BindingType::Texture { .. })),
+                limits.max_sampled_textures_per_shader_stage,
+            ),
+            (
+                "storage textures",
+                count(|t| matches!(t, wgpu::BindingType::StorageTexture { .. })),
+                limits.max_storage_textures_per_shader_stage,
+            ),
+        ];
+        match kinds.iter().find(|(_, n, max)| n > max) {
+            Some((what, n, max)) => Err(PassError::Config(format!(
+                "the configuration binds {n} {what}; the device allows {max} per shader stage \
+                 (open it with the adapter's limits)"
+            ))),
+            None => Ok(()),
+        }
+    }
+
     /// The WGSL declarations, `@group(index) @binding(i) var…;` in list
     /// order, one line each.
     pub fn declarations(&self) -> String {
@@ -716,7 +759,8 @@ impl PassPipeline {
     /// Compile `source`'s `entry` over `group` (group 0) and `host_layout`
     /// (group 1, when the host binds one), and make the uniform buffers.
     /// `source` is the whole shader, the group's declarations included.
-    /// `label` names every object made.
+    /// `label` names every object made. Refuses a group beyond the
+    /// device's limits ([`Group::check_limits`]) before creating anything.
     pub(crate) fn new(
         device: &wgpu::Device,
         label: &'static str,
@@ -724,7 +768,8 @@ impl PassPipeline {
         source: String,
         host_layout: Option<&wgpu::BindGroupLayout>,
         entry: &str,
-    ) -> Self {
+    ) -> Result<Self, PassError> {
+        group.check_limits(device)?;
         let layout = group.layout(device, label);
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(label),
@@ -762,14 +807,14 @@ impl PassPipeline {
                 .collect(),
             ..State::default()
         };
-        PassPipeline {
+        Ok(PassPipeline {
             label,
             group,
             layout,
             pipeline,
             uniforms,
             state: std::sync::Mutex::new(state),
-        }
+        })
     }
 
     /// Drop every cached bind group, and with them the pass's clones of the

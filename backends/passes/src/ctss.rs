@@ -271,7 +271,7 @@ impl CtssPass {
             source,
             desc.host_layout,
             "subcone_pass_ctss_main",
-        );
+        )?;
         Ok(CtssPass {
             output_format: desc.output_format,
             host_group: desc.host_layout.is_some(),

@@ -86,7 +86,7 @@ impl FxaaPass {
         bind::check_output_format(desc.output_format)?;
         let group = Self::group(desc.output_format)?;
         let source = Self::source(&group);
-        let pipeline = PassPipeline::new(device, "subcone fxaa", group, source, None, "fxaa_main");
+        let pipeline = PassPipeline::new(device, "subcone fxaa", group, source, None, "fxaa_main")?;
         Ok(FxaaPass {
             desc: *desc,
             pipeline,

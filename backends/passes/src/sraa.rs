@@ -763,7 +763,7 @@ impl SraaPass {
             source,
             None,
             "sraa_resolve_main",
-        );
+        )?;
         Ok(SraaPass {
             desc: *desc,
             pipeline,

@@ -477,9 +477,12 @@ fn gpu(device: &wgpu::Device, queue: &wgpu::Queue, d: &Data, c: &Case) -> Vec<Ve
 
 #[test]
 fn sraa_pass_matches_the_cpu_resolver_in_every_convention() {
-    let Some((device, queue)) =
-        common::device_or_skip("resolve conventions", host_sraa::open_device)
-    else {
+    // The adapter's limits: the buffer form with lights, mirrors and the
+    // albedo gate binds 12 storage buffers (WebGPU's default allows 8).
+    let Some((device, queue)) = common::device_or_skip(
+        "resolve conventions",
+        host_sraa::host::open_device_with_adapter_limits,
+    ) else {
         return;
     };
     let cases = [
@@ -651,6 +654,16 @@ fn sraa_pass_buffers_are_checked() {
         Err(PassError::Unexpected("shadow buffers"))
     );
     let textures = SraaPass::new(&device, &SraaPassDesc::packed(SraaParams::TUNED)).expect("pass");
+    // On a device of WebGPU's default limits (8 storage buffers per stage),
+    // the 12 buffers of lights, mirrors and the albedo gate are refused.
+    let full = SraaPassDesc::buffers(SraaParams::TUNED)
+        .with_lights(2)
+        .with_secondary(true)
+        .with_albedo_gate(true);
+    assert!(matches!(
+        SraaPass::new(&device, &full),
+        Err(PassError::Config(_))
+    ));
     assert!(matches!(
         textures.encode_buffers(&device, &queue, &mut enc, &inputs, None),
         Err(PassError::Config(_))

@@ -25,8 +25,7 @@ use subcone_scene::RenderError;
 use wgpu::util::DeviceExt;
 
 use crate::context::{err, CacheKey, GpuContext};
-use subcone_passes::bind;
-pub(crate) use subcone_passes::bind::{Bindings, BufferAccess};
+use subcone_passes::bind::{self, Bindings, BufferAccess};
 
 /// What every shader starts with: the kernels' shared structs and the one
 /// WGSL spelling of infinity and of the NaN and finiteness tests

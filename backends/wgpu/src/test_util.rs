@@ -8,10 +8,11 @@
 //! scopes, so a shader that fails to compile is an `Err`, not a panic) and one
 //! place to change when wgpu changes.
 
-use crate::compute::{self, Allocate, Bindings, BufferAccess, Program};
+use crate::compute::{self, Allocate, Program};
 use crate::context::{err, GpuContext};
 use crate::WgpuBackend;
 use bytemuck::Pod;
+use subcone_passes::bind::{Bindings, BufferAccess};
 use subcone_scene::RenderError;
 
 /// The backend on the shared device, or `None` when there is no adapter and

@@ -12,8 +12,9 @@ use subcone_kernels::fxaa::FxaaParams;
 use subcone_passes::{FxaaPass, FxaaPassDesc};
 use subcone_scene::{PassTiming, RenderError};
 
-use crate::compute::{self, Allocate, Bindings, BufferAccess, Program};
+use crate::compute::{self, Allocate, Program};
 use crate::context::{err, CacheKey, GpuContext};
+use subcone_passes::bind::{Bindings, BufferAccess};
 
 pub(crate) const FXAA_WGSL: &str = include_str!("fxaa.wgsl");
 const WORKGROUP: u32 = 8;

@@ -67,9 +67,10 @@ use subcone_scene::sdf::wgsl::WgslField;
 use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderError};
 use wgpu::util::DeviceExt;
 
-use crate::compute::{self, Allocate, Bindings, BufferAccess, Program};
+use crate::compute::{self, Allocate, Program};
 use crate::context::{err, CacheKey, GpuContext};
 use crate::Job;
+use subcone_passes::bind::{Bindings, BufferAccess};
 
 pub(crate) const TRACE_WGSL: &str = include_str!("trace.wgsl");
 /// The CTSS / sphere-tracing frame's entry point (`sdf_render`).

@@ -25,11 +25,12 @@ use super::{
     centre_aovs, kernels, scatter_table, shading, SdfFrame, Totals, AOVS_WGSL, ASAP_BATCH,
     OPAQUE_SAMPLERS, TRACE_WGSL, WORKGROUP,
 };
-use crate::compute::{self, Allocate, Bindings, BufferAccess, Program};
+use crate::compute::{self, Allocate, Program};
 use crate::context::{err, GpuContext};
 use crate::triangles::resolve::{BufferLayers, BufferResolve};
 use crate::triangles::{accessors, shadow_and_secondary_accessors, SHADED_SAMPLE_ACCESSORS};
 use crate::Job;
+use subcone_passes::bind::{Bindings, BufferAccess};
 
 /// This module's entry points (`sdf_sraa_shade`, `sdf_sraa_geometry`).
 const SDF_SRAA_WGSL: &str = include_str!("sraa.wgsl");

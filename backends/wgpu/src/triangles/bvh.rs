@@ -15,8 +15,8 @@ use obvhs::BvhBuildParams;
 use subcone_scene::{Albedo, Light, RenderError, Scene, TriangleMesh};
 use wgpu::util::DeviceExt;
 
-use crate::compute::{Bindings, BufferAccess};
 use crate::context::{err, CacheKey, GpuContext};
+use subcone_passes::bind::{Bindings, BufferAccess};
 
 /// Entries of the traversal stack in `trace.wgsl`. A BVH deeper than this is
 /// refused at upload (obvhs' builds stay far below it).

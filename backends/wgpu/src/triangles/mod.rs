@@ -23,10 +23,11 @@ use subcone_scene::{
     Camera, Frame, FrameStats, Method, RayCounts, RenderError, RenderSettings, Scene,
 };
 
-use crate::compute::{self, Allocate, Bindings, BufferAccess, Program};
+use crate::compute::{self, Allocate, Program};
 use crate::context::{err, GpuContext};
 use crate::Job;
 use bvh::{SceneGpu, MAX_LIGHTS, STACK_SIZE};
+use subcone_passes::bind::{Bindings, BufferAccess};
 
 pub(crate) const TRACE_WGSL: &str = include_str!("trace.wgsl");
 pub(crate) const FRAME_WGSL: &str = include_str!("frame.wgsl");

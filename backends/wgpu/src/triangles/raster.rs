@@ -12,8 +12,9 @@ use subcone_scene::RenderError;
 
 use super::bvh::SceneGpu;
 use super::FrameUniform;
-use crate::compute::{self, Allocate, Bindings};
+use crate::compute::{self, Allocate};
 use crate::context::{err, CacheKey, GpuContext};
+use subcone_passes::bind::Bindings;
 
 const RASTER_WGSL: &str = include_str!("raster.wgsl");
 

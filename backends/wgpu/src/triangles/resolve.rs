@@ -25,8 +25,9 @@ use subcone_passes::{
 use subcone_scene::RenderError;
 
 use super::raster::Raster;
-use crate::compute::{Allocate, Bindings, Program};
+use crate::compute::{Allocate, Program};
 use crate::context::{err, CacheKey, GpuContext};
+use subcone_passes::bind::Bindings;
 
 const RESOLVE_WGSL: &str = include_str!("resolve.wgsl");
 
