@@ -921,23 +921,19 @@ impl SraaPass {
         );
         if packed {
             h += &format!(
-                "fn sraa_load_sub_depth(p: vec2<i32>, k: u32) -> f32 {{ return textureLoad(sub_depth, p, {sub_at}).w; }}\n\
-                 fn sraa_load_sub_normal(p: vec2<i32>, k: u32) -> vec3<f32> {{ return textureLoad(sub_depth, p, {sub_at}).xyz; }}\n"
+                "fn sraa_load_sub(p: vec2<i32>, k: u32) -> vec4<f32> {{ return textureLoad(sub_depth, p, {sub_at}); }}\n"
             );
         } else {
             h += &format!(
-                "fn sraa_load_sub_depth(p: vec2<i32>, k: u32) -> f32 {{ return textureLoad(sub_depth, p, {sub_at}){scalar}; }}\n\
-                 fn sraa_load_sub_normal(p: vec2<i32>, k: u32) -> vec3<f32> {{ return textureLoad(sub_normal, p, {sub_at}).xyz; }}\n"
+                "fn sraa_load_sub(p: vec2<i32>, k: u32) -> vec4<f32> {{ return vec4<f32>(textureLoad(sub_normal, p, {sub_at}).xyz, textureLoad(sub_depth, p, {sub_at}){scalar}); }}\n"
             );
         }
         if desc.shaded_at_centre() {
             h += &format!(
-                "fn sraa_load_shaded_depth(p: vec2<i32>) -> f32 {{ return textureLoad(centre_depth, p, 0){scalar}; }}\n\
-                 fn sraa_load_shaded_normal(p: vec2<i32>) -> vec3<f32> {{ return textureLoad(centre_normal, p, 0).xyz; }}\n"
+                "fn sraa_load_shaded(p: vec2<i32>) -> vec4<f32> {{ return vec4<f32>(textureLoad(centre_normal, p, 0).xyz, textureLoad(centre_depth, p, 0){scalar}); }}\n"
             );
         } else {
-            h += "fn sraa_load_shaded_depth(p: vec2<i32>) -> f32 { return 0.0; }\n\
-                  fn sraa_load_shaded_normal(p: vec2<i32>) -> vec3<f32> { return vec3<f32>(0.0); }\n";
+            h += "fn sraa_load_shaded(p: vec2<i32>) -> vec4<f32> { return vec4<f32>(0.0); }\n";
         }
         if desc.color_layers() == 1 {
             h += "fn sraa_load_color(p: vec2<i32>, l: u32) -> vec3<f32> { return textureLoad(color, p, 0).xyz; }\n";
@@ -980,10 +976,8 @@ impl SraaPass {
         let mut h = format!(
             "const SRAA_LAYERS: u32 = {}u;\n\
              fn sraa_pixel(p: vec2<i32>) -> u32 {{ return u32(p.y) * frame.width + u32(p.x); }}\n\
-             fn sraa_load_sub_depth(p: vec2<i32>, k: u32) -> f32 {{ return sub_geo[sraa_pixel(p) * 4u + k].depth; }}\n\
-             fn sraa_load_sub_normal(p: vec2<i32>, k: u32) -> vec3<f32> {{ return sub_geo[sraa_pixel(p) * 4u + k].normal; }}\n\
-             fn sraa_load_shaded_depth(p: vec2<i32>) -> f32 {{ return shaded_geo[sraa_pixel(p)].depth; }}\n\
-             fn sraa_load_shaded_normal(p: vec2<i32>) -> vec3<f32> {{ return shaded_geo[sraa_pixel(p)].normal; }}\n\
+             fn sraa_load_sub(p: vec2<i32>, k: u32) -> vec4<f32> {{ let g = sub_geo[sraa_pixel(p) * 4u + k]; return vec4<f32>(g.normal, g.depth); }}\n\
+             fn sraa_load_shaded(p: vec2<i32>) -> vec4<f32> {{ let g = shaded_geo[sraa_pixel(p)]; return vec4<f32>(g.normal, g.depth); }}\n\
              fn sraa_load_color(p: vec2<i32>, l: u32) -> vec3<f32> {{ return color[sraa_pixel(p) * SRAA_LAYERS + l].xyz; }}\n\
              fn sraa_store(p: vec2<i32>, c: vec4<f32>) {{ sraa_output[sraa_pixel(p)] = c; }}\n",
             desc.color_layers()

@@ -15,10 +15,11 @@
 // UNSIGNED_NORMALS, SHADED_GIVEN (the shaded sample's geometry is an input
 // of its own), DECODED (geometry is stored as the kernels' subcone_Geometry,
 // taken as it is), SECONDARY, the bindings, the loaders
-// sraa_load_sub_depth/normal/shadow/albedo (subsample k of pixel p),
+// sraa_load_sub (normal and depth), sraa_load_sub_shadow and
+// sraa_load_sub_albedo (subsample k of pixel p),
 // sraa_load_sec_shaded / sraa_load_sec_sub (secondary normal and path
 // length), sraa_load_sec_shaded_shadow / sraa_load_sec_sub_shadow,
-// sraa_load_shaded_depth/normal (the shaded sample's own geometry),
+// sraa_load_shaded (the shaded sample's own normal and depth),
 // sraa_load_color (layer l), sraa_load_shaded_shadow and
 // sraa_load_shaded_albedo (the shaded sample), and sraa_store (the output).
 
@@ -69,22 +70,22 @@ fn sraa_decode_normal(v: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(0.0);
 }
 
-// The geometry of a sample from its stored depth and normal: decoded, or
-// as stored (DECODED: already the kernels' convention).
-fn sraa_geometry(depth: f32, normal: vec3<f32>) -> subcone_Geometry {
+// The geometry of a sample from its stored normal (.xyz) and depth (.w):
+// decoded, or as stored (DECODED: already the kernels' convention).
+fn sraa_geometry(v: vec4<f32>) -> subcone_Geometry {
     if DECODED {
-        return subcone_Geometry(normal, depth);
+        return subcone_Geometry(v.xyz, v.w);
     }
-    let z = sraa_decode_depth(depth);
+    let z = sraa_decode_depth(v.w);
     if z == subcone_inf() {
         return subcone_Geometry(vec3<f32>(0.0), z);
     }
-    return subcone_Geometry(sraa_decode_normal(normal), z);
+    return subcone_Geometry(sraa_decode_normal(v.xyz), z);
 }
 
 // Geometric subsample k of pixel p (at SUBPIXEL_OFFSETS[k]).
 fn sraa_sub_geo(p: vec2<i32>, k: u32) -> subcone_Geometry {
-    return sraa_geometry(sraa_load_sub_depth(p, k), sraa_load_sub_normal(p, k));
+    return sraa_geometry(sraa_load_sub(p, k));
 }
 
 // The geometry of pixel p's shaded sample: its own (SHADED_GIVEN: the
@@ -92,7 +93,7 @@ fn sraa_sub_geo(p: vec2<i32>, k: u32) -> subcone_Geometry {
 // else subsample SHADED_SUBSAMPLE.
 fn sraa_shaded_geo(p: vec2<i32>) -> subcone_Geometry {
     if SHADED_GIVEN {
-        return sraa_geometry(sraa_load_shaded_depth(p), sraa_load_shaded_normal(p));
+        return sraa_geometry(sraa_load_shaded(p));
     }
     return sraa_sub_geo(p, subcone_SHADED_SUBSAMPLE);
 }
