@@ -69,18 +69,6 @@ pub(crate) trait Allocate {
         bytes: u64,
     ) -> Result<(), RenderError>;
 
-    /// A storage buffer holding `contents`, bound as `var: ty` with
-    /// `access` and accounted as `name`.
-    fn storage_init(
-        &mut self,
-        ctx: &GpuContext,
-        name: &'static str,
-        var: std::borrow::Cow<'static, str>,
-        ty: &str,
-        access: BufferAccess,
-        contents: &[u8],
-    ) -> Result<(), RenderError>;
-
     /// The buffer bound as `var`.
     fn get(&self, var: &str) -> Result<&wgpu::Buffer, RenderError>;
 }
@@ -126,29 +114,6 @@ impl Allocate for Bindings {
         })?;
         self.account(name, bytes as usize);
         self.buffer(var, ty, BufferAccess::ReadWrite, &b);
-        Ok(())
-    }
-
-    fn storage_init(
-        &mut self,
-        ctx: &GpuContext,
-        name: &'static str,
-        var: std::borrow::Cow<'static, str>,
-        ty: &str,
-        access: BufferAccess,
-        contents: &[u8],
-    ) -> Result<(), RenderError> {
-        ctx.check_buffer_size(name, contents.len() as u64)?;
-        let b = ctx.scoped(name, || {
-            ctx.device
-                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some(name),
-                    contents,
-                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-                })
-        })?;
-        self.account(name, contents.len());
-        self.buffer(var, ty, access, &b);
         Ok(())
     }
 
