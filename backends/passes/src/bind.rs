@@ -19,7 +19,7 @@
 //! [`crate::CtssPass`] host binds) the same way.
 //!
 //! Besides, the crate-private checks of the host's views and
-//! [`PassPipeline`], what every pass records through: its compiled
+//! `PassPipeline`, what every pass records through: its compiled
 //! pipeline, uniform slots and cached bind groups.
 
 use std::borrow::Cow;
@@ -342,13 +342,11 @@ impl Group {
     }
 }
 
-/// A resource bound by [`Bindings`] (wgpu's handles are reference counted:
-/// a clone is the same object).
+/// A resource bound by [`Bindings`] or cached by a pass (wgpu's handles
+/// are reference counted: a clone is the same object).
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
-pub enum Resource {
-    /// A whole buffer.
+enum Resource {
     Buffer(wgpu::Buffer),
-    /// A texture view.
     Texture(wgpu::TextureView),
 }
 
@@ -912,7 +910,7 @@ impl PassPipeline {
             None => {
                 let group = self.bind_group(device, &ordered);
                 let entry = CachedGroup {
-                    resources: ordered.iter().map(Bound::to_owned).collect(),
+                    resources: ordered.iter().map(|b| b.to_resource()).collect(),
                     group,
                     used: now,
                 };
@@ -984,7 +982,7 @@ impl Bound<'_> {
         }
     }
 
-    fn to_owned(&self) -> Resource {
+    fn to_resource(self) -> Resource {
         match self {
             Bound::Texture(v) => Resource::Texture((*v).clone()),
             Bound::Buffer(b) => Resource::Buffer((*b).clone()),
