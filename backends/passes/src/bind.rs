@@ -1,109 +1,312 @@
-//! One bind group declared once: the WGSL declarations and the wgpu layout
-//! come from the same list, so a binding number cannot drift between them
-//! (the rule of `subcone-wgpu`'s `compute::Bindings`, for textures).
-//! Shared checks of the host's views, and what every pass records
-//! through: its compiled pipeline, uniform buffers and bind groups
-//! ([`PassPipeline`]).
+//! Bindings declared once, for the passes and for any wgpu program.
+//!
+//! A [`Group`] lists the bindings of one bind group in binding order
+//! (buffers: uniform, read-only or read-write storage; sampled textures;
+//! write-only storage textures), and from that one list come both the WGSL
+//! declarations ([`Group::declarations`], `@group(g) @binding(i) var…`) and
+//! the wgpu layout ([`Group::layout`]), so a binding number, a type or an
+//! access mode cannot drift between the shader and the pipeline. A shader
+//! written against a `Group` holds no `@binding` line of its own.
+//! [`Bindings`] is a `Group` together with the resources it binds (a
+//! program that owns its buffers, such as a renderer's frame); it also
+//! makes the bind group ([`Bindings::bind_group`]). [`pipeline_layout`]
+//! and [`compute_pipeline`] compile a compute pipeline over groups.
+//!
+//! Every pass of this crate declares its group 0 here; `subcone-wgpu`
+//! declares every group of its compute and raster programs here too, so
+//! there is one binding layer between the two. The module is public so
+//! that a host can declare its own group (e.g. the `@group(1)` a
+//! [`crate::CtssPass`] host binds) the same way.
+//!
+//! Besides, the crate-private checks of the host's views and
+//! `PassPipeline`, what every pass records through: its compiled
+//! pipeline, uniform slots and cached bind groups.
+
+use std::borrow::Cow;
 
 use crate::PassError;
 
-struct Decl {
-    name: &'static str,
-    wgsl: String,
-    ty: wgpu::BindingType,
-    /// The size of a uniform's value; `None` for a texture.
-    uniform: Option<u64>,
+/// How a shader accesses a buffer binding.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum BufferAccess {
+    /// `var<uniform>`.
+    Uniform,
+    /// `var<storage, read>`.
+    Read,
+    /// `var<storage, read_write>`.
+    ReadWrite,
 }
 
-/// The bindings of group 0 of one pass, in binding order: uniforms (each
-/// a [`UniformRing`]) and textures (the host's views).
-#[derive(Default)]
-pub(crate) struct Group {
+#[derive(Clone, Debug)]
+struct Decl {
+    name: Cow<'static, str>,
+    /// The declaration after `var`: `<space> name: type`.
+    wgsl: String,
+    ty: wgpu::BindingType,
+    /// The size of a uniform bound at a dynamic offset (a pass's
+    /// [`UniformRing`]); `None` for every other binding.
+    ring: Option<u64>,
+}
+
+/// The bindings of one bind group, in binding order: binding `i` is the
+/// `i`-th added. Declarations only; [`Bindings`] adds the resources.
+#[derive(Clone, Debug)]
+pub struct Group {
+    index: u32,
+    visibility: wgpu::ShaderStages,
     list: Vec<Decl>,
 }
 
+impl Default for Group {
+    /// An empty group 0 of a compute shader.
+    fn default() -> Self {
+        Group::new(0)
+    }
+}
+
+/// WGSL's spelling of the texture type of `sample_type`, `view_dimension`
+/// and `multisampled`: `texture_2d<f32>`, `texture_depth_2d_array`,
+/// `texture_multisampled_2d<u32>`… (2D and 2D-array views; other
+/// dimensions are not bound by subcone's programs).
+fn texture_type(
+    sample_type: wgpu::TextureSampleType,
+    view_dimension: wgpu::TextureViewDimension,
+    multisampled: bool,
+) -> String {
+    let array = view_dimension == wgpu::TextureViewDimension::D2Array;
+    let scalar = match sample_type {
+        wgpu::TextureSampleType::Depth => {
+            return match (multisampled, array) {
+                (true, _) => "texture_depth_multisampled_2d".into(),
+                (false, true) => "texture_depth_2d_array".into(),
+                (false, false) => "texture_depth_2d".into(),
+            }
+        }
+        wgpu::TextureSampleType::Float { .. } => "f32",
+        wgpu::TextureSampleType::Uint => "u32",
+        wgpu::TextureSampleType::Sint => "i32",
+    };
+    match (multisampled, array) {
+        (true, _) => format!("texture_multisampled_2d<{scalar}>"),
+        (false, true) => format!("texture_2d_array<{scalar}>"),
+        (false, false) => format!("texture_2d<{scalar}>"),
+    }
+}
+
 impl Group {
-    fn push(&mut self, name: &'static str, wgsl: String, ty: wgpu::BindingType) {
-        let uniform = match ty {
-            wgpu::BindingType::Buffer {
-                min_binding_size, ..
-            } => min_binding_size.map(u64::from),
-            _ => None,
-        };
+    /// An empty group `index` (the `@group` of its declarations) of a
+    /// compute shader.
+    pub fn new(index: u32) -> Self {
+        Self::visible_in(index, wgpu::ShaderStages::COMPUTE)
+    }
+
+    /// An empty group `index` visible to `stages` (a raster program's
+    /// group is read by its vertex and fragment stages).
+    pub fn visible_in(index: u32, stages: wgpu::ShaderStages) -> Self {
+        Group {
+            index,
+            visibility: stages,
+            list: Vec::new(),
+        }
+    }
+
+    /// The group's index, `@group(index)`.
+    pub fn index(&self) -> u32 {
+        self.index
+    }
+
+    /// Bindings declared so far.
+    pub fn len(&self) -> usize {
+        self.list.len()
+    }
+
+    /// Whether nothing is declared.
+    pub fn is_empty(&self) -> bool {
+        self.list.is_empty()
+    }
+
+    /// Whether a binding named `name` is declared.
+    pub fn contains(&self, name: &str) -> bool {
+        self.list.iter().any(|d| d.name == name)
+    }
+
+    fn push(
+        &mut self,
+        name: Cow<'static, str>,
+        wgsl: String,
+        ty: wgpu::BindingType,
+        ring: Option<u64>,
+    ) {
         self.list.push(Decl {
             name,
             wgsl,
             ty,
-            uniform,
+            ring,
         });
     }
 
-    /// `var<uniform> name: ty`, of `T`'s size: one slot of the pass's
-    /// uniform ring ([`UniformRing`]), bound at a dynamic offset.
-    pub(crate) fn uniform<T: bytemuck::Pod>(&mut self, name: &'static str, ty: &str) {
+    /// A whole buffer `var<…> name: ty` with `access`, of any size (no
+    /// dynamic offset).
+    pub fn buffer(&mut self, name: impl Into<Cow<'static, str>>, ty: &str, access: BufferAccess) {
+        let (space, ty_) = match access {
+            BufferAccess::Uniform => ("<uniform>", wgpu::BufferBindingType::Uniform),
+            BufferAccess::Read => (
+                "<storage, read>",
+                wgpu::BufferBindingType::Storage { read_only: true },
+            ),
+            BufferAccess::ReadWrite => (
+                "<storage, read_write>",
+                wgpu::BufferBindingType::Storage { read_only: false },
+            ),
+        };
+        let name = name.into();
         self.push(
-            name,
-            format!("var<uniform> {name}: {ty};"),
+            name.clone(),
+            format!("{space} {name}: {ty}"),
             wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
-                has_dynamic_offset: true,
-                min_binding_size: wgpu::BufferSize::new(size_of::<T>() as u64),
+                ty: ty_,
+                has_dynamic_offset: false,
+                min_binding_size: None,
             },
+            None,
         );
     }
 
-    /// A sampled texture `var name: ty`, read with `textureLoad`.
-    pub(crate) fn texture(
+    /// `var<uniform> name: ty`, of `T`'s size: one slot of a pass's
+    /// uniform ring ([`UniformRing`]), bound at a dynamic offset.
+    pub(crate) fn ring_uniform<T: bytemuck::Pod>(
         &mut self,
-        name: &'static str,
+        name: impl Into<Cow<'static, str>>,
         ty: &str,
+    ) {
+        let size = size_of::<T>() as u64;
+        let name = name.into();
+        self.push(
+            name.clone(),
+            format!("<uniform> {name}: {ty}"),
+            wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: true,
+                min_binding_size: wgpu::BufferSize::new(size),
+            },
+            Some(size),
+        );
+    }
+
+    /// A sampled texture `name`, read with `textureLoad`; its WGSL type
+    /// follows from the arguments (`texture_2d_array<f32>` for a 2D array
+    /// of floats, `texture_depth_multisampled_2d` for a multisampled depth
+    /// texture…).
+    pub fn texture(
+        &mut self,
+        name: impl Into<Cow<'static, str>>,
         sample_type: wgpu::TextureSampleType,
         view_dimension: wgpu::TextureViewDimension,
         multisampled: bool,
     ) {
+        let ty = texture_type(sample_type, view_dimension, multisampled);
+        let name = name.into();
         self.push(
-            name,
-            format!("var {name}: {ty};"),
+            name.clone(),
+            format!(" {name}: {ty}"),
             wgpu::BindingType::Texture {
                 sample_type,
                 view_dimension,
                 multisampled,
             },
+            None,
         );
     }
 
-    /// A write-only storage texture of `format`.
-    pub(crate) fn storage_texture(&mut self, name: &'static str, format: wgpu::TextureFormat) {
-        let f = storage_format_name(format).unwrap_or("rgba32float");
+    /// A write-only 2D storage texture `name` of `format`; a
+    /// [`PassError::Format`] for a format without a WGSL storage name here
+    /// (`Rgba8Unorm`, `Rgba16Float`, `Rgba32Float`, `R32Float`, `R32Uint`).
+    pub fn storage_texture(
+        &mut self,
+        name: impl Into<Cow<'static, str>>,
+        format: wgpu::TextureFormat,
+    ) -> Result<(), PassError> {
+        let f = storage_format_name(format).ok_or(PassError::Format {
+            what: "storage texture",
+            found: format,
+            expected: STORAGE_FORMATS,
+        })?;
+        let name = name.into();
         self.push(
-            name,
-            format!("var {name}: texture_storage_2d<{f}, write>;"),
+            name.clone(),
+            format!(" {name}: texture_storage_2d<{f}, write>"),
             wgpu::BindingType::StorageTexture {
                 access: wgpu::StorageTextureAccess::WriteOnly,
                 format,
                 view_dimension: wgpu::TextureViewDimension::D2,
             },
+            None,
         );
+        Ok(())
     }
 
-    /// The WGSL declarations, `@group(0) @binding(i)` in list order.
-    pub(crate) fn declarations(&self) -> String {
+    /// Refuse a group the device cannot bind: more storage buffers, sampled
+    /// textures or storage textures than its limits per shader stage
+    /// (`wgpu::Limits::max_storage_buffers_per_shader_stage` and its
+    /// neighbours; WebGPU's defaults are 8, 16 and 4).
+    pub fn check_limits(&self, device: &wgpu::Device) -> Result<(), PassError> {
+        let limits = device.limits();
+        let count = |f: fn(&wgpu::BindingType) -> bool| {
+            self.list.iter().filter(|d| f(&d.ty)).count() as u32
+        };
+        let kinds = [
+            (
+                "storage buffers",
+                count(|t| {
+                    matches!(
+                        t,
+                        wgpu::BindingType::Buffer {
+                            ty: wgpu::BufferBindingType::Storage { .. },
+                            ..
+                        }
+                    )
+                }),
+                limits.max_storage_buffers_per_shader_stage,
+            ),
+            (
+                "sampled textures",
+                count(|t| matches!(t, wgpu::BindingType::Texture { .. })),
+                limits.max_sampled_textures_per_shader_stage,
+            ),
+            (
+                "storage textures",
+                count(|t| matches!(t, wgpu::BindingType::StorageTexture { .. })),
+                limits.max_storage_textures_per_shader_stage,
+            ),
+        ];
+        match kinds.iter().find(|(_, n, max)| n > max) {
+            Some((what, n, max)) => Err(PassError::Config(format!(
+                "the configuration binds {n} {what}; the device allows {max} per shader stage \
+                 (open it with the adapter's limits)"
+            ))),
+            None => Ok(()),
+        }
+    }
+
+    /// The WGSL declarations, `@group(index) @binding(i) var…;` in list
+    /// order, one line each.
+    pub fn declarations(&self) -> String {
         self.list
             .iter()
             .enumerate()
-            .map(|(i, d)| format!("@group(0) @binding({i}) {}\n", d.wgsl))
+            .map(|(i, d)| format!("@group({}) @binding({i}) var{};\n", self.index, d.wgsl))
             .collect()
     }
 
-    /// The bind group layout, visible to compute shaders.
-    pub(crate) fn layout(&self, device: &wgpu::Device, label: &str) -> wgpu::BindGroupLayout {
+    /// The bind group layout.
+    pub fn layout(&self, device: &wgpu::Device, label: &str) -> wgpu::BindGroupLayout {
         let entries: Vec<_> = self
             .list
             .iter()
             .enumerate()
             .map(|(i, d)| wgpu::BindGroupLayoutEntry {
                 binding: i as u32,
-                visibility: wgpu::ShaderStages::COMPUTE,
+                visibility: self.visibility,
                 ty: d.ty,
                 count: None,
             })
@@ -113,17 +316,231 @@ impl Group {
             entries: &entries,
         })
     }
+
+    /// The bind group of `resources` (one per binding, in binding order)
+    /// for `layout` (from [`Group::layout`]).
+    pub fn bind_group<'r>(
+        &self,
+        device: &wgpu::Device,
+        label: &str,
+        layout: &wgpu::BindGroupLayout,
+        resources: impl IntoIterator<Item = wgpu::BindingResource<'r>>,
+    ) -> wgpu::BindGroup {
+        let entries: Vec<wgpu::BindGroupEntry<'_>> = resources
+            .into_iter()
+            .enumerate()
+            .map(|(i, resource)| wgpu::BindGroupEntry {
+                binding: i as u32,
+                resource,
+            })
+            .collect();
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(label),
+            layout,
+            entries: &entries,
+        })
+    }
 }
 
-/// The WGSL name of a storage texture format the passes write, or `None`
-/// for a format they cannot write.
-pub(crate) fn storage_format_name(format: wgpu::TextureFormat) -> Option<&'static str> {
+/// A resource bound by [`Bindings`] or cached by a pass (wgpu's handles
+/// are reference counted: a clone is the same object).
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+enum Resource {
+    Buffer(wgpu::Buffer),
+    Texture(wgpu::TextureView),
+}
+
+impl Resource {
+    fn binding(&self) -> wgpu::BindingResource<'_> {
+        match self {
+            Resource::Buffer(b) => b.as_entire_binding(),
+            Resource::Texture(v) => wgpu::BindingResource::TextureView(v),
+        }
+    }
+}
+
+/// A [`Group`] with the resources it binds, one per binding: what a
+/// program that owns its buffers and textures (a renderer's frame) builds
+/// once and binds as it is. It also keeps an account of the memory its
+/// owner allocated for it ([`Bindings::account`]), by name, for a frame's
+/// statistics.
+#[derive(Clone, Debug)]
+pub struct Bindings {
+    group: Group,
+    resources: Vec<Resource>,
+    accounts: Vec<(&'static str, usize)>,
+}
+
+impl Bindings {
+    /// Empty bindings of group `index` of a compute shader.
+    pub fn new(index: u32) -> Self {
+        Self::visible_in(index, wgpu::ShaderStages::COMPUTE)
+    }
+
+    /// Empty bindings of group `index` visible to `stages`.
+    pub fn visible_in(index: u32, stages: wgpu::ShaderStages) -> Self {
+        Bindings {
+            group: Group::visible_in(index, stages),
+            resources: Vec::new(),
+            accounts: Vec::new(),
+        }
+    }
+
+    /// The declarations.
+    pub fn group(&self) -> &Group {
+        &self.group
+    }
+
+    /// Bind `buffer` whole as `var<…> name: ty` ([`Group::buffer`]).
+    pub fn buffer(
+        &mut self,
+        name: impl Into<Cow<'static, str>>,
+        ty: &str,
+        access: BufferAccess,
+        buffer: &wgpu::Buffer,
+    ) {
+        self.group.buffer(name, ty, access);
+        self.resources.push(Resource::Buffer(buffer.clone()));
+    }
+
+    /// Bind `view` as the sampled texture `name` ([`Group::texture`]).
+    pub fn texture(
+        &mut self,
+        name: impl Into<Cow<'static, str>>,
+        sample_type: wgpu::TextureSampleType,
+        view_dimension: wgpu::TextureViewDimension,
+        multisampled: bool,
+        view: &wgpu::TextureView,
+    ) {
+        self.group
+            .texture(name, sample_type, view_dimension, multisampled);
+        self.resources.push(Resource::Texture(view.clone()));
+    }
+
+    /// Bind `view` as the write-only storage texture `name` of `format`
+    /// ([`Group::storage_texture`]).
+    pub fn storage_texture(
+        &mut self,
+        name: impl Into<Cow<'static, str>>,
+        format: wgpu::TextureFormat,
+        view: &wgpu::TextureView,
+    ) -> Result<(), PassError> {
+        self.group.storage_texture(name, format)?;
+        self.resources.push(Resource::Texture(view.clone()));
+        Ok(())
+    }
+
+    /// Record that `bytes` were allocated for `what`.
+    pub fn account(&mut self, what: &'static str, bytes: usize) {
+        self.accounts.push((what, bytes));
+    }
+
+    /// What was recorded with [`Bindings::account`], in order.
+    pub fn accounts(&self) -> &[(&'static str, usize)] {
+        &self.accounts
+    }
+
+    /// Whether a binding named `name` is declared.
+    pub fn contains(&self, name: &str) -> bool {
+        self.group.contains(name)
+    }
+
+    /// The buffer bound as `name`, if one is.
+    pub fn buffer_named(&self, name: &str) -> Option<&wgpu::Buffer> {
+        self.group
+            .list
+            .iter()
+            .zip(&self.resources)
+            .find_map(|(d, r)| match r {
+                Resource::Buffer(b) if d.name == name => Some(b),
+                _ => None,
+            })
+    }
+
+    /// The WGSL declarations ([`Group::declarations`]).
+    pub fn declarations(&self) -> String {
+        self.group.declarations()
+    }
+
+    /// The bind group layout ([`Group::layout`]).
+    pub fn layout(&self, device: &wgpu::Device, label: &str) -> wgpu::BindGroupLayout {
+        self.group.layout(device, label)
+    }
+
+    /// The bind group of these resources for `layout` (from
+    /// [`Bindings::layout`]).
+    pub fn bind_group(
+        &self,
+        device: &wgpu::Device,
+        label: &str,
+        layout: &wgpu::BindGroupLayout,
+    ) -> wgpu::BindGroup {
+        self.group.bind_group(
+            device,
+            label,
+            layout,
+            self.resources.iter().map(Resource::binding),
+        )
+    }
+}
+
+/// The layout of a pipeline over `groups`, group `i` the `i`-th.
+pub fn pipeline_layout(
+    device: &wgpu::Device,
+    label: &str,
+    groups: &[&wgpu::BindGroupLayout],
+) -> wgpu::PipelineLayout {
+    let layouts: Vec<Option<&wgpu::BindGroupLayout>> = groups.iter().copied().map(Some).collect();
+    device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: &layouts,
+        immediate_size: 0,
+    })
+}
+
+/// The compute pipeline of `module`'s entry point `entry` over `layout`.
+pub fn compute_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::PipelineLayout,
+    module: &wgpu::ShaderModule,
+    entry: &str,
+) -> wgpu::ComputePipeline {
+    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(label),
+        layout: Some(layout),
+        module,
+        entry_point: Some(entry),
+        compilation_options: Default::default(),
+        cache: None,
+    })
+}
+
+/// The formats [`Group::storage_texture`] declares.
+const STORAGE_FORMATS: &str = "Rgba8Unorm, Rgba16Float, Rgba32Float, R32Float or R32Uint";
+
+/// The WGSL name of a storage texture format [`Group::storage_texture`]
+/// declares, or `None`.
+fn storage_format_name(format: wgpu::TextureFormat) -> Option<&'static str> {
     match format {
         wgpu::TextureFormat::Rgba8Unorm => Some("rgba8unorm"),
         wgpu::TextureFormat::Rgba16Float => Some("rgba16float"),
         wgpu::TextureFormat::Rgba32Float => Some("rgba32float"),
+        wgpu::TextureFormat::R32Float => Some("r32float"),
+        wgpu::TextureFormat::R32Uint => Some("r32uint"),
         _ => None,
     }
+}
+
+/// Whether a pass's output may be of `format`: the formats a host's
+/// output is written in ([`OUTPUT_FORMATS`]).
+fn is_output_format(format: wgpu::TextureFormat) -> bool {
+    matches!(
+        format,
+        wgpu::TextureFormat::Rgba8Unorm
+            | wgpu::TextureFormat::Rgba16Float
+            | wgpu::TextureFormat::Rgba32Float
+    )
 }
 
 /// The output formats the passes write: `Rgba8Unorm`, `Rgba16Float`,
@@ -132,9 +549,9 @@ pub(crate) const OUTPUT_FORMATS: &str = "Rgba8Unorm, Rgba16Float or Rgba32Float"
 
 /// Refuse an output format the passes cannot write.
 pub(crate) fn check_output_format(format: wgpu::TextureFormat) -> Result<(), PassError> {
-    match storage_format_name(format) {
-        Some(_) => Ok(()),
-        None => Err(PassError::Format {
+    match is_output_format(format) {
+        true => Ok(()),
+        false => Err(PassError::Format {
             what: "output",
             found: format,
             expected: OUTPUT_FORMATS,
@@ -301,9 +718,10 @@ struct UniformRing {
     stride: u64,
 }
 
-/// A cached bind group: the views it binds, in group order.
+/// A cached bind group: the resources it binds besides the uniform rings,
+/// in group order.
 struct CachedGroup {
-    views: Vec<wgpu::TextureView>,
+    resources: Vec<Resource>,
     group: wgpu::BindGroup,
     used: u64,
 }
@@ -339,7 +757,8 @@ impl PassPipeline {
     /// Compile `source`'s `entry` over `group` (group 0) and `host_layout`
     /// (group 1, when the host binds one), and make the uniform buffers.
     /// `source` is the whole shader, the group's declarations included.
-    /// `label` names every object made.
+    /// `label` names every object made. Refuses a group beyond the
+    /// device's limits ([`Group::check_limits`]) before creating anything.
     pub(crate) fn new(
         device: &wgpu::Device,
         label: &'static str,
@@ -347,32 +766,23 @@ impl PassPipeline {
         source: String,
         host_layout: Option<&wgpu::BindGroupLayout>,
         entry: &str,
-    ) -> Self {
+    ) -> Result<Self, PassError> {
+        group.check_limits(device)?;
         let layout = group.layout(device, label);
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(label),
             source: wgpu::ShaderSource::Wgsl(source.into()),
         });
-        let layouts = [Some(&layout), host_layout];
-        let count = if host_layout.is_some() { 2 } else { 1 };
-        let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some(label),
-            bind_group_layouts: &layouts[..count],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some(label),
-            layout: Some(&pl),
-            module: &module,
-            entry_point: Some(entry),
-            compilation_options: Default::default(),
-            cache: None,
-        });
+        let pl = match host_layout {
+            Some(host) => pipeline_layout(device, label, &[&layout, host]),
+            None => pipeline_layout(device, label, &[&layout]),
+        };
+        let pipeline = compute_pipeline(device, label, &pl, &module, entry);
         let align = u64::from(device.limits().min_uniform_buffer_offset_alignment).max(1);
         let uniforms: Vec<UniformRing> = group
             .list
             .iter()
-            .filter_map(|d| d.uniform)
+            .filter_map(|d| d.ring)
             .map(|size| {
                 let stride = size.div_ceil(align) * align;
                 let buffer = device.create_buffer(&wgpu::BufferDescriptor {
@@ -395,18 +805,18 @@ impl PassPipeline {
                 .collect(),
             ..State::default()
         };
-        PassPipeline {
+        Ok(PassPipeline {
             label,
             group,
             layout,
             pipeline,
             uniforms,
             state: std::sync::Mutex::new(state),
-        }
+        })
     }
 
     /// Drop every cached bind group, and with them the pass's clones of the
-    /// host's views.
+    /// host's views and buffers.
     pub(crate) fn release_views(&self) {
         self.lock().groups.clear();
     }
@@ -418,10 +828,11 @@ impl PassPipeline {
     }
 
     /// Record one compute pass over `size` pixels: the uniforms' values
-    /// `uniforms` (in binding order), the views `views` (by name, every
-    /// declared texture exactly once), `host_group` as group 1 and the
-    /// host's `timestamps`. Checks the names and the timestamps first: on
-    /// an error nothing is recorded or written.
+    /// `uniforms` (in binding order), the host's `resources` (views and
+    /// buffers by name, every declared binding but the uniforms exactly
+    /// once), `host_group` as group 1 and the host's `timestamps`. Checks
+    /// the names and the timestamps first: on an error nothing is recorded
+    /// or written.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn encode(
         &self,
@@ -430,25 +841,28 @@ impl PassPipeline {
         encoder: &mut wgpu::CommandEncoder,
         (width, height): (u32, u32),
         uniforms: &[&[u8]],
-        views: &[(&'static str, &wgpu::TextureView)],
+        resources: &[(&'static str, Bound<'_>)],
         host_group: Option<&wgpu::BindGroup>,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), PassError> {
-        // The views in binding order.
-        let mut ordered: Vec<&wgpu::TextureView> = Vec::with_capacity(views.len());
-        for d in self.group.list.iter().filter(|d| d.uniform.is_none()) {
-            let (_, v) = views
+        // The resources in binding order.
+        let mut ordered: Vec<Bound<'_>> = Vec::with_capacity(resources.len());
+        for d in self.group.list.iter().filter(|d| d.ring.is_none()) {
+            let (_, r) = resources
                 .iter()
                 .find(|(n, _)| *n == d.name)
-                .ok_or(PassError::Missing(d.name))?;
-            ordered.push(v);
+                .ok_or(match &d.name {
+                    Cow::Borrowed(n) => PassError::Missing(n),
+                    Cow::Owned(_) => PassError::Missing("an input"),
+                })?;
+            ordered.push(*r);
         }
-        if let Some((n, _)) = views.iter().find(|(n, _)| {
+        if let Some((n, _)) = resources.iter().find(|(n, _)| {
             !self
                 .group
                 .list
                 .iter()
-                .any(|d| d.uniform.is_none() && d.name == *n)
+                .any(|d| d.ring.is_none() && d.name == *n)
         }) {
             return Err(PassError::Unexpected(n));
         }
@@ -487,16 +901,16 @@ impl PassPipeline {
             slots[s].used = now;
             offsets.push((s as u64 * ring.stride) as u32);
         }
-        let cached = state
-            .groups
-            .iter()
-            .position(|g| g.views.iter().eq(ordered.iter().copied()));
+        let cached = state.groups.iter().position(|g| {
+            g.resources.len() == ordered.len()
+                && g.resources.iter().zip(&ordered).all(|(a, b)| b.is(a))
+        });
         let index = match cached {
             Some(i) => i,
             None => {
                 let group = self.bind_group(device, &ordered);
                 let entry = CachedGroup {
-                    views: ordered.iter().map(|v| (*v).clone()).collect(),
+                    resources: ordered.iter().map(|b| b.to_resource()).collect(),
                     group,
                     used: now,
                 };
@@ -527,37 +941,52 @@ impl PassPipeline {
     }
 
     /// The bind group of the uniform rings (one slot each, at a dynamic
-    /// offset) and `views`, in binding order.
-    fn bind_group(&self, device: &wgpu::Device, views: &[&wgpu::TextureView]) -> wgpu::BindGroup {
+    /// offset) and `resources`, in binding order.
+    fn bind_group(&self, device: &wgpu::Device, resources: &[Bound<'_>]) -> wgpu::BindGroup {
         let mut rings = self.uniforms.iter();
-        let mut views = views.iter();
-        let entries: Vec<wgpu::BindGroupEntry<'_>> = self
-            .group
-            .list
-            .iter()
-            .enumerate()
-            .filter_map(|(i, d)| {
-                let resource = if d.uniform.is_some() {
-                    let r = rings.next()?;
-                    wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                        buffer: &r.buffer,
-                        offset: 0,
-                        size: wgpu::BufferSize::new(r.size),
-                    })
-                } else {
-                    wgpu::BindingResource::TextureView(views.next()?)
-                };
-                Some(wgpu::BindGroupEntry {
-                    binding: i as u32,
-                    resource,
+        let mut resources = resources.iter();
+        let bound = self.group.list.iter().filter_map(|d| {
+            if d.ring.is_some() {
+                let r = rings.next()?;
+                Some(wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                    buffer: &r.buffer,
+                    offset: 0,
+                    size: wgpu::BufferSize::new(r.size),
+                }))
+            } else {
+                Some(match resources.next()? {
+                    Bound::Texture(v) => wgpu::BindingResource::TextureView(v),
+                    Bound::Buffer(b) => b.as_entire_binding(),
                 })
-            })
-            .collect();
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some(self.label),
-            layout: &self.layout,
-            entries: &entries,
-        })
+            }
+        });
+        self.group
+            .bind_group(device, self.label, &self.layout, bound)
+    }
+}
+
+/// A host's resource for [`PassPipeline::encode`], borrowed.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Bound<'a> {
+    Texture(&'a wgpu::TextureView),
+    Buffer(&'a wgpu::Buffer),
+}
+
+impl Bound<'_> {
+    /// Whether this is the resource `r` (wgpu's handles compare by identity).
+    fn is(&self, r: &Resource) -> bool {
+        match (self, r) {
+            (Bound::Texture(a), Resource::Texture(b)) => *a == b,
+            (Bound::Buffer(a), Resource::Buffer(b)) => *a == b,
+            _ => false,
+        }
+    }
+
+    fn to_resource(self) -> Resource {
+        match self {
+            Bound::Texture(v) => Resource::Texture((*v).clone()),
+            Bound::Buffer(b) => Resource::Buffer((*b).clone()),
+        }
     }
 }
 

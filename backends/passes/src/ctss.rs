@@ -13,10 +13,25 @@ use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use subcone_kernels::ctss::CtssParams;
 
-use crate::bind::{self, Group, PassPipeline};
+use crate::bind::{self, Bound, Group, PassPipeline};
 use crate::PassError;
 
 pub(crate) const CTSS_WGSL: &str = include_str!("ctss.wgsl");
+/// The kernels' WGSL a CTSS trace (`subcone_ctss_trace`) runs, in the order
+/// a shader includes them, after `subcone_kernels::wgsl::PARAMS`: the cone
+/// (eq. 3–5), the masks (eq. 7–8), the aggregate (eq. 6), §5.3's K masks,
+/// the stepper and the trace. [`CtssPass`] composes its shader from them;
+/// a renderer tracing CTSS in a shader of its own (`subcone-wgpu`'s SDF
+/// renderer) includes the same.
+pub const CTSS_KERNELS: [&str; 6] = [
+    subcone_kernels::cone::WGSL,
+    subcone_kernels::mask::WGSL,
+    subcone_kernels::aggregate::WGSL,
+    subcone_kernels::transparency::WGSL,
+    subcone_kernels::ctss::WGSL,
+    subcone_kernels::ctss::TRACE_WGSL,
+];
+
 /// Most hit groups a trace may march ahead of shading them.
 pub const MAX_BATCH: u32 = 64;
 
@@ -247,7 +262,7 @@ impl CtssPass {
                 desc.batch
             )));
         }
-        let group = Self::group(desc.output_format);
+        let group = Self::group(desc.output_format)?;
         let source = Self::source(host_wgsl, desc.batch, &group);
         let pipeline = PassPipeline::new(
             device,
@@ -256,7 +271,7 @@ impl CtssPass {
             source,
             desc.host_layout,
             "subcone_pass_ctss_main",
-        );
+        )?;
         Ok(CtssPass {
             output_format: desc.output_format,
             host_group: desc.host_layout.is_some(),
@@ -266,15 +281,15 @@ impl CtssPass {
 
     #[cfg(test)]
     pub(crate) fn group_for_tests(output_format: wgpu::TextureFormat) -> Group {
-        Self::group(output_format)
+        Self::group(output_format).expect("an output format")
     }
 
-    fn group(output_format: wgpu::TextureFormat) -> Group {
+    fn group(output_format: wgpu::TextureFormat) -> Result<Group, PassError> {
         let mut g = Group::default();
-        g.uniform::<CtssUniform>("subcone_pass_frame", "CtssUniform");
-        g.uniform::<CtssParams>("subcone_pass_params", "subcone_CtssParams");
-        g.storage_texture("subcone_pass_output", output_format);
-        g
+        g.ring_uniform::<CtssUniform>("subcone_pass_frame", "CtssUniform");
+        g.ring_uniform::<CtssParams>("subcone_pass_params", "subcone_CtssParams");
+        g.storage_texture("subcone_pass_output", output_format)?;
+        Ok(g)
     }
 
     /// The whole shader: the kernels, the batch, the host's WGSL (and the
@@ -285,14 +300,15 @@ impl CtssPass {
         } else {
             "fn subcone_normal(p: vec3<f32>, h: f32) -> vec3<f32> { return subcone_tetra_normal(p, h); }\n"
         };
+        let [cone, mask, aggregate, transparency, ctss, trace] = CTSS_KERNELS;
         [
             subcone_kernels::wgsl::PARAMS,
-            subcone_kernels::cone::WGSL,
-            subcone_kernels::mask::WGSL,
-            subcone_kernels::aggregate::WGSL,
-            subcone_kernels::transparency::WGSL,
-            subcone_kernels::ctss::WGSL,
-            subcone_kernels::ctss::TRACE_WGSL,
+            cone,
+            mask,
+            aggregate,
+            transparency,
+            ctss,
+            trace,
             &format!("const subcone_CTSS_BATCH: u32 = {batch}u;\n"),
             // ctss::WGSL's NoAA hook, on the host's field.
             "fn ctss_field(p: vec3<f32>) -> vec2<f32> { let f = subcone_field(p); return f.xy; }\n",
@@ -350,7 +366,7 @@ impl CtssPass {
                 bytemuck::bytes_of(&uniform),
                 bytemuck::bytes_of(&frame.params),
             ],
-            &[("subcone_pass_output", out)],
+            &[("subcone_pass_output", Bound::Texture(out))],
             frame.host_group,
             timestamps,
         )

@@ -4,7 +4,7 @@
 use bytemuck::{Pod, Zeroable};
 use subcone_kernels::fxaa::FxaaParams;
 
-use crate::bind::{self, Expect, Group, PassPipeline};
+use crate::bind::{self, Bound, Expect, Group, PassPipeline};
 use crate::PassError;
 
 pub(crate) const FXAA_WGSL: &str = include_str!("fxaa.wgsl");
@@ -84,9 +84,9 @@ impl FxaaPass {
     /// `desc`. Refuses an output format it cannot write.
     pub fn new(device: &wgpu::Device, desc: &FxaaPassDesc) -> Result<Self, PassError> {
         bind::check_output_format(desc.output_format)?;
-        let group = Self::group(desc.output_format);
+        let group = Self::group(desc.output_format)?;
         let source = Self::source(&group);
-        let pipeline = PassPipeline::new(device, "subcone fxaa", group, source, None, "fxaa_main");
+        let pipeline = PassPipeline::new(device, "subcone fxaa", group, source, None, "fxaa_main")?;
         Ok(FxaaPass {
             desc: *desc,
             pipeline,
@@ -100,22 +100,21 @@ impl FxaaPass {
 
     #[cfg(test)]
     pub(crate) fn group_for_tests(output_format: wgpu::TextureFormat) -> Group {
-        Self::group(output_format)
+        Self::group(output_format).expect("an output format")
     }
 
-    fn group(output_format: wgpu::TextureFormat) -> Group {
+    fn group(output_format: wgpu::TextureFormat) -> Result<Group, PassError> {
         let mut g = Group::default();
-        g.uniform::<FxaaParams>("fxaa_params", "subcone_FxaaParams");
-        g.uniform::<FxaaFrame>("fxaa_frame", "FxaaFrame");
+        g.ring_uniform::<FxaaParams>("fxaa_params", "subcone_FxaaParams");
+        g.ring_uniform::<FxaaFrame>("fxaa_frame", "FxaaFrame");
         g.texture(
             "fxaa_src",
-            "texture_2d<f32>",
             wgpu::TextureSampleType::Float { filterable: false },
             wgpu::TextureViewDimension::D2,
             false,
         );
-        g.storage_texture("fxaa_dst", output_format);
-        g
+        g.storage_texture("fxaa_dst", output_format)?;
+        Ok(g)
     }
 
     pub(crate) fn source(group: &Group) -> String {
@@ -176,7 +175,10 @@ impl FxaaPass {
                 bytemuck::bytes_of(&self.desc.params),
                 bytemuck::bytes_of(&frame),
             ],
-            &[("fxaa_src", input), ("fxaa_dst", output)],
+            &[
+                ("fxaa_src", Bound::Texture(input)),
+                ("fxaa_dst", Bound::Texture(output)),
+            ],
             None,
             timestamps,
         )

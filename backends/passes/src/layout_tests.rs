@@ -65,8 +65,9 @@ fn validate(label: &str, source: &str) -> Result<(), String> {
     Ok(())
 }
 
-/// Every SRAA configuration's shader (layout × depth × normals × centre or
-/// subsample shading × lights × albedo gate × secondary shading) validates, and so do the
+/// Every SRAA configuration's shader (layout, textures or buffers × depth ×
+/// normals × centre or subsample shading × lights × albedo gate × secondary
+/// shading) validates, and so do the
 /// CTSS (with and without the host's normal) and FXAA shaders.
 #[test]
 fn every_pass_shader_validates() {
@@ -77,10 +78,11 @@ fn every_pass_shader_validates() {
         GeometryLayout::Multisampled,
         GeometryLayout::Layers,
         GeometryLayout::Packed,
+        GeometryLayout::Buffers,
     ] {
         for depth in [DepthKind::Hardware { miss: 0.0 }, DepthKind::LinearView] {
             for normal in [NormalEncoding::Signed, NormalEncoding::Unsigned] {
-                if geometry == GeometryLayout::Packed
+                if matches!(geometry, GeometryLayout::Packed | GeometryLayout::Buffers)
                     && (depth != DepthKind::LinearView || normal != NormalEncoding::Signed)
                 {
                     continue;

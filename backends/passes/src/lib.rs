@@ -25,11 +25,16 @@
 //! - [`CtssPass`]: cone-traced supersampling (CTSS, Algorithm 1, eq. 3–10)
 //!   of the host's own signed distance field, written in WGSL.
 //! - [`FxaaPass`]: FXAA 3.11 (`subcone_kernels::fxaa`) over a host texture.
+//! - [`bind`]: bindings declared once, from which both the WGSL
+//!   declarations and the wgpu layouts and bind groups are made: what the
+//!   passes are built on, and what `subcone-wgpu` builds its own programs
+//!   on, so a host's program can use it too.
 //!
 //! Every pass runs the kernels' WGSL (`subcone_kernels::sraa::WGSL` and
 //! `RECONSTRUCT_WGSL`, `subcone_kernels::ctss::TRACE_WGSL`,
 //! `subcone_kernels::fxaa::WGSL`): the mathematics is written once, in the
-//! kernels crate, and this crate only binds textures to it. Each GPU pass is one `.rs` beside one `.wgsl`.
+//! kernels crate, and this crate only binds textures (or, for
+//! [`SraaPass::encode_buffers`], storage buffers) to it. Each GPU pass is one `.rs` beside one `.wgsl`.
 //!
 //! Inputs are checked before anything is recorded: a view of a texture of the
 //! wrong size, format, sample count, layer count or usage is a [`PassError`],
@@ -41,7 +46,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
-mod bind;
+pub mod bind;
 mod ctss;
 mod fxaa;
 #[cfg(test)]
@@ -52,11 +57,12 @@ mod layout_tests;
 mod sraa;
 
 pub use bind::{BIND_GROUP_CACHE, UNIFORM_SLOTS};
-pub use ctss::{CtssCamera, CtssFrame, CtssPass, CtssPassDesc, MAX_BATCH};
+pub use ctss::{CtssCamera, CtssFrame, CtssPass, CtssPassDesc, CTSS_KERNELS, MAX_BATCH};
 pub use fxaa::{FxaaPass, FxaaPassDesc};
 pub use sraa::{
-    AlbedoTextures, CentreGeometry, DepthKind, GeometryLayout, NormalEncoding, SecondaryInputs,
-    ShadowTextures, SraaInputs, SraaPass, SraaPassDesc, SubsampleGeometry, RECONSTRUCT_WGSL,
+    AlbedoBuffers, AlbedoTextures, CentreGeometry, DepthKind, GeometryLayout, NormalEncoding,
+    SecondaryBuffers, SecondaryInputs, ShadowBuffers, ShadowTextures, SraaBuffers, SraaInputs,
+    SraaPass, SraaPassDesc, SubsampleGeometry, RECONSTRUCT_WGSL,
 };
 
 /// README.md's code blocks (its "Embedding" section), compiled as doctests.
@@ -128,6 +134,22 @@ pub enum PassError {
     Unexpected(&'static str),
     /// A configuration value is out of range.
     Config(String),
+    /// A buffer is smaller than its role takes for the frame's size.
+    BufferSize {
+        /// Which input.
+        what: &'static str,
+        /// The bytes the role takes.
+        expected: u64,
+        /// The buffer's size.
+        found: u64,
+    },
+    /// A buffer lacks a usage the pass needs (`STORAGE`).
+    BufferUsage {
+        /// Which input.
+        what: &'static str,
+        /// The usage it lacks.
+        missing: wgpu::BufferUsages,
+    },
 }
 
 impl std::fmt::Display for PassError {
@@ -169,6 +191,14 @@ impl std::fmt::Display for PassError {
                 )
             }
             PassError::Config(m) => f.write_str(m),
+            PassError::BufferSize {
+                what,
+                expected,
+                found,
+            } => write!(f, "{what}: a buffer of {found} bytes, needs {expected}"),
+            PassError::BufferUsage { what, missing } => {
+                write!(f, "{what}: the buffer lacks usage {missing:?}")
+            }
         }
     }
 }

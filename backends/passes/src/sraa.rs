@@ -21,7 +21,7 @@ use bytemuck::{Pod, Zeroable};
 use subcone_kernels::passes::MAX_LIGHTS;
 use subcone_kernels::sraa::{ShadedPosition, SraaParams, ALBEDO_TOLERANCE};
 
-use crate::bind::{self, Expect, Group, PassPipeline};
+use crate::bind::{self, Bound, Expect, Group, PassPipeline};
 use crate::PassError;
 
 pub(crate) const SRAA_WGSL: &str = include_str!("sraa.wgsl");
@@ -65,6 +65,16 @@ pub enum GeometryLayout {
     /// layout `subcone-wgpu` rasterises. Needs [`DepthKind::LinearView`] and
     /// [`NormalEncoding::Signed`]; no separate normal texture.
     Packed,
+    /// Storage buffers instead of textures, read with
+    /// [`SraaPass::encode_buffers`] ([`SraaBuffers`]): every geometry is
+    /// the kernels' `subcone_kernels::sraa::Geometry` (`subcone_Geometry`
+    /// in WGSL, 16 bytes: a unit normal facing the eye, then linear view
+    /// depth, `+inf` a miss), taken as it is stored (not renormalised), and
+    /// the shaded samples' geometry is an input of its own wherever the
+    /// preset shades. The layout of a renderer that traces its samples
+    /// into buffers (`subcone-wgpu`'s SRAA-RT). Needs
+    /// [`DepthKind::LinearView`] and [`NormalEncoding::Signed`].
+    Buffers,
 }
 
 /// How depth is stored, fixed for the pass's life (it selects the binding
@@ -204,6 +214,17 @@ impl SraaPassDesc {
         }
     }
 
+    /// The configuration for [`GeometryLayout::Buffers`] (geometry as the
+    /// kernels' `Geometry` in storage buffers): linear view depth, signed
+    /// normals, `params`, no lights, no gate. `output_format` is not read:
+    /// the output is a buffer ([`SraaBuffers::output`]).
+    pub fn buffers(params: SraaParams) -> Self {
+        SraaPassDesc {
+            geometry: GeometryLayout::Buffers,
+            ..Self::packed(params)
+        }
+    }
+
     /// With `lights` lights gating the reconstruction ([`Self::lights`]).
     pub fn with_lights(mut self, lights: u32) -> Self {
         self.lights = lights;
@@ -259,6 +280,13 @@ impl SraaPassDesc {
 
     fn shaded_at_centre(&self) -> bool {
         self.params.shaded_position() == ShadedPosition::Centre
+    }
+
+    /// Whether the shaded sample's geometry is an input of its own (the
+    /// centre's, or every shaded sample's in buffers), not subsample
+    /// `SHADED_SUBSAMPLE`'s.
+    fn shaded_given(&self) -> bool {
+        self.shaded_at_centre() || self.geometry == GeometryLayout::Buffers
     }
 }
 
@@ -373,6 +401,123 @@ pub struct SraaInputs<'a> {
     pub secondary: Option<SecondaryInputs<'a>>,
     /// Where the antialiased colour is written (level 0, layer 0).
     pub output: &'a wgpu::TextureView,
+}
+
+/// Shadow bits in buffers (`array<u32>`, bit `l` set where light `l`'s
+/// shadow ray is blocked), for [`SraaBuffers`].
+#[derive(Clone, Copy, Debug)]
+pub struct ShadowBuffers<'a> {
+    /// One per pixel, at its shaded sample.
+    pub shaded: &'a wgpu::Buffer,
+    /// Four per pixel, subsample `k` of pixel `j` (row-major) at `4j + k`.
+    pub subsamples: &'a wgpu::Buffer,
+}
+
+/// The secondary hits (§3.3) in buffers, for [`SraaBuffers`]: geometry as
+/// `subcone_Geometry` (depth the reflected path's length, `+inf` where the
+/// reflection left the scene, NaN where there is no mirror).
+#[derive(Clone, Copy, Debug)]
+pub struct SecondaryBuffers<'a> {
+    /// One per pixel, at its shaded sample.
+    pub shaded: &'a wgpu::Buffer,
+    /// Four per pixel, at `4j + k`.
+    pub subsamples: &'a wgpu::Buffer,
+    /// The secondary hits' shadow bits: required exactly when `lights > 0`.
+    pub shadows: Option<ShadowBuffers<'a>>,
+}
+
+/// Albedo in buffers (`array<vec4<f32>>`, linear RGB in `.xyz`), for
+/// [`SraaBuffers`].
+#[derive(Clone, Copy, Debug)]
+pub struct AlbedoBuffers<'a> {
+    /// One per pixel, at its shaded sample.
+    pub shaded: &'a wgpu::Buffer,
+    /// Four per pixel, at `4j + k`.
+    pub subsamples: &'a wgpu::Buffer,
+}
+
+/// One frame's storage buffers for [`SraaPass::encode_buffers`]
+/// ([`GeometryLayout::Buffers`]). Pixel `j` is `y · width + x`; each
+/// buffer needs `STORAGE` usage and at least the bytes its role takes for
+/// `size` (a [`PassError::BufferSize`] otherwise). The roles are those of
+/// [`SraaInputs`], each required under the same condition.
+#[derive(Clone, Copy, Debug)]
+pub struct SraaBuffers<'a> {
+    /// The frame's `(width, height)`.
+    pub size: (u32, u32),
+    /// The shaded samples' geometry, `array<subcone_Geometry>`, one per
+    /// pixel (wherever the preset shades).
+    pub shaded: &'a wgpu::Buffer,
+    /// The geometric subsamples, `array<subcone_Geometry>`, four per pixel,
+    /// subsample `k` (at `SUBPIXEL_OFFSETS[k]`) at `4j + k`.
+    pub subsamples: &'a wgpu::Buffer,
+    /// The shaded colour's layers, `array<vec4<f32>>` (`.xyz`), layer `l`
+    /// of pixel `j` at `j · layers + l` (`1 + L` layers, twice that with
+    /// secondary shading).
+    pub color: &'a wgpu::Buffer,
+    /// Shadow bits: required exactly when `lights > 0`.
+    pub shadows: Option<ShadowBuffers<'a>>,
+    /// Albedo: required exactly when the albedo gate is on.
+    pub albedo: Option<AlbedoBuffers<'a>>,
+    /// The secondary hits: required exactly when the desc has `secondary`.
+    pub secondary: Option<SecondaryBuffers<'a>>,
+    /// Where the antialiased colour is written, `array<vec4<f32>>`, one per
+    /// pixel (alpha 1).
+    pub output: &'a wgpu::Buffer,
+}
+
+/// The secondary hits' loaders of a pass without them (never read).
+const NO_SECONDARY_LOADERS: &str =
+    "fn sraa_load_sec_shaded(p: vec2<i32>) -> vec4<f32> { return vec4<f32>(0.0); }\n\
+     fn sraa_load_sec_sub(p: vec2<i32>, k: u32) -> vec4<f32> { return vec4<f32>(0.0); }\n";
+
+/// The albedo loaders of a pass without the albedo gate (never read).
+const NO_ALBEDO_LOADERS: &str =
+    "fn sraa_load_shaded_albedo(p: vec2<i32>) -> vec3<f32> { return vec3<f32>(0.0); }\n\
+     fn sraa_load_sub_albedo(p: vec2<i32>, k: u32) -> vec3<f32> { return vec3<f32>(0.0); }\n";
+
+/// The shadow loaders of group `g` (`""` primary, `"sec_"` secondary)
+/// without shadow bits: every sample lit (eq. 2's gate always passes).
+fn no_shadow_loaders(g: &str) -> String {
+    format!(
+        "fn sraa_load_{g}shaded_shadow(p: vec2<i32>) -> u32 {{ return 0u; }}\n\
+         fn sraa_load_{g}sub_shadow(p: vec2<i32>, k: u32) -> u32 {{ return 0u; }}\n"
+    )
+}
+
+/// Check buffer `b` (`what`) holds `count` elements of `element` bytes and
+/// can be bound as storage.
+fn check_buffer(
+    what: &'static str,
+    b: &wgpu::Buffer,
+    count: u64,
+    element: u64,
+) -> Result<(), PassError> {
+    if !b.usage().contains(wgpu::BufferUsages::STORAGE) {
+        return Err(PassError::BufferUsage {
+            what,
+            missing: wgpu::BufferUsages::STORAGE,
+        });
+    }
+    let expected = count * element;
+    if b.size() < expected {
+        return Err(PassError::BufferSize {
+            what,
+            expected,
+            found: b.size(),
+        });
+    }
+    Ok(())
+}
+
+/// Names the buffers of `Option` roles: `(given, required, what)` is an
+/// error when given and required disagree.
+fn presence(given: bool, required: bool, what: &'static str) -> Result<(), PassError> {
+    match (given, required) {
+        (true, false) => Err(PassError::Unexpected(what)),
+        (false, true) => Err(PassError::Missing(what)),
+        _ => Ok(()),
+    }
 }
 
 /// What the input textures of one frame must be, for one configuration
@@ -609,7 +754,7 @@ impl SraaPass {
     /// or unsigned normals.
     pub fn new(device: &wgpu::Device, desc: &SraaPassDesc) -> Result<Self, PassError> {
         let source = Self::source(desc)?;
-        let group = Self::group(desc);
+        let group = Self::group(desc)?;
         let source = [source, group.declarations()].concat();
         let pipeline = PassPipeline::new(
             device,
@@ -618,7 +763,7 @@ impl SraaPass {
             source,
             None,
             "sraa_resolve_main",
-        );
+        )?;
         Ok(SraaPass {
             desc: *desc,
             pipeline,
@@ -630,90 +775,89 @@ impl SraaPass {
         &self.desc
     }
 
-    /// The bindings, in order.
-    fn group(desc: &SraaPassDesc) -> Group {
-        use wgpu::TextureViewDimension::{D2Array, D2};
+    /// The bindings of [`GeometryLayout::Buffers`], in order.
+    fn buffer_group(desc: &SraaPassDesc) -> Group {
+        use crate::bind::BufferAccess::{Read, ReadWrite};
         let mut g = Group::default();
-        g.uniform::<SraaFrame>("frame", "SraaFrame");
+        g.ring_uniform::<SraaFrame>("frame", "SraaFrame");
+        let geo = "array<subcone_Geometry>";
+        let (words, float4) = ("array<u32>", "array<vec4<f32>>");
+        g.buffer("sub_geo", geo, Read);
+        g.buffer("shaded_geo", geo, Read);
+        g.buffer("color", float4, Read);
+        if desc.lights > 0 {
+            g.buffer("shaded_shadow", words, Read);
+            g.buffer("sub_shadow", words, Read);
+        }
+        if desc.secondary {
+            g.buffer("sec_shaded_geo", geo, Read);
+            g.buffer("sec_sub_geo", geo, Read);
+            if desc.lights > 0 {
+                g.buffer("sec_shaded_shadow", words, Read);
+                g.buffer("sec_sub_shadow", words, Read);
+            }
+        }
+        if desc.albedo_gate {
+            g.buffer("shaded_albedo", float4, Read);
+            g.buffer("sub_albedo", float4, Read);
+        }
+        g.buffer("sraa_output", float4, ReadWrite);
+        g
+    }
+
+    /// The bindings, in order.
+    fn group(desc: &SraaPassDesc) -> Result<Group, PassError> {
+        use wgpu::TextureViewDimension::{D2Array, D2};
+        if desc.geometry == GeometryLayout::Buffers {
+            return Ok(Self::buffer_group(desc));
+        }
+        let mut g = Group::default();
+        g.ring_uniform::<SraaFrame>("frame", "SraaFrame");
         let hw = desc.depth.is_hardware();
         let (dim, ms) = match desc.geometry {
             GeometryLayout::Multisampled => (D2, true),
             _ => (D2Array, false),
-        };
-        let sub_ty = |depth: bool| match (depth && hw, ms) {
-            (true, true) => "texture_depth_multisampled_2d",
-            (true, false) => "texture_depth_2d_array",
-            (false, true) => "texture_multisampled_2d<f32>",
-            (false, false) => "texture_2d_array<f32>",
         };
         let depth_sample = if hw {
             wgpu::TextureSampleType::Depth
         } else {
             float_sample()
         };
-        g.texture("sub_depth", sub_ty(true), depth_sample, dim, ms);
+        g.texture("sub_depth", depth_sample, dim, ms);
         if desc.geometry != GeometryLayout::Packed {
-            g.texture("sub_normal", sub_ty(false), float_sample(), dim, ms);
+            g.texture("sub_normal", float_sample(), dim, ms);
         }
         if desc.shaded_at_centre() {
-            let ty = if hw {
-                "texture_depth_2d"
-            } else {
-                "texture_2d<f32>"
-            };
-            g.texture("centre_depth", ty, depth_sample, D2, false);
-            g.texture(
-                "centre_normal",
-                "texture_2d<f32>",
-                float_sample(),
-                D2,
-                false,
-            );
+            g.texture("centre_depth", depth_sample, D2, false);
+            g.texture("centre_normal", float_sample(), D2, false);
         }
         if desc.color_layers() == 1 {
-            g.texture("color", "texture_2d<f32>", float_sample(), D2, false);
+            g.texture("color", float_sample(), D2, false);
         } else {
-            g.texture(
-                "color",
-                "texture_2d_array<f32>",
-                float_sample(),
-                D2Array,
-                false,
-            );
+            g.texture("color", float_sample(), D2Array, false);
         }
         let u = wgpu::TextureSampleType::Uint;
         if desc.lights > 0 {
-            g.texture("shaded_shadow", "texture_2d<u32>", u, D2, false);
-            g.texture("sub_shadow", "texture_2d_array<u32>", u, D2Array, false);
+            g.texture("shaded_shadow", u, D2, false);
+            g.texture("sub_shadow", u, D2Array, false);
         }
         if desc.secondary {
             let f = float_sample();
-            let sub = if ms {
-                "texture_multisampled_2d<f32>"
-            } else {
-                "texture_2d_array<f32>"
-            };
-            g.texture("sec_shaded_depth", "texture_2d<f32>", f, D2, false);
-            g.texture("sec_shaded_normal", "texture_2d<f32>", f, D2, false);
-            g.texture("sec_sub_depth", sub, f, dim, ms);
-            g.texture("sec_sub_normal", sub, f, dim, ms);
+            g.texture("sec_shaded_depth", f, D2, false);
+            g.texture("sec_shaded_normal", f, D2, false);
+            g.texture("sec_sub_depth", f, dim, ms);
+            g.texture("sec_sub_normal", f, dim, ms);
             if desc.lights > 0 {
-                g.texture("sec_shaded_shadow", "texture_2d<u32>", u, D2, false);
-                g.texture("sec_sub_shadow", "texture_2d_array<u32>", u, D2Array, false);
+                g.texture("sec_shaded_shadow", u, D2, false);
+                g.texture("sec_sub_shadow", u, D2Array, false);
             }
         }
         if desc.albedo_gate {
-            g.texture(
-                "shaded_albedo",
-                "texture_2d<f32>",
-                float_sample(),
-                D2,
-                false,
-            );
-            g.texture("sub_albedo", sub_ty(false), float_sample(), dim, ms);
+            g.texture("shaded_albedo", float_sample(), D2, false);
+            g.texture("sub_albedo", float_sample(), dim, ms);
         }
-        g.storage_texture("sraa_output", desc.output_format);
-        g
+        g.storage_texture("sraa_output", desc.output_format)?;
+        Ok(g)
     }
 
     /// The shader: the kernels, the generated header (constants, loaders),
@@ -727,47 +871,69 @@ impl SraaPass {
         }
 
         bind::check_output_format(desc.output_format)?;
-        let packed = desc.geometry == GeometryLayout::Packed;
-        if packed && (desc.depth != DepthKind::LinearView || desc.normal != NormalEncoding::Signed)
+        let buffers = desc.geometry == GeometryLayout::Buffers;
+        if matches!(
+            desc.geometry,
+            GeometryLayout::Packed | GeometryLayout::Buffers
+        ) && (desc.depth != DepthKind::LinearView || desc.normal != NormalEncoding::Signed)
         {
-            return Err(PassError::Config(
-                "GeometryLayout::Packed holds linear view depth and signed normals".into(),
-            ));
+            return Err(PassError::Config(format!(
+                "GeometryLayout::{:?} holds linear view depth and signed normals",
+                desc.geometry
+            )));
         }
+        let hw = desc.depth.is_hardware();
+        let mut h = format!(
+            "const LIGHTS: u32 = {}u;\nconst MATERIAL: bool = {};\nconst HARDWARE_DEPTH: bool = {hw};\n\
+             const UNSIGNED_NORMALS: bool = {};\nconst SHADED_GIVEN: bool = {};\n\
+             const DECODED: bool = {buffers};\nconst SECONDARY: bool = {};\n",
+            desc.lights,
+            desc.albedo_gate,
+            desc.normal == NormalEncoding::Unsigned,
+            desc.shaded_given(),
+            desc.secondary,
+        );
+        h += &if buffers {
+            Self::buffer_loaders(desc)
+        } else {
+            Self::texture_loaders(desc)
+        };
+        Ok([
+            subcone_kernels::wgsl::PARAMS,
+            subcone_kernels::sraa::WGSL,
+            &h,
+            SRAA_WGSL,
+            RECONSTRUCT_WGSL,
+        ]
+        .concat())
+    }
+
+    /// The loaders of the texture layouts (see `sraa.wgsl`'s header).
+    fn texture_loaders(desc: &SraaPassDesc) -> String {
+        let packed = desc.geometry == GeometryLayout::Packed;
         let hw = desc.depth.is_hardware();
         let ms = desc.geometry == GeometryLayout::Multisampled;
         // textureLoad's trailing arguments: sample index, or layer and level.
         let sub_at = if ms { "i32(k)" } else { "i32(k), 0" };
         let scalar = if hw { "" } else { ".x" };
-        let mut h = format!(
-            "const LIGHTS: u32 = {}u;\nconst MATERIAL: bool = {};\nconst HARDWARE_DEPTH: bool = {hw};\n\
-             const UNSIGNED_NORMALS: bool = {};\nconst SHADED_AT_CENTRE: bool = {};\n\
-             const SECONDARY: bool = {};\n",
-            desc.lights,
-            desc.albedo_gate,
-            desc.normal == NormalEncoding::Unsigned,
-            desc.shaded_at_centre(),
-            desc.secondary,
+        let mut h = String::from(
+            "fn sraa_store(p: vec2<i32>, c: vec4<f32>) { textureStore(sraa_output, p, c); }\n",
         );
         if packed {
             h += &format!(
-                "fn sraa_load_sub_depth(p: vec2<i32>, k: u32) -> f32 {{ return textureLoad(sub_depth, p, {sub_at}).w; }}\n\
-                 fn sraa_load_sub_normal(p: vec2<i32>, k: u32) -> vec3<f32> {{ return textureLoad(sub_depth, p, {sub_at}).xyz; }}\n"
+                "fn sraa_load_sub(p: vec2<i32>, k: u32) -> vec4<f32> {{ return textureLoad(sub_depth, p, {sub_at}); }}\n"
             );
         } else {
             h += &format!(
-                "fn sraa_load_sub_depth(p: vec2<i32>, k: u32) -> f32 {{ return textureLoad(sub_depth, p, {sub_at}){scalar}; }}\n\
-                 fn sraa_load_sub_normal(p: vec2<i32>, k: u32) -> vec3<f32> {{ return textureLoad(sub_normal, p, {sub_at}).xyz; }}\n"
+                "fn sraa_load_sub(p: vec2<i32>, k: u32) -> vec4<f32> {{ return vec4<f32>(textureLoad(sub_normal, p, {sub_at}).xyz, textureLoad(sub_depth, p, {sub_at}){scalar}); }}\n"
             );
         }
         if desc.shaded_at_centre() {
             h += &format!(
-                "fn sraa_load_centre_depth(p: vec2<i32>) -> f32 {{ return textureLoad(centre_depth, p, 0){scalar}; }}\n\
-                 fn sraa_load_centre_normal(p: vec2<i32>) -> vec3<f32> {{ return textureLoad(centre_normal, p, 0).xyz; }}\n"
+                "fn sraa_load_shaded(p: vec2<i32>) -> vec4<f32> {{ return vec4<f32>(textureLoad(centre_normal, p, 0).xyz, textureLoad(centre_depth, p, 0){scalar}); }}\n"
             );
         } else {
-            h += "fn sraa_load_centre_depth(p: vec2<i32>) -> f32 { return 0.0; }\n\
-                  fn sraa_load_centre_normal(p: vec2<i32>) -> vec3<f32> { return vec3<f32>(0.0); }\n";
+            h += "fn sraa_load_shaded(p: vec2<i32>) -> vec4<f32> { return vec4<f32>(0.0); }\n";
         }
         if desc.color_layers() == 1 {
             h += "fn sraa_load_color(p: vec2<i32>, l: u32) -> vec3<f32> { return textureLoad(color, p, 0).xyz; }\n";
@@ -782,10 +948,7 @@ impl SraaPass {
                      fn sraa_load_{g}sub_shadow(p: vec2<i32>, k: u32) -> u32 {{ return textureLoad({g}sub_shadow, p, i32(k), 0).x; }}\n"
                 );
             } else {
-                h += &format!(
-                    "fn sraa_load_{g}shaded_shadow(p: vec2<i32>) -> u32 {{ return 0u; }}\n\
-                     fn sraa_load_{g}sub_shadow(p: vec2<i32>, k: u32) -> u32 {{ return 0u; }}\n"
-                );
+                h += &no_shadow_loaders(g);
             }
         }
         if desc.secondary {
@@ -794,8 +957,7 @@ impl SraaPass {
                  fn sraa_load_sec_sub(p: vec2<i32>, k: u32) -> vec4<f32> {{ return vec4<f32>(textureLoad(sec_sub_normal, p, {sub_at}).xyz, textureLoad(sec_sub_depth, p, {sub_at}).x); }}\n"
             );
         } else {
-            h += "fn sraa_load_sec_shaded(p: vec2<i32>) -> vec4<f32> { return vec4<f32>(0.0); }\n\
-                  fn sraa_load_sec_sub(p: vec2<i32>, k: u32) -> vec4<f32> { return vec4<f32>(0.0); }\n";
+            h += NO_SECONDARY_LOADERS;
         }
         if desc.albedo_gate {
             h += &format!(
@@ -803,17 +965,46 @@ impl SraaPass {
                  fn sraa_load_sub_albedo(p: vec2<i32>, k: u32) -> vec3<f32> {{ return textureLoad(sub_albedo, p, {sub_at}).xyz; }}\n"
             );
         } else {
-            h += "fn sraa_load_shaded_albedo(p: vec2<i32>) -> vec3<f32> { return vec3<f32>(0.0); }\n\
-                  fn sraa_load_sub_albedo(p: vec2<i32>, k: u32) -> vec3<f32> { return vec3<f32>(0.0); }\n";
+            h += NO_ALBEDO_LOADERS;
         }
-        Ok([
-            subcone_kernels::wgsl::PARAMS,
-            subcone_kernels::sraa::WGSL,
-            &h,
-            SRAA_WGSL,
-            RECONSTRUCT_WGSL,
-        ]
-        .concat())
+        h
+    }
+
+    /// The loaders of [`GeometryLayout::Buffers`]: pixel `p`'s element of
+    /// each buffer ([`SraaBuffers`]), the geometry as stored.
+    fn buffer_loaders(desc: &SraaPassDesc) -> String {
+        let mut h = format!(
+            "const SRAA_LAYERS: u32 = {}u;\n\
+             fn sraa_pixel(p: vec2<i32>) -> u32 {{ return u32(p.y) * frame.width + u32(p.x); }}\n\
+             fn sraa_load_sub(p: vec2<i32>, k: u32) -> vec4<f32> {{ let g = sub_geo[sraa_pixel(p) * 4u + k]; return vec4<f32>(g.normal, g.depth); }}\n\
+             fn sraa_load_shaded(p: vec2<i32>) -> vec4<f32> {{ let g = shaded_geo[sraa_pixel(p)]; return vec4<f32>(g.normal, g.depth); }}\n\
+             fn sraa_load_color(p: vec2<i32>, l: u32) -> vec3<f32> {{ return color[sraa_pixel(p) * SRAA_LAYERS + l].xyz; }}\n\
+             fn sraa_store(p: vec2<i32>, c: vec4<f32>) {{ sraa_output[sraa_pixel(p)] = c; }}\n",
+            desc.color_layers()
+        );
+        for g in ["", "sec_"] {
+            if desc.lights > 0 && (g.is_empty() || desc.secondary) {
+                h += &format!(
+                    "fn sraa_load_{g}shaded_shadow(p: vec2<i32>) -> u32 {{ return {g}shaded_shadow[sraa_pixel(p)]; }}\n\
+                     fn sraa_load_{g}sub_shadow(p: vec2<i32>, k: u32) -> u32 {{ return {g}sub_shadow[sraa_pixel(p) * 4u + k]; }}\n"
+                );
+            } else {
+                h += &no_shadow_loaders(g);
+            }
+        }
+        if desc.secondary {
+            h += "fn sraa_load_sec_shaded(p: vec2<i32>) -> vec4<f32> { let g = sec_shaded_geo[sraa_pixel(p)]; return vec4<f32>(g.normal, g.depth); }\n\
+                  fn sraa_load_sec_sub(p: vec2<i32>, k: u32) -> vec4<f32> { let g = sec_sub_geo[sraa_pixel(p) * 4u + k]; return vec4<f32>(g.normal, g.depth); }\n";
+        } else {
+            h += NO_SECONDARY_LOADERS;
+        }
+        if desc.albedo_gate {
+            h += "fn sraa_load_shaded_albedo(p: vec2<i32>) -> vec3<f32> { return shaded_albedo[sraa_pixel(p)].xyz; }\n\
+                  fn sraa_load_sub_albedo(p: vec2<i32>, k: u32) -> vec3<f32> { return sub_albedo[sraa_pixel(p) * 4u + k].xyz; }\n";
+        } else {
+            h += NO_ALBEDO_LOADERS;
+        }
+        h
     }
 
     /// Check `inputs` against the configuration; the frame's size. Each
@@ -856,6 +1047,11 @@ impl SraaPass {
         inputs: &SraaInputs<'_>,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), PassError> {
+        if self.desc.geometry == GeometryLayout::Buffers {
+            return Err(PassError::Config(
+                "GeometryLayout::Buffers is encoded with encode_buffers".into(),
+            ));
+        }
         let (width, height) = self.check(inputs)?;
         let d = &self.desc;
         let m = inputs.projection;
@@ -871,38 +1067,38 @@ impl SraaPass {
             depth_miss,
             albedo_tolerance: ALBEDO_TOLERANCE,
         };
-        let mut views: Vec<(&'static str, &wgpu::TextureView)> = Vec::with_capacity(16);
+        let mut views: Vec<(&'static str, Bound<'_>)> = Vec::with_capacity(16);
         match inputs.geometry {
             SubsampleGeometry::Separate { depth, normal } => {
-                views.push(("sub_depth", depth));
-                views.push(("sub_normal", normal));
+                views.push(("sub_depth", Bound::Texture(depth)));
+                views.push(("sub_normal", Bound::Texture(normal)));
             }
-            SubsampleGeometry::Packed(p) => views.push(("sub_depth", p)),
+            SubsampleGeometry::Packed(p) => views.push(("sub_depth", Bound::Texture(p))),
         }
         if let Some(c) = &inputs.centre {
-            views.push(("centre_depth", c.depth));
-            views.push(("centre_normal", c.normal));
+            views.push(("centre_depth", Bound::Texture(c.depth)));
+            views.push(("centre_normal", Bound::Texture(c.normal)));
         }
-        views.push(("color", inputs.color));
+        views.push(("color", Bound::Texture(inputs.color)));
         if let Some(s) = &inputs.shadows {
-            views.push(("shaded_shadow", s.shaded));
-            views.push(("sub_shadow", s.subsamples));
+            views.push(("shaded_shadow", Bound::Texture(s.shaded)));
+            views.push(("sub_shadow", Bound::Texture(s.subsamples)));
         }
         if let Some(s) = &inputs.secondary {
-            views.push(("sec_shaded_depth", s.shaded_depth));
-            views.push(("sec_shaded_normal", s.shaded_normal));
-            views.push(("sec_sub_depth", s.subsample_depth));
-            views.push(("sec_sub_normal", s.subsample_normal));
+            views.push(("sec_shaded_depth", Bound::Texture(s.shaded_depth)));
+            views.push(("sec_shaded_normal", Bound::Texture(s.shaded_normal)));
+            views.push(("sec_sub_depth", Bound::Texture(s.subsample_depth)));
+            views.push(("sec_sub_normal", Bound::Texture(s.subsample_normal)));
             if let Some(sh) = &s.shadows {
-                views.push(("sec_shaded_shadow", sh.shaded));
-                views.push(("sec_sub_shadow", sh.subsamples));
+                views.push(("sec_shaded_shadow", Bound::Texture(sh.shaded)));
+                views.push(("sec_sub_shadow", Bound::Texture(sh.subsamples)));
             }
         }
         if let Some(a) = &inputs.albedo {
-            views.push(("shaded_albedo", a.shaded));
-            views.push(("sub_albedo", a.subsamples));
+            views.push(("shaded_albedo", Bound::Texture(a.shaded)));
+            views.push(("sub_albedo", Bound::Texture(a.subsamples)));
         }
-        views.push(("sraa_output", inputs.output));
+        views.push(("sraa_output", Bound::Texture(inputs.output)));
         self.pipeline.encode(
             device,
             queue,
@@ -910,6 +1106,103 @@ impl SraaPass {
             (width, height),
             &[bytemuck::bytes_of(&frame)],
             &views,
+            None,
+            timestamps,
+        )
+    }
+
+    /// Record the resolve of one frame from storage buffers
+    /// ([`GeometryLayout::Buffers`], [`SraaPassDesc::buffers`]), as
+    /// [`Self::encode`] does from textures: one compute pass of 8×8
+    /// workgroups, the constants written through `queue`, every buffer
+    /// checked first (usage and size for `inputs.size`; the optional roles
+    /// given exactly when the desc needs them), so that on an error nothing
+    /// is recorded or written.
+    pub fn encode_buffers(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        inputs: &SraaBuffers<'_>,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<(), PassError> {
+        let d = &self.desc;
+        if d.geometry != GeometryLayout::Buffers {
+            return Err(PassError::Config(format!(
+                "GeometryLayout::{:?} is encoded with encode (textures)",
+                d.geometry
+            )));
+        }
+        let (width, height) = inputs.size;
+        let n = u64::from(width) * u64::from(height);
+        let (geo, float4, word) = (16, 16, 4);
+        check_buffer("shaded geometry", inputs.shaded, n, geo)?;
+        check_buffer("subsample geometry", inputs.subsamples, 4 * n, geo)?;
+        check_buffer(
+            "colour",
+            inputs.color,
+            n * u64::from(d.color_layers()),
+            float4,
+        )?;
+        check_buffer("output", inputs.output, n, float4)?;
+        presence(inputs.shadows.is_some(), d.lights > 0, "shadow buffers")?;
+        presence(inputs.albedo.is_some(), d.albedo_gate, "albedo buffers")?;
+        presence(inputs.secondary.is_some(), d.secondary, "secondary buffers")?;
+        let mut bound: Vec<(&'static str, Bound<'_>)> = vec![
+            ("sub_geo", Bound::Buffer(inputs.subsamples)),
+            ("shaded_geo", Bound::Buffer(inputs.shaded)),
+            ("color", Bound::Buffer(inputs.color)),
+        ];
+        if let Some(s) = &inputs.shadows {
+            check_buffer("shaded shadow bits", s.shaded, n, word)?;
+            check_buffer("subsample shadow bits", s.subsamples, 4 * n, word)?;
+            bound.push(("shaded_shadow", Bound::Buffer(s.shaded)));
+            bound.push(("sub_shadow", Bound::Buffer(s.subsamples)));
+        }
+        if let Some(s) = &inputs.secondary {
+            check_buffer("secondary shaded geometry", s.shaded, n, geo)?;
+            check_buffer("secondary subsample geometry", s.subsamples, 4 * n, geo)?;
+            presence(
+                s.shadows.is_some(),
+                d.lights > 0,
+                "secondary shadow buffers",
+            )?;
+            bound.push(("sec_shaded_geo", Bound::Buffer(s.shaded)));
+            bound.push(("sec_sub_geo", Bound::Buffer(s.subsamples)));
+            if let Some(sh) = &s.shadows {
+                check_buffer("secondary shaded shadow bits", sh.shaded, n, word)?;
+                check_buffer(
+                    "secondary subsample shadow bits",
+                    sh.subsamples,
+                    4 * n,
+                    word,
+                )?;
+                bound.push(("sec_shaded_shadow", Bound::Buffer(sh.shaded)));
+                bound.push(("sec_sub_shadow", Bound::Buffer(sh.subsamples)));
+            }
+        }
+        if let Some(a) = &inputs.albedo {
+            check_buffer("shaded albedo", a.shaded, n, float4)?;
+            check_buffer("subsample albedo", a.subsamples, 4 * n, float4)?;
+            bound.push(("shaded_albedo", Bound::Buffer(a.shaded)));
+            bound.push(("sub_albedo", Bound::Buffer(a.subsamples)));
+        }
+        bound.push(("sraa_output", Bound::Buffer(inputs.output)));
+        let frame = SraaFrame {
+            sraa: d.params,
+            projection: [0.0; 4],
+            width,
+            height,
+            depth_miss: 0.0,
+            albedo_tolerance: ALBEDO_TOLERANCE,
+        };
+        self.pipeline.encode(
+            device,
+            queue,
+            encoder,
+            (width, height),
+            &[bytemuck::bytes_of(&frame)],
+            &bound,
             None,
             timestamps,
         )
@@ -925,7 +1218,7 @@ impl SraaPass {
 
 #[cfg(test)]
 pub(crate) fn test_source(desc: &SraaPassDesc) -> String {
-    let group = SraaPass::group(desc);
+    let group = SraaPass::group(desc).expect("valid desc");
     [
         SraaPass::source(desc).expect("valid desc"),
         group.declarations(),

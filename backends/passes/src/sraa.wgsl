@@ -12,12 +12,16 @@
 // header sraa.rs generates, and comes before
 // subcone_kernels::sraa::RECONSTRUCT_WGSL (the loop, whose hooks this file
 // defines): the constants LIGHTS, MATERIAL, HARDWARE_DEPTH,
-// UNSIGNED_NORMALS, SHADED_AT_CENTRE, SECONDARY, the bindings, and the loaders
-// sraa_load_sub_depth/normal/shadow/albedo (subsample k of pixel p),
+// UNSIGNED_NORMALS, SHADED_GIVEN (the shaded sample's geometry is an input
+// of its own), DECODED (geometry is stored as the kernels' subcone_Geometry,
+// taken as it is), SECONDARY, the bindings, the loaders
+// sraa_load_sub (normal and depth), sraa_load_sub_shadow and
+// sraa_load_sub_albedo (subsample k of pixel p),
 // sraa_load_sec_shaded / sraa_load_sec_sub (secondary normal and path
 // length), sraa_load_sec_shaded_shadow / sraa_load_sec_sub_shadow,
-// sraa_load_centre_depth/normal, sraa_load_color (layer l),
-// sraa_load_shaded_shadow and sraa_load_shaded_albedo (the shaded sample).
+// sraa_load_shaded (the shaded sample's own normal and depth),
+// sraa_load_color (layer l), sraa_load_shaded_shadow and
+// sraa_load_shaded_albedo (the shaded sample), and sraa_store (the output).
 
 // sraa.rs `SraaFrame` (64 bytes).
 struct SraaFrame {
@@ -66,32 +70,41 @@ fn sraa_decode_normal(v: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(0.0);
 }
 
-fn sraa_geometry(depth: f32, normal: vec3<f32>) -> subcone_Geometry {
-    let z = sraa_decode_depth(depth);
+// The geometry of a sample from its stored normal (.xyz) and depth (.w):
+// decoded, or as stored (DECODED: already the kernels' convention).
+fn sraa_geometry(v: vec4<f32>) -> subcone_Geometry {
+    if DECODED {
+        return subcone_Geometry(v.xyz, v.w);
+    }
+    let z = sraa_decode_depth(v.w);
     if z == subcone_inf() {
         return subcone_Geometry(vec3<f32>(0.0), z);
     }
-    return subcone_Geometry(sraa_decode_normal(normal), z);
+    return subcone_Geometry(sraa_decode_normal(v.xyz), z);
 }
 
 // Geometric subsample k of pixel p (at SUBPIXEL_OFFSETS[k]).
 fn sraa_sub_geo(p: vec2<i32>, k: u32) -> subcone_Geometry {
-    return sraa_geometry(sraa_load_sub_depth(p, k), sraa_load_sub_normal(p, k));
+    return sraa_geometry(sraa_load_sub(p, k));
 }
 
-// The geometry of pixel p's shaded sample: subsample SHADED_SUBSAMPLE, or
-// the host's centre geometry when the preset shades the pixel centre.
+// The geometry of pixel p's shaded sample: its own (SHADED_GIVEN: the
+// pixel centre's when the preset shades there, or a host's shaded geometry),
+// else subsample SHADED_SUBSAMPLE.
 fn sraa_shaded_geo(p: vec2<i32>) -> subcone_Geometry {
-    if SHADED_AT_CENTRE {
-        return sraa_geometry(sraa_load_centre_depth(p), sraa_load_centre_normal(p));
+    if SHADED_GIVEN {
+        return sraa_geometry(sraa_load_shaded(p));
     }
     return sraa_sub_geo(p, subcone_SHADED_SUBSAMPLE);
 }
 
 // A secondary hit's geometry from (normal, path length): a NaN depth (no
 // mirror here, excluded by every weight) for a negative or NaN length, a
-// miss for 0 or +inf, else a hit.
+// miss for 0 or +inf, else a hit; as stored with DECODED.
 fn sraa_secondary_geometry(v: vec4<f32>) -> subcone_Geometry {
+    if DECODED {
+        return subcone_Geometry(v.xyz, v.w);
+    }
     if subcone_is_nan(v.w) || v.w < 0.0 {
         return subcone_Geometry(vec3<f32>(0.0), bitcast<f32>(0x7fc00000u));
     }
@@ -164,5 +177,5 @@ fn sraa_resolve_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let s1 = sraa_reconstruct_subsample(id.x, id.y, 1u);
     let s2 = sraa_reconstruct_subsample(id.x, id.y, 2u);
     let s3 = sraa_reconstruct_subsample(id.x, id.y, 3u);
-    textureStore(sraa_output, vec2<i32>(i32(id.x), i32(id.y)), vec4<f32>(subcone_resolve_pixel(s0, s1, s2, s3), 1.0));
+    sraa_store(vec2<i32>(i32(id.x), i32(id.y)), vec4<f32>(subcone_resolve_pixel(s0, s1, s2, s3), 1.0));
 }

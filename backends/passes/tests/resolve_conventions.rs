@@ -5,7 +5,9 @@
 //! linear view depth, signed and `[0, 1]`-encoded normals, shading at
 //! subsample 0 and at the centre, lights gated by shadow bits (eq. 2), the
 //! albedo gate, secondary (mirror) hits reconstructed on their own geometry
-//! (§3.3), a 5×5 neighbourhood. Bound: every channel within 1e-4 of
+//! (§3.3), a 5×5 neighbourhood, and the same roles in storage buffers
+//! (`GeometryLayout::Buffers`, `encode_buffers`, what `subcone-wgpu`'s
+//! SRAA-RT resolves from). Bound: every channel within 1e-4 of
 //! the CPU's (the WGSL accumulates in compensated f32 where the Rust uses
 //! f64, and the GPU's `exp` is not libm's; `[0, 1]` normals are decoded and
 //! renormalised).
@@ -22,8 +24,9 @@ use subcone_kernels::sraa::{
     ALBEDO_TOLERANCE,
 };
 use subcone_passes::{
-    AlbedoTextures, CentreGeometry, DepthKind, GeometryLayout, NormalEncoding, SecondaryInputs,
-    ShadowTextures, SraaInputs, SraaPass, SraaPassDesc, SubsampleGeometry,
+    AlbedoBuffers, AlbedoTextures, CentreGeometry, DepthKind, GeometryLayout, NormalEncoding,
+    SecondaryBuffers, SecondaryInputs, ShadowBuffers, ShadowTextures, SraaBuffers, SraaInputs,
+    SraaPass, SraaPassDesc, SubsampleGeometry,
 };
 
 const W: u32 = 12;
@@ -253,8 +256,100 @@ fn layered<T: bytemuck::Pod>(layers: usize, f: impl Fn(usize, usize) -> T) -> Ve
     bytemuck::cast_slice(&v).to_vec()
 }
 
+/// A storage buffer holding `data` (and readable back, for the output).
+fn storage<T: bytemuck::Pod>(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    data: &[T],
+) -> wgpu::Buffer {
+    let bytes: &[u8] = bytemuck::cast_slice(data);
+    let b = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("input"),
+        size: (bytes.len() as u64).max(16),
+        usage: wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::COPY_DST
+            | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    queue.write_buffer(&b, 0, bytes);
+    b
+}
+
+/// The pass on buffers (`GeometryLayout::Buffers`): every role as the
+/// kernels' structs, the geometry as it is (secondary misses and "no
+/// mirror" as `Geometry` holds them).
+fn gpu_buffers(device: &wgpu::Device, queue: &wgpu::Queue, d: &Data, c: &Case) -> Vec<Vec3> {
+    let flat = |v: &[[Geometry; 4]]| -> Vec<Geometry> { v.iter().flatten().copied().collect() };
+    let v4 = |a: &Vec3| -> [f32; 4] { Vec4::from((*a, 0.0)).into() };
+    let words = |v: &[[u32; 4]]| -> Vec<u32> { v.iter().flatten().copied().collect() };
+    let shaded = storage(device, queue, &d.shaded);
+    let sub = storage(device, queue, &flat(&d.sub));
+    let color: Vec<[f32; 4]> = d.colors.iter().map(v4).collect();
+    let color = storage(device, queue, &color);
+    let shaded_shadow = storage(device, queue, &d.shaded_shadow);
+    let sub_shadow = storage(device, queue, &words(&d.sub_shadow));
+    let shaded_albedo: Vec<[f32; 4]> = d.shaded_albedo.iter().map(v4).collect();
+    let shaded_albedo = storage(device, queue, &shaded_albedo);
+    let sub_albedo: Vec<[f32; 4]> = d.sub_albedo.iter().flatten().map(v4).collect();
+    let sub_albedo = storage(device, queue, &sub_albedo);
+    let shaded2 = storage(device, queue, &d.shaded2);
+    let sub2 = storage(device, queue, &flat(&d.sub2));
+    let shaded_shadow2 = storage(device, queue, &d.shaded_shadow2);
+    let sub_shadow2 = storage(device, queue, &words(&d.sub_shadow2));
+    let output = storage(device, queue, &vec![[0.0f32; 4]; (W * H) as usize]);
+    let pass = SraaPass::new(
+        device,
+        &SraaPassDesc::buffers(c.params)
+            .with_lights(c.lights as u32)
+            .with_secondary(c.secondary)
+            .with_albedo_gate(c.gate),
+    )
+    .expect("pass");
+    let mut enc = device.create_command_encoder(&Default::default());
+    let shadows =
+        |shaded, subsamples| (c.lights > 0).then_some(ShadowBuffers { shaded, subsamples });
+    pass.encode_buffers(
+        device,
+        queue,
+        &mut enc,
+        &SraaBuffers {
+            size: (W, H),
+            shaded: &shaded,
+            subsamples: &sub,
+            color: &color,
+            shadows: shadows(&shaded_shadow, &sub_shadow),
+            albedo: c.gate.then_some(AlbedoBuffers {
+                shaded: &shaded_albedo,
+                subsamples: &sub_albedo,
+            }),
+            secondary: c.secondary.then_some(SecondaryBuffers {
+                shaded: &shaded2,
+                subsamples: &sub2,
+                shadows: shadows(&shaded_shadow2, &sub_shadow2),
+            }),
+            output: &output,
+        },
+        None,
+    )
+    .unwrap_or_else(|e| panic!("{}: {e}", c.name));
+    let staging = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("read-back"),
+        size: output.size(),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    enc.copy_buffer_to_buffer(&output, 0, &staging, 0, output.size());
+    queue.submit([enc.finish()]);
+    let bytes = host_sraa::host::read_buffer(device, &staging).expect("read-back");
+    let px: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes);
+    px.iter().map(|p| Vec3::new(p[0], p[1], p[2])).collect()
+}
+
 fn gpu(device: &wgpu::Device, queue: &wgpu::Queue, d: &Data, c: &Case) -> Vec<Vec3> {
     use wgpu::TextureFormat::{R32Float, R32Uint, Rgba32Float};
+    if c.geometry == GeometryLayout::Buffers {
+        return gpu_buffers(device, queue, d, c);
+    }
     let linear = |g: &Geometry| if g.depth.is_finite() { g.depth } else { 0.0 };
     let normal = |g: &Geometry| -> [f32; 4] {
         let n = match c.normal {
@@ -382,9 +477,12 @@ fn gpu(device: &wgpu::Device, queue: &wgpu::Queue, d: &Data, c: &Case) -> Vec<Ve
 
 #[test]
 fn sraa_pass_matches_the_cpu_resolver_in_every_convention() {
-    let Some((device, queue)) =
-        common::device_or_skip("resolve conventions", host_sraa::open_device)
-    else {
+    // The adapter's limits: the buffer form with lights, mirrors and the
+    // albedo gate binds 12 storage buffers (WebGPU's default allows 8).
+    let Some((device, queue)) = common::device_or_skip(
+        "resolve conventions",
+        host_sraa::host::open_device_with_adapter_limits,
+    ) else {
         return;
     };
     let cases = [
@@ -434,6 +532,24 @@ fn sraa_pass_matches_the_cpu_resolver_in_every_convention() {
             secondary: true,
         },
         Case {
+            name: "buffers, paper, 2 lights, albedo gate, secondary",
+            geometry: GeometryLayout::Buffers,
+            normal: NormalEncoding::Signed,
+            params: SraaParams::PAPER,
+            lights: 2,
+            gate: true,
+            secondary: true,
+        },
+        Case {
+            name: "buffers, tuned, 1 light",
+            geometry: GeometryLayout::Buffers,
+            normal: NormalEncoding::Signed,
+            params: SraaParams::TUNED,
+            lights: 1,
+            gate: false,
+            secondary: false,
+        },
+        Case {
             name: "packed, tuned, secondary",
             geometry: GeometryLayout::Packed,
             normal: NormalEncoding::Signed,
@@ -471,4 +587,85 @@ fn sraa_pass_matches_the_cpu_resolver_in_every_convention() {
             c.name
         );
     }
+}
+
+/// The buffer form checks its buffers before recording: a buffer too small
+/// for the frame, one without `STORAGE`, a role the desc does not read and
+/// a texture desc given buffers are each refused, as values.
+#[test]
+fn sraa_pass_buffers_are_checked() {
+    use subcone_passes::PassError;
+    let Some((device, queue)) = common::device_or_skip("buffer checks", host_sraa::open_device)
+    else {
+        return;
+    };
+    let n = (W * H) as usize;
+    let geo = storage(&device, &queue, &vec![Geometry::MISS; n]);
+    let sub = storage(&device, &queue, &vec![Geometry::MISS; 4 * n]);
+    let small = storage(&device, &queue, &vec![Geometry::MISS; n - 1]);
+    let color = storage(&device, &queue, &vec![[0.0f32; 4]; n]);
+    let words = storage(&device, &queue, &vec![0u32; 4 * n]);
+    let output = storage(&device, &queue, &vec![[0.0f32; 4]; n]);
+    let unbindable = device.create_buffer(&wgpu::BufferDescriptor {
+        label: None,
+        size: (n * 16) as u64,
+        usage: wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let pass = SraaPass::new(&device, &SraaPassDesc::buffers(SraaParams::TUNED)).expect("pass");
+    let inputs = SraaBuffers {
+        size: (W, H),
+        shaded: &geo,
+        subsamples: &sub,
+        color: &color,
+        shadows: None,
+        albedo: None,
+        secondary: None,
+        output: &output,
+    };
+    let mut enc = device.create_command_encoder(&Default::default());
+    let mut encode = |i: &SraaBuffers<'_>| pass.encode_buffers(&device, &queue, &mut enc, i, None);
+    assert_eq!(encode(&inputs), Ok(()));
+    assert!(matches!(
+        encode(&SraaBuffers {
+            shaded: &small,
+            ..inputs
+        }),
+        Err(PassError::BufferSize {
+            what: "shaded geometry",
+            ..
+        })
+    ));
+    assert!(matches!(
+        encode(&SraaBuffers {
+            output: &unbindable,
+            ..inputs
+        }),
+        Err(PassError::BufferUsage { what: "output", .. })
+    ));
+    assert_eq!(
+        encode(&SraaBuffers {
+            shadows: Some(ShadowBuffers {
+                shaded: &words,
+                subsamples: &words,
+            }),
+            ..inputs
+        }),
+        Err(PassError::Unexpected("shadow buffers"))
+    );
+    let textures = SraaPass::new(&device, &SraaPassDesc::packed(SraaParams::TUNED)).expect("pass");
+    // On a device of WebGPU's default limits (8 storage buffers per stage),
+    // the 12 buffers of lights, mirrors and the albedo gate are refused.
+    let full = SraaPassDesc::buffers(SraaParams::TUNED)
+        .with_lights(2)
+        .with_secondary(true)
+        .with_albedo_gate(true);
+    assert!(matches!(
+        SraaPass::new(&device, &full),
+        Err(PassError::Config(_))
+    ));
+    assert!(matches!(
+        textures.encode_buffers(&device, &queue, &mut enc, &inputs, None),
+        Err(PassError::Config(_))
+    ));
 }

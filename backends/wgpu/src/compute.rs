@@ -1,11 +1,13 @@
-//! The one way this backend runs WGSL: shader assembly, bindings declared
-//! once, one pipeline cache, dispatch and read-back.
+//! The one way this backend runs WGSL: shader assembly, one pipeline
+//! cache, dispatch and read-back, over the bindings of
+//! `subcone_passes::bind`, the binding layer the passes use too.
 //!
 //! A GPU pass is one `.rs` beside one `.wgsl`. The `.wgsl` holds the pass's
 //! structs, functions and entry points and no `@binding` line. The `.rs`
-//! lists what the pass binds in a [`Bindings`], which writes both the WGSL
-//! declarations (`@group(g) @binding(i) var…`) and the bind group from the
-//! same list, so a binding number cannot drift between the two. A
+//! lists what the pass binds in a [`Bindings`] (buffers allocated through
+//! [`Allocate`], inside the context's error scopes), which writes both the
+//! WGSL declarations (`@group(g) @binding(i) var…`) and the bind group from
+//! the same list, so a binding number cannot drift between the two. A
 //! [`Program`] assembles the shader ([`PRELUDE`], the pass's sources, the
 //! declarations), compiles it once per device and source (cached under a
 //! [`ComputePipelineKey`]), and dispatches its entry points with every group bound.
@@ -23,6 +25,7 @@ use subcone_scene::RenderError;
 use wgpu::util::DeviceExt;
 
 use crate::context::{err, CacheKey, GpuContext};
+use subcone_passes::bind::{self, Bindings, BufferAccess};
 
 /// What every shader starts with: the kernels' shared structs and the one
 /// WGSL spelling of infinity and of the NaN and finiteness tests
@@ -41,83 +44,40 @@ impl CacheKey for ComputePipelineKey {
     type Value = wgpu::ComputePipeline;
 }
 
-/// How a shader reads a binding.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Access {
-    /// `var<uniform>`.
-    Uniform,
-    /// `var<storage, read>`.
-    Read,
-    /// `var<storage, read_write>`.
-    ReadWrite,
-    /// A `texture_2d_array<f32>`, read with `textureLoad` (not filtered).
-    Texture,
-    /// A `texture_2d<f32>`, read with `textureLoad` (not filtered).
-    Texture2d,
-    /// A write-only `texture_storage_2d` of this format.
-    StorageTexture(wgpu::TextureFormat),
-}
-
-enum Resource {
-    Buffer(wgpu::Buffer),
-    Texture(wgpu::TextureView),
-}
-
-struct Binding {
-    var: String,
-    ty: String,
-    access: Access,
-    resource: Resource,
-}
-
-/// One bind group, declared once: binding `i` is the `i`-th entry added.
-/// [`Bindings::declarations`] is its WGSL, [`Bindings::layout`] and
-/// [`Bindings::bind_group`] its wgpu objects.
-pub(crate) struct Bindings {
-    group: u32,
-    visibility: wgpu::ShaderStages,
-    list: Vec<Binding>,
-    /// The buffers this group allocated, by name and bytes (for `FrameStats`).
-    pub(crate) stats: Vec<(&'static str, usize)>,
-}
-
-impl Bindings {
-    /// An empty group `group` of a compute shader.
-    pub(crate) fn new(group: u32) -> Self {
-        Self::visible_in(group, wgpu::ShaderStages::COMPUTE)
-    }
-
-    /// An empty group `group` visible to `stages` (the raster pass's group
-    /// is read by its vertex and fragment stages).
-    pub(crate) fn visible_in(group: u32, stages: wgpu::ShaderStages) -> Self {
-        Bindings {
-            group,
-            visibility: stages,
-            list: Vec::new(),
-            stats: Vec::new(),
-        }
-    }
-
-    fn push(&mut self, var: &str, ty: &str, access: Access, resource: Resource) {
-        self.list.push(Binding {
-            var: var.to_string(),
-            ty: ty.to_string(),
-            access,
-            resource,
-        });
-    }
-
-    /// Bind an existing buffer (shared by the caller, e.g. a cached scene's)
-    /// as `var: ty`.
-    pub(crate) fn buffer(&mut self, var: &str, ty: &str, access: Access, b: &wgpu::Buffer) {
-        self.push(var, ty, access, Resource::Buffer(b.clone()));
-    }
-
+/// What this backend adds to [`Bindings`]: buffers allocated inside the
+/// context's error scopes (an allocation the device refuses is a
+/// [`RenderError`]) and accounted in the bindings (for `FrameStats`), and
+/// a bound buffer looked up as a `Result`.
+pub(crate) trait Allocate {
     /// A uniform `var: ty` holding `value`.
-    pub(crate) fn uniform<T: Pod>(
+    fn uniform<T: Pod>(
         &mut self,
         ctx: &GpuContext,
-        var: &str,
+        var: &'static str,
+        ty: &str,
+        value: &T,
+    ) -> Result<(), RenderError>;
+
+    /// A zeroed read-write storage buffer of `bytes` (at least 16), bound as
+    /// `var: ty` and accounted as `name`. It can be copied to and from.
+    fn storage(
+        &mut self,
+        ctx: &GpuContext,
+        name: &'static str,
+        var: &'static str,
+        ty: &str,
+        bytes: u64,
+    ) -> Result<(), RenderError>;
+
+    /// The buffer bound as `var`.
+    fn get(&self, var: &str) -> Result<&wgpu::Buffer, RenderError>;
+}
+
+impl Allocate for Bindings {
+    fn uniform<T: Pod>(
+        &mut self,
+        ctx: &GpuContext,
+        var: &'static str,
         ty: &str,
         value: &T,
     ) -> Result<(), RenderError> {
@@ -129,17 +89,15 @@ impl Bindings {
                     usage: wgpu::BufferUsages::UNIFORM,
                 })
         })?;
-        self.push(var, ty, Access::Uniform, Resource::Buffer(b));
+        self.buffer(var, ty, BufferAccess::Uniform, &b);
         Ok(())
     }
 
-    /// A zeroed read-write storage buffer of `bytes` (at least 16), bound as
-    /// `var: ty` and reported as `name`. It can be copied to and from.
-    pub(crate) fn storage(
+    fn storage(
         &mut self,
         ctx: &GpuContext,
         name: &'static str,
-        var: &str,
+        var: &'static str,
         ty: &str,
         bytes: u64,
     ) -> Result<(), RenderError> {
@@ -154,183 +112,26 @@ impl Bindings {
                 mapped_at_creation: false,
             })
         })?;
-        self.stats.push((name, bytes as usize));
-        self.push(var, ty, Access::ReadWrite, Resource::Buffer(b));
+        self.account(name, bytes as usize);
+        self.buffer(var, ty, BufferAccess::ReadWrite, &b);
         Ok(())
     }
 
-    /// A storage buffer holding `contents`, bound as `var: ty` with `access`
-    /// and reported as `name`.
-    #[cfg_attr(not(feature = "test-util"), allow(dead_code))]
-    pub(crate) fn storage_init(
-        &mut self,
-        ctx: &GpuContext,
-        name: &'static str,
-        var: &str,
-        ty: &str,
-        access: Access,
-        contents: &[u8],
-    ) -> Result<(), RenderError> {
-        ctx.check_buffer_size(name, contents.len() as u64)?;
-        let b = ctx.scoped(name, || {
-            ctx.device
-                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some(name),
-                    contents,
-                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-                })
-        })?;
-        self.stats.push((name, contents.len()));
-        self.push(var, ty, access, Resource::Buffer(b));
-        Ok(())
-    }
-
-    /// A texture array `var` (`texture_2d_array<f32>`).
-    pub(crate) fn texture(&mut self, var: &str, view: wgpu::TextureView) {
-        self.push(
-            var,
-            "texture_2d_array<f32>",
-            Access::Texture,
-            Resource::Texture(view),
-        );
-    }
-
-    /// A 2D texture `var` (`texture_2d<f32>`).
-    pub(crate) fn texture_2d(&mut self, var: &str, view: wgpu::TextureView) {
-        self.push(
-            var,
-            "texture_2d<f32>",
-            Access::Texture2d,
-            Resource::Texture(view),
-        );
-    }
-
-    /// A write-only 2D storage texture `var` of `format`, whose WGSL name is
-    /// `wgsl_format` (e.g. `rgba32float`).
-    pub(crate) fn storage_texture(
-        &mut self,
-        var: &str,
-        format: wgpu::TextureFormat,
-        wgsl_format: &str,
-        view: wgpu::TextureView,
-    ) {
-        self.push(
-            var,
-            &format!("texture_storage_2d<{wgsl_format}, write>"),
-            Access::StorageTexture(format),
-            Resource::Texture(view),
-        );
-    }
-
-    /// Whether `var` is bound.
-    pub(crate) fn has(&self, var: &str) -> bool {
-        self.list.iter().any(|b| b.var == var)
-    }
-
-    /// The buffer bound as `var`.
-    pub(crate) fn get(&self, var: &str) -> Result<&wgpu::Buffer, RenderError> {
-        self.list
-            .iter()
-            .find_map(|b| match &b.resource {
-                Resource::Buffer(buf) if b.var == var => Some(buf),
-                _ => None,
-            })
+    fn get(&self, var: &str) -> Result<&wgpu::Buffer, RenderError> {
+        self.buffer_named(var)
             .ok_or_else(|| err(format!("no buffer `{var}` is bound")))
     }
+}
 
-    /// The WGSL declarations of the group, one line per binding.
-    pub(crate) fn declarations(&self) -> String {
-        let mut s = String::new();
-        for (i, b) in self.list.iter().enumerate() {
-            let space = match b.access {
-                Access::Uniform => "<uniform>",
-                Access::Read => "<storage, read>",
-                Access::ReadWrite => "<storage, read_write>",
-                Access::Texture | Access::Texture2d | Access::StorageTexture(_) => "",
-            };
-            s += &format!(
-                "@group({}) @binding({i}) var{space} {}: {};\n",
-                self.group, b.var, b.ty
-            );
-        }
-        s
-    }
+/// How this backend's programs read a sampled texture: `f32` texels with
+/// `textureLoad`, never filtered.
+pub(crate) const FLOAT: wgpu::TextureSampleType =
+    wgpu::TextureSampleType::Float { filterable: false };
 
-    /// The group's layout.
-    pub(crate) fn layout(&self, ctx: &GpuContext) -> wgpu::BindGroupLayout {
-        let entries: Vec<wgpu::BindGroupLayoutEntry> = self
-            .list
-            .iter()
-            .enumerate()
-            .map(|(i, b)| {
-                let buffer = |ty| wgpu::BindingType::Buffer {
-                    ty,
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                };
-                wgpu::BindGroupLayoutEntry {
-                    binding: i as u32,
-                    visibility: self.visibility,
-                    ty: match b.access {
-                        Access::Uniform => buffer(wgpu::BufferBindingType::Uniform),
-                        Access::Read => {
-                            buffer(wgpu::BufferBindingType::Storage { read_only: true })
-                        }
-                        Access::ReadWrite => {
-                            buffer(wgpu::BufferBindingType::Storage { read_only: false })
-                        }
-                        Access::Texture => wgpu::BindingType::Texture {
-                            sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                            view_dimension: wgpu::TextureViewDimension::D2Array,
-                            multisampled: false,
-                        },
-                        Access::Texture2d => wgpu::BindingType::Texture {
-                            sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                            view_dimension: wgpu::TextureViewDimension::D2,
-                            multisampled: false,
-                        },
-                        Access::StorageTexture(format) => wgpu::BindingType::StorageTexture {
-                            access: wgpu::StorageTextureAccess::WriteOnly,
-                            format,
-                            view_dimension: wgpu::TextureViewDimension::D2,
-                        },
-                    },
-                    count: None,
-                }
-            })
-            .collect();
-        ctx.device
-            .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: None,
-                entries: &entries,
-            })
-    }
-
-    /// The bind group of these bindings, for `layout` (from
-    /// [`Bindings::layout`]).
-    pub(crate) fn bind_group(
-        &self,
-        ctx: &GpuContext,
-        layout: &wgpu::BindGroupLayout,
-    ) -> wgpu::BindGroup {
-        let entries: Vec<wgpu::BindGroupEntry> = self
-            .list
-            .iter()
-            .enumerate()
-            .map(|(i, b)| wgpu::BindGroupEntry {
-                binding: i as u32,
-                resource: match &b.resource {
-                    Resource::Buffer(buf) => buf.as_entire_binding(),
-                    Resource::Texture(v) => wgpu::BindingResource::TextureView(v),
-                },
-            })
-            .collect();
-        ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: None,
-            layout,
-            entries: &entries,
-        })
-    }
+/// A bind-group declaration the device refused to take (a format without a
+/// WGSL storage name), as a render error.
+pub(crate) fn bind_err(e: subcone_passes::PassError) -> RenderError {
+    err(format!("bindings: {e}"))
 }
 
 /// A compute shader with its bind groups: [`PRELUDE`], the pass's sources
@@ -357,11 +158,11 @@ impl<'a> Program<'a> {
         if let Some((i, g)) = groups
             .iter()
             .enumerate()
-            .find(|(i, g)| g.group != *i as u32)
+            .find(|(i, g)| g.group().index() != *i as u32)
         {
             return Err(err(format!(
                 "{label}: bind group {i} is declared as group {}",
-                g.group
+                g.group().index()
             )));
         }
         let mut source = String::from(PRELUDE);
@@ -373,19 +174,16 @@ impl<'a> Program<'a> {
         }
         let source: Arc<str> = source.into();
         ctx.scoped(label, || {
-            let layouts: Vec<wgpu::BindGroupLayout> =
-                groups.iter().map(|g| g.layout(ctx)).collect();
-            let layout = ctx
-                .device
-                .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                    label: Some(label),
-                    bind_group_layouts: &layouts.iter().map(Some).collect::<Vec<_>>(),
-                    immediate_size: 0,
-                });
+            let layouts: Vec<wgpu::BindGroupLayout> = groups
+                .iter()
+                .map(|g| g.layout(&ctx.device, label))
+                .collect();
+            let layout =
+                bind::pipeline_layout(&ctx.device, label, &layouts.iter().collect::<Vec<_>>());
             let bound = groups
                 .iter()
                 .zip(&layouts)
-                .map(|(g, l)| g.bind_group(ctx, l))
+                .map(|(g, l)| g.bind_group(&ctx.device, label, l))
                 .collect();
             Program {
                 ctx,
@@ -423,15 +221,7 @@ impl<'a> Program<'a> {
         }
         let (module, layout) = (self.module.as_ref().expect("compiled above"), &self.layout);
         let p = Arc::new(ctx.scoped(entry, || {
-            ctx.device
-                .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                    label: Some(entry),
-                    layout: Some(layout),
-                    module,
-                    entry_point: Some(entry),
-                    compilation_options: Default::default(),
-                    cache: None,
-                })
+            bind::compute_pipeline(&ctx.device, entry, layout, module, entry)
         })?);
         ctx.cache_insert(key, p.clone());
         Ok(p)

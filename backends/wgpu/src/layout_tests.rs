@@ -1,5 +1,5 @@
 //! Every one of the backend's own `#[repr(C)]` GPU structs against its WGSL
-//! twin (triangles, SDF scenes, FXAA),
+//! twin (triangles, SDF scenes),
 //! through naga's layouter (WGSL's layout rules), as `kernels/tests/
 //! wgsl_layout.rs` checks the kernels' structs: every WGSL member, in order,
 //! at the offset and with the size of the Rust field it mirrors, and the same
@@ -14,7 +14,6 @@ mod layout_check;
 
 use layout_check::{assert_all_match, Member};
 
-use crate::post::fxaa::{FxaaFrame, FXAA_WGSL};
 use crate::sdf::{SdfFrame, SdfSraaFrame, SRAA_FRAME_WGSL, TRACE_WGSL as SDF_WGSL};
 use crate::triangles::bvh::{GpuLight, GpuMaterial, GpuNode};
 use crate::triangles::{FrameUniform, ALBEDO_WGSL, FRAME_WGSL, TRACE_WGSL};
@@ -71,12 +70,6 @@ fn backend_gpu_structs_match_their_wgsl() {
             "SdfSraaFrame",
             size_of::<SdfSraaFrame>(),
             sdf_sraa_members,
-        ),
-        (
-            FXAA_WGSL,
-            "FxaaFrame",
-            size_of::<FxaaFrame>(),
-            members!(FxaaFrame: width, height, _pad[2 as u32]),
         ),
     ]);
 }

@@ -8,11 +8,13 @@
 //! scopes, so a shader that fails to compile is an `Err`, not a panic) and one
 //! place to change when wgpu changes.
 
-use crate::compute::{self, Access, Bindings, Program};
+use crate::compute::{self, Allocate, Program};
 use crate::context::{err, GpuContext};
 use crate::WgpuBackend;
 use bytemuck::Pod;
+use subcone_passes::bind::{Bindings, BufferAccess};
 use subcone_scene::RenderError;
+use wgpu::util::DeviceExt;
 
 /// The backend on the shared device, or `None` when there is no adapter and
 /// `SUBCONE_REQUIRE_GPU` is unset (the test then skips, printing why, so
@@ -101,22 +103,24 @@ pub fn run_wgsl<I: Pod, O: Pod>(
     // The names are the harness's own (`run_wgsl_*`) or the body's
     // documented ones (`f`, `u`, `v3`, `out`, `i`, `o`).
     let mut b = Bindings::new(0);
-    b.storage_init(
+    storage_init(
+        &mut b,
         ctx,
         "run_wgsl inputs",
-        "run_wgsl_in",
+        "run_wgsl_in".into(),
         "array<u32>",
-        Access::Read,
+        BufferAccess::Read,
         bytes,
     )?;
     b.storage(ctx, "run_wgsl outputs", "out", "array<u32>", out_bytes)?;
     for t in kernel.tables {
-        b.storage_init(
+        storage_init(
+            &mut b,
             ctx,
             "run_wgsl table",
-            t.name,
+            t.name.to_string().into(),
             t.wgsl_type,
-            Access::Read,
+            BufferAccess::Read,
             t.bytes,
         )?;
     }
@@ -143,4 +147,29 @@ pub fn run_wgsl<I: Pod, O: Pod>(
         program.dispatch(enc, &pipeline, (groups as u32, 1))
     })?;
     compute::read(ctx, b.get("out")?, (out_bytes / unit) as usize)
+}
+
+/// A storage buffer holding `contents`, bound in `b` as `var: ty` with
+/// `access` and accounted as `name` (the harness's inputs and tables).
+fn storage_init(
+    b: &mut Bindings,
+    ctx: &GpuContext,
+    name: &'static str,
+    var: std::borrow::Cow<'static, str>,
+    ty: &str,
+    access: BufferAccess,
+    contents: &[u8],
+) -> Result<(), RenderError> {
+    ctx.check_buffer_size(name, contents.len() as u64)?;
+    let buffer = ctx.scoped(name, || {
+        ctx.device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(name),
+                contents,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            })
+    })?;
+    b.account(name, contents.len());
+    b.buffer(var, ty, access, &buffer);
+    Ok(())
 }

@@ -8,26 +8,17 @@
 
 use std::sync::Arc;
 
-use bytemuck::{Pod, Zeroable};
 use subcone_kernels::fxaa::FxaaParams;
 use subcone_passes::{FxaaPass, FxaaPassDesc};
 use subcone_scene::{PassTiming, RenderError};
 
-use crate::compute::{self, Access, Bindings, Program};
+use crate::compute::{self, Allocate, Program};
 use crate::context::{err, CacheKey, GpuContext};
+use subcone_passes::bind::{Bindings, BufferAccess};
 
 pub(crate) const FXAA_WGSL: &str = include_str!("fxaa.wgsl");
 const WORKGROUP: u32 = 8;
 const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
-
-/// The frame's size; `FxaaFrame` in fxaa.wgsl (16 bytes).
-#[repr(C)]
-#[derive(Clone, Copy, Pod, Zeroable)]
-pub(crate) struct FxaaFrame {
-    pub(crate) width: u32,
-    pub(crate) height: u32,
-    pub(crate) _pad: [u32; 2],
-}
 
 /// The filtered frame and the buffers and textures a pass allocated, by
 /// name and bytes.
@@ -97,16 +88,17 @@ pub(crate) fn run(
     })?;
     let view = |t: &wgpu::Texture| t.create_view(&Default::default());
     let (input, output) = (view(&input), view(&output));
-    let frame = FxaaFrame {
-        width,
-        height,
-        _pad: [0; 2],
-    };
     let mut b = Bindings::new(0);
-    b.uniform(ctx, "fxaa_frame", "FxaaFrame", &frame)?;
-    b.buffer("fxaa_src", "array<vec4<f32>>", Access::Read, color);
-    b.storage_texture("fxaa_in", FORMAT, "rgba32float", input.clone());
-    b.texture_2d("fxaa_out", output.clone());
+    b.buffer("fxaa_src", "array<vec4<f32>>", BufferAccess::Read, color);
+    b.storage_texture("fxaa_in", FORMAT, &input)
+        .map_err(crate::compute::bind_err)?;
+    b.texture(
+        "fxaa_out",
+        crate::compute::FLOAT,
+        wgpu::TextureViewDimension::D2,
+        false,
+        &output,
+    );
     b.storage(
         ctx,
         "post-process output buffer",
@@ -129,7 +121,7 @@ pub(crate) fn run(
         program.dispatch(enc, &from_texture, groups);
     })?;
     encoded.map_err(|e| err(format!("FXAA: {e}")))?;
-    let mut stats = b.stats.clone();
+    let mut stats = b.accounts().to_vec();
     stats.push(("post-process input", px_bytes as usize));
     stats.push(("post-process output", px_bytes as usize));
     Ok((b.get("fxaa_dst")?.clone(), stats))

@@ -67,9 +67,10 @@ use subcone_scene::sdf::wgsl::WgslField;
 use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderError};
 use wgpu::util::DeviceExt;
 
-use crate::compute::{self, Access, Bindings, Program};
+use crate::compute::{self, Allocate, Program};
 use crate::context::{err, CacheKey, GpuContext};
 use crate::Job;
+use subcone_passes::bind::{Bindings, BufferAccess};
 
 pub(crate) const TRACE_WGSL: &str = include_str!("trace.wgsl");
 /// The CTSS / sphere-tracing frame's entry point (`sdf_render`).
@@ -87,18 +88,15 @@ pub const DELAYED_BATCH: u32 = 32;
 /// Most samples per pixel side (`ssaaN`, `ssaaN+ctss`) one invocation traces.
 pub const MAX_SIDE_SAMPLES: u32 = 64;
 
-/// The kernels' WGSL every SDF shader includes, after the prelude (the
-/// stepper carries the K masks of CTSS §5.3, `transparency`; `ao` the
-/// occlusion directions).
-const KERNELS: [&str; 7] = [
-    subcone_kernels::ao::WGSL,
-    subcone_kernels::cone::WGSL,
-    subcone_kernels::mask::WGSL,
-    subcone_kernels::aggregate::WGSL,
-    subcone_kernels::transparency::WGSL,
-    subcone_kernels::ctss::WGSL,
-    subcone_kernels::ctss::TRACE_WGSL,
-];
+/// The kernels' WGSL every SDF shader includes, after the prelude: `ao`
+/// (the occlusion directions), then what a CTSS trace runs,
+/// `subcone_passes::CTSS_KERNELS` (the stepper carries the K masks of
+/// CTSS §5.3, `transparency`).
+fn kernels() -> Vec<&'static str> {
+    let mut k = vec![subcone_kernels::ao::WGSL];
+    k.extend(subcone_passes::CTSS_KERNELS);
+    k
+}
 
 /// The semi-transparent path (CTSS §5.3): the twins of the CPU's
 /// `ctss_translucent` and `noaa_translucent`, as `sdf_render`'s samplers
@@ -240,7 +238,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     b.storage(ctx, "color", "color_out", "array<vec4<f32>>", px_bytes)?;
     b.storage(ctx, "counts", "counts_out", "array<vec4<u32>>", px_bytes)?;
     if let Some(t) = &table {
-        b.buffer("sdf_data", "array<vec4<f32>>", Access::Read, t);
+        b.buffer("sdf_data", "array<vec4<f32>>", BufferAccess::Read, t);
     }
     if settings.aovs {
         // Depth and normal through each pixel centre (not timed, as on the CPU).
@@ -367,7 +365,7 @@ fn shader_sources<'a>(
     shading: &'a str,
     pending: &'a str,
 ) -> Vec<&'a str> {
-    let mut sources: Vec<&str> = KERNELS.to_vec();
+    let mut sources: Vec<&str> = kernels();
     // The entry point right after trace.wgsl, where it was written first.
     sources.extend([
         field.source.as_str(),

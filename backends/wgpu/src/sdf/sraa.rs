@@ -9,11 +9,12 @@
 //! the subsamples sphere traced for geometry (normal facing the ray, view
 //! depth) and, with lights, their shadow states by subpixel shadow rays (eq.
 //! 2's gate, cast only where the shaded samples around disagree). Pass
-//! "antialiasing" (pass 2): the triangle path's `resolve_main`
-//! (`triangles/sraa.wgsl`), which runs the kernels' reconstruction loop
-//! (`subcone_kernels::sraa::RECONSTRUCT_WGSL`: eq. 1 and eq. 2's weights,
-//! written once) and `subcone_resolve_pixel` over these buffers. SDF scenes
-//! have no mirrors (the plan refuses them), so there are no secondary passes.
+//! "antialiasing" (pass 2): `subcone_passes::SraaPass` over these buffers,
+//! as on triangle scenes (`triangles::resolve::BufferResolve`): the
+//! kernels' reconstruction loop (`subcone_kernels::sraa::RECONSTRUCT_WGSL`:
+//! eq. 1 and eq. 2's weights, written once) and `subcone_resolve_pixel`.
+//! SDF scenes have no mirrors (the plan refuses them), so there are no
+//! secondary passes.
 
 use bytemuck::{Pod, Zeroable};
 use subcone_kernels::passes::{LayerLayout, Passes, Technique, MAX_LIGHTS};
@@ -21,20 +22,18 @@ use subcone_kernels::sraa::SraaParams;
 use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderError};
 
 use super::{
-    centre_aovs, scatter_table, shading, SdfFrame, Totals, AOVS_WGSL, ASAP_BATCH, KERNELS,
+    centre_aovs, kernels, scatter_table, shading, SdfFrame, Totals, AOVS_WGSL, ASAP_BATCH,
     OPAQUE_SAMPLERS, TRACE_WGSL, WORKGROUP,
 };
-use crate::compute::{self, Access, Bindings, Program};
+use crate::compute::{self, Allocate, Program};
 use crate::context::{err, GpuContext};
+use crate::triangles::resolve::{BufferLayers, BufferResolve};
 use crate::triangles::{accessors, shadow_and_secondary_accessors, SHADED_SAMPLE_ACCESSORS};
 use crate::Job;
+use subcone_passes::bind::{Bindings, BufferAccess};
 
 /// This module's entry points (`sdf_sraa_shade`, `sdf_sraa_geometry`).
 const SDF_SRAA_WGSL: &str = include_str!("sraa.wgsl");
-/// The triangle path's SRAA-RT resolve: the hooks of the kernels'
-/// reconstruction loop over the shaded samples' and subsamples' buffers, and
-/// `resolve_main`.
-const RESOLVE_WGSL: &str = include_str!("../triangles/sraa.wgsl");
 
 /// The frame's constants of SRAA-RT: [`SdfFrame`] and the method's SRAA
 /// parameters (`frame.sraa`, which the resolve's hooks read);
@@ -131,7 +130,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     b.storage(ctx, "color", "color", "array<vec4<f32>>", n * 16)?;
     b.storage(ctx, "counts", "counts_out", "array<vec4<u32>>", n * 16)?;
     if let Some(t) = &table {
-        b.buffer("sdf_data", "array<vec4<f32>>", Access::Read, t);
+        b.buffer("sdf_data", "array<vec4<f32>>", BufferAccess::Read, t);
     }
     b.storage(ctx, "geometry", "geo", "array<subcone_Geometry>", n * 16)?;
     b.storage(
@@ -171,7 +170,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     let incident = shading::light_incident_wgsl(&scene.lights);
     let pending = format!("const subcone_CTSS_BATCH: u32 = {ASAP_BATCH}u;\n");
     let head = header(&b, &layout, shadows);
-    let mut sources: Vec<&str> = KERNELS.to_vec();
+    let mut sources: Vec<&str> = kernels();
     sources.extend([
         subcone_kernels::sraa::WGSL,
         field.source.as_str(),
@@ -184,17 +183,19 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     if settings.aovs {
         sources.push(AOVS_WGSL);
     }
-    sources.extend([
-        SRAA_FRAME_WGSL,
-        head.as_str(),
-        SDF_SRAA_WGSL,
-        RESOLVE_WGSL,
-        subcone_kernels::sraa::RECONSTRUCT_WGSL,
-    ]);
+    sources.extend([SRAA_FRAME_WGSL, head.as_str(), SDF_SRAA_WGSL]);
     let mut program = Program::new(ctx, "sdf sraa-rt", &sources, &[&b])?;
     let shade = program.pipeline("sdf_sraa_shade")?;
     let geometry = program.pipeline("sdf_sraa_geometry")?;
-    let resolve = program.pipeline("resolve_main")?;
+    let resolve = BufferResolve::new(
+        ctx,
+        &method.sraa(),
+        false,
+        BufferLayers {
+            lights: layout.lights as u32,
+            secondary: false,
+        },
+    )?;
     let mut timings: Vec<PassTiming> = Vec::new();
     ctx.timed_pass("shading", &mut timings, |enc| {
         program.dispatch(enc, &shade, groups)
@@ -202,9 +203,11 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     ctx.timed_pass("geometry", &mut timings, |enc| {
         program.dispatch(enc, &geometry, groups)
     })?;
+    let mut recorded = Ok(());
     ctx.timed_pass("antialiasing", &mut timings, |enc| {
-        program.dispatch(enc, &resolve, groups)
+        recorded = resolve.record(ctx, enc, &b, (w, h));
     })?;
+    recorded?;
 
     let pixels = n as usize;
     let color_px: Vec<[f32; 4]> = compute::read(ctx, b.get("color")?, pixels)?;
@@ -214,7 +217,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         *c = glam::Vec3::new(p[0], p[1], p[2]);
     }
     let totals = Totals::of(&count_px, 1);
-    let mut buffers = b.stats.clone();
+    let mut buffers = b.accounts().to_vec();
     if table.is_some() {
         buffers.push(("sdf scatter table", field.data.len() * 16));
     }

@@ -15,8 +15,8 @@ use obvhs::BvhBuildParams;
 use subcone_scene::{Albedo, Light, RenderError, Scene, TriangleMesh};
 use wgpu::util::DeviceExt;
 
-use crate::compute::{Access, Bindings};
 use crate::context::{err, CacheKey, GpuContext};
+use subcone_passes::bind::{Bindings, BufferAccess};
 
 /// Entries of the traversal stack in `trace.wgsl`. A BVH deeper than this is
 /// refused at upload (obvhs' builds stay far below it).
@@ -87,15 +87,20 @@ impl SceneGpu {
     /// Bind what both the trace and the raster passes read of the scene:
     /// triangles, their attributes, materials and texels.
     pub(crate) fn bind_surfaces(&self, b: &mut Bindings) {
-        b.buffer("tris", "array<vec4<f32>>", Access::Read, &self.tris);
-        b.buffer("attrs", "array<vec4<f32>>", Access::Read, &self.attrs);
+        b.buffer("tris", "array<vec4<f32>>", BufferAccess::Read, &self.tris);
+        b.buffer("attrs", "array<vec4<f32>>", BufferAccess::Read, &self.attrs);
         b.buffer(
             "materials",
             "array<MaterialGpu>",
-            Access::Read,
+            BufferAccess::Read,
             &self.materials,
         );
-        b.buffer("texels", "array<vec4<f32>>", Access::Read, &self.texels);
+        b.buffer(
+            "texels",
+            "array<vec4<f32>>",
+            BufferAccess::Read,
+            &self.texels,
+        );
     }
 }
 

@@ -11,7 +11,7 @@
 
 pub(crate) mod bvh;
 pub(crate) mod raster;
-mod resolve;
+pub(crate) mod resolve;
 
 use std::sync::Arc;
 
@@ -23,10 +23,11 @@ use subcone_scene::{
     Camera, Frame, FrameStats, Method, RayCounts, RenderError, RenderSettings, Scene,
 };
 
-use crate::compute::{self, Access, Bindings, Program};
+use crate::compute::{self, Allocate, Program};
 use crate::context::{err, GpuContext};
 use crate::Job;
 use bvh::{SceneGpu, MAX_LIGHTS, STACK_SIZE};
+use subcone_passes::bind::{Bindings, BufferAccess};
 
 pub(crate) const TRACE_WGSL: &str = include_str!("trace.wgsl");
 pub(crate) const FRAME_WGSL: &str = include_str!("frame.wgsl");
@@ -37,12 +38,6 @@ const CENTRE_WGSL: &str = include_str!("centre.wgsl");
 const SUBPIXEL_WGSL: &str = include_str!("subpixel.wgsl");
 /// SRAA-RT's traced subsamples' entry point (`geometry_main`).
 const GEOMETRY_WGSL: &str = include_str!("geometry.wgsl");
-/// SRAA-RT's resolve (hybrid SRAA's is `resolve.rs`, through
-/// `subcone_passes::SraaPass`).
-const SRAA_WGSL: &str = include_str!("sraa.wgsl");
-/// The resolve's reconstruction loop, the kernels' twin of
-/// `sraa::reconstruct_layers`, shared with `subcone_passes::SraaPass`.
-const RECONSTRUCT_WGSL: &str = subcone_kernels::sraa::RECONSTRUCT_WGSL;
 
 /// The frame's constants; `FrameUniform` in frame.wgsl (160 bytes), read
 /// by the compute passes and the raster pass.
@@ -127,7 +122,7 @@ pub(crate) fn accessors(
     per: u32,
     default: &str,
 ) -> String {
-    let has = fb.has(var);
+    let has = fb.contains(var);
     let upper = name.to_uppercase();
     let (args, index) = if per == 1 {
         ("j: u32", "j".to_string())
@@ -158,9 +153,9 @@ fn scene_bindings(
 ) -> Result<Bindings, RenderError> {
     let mut b = Bindings::new(0);
     b.uniform(ctx, "frame", "FrameUniform", uniform)?;
-    b.buffer("nodes", "array<BvhNode>", Access::Read, &sg.nodes);
+    b.buffer("nodes", "array<BvhNode>", BufferAccess::Read, &sg.nodes);
     sg.bind_surfaces(&mut b);
-    b.buffer("lights", "array<LightGpu>", Access::Read, &sg.lights);
+    b.buffer("lights", "array<LightGpu>", BufferAccess::Read, &sg.lights);
     // 64-bit as (lo, hi) pairs: primary, geometry, shadow, secondary,
     // shaded; then [10] traversals that ended before their stack emptied,
     // [11] unused; then [12, 13] ambient-occlusion rays.
@@ -357,7 +352,7 @@ fn finish(
 ) -> Result<Frame, RenderError> {
     let (ctx, s, passes, scene) = (f.ctx, f.job.settings, f.job.passes, &f.scene);
     let n = s.width as usize * s.height as usize;
-    let mut buffers = fb.stats.clone();
+    let mut buffers = fb.accounts().to_vec();
     let mut frame = Frame::new(s.width, s.height);
     if passes.contains(Passes::POST_PROCESS) {
         let color = match color {
@@ -385,7 +380,7 @@ fn finish(
     }
     let c = counts(ctx, scene)?;
     buffers.extend_from_slice(extra);
-    buffers.extend_from_slice(&scene.stats);
+    buffers.extend_from_slice(scene.accounts());
     frame.stats = FrameStats {
         passes,
         timings,
@@ -502,7 +497,7 @@ fn subpixel_bindings<'a>(
             s.width,
             s.height,
         )?;
-        r.bind_shading_targets(&mut fb);
+        r.bind_shading_targets(&mut fb)?;
         Some(r)
     };
     let raster = subsample_geometry(f, &mut fb, &plan)?;
@@ -587,12 +582,24 @@ fn subsample_geometry(
         return Ok(None);
     }
     let r = raster::Raster::new(ctx, &f.sg, &f.uniform, s.width, s.height, plan.material)?;
-    fb.texture("sub_tex", r.view());
-    fb.stats.push(("subpixel geometry", r.target_bytes()));
-    fb.stats.push(("raster depth", r.depth_bytes()));
+    fb.texture(
+        "sub_tex",
+        crate::compute::FLOAT,
+        wgpu::TextureViewDimension::D2Array,
+        false,
+        &r.view(),
+    );
+    fb.account("subpixel geometry", r.target_bytes());
+    fb.account("raster depth", r.depth_bytes());
     if let Some(albedo) = r.albedo_view() {
-        fb.texture("sub_alb_tex", albedo);
-        fb.stats.push(("subpixel albedo", r.target_bytes()));
+        fb.texture(
+            "sub_alb_tex",
+            crate::compute::FLOAT,
+            wgpu::TextureViewDimension::D2Array,
+            false,
+            &albedo,
+        );
+        fb.account("subpixel albedo", r.target_bytes());
     }
     Ok(Some(r))
 }
@@ -732,7 +739,8 @@ fn subpixel_header(fb: &Bindings, plan: &SubpixelPlan) -> String {
 
 /// The program of SRAA and SRAA-RT ([`subpixel`]): the frame buffers and
 /// header of [`subpixel_bindings`], the subpixel entry points and, for
-/// SRAA-RT (`rt`), its resolve with the kernels' reconstruction loop.
+/// SRAA-RT (`rt`), its traced subsamples' (its resolve is
+/// `subcone_passes::SraaPass`, [`resolve::BufferResolve`]).
 fn subpixel_program<'a>(
     f: &Setup<'a>,
     fb: &Bindings,
@@ -740,7 +748,7 @@ fn subpixel_program<'a>(
     rt: bool,
 ) -> Result<Program<'a>, RenderError> {
     let entries: &[&str] = if rt {
-        &[SUBPIXEL_WGSL, GEOMETRY_WGSL, SRAA_WGSL, RECONSTRUCT_WGSL]
+        &[SUBPIXEL_WGSL, GEOMETRY_WGSL]
     } else {
         &[SUBPIXEL_WGSL]
     };
@@ -774,10 +782,19 @@ fn subpixel(f: &Setup) -> Result<Frame, RenderError> {
             (FrameColor::Resolved(&h.resolve), h.resolve.stats.clone())
         }
         // SRAA-RT: the subsamples traced one dispatch per subsample, then
-        // its own resolve over them.
+        // subcone_passes::SraaPass over the frame's buffers.
         None => {
             let geometry = prog.pipeline("geometry_main")?;
-            let resolve = prog.pipeline("resolve_main")?;
+            let plan = SubpixelPlan::new(f);
+            let resolve = resolve::BufferResolve::new(
+                ctx,
+                &f.job.method.sraa(),
+                plan.material,
+                resolve::BufferLayers {
+                    lights: plan.layout.lights as u32,
+                    secondary: plan.layout.secondary,
+                },
+            )?;
             let subsamples = indices(ctx, "subsample indices", 4)?;
             let k = fb.get("subsample")?;
             ctx.timed_pass("geometry", &mut timings, |enc| {
@@ -785,9 +802,11 @@ fn subpixel(f: &Setup) -> Result<Frame, RenderError> {
                     prog.dispatch(enc, &geometry, groups)
                 })
             })?;
+            let mut recorded = Ok(());
             ctx.timed_pass("antialiasing", &mut timings, |enc| {
-                prog.dispatch(enc, &resolve, groups)
+                recorded = resolve.record(ctx, enc, &fb, (s.width, s.height));
             })?;
+            recorded?;
             (FrameColor::Buffer, vec![("subsample indices", 16)])
         }
     };

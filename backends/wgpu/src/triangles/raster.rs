@@ -12,8 +12,9 @@ use subcone_scene::RenderError;
 
 use super::bvh::SceneGpu;
 use super::FrameUniform;
-use crate::compute::{self, Bindings};
+use crate::compute::{self, Allocate};
 use crate::context::{err, CacheKey, GpuContext};
+use subcone_passes::bind::Bindings;
 
 const RASTER_WGSL: &str = include_str!("raster.wgsl");
 
@@ -179,10 +180,10 @@ impl Raster {
             .checked_mul(3)
             .ok_or_else(|| err("too many triangles to rasterise in one draw"))?;
         let b = bindings(ctx, sg, u)?;
-        let layout = b.layout(ctx);
+        let layout = b.layout(&ctx.device, "raster");
         let pipeline = pipeline(ctx, &b, &layout, albedo)?;
         ctx.scoped("raster targets", || {
-            let group = b.bind_group(ctx, &layout);
+            let group = b.bind_group(&ctx.device, "raster", &layout);
             let size = wgpu::Extent3d {
                 width,
                 height,

@@ -9,9 +9,9 @@
 //! the resolve's output texture. No buffer holds what a texture holds. Only
 //! a post-process after the resolve (FXAA forced onto an SRAA frame), which
 //! reads a colour buffer, gets the output copied into one
-//! (`resolve.wgsl`). SRAA-RT, whose subsamples are traced into buffers,
-//! keeps its resolve in `sraa.wgsl`; both run the one reconstruction loop,
-//! the kernels' `sraa::RECONSTRUCT_WGSL`.
+//! (`resolve.wgsl`). SRAA-RT, whose subsamples are traced into buffers
+//! (on triangle and SDF scenes), runs the same pass on those buffers
+//! ([`BufferResolve`], `SraaPass::encode_buffers`).
 
 use std::sync::Arc;
 use std::time::Duration;
@@ -19,13 +19,15 @@ use std::time::Duration;
 use glam::Vec3;
 use subcone_kernels::sraa::{ShadedPosition, SraaParams};
 use subcone_passes::{
-    AlbedoTextures, CentreGeometry, SraaInputs, SraaPass, SraaPassDesc, SubsampleGeometry,
+    AlbedoBuffers, AlbedoTextures, CentreGeometry, SecondaryBuffers, ShadowBuffers, SraaBuffers,
+    SraaInputs, SraaPass, SraaPassDesc, SubsampleGeometry,
 };
 use subcone_scene::RenderError;
 
 use super::raster::Raster;
-use crate::compute::{Bindings, Program};
+use crate::compute::{Allocate, Program};
 use crate::context::{err, CacheKey, GpuContext};
+use subcone_passes::bind::Bindings;
 
 const RESOLVE_WGSL: &str = include_str!("resolve.wgsl");
 
@@ -40,21 +42,37 @@ const FLOAT1: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 /// still weigh 1).
 const HALF4: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
-/// The hybrid resolve's cache key: what its descriptor is built from
+/// A resolve's cache key: what its descriptor is built from
 /// ([`SraaPassKey::desc`]), the parameters by their bits.
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
 struct SraaPassKey {
     params: [u32; size_of::<SraaParams>() / 4],
     material: bool,
+    /// SRAA-RT's buffers ([`BufferLayers`]), or hybrid SRAA's textures.
+    buffers: Option<BufferLayers>,
+}
+
+/// The layers of SRAA-RT's shading buffers (`passes::LayerLayout`): gated
+/// lights and secondary shading.
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+pub(crate) struct BufferLayers {
+    pub(crate) lights: u32,
+    pub(crate) secondary: bool,
 }
 
 impl SraaPassKey {
-    /// The packed-geometry resolve with the albedo gate where `material`,
-    /// writing [`FLOAT4`].
+    /// Hybrid SRAA's: the packed-geometry resolve with the albedo gate
+    /// where `material`, writing [`FLOAT4`]. SRAA-RT's: the buffer resolve
+    /// with its layers.
     fn desc(&self) -> SraaPassDesc {
-        SraaPassDesc::packed(bytemuck::cast(self.params))
-            .with_albedo_gate(self.material)
-            .with_output_format(FLOAT4)
+        let params = bytemuck::cast(self.params);
+        match self.buffers {
+            None => SraaPassDesc::packed(params).with_output_format(FLOAT4),
+            Some(l) => SraaPassDesc::buffers(params)
+                .with_lights(l.lights)
+                .with_secondary(l.secondary),
+        }
+        .with_albedo_gate(self.material)
     }
 }
 
@@ -117,6 +135,7 @@ impl<'a> HybridResolve<'a> {
         let key = SraaPassKey {
             params: bytemuck::cast(*params),
             material,
+            buffers: None,
         };
         let sraa = pass(ctx, key)?;
         let centre = params.shaded_position() == ShadedPosition::Centre;
@@ -152,9 +171,15 @@ impl<'a> HybridResolve<'a> {
         stats.push(("sraa output", px * 16));
         let post = if post_process {
             let mut b = Bindings::new(0);
-            b.texture_2d("sraa_output", view(&output));
+            b.texture(
+                "sraa_output",
+                crate::compute::FLOAT,
+                wgpu::TextureViewDimension::D2,
+                false,
+                &view(&output),
+            );
             b.storage(ctx, "color", "color", "array<vec4<f32>>", px as u64 * 16)?;
-            stats.extend_from_slice(&b.stats);
+            stats.extend_from_slice(b.accounts());
             let mut program = Program::new(ctx, "sraa output copy", &[RESOLVE_WGSL], &[&b])?;
             let pipeline = program.pipeline("output_to_buffer_main")?;
             let color = b.get("color")?.clone();
@@ -182,15 +207,20 @@ impl<'a> HybridResolve<'a> {
     /// Bind what the shading pass writes, as storage textures of the frame
     /// group `fb`: `shaded_color`, and as configured `shaded_centre_depth`,
     /// `shaded_centre_normal` and `shaded_albedo`.
-    pub(crate) fn bind_shading_targets(&self, fb: &mut Bindings) {
-        fb.storage_texture("shaded_color", FLOAT4, "rgba32float", view(&self.color));
+    pub(crate) fn bind_shading_targets(&self, fb: &mut Bindings) -> Result<(), RenderError> {
+        fb.storage_texture("shaded_color", FLOAT4, &view(&self.color))
+            .map_err(crate::compute::bind_err)?;
         if let Some((d, n)) = &self.centre {
-            fb.storage_texture("shaded_centre_depth", FLOAT1, "r32float", view(d));
-            fb.storage_texture("shaded_centre_normal", HALF4, "rgba16float", view(n));
+            fb.storage_texture("shaded_centre_depth", FLOAT1, &view(d))
+                .map_err(crate::compute::bind_err)?;
+            fb.storage_texture("shaded_centre_normal", HALF4, &view(n))
+                .map_err(crate::compute::bind_err)?;
         }
         if let Some(a) = &self.albedo {
-            fb.storage_texture("shaded_albedo", FLOAT4, "rgba32float", view(a));
+            fb.storage_texture("shaded_albedo", FLOAT4, &view(a))
+                .map_err(crate::compute::bind_err)?;
         }
+        Ok(())
     }
 
     /// The shading pass's accessors (`subpixel.wgsl`) over those textures:
@@ -350,4 +380,86 @@ impl<'a> HybridResolve<'a> {
 
 fn view(t: &wgpu::Texture) -> wgpu::TextureView {
     t.create_view(&Default::default())
+}
+
+/// SRAA-RT's pass "antialiasing" (the paper's pass 2) through
+/// [`subcone_passes::SraaPass`] on the frame's storage buffers
+/// (`GeometryLayout::Buffers`), triangles and SDF scenes alike: the shaded
+/// samples' geometry `geo` and layers `values`, the traced subsamples
+/// `sub_geo_buf`, and as planned their shadow bits, mirror hits and albedo,
+/// into the colour buffer `color`. The buffers are bound under these names
+/// in the frame's group.
+pub(crate) struct BufferResolve {
+    sraa: Arc<SraaPass>,
+}
+
+impl BufferResolve {
+    /// The resolve of `params` over `layers`, with the albedo gate where
+    /// `material`; compiled once per device and configuration, so build
+    /// it before timing the pass.
+    pub(crate) fn new(
+        ctx: &GpuContext,
+        params: &SraaParams,
+        material: bool,
+        layers: BufferLayers,
+    ) -> Result<Self, RenderError> {
+        let key = SraaPassKey {
+            params: bytemuck::cast(*params),
+            material,
+            buffers: Some(layers),
+        };
+        Ok(BufferResolve {
+            sraa: pass(ctx, key)?,
+        })
+    }
+
+    /// Record the resolve of the `width × height` frame whose buffers `fb`
+    /// binds.
+    pub(crate) fn record(
+        &self,
+        ctx: &GpuContext,
+        enc: &mut wgpu::CommandEncoder,
+        fb: &Bindings,
+        (width, height): (u32, u32),
+    ) -> Result<(), RenderError> {
+        let pair = |shaded: &str, subsamples: &str| match (
+            fb.buffer_named(shaded),
+            fb.buffer_named(subsamples),
+        ) {
+            (Some(a), Some(b)) => Ok(Some((a, b))),
+            (None, None) => Ok(None),
+            _ => Err(err(format!(
+                "sraa-rt resolve: `{shaded}` and `{subsamples}` are bound apart"
+            ))),
+        };
+        fn shadows<'b>(
+            s: Option<(&'b wgpu::Buffer, &'b wgpu::Buffer)>,
+        ) -> Option<ShadowBuffers<'b>> {
+            s.map(|(shaded, subsamples)| ShadowBuffers { shaded, subsamples })
+        }
+        let secondary = pair("geo2_buf", "sub_geo2_buf")?.map(|(shaded, subsamples)| {
+            Ok::<_, RenderError>(SecondaryBuffers {
+                shaded,
+                subsamples,
+                shadows: shadows(pair("shadow2_buf", "sub_shadow2_buf")?),
+            })
+        });
+        let inputs = SraaBuffers {
+            size: (width, height),
+            shaded: fb.get("geo")?,
+            subsamples: fb.get("sub_geo_buf")?,
+            color: fb.get("values")?,
+            shadows: shadows(pair("shadow_buf", "sub_shadow_buf")?),
+            albedo: pair("albedo_buf", "sub_albedo_buf")?
+                .map(|(shaded, subsamples)| AlbedoBuffers { shaded, subsamples }),
+            secondary: secondary.transpose()?,
+            output: fb.get("color")?,
+        };
+        self.sraa
+            .encode_buffers(&ctx.device, &ctx.queue, enc, &inputs, None)
+            .map_err(|e| err(format!("sraa-rt resolve: {e}")))?;
+        // This frame's buffers are its own: the pass need not keep them.
+        self.sraa.release_views();
+        Ok(())
+    }
 }
