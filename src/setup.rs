@@ -43,7 +43,7 @@ pub fn backend_on(name: &str, isa: Option<Isa>) -> Result<Box<dyn Backend + Send
 /// Load a scene by name (built-in, or `sponza`/`sponza-mirror` from the data
 /// directory) or by path (`.obj`, `.gltf`, `.glb`).
 pub fn scene(arg: &str) -> Result<Scene> {
-    Ok(subcone_scene::load::scene_from_arg(arg)?)
+    Ok(subcone_load::scene_from_arg(arg)?)
 }
 
 /// Parse `--isa`: `baseline`, `avx2` or `avx512`.

@@ -1549,7 +1549,7 @@ fn every_operator() -> subcone_scene::sdf::SdfNode {
     n(SdfNode::union(shapes))
 }
 
-/// The WGSL code generator (`SdfNode::to_wgsl`, its scatter table bound as
+/// The WGSL code generator (`WgslField::compile`, its scatter table bound as
 /// `sdf_data`) against `SdfNode::eval` and `eval_split`: distances within
 /// [`TOL_SDF_FIELD`], materials within [`SDF_MATERIAL_TIES_PER_200`].
 fn check_sdf_field(
@@ -1558,7 +1558,7 @@ fn check_sdf_field(
     root: &subcone_scene::sdf::SdfNode,
     pts: &[Vec3],
 ) -> Result<String, String> {
-    let field = root.to_wgsl();
+    let field = subcone_sdf::wgsl::WgslField::compile(&root);
     let table = Table {
         name: "sdf_data",
         wgsl_type: "array<vec4<f32>>",
@@ -1631,7 +1631,7 @@ fn check_sdf_field(
 /// at 8192 points of a 12-unit cube.
 #[test]
 fn generated_sdf_wgsl_evaluates_the_same_field() {
-    use subcone_scene::sdf::{sdf_builtin, SDF_SCENES, STIFF_SCENES};
+    use subcone_scene::builtin::{sdf_builtin, SDF_SCENES, STIFF_SCENES};
     let Some(gpu) = gpu() else { return };
     let ctx = gpu.context();
     let mut results = Vec::new();

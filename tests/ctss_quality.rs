@@ -14,7 +14,7 @@ mod common;
 
 use subcone::report::classes::Verdict;
 use subcone_scene::builtin::builtin;
-use subcone_scene::sdf::SDF_SCENES;
+use subcone_scene::builtin::SDF_SCENES;
 
 #[test]
 fn default_ctss_beats_noaa_on_silhouettes_and_the_whole_image_of_every_paper_scene() {

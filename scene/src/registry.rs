@@ -27,7 +27,6 @@ use std::fmt;
 
 use subcone_kernels::passes::Technique;
 
-use crate::method::Method;
 
 /// An edge class: what a pixel contains that aliases (the report's masks
 /// classify each pixel into one).
@@ -433,33 +432,6 @@ pub fn opacity_methods() -> String {
         Some((last, rest)) if !rest.is_empty() => format!("{} and {last}", rest.join(", ")),
         _ => names.join(""),
     }
-}
-
-/// The plot colour of a method of the default comparison (sRGB), so every
-/// plot agrees; `None` for other methods (the plots pick one from a palette).
-pub fn plot_colour(method: &Method) -> Option<[u8; 3]> {
-    let s = method.supersamples();
-    Some(
-        match (
-            method.technique(),
-            method.is_paper(),
-            method.gates_material(),
-        ) {
-            (_, true, _) | (_, _, true) => return None,
-            (Technique::NoAa, ..) => [90, 90, 90],
-            (Technique::Ssaa, ..) if s == 4 => [31, 119, 180],
-            (Technique::Ssaa, ..) if s == 16 => [23, 75, 140],
-            (Technique::Sraa, ..) => [255, 127, 14],
-            (Technique::SraaRt, ..) => [214, 39, 40],
-            (Technique::Ctss, ..) if !method.delayed_shading() && !method.split_groups() => {
-                [44, 160, 44]
-            }
-            (Technique::CtssR, ..) if !method.delayed_shading() => [148, 103, 189],
-            (Technique::SsaaCtss, ..) if s == 4 && !method.delayed_shading() => [140, 86, 75],
-            (Technique::Fxaa, ..) => [227, 119, 194],
-            _ => return None,
-        },
-    )
 }
 
 #[cfg(test)]

@@ -1466,7 +1466,7 @@ fn rows_for<'a>(s: &'a [ResultRow], method: &str, backend: &str) -> Vec<&'a Resu
 /// CTSS overhead targets: average time ratio to NoAA over the SDF scenes.
 pub const CTSS_TARGETS: [(Method, f64); 2] = [(CTSS, 1.20), (CTSS_R, 1.08)];
 /// CTSS's quality bar on the paper's SDF scenes
-/// ([`SDF_SCENES`](subcone_scene::sdf::SDF_SCENES)): `ctss` beats NoAA on
+/// ([`SDF_SCENES`](subcone_scene::builtin::SDF_SCENES)): `ctss` beats NoAA on
 /// silhouettes and holds on flat pixels (the verdict's rules), its
 /// whole-image FLIP is below NoAA's, and its silhouette FLIP is at most this
 /// factor of `ssaa4`'s (the paper's "comparable to 4× supersampling").
@@ -1601,7 +1601,7 @@ fn sraa_targets(s: &ReportSummary, sdf: &[&str], b: &str, md: &mut String) {
 
 /// The rows of the CTSS quality targets for backend `b` (SDF scenes only).
 fn ctss_targets(s: &ReportSummary, b: &str, md: &mut String) {
-    use subcone_scene::sdf::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
+    use subcone_scene::builtin::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
     let yes = |ok: bool| if ok { "met" } else { "**not met**" };
     let find = |method: &str, scene: &str| {
         s.rows

@@ -11,6 +11,8 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::{register_font, FontStyle};
+use subcone_kernels::passes::Technique;
+use subcone_scene::Method;
 
 use super::classes::{ClassError, CLASSES};
 use super::metrics::Rgb8;
@@ -73,15 +75,42 @@ where
     Ok(())
 }
 
-/// A fixed colour per method, so every plot agrees: the registry's
-/// ([`subcone_scene::registry::plot_colour`]) for the default comparison,
+/// The plot colour of a method of the default comparison (sRGB), so every
+/// plot agrees; `None` for other methods (the plots pick one from a palette).
+fn plot_colour(method: &Method) -> Option<[u8; 3]> {
+    let s = method.supersamples();
+    Some(
+        match (
+            method.technique(),
+            method.is_paper(),
+            method.gates_material(),
+        ) {
+            (_, true, _) | (_, _, true) => return None,
+            (Technique::NoAa, ..) => [90, 90, 90],
+            (Technique::Ssaa, ..) if s == 4 => [31, 119, 180],
+            (Technique::Ssaa, ..) if s == 16 => [23, 75, 140],
+            (Technique::Sraa, ..) => [255, 127, 14],
+            (Technique::SraaRt, ..) => [214, 39, 40],
+            (Technique::Ctss, ..) if !method.delayed_shading() && !method.split_groups() => {
+                [44, 160, 44]
+            }
+            (Technique::CtssR, ..) if !method.delayed_shading() => [148, 103, 189],
+            (Technique::SsaaCtss, ..) if s == 4 && !method.delayed_shading() => [140, 86, 75],
+            (Technique::Fxaa, ..) => [227, 119, 194],
+            _ => return None,
+        },
+    )
+}
+
+/// A fixed colour per method, so every plot agrees: [`plot_colour`] for the
+/// default comparison,
 /// [`SMAA_COLOUR`] for the SMAA row, a palette colour picked by the name's
 /// hash for any other.
 pub fn method_colour(method: &str) -> RGBColor {
     let registered = method
         .parse::<subcone_scene::Method>()
         .ok()
-        .and_then(|m| subcone_scene::registry::plot_colour(&m));
+        .and_then(|m| plot_colour(&m));
     if let Some([r, g, b]) = registered {
         return RGBColor(r, g, b);
     }

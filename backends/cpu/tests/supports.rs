@@ -8,7 +8,7 @@
 use subcone_cpu::CpuBackend;
 use subcone_kernels::passes::Passes;
 use subcone_scene::builtin::{builtin, names};
-use subcone_scene::conformance::plan_scenes;
+use subcone_conformance::plan_scenes;
 use subcone_scene::method::METHOD_NAMES;
 use subcone_scene::{Backend, Method, RenderError, RenderSettings, UnsupportedReason};
 

@@ -22,8 +22,12 @@ use super::{Exactness, SdfError};
 /// Sizes are non-negative and finite; zero sizes give degenerate but valid
 /// shapes (a sphere of radius 0 is a point). All shapes are exact distances
 /// except [`Shape::Ellipsoid`] (a bound).
+///
+/// Not `#[non_exhaustive]`: every compiler of a tree (the 8-lane interpreter
+/// and the WGSL generator of `subcone-sdf`, the file writer of
+/// `subcone-load`) matches on it, so a new shape is a breaking change that
+/// does not compile until each says how to evaluate or write it.
 #[derive(Clone, Copy, Debug, PartialEq)]
-#[non_exhaustive]
 pub enum Shape {
     /// Sphere. Exact.
     Sphere {

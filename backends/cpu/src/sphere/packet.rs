@@ -40,7 +40,7 @@ use subcone_kernels::ctss::{
 use subcone_kernels::math::Euclidean;
 use subcone_kernels::passes::MAX_LIGHTS;
 use subcone_kernels::sraa::{Geometry, SUBPIXEL_OFFSETS};
-use subcone_scene::sdf::program::{LaneMask, Points, Scratch, SdfProgram, SplitLanes, LANES};
+use subcone_sdf::program::{LaneMask, Points, Scratch, SdfProgram, SplitLanes, LANES};
 use subcone_scene::sdf::{tetra_normal_from, tetra_taps};
 use subcone_scene::RenderSettings;
 

@@ -6,7 +6,7 @@
 //! zero-area) a [`SceneError::Empty`] that says how many were dropped.
 //!
 //! ```no_run
-//! use subcone_scene::load::{load_scene, scene_from_arg};
+//! use subcone_load::{load_scene, scene_from_arg};
 //! let bunny = load_scene(std::path::Path::new("bunny.obj"))?;
 //! let atrium = scene_from_arg("sponza-mirror")?;
 //! # Ok::<(), subcone_scene::SceneError>(())
@@ -18,14 +18,14 @@ use subcone_kernels::math::Euclidean;
 
 use glam::{Mat3, Mat4, Vec2, Vec3};
 
-use crate::builtin;
-use crate::camera::Camera;
-use crate::error::SceneError;
-use crate::light::Light;
-use crate::material::Material;
-use crate::mesh::{Sanitized, TriangleMesh};
-use crate::scene::Scene;
-use crate::sdf::file::{is_sdf_file, load_sdf_scene, parse_sdf_scene};
+use subcone_scene::builtin;
+use subcone_scene::camera::Camera;
+use subcone_scene::error::SceneError;
+use subcone_scene::light::Light;
+use subcone_scene::material::Material;
+use subcone_scene::mesh::{Sanitized, TriangleMesh};
+use subcone_scene::scene::Scene;
+use crate::file::{is_sdf_file, load_sdf_scene, parse_sdf_scene};
 
 /// Albedo of surfaces whose file gives no colour.
 pub const DEFAULT_ALBEDO: Vec3 = Vec3::new(0.7, 0.7, 0.7);
@@ -733,7 +733,7 @@ pub fn framing_camera(mesh: &TriangleMesh) -> Result<Camera, SceneError> {
 
 /// A scene from a file.
 ///
-/// - An SDF scene file (a name ending in `.sdf.ron`, see [`crate::sdf::file`]):
+/// - An SDF scene file (a name ending in `.sdf.ron`, see [`subcone_scene::sdf::file`]):
 ///   the scene it describes.
 /// - A mesh file (see [`load_mesh_file`]): its triangles and materials, a
 ///   camera framing its bounds ([`framing_camera`]) and one point light above

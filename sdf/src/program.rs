@@ -22,7 +22,8 @@
 //!
 //! ```
 //! use glam::Vec3;
-//! use subcone_scene::sdf::{program::{Points, SdfProgram, LANES}, SdfNode};
+//! use subcone_scene::sdf::SdfNode;
+//! use subcone_sdf::program::{Points, SdfProgram, LANES};
 //!
 //! let tree = SdfNode::union(vec![
 //!     SdfNode::sphere(1.0).unwrap(),
@@ -48,11 +49,7 @@ use core::ops::{Add, Div, Mul, Neg, Sub};
 
 use glam::{Quat, Vec3, Vec4};
 
-use super::bounds::Aabb;
-use super::node::{Op, SdfNode};
-use super::scatter::{Instance, Scatter};
-use super::shape::Shape;
-use super::SplitDistance;
+use subcone_scene::sdf::{Aabb, Instance, Op, Scatter, SdfNode, Shape, SplitDistance};
 
 /// Points evaluated together: the width of a packet.
 pub const LANES: usize = 8;
@@ -699,13 +696,13 @@ struct LeafTransform {
 impl Leaf {
     /// The node as a leaf, if it is a shape or a transformed shape.
     fn of(node: &SdfNode) -> Option<Leaf> {
-        match &node.op {
+        match node.op() {
             Op::Shape { shape, material } => Some(Leaf {
                 shape: *shape,
                 material: *material,
                 transform: None,
             }),
-            Op::Transform(t) => match &t.child.op {
+            Op::Transform(t) => match t.child.op() {
                 Op::Shape { shape, material } => Some(Leaf {
                     shape: *shape,
                     material: *material,
@@ -816,7 +813,7 @@ impl<'a> Compiler<'a> {
             self.leaf(leaf);
             return;
         }
-        match &node.op {
+        match node.op() {
             // Taken by `Leaf::of` above; kept for completeness.
             Op::Shape { shape, material } => self.leaf(Leaf {
                 shape: *shape,
@@ -825,7 +822,7 @@ impl<'a> Compiler<'a> {
             }),
             Op::Transform(t) => self.transform(t, split),
             Op::Union { children, spheres } => {
-                self.union(node.info.material, children, spheres, split)
+                self.union(node.default_material(), children, spheres, split)
             }
             Op::Repeat(r) if split && r.guard => {
                 self.repeat(r, true);
@@ -833,9 +830,9 @@ impl<'a> Compiler<'a> {
             Op::Scatter(s) => self.scatter(node, s, split),
             Op::Bounded { pad, child } if split => self.bounded_split(*pad, child),
             // Below here: the tree's `eval` (split falls back to it).
-            Op::Bounded { pad, child } => self.bounded(node.info.material, *pad, child),
+            Op::Bounded { pad, child } => self.bounded(node.default_material(), *pad, child),
             Op::Repeat(r) => self.repeat(r, false),
-            Op::Intersection(children) => self.intersection(node.info.material, children),
+            Op::Intersection(children) => self.intersection(node.default_material(), children),
             Op::SmoothUnion { k, children } => self.smooth_union(*k, children),
             Op::Subtract(ab) => self.subtract(&ab.0, &ab.1),
             Op::Mirror { axes, child } => self.mirror(*axes, child),
@@ -862,7 +859,7 @@ impl<'a> Compiler<'a> {
         self.push(VALUES, 1);
     }
 
-    fn transform(&mut self, t: &'a super::node::Transform, split: bool) {
+    fn transform(&mut self, t: &'a subcone_scene::sdf::Transform, split: bool) {
         self.code.push(Inst::PushTransform {
             translation: t.translation,
             inv_scale: t.inv_scale,
@@ -930,7 +927,7 @@ impl<'a> Compiler<'a> {
     /// `bounded` in split mode: the child always, then the box distance.
     fn bounded_split(&mut self, pad: f32, child: &'a SdfNode) {
         self.code.push(Inst::BoundedSplitBegin {
-            bounds: child.info.bounds,
+            bounds: child.bounds(),
         });
         self.push(WALLS, 1);
         self.node(child, true);
@@ -943,7 +940,7 @@ impl<'a> Compiler<'a> {
     fn bounded(&mut self, material: u32, pad: f32, child: &'a SdfNode) {
         let at = self.code.len();
         self.code.push(Inst::BoundedBegin {
-            bounds: child.info.bounds,
+            bounds: child.bounds(),
             pad,
             material,
             skip: 0,
@@ -995,7 +992,7 @@ impl<'a> Compiler<'a> {
         self.push(POINTS, -1);
     }
 
-    fn repeat(&mut self, r: &'a super::node::Repeat, split: bool) {
+    fn repeat(&mut self, r: &'a subcone_scene::sdf::Repeat, split: bool) {
         self.code.push(Inst::PushRepeat {
             period: r.period,
             lo: r.lo,

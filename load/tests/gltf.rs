@@ -4,7 +4,7 @@ mod common;
 
 use common::{base64, f32_bytes, glb, u16_bytes, write};
 use glam::Vec3;
-use subcone_scene::load::{load_mesh_file, load_scene};
+use subcone_load::{load_mesh_file, load_scene};
 use subcone_scene::{Albedo, SceneError};
 
 /// A unit quad in the z = 0 plane facing +z: positions, normals, indices.

@@ -6,7 +6,7 @@ use std::path::Path;
 
 use common::write;
 use glam::Vec3;
-use subcone_scene::load::{load_mesh_file, load_scene, scene_from_arg};
+use subcone_load::{load_mesh_file, load_scene, scene_from_arg, SaveFrame};
 use subcone_scene::{Camera, Frame, RenderError, RenderSettings, SceneError};
 
 fn load_reason(path: &Path) -> String {

@@ -1,5 +1,5 @@
 //! The file's data model: what serde reads and writes. Every type mirrors a
-//! part of [`SdfScene`](crate::sdf::SdfScene) with the names a scene author
+//! part of [`SdfScene`](subcone_scene::sdf::SdfScene) with the names a scene author
 //! types; building checks happen in `build.rs`, one node at a time while the
 //! file is read, so that an error carries the place it was found.
 
@@ -290,7 +290,7 @@ pub(super) enum NodeDesc<C> {
         pad: f32,
         child: Box<C>,
     },
-    /// [`crate::sdf::ScatterConfig`] and its templates.
+    /// [`subcone_scene::sdf::ScatterConfig`] and its templates.
     Scatter {
         #[serde(default)]
         origin: V3,

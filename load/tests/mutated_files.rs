@@ -5,7 +5,7 @@
 mod common;
 
 use common::{base64, f32_bytes, glb, u16_bytes, write};
-use subcone_scene::load::load_mesh_file;
+use subcone_load::load_mesh_file;
 
 struct Rng(u64);
 

@@ -14,11 +14,11 @@ use super::desc::{
     AlbedoDesc, Axis, CameraDesc, LightDesc, MaterialDesc, NodeDesc, RotationDesc,
     DEFAULT_FOV_DEGREES, V3,
 };
-use crate::camera::Camera;
-use crate::light::Light;
-use crate::material::{Albedo, Material};
-use crate::sdf::node::UNIT_TOLERANCE;
-use crate::sdf::{ScatterConfig, SdfError, SdfNode};
+use subcone_scene::camera::Camera;
+use subcone_scene::light::Light;
+use subcone_scene::material::{Albedo, Material};
+use subcone_scene::sdf::UNIT_TOLERANCE;
+use subcone_scene::sdf::{ScatterConfig, SdfError, SdfNode};
 
 /// A node read from a file, already built and validated.
 #[derive(Deserialize)]

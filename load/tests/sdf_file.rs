@@ -2,8 +2,9 @@
 //! every class of bad input is an error that names where it is, never a panic
 //! and never part of a scene.
 
-use subcone_scene::sdf::file::{parse_sdf_scene, write_sdf_scene, SdfFileError, MAX_NESTING};
-use subcone_scene::sdf::{sdf_builtin, MAX_DEPTH, SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
+use subcone_load::file::{parse_sdf_scene, write_sdf_scene, SdfFileError, MAX_NESTING};
+use subcone_scene::sdf::MAX_DEPTH;
+use subcone_scene::builtin::{sdf_builtin, SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
 
 fn builtins() -> impl Iterator<Item = &'static str> {
     SDF_SCENES
@@ -33,7 +34,7 @@ fn the_example_scenes_load() {
     let mut n = 0;
     for entry in std::fs::read_dir(&dir).unwrap() {
         let path = entry.unwrap().path();
-        let scene = subcone_scene::load_scene(&path).unwrap_or_else(|e| panic!("{e}"));
+        let scene = subcone_load::load_scene(&path).unwrap_or_else(|e| panic!("{e}"));
         assert!(scene.sdf_geometry().is_some(), "{}", path.display());
         n += 1;
     }

@@ -23,10 +23,11 @@
 //! (which the CPU maps to cell 0 in repetition) give unspecified cells.
 //!
 //! ```
-//! use subcone_scene::sdf::sdf_builtin;
+//! use subcone_scene::builtin::sdf_builtin;
+//! use subcone_sdf::wgsl::WgslField;
 //!
 //! let scene = sdf_builtin("primitives").unwrap().unwrap();
-//! let field = scene.root.to_wgsl();
+//! let field = WgslField::compile(&scene.root);
 //! assert!(field.source.contains("fn scene_sdf("));
 //! assert!(field.data.is_empty());
 //! ```
@@ -35,9 +36,7 @@ use std::fmt::Write;
 
 use glam::{Quat, Vec3, Vec4};
 
-use super::node::{Op, Repeat, SdfNode, Transform};
-use super::scatter::Scatter;
-use super::shape::Shape;
+use subcone_scene::sdf::{Op, Repeat, Scatter, SdfNode, Shape, Transform};
 
 /// A field compiled to WGSL.
 #[derive(Clone, Debug, PartialEq)]
@@ -260,8 +259,8 @@ impl Gen {
 
     /// `SdfNode::eval` of `n` as a function `(p) -> vec2<f32>`; returns its name.
     fn eval(&mut self, n: &SdfNode) -> String {
-        let own = mat(n.info.material);
-        let body = match &n.op {
+        let own = mat(n.default_material());
+        let body = match n.op() {
             Op::Shape { shape, material } => {
                 format!(
                     "    return vec2<f32>({}, {});\n",
@@ -338,7 +337,7 @@ impl Gen {
             }
             Op::Bounded { pad, child } => {
                 let c = self.eval(child);
-                let b = child.info.bounds;
+                let b = child.bounds();
                 format!(
                     "    let b = sdf_aabb_distance(p, {}, {});\n    \
                      if b > {} {{ return vec2<f32>(b, {own}); }}\n    return {c}(p);\n",
@@ -470,7 +469,7 @@ impl Gen {
 
     /// `Scatter::eval_split` as a function `(p) -> vec3<f32>`; returns its name.
     fn scatter(&mut self, sc: &Scatter) -> String {
-        let templates: Vec<String> = sc.templates().iter().map(|t| self.eval(t)).collect();
+        let templates: Vec<String> = sc.templates.iter().map(|t| self.eval(t)).collect();
         let base = self.scatter_table(sc);
         let mut s = Self::scatter_cell(sc);
         s.push_str(&Self::scatter_instance(sc, base, templates.len()));
@@ -484,7 +483,7 @@ impl Gen {
     /// cell; returns where it starts.
     fn scatter_table(&mut self, sc: &Scatter) -> usize {
         let base = self.data.len();
-        for i in sc.instances() {
+        for i in &sc.instances {
             let q = i.inv_rotation;
             self.data.push([q.x, q.y, q.z, q.w]);
             self.data
@@ -503,7 +502,7 @@ impl Gen {
     /// (the point in it) and `wall` (the distance to the walls that have a
     /// neighbouring cell).
     fn scatter_cell(sc: &Scatter) -> String {
-        let (origin, cell, inv_cell, lo, hi) = sc.grid();
+        let (origin, cell, inv_cell, lo, hi) = (sc.origin, sc.cell, sc.inv_cell, sc.lo, sc.hi);
         let mut s = format!(
             "    let rel = p - {origin};\n    let fc = rel * {inv_cell};\n    \
              let fi = min(max(floor(fc + vec3<f32>(0.5)), {lo}), {hi});\n    \
@@ -531,10 +530,10 @@ impl Gen {
     /// where the cell is empty or `p` is outside the instance's sphere;
     /// otherwise declares `lp`, `p` in the instance's frame.
     fn scatter_instance(sc: &Scatter, base: usize, template_count: usize) -> String {
-        let (_, _, _, lo, _) = sc.grid();
-        let dims = sc.dims();
-        let count = sc.instances().len();
-        let default = mat(sc.default_material());
+        let lo = sc.lo;
+        let dims = sc.dims;
+        let count = sc.instances.len();
+        let default = mat(sc.default_material);
         format!(
             "    let guard = wall + {margin};\n    let ii = fi - {lo};\n    \
              let idx = u32(ii.x) + {d0}u * (u32(ii.y) + {d1}u * u32(ii.z));\n    \
@@ -549,7 +548,7 @@ impl Gen {
              let sphere = length(local) - ic.y;\n    \
              if sphere >= guard {{ return vec3<f32>(guard, sphere, own); }}\n    \
              let lp = sdf_rotate(ia, local) * ic.x;\n",
-            margin = f(sc.margin()),
+            margin = f(sc.margin),
             lo = v3(lo),
             d0 = dims[0],
             d1 = dims[1],
@@ -574,8 +573,8 @@ impl Gen {
 
     /// `SdfNode::eval_split` of `n` as a function `(p) -> vec3<f32>`.
     fn split(&mut self, n: &SdfNode) -> String {
-        let own = mat(n.info.material);
-        let body = match &n.op {
+        let own = mat(n.default_material());
+        let body = match n.op() {
             Op::Shape { shape, material } => format!(
                 "    let d = {};\n    return vec3<f32>(d, d, {});\n",
                 Self::shape(shape),
@@ -628,7 +627,7 @@ impl Gen {
             }
             Op::Bounded { pad, child } => {
                 let c = self.split(child);
-                let b = child.info.bounds;
+                let b = child.bounds();
                 format!(
                     "    let b = sdf_aabb_distance(p, {}, {});\n    let r = {c}(p);\n    \
                      if b > {} {{ return vec3<f32>(min(max(r.x, b), r.y), r.y, r.z); }}\n    \
@@ -652,16 +651,16 @@ impl Gen {
     }
 }
 
-impl SdfNode {
-    /// Compile the tree to WGSL (see the [module docs](self)).
-    pub fn to_wgsl(&self) -> WgslField {
+impl WgslField {
+    /// Compile the tree `root` to WGSL (see the [module docs](self)).
+    pub fn compile(root: &SdfNode) -> WgslField {
         let mut g = Gen {
             out: String::from(PRELUDE),
             data: Vec::new(),
             next: 0,
         };
-        let e = g.eval(self);
-        let s = g.split(self);
+        let e = g.eval(root);
+        let s = g.split(root);
         let _ = write!(
             g.out,
             "// SdfNode::eval\nfn scene_sdf(p: vec3<f32>) -> vec2<f32> {{ return {e}(p); }}\n\

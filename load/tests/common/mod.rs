@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use subcone_scene::data_dir;
+use subcone_load::data_dir;
 
 /// A file of the shared data directory. Fails (never skips) when the directory
 /// is missing, saying how to point the tests at it.

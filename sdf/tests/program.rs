@@ -6,8 +6,9 @@
 //! once in the library, so this test does not compile the interpreter again.
 
 use glam::{Quat, Vec3};
-use subcone_scene::sdf::program::{Points, SdfProgram, LANES};
-use subcone_scene::sdf::{sdf_builtin, ScatterConfig, SdfNode, SDF_SCENES, STIFF_SCENES};
+use subcone_sdf::program::{Points, SdfProgram, LANES};
+use subcone_scene::sdf::{ScatterConfig, SdfNode};
+use subcone_scene::builtin::{sdf_builtin, SDF_SCENES, STIFF_SCENES};
 
 /// A small deterministic generator (no dependency, same points every run).
 struct Rng(u64);

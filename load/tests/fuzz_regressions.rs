@@ -5,7 +5,7 @@
 use std::path::Path;
 
 use glam::Vec3;
-use subcone_scene::load::{load_mesh_bytes, load_mesh_file, load_scene_bytes};
+use subcone_load::{load_mesh_bytes, load_mesh_file, load_scene_bytes};
 use subcone_scene::sdf::{SdfError, SdfNode};
 
 fn assert_unit(n: Vec3, what: &str) {
@@ -210,7 +210,7 @@ fn short_mtl_colours_do_not_panic() {
         let m = materials.iter().find(|m| m.name == name).unwrap();
         m.albedo_at(Vec3::ZERO, glam::Vec2::ZERO)
     };
-    assert_eq!(albedo("a"), subcone_scene::load::DEFAULT_ALBEDO);
+    assert_eq!(albedo("a"), subcone_load::DEFAULT_ALBEDO);
     assert_eq!(albedo("b"), Vec3::splat(0.25));
 }
 

@@ -8,10 +8,10 @@ use super::desc::{
     AlbedoDesc, Axis, CameraDesc, LightDesc, MaterialDesc, NodeDesc, RotationDesc, SceneDesc,
     Written, FORMAT_VERSION,
 };
-use crate::light::Light;
-use crate::material::{Albedo, Material};
-use crate::sdf::node::Op;
-use crate::sdf::{SdfNode, SdfScene, Shape};
+use subcone_scene::light::Light;
+use subcone_scene::material::{Albedo, Material};
+use subcone_scene::sdf::Op;
+use subcone_scene::sdf::{SdfNode, SdfScene, Shape};
 
 fn a(x: Vec3) -> [f32; 3] {
     x.to_array()
@@ -106,7 +106,7 @@ fn limits(x: Vec3) -> Option<[i32; 3]> {
 }
 
 fn node(n: &SdfNode) -> Written {
-    Written(match &n.op {
+    Written(match n.op() {
         Op::Shape { shape, material } => shape_desc(*shape, *material),
         Op::Union { children, .. } => NodeDesc::Union(all(children)),
         Op::Intersection(children) => NodeDesc::Intersection(all(children)),
@@ -186,7 +186,7 @@ fn node(n: &SdfNode) -> Written {
                 rotate: c.rotate,
                 jitter: c.jitter,
                 palette: c.palette,
-                templates: all(s.templates()),
+                templates: all(&s.templates),
             }
         }
     })
@@ -290,8 +290,8 @@ pub(super) fn material_path(n: &SdfNode, count: usize, at: &str) -> Option<Strin
             .enumerate()
             .find_map(|(i, c)| material_path(c, count, &format!("{at}.{seg}[{i}]")))
     };
-    let variant = variant_name(&n.op);
-    match &n.op {
+    let variant = variant_name(n.op());
+    match n.op() {
         Op::Shape { material, .. } => {
             ((*material as usize) >= count).then(|| format!("{at}.{variant}.material"))
         }
@@ -309,10 +309,10 @@ pub(super) fn material_path(n: &SdfNode, count: usize, at: &str) -> Option<Strin
         | Op::Displace { child: c, .. }
         | Op::Bounded { child: c, .. } => child(c, format!("{variant}.child")),
         Op::Scatter(s) => {
-            let palette = s.palette();
+            let palette = &s.palette;
             match palette.iter().position(|&m| m as usize >= count) {
                 Some(i) => Some(format!("{at}.Scatter.palette[{i}]")),
-                None if palette.is_empty() => list(s.templates(), "Scatter.templates"),
+                None if palette.is_empty() => list(&s.templates, "Scatter.templates"),
                 None => None,
             }
         }

@@ -8,7 +8,7 @@
 //! the same image, bit for bit.
 //!
 //! ```
-//! use subcone_scene::sdf::file::{parse_sdf_scene, write_sdf_scene};
+//! use subcone_load::file::{parse_sdf_scene, write_sdf_scene};
 //!
 //! let text = r#"
 //! // A ball on a checkered floor, lit by the sun.
@@ -78,7 +78,7 @@
 //! give `forward` and `up` exactly).
 //!
 //! **Material** `(name: "..", albedo: .., mirror: 0, emission: (0, 0, 0),
-//! alpha: 1)`, see [`Material`](crate::Material): `albedo` is `Solid((r, g,
+//! alpha: 1)`, see [`Material`](subcone_scene::Material): `albedo` is `Solid((r, g,
 //! b))` (default grey 0.7), `Checker(a: (..), b: (..), size: ..)` or
 //! `Patches(palette: [(..), ..], size: ..)`, both on the world `x`/`z`
 //! plane; `mirror` (reflectance) and `alpha` (opacity, CTSS §5.3) are in `[0,
@@ -88,7 +88,7 @@
 //! `Directional(direction: (..), irradiance: (..))`, `direction` pointing
 //! towards the light (normalised when it is not unit).
 //!
-//! **Nodes**, one per [`SdfNode`](crate::sdf::SdfNode) constructor, with its parameters under the
+//! **Nodes**, one per [`SdfNode`](subcone_scene::sdf::SdfNode) constructor, with its parameters under the
 //! same names (see each constructor for the ranges it accepts):
 //!
 //! | node | fields |
@@ -118,7 +118,7 @@
 //! | `ScaleDistance` | `factor`, `child` |
 //! | `Displace` | `amplitude`, `frequency`, `child` |
 //! | `Bounded` | `pad`, `child` |
-//! | `Scatter` | `cell`, `lo`, `hi`, `templates: [..]`; `origin` (0), `seed` (0), `fill` (1), `margin` (5 % of the smallest cell side), `min_size` (0.5), `max_size` (1), `rotate` (true), `jitter` (true), `palette` (none): see [`ScatterConfig`](crate::sdf::ScatterConfig) |
+//! | `Scatter` | `cell`, `lo`, `hi`, `templates: [..]`; `origin` (0), `seed` (0), `fill` (1), `margin` (5 % of the smallest cell side), `min_size` (0.5), `max_size` (1), `rotate` (true), `jitter` (true), `palette` (none): see [`ScatterConfig`](subcone_scene::sdf::ScatterConfig) |
 //! | `Material` | `index`, `child`: every object below takes material `index` |
 //!
 //! Every primitive also takes `material` (an index into `materials`, default
@@ -131,7 +131,7 @@
 //! reported by the parser's line and column and the path to the value, like
 //! `root.Union[2].Transform.child.Sphere.radius`. A node whose values its
 //! constructor refuses (NaN, a negative radius, nesting deeper than
-//! [`MAX_DEPTH`](crate::sdf::MAX_DEPTH), …) is reported at the line where the
+//! [`MAX_DEPTH`](subcone_scene::sdf::MAX_DEPTH), …) is reported at the line where the
 //! node ends, with its path and the constructor's [`SdfError`] message.
 //! Camera, material and light errors name their path (`materials[1].alpha`).
 //! Files nested deeper than [`MAX_NESTING`] brackets are refused before they
@@ -143,7 +143,8 @@ mod export;
 
 use std::path::Path;
 
-use super::{SdfError, SdfScene};
+pub use subcone_scene::SdfFileError;
+use subcone_scene::sdf::{SdfError, SdfScene};
 use build::Parsed;
 use desc::{SceneDesc, FORMAT_VERSION};
 
@@ -151,7 +152,7 @@ use desc::{SceneDesc, FORMAT_VERSION};
 pub const SDF_FILE_SUFFIX: &str = ".sdf.ron";
 
 /// The deepest bracket nesting a file may have: the tree's
-/// [`MAX_DEPTH`](crate::sdf::MAX_DEPTH) levels at four brackets per level,
+/// [`MAX_DEPTH`](subcone_scene::sdf::MAX_DEPTH) levels at four brackets per level,
 /// with room to spare for transforms, which merge.
 pub const MAX_NESTING: usize = 512;
 
@@ -161,43 +162,6 @@ pub fn is_sdf_file(path: &Path) -> bool {
     path.file_name()
         .and_then(|n| n.to_str())
         .is_some_and(|n| n.to_ascii_lowercase().ends_with(SDF_FILE_SUFFIX))
-}
-
-/// An SDF scene file could not be read, or a scene could not be written.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("{}", self.describe())]
-pub struct SdfFileError {
-    /// The file, as the caller named it.
-    pub file: String,
-    /// Line and column (1-based) where the problem was found, when known.
-    pub position: Option<(usize, usize)>,
-    /// Where in the document: `root.Union[2].Transform.child`,
-    /// `materials[1]`; empty for the whole file.
-    pub path: String,
-    /// What is wrong.
-    pub reason: String,
-}
-
-impl SdfFileError {
-    fn describe(&self) -> String {
-        let mut s = self.file.clone();
-        if let Some((line, col)) = self.position {
-            s += &format!(":{line}:{col}");
-        }
-        if !self.path.is_empty() {
-            s += &format!(": {}", self.path);
-        }
-        s + ": " + &self.reason
-    }
-
-    fn at(file: &str, path: impl Into<String>, reason: impl Into<String>) -> Self {
-        SdfFileError {
-            file: file.into(),
-            position: None,
-            path: path.into(),
-            reason: reason.into(),
-        }
-    }
 }
 
 /// The scene name a file gives when it names none: its file name without
@@ -259,7 +223,7 @@ fn check_nesting(text: &str, file: &str) -> Result<(), SdfFileError> {
                         reason: format!(
                             "nested deeper than {MAX_NESTING} brackets (a tree may be at most {} \
                              levels deep)",
-                            super::MAX_DEPTH
+                            subcone_scene::sdf::MAX_DEPTH
                         ),
                     });
                 }
