@@ -49,7 +49,7 @@ use core::ops::{Add, Div, Mul, Neg, Sub};
 
 use glam::{Quat, Vec3, Vec4};
 
-use subcone_scene::sdf::{Aabb, Instance, Op, Scatter, SdfNode, Shape, SplitDistance};
+use subcone_scene::sdf::{lane, Aabb, Instance, Op, Scatter, SdfNode, Shape, SplitDistance};
 
 /// Points evaluated together: the width of a packet.
 pub const LANES: usize = 8;
@@ -297,6 +297,68 @@ impl Neg for F8 {
     }
 }
 
+/// The primitives' operations ([`subcone_scene::sdf::lane`]) on eight lanes:
+/// each the `f32` operation of [`Lane for f32`](lane::Lane), lane by lane.
+impl lane::Lane for F8 {
+    type Mask = M8;
+    #[inline(always)]
+    fn splat(v: f32) -> F8 {
+        F8::splat(v)
+    }
+    #[inline(always)]
+    fn min(self, o: F8) -> F8 {
+        F8::min(self, o)
+    }
+    #[inline(always)]
+    fn max(self, o: F8) -> F8 {
+        F8::max(self, o)
+    }
+    #[inline(always)]
+    fn gmax(self, o: F8) -> F8 {
+        F8::gmax(self, o)
+    }
+    #[inline(always)]
+    fn clamp(self, lo: F8, hi: F8) -> F8 {
+        F8::clamp(self, lo, hi)
+    }
+    #[inline(always)]
+    fn abs(self) -> F8 {
+        F8::abs(self)
+    }
+    #[inline(always)]
+    fn sqrt(self) -> F8 {
+        F8::sqrt(self)
+    }
+    #[inline(always)]
+    fn lt(self, o: F8) -> M8 {
+        F8::lt(self, o)
+    }
+    #[inline(always)]
+    fn gt(self, o: F8) -> M8 {
+        F8::gt(self, o)
+    }
+    #[inline(always)]
+    fn eq(self, o: F8) -> M8 {
+        F8::eq(self, o)
+    }
+    #[inline(always)]
+    fn is_finite(self) -> M8 {
+        W8::from_fn(|k| self.0[k].is_finite())
+    }
+    #[inline(always)]
+    fn and(a: M8, b: M8) -> M8 {
+        a.and(b)
+    }
+    #[inline(always)]
+    fn or(a: M8, b: M8) -> M8 {
+        W8(core::array::from_fn(|k| a.0[k] | b.0[k]))
+    }
+    #[inline(always)]
+    fn select(m: M8, a: F8, b: F8) -> F8 {
+        m.select(a, b)
+    }
+}
+
 /// Three coordinates of eight lanes, with glam's `Vec3` semantics.
 #[derive(Clone, Copy, Debug, Default)]
 struct V3 {
@@ -319,16 +381,8 @@ impl V3 {
         V3::new(self.x - o.x, self.y - o.y, self.z - o.z)
     }
     #[inline(always)]
-    fn add(self, o: V3) -> V3 {
-        V3::new(self.x + o.x, self.y + o.y, self.z + o.z)
-    }
-    #[inline(always)]
     fn mul(self, o: V3) -> V3 {
         V3::new(self.x * o.x, self.y * o.y, self.z * o.z)
-    }
-    #[inline(always)]
-    fn div(self, o: V3) -> V3 {
-        V3::new(self.x / o.x, self.y / o.y, self.z / o.z)
     }
     #[inline(always)]
     fn scale(self, s: F8) -> V3 {
@@ -342,10 +396,6 @@ impl V3 {
     fn length(self) -> F8 {
         self.dot(self).sqrt()
     }
-    #[inline(always)]
-    fn abs(self) -> V3 {
-        V3::new(self.x.abs(), self.y.abs(), self.z.abs())
-    }
     /// glam's `max`.
     #[inline(always)]
     fn gmax(self, o: V3) -> V3 {
@@ -355,11 +405,6 @@ impl V3 {
     #[inline(always)]
     fn pos(self) -> V3 {
         self.gmax(V3::splat(Vec3::ZERO))
-    }
-    /// glam's `max_element`: `max(x, max(y, z))` by `>`.
-    #[inline(always)]
-    fn max_element(self) -> F8 {
-        self.x.gmax(self.y.gmax(self.z))
     }
     /// glam's `Quat * Vec3` (SSE2): `v(w² − b·b) + b(2 v·b) + (b × v)(2w)`.
     #[inline(always)]
@@ -391,163 +436,13 @@ impl V3 {
     }
 }
 
-/// glam's `Vec2::length`.
-#[inline(always)]
-fn len2(x: F8, y: F8) -> F8 {
-    (x * x + y * y).sqrt()
-}
-
 // ------------------------------------------------------------------ shapes
 
-/// `Shape::distance`, lane-wise, operation for operation.
+/// `Shape::distance`, lane-wise: the one definition of the primitives
+/// ([`subcone_scene::sdf::lane`]), on eight lanes.
 #[inline(always)]
 fn shape_distance(shape: &Shape, p: V3) -> F8 {
-    let z = F8::splat(0.0);
-    match *shape {
-        Shape::Sphere { radius } => p.length() - radius,
-        Shape::Box { half } => sd_box(p, half),
-        Shape::RoundBox { half, radius } => sd_box(p, half - Vec3::splat(radius)) - radius,
-        Shape::BoxFrame { half, thickness } => sd_box_frame(p, half, 0.5 * thickness),
-        Shape::Torus { major, minor } => len2(len2(p.x, p.z) - major, p.y) - minor,
-        Shape::Link {
-            half_length,
-            major,
-            minor,
-        } => {
-            let qy = (p.y.abs() - half_length).max(z);
-            len2(len2(p.x, qy) - major, p.z) - minor
-        }
-        Shape::Capsule {
-            half_height,
-            radius,
-        } => {
-            let y = p.y - p.y.clamp(F8::splat(-half_height), F8::splat(half_height));
-            V3::new(p.x, y, p.z).length() - radius
-        }
-        Shape::Cylinder {
-            radius,
-            half_height,
-        } => sd_cylinder(p, radius, half_height),
-        Shape::RoundedCylinder {
-            radius,
-            half_height,
-            rounding,
-        } => sd_cylinder(p, radius - rounding, half_height - rounding) - rounding,
-        Shape::CappedCone {
-            half_height,
-            bottom,
-            top,
-        } => sd_capped_cone(p, half_height, bottom, top),
-        Shape::Octahedron { size } => sd_octahedron(p, size),
-        Shape::HexPrism {
-            apothem,
-            half_height,
-        } => sd_hex_prism(V3::new(p.x, p.z, p.y), apothem, half_height),
-        Shape::Ellipsoid { radii } => {
-            let k0 = p.div(V3::splat(radii)).length();
-            let k1 = p.div(V3::splat(radii * radii)).length();
-            let centre = F8::splat(-radii.min_element());
-            let inside = k0 * ((k0 - 1.0) / k1);
-            let far = p.length() - radii.max_element();
-            let finite = W8::from_fn(|k| k0.0[k].is_finite() & k1.0[k].is_finite());
-            F8::select(k1.eq(z), centre, F8::select(finite, inside, far))
-        }
-        Shape::Plane { normal, offset } => p.dot(V3::splat(normal)) + offset,
-    }
-}
-
-#[inline(always)]
-fn sd_box(p: V3, half: Vec3) -> F8 {
-    let q = p.abs().sub(V3::splat(half));
-    q.pos().length() + q.max_element().min(F8::splat(0.0))
-}
-
-#[inline(always)]
-fn sd_box_frame(p: V3, half: Vec3, e: f32) -> F8 {
-    let p = p.abs().sub(V3::splat(half));
-    let q = p
-        .add(V3::splat(Vec3::splat(e)))
-        .abs()
-        .sub(V3::splat(Vec3::splat(e)));
-    // A function, not a closure: always inlined, where a closure left out of
-    // line is compiled for the baseline and called from every
-    // instruction-set path.
-    #[inline(always)]
-    fn part(v: V3) -> F8 {
-        v.pos().length() + v.max_element().min(F8::splat(0.0))
-    }
-    part(V3::new(p.x, q.y, q.z))
-        .min(part(V3::new(q.x, p.y, q.z)))
-        .min(part(V3::new(q.x, q.y, p.z)))
-}
-
-#[inline(always)]
-fn sd_cylinder(p: V3, radius: f32, half_height: f32) -> F8 {
-    let dx = len2(p.x, p.z).abs() - radius;
-    let dy = p.y.abs() - half_height;
-    let z = F8::splat(0.0);
-    dx.max(dy).min(z) + len2(dx.gmax(z), dy.gmax(z))
-}
-
-#[inline(always)]
-fn sd_capped_cone(p: V3, h: f32, r1: f32, r2: f32) -> F8 {
-    let z = F8::splat(0.0);
-    let (qx, qy) = (len2(p.x, p.z), p.y);
-    let (k1x, k1y) = (r2, h);
-    let (k2x, k2y) = (r2 - r1, 2.0 * h);
-    let r = F8::select(qy.lt(z), F8::splat(r1), F8::splat(r2));
-    let cax = qx - qx.min(r);
-    let cay = qy.abs() - h;
-    let k2k2 = k2x * k2x + k2y * k2y;
-    let s = if k2k2 > 0.0 {
-        (((k1x - qx) * k2x + (k1y - qy) * k2y) / k2k2).clamp(z, F8::splat(1.0))
-    } else {
-        z
-    };
-    let cbx = (qx - k1x) + k2x * s;
-    let cby = (qy - k1y) + k2y * s;
-    let side = (qy + h) * k2x - (qx - r1) * k2y;
-    let inside = W8::from_fn(|k| (side.0[k] > 0.0) & (cay.0[k] < 0.0));
-    let sign = F8::select(inside, F8::splat(-1.0), F8::splat(1.0));
-    sign * (cax * cax + cay * cay).min(cbx * cbx + cby * cby).sqrt()
-}
-
-#[inline(always)]
-fn sd_octahedron(p: V3, s: f32) -> F8 {
-    let p = p.abs();
-    let m = p.x + p.y + p.z - s;
-    let ax = (3.0 * p.x).lt(m);
-    let ay = (3.0 * p.y).lt(m);
-    let az = (3.0 * p.z).lt(m);
-    // q = p, p.yzx or p.zxy by the first axis that passes, as the tree picks.
-    // A function, not a closure, as `sd_box_frame`'s `part`.
-    #[inline(always)]
-    fn pick(ax: M8, ay: M8, a: F8, b: F8, c: F8) -> F8 {
-        F8::select(ax, a, F8::select(ay, b, c))
-    }
-    let qx = pick(ax, ay, p.x, p.y, p.z);
-    let qy = pick(ax, ay, p.y, p.z, p.x);
-    let qz = pick(ax, ay, p.z, p.x, p.y);
-    let k = (0.5 * (qz - qy + s)).clamp(F8::splat(0.0), F8::splat(s));
-    let d = V3::new(qx, qy - s + k, qz - k).length();
-    let any = W8(core::array::from_fn(|k| ax.0[k] | ay.0[k] | az.0[k]));
-    F8::select(any, d, m * 0.577_350_26)
-}
-
-#[inline(always)]
-fn sd_hex_prism(p: V3, apothem: f32, half_height: f32) -> F8 {
-    const K: Vec3 = Vec3::new(-0.866_025_4, 0.5, 0.577_350_26);
-    let z = F8::splat(0.0);
-    let p = p.abs();
-    let f = 2.0 * (K.x * p.x + K.y * p.y).min(z);
-    let px = p.x - f * K.x;
-    let py = p.y - f * K.y;
-    let ex = px - px.clamp(F8::splat(-K.z * apothem), F8::splat(K.z * apothem));
-    let ey = py - apothem;
-    let sign = F8::select((py - apothem).lt(z), F8::splat(-1.0), F8::splat(1.0));
-    let dx = len2(ex, ey) * sign;
-    let dy = p.z - half_height;
-    dx.max(dy).min(z) + len2(dx.gmax(z), dy.gmax(z))
+    lane::shape_distance(shape, p.x, p.y, p.z)
 }
 
 /// `Aabb::distance`, lane-wise.

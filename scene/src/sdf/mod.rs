@@ -52,6 +52,7 @@
 //! need a [`SceneError`](crate::SceneError) map it themselves.
 
 mod bounds;
+pub mod lane;
 mod node;
 mod scatter;
 mod scenes;
