@@ -18,6 +18,7 @@ use subcone_kernels::math::Euclidean;
 
 use glam::{Mat3, Mat4, Vec2, Vec3};
 
+use crate::file::{is_sdf_file, load_sdf_scene, parse_sdf_scene};
 use subcone_scene::builtin;
 use subcone_scene::camera::Camera;
 use subcone_scene::error::SceneError;
@@ -25,7 +26,6 @@ use subcone_scene::light::Light;
 use subcone_scene::material::Material;
 use subcone_scene::mesh::{Sanitized, TriangleMesh};
 use subcone_scene::scene::Scene;
-use crate::file::{is_sdf_file, load_sdf_scene, parse_sdf_scene};
 
 /// Albedo of surfaces whose file gives no colour.
 pub const DEFAULT_ALBEDO: Vec3 = Vec3::new(0.7, 0.7, 0.7);

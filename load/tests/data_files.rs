@@ -6,9 +6,9 @@ mod common;
 use common::data_file;
 use glam::Vec3;
 use subcone_kernels::passes::SceneFeatures;
+use subcone_load::data_dir;
 use subcone_load::{load_mesh_file, load_scene, scene_from_arg, sponza, SPONZA_STONE};
 use subcone_scene::{Albedo, Sanitized};
-use subcone_load::data_dir;
 
 #[test]
 fn bunny_loads_with_every_triangle() {

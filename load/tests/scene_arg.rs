@@ -10,7 +10,12 @@ fn every_builtin_scene_resolves_by_name() {
     for entry in &SCENES {
         let scene = scene_from_arg(entry.name).unwrap_or_else(|e| panic!("{}: {e}", entry.name));
         assert_eq!(scene.name, entry.name);
-        assert_eq!(scene.sdf_geometry().is_some(), entry.is_sdf(), "{}", entry.name);
+        assert_eq!(
+            scene.sdf_geometry().is_some(),
+            entry.is_sdf(),
+            "{}",
+            entry.name
+        );
     }
 }
 

@@ -3,8 +3,8 @@
 //! and never part of a scene.
 
 use subcone_load::file::{parse_sdf_scene, write_sdf_scene, SdfFileError, MAX_NESTING};
-use subcone_scene::sdf::MAX_DEPTH;
 use subcone_scene::builtin::{sdf_builtin, SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
+use subcone_scene::sdf::MAX_DEPTH;
 
 fn builtins() -> impl Iterator<Item = &'static str> {
     SDF_SCENES

@@ -270,7 +270,6 @@ pub struct Unsupported {
     pub reason: UnsupportedReason,
 }
 
-
 /// An SDF tree or scene could not be built.
 ///
 /// Callers that need a [`SceneError`](crate::SceneError) map it, e.g. to
@@ -357,7 +356,6 @@ pub enum SdfError {
     },
 }
 
-
 /// An SDF scene file (`.sdf.ron`, read and written by `subcone-load`) could
 /// not be read, or a scene could not be written. Plain data, so that
 /// [`SceneError::SdfFile`] can carry it without the contract knowing the
@@ -398,4 +396,3 @@ impl SdfFileError {
         }
     }
 }
-

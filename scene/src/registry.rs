@@ -27,7 +27,6 @@ use std::fmt;
 
 use subcone_kernels::passes::Technique;
 
-
 /// An edge class: what a pixel contains that aliases (the report's masks
 /// classify each pixel into one).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]

@@ -184,7 +184,10 @@ fn module_graph(files: &[(String, Vec<String>, String)]) -> (Graph, Vec<String>)
         .map(|(top, _, _)| top.clone())
         .filter(|t| !t.is_empty())
         .collect();
-    let mut graph: Graph = modules.iter().map(|m| (m.clone(), BTreeSet::new())).collect();
+    let mut graph: Graph = modules
+        .iter()
+        .map(|m| (m.clone(), BTreeSet::new()))
+        .collect();
     let mut through_root = Vec::new();
     for (top, module, text) in files {
         if top.is_empty() {
@@ -221,7 +224,10 @@ fn module_graph(files: &[(String, Vec<String>, String)]) -> (Graph, Vec<String>)
             }
             // Inside an inline `mod tests { … }`, the first `super` is the
             // file's own module.
-            let enclosing = inline.iter().filter(|(open, close)| *open < at && at < *close).count();
+            let enclosing = inline
+                .iter()
+                .filter(|(open, close)| *open < at && at < *close)
+                .count();
             if up >= module.len() + enclosing {
                 if let Some(group) = rest.strip_prefix('{') {
                     refs.extend(group_heads(group));
@@ -265,7 +271,8 @@ fn find_cycle(graph: &Graph) -> Option<Vec<String>> {
             match marks.get(next).copied().unwrap_or(Mark::New) {
                 Mark::Open => {
                     let from = stack.iter().position(|m| *m == next).unwrap();
-                    let mut cycle: Vec<String> = stack[from..].iter().map(|m| m.to_string()).collect();
+                    let mut cycle: Vec<String> =
+                        stack[from..].iter().map(|m| m.to_string()).collect();
                     cycle.push(next.clone());
                     return Some(cycle);
                 }
@@ -295,7 +302,12 @@ fn find_cycle(graph: &Graph) -> Option<Vec<String>> {
 fn render(graph: &Graph) -> String {
     graph
         .iter()
-        .map(|(m, uses)| format!("{m} -> {}", uses.iter().cloned().collect::<Vec<_>>().join(", ")))
+        .map(|(m, uses)| {
+            format!(
+                "{m} -> {}",
+                uses.iter().cloned().collect::<Vec<_>>().join(", ")
+            )
+        })
         .collect::<Vec<_>>()
         .join("\n")
 }
@@ -310,7 +322,11 @@ fn no_import_circle_between_the_contract_modules() {
         "name the module, not a root re-export:\n{}",
         through_root.join("\n")
     );
-    assert!(graph.len() >= 10, "too few modules found:\n{}", render(&graph));
+    assert!(
+        graph.len() >= 10,
+        "too few modules found:\n{}",
+        render(&graph)
+    );
     if let Some(cycle) = find_cycle(&graph) {
         panic!(
             "import circle in subcone-scene: {}\n\nthe module graph:\n{}",
@@ -340,8 +356,16 @@ fn the_cycle_finder_finds_a_cycle_through_groups_and_super() {
     let files = synthetic(&[
         ("a", &["a"], "use crate::b::Thing;\nfn f() {}"),
         ("b", &["b"], "use crate::{c::{self, Other}, b::Own};"),
-        ("c", &["c", "x"], "use super::Local;\nfn g() { super::super::a::f() }"),
-        ("d", &["d"], "use crate::a::f;\n#[cfg(test)]\nmod tests {\n    use super::*;\n}"),
+        (
+            "c",
+            &["c", "x"],
+            "use super::Local;\nfn g() { super::super::a::f() }",
+        ),
+        (
+            "d",
+            &["d"],
+            "use crate::a::f;\n#[cfg(test)]\nmod tests {\n    use super::*;\n}",
+        ),
     ]);
     let (graph, through_root) = module_graph(&files);
     assert!(through_root.is_empty(), "{through_root:?}");
@@ -367,13 +391,19 @@ fn comments_and_strings_are_not_references() {
     assert!(graph["a"].is_empty(), "{graph:?}");
     assert_eq!(find_cycle(&graph), None);
     // The same two modules with a real reference back form a cycle.
-    let files = synthetic(&[("a", &["a"], "fn f() { crate::b::g() }"), ("b", &["b"], "use crate::a::S;")]);
+    let files = synthetic(&[
+        ("a", &["a"], "fn f() { crate::b::g() }"),
+        ("b", &["b"], "use crate::a::S;"),
+    ]);
     assert!(find_cycle(&module_graph(&files).0).is_some());
 }
 
 #[test]
 fn a_root_re_export_is_reported() {
-    let files = synthetic(&[("a", &["a"], "fn f(s: &crate::Scene) {}"), ("scene", &["scene"], "")]);
+    let files = synthetic(&[
+        ("a", &["a"], "fn f(s: &crate::Scene) {}"),
+        ("scene", &["scene"], ""),
+    ]);
     let (_, through_root) = module_graph(&files);
     assert_eq!(through_root, vec!["a: crate::Scene".to_string()]);
 }

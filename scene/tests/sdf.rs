@@ -5,8 +5,10 @@ use std::f32::consts::FRAC_PI_2;
 
 use glam::{Quat, Vec3};
 use subcone_kernels::passes::SceneFeatures;
-use subcone_scene::sdf::{Exactness, ScatterConfig, SdfError, SdfNode, SdfScene, Shape, FAR_ORIGIN_SHIFT, MAX_DEPTH};
 use subcone_scene::builtin::{sdf_builtin, SDF_SCENES, STIFF_SCENES};
+use subcone_scene::sdf::{
+    Exactness, ScatterConfig, SdfError, SdfNode, SdfScene, Shape, FAR_ORIGIN_SHIFT, MAX_DEPTH,
+};
 use subcone_scene::{Camera, Material};
 
 /// A minimal f64 vector for references (the workspace's glam has no f64 types).

@@ -63,25 +63,25 @@ fn sdf_rotate(q: vec4<f32>, v: vec3<f32>) -> vec3<f32> {
     return v * (q.w * q.w - b2) + b * (dot(v, b) * 2.0) + cross(b, v) * (q.w * 2.0);
 }
 fn sdf_max3(v: vec3<f32>) -> f32 { return max(max(v.x, v.y), v.z); }
-// shape.rs sd_box
+// lane.rs sd_box
 fn sd_box(p: vec3<f32>, half: vec3<f32>) -> f32 {
     let q = abs(p) - half;
     return length(max(q, vec3<f32>(0.0))) + min(sdf_max3(q), 0.0);
 }
 fn sd_box_part(v: vec3<f32>) -> f32 { return length(max(v, vec3<f32>(0.0))) + min(sdf_max3(v), 0.0); }
-// shape.rs sd_box_frame
+// lane.rs sd_box_frame
 fn sd_box_frame(p0: vec3<f32>, half: vec3<f32>, e: f32) -> f32 {
     let p = abs(p0) - half;
     let q = abs(p + vec3<f32>(e)) - vec3<f32>(e);
     return min(min(sd_box_part(vec3<f32>(p.x, q.y, q.z)), sd_box_part(vec3<f32>(q.x, p.y, q.z))),
                sd_box_part(vec3<f32>(q.x, q.y, p.z)));
 }
-// shape.rs sd_cylinder
+// lane.rs sd_cylinder
 fn sd_cylinder(p: vec3<f32>, radius: f32, half_height: f32) -> f32 {
     let d = abs(vec2<f32>(length(p.xz), p.y)) - vec2<f32>(radius, half_height);
     return min(max(d.x, d.y), 0.0) + length(max(d, vec2<f32>(0.0)));
 }
-// shape.rs sd_capped_cone
+// lane.rs sd_capped_cone
 fn sd_capped_cone(p: vec3<f32>, h: f32, r1: f32, r2: f32) -> f32 {
     let q = vec2<f32>(length(p.xz), p.y);
     let k1 = vec2<f32>(r2, h);
@@ -97,7 +97,7 @@ fn sd_capped_cone(p: vec3<f32>, h: f32, r1: f32, r2: f32) -> f32 {
     let sgn = select(1.0, -1.0, side > 0.0 && ca.y < 0.0);
     return sgn * sqrt(min(dot(ca, ca), dot(cb, cb)));
 }
-// shape.rs sd_octahedron
+// lane.rs sd_octahedron
 fn sd_octahedron(p0: vec3<f32>, s: f32) -> f32 {
     let p = abs(p0);
     let m = p.x + p.y + p.z - s;
@@ -114,7 +114,7 @@ fn sd_octahedron(p0: vec3<f32>, s: f32) -> f32 {
     let k = clamp(0.5 * (q.z - q.y + s), 0.0, s);
     return length(vec3<f32>(q.x, q.y - s + k, q.z - k));
 }
-// shape.rs sd_hex_prism
+// lane.rs sd_hex_prism
 fn sd_hex_prism(p0: vec3<f32>, apothem: f32, half_height: f32) -> f32 {
     let k = vec3<f32>(-0.8660254, 0.5, 0.57735026);
     var p = abs(p0);
@@ -126,7 +126,7 @@ fn sd_hex_prism(p0: vec3<f32>, apothem: f32, half_height: f32) -> f32 {
     let d = vec2<f32>(length(edge) * sgn, p.z - half_height);
     return min(max(d.x, d.y), 0.0) + length(max(d, vec2<f32>(0.0)));
 }
-// shape.rs Shape::Ellipsoid
+// lane.rs shape_distance, Shape::Ellipsoid
 fn sd_ellipsoid(p: vec3<f32>, radii: vec3<f32>) -> f32 {
     let k0 = length(p / radii);
     let k1 = length(p / (radii * radii));
@@ -177,84 +177,88 @@ struct Gen {
     next: usize,
 }
 
+/// The WGSL expression of `shape`'s distance at `p` (a `vec3<f32>` in
+/// scope): an inline formula, or a call of one of the generated source's
+/// `sd_*` functions (the WGSL form of
+/// [`subcone_scene::sdf::lane::shape_distance`], the same operations).
+pub fn shape_wgsl(shape: &Shape) -> String {
+    match *shape {
+        Shape::Sphere { radius } => format!("length(p) - {}", f(radius)),
+        Shape::Box { half } => format!("sd_box(p, {})", v3(half)),
+        Shape::RoundBox { half, radius } => format!(
+            "sd_box(p, {}) - {}",
+            v3(half - Vec3::splat(radius)),
+            f(radius)
+        ),
+        Shape::BoxFrame { half, thickness } => {
+            format!("sd_box_frame(p, {}, {})", v3(half), f(0.5 * thickness))
+        }
+        Shape::Torus { major, minor } => format!(
+            "length(vec2<f32>(length(p.xz) - {}, p.y)) - {}",
+            f(major),
+            f(minor)
+        ),
+        Shape::Link {
+            half_length,
+            major,
+            minor,
+        } => format!(
+            "length(vec2<f32>(length(vec2<f32>(p.x, max(abs(p.y) - {}, 0.0))) - {}, p.z)) - {}",
+            f(half_length),
+            f(major),
+            f(minor)
+        ),
+        Shape::Capsule {
+            half_height,
+            radius,
+        } => format!(
+            "length(vec3<f32>(p.x, p.y - clamp(p.y, {}, {}), p.z)) - {}",
+            f(-half_height),
+            f(half_height),
+            f(radius)
+        ),
+        Shape::Cylinder {
+            radius,
+            half_height,
+        } => format!("sd_cylinder(p, {}, {})", f(radius), f(half_height)),
+        Shape::RoundedCylinder {
+            radius,
+            half_height,
+            rounding,
+        } => format!(
+            "sd_cylinder(p, {}, {}) - {}",
+            f(radius - rounding),
+            f(half_height - rounding),
+            f(rounding)
+        ),
+        Shape::CappedCone {
+            half_height,
+            bottom,
+            top,
+        } => format!(
+            "sd_capped_cone(p, {}, {}, {})",
+            f(half_height),
+            f(bottom),
+            f(top)
+        ),
+        Shape::Octahedron { size } => format!("sd_octahedron(p, {})", f(size)),
+        Shape::HexPrism {
+            apothem,
+            half_height,
+        } => format!(
+            "sd_hex_prism(vec3<f32>(p.x, p.z, p.y), {}, {})",
+            f(apothem),
+            f(half_height)
+        ),
+        Shape::Ellipsoid { radii } => format!("sd_ellipsoid(p, {})", v3(radii)),
+        Shape::Plane { normal, offset } => format!("dot(p, {}) + {}", v3(normal), f(offset)),
+    }
+}
+
 impl Gen {
     fn name(&mut self, kind: &str) -> String {
         self.next += 1;
         format!("sdf_{kind}{}", self.next)
-    }
-
-    fn shape(shape: &Shape) -> String {
-        match *shape {
-            Shape::Sphere { radius } => format!("length(p) - {}", f(radius)),
-            Shape::Box { half } => format!("sd_box(p, {})", v3(half)),
-            Shape::RoundBox { half, radius } => format!(
-                "sd_box(p, {}) - {}",
-                v3(half - Vec3::splat(radius)),
-                f(radius)
-            ),
-            Shape::BoxFrame { half, thickness } => {
-                format!("sd_box_frame(p, {}, {})", v3(half), f(0.5 * thickness))
-            }
-            Shape::Torus { major, minor } => format!(
-                "length(vec2<f32>(length(p.xz) - {}, p.y)) - {}",
-                f(major),
-                f(minor)
-            ),
-            Shape::Link {
-                half_length,
-                major,
-                minor,
-            } => format!(
-                "length(vec2<f32>(length(vec2<f32>(p.x, max(abs(p.y) - {}, 0.0))) - {}, p.z)) - {}",
-                f(half_length),
-                f(major),
-                f(minor)
-            ),
-            Shape::Capsule {
-                half_height,
-                radius,
-            } => format!(
-                "length(vec3<f32>(p.x, p.y - clamp(p.y, {}, {}), p.z)) - {}",
-                f(-half_height),
-                f(half_height),
-                f(radius)
-            ),
-            Shape::Cylinder {
-                radius,
-                half_height,
-            } => format!("sd_cylinder(p, {}, {})", f(radius), f(half_height)),
-            Shape::RoundedCylinder {
-                radius,
-                half_height,
-                rounding,
-            } => format!(
-                "sd_cylinder(p, {}, {}) - {}",
-                f(radius - rounding),
-                f(half_height - rounding),
-                f(rounding)
-            ),
-            Shape::CappedCone {
-                half_height,
-                bottom,
-                top,
-            } => format!(
-                "sd_capped_cone(p, {}, {}, {})",
-                f(half_height),
-                f(bottom),
-                f(top)
-            ),
-            Shape::Octahedron { size } => format!("sd_octahedron(p, {})", f(size)),
-            Shape::HexPrism {
-                apothem,
-                half_height,
-            } => format!(
-                "sd_hex_prism(vec3<f32>(p.x, p.z, p.y), {}, {})",
-                f(apothem),
-                f(half_height)
-            ),
-            Shape::Ellipsoid { radii } => format!("sd_ellipsoid(p, {})", v3(radii)),
-            Shape::Plane { normal, offset } => format!("dot(p, {}) + {}", v3(normal), f(offset)),
-        }
     }
 
     /// `SdfNode::eval` of `n` as a function `(p) -> vec2<f32>`; returns its name.
@@ -264,7 +268,7 @@ impl Gen {
             Op::Shape { shape, material } => {
                 format!(
                     "    return vec2<f32>({}, {});\n",
-                    Self::shape(shape),
+                    shape_wgsl(shape),
                     mat(*material)
                 )
             }
@@ -577,7 +581,7 @@ impl Gen {
         let body = match n.op() {
             Op::Shape { shape, material } => format!(
                 "    let d = {};\n    return vec3<f32>(d, d, {});\n",
-                Self::shape(shape),
+                shape_wgsl(shape),
                 mat(*material)
             ),
             Op::Transform(t) => {

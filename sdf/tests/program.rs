@@ -6,9 +6,9 @@
 //! once in the library, so this test does not compile the interpreter again.
 
 use glam::{Quat, Vec3};
-use subcone_sdf::program::{Points, SdfProgram, LANES};
-use subcone_scene::sdf::{ScatterConfig, SdfNode};
 use subcone_scene::builtin::{sdf_builtin, SDF_SCENES, STIFF_SCENES};
+use subcone_scene::sdf::{ScatterConfig, SdfNode};
+use subcone_sdf::program::{Points, SdfProgram, LANES};
 
 /// A small deterministic generator (no dependency, same points every run).
 struct Rng(u64);

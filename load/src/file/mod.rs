@@ -143,10 +143,10 @@ mod export;
 
 use std::path::Path;
 
-pub use subcone_scene::SdfFileError;
-use subcone_scene::sdf::{SdfError, SdfScene};
 use build::Parsed;
 use desc::{SceneDesc, FORMAT_VERSION};
+use subcone_scene::sdf::{SdfError, SdfScene};
+pub use subcone_scene::SdfFileError;
 
 /// The end of an SDF scene file's name.
 pub const SDF_FILE_SUFFIX: &str = ".sdf.ron";

@@ -213,12 +213,10 @@ pub const TRIANGLE_SCENES: [&str; count(SceneKind::Triangles)] = names_of(SceneK
 /// The paper's scenes (CTSS §4, Table 1), in its order: the
 /// [`SceneKind::PaperSdf`] entries of
 /// [`SCENES`].
-pub const SDF_SCENES: [&str; count(SceneKind::PaperSdf)] =
-    names_of(SceneKind::PaperSdf);
+pub const SDF_SCENES: [&str; count(SceneKind::PaperSdf)] = names_of(SceneKind::PaperSdf);
 
 /// Scenes for the stability suite ([`SceneKind::Stiff`]).
-pub const STIFF_SCENES: [&str; count(SceneKind::Stiff)] =
-    names_of(SceneKind::Stiff);
+pub const STIFF_SCENES: [&str; count(SceneKind::Stiff)] = names_of(SceneKind::Stiff);
 
 /// Scenes with semi-transparent materials (CTSS §5.3): rendered by both
 /// backends with the SDF methods that support them (not `ctss+edges`, not

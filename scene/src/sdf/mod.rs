@@ -59,9 +59,10 @@ mod scenes;
 mod shape;
 mod stiff;
 
-pub use bounds::Aabb;
 pub use crate::error::SdfError;
-pub use node::{tetra_normal_from, tetra_taps, Op, Repeat, SdfNode, SplitDistance, Transform, MAX_DEPTH,
+pub use bounds::Aabb;
+pub use node::{
+    tetra_normal_from, tetra_taps, Op, Repeat, SdfNode, SplitDistance, Transform, MAX_DEPTH,
     UNIT_TOLERANCE,
 };
 pub use scatter::{Instance, Scatter, ScatterConfig, MAX_SCATTER_CELLS};
