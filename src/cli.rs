@@ -14,8 +14,8 @@ pub use crate::setup::{backend, backend_on, parse_ao, parse_isa, parse_size, sce
 /// [`subcone_load::file`]); errors name the built-in SDF scenes when
 /// `name` is none of them.
 pub fn export_sdf_scene(name: &str) -> Result<String> {
-    use subcone_scene::builtin::SCENES;
     use subcone_scene::builtin::sdf_builtin;
+    use subcone_scene::builtin::SCENES;
     let Some(scene) = sdf_builtin(name) else {
         let known: Vec<&str> = SCENES
             .iter()

@@ -46,9 +46,9 @@ use std::sync::{Arc, Mutex, OnceLock};
 use subcone_kernels::passes::Technique;
 use subcone_kernels::passes::{required_passes, Passes, SceneFeatures};
 use subcone_scene::builtin::builtin;
+use subcone_scene::builtin::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
 use subcone_scene::method::{Preset, METHOD_NAMES};
 use subcone_scene::registry;
-use subcone_scene::builtin::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
 use subcone_scene::{
     Backend, Frame, Method, RenderError, RenderSettings, Scene, UnsupportedReason,
 };

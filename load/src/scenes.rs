@@ -39,8 +39,19 @@ pub const SPONZA_FLOOR_REFLECTANCE: f32 = 0.5;
 /// Sponza's file inside the data directory.
 pub const SPONZA_PATH: &str = "sponza/sponza_dabrovic.obj";
 
-/// Names [`scene_from_arg`] accepts besides the built-in scenes and file paths.
+/// Names [`scene_from_arg`] accepts besides the built-in scenes and file paths:
+/// Sponza from [`data_dir`], with a plain floor and with a mirror floor.
 pub const DATA_SCENES: [&str; 2] = ["sponza", "sponza-mirror"];
+
+/// The data scene `name` of [`DATA_SCENES`]: whether its floor is a mirror.
+fn data_scene(name: &str) -> Option<bool> {
+    let [plain, mirror] = DATA_SCENES;
+    match name {
+        n if n == plain => Some(false),
+        n if n == mirror => Some(true),
+        _ => None,
+    }
+}
 
 /// The directory holding the shared meshes (bunny, teapot, Cornell OBJ, Sponza).
 ///
@@ -843,11 +854,8 @@ pub fn sponza(data_dir: &Path, reflective_floor: bool) -> Result<Scene, SceneErr
         direction: Vec3::new(-0.35, 1.0, 0.22).unit(),
         irradiance: Vec3::new(1.0, 0.95, 0.85) * 3.0,
     };
-    let name = if reflective_floor {
-        "sponza-mirror"
-    } else {
-        "sponza"
-    };
+    let [plain, mirror] = DATA_SCENES;
+    let name = if reflective_floor { mirror } else { plain };
     // A weaker fill from the other side, so the +z arcade (in the sun's shadow)
     // shows its edges and casts shadows of its own instead of a flat ambient grey.
     let fill = Light::Directional {
@@ -868,10 +876,8 @@ pub fn scene_from_arg(arg: &str) -> Result<Scene, SceneError> {
     if let Some(entry) = builtin::find(arg) {
         return entry.build();
     }
-    match arg {
-        "sponza" => return sponza(&data_dir(), false),
-        "sponza-mirror" => return sponza(&data_dir(), true),
-        _ => {}
+    if let Some(reflective_floor) = data_scene(arg) {
+        return sponza(&data_dir(), reflective_floor);
     }
     let path = Path::new(arg);
     if is_sdf_file(path) {

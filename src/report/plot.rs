@@ -102,7 +102,7 @@ fn plot_colour(method: &Method) -> Option<[u8; 3]> {
     )
 }
 
-/// A fixed colour per method, so every plot agrees: [`plot_colour`] for the
+/// A fixed colour per method, so every plot agrees: `plot_colour` for the
 /// default comparison,
 /// [`SMAA_COLOUR`] for the SMAA row, a palette colour picked by the name's
 /// hash for any other.

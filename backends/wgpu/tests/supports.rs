@@ -5,8 +5,8 @@
 //! is which refusals this backend makes and why. Fails, rather than skips,
 //! without an adapter when `SUBCONE_REQUIRE_GPU` is set.
 
-use subcone_scene::builtin::{builtin, names};
 use subcone_conformance::plan_scenes;
+use subcone_scene::builtin::{builtin, names};
 use subcone_scene::method::METHOD_NAMES;
 use subcone_scene::{Backend, Method, RenderError, RenderSettings, UnsupportedReason};
 use subcone_wgpu::test_util::gpu_or_skip;

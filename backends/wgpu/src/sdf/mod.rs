@@ -63,8 +63,8 @@ use std::sync::Arc;
 use bytemuck::{Pod, Zeroable};
 
 use subcone_kernels::passes::{Passes, Technique};
-use subcone_sdf::wgsl::WgslField;
 use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderError};
+use subcone_sdf::wgsl::WgslField;
 use wgpu::util::DeviceExt;
 
 use crate::compute::{self, Access, Bindings, Program};
