@@ -4,7 +4,7 @@
 //! - triangle scenes from OBJ (with its MTL diffuse colours), glTF and GLB
 //!   files, with image textures ([`load_scene`], [`load_mesh_file`]), and
 //!   the Sponza atrium of the SRAA paper ([`sponza`], from [`data_dir`]);
-//! - SDF scene files, `.sdf.ron` ([`file`], documented there);
+//! - SDF scene files, `.sdf.ron` ([`file`](mod@file), documented there);
 //! - a scene named on a command line: a built-in scene, a data scene or a
 //!   file ([`scene_from_arg`]);
 //! - frames written as PNG (8-bit sRGB) or EXR (linear f32) ([`SaveFrame`]).

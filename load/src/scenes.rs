@@ -744,7 +744,7 @@ pub fn framing_camera(mesh: &TriangleMesh) -> Result<Camera, SceneError> {
 
 /// A scene from a file.
 ///
-/// - An SDF scene file (a name ending in `.sdf.ron`, see [`subcone_scene::sdf::file`]):
+/// - An SDF scene file (a name ending in `.sdf.ron`, see [`crate::file`]):
 ///   the scene it describes.
 /// - A mesh file (see [`load_mesh_file`]): its triangles and materials, a
 ///   camera framing its bounds ([`framing_camera`]) and one point light above

@@ -260,7 +260,7 @@ impl fmt::Display for UnsupportedReason {
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 #[error("the {backend} backend cannot render scene {scene:?} with {method}: {reason}")]
 pub struct Unsupported {
-    /// The backend's [`Backend::name`].
+    /// The backend's [`Backend::name`](crate::backend::Backend::name).
     pub backend: &'static str,
     /// The scene's name.
     pub scene: String,
@@ -272,7 +272,7 @@ pub struct Unsupported {
 
 /// An SDF tree or scene could not be built.
 ///
-/// Callers that need a [`SceneError`](crate::SceneError) map it, e.g. to
+/// Callers that need a [`SceneError`] map it, e.g. to
 /// `SceneError::Load { path: "<sdf>".into(), reason: e.to_string() }`.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]

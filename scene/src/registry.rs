@@ -2,7 +2,7 @@
 //! name grammar, family, the edge classes it claims to antialias, its
 //! modifiers, a one-line description and what a backend needs to run it.
 //!
-//! Everything that lists or names methods reads it: [`Method`]'s parser and
+//! Everything that lists or names methods reads it: [`Method`](crate::method::Method)'s parser and
 //! `Display`, [`METHOD_NAMES`] (the default comparison), the CLI's
 //! `--method` help ([`method_help`]), the report's claims and plot families,
 //! the conformance suite's families and the one support plan
@@ -329,7 +329,7 @@ pub fn info(technique: Technique) -> &'static TechniqueInfo {
         .unwrap_or(&TECHNIQUES[0])
 }
 
-/// The methods of the default comparison, by the names [`Method`] parses
+/// The methods of the default comparison, by the names [`Method`](crate::method::Method) parses
 /// and prints, in table order: the one list the report, the CLI's help and
 /// the backend contract's checks read. Every other accepted name is an
 /// `ssaaN`/`ssaaN+ctss` with another `N`, a `-delayed` variant of a CTSS

@@ -7,7 +7,7 @@
 //! - [`wgsl`]: the tree as WGSL functions of the same field ([`WgslField`],
 //!   the wgpu backend's SDF scenes).
 //!
-//! The primitives' distance functions are written once, over the [`lane::Lane`]
+//! The primitives' distance functions are written once, over the [`Lane`](subcone_scene::sdf::lane::Lane)
 //! trait of `subcone-scene`, for a scalar and for the eight lanes; their
 //! WGSL forms are checked against the scalar ones at a table of points.
 //!

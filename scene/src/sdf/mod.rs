@@ -2,13 +2,15 @@
 //!
 //! An [`SdfNode`] tree of primitives ([`Shape`]) and operators, evaluated by
 //! [`SdfNode::eval`] as `(signed distance, material index)`; an [`SdfScene`]
-//! adds materials, lights, a camera and tracing limits; [`sdf_builtin`] builds
-//! the paper's scenes ([`SDF_SCENES`], after CTSS §4 and Table 1) and a
-//! stability suite ([`STIFF_SCENES`]).
+//! adds materials, lights, a camera and tracing limits; the built-in SDF
+//! scenes are constructors here, registered in
+//! [`builtin::SCENES`](crate::builtin::SCENES): the paper's
+//! ([`SDF_SCENES`](crate::builtin::SDF_SCENES), after CTSS §4 and Table 1) and
+//! a stability suite ([`STIFF_SCENES`](crate::builtin::STIFF_SCENES)).
 //!
 //! ```
 //! use glam::Vec3;
-//! use subcone_scene::sdf::{sdf_builtin, SdfNode};
+//! use subcone_scene::{builtin::sdf_builtin, sdf::SdfNode};
 //!
 //! let ball = SdfNode::sphere(1.0).unwrap().translate(Vec3::new(0.0, 1.0, 0.0)).unwrap();
 //! assert!(ball.is_exact());

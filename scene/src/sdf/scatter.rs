@@ -86,7 +86,7 @@ impl ScatterConfig {
 /// One cell's object of a [`Scatter`]: its template, placement and material.
 #[derive(Clone, Copy, Debug)]
 pub struct Instance {
-    /// Index into [`Scatter::templates`], or `u32::MAX` for an empty cell.
+    /// Index into the scatter's templates, or `u32::MAX` for an empty cell.
     pub template: u32,
     /// Palette material, or `u32::MAX` for the template's own.
     pub material: u32,
@@ -434,7 +434,7 @@ impl Scatter {
     }
 
     /// The configuration that builds this scatter again: the one it was built
-    /// from, with the palette [`Scatter::set_material`] may have replaced
+    /// from, with the palette a change of material may have replaced
     /// (a one-colour palette draws the same instances: the palette is the
     /// last draw of a cell's random stream).
     pub fn config(&self) -> ScatterConfig {
