@@ -232,7 +232,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         ASAP_BATCH
     };
     let frame_constants = SdfFrame::new(job, (max_distance, max_steps), side, cone);
-    let field = subcone_sdf::wgsl::WgslField::compile(&g.root);
+    let field = WgslField::compile(&g.root);
     let table = scatter_table(ctx, &field)?;
     let mut b = Bindings::new(0);
     b.uniform(ctx, "frame", "SdfFrame", &frame_constants)?;
