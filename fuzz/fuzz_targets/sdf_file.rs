@@ -12,8 +12,8 @@ use std::path::Path;
 
 use libfuzzer_sys::fuzz_target;
 use subcone_load::file::{parse_sdf_scene, write_sdf_scene};
-use subcone_scene::SceneError;
 use subcone_load::load_scene_bytes;
+use subcone_scene::SceneError;
 
 const FILE: &str = "f.sdf.ron";
 
