@@ -5,16 +5,17 @@ use std::time::Instant;
 
 use anyhow::{anyhow, Result};
 use subcone_cpu::isa::Isa;
+use subcone_load::SaveFrame;
 use subcone_scene::{Frame, Method, RenderSettings};
 
 pub use subcone_report::setup::{backend, backend_on, parse_ao, parse_isa, parse_size, scene};
 
 /// A built-in SDF scene written as an SDF scene file (see
-/// [`subcone_scene::sdf::file`]); errors name the built-in SDF scenes when
+/// [`subcone_load::file`]); errors name the built-in SDF scenes when
 /// `name` is none of them.
 pub fn export_sdf_scene(name: &str) -> Result<String> {
+    use subcone_scene::builtin::sdf_builtin;
     use subcone_scene::builtin::SCENES;
-    use subcone_scene::sdf::sdf_builtin;
     let Some(scene) = sdf_builtin(name) else {
         let known: Vec<&str> = SCENES
             .iter()
@@ -26,7 +27,7 @@ pub fn export_sdf_scene(name: &str) -> Result<String> {
             known.join(", ")
         );
     };
-    Ok(subcone_scene::sdf::file::write_sdf_scene(&scene?)?)
+    Ok(subcone_load::file::write_sdf_scene(&scene?)?)
 }
 
 /// What a render did.

@@ -1549,7 +1549,7 @@ fn every_operator() -> subcone_scene::sdf::SdfNode {
     n(SdfNode::union(shapes))
 }
 
-/// The WGSL code generator (`SdfNode::to_wgsl`, its scatter table bound as
+/// The WGSL code generator (`WgslField::compile`, its scatter table bound as
 /// `sdf_data`) against `SdfNode::eval` and `eval_split`: distances within
 /// [`TOL_SDF_FIELD`], materials within [`SDF_MATERIAL_TIES_PER_200`].
 fn check_sdf_field(
@@ -1558,7 +1558,7 @@ fn check_sdf_field(
     root: &subcone_scene::sdf::SdfNode,
     pts: &[Vec3],
 ) -> Result<String, String> {
-    let field = root.to_wgsl();
+    let field = subcone_sdf::wgsl::WgslField::compile(root);
     let table = Table {
         name: "sdf_data",
         wgsl_type: "array<vec4<f32>>",
@@ -1631,7 +1631,7 @@ fn check_sdf_field(
 /// at 8192 points of a 12-unit cube.
 #[test]
 fn generated_sdf_wgsl_evaluates_the_same_field() {
-    use subcone_scene::sdf::{sdf_builtin, SDF_SCENES, STIFF_SCENES};
+    use subcone_scene::builtin::{sdf_builtin, SDF_SCENES, STIFF_SCENES};
     let Some(gpu) = gpu() else { return };
     let ctx = gpu.context();
     let mut results = Vec::new();
@@ -1663,6 +1663,177 @@ fn generated_sdf_wgsl_evaluates_the_same_field() {
         Ok(lines) => println!("{lines}"),
         Err(e) => panic!("generated SDF WGSL disagrees with SdfNode:\n{e}"),
     }
+}
+
+/// One row per SDF primitive: an example of the shape, and the WGSL function
+/// of the generator's prelude that evaluates it (`None`: an inline formula).
+/// The exhaustive `match` makes a new [`Shape`](subcone_scene::sdf::Shape)
+/// variant a compile error here until it has its row.
+fn primitive_table() -> Vec<(subcone_scene::sdf::Shape, Option<&'static str>)> {
+    use subcone_scene::sdf::Shape;
+    let shapes = [
+        Shape::Sphere { radius: 0.7 },
+        Shape::Box {
+            half: Vec3::new(0.5, 0.3, 0.8),
+        },
+        Shape::RoundBox {
+            half: Vec3::new(0.5, 0.3, 0.8),
+            radius: 0.1,
+        },
+        Shape::BoxFrame {
+            half: Vec3::new(0.5, 0.6, 0.4),
+            thickness: 0.05,
+        },
+        Shape::Torus {
+            major: 0.6,
+            minor: 0.2,
+        },
+        Shape::Link {
+            half_length: 0.3,
+            major: 0.4,
+            minor: 0.1,
+        },
+        Shape::Capsule {
+            half_height: 0.5,
+            radius: 0.2,
+        },
+        Shape::Cylinder {
+            radius: 0.4,
+            half_height: 0.6,
+        },
+        Shape::RoundedCylinder {
+            radius: 0.4,
+            half_height: 0.6,
+            rounding: 0.1,
+        },
+        Shape::CappedCone {
+            half_height: 0.5,
+            bottom: 0.5,
+            top: 0.2,
+        },
+        Shape::Octahedron { size: 0.6 },
+        Shape::HexPrism {
+            apothem: 0.4,
+            half_height: 0.3,
+        },
+        Shape::Ellipsoid {
+            radii: Vec3::new(0.5, 0.3, 0.8),
+        },
+        Shape::Plane {
+            normal: Vec3::new(0.6, 0.0, 0.8),
+            offset: -0.1,
+        },
+    ];
+    shapes
+        .into_iter()
+        .map(|s| {
+            let function = match s {
+                Shape::Sphere { .. }
+                | Shape::Torus { .. }
+                | Shape::Link { .. }
+                | Shape::Capsule { .. }
+                | Shape::Plane { .. } => None,
+                Shape::Box { .. } | Shape::RoundBox { .. } => Some("sd_box"),
+                Shape::BoxFrame { .. } => Some("sd_box_frame"),
+                Shape::Cylinder { .. } | Shape::RoundedCylinder { .. } => Some("sd_cylinder"),
+                Shape::CappedCone { .. } => Some("sd_capped_cone"),
+                Shape::Octahedron { .. } => Some("sd_octahedron"),
+                Shape::HexPrism { .. } => Some("sd_hex_prism"),
+                Shape::Ellipsoid { .. } => Some("sd_ellipsoid"),
+            };
+            (s, function)
+        })
+        .collect()
+}
+
+/// The points of the primitives' table: a 9×9×9 grid over `[−1.2, 1.2]³`
+/// (inside, on and outside every example shape), the axes and the origin.
+fn primitive_points() -> Vec<Vec3> {
+    let mut pts: Vec<Vec3> = (0..9 * 9 * 9)
+        .map(|i| {
+            let c = |k: usize| -1.2 + 0.3 * k as f32;
+            Vec3::new(c(i % 9), c(i / 9 % 9), c(i / 81))
+        })
+        .collect();
+    for t in [0.0, 0.05, 0.25, 0.5, 1.0, 3.0] {
+        pts.extend([Vec3::X * t, Vec3::Y * t, Vec3::Z * t, -Vec3::Y * t]);
+    }
+    pts
+}
+
+/// The WGSL primitives against the scalar ones (`Shape::distance`, which
+/// is the 8-lane program's `lane::shape_distance` too), at one table: every
+/// primitive has its row, its WGSL calls the prelude function the row names
+/// and the prelude defines it, and on the GPU its distances at
+/// [`primitive_points`] are the scalar's within [`TOL_SDF_FIELD`].
+#[test]
+fn wgsl_primitives_match_the_scalar_ones() {
+    use subcone_scene::sdf::SdfNode;
+    use subcone_sdf::wgsl::{shape_wgsl, WgslField};
+    let table = primitive_table();
+    let mut fields = Vec::new();
+    for (shape, function) in &table {
+        let expr = shape_wgsl(shape);
+        let field = WgslField::compile(&SdfNode::shape(*shape).unwrap());
+        assert!(
+            field.source.contains(&expr),
+            "{shape:?}: the generated field does not evaluate {expr}"
+        );
+        if let Some(name) = function {
+            assert!(
+                expr.starts_with(&format!("{name}(")) || expr.contains(&format!(" {name}(")),
+                "{shape:?}: {expr} does not call {name}"
+            );
+            assert!(
+                field.source.contains(&format!("fn {name}(")),
+                "{shape:?}: no `fn {name}(` in the generated source"
+            );
+        } else {
+            assert!(
+                !expr.contains("sd_"),
+                "{shape:?}: {expr} calls a function its row does not name"
+            );
+        }
+        fields.push(field);
+    }
+    let Some(gpu) = gpu() else { return };
+    let ctx = gpu.context();
+    let pts = primitive_points();
+    let input: Vec<[f32; 3]> = pts.iter().map(|p| p.to_array()).collect();
+    let mut failures = Vec::new();
+    let mut lines = Vec::new();
+    for ((shape, _), field) in table.iter().zip(&fields) {
+        let out: Vec<[f32; 2]> = run_wgsl(
+            ctx,
+            &Kernel {
+                library: &field.source,
+                body: "let e = scene_sdf(v3(0u));
+                       out[o] = bitcast<u32>(e.x); out[o + 1u] = bitcast<u32>(e.y);",
+                in_words: 3,
+                out_words: 2,
+                tables: &[],
+            },
+            &input,
+        )
+        .unwrap_or_else(|e| panic!("{shape:?}: {e}"));
+        let mut worst = 0.0f32;
+        for (p, g) in pts.iter().zip(&out) {
+            let want = shape.distance(*p);
+            let tol = TOL_SDF_FIELD * 1f32.max(want.abs()).max(p.abs().max_element() * 1e-2);
+            let e = (want - g[0]).abs();
+            worst = worst.max(e / tol);
+            if (e.is_nan() || e > tol) && failures.len() < 10 {
+                failures.push(format!("{shape:?} at {p}: scalar {want}, WGSL {}", g[0]));
+            }
+        }
+        lines.push(format!("{shape:?}: worst {worst:.3} of the tolerance"));
+    }
+    println!("{} points per primitive\n{}", pts.len(), lines.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "WGSL primitives disagree:\n{}",
+        failures.join("\n")
+    );
 }
 
 /// The ambient-occlusion directions and fraction: `ao_direction` within

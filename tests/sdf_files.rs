@@ -8,8 +8,9 @@ mod binary;
 use std::path::{Path, PathBuf};
 
 use subcone_cpu::CpuBackend;
-use subcone_scene::sdf::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
-use subcone_scene::{scene_from_arg, Backend, Frame, Method, RenderSettings, Scene};
+use subcone_load::scene_from_arg;
+use subcone_scene::builtin::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
+use subcone_scene::{Backend, Frame, Method, RenderSettings, Scene};
 
 /// Runs `subcone args…`, which must succeed: its output.
 fn subcone(args: &[&str]) -> String {
@@ -47,7 +48,8 @@ fn every_exported_builtin_renders_as_the_builtin_byte_for_byte() {
         let loaded = scene_from_arg(file.to_str().unwrap()).unwrap();
         assert_eq!(loaded.name, builtin.name);
         // The wgpu backend renders the tree's WGSL: the same text.
-        let wgsl = |s: &Scene| s.sdf_geometry().unwrap().root.to_wgsl();
+        let wgsl =
+            |s: &Scene| subcone_sdf::wgsl::WgslField::compile(&s.sdf_geometry().unwrap().root);
         let (a, b) = (wgsl(&builtin), wgsl(&loaded));
         assert!(a.source == b.source, "{name}: the WGSL differs");
         // Bits: empty scatter cells hold NaN.

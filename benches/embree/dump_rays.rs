@@ -24,7 +24,7 @@ use std::time::Instant;
 use glam::{Vec2, Vec3};
 use subcone_cpu::isa::Isa;
 use subcone_cpu::{CpuBackend, SceneBvh};
-use subcone_scene::load::scene_from_arg;
+use subcone_load::scene_from_arg;
 
 const SIZE: u32 = 1024;
 const RUNS: usize = 5;

@@ -34,6 +34,10 @@
 //! fails the suite when `SUBCONE_REQUIRE_GPU` is set (as CI sets it) and skips
 //! it, saying so, when not.
 
+mod plan;
+
+pub use plan::{plan_matches_render, plan_scenes, PlanCheck};
+
 use std::collections::HashMap;
 use std::fmt::Display;
 use std::path::{Path, PathBuf};
@@ -42,10 +46,9 @@ use std::sync::{Arc, Mutex, OnceLock};
 use subcone_kernels::passes::Technique;
 use subcone_kernels::passes::{required_passes, Passes, SceneFeatures};
 use subcone_scene::builtin::builtin;
-use subcone_scene::conformance::plan_matches_render;
+use subcone_scene::builtin::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
 use subcone_scene::method::{Preset, METHOD_NAMES};
 use subcone_scene::registry;
-use subcone_scene::sdf::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
 use subcone_scene::{
     Backend, Frame, Method, RenderError, RenderSettings, Scene, UnsupportedReason,
 };
@@ -733,7 +736,7 @@ pub fn check_errors(backend: &dyn Backend) {
 }
 
 /// The [`Backend::supports`] contract, through
-/// [`subcone_scene::conformance::plan_matches_render`]: every combination the
+/// [`plan_matches_render`]: every combination the
 /// backend plans renders, every refusal is planned and made alike (a typed
 /// [`subcone_scene::Unsupported`]); and the refusals the suite can judge
 /// without knowing the backend are honest: "the technique does not apply" only
@@ -752,7 +755,7 @@ pub fn check_supports(backend: &dyn Backend) {
     for u in &check.refusals {
         match &u.reason {
             UnsupportedReason::Technique(_) => {
-                let scene = subcone_scene::conformance::plan_scenes()
+                let scene = plan_scenes()
                     .into_iter()
                     .find(|s| s.name == u.scene)
                     .unwrap_or_else(|| panic!("{u}: no plan scene named {}", u.scene));

@@ -1,6 +1,6 @@
 //! Arbitrary bytes as a glTF file (JSON, or binary GLB when they start with
 //! `glTF`; and, after the separator line `#--8<--`, as the `b.bin` a `.gltf`
-//! may name as a buffer URI) through `subcone_scene::load_mesh_bytes`, the
+//! may name as a buffer URI) through `subcone_load::load_mesh_bytes`, the
 //! loader behind `load_scene`: never a panic (not even one the loader
 //! catches), errors are values, and a loaded mesh keeps the loader's promises
 //! (see `common::loader::check_mesh`).

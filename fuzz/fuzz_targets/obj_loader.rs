@@ -1,6 +1,6 @@
 //! Arbitrary bytes as an OBJ file (and, after the separator line `#--8<--`,
 //! as the `m.mtl` it may name with `mtllib m.mtl`) through
-//! `subcone_scene::load_mesh_bytes`, the loader behind `load_scene`: never a
+//! `subcone_load::load_mesh_bytes`, the loader behind `load_scene`: never a
 //! panic (not even one the loader catches), errors are values, and a loaded
 //! mesh keeps the loader's promises (see `common::loader::check_mesh`).
 #![no_main]

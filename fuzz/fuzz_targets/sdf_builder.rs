@@ -513,7 +513,7 @@ fn check_tree(node: &SdfNode, input: &Input, dom: &Domain) {
 /// points rotated through the lanes, every other lane inactive in odd
 /// packets).
 fn check_program(node: &SdfNode, points: &[Vec3]) {
-    use subcone_scene::sdf::program::{Points, SdfProgram, LANES};
+    use subcone_sdf::program::{Points, SdfProgram, LANES};
     if points.is_empty() {
         return;
     }

@@ -1,5 +1,5 @@
 //! Arbitrary bytes as an SDF scene file (`.sdf.ron`) through
-//! `subcone_scene::load_scene_bytes`, the reader behind `--scene FILE`, and
+//! `subcone_load::load_scene_bytes`, the reader behind `--scene FILE`, and
 //! `sdf::file::parse_sdf_scene`: never a panic, errors are values
 //! (`SceneError::SdfFile`/`Load`/`Sdf`) whose message starts with the file's
 //! name; a scene that reads is a valid `Scene`, and it writes out and reads
@@ -11,8 +11,9 @@
 use std::path::Path;
 
 use libfuzzer_sys::fuzz_target;
-use subcone_scene::sdf::file::{parse_sdf_scene, write_sdf_scene};
-use subcone_scene::{load_scene_bytes, SceneError};
+use subcone_load::file::{parse_sdf_scene, write_sdf_scene};
+use subcone_load::load_scene_bytes;
+use subcone_scene::SceneError;
 
 const FILE: &str = "f.sdf.ron";
 

@@ -1,12 +1,11 @@
 //! The interface every backend implements.
 
-use std::fmt;
-
 pub use subcone_kernels::ao::{AO_RADIUS_FRACTION, MAX_AO_RAYS};
-use subcone_kernels::passes::{self, required_passes, Passes};
+use subcone_kernels::passes::{required_passes, Passes};
 
 use crate::camera::Camera;
 use crate::error::RenderError;
+pub use crate::error::{Unsupported, UnsupportedReason};
 use crate::frame::Frame;
 use crate::method::Method;
 use crate::registry::{self, info};
@@ -104,106 +103,6 @@ impl RenderSettings {
         }
         Ok(())
     }
-}
-
-/// Why a backend cannot render a scene with a method: the typed reason of an
-/// [`Unsupported`].
-///
-/// These are limits of the technique or of the backend for a given scene and
-/// method, known before any work starts. Resolutions, cameras, settings and
-/// device failures are not among them: those stay [`RenderError`]s of
-/// [`Backend::render`].
-#[derive(Clone, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum UnsupportedReason {
-    /// The technique does not apply to the scene's geometry, whatever the
-    /// backend: [`required_passes`] refused it (CTSS on triangles, plain SRAA
-    /// on a signed distance field).
-    Technique(passes::Unsupported),
-    /// The scene has mirror materials (or the secondary passes were forced)
-    /// and the backend does not trace reflections in SDF scenes.
-    SdfReflections,
-    /// The material gate (`sraa+mat`, `sraa-rt+mat`) asked for on an SDF
-    /// scene: it runs on triangle scenes only.
-    MaterialGateOnSdf,
-    /// The scene has semi-transparent materials (alpha < 1) and the path that
-    /// would render it does not carry opacity, so it is refused rather than
-    /// drawn opaque.
-    Translucency {
-        /// The path that does not carry opacity (e.g. SRAA-RT).
-        what: String,
-        /// What renders such scenes instead.
-        instead: String,
-    },
-    /// Implemented by the CPU backend only: what a backend whose
-    /// [`Capabilities`] lack something the technique [`registry::Needs`]
-    /// refuses with. No backend of this workspace returns it (both render
-    /// SRAA-RT on SDF scenes); it stays for backends outside it that declare
-    /// such a lack.
-    CpuOnly {
-        /// What only the CPU backend renders (e.g. `"sraa-rt on SDF scenes"`).
-        what: &'static str,
-        /// What this backend lacks for it.
-        why: &'static str,
-    },
-    /// More lights than the backend shades.
-    TooManyLights {
-        /// Lights in the scene.
-        lights: usize,
-        /// The most the backend supports.
-        max: usize,
-    },
-    /// More samples per pixel side than the backend traces.
-    TooManySamples {
-        /// Samples per pixel side asked for.
-        side: u32,
-        /// The most the backend supports.
-        max: u32,
-    },
-}
-
-impl fmt::Display for UnsupportedReason {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            UnsupportedReason::Technique(u) => f.write_str(u.reason),
-            UnsupportedReason::SdfReflections => {
-                f.write_str("mirror reflections in SDF scenes are not implemented")
-            }
-            UnsupportedReason::MaterialGateOnSdf => f.write_str(
-                "the material gate (+mat) is not implemented on SDF scenes: it runs on triangle scenes",
-            ),
-            UnsupportedReason::Translucency { what, instead } => write!(
-                f,
-                "{what} is not implemented for semi-transparent materials (alpha < 1); {instead}"
-            ),
-            UnsupportedReason::CpuOnly { what, why } => {
-                write!(f, "{what} runs on the CPU backend only ({why})")
-            }
-            UnsupportedReason::TooManyLights { lights, max } => {
-                write!(f, "{lights} lights; at most {max} are supported")
-            }
-            UnsupportedReason::TooManySamples { side, max } => write!(
-                f,
-                "{side}x{side} samples per pixel; at most {max}x{max} are supported"
-            ),
-        }
-    }
-}
-
-/// A backend cannot render a scene with a method: what [`Backend::supports`]
-/// answers, and what [`Backend::render`] returns (as
-/// [`RenderError::NotSupported`]) for the same scene and method.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("the {backend} backend cannot render scene {scene:?} with {method}: {reason}")]
-pub struct Unsupported {
-    /// The backend's [`Backend::name`].
-    pub backend: &'static str,
-    /// The scene's name.
-    pub scene: String,
-    /// The method, as it is written (`"sraa-rt+mat"`).
-    pub method: String,
-    /// Why not.
-    pub reason: UnsupportedReason,
 }
 
 impl Unsupported {

@@ -1,8 +1,15 @@
 //! `subcone-scene`: what backends render and what they return.
 //!
-//! Scenes (triangles, materials, lights, a camera), built-in procedural scenes,
-//! mesh loading, the [`Method`] (a kernel technique with its parameters), the
-//! [`Frame`] a backend returns, and the [`Backend`] trait.
+//! The contract between subcone's renderers and their callers, and nothing
+//! else: scenes as data (triangles, SDF trees, materials, lights, a camera),
+//! the built-in procedural scenes (they need no files), the [`Method`] (a
+//! kernel technique with its parameters) and its registry, the [`Frame`] a
+//! backend returns, and the [`Backend`] trait with its support plan.
+//!
+//! No file format is read or written here: loaders (glTF, OBJ, image
+//! textures, `.sdf.ron`) and frame output (PNG, EXR) are `subcone-load`'s, and
+//! SDF trees are compiled (the 8-lane interpreter, WGSL) by `subcone-sdf`, so
+//! a backend that sees the contract does not build a codec.
 //!
 //! ```
 //! use subcone_scene::{builtin::builtin, Method};
@@ -21,7 +28,6 @@ pub mod conformance;
 pub mod error;
 pub mod frame;
 pub mod light;
-pub mod load;
 pub mod material;
 pub mod mesh;
 pub mod method;
@@ -31,12 +37,9 @@ pub mod sdf;
 
 pub use backend::{Backend, RenderSettings, Unsupported, UnsupportedReason};
 pub use camera::Camera;
-pub use error::{RenderError, SceneError};
+pub use error::{RenderError, SceneError, SdfFileError};
 pub use frame::{Frame, FrameStats, PassTiming, RayCounts, TimingSource};
 pub use light::Light;
-pub use load::{
-    data_dir, load_mesh_bytes, load_mesh_file, load_scene, load_scene_bytes, scene_from_arg, sponza,
-};
 pub use material::{Albedo, Material};
 pub use mesh::{Sanitized, TriangleMesh};
 pub use method::{Method, MethodError, Preset};

@@ -2,7 +2,7 @@
 //! name grammar, family, the edge classes it claims to antialias, its
 //! modifiers, a one-line description and what a backend needs to run it.
 //!
-//! Everything that lists or names methods reads it: [`Method`]'s parser and
+//! Everything that lists or names methods reads it: [`Method`](crate::method::Method)'s parser and
 //! `Display`, [`METHOD_NAMES`] (the default comparison), the CLI's
 //! `--method` help ([`method_help`]), the report's claims and plot families,
 //! the conformance suite's families and the one support plan
@@ -26,8 +26,6 @@
 use std::fmt;
 
 use subcone_kernels::passes::Technique;
-
-use crate::method::Method;
 
 /// An edge class: what a pixel contains that aliases (the report's masks
 /// classify each pixel into one).
@@ -331,7 +329,7 @@ pub fn info(technique: Technique) -> &'static TechniqueInfo {
         .unwrap_or(&TECHNIQUES[0])
 }
 
-/// The methods of the default comparison, by the names [`Method`] parses
+/// The methods of the default comparison, by the names [`Method`](crate::method::Method) parses
 /// and prints, in table order: the one list the report, the CLI's help and
 /// the backend contract's checks read. Every other accepted name is an
 /// `ssaaN`/`ssaaN+ctss` with another `N`, a `-delayed` variant of a CTSS
@@ -433,33 +431,6 @@ pub fn opacity_methods() -> String {
         Some((last, rest)) if !rest.is_empty() => format!("{} and {last}", rest.join(", ")),
         _ => names.join(""),
     }
-}
-
-/// The plot colour of a method of the default comparison (sRGB), so every
-/// plot agrees; `None` for other methods (the plots pick one from a palette).
-pub fn plot_colour(method: &Method) -> Option<[u8; 3]> {
-    let s = method.supersamples();
-    Some(
-        match (
-            method.technique(),
-            method.is_paper(),
-            method.gates_material(),
-        ) {
-            (_, true, _) | (_, _, true) => return None,
-            (Technique::NoAa, ..) => [90, 90, 90],
-            (Technique::Ssaa, ..) if s == 4 => [31, 119, 180],
-            (Technique::Ssaa, ..) if s == 16 => [23, 75, 140],
-            (Technique::Sraa, ..) => [255, 127, 14],
-            (Technique::SraaRt, ..) => [214, 39, 40],
-            (Technique::Ctss, ..) if !method.delayed_shading() && !method.split_groups() => {
-                [44, 160, 44]
-            }
-            (Technique::CtssR, ..) if !method.delayed_shading() => [148, 103, 189],
-            (Technique::SsaaCtss, ..) if s == 4 && !method.delayed_shading() => [140, 86, 75],
-            (Technique::Fxaa, ..) => [227, 119, 194],
-            _ => return None,
-        },
-    )
 }
 
 #[cfg(test)]

@@ -4,7 +4,6 @@
 use glam::{Vec2, Vec3};
 use subcone_kernels::passes::SceneFeatures;
 use subcone_scene::builtin::{builtin, CHECKER_PALETTE, CHECKER_PATCH, TRIANGLE_SCENES};
-use subcone_scene::load::scene_from_arg;
 use subcone_scene::{Albedo, Camera, Light, Scene, SceneError};
 
 fn features(name: &str) -> SceneFeatures {
@@ -27,8 +26,6 @@ fn every_builtin_builds_with_a_valid_camera() {
             .iter()
             .all(|&m| (m as usize) < s.materials.len()));
         assert!(!s.lights.is_empty(), "{name} has a light");
-        // The same scene through the CLI resolver.
-        assert_eq!(scene_from_arg(name).unwrap().name, name);
     }
 }
 
@@ -195,7 +192,7 @@ fn atrium_is_a_few_thousand_triangles_with_a_mirror_floor_and_a_sun() {
 #[test]
 fn the_scene_registry_is_the_one_list() {
     use subcone_scene::builtin::{find, names, SceneKind, PAPER_SCENES, SCENES, TRIANGLE_SCENES};
-    use subcone_scene::sdf::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
+    use subcone_scene::builtin::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
     let of = |kind: SceneKind| -> Vec<&str> {
         SCENES
             .iter()

@@ -5,9 +5,9 @@ use std::f32::consts::FRAC_PI_2;
 
 use glam::{Quat, Vec3};
 use subcone_kernels::passes::SceneFeatures;
+use subcone_scene::builtin::{sdf_builtin, SDF_SCENES, STIFF_SCENES};
 use subcone_scene::sdf::{
-    sdf_builtin, Exactness, ScatterConfig, SdfError, SdfNode, SdfScene, Shape, FAR_ORIGIN_SHIFT,
-    MAX_DEPTH, SDF_SCENES, STIFF_SCENES,
+    Exactness, ScatterConfig, SdfError, SdfNode, SdfScene, Shape, FAR_ORIGIN_SHIFT, MAX_DEPTH,
 };
 use subcone_scene::{Camera, Material};
 

@@ -166,7 +166,7 @@ pub const TOL_FXAA_ENCODE: Tol = Tol::Abs(1.0 / 255.0 + 1e-6);
 /// `fxaa_pixel`: sRGB units; the encoding's `pow` error moves the luma by
 /// ~1e-6 and FXAA blends it.
 pub const TOL_FXAA_PIXEL: Tol = Tol::Abs(1e-4);
-/// The generated SDF field (`SdfNode::to_wgsl` against `eval` and
+/// The generated SDF field (`WgslField::compile` against `eval` and
 /// `eval_split`), relative to `max(1, |d|, |p|/100)`: GPU `sqrt` and fused
 /// multiply-adds differ in the last bits; the `|p|` term covers the far
 /// scene, whose coordinates reach 10⁷ (the distance is a difference of such).

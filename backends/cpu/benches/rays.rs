@@ -12,7 +12,7 @@ use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criteri
 use subcone_cpu::isa::Isa;
 use subcone_cpu::throughput::RayWorkload;
 use subcone_cpu::CpuBackend;
-use subcone_scene::load::scene_from_arg;
+use subcone_load::scene_from_arg;
 
 const W: u32 = 512;
 const H: u32 = 512;

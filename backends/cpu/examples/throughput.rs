@@ -15,7 +15,7 @@ use std::process::ExitCode;
 use subcone_cpu::isa::Isa;
 use subcone_cpu::throughput::RayWorkload;
 use subcone_cpu::CpuBackend;
-use subcone_scene::load::scene_from_arg;
+use subcone_load::scene_from_arg;
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();

@@ -15,7 +15,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use subcone_cpu::CpuBackend;
-use subcone_scene::load::scene_from_arg;
+use subcone_load::scene_from_arg;
 use subcone_scene::{Backend, Method, RenderSettings};
 
 fn main() -> ExitCode {

@@ -36,7 +36,7 @@ mod translucent;
 
 use crate::isa::Isa;
 use packet::{Packets, ShadowRay};
-use subcone_scene::sdf::program::SdfProgram;
+use subcone_sdf::program::SdfProgram;
 
 /// The centre AOVs of one pixel: view depth, the field's normal, albedo,
 /// light visibility (bit per light) and mirror reflectance.
@@ -128,7 +128,7 @@ pub struct SdfView<'a, F: SdfField> {
     pub exhaustive_subpixel_shadows: bool,
     /// The field compiled for packets of rays: NoAA, SSAA, SRAA-RT, the CTSS
     /// family on opaque scenes and the centre AOVs trace
-    /// [`LANES`](subcone_scene::sdf::program::LANES) rays at once through
+    /// [`LANES`](subcone_sdf::program::LANES) rays at once through
     /// it; `None`: one ray at a time through [`field`](Self::field). Both
     /// give the same frames bit for bit.
     pub program: Option<SdfProgram<'a>>,

@@ -6,7 +6,7 @@
 
 use subcone_cpu::sphere::SdfView;
 use subcone_kernels::passes::{required_passes, Passes};
-use subcone_scene::sdf::{SDF_SCENES, STIFF_SCENES};
+use subcone_scene::builtin::{SDF_SCENES, STIFF_SCENES};
 use subcone_scene::{builtin::builtin, Frame, Method, RenderSettings};
 
 fn frames(name: &str, method: &str, w: u32, h: u32) -> (Frame, Frame) {

@@ -7,7 +7,8 @@ use common::{front_camera, white};
 use glam::{Quat, Vec3};
 use subcone_kernels::ctss::{sphere_trace, CtssParams, StopReason};
 use subcone_kernels::passes::Passes;
-use subcone_scene::sdf::{SdfNode, SdfScene, SDF_SCENES, STIFF_SCENES};
+use subcone_scene::builtin::{SDF_SCENES, STIFF_SCENES};
+use subcone_scene::sdf::{SdfNode, SdfScene};
 use subcone_scene::{builtin::builtin, Frame, Material, Method, RenderSettings, Scene};
 
 /// [`common::render`] with the AOVs, which [`edge_mask`] reads.

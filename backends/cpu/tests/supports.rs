@@ -5,10 +5,10 @@
 //! is which refusals the CPU backend makes, and that they are the reference's:
 //! few, and never "CPU backend only".
 
+use subcone_conformance::plan_scenes;
 use subcone_cpu::CpuBackend;
 use subcone_kernels::passes::Passes;
 use subcone_scene::builtin::{builtin, names};
-use subcone_scene::conformance::plan_scenes;
 use subcone_scene::method::METHOD_NAMES;
 use subcone_scene::{Backend, Method, RenderError, RenderSettings, UnsupportedReason};
 

@@ -169,7 +169,7 @@ fn methods_without_opacity_refuse_glass() {
 mod translucent_path {
     use subcone_kernels::passes::{required_passes, Technique};
     use subcone_scene::builtin::builtin;
-    use subcone_scene::sdf::{SDF_SCENES, STIFF_SCENES};
+    use subcone_scene::builtin::{SDF_SCENES, STIFF_SCENES};
     use subcone_scene::{Method, RenderSettings};
 
     use subcone_cpu::sphere::SdfView;

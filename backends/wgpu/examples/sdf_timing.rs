@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 
 use subcone_cpu::CpuBackend;
 use subcone_scene::builtin::builtin;
-use subcone_scene::sdf::SDF_SCENES;
+use subcone_scene::builtin::SDF_SCENES;
 use subcone_scene::{Backend, Frame, Method, RenderError, RenderSettings, Scene};
 use subcone_wgpu::WgpuBackend;
 

@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use subcone_cpu::CpuBackend;
 use subcone_scene::builtin::builtin;
-use subcone_scene::sdf::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
+use subcone_scene::builtin::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
 use subcone_scene::{Backend, Frame, Method, RenderSettings};
 use subcone_wgpu::test_util::gpu_or_skip;
 use subcone_wgpu::WgpuBackend;

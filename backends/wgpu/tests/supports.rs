@@ -5,8 +5,8 @@
 //! is which refusals this backend makes and why. Fails, rather than skips,
 //! without an adapter when `SUBCONE_REQUIRE_GPU` is set.
 
+use subcone_conformance::plan_scenes;
 use subcone_scene::builtin::{builtin, names};
-use subcone_scene::conformance::plan_scenes;
 use subcone_scene::method::METHOD_NAMES;
 use subcone_scene::{Backend, Method, RenderError, RenderSettings, UnsupportedReason};
 use subcone_wgpu::test_util::gpu_or_skip;
@@ -54,7 +54,7 @@ fn semi_transparent_scenes_are_planned_as_on_the_cpu() {
     let Some(gpu) = gpu() else { return };
     let cpu = subcone_cpu::CpuBackend::new();
     let mut rendered = 0;
-    for name in subcone_scene::sdf::TRANSPARENT_SCENES {
+    for name in subcone_scene::builtin::TRANSPARENT_SCENES {
         let scene = builtin(name).unwrap();
         for m in METHOD_NAMES {
             let method = m.parse().unwrap();

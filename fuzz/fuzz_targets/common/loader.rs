@@ -121,17 +121,17 @@ pub fn check_error(e: &SceneError) {
 /// and, for one input in eight, build the whole scene.
 pub fn load_and_check(name: &str, main: &[u8]) {
     let path = scratch_dir().join(name);
-    match subcone_scene::load_mesh_bytes(&path, main) {
+    match subcone_load::load_mesh_bytes(&path, main) {
         Ok((mesh, materials, _dropped)) => {
             check_mesh(&mesh, &materials);
-            match subcone_scene::load::framing_camera(&mesh) {
+            match subcone_load::framing_camera(&mesh) {
                 Ok(cam) => cam
                     .validate()
                     .expect("framing_camera returned an invalid camera"),
                 Err(e) => check_error(&e),
             }
             if main.len().is_multiple_of(8) {
-                match subcone_scene::load_scene_bytes(&path, main) {
+                match subcone_load::load_scene_bytes(&path, main) {
                     Ok(scene) => {
                         let m = scene.mesh().expect("a triangle scene");
                         assert_eq!(m.len(), mesh.len());

@@ -18,12 +18,12 @@ pub enum SceneKind {
     /// A triangle scene ([`TRIANGLE_SCENES`]): ray traced through a BVH.
     Triangles,
     /// One of the CTSS paper's SDF scenes (CTSS §4, Table 1;
-    /// [`crate::sdf::SDF_SCENES`]).
+    /// [`SDF_SCENES`]).
     PaperSdf,
-    /// An SDF scene of the stability suite ([`crate::sdf::STIFF_SCENES`]).
+    /// An SDF scene of the stability suite ([`STIFF_SCENES`]).
     Stiff,
     /// An SDF scene with semi-transparent materials (CTSS §5.3;
-    /// [`crate::sdf::TRANSPARENT_SCENES`]).
+    /// [`TRANSPARENT_SCENES`]).
     Transparent,
 }
 
@@ -38,7 +38,7 @@ pub enum Constructor {
 
 /// One built-in scene: the registry's entry, from which the name lists,
 /// the command line's scene help and the lookups ([`builtin`],
-/// [`find`], [`crate::sdf::sdf_builtin`]) are derived, so a scene's name is
+/// [`find`], [`sdf_builtin`]) are derived, so a scene's name is
 /// written once.
 #[derive(Clone, Copy)]
 pub struct BuiltinScene {
@@ -194,7 +194,7 @@ const fn count(kind: SceneKind) -> usize {
 
 /// The names of the entries of [`SCENES`] of `kind`, in order (`N` their
 /// [`count`]).
-pub(crate) const fn names_of<const N: usize>(kind: SceneKind) -> [&'static str; N] {
+const fn names_of<const N: usize>(kind: SceneKind) -> [&'static str; N] {
     let mut out = [""; N];
     let (mut i, mut n) = (0, 0);
     while i < SCENES.len() {
@@ -209,9 +209,32 @@ pub(crate) const fn names_of<const N: usize>(kind: SceneKind) -> [&'static str; 
 
 /// Names of the built-in triangle scenes, from [`SCENES`].
 pub const TRIANGLE_SCENES: [&str; count(SceneKind::Triangles)] = names_of(SceneKind::Triangles);
-pub(crate) const PAPER_SDF_COUNT: usize = count(SceneKind::PaperSdf);
-pub(crate) const STIFF_COUNT: usize = count(SceneKind::Stiff);
-pub(crate) const TRANSPARENT_COUNT: usize = count(SceneKind::Transparent);
+
+/// The paper's scenes (CTSS §4, Table 1), in its order: the
+/// [`SceneKind::PaperSdf`] entries of
+/// [`SCENES`].
+pub const SDF_SCENES: [&str; count(SceneKind::PaperSdf)] = names_of(SceneKind::PaperSdf);
+
+/// Scenes for the stability suite ([`SceneKind::Stiff`]).
+pub const STIFF_SCENES: [&str; count(SceneKind::Stiff)] = names_of(SceneKind::Stiff);
+
+/// Scenes with semi-transparent materials (CTSS §5.3): rendered by both
+/// backends with the SDF methods that support them (not `ctss+edges`, not
+/// delayed shading); kept apart from [`SDF_SCENES`] (the paper's scenes) and
+/// checked against the CPU by the conformance suite's
+/// `transparent_scenes_match_the_cpu`
+/// ([`SceneKind::Transparent`]).
+pub const TRANSPARENT_SCENES: [&str; count(SceneKind::Transparent)] =
+    names_of(SceneKind::Transparent);
+
+/// A built-in SDF scene by name ([`SDF_SCENES`], [`STIFF_SCENES`] or
+/// [`TRANSPARENT_SCENES`]); `None` when no SDF scene has that name.
+pub fn sdf_builtin(name: &str) -> Option<Result<SdfScene, SdfError>> {
+    match find(name)?.constructor {
+        Constructor::Sdf(f) => Some(f()),
+        Constructor::Triangles(_) => None,
+    }
+}
 
 /// The paper scenes of both papers, as the report runs them by default:
 /// triangle scenes for the SRAA family, SDF scenes for the CTSS family. A

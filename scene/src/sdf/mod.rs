@@ -2,13 +2,15 @@
 //!
 //! An [`SdfNode`] tree of primitives ([`Shape`]) and operators, evaluated by
 //! [`SdfNode::eval`] as `(signed distance, material index)`; an [`SdfScene`]
-//! adds materials, lights, a camera and tracing limits; [`sdf_builtin`] builds
-//! the paper's scenes ([`SDF_SCENES`], after CTSS §4 and Table 1) and a
-//! stability suite ([`STIFF_SCENES`]).
+//! adds materials, lights, a camera and tracing limits; the built-in SDF
+//! scenes are constructors here, registered in
+//! [`builtin::SCENES`](crate::builtin::SCENES): the paper's
+//! ([`SDF_SCENES`](crate::builtin::SDF_SCENES), after CTSS §4 and Table 1) and
+//! a stability suite ([`STIFF_SCENES`](crate::builtin::STIFF_SCENES)).
 //!
 //! ```
 //! use glam::Vec3;
-//! use subcone_scene::sdf::{sdf_builtin, SdfNode};
+//! use subcone_scene::{builtin::sdf_builtin, sdf::SdfNode};
 //!
 //! let ball = SdfNode::sphere(1.0).unwrap().translate(Vec3::new(0.0, 1.0, 0.0)).unwrap();
 //! assert!(ball.is_exact());
@@ -52,18 +54,20 @@
 //! need a [`SceneError`](crate::SceneError) map it themselves.
 
 mod bounds;
-pub mod file;
+pub mod lane;
 mod node;
-pub mod program;
 mod scatter;
 mod scenes;
 mod shape;
 mod stiff;
-pub mod wgsl;
 
+pub use crate::error::SdfError;
 pub use bounds::Aabb;
-pub use node::{tetra_normal_from, tetra_taps, SdfNode, SplitDistance, MAX_DEPTH};
-pub use scatter::{ScatterConfig, MAX_SCATTER_CELLS};
+pub use node::{
+    tetra_normal_from, tetra_taps, Op, Repeat, SdfNode, SplitDistance, Transform, MAX_DEPTH,
+    UNIT_TOLERANCE,
+};
+pub use scatter::{Instance, Scatter, ScatterConfig, MAX_SCATTER_CELLS};
 pub use scenes::{atrium, glass, primitives, random_box, random_shape, sparse_shape};
 pub use shape::Shape;
 pub use stiff::{far, grazing, non_eikonal, thin, FAR_ORIGIN_SHIFT};
@@ -89,92 +93,6 @@ pub enum Exactness {
     /// Not a distance: `|∇f|` is far from 1 by construction (scaled or displaced
     /// fields). May under- or overestimate; see [`SdfNode::is_conservative`].
     NonEikonal,
-}
-
-/// An SDF tree or scene could not be built.
-///
-/// Callers that need a [`SceneError`](crate::SceneError) map it, e.g. to
-/// `SceneError::Load { path: "<sdf>".into(), reason: e.to_string() }`.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[non_exhaustive]
-pub enum SdfError {
-    /// A parameter is NaN or infinite.
-    #[error("{node}: {param} must be finite")]
-    NonFinite {
-        /// The node kind.
-        node: &'static str,
-        /// The parameter.
-        param: &'static str,
-    },
-    /// A size or radius is negative.
-    #[error("{node}: {param} must not be negative, got {value}")]
-    Negative {
-        /// The node kind.
-        node: &'static str,
-        /// The parameter.
-        param: &'static str,
-        /// The value given.
-        value: f32,
-    },
-    /// A scale or factor is zero or negative.
-    #[error("{node}: {param} must be positive, got {value}")]
-    NonPositive {
-        /// The node kind.
-        node: &'static str,
-        /// The parameter.
-        param: &'static str,
-        /// The value given.
-        value: f32,
-    },
-    /// An operator has no operand.
-    #[error("{node} needs at least one child")]
-    Empty {
-        /// The node kind.
-        node: &'static str,
-    },
-    /// Repeated or mirrored instances would overlap their neighbours.
-    #[error("{node}: {reason}")]
-    Overlap {
-        /// The node kind.
-        node: &'static str,
-        /// What overlaps.
-        reason: String,
-    },
-    /// The tree is deeper than [`MAX_DEPTH`].
-    #[error("{node}: the tree would be deeper than {max} levels")]
-    TooDeep {
-        /// The node that would exceed it.
-        node: &'static str,
-        /// The limit.
-        max: u32,
-    },
-    /// Another invalid parameter.
-    #[error("{node}: {reason}")]
-    Invalid {
-        /// The node kind.
-        node: &'static str,
-        /// What is wrong.
-        reason: String,
-    },
-    /// A material index points past the scene's materials.
-    #[error("material index {index} is out of range: the scene has {count} materials")]
-    Material {
-        /// The largest index used.
-        index: u32,
-        /// How many materials there are.
-        count: usize,
-    },
-    /// The camera is unusable.
-    #[error("invalid camera: {0}")]
-    Camera(String),
-    /// A scene-level setting is unusable.
-    #[error("SDF scene {name:?}: {reason}")]
-    Scene {
-        /// The scene.
-        name: String,
-        /// What is wrong.
-        reason: String,
-    },
 }
 
 /// A scene made of one SDF tree.
@@ -307,33 +225,5 @@ impl SdfScene {
             }
         }
         f
-    }
-}
-
-/// The paper's scenes (CTSS §4, Table 1), in its order: the
-/// [`SceneKind::PaperSdf`](crate::builtin::SceneKind) entries of
-/// [`crate::builtin::SCENES`].
-pub const SDF_SCENES: [&str; crate::builtin::PAPER_SDF_COUNT] =
-    crate::builtin::names_of(crate::builtin::SceneKind::PaperSdf);
-
-/// Scenes for the stability suite ([`SceneKind::Stiff`](crate::builtin::SceneKind)).
-pub const STIFF_SCENES: [&str; crate::builtin::STIFF_COUNT] =
-    crate::builtin::names_of(crate::builtin::SceneKind::Stiff);
-
-/// Scenes with semi-transparent materials (CTSS §5.3): rendered by both
-/// backends with the SDF methods that support them (not `ctss+edges`, not
-/// delayed shading); kept apart from [`SDF_SCENES`] (the paper's scenes) and
-/// checked against the CPU by the conformance suite's
-/// `transparent_scenes_match_the_cpu`
-/// ([`SceneKind::Transparent`](crate::builtin::SceneKind)).
-pub const TRANSPARENT_SCENES: [&str; crate::builtin::TRANSPARENT_COUNT] =
-    crate::builtin::names_of(crate::builtin::SceneKind::Transparent);
-
-/// A built-in SDF scene by name ([`SDF_SCENES`], [`STIFF_SCENES`] or
-/// [`TRANSPARENT_SCENES`]); `None` when no SDF scene has that name.
-pub fn sdf_builtin(name: &str) -> Option<Result<SdfScene, SdfError>> {
-    match crate::builtin::find(name)?.constructor {
-        crate::builtin::Constructor::Sdf(f) => Some(f()),
-        crate::builtin::Constructor::Triangles(_) => None,
     }
 }

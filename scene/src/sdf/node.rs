@@ -15,7 +15,7 @@ pub const MAX_DEPTH: u32 = 64;
 /// How far from 1 the length of a rotation quaternion or a plane normal may be
 /// for it to be taken as unit and kept as given (a few f32 ulps): normalising
 /// again would move its last bits.
-pub(crate) const UNIT_TOLERANCE: f64 = 4.0 * f32::EPSILON as f64;
+pub const UNIT_TOLERANCE: f64 = 4.0 * f32::EPSILON as f64;
 
 /// One evaluation of a field with the step bound and the surface distance
 /// apart ([`SdfNode::eval_split`]): named, so the two cannot be swapped.
@@ -84,77 +84,129 @@ pub(super) struct Info {
     pub(super) material: u32,
 }
 
+/// A node's operation and operands, as [`SdfNode::op`] shows them to code
+/// that compiles or writes a tree (`subcone-sdf`'s interpreter and WGSL
+/// generator, `subcone-load`'s file writer). Read only: a tree is built by
+/// [`SdfNode`]'s validating constructors, whose cached facts these values
+/// must agree with.
+///
+/// Not `#[non_exhaustive]`, on purpose: a new operation is a breaking change
+/// that every compiler of a tree must handle, and an exhaustive `match` makes
+/// each one say how.
 #[derive(Clone, Debug)]
-pub(super) enum Op {
+pub enum Op {
+    /// A primitive.
     Shape {
+        /// The primitive and its parameters.
         shape: Shape,
+        /// Its material index.
         material: u32,
     },
+    /// `min` of the children.
     Union {
+        /// The operands.
         children: Vec<SdfNode>,
         /// Per child: bounding sphere `(centre, radius)`, radius ∞ when the
         /// child is unbounded or may not be skipped.
         spheres: Vec<Vec4>,
     },
+    /// `max` of the children.
     Intersection(Vec<SdfNode>),
+    /// Polynomial smooth minimum of the children.
     SmoothUnion {
+        /// The blend radius.
         k: f32,
+        /// The operands.
         children: Vec<SdfNode>,
     },
+    /// The first minus the second.
     Subtract(Box<(SdfNode, SdfNode)>),
+    /// A child moved, rotated and uniformly scaled.
     Transform(Box<Transform>),
+    /// A child mirrored across the planes `x = 0`, `y = 0`, `z = 0`.
     Mirror {
+        /// Which planes.
         axes: [bool; 3],
+        /// The operand.
         child: Box<SdfNode>,
     },
+    /// A child repeated on a grid.
     Repeat(Box<Repeat>),
+    /// The child's surface pushed out by a radius.
     Round {
+        /// The radius.
         radius: f32,
+        /// The operand.
         child: Box<SdfNode>,
     },
+    /// A shell of the child's surface.
     Onion {
+        /// The shell's thickness.
         thickness: f32,
+        /// The operand.
         child: Box<SdfNode>,
     },
+    /// The child's value times a factor (not a distance unless 1).
     ScaleDistance {
+        /// The factor.
         factor: f32,
+        /// The operand.
         child: Box<SdfNode>,
     },
+    /// The child plus a sine displacement.
     Displace {
+        /// The displacement's amplitude.
         amplitude: f32,
+        /// Its spatial frequency.
         frequency: f32,
+        /// The operand.
         child: Box<SdfNode>,
     },
+    /// The child, skipped while farther than its bounds plus a pad.
     Bounded {
+        /// The pad around the bounds.
         pad: f32,
+        /// The operand.
         child: Box<SdfNode>,
     },
+    /// Templates scattered over a random grid.
     Scatter(Box<Scatter>),
 }
 
+/// The operand of [`Op::Transform`].
 #[derive(Clone, Debug)]
-pub(super) struct Transform {
+pub struct Transform {
     /// Child space to world: `p = translation + rotation · (scale · q)`.
-    pub(super) translation: Vec3,
-    pub(super) rotation: Quat,
-    pub(super) scale: f32,
-    pub(super) inv_rotation: Quat,
-    pub(super) inv_scale: f32,
-    pub(super) rotated: bool,
-    pub(super) child: SdfNode,
+    pub translation: Vec3,
+    /// The rotation, unit.
+    pub rotation: Quat,
+    /// The uniform scale, positive.
+    pub scale: f32,
+    /// `rotation`'s inverse.
+    pub inv_rotation: Quat,
+    /// `1 / scale`.
+    pub inv_scale: f32,
+    /// Whether `rotation` is not the identity.
+    pub rotated: bool,
+    /// The transformed node.
+    pub child: SdfNode,
 }
 
+/// The operand of [`Op::Repeat`].
 #[derive(Clone, Debug)]
-pub(super) struct Repeat {
+pub struct Repeat {
     /// Period per axis; 0 = not repeated along that axis.
-    pub(super) period: Vec3,
-    /// Cell index limits (inclusive), ±∞ when unlimited.
-    pub(super) lo: Vec3,
-    pub(super) hi: Vec3,
+    pub period: Vec3,
+    /// Lowest cell index (inclusive) per axis, −∞ when unlimited.
+    pub lo: Vec3,
+    /// Highest cell index (inclusive) per axis, +∞ when unlimited.
+    pub hi: Vec3,
     /// Take `min(d, distance to the cell's walls + margin)` (asymmetric child).
-    pub(super) guard: bool,
-    pub(super) margin: f32,
-    pub(super) child: SdfNode,
+    pub guard: bool,
+    /// The margin added to the distance to the cell's walls.
+    pub margin: f32,
+    /// The repeated node.
+    pub child: SdfNode,
 }
 
 impl Repeat {
@@ -1090,6 +1142,18 @@ impl SdfNode {
     /// scatters count occupied cells); `None` when infinite.
     pub fn object_count(&self) -> Option<u64> {
         (self.info.objects != u64::MAX).then_some(self.info.objects)
+    }
+
+    /// The node's operation and operands, for code that compiles or writes
+    /// the tree.
+    pub fn op(&self) -> &Op {
+        &self.op
+    }
+
+    /// The material returned where no object decides (a point where every
+    /// operand was skipped): a material of the subtree.
+    pub fn default_material(&self) -> u32 {
+        self.info.material
     }
 
     /// The largest material index used.

@@ -83,34 +83,53 @@ impl ScatterConfig {
     }
 }
 
+/// One cell's object of a [`Scatter`]: its template, placement and material.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Instance {
-    pub(crate) template: u32,
-    /// Palette material, or `EMPTY` for the template's own.
-    pub(crate) material: u32,
-    pub(crate) inv_rotation: Quat,
-    pub(crate) offset: Vec3,
-    pub(crate) scale: f32,
-    pub(crate) inv_scale: f32,
+pub struct Instance {
+    /// Index into the scatter's templates, or `u32::MAX` for an empty cell.
+    pub template: u32,
+    /// Palette material, or `u32::MAX` for the template's own.
+    pub material: u32,
+    /// World to instance rotation.
+    pub inv_rotation: Quat,
+    /// The instance's centre, from the cell's centre.
+    pub offset: Vec3,
+    /// Uniform scale of the template.
+    pub scale: f32,
+    /// `1 / scale`.
+    pub inv_scale: f32,
     /// Bounding-sphere radius around `offset`.
-    pub(crate) radius: f32,
+    pub radius: f32,
 }
 
-/// A validated scatter with its per-cell table.
+/// A validated scatter with its per-cell table: the operand of
+/// [`Op::Scatter`](super::Op::Scatter), built by
+/// [`SdfNode::scatter`](super::SdfNode::scatter) from a [`ScatterConfig`].
 #[derive(Clone, Debug)]
-pub(crate) struct Scatter {
-    pub(crate) origin: Vec3,
-    pub(crate) cell: Vec3,
-    pub(crate) inv_cell: Vec3,
-    pub(crate) lo: Vec3,
-    pub(crate) hi: Vec3,
-    pub(crate) dims: [usize; 3],
-    pub(crate) margin: f32,
-    pub(crate) templates: Vec<SdfNode>,
-    pub(crate) palette: Vec<u32>,
-    pub(crate) instances: Vec<Instance>,
+pub struct Scatter {
+    /// The grid's origin (a cell's centre at index 0).
+    pub origin: Vec3,
+    /// The cell size per axis.
+    pub cell: Vec3,
+    /// `1 / cell`.
+    pub inv_cell: Vec3,
+    /// Lowest cell index per axis.
+    pub lo: Vec3,
+    /// Highest cell index per axis.
+    pub hi: Vec3,
+    /// Cells per axis.
+    pub dims: [usize; 3],
+    /// The margin added to the distance to a cell's walls.
+    pub margin: f32,
+    /// The shapes instanced.
+    pub templates: Vec<SdfNode>,
+    /// The materials drawn per instance (empty: the templates' own).
+    pub palette: Vec<u32>,
+    /// One entry per cell, x fastest.
+    pub instances: Vec<Instance>,
     objects: u64,
-    pub(crate) default_material: u32,
+    /// The material where no instance decides.
+    pub default_material: u32,
     bounds: Aabb,
     /// What it was built from (the palette as given; see [`Scatter::config`]).
     config: ScatterConfig,
@@ -390,15 +409,6 @@ impl Scatter {
         &self.instances
     }
 
-    /// `(origin, cell, 1 / cell, lo, hi)` of the grid.
-    pub(crate) fn grid(&self) -> (Vec3, Vec3, Vec3, Vec3, Vec3) {
-        (self.origin, self.cell, self.inv_cell, self.lo, self.hi)
-    }
-
-    pub(crate) fn dims(&self) -> [usize; 3] {
-        self.dims
-    }
-
     pub(crate) fn margin(&self) -> f32 {
         self.margin
     }
@@ -424,10 +434,10 @@ impl Scatter {
     }
 
     /// The configuration that builds this scatter again: the one it was built
-    /// from, with the palette [`Scatter::set_material`] may have replaced
+    /// from, with the palette a change of material may have replaced
     /// (a one-colour palette draws the same instances: the palette is the
     /// last draw of a cell's random stream).
-    pub(crate) fn config(&self) -> ScatterConfig {
+    pub fn config(&self) -> ScatterConfig {
         ScatterConfig {
             palette: self.palette.clone(),
             ..self.config.clone()

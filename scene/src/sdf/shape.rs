@@ -9,7 +9,7 @@
 //! [`SdfNode::translate`]: crate::sdf::SdfNode::translate
 //! [`SdfNode::rotate`]: crate::sdf::SdfNode::rotate
 
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 use subcone_kernels::math::Euclidean;
 
 use super::bounds::Aabb;
@@ -22,8 +22,12 @@ use super::{Exactness, SdfError};
 /// Sizes are non-negative and finite; zero sizes give degenerate but valid
 /// shapes (a sphere of radius 0 is a point). All shapes are exact distances
 /// except [`Shape::Ellipsoid`] (a bound).
+///
+/// Not `#[non_exhaustive]`: every compiler of a tree (the 8-lane interpreter
+/// and the WGSL generator of `subcone-sdf`, the file writer of
+/// `subcone-load`) matches on it, so a new shape is a breaking change that
+/// does not compile until each says how to evaluate or write it.
 #[derive(Clone, Copy, Debug, PartialEq)]
-#[non_exhaustive]
 pub enum Shape {
     /// Sphere. Exact.
     Sphere {
@@ -413,147 +417,6 @@ impl Shape {
     /// store forwarding (a stall of a dozen cycles per call).
     #[inline(never)]
     fn distance_xyz(&self, x: f32, y: f32, z: f32) -> f32 {
-        let p = Vec3::new(x, y, z);
-        match *self {
-            Shape::Sphere { radius } => p.norm() - radius,
-            Shape::Box { half } => sd_box(p, half),
-            Shape::RoundBox { half, radius } => sd_box(p, half - Vec3::splat(radius)) - radius,
-            Shape::BoxFrame { half, thickness } => sd_box_frame(p, half, 0.5 * thickness),
-            Shape::Torus { major, minor } => {
-                Vec2::new(Vec2::new(p.x, p.z).norm() - major, p.y).norm() - minor
-            }
-            Shape::Link {
-                half_length,
-                major,
-                minor,
-            } => {
-                let q = Vec3::new(p.x, (p.y.abs() - half_length).max(0.0), p.z);
-                Vec2::new(Vec2::new(q.x, q.y).norm() - major, q.z).norm() - minor
-            }
-            Shape::Capsule {
-                half_height,
-                radius,
-            } => {
-                let y = p.y - p.y.clamp(-half_height, half_height);
-                Vec3::new(p.x, y, p.z).norm() - radius
-            }
-            Shape::Cylinder {
-                radius,
-                half_height,
-            } => sd_cylinder(p, radius, half_height),
-            Shape::RoundedCylinder {
-                radius,
-                half_height,
-                rounding,
-            } => sd_cylinder(p, radius - rounding, half_height - rounding) - rounding,
-            Shape::CappedCone {
-                half_height,
-                bottom,
-                top,
-            } => sd_capped_cone(p, half_height, bottom, top),
-            Shape::Octahedron { size } => sd_octahedron(p, size),
-            Shape::HexPrism {
-                apothem,
-                half_height,
-            } => sd_hex_prism(Vec3::new(p.x, p.z, p.y), apothem, half_height),
-            Shape::Ellipsoid { radii } => {
-                let k0 = (p / radii).norm();
-                let k1 = (p / (radii * radii)).norm();
-                if k1 == 0.0 {
-                    // The centre: the exact depth is the smallest semi-axis.
-                    -radii.min_element()
-                } else if k0.is_finite() && k1.is_finite() {
-                    k0 * ((k0 - 1.0) / k1)
-                } else {
-                    // Radii so small that `r²` underflows: the bounding
-                    // sphere's distance, still a bound.
-                    p.norm() - radii.max_element()
-                }
-            }
-            Shape::Plane { normal, offset } => p.dot(normal) + offset,
-        }
+        super::lane::shape_distance(self, x, y, z)
     }
-}
-
-#[inline]
-fn sd_box(p: Vec3, half: Vec3) -> f32 {
-    let q = p.abs() - half;
-    q.max(Vec3::ZERO).norm() + q.max_element().min(0.0)
-}
-
-#[inline]
-fn sd_box_frame(p: Vec3, half: Vec3, e: f32) -> f32 {
-    let p = p.abs() - half;
-    let q = (p + Vec3::splat(e)).abs() - Vec3::splat(e);
-    let part = |v: Vec3| v.max(Vec3::ZERO).norm() + v.max_element().min(0.0);
-    part(Vec3::new(p.x, q.y, q.z))
-        .min(part(Vec3::new(q.x, p.y, q.z)))
-        .min(part(Vec3::new(q.x, q.y, p.z)))
-}
-
-#[inline]
-fn sd_cylinder(p: Vec3, radius: f32, half_height: f32) -> f32 {
-    let d = Vec2::new(Vec2::new(p.x, p.z).norm(), p.y).abs() - Vec2::new(radius, half_height);
-    d.x.max(d.y).min(0.0) + d.max(Vec2::ZERO).norm()
-}
-
-#[inline]
-fn sd_capped_cone(p: Vec3, h: f32, r1: f32, r2: f32) -> f32 {
-    let q = Vec2::new(Vec2::new(p.x, p.z).norm(), p.y);
-    let k1 = Vec2::new(r2, h);
-    let k2 = Vec2::new(r2 - r1, 2.0 * h);
-    let ca = Vec2::new(
-        q.x - q.x.min(if q.y < 0.0 { r1 } else { r2 }),
-        q.y.abs() - h,
-    );
-    let k2k2 = k2.length_squared();
-    // Degenerate cone (h = 0 and r1 = r2): k2 = 0, the clamp's value is moot.
-    let s = if k2k2 > 0.0 {
-        ((k1 - q).dot(k2) / k2k2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let cb = q - k1 + k2 * s;
-    // Inside the slanted side: `q` left of the edge from the bottom corner
-    // `(r1, −h)` to the top one, by the cross product. Quilez's test,
-    // `cb.x < 0`, loses its sign to rounding on flat wide cones (`cb` nearly
-    // vertical), which made the axis of such a cone read as outside.
-    let side = k2.x * (q.y + h) - k2.y * (q.x - r1);
-    let sign = if side > 0.0 && ca.y < 0.0 { -1.0 } else { 1.0 };
-    sign * ca.length_squared().min(cb.length_squared()).sqrt()
-}
-
-#[inline]
-fn sd_octahedron(p: Vec3, s: f32) -> f32 {
-    let p = p.abs();
-    let m = p.x + p.y + p.z - s;
-    let q = if 3.0 * p.x < m {
-        p
-    } else if 3.0 * p.y < m {
-        Vec3::new(p.y, p.z, p.x)
-    } else if 3.0 * p.z < m {
-        Vec3::new(p.z, p.x, p.y)
-    } else {
-        return m * 0.577_350_26;
-    };
-    let k = (0.5 * (q.z - q.y + s)).clamp(0.0, s);
-    Vec3::new(q.x, q.y - s + k, q.z - k).norm()
-}
-
-/// Quilez's hexagonal prism with its axis along `z`.
-#[inline]
-fn sd_hex_prism(p: Vec3, apothem: f32, half_height: f32) -> f32 {
-    const K: Vec3 = Vec3::new(-0.866_025_4, 0.5, 0.577_350_26);
-    let mut p = p.abs();
-    let kxy = Vec2::new(K.x, K.y);
-    let f = 2.0 * kxy.dot(Vec2::new(p.x, p.y)).min(0.0);
-    p.x -= f * kxy.x;
-    p.y -= f * kxy.y;
-    let edge = Vec2::new(
-        p.x - p.x.clamp(-K.z * apothem, K.z * apothem),
-        p.y - apothem,
-    );
-    let sign = if p.y - apothem < 0.0 { -1.0 } else { 1.0 };
-    let d = Vec2::new(edge.norm() * sign, p.z - half_height);
-    d.x.max(d.y).min(0.0) + d.max(Vec2::ZERO).norm()
 }

@@ -40,9 +40,9 @@ use subcone_kernels::ctss::{
 use subcone_kernels::math::Euclidean;
 use subcone_kernels::passes::MAX_LIGHTS;
 use subcone_kernels::sraa::{Geometry, SUBPIXEL_OFFSETS};
-use subcone_scene::sdf::program::{LaneMask, Points, Scratch, SdfProgram, SplitLanes, LANES};
 use subcone_scene::sdf::{tetra_normal_from, tetra_taps};
 use subcone_scene::RenderSettings;
+use subcone_sdf::program::{LaneMask, Points, Scratch, SdfProgram, SplitLanes, LANES};
 
 use super::{CentreAovs, ConeFieldOf, SdfField, SdfView, Tally, MISS_AOVS};
 use crate::render::pixel_centre;

@@ -22,7 +22,7 @@
 //! `ctss+edges`, delayed shading) this backend refuses with the same reason
 //! (`WgpuBackend::plan`).
 //!
-//! The scene's tree is compiled to WGSL ([`subcone_scene::sdf::SdfNode::to_wgsl`]), its materials
+//! The scene's tree is compiled to WGSL ([`subcone_sdf::wgsl::WgslField::compile`]), its materials
 //! and lights to WGSL constants (`shading.rs`), and concatenated with the
 //! kernels' WGSL (`cone`, `mask`, `aggregate`, `ctss` and its trace
 //! `subcone_ctss_trace`, the twin of the CPU's `ctss::trace_field`: Algorithm
@@ -63,8 +63,8 @@ use std::sync::Arc;
 use bytemuck::{Pod, Zeroable};
 
 use subcone_kernels::passes::{Passes, Technique};
-use subcone_scene::sdf::wgsl::WgslField;
 use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderError};
+use subcone_sdf::wgsl::WgslField;
 use wgpu::util::DeviceExt;
 
 use crate::compute::{self, Allocate, Program};
@@ -230,7 +230,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         ASAP_BATCH
     };
     let frame_constants = SdfFrame::new(job, (max_distance, max_steps), side, cone);
-    let field = g.root.to_wgsl();
+    let field = WgslField::compile(&g.root);
     let table = scatter_table(ctx, &field)?;
     let mut b = Bindings::new(0);
     b.uniform(ctx, "frame", "SdfFrame", &frame_constants)?;

@@ -122,7 +122,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         frame: SdfFrame::new(job, (max_distance, max_steps), 1, false),
         sraa: method.sraa(),
     };
-    let field = g.root.to_wgsl();
+    let field = subcone_sdf::wgsl::WgslField::compile(&g.root);
     let table = scatter_table(ctx, &field)?;
     let mut b = Bindings::new(0);
     b.uniform(ctx, "frame", "SdfSraaFrame", &frame)?;
