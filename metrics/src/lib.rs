@@ -98,6 +98,26 @@ pub struct Rgb8 {
 }
 
 impl Rgb8 {
+    /// A grey image whose pixel `(x, y)` is `value(x, y)` in all three
+    /// channels: synthetic inputs (steps, ramps) for checking a metric.
+    ///
+    /// ```
+    /// let step = subcone_metrics::Rgb8::grey(4, 2, |x, _| if x < 2 { 0 } else { 255 });
+    /// assert_eq!(&step.data[..6], &[0, 0, 0, 0, 0, 0]);
+    /// assert_eq!(&step.data[6..9], &[255, 255, 255]);
+    /// ```
+    pub fn grey(width: u32, height: u32, value: impl Fn(u32, u32) -> u8) -> Self {
+        let data = (0..height)
+            .flat_map(|y| (0..width).map(move |x| (x, y)))
+            .flat_map(|(x, y)| [value(x, y); 3])
+            .collect();
+        Rgb8 {
+            width,
+            height,
+            data,
+        }
+    }
+
     /// The image a user sees of `frame` ([`Frame::to_srgb8`]); fails when the
     /// frame's pixels do not match its size.
     pub fn from_frame(frame: &Frame) -> Result<Self, MetricError> {
@@ -232,24 +252,9 @@ pub fn psnr(reference: &Rgb8, test: &Rgb8) -> Result<f64, MetricError> {
 mod tests {
     use super::*;
 
-    fn img(w: u32, h: u32, f: impl Fn(u32, u32) -> u8) -> Rgb8 {
-        let mut data = Vec::new();
-        for y in 0..h {
-            for x in 0..w {
-                let v = f(x, y);
-                data.extend([v, v, v]);
-            }
-        }
-        Rgb8 {
-            width: w,
-            height: h,
-            data,
-        }
-    }
-
     #[test]
     fn identical_images_have_zero_flip_and_infinite_psnr() {
-        let a = img(16, 8, |x, _| (x * 10) as u8);
+        let a = Rgb8::grey(16, 8, |x, _| (x * 10) as u8);
         let f = flip(&a, &a).unwrap();
         assert!(f.mean < 1e-6);
         assert_eq!(f.p99(), 0.0);
@@ -259,8 +264,8 @@ mod tests {
 
     #[test]
     fn mismatched_or_empty_images_are_typed_errors() {
-        let a = img(4, 4, |_, _| 0);
-        let b = img(4, 5, |_, _| 0);
+        let a = Rgb8::grey(4, 4, |_, _| 0);
+        let b = Rgb8::grey(4, 5, |_, _| 0);
         let size = MetricError::SizeMismatch {
             reference: (4, 4),
             test: (4, 5),
@@ -275,14 +280,14 @@ mod tests {
             flip(&a, &short),
             Err(MetricError::DataLength { found: 5, .. })
         ));
-        let empty = img(0, 3, |_, _| 0);
+        let empty = Rgb8::grey(0, 3, |_, _| 0);
         assert_eq!(flip(&empty, &empty).err(), Some(MetricError::Empty));
     }
 
     #[test]
     fn psnr_of_a_known_error() {
-        let a = img(4, 4, |_, _| 100);
-        let b = img(4, 4, |_, _| 110);
+        let a = Rgb8::grey(4, 4, |_, _| 100);
+        let b = Rgb8::grey(4, 4, |_, _| 110);
         let p = psnr(&a, &b).unwrap();
         assert!((p - 10.0 * (255.0f64 * 255.0 / 100.0).log10()).abs() < 1e-9);
     }
@@ -292,7 +297,7 @@ mod tests {
         let f = Flip {
             map: (0..=100).rev().map(|i| i as f32 / 100.0).collect(),
             mean: 0.5,
-            magma: img(1, 1, |_, _| 0),
+            magma: Rgb8::grey(1, 1, |_, _| 0),
         };
         assert_eq!(f.p99(), 0.99);
     }

@@ -199,24 +199,9 @@ mod tests {
     use super::*;
     use glam::Vec3;
 
-    fn img(w: u32, h: u32, f: impl Fn(u32, u32) -> u8) -> Rgb8 {
-        let mut data = Vec::new();
-        for y in 0..h {
-            for x in 0..w {
-                let v = f(x, y);
-                data.extend([v, v, v]);
-            }
-        }
-        Rgb8 {
-            width: w,
-            height: h,
-            data,
-        }
-    }
-
     #[test]
     fn step_is_a_gradient_edge_and_flat_is_not() {
-        let a = img(8, 8, |x, _| if x < 4 { 0 } else { 255 });
+        let a = Rgb8::grey(8, 8, |x, _| if x < 4 { 0 } else { 255 });
         let m = gradient_edges(&a);
         assert!(m[3] && m[4]);
         assert!(!m[0] && !m[7]);
