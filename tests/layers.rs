@@ -338,7 +338,9 @@ const LAYERED: [(&str, Root, usize); 4] = [
 ];
 
 fn check_layers(crate_dir: &str, root: Root, min_modules: usize) -> Result<String, String> {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join(crate_dir).join("src");
+    let src = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join(crate_dir)
+        .join("src");
     let (graph, through_root) = module_graph(&sources(&src));
     if root == Root::ReExports && !through_root.is_empty() {
         return Err(format!(
