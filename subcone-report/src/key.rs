@@ -165,7 +165,10 @@ mod tests {
     #[test]
     fn a_scene_id_compares_and_is_written_as_its_name() {
         let id = SceneId::new("cornell");
-        assert!(id == "cornell" && "cornell" == id && id != "atrium");
+        // Both orders, each its own `PartialEq` impl.
+        assert!(id == "cornell");
+        assert!("cornell" == id);
+        assert!(id != "atrium");
         assert_eq!(id.to_string(), "cornell");
         let json = serde_json::json!({ "scene": id });
         assert_eq!(json.to_string(), r#"{"scene":"cornell"}"#);
@@ -177,8 +180,9 @@ mod tests {
         // two must agree on every method of the registry.
         let methods: Vec<Method> = METHOD_NAMES.iter().map(|n| n.parse().unwrap()).collect();
         for (a, na) in methods.iter().zip(METHOD_NAMES) {
+            let key = RowKey::from(*a);
             for (b, nb) in methods.iter().zip(METHOD_NAMES) {
-                assert_eq!(RowKey::from(*a) == *b, na == nb, "{na} against {nb}");
+                assert_eq!(key == *b, na == nb, "{na} against {nb}");
             }
         }
         assert!(RowKey::Post("noaa-like".into()).method().is_none());
