@@ -14,6 +14,8 @@
 //! - [`ao`]: the fixed, stratified, cosine-weighted ambient-occlusion
 //!   directions in the tangent frame of a normal (the report's shading-cost
 //!   axis; not from either paper).
+//! - [`camera`]: the pinhole camera GPU shaders trace through, one uniform
+//!   and one ray rule.
 //! - [`passes`]: which passes a technique needs on a scene, so nothing a scene does
 //!   not need is computed or allocated.
 //!
@@ -49,6 +51,7 @@ extern crate std;
 
 pub mod aggregate;
 pub mod ao;
+pub mod camera;
 pub mod cone;
 pub mod ctss;
 pub mod fxaa;

@@ -46,6 +46,18 @@ struct subcone_CtssParams {
     _pad1: u32,
 }
 
+// subcone_kernels::camera::PinholeCamera (64 bytes).
+struct subcone_PinholeCamera {
+    position: vec3<f32>,
+    width: u32,
+    forward: vec3<f32>,
+    height: u32,
+    right: vec3<f32>,
+    tan_half_fov: f32,
+    up: vec3<f32>,
+    _pad: u32,
+}
+
 // subcone_kernels::fxaa::FxaaParams (16 bytes).
 struct subcone_FxaaParams {
     subpix: f32,
@@ -73,4 +85,15 @@ fn subcone_is_nan(x: f32) -> bool {
 
 fn subcone_is_finite(x: f32) -> bool {
     return (bitcast<u32>(x) & 0x7fffffffu) < 0x7f800000u;
+}
+
+// subcone_kernels::camera::PinholeCamera::ray_dir: the unit direction from
+// c.position through image point p (pixels, y down).
+fn subcone_pinhole_dir(c: subcone_PinholeCamera, p: vec2<f32>) -> vec3<f32> {
+    let w = f32(max(c.width, 1u));
+    let h = f32(max(c.height, 1u));
+    let u = (2.0 * p.x / w - 1.0) * c.tan_half_fov * (w / h);
+    let v = (1.0 - 2.0 * p.y / h) * c.tan_half_fov;
+    let d = c.forward + u * c.right + v * c.up;
+    return d * (1.0 / length(d));
 }

@@ -141,6 +141,7 @@ fn shared_structs() -> Vec<Shared> {
         shared!(Geometry: normal, depth),
         shared!(CtssParams: tan_theta, alpha, eps, t_min, t_max, min_sample_weight,
             max_steps, max_samples, visibility_k, flags, _pad[2]),
+        shared!(PinholeCamera: position, width, forward, height, right, tan_half_fov, up, _pad),
         shared!(FxaaParams: subpix, edge_threshold, edge_threshold_min, _pad),
     ]
 }

@@ -1020,3 +1020,38 @@ fn check_timestamps(
     }
     Ok(())
 }
+
+/// Check buffer `b` (`what`) holds `count` elements of `element` bytes and
+/// can be bound as storage.
+pub(crate) fn check_buffer(
+    what: &'static str,
+    b: &wgpu::Buffer,
+    count: u64,
+    element: u64,
+) -> Result<(), PassError> {
+    if !b.usage().contains(wgpu::BufferUsages::STORAGE) {
+        return Err(PassError::BufferUsage {
+            what,
+            missing: wgpu::BufferUsages::STORAGE,
+        });
+    }
+    let expected = count * element;
+    if b.size() < expected {
+        return Err(PassError::BufferSize {
+            what,
+            expected,
+            found: b.size(),
+        });
+    }
+    Ok(())
+}
+
+/// Names the resources of `Option` roles: `(given, required, what)` is an
+/// error when given and required disagree.
+pub(crate) fn presence(given: bool, required: bool, what: &'static str) -> Result<(), PassError> {
+    match (given, required) {
+        (true, false) => Err(PassError::Unexpected(what)),
+        (false, true) => Err(PassError::Missing(what)),
+        _ => Ok(()),
+    }
+}

@@ -6,7 +6,7 @@
 
 use crate::layout_check::{assert_all_match, compare, Member};
 
-use crate::ctss::{CtssPass, CtssUniform, CTSS_WGSL};
+use crate::ctss::{CtssOutput, CtssPass, CtssPassDesc, CtssTrace, CtssUniform, CTSS_WGSL};
 use crate::fxaa::{FxaaFrame, FxaaPass, FXAA_WGSL};
 use crate::sraa::{SraaFrame, SRAA_WGSL};
 
@@ -23,8 +23,7 @@ fn pass_gpu_structs_match_their_wgsl() {
             CTSS_WGSL,
             "CtssUniform",
             size_of::<CtssUniform>(),
-            members!(CtssUniform: position, width, forward, height, right, half, up, _pad0,
-                background, _pad1),
+            members!(CtssUniform: camera, background, _pad),
         ),
         (
             FXAA_WGSL,
@@ -117,12 +116,43 @@ fn every_pass_shader_validates() {
     let own_normal = format!(
         "{field}fn subcone_normal(p: vec3<f32>, h: f32) -> vec3<f32> {{ return normalize(p); }}\n"
     );
-    for (label, host) in [
-        ("ctss", field.to_string()),
-        ("ctss, host normal", own_normal),
+    // The host's own trace and counters, as CtssTrace::Host and counted
+    // buffers ask for them.
+    let own_trace = format!(
+        "{field}fn subcone_trace(params: subcone_CtssParams, origin: vec3<f32>, dir: vec3<f32>, \
+         right: vec3<f32>, up: vec3<f32>, background: vec3<f32>) -> subcone_CtssTraceResult {{\n\
+         return subcone_CtssTraceResult(dir, 1u, 2u, 0u, 0u); }}\n\
+         fn subcone_counters() -> vec2<u32> {{ return vec2<u32>(3u, 4u); }}\n"
+    );
+    for (host, normal) in [(field.to_string(), ""), (own_normal, ", host normal")] {
+        for output in [
+            CtssOutput::Texture,
+            CtssOutput::Buffers { counts: false },
+        ] {
+            for side in [1, 3] {
+                let desc = CtssPassDesc::default()
+                    .with_output(output)
+                    .with_samples_per_side(side);
+                let g = CtssPass::group_for_tests(desc.output_format, output);
+                let label = format!("ctss{normal}, {output:?}, side {side}");
+                if let Err(e) = validate(&label, &CtssPass::source(&host, &desc, &g)) {
+                    errors.push(e);
+                }
+            }
+        }
+    }
+    for output in [
+        CtssOutput::Texture,
+        CtssOutput::Buffers { counts: false },
+        CtssOutput::Buffers { counts: true },
     ] {
-        let g = CtssPass::group_for_tests(wgpu::TextureFormat::Rgba16Float);
-        if let Err(e) = validate(label, &CtssPass::source(&host, 8, &g)) {
+        let desc = CtssPassDesc::default()
+            .with_trace(CtssTrace::Host)
+            .with_output(output)
+            .with_samples_per_side(2);
+        let g = CtssPass::group_for_tests(desc.output_format, output);
+        let label = format!("ctss, host trace, {output:?}");
+        if let Err(e) = validate(&label, &CtssPass::source(&own_trace, &desc, &g)) {
             errors.push(e);
         }
     }
@@ -141,8 +171,9 @@ fn every_pass_shader_validates() {
 fn the_wgsl_no_object_is_the_kernels_constant() {
     let host = "fn subcone_field(p: vec3<f32>) -> vec3<f32> { let d = length(p) - 1.0; return vec3<f32>(d, d, 0.0); }\n\
                 fn subcone_shade(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> vec3<f32> { return n; }\n";
-    let g = CtssPass::group_for_tests(wgpu::TextureFormat::Rgba16Float);
-    let source = CtssPass::source(host, 8, &g);
+    let desc = CtssPassDesc::default();
+    let g = CtssPass::group_for_tests(desc.output_format, desc.output);
+    let source = CtssPass::source(host, &desc, &g);
     let module = naga::front::wgsl::parse_str(&source).expect("the CTSS pass's shader parses");
     let (_, constant) = module
         .constants

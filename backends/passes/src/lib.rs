@@ -57,7 +57,10 @@ mod layout_tests;
 mod sraa;
 
 pub use bind::{BIND_GROUP_CACHE, UNIFORM_SLOTS};
-pub use ctss::{CtssCamera, CtssFrame, CtssPass, CtssPassDesc, CTSS_KERNELS, MAX_BATCH};
+pub use ctss::{
+    CtssBuffers, CtssCamera, CtssFrame, CtssOutput, CtssPass, CtssPassDesc, CtssTrace, CTSS_KERNELS,
+    MAX_BATCH, MAX_SAMPLES_PER_SIDE, SPHERE_TRACE_HOOK,
+};
 pub use fxaa::{FxaaPass, FxaaPassDesc};
 pub use sraa::{
     AlbedoBuffers, AlbedoTextures, CentreGeometry, DepthKind, GeometryLayout, NormalEncoding,

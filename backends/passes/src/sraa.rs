@@ -21,7 +21,7 @@ use bytemuck::{Pod, Zeroable};
 use subcone_kernels::passes::MAX_LIGHTS;
 use subcone_kernels::sraa::{ShadedPosition, SraaParams, ALBEDO_TOLERANCE};
 
-use crate::bind::{self, Bound, Expect, Group, PassPipeline};
+use crate::bind::{self, check_buffer, presence, Bound, Expect, Group, PassPipeline};
 use crate::PassError;
 
 pub(crate) const SRAA_WGSL: &str = include_str!("sraa.wgsl");
@@ -483,41 +483,6 @@ fn no_shadow_loaders(g: &str) -> String {
         "fn sraa_load_{g}shaded_shadow(p: vec2<i32>) -> u32 {{ return 0u; }}\n\
          fn sraa_load_{g}sub_shadow(p: vec2<i32>, k: u32) -> u32 {{ return 0u; }}\n"
     )
-}
-
-/// Check buffer `b` (`what`) holds `count` elements of `element` bytes and
-/// can be bound as storage.
-fn check_buffer(
-    what: &'static str,
-    b: &wgpu::Buffer,
-    count: u64,
-    element: u64,
-) -> Result<(), PassError> {
-    if !b.usage().contains(wgpu::BufferUsages::STORAGE) {
-        return Err(PassError::BufferUsage {
-            what,
-            missing: wgpu::BufferUsages::STORAGE,
-        });
-    }
-    let expected = count * element;
-    if b.size() < expected {
-        return Err(PassError::BufferSize {
-            what,
-            expected,
-            found: b.size(),
-        });
-    }
-    Ok(())
-}
-
-/// Names the buffers of `Option` roles: `(given, required, what)` is an
-/// error when given and required disagree.
-fn presence(given: bool, required: bool, what: &'static str) -> Result<(), PassError> {
-    match (given, required) {
-        (true, false) => Err(PassError::Unexpected(what)),
-        (false, true) => Err(PassError::Missing(what)),
-        _ => Ok(()),
-    }
 }
 
 /// What the input textures of one frame must be, for one configuration

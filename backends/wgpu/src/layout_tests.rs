@@ -14,22 +14,12 @@ mod layout_check;
 
 use layout_check::{assert_all_match, Member};
 
-use crate::sdf::{SdfFrame, SdfSraaFrame, SRAA_FRAME_WGSL, TRACE_WGSL as SDF_WGSL};
+use crate::sdf::{SdfFrame, TRACE_WGSL as SDF_WGSL};
 use crate::triangles::bvh::{GpuLight, GpuMaterial, GpuNode};
 use crate::triangles::{FrameUniform, ALBEDO_WGSL, FRAME_WGSL, TRACE_WGSL};
 
 #[test]
 fn backend_gpu_structs_match_their_wgsl() {
-    // SdfFrame's members (at the same offsets: it comes first), then the
-    // SRAA parameters.
-    let mut sdf_sraa_members = members!(SdfFrame: position, width, forward, height, right,
-        half, up, max_distance, background, max_steps, ambient, side, cone, ao_rays, ao_radius,
-        _pad);
-    sdf_sraa_members.push((
-        "sraa".to_string(),
-        core::mem::offset_of!(SdfSraaFrame, sraa),
-        size_of::<subcone_kernels::sraa::SraaParams>(),
-    ));
     assert_all_match(&[
         (
             FRAME_WGSL,
@@ -61,15 +51,8 @@ fn backend_gpu_structs_match_their_wgsl() {
             SDF_WGSL,
             "SdfFrame",
             size_of::<SdfFrame>(),
-            members!(SdfFrame: position, width, forward, height, right, half, up,
-                max_distance, background, max_steps, ambient, side, cone, ao_rays, ao_radius,
-                _pad),
-        ),
-        (
-            SRAA_FRAME_WGSL,
-            "SdfSraaFrame",
-            size_of::<SdfSraaFrame>(),
-            sdf_sraa_members,
+            members!(SdfFrame: camera, background, max_distance, ambient, max_steps, ao_rays,
+                ao_radius, _pad[2 as u32]),
         ),
     ]);
 }

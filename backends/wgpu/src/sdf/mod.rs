@@ -1,9 +1,10 @@
 //! SDF scenes on the GPU: NoAA, SSAA, CTSS (with `ctss+edges`' group splits,
-//! §5.3), CTSS-R and SSAA+CTSS as one compute
-//! pass each, producing the images of the CPU reference
+//! §5.3), CTSS-R and SSAA+CTSS as one [`CtssPass`] each, the pass a host
+//! embeds, producing the images of the CPU reference
 //! (`subcone_cpu::sphere::SdfView`); SRAA-RT as the CPU's three passes
-//! (`sraa.rs`: sphere-traced shaded samples and subsamples, and the triangle
-//! path's resolve through the kernels' reconstruction loop).
+//! (`sraa.rs`: sphere-traced shaded samples and subsamples, and
+//! `subcone_passes::SraaPass`'s resolve through the kernels' reconstruction
+//! loop).
 //!
 //! Ambient occlusion (`RenderSettings::ao_rays`) multiplies the ambient term
 //! of every shaded sample by the unoccluded fraction of the kernels' fixed
@@ -11,8 +12,9 @@
 //! through the field up to `SdfGeometry::ao_radius` (trace.wgsl's
 //! `ambient_occlusion`, the twin of `SdfView::ambient_occlusion`).
 //!
-//! Scenes with semi-transparent materials run `translucent.wgsl` instead of
-//! `trace.wgsl`'s entry point, the twins of the CPU's semi-transparent path:
+//! Scenes with semi-transparent materials trace each sample with
+//! `translucent.wgsl`'s samplers (the pass's host trace, [`HostTrace`]), the
+//! twins of the CPU's semi-transparent path:
 //! CTSS with the `K` masks of §5.3 (`subcone_cone_stepper_record_alpha_mask`,
 //! group splits where the nearest object changes between a semi-transparent
 //! object and another, passes through semi-transparent objects), and NoAA /
@@ -23,15 +25,19 @@
 //! (`WgpuBackend::plan`).
 //!
 //! The scene's tree is compiled to WGSL ([`subcone_sdf::wgsl::WgslField::compile`]), its materials
-//! and lights to WGSL constants (`shading.rs`), and concatenated with the
-//! kernels' WGSL (`cone`, `mask`, `aggregate`, `ctss` and its trace
-//! `subcone_ctss_trace`, the twin of the CPU's `ctss::trace_field`: Algorithm
-//! 1 of CTSS, eq. 3–10, the group masks and §5.3's splits) and this module's
-//! entry points (`trace.wgsl`), which give the trace its hooks: one invocation per
-//! pixel traces its `side × side` samples exactly as the CPU does (same rays,
-//! same stepper, same normals, same shading, hard shadows inline). Only what
-//! the passes need is built: no light loop without [`Passes::SHADOW`], no AOV
-//! pipeline or buffer unless AOVs are asked for.
+//! and lights to WGSL constants (`shading.rs`), and with `trace.wgsl` (the
+//! field, normal and shading hooks, SdfView's shading and shadow rays) they
+//! are the host WGSL of a [`CtssPass`] over the host group of the frame's
+//! constants ([`host_bindings`]): the pass's one pixel loop traces each
+//! pixel's `side × side` samples (`CtssPassDesc::samples_per_side`) with the
+//! kernels' `subcone_ctss_trace`, the twin of the CPU's `ctss::trace_field`
+//! (Algorithm 1 of CTSS, eq. 3–10, the group masks and §5.3's splits), or
+//! with the host trace of [`HostTrace`] (sphere tracing, semi-transparent
+//! scenes), exactly as the CPU does (same rays, same stepper, same normals,
+//! same shading, hard shadows inline), and writes the colour and the
+//! per-pixel counts (`subcone_counters`: shadow and occlusion rays) into
+//! buffers. Only what the passes need is built: no light loop without
+//! [`Passes::SHADOW`], no AOV pipeline or buffer unless AOVs are asked for.
 //!
 //! CTSS marches each pixel's cone up to 8 samples ahead of shading them (in
 //! order, so eq. 6 sums the same terms in the same order): the SIMD lanes of
@@ -55,14 +61,14 @@
 mod shading;
 mod sraa;
 
-#[cfg(test)]
-pub(crate) use sraa::{SdfSraaFrame, SRAA_FRAME_WGSL};
 
 use std::sync::Arc;
 
 use bytemuck::{Pod, Zeroable};
 
+use subcone_kernels::camera::PinholeCamera;
 use subcone_kernels::passes::{Passes, Technique};
+use subcone_passes::{CtssBuffers, CtssCamera, CtssOutput, CtssPass, CtssPassDesc, CtssTrace};
 use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderError};
 use subcone_sdf::wgsl::WgslField;
 use wgpu::util::DeviceExt;
@@ -73,9 +79,9 @@ use crate::Job;
 use subcone_passes::bind::{Bindings, BufferAccess};
 
 pub(crate) const TRACE_WGSL: &str = include_str!("trace.wgsl");
-/// The CTSS / sphere-tracing frame's entry point (`sdf_render`).
-const RENDER_WGSL: &str = include_str!("render.wgsl");
 const AOVS_WGSL: &str = include_str!("aovs.wgsl");
+/// `subcone_trace`, CtssPass's host trace, over `host_sample` ([`HostTrace`]).
+const HOST_TRACE_WGSL: &str = include_str!("host_trace.wgsl");
 const WORKGROUP: u32 = 8;
 /// Hit groups a cone marches ahead of shading them (the
 /// `subcone_CTSS_BATCH` of the kernels' `subcone_ctss_trace`) for ASAP
@@ -88,7 +94,8 @@ pub const DELAYED_BATCH: u32 = 32;
 /// Most samples per pixel side (`ssaaN`, `ssaaN+ctss`) one invocation traces.
 pub const MAX_SIDE_SAMPLES: u32 = 64;
 
-/// The kernels' WGSL every SDF shader includes, after the prelude: `ao`
+/// The kernels' WGSL every SDF program of this backend's own includes
+/// (SRAA-RT, AOVs; [`CtssPass`] includes them itself), after the prelude: `ao`
 /// (the occlusion directions), then what a CTSS trace runs,
 /// `subcone_passes::CTSS_KERNELS` (the stepper carries the K masks of
 /// CTSS §5.3, `transparency`).
@@ -99,22 +106,53 @@ fn kernels() -> Vec<&'static str> {
 }
 
 /// The semi-transparent path (CTSS §5.3): the twins of the CPU's
-/// `ctss_translucent` and `noaa_translucent`, as `sdf_render`'s samplers
-/// `pixel_cone_sample` and `pixel_sphere_sample`; after `trace.wgsl` (whose
-/// field hooks [`subcone_kernels::ctss::TRACE_WGSL`]'s `subcone_group_mask`
-/// reads).
+/// `ctss_translucent` and `noaa_translucent`, as the host trace's samplers
+/// `ctss_translucent_sample` and `noaa_translucent_sample` ([`HostTrace`]);
+/// after `trace.wgsl` (whose field hooks
+/// [`subcone_kernels::ctss::TRACE_WGSL`]'s `subcone_group_mask` reads).
 const TRANSLUCENT_WGSL: &str = include_str!("translucent.wgsl");
 
-/// `sdf_render`'s samplers on opaque scenes: `trace.wgsl`'s own. One pixel
-/// loop serves both paths; the translucent one binds its samplers instead.
-const OPAQUE_SAMPLERS: &str = "
-fn pixel_cone_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: ptr<function, u32>, shadow: ptr<function, u32>) -> vec3<f32> {
-    return ctss_sample(o, d, steps, samples, shadow);
+/// What traces each sample of a CTSS / NoAA / SSAA frame through
+/// [`CtssPass`]: the kernels' CTSS trace on opaque scenes, or one of
+/// `host_trace.wgsl`'s samplers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+enum HostTrace {
+    /// Sphere tracing (NoAA, SSAA): `noaa_sample`.
+    Sphere,
+    /// NoAA / SSAA with alpha blending along the ray (semi-transparent
+    /// scenes): `noaa_translucent_sample`.
+    TranslucentSphere,
+    /// CTSS with §5.3's `K` masks (semi-transparent scenes):
+    /// `ctss_translucent_sample`.
+    TranslucentCone,
 }
-fn pixel_sphere_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: ptr<function, u32>, shadow: ptr<function, u32>) -> vec3<f32> {
-    return noaa_sample(o, d, steps, samples, shadow);
+
+impl HostTrace {
+    /// The trace of `job`'s samples: `None` for the kernels' CTSS trace.
+    fn of(job: &Job) -> Option<Self> {
+        let cone = job.method.technique().is_cone_traced();
+        match (cone, job.scene.has_translucency()) {
+            (true, false) => None,
+            (false, false) => Some(HostTrace::Sphere),
+            (false, true) => Some(HostTrace::TranslucentSphere),
+            (true, true) => Some(HostTrace::TranslucentCone),
+        }
+    }
+
+    /// `host_sample`, bound to this trace's sampler.
+    fn sampler(self) -> String {
+        let name = match self {
+            HostTrace::Sphere => "noaa_sample",
+            HostTrace::TranslucentSphere => "noaa_translucent_sample",
+            HostTrace::TranslucentCone => "ctss_translucent_sample",
+        };
+        format!(
+            "fn host_sample(o: vec3<f32>, d: vec3<f32>, b: vec3<f32>, steps: ptr<function, u32>, \
+             samples: ptr<function, u32>, shadow: ptr<function, u32>) -> vec3<f32> {{\n    \
+             return {name}(o, d, b, steps, samples, shadow);\n}}\n"
+        )
+    }
 }
-";
 
 /// The field's scatter table on the device, uploaded once per device and
 /// table (`None` when the field has none).
@@ -156,27 +194,32 @@ fn scatter_table(
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
 pub(crate) struct SdfFrame {
-    pub(crate) position: [f32; 3],
-    pub(crate) width: u32,
-    pub(crate) forward: [f32; 3],
-    pub(crate) height: u32,
-    pub(crate) right: [f32; 3],
-    /// tan(fov_y / 2).
-    pub(crate) half: f32,
-    pub(crate) up: [f32; 3],
-    pub(crate) max_distance: f32,
+    /// The camera, for the programs that sphere trace through it (AOVs,
+    /// SRAA-RT); [`CtssPass`] has its own copy.
+    pub(crate) camera: PinholeCamera,
     pub(crate) background: [f32; 3],
-    pub(crate) max_steps: u32,
+    pub(crate) max_distance: f32,
     pub(crate) ambient: [f32; 3],
-    /// Samples per pixel side.
-    pub(crate) side: u32,
-    /// 1: cone tracing (the CTSS family), 0: sphere tracing.
-    pub(crate) cone: u32,
+    pub(crate) max_steps: u32,
     /// Ambient-occlusion rays per shaded point (0: off).
     pub(crate) ao_rays: u32,
     /// Their length ([`subcone_scene::scene::SdfGeometry::ao_radius`]; a NaN is 0).
     pub(crate) ao_radius: f32,
-    pub(crate) _pad: u32,
+    pub(crate) _pad: [u32; 2],
+}
+
+/// A [`CtssPass`] over one scene's field and shading: its host WGSL (the
+/// declarations of the host group included) and the desc's choices.
+#[derive(PartialEq, Eq, Hash)]
+struct SdfPassKey {
+    host_wgsl: String,
+    batch: u32,
+    side: u32,
+    trace: Option<HostTrace>,
+}
+
+impl CacheKey for SdfPassKey {
+    type Value = CtssPass;
 }
 
 pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> {
@@ -219,7 +262,9 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     let cone = method.technique().is_cone_traced();
     let params = method.ctss_params(camera, h, max_distance, max_steps);
     let pixels = w as u64 * h as u64;
-    let groups = compute::workgroups(ctx, "SDF", w, h, WORKGROUP)?;
+    // The pass dispatches 8×8 workgroups: refuse a frame the device cannot
+    // dispatch with this backend's message.
+    compute::workgroups(ctx, "SDF", w, h, WORKGROUP)?;
     let px_bytes = pixels * 16;
     ctx.check_buffer_size("the colour buffer", px_bytes)?;
 
@@ -229,39 +274,73 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     } else {
         ASAP_BATCH
     };
-    let frame_constants = SdfFrame::new(job, (max_distance, max_steps), side, cone);
+    let trace = HostTrace::of(job);
+    let frame_constants = SdfFrame::new(job, (max_distance, max_steps));
     let field = WgslField::compile(&g.root);
     let table = scatter_table(ctx, &field)?;
-    let mut b = Bindings::new(0);
-    b.uniform(ctx, "frame", "SdfFrame", &frame_constants)?;
-    b.uniform(ctx, "ctss", "subcone_CtssParams", &params)?;
-    b.storage(ctx, "color", "color_out", "array<vec4<f32>>", px_bytes)?;
-    b.storage(ctx, "counts", "counts_out", "array<vec4<u32>>", px_bytes)?;
-    if let Some(t) = &table {
-        b.buffer("sdf_data", "array<vec4<f32>>", BufferAccess::Read, t);
-    }
-    if settings.aovs {
-        // Depth and normal through each pixel centre (not timed, as on the CPU).
-        let plain = Method::new(Technique::NoAa).ctss_params(camera, h, max_distance, max_steps);
-        b.uniform(ctx, "aov_params", "subcone_CtssParams", &plain)?;
-        b.storage(ctx, "aovs", "aov_out", "array<vec4<f32>>", px_bytes)?;
-    }
     let shading = shading::shading_wgsl(&scene.materials, &scene.lights, shadows)?;
-    let pending = format!("const subcone_CTSS_BATCH: u32 = {batch}u;\n");
-    let sources = shader_sources(job, &field, &shading, &pending);
-    let mut program = Program::new(ctx, "sdf", &sources, &[&b])?;
-    let trace = program.pipeline("sdf_render")?;
+    let host = host_bindings(ctx, 1, &frame_constants, &params, table.as_deref())?;
+    let mut host_wgsl = [
+        subcone_kernels::ao::WGSL,
+        field.source.as_str(),
+        &shading,
+        TRACE_WGSL,
+    ]
+    .concat();
+    if job.scene.has_translucency() {
+        host_wgsl += TRANSLUCENT_WGSL;
+    }
+    if let Some(t) = trace {
+        host_wgsl += HOST_TRACE_WGSL;
+        host_wgsl += &t.sampler();
+    }
+    host_wgsl += &host.declarations();
+    let layout = host.layout(&ctx.device, "sdf");
+    let pass = ctss_pass(
+        ctx,
+        SdfPassKey {
+            host_wgsl,
+            batch,
+            side,
+            trace,
+        },
+        &layout,
+    )?;
+    let group = host.bind_group(&ctx.device, "sdf", &layout);
+    // The pass's outputs: allocated (and accounted) here, bound by the pass.
+    let mut out = Bindings::new(0);
+    out.storage(ctx, "color", "color_out", "array<vec4<f32>>", px_bytes)?;
+    out.storage(ctx, "counts", "counts_out", "array<vec4<u32>>", px_bytes)?;
+    let inputs = CtssBuffers {
+        camera: CtssCamera {
+            position: camera.position,
+            forward: camera.forward,
+            right: camera.right(),
+            up: camera.up,
+            fov_y: camera.fov_y,
+        },
+        params,
+        background: scene.background,
+        host_group: Some(&group),
+        size: (w, h),
+        output: out.get("color_out")?,
+        counts: Some(out.get("counts_out")?),
+    };
     let name = if cone {
         "cone tracing"
     } else {
         "sphere tracing"
     };
     let mut timings = Vec::new();
+    let mut recorded = Ok(());
     ctx.timed_pass(name, &mut timings, |enc| {
-        program.dispatch(enc, &trace, groups)
+        recorded = pass.encode_buffers(&ctx.device, &ctx.queue, enc, &inputs, None);
     })?;
-    let (color_px, post_buffers) = final_colour(ctx, job, &b, &mut timings)?;
-    let count_px: Vec<[u32; 4]> = compute::read(ctx, b.get("counts_out")?, pixels as usize)?;
+    recorded.map_err(|e| err(format!("{name}: {e}")))?;
+    // This frame's buffers are its own: the pass need not keep them.
+    pass.release_views();
+    let (color_px, post_buffers) = final_colour(ctx, job, &out, &mut timings)?;
+    let count_px: Vec<[u32; 4]> = compute::read(ctx, out.get("counts_out")?, pixels as usize)?;
 
     let mut frame = Frame::new(w, h);
     for (c, p) in frame.color.iter_mut().zip(&color_px) {
@@ -269,14 +348,14 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     }
     let per_pixel = side * side;
     let totals = Totals::of(&count_px, per_pixel);
-    let mut buffers = vec![("color", px_bytes as usize), ("counts", px_bytes as usize)];
+    let mut buffers = out.accounts().to_vec();
     buffers.extend(post_buffers);
     if table.is_some() {
         buffers.push(("sdf scatter table", field.data.len() * 16));
     }
 
     if settings.aovs {
-        centre_aovs(ctx, &mut program, &b, groups, pixels as usize, &mut frame)?;
+        centre_aovs(ctx, job, (max_distance, max_steps), &field, &host, &mut frame)?;
         frame.samples_per_pixel = Some(count_px.iter().map(|c| c[1] as f32).collect());
         buffers.push(("aovs", px_bytes as usize));
     }
@@ -296,6 +375,52 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         multi_sample_pixels: totals.multi,
     };
     Ok(frame)
+}
+
+/// The host group of `frame`'s programs, as group `index`: the frame's
+/// constants, the trace's parameters (`ctss`) and the field's scatter
+/// table, when it has one.
+fn host_bindings(
+    ctx: &GpuContext,
+    index: u32,
+    frame: &SdfFrame,
+    params: &subcone_kernels::ctss::CtssParams,
+    table: Option<&wgpu::Buffer>,
+) -> Result<Bindings, RenderError> {
+    let mut b = Bindings::new(index);
+    b.uniform(ctx, "frame", "SdfFrame", frame)?;
+    b.uniform(ctx, "ctss", "subcone_CtssParams", params)?;
+    if let Some(t) = table {
+        b.buffer("sdf_data", "array<vec4<f32>>", BufferAccess::Read, t);
+    }
+    Ok(b)
+}
+
+/// The [`CtssPass`] of `key`, compiled once per device and key, with the
+/// host group's `layout`.
+fn ctss_pass(
+    ctx: &GpuContext,
+    key: SdfPassKey,
+    layout: &wgpu::BindGroupLayout,
+) -> Result<Arc<CtssPass>, RenderError> {
+    if let Some(p) = ctx.cached(&key) {
+        return Ok(p);
+    }
+    let desc = CtssPassDesc::default()
+        .with_batch(key.batch)
+        .with_samples_per_side(key.side)
+        .with_trace(match key.trace {
+            None => CtssTrace::Kernels,
+            Some(_) => CtssTrace::Host,
+        })
+        .with_output(CtssOutput::Buffers { counts: true })
+        .with_host_layout(layout);
+    let pass = ctx
+        .scoped("sdf", || CtssPass::new(&ctx.device, &key.host_wgsl, &desc))?
+        .map_err(|e| err(format!("sdf: {e}")))?;
+    let pass = Arc::new(pass);
+    ctx.cache_insert(key, pass.clone());
+    Ok(pass)
 }
 
 /// Buffers by name and size in bytes ([`FrameStats::buffers`]).
@@ -329,63 +454,26 @@ fn final_colour(
 
 impl SdfFrame {
     /// The constants of `job`'s frame: its camera and size, the scene's
-    /// background and ambient, the march's `(max_distance, max_steps)`,
-    /// `side` samples per pixel side, cone or sphere tracing.
-    fn new(job: &Job, (max_distance, max_steps): (f32, u32), side: u32, cone: bool) -> Self {
+    /// background and ambient, the march's `(max_distance, max_steps)`.
+    fn new(job: &Job, (max_distance, max_steps): (f32, u32)) -> Self {
         let (scene, camera, settings) = (job.scene, job.camera, job.settings);
         let ao_radius = scene.sdf_geometry().map_or(0.0, |g| g.ao_radius());
         SdfFrame {
-            position: camera.position.to_array(),
-            width: settings.width,
-            forward: camera.forward.to_array(),
-            height: settings.height,
-            right: camera.right().to_array(),
-            half: (0.5 * camera.fov_y).tan(),
-            up: camera.up.to_array(),
-            max_distance,
+            camera: PinholeCamera::new(
+                camera.position,
+                (camera.forward, camera.right(), camera.up),
+                (0.5 * camera.fov_y).tan(),
+                (settings.width, settings.height),
+            ),
             background: scene.background.to_array(),
-            max_steps,
+            max_distance,
             ambient: scene.ambient.to_array(),
-            side,
-            cone: cone as u32,
+            max_steps,
             ao_rays: settings.ao_rays,
             ao_radius: if ao_radius.is_nan() { 0.0 } else { ao_radius },
-            _pad: 0,
+            _pad: [0; 2],
         }
     }
-}
-
-/// The shader of `job`'s frame, in order: the kernels, the compiled
-/// `field`, the scene's `shading`, the batch constant (`pending`), the
-/// entry points, the samplers of the opaque or semi-transparent path, and
-/// the AOV entry point when AOVs are asked for.
-fn shader_sources<'a>(
-    job: &Job,
-    field: &'a WgslField,
-    shading: &'a str,
-    pending: &'a str,
-) -> Vec<&'a str> {
-    let mut sources: Vec<&str> = kernels();
-    // The entry point right after trace.wgsl, where it was written first.
-    sources.extend([
-        field.source.as_str(),
-        shading,
-        pending,
-        TRACE_WGSL,
-        RENDER_WGSL,
-    ]);
-    // Semi-transparent materials take the K-mask path (CTSS §5.3), as on
-    // the CPU (`SdfView::render`); opaque scenes never compile it.
-    let translucent = job.scene.has_translucency();
-    sources.push(if translucent {
-        TRANSLUCENT_WGSL
-    } else {
-        OPAQUE_SAMPLERS
-    });
-    if job.settings.aovs {
-        sources.push(AOVS_WGSL);
-    }
-    sources
 }
 
 /// The frame's counters summed over its pixels (`counts_out`: steps,
@@ -423,17 +511,39 @@ impl Totals {
     }
 }
 
-/// The AOV pass (not timed): depth and normal through each of the
-/// `pixels` pixel centres into `frame`.
+/// The AOV pass (not timed): depth and normal through each pixel centre
+/// into `frame`, sphere traced through `field` in a program of its own
+/// over the frame's `host` group (group 1: [`host_bindings`]).
 fn centre_aovs(
     ctx: &GpuContext,
-    program: &mut Program,
-    b: &Bindings,
-    groups: (u32, u32),
-    pixels: usize,
+    job: &Job,
+    (max_distance, max_steps): (f32, u32),
+    field: &WgslField,
+    host: &Bindings,
     frame: &mut Frame,
 ) -> Result<(), RenderError> {
+    let (camera, scene, settings) = (job.camera, job.scene, job.settings);
+    let (w, h) = (settings.width, settings.height);
+    let pixels = w as usize * h as usize;
+    let shadows = job.passes.contains(Passes::SHADOW) && !scene.lights.is_empty();
+    let shading = shading::shading_wgsl(&scene.materials, &scene.lights, shadows)?;
+    let plain = Method::new(Technique::NoAa).ctss_params(camera, h, max_distance, max_steps);
+    let mut b = Bindings::new(0);
+    b.uniform(ctx, "aov_params", "subcone_CtssParams", &plain)?;
+    b.storage(ctx, "aovs", "aov_out", "array<vec4<f32>>", pixels as u64 * 16)?;
+    let pending = format!("const subcone_CTSS_BATCH: u32 = {ASAP_BATCH}u;\n");
+    let mut sources = kernels();
+    sources.extend([
+        field.source.as_str(),
+        &shading,
+        &pending,
+        subcone_passes::SPHERE_TRACE_HOOK,
+        TRACE_WGSL,
+        AOVS_WGSL,
+    ]);
+    let mut program = Program::new(ctx, "sdf aovs", &sources, &[&b, host])?;
     let aovs = program.pipeline("sdf_aovs")?;
+    let groups = compute::workgroups(ctx, "SDF", w, h, WORKGROUP)?;
     ctx.timed_pass("aovs", &mut Vec::new(), |enc| {
         program.dispatch(enc, &aovs, groups)
     })?;

@@ -16,38 +16,22 @@
 //! SDF scenes have no mirrors (the plan refuses them), so there are no
 //! secondary passes.
 
-use bytemuck::{Pod, Zeroable};
 use subcone_kernels::passes::{LayerLayout, Passes, Technique, MAX_LIGHTS};
-use subcone_kernels::sraa::SraaParams;
-use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderError};
+use subcone_scene::{Frame, FrameStats, PassTiming, RayCounts, RenderError};
 
 use super::{
-    centre_aovs, kernels, scatter_table, shading, SdfFrame, Totals, AOVS_WGSL, ASAP_BATCH,
-    OPAQUE_SAMPLERS, TRACE_WGSL, WORKGROUP,
+    centre_aovs, host_bindings, kernels, scatter_table, shading, SdfFrame, Totals, ASAP_BATCH,
+    TRACE_WGSL, WORKGROUP,
 };
 use crate::compute::{self, Allocate, Program};
 use crate::context::{err, GpuContext};
 use crate::triangles::resolve::{BufferLayers, BufferResolve};
 use crate::triangles::{accessors, shadow_and_secondary_accessors, SHADED_SAMPLE_ACCESSORS};
 use crate::Job;
-use subcone_passes::bind::{Bindings, BufferAccess};
+use subcone_passes::bind::Bindings;
 
 /// This module's entry points (`sdf_sraa_shade`, `sdf_sraa_geometry`).
 const SDF_SRAA_WGSL: &str = include_str!("sraa.wgsl");
-
-/// The frame's constants of SRAA-RT: [`SdfFrame`] and the method's SRAA
-/// parameters (`frame.sraa`, which the resolve's hooks read);
-/// `SdfSraaFrame` in WGSL ([`SRAA_FRAME_WGSL`]).
-#[repr(C)]
-#[derive(Clone, Copy, Pod, Zeroable)]
-pub(crate) struct SdfSraaFrame {
-    pub(crate) frame: SdfFrame,
-    pub(crate) sraa: SraaParams,
-}
-
-/// `struct SdfSraaFrame`, written out: trace.wgsl's `SdfFrame` member for
-/// member, then `sraa`.
-pub(crate) const SRAA_FRAME_WGSL: &str = include_str!("sraa_frame.wgsl");
 
 /// The WGSL header of the frame's buffers (as `triangles::subpixel_header`
 /// writes it for SRAA-RT on triangles): the layout constants and an accessor
@@ -118,20 +102,13 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         ctx.check_buffer_size(what, bytes)?;
     }
 
-    let frame = SdfSraaFrame {
-        frame: SdfFrame::new(job, (max_distance, max_steps), 1, false),
-        sraa: method.sraa(),
-    };
+    let frame = SdfFrame::new(job, (max_distance, max_steps));
     let field = subcone_sdf::wgsl::WgslField::compile(&g.root);
     let table = scatter_table(ctx, &field)?;
-    let mut b = Bindings::new(0);
-    b.uniform(ctx, "frame", "SdfSraaFrame", &frame)?;
-    b.uniform(ctx, "ctss", "subcone_CtssParams", &params)?;
+    let mut b = host_bindings(ctx, 0, &frame, &params, table.as_deref())?;
+    b.uniform(ctx, "sraa", "subcone_SraaParams", &method.sraa())?;
     b.storage(ctx, "color", "color", "array<vec4<f32>>", n * 16)?;
     b.storage(ctx, "counts", "counts_out", "array<vec4<u32>>", n * 16)?;
-    if let Some(t) = &table {
-        b.buffer("sdf_data", "array<vec4<f32>>", BufferAccess::Read, t);
-    }
     b.storage(ctx, "geometry", "geo", "array<subcone_Geometry>", n * 16)?;
     b.storage(
         ctx,
@@ -159,12 +136,6 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
             n * 16,
         )?;
     }
-    if settings.aovs {
-        // Depth and normal through each pixel centre (not timed, as on the CPU).
-        let plain = Method::new(Technique::NoAa).ctss_params(camera, h, max_distance, max_steps);
-        b.uniform(ctx, "aov_params", "subcone_CtssParams", &plain)?;
-        b.storage(ctx, "aovs", "aov_out", "array<vec4<f32>>", n * 16)?;
-    }
 
     let shading = shading::shading_wgsl(&scene.materials, &scene.lights, shadows)?;
     let incident = shading::light_incident_wgsl(&scene.lights);
@@ -177,13 +148,11 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         &shading,
         &incident,
         &pending,
+        subcone_passes::SPHERE_TRACE_HOOK,
         TRACE_WGSL,
-        OPAQUE_SAMPLERS,
+        head.as_str(),
+        SDF_SRAA_WGSL,
     ]);
-    if settings.aovs {
-        sources.push(AOVS_WGSL);
-    }
-    sources.extend([SRAA_FRAME_WGSL, head.as_str(), SDF_SRAA_WGSL]);
     let mut program = Program::new(ctx, "sdf sraa-rt", &sources, &[&b])?;
     let shade = program.pipeline("sdf_sraa_shade")?;
     let geometry = program.pipeline("sdf_sraa_geometry")?;
@@ -218,12 +187,16 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     }
     let totals = Totals::of(&count_px, 1);
     let mut buffers = b.accounts().to_vec();
+    if settings.aovs {
+        // Depth and normal through each pixel centre (not timed, as on the
+        // CPU), over a host group of its own.
+        let host = host_bindings(ctx, 1, &frame, &params, table.as_deref())?;
+        centre_aovs(ctx, job, (max_distance, max_steps), &field, &host, &mut out)?;
+        out.samples_per_pixel = Some(vec![1.0; pixels]);
+        buffers.push(("aovs", pixels * 16));
+    }
     if table.is_some() {
         buffers.push(("sdf scatter table", field.data.len() * 16));
-    }
-    if settings.aovs {
-        centre_aovs(ctx, &mut program, &b, groups, pixels, &mut out)?;
-        out.samples_per_pixel = Some(vec![1.0; pixels]);
     }
     out.stats = FrameStats {
         passes,

@@ -1,28 +1,24 @@
 // SRAA-RT on SDF scenes (Chiu et al., §3), passes "shading" and "geometry":
 // the twins of subcone_cpu::sphere::SdfView::{sraa_shading_pass,
 // sraa_geometry_pass, hit, shadow_states, shade_layers}, one invocation per
-// pixel. Follows trace.wgsl (camera_dir, normal_at, shadowed,
+// pixel. Follows trace.wgsl (SdfFrame, normal_at, shadowed,
 // ambient_occlusion), the scene's materials and `light_incident`
-// (shading.rs), the frame struct SdfSraaFrame (sraa_frame.wgsl: SdfFrame's
-// members and the SRAA parameters) and the generated header (NL, LAYER_LIGHTS, SCENE_LIGHTS,
+// (shading.rs) and the generated header (NL, LAYER_LIGHTS, SCENE_LIGHTS,
 // SINGLE, SHADOWS, MATERIAL and the get_/put_ accessors of the optional
-// buffers). Pass "antialiasing" (the paper's pass 2) is triangles/sraa.wgsl's
-// resolve_main over these buffers: the kernels' reconstruction loop
-// (subcone_sraa_reconstruct_run) with eq. 1 / eq. 2 weights.
+// buffers). Pass "antialiasing" (the paper's pass 2) is
+// subcone_passes::SraaPass over these buffers (sdf/sraa.rs): the kernels'
+// reconstruction loop (subcone_sraa_reconstruct_run) with eq. 1 / eq. 2
+// weights.
 //
 // SDF scenes have no mirrors (the plan refuses them): no secondary buffers.
 
-// Bindings (sdf/sraa.rs): frame (SdfSraaFrame); ctss (subcone_CtssParams);
+// Bindings (sdf/sraa.rs): frame (SdfFrame); sraa (subcone_SraaParams);
+// ctss (subcone_CtssParams);
 // color, the resolved pixels; counts_out, per pixel (SDF evaluations, shaded
 // samples, shadow rays, occlusion rays); geo, the shaded samples' geometry;
 // values, their NL layers; shadow_buf, their shadow states (with light
 // layers); sub_geo_buf and sub_shadow_buf, the four subsamples' geometry and
 // shadow states; sdf_data, the field's scatter table, when it has one.
-
-// The SRAA parameters the resolve's hooks (triangles/sraa.wgsl) read.
-fn sraa_params() -> subcone_SraaParams {
-    return frame.sraa;
-}
 
 struct SdfHit {
     q: vec3<f32>,
@@ -53,7 +49,7 @@ fn sdf_hit(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>) -> SdfHit {
 
 // Camera::view_depth.
 fn view_depth(q: vec3<f32>) -> f32 {
-    return dot(q - frame.position, frame.forward);
+    return dot(q - frame.camera.position, frame.camera.forward);
 }
 
 // SdfView::shadow_states: bit l set = light l shadowed at q (normal n facing
@@ -115,10 +111,10 @@ fn pixel_centre(x: u32, y: u32) -> vec2<f32> {
 // preset's shaded offset, sphere traced and shaded into layers.
 @compute @workgroup_size(8, 8)
 fn sdf_sraa_shade(@builtin(global_invocation_id) gid: vec3<u32>) {
-    if gid.x >= frame.width || gid.y >= frame.height {
+    if gid.x >= frame.camera.width || gid.y >= frame.camera.height {
         return;
     }
-    let j = gid.y * frame.width + gid.x;
+    let j = gid.y * frame.camera.width + gid.x;
     var steps = 0u;
     var samples = 0u;
     var shadow = 0u;
@@ -128,8 +124,8 @@ fn sdf_sraa_shade(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     geo[j] = subcone_Geometry(vec3<f32>(0.0), subcone_inf());
     put_shadow(j, 0u);
-    let d = camera_dir(pixel_centre(gid.x, gid.y) + subcone_sraa_shaded_offset(frame.sraa));
-    let h = sdf_hit(frame.position, d, &steps);
+    let d = subcone_pinhole_dir(frame.camera, pixel_centre(gid.x, gid.y) + subcone_sraa_shaded_offset(sraa));
+    let h = sdf_hit(frame.camera.position, d, &steps);
     if !h.hit {
         put_value(j, 0u, frame.background);
     } else {
@@ -155,10 +151,10 @@ fn shadow_agreement(x: u32, y: u32) -> vec2<u32> {
     var all_shadowed = 0xffffffffu;
     var any_shadowed = 0u;
     var dark = all_lights;
-    let nb = subcone_neighbourhood(x, y, subcone_SHADED_SAMPLE, vec2<f32>(0.0), subcone_sraa_radius(frame.sraa), frame.width, frame.height);
+    let nb = subcone_neighbourhood(x, y, subcone_SHADED_SAMPLE, vec2<f32>(0.0), subcone_sraa_radius(sraa), frame.camera.width, frame.camera.height);
     for (var py = nb.y0; py < nb.y1; py++) {
         for (var px = nb.x0; px < nb.x1; px++) {
-            let jj = py * frame.width + px;
+            let jj = py * frame.camera.width + px;
             let b = get_shadow(jj);
             all_shadowed &= b;
             any_shadowed |= b;
@@ -179,10 +175,10 @@ fn shadow_agreement(x: u32, y: u32) -> vec2<u32> {
 // the shading pass's.
 @compute @workgroup_size(8, 8)
 fn sdf_sraa_geometry(@builtin(global_invocation_id) gid: vec3<u32>) {
-    if gid.x >= frame.width || gid.y >= frame.height {
+    if gid.x >= frame.camera.width || gid.y >= frame.camera.height {
         return;
     }
-    let j = gid.y * frame.width + gid.x;
+    let j = gid.y * frame.camera.width + gid.x;
     var steps = 0u;
     var shadow = 0u;
     var agreement = vec2<u32>(0xffffffffu, 0u);
@@ -190,15 +186,15 @@ fn sdf_sraa_geometry(@builtin(global_invocation_id) gid: vec3<u32>) {
         agreement = shadow_agreement(gid.x, gid.y);
     }
     for (var k = 0u; k < 4u; k++) {
-        if subcone_sraa_is_shaded_subsample(frame.sraa, k) {
+        if subcone_sraa_is_shaded_subsample(sraa, k) {
             put_sub_geo(j, k, geo[j]);
             put_sub_shadow(j, k, get_shadow(j));
             continue;
         }
         put_sub_geo(j, k, subcone_Geometry(vec3<f32>(0.0), subcone_inf()));
         put_sub_shadow(j, k, 0u);
-        let d = camera_dir(pixel_centre(gid.x, gid.y) + subcone_subpixel_offset(k));
-        let h = sdf_hit(frame.position, d, &steps);
+        let d = subcone_pinhole_dir(frame.camera, pixel_centre(gid.x, gid.y) + subcone_subpixel_offset(k));
+        let h = sdf_hit(frame.camera.position, d, &steps);
         if !h.hit {
             continue;
         }

@@ -1,54 +1,30 @@
-// SDF scenes: sphere tracing (NoAA, SSAA) and cone tracing (CTSS, CTSS-R,
-// SSAA+CTSS) of one pixel per invocation, mirroring
-// subcone_cpu::sphere::SdfView::{render, noaa, ctss, shade, shadowed, normal_at}.
+// SDF scenes: the hooks and shading through which subcone_passes::CtssPass
+// traces a scene's field (CTSS, CTSS-R, SSAA+CTSS with the kernels' trace;
+// NoAA, SSAA and semi-transparent scenes with the traces of sdf/mod.rs's
+// HostTrace), and the AOV and SRAA-RT programs sphere trace it, mirroring
+// subcone_cpu::sphere::SdfView::{noaa, shade, shadowed, normal_at}.
 //
-// Concatenated after PARAMS, the kernels' cone/mask/aggregate/ctss/ctss trace WGSL, the
-// field (scene_sdf_split) and the scene's materials and lights (shading.rs).
+// Concatenated after PARAMS, the kernels' ao, cone/mask/aggregate/ctss/ctss
+// trace WGSL, the field (scene_sdf_split) and the scene's materials and
+// lights (shading.rs).
 
-// Per-frame constants (sdf/mod.rs SdfFrame).
+// Per-frame constants (sdf/mod.rs SdfFrame, 112 bytes).
 struct SdfFrame {
-    position: vec3<f32>,
-    width: u32,
-    forward: vec3<f32>,
-    height: u32,
-    right: vec3<f32>,
-    // tan(fov_y / 2)
-    half: f32,
-    up: vec3<f32>,
-    max_distance: f32,
+    camera: subcone_PinholeCamera,
     background: vec3<f32>,
-    max_steps: u32,
+    max_distance: f32,
     ambient: vec3<f32>,
-    // Samples per pixel side.
-    side: u32,
-    // 1: cone tracing (CTSS family), 0: sphere tracing.
-    cone: u32,
+    max_steps: u32,
     // Ambient-occlusion rays per shaded point (0: off) and their length.
     ao_rays: u32,
     ao_radius: f32,
-    _pad: u32,
+    _pad0: u32,
+    _pad1: u32,
 }
 
-// Bindings (sdf/mod.rs): frame (SdfFrame); ctss (subcone_CtssParams);
-// color_out, the pixels' colours; counts_out, per pixel (SDF evaluations,
-// shaded samples, shadow rays, occlusion rays); sdf_data, the field's scatter table, when
-// it has one.
-
-// The field as the kernels' subcone_sphere_trace_split wants it: (surface, safe step).
-fn ctss_field(p: vec3<f32>) -> vec2<f32> {
-    let r = scene_sdf_split(p);
-    return vec2<f32>(r.y, r.x);
-}
-
-// Camera::ray: origin is the camera position; the unit direction through image point px.
-fn camera_dir(px: vec2<f32>) -> vec3<f32> {
-    let w = f32(max(frame.width, 1u));
-    let h = f32(max(frame.height, 1u));
-    let u = (2.0 * px.x / w - 1.0) * frame.half * (w / h);
-    let v = (1.0 - 2.0 * px.y / h) * frame.half;
-    let d = frame.forward + u * frame.right + v * frame.up;
-    return d * (1.0 / length(d));
-}
+// Bindings (sdf/mod.rs, sdf/sraa.rs): frame (SdfFrame); ctss
+// (subcone_CtssParams, the values CtssPass traces with); sdf_data, the
+// field's scatter table, when it has one.
 
 // SdfNode::normal_surface: tetrahedral differences of the surface distance,
 // step raised to 16 ulps of |p|, +y when the gradient vanishes.
@@ -155,9 +131,9 @@ fn shade(p: vec3<f32>, n0: vec3<f32>, dir: vec3<f32>, count: ptr<function, u32>)
     return c;
 }
 
-// SdfView::noaa: one sphere-traced sample.
+// SdfView::noaa: one sphere-traced sample against `background`.
 // The tallies (SdfView's Tally) are separate variables: steps, samples, shadow rays.
-fn noaa_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: ptr<function, u32>, shadow: ptr<function, u32>) -> vec3<f32> {
+fn noaa_sample(o: vec3<f32>, d: vec3<f32>, background: vec3<f32>, steps: ptr<function, u32>, samples: ptr<function, u32>, shadow: ptr<function, u32>) -> vec3<f32> {
     let hit = subcone_sphere_trace_split(ctss, o, d);
     *steps += hit.steps;
     if hit.t >= 0.0 {
@@ -165,15 +141,17 @@ fn noaa_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: p
         let q = o + hit.t * d;
         return shade(q, normal_at(q, hit.t, ctss.tan_theta), d, shadow);
     }
-    return frame.background;
+    return background;
 }
 
 // The hooks of the kernels' subcone_ctss_trace (ctss/trace.wgsl): the field
 // as SdfView's ConeFieldOf reads it (surface distance, safe step, material as
 // the object id; scene_sdf_split returns (safe, surface, material)), its normal
 // (normal_surface, SdfNode::normal) and its shading. subcone_CTSS_BATCH is
-// declared by sdf/mod.rs before this file: 8 for ASAP methods, DELAYED_BATCH
-// for delayed shading.
+// declared by CtssPass from its desc (8 for ASAP methods, DELAYED_BATCH for
+// delayed shading), and by sdf/sraa.rs for its own program; the NoAA hook
+// ctss_field (subcone_sphere_trace_split's field) is
+// subcone_passes::SPHERE_TRACE_HOOK on subcone_field.
 fn subcone_field(p: vec3<f32>) -> vec3<f32> {
     let r = scene_sdf_split(p);
     return vec3<f32>(r.y, r.x, r.z);
@@ -183,25 +161,19 @@ fn subcone_normal(p: vec3<f32>, h: f32) -> vec3<f32> {
     return normal_surface(p, h);
 }
 
-// Shadow rays traced by subcone_shade in the current cone (SdfView's
-// Tally::shadow); ctss_sample hands them on to counts_out.
-var<private> ctss_shadow_rays: u32;
+// Shadow rays traced in the current invocation (SdfView's Tally::shadow)
+// by subcone_shade and the host traces; with ao_rays_traced, the pass's
+// counters (subcone_counters).
+var<private> shadow_rays_traced: u32;
 
 fn subcone_shade(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> vec3<f32> {
     var count = 0u;
     let c = shade(p, n, dir, &count);
-    ctss_shadow_rays += count;
+    shadow_rays_traced += count;
     return c;
 }
 
-// SdfView::ctss: one cone-traced sample, the kernels' trace_field
-// (subcone_ctss_trace).
-fn ctss_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: ptr<function, u32>, shadow: ptr<function, u32>) -> vec3<f32> {
-    let axes = subcone_cross_section_frame(d, frame.up);
-    ctss_shadow_rays = 0u;
-    let r = subcone_ctss_trace(ctss, o, d, axes[0], axes[1], frame.background);
-    *steps += r.steps;
-    *samples += r.samples;
-    *shadow += ctss_shadow_rays;
-    return r.color;
+// CtssPass's counts.zw: the pixel's shadow and occlusion rays.
+fn subcone_counters() -> vec2<u32> {
+    return vec2<u32>(shadow_rays_traced, ao_rays_traced);
 }

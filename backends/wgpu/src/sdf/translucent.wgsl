@@ -9,12 +9,12 @@
 // - NoAA, SSAA: sphere tracing with alpha blending along the ray.
 // Samples are shaded as their groups close (ASAP), in the CPU's order.
 //
-// Concatenated after trace.wgsl (frame, ctss, ctss_field, normal_surface,
-// normal_at, shade, camera_dir), the kernels' transparency.wgsl, ctss.wgsl
-// and ctss/trace.wgsl (subcone_group_mask, through trace.wgsl's field hooks),
-// and shading.rs's material_opacity. sdf/mod.rs includes it, in place of
-// OPAQUE_SAMPLERS, when the scene has translucency: its pixel_cone_sample and
-// pixel_sphere_sample are then sdf_render's samplers.
+// Concatenated after trace.wgsl (frame, ctss, normal_surface, normal_at,
+// shade), the kernels' transparency.wgsl, ctss.wgsl and ctss/trace.wgsl
+// (subcone_group_mask, through trace.wgsl's field hooks), and shading.rs's
+// material_opacity. sdf/mod.rs includes it when the scene has translucency:
+// its ctss_translucent_sample and noaa_translucent_sample are then the
+// samplers of CtssPass's host trace (host_trace.wgsl).
 
 // No group open (SdfView::ctss_translucent's group_material = None).
 const NO_GROUP: u32 = 0xffffffffu;
@@ -33,8 +33,8 @@ fn translucent_record(st: ptr<function, subcone_ConeStepper>, agg: ptr<function,
 }
 
 // SdfView::ctss_translucent: one CTSS sample with K transparency masks.
-fn ctss_translucent_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: ptr<function, u32>, shadow: ptr<function, u32>) -> vec3<f32> {
-    let axes = subcone_cross_section_frame(d, frame.up);
+fn ctss_translucent_sample(o: vec3<f32>, d: vec3<f32>, background: vec3<f32>, steps: ptr<function, u32>, samples: ptr<function, u32>, shadow: ptr<function, u32>) -> vec3<f32> {
+    let axes = subcone_cross_section_frame(d, frame.camera.up);
     var st = subcone_cone_stepper_new(ctss);
     var agg = subcone_aggregate_new();
     // The object nearest where the open group began, and the one the trace
@@ -83,7 +83,7 @@ fn ctss_translucent_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>
     }
     *steps += st.steps;
     *samples += st.samples;
-    return subcone_aggregate_resolve(agg, frame.background, subcone_cone_stepper_background_weight(st));
+    return subcone_aggregate_resolve(agg, background, subcone_cone_stepper_background_weight(st));
 }
 
 // SdfView::noaa_translucent: one NoAA sample with alpha blending along the
@@ -91,7 +91,7 @@ fn ctss_translucent_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>
 // (times the transmittance so far), marches through the object (steps of
 // max(|d|, PASS_STEP·R_c)) until another object is nearest or it is outside
 // and clear of the hit band, and traces on with transmittance ·(1 − alpha).
-fn noaa_translucent_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: ptr<function, u32>, shadow: ptr<function, u32>) -> vec3<f32> {
+fn noaa_translucent_sample(o: vec3<f32>, d: vec3<f32>, background: vec3<f32>, steps: ptr<function, u32>, samples: ptr<function, u32>, shadow: ptr<function, u32>) -> vec3<f32> {
     let hard = subcone_occlusion_thresholds(ctss.eps).y;
     var color = vec3<f32>(0.0);
     var transmittance = 1.0;
@@ -106,7 +106,7 @@ fn noaa_translucent_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>
         *steps += hit.steps;
         budget -= min(hit.steps, budget);
         if !(hit.t >= 0.0) {
-            return color + transmittance * frame.background;
+            return color + transmittance * background;
         }
         *samples += 1u;
         let q = o + hit.t * d;
@@ -122,14 +122,14 @@ fn noaa_translucent_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>
         // Each iteration spends one evaluation of the budget.
         for (var j = 0u; j <= ctss.max_steps; j++) {
             if budget == 0u || subcone_is_nan(t) || t >= ctss.t_max {
-                return color + transmittance * frame.background;
+                return color + transmittance * background;
             }
             let f = scene_sdf_split(o + t * d);
             budget -= 1u;
             *steps += 1u;
             let dist = f.y;
             if subcone_is_nan(dist) {
-                return color + transmittance * frame.background;
+                return color + transmittance * background;
             }
             // Another object is nearest (or, if it touches this one, the ray
             // is inside it): trace on from here.
@@ -151,14 +151,5 @@ fn noaa_translucent_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>
         }
         t0 = t;
     }
-    return color + transmittance * frame.background;
-}
-
-// sdf_render's samplers on the semi-transparent path (SdfView::render).
-fn pixel_cone_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: ptr<function, u32>, shadow: ptr<function, u32>) -> vec3<f32> {
-    return ctss_translucent_sample(o, d, steps, samples, shadow);
-}
-
-fn pixel_sphere_sample(o: vec3<f32>, d: vec3<f32>, steps: ptr<function, u32>, samples: ptr<function, u32>, shadow: ptr<function, u32>) -> vec3<f32> {
-    return noaa_translucent_sample(o, d, steps, samples, shadow);
+    return color + transmittance * background;
 }
