@@ -3,7 +3,8 @@
 
 use std::path::{Path, PathBuf};
 
-use subcone_load::data_dir;
+use subcone_load::{data_dir, load_mesh_file};
+use subcone_scene::SceneError;
 
 /// A file of the shared data directory. Fails (never skips) when the directory
 /// is missing, saying how to point the tests at it.
@@ -90,4 +91,15 @@ pub fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
     out.extend_from_slice(b"BIN\0");
     out.extend_from_slice(&b);
     out
+}
+
+/// Loading the mesh file at `path` fails with an error that `kind` accepts,
+/// whose message says `what`.
+pub fn assert_load_fails(path: &Path, kind: impl Fn(&SceneError) -> bool, what: &str) {
+    let err = load_mesh_file(path).unwrap_err();
+    assert!(kind(&err), "{err}");
+    assert!(
+        err.to_string().contains(what),
+        "{err} does not say {what:?}"
+    );
 }
