@@ -4,7 +4,7 @@ mod common;
 
 use std::path::Path;
 
-use common::{assert_load_fails, write};
+use common::{load_error, write};
 use glam::Vec3;
 use subcone_load::{load_mesh_file, load_scene, scene_from_arg, SaveFrame};
 use subcone_scene::{Camera, Frame, RenderError, RenderSettings, SceneError};
@@ -166,11 +166,8 @@ fn degenerate_triangles_are_dropped_and_counted() {
         "flat.obj",
         "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n",
     );
-    assert_load_fails(
-        &path,
-        |e| matches!(e, SceneError::Empty { .. }),
-        "1 degenerate",
-    );
+    let err = load_error(&path, "1 degenerate");
+    assert!(matches!(err, SceneError::Empty { .. }), "{err}");
 }
 
 #[test]
