@@ -2,33 +2,34 @@
 
 mod common;
 
-use common::{base64, f32_bytes, glb, u16_bytes, write};
+use common::{base64, f32_bytes, glb, load_error, u16_bytes, write};
 use glam::Vec3;
 use subcone_load::{load_mesh_file, load_scene};
 use subcone_scene::{Albedo, SceneError};
 
-/// A unit quad in the z = 0 plane facing +z: positions, normals, indices.
-fn quad_buffer() -> (Vec<u8>, usize, usize, usize) {
+/// A unit quad in the z = 0 plane facing +z: its buffer and the byte
+/// lengths of its positions, normals and indices.
+struct Quad {
+    buf: Vec<u8>,
+    lengths: (usize, usize, usize),
+}
+
+fn quad_buffer() -> Quad {
     let positions = f32_bytes(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 0.0]);
     let normals = f32_bytes(&[0.0, 0.0, 1.0].repeat(4));
     let indices = u16_bytes(&[0, 1, 2, 0, 2, 3]);
-    let (p, n, i) = (positions.len(), normals.len(), indices.len());
+    let lengths = (positions.len(), normals.len(), indices.len());
     let mut buf = positions;
     buf.extend(normals);
     buf.extend(indices);
-    (buf, p, n, i)
+    Quad { buf, lengths }
 }
 
 /// glTF JSON for the quad; `uri` is the buffer's uri (None for GLB's BIN chunk),
-/// `nodes` the node list, `scene_nodes` the default scene's roots.
-fn quad_json(
-    uri: Option<&str>,
-    len: usize,
-    pn: (usize, usize, usize),
-    nodes: &str,
-    roots: &str,
-) -> String {
-    let (p, n, i) = pn;
+/// `nodes` the node list, `roots` the default scene's roots.
+fn quad_json(uri: Option<&str>, quad: &Quad, nodes: &str, roots: &str) -> String {
+    let len = quad.buf.len();
+    let (p, n, i) = quad.lengths;
     let uri = uri
         .map(|u| format!(r#""uri": "{u}", "#))
         .unwrap_or_default();
@@ -60,17 +61,17 @@ fn data_uri(buf: &[u8]) -> String {
     format!("data:application/octet-stream;base64,{}", base64(buf))
 }
 
+/// [`quad_json`] with one node, the scene's root, holding the mesh, and the
+/// buffer inline as a data URI.
+fn inline_quad_json(quad: &Quad) -> String {
+    quad_json(Some(&data_uri(&quad.buf)), quad, r#"[{"mesh": 0}]"#, "[0]")
+}
+
 #[test]
 fn gltf_quad_round_trip() {
     let dir = tempfile::tempdir().unwrap();
-    let (buf, p, n, i) = quad_buffer();
-    let json = quad_json(
-        Some(&data_uri(&buf)),
-        buf.len(),
-        (p, n, i),
-        r#"[{"mesh": 0}]"#,
-        "[0]",
-    );
+    let quad = quad_buffer();
+    let json = inline_quad_json(&quad);
     let path = write(dir.path(), "quad.gltf", json);
     let (mesh, materials, dropped) = load_mesh_file(&path).unwrap();
     assert_eq!(mesh.len(), 2);
@@ -95,32 +96,25 @@ fn gltf_quad_round_trip() {
 #[test]
 fn gltf_external_buffer_file() {
     let dir = tempfile::tempdir().unwrap();
-    let (buf, p, n, i) = quad_buffer();
-    write(dir.path(), "quad.bin", &buf);
-    let json = quad_json(
-        Some("quad.bin"),
-        buf.len(),
-        (p, n, i),
-        r#"[{"mesh": 0}]"#,
-        "[0]",
-    );
+    let quad = quad_buffer();
+    write(dir.path(), "quad.bin", &quad.buf);
+    let json = quad_json(Some("quad.bin"), &quad, r#"[{"mesh": 0}]"#, "[0]");
     let path = write(dir.path(), "external.gltf", json);
     let (mesh, _, _) = load_mesh_file(&path).unwrap();
     assert_eq!(mesh.len(), 2);
 
     // Without the .bin it is a load error naming the cause, not a panic.
     std::fs::remove_file(dir.path().join("quad.bin")).unwrap();
-    let err = load_mesh_file(&path).unwrap_err();
+    let err = load_error(&path, "buffer");
     assert!(matches!(err, SceneError::Load { .. }), "{err}");
-    assert!(err.to_string().contains("buffer"), "{err}");
 }
 
 #[test]
 fn glb_quad_round_trip() {
     let dir = tempfile::tempdir().unwrap();
-    let (buf, p, n, i) = quad_buffer();
-    let json = quad_json(None, buf.len(), (p, n, i), r#"[{"mesh": 0}]"#, "[0]");
-    let path = write(dir.path(), "quad.glb", glb(&json, &buf));
+    let quad = quad_buffer();
+    let json = quad_json(None, &quad, r#"[{"mesh": 0}]"#, "[0]");
+    let path = write(dir.path(), "quad.glb", glb(&json, &quad.buf));
     let (mesh, materials, dropped) = load_mesh_file(&path).unwrap();
     assert_eq!(mesh.len(), 2);
     assert!(!dropped.any());
@@ -134,7 +128,7 @@ fn glb_quad_round_trip() {
 #[test]
 fn gltf_node_transforms_compose_and_normals_use_the_inverse_transpose() {
     let dir = tempfile::tempdir().unwrap();
-    let (buf, p, n, i) = quad_buffer();
+    let quad = quad_buffer();
     // Node 0 rotates the quad about x by 45° (the quad's normal tilts), its child
     // node 1 holds the mesh under a non-uniform scale (1, 1, 3) and a
     // translation; node 2 holds the mesh again with a mirroring scale.
@@ -148,13 +142,7 @@ fn gltf_node_transforms_compose_and_normals_use_the_inverse_transpose() {
         s = half.sin(),
         c = half.cos()
     );
-    let json = quad_json(
-        Some(&data_uri(&buf)),
-        buf.len(),
-        (p, n, i),
-        &nodes,
-        "[0, 2]",
-    );
+    let json = quad_json(Some(&data_uri(&quad.buf)), &quad, &nodes, "[0, 2]");
     let path = write(dir.path(), "nodes.gltf", json);
     let (mesh, _, _) = load_mesh_file(&path).unwrap();
     assert_eq!(mesh.len(), 4, "the mesh is placed twice");
@@ -195,49 +183,29 @@ fn gltf_node_transforms_compose_and_normals_use_the_inverse_transpose() {
 #[test]
 fn gltf_points_and_lines_are_skipped() {
     let dir = tempfile::tempdir().unwrap();
-    let (buf, p, n, i) = quad_buffer();
-    let json = quad_json(Some(&data_uri(&buf)), buf.len(), (p, n, i), r#"[{"mesh": 0}]"#, "[0]")
+    let quad = quad_buffer();
+    let json = inline_quad_json(&quad)
         .replace(r#""material": 0}"#, r#""material": 0}, {"attributes": {"POSITION": 0}, "mode": 0}, {"attributes": {"POSITION": 0}, "mode": 1}"#);
     let path = write(dir.path(), "mixed.gltf", &json);
     let (mesh, _, _) = load_mesh_file(&path).unwrap();
     assert_eq!(mesh.len(), 2, "only the triangle primitive counts");
 
     // A file with points only has no triangles: a load error.
-    let points = quad_json(
-        Some(&data_uri(&buf)),
-        buf.len(),
-        (p, n, i),
-        r#"[{"mesh": 0}]"#,
-        "[0]",
-    )
-    .replace(r#""indices": 2, "material": 0"#, r#""mode": 0"#);
+    let points = inline_quad_json(&quad).replace(r#""indices": 2, "material": 0"#, r#""mode": 0"#);
     let path = write(dir.path(), "points.gltf", points);
-    let err = load_mesh_file(&path).unwrap_err();
+    let err = load_error(&path, "no triangles");
     assert!(matches!(err, SceneError::Load { .. }), "{err}");
-    assert!(err.to_string().contains("no triangles"), "{err}");
 }
 
 #[test]
 fn gltf_out_of_range_index_is_an_error() {
     let dir = tempfile::tempdir().unwrap();
-    let positions = f32_bytes(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 0.0]);
-    let normals = f32_bytes(&[0.0, 0.0, 1.0].repeat(4));
-    let indices = u16_bytes(&[0, 1, 2, 0, 2, 9]);
-    let mut buf = positions.clone();
-    buf.extend(&normals);
-    buf.extend(&indices);
-    let json = quad_json(
-        Some(&data_uri(&buf)),
-        buf.len(),
-        (positions.len(), normals.len(), indices.len()),
-        r#"[{"mesh": 0}]"#,
-        "[0]",
-    );
+    // The quad's last index, 3, becomes 9: past its four vertices.
+    let mut quad = quad_buffer();
+    let last = quad.buf.len() - 2;
+    quad.buf[last..].copy_from_slice(&9u16.to_le_bytes());
+    let json = inline_quad_json(&quad);
     let path = write(dir.path(), "badindex.gltf", json);
-    let err = load_mesh_file(&path).unwrap_err();
+    let err = load_error(&path, "vertex that does not exist");
     assert!(matches!(err, SceneError::Load { .. }), "{err}");
-    assert!(
-        err.to_string().contains("vertex that does not exist"),
-        "{err}"
-    );
 }

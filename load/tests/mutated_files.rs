@@ -84,13 +84,34 @@ fn rounds() -> usize {
         .unwrap_or(400)
 }
 
-fn check(path: &std::path::Path) {
-    if let Err(e) = load_mesh_file(path) {
-        assert!(
-            !e.to_string().contains("the parser failed"),
-            "{}: {e}",
-            path.display()
+/// `src`, a valid `ext` file of `triangles` triangles written into `dir`,
+/// loads; then [`rounds`] mutations of it (drawn from `seed`, inserting
+/// `interesting` bytes) each load or fail with an error, never a panic
+/// inside the parser.
+fn survives_mutations(
+    dir: &std::path::Path,
+    ext: &str,
+    src: &[u8],
+    triangles: usize,
+    seed: u64,
+    interesting: &[u8],
+) {
+    let path = write(dir, &format!("ok.{ext}"), src);
+    assert_eq!(load_mesh_file(&path).unwrap().0.len(), triangles);
+    let mut rng = Rng(seed);
+    for i in 0..rounds() {
+        let path = write(
+            dir,
+            &format!("m{i}.{ext}"),
+            mutate(&mut rng, src, interesting),
         );
+        if let Err(e) = load_mesh_file(&path) {
+            assert!(
+                !e.to_string().contains("the parser failed"),
+                "{}: {e}",
+                path.display()
+            );
+        }
     }
 }
 
@@ -99,17 +120,14 @@ fn mutated_glb() {
     let dir = tempfile::tempdir().unwrap();
     let (buf, json) = quad();
     let src = glb(&json, &buf);
-    let path = write(dir.path(), "ok.glb", &src);
-    assert_eq!(load_mesh_file(&path).unwrap().0.len(), 4);
-    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
-    for i in 0..rounds() {
-        let path = write(
-            dir.path(),
-            &format!("m{i}.glb"),
-            mutate(&mut rng, &src, b"0123456789{}[]\",:-. "),
-        );
-        check(&path);
-    }
+    survives_mutations(
+        dir.path(),
+        "glb",
+        &src,
+        4,
+        0x9e37_79b9_7f4a_7c15,
+        b"0123456789{}[]\",:-. ",
+    );
 }
 
 #[test]
@@ -123,17 +141,14 @@ fn mutated_gltf_json() {
             base64(&buf)
         ),
     );
-    let path = write(dir.path(), "ok.gltf", &json);
-    assert_eq!(load_mesh_file(&path).unwrap().0.len(), 4);
-    let mut rng = Rng(0x2545_f491_4f6c_dd1d);
-    for i in 0..rounds() {
-        let path = write(
-            dir.path(),
-            &format!("m{i}.gltf"),
-            mutate(&mut rng, json.as_bytes(), b"0123456789{}[]\",:-.e "),
-        );
-        check(&path);
-    }
+    survives_mutations(
+        dir.path(),
+        "gltf",
+        json.as_bytes(),
+        4,
+        0x2545_f491_4f6c_dd1d,
+        b"0123456789{}[]\",:-.e ",
+    );
 }
 
 #[test]
@@ -142,15 +157,12 @@ fn mutated_obj() {
     let src = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n\
                vn 0 0 1\nusemtl a\nf 1/1/1 2/2/1 3/3/1 4/1/1\nf -1 -2 -3\nl 1 2\n";
     write(dir.path(), "m.mtl", "newmtl a\nKd 0.5 0.2 0.1\nKe 0 0 0\n");
-    let path = write(dir.path(), "ok.obj", src);
-    assert_eq!(load_mesh_file(&path).unwrap().0.len(), 3);
-    let mut rng = Rng(0x5851_f42d_4c95_7f2d);
-    for i in 0..rounds() {
-        let path = write(
-            dir.path(),
-            &format!("m{i}.obj"),
-            mutate(&mut rng, src.as_bytes(), b"0123456789/- \nfvne.#"),
-        );
-        check(&path);
-    }
+    survives_mutations(
+        dir.path(),
+        "obj",
+        src.as_bytes(),
+        3,
+        0x5851_f42d_4c95_7f2d,
+        b"0123456789/- \nfvne.#",
+    );
 }

@@ -202,6 +202,16 @@ impl Frame {
         self.color[(y * self.width + x) as usize]
     }
 
+    /// The colours' bits, channel by channel, pixel by pixel: what two
+    /// frames must share to be the same image bit for bit.
+    pub fn color_bits(&self) -> Vec<u32> {
+        self.color
+            .iter()
+            .flat_map(|c| c.to_array())
+            .map(f32::to_bits)
+            .collect()
+    }
+
     /// The image a user would look at: clamped to `[0, 1]`, sRGB-encoded, 8-bit RGB.
     pub fn to_srgb8(&self) -> Vec<u8> {
         let q = |c: f32| (linear_to_srgb(c) * 255.0 + 0.5) as u8;

@@ -4,6 +4,7 @@
 use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
+use subcone_kernels::passes::SceneFeatures;
 
 /// An RGB texture, linear, sampled nearest-neighbour with wrapping.
 #[derive(Clone, Debug, PartialEq)]
@@ -128,6 +129,21 @@ impl Material {
     /// Whether the albedo varies over the surface.
     pub fn is_textured(&self) -> bool {
         !matches!(self.albedo, Albedo::Solid(_))
+    }
+
+    /// The passes a scene needs for the materials its geometry uses:
+    /// reflections for a reflective one, textures for a textured one.
+    pub(crate) fn features<'a>(used: impl IntoIterator<Item = &'a Material>) -> SceneFeatures {
+        let mut f = SceneFeatures::empty();
+        for m in used {
+            if m.is_reflective() {
+                f |= SceneFeatures::HAS_REFLECTIONS;
+            }
+            if m.is_textured() {
+                f |= SceneFeatures::HAS_TEXTURES;
+            }
+        }
+        f
     }
 
     /// Diffuse colour at world point `p` with surface coordinates `uv`.

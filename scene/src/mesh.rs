@@ -74,6 +74,33 @@ impl TriangleMesh {
         self.push_flat([q[0], q[2], q[3]], material);
     }
 
+    /// Add a floor at `y = 0` as a grid of `count.0 × count.1` quads of
+    /// `step.0 × step.1`, the first at `(x, z) = corner`, column by column
+    /// along `x` (smaller triangles make a better BVH than two huge ones).
+    pub(crate) fn push_floor_grid(
+        &mut self,
+        corner: (f32, f32),
+        step: (f32, f32),
+        count: (u32, u32),
+        material: u32,
+    ) {
+        for i in 0..count.0 {
+            for k in 0..count.1 {
+                let (x0, z0) = (corner.0 + step.0 * i as f32, corner.1 + step.1 * k as f32);
+                let (x1, z1) = (x0 + step.0, z0 + step.1);
+                self.push_quad(
+                    [
+                        Vec3::new(x0, 0.0, z0),
+                        Vec3::new(x0, 0.0, z1),
+                        Vec3::new(x1, 0.0, z1),
+                        Vec3::new(x1, 0.0, z0),
+                    ],
+                    material,
+                );
+            }
+        }
+    }
+
     /// Add an axis-aligned box transformed by `m`.
     pub fn push_box(&mut self, m: Mat4, material: u32) {
         let c = |x: f32, y: f32, z: f32| m.transform_point3(Vec3::new(x, y, z));

@@ -199,22 +199,7 @@ impl Scene {
             Geometry::Triangles(m) => m.materials.iter().any(|&k| k as usize == i),
             Geometry::Sdf(_) => sdf_used.contains(&(i as u32)),
         };
-        if self
-            .materials
-            .iter()
-            .enumerate()
-            .any(|(i, m)| m.is_reflective() && used(i))
-        {
-            f |= SceneFeatures::HAS_REFLECTIONS;
-        }
-        if self
-            .materials
-            .iter()
-            .enumerate()
-            .any(|(i, m)| m.is_textured() && used(i))
-        {
-            f |= SceneFeatures::HAS_TEXTURES;
-        }
-        f
+        let materials = self.materials.iter().enumerate();
+        f | Material::features(materials.filter(|&(i, _)| used(i)).map(|(_, m)| m))
     }
 }

@@ -49,7 +49,8 @@ use core::ops::{Add, Div, Mul, Neg, Sub};
 
 use glam::{Quat, Vec3, Vec4};
 
-use subcone_scene::sdf::{lane, Aabb, Instance, Op, Scatter, SdfNode, Shape, SplitDistance};
+use subcone_scene::sdf::lane::{self, Lane};
+use subcone_scene::sdf::{Aabb, Instance, Op, Scatter, SdfNode, Shape, SplitDistance};
 
 /// Points evaluated together: the width of a packet.
 pub const LANES: usize = 8;
@@ -183,20 +184,6 @@ macro_rules! lanewise {
 }
 
 impl F8 {
-    #[inline(always)]
-    fn splat(v: f32) -> F8 {
-        F8([v; LANES])
-    }
-    /// Rust's `f32::min` (NaN-ignoring), lane-wise.
-    #[inline(always)]
-    fn min(self, o: F8) -> F8 {
-        lanewise!(self, |k| self.0[k].min(o.0[k]))
-    }
-    /// Rust's `f32::max`, lane-wise.
-    #[inline(always)]
-    fn max(self, o: F8) -> F8 {
-        lanewise!(self, |k| self.0[k].max(o.0[k]))
-    }
     /// glam's vector `min`: `if a < b { a } else { b }`.
     #[inline(always)]
     fn gmin(self, o: F8) -> F8 {
@@ -206,56 +193,9 @@ impl F8 {
             o.0[k]
         })
     }
-    /// glam's vector `max`: `if a > b { a } else { b }`.
-    #[inline(always)]
-    fn gmax(self, o: F8) -> F8 {
-        lanewise!(self, |k| if self.0[k] > o.0[k] {
-            self.0[k]
-        } else {
-            o.0[k]
-        })
-    }
-    /// Rust's `f32::clamp`.
-    #[inline(always)]
-    fn clamp(self, lo: F8, hi: F8) -> F8 {
-        lanewise!(self, |k| {
-            let mut v = self.0[k];
-            if v < lo.0[k] {
-                v = lo.0[k];
-            }
-            if v > hi.0[k] {
-                v = hi.0[k];
-            }
-            v
-        })
-    }
-    #[inline(always)]
-    fn abs(self) -> F8 {
-        lanewise!(self, |k| self.0[k].abs())
-    }
-    #[inline(always)]
-    fn sqrt(self) -> F8 {
-        lanewise!(self, |k| self.0[k].sqrt())
-    }
-    #[inline(always)]
-    fn lt(self, o: F8) -> M8 {
-        W8::from_fn(|k| self.0[k] < o.0[k])
-    }
-    #[inline(always)]
-    fn gt(self, o: F8) -> M8 {
-        W8::from_fn(|k| self.0[k] > o.0[k])
-    }
     #[inline(always)]
     fn ge(self, o: F8) -> M8 {
         W8::from_fn(|k| self.0[k] >= o.0[k])
-    }
-    #[inline(always)]
-    fn eq(self, o: F8) -> M8 {
-        W8::from_fn(|k| self.0[k] == o.0[k])
-    }
-    #[inline(always)]
-    fn select(m: M8, a: F8, b: F8) -> F8 {
-        m.select(a, b)
     }
 }
 
@@ -299,47 +239,64 @@ impl Neg for F8 {
 
 /// The primitives' operations ([`subcone_scene::sdf::lane`]) on eight lanes:
 /// each the `f32` operation of [`Lane for f32`](lane::Lane), lane by lane.
-impl lane::Lane for F8 {
+impl Lane for F8 {
     type Mask = M8;
     #[inline(always)]
     fn splat(v: f32) -> F8 {
-        F8::splat(v)
+        F8([v; LANES])
     }
+    /// Rust's `f32::min` (NaN-ignoring), lane-wise.
     #[inline(always)]
     fn min(self, o: F8) -> F8 {
-        F8::min(self, o)
+        lanewise!(self, |k| self.0[k].min(o.0[k]))
     }
+    /// Rust's `f32::max`, lane-wise.
     #[inline(always)]
     fn max(self, o: F8) -> F8 {
-        F8::max(self, o)
+        lanewise!(self, |k| self.0[k].max(o.0[k]))
     }
+    /// glam's vector `max`: `if a > b { a } else { b }`.
     #[inline(always)]
     fn gmax(self, o: F8) -> F8 {
-        F8::gmax(self, o)
+        lanewise!(self, |k| if self.0[k] > o.0[k] {
+            self.0[k]
+        } else {
+            o.0[k]
+        })
     }
+    /// Rust's `f32::clamp`.
     #[inline(always)]
     fn clamp(self, lo: F8, hi: F8) -> F8 {
-        F8::clamp(self, lo, hi)
+        lanewise!(self, |k| {
+            let mut v = self.0[k];
+            if v < lo.0[k] {
+                v = lo.0[k];
+            }
+            if v > hi.0[k] {
+                v = hi.0[k];
+            }
+            v
+        })
     }
     #[inline(always)]
     fn abs(self) -> F8 {
-        F8::abs(self)
+        lanewise!(self, |k| self.0[k].abs())
     }
     #[inline(always)]
     fn sqrt(self) -> F8 {
-        F8::sqrt(self)
+        lanewise!(self, |k| self.0[k].sqrt())
     }
     #[inline(always)]
     fn lt(self, o: F8) -> M8 {
-        F8::lt(self, o)
+        W8::from_fn(|k| self.0[k] < o.0[k])
     }
     #[inline(always)]
     fn gt(self, o: F8) -> M8 {
-        F8::gt(self, o)
+        W8::from_fn(|k| self.0[k] > o.0[k])
     }
     #[inline(always)]
     fn eq(self, o: F8) -> M8 {
-        F8::eq(self, o)
+        W8::from_fn(|k| self.0[k] == o.0[k])
     }
     #[inline(always)]
     fn is_finite(self) -> M8 {

@@ -7,8 +7,8 @@
 
 use glam::{Quat, Vec3};
 use subcone_scene::builtin::{sdf_builtin, SDF_SCENES, STIFF_SCENES};
-use subcone_scene::sdf::{ScatterConfig, SdfNode};
-use subcone_sdf::program::{Points, SdfProgram, LANES};
+use subcone_scene::sdf::{ScatterConfig, SdfNode, SplitDistance};
+use subcone_sdf::program::{Points, SdfProgram, SplitLanes, LANES};
 
 /// A small deterministic generator (no dependency, same points every run).
 struct Rng(u64);
@@ -20,6 +20,30 @@ impl Rng {
             .wrapping_add(1442695040888963407);
         ((self.0 >> 40) as f32) / (1u64 << 24) as f32
     }
+}
+
+/// Each active lane of the program's `out` at `pts` is the tree's value
+/// there, as `same` judges; returns how many lanes were compared.
+fn assert_lanes(
+    name: &str,
+    tree: &SdfNode,
+    pts: &Points,
+    active: u8,
+    out: &SplitLanes,
+    same: impl Fn(&SplitDistance, &SplitDistance) -> bool,
+) -> usize {
+    let mut compared = 0;
+    for k in (0..LANES).filter(|k| active & (1 << k) != 0) {
+        compared += 1;
+        let p = pts.get(k);
+        let want = tree.eval_split(p);
+        let got = out.get(k);
+        assert!(
+            same(&want, &got),
+            "{name}: lane {k} at {p:?}: the tree gives {want:?}, the program {got:?}"
+        );
+    }
+    compared
 }
 
 /// Compare the program with the tree at `n` packets of points: points
@@ -47,21 +71,11 @@ fn check(name: &str, tree: &SdfNode, lo: Vec3, hi: Vec3, n: usize) {
             (rng.unit() * 256.0) as u8 | 1
         };
         let out = program.eval_split_outlined(&pts, active, &mut scratch);
-        for k in 0..LANES {
-            if active & (1 << k) == 0 {
-                continue;
-            }
-            evaluated += 1;
-            let p = pts.get(k);
-            let want = tree.eval_split(p);
-            let got = out.get(k);
-            assert!(
-                want.safe.to_bits() == got.safe.to_bits()
-                    && want.surface.to_bits() == got.surface.to_bits()
-                    && want.material == got.material,
-                "{name}: at {p:?} the tree gives {want:?}, the program {got:?}"
-            );
-        }
+        evaluated += assert_lanes(name, tree, &pts, active, &out, |want, got| {
+            want.safe.to_bits() == got.safe.to_bits()
+                && want.surface.to_bits() == got.surface.to_bits()
+                && want.material == got.material
+        });
     }
     assert!(evaluated > n, "{name}: too few lanes compared");
 }
@@ -199,13 +213,12 @@ fn non_finite_points_do_not_panic() {
         );
     }
     let out = program.eval_split_outlined(&pts, 0xff, &mut scratch);
-    for k in 0..LANES {
-        let want = tree.eval_split(pts.get(k));
-        let got = out.get(k);
-        assert!(
-            got.same_bits(&want),
-            "lane {k} at {:?}: tree {want:?}, program {got:?}",
-            pts.get(k)
-        );
-    }
+    assert_lanes(
+        "every operator",
+        &tree,
+        &pts,
+        0xff,
+        &out,
+        SplitDistance::same_bits,
+    );
 }

@@ -3,7 +3,8 @@
 
 use std::path::{Path, PathBuf};
 
-use subcone_load::data_dir;
+use subcone_load::{data_dir, load_mesh_file};
+use subcone_scene::SceneError;
 
 /// A file of the shared data directory. Fails (never skips) when the directory
 /// is missing, saying how to point the tests at it.
@@ -34,24 +35,8 @@ pub fn write(dir: &Path, name: &str, contents: impl AsRef<[u8]>) -> PathBuf {
 
 /// Standard base64 with padding (for glTF data URIs).
 pub fn base64(data: &[u8]) -> String {
-    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::new();
-    for chunk in data.chunks(3) {
-        let b = [
-            chunk[0],
-            chunk.get(1).copied().unwrap_or(0),
-            chunk.get(2).copied().unwrap_or(0),
-        ];
-        let n = (b[0] as u32) << 16 | (b[1] as u32) << 8 | b[2] as u32;
-        for i in 0..4 {
-            if i <= chunk.len() {
-                out.push(A[(n >> (18 - 6 * i) & 63) as usize] as char);
-            } else {
-                out.push('=');
-            }
-        }
-    }
-    out
+    use ::base64::Engine;
+    ::base64::engine::general_purpose::STANDARD.encode(data)
 }
 
 /// Little-endian bytes of f32s.
@@ -90,4 +75,15 @@ pub fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
     out.extend_from_slice(b"BIN\0");
     out.extend_from_slice(&b);
     out
+}
+
+/// The error of loading the mesh file at `path`, which must fail with a
+/// message that says `what`.
+pub fn load_error(path: &Path, what: &str) -> SceneError {
+    let err = load_mesh_file(path).unwrap_err();
+    assert!(
+        err.to_string().contains(what),
+        "{err} does not say {what:?}"
+    );
+    err
 }

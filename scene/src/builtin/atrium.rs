@@ -155,22 +155,7 @@ pub fn atrium() -> Scene {
     let x_end = half + 4.0;
 
     // Floor: x in [-x_end, x_end], z in [-BACK_Z, BACK_Z], a 4 × 2 grid of quads.
-    for i in 0..4 {
-        for k in 0..2 {
-            let x0 = -x_end + 0.5 * x_end * i as f32;
-            let z0 = -BACK_Z + BACK_Z * k as f32;
-            let (x1, z1) = (x0 + 0.5 * x_end, z0 + BACK_Z);
-            m.push_quad(
-                [
-                    Vec3::new(x0, 0.0, z0),
-                    Vec3::new(x0, 0.0, z1),
-                    Vec3::new(x1, 0.0, z1),
-                    Vec3::new(x1, 0.0, z0),
-                ],
-                FLOOR,
-            );
-        }
-    }
+    m.push_floor_grid((-x_end, -BACK_Z), (0.5 * x_end, BACK_Z), (4, 2), FLOOR);
 
     for side in [-1.0f32, 1.0] {
         let z = side * ROW_Z;

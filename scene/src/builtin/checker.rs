@@ -42,24 +42,8 @@ pub fn checker() -> Scene {
         Material::diffuse("sphere", Vec3::new(0.82, 0.62, 0.35)),
     ];
     let mut m = TriangleMesh::default();
-    // The floor: y = 0, x in [-30, 30], z in [-70, 10], as a grid of 5 m tiles
-    // (smaller triangles make a better BVH than two huge ones).
-    let tile = 5.0;
-    for i in 0..12 {
-        for k in 0..16 {
-            let (x0, z0) = (-30.0 + tile * i as f32, -70.0 + tile * k as f32);
-            let (x1, z1) = (x0 + tile, z0 + tile);
-            m.push_quad(
-                [
-                    Vec3::new(x0, 0.0, z0),
-                    Vec3::new(x0, 0.0, z1),
-                    Vec3::new(x1, 0.0, z1),
-                    Vec3::new(x1, 0.0, z0),
-                ],
-                floor,
-            );
-        }
-    }
+    // The floor: y = 0, x in [-30, 30], z in [-70, 10], as a grid of 5 m tiles.
+    m.push_floor_grid((-30.0, -70.0), (5.0, 5.0), (12, 16), floor);
     m.push_box(
         Mat4::from_scale_rotation_translation(
             Vec3::splat(0.8),

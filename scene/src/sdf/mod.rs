@@ -54,6 +54,7 @@
 //! need a [`SceneError`](crate::SceneError) map it themselves.
 
 mod bounds;
+mod check;
 pub mod lane;
 mod node;
 mod scatter;
@@ -214,16 +215,7 @@ impl SdfScene {
         if !self.lights.is_empty() {
             f |= SceneFeatures::HAS_LIGHTS;
         }
-        for i in self.root.materials_used() {
-            if let Some(m) = self.materials.get(i as usize) {
-                if m.is_reflective() {
-                    f |= SceneFeatures::HAS_REFLECTIONS;
-                }
-                if m.is_textured() {
-                    f |= SceneFeatures::HAS_TEXTURES;
-                }
-            }
-        }
-        f
+        let used = self.root.materials_used().into_iter();
+        f | Material::features(used.filter_map(|i| self.materials.get(i as usize)))
     }
 }

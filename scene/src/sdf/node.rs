@@ -4,6 +4,7 @@ use glam::{Quat, Vec3, Vec4};
 use subcone_kernels::math::Euclidean;
 
 use super::bounds::{round_cell, Aabb};
+use super::check::{all_finite, nonneg, positive};
 use super::scatter::{Scatter, ScatterConfig};
 use super::shape::Shape;
 use super::{Exactness, SdfError};
@@ -232,40 +233,6 @@ impl Repeat {
             }
         }
         (q, wall)
-    }
-}
-
-fn finite(node: &'static str, param: &'static str, v: f32) -> Result<f32, SdfError> {
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(SdfError::NonFinite { node, param })
-    }
-}
-
-fn positive(node: &'static str, param: &'static str, v: f32) -> Result<f32, SdfError> {
-    finite(node, param, v)?;
-    if v > 0.0 {
-        Ok(v)
-    } else {
-        Err(SdfError::NonPositive {
-            node,
-            param,
-            value: v,
-        })
-    }
-}
-
-fn nonneg(node: &'static str, param: &'static str, v: f32) -> Result<f32, SdfError> {
-    finite(node, param, v)?;
-    if v >= 0.0 {
-        Ok(v)
-    } else {
-        Err(SdfError::Negative {
-            node,
-            param,
-            value: v,
-        })
     }
 }
 
@@ -588,18 +555,8 @@ impl SdfNode {
         scale: f32,
     ) -> Result<SdfNode, SdfError> {
         const NAME: &str = "transform";
-        if !translation.is_finite() {
-            return Err(SdfError::NonFinite {
-                node: NAME,
-                param: "translation",
-            });
-        }
-        if !rotation.is_finite() {
-            return Err(SdfError::NonFinite {
-                node: NAME,
-                param: "rotation",
-            });
-        }
+        all_finite(NAME, "translation", translation.is_finite())?;
+        all_finite(NAME, "rotation", rotation.is_finite())?;
         // In f64: the squared length of a finite f32 quaternion can overflow
         // f32 (then `rotation / len` would be the zero quaternion).
         let q = rotation.to_array().map(f64::from);

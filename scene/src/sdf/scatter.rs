@@ -6,6 +6,7 @@ use glam::{Quat, Vec3};
 use subcone_kernels::math::Euclidean;
 
 use super::bounds::{round_cell, Aabb};
+use super::check::{all_finite, nonneg, positive};
 use super::node::SdfNode;
 use super::SdfError;
 
@@ -203,26 +204,9 @@ impl ScatterConfig {
     /// The number of cells along each axis, once the origin, the cell size and
     /// the cell range are checked.
     fn checked_dims(&self) -> Result<[u64; 3], SdfError> {
-        if !self.origin.is_finite() {
-            return Err(SdfError::NonFinite {
-                node: NAME,
-                param: "origin",
-            });
-        }
+        all_finite(NAME, "origin", self.origin.is_finite())?;
         for v in self.cell.to_array() {
-            if !v.is_finite() {
-                return Err(SdfError::NonFinite {
-                    node: NAME,
-                    param: "cell size",
-                });
-            }
-            if v <= 0.0 {
-                return Err(SdfError::NonPositive {
-                    node: NAME,
-                    param: "cell size",
-                    value: v,
-                });
-            }
+            positive(NAME, "cell size", v)?;
         }
         if (0..3).any(|k| self.lo[k] > self.hi[k]) {
             return Err(invalid(format!(
@@ -248,19 +232,7 @@ impl ScatterConfig {
         if !(self.fill.is_finite() && (0.0..=1.0).contains(&self.fill)) {
             return Err(invalid(format!("fill {} is not in [0, 1]", self.fill)));
         }
-        if !self.margin.is_finite() {
-            return Err(SdfError::NonFinite {
-                node: NAME,
-                param: "margin",
-            });
-        }
-        if self.margin < 0.0 {
-            return Err(SdfError::Negative {
-                node: NAME,
-                param: "margin",
-                value: self.margin,
-            });
-        }
+        nonneg(NAME, "margin", self.margin)?;
         let r_max = 0.5 * self.cell.min_element() - self.margin;
         if r_max <= 0.0 {
             return Err(invalid(format!(

@@ -13,6 +13,7 @@ use glam::Vec3;
 use subcone_kernels::math::Euclidean;
 
 use super::bounds::Aabb;
+use super::check::{all_finite, at_most, finite, nonneg, nonneg3};
 use super::{Exactness, SdfError};
 
 /// A primitive shape. Build a node from it with
@@ -135,42 +136,23 @@ pub enum Shape {
     },
 }
 
-fn finite_nonneg(shape: &'static str, param: &'static str, v: f32) -> Result<(), SdfError> {
-    if !v.is_finite() {
-        Err(SdfError::NonFinite { node: shape, param })
-    } else if v < 0.0 {
-        Err(SdfError::Negative {
-            node: shape,
-            param,
-            value: v,
-        })
-    } else {
-        Ok(())
-    }
-}
-
-fn finite_nonneg3(shape: &'static str, param: &'static str, v: Vec3) -> Result<(), SdfError> {
-    for c in v.to_array() {
-        finite_nonneg(shape, param, c)?;
-    }
-    Ok(())
-}
-
-fn at_most(
+/// A box's half extents and a size that runs along its edges (a rounding
+/// radius, a bar's thickness), at most the smallest half extent.
+fn box_and_edge(
     shape: &'static str,
+    half: Vec3,
     param: &'static str,
-    v: f32,
-    limit: f32,
-    what: &'static str,
+    edge: f32,
 ) -> Result<(), SdfError> {
-    if v > limit {
-        Err(SdfError::Invalid {
-            node: shape,
-            reason: format!("{param} {v} exceeds {what} {limit}"),
-        })
-    } else {
-        Ok(())
-    }
+    nonneg3(shape, "half extents", half)?;
+    nonneg(shape, param, edge)?;
+    at_most(
+        shape,
+        param,
+        edge,
+        half.min_element(),
+        "the smallest half extent",
+    )
 }
 
 impl Shape {
@@ -199,65 +181,47 @@ impl Shape {
     pub fn validated(self) -> Result<Shape, SdfError> {
         let n = self.name();
         match self {
-            Shape::Sphere { radius } => finite_nonneg(n, "radius", radius)?,
-            Shape::Box { half } => finite_nonneg3(n, "half extents", half)?,
-            Shape::RoundBox { half, radius } => {
-                finite_nonneg3(n, "half extents", half)?;
-                finite_nonneg(n, "radius", radius)?;
-                at_most(
-                    n,
-                    "radius",
-                    radius,
-                    half.min_element(),
-                    "the smallest half extent",
-                )?;
+            Shape::Sphere { radius } => {
+                nonneg(n, "radius", radius)?;
             }
-            Shape::BoxFrame { half, thickness } => {
-                finite_nonneg3(n, "half extents", half)?;
-                finite_nonneg(n, "thickness", thickness)?;
-                at_most(
-                    n,
-                    "thickness",
-                    thickness,
-                    half.min_element(),
-                    "the smallest half extent",
-                )?;
-            }
+            Shape::Box { half } => nonneg3(n, "half extents", half)?,
+            Shape::RoundBox { half, radius } => box_and_edge(n, half, "radius", radius)?,
+            Shape::BoxFrame { half, thickness } => box_and_edge(n, half, "thickness", thickness)?,
             Shape::Torus { major, minor } => {
-                finite_nonneg(n, "major radius", major)?;
-                finite_nonneg(n, "minor radius", minor)?;
+                nonneg(n, "major radius", major)?;
+                nonneg(n, "minor radius", minor)?;
             }
             Shape::Link {
                 half_length,
                 major,
                 minor,
             } => {
-                finite_nonneg(n, "half length", half_length)?;
-                finite_nonneg(n, "major radius", major)?;
-                finite_nonneg(n, "minor radius", minor)?;
+                nonneg(n, "half length", half_length)?;
+                nonneg(n, "major radius", major)?;
+                nonneg(n, "minor radius", minor)?;
             }
             Shape::Capsule {
                 half_height,
                 radius,
             } => {
-                finite_nonneg(n, "half height", half_height)?;
-                finite_nonneg(n, "radius", radius)?;
+                nonneg(n, "half height", half_height)?;
+                nonneg(n, "radius", radius)?;
             }
             Shape::Cylinder {
                 radius,
                 half_height,
             } => {
-                finite_nonneg(n, "radius", radius)?;
-                finite_nonneg(n, "half height", half_height)?;
+                nonneg(n, "radius", radius)?;
+                nonneg(n, "half height", half_height)?;
             }
             Shape::RoundedCylinder {
                 radius,
                 half_height,
                 rounding,
             } => {
-                finite_nonneg(n, "radius", radius)?;
-                finite_nonneg(n, "half height", half_height)?;
-                finite_nonneg(n, "rounding", rounding)?;
+                nonneg(n, "radius", radius)?;
+                nonneg(n, "half height", half_height)?;
+                nonneg(n, "rounding", rounding)?;
                 at_most(
                     n,
                     "rounding",
@@ -271,20 +235,22 @@ impl Shape {
                 bottom,
                 top,
             } => {
-                finite_nonneg(n, "half height", half_height)?;
-                finite_nonneg(n, "bottom radius", bottom)?;
-                finite_nonneg(n, "top radius", top)?;
+                nonneg(n, "half height", half_height)?;
+                nonneg(n, "bottom radius", bottom)?;
+                nonneg(n, "top radius", top)?;
             }
-            Shape::Octahedron { size } => finite_nonneg(n, "size", size)?,
+            Shape::Octahedron { size } => {
+                nonneg(n, "size", size)?;
+            }
             Shape::HexPrism {
                 apothem,
                 half_height,
             } => {
-                finite_nonneg(n, "apothem", apothem)?;
-                finite_nonneg(n, "half height", half_height)?;
+                nonneg(n, "apothem", apothem)?;
+                nonneg(n, "half height", half_height)?;
             }
             Shape::Ellipsoid { radii } => {
-                finite_nonneg3(n, "radii", radii)?;
+                nonneg3(n, "radii", radii)?;
                 if radii.min_element() <= 0.0 {
                     return Err(SdfError::Invalid {
                         node: n,
@@ -293,18 +259,8 @@ impl Shape {
                 }
             }
             Shape::Plane { normal, offset } => {
-                if !normal.is_finite() {
-                    return Err(SdfError::NonFinite {
-                        node: n,
-                        param: "normal",
-                    });
-                }
-                if !offset.is_finite() {
-                    return Err(SdfError::NonFinite {
-                        node: n,
-                        param: "offset",
-                    });
-                }
+                all_finite(n, "normal", normal.is_finite())?;
+                finite(n, "offset", offset)?;
                 let len = normal.norm();
                 if len <= 1e-12 || !len.is_finite() {
                     return Err(SdfError::Invalid {
