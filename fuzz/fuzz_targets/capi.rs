@@ -606,11 +606,24 @@ fn plain<T: Copy + std::fmt::Debug>(
     sentinel: T,
     call: impl FnOnce(*mut T) -> SubconeStatus,
 ) -> Option<T> {
+    scalar(what, out, false, sentinel, call)
+}
+
+/// A call with an out-pointer and scalar arguments, `invalid` when one of
+/// them is outside its domain: its status, and the value written.
+fn scalar<T: Copy + std::fmt::Debug>(
+    what: &str,
+    out: bool,
+    invalid: bool,
+    sentinel: T,
+    call: impl FnOnce(*mut T) -> SubconeStatus,
+) -> Option<T> {
     let mut o = Out::new(out, sentinel);
     let s = call(o.ptr());
     Defects {
         null: o.is_null(),
-        ..Defects::default()
+        invalid,
+        size: false,
     }
     .check(s, what);
     o.after(s, what)
@@ -926,15 +939,15 @@ fn call(c: Call) {
         }
         Call::CtssParamsDefault { tan_theta, out } => {
             let what = "subcone_ctss_params_default";
-            let mut o = Out::new(out, SubconeCtssParams::default());
-            let s = unsafe { subcone_ctss_params_default(tan_theta.0, o.ptr()) };
-            Defects {
-                null: !out,
-                invalid: !(tan_theta.0.is_finite() && tan_theta.0 >= 0.0),
-                size: false,
-            }
-            .check(s, what);
-            if let Some(p) = o.after(s, what) {
+            let invalid = !(tan_theta.0.is_finite() && tan_theta.0 >= 0.0);
+            let p = scalar(
+                what,
+                out,
+                invalid,
+                SubconeCtssParams::default(),
+                |o| unsafe { subcone_ctss_params_default(tan_theta.0, o) },
+            );
+            if let Some(p) = p {
                 assert_eq!(p.tan_theta.to_bits(), tan_theta.0.to_bits(), "{what}");
             }
         }
@@ -1014,19 +1027,13 @@ fn call(c: Call) {
             out,
         } => {
             let what = "subcone_cone_tan_theta";
-            let mut o = Out::new(out, SENTINEL_F32);
-            let s = unsafe {
-                subcone_cone_tan_theta(fov_y.0, height.0, coverage.0, footprint, o.ptr())
-            };
             let fov_ok = fov_y.0 > 0.0 && fov_y.0 < std::f32::consts::PI;
             let coverage_ok = coverage.0.is_finite() && coverage.0 > 0.0;
-            Defects {
-                null: o.is_null(),
-                invalid: footprint > 2 || !fov_ok || height.0 == 0 || !coverage_ok,
-                size: false,
-            }
-            .check(s, what);
-            if let Some(t) = o.after(s, what) {
+            let invalid = footprint > 2 || !fov_ok || height.0 == 0 || !coverage_ok;
+            let t = scalar(what, out, invalid, SENTINEL_F32, |o| unsafe {
+                subcone_cone_tan_theta(fov_y.0, height.0, coverage.0, footprint, o)
+            });
+            if let Some(t) = t {
                 assert!(t >= 0.0 && !t.is_nan(), "{what}: {t}");
             }
         }
@@ -1103,16 +1110,13 @@ fn call(c: Call) {
             placement,
             out,
         } => {
-            let what = "subcone_visibility_mask";
-            let mut o = Out::new(out, 0xdead_beef_u32);
-            let s = unsafe { subcone_visibility_mask(occlusion.0, nx.0, ny.0, placement, o.ptr()) };
-            Defects {
-                null: o.is_null(),
-                invalid: placement > 2,
-                size: false,
-            }
-            .check(s, what);
-            o.after(s, what);
+            scalar(
+                "subcone_visibility_mask",
+                out,
+                placement > 2,
+                0xdead_beef_u32,
+                |o| unsafe { subcone_visibility_mask(occlusion.0, nx.0, ny.0, placement, o) },
+            );
         }
         Call::SampleWeight {
             visible,
@@ -1121,15 +1125,11 @@ fn call(c: Call) {
             out,
         } => {
             let what = "subcone_sample_weight";
-            let mut o = Out::new(out, SENTINEL_F32);
-            let s = unsafe { subcone_sample_weight(visible, weighting, min_weight.0, o.ptr()) };
-            Defects {
-                null: o.is_null(),
-                invalid: weighting > 1 || !min_weight.0.is_finite(),
-                size: false,
-            }
-            .check(s, what);
-            if let Some(w) = o.after(s, what) {
+            let invalid = weighting > 1 || !min_weight.0.is_finite();
+            let w = scalar(what, out, invalid, SENTINEL_F32, |o| unsafe {
+                subcone_sample_weight(visible, weighting, min_weight.0, o)
+            });
+            if let Some(w) = w {
                 assert!((0.0..=1.0).contains(&w), "{what}: {w}");
             }
         }
