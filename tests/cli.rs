@@ -183,46 +183,13 @@ fn every_method_name_is_documented() {
 #[test]
 fn ambient_occlusion_flag() {
     let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("ao.png");
-    let o = out.to_str().unwrap();
-    let (ok, text) = subcone(&[
-        "render",
-        "--scene",
-        "cornell",
-        "--method",
-        "sraa-rt",
-        "--size",
-        "24x16",
-        "--ao",
-        "4",
-        "--verbose",
-        "-o",
-        o,
-    ]);
-    assert!(ok, "{text}");
+    let text = render_with_ao("cornell", &dir.path().join("ao.png"));
     assert!(text.contains("ao "), "--verbose counts the AO rays: {text}");
-    assert!(out.exists());
-    let sdf_out = dir.path().join("ao-sdf.png");
-    let (ok, text) = subcone(&[
-        "render",
-        "--scene",
-        "primitives",
-        "--method",
-        "sraa-rt",
-        "--size",
-        "24x16",
-        "--ao",
-        "4",
-        "--verbose",
-        "-o",
-        sdf_out.to_str().unwrap(),
-    ]);
-    assert!(ok, "{text}");
+    let text = render_with_ao("primitives", &dir.path().join("ao-sdf.png"));
     assert!(
         text.contains("ao ") && !text.contains("ao 0.00"),
         "--verbose counts the SDF scene's AO rays: {text}"
     );
-    assert!(sdf_out.exists());
     for (args, needle) in [
         (
             vec!["render", "--size", "8x8", "--ao", "257"],
@@ -245,6 +212,28 @@ fn ambient_occlusion_flag() {
         );
         assert!(!bad.exists());
     }
+}
+
+/// `subcone render --ao 4 --verbose` of `scene` with SRAA-RT at 24×16 into
+/// `out`, which must succeed and write `out`; its output.
+fn render_with_ao(scene: &str, out: &Path) -> String {
+    let (ok, text) = subcone(&[
+        "render",
+        "--scene",
+        scene,
+        "--method",
+        "sraa-rt",
+        "--size",
+        "24x16",
+        "--ao",
+        "4",
+        "--verbose",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(ok, "{scene}: {text}");
+    assert!(out.exists(), "{scene}: no {}", out.display());
+    text
 }
 
 /// A bad scene file is an error that says where and why once: the scene

@@ -291,8 +291,23 @@ pub fn flip(reference: &Frame, test: &Frame) -> Flip {
 /// per test process by the CPU backend and kept: several tests (and, for the
 /// CPU-only methods, several methods) compare with it.
 pub fn reference_frame(scene: &Scene) -> Arc<Frame> {
-    static CACHE: OnceLock<Mutex<HashMap<String, Arc<Frame>>>> = OnceLock::new();
-    let cache = CACHE.get_or_init(Default::default);
+    static CACHE: ReferenceCache = OnceLock::new();
+    cached_reference(&CACHE, scene, &RenderSettings::new(W, H), "")
+}
+
+/// The `ssaa64` frames of one kind of reference, by scene name.
+type ReferenceCache = OnceLock<Mutex<HashMap<String, Arc<Frame>>>>;
+
+/// The `ssaa64` frame of `scene` with `settings` from `cache`, rendered by the
+/// CPU backend on the first call per scene; `what` follows the scene's name
+/// in a failure's message.
+fn cached_reference(
+    cache: &'static ReferenceCache,
+    scene: &Scene,
+    settings: &RenderSettings,
+    what: &str,
+) -> Arc<Frame> {
+    let cache = cache.get_or_init(Default::default);
     if let Some(f) = cache.lock().expect("cache lock").get(&scene.name) {
         return f.clone();
     }
@@ -300,8 +315,8 @@ pub fn reference_frame(scene: &Scene) -> Arc<Frame> {
     // tests of one scene at once would at worst render it twice.
     let method: Method = REFERENCE_METHOD.parse().expect("reference method");
     let frame = subcone_cpu::CpuBackend::new()
-        .render(scene, &scene.camera, &method, &RenderSettings::new(W, H))
-        .unwrap_or_else(|e| panic!("{REFERENCE_METHOD} reference of {}: {e}", scene.name));
+        .render(scene, &scene.camera, &method, settings)
+        .unwrap_or_else(|e| panic!("{REFERENCE_METHOD} reference of {}{what}: {e}", scene.name));
     let frame = Arc::new(frame);
     cache
         .lock()
@@ -417,46 +432,47 @@ pub fn check_invariants(backend: &str, scene: &Scene, method: &Method, frame: &F
         "{what}: post-process pass timed {:?}",
         frame.stats.timings
     );
-    // Leave out what the scene does not need: no work and no memory.
+    // Leave out what the scene does not need: no work and no memory. For
+    // shadows and reflections alike: no rays without the scene feature that
+    // casts them, no buffers named after them without the passes that use
+    // them.
     let shadow = Passes::SHADOW | Passes::SUBPIXEL_SHADOW | Passes::SECONDARY_SHADOW;
     let secondary = Passes::SECONDARY
         | Passes::SECONDARY_SHADOW
         | Passes::SUBPIXEL_SECONDARY_GEOMETRY
         | Passes::SECONDARY_RECONSTRUCTION;
-    let has = |word: &str| {
-        frame
-            .stats
-            .buffers
-            .iter()
-            .filter(|b| b.0.contains(word) && b.1 > 0)
-            .map(|b| b.0)
-            .collect::<Vec<_>>()
-    };
-    if !features.contains(SceneFeatures::HAS_LIGHTS) {
-        assert_eq!(
-            frame.stats.rays.shadow, 0,
-            "{what}: shadow rays without lights"
-        );
-    }
-    if !required.intersects(shadow) {
-        assert!(
-            has("shadow").is_empty(),
-            "{what}: shadow buffers {:?} allocated",
-            has("shadow")
-        );
-    }
-    if !features.contains(SceneFeatures::HAS_REFLECTIONS) {
-        assert_eq!(
-            frame.stats.rays.secondary, 0,
-            "{what}: reflection rays without mirrors"
-        );
-    }
-    if !required.intersects(secondary) {
-        assert!(
-            has("secondary").is_empty(),
-            "{what}: secondary buffers {:?} allocated",
-            has("secondary")
-        );
+    for (feature, rays, no_rays, passes, word) in [
+        (
+            SceneFeatures::HAS_LIGHTS,
+            frame.stats.rays.shadow,
+            "shadow rays without lights",
+            shadow,
+            "shadow",
+        ),
+        (
+            SceneFeatures::HAS_REFLECTIONS,
+            frame.stats.rays.secondary,
+            "reflection rays without mirrors",
+            secondary,
+            "secondary",
+        ),
+    ] {
+        if !features.contains(feature) {
+            assert_eq!(rays, 0, "{what}: {no_rays}");
+        }
+        if !required.intersects(passes) {
+            let buffers: Vec<_> = frame
+                .stats
+                .buffers
+                .iter()
+                .filter(|b| b.0.contains(word) && b.1 > 0)
+                .map(|b| b.0)
+                .collect();
+            assert!(
+                buffers.is_empty(),
+                "{what}: {word} buffers {buffers:?} allocated"
+            );
+        }
     }
 }
 
@@ -585,31 +601,12 @@ pub const AO_RAYS: u32 = 4;
 /// The `ssaa64` reference of `scene` with [`AO_RAYS`] occlusion rays, on the
 /// CPU backend (rendered once per scene and kept).
 pub fn ao_reference_frame(scene: &Scene) -> Arc<Frame> {
-    static CACHE: OnceLock<Mutex<HashMap<String, Arc<Frame>>>> = OnceLock::new();
-    let cache = CACHE.get_or_init(Default::default);
-    if let Some(f) = cache.lock().expect("cache lock").get(&scene.name) {
-        return f.clone();
-    }
-    let method: Method = REFERENCE_METHOD.parse().expect("reference method");
+    static CACHE: ReferenceCache = OnceLock::new();
     let settings = RenderSettings {
         ao_rays: AO_RAYS,
         ..RenderSettings::new(W, H)
     };
-    let frame = subcone_cpu::CpuBackend::new()
-        .render(scene, &scene.camera, &method, &settings)
-        .unwrap_or_else(|e| {
-            panic!(
-                "{REFERENCE_METHOD} reference of {} with AO: {e}",
-                scene.name
-            )
-        });
-    let frame = Arc::new(frame);
-    cache
-        .lock()
-        .expect("cache lock")
-        .entry(scene.name.clone())
-        .or_insert(frame)
-        .clone()
+    cached_reference(&CACHE, scene, &settings, " with AO")
 }
 
 /// Ambient occlusion ([`RenderSettings::ao_rays`]) on SDF scenes: every
@@ -879,6 +876,25 @@ macro_rules! __scene_tests {
     };
 }
 
+/// One test per whole-backend check:
+/// `__backend_tests!(backend_fn; test_name => check_fn, ...)`, each calling
+/// `$crate::check_fn` on the backend (skipped, as the per-scene cases are,
+/// when `backend_fn` has none).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __backend_tests {
+    ($backend:ident; $($test:ident => $check:ident),* $(,)?) => {
+        $(
+            #[test]
+            fn $test() {
+                if let Some(b) = $backend() {
+                    $crate::$check(b.as_ref());
+                }
+            }
+        )*
+    };
+}
+
 /// The conformance cases for one backend, in a module named `$name`:
 ///
 /// ```text
@@ -922,47 +938,14 @@ macro_rules! conformance_suite {
                 stiff_non_eikonal => "non-eikonal",
             );
 
-            #[test]
-            fn extreme_settings() {
-                if let Some(b) = backend() {
-                    $crate::check_extreme_settings(b.as_ref());
-                }
-            }
-
-            #[test]
-            fn ambient_occlusion_on_sdf() {
-                if let Some(b) = backend() {
-                    $crate::check_ambient_occlusion(b.as_ref());
-                }
-            }
-
-            #[test]
-            fn errors() {
-                if let Some(b) = backend() {
-                    $crate::check_errors(b.as_ref());
-                }
-            }
-
-            #[test]
-            fn supports_matches_render() {
-                if let Some(b) = backend() {
-                    $crate::check_supports(b.as_ref());
-                }
-            }
-
-            #[test]
-            fn transparent_scenes_match_the_cpu() {
-                if let Some(b) = backend() {
-                    $crate::check_transparent(b.as_ref());
-                }
-            }
-
-            #[test]
-            fn thin_slab_is_opaque_under_every_ctss_method() {
-                if let Some(b) = backend() {
-                    $crate::check_thin_slab(b.as_ref());
-                }
-            }
+            $crate::__backend_tests!(backend;
+                extreme_settings => check_extreme_settings,
+                ambient_occlusion_on_sdf => check_ambient_occlusion,
+                errors => check_errors,
+                supports_matches_render => check_supports,
+                transparent_scenes_match_the_cpu => check_transparent,
+                thin_slab_is_opaque_under_every_ctss_method => check_thin_slab,
+            );
 
             /// The per-scene cases above (their names, as the macro lists
             /// them) are the crate's scene lists: a new built-in scene must

@@ -124,20 +124,31 @@ impl From<Geometry> for SubconeGeometry {
     }
 }
 
-/// SRAA parameters: a preset or any fields, codes as raw integers.
+/// SRAA parameters: a preset or any fields ([`AnySraaParams`]).
 #[derive(Arbitrary, Clone, Copy, Debug)]
 enum SraaParams {
     Paper,
     Tuned,
-    Raw {
-        sigma_z: F,
-        sigma_n: F,
-        scale: F,
-        packed: u32,
-        sigma_s: F,
-        shading: u32,
-        pad: [u32; 2],
-    },
+    Raw(AnySraaParams),
+}
+
+/// SRAA parameters with any fields: floats as [`F`] draws them, codes and
+/// padding as raw integers.
+#[derive(Clone, Copy, Debug)]
+struct AnySraaParams(SubconeSraaParams);
+
+impl<'a> Arbitrary<'a> for AnySraaParams {
+    fn arbitrary(u: &mut Unstructured<'a>) -> arbitrary::Result<Self> {
+        Ok(Self(SubconeSraaParams {
+            sigma_z: u.arbitrary::<F>()?.0,
+            sigma_n: u.arbitrary::<F>()?.0,
+            scale: u.arbitrary::<F>()?.0,
+            packed: u.arbitrary()?,
+            sigma_s: u.arbitrary::<F>()?.0,
+            shading: u.arbitrary()?,
+            pad: u.arbitrary()?,
+        }))
+    }
 }
 
 impl SraaParams {
@@ -152,25 +163,7 @@ impl SraaParams {
                 unsafe { subcone_sraa_params_default(&mut p) },
                 SubconeStatus::Ok
             ),
-            SraaParams::Raw {
-                sigma_z,
-                sigma_n,
-                scale,
-                packed,
-                sigma_s,
-                shading,
-                pad,
-            } => {
-                p = SubconeSraaParams {
-                    sigma_z: sigma_z.0,
-                    sigma_n: sigma_n.0,
-                    scale: scale.0,
-                    packed,
-                    sigma_s: sigma_s.0,
-                    shading,
-                    pad,
-                }
-            }
+            SraaParams::Raw(AnySraaParams(raw)) => p = raw,
         }
         p
     }
@@ -193,19 +186,30 @@ enum CtssParams {
         max_steps: u32,
         max_samples: u32,
     },
-    Raw {
-        tan_theta: F,
-        alpha: F,
-        eps: F,
-        t_min: F,
-        t_max: F,
-        min_sample_weight: F,
-        max_steps: u32,
-        max_samples: u32,
-        visibility_k: u32,
-        flags: u32,
-        pad: [u32; 2],
-    },
+    Raw(AnyCtssParams),
+}
+
+/// CTSS parameters with any fields: floats as [`F`] draws them, budgets,
+/// codes and padding as raw integers.
+#[derive(Clone, Copy, Debug)]
+struct AnyCtssParams(SubconeCtssParams);
+
+impl<'a> Arbitrary<'a> for AnyCtssParams {
+    fn arbitrary(u: &mut Unstructured<'a>) -> arbitrary::Result<Self> {
+        Ok(Self(SubconeCtssParams {
+            tan_theta: u.arbitrary::<F>()?.0,
+            alpha: u.arbitrary::<F>()?.0,
+            eps: u.arbitrary::<F>()?.0,
+            t_min: u.arbitrary::<F>()?.0,
+            t_max: u.arbitrary::<F>()?.0,
+            min_sample_weight: u.arbitrary::<F>()?.0,
+            max_steps: u.arbitrary()?,
+            max_samples: u.arbitrary()?,
+            visibility_k: u.arbitrary()?,
+            flags: u.arbitrary()?,
+            pad: u.arbitrary()?,
+        }))
+    }
 }
 
 impl CtssParams {
@@ -234,31 +238,7 @@ impl CtssParams {
                 }
                 p
             }
-            CtssParams::Raw {
-                tan_theta,
-                alpha,
-                eps,
-                t_min,
-                t_max,
-                min_sample_weight,
-                max_steps,
-                max_samples,
-                visibility_k,
-                flags,
-                pad,
-            } => SubconeCtssParams {
-                tan_theta: tan_theta.0,
-                alpha: alpha.0,
-                eps: eps.0,
-                t_min: t_min.0,
-                t_max: t_max.0,
-                min_sample_weight: min_sample_weight.0,
-                max_steps,
-                max_samples,
-                visibility_k,
-                flags,
-                pad,
-            },
+            CtssParams::Raw(AnyCtssParams(raw)) => raw,
         }
     }
 }
@@ -626,14 +606,39 @@ fn plain<T: Copy + std::fmt::Debug>(
     sentinel: T,
     call: impl FnOnce(*mut T) -> SubconeStatus,
 ) -> Option<T> {
+    scalar(what, out, false, sentinel, call)
+}
+
+/// A call with an out-pointer and scalar arguments, `invalid` when one of
+/// them is outside its domain: its status, and the value written.
+fn scalar<T: Copy + std::fmt::Debug>(
+    what: &str,
+    out: bool,
+    invalid: bool,
+    sentinel: T,
+    call: impl FnOnce(*mut T) -> SubconeStatus,
+) -> Option<T> {
     let mut o = Out::new(out, sentinel);
     let s = call(o.ptr());
     Defects {
         null: o.is_null(),
-        ..Defects::default()
+        invalid,
+        size: false,
     }
     .check(s, what);
     o.after(s, what)
+}
+
+/// A preset's constructor of SRAA parameters: refuses only a null
+/// out-pointer, and the preset is valid.
+fn sraa_preset(
+    what: &str,
+    out: bool,
+    preset: impl FnOnce(*mut SubconeSraaParams) -> SubconeStatus,
+) {
+    if let Some(p) = plain(what, out, SubconeSraaParams::default(), preset) {
+        assert!(sraa_params_valid(&p), "{what}: {p:?}");
+    }
 }
 
 fn sraa_resolve(params: Option<SraaParams>, frame: Option<Frame>) {
@@ -923,40 +928,26 @@ fn call(c: Call) {
             );
         }
         Call::SraaParamsDefault { out } => {
-            let mut o = Out::new(out, SubconeSraaParams::default());
-            let s = unsafe { subcone_sraa_params_default(o.ptr()) };
-            Defects {
-                null: !out,
-                ..Defects::default()
-            }
-            .check(s, "subcone_sraa_params_default");
-            if let Some(p) = o.after(s, "subcone_sraa_params_default") {
-                assert!(sraa_params_valid(&p));
-            }
+            sraa_preset("subcone_sraa_params_default", out, |o| unsafe {
+                subcone_sraa_params_default(o)
+            })
         }
         Call::SraaParamsPaper { out } => {
-            let mut o = Out::new(out, SubconeSraaParams::default());
-            let s = unsafe { subcone_sraa_params_paper(o.ptr()) };
-            Defects {
-                null: !out,
-                ..Defects::default()
-            }
-            .check(s, "subcone_sraa_params_paper");
-            if let Some(p) = o.after(s, "subcone_sraa_params_paper") {
-                assert!(sraa_params_valid(&p));
-            }
+            sraa_preset("subcone_sraa_params_paper", out, |o| unsafe {
+                subcone_sraa_params_paper(o)
+            })
         }
         Call::CtssParamsDefault { tan_theta, out } => {
             let what = "subcone_ctss_params_default";
-            let mut o = Out::new(out, SubconeCtssParams::default());
-            let s = unsafe { subcone_ctss_params_default(tan_theta.0, o.ptr()) };
-            Defects {
-                null: !out,
-                invalid: !(tan_theta.0.is_finite() && tan_theta.0 >= 0.0),
-                size: false,
-            }
-            .check(s, what);
-            if let Some(p) = o.after(s, what) {
+            let invalid = !(tan_theta.0.is_finite() && tan_theta.0 >= 0.0);
+            let p = scalar(
+                what,
+                out,
+                invalid,
+                SubconeCtssParams::default(),
+                |o| unsafe { subcone_ctss_params_default(tan_theta.0, o) },
+            );
+            if let Some(p) = p {
                 assert_eq!(p.tan_theta.to_bits(), tan_theta.0.to_bits(), "{what}");
             }
         }
@@ -1036,19 +1027,13 @@ fn call(c: Call) {
             out,
         } => {
             let what = "subcone_cone_tan_theta";
-            let mut o = Out::new(out, SENTINEL_F32);
-            let s = unsafe {
-                subcone_cone_tan_theta(fov_y.0, height.0, coverage.0, footprint, o.ptr())
-            };
             let fov_ok = fov_y.0 > 0.0 && fov_y.0 < std::f32::consts::PI;
             let coverage_ok = coverage.0.is_finite() && coverage.0 > 0.0;
-            Defects {
-                null: o.is_null(),
-                invalid: footprint > 2 || !fov_ok || height.0 == 0 || !coverage_ok,
-                size: false,
-            }
-            .check(s, what);
-            if let Some(t) = o.after(s, what) {
+            let invalid = footprint > 2 || !fov_ok || height.0 == 0 || !coverage_ok;
+            let t = scalar(what, out, invalid, SENTINEL_F32, |o| unsafe {
+                subcone_cone_tan_theta(fov_y.0, height.0, coverage.0, footprint, o)
+            });
+            if let Some(t) = t {
                 assert!(t >= 0.0 && !t.is_nan(), "{what}: {t}");
             }
         }
@@ -1125,16 +1110,13 @@ fn call(c: Call) {
             placement,
             out,
         } => {
-            let what = "subcone_visibility_mask";
-            let mut o = Out::new(out, 0xdead_beef_u32);
-            let s = unsafe { subcone_visibility_mask(occlusion.0, nx.0, ny.0, placement, o.ptr()) };
-            Defects {
-                null: o.is_null(),
-                invalid: placement > 2,
-                size: false,
-            }
-            .check(s, what);
-            o.after(s, what);
+            scalar(
+                "subcone_visibility_mask",
+                out,
+                placement > 2,
+                0xdead_beef_u32,
+                |o| unsafe { subcone_visibility_mask(occlusion.0, nx.0, ny.0, placement, o) },
+            );
         }
         Call::SampleWeight {
             visible,
@@ -1143,15 +1125,11 @@ fn call(c: Call) {
             out,
         } => {
             let what = "subcone_sample_weight";
-            let mut o = Out::new(out, SENTINEL_F32);
-            let s = unsafe { subcone_sample_weight(visible, weighting, min_weight.0, o.ptr()) };
-            Defects {
-                null: o.is_null(),
-                invalid: weighting > 1 || !min_weight.0.is_finite(),
-                size: false,
-            }
-            .check(s, what);
-            if let Some(w) = o.after(s, what) {
+            let invalid = weighting > 1 || !min_weight.0.is_finite();
+            let w = scalar(what, out, invalid, SENTINEL_F32, |o| unsafe {
+                subcone_sample_weight(visible, weighting, min_weight.0, o)
+            });
+            if let Some(w) = w {
                 assert!((0.0..=1.0).contains(&w), "{what}: {w}");
             }
         }

@@ -3,14 +3,13 @@
 
 mod common;
 
-use arbitrary::Arbitrary;
+use arbitrary::{Arbitrary, Unstructured};
 use common::{finite_nonneg, unit, v3, Hull};
 use glam::Vec3;
 use libfuzzer_sys::fuzz_target;
 use subcone_kernels::sraa::{
     bilateral_weight, reconstruct, reconstruction_weight, resolve_pixel, shadow_gated_weight,
-    DepthMetric, Geometry,
-    ShadedSample, SraaParams, WeightForm, NEGLIGIBLE_WEIGHT,
+    DepthMetric, Geometry, ShadedSample, SraaParams, WeightForm, NEGLIGIBLE_WEIGHT,
 };
 
 #[derive(Arbitrary, Debug)]
@@ -28,14 +27,25 @@ enum ParamsChoice {
     },
     /// Anything at all, including NaN/negative sigmas and unknown codes: only the
     /// range checks apply.
-    Raw {
-        sigma_z: f32,
-        sigma_n: f32,
-        scale: f32,
-        packed: u32,
-        sigma_s: f32,
-        shading: u32,
-    },
+    Raw(AnyParams),
+}
+
+/// Parameters with any fields (padding 0).
+#[derive(Debug)]
+struct AnyParams(SraaParams);
+
+impl<'a> Arbitrary<'a> for AnyParams {
+    fn arbitrary(u: &mut Unstructured<'a>) -> arbitrary::Result<Self> {
+        Ok(Self(SraaParams {
+            sigma_z: u.arbitrary()?,
+            sigma_n: u.arbitrary()?,
+            scale: u.arbitrary()?,
+            packed: u.arbitrary()?,
+            sigma_s: u.arbitrary()?,
+            shading: u.arbitrary()?,
+            _pad: [0; 2],
+        }))
+    }
 }
 
 #[derive(Arbitrary, Debug, Clone, Copy)]
@@ -100,25 +110,7 @@ fn params(choice: &ParamsChoice) -> (SraaParams, bool) {
             ),
             true,
         ),
-        ParamsChoice::Raw {
-            sigma_z,
-            sigma_n,
-            scale,
-            packed,
-            sigma_s,
-            shading,
-        } => (
-            SraaParams {
-                sigma_z,
-                sigma_n,
-                scale,
-                packed,
-                sigma_s,
-                shading,
-                _pad: [0; 2],
-            },
-            false,
-        ),
+        ParamsChoice::Raw(AnyParams(raw)) => (raw, false),
     }
 }
 
@@ -244,7 +236,11 @@ fuzz_target!(|input: Input| {
         }
     }
     let inv = 1.0 / wsum;
-    let mean = Vec3::new((sum[0] * inv) as f32, (sum[1] * inv) as f32, (sum[2] * inv) as f32);
+    let mean = Vec3::new(
+        (sum[0] * inv) as f32,
+        (sum[1] * inv) as f32,
+        (sum[2] * inv) as f32,
+    );
     let expect_fallback = !(wsum >= NEGLIGIBLE_WEIGHT as f64) || !mean.is_finite();
     assert!(
         r.fell_back == expect_fallback,
@@ -266,7 +262,10 @@ fuzz_target!(|input: Input| {
     // Non-finite neighbours are excluded, so the result lies in the hull of the
     // finite ones (black with none).
     if hull.is_empty() {
-        assert!(r.color == Vec3::ZERO && r.fell_back, "no usable neighbour: {r:?}");
+        assert!(
+            r.color == Vec3::ZERO && r.fell_back,
+            "no usable neighbour: {r:?}"
+        );
     } else {
         assert!(
             hull.contains(r.color),
@@ -283,7 +282,10 @@ fuzz_target!(|input: Input| {
         hull.add(*s);
     }
     if hull.is_empty() {
-        assert!(c == Vec3::ZERO, "resolve_pixel with no finite subsample: {c:?}");
+        assert!(
+            c == Vec3::ZERO,
+            "resolve_pixel with no finite subsample: {c:?}"
+        );
     } else {
         assert!(
             hull.contains(c),

@@ -33,50 +33,43 @@ fn geometry_pair(rng: &mut Lcg) -> (Vec3, f32, Vec3, f32) {
     (ni, zi, nj, zj)
 }
 
-// Eq. 1: products and sums of two exps of O(1) arguments; the f32 error is a
-// few ulps of the argument propagated through exp. Bound: 2e-6 absolute.
-bound_against_f64!(
-    bilateral_weight_eq1,
-    cases = 200_000,
-    gen = geometry_pair,
-    f32 = |&(ni, zi, nj, zj): &(Vec3, f32, Vec3, f32)| bilateral_weight(
-        &SraaParams::PAPER,
-        &Geometry::new(ni, zi),
-        &Geometry::new(nj, zj)
-    ),
-    f64 = |&(ni, zi, nj, zj): &(Vec3, f32, Vec3, f32)| r::bilateral_weight(
-        10.0,
-        0.25,
-        d3(ni),
-        zi as f64,
-        d3(nj),
-        zj as f64
-    ),
-    err = |a: f32, b: f64| (a as f64 - b).abs(),
-    bound = 2e-6,
-    unit = "abs"
-);
+/// The bilateral weight of the kernel under `params` against its f64 form
+/// `reference(ni, zi, nj, zj)` over [`geometry_pair`]. Products and sums of
+/// exps of O(1) arguments: the f32 error is a few ulps of the argument
+/// propagated through exp. Bound: 2e-6 absolute.
+macro_rules! weight_against_f64 {
+    ($name:ident, $params:expr, $reference:expr) => {
+        bound_against_f64!(
+            $name,
+            cases = 200_000,
+            gen = geometry_pair,
+            f32 = |&(ni, zi, nj, zj): &(Vec3, f32, Vec3, f32)| bilateral_weight(
+                &$params,
+                &Geometry::new(ni, zi),
+                &Geometry::new(nj, zj)
+            ),
+            f64 = |&(ni, zi, nj, zj): &(Vec3, f32, Vec3, f32)| ($reference)(
+                d3(ni),
+                zi as f64,
+                d3(nj),
+                zj as f64
+            ),
+            err = |a: f32, b: f64| (a as f64 - b).abs(),
+            bound = 2e-6,
+            unit = "abs"
+        );
+    };
+}
 
-bound_against_f64!(
+// Eq. 1 with the paper's σz = 10, σn = 0.25.
+weight_against_f64!(bilateral_weight_eq1, SraaParams::PAPER, |ni, zi, nj, zj| {
+    r::bilateral_weight(10.0, 0.25, ni, zi, nj, zj)
+});
+// The Chajdas form with k = 1, s = 10.
+weight_against_f64!(
     bilateral_weight_chajdas,
-    cases = 200_000,
-    gen = geometry_pair,
-    f32 = |&(ni, zi, nj, zj): &(Vec3, f32, Vec3, f32)| bilateral_weight(
-        &SraaParams::CHAJDAS,
-        &Geometry::new(ni, zi),
-        &Geometry::new(nj, zj)
-    ),
-    f64 = |&(ni, zi, nj, zj): &(Vec3, f32, Vec3, f32)| r::chajdas_weight(
-        1.0,
-        10.0,
-        d3(ni),
-        zi as f64,
-        d3(nj),
-        zj as f64
-    ),
-    err = |a: f32, b: f64| (a as f64 - b).abs(),
-    bound = 2e-6,
-    unit = "abs"
+    SraaParams::CHAJDAS,
+    |ni, zi, nj, zj| { r::chajdas_weight(1.0, 10.0, ni, zi, nj, zj) }
 );
 
 // Reconstruction over a 3×3 neighbourhood: a normalised weighted mean of colours

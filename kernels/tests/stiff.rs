@@ -259,10 +259,7 @@ fn normals_not_unit_or_nan() {
     assert_eq!(project_normal(Vec3::NAN, r, u), Vec2::ZERO);
     assert_eq!(project_normal(Vec3::splat(f32::INFINITY), r, u), Vec2::ZERO);
     // A NaN shaded colour never reaches the pixel.
-    let mut a = Aggregate::new();
-    a.add(0.5, Vec3::NAN);
-    a.add(0.5, Vec3::ONE);
-    assert_eq!(a.resolve(Vec3::ZERO, 0.0), Vec3::ONE);
+    assert_eq!(aggregate(&[(0.5, Vec3::NAN), (0.5, Vec3::ONE)]), Vec3::ONE);
 }
 
 /// tan θ = 1e-8 (an extreme telephoto) at t = 1e7: α·R_c = 0.05 < ulp(1e7)/2 = 0.5,
@@ -319,9 +316,7 @@ fn denormal_inputs() {
         let _ = visibility_mask(0.5 + tiny, Vec2::new(tiny, 1.0), pl);
         let _ = visibility_mask(tiny, Vec2::new(1.0, tiny), pl);
     }
-    let mut a = Aggregate::new();
-    a.add(tiny, Vec3::ONE);
-    assert!(a.resolve(Vec3::ZERO, 0.0).is_finite());
+    assert!(aggregate(&[(tiny, Vec3::ONE)]).is_finite());
 }
 
 /// |∇f| = 0.2 (an underestimating SDF: slow but safe) and |∇f| = 5 (an
@@ -372,6 +367,31 @@ fn non_eikonal_distances() {
     }
 }
 
+/// Eq. 6 over `samples` (weight, colour) with no background weight.
+fn aggregate(samples: &[(f32, Vec3)]) -> Vec3 {
+    let mut a = Aggregate::new();
+    for &(w, c) in samples {
+        a.add(w, c);
+    }
+    a.resolve(Vec3::ZERO, 0.0)
+}
+
+/// The colour and the fallback flag of a target at depth 0 reconstructed
+/// from one unshadowed sample of `color` at `depth` (both facing +Y), with
+/// eq. 1 on absolute depths and σz = 1: the weight `exp(−depth²)` is tiny or
+/// underflows.
+fn reconstruct_from_far_sample(depth: f32, color: Vec3) -> (Vec3, bool) {
+    let p = SraaParams::new(1.0, 0.0, 1.0, WeightForm::Product, DepthMetric::Absolute, 1);
+    let n = [ShadedSample {
+        geometry: Geometry::new(Vec3::Y, depth),
+        color,
+        shadowed: false,
+        distance2: 0.0,
+    }];
+    let r = reconstruct(&p, &Geometry::new(Vec3::Y, 0.0), None, n);
+    (r.color, r.fell_back)
+}
+
 /// Inputs the fuzz targets found; each was a bug, kept as a regression test.
 #[test]
 fn fuzz_regressions() {
@@ -379,18 +399,14 @@ fn fuzz_regressions() {
     let g = Geometry::new(Vec3::ONE.normalize(), 5.0);
     assert_eq!(bilateral_weight(&SraaParams::CHAJDAS, &g, &g), 1.0);
     // 2. Weights so small that w·C underflows: fall back instead of returning 0.
-    let mut a = Aggregate::new();
-    a.add(2e-38, Vec3::splat(1e-10));
-    assert_eq!(a.resolve(Vec3::ZERO, 0.0), Vec3::splat(1e-10));
-    let p = SraaParams::new(1.0, 0.0, 1.0, WeightForm::Product, DepthMetric::Absolute, 1);
-    let n = [ShadedSample {
-        geometry: Geometry::new(Vec3::Y, 9.3),
-        color: Vec3::splat(1e-10),
-        shadowed: false,
-        distance2: 0.0,
-    }];
-    let r = reconstruct(&p, &Geometry::new(Vec3::Y, 0.0), None, n);
-    assert_eq!((r.color, r.fell_back), (Vec3::splat(1e-10), true));
+    assert_eq!(
+        aggregate(&[(2e-38, Vec3::splat(1e-10))]),
+        Vec3::splat(1e-10)
+    );
+    assert_eq!(
+        reconstruct_from_far_sample(9.3, Vec3::splat(1e-10)),
+        (Vec3::splat(1e-10), true)
+    );
     // 3. The pixel resolve of finite colours near f32::MAX stays finite.
     let big = Vec3::splat(2e38);
     assert_eq!(
@@ -398,10 +414,10 @@ fn fuzz_regressions() {
         Vec3::splat(1e38)
     );
     // 4. Weights above 1 cannot overflow the weight sum.
-    let mut a = Aggregate::new();
-    a.add(3e38, Vec3::splat(0.1));
-    a.add(3e38, Vec3::splat(0.1));
-    assert_eq!(a.resolve(Vec3::ZERO, 0.0), Vec3::splat(0.1));
+    assert_eq!(
+        aggregate(&[(3e38, Vec3::splat(0.1)), (3e38, Vec3::splat(0.1))]),
+        Vec3::splat(0.1)
+    );
     // 5. Normals whose squared length leaves f32's range still project.
     for n in [
         Vec3::new(1e20, 0.0, 0.0),
@@ -428,18 +444,14 @@ fn fuzz_regressions_tiny_products() {
         Aggregate::new().resolve(Vec3::splat(1e-28), 1e-18),
         Vec3::splat(1e-28)
     );
-    let mut a = Aggregate::new();
-    a.add(1e-18, Vec3::splat(1e-28));
-    assert_eq!(a.resolve(Vec3::ZERO, 0.0), Vec3::splat(1e-28));
-    let p = SraaParams::new(1.0, 0.0, 1.0, WeightForm::Product, DepthMetric::Absolute, 1);
-    let n = [ShadedSample {
-        geometry: Geometry::new(Vec3::Y, 6.6),
-        color: Vec3::splat(1e-28),
-        shadowed: false,
-        distance2: 0.0,
-    }];
-    let r = reconstruct(&p, &Geometry::new(Vec3::Y, 0.0), None, n);
-    assert_eq!((r.color, r.fell_back), (Vec3::splat(1e-28), false));
+    assert_eq!(
+        aggregate(&[(1e-18, Vec3::splat(1e-28))]),
+        Vec3::splat(1e-28)
+    );
+    assert_eq!(
+        reconstruct_from_far_sample(6.6, Vec3::splat(1e-28)),
+        (Vec3::splat(1e-28), false)
+    );
     // The aggregate fuzzer's input: a NaN-weight sample and a background alone.
     let bg = Vec3::new(1.1368807e-13, 1.4356219e-28, 6.7498003e-21);
     let mut a = Aggregate::new();
