@@ -40,8 +40,11 @@ pub enum BufferAccess {
 #[derive(Clone, Debug)]
 struct Decl {
     name: Cow<'static, str>,
-    /// The declaration after `var`: `<space> name: type`.
-    wgsl: String,
+    /// The address space after `var` (`<uniform>`, `<storage, read>`…),
+    /// empty for a texture.
+    space: &'static str,
+    /// The WGSL type.
+    wgsl_type: String,
     ty: wgpu::BindingType,
     /// The size of a uniform bound at a dynamic offset (a pass's
     /// [`UniformRing`]); `None` for every other binding.
@@ -130,16 +133,18 @@ impl Group {
         self.list.iter().any(|d| d.name == name)
     }
 
+    /// Declare `var<space> name: wgsl_type`, bound as `ty`.
     fn push(
         &mut self,
-        name: Cow<'static, str>,
-        wgsl: String,
+        name: impl Into<Cow<'static, str>>,
+        (space, wgsl_type): (&'static str, String),
         ty: wgpu::BindingType,
         ring: Option<u64>,
     ) {
         self.list.push(Decl {
-            name,
-            wgsl,
+            name: name.into(),
+            space,
+            wgsl_type,
             ty,
             ring,
         });
@@ -159,10 +164,9 @@ impl Group {
                 wgpu::BufferBindingType::Storage { read_only: false },
             ),
         };
-        let name = name.into();
         self.push(
-            name.clone(),
-            format!("{space} {name}: {ty}"),
+            name,
+            (space, ty.to_owned()),
             wgpu::BindingType::Buffer {
                 ty: ty_,
                 has_dynamic_offset: false,
@@ -180,10 +184,9 @@ impl Group {
         ty: &str,
     ) {
         let size = size_of::<T>() as u64;
-        let name = name.into();
         self.push(
-            name.clone(),
-            format!("<uniform> {name}: {ty}"),
+            name,
+            ("<uniform>", ty.to_owned()),
             wgpu::BindingType::Buffer {
                 ty: wgpu::BufferBindingType::Uniform,
                 has_dynamic_offset: true,
@@ -205,10 +208,9 @@ impl Group {
         multisampled: bool,
     ) {
         let ty = texture_type(sample_type, view_dimension, multisampled);
-        let name = name.into();
         self.push(
-            name.clone(),
-            format!(" {name}: {ty}"),
+            name,
+            ("", ty),
             wgpu::BindingType::Texture {
                 sample_type,
                 view_dimension,
@@ -231,10 +233,9 @@ impl Group {
             found: format,
             expected: STORAGE_FORMATS,
         })?;
-        let name = name.into();
         self.push(
-            name.clone(),
-            format!(" {name}: texture_storage_2d<{f}, write>"),
+            name,
+            ("", format!("texture_storage_2d<{f}, write>")),
             wgpu::BindingType::StorageTexture {
                 access: wgpu::StorageTextureAccess::WriteOnly,
                 format,
@@ -294,7 +295,12 @@ impl Group {
         self.list
             .iter()
             .enumerate()
-            .map(|(i, d)| format!("@group({}) @binding({i}) var{};\n", self.index, d.wgsl))
+            .map(|(i, d)| {
+                format!(
+                    "@group({}) @binding({i}) var{} {}: {};\n",
+                    self.index, d.space, d.name, d.wgsl_type
+                )
+            })
             .collect()
     }
 
@@ -753,6 +759,15 @@ pub(crate) struct PassPipeline {
     state: std::sync::Mutex<State>,
 }
 
+impl std::fmt::Debug for PassPipeline {
+    /// The label: the GPU objects behind it print nothing useful.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("PassPipeline")
+            .field("label", &self.label)
+            .finish_non_exhaustive()
+    }
+}
+
 impl PassPipeline {
     /// Compile `source`'s `entry` over `group` (group 0) and `host_layout`
     /// (group 1, when the host binds one), and make the uniform buffers.
@@ -972,6 +987,18 @@ pub(crate) enum Bound<'a> {
     Buffer(&'a wgpu::Buffer),
 }
 
+impl<'a> From<&'a wgpu::TextureView> for Bound<'a> {
+    fn from(view: &'a wgpu::TextureView) -> Self {
+        Bound::Texture(view)
+    }
+}
+
+impl<'a> From<&'a wgpu::Buffer> for Bound<'a> {
+    fn from(buffer: &'a wgpu::Buffer) -> Self {
+        Bound::Buffer(buffer)
+    }
+}
+
 impl Bound<'_> {
     /// Whether this is the resource `r` (wgpu's handles compare by identity).
     fn is(&self, r: &Resource) -> bool {
@@ -1046,12 +1073,19 @@ pub(crate) fn check_buffer(
     Ok(())
 }
 
-/// Names the resources of `Option` roles: `(given, required, what)` is an
-/// error when given and required disagree.
-pub(crate) fn presence(given: bool, required: bool, what: &'static str) -> Result<(), PassError> {
+/// The input of an `Option` role: `Ok(Some)` when it is given and
+/// required, `Ok(None)` when neither; when given and required disagree, a
+/// [`PassError::Missing`] naming `missing` or a [`PassError::Unexpected`]
+/// naming `unexpected`.
+pub(crate) fn required<T>(
+    given: Option<T>,
+    required: bool,
+    missing: &'static str,
+    unexpected: &'static str,
+) -> Result<Option<T>, PassError> {
     match (given, required) {
-        (true, false) => Err(PassError::Unexpected(what)),
-        (false, true) => Err(PassError::Missing(what)),
-        _ => Ok(()),
+        (Some(_), false) => Err(PassError::Unexpected(unexpected)),
+        (None, true) => Err(PassError::Missing(missing)),
+        (given, _) => Ok(given),
     }
 }

@@ -14,7 +14,7 @@ use glam::Vec3;
 use subcone_kernels::camera::PinholeCamera;
 use subcone_kernels::ctss::CtssParams;
 
-use crate::bind::{self, check_buffer, presence, Bound, Group, PassPipeline};
+use crate::bind::{self, check_buffer, required, Bound, Group, PassPipeline};
 use crate::PassError;
 
 pub(crate) const CTSS_WGSL: &str = include_str!("ctss.wgsl");
@@ -198,40 +198,24 @@ impl Default for CtssPassDesc<'_> {
 }
 
 impl<'a> CtssPassDesc<'a> {
-    /// With `batch` hit groups marched ahead of shading ([`Self::batch`]).
-    pub fn with_batch(mut self, batch: u32) -> Self {
-        self.batch = batch;
-        self
-    }
-
-    /// Writing `format` ([`Self::output_format`]).
-    pub fn with_output_format(mut self, format: wgpu::TextureFormat) -> Self {
-        self.output_format = format;
-        self
+    with_setters! {
+        /// With `batch` hit groups marched ahead of shading ([`Self::batch`]).
+        with_batch(batch: u32);
+        /// Writing `output_format` ([`Self::output_format`]).
+        with_output_format(output_format: wgpu::TextureFormat);
+        /// With `samples_per_side × samples_per_side` cones per pixel
+        /// ([`Self::samples_per_side`]).
+        with_samples_per_side(samples_per_side: u32);
+        /// Tracing each cone with `trace` ([`Self::trace`]).
+        with_trace(trace: CtssTrace);
+        /// Writing to `output` ([`Self::output`]).
+        with_output(output: CtssOutput);
     }
 
     /// With the host's own bind group `layout` as `@group(1)`
     /// ([`Self::host_layout`]).
     pub fn with_host_layout(mut self, layout: &'a wgpu::BindGroupLayout) -> Self {
         self.host_layout = Some(layout);
-        self
-    }
-
-    /// With `n × n` cones per pixel ([`Self::samples_per_side`]).
-    pub fn with_samples_per_side(mut self, n: u32) -> Self {
-        self.samples_per_side = n;
-        self
-    }
-
-    /// Tracing each cone with `trace` ([`Self::trace`]).
-    pub fn with_trace(mut self, trace: CtssTrace) -> Self {
-        self.trace = trace;
-        self
-    }
-
-    /// Writing to `output` ([`Self::output`]).
-    pub fn with_output(mut self, output: CtssOutput) -> Self {
-        self.output = output;
         self
     }
 }
@@ -340,21 +324,12 @@ pub struct CtssBuffers<'a> {
 /// }, None)?;
 /// # Ok(()) }
 /// ```
+#[derive(Debug)]
 pub struct CtssPass {
     output_format: wgpu::TextureFormat,
     output: CtssOutput,
     host_group: bool,
     pipeline: PassPipeline,
-}
-
-impl std::fmt::Debug for CtssPass {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("CtssPass")
-            .field("output_format", &self.output_format)
-            .field("output", &self.output)
-            .field("host_group", &self.host_group)
-            .finish()
-    }
 }
 
 /// The shader's variant functions and constant, from the desc's typed
@@ -434,15 +409,7 @@ impl CtssPass {
         })
     }
 
-    #[cfg(test)]
-    pub(crate) fn group_for_tests(
-        output_format: wgpu::TextureFormat,
-        output: CtssOutput,
-    ) -> Group {
-        Self::group(output_format, output).expect("an output format")
-    }
-
-    fn group(output_format: wgpu::TextureFormat, output: CtssOutput) -> Result<Group, PassError> {
+    pub(crate) fn group(output_format: wgpu::TextureFormat, output: CtssOutput) -> Result<Group, PassError> {
         let mut g = Group::default();
         g.ring_uniform::<CtssUniform>("subcone_pass_frame", "CtssUniform");
         g.ring_uniform::<CtssParams>("subcone_pass_params", "subcone_CtssParams");
@@ -513,7 +480,8 @@ impl CtssPass {
         }
         let out = frame.output;
         let size = bind::check_output(out, self.output_format, "the desc's output_format")?;
-        presence(frame.host_group.is_some(), self.host_group, "host bind group")?;
+        let host = "host bind group";
+        required(frame.host_group, self.host_group, host, host)?;
         self.record(
             device,
             queue,
@@ -551,8 +519,10 @@ impl CtssPass {
         }
         let n = u64::from(width) * u64::from(height);
         check_buffer("output", frame.output, n, 16)?;
-        presence(frame.counts.is_some(), counts, "counts buffer")?;
-        presence(frame.host_group.is_some(), self.host_group, "host bind group")?;
+        let counts_buffer = "counts buffer";
+        required(frame.counts, counts, counts_buffer, counts_buffer)?;
+        let host = "host bind group";
+        required(frame.host_group, self.host_group, host, host)?;
         let mut bound = vec![("subcone_pass_output", Bound::Buffer(frame.output))];
         if let Some(c) = frame.counts {
             check_buffer("counts", c, n, 16)?;

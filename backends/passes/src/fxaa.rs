@@ -43,16 +43,11 @@ impl Default for FxaaPassDesc {
 }
 
 impl FxaaPassDesc {
-    /// With FXAA's thresholds `params` ([`Self::params`]).
-    pub fn with_params(mut self, params: FxaaParams) -> Self {
-        self.params = params;
-        self
-    }
-
-    /// Writing `format` ([`Self::output_format`]).
-    pub fn with_output_format(mut self, format: wgpu::TextureFormat) -> Self {
-        self.output_format = format;
-        self
+    with_setters! {
+        /// With FXAA's thresholds `params` ([`Self::params`]).
+        with_params(params: FxaaParams);
+        /// Writing `output_format` ([`Self::output_format`]).
+        with_output_format(output_format: wgpu::TextureFormat);
     }
 }
 
@@ -66,17 +61,10 @@ impl FxaaPassDesc {
 /// Built once, encoded every frame: after the first frame with given views,
 /// `encode` creates no buffer, texture, bind group or pipeline
 /// ([`crate::UNIFORM_SLOTS`], [`crate::BIND_GROUP_CACHE`]).
+#[derive(Debug)]
 pub struct FxaaPass {
     desc: FxaaPassDesc,
     pipeline: PassPipeline,
-}
-
-impl std::fmt::Debug for FxaaPass {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("FxaaPass")
-            .field("desc", &self.desc)
-            .finish()
-    }
 }
 
 impl FxaaPass {
@@ -98,12 +86,8 @@ impl FxaaPass {
         &self.desc
     }
 
-    #[cfg(test)]
-    pub(crate) fn group_for_tests(output_format: wgpu::TextureFormat) -> Group {
-        Self::group(output_format).expect("an output format")
-    }
-
-    fn group(output_format: wgpu::TextureFormat) -> Result<Group, PassError> {
+    /// The bindings, writing `output_format`.
+    pub(crate) fn group(output_format: wgpu::TextureFormat) -> Result<Group, PassError> {
         let mut g = Group::default();
         g.ring_uniform::<FxaaParams>("fxaa_params", "subcone_FxaaParams");
         g.ring_uniform::<FxaaFrame>("fxaa_frame", "FxaaFrame");

@@ -133,7 +133,7 @@ fn every_pass_shader_validates() {
                 let desc = CtssPassDesc::default()
                     .with_output(output)
                     .with_samples_per_side(side);
-                let g = CtssPass::group_for_tests(desc.output_format, output);
+                let g = CtssPass::group(desc.output_format, output).expect("an output format");
                 let label = format!("ctss{normal}, {output:?}, side {side}");
                 if let Err(e) = validate(&label, &CtssPass::source(&host, &desc, &g)) {
                     errors.push(e);
@@ -150,13 +150,13 @@ fn every_pass_shader_validates() {
             .with_trace(CtssTrace::Host)
             .with_output(output)
             .with_samples_per_side(2);
-        let g = CtssPass::group_for_tests(desc.output_format, output);
+        let g = CtssPass::group(desc.output_format, output).expect("an output format");
         let label = format!("ctss, host trace, {output:?}");
         if let Err(e) = validate(&label, &CtssPass::source(&own_trace, &desc, &g)) {
             errors.push(e);
         }
     }
-    let g = FxaaPass::group_for_tests(wgpu::TextureFormat::Rgba8Unorm);
+    let g = FxaaPass::group(wgpu::TextureFormat::Rgba8Unorm).expect("an output format");
     if let Err(e) = validate("fxaa", &FxaaPass::source(&g)) {
         errors.push(e);
     }
@@ -172,7 +172,7 @@ fn the_wgsl_no_object_is_the_kernels_constant() {
     let host = "fn subcone_field(p: vec3<f32>) -> vec3<f32> { let d = length(p) - 1.0; return vec3<f32>(d, d, 0.0); }\n\
                 fn subcone_shade(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> vec3<f32> { return n; }\n";
     let desc = CtssPassDesc::default();
-    let g = CtssPass::group_for_tests(desc.output_format, desc.output);
+    let g = CtssPass::group(desc.output_format, desc.output).expect("an output format");
     let source = CtssPass::source(host, &desc, &g);
     let module = naga::front::wgsl::parse_str(&source).expect("the CTSS pass's shader parses");
     let (_, constant) = module

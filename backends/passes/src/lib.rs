@@ -46,6 +46,21 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+/// The `with_` methods of a pass's `#[non_exhaustive]` desc: each entry
+/// `doc, with_field(field: Type)` sets that one field of the desc it is
+/// given and returns it.
+macro_rules! with_setters {
+    ($($(#[$doc:meta])* $with:ident($field:ident: $ty:ty);)*) => {
+        $(
+            $(#[$doc])*
+            pub fn $with(mut self, $field: $ty) -> Self {
+                self.$field = $field;
+                self
+            }
+        )*
+    };
+}
+
 pub mod bind;
 mod ctss;
 mod fxaa;
@@ -63,9 +78,9 @@ pub use ctss::{
 };
 pub use fxaa::{FxaaPass, FxaaPassDesc};
 pub use sraa::{
-    AlbedoBuffers, AlbedoTextures, CentreGeometry, DepthKind, GeometryLayout, NormalEncoding,
-    SecondaryBuffers, SecondaryInputs, ShadowBuffers, ShadowTextures, SraaBuffers, SraaInputs,
-    SraaPass, SraaPassDesc, SubsampleGeometry, RECONSTRUCT_WGSL,
+    CentreGeometry, DepthKind, GeometryLayout, NormalEncoding, Samples, SecondaryBuffers,
+    SecondaryInputs, SraaBuffers, SraaInputs, SraaPass, SraaPassDesc, SubsampleGeometry,
+    RECONSTRUCT_WGSL,
 };
 
 /// README.md's code blocks (its "Embedding" section), compiled as doctests.

@@ -21,7 +21,7 @@ use bytemuck::{Pod, Zeroable};
 use subcone_kernels::passes::MAX_LIGHTS;
 use subcone_kernels::sraa::{ShadedPosition, SraaParams, ALBEDO_TOLERANCE};
 
-use crate::bind::{self, check_buffer, presence, Bound, Expect, Group, PassPipeline};
+use crate::bind::{self, check_buffer, required, Bound, Expect, Group, PassPipeline};
 use crate::PassError;
 
 pub(crate) const SRAA_WGSL: &str = include_str!("sraa.wgsl");
@@ -138,7 +138,7 @@ pub struct SraaPassDesc {
     /// is one layer and nothing is gated (SRAA's eq. 1 alone); with `L > 0`
     /// the host supplies `1 + L` colour layers (layer 0 what no shadow
     /// decides: emission, ambient; layer `1 + l` light `l`'s direct
-    /// contribution) and shadow bits ([`ShadowTextures`]).
+    /// contribution) and shadow bits ([`SraaInputs::shadows`]).
     pub lights: u32,
     /// Secondary shading (mirror reflections, SRAA-RT §3.3) reconstructed
     /// on the secondary hits' own geometry ([`SecondaryInputs`]): the colour
@@ -149,7 +149,7 @@ pub struct SraaPassDesc {
     pub secondary: bool,
     /// The material gate (§4.1, Fig. 6; `sraa::material_gated_weight`): a
     /// neighbour whose albedo differs from the subsample's by more than
-    /// `sraa::ALBEDO_TOLERANCE` is not used. Needs [`AlbedoTextures`].
+    /// `sraa::ALBEDO_TOLERANCE` is not used. Needs [`SraaInputs::albedo`].
     pub albedo_gate: bool,
     /// The weights' preset: `SraaParams::TUNED` (the default, shaded sample
     /// at the pixel centre) or `SraaParams::PAPER` (§3.1's σz = 10,
@@ -225,52 +225,23 @@ impl SraaPassDesc {
         }
     }
 
-    /// With `lights` lights gating the reconstruction ([`Self::lights`]).
-    pub fn with_lights(mut self, lights: u32) -> Self {
-        self.lights = lights;
-        self
-    }
-
-    /// With or without secondary shading ([`Self::secondary`]).
-    pub fn with_secondary(mut self, secondary: bool) -> Self {
-        self.secondary = secondary;
-        self
-    }
-
-    /// With or without the material gate ([`Self::albedo_gate`]).
-    pub fn with_albedo_gate(mut self, albedo_gate: bool) -> Self {
-        self.albedo_gate = albedo_gate;
-        self
-    }
-
-    /// With the weights' preset `params` ([`Self::params`]).
-    pub fn with_params(mut self, params: SraaParams) -> Self {
-        self.params = params;
-        self
-    }
-
-    /// With the subsamples stored as `geometry` ([`Self::geometry`]).
-    pub fn with_geometry(mut self, geometry: GeometryLayout) -> Self {
-        self.geometry = geometry;
-        self
-    }
-
-    /// With depth stored as `depth` ([`Self::depth`]).
-    pub fn with_depth(mut self, depth: DepthKind) -> Self {
-        self.depth = depth;
-        self
-    }
-
-    /// With normals stored as `normal` ([`Self::normal`]).
-    pub fn with_normal(mut self, normal: NormalEncoding) -> Self {
-        self.normal = normal;
-        self
-    }
-
-    /// Writing `format` ([`Self::output_format`]).
-    pub fn with_output_format(mut self, format: wgpu::TextureFormat) -> Self {
-        self.output_format = format;
-        self
+    with_setters! {
+        /// With `lights` lights gating the reconstruction ([`Self::lights`]).
+        with_lights(lights: u32);
+        /// With or without secondary shading ([`Self::secondary`]).
+        with_secondary(secondary: bool);
+        /// With or without the material gate ([`Self::albedo_gate`]).
+        with_albedo_gate(albedo_gate: bool);
+        /// With the weights' preset `params` ([`Self::params`]).
+        with_params(params: SraaParams);
+        /// With the subsamples stored as `geometry` ([`Self::geometry`]).
+        with_geometry(geometry: GeometryLayout);
+        /// With depth stored as `depth` ([`Self::depth`]).
+        with_depth(depth: DepthKind);
+        /// With normals stored as `normal` ([`Self::normal`]).
+        with_normal(normal: NormalEncoding);
+        /// Writing `output_format` ([`Self::output_format`]).
+        with_output_format(output_format: wgpu::TextureFormat);
     }
 
     /// Colour layers: `1 + lights`, twice that with secondary shading.
@@ -303,28 +274,20 @@ pub struct CentreGeometry<'a> {
     pub normal: &'a wgpu::TextureView,
 }
 
-/// Shadow states for eq. 2 (`SraaPassDesc::lights > 0`): `R32Uint`, bit
-/// `l` set where light `l`'s shadow ray is blocked.
+/// One input read at each pixel's shaded sample and at its four geometric
+/// subsamples: `R` is a `&wgpu::TextureView` in [`SraaInputs`] and
+/// [`SecondaryInputs`], a `&wgpu::Buffer` in [`SraaBuffers`] and
+/// [`SecondaryBuffers`]. The role that holds it says what it stores and
+/// how its subsamples are laid out.
 #[derive(Clone, Copy, Debug)]
-pub struct ShadowTextures<'a> {
-    /// At the shaded sample of each pixel (one sample, one layer).
-    pub shaded: &'a wgpu::TextureView,
-    /// At each geometric subsample: a one-sample 2D array of exactly 4
-    /// layers, layer `k` subsample `k` (whatever the geometry layout:
-    /// integer formats cannot be multisampled everywhere).
-    pub subsamples: &'a wgpu::TextureView,
-}
-
-/// Diffuse albedo for the material gate (`SraaPassDesc::albedo_gate`):
-/// `.xyz` linear RGB, any float format.
-#[derive(Clone, Copy, Debug)]
-pub struct AlbedoTextures<'a> {
-    /// At the shaded sample of each pixel (one sample, one layer).
-    pub shaded: &'a wgpu::TextureView,
-    /// At each geometric subsample, in the geometry's layout: 4x
-    /// multisampled for [`GeometryLayout::Multisampled`], else a 4-layer
-    /// array.
-    pub subsamples: &'a wgpu::TextureView,
+pub struct Samples<R> {
+    /// At the shaded sample of each pixel: one sample and one layer of a
+    /// texture, one element per pixel of a buffer.
+    pub shaded: R,
+    /// At each geometric subsample: four per pixel of a buffer (subsample
+    /// `k` of pixel `j`, row-major, at `4j + k`); a texture's layout is
+    /// its role's.
+    pub subsamples: R,
 }
 
 /// The secondary hits (SRAA-RT §3.3: where a mirror reflects the ray) for
@@ -346,8 +309,9 @@ pub struct SecondaryInputs<'a> {
     pub subsample_depth: &'a wgpu::TextureView,
     /// Normals at each geometric subsample, in the same layout.
     pub subsample_normal: &'a wgpu::TextureView,
-    /// The secondary hits' shadow bits: required exactly when `lights > 0`.
-    pub shadows: Option<ShadowTextures<'a>>,
+    /// The secondary hits' shadow bits, as [`SraaInputs::shadows`]:
+    /// required exactly when `lights > 0`.
+    pub shadows: Option<Samples<&'a wgpu::TextureView>>,
 }
 
 /// The geometric subsamples of one frame, in the desc's
@@ -393,24 +357,21 @@ pub struct SraaInputs<'a> {
     /// one layer (a 2D texture); else a 2D array of exactly `1 + L` layers,
     /// `2·(1 + L)` with secondary shading.
     pub color: &'a wgpu::TextureView,
-    /// Shadow bits: required exactly when `lights > 0`.
-    pub shadows: Option<ShadowTextures<'a>>,
-    /// Albedo: required exactly when the albedo gate is on.
-    pub albedo: Option<AlbedoTextures<'a>>,
+    /// Shadow states for eq. 2, required exactly when `lights > 0`:
+    /// `R32Uint`, bit `l` set where light `l`'s shadow ray is blocked; the
+    /// subsamples a one-sample 2D array of exactly 4 layers, layer `k`
+    /// subsample `k`, whatever the geometry layout (integer formats cannot
+    /// be multisampled everywhere).
+    pub shadows: Option<Samples<&'a wgpu::TextureView>>,
+    /// Diffuse albedo for the material gate, required exactly when the
+    /// albedo gate is on: `.xyz` linear RGB, any float format; the
+    /// subsamples in the geometry's layout (4x multisampled for
+    /// [`GeometryLayout::Multisampled`], else a 4-layer array).
+    pub albedo: Option<Samples<&'a wgpu::TextureView>>,
     /// The secondary hits: required exactly when the desc has `secondary`.
     pub secondary: Option<SecondaryInputs<'a>>,
     /// Where the antialiased colour is written (level 0, layer 0).
     pub output: &'a wgpu::TextureView,
-}
-
-/// Shadow bits in buffers (`array<u32>`, bit `l` set where light `l`'s
-/// shadow ray is blocked), for [`SraaBuffers`].
-#[derive(Clone, Copy, Debug)]
-pub struct ShadowBuffers<'a> {
-    /// One per pixel, at its shaded sample.
-    pub shaded: &'a wgpu::Buffer,
-    /// Four per pixel, subsample `k` of pixel `j` (row-major) at `4j + k`.
-    pub subsamples: &'a wgpu::Buffer,
 }
 
 /// The secondary hits (§3.3) in buffers, for [`SraaBuffers`]: geometry as
@@ -418,22 +379,11 @@ pub struct ShadowBuffers<'a> {
 /// reflection left the scene, NaN where there is no mirror).
 #[derive(Clone, Copy, Debug)]
 pub struct SecondaryBuffers<'a> {
-    /// One per pixel, at its shaded sample.
-    pub shaded: &'a wgpu::Buffer,
-    /// Four per pixel, at `4j + k`.
-    pub subsamples: &'a wgpu::Buffer,
-    /// The secondary hits' shadow bits: required exactly when `lights > 0`.
-    pub shadows: Option<ShadowBuffers<'a>>,
-}
-
-/// Albedo in buffers (`array<vec4<f32>>`, linear RGB in `.xyz`), for
-/// [`SraaBuffers`].
-#[derive(Clone, Copy, Debug)]
-pub struct AlbedoBuffers<'a> {
-    /// One per pixel, at its shaded sample.
-    pub shaded: &'a wgpu::Buffer,
-    /// Four per pixel, at `4j + k`.
-    pub subsamples: &'a wgpu::Buffer,
+    /// The secondary hits' geometry.
+    pub geometry: Samples<&'a wgpu::Buffer>,
+    /// The secondary hits' shadow bits, as [`SraaBuffers::shadows`]:
+    /// required exactly when `lights > 0`.
+    pub shadows: Option<Samples<&'a wgpu::Buffer>>,
 }
 
 /// One frame's storage buffers for [`SraaPass::encode_buffers`]
@@ -445,20 +395,20 @@ pub struct AlbedoBuffers<'a> {
 pub struct SraaBuffers<'a> {
     /// The frame's `(width, height)`.
     pub size: (u32, u32),
-    /// The shaded samples' geometry, `array<subcone_Geometry>`, one per
-    /// pixel (wherever the preset shades).
-    pub shaded: &'a wgpu::Buffer,
-    /// The geometric subsamples, `array<subcone_Geometry>`, four per pixel,
-    /// subsample `k` (at `SUBPIXEL_OFFSETS[k]`) at `4j + k`.
-    pub subsamples: &'a wgpu::Buffer,
+    /// The geometry, `array<subcone_Geometry>`: of the shaded samples
+    /// (wherever the preset shades) and of the geometric subsamples
+    /// (subsample `k` at `SUBPIXEL_OFFSETS[k]`).
+    pub geometry: Samples<&'a wgpu::Buffer>,
     /// The shaded colour's layers, `array<vec4<f32>>` (`.xyz`), layer `l`
     /// of pixel `j` at `j · layers + l` (`1 + L` layers, twice that with
     /// secondary shading).
     pub color: &'a wgpu::Buffer,
-    /// Shadow bits: required exactly when `lights > 0`.
-    pub shadows: Option<ShadowBuffers<'a>>,
-    /// Albedo: required exactly when the albedo gate is on.
-    pub albedo: Option<AlbedoBuffers<'a>>,
+    /// Shadow bits, `array<u32>` (bit `l` set where light `l`'s shadow
+    /// ray is blocked): required exactly when `lights > 0`.
+    pub shadows: Option<Samples<&'a wgpu::Buffer>>,
+    /// Albedo, `array<vec4<f32>>` (linear RGB in `.xyz`): required exactly
+    /// when the albedo gate is on.
+    pub albedo: Option<Samples<&'a wgpu::Buffer>>,
     /// The secondary hits: required exactly when the desc has `secondary`.
     pub secondary: Option<SecondaryBuffers<'a>>,
     /// Where the antialiased colour is written, `array<vec4<f32>>`, one per
@@ -483,6 +433,32 @@ fn no_shadow_loaders(g: &str) -> String {
         "fn sraa_load_{g}shaded_shadow(p: vec2<i32>) -> u32 {{ return 0u; }}\n\
          fn sraa_load_{g}sub_shadow(p: vec2<i32>, k: u32) -> u32 {{ return 0u; }}\n"
     )
+}
+
+impl Samples<&wgpu::Buffer> {
+    /// Check both buffers (named `[shaded, subsamples]`) for `pixels`
+    /// pixels: one element of `element` bytes per pixel at the shaded
+    /// sample, four at the subsamples.
+    fn check(
+        &self,
+        [shaded, subsamples]: [&'static str; 2],
+        pixels: u64,
+        element: u64,
+    ) -> Result<(), PassError> {
+        check_buffer(shaded, self.shaded, pixels, element)?;
+        check_buffer(subsamples, self.subsamples, 4 * pixels, element)
+    }
+}
+
+/// Bind the shaded samples' resource of `s` as `shaded` and the
+/// subsamples' as `subsamples`.
+fn bind_samples<'a, R: Into<Bound<'a>>>(
+    s: Samples<R>,
+    [shaded, subsamples]: [&'static str; 2],
+    to: &mut Vec<(&'static str, Bound<'a>)>,
+) {
+    to.push((shaded, s.shaded.into()));
+    to.push((subsamples, s.subsamples.into()));
 }
 
 /// What the input textures of one frame must be, for one configuration
@@ -517,6 +493,18 @@ impl InputRules<'_> {
         }
     }
 
+    /// A float texture of the geometric subsamples ([`Self::sub`]).
+    fn float_sub(&self, what: &'static str, v: &wgpu::TextureView) -> Result<(), PassError> {
+        bind::check(v, &self.sub(what))?;
+        bind::check_float_color(what, v)
+    }
+
+    /// A one-sample, one-layer float texture.
+    fn float_one(&self, what: &'static str, v: &wgpu::TextureView) -> Result<(), PassError> {
+        bind::check(v, &self.one(what, 1))?;
+        bind::check_float_color(what, v)
+    }
+
     /// A depth texture's format for the desc's [`DepthKind`].
     fn depth_format(&self, what: &'static str, v: &wgpu::TextureView) -> Result<(), PassError> {
         let format = v.texture().format();
@@ -543,58 +531,34 @@ impl InputRules<'_> {
     fn subsample_geometry(&self, inputs: &SraaInputs<'_>) -> Result<(), PassError> {
         let packed = self.desc.geometry == GeometryLayout::Packed;
         match (packed, inputs.geometry) {
-            (true, SubsampleGeometry::Packed(p)) => {
-                bind::check(p, &self.sub("packed subsamples"))?;
-                bind::check_float_color("packed subsamples", p)?;
-            }
+            (true, SubsampleGeometry::Packed(p)) => self.float_sub("packed subsamples", p),
             (false, SubsampleGeometry::Separate { depth, normal }) => {
                 bind::check(depth, &self.sub("subsample depth"))?;
                 self.depth_format("subsample depth", depth)?;
-                bind::check(normal, &self.sub("subsample normal"))?;
-                bind::check_float_color("subsample normal", normal)?;
+                self.float_sub("subsample normal", normal)
             }
-            (true, SubsampleGeometry::Separate { .. }) => {
-                return Err(PassError::Config(
-                    "SubsampleGeometry::Separate given to a pass built for GeometryLayout::Packed"
-                        .into(),
-                ))
-            }
-            (false, SubsampleGeometry::Packed(_)) => return Err(PassError::Config(
+            (true, SubsampleGeometry::Separate { .. }) => Err(PassError::Config(
+                "SubsampleGeometry::Separate given to a pass built for GeometryLayout::Packed"
+                    .into(),
+            )),
+            (false, SubsampleGeometry::Packed(_)) => Err(PassError::Config(
                 "SubsampleGeometry::Packed given to a pass built for separate depth and normals"
                     .into(),
             )),
         }
-        Ok(())
     }
 
-    /// The centre geometry: present exactly when the preset shades the
-    /// pixel centre.
-    fn centre_geometry(&self, inputs: &SraaInputs<'_>) -> Result<(), PassError> {
-        match (self.desc.shaded_at_centre(), &inputs.centre) {
-            (true, Some(c)) => {
-                bind::check(c.depth, &self.one("centre depth", 1))?;
-                self.depth_format("centre depth", c.depth)?;
-                bind::check(c.normal, &self.one("centre normal", 1))?;
-                bind::check_float_color("centre normal", c.normal)?;
-            }
-            (true, None) => {
-                return Err(PassError::Missing(
-                    "centre geometry (the preset shades the pixel centre)",
-                ))
-            }
-            (false, Some(_)) => {
-                return Err(PassError::Unexpected(
-                    "centre geometry (the preset shades subsample 0)",
-                ))
-            }
-            (false, None) => {}
-        }
-        Ok(())
+    /// The centre geometry (given exactly when the preset shades the pixel
+    /// centre).
+    fn centre_geometry(&self, c: &CentreGeometry<'_>) -> Result<(), PassError> {
+        bind::check(c.depth, &self.one("centre depth", 1))?;
+        self.depth_format("centre depth", c.depth)?;
+        self.float_one("centre normal", c.normal)
     }
 
     /// A pair of shadow textures: `R32Uint`, one layer at the shaded
     /// sample, four at the subsamples.
-    fn shadows(&self, s: &ShadowTextures<'_>) -> Result<(), PassError> {
+    fn shadows(&self, s: &Samples<&wgpu::TextureView>) -> Result<(), PassError> {
         for (what, t, layers) in [
             ("shaded shadows", s.shaded, 1),
             ("subsample shadows", s.subsamples, 4),
@@ -611,58 +575,26 @@ impl InputRules<'_> {
         Ok(())
     }
 
-    /// The secondary hits (§3.3): present exactly when the desc has
-    /// `secondary`, with their shadows exactly when it has lights.
-    fn secondary(&self, inputs: &SraaInputs<'_>) -> Result<(), PassError> {
-        let d = self.desc;
-        match (d.secondary, &inputs.secondary) {
-            (true, Some(s)) => {
-                bind::check(s.shaded_depth, &self.one("secondary shaded depth", 1))?;
-                bind::check_float_color("secondary shaded depth", s.shaded_depth)?;
-                bind::check(s.shaded_normal, &self.one("secondary shaded normal", 1))?;
-                bind::check_float_color("secondary shaded normal", s.shaded_normal)?;
-                bind::check(s.subsample_depth, &self.sub("secondary subsample depth"))?;
-                bind::check_float_color("secondary subsample depth", s.subsample_depth)?;
-                bind::check(s.subsample_normal, &self.sub("secondary subsample normal"))?;
-                bind::check_float_color("secondary subsample normal", s.subsample_normal)?;
-                match (d.lights > 0, &s.shadows) {
-                    (true, Some(sh)) => self.shadows(sh)?,
-                    (true, None) => {
-                        return Err(PassError::Missing("secondary shadow textures (lights > 0)"))
-                    }
-                    (false, Some(_)) => {
-                        return Err(PassError::Unexpected(
-                            "secondary shadow textures (0 lights)",
-                        ))
-                    }
-                    (false, None) => {}
-                }
-            }
-            (true, None) => return Err(PassError::Missing("secondary inputs (secondary on)")),
-            (false, Some(_)) => {
-                return Err(PassError::Unexpected("secondary inputs (secondary off)"))
-            }
-            (false, None) => {}
-        }
-        Ok(())
+    /// The secondary hits (§3.3; given exactly when the desc has
+    /// `secondary`), with their shadows exactly when it has lights.
+    fn secondary(&self, s: &SecondaryInputs<'_>) -> Result<(), PassError> {
+        self.float_one("secondary shaded depth", s.shaded_depth)?;
+        self.float_one("secondary shaded normal", s.shaded_normal)?;
+        self.float_sub("secondary subsample depth", s.subsample_depth)?;
+        self.float_sub("secondary subsample normal", s.subsample_normal)?;
+        let shadows = required(
+            s.shadows.as_ref(),
+            self.desc.lights > 0,
+            "secondary shadow textures (lights > 0)",
+            "secondary shadow textures (0 lights)",
+        )?;
+        shadows.map_or(Ok(()), |sh| self.shadows(sh))
     }
 
-    /// The albedo textures: present exactly when the albedo gate is on.
-    fn albedo(&self, inputs: &SraaInputs<'_>) -> Result<(), PassError> {
-        match (self.desc.albedo_gate, &inputs.albedo) {
-            (true, Some(a)) => {
-                bind::check(a.shaded, &self.one("shaded albedo", 1))?;
-                bind::check_float_color("shaded albedo", a.shaded)?;
-                bind::check(a.subsamples, &self.sub("subsample albedo"))?;
-                bind::check_float_color("subsample albedo", a.subsamples)?;
-            }
-            (true, None) => return Err(PassError::Missing("albedo textures (albedo gate on)")),
-            (false, Some(_)) => {
-                return Err(PassError::Unexpected("albedo textures (albedo gate off)"))
-            }
-            (false, None) => {}
-        }
-        Ok(())
+    /// The albedo textures (given exactly when the albedo gate is on).
+    fn albedo(&self, a: &Samples<&wgpu::TextureView>) -> Result<(), PassError> {
+        self.float_one("shaded albedo", a.shaded)?;
+        self.float_sub("subsample albedo", a.subsamples)
     }
 }
 
@@ -695,17 +627,10 @@ impl InputRules<'_> {
 /// }, None)?;
 /// # Ok(()) }
 /// ```
+#[derive(Debug)]
 pub struct SraaPass {
     desc: SraaPassDesc,
     pipeline: PassPipeline,
-}
-
-impl std::fmt::Debug for SraaPass {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("SraaPass")
-            .field("desc", &self.desc)
-            .finish()
-    }
 }
 
 fn float_sample() -> wgpu::TextureSampleType {
@@ -747,25 +672,26 @@ impl SraaPass {
         g.ring_uniform::<SraaFrame>("frame", "SraaFrame");
         let geo = "array<subcone_Geometry>";
         let (words, float4) = ("array<u32>", "array<vec4<f32>>");
-        g.buffer("sub_geo", geo, Read);
-        g.buffer("shaded_geo", geo, Read);
-        g.buffer("color", float4, Read);
-        if desc.lights > 0 {
-            g.buffer("shaded_shadow", words, Read);
-            g.buffer("sub_shadow", words, Read);
-        }
-        if desc.secondary {
-            g.buffer("sec_shaded_geo", geo, Read);
-            g.buffer("sec_sub_geo", geo, Read);
-            if desc.lights > 0 {
-                g.buffer("sec_shaded_shadow", words, Read);
-                g.buffer("sec_sub_shadow", words, Read);
+        let lit = desc.lights > 0;
+        // The roles read at the shaded samples and at the subsamples
+        // ([`Samples`]), each where the desc reads it.
+        for (read, [shaded, sub], ty) in [
+            (true, ["shaded_geo", "sub_geo"], geo),
+            (lit, ["shaded_shadow", "sub_shadow"], words),
+            (desc.secondary, ["sec_shaded_geo", "sec_sub_geo"], geo),
+            (
+                desc.secondary && lit,
+                ["sec_shaded_shadow", "sec_sub_shadow"],
+                words,
+            ),
+            (desc.albedo_gate, ["shaded_albedo", "sub_albedo"], float4),
+        ] {
+            if read {
+                g.buffer(shaded, ty, Read);
+                g.buffer(sub, ty, Read);
             }
         }
-        if desc.albedo_gate {
-            g.buffer("shaded_albedo", float4, Read);
-            g.buffer("sub_albedo", float4, Read);
-        }
+        g.buffer("color", float4, Read);
         g.buffer("sraa_output", float4, ReadWrite);
         g
     }
@@ -981,17 +907,40 @@ impl SraaPass {
         let size = bind::check_output(inputs.output, d.output_format, "the desc's output_format")?;
         let rules = InputRules { desc: d, size };
         rules.subsample_geometry(inputs)?;
-        rules.centre_geometry(inputs)?;
+        if let Some(c) = required(
+            inputs.centre.as_ref(),
+            d.shaded_at_centre(),
+            "centre geometry (the preset shades the pixel centre)",
+            "centre geometry (the preset shades subsample 0)",
+        )? {
+            rules.centre_geometry(c)?;
+        }
         bind::check(inputs.color, &rules.one("colour", d.color_layers()))?;
         bind::check_float_color("colour", inputs.color)?;
-        match (d.lights > 0, &inputs.shadows) {
-            (true, Some(s)) => rules.shadows(s)?,
-            (true, None) => return Err(PassError::Missing("shadow textures (lights > 0)")),
-            (false, Some(_)) => return Err(PassError::Unexpected("shadow textures (0 lights)")),
-            (false, None) => {}
+        if let Some(s) = required(
+            inputs.shadows.as_ref(),
+            d.lights > 0,
+            "shadow textures (lights > 0)",
+            "shadow textures (0 lights)",
+        )? {
+            rules.shadows(s)?;
         }
-        rules.secondary(inputs)?;
-        rules.albedo(inputs)?;
+        if let Some(s) = required(
+            inputs.secondary.as_ref(),
+            d.secondary,
+            "secondary inputs (secondary on)",
+            "secondary inputs (secondary off)",
+        )? {
+            rules.secondary(s)?;
+        }
+        if let Some(a) = required(
+            inputs.albedo.as_ref(),
+            d.albedo_gate,
+            "albedo textures (albedo gate on)",
+            "albedo textures (albedo gate off)",
+        )? {
+            rules.albedo(a)?;
+        }
         Ok(size)
     }
 
@@ -1017,61 +966,48 @@ impl SraaPass {
                 "GeometryLayout::Buffers is encoded with encode_buffers".into(),
             ));
         }
-        let (width, height) = self.check(inputs)?;
-        let d = &self.desc;
+        let size = self.check(inputs)?;
         let m = inputs.projection;
-        let (projection, depth_miss) = match d.depth {
+        let (projection, depth_miss) = match self.desc.depth {
             DepthKind::LinearView => ([0.0; 4], 0.0),
             DepthKind::Hardware { miss } => ([m[2][2], m[3][2], m[2][3], m[3][3]], miss),
-        };
-        let frame = SraaFrame {
-            sraa: d.params,
-            projection,
-            width,
-            height,
-            depth_miss,
-            albedo_tolerance: ALBEDO_TOLERANCE,
         };
         let mut views: Vec<(&'static str, Bound<'_>)> = Vec::with_capacity(16);
         match inputs.geometry {
             SubsampleGeometry::Separate { depth, normal } => {
-                views.push(("sub_depth", Bound::Texture(depth)));
-                views.push(("sub_normal", Bound::Texture(normal)));
+                views.push(("sub_depth", depth.into()));
+                views.push(("sub_normal", normal.into()));
             }
-            SubsampleGeometry::Packed(p) => views.push(("sub_depth", Bound::Texture(p))),
+            SubsampleGeometry::Packed(p) => views.push(("sub_depth", p.into())),
         }
         if let Some(c) = &inputs.centre {
-            views.push(("centre_depth", Bound::Texture(c.depth)));
-            views.push(("centre_normal", Bound::Texture(c.normal)));
+            views.push(("centre_depth", c.depth.into()));
+            views.push(("centre_normal", c.normal.into()));
         }
-        views.push(("color", Bound::Texture(inputs.color)));
-        if let Some(s) = &inputs.shadows {
-            views.push(("shaded_shadow", Bound::Texture(s.shaded)));
-            views.push(("sub_shadow", Bound::Texture(s.subsamples)));
+        views.push(("color", inputs.color.into()));
+        if let Some(s) = inputs.shadows {
+            bind_samples(s, ["shaded_shadow", "sub_shadow"], &mut views);
         }
         if let Some(s) = &inputs.secondary {
-            views.push(("sec_shaded_depth", Bound::Texture(s.shaded_depth)));
-            views.push(("sec_shaded_normal", Bound::Texture(s.shaded_normal)));
-            views.push(("sec_sub_depth", Bound::Texture(s.subsample_depth)));
-            views.push(("sec_sub_normal", Bound::Texture(s.subsample_normal)));
-            if let Some(sh) = &s.shadows {
-                views.push(("sec_shaded_shadow", Bound::Texture(sh.shaded)));
-                views.push(("sec_sub_shadow", Bound::Texture(sh.subsamples)));
+            views.push(("sec_shaded_depth", s.shaded_depth.into()));
+            views.push(("sec_shaded_normal", s.shaded_normal.into()));
+            views.push(("sec_sub_depth", s.subsample_depth.into()));
+            views.push(("sec_sub_normal", s.subsample_normal.into()));
+            if let Some(sh) = s.shadows {
+                bind_samples(sh, ["sec_shaded_shadow", "sec_sub_shadow"], &mut views);
             }
         }
-        if let Some(a) = &inputs.albedo {
-            views.push(("shaded_albedo", Bound::Texture(a.shaded)));
-            views.push(("sub_albedo", Bound::Texture(a.subsamples)));
+        if let Some(a) = inputs.albedo {
+            bind_samples(a, ["shaded_albedo", "sub_albedo"], &mut views);
         }
-        views.push(("sraa_output", Bound::Texture(inputs.output)));
-        self.pipeline.encode(
+        views.push(("sraa_output", inputs.output.into()));
+        self.record(
             device,
             queue,
             encoder,
-            (width, height),
-            &[bytemuck::bytes_of(&frame)],
+            size,
+            (projection, depth_miss),
             &views,
-            None,
             timestamps,
         )
     }
@@ -1101,64 +1037,92 @@ impl SraaPass {
         let (width, height) = inputs.size;
         let n = u64::from(width) * u64::from(height);
         let (geo, float4, word) = (16, 16, 4);
-        check_buffer("shaded geometry", inputs.shaded, n, geo)?;
-        check_buffer("subsample geometry", inputs.subsamples, 4 * n, geo)?;
-        check_buffer(
-            "colour",
-            inputs.color,
-            n * u64::from(d.color_layers()),
-            float4,
-        )?;
+        inputs
+            .geometry
+            .check(["shaded geometry", "subsample geometry"], n, geo)?;
+        let layers = u64::from(d.color_layers());
+        check_buffer("colour", inputs.color, n * layers, float4)?;
         check_buffer("output", inputs.output, n, float4)?;
-        presence(inputs.shadows.is_some(), d.lights > 0, "shadow buffers")?;
-        presence(inputs.albedo.is_some(), d.albedo_gate, "albedo buffers")?;
-        presence(inputs.secondary.is_some(), d.secondary, "secondary buffers")?;
-        let mut bound: Vec<(&'static str, Bound<'_>)> = vec![
-            ("sub_geo", Bound::Buffer(inputs.subsamples)),
-            ("shaded_geo", Bound::Buffer(inputs.shaded)),
-            ("color", Bound::Buffer(inputs.color)),
-        ];
-        if let Some(s) = &inputs.shadows {
-            check_buffer("shaded shadow bits", s.shaded, n, word)?;
-            check_buffer("subsample shadow bits", s.subsamples, 4 * n, word)?;
-            bound.push(("shaded_shadow", Bound::Buffer(s.shaded)));
-            bound.push(("sub_shadow", Bound::Buffer(s.subsamples)));
+        let shadows = required(
+            inputs.shadows,
+            d.lights > 0,
+            "shadow buffers (lights > 0)",
+            "shadow buffers (0 lights)",
+        )?;
+        let albedo = required(
+            inputs.albedo,
+            d.albedo_gate,
+            "albedo buffers (albedo gate on)",
+            "albedo buffers (albedo gate off)",
+        )?;
+        let secondary = required(
+            inputs.secondary,
+            d.secondary,
+            "secondary buffers (secondary on)",
+            "secondary buffers (secondary off)",
+        )?;
+        let mut bound: Vec<(&'static str, Bound<'_>)> = Vec::with_capacity(16);
+        bind_samples(inputs.geometry, ["shaded_geo", "sub_geo"], &mut bound);
+        bound.push(("color", inputs.color.into()));
+        if let Some(s) = shadows {
+            s.check(["shaded shadow bits", "subsample shadow bits"], n, word)?;
+            bind_samples(s, ["shaded_shadow", "sub_shadow"], &mut bound);
         }
-        if let Some(s) = &inputs.secondary {
-            check_buffer("secondary shaded geometry", s.shaded, n, geo)?;
-            check_buffer("secondary subsample geometry", s.subsamples, 4 * n, geo)?;
-            presence(
-                s.shadows.is_some(),
+        if let Some(s) = secondary {
+            let geometry = ["secondary shaded geometry", "secondary subsample geometry"];
+            s.geometry.check(geometry, n, geo)?;
+            let shadows = required(
+                s.shadows,
                 d.lights > 0,
-                "secondary shadow buffers",
+                "secondary shadow buffers (lights > 0)",
+                "secondary shadow buffers (0 lights)",
             )?;
-            bound.push(("sec_shaded_geo", Bound::Buffer(s.shaded)));
-            bound.push(("sec_sub_geo", Bound::Buffer(s.subsamples)));
-            if let Some(sh) = &s.shadows {
-                check_buffer("secondary shaded shadow bits", sh.shaded, n, word)?;
-                check_buffer(
+            bind_samples(s.geometry, ["sec_shaded_geo", "sec_sub_geo"], &mut bound);
+            if let Some(sh) = shadows {
+                let bits = [
+                    "secondary shaded shadow bits",
                     "secondary subsample shadow bits",
-                    sh.subsamples,
-                    4 * n,
-                    word,
-                )?;
-                bound.push(("sec_shaded_shadow", Bound::Buffer(sh.shaded)));
-                bound.push(("sec_sub_shadow", Bound::Buffer(sh.subsamples)));
+                ];
+                sh.check(bits, n, word)?;
+                bind_samples(sh, ["sec_shaded_shadow", "sec_sub_shadow"], &mut bound);
             }
         }
-        if let Some(a) = &inputs.albedo {
-            check_buffer("shaded albedo", a.shaded, n, float4)?;
-            check_buffer("subsample albedo", a.subsamples, 4 * n, float4)?;
-            bound.push(("shaded_albedo", Bound::Buffer(a.shaded)));
-            bound.push(("sub_albedo", Bound::Buffer(a.subsamples)));
+        if let Some(a) = albedo {
+            a.check(["shaded albedo", "subsample albedo"], n, float4)?;
+            bind_samples(a, ["shaded_albedo", "sub_albedo"], &mut bound);
         }
-        bound.push(("sraa_output", Bound::Buffer(inputs.output)));
+        bound.push(("sraa_output", inputs.output.into()));
+        self.record(
+            device,
+            queue,
+            encoder,
+            inputs.size,
+            ([0.0; 4], 0.0),
+            &bound,
+            timestamps,
+        )
+    }
+
+    /// Record one frame of `size` over the `bound` resources, with the
+    /// projection's z and w rows and the depth of a miss for hardware depth
+    /// (`([0.0; 4], 0.0)` for linear view depth).
+    #[allow(clippy::too_many_arguments)]
+    fn record(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        (width, height): (u32, u32),
+        (projection, depth_miss): ([f32; 4], f32),
+        bound: &[(&'static str, Bound<'_>)],
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<(), PassError> {
         let frame = SraaFrame {
-            sraa: d.params,
-            projection: [0.0; 4],
+            sraa: self.desc.params,
+            projection,
             width,
             height,
-            depth_miss: 0.0,
+            depth_miss,
             albedo_tolerance: ALBEDO_TOLERANCE,
         };
         self.pipeline.encode(
@@ -1167,7 +1131,7 @@ impl SraaPass {
             encoder,
             (width, height),
             &[bytemuck::bytes_of(&frame)],
-            &bound,
+            bound,
             None,
             timestamps,
         )

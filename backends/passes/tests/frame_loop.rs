@@ -36,25 +36,9 @@ fn subcone_shade(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> vec3<f32> {
 /// Open a device as a host would, with `TIMESTAMP_QUERY` when the adapter
 /// has it.
 fn open_device() -> Result<(wgpu::Device, wgpu::Queue), String> {
-    let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
-    desc.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::PRIMARY);
-    let instance = wgpu::Instance::new(desc);
-    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-        power_preference: wgpu::PowerPreference::HighPerformance,
-        force_fallback_adapter: false,
-        compatible_surface: None,
-        apply_limit_buckets: false,
-    }))
-    .map_err(|e| format!("no GPU adapter: {e}"))?;
-    pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-        label: Some("frame loop host"),
-        required_features: adapter.features() & wgpu::Features::TIMESTAMP_QUERY,
-        required_limits: wgpu::Limits::default(),
-        experimental_features: wgpu::ExperimentalFeatures::disabled(),
-        memory_hints: wgpu::MemoryHints::Performance,
-        trace: wgpu::Trace::Off,
-    }))
-    .map_err(|e| format!("cannot open a device: {e}"))
+    host::open_device_with("frame loop host", wgpu::Features::TIMESTAMP_QUERY, |_| {
+        wgpu::Limits::default()
+    })
 }
 
 /// The live objects of the kinds a pass could create, by name (wgpu-hal's

@@ -20,15 +20,16 @@ use subcone_passes::{
 
 use host_sraa::host::{self, texture};
 
-/// Install the host's own uncaptured-error handler on `device`: it counts
-/// the errors it sees.
-fn count_uncaptured_errors(device: &wgpu::Device) -> Arc<AtomicUsize> {
+/// A host's device (or `None`: skip the test `what`) with the host's own
+/// uncaptured-error handler installed: it counts the errors it sees.
+fn device_counting_errors(what: &str) -> Option<(wgpu::Device, wgpu::Queue, Arc<AtomicUsize>)> {
+    let (device, queue) = common::device_or_skip(what, host_sraa::open_device)?;
     let seen = Arc::new(AtomicUsize::new(0));
     let counter = seen.clone();
     device.on_uncaptured_error(Arc::new(move |_e: wgpu::Error| {
         counter.fetch_add(1, Ordering::SeqCst);
     }));
-    seen
+    Some((device, queue, seen))
 }
 
 /// Wait for the device (the host's poll), panicking on a timeout.
@@ -38,11 +39,9 @@ fn wait(device: &wgpu::Device) {
 
 #[test]
 fn the_hosts_uncaptured_error_handler_stays_the_hosts() {
-    let Some((device, queue)) = common::device_or_skip("host errors", host_sraa::open_device)
-    else {
+    let Some((device, queue, seen)) = device_counting_errors("host errors") else {
         return;
     };
-    let seen = count_uncaptured_errors(&device);
     // subcone's own context on the host's device: no callback installed.
     let ctx = Arc::new(subcone_wgpu::GpuContext::from_device(
         device.clone(),
@@ -140,11 +139,9 @@ fn the_hosts_uncaptured_error_handler_stays_the_hosts() {
 /// host's handler sees no error).
 #[test]
 fn inputs_that_do_not_fit_are_typed_errors() {
-    let Some((device, queue)) = common::device_or_skip("pass input checks", host_sraa::open_device)
-    else {
+    let Some((device, queue, seen)) = device_counting_errors("pass input checks") else {
         return;
     };
-    let seen = count_uncaptured_errors(&device);
     use wgpu::TextureFormat::{Depth32Float, R32Float, Rgba16Float, Rgba8UnormSrgb};
     let read = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT;
     let store = wgpu::TextureUsages::STORAGE_BINDING;

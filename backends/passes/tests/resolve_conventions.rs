@@ -24,9 +24,8 @@ use subcone_kernels::sraa::{
     ALBEDO_TOLERANCE,
 };
 use subcone_passes::{
-    AlbedoBuffers, AlbedoTextures, CentreGeometry, DepthKind, GeometryLayout, NormalEncoding,
-    SecondaryBuffers, SecondaryInputs, ShadowBuffers, ShadowTextures, SraaBuffers, SraaInputs,
-    SraaPass, SraaPassDesc, SubsampleGeometry,
+    CentreGeometry, DepthKind, GeometryLayout, NormalEncoding, Samples, SecondaryBuffers,
+    SecondaryInputs, SraaBuffers, SraaInputs, SraaPass, SraaPassDesc, SubsampleGeometry,
 };
 
 const W: u32 = 12;
@@ -275,6 +274,11 @@ fn storage<T: bytemuck::Pod>(
     b
 }
 
+/// `shaded` and `subsamples` as an input of a role the case has (`on`).
+fn samples<R>(on: bool, shaded: R, subsamples: R) -> Option<Samples<R>> {
+    on.then_some(Samples { shaded, subsamples })
+}
+
 /// The pass on buffers (`GeometryLayout::Buffers`): every role as the
 /// kernels' structs, the geometry as it is (secondary misses and "no
 /// mirror" as `Geometry` holds them).
@@ -306,26 +310,26 @@ fn gpu_buffers(device: &wgpu::Device, queue: &wgpu::Queue, d: &Data, c: &Case) -
     )
     .expect("pass");
     let mut enc = device.create_command_encoder(&Default::default());
-    let shadows =
-        |shaded, subsamples| (c.lights > 0).then_some(ShadowBuffers { shaded, subsamples });
+    let lit = c.lights > 0;
     pass.encode_buffers(
         device,
         queue,
         &mut enc,
         &SraaBuffers {
             size: (W, H),
-            shaded: &shaded,
-            subsamples: &sub,
+            geometry: Samples {
+                shaded: &shaded,
+                subsamples: &sub,
+            },
             color: &color,
-            shadows: shadows(&shaded_shadow, &sub_shadow),
-            albedo: c.gate.then_some(AlbedoBuffers {
-                shaded: &shaded_albedo,
-                subsamples: &sub_albedo,
-            }),
+            shadows: samples(lit, &shaded_shadow, &sub_shadow),
+            albedo: samples(c.gate, &shaded_albedo, &sub_albedo),
             secondary: c.secondary.then_some(SecondaryBuffers {
-                shaded: &shaded2,
-                subsamples: &sub2,
-                shadows: shadows(&shaded_shadow2, &sub_shadow2),
+                geometry: Samples {
+                    shaded: &shaded2,
+                    subsamples: &sub2,
+                },
+                shadows: samples(lit, &shaded_shadow2, &sub_shadow2),
             }),
             output: &output,
         },
@@ -445,23 +449,14 @@ fn gpu(device: &wgpu::Device, queue: &wgpu::Queue, d: &Data, c: &Case) -> Vec<Ve
                 normal: &centre_normal,
             }),
             color: &color,
-            shadows: (c.lights > 0).then_some(ShadowTextures {
-                shaded: &shaded_shadow,
-                subsamples: &sub_shadow,
-            }),
-            albedo: c.gate.then_some(AlbedoTextures {
-                shaded: &shaded_albedo,
-                subsamples: &sub_albedo,
-            }),
+            shadows: samples(c.lights > 0, &shaded_shadow, &sub_shadow),
+            albedo: samples(c.gate, &shaded_albedo, &sub_albedo),
             secondary: c.secondary.then_some(SecondaryInputs {
                 shaded_depth: &sec_shaded_depth,
                 shaded_normal: &sec_shaded_normal,
                 subsample_depth: &sec_sub_depth,
                 subsample_normal: &sec_sub_normal,
-                shadows: (c.lights > 0).then_some(ShadowTextures {
-                    shaded: &sec_shaded_shadow,
-                    subsamples: &sec_sub_shadow,
-                }),
+                shadows: samples(c.lights > 0, &sec_shaded_shadow, &sec_sub_shadow),
             }),
             output: &output_view,
         },
@@ -613,10 +608,13 @@ fn sraa_pass_buffers_are_checked() {
         mapped_at_creation: false,
     });
     let pass = SraaPass::new(&device, &SraaPassDesc::buffers(SraaParams::TUNED)).expect("pass");
-    let inputs = SraaBuffers {
-        size: (W, H),
+    let geometry = Samples {
         shaded: &geo,
         subsamples: &sub,
+    };
+    let inputs = SraaBuffers {
+        size: (W, H),
+        geometry,
         color: &color,
         shadows: None,
         albedo: None,
@@ -628,7 +626,10 @@ fn sraa_pass_buffers_are_checked() {
     assert_eq!(encode(&inputs), Ok(()));
     assert!(matches!(
         encode(&SraaBuffers {
-            shaded: &small,
+            geometry: Samples {
+                shaded: &small,
+                ..geometry
+            },
             ..inputs
         }),
         Err(PassError::BufferSize {
@@ -645,13 +646,13 @@ fn sraa_pass_buffers_are_checked() {
     ));
     assert_eq!(
         encode(&SraaBuffers {
-            shadows: Some(ShadowBuffers {
+            shadows: Some(Samples {
                 shaded: &words,
                 subsamples: &words,
             }),
             ..inputs
         }),
-        Err(PassError::Unexpected("shadow buffers"))
+        Err(PassError::Unexpected("shadow buffers (0 lights)"))
     );
     let textures = SraaPass::new(&device, &SraaPassDesc::packed(SraaParams::TUNED)).expect("pass");
     // On a device of WebGPU's default limits (8 storage buffers per stage),

@@ -206,25 +206,22 @@ impl<'a> Program<'a> {
             source: self.source.clone(),
             entry,
         };
-        if let Some(p) = ctx.cached(&key) {
-            return Ok(p);
-        }
-        if self.module.is_none() {
-            let (label, source) = (self.label, &self.source);
-            self.module = Some(ctx.scoped(label, || {
-                ctx.device
-                    .create_shader_module(wgpu::ShaderModuleDescriptor {
-                        label: Some(label),
-                        source: wgpu::ShaderSource::Wgsl(source.as_ref().into()),
-                    })
-            })?);
-        }
-        let (module, layout) = (self.module.as_ref().expect("compiled above"), &self.layout);
-        let p = Arc::new(ctx.scoped(entry, || {
-            bind::compute_pipeline(&ctx.device, entry, layout, module, entry)
-        })?);
-        ctx.cache_insert(key, p.clone());
-        Ok(p)
+        ctx.cached_or_insert(key, |_| {
+            if self.module.is_none() {
+                let (label, source) = (self.label, &self.source);
+                self.module = Some(ctx.scoped(label, || {
+                    ctx.device
+                        .create_shader_module(wgpu::ShaderModuleDescriptor {
+                            label: Some(label),
+                            source: wgpu::ShaderSource::Wgsl(source.as_ref().into()),
+                        })
+                })?);
+            }
+            let (module, layout) = (self.module.as_ref().expect("compiled above"), &self.layout);
+            ctx.scoped(entry, || {
+                bind::compute_pipeline(&ctx.device, entry, layout, module, entry)
+            })
+        })
     }
 
     /// Record one compute pass running `pipeline` over `workgroups`, with

@@ -237,6 +237,21 @@ impl GpuContext {
         cache.get(key)
     }
 
+    /// The object cached under `key` on this device, made by `make` (and
+    /// kept) when there is none. The cache is not locked while `make` runs.
+    pub(crate) fn cached_or_insert<K: CacheKey>(
+        &self,
+        key: K,
+        make: impl FnOnce(&K) -> Result<K::Value, RenderError>,
+    ) -> Result<Arc<K::Value>, RenderError> {
+        if let Some(v) = self.cached(&key) {
+            return Ok(v);
+        }
+        let v = Arc::new(make(&key)?);
+        self.cache_insert(key, v.clone());
+        Ok(v)
+    }
+
     /// Keep `value` for this device under `key` (at most
     /// [`DeviceCache::MAX_ENTRIES`] objects).
     pub(crate) fn cache_insert<K: CacheKey>(&self, key: K, value: Arc<K::Value>) {
@@ -463,19 +478,36 @@ impl GpuContext {
         offset: u64,
         size: u64,
     ) -> Result<Vec<u8>, RenderError> {
-        let staging = self.scoped("read-back", || {
+        self.read_back(
+            "read-back",
+            size,
+            |encoder, staging| encoder.copy_buffer_to_buffer(buffer, offset, staging, 0, size),
+            <[u8]>::to_vec,
+        )
+    }
+
+    /// Read `size` bytes back to the CPU: `copy` records their copy into a
+    /// new mappable buffer, which is submitted, mapped and waited for, and
+    /// `read` takes the mapped bytes. `what` labels the objects and the
+    /// errors.
+    pub(crate) fn read_back<T>(
+        &self,
+        what: &str,
+        size: u64,
+        copy: impl FnOnce(&mut wgpu::CommandEncoder, &wgpu::Buffer),
+        read: impl FnOnce(&[u8]) -> T,
+    ) -> Result<T, RenderError> {
+        let staging = self.scoped(what, || {
             let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("read-back"),
+                label: Some(what),
                 size,
                 usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             });
             let mut encoder = self
                 .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("read-back"),
-                });
-            encoder.copy_buffer_to_buffer(buffer, offset, &staging, 0, size);
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(what) });
+            copy(&mut encoder, &staging);
             self.queue.submit([encoder.finish()]);
             staging
         })?;
@@ -483,18 +515,19 @@ impl GpuContext {
         staging.map_async(wgpu::MapMode::Read, .., move |r| {
             let _ = tx.send(r);
         });
-        self.wait("read-back")?;
+        self.wait(what)?;
         match rx.recv_timeout(Duration::from_secs(1)) {
             Ok(Ok(())) => {}
-            Ok(Err(e)) => return Err(err(format!("read-back failed: {e}"))),
-            Err(_) => return Err(err("read-back did not complete")),
+            Ok(Err(e)) => return Err(err(format!("{what} failed: {e}"))),
+            Err(_) => return Err(err(format!("{what} did not complete"))),
         }
-        let data = staging
+        let bytes = staging
             .get_mapped_range(..)
-            .map_err(|e| err(format!("read-back failed: {e}")))?
-            .to_vec();
+            .map_err(|e| err(format!("{what} failed: {e}")))?;
+        let out = read(&bytes);
+        drop(bytes);
         staging.unmap();
-        Ok(data)
+        Ok(out)
     }
 }
 

@@ -9,19 +9,25 @@ use glam::Vec3;
 /// Open a device as a host would: `WGPU_BACKEND` or Vulkan, Metal, DX12,
 /// with wgpu's default limits.
 pub fn open_device() -> Result<(wgpu::Device, wgpu::Queue), String> {
-    open_device_with("host", |_| wgpu::Limits::default())
+    open_device_with("host", wgpu::Features::empty(), |_| wgpu::Limits::default())
 }
 
 /// [`open_device`] asking for the adapter's own limits (as
 /// `subcone_wgpu::GpuContext::new` does).
 pub fn open_device_with_adapter_limits() -> Result<(wgpu::Device, wgpu::Queue), String> {
-    open_device_with("host, adapter limits", wgpu::Adapter::limits)
+    open_device_with(
+        "host, adapter limits",
+        wgpu::Features::empty(),
+        wgpu::Adapter::limits,
+    )
 }
 
-/// Open a device labelled `label` on the first adapter, with the `limits`
-/// it gives for that adapter.
-fn open_device_with(
+/// Open a device labelled `label` on the first adapter, with those of the
+/// `optional` features the adapter has and the `limits` it gives for that
+/// adapter.
+pub fn open_device_with(
     label: &str,
+    optional: wgpu::Features,
     limits: impl FnOnce(&wgpu::Adapter) -> wgpu::Limits,
 ) -> Result<(wgpu::Device, wgpu::Queue), String> {
     let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
@@ -36,7 +42,7 @@ fn open_device_with(
     .map_err(|e| format!("no GPU adapter: {e}"))?;
     pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
         label: Some(label),
-        required_features: wgpu::Features::empty(),
+        required_features: adapter.features() & optional,
         required_limits: limits(&adapter),
         experimental_features: wgpu::ExperimentalFeatures::disabled(),
         memory_hints: wgpu::MemoryHints::Performance,

@@ -37,18 +37,13 @@ impl CacheKey for FxaaPassKey {
 /// parameters.
 fn pass(ctx: &GpuContext, params: &FxaaParams) -> Result<Arc<FxaaPass>, RenderError> {
     let key = FxaaPassKey(bytemuck::cast(*params));
-    if let Some(p) = ctx.cached(&key) {
-        return Ok(p);
-    }
-    let desc = FxaaPassDesc::default()
-        .with_params(*params)
-        .with_output_format(FORMAT);
-    let p = ctx
-        .scoped("fxaa", || FxaaPass::new(&ctx.device, &desc))?
-        .map_err(|e| err(format!("FXAA: {e}")))?;
-    let p = Arc::new(p);
-    ctx.cache_insert(key, p.clone());
-    Ok(p)
+    ctx.cached_or_insert(key, |_| {
+        let desc = FxaaPassDesc::default()
+            .with_params(*params)
+            .with_output_format(FORMAT);
+        ctx.scoped("fxaa", || FxaaPass::new(&ctx.device, &desc))?
+            .map_err(|e| err(format!("FXAA: {e}")))
+    })
 }
 
 /// FXAA of the `width`×`height` frame in `color` (16 bytes per pixel, needs

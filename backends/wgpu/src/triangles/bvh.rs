@@ -114,13 +114,7 @@ impl CacheKey for SceneKey {
 }
 
 pub(crate) fn scene_gpu(ctx: &GpuContext, scene: &Scene) -> Result<Arc<SceneGpu>, RenderError> {
-    let key = SceneKey(scene.id());
-    if let Some(s) = ctx.cached(&key) {
-        return Ok(s);
-    }
-    let s = Arc::new(upload(ctx, scene)?);
-    ctx.cache_insert(key, s.clone());
-    Ok(s)
+    ctx.cached_or_insert(SceneKey(scene.id()), |_| upload(ctx, scene))
 }
 
 fn f3(v: Vec3) -> [f32; 3] {

@@ -85,69 +85,67 @@ fn pipeline(
     ]
     .concat();
     let key = RasterPipelineKey { source, albedo };
-    if let Some(p) = ctx.cached(&key) {
-        return Ok((*p).clone());
-    }
-    let target = Some(wgpu::ColorTargetState {
-        format: TARGET,
-        blend: None,
-        write_mask: wgpu::ColorWrites::ALL,
-    });
-    let targets = [target.clone(), target];
-    let (entry, targets) = if albedo {
-        ("fs_albedo", &targets[..])
-    } else {
-        ("fs_main", &targets[..1])
-    };
-    let p = ctx.scoped("raster pipeline", || {
-        let module = ctx
-            .device
-            .create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("raster"),
-                source: wgpu::ShaderSource::Wgsl(key.source.as_str().into()),
-            });
-        let pl = ctx
-            .device
-            .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("raster"),
-                bind_group_layouts: &[Some(layout)],
-                immediate_size: 0,
-            });
-        ctx.device
-            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some("raster"),
-                layout: Some(&pl),
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some("vs_main"),
-                    compilation_options: Default::default(),
-                    buffers: &[],
-                },
-                primitive: wgpu::PrimitiveState {
-                    topology: wgpu::PrimitiveTopology::TriangleList,
-                    cull_mode: None,
-                    ..Default::default()
-                },
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: DEPTH,
-                    depth_write_enabled: Some(true),
-                    depth_compare: Some(wgpu::CompareFunction::Greater),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                }),
-                multisample: Default::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some(entry),
-                    compilation_options: Default::default(),
-                    targets,
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
+    let p = ctx.cached_or_insert(key, |key| {
+        let target = Some(wgpu::ColorTargetState {
+            format: TARGET,
+            blend: None,
+            write_mask: wgpu::ColorWrites::ALL,
+        });
+        let targets = [target.clone(), target];
+        let (entry, targets) = if albedo {
+            ("fs_albedo", &targets[..])
+        } else {
+            ("fs_main", &targets[..1])
+        };
+        ctx.scoped("raster pipeline", || {
+            let module = ctx
+                .device
+                .create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some("raster"),
+                    source: wgpu::ShaderSource::Wgsl(key.source.as_str().into()),
+                });
+            let pl = ctx
+                .device
+                .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                    label: Some("raster"),
+                    bind_group_layouts: &[Some(layout)],
+                    immediate_size: 0,
+                });
+            ctx.device
+                .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                    label: Some("raster"),
+                    layout: Some(&pl),
+                    vertex: wgpu::VertexState {
+                        module: &module,
+                        entry_point: Some("vs_main"),
+                        compilation_options: Default::default(),
+                        buffers: &[],
+                    },
+                    primitive: wgpu::PrimitiveState {
+                        topology: wgpu::PrimitiveTopology::TriangleList,
+                        cull_mode: None,
+                        ..Default::default()
+                    },
+                    depth_stencil: Some(wgpu::DepthStencilState {
+                        format: DEPTH,
+                        depth_write_enabled: Some(true),
+                        depth_compare: Some(wgpu::CompareFunction::Greater),
+                        stencil: Default::default(),
+                        bias: Default::default(),
+                    }),
+                    multisample: Default::default(),
+                    fragment: Some(wgpu::FragmentState {
+                        module: &module,
+                        entry_point: Some(entry),
+                        compilation_options: Default::default(),
+                        targets,
+                    }),
+                    multiview_mask: None,
+                    cache: None,
+                })
+        })
     })?;
-    ctx.cache_insert(key, std::sync::Arc::new(p.clone()));
-    Ok(p)
+    Ok((*p).clone())
 }
 
 /// The raster targets of one frame and what draws into them.

@@ -14,13 +14,12 @@
 //! ([`BufferResolve`], `SraaPass::encode_buffers`).
 
 use std::sync::Arc;
-use std::time::Duration;
 
 use glam::Vec3;
 use subcone_kernels::sraa::{ShadedPosition, SraaParams};
 use subcone_passes::{
-    AlbedoBuffers, AlbedoTextures, CentreGeometry, SecondaryBuffers, ShadowBuffers, SraaBuffers,
-    SraaInputs, SraaPass, SraaPassDesc, SubsampleGeometry,
+    CentreGeometry, Samples, SecondaryBuffers, SraaBuffers, SraaInputs, SraaPass, SraaPassDesc,
+    SubsampleGeometry,
 };
 use subcone_scene::RenderError;
 
@@ -83,16 +82,10 @@ impl CacheKey for SraaPassKey {
 /// The pass on this device for `key`, compiled once per device and
 /// configuration.
 fn pass(ctx: &GpuContext, key: SraaPassKey) -> Result<Arc<SraaPass>, RenderError> {
-    if let Some(p) = ctx.cached(&key) {
-        return Ok(p);
-    }
-    let desc = key.desc();
-    let p = ctx
-        .scoped("sraa resolve", || SraaPass::new(&ctx.device, &desc))?
-        .map_err(|e| err(format!("sraa resolve: {e}")))?;
-    let p = Arc::new(p);
-    ctx.cache_insert(key, p.clone());
-    Ok(p)
+    ctx.cached_or_insert(key, |key| {
+        ctx.scoped("sraa resolve", || SraaPass::new(&ctx.device, &key.desc()))?
+            .map_err(|e| err(format!("sraa resolve: {e}")))
+    })
 }
 
 /// The copy of the output into a colour buffer, for a post-process that
@@ -272,7 +265,10 @@ impl<'a> HybridResolve<'a> {
         let packed = view(raster.texture());
         let centre = self.centre.as_ref().map(|(d, n)| (view(d), view(n)));
         let albedo = match (&self.albedo, raster.albedo_texture()) {
-            (Some(shaded), Some(subsamples)) => Some((view(shaded), view(subsamples))),
+            (Some(shaded), Some(subsamples)) => Some(Samples {
+                shaded: view(shaded),
+                subsamples: view(subsamples),
+            }),
             _ => None,
         };
         let (color, output) = (view(&self.color), view(&self.output));
@@ -290,9 +286,10 @@ impl<'a> HybridResolve<'a> {
                         .map(|(depth, normal)| CentreGeometry { depth, normal }),
                     color: &color,
                     shadows: None,
-                    albedo: albedo
-                        .as_ref()
-                        .map(|(shaded, subsamples)| AlbedoTextures { shaded, subsamples }),
+                    albedo: albedo.as_ref().map(|a| Samples {
+                        shaded: &a.shaded,
+                        subsamples: &a.subsamples,
+                    }),
                     secondary: None,
                     output: &output,
                 },
@@ -319,20 +316,10 @@ impl<'a> HybridResolve<'a> {
         let (w, h) = (self.width as usize, self.height as usize);
         let row = (w * 16).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT as usize);
         let size = (row * h) as u64;
-        ctx.check_buffer_size("sraa output read-back", size)?;
-        let staging = ctx.scoped("sraa output read-back", || {
-            let staging = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("sraa output read-back"),
-                size,
-                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            });
-            let mut enc = ctx
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("sraa output read-back"),
-                });
-            enc.copy_texture_to_buffer(
+        let what = "sraa output read-back";
+        ctx.check_buffer_size(what, size)?;
+        let copy = |encoder: &mut wgpu::CommandEncoder, staging: &wgpu::Buffer| {
+            encoder.copy_texture_to_buffer(
                 wgpu::TexelCopyTextureInfo {
                     texture: &self.output,
                     mip_level: 0,
@@ -340,7 +327,7 @@ impl<'a> HybridResolve<'a> {
                     aspect: wgpu::TextureAspect::All,
                 },
                 wgpu::TexelCopyBufferInfo {
-                    buffer: &staging,
+                    buffer: staging,
                     layout: wgpu::TexelCopyBufferLayout {
                         offset: 0,
                         bytes_per_row: Some(row as u32),
@@ -349,32 +336,17 @@ impl<'a> HybridResolve<'a> {
                 },
                 self.output.size(),
             );
-            ctx.queue.submit([enc.finish()]);
-            staging
-        })?;
-        let (tx, rx) = std::sync::mpsc::channel();
-        staging.map_async(wgpu::MapMode::Read, .., move |r| {
-            let _ = tx.send(r);
-        });
-        ctx.wait("sraa output read-back")?;
-        match rx.recv_timeout(Duration::from_secs(1)) {
-            Ok(Ok(())) => {}
-            Ok(Err(e)) => return Err(err(format!("sraa output read-back failed: {e}"))),
-            Err(_) => return Err(err("sraa output read-back did not complete")),
-        }
-        let bytes = staging
-            .get_mapped_range(..)
-            .map_err(|e| err(format!("sraa output read-back failed: {e}")))?;
-        let mut color = Vec::with_capacity(w * h);
-        for r in bytes.chunks(row).take(h) {
-            color.extend(r[..w * 16].chunks_exact(16).map(|texel| {
-                let c: [f32; 4] = bytemuck::pod_read_unaligned(texel);
-                Vec3::new(c[0], c[1], c[2])
-            }));
-        }
-        drop(bytes);
-        staging.unmap();
-        Ok(color)
+        };
+        ctx.read_back(what, size, copy, |bytes| {
+            let mut color = Vec::with_capacity(w * h);
+            for r in bytes.chunks(row).take(h) {
+                color.extend(r[..w * 16].chunks_exact(16).map(|texel| {
+                    let c: [f32; 4] = bytemuck::pod_read_unaligned(texel);
+                    Vec3::new(c[0], c[1], c[2])
+                }));
+            }
+            color
+        })
     }
 }
 
@@ -426,32 +398,27 @@ impl BufferResolve {
             fb.buffer_named(shaded),
             fb.buffer_named(subsamples),
         ) {
-            (Some(a), Some(b)) => Ok(Some((a, b))),
+            (Some(shaded), Some(subsamples)) => Ok(Some(Samples { shaded, subsamples })),
             (None, None) => Ok(None),
             _ => Err(err(format!(
                 "sraa-rt resolve: `{shaded}` and `{subsamples}` are bound apart"
             ))),
         };
-        fn shadows<'b>(
-            s: Option<(&'b wgpu::Buffer, &'b wgpu::Buffer)>,
-        ) -> Option<ShadowBuffers<'b>> {
-            s.map(|(shaded, subsamples)| ShadowBuffers { shaded, subsamples })
-        }
-        let secondary = pair("geo2_buf", "sub_geo2_buf")?.map(|(shaded, subsamples)| {
+        let secondary = pair("geo2_buf", "sub_geo2_buf")?.map(|geometry| {
             Ok::<_, RenderError>(SecondaryBuffers {
-                shaded,
-                subsamples,
-                shadows: shadows(pair("shadow2_buf", "sub_shadow2_buf")?),
+                geometry,
+                shadows: pair("shadow2_buf", "sub_shadow2_buf")?,
             })
         });
         let inputs = SraaBuffers {
             size: (width, height),
-            shaded: fb.get("geo")?,
-            subsamples: fb.get("sub_geo_buf")?,
+            geometry: Samples {
+                shaded: fb.get("geo")?,
+                subsamples: fb.get("sub_geo_buf")?,
+            },
             color: fb.get("values")?,
-            shadows: shadows(pair("shadow_buf", "sub_shadow_buf")?),
-            albedo: pair("albedo_buf", "sub_albedo_buf")?
-                .map(|(shaded, subsamples)| AlbedoBuffers { shaded, subsamples }),
+            shadows: pair("shadow_buf", "sub_shadow_buf")?,
+            albedo: pair("albedo_buf", "sub_albedo_buf")?,
             secondary: secondary.transpose()?,
             output: fb.get("color")?,
         };
