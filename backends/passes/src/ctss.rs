@@ -409,7 +409,10 @@ impl CtssPass {
         })
     }
 
-    pub(crate) fn group(output_format: wgpu::TextureFormat, output: CtssOutput) -> Result<Group, PassError> {
+    pub(crate) fn group(
+        output_format: wgpu::TextureFormat,
+        output: CtssOutput,
+    ) -> Result<Group, PassError> {
         let mut g = Group::default();
         g.ring_uniform::<CtssUniform>("subcone_pass_frame", "CtssUniform");
         g.ring_uniform::<CtssParams>("subcone_pass_params", "subcone_CtssParams");

@@ -125,10 +125,7 @@ fn every_pass_shader_validates() {
          fn subcone_counters() -> vec2<u32> {{ return vec2<u32>(3u, 4u); }}\n"
     );
     for (host, normal) in [(field.to_string(), ""), (own_normal, ", host normal")] {
-        for output in [
-            CtssOutput::Texture,
-            CtssOutput::Buffers { counts: false },
-        ] {
+        for output in [CtssOutput::Texture, CtssOutput::Buffers { counts: false }] {
             for side in [1, 3] {
                 let desc = CtssPassDesc::default()
                     .with_output(output)

@@ -101,8 +101,18 @@ fn trace_buffers(
     pass.encode_buffers(device, queue, &mut enc, &frame, None)
         .expect("encode");
     queue.submit([enc.finish()]);
-    let colour = read(device, queue, device.create_command_encoder(&Default::default()), &output);
-    let count = read(device, queue, device.create_command_encoder(&Default::default()), &counts);
+    let colour = read(
+        device,
+        queue,
+        device.create_command_encoder(&Default::default()),
+        &output,
+    );
+    let count = read(
+        device,
+        queue,
+        device.create_command_encoder(&Default::default()),
+        &counts,
+    );
     (colour, count)
 }
 
@@ -144,7 +154,10 @@ fn buffers_hold_the_texture_image_and_the_counts() {
     let bits = |v: &[[f32; 4]]| -> Vec<u32> { v.iter().flatten().map(|x| x.to_bits()).collect() };
     assert_eq!(bits(&colour), bits(&texels));
     let centre = ((H / 2) * W + W / 2) as usize;
-    assert_eq!(counts[centre][1], 1, "the sphere's centre pixel shades one group");
+    assert_eq!(
+        counts[centre][1], 1,
+        "the sphere's centre pixel shades one group"
+    );
     assert_eq!(counts[0][1], 0, "the corner misses the sphere");
     for c in &counts {
         assert!(c[0] > 0, "every cone evaluates the field: {c:?}");

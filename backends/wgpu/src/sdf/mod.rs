@@ -61,7 +61,6 @@
 mod shading;
 mod sraa;
 
-
 use std::sync::Arc;
 
 use bytemuck::{Pod, Zeroable};
@@ -154,8 +153,6 @@ impl HostTrace {
     }
 }
 
-/// The field's scatter table on the device, uploaded once per device and
-/// table (`None` when the field has none).
 /// A field's scatter table's cache key: its values' bits.
 #[derive(PartialEq, Eq, Hash)]
 struct ScatterTableKey(Vec<u32>);
@@ -164,6 +161,8 @@ impl CacheKey for ScatterTableKey {
     type Value = wgpu::Buffer;
 }
 
+/// The field's scatter table on the device, uploaded once per device and
+/// table (`None` when the field has none).
 fn scatter_table(
     ctx: &GpuContext,
     f: &WgslField,
@@ -172,22 +171,19 @@ fn scatter_table(
         return Ok(None);
     }
     let bits: Vec<u32> = f.data.iter().flatten().map(|x| x.to_bits()).collect();
-    let key = ScatterTableKey(bits);
-    if let Some(b) = ctx.cached(&key) {
-        return Ok(Some(b));
-    }
-    let bytes: &[u8] = bytemuck::cast_slice(&f.data);
-    ctx.check_buffer_size("the SDF's scatter table", bytes.len() as u64)?;
-    let b = Arc::new(ctx.scoped("SDF scatter table", || {
-        ctx.device
-            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("sdf_data"),
-                contents: bytes,
-                usage: wgpu::BufferUsages::STORAGE,
-            })
-    })?);
-    ctx.cache_insert(key, b.clone());
-    Ok(Some(b))
+    let table = ctx.cached_or_insert(ScatterTableKey(bits), |_| {
+        let bytes: &[u8] = bytemuck::cast_slice(&f.data);
+        ctx.check_buffer_size("the SDF's scatter table", bytes.len() as u64)?;
+        ctx.scoped("SDF scatter table", || {
+            ctx.device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("sdf_data"),
+                    contents: bytes,
+                    usage: wgpu::BufferUsages::STORAGE,
+                })
+        })
+    })?;
+    Ok(Some(table))
 }
 
 /// The frame's constants; `SdfFrame` in trace.wgsl (112 bytes).
@@ -355,7 +351,14 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     }
 
     if settings.aovs {
-        centre_aovs(ctx, job, (max_distance, max_steps), &field, &host, &mut frame)?;
+        centre_aovs(
+            ctx,
+            job,
+            (max_distance, max_steps),
+            &field,
+            &host,
+            &mut frame,
+        )?;
         frame.samples_per_pixel = Some(count_px.iter().map(|c| c[1] as f32).collect());
         buffers.push(("aovs", px_bytes as usize));
     }
@@ -403,24 +406,19 @@ fn ctss_pass(
     key: SdfPassKey,
     layout: &wgpu::BindGroupLayout,
 ) -> Result<Arc<CtssPass>, RenderError> {
-    if let Some(p) = ctx.cached(&key) {
-        return Ok(p);
-    }
-    let desc = CtssPassDesc::default()
-        .with_batch(key.batch)
-        .with_samples_per_side(key.side)
-        .with_trace(match key.trace {
-            None => CtssTrace::Kernels,
-            Some(_) => CtssTrace::Host,
-        })
-        .with_output(CtssOutput::Buffers { counts: true })
-        .with_host_layout(layout);
-    let pass = ctx
-        .scoped("sdf", || CtssPass::new(&ctx.device, &key.host_wgsl, &desc))?
-        .map_err(|e| err(format!("sdf: {e}")))?;
-    let pass = Arc::new(pass);
-    ctx.cache_insert(key, pass.clone());
-    Ok(pass)
+    ctx.cached_or_insert(key, |key| {
+        let desc = CtssPassDesc::default()
+            .with_batch(key.batch)
+            .with_samples_per_side(key.side)
+            .with_trace(match key.trace {
+                None => CtssTrace::Kernels,
+                Some(_) => CtssTrace::Host,
+            })
+            .with_output(CtssOutput::Buffers { counts: true })
+            .with_host_layout(layout);
+        ctx.scoped("sdf", || CtssPass::new(&ctx.device, &key.host_wgsl, &desc))?
+            .map_err(|e| err(format!("sdf: {e}")))
+    })
 }
 
 /// Buffers by name and size in bytes ([`FrameStats::buffers`]).
@@ -530,7 +528,13 @@ fn centre_aovs(
     let plain = Method::new(Technique::NoAa).ctss_params(camera, h, max_distance, max_steps);
     let mut b = Bindings::new(0);
     b.uniform(ctx, "aov_params", "subcone_CtssParams", &plain)?;
-    b.storage(ctx, "aovs", "aov_out", "array<vec4<f32>>", pixels as u64 * 16)?;
+    b.storage(
+        ctx,
+        "aovs",
+        "aov_out",
+        "array<vec4<f32>>",
+        pixels as u64 * 16,
+    )?;
     let pending = format!("const subcone_CTSS_BATCH: u32 = {ASAP_BATCH}u;\n");
     let mut sources = kernels();
     sources.extend([
