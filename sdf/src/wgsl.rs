@@ -36,6 +36,9 @@ use std::fmt::Write;
 
 use glam::{Quat, Vec3, Vec4};
 
+// The short names the generator's format strings use.
+use self::{f32_literal as f, vec3_literal as v3};
+
 use subcone_scene::sdf::{Op, Repeat, Scatter, SdfNode, Shape, Transform};
 
 /// A field compiled to WGSL.
@@ -143,8 +146,10 @@ fn sdf_aabb_distance(p: vec3<f32>, lo: vec3<f32>, hi: vec3<f32>) -> f32 {
 }
 "#;
 
-/// An f32 as a WGSL expression that parses to the same bits.
-fn f(x: f32) -> String {
+/// An f32 as a WGSL expression that parses to the same bits (NaN as a
+/// quiet NaN's bits, ±∞ through the prelude's `subcone_inf()`): how every
+/// constant of a generated shader is written.
+pub fn f32_literal(x: f32) -> String {
     if x.is_nan() {
         "bitcast<f32>(0x7fc00000u)".into()
     } else if x == f32::INFINITY {
@@ -158,7 +163,8 @@ fn f(x: f32) -> String {
     }
 }
 
-fn v3(v: Vec3) -> String {
+/// A `Vec3` as a WGSL `vec3<f32>` expression of [`f32_literal`]s.
+pub fn vec3_literal(v: Vec3) -> String {
     format!("vec3<f32>({}, {}, {})", f(v.x), f(v.y), f(v.z))
 }
 

@@ -68,6 +68,7 @@ use bytemuck::{Pod, Zeroable};
 use subcone_kernels::camera::PinholeCamera;
 use subcone_kernels::passes::{Passes, Technique};
 use subcone_passes::{CtssBuffers, CtssCamera, CtssOutput, CtssPass, CtssPassDesc, CtssTrace};
+use subcone_scene::scene::SdfGeometry;
 use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderError};
 use subcone_sdf::wgsl::WgslField;
 use wgpu::util::DeviceExt;
@@ -226,9 +227,6 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         settings,
         passes,
     } = *job;
-    let g = scene
-        .sdf_geometry()
-        .ok_or_else(|| err("not an SDF scene"))?;
     // `WgpuBackend::plan` has refused mirrors and more than
     // MAX_SIDE_SAMPLES samples per side.
     // Every technique named (no wildcard): a new one must be routed.
@@ -246,11 +244,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
             )))
         }
     }
-    let max_distance = settings.max_distance.unwrap_or(g.max_distance);
-    let max_steps = settings.max_steps.unwrap_or(g.max_steps);
-    if max_distance.is_nan() {
-        return Err(err("the maximum ray distance is NaN"));
-    }
+    let (g, (max_distance, max_steps)) = march(job)?;
     let (w, h) = (settings.width, settings.height);
     // Samples per pixel side (1 without supersampling), and whether a
     // cone is traced per sample (the CTSS family).
@@ -378,6 +372,22 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         multi_sample_pixels: totals.multi,
     };
     Ok(frame)
+}
+
+/// The field of `job`'s SDF scene and its march `(max_distance,
+/// max_steps)`, the settings' overrides applied; not an SDF scene or a NaN
+/// distance is an error.
+fn march<'a>(job: &Job<'a>) -> Result<(&'a SdfGeometry, (f32, u32)), RenderError> {
+    let g = job
+        .scene
+        .sdf_geometry()
+        .ok_or_else(|| err("not an SDF scene"))?;
+    let max_distance = job.settings.max_distance.unwrap_or(g.max_distance);
+    let max_steps = job.settings.max_steps.unwrap_or(g.max_steps);
+    if max_distance.is_nan() {
+        return Err(err("the maximum ray distance is NaN"));
+    }
+    Ok((g, (max_distance, max_steps)))
 }
 
 /// The host group of `frame`'s programs, as group `index`: the frame's

@@ -11,25 +11,7 @@ use subcone_scene::{Albedo, Light, Material, RenderError};
 
 use crate::context::err;
 
-fn f(x: f32) -> String {
-    if x.is_nan() {
-        "bitcast<f32>(0x7fc00000u)".into()
-    } else if x.is_infinite() {
-        if x > 0.0 {
-            "subcone_inf()".into()
-        } else {
-            "(-subcone_inf())".into()
-        }
-    } else if x.is_sign_negative() {
-        format!("(-{:?}f)", -x)
-    } else {
-        format!("{x:?}f")
-    }
-}
-
-fn v3(v: Vec3) -> String {
-    format!("vec3<f32>({}, {}, {})", f(v.x), f(v.y), f(v.z))
-}
+use subcone_sdf::wgsl::{f32_literal as f, vec3_literal as v3};
 
 /// Materials and lights as WGSL. Errors on no materials.
 pub(crate) fn shading_wgsl(

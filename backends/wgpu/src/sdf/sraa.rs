@@ -20,7 +20,7 @@ use subcone_kernels::passes::{LayerLayout, Passes, Technique, MAX_LIGHTS};
 use subcone_scene::{Frame, FrameStats, PassTiming, RayCounts, RenderError};
 
 use super::{
-    centre_aovs, host_bindings, kernels, scatter_table, shading, SdfFrame, Totals, ASAP_BATCH,
+    centre_aovs, host_bindings, kernels, march, scatter_table, shading, SdfFrame, Totals, ASAP_BATCH,
     TRACE_WGSL, WORKGROUP,
 };
 use crate::compute::{self, Allocate, Program};
@@ -78,14 +78,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         settings,
         passes,
     } = *job;
-    let g = scene
-        .sdf_geometry()
-        .ok_or_else(|| err("not an SDF scene"))?;
-    let max_distance = settings.max_distance.unwrap_or(g.max_distance);
-    let max_steps = settings.max_steps.unwrap_or(g.max_steps);
-    if max_distance.is_nan() {
-        return Err(err("the maximum ray distance is NaN"));
-    }
+    let (g, (max_distance, max_steps)) = march(job)?;
     let (w, h) = (settings.width, settings.height);
     let n = w as u64 * h as u64;
     let lights = scene.lights.len().min(MAX_LIGHTS);
