@@ -52,7 +52,7 @@ fn backend_gpu_structs_match_their_wgsl() {
             "SdfFrame",
             size_of::<SdfFrame>(),
             members!(SdfFrame: camera, background, max_distance, ambient, max_steps, ao_rays,
-                ao_radius, _pad[2 as u32]),
+                ao_radius, cone, _pad),
         ),
     ]);
 }

@@ -80,8 +80,6 @@ use subcone_passes::bind::{Bindings, BufferAccess};
 
 pub(crate) const TRACE_WGSL: &str = include_str!("trace.wgsl");
 const AOVS_WGSL: &str = include_str!("aovs.wgsl");
-/// `subcone_trace`, CtssPass's host trace, over `host_sample` ([`HostTrace`]).
-const HOST_TRACE_WGSL: &str = include_str!("host_trace.wgsl");
 const WORKGROUP: u32 = 8;
 /// Hit groups a cone marches ahead of shading them (the
 /// `subcone_CTSS_BATCH` of the kernels' `subcone_ctss_trace`) for ASAP
@@ -113,18 +111,18 @@ fn kernels() -> Vec<&'static str> {
 const TRANSLUCENT_WGSL: &str = include_str!("translucent.wgsl");
 
 /// What traces each sample of a CTSS / NoAA / SSAA frame through
-/// [`CtssPass`]: the kernels' CTSS trace on opaque scenes, or one of
-/// `host_trace.wgsl`'s samplers.
+/// [`CtssPass`] when the kernels' CTSS trace does not (opaque scenes under
+/// a cone-traced method): the pass's host trace, `subcone_trace`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 enum HostTrace {
-    /// Sphere tracing (NoAA, SSAA): `noaa_sample`.
+    /// Sphere tracing (NoAA, SSAA) of an opaque scene: `noaa_sample`.
     Sphere,
-    /// NoAA / SSAA with alpha blending along the ray (semi-transparent
-    /// scenes): `noaa_translucent_sample`.
-    TranslucentSphere,
-    /// CTSS with §5.3's `K` masks (semi-transparent scenes):
-    /// `ctss_translucent_sample`.
-    TranslucentCone,
+    /// A semi-transparent scene (CTSS §5.3): `ctss_translucent_sample`
+    /// under a cone-traced method, `noaa_translucent_sample` (alpha
+    /// blending along the ray) otherwise, chosen by `SdfFrame::cone`, as
+    /// one shader for both: compiled with only the sphere sampler reachable,
+    /// lavapipe (Mesa 22.3) crashes.
+    Translucent,
 }
 
 impl HostTrace {
@@ -134,25 +132,49 @@ impl HostTrace {
         match (cone, job.scene.has_translucency()) {
             (true, false) => None,
             (false, false) => Some(HostTrace::Sphere),
-            (false, true) => Some(HostTrace::TranslucentSphere),
-            (true, true) => Some(HostTrace::TranslucentCone),
+            (_, true) => Some(HostTrace::Translucent),
         }
     }
 
-    /// `host_sample`, bound to this trace's sampler.
-    fn sampler(self) -> String {
-        let name = match self {
-            HostTrace::Sphere => "noaa_sample",
-            HostTrace::TranslucentSphere => "noaa_translucent_sample",
-            HostTrace::TranslucentCone => "ctss_translucent_sample",
-        };
-        format!(
-            "fn host_sample(o: vec3<f32>, d: vec3<f32>, b: vec3<f32>, steps: ptr<function, u32>, \
-             samples: ptr<function, u32>, shadow: ptr<function, u32>) -> vec3<f32> {{\n    \
-             return {name}(o, d, b, steps, samples, shadow);\n}}\n"
-        )
+    /// `subcone_trace`, CtssPass's host trace, over this trace's sampler:
+    /// its colour, shaded samples and field evaluations, its shadow rays
+    /// added to the pixel's count (`shadow_rays_traced`, trace.wgsl).
+    fn wgsl(self) -> &'static str {
+        match self {
+            HostTrace::Sphere => SPHERE_TRACE_WGSL,
+            HostTrace::Translucent => TRANSLUCENT_TRACE_WGSL,
+        }
     }
 }
+
+/// [`HostTrace::Sphere`]'s `subcone_trace`.
+const SPHERE_TRACE_WGSL: &str = "
+fn subcone_trace(params: subcone_CtssParams, origin: vec3<f32>, dir: vec3<f32>, right: vec3<f32>, up: vec3<f32>, background: vec3<f32>) -> subcone_CtssTraceResult {
+    var steps = 0u;
+    var samples = 0u;
+    var shadow = 0u;
+    let c = noaa_sample(origin, dir, background, &steps, &samples, &shadow);
+    shadow_rays_traced += shadow;
+    return subcone_CtssTraceResult(c, samples, steps, 0u, 0u);
+}
+";
+
+/// [`HostTrace::Translucent`]'s `subcone_trace`.
+const TRANSLUCENT_TRACE_WGSL: &str = "
+fn subcone_trace(params: subcone_CtssParams, origin: vec3<f32>, dir: vec3<f32>, right: vec3<f32>, up: vec3<f32>, background: vec3<f32>) -> subcone_CtssTraceResult {
+    var steps = 0u;
+    var samples = 0u;
+    var shadow = 0u;
+    var c: vec3<f32>;
+    if frame.cone != 0u {
+        c = ctss_translucent_sample(origin, dir, background, &steps, &samples, &shadow);
+    } else {
+        c = noaa_translucent_sample(origin, dir, background, &steps, &samples, &shadow);
+    }
+    shadow_rays_traced += shadow;
+    return subcone_CtssTraceResult(c, samples, steps, 0u, 0u);
+}
+";
 
 /// A field's scatter table's cache key: its values' bits.
 #[derive(PartialEq, Eq, Hash)]
@@ -202,7 +224,10 @@ pub(crate) struct SdfFrame {
     pub(crate) ao_rays: u32,
     /// Their length ([`subcone_scene::scene::SdfGeometry::ao_radius`]; a NaN is 0).
     pub(crate) ao_radius: f32,
-    pub(crate) _pad: [u32; 2],
+    /// 1 under a cone-traced method (the semi-transparent host trace's
+    /// choice, [`HostTrace::Translucent`]), else 0.
+    pub(crate) cone: u32,
+    pub(crate) _pad: u32,
 }
 
 /// A [`CtssPass`] over one scene's field and shading: its host WGSL (the
@@ -281,8 +306,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         host_wgsl += TRANSLUCENT_WGSL;
     }
     if let Some(t) = trace {
-        host_wgsl += HOST_TRACE_WGSL;
-        host_wgsl += &t.sampler();
+        host_wgsl += t.wgsl();
     }
     host_wgsl += &host.declarations();
     let layout = host.layout(&ctx.device, "sdf");
@@ -479,7 +503,8 @@ impl SdfFrame {
             max_steps,
             ao_rays: settings.ao_rays,
             ao_radius: if ao_radius.is_nan() { 0.0 } else { ao_radius },
-            _pad: [0; 2],
+            cone: job.method.technique().is_cone_traced() as u32,
+            _pad: 0,
         }
     }
 }

@@ -20,8 +20,8 @@ use subcone_kernels::passes::{LayerLayout, Passes, Technique, MAX_LIGHTS};
 use subcone_scene::{Frame, FrameStats, PassTiming, RayCounts, RenderError};
 
 use super::{
-    centre_aovs, host_bindings, kernels, march, scatter_table, shading, SdfFrame, Totals, ASAP_BATCH,
-    TRACE_WGSL, WORKGROUP,
+    centre_aovs, host_bindings, kernels, march, scatter_table, shading, SdfFrame, Totals,
+    ASAP_BATCH, TRACE_WGSL, WORKGROUP,
 };
 use crate::compute::{self, Allocate, Program};
 use crate::context::{err, GpuContext};

@@ -18,8 +18,9 @@ struct SdfFrame {
     // Ambient-occlusion rays per shaded point (0: off) and their length.
     ao_rays: u32,
     ao_radius: f32,
-    _pad0: u32,
-    _pad1: u32,
+    // 1 under a cone-traced method (sdf/mod.rs HostTrace::Translucent).
+    cone: u32,
+    _pad: u32,
 }
 
 // Bindings (sdf/mod.rs, sdf/sraa.rs): frame (SdfFrame); ctss
