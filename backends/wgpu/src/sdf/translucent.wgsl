@@ -14,7 +14,7 @@
 // (subcone_group_mask, through trace.wgsl's field hooks), and shading.rs's
 // material_opacity. sdf/mod.rs includes it when the scene has translucency:
 // its ctss_translucent_sample and noaa_translucent_sample are then the
-// samplers of CtssPass's host trace (host_trace.wgsl).
+// samplers of CtssPass's host trace (sdf/mod.rs HostTrace::Translucent).
 
 // No group open (SdfView::ctss_translucent's group_material = None).
 const NO_GROUP: u32 = 0xffffffffu;
