@@ -331,7 +331,8 @@ impl ResultRow {
 
     /// The classes the row claims to fix: a post-process row's
     /// ([`POST_PROCESS_CLAIMS`](subcone_scene::registry::POST_PROCESS_CLAIMS)),
-    /// else what its method's name claims ([`classes::claimed`]).
+    /// else what its method claims ([`Method::claims`]), nothing for any
+    /// other post-process step.
     pub fn claims(&self) -> Vec<classes::Class> {
         match (&self.post_process, &self.method) {
             (Some(_), _) => subcone_scene::registry::POST_PROCESS_CLAIMS.to_vec(),
