@@ -782,7 +782,7 @@ impl Plan {
         };
         for n in names.iter().filter(|n| !is_post(n)) {
             let m = parse_method(n, "--method")?;
-            if !methods.iter().any(|x| x.to_string() == m.to_string()) {
+            if !methods.contains(&m) {
                 methods.push(m);
             }
         }
