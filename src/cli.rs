@@ -133,18 +133,10 @@ pub struct RenderOptions {
     pub method: Method,
     /// Backend name.
     pub backend: String,
-    /// Width.
-    pub width: u32,
-    /// Height.
-    pub height: u32,
-    /// Mirror bounces.
-    pub reflection_depth: u32,
-    /// SDF step budget override.
-    pub max_steps: Option<u32>,
-    /// SDF distance override.
-    pub max_distance: Option<f32>,
-    /// Ambient-occlusion rays per shaded point (0: off).
-    pub ao_rays: u32,
+    /// Size, mirror bounces, SDF overrides and ambient-occlusion rays; the
+    /// AOVs are recorded when [`aov`](Self::aov) asks for one, whatever
+    /// `settings.aovs` says.
+    pub settings: RenderSettings,
     /// AOV to write beside the output.
     pub aov: Option<Aov>,
     /// Output path.
@@ -203,15 +195,13 @@ pub fn render(opts: &RenderOptions) -> Result<RenderReport> {
     let backend = backend_on(&opts.backend, opts.isa)?;
     let scene = scene(&opts.scene)?;
     backend.supports(&scene, &opts.method)?;
-    let mut settings = RenderSettings::new(opts.width, opts.height);
-    settings.reflection_depth = opts.reflection_depth;
-    settings.max_steps = opts.max_steps;
-    settings.max_distance = opts.max_distance;
-    settings.aovs = opts.aov.is_some();
-    settings.ao_rays = opts.ao_rays;
+    let settings = RenderSettings {
+        aovs: opts.aov.is_some(),
+        ..opts.settings
+    };
     settings
         .validate()
-        .map_err(|e| ao_context(e, opts.ao_rays))?;
+        .map_err(|e| ao_context(e, settings.ao_rays))?;
     let start = Instant::now();
     let frame = backend.render(&scene, &scene.camera, &opts.method, &settings)?;
     let wall_ms = start.elapsed().as_secs_f64() * 1e3;

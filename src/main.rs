@@ -6,6 +6,7 @@ use std::process::ExitCode;
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use subcone::cli::{self, Aov, RenderOptions};
+use subcone_scene::RenderSettings;
 
 #[derive(Parser)]
 #[command(
@@ -167,12 +168,13 @@ fn run() -> Result<()> {
                 scene,
                 method,
                 backend,
-                width,
-                height,
-                reflection_depth,
-                max_steps,
-                max_distance,
-                ao_rays: ao,
+                settings: RenderSettings {
+                    reflection_depth,
+                    max_steps,
+                    max_distance,
+                    ao_rays: ao,
+                    ..RenderSettings::new(width, height)
+                },
                 aov,
                 output,
                 isa,

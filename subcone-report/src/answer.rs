@@ -818,6 +818,34 @@ mod tests {
     use super::*;
     use crate::timing::Timings;
 
+    /// The name of the method `a` picks on the cpu backend.
+    fn picked(a: &Answer, kind: Kind, metric: Metric, budget: Option<f64>) -> String {
+        a.pick(kind, "cpu", metric, budget)
+            .unwrap()
+            .method
+            .to_string()
+    }
+
+    /// What `a` picks on the cpu backend under FLIP: `method`, with its mean
+    /// error ratio over NoAA's and on how many scenes it is on the front.
+    fn assert_pick(
+        a: &Answer,
+        kind: Kind,
+        budget: Option<f64>,
+        method: &str,
+        mean_error_ratio: f64,
+        on_front: usize,
+    ) {
+        let p = a.pick(kind, "cpu", Metric::Flip, budget).unwrap();
+        assert_eq!(p.method.to_string(), method);
+        assert!(
+            (p.mean_error_ratio - mean_error_ratio).abs() < 1e-12,
+            "{method}: mean error ratio {}",
+            p.mean_error_ratio
+        );
+        assert_eq!(p.on_front, on_front, "{method}");
+    }
+
     const WHY: &str = "software adapter";
 
     #[test]
@@ -890,26 +918,9 @@ mod tests {
             methods(a.front("t", "cpu", Metric::Flip)),
             ["noaa", "fxaa", "ssaa4", "ssaa16"]
         );
-        let four = a
-            .pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0))
-            .unwrap();
-        assert_eq!(four.method.to_string(), "ssaa4");
-        assert!((four.mean_error_ratio - 0.5).abs() < 1e-12);
-        assert_eq!(four.on_front, 1);
-        assert_eq!(
-            a.pick(Kind::Triangles, "cpu", Metric::Flip, Some(1.5))
-                .unwrap()
-                .method
-                .to_string(),
-            "fxaa"
-        );
-        assert_eq!(
-            a.pick(Kind::Triangles, "cpu", Metric::Flip, None)
-                .unwrap()
-                .method
-                .to_string(),
-            "ssaa16"
-        );
+        assert_pick(&a, Kind::Triangles, Some(4.0), "ssaa4", 0.5, 1);
+        assert_eq!(picked(&a, Kind::Triangles, Metric::Flip, Some(1.5)), "fxaa");
+        assert_eq!(picked(&a, Kind::Triangles, Metric::Flip, None), "ssaa16");
 
         // ssaa4 now takes 6× NoAA: sraa (5×, worse than ssaa4) joins the
         // front, and nothing but fxaa is left within 4×.
@@ -924,13 +935,7 @@ mod tests {
             methods(b.front("t", "cpu", Metric::Flip)),
             ["noaa", "fxaa", "sraa", "ssaa4", "ssaa16"]
         );
-        assert_eq!(
-            b.pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0))
-                .unwrap()
-                .method
-                .to_string(),
-            "fxaa"
-        );
+        assert_eq!(picked(&b, Kind::Triangles, Metric::Flip, Some(4.0)), "fxaa");
         let md = section(&b, &rows, &context(&scenes));
         assert!(
             md.contains("noaa 1.00 ms · 0.1000 → fxaa 1.20 ms · 0.0900 → sraa 5.00 ms · 0.0600"),
@@ -965,18 +970,9 @@ mod tests {
         let mut rows = triangle_rows();
         rows[1].ssim_mean = Some(0.98);
         let a = Answer::of(&rows, &scenes);
+        assert_eq!(picked(&a, Kind::Triangles, Metric::Ssim, Some(4.0)), "fxaa");
         assert_eq!(
-            a.pick(Kind::Triangles, "cpu", Metric::Ssim, Some(4.0))
-                .unwrap()
-                .method
-                .to_string(),
-            "fxaa"
-        );
-        assert_eq!(
-            a.pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0))
-                .unwrap()
-                .method
-                .to_string(),
+            picked(&a, Kind::Triangles, Metric::Flip, Some(4.0)),
             "ssaa4"
         );
         let md = section(&a, &rows, &context(&scenes));
@@ -1042,13 +1038,7 @@ mod tests {
         rows.push(smaa);
         let a = Answer::of(&rows, &[scene("t", false)]);
         assert!(!methods(a.front("t", "cpu", Metric::Flip)).contains(&"smaa".to_string()));
-        assert_eq!(
-            a.pick(Kind::Triangles, "cpu", Metric::Flip, Some(1.5))
-                .unwrap()
-                .method
-                .to_string(),
-            "fxaa"
-        );
+        assert_eq!(picked(&a, Kind::Triangles, Metric::Flip, Some(1.5)), "fxaa");
         assert_eq!(a.excluded.len(), 1);
         assert_eq!(a.excluded[0].mark(), "†");
         let reason = a.excluded[0].reason();
@@ -1079,27 +1069,10 @@ mod tests {
             .pick(Kind::Triangles, "cpu", Metric::Flip, Some(1.5))
             .unwrap();
         assert_eq!((t.method.to_string().as_str(), t.scenes.len()), ("noaa", 2));
-        let t4 = a
-            .pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0))
-            .unwrap();
         // (0.05/0.10 + 0.12/0.20) / 2
-        assert_eq!(t4.method.to_string(), "ssaa4");
-        assert!((t4.mean_error_ratio - 0.55).abs() < 1e-12);
-        assert_eq!(t4.on_front, 2);
-        assert_eq!(
-            a.pick(Kind::Sdf, "cpu", Metric::Flip, Some(1.5))
-                .unwrap()
-                .method
-                .to_string(),
-            "ctss"
-        );
-        assert_eq!(
-            a.pick(Kind::Sdf, "cpu", Metric::Flip, Some(4.0))
-                .unwrap()
-                .method
-                .to_string(),
-            "ssaa4"
-        );
+        assert_pick(&a, Kind::Triangles, Some(4.0), "ssaa4", 0.55, 2);
+        assert_eq!(picked(&a, Kind::Sdf, Metric::Flip, Some(1.5)), "ctss");
+        assert_eq!(picked(&a, Kind::Sdf, Metric::Flip, Some(4.0)), "ssaa4");
         let missing: Vec<(String, &[String])> = a
             .partial
             .iter()

@@ -29,7 +29,9 @@
 
 use anyhow::{bail, Result};
 use glam::Vec3;
-use subcone_scene::Frame;
+use subcone_scene::{Frame, Method};
+
+use crate::key::RowKey;
 
 /// Sub-samples per pixel side: the classes see a 4×4 grid in each pixel.
 pub const SUBSAMPLES: u32 = 4;
@@ -304,19 +306,6 @@ pub fn classify(sub: &Frame, side: u32) -> Result<ClassMasks> {
     Ok(out)
 }
 
-/// The classes a method claims to fix: where it should beat NoAA. A method
-/// name claims what the registry says ([`subcone_scene::Method::claims`]:
-/// its technique's classes, texture with `+mat`, crease with `+edges`); any
-/// other name claims nothing. A post-process row (`smaa`, `--post-process`)
-/// is not named by a method: [`ResultRow::claims`](crate::ResultRow::claims)
-/// gives it what a post-process claims.
-pub fn claimed(method: &str) -> Vec<Class> {
-    match method.parse::<subcone_scene::Method>() {
-        Ok(m) => m.claims(),
-        Err(_) => Vec::new(),
-    }
-}
-
 /// A method beats NoAA on a class when its error there (FLIP, or 1 − SSIM)
 /// is at most this factor of NoAA's (at every camera offset).
 pub const BEAT_FACTOR: f64 = 0.95;
@@ -587,8 +576,8 @@ fn judge_class(
 /// metric, over the camera offsets its error was measured at.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Verdict {
-    /// The method.
-    pub method: String,
+    /// The row judged: a method, or a post-process step.
+    pub method: RowKey,
     /// The metric the errors are in.
     pub metric: Metric,
     /// The classes it claims.
@@ -612,12 +601,12 @@ pub struct Verdict {
 
 impl Verdict {
     /// Judge `method` from its per-class FLIP against NoAA's on the same
-    /// scene, backend and class masks (one offset), on the classes its name
-    /// claims ([`claimed`]).
-    pub fn judge(method: &str, it: &ClassError, noaa: &ClassError) -> Verdict {
+    /// scene, backend and class masks (one offset), on the classes it claims
+    /// ([`Method::claims`]).
+    pub fn judge(method: Method, it: &ClassError, noaa: &ClassError) -> Verdict {
         Verdict::judge_claims(
-            method,
-            claimed(method),
+            method.into(),
+            method.claims(),
             Metric::Flip,
             std::slice::from_ref(it),
             std::slice::from_ref(noaa),
@@ -638,14 +627,14 @@ impl Verdict {
     /// with fewer than [`MIN_VERDICT_PIXELS`] pixels at some offset gets no
     /// verdict.
     pub fn judge_claims(
-        method: &str,
+        method: RowKey,
         claims: Vec<Class>,
         metric: Metric,
         it: &[ClassError],
         noaa: &[ClassError],
     ) -> Verdict {
         let mut v = Verdict {
-            method: method.to_string(),
+            method,
             metric,
             claims: claims.clone(),
             beats: Vec::new(),
@@ -799,6 +788,8 @@ pub fn outcome_word(j: &Judged) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::key::named;
+    use crate::named::{SRAA, SRAA_RT};
 
     #[test]
     fn bits_hold_each_pixels_classes() {
@@ -814,6 +805,13 @@ mod tests {
             near_edge: vec![false; 64],
         };
         assert_eq!(c.bits(), (0..64u8).collect::<Vec<_>>());
+    }
+
+    /// The classes the method named `name` claims, none for any other name.
+    fn claimed(name: &str) -> Vec<Class> {
+        name.parse::<Method>()
+            .map(|m| m.claims())
+            .unwrap_or_default()
     }
 
     #[test]
@@ -874,7 +872,7 @@ mod tests {
             Some(0.0),
             Some(0.0102),
         ]);
-        let v = Verdict::judge("sraa-rt", &it, &noaa);
+        let v = Verdict::judge(SRAA_RT, &it, &noaa);
         assert_eq!(
             v.beats.iter().map(|b| b.0).collect::<Vec<_>>(),
             vec![Class::Silhouette, Class::Reflection]
@@ -886,7 +884,7 @@ mod tests {
         assert!(v.absent.is_empty());
         assert!(v.holds_on_flat());
         let worse = cf([None, None, None, None, None, Some(0.01021)]);
-        assert!(!Verdict::judge("sraa", &worse, &noaa).holds_on_flat());
+        assert!(!Verdict::judge(SRAA, &worse, &noaa).holds_on_flat());
         let line = v.line("cpu");
         assert!(
             line.starts_with(
@@ -896,7 +894,7 @@ mod tests {
         );
         assert!(line.contains("flat: holds"));
         // A texture claim without texture pixels is absent.
-        let v = Verdict::judge("sraa+mat", &it, &noaa);
+        let v = Verdict::judge("sraa+mat".parse().unwrap(), &it, &noaa);
         assert_eq!(v.absent, vec![Class::Texture]);
     }
 
@@ -918,7 +916,13 @@ mod tests {
 
     fn outcome(ratios: [f64; 4], px: u64) -> (Outcome, Outcome) {
         let (it, noaa) = offsets(ratios, px);
-        let v = Verdict::judge_claims("sraa", vec![Class::Silhouette], Metric::Flip, &it, &noaa);
+        let v = Verdict::judge_claims(
+            SRAA.into(),
+            vec![Class::Silhouette],
+            Metric::Flip,
+            &it,
+            &noaa,
+        );
         (v.judged[0].outcome, v.flat_judged.unwrap().outcome)
     }
 
@@ -963,7 +967,7 @@ mod tests {
             Class::Shadow,
             Class::Texture,
         ];
-        let v = Verdict::judge_claims("x", claims, Metric::Flip, &it, &noaa);
+        let v = Verdict::judge_claims(named("x"), claims, Metric::Flip, &it, &noaa);
         let line = v.line("cpu");
         assert!(
             line.contains(
@@ -1072,7 +1076,7 @@ mod tests {
             None,
             Some(0.001 + f * 0.9),
         ]);
-        let v = Verdict::judge_claims("sraa", claimed("sraa"), Metric::Ssim, &[it], &[noaa]);
+        let v = Verdict::judge_claims(SRAA.into(), SRAA.claims(), Metric::Ssim, &[it], &[noaa]);
         assert_eq!(
             v.beats.iter().map(|b| b.0).collect::<Vec<_>>(),
             vec![Class::Silhouette]
@@ -1088,10 +1092,11 @@ mod tests {
             .starts_with("- **sraa** (cpu, SSIM): beats NoAA on silhouette"));
         let worse = cf([None, None, None, None, None, Some(0.001 + f * 1.1)]);
         assert!(
-            !Verdict::judge_claims("sraa", vec![], Metric::Ssim, &[worse], &[noaa]).holds_on_flat()
+            !Verdict::judge_claims(SRAA.into(), vec![], Metric::Ssim, &[worse], &[noaa])
+                .holds_on_flat()
         );
         // Under FLIP the same figures are judged by the factors alone.
-        let v = Verdict::judge_claims("sraa", claimed("sraa"), Metric::Flip, &[it], &[noaa]);
+        let v = Verdict::judge_claims(SRAA.into(), SRAA.claims(), Metric::Flip, &[it], &[noaa]);
         assert_eq!(v.beats.len(), 2);
         assert!(!v.holds_on_flat());
     }

@@ -24,6 +24,17 @@ pub struct Context {
     pub other_cpu: load::OtherCpu,
 }
 
+impl Context {
+    /// The names of the SDF scenes, in the run's order.
+    pub fn sdf_scenes(&self) -> Vec<&str> {
+        self.scenes
+            .iter()
+            .filter(|sc| sc.sdf)
+            .map(|sc| sc.name.as_str())
+            .collect()
+    }
+}
+
 /// A scene in the report.
 pub struct SceneInfo {
     /// File-safe name.

@@ -331,7 +331,8 @@ impl ResultRow {
 
     /// The classes the row claims to fix: a post-process row's
     /// ([`POST_PROCESS_CLAIMS`](subcone_scene::registry::POST_PROCESS_CLAIMS)),
-    /// else what its method's name claims ([`classes::claimed`]).
+    /// else what its method claims ([`Method::claims`]), nothing for any
+    /// other post-process step.
     pub fn claims(&self) -> Vec<classes::Class> {
         match (&self.post_process, &self.method) {
             (Some(_), _) => subcone_scene::registry::POST_PROCESS_CLAIMS.to_vec(),
@@ -781,7 +782,7 @@ impl Plan {
         };
         for n in names.iter().filter(|n| !is_post(n)) {
             let m = parse_method(n, "--method")?;
-            if !methods.iter().any(|x| x.to_string() == m.to_string()) {
+            if !methods.contains(&m) {
                 methods.push(m);
             }
         }

@@ -948,8 +948,8 @@ at one size, against one reference).",
 pub fn verdict_summary(s: &ReportSummary, ctx: &Context) -> String {
     let mut md = String::new();
     let scenes: Vec<&str> = ctx.scenes.iter().map(|sc| sc.name.as_str()).collect();
-    let mut keys: Vec<(String, String, Metric)> = Vec::new();
-    let mut cells: Vec<((String, String, Metric, String), String)> = Vec::new();
+    let mut keys: Vec<(RowKey, String, Metric)> = Vec::new();
+    let mut cells: Vec<((RowKey, String, Metric, String), String)> = Vec::new();
     for sc in &scenes {
         let rows: Vec<&ResultRow> = s.rows.iter().filter(|r| r.scene == *sc).collect();
         for metric in Metric::ALL {
@@ -1012,17 +1012,16 @@ each scene give the classes and figures, and where the two metrics disagree, wit
 /// `method`, or `method (same image as ctss)` when on every scene where it
 /// has an error on `backend` its image is byte-identical to one other
 /// method's ([`answer::exclusions`](crate::answer::exclusions)).
-fn same_image_name(s: &ReportSummary, method: &str, backend: &str) -> String {
+fn same_image_name(s: &ReportSummary, method: &RowKey, backend: &str) -> String {
     let rows: Vec<&ResultRow> = s.rows.iter().collect();
     let left_out = crate::answer::exclusions(&rows);
     let measured = rows
         .iter()
-        .filter(|r| r.method.to_string() == method && r.backend == backend && r.flip_mean.is_some())
+        .filter(|r| r.method == *method && r.backend == backend && r.flip_mean.is_some())
         .count();
-    // The verdict tables name their rows by the verdict's method name.
     let same: Vec<&RowKey> = left_out
         .iter()
-        .filter(|e| e.method.to_string() == method && e.backend == backend)
+        .filter(|e| e.method == *method && e.backend == backend)
         .filter_map(|e| match &e.why {
             crate::answer::Why::SameImage { as_method } => Some(as_method),
             _ => None,
@@ -1162,7 +1161,7 @@ fn class_section(scene: &str, rows: &[&ResultRow]) -> String {
                 };
                 let band = match (
                     rows.iter()
-                        .find(|r| r.method.to_string() == fv.method && r.backend == *b)
+                        .find(|r| r.method == fv.method && r.backend == *b)
                         .copied(),
                     find(&NOAA.into()),
                 ) {
@@ -1355,7 +1354,7 @@ pub fn verdicts(rows: &[&ResultRow], metric: Metric) -> Vec<(String, Verdict)> {
             .unwrap_or_default();
         let it = r.class_errors_at(metric);
         if !it.is_empty() && !noaa.is_empty() {
-            let v = Verdict::judge_claims(&r.method.to_string(), r.claims(), metric, &it, &noaa);
+            let v = Verdict::judge_claims(r.method.clone(), r.claims(), metric, &it, &noaa);
             out.push((r.backend.clone(), v));
         }
     }
@@ -1423,14 +1422,47 @@ pub const SRAA_RT_SSAA4_FACTOR: f64 = 1.25;
 /// ...on these scenes, where it should also be faster than `ssaa4`.
 pub const SRAA_RT_SSAA4_SCENES: [&str; 2] = ["atrium", "sponza"];
 
+/// The word of a target's *met* column.
+fn yes(ok: bool) -> &'static str {
+    if ok {
+        "met"
+    } else {
+        "**not met**"
+    }
+}
+
+/// The row of `method` on `backend` and `scene`.
+fn row_of<'a>(
+    rows: &'a [ResultRow],
+    method: Method,
+    backend: &str,
+    scene: &str,
+) -> Option<&'a ResultRow> {
+    rows.iter()
+        .find(|x| x.method == method && x.backend == backend && x.scene == scene)
+}
+
+/// `method`'s verdict against NoAA under FLIP on the classes it claims,
+/// paired by camera offset as the verdict lines, and its flat figures in
+/// words.
+fn flip_verdict(method: Method, it: &ResultRow, noaa: &ResultRow) -> (Verdict, String) {
+    let v = Verdict::judge_claims(
+        method.into(),
+        method.claims(),
+        Metric::Flip,
+        &it.class_errors_at(Metric::Flip),
+        &noaa.class_errors_at(Metric::Flip),
+    );
+    let flat = v
+        .flat
+        .map(|(x, y)| format!("flat {x:.4} vs {y:.4}"))
+        .unwrap_or_else(|| "no flat pixels".into());
+    (v, flat)
+}
+
 /// The rows of the SRAA targets for backend `b` (triangle scenes only).
 fn sraa_targets(s: &ReportSummary, sdf: &[&str], b: &str, md: &mut String) {
-    let yes = |ok: bool| if ok { "met" } else { "**not met**" };
-    let find = |method: Method, scene: &str| {
-        s.rows
-            .iter()
-            .find(|x| x.method == method && x.backend == b && x.scene == scene)
-    };
+    let find = |method, scene: &str| row_of(&s.rows, method, b, scene);
     for method in SRAA_METHODS {
         for r in rows_for(&s.rows, method, b)
             .into_iter()
@@ -1444,18 +1476,7 @@ fn sraa_targets(s: &ReportSummary, sdf: &[&str], b: &str, md: &mut String) {
             else {
                 continue;
             };
-            // Paired by camera offset, as the verdict lines.
-            let v = Verdict::judge_claims(
-                &method.to_string(),
-                method.claims(),
-                Metric::Flip,
-                &r.class_errors_at(Metric::Flip),
-                &noaa.class_errors_at(Metric::Flip),
-            );
-            let flat = v
-                .flat
-                .map(|(x, y)| format!("flat {x:.4} vs {y:.4}"))
-                .unwrap_or_else(|| "no flat pixels".into());
+            let (v, flat) = flip_verdict(method, r, noaa);
             let met = v.misses.is_empty() && v.holds_on_flat() && a < na;
             let _ = writeln!(
                 md,
@@ -1503,12 +1524,7 @@ fn sraa_targets(s: &ReportSummary, sdf: &[&str], b: &str, md: &mut String) {
 /// The rows of the CTSS quality targets for backend `b` (SDF scenes only).
 fn ctss_targets(s: &ReportSummary, b: &str, md: &mut String) {
     use subcone_scene::builtin::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
-    let yes = |ok: bool| if ok { "met" } else { "**not met**" };
-    let find = |method: Method, scene: &str| {
-        s.rows
-            .iter()
-            .find(|x| x.method == method && x.backend == b && x.scene == scene)
-    };
+    let find = |method, scene: &str| row_of(&s.rows, method, b, scene);
     for scene in SDF_SCENES {
         let (Some(r), Some(noaa)) = (find(CTSS, scene), find(NOAA, scene)) else {
             continue;
@@ -1518,18 +1534,7 @@ fn ctss_targets(s: &ReportSummary, b: &str, md: &mut String) {
         else {
             continue;
         };
-        let ctss = CTSS.to_string();
-        let v = Verdict::judge_claims(
-            &ctss,
-            classes::claimed(&ctss),
-            Metric::Flip,
-            &r.class_errors_at(Metric::Flip),
-            &noaa.class_errors_at(Metric::Flip),
-        );
-        let flat = v
-            .flat
-            .map(|(x, y)| format!("flat {x:.4} vs {y:.4}"))
-            .unwrap_or_else(|| "no flat pixels".into());
+        let (v, flat) = flip_verdict(CTSS, r, noaa);
         let sil = Class::Silhouette.index();
         let silhouettes = match (it.mean[sil], n.mean[sil]) {
             (Some(x), Some(y)) => format!("silhouette {x:.4} vs {y:.4}"),
@@ -1560,8 +1565,9 @@ fn ctss_targets(s: &ReportSummary, b: &str, md: &mut String) {
         for r in s.rows.iter().filter(|x| {
             x.backend == b
                 && x.scene == *scene
-                && x.method.to_string().contains(&CTSS.to_string())
-                && !x.method.to_string().ends_with("-paper")
+                && x.method
+                    .method()
+                    .is_some_and(|m| m.technique().is_cone_traced() && !m.is_paper())
                 && x.flip_mean.is_some()
         }) {
             let ratio = r.flip_mean.unwrap_or(0.0) / na.max(f64::MIN_POSITIVE);
@@ -1607,13 +1613,7 @@ lowest or its highest round.\n",
     );
     let _ = writeln!(md, "| target | backend | scenes | figure | met |");
     let _ = writeln!(md, "|---|---|---|--:|---|");
-    let sdf: Vec<&str> = ctx
-        .scenes
-        .iter()
-        .filter(|sc| sc.sdf)
-        .map(|sc| sc.name.as_str())
-        .collect();
-    let yes = |ok: bool| if ok { "met" } else { "**not met**" };
+    let sdf = ctx.sdf_scenes();
     for b in &ctx.backends {
         for (method, limit) in CTSS_TARGETS {
             let Some(avg) = MeanRatio::of(s.rows.iter().filter(|r| {
@@ -1811,12 +1811,7 @@ ssaa16's median time over sraa-rt's.\n"
     }
 
     let _ = writeln!(md, "### CTSS, Table 1 (average frame-time ratio to NoAA)\n");
-    let sdf: Vec<&str> = ctx
-        .scenes
-        .iter()
-        .filter(|sc| sc.sdf)
-        .map(|sc| sc.name.as_str())
-        .collect();
+    let sdf = ctx.sdf_scenes();
     if sdf.is_empty() {
         let _ = writeln!(md, "No SDF scene was reported on.\n");
         return md;
@@ -1859,12 +1854,7 @@ the means of the scenes' smallest and of their largest per-round ratios.\n"
 /// time side by side, and which of the two are on each scene's Pareto fronts.
 pub fn sdf_pick(s: &ReportSummary, ctx: &Context) -> String {
     let mut md = String::new();
-    let sdf: Vec<&str> = ctx
-        .scenes
-        .iter()
-        .filter(|sc| sc.sdf)
-        .map(|sc| sc.name.as_str())
-        .collect();
+    let sdf = ctx.sdf_scenes();
     if sdf.is_empty() {
         return md;
     }
@@ -1883,11 +1873,7 @@ these two and every other, is *The answer* at the top, computed from the fronts.
     );
     let answer = crate::answer::Answer::of(&s.rows, &ctx.scenes);
     for b in &ctx.backends {
-        let find = |scene: &str, method: Method| {
-            s.rows
-                .iter()
-                .find(|r| r.backend == *b && r.scene == scene && r.method == method)
-        };
+        let find = |scene: &str, method| row_of(&s.rows, method, b, scene);
         let mut lines = Vec::new();
         for sc in &sdf {
             let (Some(rt), Some(ct)) = (find(sc, SRAA_RT), find(sc, CTSS)) else {

@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 use anyhow::{anyhow, Context, Result};
+use plotters::coord::ranged1d::AsRangedCoord;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -351,13 +352,8 @@ where
     let n = bars.len().max(1) as u32;
     let size = (PLOT_SIZE.1 / 32) as i32;
     let names: Vec<String> = bars.iter().map(|b| b.0.clone()).collect();
-    let mut chart = ChartBuilder::on(root)
-        .caption(format!("{scene}: median time per pass"), (FAMILY, size + 4))
-        .margin(16)
-        .x_label_area_size(50)
-        .y_label_area_size(70)
-        .build_cartesian_2d((0..n - 1).into_segmented(), 0.0..(ymax * 1.15).max(1e-3))
-        .map_err(pe(e))?;
+    let caption = format!("{scene}: median time per pass");
+    let mut chart = bar_chart(root, caption, (0..n - 1).into_segmented(), ymax, e)?;
     chart
         .configure_mesh()
         .disable_x_mesh()
@@ -396,7 +392,7 @@ where
             .draw_series(rects)
             .map_err(pe(e))?
             .label(name)
-            .legend(move |(x, y)| Rectangle::new([(x, y - 6), (x + 14, y + 6)], c.filled()));
+            .legend(swatch(c));
     }
     legend(&mut chart, SeriesLabelPosition::UpperLeft, size - 4, e)?;
     root.present().map_err(pe(e))?;
@@ -422,6 +418,34 @@ where
         .label_font((FAMILY, font_size))
         .draw()
         .map_err(pe(e))
+}
+
+/// A bar chart's axes on `root`, in the bar plots' one layout: `caption`
+/// above, `x` along the bottom, 0 to 1.15 × `ymax` up (`e` names the plot in
+/// errors).
+fn bar_chart<'a, DB: DrawingBackend, X: AsRangedCoord>(
+    root: &'a DrawingArea<DB, Shift>,
+    caption: String,
+    x: X,
+    ymax: f64,
+    e: &str,
+) -> Result<ChartContext<'a, DB, Cartesian2d<X::CoordDescType, RangedCoordf64>>>
+where
+    DB::ErrorType: 'static,
+{
+    let size = (PLOT_SIZE.1 / 32) as i32;
+    ChartBuilder::on(root)
+        .caption(caption, (FAMILY, size + 4))
+        .margin(16)
+        .x_label_area_size(50)
+        .y_label_area_size(70)
+        .build_cartesian_2d(x, 0.0..(ymax * 1.15).max(1e-3))
+        .map_err(pe(e))
+}
+
+/// A bar series' mark in the legend: a filled square of its colour.
+fn swatch(c: RGBColor) -> impl Fn((i32, i32)) -> Rectangle<(i32, i32)> {
+    move |(x, y)| Rectangle::new([(x, y - 6), (x + 14, y + 6)], c.filled())
 }
 
 /// FLIP by edge class: one group of bars per class, one bar per method.
@@ -450,13 +474,8 @@ where
     let size = (PLOT_SIZE.1 / 32) as i32;
     let n = CLASSES.len();
     let px = bars.first().map(|b| b.2.px).unwrap_or_default();
-    let mut chart = ChartBuilder::on(root)
-        .caption(format!("{scene}: FLIP by edge class"), (FAMILY, size + 4))
-        .margin(16)
-        .x_label_area_size(50)
-        .y_label_area_size(70)
-        .build_cartesian_2d(0.0..n as f64, 0.0..(ymax * 1.15).max(1e-3))
-        .map_err(pe(e))?;
+    let caption = format!("{scene}: FLIP by edge class");
+    let mut chart = bar_chart(root, caption, 0.0..n as f64, ymax, e)?;
     chart
         .configure_mesh()
         .disable_x_mesh()
@@ -491,7 +510,7 @@ where
             .draw_series(rects)
             .map_err(pe(e))?
             .label(name.clone())
-            .legend(move |(x, y)| Rectangle::new([(x, y - 6), (x + 14, y + 6)], c.filled()));
+            .legend(swatch(c));
     }
     legend(&mut chart, SeriesLabelPosition::UpperRight, size - 6, e)?;
     root.present().map_err(pe(e))?;

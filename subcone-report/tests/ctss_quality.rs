@@ -13,6 +13,7 @@
 mod common;
 
 use subcone_report::classes::Verdict;
+use subcone_report::named::CTSS;
 use subcone_scene::builtin::builtin;
 use subcone_scene::builtin::SDF_SCENES;
 
@@ -26,7 +27,7 @@ fn default_ctss_beats_noaa_on_silhouettes_and_the_whole_image_of_every_paper_sce
             let measure = |method: &str| judged.measure(method);
             let (noaa_mean, noaa) = measure("noaa");
             let (mean, it) = measure("ctss");
-            let v = Verdict::judge("ctss", &it, &noaa);
+            let v = Verdict::judge(CTSS, &it, &noaa);
             eprintln!(
                 "{name} {w}x{h}: {} (whole {mean:.4} vs NoAA {noaa_mean:.4})",
                 v.line("cpu")

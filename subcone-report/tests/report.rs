@@ -615,37 +615,22 @@ fn bad_arguments_are_errors() {
         methods: vec!["noaa".into()],
         ..Default::default()
     };
-    let err = |a: ReportArgs| format!("{:#}", report::run(&a).unwrap_err());
-    assert!(err(ReportArgs {
-        backend: "cpu,vulkan9".into(),
-        ..base.clone()
-    })
-    .contains("vulkan9"));
-    assert!(err(ReportArgs {
-        size: Some("0x10".into()),
-        ..base.clone()
-    })
-    .contains("--size"));
-    assert!(err(ReportArgs {
-        methods: vec!["ssaa5".into()],
-        ..base.clone()
-    })
-    .contains("ssaa5"));
-    assert!(err(ReportArgs {
-        runs: Some(0),
-        ..base.clone()
-    })
-    .contains("--runs"));
-    assert!(err(ReportArgs {
-        scenes: vec!["no-such-scene".into()],
-        ..base.clone()
-    })
-    .contains("no-such-scene"));
-    assert!(err(ReportArgs {
-        scenes: vec![],
-        ..base.clone()
-    })
-    .contains("--no-paper-scenes"));
+    // Each case: one argument made bad, and what its error must name.
+    type MakeBad = fn(&mut ReportArgs);
+    let cases: [(MakeBad, &str); 6] = [
+        (|a| a.backend = "cpu,vulkan9".into(), "vulkan9"),
+        (|a| a.size = Some("0x10".into()), "--size"),
+        (|a| a.methods = vec!["ssaa5".into()], "ssaa5"),
+        (|a| a.runs = Some(0), "--runs"),
+        (|a| a.scenes = vec!["no-such-scene".into()], "no-such-scene"),
+        (|a| a.scenes = vec![], "--no-paper-scenes"),
+    ];
+    for (bad, named) in cases {
+        let mut args = base.clone();
+        bad(&mut args);
+        let err = format!("{:#}", report::run(&args).unwrap_err());
+        assert!(err.contains(named), "{named}: {err}");
+    }
 }
 
 #[test]

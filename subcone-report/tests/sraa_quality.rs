@@ -12,6 +12,7 @@
 mod common;
 
 use subcone_report::classes::Verdict;
+use subcone_report::named::{SRAA, SRAA_RT};
 use subcone_scene::builtin::{builtin, TRIANGLE_SCENES};
 
 const W: u32 = 96;
@@ -25,8 +26,8 @@ fn default_sraa_beats_noaa_where_it_claims_on_every_triangle_scene() {
         let judged = common::Judged::new(&scene, W, H);
         let measure = |method: &str| judged.measure(method);
         let (noaa_mean, noaa) = measure("noaa");
-        for method in ["sraa", "sraa-rt"] {
-            let (mean, it) = measure(method);
+        for method in [SRAA, SRAA_RT] {
+            let (mean, it) = measure(&method.to_string());
             let v = Verdict::judge(method, &it, &noaa);
             eprintln!(
                 "{name}: {} (whole {mean:.4} vs NoAA {noaa_mean:.4})",

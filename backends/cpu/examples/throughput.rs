@@ -10,47 +10,31 @@
 //! (default 5; the median is printed), `ISA` the instruction-set path
 //! (`baseline`, `avx2`, `avx512`; default the widest the CPU supports).
 
+mod common;
+
 use std::process::ExitCode;
 
 use subcone_cpu::isa::Isa;
 use subcone_cpu::throughput::RayWorkload;
 use subcone_cpu::CpuBackend;
-use subcone_load::scene_from_arg;
 
 fn main() -> ExitCode {
+    common::exit(run())
+}
+
+fn run() -> Result<(), String> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let name = args.first().map(String::as_str).unwrap_or("cornell");
     let size = args.get(1).map(String::as_str).unwrap_or("512x512");
     let runs: usize = args.get(2).and_then(|r| r.parse().ok()).unwrap_or(5);
-    let isa = match args.get(3).map(|i| i.parse::<Isa>()).transpose() {
-        Ok(i) => i.unwrap_or_else(Isa::detected),
-        Err(e) => {
-            eprintln!("{e}");
-            return ExitCode::FAILURE;
-        }
+    let isa = match args.get(3) {
+        Some(i) => i.parse::<Isa>().map_err(|e| e.to_string())?,
+        None => Isa::detected(),
     };
-    let Some((w, h)) = size
-        .split_once('x')
-        .and_then(|(w, h)| Some((w.parse::<u32>().ok()?, h.parse::<u32>().ok()?)))
-    else {
-        eprintln!("size {size:?} is not WxH");
-        return ExitCode::FAILURE;
-    };
-    let scene = match scene_from_arg(name) {
-        Ok(s) => s,
-        Err(e) => {
-            eprintln!("{name}: {e}");
-            return ExitCode::FAILURE;
-        }
-    };
+    let (w, h) = common::size(size)?;
+    let scene = common::scene(name)?;
     let backend = CpuBackend::new().with_isa(isa);
-    let work = match RayWorkload::new(&backend, &scene, w, h) {
-        Ok(w) => w,
-        Err(e) => {
-            eprintln!("{name}: {e}");
-            return ExitCode::FAILURE;
-        }
-    };
+    let work = RayWorkload::new(&backend, &scene, w, h).map_err(|e| format!("{name}: {e}"))?;
     let t = work.measure(runs);
     println!(
         "{name} {w}x{h}, {}, median of {runs}: primary {:.2} of {:.2} Mrays/s raw ({:.1}%)",
@@ -68,5 +52,5 @@ fn main() -> ExitCode {
             100.0 * q
         );
     }
-    ExitCode::SUCCESS
+    Ok(())
 }

@@ -11,14 +11,19 @@
 //! timed in interleaved rounds (every size once per round), and the median
 //! of the rounds is printed.
 
+mod common;
+
 use std::process::ExitCode;
 use std::time::Instant;
 
 use subcone_cpu::CpuBackend;
-use subcone_load::scene_from_arg;
 use subcone_scene::{Backend, Method, RenderSettings};
 
 fn main() -> ExitCode {
+    common::exit(run())
+}
+
+fn run() -> Result<(), String> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let scene = args.first().map(String::as_str).unwrap_or("cornell");
     let method = args.get(1).map(String::as_str).unwrap_or("sraa-rt");
@@ -31,27 +36,9 @@ fn main() -> ExitCode {
     if tiles.is_empty() {
         tiles = vec![16, 32, 64, 128, 256];
     }
-    let Some((w, h)) = size
-        .split_once('x')
-        .and_then(|(w, h)| Some((w.parse::<u32>().ok()?, h.parse::<u32>().ok()?)))
-    else {
-        eprintln!("size {size:?} is not WxH");
-        return ExitCode::FAILURE;
-    };
-    let scene = match scene_from_arg(scene) {
-        Ok(s) => s,
-        Err(e) => {
-            eprintln!("{scene}: {e}");
-            return ExitCode::FAILURE;
-        }
-    };
-    let method: Method = match method.parse() {
-        Ok(m) => m,
-        Err(e) => {
-            eprintln!("{method}: {e}");
-            return ExitCode::FAILURE;
-        }
-    };
+    let (w, h) = common::size(size)?;
+    let scene = common::scene(scene)?;
+    let method: Method = method.parse().map_err(|e| format!("{method}: {e}"))?;
     let settings = RenderSettings::new(w, h);
     let backends: Vec<CpuBackend> = tiles
         .iter()
@@ -63,13 +50,9 @@ fn main() -> ExitCode {
     for round in 0..=runs {
         for (i, b) in backends.iter().enumerate() {
             let start = Instant::now();
-            let frame = match b.render(&scene, &scene.camera, &method, &settings) {
-                Ok(f) => f,
-                Err(e) => {
-                    eprintln!("{e}");
-                    return ExitCode::FAILURE;
-                }
-            };
+            let frame = b
+                .render(&scene, &scene.camera, &method, &settings)
+                .map_err(|e| e.to_string())?;
             let t = start.elapsed().as_secs_f64() * 1e3;
             if round == 0 {
                 first.push(frame);
@@ -110,5 +93,5 @@ fn main() -> ExitCode {
             if same { "" } else { "  IMAGE DIFFERS" }
         );
     }
-    ExitCode::SUCCESS
+    Ok(())
 }

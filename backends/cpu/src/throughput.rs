@@ -278,12 +278,9 @@ impl<'a> RayWorkload<'a> {
         let (raw_primary, pipeline_primary) = alternating(
             self.rays.len(),
             runs,
-            &|| {
-                std::hint::black_box(self.raw_primary_pass());
-            },
-            &|| {
-                ok.set(ok.get() && std::hint::black_box(self.pipeline_primary_pass()).is_ok());
-            },
+            &ok,
+            || self.raw_primary_pass(),
+            || self.pipeline_primary_pass(),
         );
         let (raw_shadow, pipeline_shadow) = if self.shadow_rays.is_empty() {
             (None, None)
@@ -291,12 +288,9 @@ impl<'a> RayWorkload<'a> {
             let (raw, pipeline) = alternating(
                 self.shadow_rays.len(),
                 runs,
-                &|| {
-                    std::hint::black_box(self.raw_shadow_pass());
-                },
-                &|| {
-                    ok.set(ok.get() && std::hint::black_box(self.pipeline_shadow_pass()).is_ok());
-                },
+                &ok,
+                || self.raw_shadow_pass(),
+                || self.pipeline_shadow_pass(),
             );
             (Some(raw), Some(pipeline))
         };
@@ -312,10 +306,22 @@ impl<'a> RayWorkload<'a> {
     }
 }
 
-/// The median rates, in rays per second, of two passes over `n` rays: one
-/// warm-up each, then `runs` (at least one) rounds of `a` followed by `b`.
-/// A zero median time gives a zero rate.
-fn alternating(n: usize, runs: usize, a: &dyn Fn(), b: &dyn Fn()) -> (f64, f64) {
+/// The median rates, in rays per second, of a raw pass and a pipeline pass
+/// over `n` rays: one warm-up each, then `runs` (at least one) rounds of
+/// `raw` followed by `pipeline`. Each result goes through `black_box`, so
+/// that no pass is optimised away; a pipeline error clears `ok`. A zero
+/// median time gives a zero rate.
+fn alternating<R, P, E>(
+    n: usize,
+    runs: usize,
+    ok: &std::cell::Cell<bool>,
+    raw: impl Fn() -> R,
+    pipeline: impl Fn() -> Result<P, E>,
+) -> (f64, f64) {
+    let a = || {
+        std::hint::black_box(raw());
+    };
+    let b = || ok.set(ok.get() && std::hint::black_box(pipeline()).is_ok());
     let time = |f: &dyn Fn()| {
         let s = Instant::now();
         f();
@@ -324,7 +330,7 @@ fn alternating(n: usize, runs: usize, a: &dyn Fn(), b: &dyn Fn()) -> (f64, f64) 
     a();
     b();
     let (mut ta, mut tb): (Vec<Duration>, Vec<Duration>) =
-        (0..runs.max(1)).map(|_| (time(a), time(b))).unzip();
+        (0..runs.max(1)).map(|_| (time(&a), time(&b))).unzip();
     let rate = |t: &mut Vec<Duration>| {
         t.sort();
         let median = t[t.len() / 2].as_secs_f64();
