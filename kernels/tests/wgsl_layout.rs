@@ -11,6 +11,7 @@
 use core::mem::{offset_of, size_of};
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
+use subcone_kernels::camera::PinholeCamera;
 use subcone_kernels::ctss::CtssParams;
 use subcone_kernels::fxaa::FxaaParams;
 use subcone_kernels::sraa::{Geometry, SraaParams};

@@ -13,7 +13,7 @@
 //! `ambient_occlusion`, the twin of `SdfView::ambient_occlusion`).
 //!
 //! Scenes with semi-transparent materials trace each sample with
-//! `translucent.wgsl`'s samplers (the pass's host trace, [`HostTrace`]), the
+//! `translucent.wgsl`'s samplers (the pass's host trace, `HostTrace`), the
 //! twins of the CPU's semi-transparent path:
 //! CTSS with the `K` masks of §5.3 (`subcone_cone_stepper_record_alpha_mask`,
 //! group splits where the nearest object changes between a semi-transparent
@@ -28,11 +28,11 @@
 //! and lights to WGSL constants (`shading.rs`), and with `trace.wgsl` (the
 //! field, normal and shading hooks, SdfView's shading and shadow rays) they
 //! are the host WGSL of a [`CtssPass`] over the host group of the frame's
-//! constants ([`host_bindings`]): the pass's one pixel loop traces each
+//! constants (`host_bindings`): the pass's one pixel loop traces each
 //! pixel's `side × side` samples (`CtssPassDesc::samples_per_side`) with the
 //! kernels' `subcone_ctss_trace`, the twin of the CPU's `ctss::trace_field`
 //! (Algorithm 1 of CTSS, eq. 3–10, the group masks and §5.3's splits), or
-//! with the host trace of [`HostTrace`] (sphere tracing, semi-transparent
+//! with the host trace of `HostTrace` (sphere tracing, semi-transparent
 //! scenes), exactly as the CPU does (same rays, same stepper, same normals,
 //! same shading, hard shadows inline), and writes the colour and the
 //! per-pixel counts (`subcone_counters`: shadow and occlusion rays) into

@@ -24,7 +24,7 @@ use super::{
     ASAP_BATCH, TRACE_WGSL, WORKGROUP,
 };
 use crate::compute::{self, Allocate, Program};
-use crate::context::{err, GpuContext};
+use crate::context::GpuContext;
 use crate::triangles::resolve::{BufferLayers, BufferResolve};
 use crate::triangles::{accessors, shadow_and_secondary_accessors, SHADED_SAMPLE_ACCESSORS};
 use crate::Job;
