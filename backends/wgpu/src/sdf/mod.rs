@@ -373,7 +373,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
             ctx,
             job,
             (max_distance, max_steps),
-            &field,
+            (&field, &shading),
             &host,
             &mut frame,
         )?;
@@ -545,21 +545,20 @@ impl Totals {
 }
 
 /// The AOV pass (not timed): depth and normal through each pixel centre
-/// into `frame`, sphere traced through `field` in a program of its own
-/// over the frame's `host` group (group 1: [`host_bindings`]).
+/// into `frame`, sphere traced through `field` (with the frame's
+/// `shading`, which the shared hooks compile against) in a program of its
+/// own over the frame's `host` group (group 1: [`host_bindings`]).
 fn centre_aovs(
     ctx: &GpuContext,
     job: &Job,
     (max_distance, max_steps): (f32, u32),
-    field: &WgslField,
+    (field, shading): (&WgslField, &str),
     host: &Bindings,
     frame: &mut Frame,
 ) -> Result<(), RenderError> {
-    let (camera, scene, settings) = (job.camera, job.scene, job.settings);
+    let (camera, settings) = (job.camera, job.settings);
     let (w, h) = (settings.width, settings.height);
     let pixels = w as usize * h as usize;
-    let shadows = job.passes.contains(Passes::SHADOW) && !scene.lights.is_empty();
-    let shading = shading::shading_wgsl(&scene.materials, &scene.lights, shadows)?;
     let plain = Method::new(Technique::NoAa).ctss_params(camera, h, max_distance, max_steps);
     let mut b = Bindings::new(0);
     b.uniform(ctx, "aov_params", "subcone_CtssParams", &plain)?;
@@ -574,7 +573,7 @@ fn centre_aovs(
     let mut sources = kernels();
     sources.extend([
         field.source.as_str(),
-        &shading,
+        shading,
         &pending,
         subcone_passes::SPHERE_TRACE_HOOK,
         TRACE_WGSL,

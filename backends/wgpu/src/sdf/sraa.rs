@@ -184,7 +184,14 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         // Depth and normal through each pixel centre (not timed, as on the
         // CPU), over a host group of its own.
         let host = host_bindings(ctx, 1, &frame, &params, table.as_deref())?;
-        centre_aovs(ctx, job, (max_distance, max_steps), &field, &host, &mut out)?;
+        centre_aovs(
+            ctx,
+            job,
+            (max_distance, max_steps),
+            (&field, &shading),
+            &host,
+            &mut out,
+        )?;
         out.samples_per_pixel = Some(vec![1.0; pixels]);
         buffers.push(("aovs", pixels * 16));
     }
