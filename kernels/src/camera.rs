@@ -13,7 +13,7 @@
 
 use glam::{Vec2, Vec3};
 
-/// A pinhole camera and its image size, as shaders read it (64 bytes,
+/// A pinhole camera and its image size, as shaders read it (80 bytes,
 /// `subcone_PinholeCamera` in WGSL, checked by `tests/wgsl_layout.rs`).
 ///
 /// `forward`, `right` and `up` are expected to be an orthonormal frame
@@ -40,8 +40,14 @@ pub struct PinholeCamera {
     pub tan_half_fov: f32,
     /// Unit up vector.
     pub up: [f32; 3],
-    /// Padding to 16 bytes (WGSL's struct alignment); zero.
+    /// Padding; zero.
     pub _pad: u32,
+    /// Sub-pixel offset of every ray, in pixels: the ray of image point `p`
+    /// passes through `p + jitter` (a temporal method's jitter; zero, the
+    /// default, is the plain camera, bit for bit).
+    pub jitter: [f32; 2],
+    /// Padding to 16 bytes (WGSL's struct alignment); zero.
+    pub _pad2: [u32; 2],
 }
 
 impl PinholeCamera {
@@ -65,17 +71,27 @@ impl PinholeCamera {
             tan_half_fov,
             up: up.to_array(),
             _pad: 0,
+            jitter: [0.0; 2],
+            _pad2: [0; 2],
         }
     }
 
+    /// The same camera with every ray moved by `jitter` pixels
+    /// ([`Self::jitter`]).
+    pub fn with_jitter(mut self, jitter: Vec2) -> Self {
+        self.jitter = jitter.to_array();
+        self
+    }
+
     /// The unit direction of the ray from [`Self::position`] through image
-    /// point `p` (pixels, y down): `forward + u·right + v·up` normalised,
+    /// point `p + jitter` (pixels, y down): `forward + u·right + v·up` normalised,
     /// with `u = (2 p.x / w − 1)·tan_half_fov·(w / h)` and
     /// `v = (1 − 2 p.y / h)·tan_half_fov`, a zero width or height read as 1.
     /// Any `p` is taken (points off the image give rays outside the field
     /// of view); a non-finite `p` gives a non-finite direction.
     #[inline]
     pub fn ray_dir(&self, p: Vec2) -> Vec3 {
+        let p = p + Vec2::from(self.jitter);
         let (w, h) = (self.width.max(1) as f32, self.height.max(1) as f32);
         let u = (2.0 * p.x / w - 1.0) * self.tan_half_fov * (w / h);
         let v = (1.0 - 2.0 * p.y / h) * self.tan_half_fov;

@@ -11,6 +11,9 @@
 //!   semi-transparent surfaces.
 //! - [`fxaa`]: FXAA 3.11 (Lottes), the post-process baseline the papers'
 //!   methods are compared with.
+//! - [`taa`]: temporal antialiasing (Karis 2014, Salvi 2016's variance
+//!   clipping), the temporal baseline engines ship, and what the papers'
+//!   methods run under as `+taa`.
 //! - [`ao`]: the fixed, stratified, cosine-weighted ambient-occlusion
 //!   directions in the tangent frame of a normal (the report's shading-cost
 //!   axis; not from either paper).
@@ -60,6 +63,7 @@ pub mod math;
 pub mod passes;
 pub mod sraa;
 mod sum;
+pub mod taa;
 pub mod transparency;
 pub mod wgsl;
 

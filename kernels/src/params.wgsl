@@ -46,7 +46,7 @@ struct subcone_CtssParams {
     _pad1: u32,
 }
 
-// subcone_kernels::camera::PinholeCamera (64 bytes).
+// subcone_kernels::camera::PinholeCamera (80 bytes).
 struct subcone_PinholeCamera {
     position: vec3<f32>,
     width: u32,
@@ -56,6 +56,20 @@ struct subcone_PinholeCamera {
     tan_half_fov: f32,
     up: vec3<f32>,
     _pad: u32,
+    // Sub-pixel offset of every ray, in pixels (a temporal method's jitter).
+    jitter: vec2<f32>,
+    _pad2: vec2<u32>,
+}
+
+// subcone_kernels::taa::TaaParams (32 bytes).
+struct subcone_TaaParams {
+    exposure: f32,
+    min_current_weight: f32,
+    clip_gamma: f32,
+    history_frames: u32,
+    width: u32,
+    height: u32,
+    _pad: vec2<u32>,
 }
 
 // subcone_kernels::fxaa::FxaaParams (16 bytes).
@@ -88,8 +102,9 @@ fn subcone_is_finite(x: f32) -> bool {
 }
 
 // subcone_kernels::camera::PinholeCamera::ray_dir: the unit direction from
-// c.position through image point p (pixels, y down).
-fn subcone_pinhole_dir(c: subcone_PinholeCamera, p: vec2<f32>) -> vec3<f32> {
+// c.position through image point p + c.jitter (pixels, y down).
+fn subcone_pinhole_dir(c: subcone_PinholeCamera, p_in: vec2<f32>) -> vec3<f32> {
+    let p = p_in + c.jitter;
     let w = f32(max(c.width, 1u));
     let h = f32(max(c.height, 1u));
     let u = (2.0 * p.x / w - 1.0) * c.tan_half_fov * (w / h);

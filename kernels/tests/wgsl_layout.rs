@@ -15,6 +15,7 @@ use subcone_kernels::camera::PinholeCamera;
 use subcone_kernels::ctss::CtssParams;
 use subcone_kernels::fxaa::FxaaParams;
 use subcone_kernels::sraa::{Geometry, SraaParams};
+use subcone_kernels::taa::TaaParams;
 use subcone_kernels::wgsl;
 
 /// The kernel WGSL sources, in dependency order: each is validated
@@ -44,7 +45,16 @@ const KERNELS: &[(&str, &str)] = &[
     ("the caller's fxaa_fetch", FXAA_FETCH),
     ("fxaa::WGSL", subcone_kernels::fxaa::WGSL),
     ("ao::WGSL", subcone_kernels::ao::WGSL),
+    // The fetches are the including shader's: constants stand in for them.
+    ("the caller's taa fetches", TAA_FETCHES),
+    ("taa::WGSL", subcone_kernels::taa::WGSL),
 ];
+
+/// The hooks `taa.wgsl` expects its including shader to define.
+const TAA_FETCHES: &str = "
+fn taa_current(x: i32, y: i32) -> vec3<f32> { return vec3<f32>(f32(x & 1)); }
+fn taa_history(x: i32, y: i32) -> vec3<f32> { return vec3<f32>(0.5); }
+";
 
 /// The hooks `sraa/reconstruct.wgsl` expects its including shader to define.
 const SRAA_RECONSTRUCT_HOOKS: &str = "
@@ -142,8 +152,10 @@ fn shared_structs() -> Vec<Shared> {
         shared!(Geometry: normal, depth),
         shared!(CtssParams: tan_theta, alpha, eps, t_min, t_max, min_sample_weight,
             max_steps, max_samples, visibility_k, flags, _pad[2]),
-        shared!(PinholeCamera: position, width, forward, height, right, tan_half_fov, up, _pad),
+        shared!(PinholeCamera: position, width, forward, height, right, tan_half_fov, up, _pad, jitter, _pad2),
         shared!(FxaaParams: subpix, edge_threshold, edge_threshold_min, _pad),
+        shared!(TaaParams: exposure, min_current_weight, clip_gamma, history_frames, width,
+            height, _pad),
     ]
 }
 
@@ -341,6 +353,8 @@ fn an_invalid_kernel_fails_validation() {
 /// only names the kernels use that they do not export.
 const HOOKS: &[&str] = &[
     "fxaa_fetch",
+    "taa_current",
+    "taa_history",
     "ctss_field",
     "SRAA_GATES",
     "SRAA_MATERIAL",

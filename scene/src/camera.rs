@@ -21,6 +21,12 @@ pub struct Camera {
     pub up: Vec3,
     /// Vertical field of view in radians, in `(0, π)`.
     pub fov_y: f32,
+    /// Sub-pixel offset of the image, in pixels of the image rendered: the
+    /// ray of image point `p` passes through `p + jitter`, as a jittered
+    /// projection matrix moves it (the jitter of a temporal method,
+    /// `crate::temporal`). Zero (every constructor's) is the plain pinhole,
+    /// bit for bit. Finite; [`Camera::validate`] refuses anything else.
+    pub jitter: Vec2,
 }
 
 impl Camera {
@@ -55,6 +61,7 @@ impl Camera {
             forward,
             up: right.cross(forward),
             fov_y,
+            jitter: Vec2::ZERO,
         };
         cam.validate()?;
         Ok(cam)
@@ -68,6 +75,9 @@ impl Camera {
                 self.fov_y.to_degrees()
             )));
         }
+        if !self.jitter.is_finite() {
+            return Err(SceneError::Camera("jitter must be finite".into()));
+        }
         if !(self.position.is_finite() && self.forward.is_finite() && self.up.is_finite()) {
             return Err(SceneError::Camera("camera frame is not finite".into()));
         }
@@ -80,6 +90,12 @@ impl Camera {
             ));
         }
         Ok(())
+    }
+
+    /// The same camera with its image moved by `jitter` pixels
+    /// ([`Camera::jitter`]).
+    pub fn with_jitter(self, jitter: Vec2) -> Self {
+        Camera { jitter, ..self }
     }
 
     /// The unit right vector.
@@ -106,6 +122,7 @@ impl Camera {
             half: (0.5 * self.fov_y).tan(),
             w,
             h,
+            jitter: self.jitter,
         }
     }
 
@@ -132,6 +149,7 @@ pub struct CameraRays {
     half: f32,
     w: f32,
     h: f32,
+    jitter: Vec2,
 }
 
 impl CameraRays {
@@ -147,6 +165,7 @@ impl CameraRays {
     /// column's once.
     #[inline]
     pub fn u(&self, x: f32) -> f32 {
+        let x = x + self.jitter.x;
         (2.0 * x / self.w - 1.0) * self.half * (self.w / self.h)
     }
 
@@ -154,6 +173,7 @@ impl CameraRays {
     /// [`Self::through`].
     #[inline]
     pub fn v(&self, y: f32) -> f32 {
+        let y = y + self.jitter.y;
         (1.0 - 2.0 * y / self.h) * self.half
     }
 

@@ -47,7 +47,7 @@ pub const MAX_SAMPLES_PER_SIDE: u32 = 64;
 pub const SPHERE_TRACE_HOOK: &str =
     "fn ctss_field(p: vec3<f32>) -> vec2<f32> { let f = subcone_field(p); return f.xy; }\n";
 
-/// The frame's camera and background; `CtssUniform` in `ctss.wgsl` (80
+/// The frame's camera and background; `CtssUniform` in `ctss.wgsl` (96
 /// bytes).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
@@ -73,6 +73,10 @@ pub struct CtssCamera {
     pub up: Vec3,
     /// Vertical field of view in radians.
     pub fov_y: f32,
+    /// Sub-pixel offset of every cone's axis, in pixels: pixel `(x, y)`'s
+    /// axis passes through `(x + 0.5, y + 0.5) + jitter` (a temporal
+    /// method's jitter, `PinholeCamera::jitter`); zero from [`Self::new`].
+    pub jitter: glam::Vec2,
 }
 
 impl CtssCamera {
@@ -89,6 +93,7 @@ impl CtssCamera {
             right,
             up,
             fov_y,
+            jitter: glam::Vec2::ZERO,
         }
     }
 
@@ -107,6 +112,7 @@ impl CtssCamera {
             (0.5 * self.fov_y).tan(),
             size,
         )
+        .with_jitter(self.jitter)
     }
 }
 

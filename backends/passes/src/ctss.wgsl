@@ -14,7 +14,7 @@
 // subcone_pass_output (a storage texture or buffer) and, with counts,
 // subcone_pass_counts.
 
-// ctss.rs `CtssUniform` (80 bytes): the camera of CtssCamera::ray and the
+// ctss.rs `CtssUniform` (96 bytes): the camera of CtssCamera::ray and the
 // background.
 struct CtssUniform {
     camera: subcone_PinholeCamera,

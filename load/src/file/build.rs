@@ -254,6 +254,7 @@ pub(super) fn camera(c: &CameraDesc) -> Result<Camera, String> {
                         forward: f,
                         up: u,
                         fov_y: fov,
+                        jitter: glam::Vec2::ZERO,
                     };
                     cam.validate().map(|()| cam)
                 }

@@ -230,5 +230,6 @@ fn camera() -> Camera {
         forward: Vec3::Z,
         up: Vec3::Y,
         fov_y: 39.31f32.to_radians(),
+        jitter: glam::Vec2::ZERO,
     }
 }

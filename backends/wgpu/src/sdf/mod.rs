@@ -209,7 +209,7 @@ fn scatter_table(
     Ok(Some(table))
 }
 
-/// The frame's constants; `SdfFrame` in trace.wgsl (112 bytes).
+/// The frame's constants; `SdfFrame` in trace.wgsl (128 bytes).
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
 pub(crate) struct SdfFrame {
@@ -332,6 +332,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
             right: camera.right(),
             up: camera.up,
             fov_y: camera.fov_y,
+            jitter: camera.jitter,
         },
         params,
         background: scene.background,
@@ -496,7 +497,8 @@ impl SdfFrame {
                 (camera.forward, camera.right(), camera.up),
                 (0.5 * camera.fov_y).tan(),
                 (settings.width, settings.height),
-            ),
+            )
+            .with_jitter(camera.jitter),
             background: scene.background.to_array(),
             max_distance,
             ambient: scene.ambient.to_array(),

@@ -8,7 +8,7 @@
 // trace WGSL, the field (scene_sdf_split) and the scene's materials and
 // lights (shading.rs).
 
-// Per-frame constants (sdf/mod.rs SdfFrame, 112 bytes).
+// Per-frame constants (sdf/mod.rs SdfFrame, 128 bytes).
 struct SdfFrame {
     camera: subcone_PinholeCamera,
     background: vec3<f32>,

@@ -28,6 +28,9 @@ struct FrameUniform {
     ao_rays: u32,
     ao_radius: f32,
     sraa: subcone_SraaParams,
+    // Camera::jitter: every primary ray's sub-pixel offset.
+    jitter: vec2<f32>,
+    _pad: vec2<f32>,
 }
 
 // The SRAA parameters the resolve's hooks (sraa.wgsl) read.

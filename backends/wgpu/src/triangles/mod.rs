@@ -39,7 +39,7 @@ const SUBPIXEL_WGSL: &str = include_str!("subpixel.wgsl");
 /// SRAA-RT's traced subsamples' entry point (`geometry_main`).
 const GEOMETRY_WGSL: &str = include_str!("geometry.wgsl");
 
-/// The frame's constants; `FrameUniform` in frame.wgsl (160 bytes), read
+/// The frame's constants; `FrameUniform` in frame.wgsl (176 bytes), read
 /// by the compute passes and the raster pass.
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
@@ -68,6 +68,10 @@ pub(crate) struct FrameUniform {
     /// Their length: `AO_RADIUS_FRACTION` of the bounding diagonal.
     pub(crate) ao_radius: f32,
     pub(crate) sraa: SraaParams,
+    /// `Camera::jitter`: every primary ray's (and rasterised subsample's)
+    /// sub-pixel offset.
+    pub(crate) jitter: [f32; 2],
+    pub(crate) _pad: [f32; 2],
 }
 
 impl FrameUniform {
@@ -107,6 +111,8 @@ impl FrameUniform {
             ao_rays: s.ao_rays,
             ao_radius: sg.scale * subcone_kernels::ao::AO_RADIUS_FRACTION,
             sraa: method.sraa(),
+            jitter: camera.jitter.to_array(),
+            _pad: [0.0; 2],
         }
     }
 }

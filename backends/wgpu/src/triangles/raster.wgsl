@@ -41,7 +41,8 @@ fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) k: u32) -> V
     let z = dot(rel, frame.forward);
     let x = dot(rel, frame.right);
     let y = dot(rel, frame.up);
-    let o = subcone_subpixel_offset(k);
+    // Camera::jitter moves every subsample with the image.
+    let o = subcone_subpixel_offset(k) + frame.jitter;
     var out: VsOut;
     out.clip = vec4<f32>(
         x / (frame.half * frame.aspect) - (2.0 * o.x / frame.width_f) * z,

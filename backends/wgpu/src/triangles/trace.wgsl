@@ -67,7 +67,8 @@ fn counts_flush(c: Counts) {
 }
 
 // Camera::ray: the unit direction through image point p (pixels, y down).
-fn camera_ray(p: vec2<f32>) -> vec3<f32> {
+fn camera_ray(p_in: vec2<f32>) -> vec3<f32> {
+    let p = p_in + frame.jitter;
     let u = (2.0 * p.x / frame.width_f - 1.0) * frame.half * frame.aspect;
     let v = (1.0 - 2.0 * p.y / frame.height_f) * frame.half;
     return normalize(frame.forward + u * frame.right + v * frame.up);

@@ -1,0 +1,383 @@
+//! Temporal antialiasing (TAA): the baseline engines ship, against which the
+//! single-frame methods of both papers are measured in motion.
+//!
+//! Neither paper is temporal. This module follows the published design most
+//! engines derive from, Brian Karis, "High Quality Temporal Supersampling"
+//! (SIGGRAPH 2014, Advances in Real-Time Rendering; Unreal Engine 4's TAA),
+//! with Marco Salvi's variance clipping ("An Excursion in Temporal
+//! Supersampling", GDC 2016):
+//!
+//! - **Jitter.** Frame `t` moves the projection by a sub-pixel offset, the
+//!   Halton (2, 3) point of index `t mod phases + 1`, centred on the pixel
+//!   ([`jitter`]; Karis uses 8 phases, 16 resolves a still image as finely as
+//!   a 4×4 grid). Each frame traces one sample per pixel at a new place.
+//! - **Reprojection.** Each pixel centre `p` finds where its surface was in the
+//!   previous frame, `p − velocity` (`velocity` in pixels, current minus
+//!   previous, the convention of engines' motion-vector buffers), and samples
+//!   the history there with a 4×4 Catmull-Rom filter ([`catmull_rom_weights`];
+//!   Karis: bilinear blurs the history a little more every frame). A point
+//!   outside the previous image has no history.
+//! - **Neighbourhood clipping.** The history is clipped, in YCoCg
+//!   ([`rgb_to_ycocg`]; Karis: the box is tighter along luma), toward the mean
+//!   of the current 3×3 neighbourhood, against the box `mean ± γ·σ` of its
+//!   colours (Salvi's variance clipping, [`clip_towards`]), so a history
+//!   that the current frame contradicts (a disocclusion, a moving shadow) is
+//!   pulled back to what the current neighbourhood can hold instead of
+//!   ghosting.
+//! - **Resolve in tone-mapped space.** Clipping and blending run on
+//!   `T(c) = c / (1 + luma(c))` of the exposed colour ([`tonemap`], Karis'
+//!   reversible tone map), and the result is mapped back ([`tonemap_inverse`])
+//!   to linear radiance: a sample beside an HDR highlight weighs what it
+//!   weighs on screen, so the edge is as smooth after tone mapping as a
+//!   box filter of the displayed samples would make it.
+//! - **Blend.** `out = lerp(history, current, α)` with
+//!   `α = max(1 / (n + 1), α_min)`, `n` the frames in the history
+//!   ([`TaaParams::history_frames`]): a running mean right after a reset (so a
+//!   still camera converges to the mean of the jittered samples, the box
+//!   filter supersampling computes) that becomes an exponential average of
+//!   weight `α_min` (Karis' 0.04–0.1; here `1/16` by default).
+//!
+//! A reset (a camera cut) is `history_frames = 0`: the pixel is the current
+//! sample.
+//!
+//! ```
+//! use glam::{Vec2, Vec3};
+//! use subcone_kernels::taa::{jitter, resolve_pixel, TaaParams};
+//!
+//! // Halton (2, 3): the first phase is (1/2, 1/3) − 1/2.
+//! assert_eq!(jitter(0, 16), Vec2::new(0.0, 1.0 / 3.0 - 0.5));
+//! // A grey image and a history of the same grey resolve to that grey.
+//! let grey = |_: i32, _: i32| Vec3::splat(0.5);
+//! let p = TaaParams::new((8, 8)).with_history_frames(3);
+//! let out = resolve_pixel(&grey, &grey, (4, 4), Vec2::ZERO, &p);
+//! assert!((out - Vec3::splat(0.5)).abs().max_element() < 1e-6);
+//! ```
+
+use glam::{Vec2, Vec3};
+
+/// The WGSL mirror of this module (same names with a `subcone_` prefix;
+/// the pixel reads the current frame and the history through hooks
+/// `taa_current(x: i32, y: i32) -> vec3<f32>` and
+/// `taa_history(x: i32, y: i32) -> vec3<f32>` the including shader defines,
+/// as [`resolve_pixel`]'s `current` and `history`). Needs
+/// [`crate::wgsl::PARAMS`].
+pub const WGSL: &str = include_str!("taa.wgsl");
+
+/// Jitter phases Karis' design uses.
+pub const PHASES_KARIS: u32 = 8;
+/// Jitter phases that resolve a still image on as many positions as ssaa16.
+pub const PHASES_FINE: u32 = 16;
+
+/// The Rec. 709 luma weights of [`tonemap`] (linear RGB).
+pub const LUMA: Vec3 = Vec3::new(0.2126, 0.7152, 0.0722);
+
+/// Variance clipping's `γ` (Salvi 2016: 1 is tight, and less ghosting; more
+/// lets the history keep more of the sub-pixel detail it gathered).
+pub const CLIP_GAMMA: f32 = 1.25;
+
+/// The smallest weight of the current frame (`α_min`): the history's
+/// exponential average after its first `1/α_min − 1` frames.
+pub const MIN_CURRENT_WEIGHT: f32 = 1.0 / 16.0;
+
+/// What one TAA resolve runs with; `#[repr(C)]`, 32 bytes, uploaded
+/// unchanged (`subcone_TaaParams` in WGSL).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "bytemuck", derive(bytemuck::Pod, bytemuck::Zeroable))]
+pub struct TaaParams {
+    /// Exposure the tone map of the resolve applies (a colour `c` is seen
+    /// as `c · exposure`); positive and finite, anything else reads as 1.
+    pub exposure: f32,
+    /// `α_min`, the smallest weight of the current frame, in `(0, 1]`;
+    /// values outside are clamped into it (NaN reads as 1).
+    pub min_current_weight: f32,
+    /// Variance clipping's `γ`, non-negative (NaN or negative reads as 0:
+    /// the history is clipped to the neighbourhood's mean).
+    pub clip_gamma: f32,
+    /// Frames the history holds: 0 after a reset (the output is the
+    /// current frame).
+    pub history_frames: u32,
+    /// Image width in pixels (0 reads as 1).
+    pub width: u32,
+    /// Image height in pixels (0 reads as 1).
+    pub height: u32,
+    /// Padding to 16 bytes; zero.
+    pub _pad: [u32; 2],
+}
+
+impl TaaParams {
+    /// The defaults for a `width × height` image, right after a reset:
+    /// exposure 1, [`MIN_CURRENT_WEIGHT`], [`CLIP_GAMMA`].
+    pub const fn new((width, height): (u32, u32)) -> Self {
+        TaaParams {
+            exposure: 1.0,
+            min_current_weight: MIN_CURRENT_WEIGHT,
+            clip_gamma: CLIP_GAMMA,
+            history_frames: 0,
+            width,
+            height,
+            _pad: [0; 2],
+        }
+    }
+
+    /// The same parameters with `n` frames in the history.
+    pub const fn with_history_frames(mut self, n: u32) -> Self {
+        self.history_frames = n;
+        self
+    }
+
+    /// The same parameters with `exposure`.
+    pub const fn with_exposure(mut self, exposure: f32) -> Self {
+        self.exposure = exposure;
+        self
+    }
+
+    /// The exposure in effect: [`Self::exposure`], or 1 outside its domain.
+    pub fn exposure(&self) -> f32 {
+        if self.exposure > 0.0 && self.exposure.is_finite() {
+            self.exposure
+        } else {
+            1.0
+        }
+    }
+
+    /// The current frame's weight `α = max(1 / (n + 1), α_min)`, in
+    /// `(0, 1]`: 1 right after a reset.
+    pub fn current_weight(&self) -> f32 {
+        let min = if self.min_current_weight > 0.0 {
+            self.min_current_weight.min(1.0)
+        } else if self.min_current_weight.is_nan() {
+            1.0
+        } else {
+            // Zero or negative: the weight a never-ending mean would reach.
+            f32::MIN_POSITIVE
+        };
+        let mean = 1.0 / (self.history_frames as f32 + 1.0);
+        mean.max(min)
+    }
+}
+
+/// The radical inverse of `index` in `base` (the Halton sequence's
+/// coordinate), in `[0, 1)`; a base below 2 gives 0.
+pub fn halton(mut index: u32, base: u32) -> f32 {
+    if base < 2 {
+        return 0.0;
+    }
+    let inv = 1.0 / base as f32;
+    let (mut f, mut r) = (1.0f32, 0.0f32);
+    while index > 0 {
+        f *= inv;
+        r += f * (index % base) as f32;
+        index /= base;
+    }
+    r
+}
+
+/// Frame `frame`'s sub-pixel jitter in pixels, in `(−½, ½)²`: the Halton
+/// (2, 3) point of index `frame mod phases + 1` minus `½` (Karis 2014; index
+/// 0 of the sequence is the origin, which would put every cycle's first
+/// sample on a pixel corner). `phases` 0 reads as 1.
+pub fn jitter(frame: u32, phases: u32) -> Vec2 {
+    let i = frame % phases.max(1) + 1;
+    Vec2::new(halton(i, 2), halton(i, 3)) - Vec2::splat(0.5)
+}
+
+/// SRAA under TAA (`sraa-rt+taa`): frame `frame`'s jitter, which moves
+/// SRAA's whole pattern (the shaded sample at `shaded_offset` from the pixel
+/// centre, [`crate::sraa::SraaParams::shaded_offset`], and the four geometric
+/// subsamples) so that the shaded sample lands where geometric subsample
+/// `frame mod 4` ([`crate::sraa::SUBPIXEL_OFFSETS`]) of the still pattern
+/// lies. Over four frames every subsample position of the rotated grid is
+/// shaded once, as SMAA T2x alternates its subsample indices from frame to
+/// frame; the geometric subsamples move with it, so four frames trace sixteen
+/// geometric positions.
+pub fn subsample_rotation(frame: u32, shaded_offset: Vec2) -> Vec2 {
+    crate::sraa::SUBPIXEL_OFFSETS[(frame % 4) as usize] - shaded_offset
+}
+
+/// Luma of a linear colour ([`LUMA`]).
+#[inline]
+pub fn luma(c: Vec3) -> f32 {
+    c.dot(LUMA)
+}
+
+/// A colour made safe for the resolve: each non-finite or negative channel
+/// becomes 0 (radiance is never negative; a NaN must not spread through the
+/// history).
+#[inline]
+pub fn sanitize(c: Vec3) -> Vec3 {
+    let f = |x: f32| if x > 0.0 && x.is_finite() { x } else { 0.0 };
+    Vec3::new(f(c.x), f(c.y), f(c.z))
+}
+
+/// Karis' reversible tone map of the exposed colour,
+/// `T(c) = c·e / (1 + luma(c·e))`, for a [`sanitize`]d `c`: every channel of
+/// the result has luma below 1, so [`tonemap_inverse`] undoes it.
+#[inline]
+pub fn tonemap(c: Vec3, exposure: f32) -> Vec3 {
+    let c = c * exposure;
+    c / (1.0 + luma(c))
+}
+
+/// The inverse of [`tonemap`]: `t / (1 − luma(t)) / e`. A `t` of luma 1 or
+/// more (never a tone-mapped colour, but a clipped or filtered one may get
+/// near) is read at luma `1 − 2⁻¹⁶`, so the result stays finite.
+#[inline]
+pub fn tonemap_inverse(t: Vec3, exposure: f32) -> Vec3 {
+    let d = (1.0 - luma(t)).max(1.0 / 65536.0);
+    t / d / exposure
+}
+
+/// RGB to YCoCg (Malvar and Sullivan's transform, the one Karis clips in):
+/// `Y = R/4 + G/2 + B/4`, `Co = R/2 − B/2`, `Cg = −R/4 + G/2 − B/4`.
+#[inline]
+pub fn rgb_to_ycocg(c: Vec3) -> Vec3 {
+    Vec3::new(
+        0.25 * c.x + 0.5 * c.y + 0.25 * c.z,
+        0.5 * c.x - 0.5 * c.z,
+        -0.25 * c.x + 0.5 * c.y - 0.25 * c.z,
+    )
+}
+
+/// YCoCg to RGB, the inverse of [`rgb_to_ycocg`].
+#[inline]
+pub fn ycocg_to_rgb(c: Vec3) -> Vec3 {
+    Vec3::new(c.x + c.y - c.z, c.x + c.z, c.x - c.y - c.z)
+}
+
+/// The history `h` clipped toward the box centre `centre` against the box
+/// `centre ± extent` (Salvi 2016; the clip of Playdead's INSIDE TAA): where
+/// the segment from the centre to `h` leaves the box, the point where it
+/// leaves; `h` itself inside. An extent component of 0 (or NaN) clips that
+/// axis to the centre.
+#[inline]
+pub fn clip_towards(h: Vec3, centre: Vec3, extent: Vec3) -> Vec3 {
+    let v = h - centre;
+    let axis = |v: f32, e: f32| {
+        if e > 0.0 {
+            (v / e).abs()
+        } else if v == 0.0 {
+            0.0
+        } else {
+            f32::INFINITY
+        }
+    };
+    let m = axis(v.x, extent.x)
+        .max(axis(v.y, extent.y))
+        .max(axis(v.z, extent.z));
+    if m > 1.0 {
+        centre + v / m
+    } else {
+        h
+    }
+}
+
+/// The 1D Catmull-Rom weights of the four taps at `−1, 0, 1, 2` around a
+/// sample at fraction `t ∈ [0, 1)` past tap 0 (they sum to 1).
+#[inline]
+pub fn catmull_rom_weights(t: f32) -> [f32; 4] {
+    let t2 = t * t;
+    let t3 = t2 * t;
+    [
+        0.5 * (-t3 + 2.0 * t2 - t),
+        0.5 * (3.0 * t3 - 5.0 * t2 + 2.0),
+        0.5 * (-3.0 * t3 + 4.0 * t2 + t),
+        0.5 * (t3 - t2),
+    ]
+}
+
+/// The history at image point `p` (pixels; pixel `(i, j)`'s centre is
+/// `(i + ½, j + ½)`), Catmull-Rom filtered over 4×4 pixels, taps clamped to
+/// the image, [`sanitize`]d (the filter's negative lobes can ring below 0);
+/// `None` when `p` is outside the image or not finite (the surface was not
+/// on screen: no history).
+pub fn sample_history<F: Fn(i32, i32) -> Vec3>(
+    history: &F,
+    p: Vec2,
+    (w, h): (u32, u32),
+) -> Option<Vec3> {
+    let (w, h) = (w.max(1) as i32, h.max(1) as i32);
+    if !(p.x >= 0.0 && p.y >= 0.0 && p.x <= w as f32 && p.y <= h as f32) {
+        return None;
+    }
+    let q = p - Vec2::splat(0.5);
+    let (fx, fy) = (libm::floorf(q.x), libm::floorf(q.y));
+    let (wx, wy) = (catmull_rom_weights(q.x - fx), catmull_rom_weights(q.y - fy));
+    let (x0, y0) = (fx as i32 - 1, fy as i32 - 1);
+    let mut sum = Vec3::ZERO;
+    for (j, wy) in wy.iter().enumerate() {
+        let y = (y0 + j as i32).clamp(0, h - 1);
+        let mut row = Vec3::ZERO;
+        for (i, wx) in wx.iter().enumerate() {
+            let x = (x0 + i as i32).clamp(0, w - 1);
+            row += *wx * sanitize(history(x, y));
+        }
+        sum += *wy * row;
+    }
+    Some(sanitize(sum))
+}
+
+/// One pixel of the TAA resolve (Karis 2014 with Salvi's variance clipping;
+/// see the module docs), in linear radiance.
+///
+/// `current(x, y)` is this frame's (jittered) colour of a pixel and
+/// `history(x, y)` the previous output's; both are called only with
+/// coordinates inside the image, and every colour they return is
+/// [`sanitize`]d. `(x, y)` is the pixel (clamped into the image),
+/// `velocity` its motion in pixels, current minus previous (a non-finite
+/// velocity means no history). With `history_frames == 0`, or when the
+/// reprojected point is off the previous image, the result is the
+/// sanitised current colour. The result is finite and non-negative for any
+/// input.
+pub fn resolve_pixel<C: Fn(i32, i32) -> Vec3, H: Fn(i32, i32) -> Vec3>(
+    current: &C,
+    history: &H,
+    (x, y): (i32, i32),
+    velocity: Vec2,
+    params: &TaaParams,
+) -> Vec3 {
+    let (w, h) = (params.width.max(1) as i32, params.height.max(1) as i32);
+    let (x, y) = (x.clamp(0, w - 1), y.clamp(0, h - 1));
+    let centre = sanitize(current(x, y));
+    if params.history_frames == 0 {
+        return centre;
+    }
+    let p = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) - velocity;
+    let Some(past) = sample_history(history, p, (w as u32, h as u32)) else {
+        return centre;
+    };
+    let e = params.exposure();
+    // The 3×3 neighbourhood's mean and standard deviation, in tone-mapped
+    // YCoCg.
+    let (mut m1, mut m2) = (Vec3::ZERO, Vec3::ZERO);
+    for dy in -1..=1 {
+        for dx in -1..=1 {
+            let c = if (dx, dy) == (0, 0) {
+                centre
+            } else {
+                sanitize(current((x + dx).clamp(0, w - 1), (y + dy).clamp(0, h - 1)))
+            };
+            let t = rgb_to_ycocg(tonemap(c, e));
+            m1 += t;
+            m2 += t * t;
+        }
+    }
+    let mean = m1 / 9.0;
+    let var = (m2 / 9.0 - mean * mean).max(Vec3::ZERO);
+    let sigma = Vec3::new(
+        crate::math::sqrt(var.x),
+        crate::math::sqrt(var.y),
+        crate::math::sqrt(var.z),
+    );
+    let gamma = if params.clip_gamma > 0.0 {
+        params.clip_gamma
+    } else {
+        0.0
+    };
+    let past = rgb_to_ycocg(tonemap(past, e));
+    let clipped = clip_towards(past, mean, gamma * sigma);
+    let now = rgb_to_ycocg(tonemap(centre, e));
+    let a = params.current_weight();
+    let out = clipped + (now - clipped) * a;
+    sanitize(tonemap_inverse(ycocg_to_rgb(out), e))
+}
