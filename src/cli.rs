@@ -6,6 +6,7 @@ use std::time::Instant;
 use anyhow::{anyhow, Result};
 use subcone_cpu::isa::Isa;
 use subcone_load::SaveFrame;
+use subcone_scene::temporal::{Taa, TaaConfig};
 use subcone_scene::{Frame, Method, RenderSettings};
 
 pub use subcone_report::setup::{backend, backend_on, parse_ao, parse_isa, parse_size, scene};
@@ -144,6 +145,9 @@ pub struct RenderOptions {
     /// CPU backend only: the instruction-set path (default: the widest the
     /// CPU supports).
     pub isa: Option<Isa>,
+    /// A temporal method's frames of a still camera (at least 1): the last
+    /// is the image; the time is the median frame's.
+    pub frames: u32,
 }
 
 /// The path of an AOV image beside `output`: `out.png` → `out.samples.png`.
@@ -194,7 +198,7 @@ fn aov_frame(frame: &Frame, aov: Aov) -> Result<Frame> {
 pub fn render(opts: &RenderOptions) -> Result<RenderReport> {
     let backend = backend_on(&opts.backend, opts.isa)?;
     let scene = scene(&opts.scene)?;
-    backend.supports(&scene, &opts.method)?;
+    backend.supports(&scene, &opts.method.single_frame())?;
     let settings = RenderSettings {
         aovs: opts.aov.is_some(),
         ..opts.settings
@@ -202,9 +206,31 @@ pub fn render(opts: &RenderOptions) -> Result<RenderReport> {
     settings
         .validate()
         .map_err(|e| ao_context(e, settings.ao_rays))?;
-    let start = Instant::now();
-    let frame = backend.render(&scene, &scene.camera, &opts.method, &settings)?;
-    let wall_ms = start.elapsed().as_secs_f64() * 1e3;
+    let (frame, wall_ms) = if opts.method.is_temporal() {
+        if opts.frames == 0 {
+            return Err(anyhow!(
+                "--frames: a temporal method needs at least one frame"
+            ));
+        }
+        let mut taa = Taa::new(opts.method, TaaConfig::default())?;
+        let bar = indicatif::ProgressBar::new(u64::from(opts.frames));
+        let mut times = Vec::new();
+        let mut last = None;
+        for _ in 0..opts.frames {
+            let start = Instant::now();
+            last = Some(taa.render(backend.as_ref(), &scene, &scene.camera, &settings)?);
+            times.push(start.elapsed().as_secs_f64() * 1e3);
+            bar.inc(1);
+        }
+        bar.finish_and_clear();
+        times.sort_by(f64::total_cmp);
+        let frame = last.ok_or_else(|| anyhow!("no frame rendered"))?;
+        (frame, times[times.len() / 2])
+    } else {
+        let start = Instant::now();
+        let frame = backend.render(&scene, &scene.camera, &opts.method, &settings)?;
+        (frame, start.elapsed().as_secs_f64() * 1e3)
+    };
     frame.save(&opts.output)?;
     if let Some(aov) = opts.aov {
         aov_frame(&frame, aov)?.save(&aov_path(&opts.output, aov))?;

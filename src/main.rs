@@ -70,6 +70,10 @@ enum Command {
         /// CTSS visibility threshold k, 1..=32 (§5.1); default: 32.
         #[arg(long)]
         visibility_k: Option<u32>,
+        /// Temporal methods (taa, +taa): frames of a still camera to
+        /// accumulate; the last is written.
+        #[arg(long, default_value_t = subcone_kernels::taa::PHASES_FINE)]
+        frames: u32,
         /// SDF scenes: step budget per ray (default: the scene's).
         #[arg(long)]
         max_steps: Option<u32>,
@@ -148,6 +152,7 @@ fn run() -> Result<()> {
             reflection_depth,
             cone_coverage,
             visibility_k,
+            frames,
             max_steps,
             max_distance,
             ao,
@@ -178,6 +183,7 @@ fn run() -> Result<()> {
                 aov,
                 output,
                 isa,
+                frames,
             };
             let report = cli::render(&opts)?;
             println!("{}", report.summary());

@@ -53,7 +53,9 @@ use subcone_scene::{
     Backend, Frame, Method, RenderError, RenderSettings, Scene, UnsupportedReason,
 };
 
+mod temporal;
 mod thin_slab;
+pub use temporal::{check_taa_reset, check_taa_still, check_temporal_matches_cpu, TEMPORAL_CASES};
 pub use thin_slab::{check_thin_slab, thin_slab_scene, THIN_SLAB_METHODS, THIN_SLAB_TOLERANCE};
 
 #[doc(hidden)]
@@ -945,6 +947,9 @@ macro_rules! conformance_suite {
                 supports_matches_render => check_supports,
                 transparent_scenes_match_the_cpu => check_transparent,
                 thin_slab_is_opaque_under_every_ctss_method => check_thin_slab,
+                taa_converges_on_a_still_camera => check_taa_still,
+                taa_recovers_after_a_cut => check_taa_reset,
+                temporal_frames_match_the_cpu => check_temporal_matches_cpu,
             );
 
             /// The per-scene cases above (their names, as the macro lists

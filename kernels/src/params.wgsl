@@ -69,7 +69,8 @@ struct subcone_TaaParams {
     history_frames: u32,
     width: u32,
     height: u32,
-    _pad: vec2<u32>,
+    tone_mapped: u32,
+    _pad: u32,
 }
 
 // subcone_kernels::fxaa::FxaaParams (16 bytes).

@@ -18,18 +18,25 @@
 //!   Karis: bilinear blurs the history a little more every frame). A point
 //!   outside the previous image has no history.
 //! - **Neighbourhood clipping.** The history is clipped, in YCoCg
-//!   ([`rgb_to_ycocg`]; Karis: the box is tighter along luma), toward the mean
-//!   of the current 3×3 neighbourhood, against the box `mean ± γ·σ` of its
-//!   colours (Salvi's variance clipping, [`clip_towards`]), so a history
+//!   ([`rgb_to_ycocg`]; Karis: the box is tighter along luma), toward the
+//!   centre of the box `mean ± γ·σ` of the current 3×3 neighbourhood's
+//!   colours (Salvi's variance clipping, [`clip_towards`]), stretched to hold
+//!   the pixel's own current colour (else a one-pixel feature, an outlier
+//!   of its neighbourhood, would lose its history every frame), so a history
 //!   that the current frame contradicts (a disocclusion, a moving shadow) is
 //!   pulled back to what the current neighbourhood can hold instead of
 //!   ghosting.
-//! - **Resolve in tone-mapped space.** Clipping and blending run on
-//!   `T(c) = c / (1 + luma(c))` of the exposed colour ([`tonemap`], Karis'
-//!   reversible tone map), and the result is mapped back ([`tonemap_inverse`])
-//!   to linear radiance: a sample beside an HDR highlight weighs what it
-//!   weighs on screen, so the edge is as smooth after tone mapping as a
-//!   box filter of the displayed samples would make it.
+//! - **Resolve space.** Karis clips and blends on
+//!   `T(c) = c / (1 + luma(c))` of the exposed colour ([`tonemap`], his
+//!   reversible tone map), mapping the result back ([`tonemap_inverse`]):
+//!   a sample beside an HDR highlight weighs what it weighs on screen, so the
+//!   edge is as smooth after tone mapping as a box filter of the displayed
+//!   samples would make it ([`TaaParams::tone_mapped`]). It is also biased:
+//!   a mean of `T` is darker than the mean of the radiances (the average of
+//!   0.2 and 0.6 resolves to 0.37, not 0.4), so a still camera does not
+//!   converge to the box filter a supersampled reference computes. The
+//!   default is therefore the linear resolve, and the tone-mapped one is a
+//!   choice (with an exposure) for HDR content; the report measures both.
 //! - **Blend.** `out = lerp(history, current, α)` with
 //!   `α = max(1 / (n + 1), α_min)`, `n` the frames in the history
 //!   ([`TaaParams::history_frames`]): a running mean right after a reset (so a
@@ -79,6 +86,21 @@ pub const CLIP_GAMMA: f32 = 1.25;
 /// exponential average after its first `1/α_min − 1` frames.
 pub const MIN_CURRENT_WEIGHT: f32 = 1.0 / 16.0;
 
+/// Where a TAA resolve clips and blends ([`TaaParams::tone_mapped`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum ResolveSpace {
+    /// Linear radiance: a still camera converges to the box filter of its
+    /// jittered samples (the default).
+    #[default]
+    Linear,
+    /// Karis' reversible tone map of the colour times `exposure` (positive
+    /// and finite; anything else reads as 1).
+    ToneMapped {
+        /// The exposure the display applies.
+        exposure: f32,
+    },
+}
+
 /// What one TAA resolve runs with; `#[repr(C)]`, 32 bytes, uploaded
 /// unchanged (`subcone_TaaParams` in WGSL).
 #[repr(C)]
@@ -92,7 +114,8 @@ pub struct TaaParams {
     /// values outside are clamped into it (NaN reads as 1).
     pub min_current_weight: f32,
     /// Variance clipping's `γ`, non-negative (NaN or negative reads as 0:
-    /// the history is clipped to the neighbourhood's mean).
+    /// the box is the neighbourhood's mean and the current colour; values
+    /// above 10⁶ read as 10⁶).
     pub clip_gamma: f32,
     /// Frames the history holds: 0 after a reset (the output is the
     /// current frame).
@@ -101,13 +124,19 @@ pub struct TaaParams {
     pub width: u32,
     /// Image height in pixels (0 reads as 1).
     pub height: u32,
+    /// 1: clip and blend in Karis' tone-mapped space ([`tonemap`] at
+    /// [`Self::exposure`]); 0 (any other value): in linear radiance, where
+    /// a still camera's running mean is the box filter supersampling
+    /// computes.
+    pub tone_mapped: u32,
     /// Padding to 16 bytes; zero.
-    pub _pad: [u32; 2],
+    pub _pad: u32,
 }
 
 impl TaaParams {
-    /// The defaults for a `width × height` image, right after a reset:
-    /// exposure 1, [`MIN_CURRENT_WEIGHT`], [`CLIP_GAMMA`].
+    /// The defaults for a `width × height` image, right after a reset: a
+    /// linear resolve, [`MIN_CURRENT_WEIGHT`], [`CLIP_GAMMA`] (exposure 1,
+    /// read only by a tone-mapped resolve).
     pub const fn new((width, height): (u32, u32)) -> Self {
         TaaParams {
             exposure: 1.0,
@@ -116,19 +145,29 @@ impl TaaParams {
             history_frames: 0,
             width,
             height,
-            _pad: [0; 2],
+            tone_mapped: 0,
+            _pad: 0,
         }
+    }
+
+    /// The same parameters resolving in `space`.
+    pub const fn with_space(mut self, space: ResolveSpace) -> Self {
+        match space {
+            ResolveSpace::Linear => {
+                self.tone_mapped = 0;
+                self.exposure = 1.0;
+            }
+            ResolveSpace::ToneMapped { exposure } => {
+                self.tone_mapped = 1;
+                self.exposure = exposure;
+            }
+        }
+        self
     }
 
     /// The same parameters with `n` frames in the history.
     pub const fn with_history_frames(mut self, n: u32) -> Self {
         self.history_frames = n;
-        self
-    }
-
-    /// The same parameters with `exposure`.
-    pub const fn with_exposure(mut self, exposure: f32) -> Self {
-        self.exposure = exposure;
         self
     }
 
@@ -226,6 +265,27 @@ pub fn tonemap(c: Vec3, exposure: f32) -> Vec3 {
 pub fn tonemap_inverse(t: Vec3, exposure: f32) -> Vec3 {
     let d = (1.0 - luma(t)).max(1.0 / 65536.0);
     t / d / exposure
+}
+
+/// A colour in the resolve's space: [`tonemap`] at the exposure in effect
+/// when `params.tone_mapped == 1`, itself otherwise.
+#[inline]
+pub fn to_resolve_space(c: Vec3, params: &TaaParams) -> Vec3 {
+    if params.tone_mapped == 1 {
+        tonemap(c, params.exposure())
+    } else {
+        c
+    }
+}
+
+/// The inverse of [`to_resolve_space`].
+#[inline]
+pub fn from_resolve_space(t: Vec3, params: &TaaParams) -> Vec3 {
+    if params.tone_mapped == 1 {
+        tonemap_inverse(t, params.exposure())
+    } else {
+        t
+    }
 }
 
 /// RGB to YCoCg (Malvar and Sullivan's transform, the one Karis clips in):
@@ -346,7 +406,6 @@ pub fn resolve_pixel<C: Fn(i32, i32) -> Vec3, H: Fn(i32, i32) -> Vec3>(
     let Some(past) = sample_history(history, p, (w as u32, h as u32)) else {
         return centre;
     };
-    let e = params.exposure();
     // The 3×3 neighbourhood's mean and standard deviation, in tone-mapped
     // YCoCg.
     let (mut m1, mut m2) = (Vec3::ZERO, Vec3::ZERO);
@@ -357,7 +416,7 @@ pub fn resolve_pixel<C: Fn(i32, i32) -> Vec3, H: Fn(i32, i32) -> Vec3>(
             } else {
                 sanitize(current((x + dx).clamp(0, w - 1), (y + dy).clamp(0, h - 1)))
             };
-            let t = rgb_to_ycocg(tonemap(c, e));
+            let t = rgb_to_ycocg(to_resolve_space(c, params));
             m1 += t;
             m2 += t * t;
         }
@@ -369,15 +428,21 @@ pub fn resolve_pixel<C: Fn(i32, i32) -> Vec3, H: Fn(i32, i32) -> Vec3>(
         crate::math::sqrt(var.y),
         crate::math::sqrt(var.z),
     );
+    // NaN or negative reads as 0; +inf as a box wider than any colour.
     let gamma = if params.clip_gamma > 0.0 {
-        params.clip_gamma
+        params.clip_gamma.min(1e6)
     } else {
         0.0
     };
-    let past = rgb_to_ycocg(tonemap(past, e));
-    let clipped = clip_towards(past, mean, gamma * sigma);
-    let now = rgb_to_ycocg(tonemap(centre, e));
+    let now = rgb_to_ycocg(to_resolve_space(centre, params));
+    // Salvi's box, stretched to hold the current colour: a pixel that is an
+    // outlier of its own neighbourhood (a thin feature) keeps a history of
+    // its own colour instead of losing it every frame.
+    let lo = (mean - gamma * sigma).min(now);
+    let hi = (mean + gamma * sigma).max(now);
+    let past = rgb_to_ycocg(to_resolve_space(past, params));
+    let clipped = clip_towards(past, 0.5 * (lo + hi), 0.5 * (hi - lo));
     let a = params.current_weight();
     let out = clipped + (now - clipped) * a;
-    sanitize(tonemap_inverse(ycocg_to_rgb(out), e))
+    sanitize(from_resolve_space(ycocg_to_rgb(out), params))
 }

@@ -77,6 +77,22 @@ fn subcone_taa_tonemap_inverse(t: vec3<f32>, exposure: f32) -> vec3<f32> {
     return t / d / exposure;
 }
 
+// taa::to_resolve_space
+fn subcone_taa_to_resolve_space(c: vec3<f32>, p: subcone_TaaParams) -> vec3<f32> {
+    if p.tone_mapped == 1u {
+        return subcone_taa_tonemap(c, subcone_taa_exposure(p));
+    }
+    return c;
+}
+
+// taa::from_resolve_space
+fn subcone_taa_from_resolve_space(t: vec3<f32>, p: subcone_TaaParams) -> vec3<f32> {
+    if p.tone_mapped == 1u {
+        return subcone_taa_tonemap_inverse(t, subcone_taa_exposure(p));
+    }
+    return t;
+}
+
 // taa::rgb_to_ycocg
 fn subcone_taa_rgb_to_ycocg(c: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(
@@ -166,7 +182,6 @@ fn subcone_taa_resolve_pixel(xy: vec2<i32>, velocity: vec2<f32>, params: subcone
     if past_s.w == 0.0 {
         return centre;
     }
-    let e = subcone_taa_exposure(params);
     var m1 = vec3<f32>(0.0);
     var m2 = vec3<f32>(0.0);
     for (var dy = -1; dy <= 1; dy++) {
@@ -175,7 +190,7 @@ fn subcone_taa_resolve_pixel(xy: vec2<i32>, velocity: vec2<f32>, params: subcone
             if dx != 0 || dy != 0 {
                 c = subcone_taa_sanitize(taa_current(clamp(x + dx, 0, w - 1), clamp(y + dy, 0, h - 1)));
             }
-            let t = subcone_taa_rgb_to_ycocg(subcone_taa_tonemap(c, e));
+            let t = subcone_taa_rgb_to_ycocg(subcone_taa_to_resolve_space(c, params));
             m1 += t;
             m2 += t * t;
         }
@@ -185,12 +200,14 @@ fn subcone_taa_resolve_pixel(xy: vec2<i32>, velocity: vec2<f32>, params: subcone
     let sigma = sqrt(var_);
     var gamma = 0.0;
     if params.clip_gamma > 0.0 {
-        gamma = params.clip_gamma;
+        gamma = min(params.clip_gamma, 1e6);
     }
-    let past = subcone_taa_rgb_to_ycocg(subcone_taa_tonemap(past_s.xyz, e));
-    let clipped = subcone_taa_clip_towards(past, mean, gamma * sigma);
-    let now = subcone_taa_rgb_to_ycocg(subcone_taa_tonemap(centre, e));
+    let now = subcone_taa_rgb_to_ycocg(subcone_taa_to_resolve_space(centre, params));
+    let lo = min(mean - gamma * sigma, now);
+    let hi = max(mean + gamma * sigma, now);
+    let past = subcone_taa_rgb_to_ycocg(subcone_taa_to_resolve_space(past_s.xyz, params));
+    let clipped = subcone_taa_clip_towards(past, 0.5 * (lo + hi), 0.5 * (hi - lo));
     let a = subcone_taa_current_weight(params);
     let out = clipped + (now - clipped) * a;
-    return subcone_taa_sanitize(subcone_taa_tonemap_inverse(subcone_taa_ycocg_to_rgb(out), e));
+    return subcone_taa_sanitize(subcone_taa_from_resolve_space(subcone_taa_ycocg_to_rgb(out), params));
 }

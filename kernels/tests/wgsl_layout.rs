@@ -155,7 +155,7 @@ fn shared_structs() -> Vec<Shared> {
         shared!(PinholeCamera: position, width, forward, height, right, tan_half_fov, up, _pad, jitter, _pad2),
         shared!(FxaaParams: subpix, edge_threshold, edge_threshold_min, _pad),
         shared!(TaaParams: exposure, min_current_weight, clip_gamma, history_frames, width,
-            height, _pad),
+            height, tone_mapped, _pad),
     ]
 }
 

@@ -6,7 +6,12 @@ use subcone_kernels::passes::{required_passes, Passes};
 use crate::camera::Camera;
 use crate::error::RenderError;
 pub use crate::error::{Unsupported, UnsupportedReason};
-use crate::frame::Frame;
+use std::time::Instant;
+
+use glam::Vec3;
+
+use crate::frame::{Frame, PassTiming};
+use crate::history::{self, TaaInput};
 use crate::method::Method;
 use crate::registry::{self, info};
 use crate::scene::Scene;
@@ -158,7 +163,8 @@ pub use crate::registry::SDF_SUBPIXEL_GEOMETRY;
 /// cannot render them: the one support plan behind every backend's
 /// [`Backend::supports`] and [`Backend::render`].
 ///
-/// In order: more lights than the backend shades; what the kernels refuse
+/// In order: a temporal method ([`UnsupportedReason::Temporal`]: one
+/// frame of it is its [`Method::single_frame`]); more lights than the backend shades; what the kernels refuse
 /// ([`required_passes`]); on SDF scenes mirror reflections, the material
 /// gate, semi-transparent materials with a method that does not carry
 /// opacity ([`registry::TechniqueInfo::carries_opacity`], hit-group
@@ -200,6 +206,9 @@ pub fn plan_forced(
     force: Passes,
 ) -> Result<Passes, Unsupported> {
     let refuse = |reason| Err(Unsupported::new(caps.backend, scene, method, reason));
+    if method.is_temporal() {
+        return refuse(UnsupportedReason::Temporal);
+    }
     let sdf = scene.sdf_geometry().is_some();
     let max_lights = if sdf {
         caps.max_lights_sdf
@@ -306,4 +315,15 @@ pub trait Backend {
         method: &Method,
         settings: &RenderSettings,
     ) -> Result<Frame, RenderError>;
+
+    /// One TAA resolve ([`crate::temporal::Taa`] calls it every frame): the
+    /// resolved colours and the resolve's timing (`"taa"`). The default runs
+    /// `subcone_kernels::taa` on the CPU ([`history::resolve`]); a GPU
+    /// backend runs its twin. Errors when a buffer does not hold one value
+    /// per pixel.
+    fn resolve_taa(&self, input: &TaaInput<'_>) -> Result<(Vec<Vec3>, PassTiming), RenderError> {
+        let start = Instant::now();
+        let out = history::resolve(input)?;
+        Ok((out, PassTiming::cpu("taa", start.elapsed())))
+    }
 }

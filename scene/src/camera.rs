@@ -126,6 +126,33 @@ impl Camera {
         }
     }
 
+    /// The image point (pixels, see the type docs) of a `width × height`
+    /// image whose ray passes through `point`: [`Camera::ray`] inverted
+    /// (jitter included). `None` for a point not in front of the camera
+    /// (or not finite).
+    pub fn project(&self, point: Vec3, width: u32, height: u32) -> Option<Vec2> {
+        self.project_direction(point - self.position, width, height)
+    }
+
+    /// The image point whose ray runs along `direction` (a point at
+    /// infinity), as [`Camera::project`]; `None` for a direction not in
+    /// front of the camera.
+    pub fn project_direction(&self, direction: Vec3, width: u32, height: u32) -> Option<Vec2> {
+        let z = direction.dot(self.forward);
+        if !(z > 0.0 && z.is_finite()) {
+            return None;
+        }
+        let (w, h) = (width.max(1) as f32, height.max(1) as f32);
+        let half = (0.5 * self.fov_y).tan();
+        let u = direction.dot(self.right()) / z;
+        let v = direction.dot(self.up) / z;
+        let p = Vec2::new(
+            (u / (half * (w / h)) + 1.0) * 0.5 * w,
+            (1.0 - v / half) * 0.5 * h,
+        ) - self.jitter;
+        p.is_finite().then_some(p)
+    }
+
     /// Depth of a point along the view axis (what SRAA's `z` is).
     #[inline]
     pub fn view_depth(&self, p: Vec3) -> f32 {

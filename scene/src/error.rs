@@ -217,6 +217,9 @@ pub enum UnsupportedReason {
         /// The most the backend supports.
         max: usize,
     },
+    /// A temporal method (`taa`, `+taa`) asked of one frame's render: it
+    /// renders a sequence, through [`crate::temporal::Taa`].
+    Temporal,
     /// More samples per pixel side than the backend traces.
     TooManySamples {
         /// Samples per pixel side asked for.
@@ -246,6 +249,10 @@ impl fmt::Display for UnsupportedReason {
             UnsupportedReason::TooManyLights { lights, max } => {
                 write!(f, "{lights} lights; at most {max} are supported")
             }
+            UnsupportedReason::Temporal => f.write_str(
+                "a temporal method accumulates a sequence of frames: render it through \
+                 subcone_scene::temporal::Taa (subcone render --frames N)",
+            ),
             UnsupportedReason::TooManySamples { side, max } => write!(
                 f,
                 "{side}x{side} samples per pixel; at most {max}x{max} are supported"

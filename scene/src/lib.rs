@@ -27,6 +27,7 @@ pub mod camera;
 pub mod conformance;
 pub mod error;
 pub mod frame;
+pub mod history;
 pub mod light;
 pub mod material;
 pub mod mesh;
@@ -34,6 +35,7 @@ pub mod method;
 pub mod registry;
 pub mod scene;
 pub mod sdf;
+pub mod temporal;
 
 pub use backend::{Backend, RenderSettings, Unsupported, UnsupportedReason};
 pub use camera::Camera;

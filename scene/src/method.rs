@@ -34,7 +34,8 @@ use subcone_kernels::sraa::SraaParams;
 use crate::camera::Camera;
 
 use crate::registry::{
-    self, info, EdgeClass, CTSS_SUFFIX, DELAYED, EDGES, MATERIAL_GATE, PAPER, SSAA_PREFIX,
+    self, info, EdgeClass, CTSS_SUFFIX, DELAYED, EDGES, MATERIAL_GATE, PAPER, SSAA_PREFIX, TAA,
+    TAA_SUFFIX,
 };
 pub use crate::registry::{METHOD_NAMES, SSAA_COUNTS};
 
@@ -96,6 +97,7 @@ pub struct Method {
     split_groups: bool,
     cone_coverage: f32,
     visibility_k: u32,
+    temporal: bool,
 }
 
 impl Method {
@@ -122,6 +124,23 @@ impl Method {
                 1.0
             },
             visibility_k: 32,
+            temporal: false,
+        }
+    }
+
+    /// `technique` with the tuned preset under temporal antialiasing
+    /// (`taa` for NoAA, `sraa-rt+taa`, `ctss+taa`), as a constant;
+    /// [`Method::with_taa`] checks at run time. Panics (at compile time in a
+    /// `const`) for a technique without `+taa`.
+    pub const fn temporal(technique: Technique) -> Self {
+        // The registry's `Modifiers::temporal`, spelled out for a `const`
+        // (`temporal_agrees_with_the_registry` checks the two agree).
+        match technique {
+            Technique::NoAa | Technique::SraaRt | Technique::Ctss => Method {
+                temporal: true,
+                ..Method::new(technique)
+            },
+            _ => panic!("only noaa, sraa-rt and ctss run under TAA"),
         }
     }
 
@@ -272,6 +291,36 @@ impl Method {
         })
     }
 
+    /// The method under temporal antialiasing (`+taa`,
+    /// [`crate::temporal`]): each frame jittered, accumulated into a
+    /// history by `subcone_kernels::taa`. NoAA, SRAA-RT and CTSS.
+    pub fn with_taa(self) -> Result<Self, MethodError> {
+        if !info(self.technique).modifiers.temporal {
+            return Err(self.refuse(TAA_SUFFIX, "only noaa, sraa-rt and ctss run under TAA"));
+        }
+        if self.temporal {
+            return Err(self.refuse(TAA_SUFFIX, "it already runs under TAA"));
+        }
+        Ok(Method {
+            temporal: true,
+            ..self
+        })
+    }
+
+    /// Whether the method runs under temporal antialiasing (`+taa`): it
+    /// renders a sequence ([`crate::temporal::Taa`]), not one frame.
+    pub const fn is_temporal(&self) -> bool {
+        self.temporal
+    }
+
+    /// The method one frame of its sequence renders: itself without `+taa`.
+    pub const fn single_frame(&self) -> Self {
+        Method {
+            temporal: false,
+            ..*self
+        }
+    }
+
     /// What decides the passes.
     pub const fn technique(&self) -> Technique {
         self.technique
@@ -378,6 +427,11 @@ impl Method {
         if self.split_groups {
             c.push(EdgeClass::Crease);
         }
+        if self.temporal {
+            // Accumulating jittered frames supersamples whatever the frame
+            // shows.
+            c.extend_from_slice(registry::SUPERSAMPLING_CLAIMS);
+        }
         c.sort();
         c.dedup();
         c
@@ -407,6 +461,8 @@ impl Method {
             if self.technique == Technique::SsaaCtss {
                 f.write_str(CTSS_SUFFIX)?;
             }
+        } else if self.temporal && self.technique == Technique::NoAa {
+            return f.write_str(TAA);
         } else {
             f.write_str(i.name)?;
         }
@@ -421,6 +477,9 @@ impl Method {
         }
         if self.material_gate {
             f.write_str(MATERIAL_GATE)?;
+        }
+        if self.temporal {
+            f.write_str(TAA_SUFFIX)?;
         }
         Ok(())
     }
@@ -463,14 +522,22 @@ impl FromStr for Method {
     type Err = MethodError;
 
     /// Parses the registry's grammar, case-insensitively and trimmed: a base
-    /// name, then `-delayed`, then `-paper`, then `+mat`, each where it
-    /// applies (`ctss-delayed-paper`, `sraa-rt-paper+mat`).
+    /// name, then `-delayed`, then `-paper`, then `+mat`, then `+taa`, each
+    /// where it applies (`ctss-delayed-paper`, `sraa-rt-paper+mat`,
+    /// `sraa-rt+taa`); `taa` is NoAA under TAA.
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         let lower = s.trim().to_ascii_lowercase();
         let unknown = || MethodError::Unknown(s.to_string());
-        let (rest, mat) = match lower.strip_suffix(MATERIAL_GATE) {
+        if lower == TAA {
+            return Ok(Method::temporal(Technique::NoAa));
+        }
+        let (name, temporal) = match lower.strip_suffix(TAA_SUFFIX) {
+            Some(r) if r != "noaa" => (r, true),
+            _ => (lower.as_str(), false),
+        };
+        let (rest, mat) = match name.strip_suffix(MATERIAL_GATE) {
             Some(r) => (r, true),
-            None => (lower.as_str(), false),
+            None => (name, false),
         };
         let (rest, paper) = match rest.strip_suffix(PAPER) {
             Some(r) => (r, true),
@@ -489,6 +556,9 @@ impl FromStr for Method {
         }
         if mat {
             m = m.with_material_gate().map_err(|_| unknown())?;
+        }
+        if temporal {
+            m = m.with_taa().map_err(|_| unknown())?;
         }
         Ok(m)
     }
@@ -533,6 +603,42 @@ mod tests {
         sorted.sort();
         sorted.dedup();
         assert_eq!(sorted.len(), METHOD_NAMES.len(), "a name is listed twice");
+    }
+
+    #[test]
+    fn temporal_agrees_with_the_registry() {
+        for t in Technique::ALL {
+            let allowed = info(t).modifiers.temporal;
+            assert_eq!(Method::new(t).with_taa().is_ok(), allowed, "{t:?}");
+            if allowed {
+                let m = Method::temporal(t);
+                assert_eq!(Method::new(t).with_taa(), Ok(m));
+                assert!(m.is_temporal() && !m.single_frame().is_temporal());
+                assert_eq!(m.to_string().parse::<Method>(), Ok(m));
+            }
+        }
+        assert_eq!(Method::temporal(Technique::NoAa).to_string(), "taa");
+        assert_eq!(
+            Method::temporal(Technique::SraaRt).to_string(),
+            "sraa-rt+taa"
+        );
+        assert_eq!(Method::temporal(Technique::Ctss).to_string(), "ctss+taa");
+        let m: Method = "sraa-rt-paper+mat+taa".parse().unwrap();
+        assert!(m.is_temporal() && m.is_paper() && m.gates_material());
+        assert_eq!(m.to_string(), "sraa-rt-paper+mat+taa");
+        for bad in [
+            "noaa+taa",
+            "taa+taa",
+            "ssaa4+taa",
+            "fxaa+taa",
+            "ctss+taa+taa",
+            "sraa+taa",
+        ] {
+            assert!(bad.parse::<Method>().is_err(), "{bad}");
+        }
+        assert!(Method::temporal(Technique::Ctss)
+            .claims()
+            .contains(&EdgeClass::Shadow));
     }
 
     #[test]

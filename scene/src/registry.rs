@@ -108,7 +108,7 @@ pub const POST_PROCESS_CLAIMS: &[EdgeClass] = &[
 ];
 
 /// What supersampling claims: every edge class.
-const SUPERSAMPLING_CLAIMS: &[EdgeClass] = &[
+pub(crate) const SUPERSAMPLING_CLAIMS: &[EdgeClass] = &[
     EdgeClass::Silhouette,
     EdgeClass::Crease,
     EdgeClass::Shadow,
@@ -129,6 +129,9 @@ pub struct Modifiers {
     pub delayed: bool,
     /// `+edges`: CTSS hit-group subdivision at internal edges (claims creases).
     pub edges: bool,
+    /// `+taa`: the method under temporal antialiasing
+    /// ([`crate::temporal`]); NoAA under it is `taa`.
+    pub temporal: bool,
 }
 
 impl Modifiers {
@@ -139,6 +142,7 @@ impl Modifiers {
         material_gate: false,
         delayed: false,
         edges: false,
+        temporal: false,
     };
 }
 
@@ -198,7 +202,10 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
         grammar: "noaa",
         family: Family::NoAa,
         claims: &[],
-        modifiers: Modifiers::NONE,
+        modifiers: Modifiers {
+            temporal: true,
+            ..Modifiers::NONE
+        },
         carries_opacity: true,
         needs: Needs::NONE,
         description: "one ray through each pixel centre: no antialiasing",
@@ -249,6 +256,7 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
         modifiers: Modifiers {
             paper: true,
             material_gate: true,
+            temporal: true,
             ..Modifiers::NONE
         },
         carries_opacity: false,
@@ -268,6 +276,7 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
             paper: true,
             delayed: true,
             edges: true,
+            temporal: true,
             ..Modifiers::NONE
         },
         carries_opacity: true,
@@ -364,6 +373,11 @@ pub(crate) const MATERIAL_GATE: &str = "+mat";
 pub(crate) const DELAYED: &str = "-delayed";
 /// Suffix of CTSS hit-group subdivision (`ctss+edges`).
 pub(crate) const EDGES: &str = "+edges";
+/// Suffix of a method under temporal antialiasing (`sraa-rt+taa`), always
+/// last.
+pub(crate) const TAA_SUFFIX: &str = "+taa";
+/// NoAA under temporal antialiasing: plain TAA.
+pub(crate) const TAA: &str = "taa";
 /// Prefix of the supersampled names (`ssaa16`, `ssaa4+ctss`).
 pub(crate) const SSAA_PREFIX: &str = "ssaa";
 /// Suffix of cone tracing per supersample (`ssaa4+ctss`).
@@ -385,12 +399,18 @@ pub fn grammar() -> String {
     let gated = with(|m| m.material_gate, "");
     format!(
         "{}; the SRAA paper's preset {} and the material gate {}, both as {}{PAPER}{MATERIAL_GATE}; \
-         {} optionally with {DELAYED} (not ctss{EDGES}); any of these CTSS names optionally with {PAPER} last",
+         {} optionally with {DELAYED} (not ctss{EDGES}); any of these CTSS names optionally with {PAPER} last; \
+         temporal antialiasing as {TAA}, or {} after any other of their names",
         bases.join(", "),
         with(|m| m.material_gate, PAPER).join(", "),
         with(|m| m.material_gate, MATERIAL_GATE).join(", "),
         gated.first().map_or("", String::as_str),
         with(|m| m.delayed, "").join(", "),
+        with(|m| m.temporal && !m.samples, TAA_SUFFIX)
+            .into_iter()
+            .filter(|n| !n.starts_with("noaa"))
+            .collect::<Vec<_>>()
+            .join(", "),
     )
 }
 

@@ -34,10 +34,11 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::classes::{self, ClassMasks, CLASSES};
-use crate::named::{CTSS, NOAA, SRAA_RT, SSAA4};
+use crate::named::{CTSS, CTSS_TAA, NOAA, SRAA_RT, SRAA_RT_TAA, SSAA4, TAA};
 use crate::plot::{legend, method_line, save_chart, Chart, FAMILY, PLOT_SIZE};
 use crate::{classes_at, file_safe, render_from, Runner, SceneJob};
 use subcone_metrics::{self as metrics, Rgb8};
+use subcone_scene::temporal::{Taa, TaaConfig};
 use subcone_scene::{Backend, Camera, Frame, Method, RenderSettings};
 
 /// Frames of the path with `--motion`.
@@ -46,8 +47,10 @@ pub const FRAMES: u32 = 16;
 pub const QUICK_FRAMES: u32 = 4;
 /// Image size with `--motion` (the quick version uses the quick size).
 pub const MOTION_SIZE: (u32, u32) = (320, 180);
-/// The methods followed (each where the CPU backend runs it).
-pub const MOTION_METHODS: [Method; 4] = [NOAA, SSAA4, SRAA_RT, CTSS];
+/// The methods followed (each where the CPU backend runs it): the
+/// single-frame ones and, after each that runs under TAA, its `+taa`
+/// sequence (a reset at the path's first frame).
+pub const MOTION_METHODS: [Method; 7] = [NOAA, SSAA4, TAA, SRAA_RT, SRAA_RT_TAA, CTSS, CTSS_TAA];
 /// The reference of every frame: 64 samples per pixel, a quarter of the
 /// still report's ssaa256, to keep a run of N frames affordable.
 pub const MOTION_REFERENCE: Method = Method::ssaa_grid(8);
@@ -77,6 +80,12 @@ pub struct MotionRow {
     pub method: String,
     /// FLIP of each frame against that frame's reference.
     pub flip: Vec<f64>,
+    /// SSIM of each frame against that frame's reference.
+    pub ssim: Vec<f64>,
+    /// Frames from the path's start (a reset, for a temporal method) until
+    /// the first whose FLIP is below NoAA's on the same frame (1: the first
+    /// frame already is); `None` when none is, or for NoAA itself.
+    pub frames_to_beat_noaa: Option<u32>,
     /// Temporal instability per class, pooled over frames `1..N`, and the
     /// pixel count it is pooled over (class-frames).
     pub instability: classes::ClassError,
@@ -88,6 +97,11 @@ impl MotionRow {
     /// Mean FLIP over the frames.
     pub fn flip_mean(&self) -> f64 {
         self.flip.iter().sum::<f64>() / self.flip.len().max(1) as f64
+    }
+
+    /// Mean SSIM over the frames.
+    pub fn ssim_mean(&self) -> f64 {
+        self.ssim.iter().sum::<f64>() / self.ssim.len().max(1) as f64
     }
 }
 
@@ -326,8 +340,18 @@ pub fn save_apng(path: &Path, frames: &[Rgb8]) -> Result<()> {
 /// The frames of one method along the path, and their times.
 struct Followed {
     method: Method,
+    /// A temporal method's sequence.
+    taa: Option<Taa>,
     images: Vec<Rgb8>,
     ms: Vec<f64>,
+}
+
+/// Frames until `flip` is first below `noaa`'s on the same frame.
+fn frames_to_beat(flip: &[f64], noaa: &[f64]) -> Option<u32> {
+    flip.iter()
+        .zip(noaa)
+        .position(|(m, n)| m < n)
+        .map(|t| t as u32 + 1)
 }
 
 impl Runner<'_> {
@@ -379,13 +403,20 @@ impl Runner<'_> {
         let mut masks = Vec::new();
         let mut followed: Vec<Followed> = MOTION_METHODS
             .iter()
-            .filter(|m| cpu.supports(&job.scene, m).is_ok())
-            .map(|&method| Followed {
-                method,
-                images: Vec::new(),
-                ms: Vec::new(),
+            .filter(|m| cpu.supports(&job.scene, &m.single_frame()).is_ok())
+            .map(|&method| -> Result<Followed> {
+                let taa = method
+                    .is_temporal()
+                    .then(|| Taa::new(method, TaaConfig::default()))
+                    .transpose()?;
+                Ok(Followed {
+                    method,
+                    taa,
+                    images: Vec::new(),
+                    ms: Vec::new(),
+                })
             })
-            .collect();
+            .collect::<Result<_>>()?;
         for (t, cam) in path.iter().enumerate() {
             self.progress
                 .bar
@@ -394,12 +425,21 @@ impl Runner<'_> {
             references.push(Rgb8::from_frame(&r)?);
             masks.push(classes_at(cpu, &job.scene, cam, (w, h))?);
             for f in &mut followed {
-                let (img, wall) = render_from(cpu, &job.scene, cam, &f.method, &plain)?;
+                let (img, wall) = match &mut f.taa {
+                    Some(taa) => {
+                        let start = Instant::now();
+                        let img = taa
+                            .render(cpu, &job.scene, cam, &plain)
+                            .with_context(|| format!("{} {} frame {t}", job.name, f.method))?;
+                        (img, start.elapsed())
+                    }
+                    None => render_from(cpu, &job.scene, cam, &f.method, &plain)?,
+                };
                 f.images.push(Rgb8::from_frame(&img)?);
                 f.ms.push(wall.as_secs_f64() * 1e3);
             }
         }
-        let mut rows = Vec::new();
+        let mut rows: Vec<MotionRow> = Vec::new();
         let mut noaa_unstable = vec![0.0f32; (w * h) as usize];
         for f in &followed {
             let mut pooled = Pooled::default();
@@ -422,15 +462,33 @@ impl Runner<'_> {
                 .zip(&references)
                 .map(|(i, r)| metrics::flip(r, i).map(|fl| fl.mean))
                 .collect::<Result<Vec<f64>, _>>()?;
+            let ssim = f
+                .images
+                .iter()
+                .zip(&references)
+                .map(|(i, r)| metrics::ssim::ssim(r, i).map(|s| s.mean))
+                .collect::<Result<Vec<f64>, _>>()?;
             let mut ms = f.ms.clone();
             ms.sort_by(f64::total_cmp);
             rows.push(MotionRow {
                 scene: job.name.to_string(),
                 method: f.method.to_string(),
                 flip,
+                ssim,
+                frames_to_beat_noaa: None,
                 instability: pooled.mean(),
                 ms_per_frame: ms[ms.len() / 2],
             });
+        }
+        let noaa_name = NOAA.to_string();
+        if let Some(noaa) = rows
+            .iter()
+            .find(|r| r.method == noaa_name)
+            .map(|r| r.flip.clone())
+        {
+            for r in rows.iter_mut().filter(|r| r.method != noaa_name) {
+                r.frames_to_beat_noaa = frames_to_beat(&r.flip, &noaa);
+            }
         }
         let crop = worst_window(&noaa_unstable, w, h, CROP_SIDE.min(w / 3).min(h / 3));
         let mut names: Vec<String> = followed.iter().map(|f| f.method.to_string()).collect();
@@ -469,12 +527,16 @@ pub fn section(m: &Motion) -> String {
         "Each scene's camera follows a path of {} frames at {}x{} on the cpu backend: per frame it \
 turns about its up axis by {PAN_PIXELS} pixel (at the image centre) and dollies forward so that \
 a point at the scene's median depth on the image's side edge moves by {DOLLY_PIXELS} pixel. \
-Every frame is compared with its own {MOTION_REFERENCE} reference. *FLIP* is the mean over the \
-frames. *Instability* is, over frames 2 to {} and the pixels of each class (classes from each \
+Every frame is compared with its own {MOTION_REFERENCE} reference. *FLIP* and *SSIM* are the \
+means over the frames. `taa` and the `+taa` methods (Karis 2014 with Salvi's variance clipping, \
+16 Halton (2, 3) jitter phases; `sraa-rt+taa` rotates its shaded subsample instead) start from a \
+reset at the path's first frame; *frames to beat noaa* counts the frames until the first whose FLIP \
+is below NoAA's on the same frame. *Instability* is, over frames 2 to {} and the pixels of each class (classes from each \
 frame's own sub-samples), the mean of |Δmethod − Δreference|, Δ being a pixel's change of \
 luminance (0 to 1) from the previous frame: 0 when a method changes exactly as the reference \
 does; the last row gives the pixels each class's instability is pooled over, summed over those \
-frames. *ms/frame* is the median wall time of one frame. The section took {:.1} s on this machine \
+frames. *ms/frame* is the median wall time of one frame (for a temporal method, its jittered \
+frame with depth, the velocities and the resolve). The section took {:.1} s on this machine \
 (references and classes included).\n",
         m.frames,
         m.size.0,
@@ -491,19 +553,29 @@ frames. *ms/frame* is the median wall time of one frame. The section took {:.1} 
     for scene in scenes {
         let _ = writeln!(md, "### {scene} in motion\n");
         let head: Vec<String> = CLASSES.iter().map(|c| format!("instability {c}")).collect();
-        let _ = writeln!(md, "| method | FLIP | {} | ms/frame |", head.join(" | "));
-        let _ = writeln!(md, "|---|--:|{}--:|", "--:|".repeat(CLASSES.len()));
+        let _ = writeln!(
+            md,
+            "| method | FLIP | SSIM | frames to beat noaa | {} | ms/frame |",
+            head.join(" | ")
+        );
+        let _ = writeln!(md, "|---|--:|--:|--:|{}--:|", "--:|".repeat(CLASSES.len()));
         let rows: Vec<&MotionRow> = m.rows.iter().filter(|r| r.scene == scene).collect();
         for r in &rows {
             let cells: Vec<String> = CLASSES
                 .iter()
                 .map(|c| opt(r.instability.mean[c.index()]))
                 .collect();
+            let beat = match (r.method == NOAA.to_string(), r.frames_to_beat_noaa) {
+                (true, _) => "–".to_string(),
+                (false, Some(n)) => n.to_string(),
+                (false, None) => "never".to_string(),
+            };
             let _ = writeln!(
                 md,
-                "| {} | {:.4} | {} | {:.1} |",
+                "| {} | {:.4} | {:.4} | {beat} | {} | {:.1} |",
                 r.method,
                 r.flip_mean(),
+                r.ssim_mean(),
                 cells.join(" | "),
                 r.ms_per_frame
             );
@@ -517,11 +589,12 @@ frames. *ms/frame* is the median wall time of one frame. The section took {:.1} 
                 .collect();
             let _ = writeln!(
                 md,
-                "| *pixels (frames 2 to {})* | | {} | |",
+                "| *pixels (frames 2 to {})* | | | | {} | |",
                 m.frames,
                 px.join(" | ")
             );
         }
+        let _ = writeln!(md, "\n{}", against_taa(&rows));
         let stem = file_safe(scene);
         let _ = writeln!(
             md,
@@ -548,6 +621,61 @@ reference.\n\n![{scene} in motion](images/{stem}/motion.png)\n",
     md
 }
 
+/// Where each `+taa` combination beats `taa` alone on one scene's rows: mean
+/// FLIP, mean SSIM and the instability of every class both have pixels in,
+/// as a sentence per combination (computed, so the prose cannot drift from
+/// the table).
+pub fn against_taa(rows: &[&MotionRow]) -> String {
+    let taa_name = TAA.to_string();
+    let Some(taa) = rows.iter().find(|r| r.method == taa_name) else {
+        return "No taa row: no comparison with TAA alone.".into();
+    };
+    let mut out = Vec::new();
+    for r in rows.iter().filter(|r| r.method.ends_with("+taa")) {
+        let mut wins = Vec::new();
+        let mut losses = Vec::new();
+        let mut judge = |what: String, better: bool| {
+            if better {
+                wins.push(what)
+            } else {
+                losses.push(what)
+            }
+        };
+        judge(
+            format!("FLIP ({:.4} vs {:.4})", r.flip_mean(), taa.flip_mean()),
+            r.flip_mean() < taa.flip_mean(),
+        );
+        judge(
+            format!("SSIM ({:.4} vs {:.4})", r.ssim_mean(), taa.ssim_mean()),
+            r.ssim_mean() > taa.ssim_mean(),
+        );
+        for c in CLASSES {
+            if let (Some(a), Some(b)) = (
+                r.instability.mean[c.index()],
+                taa.instability.mean[c.index()],
+            ) {
+                judge(format!("{c} instability ({a:.4} vs {b:.4})"), a < b);
+            }
+        }
+        let list = |v: &[String]| {
+            if v.is_empty() {
+                "nothing".to_string()
+            } else {
+                v.join(", ")
+            }
+        };
+        out.push(format!(
+            "**{}** against taa alone: better on {}; not better on {}; {:.1} against {:.1} ms/frame.",
+            r.method,
+            list(&wins),
+            list(&losses),
+            r.ms_per_frame,
+            taa.ms_per_frame
+        ));
+    }
+    out.join("\n")
+}
+
 /// The section's rows for results.json.
 pub fn json(m: &Motion) -> serde_json::Value {
     let rows: Vec<serde_json::Value> = m
@@ -559,6 +687,13 @@ pub fn json(m: &Motion) -> serde_json::Value {
             o.insert("method".into(), r.method.clone().into());
             o.insert("flip_mean".into(), r.flip_mean().into());
             o.insert("flip_per_frame".into(), r.flip.clone().into());
+            o.insert("ssim_mean".into(), r.ssim_mean().into());
+            o.insert("ssim_per_frame".into(), r.ssim.clone().into());
+            o.insert(
+                "frames_to_beat_noaa".into(),
+                r.frames_to_beat_noaa
+                    .map_or(serde_json::Value::Null, Into::into),
+            );
             for c in CLASSES {
                 o.insert(
                     format!("instability_{c}"),

@@ -22,6 +22,12 @@ pub const CTSS: Method = Method::new(Technique::Ctss);
 pub const CTSS_R: Method = Method::new(Technique::CtssR);
 /// 2×2 supersampling with CTSS per sample.
 pub const SSAA4_CTSS: Method = Method::new(Technique::SsaaCtss);
+/// Temporal antialiasing (NoAA under TAA).
+pub const TAA: Method = Method::temporal(Technique::NoAa);
+/// SRAA for ray tracing under TAA.
+pub const SRAA_RT_TAA: Method = Method::temporal(Technique::SraaRt);
+/// CTSS under TAA.
+pub const CTSS_TAA: Method = Method::temporal(Technique::Ctss);
 
 #[cfg(test)]
 mod tests {
@@ -40,6 +46,9 @@ mod tests {
             (CTSS, "ctss"),
             (CTSS_R, "ctss-r"),
             (SSAA4_CTSS, "ssaa4+ctss"),
+            (TAA, "taa"),
+            (SRAA_RT_TAA, "sraa-rt+taa"),
+            (CTSS_TAA, "ctss+taa"),
         ];
         for (m, name) in names {
             assert_eq!(m.to_string(), name);

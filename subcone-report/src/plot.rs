@@ -80,6 +80,16 @@ where
 /// plot agrees; `None` for other methods (the plots pick one from a palette).
 fn plot_colour(method: &Method) -> Option<[u8; 3]> {
     let s = method.supersamples();
+    if method.is_temporal() {
+        // A lighter shade of the single-frame method's colour (TAA: cyan).
+        return match method.single_frame().technique() {
+            _ if method.is_paper() || method.gates_material() => None,
+            Technique::NoAa => Some([23, 190, 207]),
+            Technique::SraaRt => Some([255, 152, 150]),
+            Technique::Ctss => Some([152, 223, 138]),
+            _ => None,
+        };
+    }
     Some(
         match (
             method.technique(),

@@ -9,6 +9,7 @@ use crate::layout_check::{assert_all_match, compare, Member};
 use crate::ctss::{CtssOutput, CtssPass, CtssPassDesc, CtssTrace, CtssUniform, CTSS_WGSL};
 use crate::fxaa::{FxaaFrame, FxaaPass, FXAA_WGSL};
 use crate::sraa::{SraaFrame, SRAA_WGSL};
+use crate::taa::TaaPass;
 
 #[test]
 fn pass_gpu_structs_match_their_wgsl() {
@@ -155,6 +156,10 @@ fn every_pass_shader_validates() {
     }
     let g = FxaaPass::group(wgpu::TextureFormat::Rgba8Unorm).expect("an output format");
     if let Err(e) = validate("fxaa", &FxaaPass::source(&g)) {
+        errors.push(e);
+    }
+    let g = TaaPass::group(wgpu::TextureFormat::Rgba16Float).expect("an output format");
+    if let Err(e) = validate("taa", &TaaPass::source(&g)) {
         errors.push(e);
     }
     assert!(errors.is_empty(), "{}", errors.join("\n\n"));

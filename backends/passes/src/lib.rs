@@ -25,6 +25,9 @@
 //! - [`CtssPass`]: cone-traced supersampling (CTSS, Algorithm 1, eq. 3–10)
 //!   of the host's own signed distance field, written in WGSL.
 //! - [`FxaaPass`]: FXAA 3.11 (`subcone_kernels::fxaa`) over a host texture.
+//! - [`TaaPass`]: temporal antialiasing (`subcone_kernels::taa`: Karis 2014
+//!   with Salvi's variance clipping) of the host's jittered frame against its
+//!   history, with the jitter sequence to render it with.
 //! - [`bind`]: bindings declared once, from which both the WGSL
 //!   declarations and the wgpu layouts and bind groups are made: what the
 //!   passes are built on, and what `subcone-wgpu` builds its own programs
@@ -70,6 +73,7 @@ mod layout_check;
 #[cfg(test)]
 mod layout_tests;
 mod sraa;
+mod taa;
 
 pub use bind::{BIND_GROUP_CACHE, UNIFORM_SLOTS};
 pub use ctss::{
@@ -82,6 +86,7 @@ pub use sraa::{
     SecondaryInputs, SraaBuffers, SraaInputs, SraaPass, SraaPassDesc, SubsampleGeometry,
     RECONSTRUCT_WGSL,
 };
+pub use taa::{TaaInputs, TaaPass, TaaPassDesc};
 
 /// README.md's code blocks (its "Embedding" section), compiled as doctests.
 #[cfg(doctest)]

@@ -115,6 +115,14 @@ impl Backend for WgpuBackend {
         format!("wgpu on {}", self.ctx.describe())
     }
 
+    /// The resolve on the GPU, through [`subcone_passes::TaaPass`].
+    fn resolve_taa(
+        &self,
+        input: &subcone_scene::history::TaaInput<'_>,
+    ) -> Result<(Vec<glam::Vec3>, subcone_scene::PassTiming), RenderError> {
+        post::taa::resolve(&self.ctx, input)
+    }
+
     fn render(
         &self,
         scene: &Scene,

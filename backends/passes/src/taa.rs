@@ -1,0 +1,277 @@
+//! [`TaaPass`]: temporal antialiasing (`subcone_kernels::taa`: Karis,
+//! "High Quality Temporal Supersampling", 2014, with Salvi's variance
+//! clipping, 2016) of the host's jittered frame against its history.
+
+use subcone_kernels::taa::{self, ResolveSpace, TaaParams};
+
+use crate::bind::{self, Bound, Expect, Group, PassPipeline};
+use crate::PassError;
+
+pub(crate) const TAA_WGSL: &str = include_str!("taa.wgsl");
+
+/// The configuration of a [`TaaPass`], fixed for its life. Start from
+/// `TaaPassDesc::default()` and change what differs with the `with_`
+/// methods (or assign the public fields): the struct is
+/// `#[non_exhaustive]`, so a field added later breaks no host.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct TaaPassDesc {
+    /// Jitter phases of [`TaaPass::jitter`]: 8 (Karis) or 16
+    /// (`subcone_kernels::taa::PHASES_FINE`, the default); at least 1.
+    pub phases: u32,
+    /// Where the resolve clips and blends: linear radiance (the default, a
+    /// still camera converges to the box filter of its samples) or Karis'
+    /// tone-mapped space with the display's exposure (HDR content: a sample
+    /// beside a highlight weighs what it weighs on screen).
+    pub space: ResolveSpace,
+    /// The smallest weight of the current frame, in `(0, 1]`
+    /// (`subcone_kernels::taa::MIN_CURRENT_WEIGHT`).
+    pub min_current_weight: f32,
+    /// Variance clipping's `γ`, non-negative and finite
+    /// (`subcone_kernels::taa::CLIP_GAMMA`).
+    pub clip_gamma: f32,
+    /// The output texture's format: `Rgba16Float` (the default) or
+    /// `Rgba32Float` (a storage texture; linear radiance, alpha 1). The
+    /// output is the next frame's history, so an 8-bit format would
+    /// quantise what accumulates and is refused.
+    pub output_format: wgpu::TextureFormat,
+}
+
+impl Default for TaaPassDesc {
+    fn default() -> Self {
+        TaaPassDesc {
+            phases: taa::PHASES_FINE,
+            space: ResolveSpace::Linear,
+            min_current_weight: taa::MIN_CURRENT_WEIGHT,
+            clip_gamma: taa::CLIP_GAMMA,
+            output_format: wgpu::TextureFormat::Rgba16Float,
+        }
+    }
+}
+
+impl TaaPassDesc {
+    with_setters! {
+        /// With `phases` jitter phases ([`Self::phases`]).
+        with_phases(phases: u32);
+        /// Resolving in `space` ([`Self::space`]).
+        with_space(space: ResolveSpace);
+        /// With the current frame's smallest weight ([`Self::min_current_weight`]).
+        with_min_current_weight(min_current_weight: f32);
+        /// With variance clipping's `γ` ([`Self::clip_gamma`]).
+        with_clip_gamma(clip_gamma: f32);
+        /// Writing `output_format` ([`Self::output_format`]).
+        with_output_format(output_format: wgpu::TextureFormat);
+    }
+
+    /// Check every field against its domain.
+    fn validate(&self) -> Result<(), PassError> {
+        let bad = |what: String| Err(PassError::Config(format!("TaaPassDesc: {what}")));
+        if self.phases == 0 {
+            return bad("at least one jitter phase".into());
+        }
+        if let ResolveSpace::ToneMapped { exposure } = self.space {
+            if !(exposure > 0.0 && exposure.is_finite()) {
+                return bad(format!("exposure {exposure} must be positive and finite"));
+            }
+        }
+        if !(self.min_current_weight > 0.0 && self.min_current_weight <= 1.0) {
+            return bad(format!(
+                "min_current_weight {} must be in (0, 1]",
+                self.min_current_weight
+            ));
+        }
+        if !(self.clip_gamma >= 0.0 && self.clip_gamma.is_finite()) {
+            return bad(format!(
+                "clip_gamma {} must be non-negative and finite",
+                self.clip_gamma
+            ));
+        }
+        if !matches!(
+            self.output_format,
+            wgpu::TextureFormat::Rgba16Float | wgpu::TextureFormat::Rgba32Float
+        ) {
+            return Err(PassError::Format {
+                what: "the desc's output_format",
+                found: self.output_format,
+                expected: "Rgba16Float or Rgba32Float (the history accumulates in it)",
+            });
+        }
+        Ok(())
+    }
+}
+
+/// One frame's inputs of a [`TaaPass`]: views of whole one-sample textures
+/// of the output's size, each `TEXTURE_BINDING` with a float, unorm or
+/// snorm format.
+#[derive(Clone, Copy, Debug)]
+pub struct TaaInputs<'a> {
+    /// This frame's colour (`.xyz`, linear radiance), rendered through the
+    /// projection jittered by [`TaaPass::jitter`] of the frame.
+    pub current: &'a wgpu::TextureView,
+    /// Each pixel's motion in pixels (`.xy`), current minus previous
+    /// position of the surface it shows, for the un-jittered projections
+    /// (engines' motion-vector buffers; `+x` right, `+y` down).
+    pub velocity: &'a wgpu::TextureView,
+    /// The previous frame's output (read only when `history_frames > 0`,
+    /// but always bound). Not the output's texture: the host ping-pongs two.
+    pub history: &'a wgpu::TextureView,
+    /// Frames accumulated in the history: 0 on the first frame and after a
+    /// cut (a reset: the output is the current frame), then the host
+    /// counts up (it sets how fast the running mean becomes an exponential
+    /// one).
+    pub history_frames: u32,
+}
+
+/// TAA on the host's device: resolves this frame's jittered colour against
+/// the reprojected history into a storage texture, which is the next frame's
+/// history (`subcone_kernels::taa::resolve_pixel`, the CPU twin, computes
+/// the same per pixel). Neighbourhood and history taps are clamped to the
+/// image; a pixel whose reprojected point lies off the image takes the
+/// current colour.
+///
+/// Built once, encoded every frame: after the first frame with given views,
+/// `encode` creates no buffer, texture, bind group or pipeline
+/// ([`crate::UNIFORM_SLOTS`], [`crate::BIND_GROUP_CACHE`]).
+///
+/// ```no_run
+/// # fn frame(device: &wgpu::Device, queue: &wgpu::Queue, encoder: &mut wgpu::CommandEncoder,
+/// #     current: &wgpu::TextureView, velocity: &wgpu::TextureView,
+/// #     history: [&wgpu::TextureView; 2], frame_index: u32) -> Result<(), subcone_passes::PassError> {
+/// use subcone_passes::{TaaInputs, TaaPass, TaaPassDesc};
+///
+/// let taa = TaaPass::new(device, &TaaPassDesc::default())?;
+/// // Jitter the projection by `taa.jitter(frame_index)` pixels, render
+/// // `current` and `velocity`, then resolve, ping-ponging two histories.
+/// let (read, write) = (history[(frame_index % 2) as usize], history[((frame_index + 1) % 2) as usize]);
+/// let inputs = TaaInputs { current, velocity, history: read, history_frames: frame_index };
+/// taa.encode(device, queue, encoder, &inputs, write, None)?;
+/// # Ok(()) }
+/// ```
+#[derive(Debug)]
+pub struct TaaPass {
+    desc: TaaPassDesc,
+    pipeline: PassPipeline,
+}
+
+impl TaaPass {
+    /// Build the pass (compile its pipeline, make its uniform buffers) for
+    /// `desc`. Refuses a desc outside its domain.
+    pub fn new(device: &wgpu::Device, desc: &TaaPassDesc) -> Result<Self, PassError> {
+        desc.validate()?;
+        bind::check_output_format(desc.output_format)?;
+        let group = Self::group(desc.output_format)?;
+        let source = Self::source(&group);
+        let pipeline = PassPipeline::new(device, "subcone taa", group, source, None, "taa_main")?;
+        Ok(TaaPass {
+            desc: *desc,
+            pipeline,
+        })
+    }
+
+    /// The configuration.
+    pub fn desc(&self) -> &TaaPassDesc {
+        &self.desc
+    }
+
+    /// The sub-pixel offset, in pixels, to jitter frame `frame`'s projection
+    /// by: Halton (2, 3) over the desc's phases
+    /// (`subcone_kernels::taa::jitter`). For a projection matrix, add
+    /// `(2·x / width, −2·y / height)` to its third column's NDC offsets.
+    pub fn jitter(&self, frame: u32) -> glam::Vec2 {
+        taa::jitter(frame, self.desc.phases)
+    }
+
+    /// The bindings, writing `output_format`.
+    pub(crate) fn group(output_format: wgpu::TextureFormat) -> Result<Group, PassError> {
+        let mut g = Group::default();
+        g.ring_uniform::<TaaParams>("taa_params", "subcone_TaaParams");
+        for name in ["taa_current_tex", "taa_velocity", "taa_history_tex"] {
+            g.texture(
+                name,
+                wgpu::TextureSampleType::Float { filterable: false },
+                wgpu::TextureViewDimension::D2,
+                false,
+            );
+        }
+        g.storage_texture("taa_dst", output_format)?;
+        Ok(g)
+    }
+
+    pub(crate) fn source(group: &Group) -> String {
+        [
+            subcone_kernels::wgsl::PARAMS,
+            subcone_kernels::taa::WGSL,
+            TAA_WGSL,
+            &group.declarations(),
+        ]
+        .concat()
+    }
+
+    /// Record the resolve of `inputs` into `output` (one compute pass), the
+    /// parameters written through `queue`. Checks every view first: on an
+    /// error nothing is recorded or written.
+    ///
+    /// `timestamps`, when given, are written at the start and end of the
+    /// compute pass (the host's query set, which it resolves).
+    pub fn encode(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        inputs: &TaaInputs<'_>,
+        output: &wgpu::TextureView,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<(), PassError> {
+        let size = bind::check_output(output, self.desc.output_format, "the desc's output_format")?;
+        for (what, view) in [
+            ("current", inputs.current),
+            ("velocity", inputs.velocity),
+            ("history", inputs.history),
+        ] {
+            bind::check(
+                view,
+                &Expect {
+                    what,
+                    size,
+                    samples: 1,
+                    layers: 1,
+                    usage: wgpu::TextureUsages::TEXTURE_BINDING,
+                },
+            )?;
+            bind::check_float_color(what, view)?;
+            if view.texture() == output.texture() {
+                return Err(PassError::Config(format!(
+                    "TAA cannot write the {what} texture it reads: ping-pong two histories"
+                )));
+            }
+        }
+        let params = TaaParams {
+            min_current_weight: self.desc.min_current_weight,
+            clip_gamma: self.desc.clip_gamma,
+            ..TaaParams::new(size)
+                .with_history_frames(inputs.history_frames)
+                .with_space(self.desc.space)
+        };
+        self.pipeline.encode(
+            device,
+            queue,
+            encoder,
+            size,
+            &[bytemuck::bytes_of(&params)],
+            &[
+                ("taa_current_tex", Bound::Texture(inputs.current)),
+                ("taa_velocity", Bound::Texture(inputs.velocity)),
+                ("taa_history_tex", Bound::Texture(inputs.history)),
+                ("taa_dst", Bound::Texture(output)),
+            ],
+            None,
+            timestamps,
+        )
+    }
+
+    /// Drop the bind groups cached for the views seen so far, and with them
+    /// the pass's clones of those views.
+    pub fn release_views(&self) {
+        self.pipeline.release_views();
+    }
+}
