@@ -3,10 +3,14 @@
 //! - `gpu_check adapter FILE`: open the adapter the wgpu backend opens,
 //!   print it, its limits and how its passes are timed, and write them as
 //!   JSON to `FILE`.
+//! - `gpu_check passes FILE --sizes WxH,WxH --runs N`: time each pass of
+//!   `subcone-passes` alone at each size ([`passes`]) and write the times
+//!   as JSON to `FILE`.
 //! - `gpu_check summary --out DIR --size WxH --runs N --seconds S`: read what
 //!   the script's steps wrote into `DIR` (`adapter.json`, `steps.tsv`, the
-//!   timing report's `timing/results.json`) and write `summary.md` and
-//!   `summary.json` beside them. Every figure comes from those files.
+//!   timing report's `timing/results.json`, `passes.json`) and write
+//!   `summary.md` and `summary.json` beside them. Every figure comes from
+//!   those files.
 //!
 //! They are one example of the root package, run in the test profile, so
 //! that after `cargo test --workspace` the script builds almost nothing
@@ -14,6 +18,8 @@
 //! `-p subcone-wgpu` one would resolve wgpu's features anew).
 
 use std::path::{Path, PathBuf};
+
+mod passes;
 
 use anyhow::{bail, Context, Result};
 use serde_json::{json, Value};
@@ -102,6 +108,17 @@ fn counts(result: &str) -> (Option<u64>, Option<u64>) {
     (Some(sum("passed")), Some(sum("failed")))
 }
 
+/// `WxH` as a size.
+fn parse_size(s: &str) -> Result<(u32, u32)> {
+    let (w, h) = s
+        .split_once('x')
+        .with_context(|| format!("size {s:?}: expected WxH"))?;
+    Ok((
+        w.parse().with_context(|| format!("width of {s:?}"))?,
+        h.parse().with_context(|| format!("height of {s:?}"))?,
+    ))
+}
+
 fn read_json(path: &Path) -> Option<Value> {
     let text = std::fs::read_to_string(path).ok()?;
     serde_json::from_str(&text).ok()
@@ -146,8 +163,33 @@ fn main() -> Result<()> {
             let path = it.next().context("usage: gpu_check adapter FILE")?;
             adapter(Path::new(&path))
         }
+        Some("passes") => {
+            let usage = "usage: gpu_check passes FILE --sizes WxH[,WxH...] --runs N";
+            let path = it.next().context(usage)?;
+            let (mut sizes, mut runs) = (None, None);
+            while let Some(flag) = it.next() {
+                let value = it.next().with_context(|| format!("{flag} needs a value"))?;
+                match flag.as_str() {
+                    "--sizes" => {
+                        sizes = Some(
+                            value
+                                .split(',')
+                                .map(parse_size)
+                                .collect::<Result<Vec<_>>>()?,
+                        )
+                    }
+                    "--runs" => runs = Some(value.parse().context("--runs")?),
+                    _ => bail!("unknown argument {flag}: {usage}"),
+                }
+            }
+            passes::run(
+                Path::new(&path),
+                &sizes.context(usage)?,
+                runs.context(usage)?,
+            )
+        }
         Some("summary") => summary(summary_args(it)?),
-        _ => bail!("usage: gpu_check adapter FILE | gpu_check summary --out DIR --size WxH --runs N --seconds S"),
+        _ => bail!("usage: gpu_check adapter FILE | gpu_check passes FILE --sizes WxH,WxH --runs N | gpu_check summary --out DIR --size WxH --runs N --seconds S"),
     }
 }
 
@@ -159,7 +201,22 @@ fn summary(a: Args) -> Result<()> {
         .as_ref()
         .and_then(|t| t["results"].as_array().cloned())
         .unwrap_or_default();
+    let passes = read_json(&a.out.join("passes.json"));
     let mut md = String::from("# GPU check\n\n");
+    let software = adapter
+        .as_ref()
+        .is_some_and(|ad| ad["device_type"].as_str() == Some("Cpu"));
+    if software {
+        md += &format!(
+            "**The adapter is software ({}): it runs the shaders on this machine's CPU, so every \
+             time below says how fast that CPU runs them, nothing about any GPU.** The test steps \
+             still check that the passes and methods are right.\n\n",
+            adapter
+                .as_ref()
+                .and_then(|ad| ad["adapter"].as_str())
+                .unwrap_or("?")
+        );
+    }
     md += "Written by `scripts/gpu-check`";
     md += &format!(
         " (`--size {} --runs {}`) in {} s.\n\n",
@@ -214,6 +271,38 @@ fn summary(a: Args) -> Result<()> {
             s.seconds,
             s.log
         );
+    }
+    md += "\n## Passes alone\n\n";
+    let pass_rows: Vec<Value> = passes
+        .as_ref()
+        .and_then(|p| p["rows"].as_array().cloned())
+        .unwrap_or_default();
+    if pass_rows.is_empty() {
+        md += "No pass was timed: see `passes.log`.\n";
+    } else {
+        let trusted = passes.as_ref().is_some_and(|p| p["timestamps_trusted"] == true);
+        md += &format!(
+            "Median ms of each `subcone-passes` pass encoded and submitted alone (`gpu_check passes`), \
+             {} runs after a warm-up: the wall clock from submission to completion, and the GPU's \
+             timestamps where the device has them ({}).\n\n",
+            pass_rows[0]["runs"],
+            if trusted {
+                "trusted on this adapter"
+            } else {
+                "not trusted on this adapter: read the wall clock"
+            }
+        );
+        md += "| pass | size | wall ms | timestamp ms |\n|---|---|--:|--:|\n";
+        for r in &pass_rows {
+            md += &format!(
+                "| {} | {}x{} | {} | {} |\n",
+                r["pass"].as_str().unwrap_or("?"),
+                r["width"],
+                r["height"],
+                cell(&r["wall_ms_median"], 2),
+                cell(&r["timestamp_ms_median"], 2)
+            );
+        }
     }
     md += "\n## Timing\n\n";
     let mut scenes: Vec<String> = Vec::new();
@@ -296,6 +385,11 @@ fn summary(a: Args) -> Result<()> {
             "ratio_to_noaa": r["ratio_to_noaa"], "timed_by": r["timed_by"],
         })).collect::<Vec<_>>(),
         "skipped": timing.as_ref().map_or(Value::Null, |t| t["skipped"].clone()),
+        "software_adapter": software,
+        "passes": pass_rows.iter().map(|r| json!({
+            "pass": r["pass"], "width": r["width"], "height": r["height"],
+            "wall_ms_median": r["wall_ms_median"], "timestamp_ms_median": r["timestamp_ms_median"],
+        })).collect::<Vec<_>>(),
     });
     std::fs::write(a.out.join("summary.md"), md)?;
     std::fs::write(

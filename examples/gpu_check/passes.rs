@@ -1,0 +1,347 @@
+//! `gpu_check passes FILE --sizes WxH,WxH --runs N`: each pass of
+//! `subcone-passes` alone (SraaPass, CtssPass, FxaaPass, TaaPass) on the
+//! adapter the wgpu backend opens, at each size: one warm-up, then `runs`
+//! submissions of the pass alone, each waited for. Every run's wall time
+//! (submission to completion) is kept, and its GPU timestamps where the
+//! device has them; which of the two means anything is the adapter's
+//! business (`timestamps_trusted`), recorded beside them.
+
+use std::path::Path;
+use std::time::Instant;
+
+use anyhow::{anyhow, bail, Context, Result};
+use glam::Vec3;
+use serde_json::{json, Value};
+use subcone_kernels::ctss::CtssParams;
+use subcone_kernels::sraa::SraaParams;
+use subcone_passes::{
+    CtssCamera, CtssFrame, CtssPass, CtssPassDesc, FxaaPass, FxaaPassDesc, SraaInputs, SraaPass,
+    SraaPassDesc, SubsampleGeometry, TaaInputs, TaaPass, TaaPassDesc,
+};
+use subcone_wgpu::GpuContext;
+
+/// A sphere in front of the camera, shaded by its normal: CtssPass's field.
+const FIELD_WGSL: &str = "
+fn subcone_field(p: vec3<f32>) -> vec3<f32> {
+    let d = length(p - vec3<f32>(0.0, 0.0, 5.0)) - 1.0;
+    return vec3<f32>(d, d, 0.0);
+}
+fn subcone_shade(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(0.5) + 0.5 * n;
+}
+";
+
+const COLOR: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
+fn texture(
+    ctx: &GpuContext,
+    label: &str,
+    (w, h): (u32, u32),
+    samples: u32,
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::TextureView {
+    ctx.device
+        .create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: samples,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage,
+            view_formats: &[],
+        })
+        .create_view(&Default::default())
+}
+
+/// A `Rgba16Float` input holding a checkerboard of 7-pixel cells (edges for
+/// FXAA and TAA to find), or a zero `Rg16Float` velocity.
+fn pattern(ctx: &GpuContext, label: &str, (w, h): (u32, u32), velocity: bool) -> wgpu::TextureView {
+    let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
+    let format = if velocity {
+        wgpu::TextureFormat::Rg16Float
+    } else {
+        COLOR
+    };
+    let t = ctx.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    });
+    let channels = if velocity { 2 } else { 4 };
+    let data: Vec<u16> = (0..w * h)
+        .flat_map(|i| {
+            let on = ((i % w) / 7 + (i / w) / 7) % 2 == 1;
+            let v = if velocity { 0.0 } else if on { 0.9 } else { 0.1 };
+            let px = [v, v, v, 1.0];
+            px.into_iter()
+                .take(channels)
+                .map(|x: f32| half_bits(x))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    ctx.queue.write_texture(
+        t.as_image_copy(),
+        bytemuck::cast_slice(&data),
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(w * 2 * channels as u32),
+            rows_per_image: Some(h),
+        },
+        t.size(),
+    );
+    t.create_view(&Default::default())
+}
+
+/// The binary16 bits of `x`, for the exact values the pattern uses (0, 0.1,
+/// 0.9, 1; rounded toward zero, which is all a timing input needs).
+fn half_bits(x: f32) -> u16 {
+    if x == 0.0 {
+        return 0;
+    }
+    let b = x.to_bits();
+    let exp = ((b >> 23) & 0xff) as i32 - 127 + 15;
+    ((exp as u32) << 10 | (b >> 13) & 0x3ff) as u16
+}
+
+/// Clear the MSAA depth and normal targets (a flat surface facing the
+/// camera) as a host's prepass would leave them.
+fn clear_prepass(ctx: &GpuContext, depth: &wgpu::TextureView, normal: &wgpu::TextureView) {
+    let mut enc = ctx.device.create_command_encoder(&Default::default());
+    {
+        let _pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("prepass clear"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: normal,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color {
+                        r: 0.0,
+                        g: 0.0,
+                        b: -1.0,
+                        a: 0.0,
+                    }),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: depth,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(0.5),
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+    }
+    ctx.queue.submit([enc.finish()]);
+}
+
+/// One pass, ready to encode at one size.
+type Encode<'a> = Box<
+    dyn Fn(&mut wgpu::CommandEncoder, Option<wgpu::ComputePassTimestampWrites<'_>>) -> Result<()>
+        + 'a,
+>;
+
+/// Time `encode` alone: one warm-up, then `runs` submissions.
+fn time(ctx: &GpuContext, runs: u32, encode: &Encode<'_>) -> Result<(Vec<f64>, Vec<f64>)> {
+    let stamps = ctx.device.features().contains(wgpu::Features::TIMESTAMP_QUERY);
+    let queries = stamps.then(|| {
+        let set = ctx.device.create_query_set(&wgpu::QuerySetDescriptor {
+            label: Some("pass timestamps"),
+            ty: wgpu::QueryType::Timestamp,
+            count: 2,
+        });
+        let resolve = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("timestamp resolve"),
+            size: 16,
+            usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        (set, resolve)
+    });
+    let (mut wall, mut gpu) = (Vec::new(), Vec::new());
+    for run in 0..=runs {
+        let mut enc = ctx.device.create_command_encoder(&Default::default());
+        let writes = queries.as_ref().map(|(set, _)| wgpu::ComputePassTimestampWrites {
+            query_set: set,
+            beginning_of_pass_write_index: Some(0),
+            end_of_pass_write_index: Some(1),
+        });
+        encode(&mut enc, writes)?;
+        if let Some((set, resolve)) = &queries {
+            enc.resolve_query_set(set, 0..2, resolve, 0);
+        }
+        let start = Instant::now();
+        ctx.queue.submit([enc.finish()]);
+        ctx.wait("pass timing").map_err(|e| anyhow!("{e}"))?;
+        let ms = start.elapsed().as_secs_f64() * 1e3;
+        let ticks = match &queries {
+            Some((_, resolve)) => {
+                let bytes = ctx.read_buffer(resolve, 0, 16).map_err(|e| anyhow!("{e}"))?;
+                let t: &[u64] = bytemuck::cast_slice(&bytes);
+                Some(t[1].saturating_sub(t[0]))
+            }
+            None => None,
+        };
+        if run > 0 {
+            wall.push(ms);
+            if let Some(t) = ticks {
+                gpu.push(t as f64 * f64::from(ctx.queue.get_timestamp_period()) / 1e6);
+            }
+        }
+    }
+    Ok((wall, gpu))
+}
+
+fn median(v: &[f64]) -> Value {
+    let mut v = v.to_vec();
+    v.sort_by(f64::total_cmp);
+    v.get(v.len() / 2).map_or(Value::Null, |&m| m.into())
+}
+
+/// Every pass at `size`, as JSON rows.
+fn at_size(ctx: &GpuContext, size: (u32, u32), runs: u32) -> Result<Vec<Value>> {
+    let read = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT;
+    let store = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
+    let depth = texture(ctx, "msaa depth", size, 4, wgpu::TextureFormat::Depth32Float, read);
+    let normal = texture(ctx, "msaa normal", size, 4, COLOR, read);
+    clear_prepass(ctx, &depth, &normal);
+    let colour = pattern(ctx, "shaded colour", size, false);
+    let history = pattern(ctx, "history", size, false);
+    let velocity = pattern(ctx, "velocity", size, true);
+    let out = texture(ctx, "output", size, 1, COLOR, store);
+    let d = &ctx.device;
+    let pe = |what: &str, e: subcone_passes::PassError| anyhow!("{what}: {e}");
+    let sraa = SraaPass::new(d, &SraaPassDesc::msaa().with_params(SraaParams::TUNED))
+        .map_err(|e| pe("SraaPass", e))?;
+    let ctss = CtssPass::new(d, FIELD_WGSL, &CtssPassDesc::default()).map_err(|e| pe("CtssPass", e))?;
+    let fxaa = FxaaPass::new(d, &FxaaPassDesc::default()).map_err(|e| pe("FxaaPass", e))?;
+    let taa = TaaPass::new(d, &TaaPassDesc::default()).map_err(|e| pe("TaaPass", e))?;
+    let q = &ctx.queue;
+    let fov = 0.8;
+    let passes: Vec<(&str, Encode<'_>)> = vec![
+        (
+            "SraaPass",
+            Box::new(|enc, ts| {
+                let inputs = SraaInputs {
+                    geometry: SubsampleGeometry::Separate {
+                        depth: &depth,
+                        normal: &normal,
+                    },
+                    // Reversed Z, infinite far plane, near 0.05.
+                    projection: [
+                        [1.0, 0.0, 0.0, 0.0],
+                        [0.0, 1.0, 0.0, 0.0],
+                        [0.0, 0.0, 0.0, -1.0],
+                        [0.0, 0.0, 0.05, 0.0],
+                    ],
+                    centre: None,
+                    color: &colour,
+                    shadows: None,
+                    albedo: None,
+                    secondary: None,
+                    output: &out,
+                };
+                sraa.encode(d, q, enc, &inputs, ts).map_err(|e| pe("SraaPass", e))
+            }),
+        ),
+        (
+            "CtssPass",
+            Box::new(|enc, ts| {
+                let frame = CtssFrame {
+                    camera: CtssCamera::new(Vec3::ZERO, Vec3::Z, Vec3::Y, fov),
+                    params: CtssParams::new(subcone_kernels::cone::cone_tan_theta(
+                        fov,
+                        size.1,
+                        subcone_kernels::ctss::CONE_COVERAGE,
+                        subcone_kernels::cone::PixelFootprint::Circumscribed,
+                    ))
+                    .with_range(0.0, 100.0)
+                    .with_max_steps(128),
+                    background: Vec3::new(0.1, 0.2, 0.3),
+                    host_group: None,
+                    output: &out,
+                };
+                ctss.encode(d, q, enc, &frame, ts).map_err(|e| pe("CtssPass", e))
+            }),
+        ),
+        (
+            "FxaaPass",
+            Box::new(|enc, ts| {
+                fxaa.encode(d, q, enc, &colour, &out, ts)
+                    .map_err(|e| pe("FxaaPass", e))
+            }),
+        ),
+        (
+            "TaaPass",
+            Box::new(|enc, ts| {
+                let inputs = TaaInputs {
+                    current: &colour,
+                    velocity: &velocity,
+                    history: &history,
+                    history_frames: 4,
+                };
+                taa.encode(d, q, enc, &inputs, &out, ts).map_err(|e| pe("TaaPass", e))
+            }),
+        ),
+    ];
+    let mut rows = Vec::new();
+    for (name, encode) in &passes {
+        let (wall, gpu) = time(ctx, runs, encode).with_context(|| format!("{name} at {size:?}"))?;
+        println!(
+            "{name:>9} at {}x{}: wall median {} ms, timestamps median {} ms",
+            size.0,
+            size.1,
+            median(&wall),
+            median(&gpu)
+        );
+        rows.push(json!({
+            "pass": name, "width": size.0, "height": size.1, "runs": runs,
+            "wall_ms_median": median(&wall), "timestamp_ms_median": median(&gpu),
+            "wall_ms": wall, "timestamp_ms": gpu,
+        }));
+    }
+    Ok(rows)
+}
+
+/// The `passes` step: every pass at every size, written as JSON to `path`.
+pub fn run(path: &Path, sizes: &[(u32, u32)], runs: u32) -> Result<()> {
+    if runs == 0 {
+        bail!("--runs must be at least 1");
+    }
+    let ctx = GpuContext::new().map_err(|e| anyhow!("{e}"))?;
+    let mut rows = Vec::new();
+    for &size in sizes {
+        ctx.check_texture_size(size.0, size.1)
+            .map_err(|e| anyhow!("{e}"))?;
+        rows.extend(at_size(&ctx, size, runs)?);
+    }
+    let value = json!({
+        "adapter": ctx.info.name,
+        "device_type": format!("{:?}", ctx.info.device_type),
+        "software": ctx.info.device_type == wgpu::DeviceType::Cpu,
+        "timestamps_trusted": ctx.timestamps,
+        "rows": rows,
+    });
+    std::fs::write(path, serde_json::to_string_pretty(&value)? + "\n")
+        .with_context(|| format!("writing {}", path.display()))
+}
