@@ -360,8 +360,9 @@ pub enum SubsampleGeometry<'a> {
 /// gives the right view of every input; of a depth-stencil format, its
 /// `TextureAspect::DepthOnly`); the sizes, formats, sample counts, layer
 /// counts and usages are checked on the views' textures
-/// (`TextureView::texture`). Every texture is the output's size, 2D, and
-/// has `TEXTURE_BINDING`; the output has `STORAGE_BINDING`.
+/// (`TextureView::texture`). Every texture is the output's size (with
+/// [`SraaPass::encode_rect`]: any size that holds the rect), 2D, and has
+/// `TEXTURE_BINDING`; the output has `STORAGE_BINDING`.
 #[derive(Clone, Copy, Debug)]
 pub struct SraaInputs<'a> {
     /// The geometric subsamples.
