@@ -697,16 +697,15 @@ fn check_resolve_tone_mapped(ctx: &GpuContext, lib: &Library) -> Result<String, 
         let gpu = floats(&out[3 * i..3 * i + 3]);
         // The contract's domain: radiance (finite, non-negative colours)
         // within the generator's range and a positive, finite exposure
-        // within its range. Outside
-        // it, f32 and f64 sums may overflow or underflow apart; only
-        // "never NaN" is checked there.
+        // within its range. Outside it, f32 and f64 sums may overflow or
+        // underflow apart; only "never NaN" is checked there.
         let in_domain = c
             .iter()
             .all(|v| v.is_finite() && v.min_element() >= 0.0 && v.max_element() <= 400.0)
             && (0.01..=100.0).contains(e);
-        if in_domain {
-            r.floats(TOL_RESOLVE_TONE_MAPPED, &(c, e), &rust, &gpu);
-        } else if rust.iter().all(|v| v.is_finite()) && gpu.iter().any(|v| v.is_nan()) {
+        let nan_out_of_finite =
+            rust.iter().all(|v| v.is_finite()) && gpu.iter().any(|v| v.is_nan());
+        if in_domain || nan_out_of_finite {
             r.floats(TOL_RESOLVE_TONE_MAPPED, &(c, e), &rust, &gpu);
         }
     }
