@@ -35,8 +35,9 @@ use subcone::vectors::tolerance::{
     Tol, CTSS_TRACE_FLIPS_PER_200, MASK_NEAR, MASK_NEAR_ROWS_PER_100, MATERIAL_GATE_NEAR,
     NEEDS_NORMAL_NEAR, SDF_MATERIAL_TIES_PER_200, TOL_AGGREGATE, TOL_ALBEDO_DIFFERENCE,
     TOL_AO_DIRECTION, TOL_AO_FRACTION, TOL_CONE, TOL_CTSS_TRACE, TOL_FXAA_ENCODE, TOL_FXAA_PIXEL,
-    TOL_OCCLUSION, TOL_PROJECT_NORMAL, TOL_RECONSTRUCT, TOL_RESOLVE, TOL_SAMPLE_WEIGHT,
-    TOL_SDF_FIELD, TOL_STEPPER, TOL_TRANSPARENCY_WEIGHT, TOL_WEIGHT, TRANSPARENCY_NEAR,
+    TOL_OCCLUSION, TOL_PROJECT_NORMAL, TOL_RECONSTRUCT, TOL_RESOLVE, TOL_RESOLVE_TONE_MAPPED,
+    TOL_SAMPLE_WEIGHT, TOL_SDF_FIELD, TOL_STEPPER, TOL_TRANSPARENCY_WEIGHT, TOL_WEIGHT,
+    TRANSPARENCY_NEAR,
 };
 use subcone::vectors::{ao_grid_normals, AO_GRID_INDICES, AWKWARD_DEPTHS, AWKWARD_WEIGHT_PARAMS};
 use subcone_kernels::aggregate::{sample_weight, Aggregate, Weighting};
@@ -49,9 +50,9 @@ use subcone_kernels::mask::{
 };
 use subcone_kernels::sraa::{
     albedo_difference, bilateral_weight, material_gated_weight, neighbourhood, reconstruct_layers,
-    reconstruct_layers_material, reconstruction_weight, resolve_pixel, shadow_gated_weight,
-    DepthMetric, Geometry, LayeredSample, Resolver, ShadedFrame, ShadedGroup, SraaParams,
-    Subsamples, WeightForm, ALBEDO_TOLERANCE,
+    reconstruct_layers_material, reconstruction_weight, resolve_pixel, resolve_pixel_tone_mapped,
+    shadow_gated_weight, DepthMetric, Geometry, LayeredSample, Resolver, ShadedFrame, ShadedGroup,
+    SraaParams, Subsamples, WeightForm, ALBEDO_TOLERANCE,
 };
 use subcone_wgpu::test_util::{gpu_or_skip, run_wgsl, Kernel, Table};
 use subcone_wgpu::GpuContext;
@@ -653,6 +654,59 @@ fn check_resolve(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
         let huge = c.iter().any(|v| v.is_finite() && v.max_element() > 1e37);
         if !huge {
             r.floats(TOL_RESOLVE, c, &rust, &floats(&out[3 * i..3 * i + 3]));
+        }
+    }
+    r.finish()
+}
+
+/// The tone-mapped pixel resolve (Karis 2014's weights): HDR colours in
+/// [0, 400] and exposures in [0.01, 100], extremes and non-finite values
+/// included in both; within [`TOL_RESOLVE_TONE_MAPPED`] on the domain, and
+/// never NaN where the Rust is finite.
+fn check_resolve_tone_mapped(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
+    let colour = (any_f32(0.0, 400.0), any_f32(0.0, 4.0), any_f32(0.0, 400.0))
+        .prop_map(|(r, g, b)| Vec3::new(r, g, b));
+    let cases = generate(
+        (
+            [colour.clone(), colour.clone(), colour.clone(), colour],
+            any_f32(0.01, 100.0),
+        ),
+        3,
+    );
+    let input: Vec<u32> = cases
+        .iter()
+        .flat_map(|(s, e)| {
+            s.iter()
+                .flat_map(|c| words(&c.to_array()).collect::<Vec<_>>())
+                .chain(words(&[*e]))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    let out = run(
+        ctx,
+        &lib.sraa,
+        "let c = subcone_resolve_pixel_tone_mapped(v3(0u), v3(3u), v3(6u), v3(9u), f(12u));
+         out[o] = bitcast<u32>(c.x); out[o + 1u] = bitcast<u32>(c.y); out[o + 2u] = bitcast<u32>(c.z);",
+        13,
+        3,
+        &input,
+    )?;
+    let mut r = Report::new("subcone_resolve_pixel_tone_mapped");
+    for (i, (c, e)) in cases.iter().enumerate() {
+        let rust = resolve_pixel_tone_mapped(c, *e).to_array();
+        let gpu = floats(&out[3 * i..3 * i + 3]);
+        // The contract's domain: radiance (finite, non-negative colours)
+        // within the generator's range and a positive, finite exposure
+        // within its range. Outside it, f32 and f64 sums may overflow or
+        // underflow apart; only "never NaN" is checked there.
+        let in_domain = c
+            .iter()
+            .all(|v| v.is_finite() && v.min_element() >= 0.0 && v.max_element() <= 400.0)
+            && (0.01..=100.0).contains(e);
+        let nan_out_of_finite =
+            rust.iter().all(|v| v.is_finite()) && gpu.iter().any(|v| v.is_nan());
+        if in_domain || nan_out_of_finite {
+            r.floats(TOL_RESOLVE_TONE_MAPPED, &(c, e), &rust, &gpu);
         }
     }
     r.finish()
@@ -2497,10 +2551,11 @@ fn check_ctss_trace(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
     join(d, colour.finish())
 }
 
-const CHECKS: [(&str, Check); 12] = [
+const CHECKS: [(&str, Check); 13] = [
     ("weights", check_weights),
     ("material", check_material),
     ("resolve", check_resolve),
+    ("resolve_tone_mapped", check_resolve_tone_mapped),
     ("reconstruction", check_reconstruct),
     ("cone", check_cone),
     ("mask", check_mask),

@@ -410,3 +410,51 @@ fn subcone_resolve_pixel(s0: vec3<f32>, s1: vec3<f32>, s2: vec3<f32>, s3: vec3<f
     }
     return s;
 }
+
+// Mirrors sraa::RESOLVE_LUMA: BT.709 luma weights of linear RGB.
+const subcone_RESOLVE_LUMA: vec3<f32> = vec3<f32>(0.2126, 0.7152, 0.0722);
+
+// Mirrors sraa::tone_map_weight (Karis 2014): 1 / (1 + exposure·luma(c)),
+// negative luma as 0; 0 for a non-finite colour or exposure. In f32 (the
+// Rust computes in f64 and rounds): an exposed luma that overflows f32
+// gives 1 / inf = 0, where the Rust's weight is a tiny f64.
+fn subcone_tone_map_weight(c: vec3<f32>, exposure: f32) -> f32 {
+    if !subcone_sraa_is_finite3(c) || !subcone_is_finite(exposure) {
+        return 0.0;
+    }
+    var luma = dot(c, subcone_RESOLVE_LUMA) * exposure;
+    if !(luma > 0.0) {
+        luma = 0.0;
+    }
+    return 1.0 / (1.0 + luma);
+}
+
+// Mirrors sraa::resolve_pixel_tone_mapped: the four subsamples weighted by
+// subcone_tone_map_weight, Σ w·c / Σ w over the finite ones; the linear box
+// (subcone_resolve_pixel) for an exposure that is not positive and finite.
+// Summed in f32, where the Rust sums in f64: a few ulps apart, and where
+// every finite subsample's exposed luma overflows f32 (weights all 0) or
+// the mean is not finite, this takes the box where the Rust still weighs.
+fn subcone_resolve_pixel_tone_mapped(s0: vec3<f32>, s1: vec3<f32>, s2: vec3<f32>, s3: vec3<f32>, exposure: f32) -> vec3<f32> {
+    if !(exposure > 0.0) || !subcone_is_finite(exposure) {
+        return subcone_resolve_pixel(s0, s1, s2, s3);
+    }
+    var sum = vec3<f32>(0.0);
+    var weight = 0.0;
+    var subs = array<vec3<f32>, 4>(s0, s1, s2, s3);
+    for (var k = 0u; k < 4u; k++) {
+        let c = subs[k];
+        if subcone_sraa_is_finite3(c) {
+            let w = subcone_tone_map_weight(c, exposure);
+            sum = sum + w * c;
+            weight = weight + w;
+        }
+    }
+    if weight > 0.0 {
+        let m = sum / weight;
+        if subcone_sraa_is_finite3(m) {
+            return m;
+        }
+    }
+    return subcone_resolve_pixel(s0, s1, s2, s3);
+}

@@ -325,6 +325,8 @@ fn sraa_wgsl_exports_the_resolve() {
         "subcone_reconstruct_layers_add",
         "subcone_reconstruct_layers_end",
         "subcone_resolve_pixel",
+        "subcone_tone_map_weight",
+        "subcone_resolve_pixel_tone_mapped",
         "subcone_sraa_reconstruct_run",
     ] {
         assert!(

@@ -113,6 +113,12 @@ pub const TOL_WEIGHT: Tol = Tol::Abs(2e-6);
 pub const TOL_ALBEDO_DIFFERENCE: Tol = Tol::Abs(1e-6);
 /// `resolve_pixel`: one rounding per add and the scale.
 pub const TOL_RESOLVE: Tol = Tol::Abs(1e-6);
+/// `resolve_pixel_tone_mapped` on its domain (colours in [0, 400], exposure
+/// in [0.01, 100]): a weighted mean of four colours with weights
+/// `1 / (1 + luma·e)`, summed in f32 on the GPU and in f64 in Rust. A few
+/// ulps in each weight and each sum move the mean by a few ulps of the
+/// largest colour: 1e-5 relative to the larger of 1 and the values.
+pub const TOL_RESOLVE_TONE_MAPPED: Tol = Tol::Rel(1e-5);
 /// `sraa::RECONSTRUCT_WGSL`'s loop (`reconstruct_layers` of a subsample,
 /// its layers summed) and the pixel's box resolve of four such sums
 /// (`sraa::Resolver`): weighted means of non-negative colours, relative to

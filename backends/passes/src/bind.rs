@@ -565,6 +565,55 @@ pub(crate) fn check_output_format(format: wgpu::TextureFormat) -> Result<(), Pas
     }
 }
 
+/// A rectangle of pixels of a pass's textures: its top-left pixel
+/// `(x, y)` (x right, y down, from the texture's top-left texel) and its
+/// size, in pixels. A pass given a rect reads and writes its textures
+/// there, at the same pixels of every texture (a viewport: dynamic
+/// resolution, split screen), and leaves the output's other pixels as
+/// they were.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Rect {
+    /// Column of the rect's top-left pixel.
+    pub x: u32,
+    /// Row of the rect's top-left pixel.
+    pub y: u32,
+    /// Width in pixels, `> 0`.
+    pub width: u32,
+    /// Height in pixels, `> 0`.
+    pub height: u32,
+}
+
+impl Rect {
+    /// The rect of `width × height` pixels whose top-left pixel is `(x, y)`.
+    pub const fn new(x: u32, y: u32, width: u32, height: u32) -> Self {
+        Rect {
+            x,
+            y,
+            width,
+            height,
+        }
+    }
+
+    /// The whole of a texture of `(width, height)`: origin `(0, 0)`.
+    pub const fn whole((width, height): (u32, u32)) -> Self {
+        Rect::new(0, 0, width, height)
+    }
+
+    /// `(width, height)`.
+    pub const fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    /// Whether the rect is not empty and lies inside a texture of
+    /// `(width, height)` (its far edges included, without overflow).
+    pub fn lies_inside(&self, (width, height): (u32, u32)) -> bool {
+        let inside = |origin: u32, extent: u32, limit: u32| {
+            extent > 0 && origin.checked_add(extent).is_some_and(|end| end <= limit)
+        };
+        inside(self.x, self.width, width) && inside(self.y, self.height, height)
+    }
+}
+
 /// What a host texture must be for one role.
 pub(crate) struct Expect {
     pub(crate) what: &'static str,
@@ -580,6 +629,17 @@ pub(crate) struct Expect {
 /// (`TextureView::texture`) but not the view's own range or dimension, so
 /// those are the host's contract: a view of the whole texture (mip level 0).
 pub(crate) fn check(v: &wgpu::TextureView, e: &Expect) -> Result<(), PassError> {
+    check_region(v, e, None)
+}
+
+/// [`check`], but with a `rect` the texture's size is not compared with
+/// `e.size`: the rect must lie inside it ([`Rect::lies_inside`]), a
+/// [`PassError::Rect`] otherwise.
+pub(crate) fn check_region(
+    v: &wgpu::TextureView,
+    e: &Expect,
+    rect: Option<&Rect>,
+) -> Result<(), PassError> {
     let t = v.texture();
     let found = (t.width(), t.height());
     if t.dimension() != wgpu::TextureDimension::D2 {
@@ -588,12 +648,23 @@ pub(crate) fn check(v: &wgpu::TextureView, e: &Expect) -> Result<(), PassError> 
             found: t.dimension(),
         });
     }
-    if found != e.size {
-        return Err(PassError::Size {
-            what: e.what,
-            expected: e.size,
-            found,
-        });
+    match rect {
+        Some(r) if !r.lies_inside(found) => {
+            return Err(PassError::Rect {
+                what: e.what,
+                rect: *r,
+                size: found,
+            })
+        }
+        Some(_) => {}
+        None if found != e.size => {
+            return Err(PassError::Size {
+                what: e.what,
+                expected: e.size,
+                found,
+            })
+        }
+        None => {}
     }
     if t.sample_count() != e.samples {
         return Err(PassError::SampleCount {
@@ -626,8 +697,20 @@ pub(crate) fn check_output(
     format: wgpu::TextureFormat,
     expected: &'static str,
 ) -> Result<(u32, u32), PassError> {
+    check_output_region(output, format, expected, None).map(|r| r.size())
+}
+
+/// [`check_output`] for a pass that writes `rect` of its output (the whole
+/// texture for `None`): the rect must lie inside the output texture. The
+/// rect of pixels to write, returned.
+pub(crate) fn check_output_region(
+    output: &wgpu::TextureView,
+    format: wgpu::TextureFormat,
+    expected: &'static str,
+    rect: Option<&Rect>,
+) -> Result<Rect, PassError> {
     let size = (output.texture().width(), output.texture().height());
-    check(
+    check_region(
         output,
         &Expect {
             what: "output",
@@ -636,6 +719,7 @@ pub(crate) fn check_output(
             layers: 1,
             usage: wgpu::TextureUsages::STORAGE_BINDING,
         },
+        rect,
     )?;
     if output.texture().format() != format {
         return Err(PassError::Format {
@@ -644,7 +728,7 @@ pub(crate) fn check_output(
             expected,
         });
     }
-    Ok(size)
+    Ok(rect.copied().unwrap_or(Rect::whole(size)))
 }
 
 /// Refuse a texture `what` that `textureLoad` does not read as `f32`

@@ -1,5 +1,14 @@
 //! [`FxaaPass`]: FXAA 3.11 quality preset 12 (`subcone_kernels::fxaa`, the
 //! kernels' WGSL twin of the CPU backend's post-process) over a host texture.
+//!
+//! FXAA is a filter of display-referred colour: FXAA 3.11 runs "after tone
+//! mapping" on the final LDR image, its luma from the gamma-encoded colour,
+//! and its thresholds are fractions of that range. The kernel makes its
+//! input the way an engine stores it for FXAA (`fxaa::fxaa_encode`: clamped
+//! to `[0, 1]`, sRGB-encoded, 8 bits), so HDR radiance above 1 is clipped.
+//! The pass does not tone map for the host: it refuses an input whose
+//! format can hold HDR values ([`crate::PassError::HdrInput`]) unless the
+//! host says the texture holds tone-mapped colour ([`FxaaInput`]).
 
 use bytemuck::{Pod, Zeroable};
 use subcone_kernels::fxaa::FxaaParams;
@@ -18,6 +27,29 @@ pub(crate) struct FxaaFrame {
     pub(crate) _pad: [u32; 2],
 }
 
+/// What the host's input texture holds, which decides the formats
+/// [`FxaaPass::encode`] accepts. FXAA 3.11 filters display-referred colour
+/// in `[0, 1]` (after tone mapping); the pass clamps its input to `[0, 1]`
+/// (`subcone_kernels::fxaa::fxaa_encode`), so a float texture of HDR
+/// radiance would lose its highlights without a word. A float texture is
+/// therefore refused ([`crate::PassError::HdrInput`]) unless the host
+/// declares it tone mapped.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum FxaaInput {
+    /// A unorm or snorm colour texture (`Rgba8Unorm`, `Rgb10a2Unorm`, …),
+    /// whose values lie in `[0, 1]` by its format (snorm's negatives clamp
+    /// to 0): display-referred by construction. A float format
+    /// (`Rgba16Float`, `Rgba32Float`, `Rg11b10Ufloat`, …) is refused. The
+    /// default.
+    #[default]
+    Unorm,
+    /// Any float, unorm or snorm colour texture whose linear RGB the host
+    /// has already tone mapped into `[0, 1]` (display-referred; values
+    /// outside are clamped, as FXAA 3.11's RGBA8 input clamps them).
+    ToneMapped,
+}
+
 /// The configuration of a [`FxaaPass`], fixed for its life. Start from
 /// `FxaaPassDesc::default()` and change what differs with the `with_`
 /// methods (or assign the public fields): the struct is
@@ -28,16 +60,22 @@ pub struct FxaaPassDesc {
     /// FXAA's thresholds: `FxaaParams::QUALITY`, the defaults of FXAA 3.11.
     pub params: FxaaParams,
     /// The output texture's format: `Rgba8Unorm`, `Rgba16Float` or
-    /// `Rgba32Float` (a storage texture; linear colour, alpha 1).
+    /// `Rgba32Float` (a storage texture; display-referred linear RGB in
+    /// `[0, 1]`, alpha 1, whatever the format).
     pub output_format: wgpu::TextureFormat,
+    /// What the input holds, and so which formats it may have
+    /// ([`FxaaInput::Unorm`] by default: float formats are refused).
+    pub input: FxaaInput,
 }
 
 impl Default for FxaaPassDesc {
-    /// `FxaaParams::QUALITY`, writing `Rgba16Float`.
+    /// `FxaaParams::QUALITY`, from a unorm input ([`FxaaInput::Unorm`]),
+    /// writing `Rgba16Float`.
     fn default() -> Self {
         FxaaPassDesc {
             params: FxaaParams::QUALITY,
             output_format: wgpu::TextureFormat::Rgba16Float,
+            input: FxaaInput::Unorm,
         }
     }
 }
@@ -48,15 +86,25 @@ impl FxaaPassDesc {
         with_params(params: FxaaParams);
         /// Writing `output_format` ([`Self::output_format`]).
         with_output_format(output_format: wgpu::TextureFormat);
+        /// Reading an input that holds `input` ([`Self::input`]).
+        with_input(input: FxaaInput);
     }
 }
 
-/// FXAA on the host's device: reads a one-sample texture of linear RGB
-/// (`.xyz`, any float, unorm or snorm format, `TEXTURE_BINDING`) and writes
-/// the filtered linear RGB, alpha 1, into a storage texture of the same size
-/// (`STORAGE_BINDING`, the desc's output format). Pixels outside the image
-/// are clamped to its edge. Input and output must be views of different
-/// textures, each of the whole texture (checked on `TextureView::texture`).
+/// FXAA on the host's device: reads a one-sample texture of
+/// display-referred linear RGB (`.xyz`, `TEXTURE_BINDING`: a unorm or snorm
+/// format, or with [`FxaaInput::ToneMapped`] also a float format holding
+/// tone-mapped colour) and writes the filtered display-referred linear RGB,
+/// in `[0, 1]`, alpha 1, into a storage texture of the same size
+/// (`STORAGE_BINDING`, the desc's output format). As FXAA 3.11 reads an
+/// RGBA8 texture, each pixel is clamped to `[0, 1]`, sRGB-encoded and
+/// rounded to 8 bits before it is filtered (`fxaa::fxaa_encode`), and the
+/// result is decoded back to linear (`fxaa::fxaa_decode`): HDR input is not
+/// handled, it is refused ([`crate::PassError::HdrInput`], for a float
+/// format without [`FxaaInput::ToneMapped`]); tone map first. Pixels
+/// outside the image are clamped to its edge. Input and output must be
+/// views of different textures, each of the whole texture (checked on
+/// `TextureView::texture`).
 ///
 /// Built once, encoded every frame: after the first frame with given views,
 /// `encode` creates no buffer, texture, bind group or pipeline
@@ -140,6 +188,13 @@ impl FxaaPass {
             },
         )?;
         bind::check_float_color("input", input)?;
+        let format = input.texture().format();
+        if self.desc.input == FxaaInput::Unorm && holds_hdr(format) {
+            return Err(PassError::HdrInput {
+                what: "input",
+                found: format,
+            });
+        }
         if input.texture() == output.texture() {
             return Err(PassError::Config(
                 "FXAA cannot filter a texture in place".into(),
@@ -173,4 +228,21 @@ impl FxaaPass {
     pub fn release_views(&self) {
         self.pipeline.release_views();
     }
+}
+
+/// Whether a colour texture of `format` can hold values above 1 (a float
+/// format: scene-referred radiance before tone mapping).
+fn holds_hdr(format: wgpu::TextureFormat) -> bool {
+    use wgpu::TextureFormat as F;
+    matches!(
+        format,
+        F::R16Float
+            | F::Rg16Float
+            | F::Rgba16Float
+            | F::R32Float
+            | F::Rg32Float
+            | F::Rgba32Float
+            | F::Rg11b10Ufloat
+            | F::Rgb9e5Ufloat
+    )
 }

@@ -18,7 +18,18 @@ fn pass_gpu_structs_match_their_wgsl() {
             SRAA_WGSL,
             "SraaFrame",
             size_of::<SraaFrame>(),
-            members!(SraaFrame: sraa, projection, width, height, depth_miss, albedo_tolerance),
+            members!(
+                SraaFrame: sraa,
+                projection,
+                width,
+                height,
+                depth_miss,
+                albedo_tolerance,
+                origin_x,
+                origin_y,
+                exposure,
+                _pad
+            ),
         ),
         (
             CTSS_WGSL,

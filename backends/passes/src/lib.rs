@@ -75,12 +75,12 @@ mod layout_tests;
 mod sraa;
 mod taa;
 
-pub use bind::{BIND_GROUP_CACHE, UNIFORM_SLOTS};
+pub use bind::{Rect, BIND_GROUP_CACHE, UNIFORM_SLOTS};
 pub use ctss::{
     CtssBuffers, CtssCamera, CtssFrame, CtssOutput, CtssPass, CtssPassDesc, CtssTrace,
     CTSS_KERNELS, MAX_BATCH, MAX_SAMPLES_PER_SIDE, SPHERE_TRACE_HOOK,
 };
-pub use fxaa::{FxaaPass, FxaaPassDesc};
+pub use fxaa::{FxaaInput, FxaaPass, FxaaPassDesc};
 pub use sraa::{
     CentreGeometry, DepthKind, GeometryLayout, NormalEncoding, Samples, SecondaryBuffers,
     SecondaryInputs, SraaBuffers, SraaInputs, SraaPass, SraaPassDesc, SubsampleGeometry,
@@ -173,6 +173,32 @@ pub enum PassError {
         /// The usage it lacks.
         missing: wgpu::BufferUsages,
     },
+    /// The rect a pass was given ([`bind::Rect`]) is empty or does not lie
+    /// inside a texture it reads or writes.
+    Rect {
+        /// Which input.
+        what: &'static str,
+        /// The rect given.
+        rect: bind::Rect,
+        /// The texture's size, `(width, height)`.
+        size: (u32, u32),
+    },
+    /// The exposure of a tone-mapped resolve
+    /// (`subcone_kernels::sraa::ResolveSpace::ToneMapped`) is not positive
+    /// and finite.
+    Exposure {
+        /// The exposure given, as `f32::to_bits` (so that the error stays
+        /// `Eq`, a NaN's payload included).
+        found_bits: u32,
+    },
+    /// An input's format can hold HDR (scene-referred) values that the pass
+    /// would clip: FXAA 3.11 filters display-referred colour in `[0, 1]`.
+    HdrInput {
+        /// Which input.
+        what: &'static str,
+        /// The texture's format.
+        found: wgpu::TextureFormat,
+    },
 }
 
 impl std::fmt::Display for PassError {
@@ -222,6 +248,23 @@ impl std::fmt::Display for PassError {
             PassError::BufferUsage { what, missing } => {
                 write!(f, "{what}: the buffer lacks usage {missing:?}")
             }
+            PassError::Rect { what, rect, size } => write!(
+                f,
+                "{what}: the rect of {}x{} pixels at ({}, {}) is empty or does not lie inside the {}x{} texture",
+                rect.width, rect.height, rect.x, rect.y, size.0, size.1
+            ),
+            PassError::Exposure { found_bits } => write!(
+                f,
+                "exposure {}: a tone-mapped resolve needs an exposure > 0 and finite",
+                f32::from_bits(*found_bits)
+            ),
+            PassError::HdrInput { what, found } => write!(
+                f,
+                "{what}: format {found:?} can hold HDR values, which FXAA would clip to [0, 1]: \
+                 FXAA 3.11 runs on display-referred colour, so tone map first (into a unorm \
+                 texture such as Rgba8Unorm), or, if this texture already holds tone-mapped \
+                 colour in [0, 1], build the pass with FxaaInput::ToneMapped"
+            ),
         }
     }
 }

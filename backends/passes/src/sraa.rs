@@ -19,9 +19,9 @@
 
 use bytemuck::{Pod, Zeroable};
 use subcone_kernels::passes::MAX_LIGHTS;
-use subcone_kernels::sraa::{ShadedPosition, SraaParams, ALBEDO_TOLERANCE};
+use subcone_kernels::sraa::{ResolveSpace, ShadedPosition, SraaParams, ALBEDO_TOLERANCE};
 
-use crate::bind::{self, check_buffer, required, Bound, Expect, Group, PassPipeline};
+use crate::bind::{self, check_buffer, required, Bound, Expect, Group, PassPipeline, Rect};
 use crate::PassError;
 
 pub(crate) const SRAA_WGSL: &str = include_str!("sraa.wgsl");
@@ -35,7 +35,7 @@ pub(crate) const SRAA_WGSL: &str = include_str!("sraa.wgsl");
 /// the host's textures.
 pub use subcone_kernels::sraa::RECONSTRUCT_WGSL;
 
-/// The pass's constants; `SraaFrame` in `sraa.wgsl` (64 bytes).
+/// The pass's constants; `SraaFrame` in `sraa.wgsl` (80 bytes).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub(crate) struct SraaFrame {
@@ -46,6 +46,15 @@ pub(crate) struct SraaFrame {
     pub(crate) height: u32,
     pub(crate) depth_miss: f32,
     pub(crate) albedo_tolerance: f32,
+    /// The top-left pixel of the rect resolved ([`SraaPass::encode_rect`];
+    /// 0 for the whole texture and for buffers); `width` and `height` are
+    /// the rect's.
+    pub(crate) origin_x: u32,
+    pub(crate) origin_y: u32,
+    /// The tone-mapped resolve's exposure (read only with
+    /// [`ResolveSpace::ToneMapped`]).
+    pub(crate) exposure: f32,
+    pub(crate) _pad: u32,
 }
 
 /// How the four geometric subsamples of a pixel are stored.
@@ -168,6 +177,16 @@ pub struct SraaPassDesc {
     /// The output texture's format: `Rgba8Unorm`, `Rgba16Float` or
     /// `Rgba32Float` (written as a storage texture, linear values, alpha 1).
     pub output_format: wgpu::TextureFormat,
+    /// The space each pixel's four reconstructed subsamples are averaged
+    /// in: `ResolveSpace::Linear` (the default in every preset: the box of
+    /// `sraa::resolve_pixel`, SRAA §3) or `ResolveSpace::ToneMapped {
+    /// exposure }` (`sraa::resolve_pixel_tone_mapped`: weights
+    /// `1 / (1 + luma(c · exposure))`, Karis 2014, *High Quality Temporal
+    /// Supersampling*), for HDR colour that is tone mapped after the pass,
+    /// so that an edge beside a highlight is antialiased as it is shown.
+    /// The output stays linear radiance either way. The exposure must be
+    /// `> 0` and finite ([`PassError::Exposure`] from [`SraaPass::new`]).
+    pub resolve: ResolveSpace,
 }
 
 impl SraaPassDesc {
@@ -194,6 +213,7 @@ impl SraaPassDesc {
             depth: DepthKind::Hardware { miss: 0.0 },
             normal: NormalEncoding::Signed,
             output_format: wgpu::TextureFormat::Rgba16Float,
+            resolve: ResolveSpace::Linear,
         }
     }
 
@@ -211,6 +231,7 @@ impl SraaPassDesc {
             depth: DepthKind::LinearView,
             normal: NormalEncoding::Signed,
             output_format: wgpu::TextureFormat::Rgba32Float,
+            resolve: ResolveSpace::Linear,
         }
     }
 
@@ -242,6 +263,8 @@ impl SraaPassDesc {
         with_normal(normal: NormalEncoding);
         /// Writing `output_format` ([`Self::output_format`]).
         with_output_format(output_format: wgpu::TextureFormat);
+        /// Averaging the subsamples in `resolve` ([`Self::resolve`]).
+        with_resolve(resolve: ResolveSpace);
     }
 
     /// Colour layers: `1 + lights`, twice that with secondary shading.
@@ -337,8 +360,9 @@ pub enum SubsampleGeometry<'a> {
 /// gives the right view of every input; of a depth-stencil format, its
 /// `TextureAspect::DepthOnly`); the sizes, formats, sample counts, layer
 /// counts and usages are checked on the views' textures
-/// (`TextureView::texture`). Every texture is the output's size, 2D, and
-/// has `TEXTURE_BINDING`; the output has `STORAGE_BINDING`.
+/// (`TextureView::texture`). Every texture is the output's size (with
+/// [`SraaPass::encode_rect`]: any size that holds the rect), 2D, and has
+/// `TEXTURE_BINDING`; the output has `STORAGE_BINDING`.
 #[derive(Clone, Copy, Debug)]
 pub struct SraaInputs<'a> {
     /// The geometric subsamples.
@@ -462,13 +486,20 @@ fn bind_samples<'a, R: Into<Bound<'a>>>(
 }
 
 /// What the input textures of one frame must be, for one configuration
-/// and the frame's `size` ([`SraaPass::check`]).
+/// and the frame's `size` ([`SraaPass::check`]): that size exactly, or,
+/// with a `rect`, any size the rect lies inside.
 struct InputRules<'a> {
     desc: &'a SraaPassDesc,
     size: (u32, u32),
+    rect: Option<&'a Rect>,
 }
 
 impl InputRules<'_> {
+    /// Check `v` against `e` and the rules' size or rect.
+    fn check(&self, v: &wgpu::TextureView, e: &Expect) -> Result<(), PassError> {
+        bind::check_region(v, e, self.rect)
+    }
+
     /// A texture at the geometric subsamples, in the desc's geometry
     /// layout: 4x multisampled, or a one-sample array of 4 layers.
     fn sub(&self, what: &'static str) -> Expect {
@@ -495,13 +526,13 @@ impl InputRules<'_> {
 
     /// A float texture of the geometric subsamples ([`Self::sub`]).
     fn float_sub(&self, what: &'static str, v: &wgpu::TextureView) -> Result<(), PassError> {
-        bind::check(v, &self.sub(what))?;
+        self.check(v, &self.sub(what))?;
         bind::check_float_color(what, v)
     }
 
     /// A one-sample, one-layer float texture.
     fn float_one(&self, what: &'static str, v: &wgpu::TextureView) -> Result<(), PassError> {
-        bind::check(v, &self.one(what, 1))?;
+        self.check(v, &self.one(what, 1))?;
         bind::check_float_color(what, v)
     }
 
@@ -533,7 +564,7 @@ impl InputRules<'_> {
         match (packed, inputs.geometry) {
             (true, SubsampleGeometry::Packed(p)) => self.float_sub("packed subsamples", p),
             (false, SubsampleGeometry::Separate { depth, normal }) => {
-                bind::check(depth, &self.sub("subsample depth"))?;
+                self.check(depth, &self.sub("subsample depth"))?;
                 self.depth_format("subsample depth", depth)?;
                 self.float_sub("subsample normal", normal)
             }
@@ -551,7 +582,7 @@ impl InputRules<'_> {
     /// The centre geometry (given exactly when the preset shades the pixel
     /// centre).
     fn centre_geometry(&self, c: &CentreGeometry<'_>) -> Result<(), PassError> {
-        bind::check(c.depth, &self.one("centre depth", 1))?;
+        self.check(c.depth, &self.one("centre depth", 1))?;
         self.depth_format("centre depth", c.depth)?;
         self.float_one("centre normal", c.normal)
     }
@@ -563,7 +594,7 @@ impl InputRules<'_> {
             ("shaded shadows", s.shaded, 1),
             ("subsample shadows", s.subsamples, 4),
         ] {
-            bind::check(t, &self.one(what, layers))?;
+            self.check(t, &self.one(what, layers))?;
             if t.texture().format() != wgpu::TextureFormat::R32Uint {
                 return Err(PassError::Format {
                     what,
@@ -762,6 +793,13 @@ impl SraaPass {
         }
 
         bind::check_output_format(desc.output_format)?;
+        if let ResolveSpace::ToneMapped { exposure } = desc.resolve {
+            if !desc.resolve.is_valid() {
+                return Err(PassError::Exposure {
+                    found_bits: exposure.to_bits(),
+                });
+            }
+        }
         let buffers = desc.geometry == GeometryLayout::Buffers;
         if matches!(
             desc.geometry,
@@ -777,12 +815,14 @@ impl SraaPass {
         let mut h = format!(
             "const LIGHTS: u32 = {}u;\nconst MATERIAL: bool = {};\nconst HARDWARE_DEPTH: bool = {hw};\n\
              const UNSIGNED_NORMALS: bool = {};\nconst SHADED_GIVEN: bool = {};\n\
-             const DECODED: bool = {buffers};\nconst SECONDARY: bool = {};\n",
+             const DECODED: bool = {buffers};\nconst SECONDARY: bool = {};\n\
+             const TONE_MAPPED_RESOLVE: bool = {};\n",
             desc.lights,
             desc.albedo_gate,
             desc.normal == NormalEncoding::Unsigned,
             desc.shaded_given(),
             desc.secondary,
+            matches!(desc.resolve, ResolveSpace::ToneMapped { .. }),
         );
         h += &if buffers {
             Self::buffer_loaders(desc)
@@ -898,14 +938,28 @@ impl SraaPass {
         h
     }
 
-    /// Check `inputs` against the configuration; the frame's size. Each
-    /// input in turn, in the order of [`SraaInputs`]' roles: the output, the
-    /// subsample geometry, the centre geometry, the colour, the shadows, the
-    /// secondary hits, the albedo.
-    fn check(&self, inputs: &SraaInputs<'_>) -> Result<(u32, u32), PassError> {
+    /// Check `inputs` against the configuration and `rect` (the whole
+    /// output for `None`); the rect to resolve. Each input in turn, in the
+    /// order of [`SraaInputs`]' roles: the output, the subsample geometry,
+    /// the centre geometry, the colour, the shadows, the secondary hits,
+    /// the albedo.
+    fn check(&self, inputs: &SraaInputs<'_>, rect: Option<&Rect>) -> Result<Rect, PassError> {
         let d = &self.desc;
-        let size = bind::check_output(inputs.output, d.output_format, "the desc's output_format")?;
-        let rules = InputRules { desc: d, size };
+        let region = bind::check_output_region(
+            inputs.output,
+            d.output_format,
+            "the desc's output_format",
+            rect,
+        )?;
+        let size = (
+            inputs.output.texture().width(),
+            inputs.output.texture().height(),
+        );
+        let rules = InputRules {
+            desc: d,
+            size,
+            rect,
+        };
         rules.subsample_geometry(inputs)?;
         if let Some(c) = required(
             inputs.centre.as_ref(),
@@ -915,7 +969,7 @@ impl SraaPass {
         )? {
             rules.centre_geometry(c)?;
         }
-        bind::check(inputs.color, &rules.one("colour", d.color_layers()))?;
+        rules.check(inputs.color, &rules.one("colour", d.color_layers()))?;
         bind::check_float_color("colour", inputs.color)?;
         if let Some(s) = required(
             inputs.shadows.as_ref(),
@@ -941,7 +995,7 @@ impl SraaPass {
         )? {
             rules.albedo(a)?;
         }
-        Ok(size)
+        Ok(region)
     }
 
     /// Record the resolve of one frame into `encoder` (one compute pass of
@@ -961,12 +1015,52 @@ impl SraaPass {
         inputs: &SraaInputs<'_>,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), PassError> {
+        self.encode_region(device, queue, encoder, inputs, None, timestamps)
+    }
+
+    /// Record the resolve of `rect` of the textures (a viewport: dynamic
+    /// resolution, split screen), as [`Self::encode`] records the whole:
+    /// every input is read, and the output written, at the rect's pixels,
+    /// the same pixels in every texture; the output's pixels outside the
+    /// rect are left as they were. The textures need not be the same size:
+    /// each must hold the rect (a [`PassError::Rect`] otherwise, also for
+    /// an empty rect), and is checked as [`Self::encode`] checks it
+    /// otherwise.
+    ///
+    /// The rect is the image: the reconstruction's neighbourhood (SRAA's
+    /// 3×3, or `(2r+1)²`) is clipped to the rect, not to the texture, as
+    /// `sraa::neighbourhood` clips it to an image's edge, so pixels outside
+    /// the rect (another view's) never bleed in, and the rect's pixels are
+    /// exactly those of the pass over textures of the rect's size holding
+    /// the same inputs.
+    pub fn encode_rect(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        inputs: &SraaInputs<'_>,
+        rect: Rect,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<(), PassError> {
+        self.encode_region(device, queue, encoder, inputs, Some(&rect), timestamps)
+    }
+
+    /// [`Self::encode`] of `rect` (the whole output for `None`).
+    fn encode_region(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        inputs: &SraaInputs<'_>,
+        rect: Option<&Rect>,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<(), PassError> {
         if self.desc.geometry == GeometryLayout::Buffers {
             return Err(PassError::Config(
                 "GeometryLayout::Buffers is encoded with encode_buffers".into(),
             ));
         }
-        let size = self.check(inputs)?;
+        let region = self.check(inputs, rect)?;
         let m = inputs.projection;
         let (projection, depth_miss) = match self.desc.depth {
             DepthKind::LinearView => ([0.0; 4], 0.0),
@@ -1005,7 +1099,7 @@ impl SraaPass {
             device,
             queue,
             encoder,
-            size,
+            region,
             (projection, depth_miss),
             &views,
             timestamps,
@@ -1096,14 +1190,14 @@ impl SraaPass {
             device,
             queue,
             encoder,
-            inputs.size,
+            Rect::whole(inputs.size),
             ([0.0; 4], 0.0),
             &bound,
             timestamps,
         )
     }
 
-    /// Record one frame of `size` over the `bound` resources, with the
+    /// Record one frame's `rect` over the `bound` resources, with the
     /// projection's z and w rows and the depth of a miss for hardware depth
     /// (`([0.0; 4], 0.0)` for linear view depth).
     #[allow(clippy::too_many_arguments)]
@@ -1112,24 +1206,32 @@ impl SraaPass {
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
-        (width, height): (u32, u32),
+        rect: Rect,
         (projection, depth_miss): ([f32; 4], f32),
         bound: &[(&'static str, Bound<'_>)],
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), PassError> {
+        let exposure = match self.desc.resolve {
+            ResolveSpace::ToneMapped { exposure } => exposure,
+            ResolveSpace::Linear => 0.0,
+        };
         let frame = SraaFrame {
             sraa: self.desc.params,
             projection,
-            width,
-            height,
+            width: rect.width,
+            height: rect.height,
             depth_miss,
             albedo_tolerance: ALBEDO_TOLERANCE,
+            origin_x: rect.x,
+            origin_y: rect.y,
+            exposure,
+            _pad: 0,
         };
         self.pipeline.encode(
             device,
             queue,
             encoder,
-            (width, height),
+            rect.size(),
             &[bytemuck::bytes_of(&frame)],
             bound,
             None,

@@ -14,7 +14,8 @@
 // defines): the constants LIGHTS, MATERIAL, HARDWARE_DEPTH,
 // UNSIGNED_NORMALS, SHADED_GIVEN (the shaded sample's geometry is an input
 // of its own), DECODED (geometry is stored as the kernels' subcone_Geometry,
-// taken as it is), SECONDARY, the bindings, the loaders
+// taken as it is), SECONDARY, TONE_MAPPED_RESOLVE (sraa::ResolveSpace),
+// the bindings, the loaders
 // sraa_load_sub (normal and depth), sraa_load_sub_shadow and
 // sraa_load_sub_albedo (subsample k of pixel p),
 // sraa_load_sec_shaded / sraa_load_sec_sub (secondary normal and path
@@ -23,7 +24,7 @@
 // sraa_load_color (layer l), sraa_load_shaded_shadow and
 // sraa_load_shaded_albedo (the shaded sample), and sraa_store (the output).
 
-// sraa.rs `SraaFrame` (64 bytes).
+// sraa.rs `SraaFrame` (80 bytes).
 struct SraaFrame {
     sraa: subcone_SraaParams,
     // The host projection's entries that map view-space z to clip z and w
@@ -35,6 +36,21 @@ struct SraaFrame {
     // The hardware depth of a sample nothing covered (the clear value).
     depth_miss: f32,
     albedo_tolerance: f32,
+    // The top-left pixel of the rect resolved (SraaPass::encode_rect; 0 for
+    // the whole texture and for buffers): width and height are the rect's,
+    // the reconstruction runs in the rect's own coordinates (so its
+    // neighbourhood is clipped to the rect) and every texel is read and
+    // written at origin + those coordinates (sraa_texel).
+    origin_x: u32,
+    origin_y: u32,
+    // The tone-mapped resolve's exposure (TONE_MAPPED_RESOLVE).
+    exposure: f32,
+    _pad: u32,
+}
+
+// The texel of the rect's pixel (x, y).
+fn sraa_texel(x: u32, y: u32) -> vec2<i32> {
+    return vec2<i32>(i32(x + frame.origin_x), i32(y + frame.origin_y));
 }
 
 // View depth from the host's depth sample: a linear view depth (> 0 and
@@ -131,7 +147,7 @@ fn sraa_albedo_tolerance() -> f32 {
 }
 
 fn sraa_shaded_geometry(x: u32, y: u32, secondary: bool) -> subcone_Geometry {
-    let p = vec2<i32>(i32(x), i32(y));
+    let p = sraa_texel(x, y);
     if secondary {
         return sraa_secondary_geometry(sraa_load_sec_shaded(p));
     }
@@ -139,7 +155,7 @@ fn sraa_shaded_geometry(x: u32, y: u32, secondary: bool) -> subcone_Geometry {
 }
 
 fn sraa_shaded_shadow(x: u32, y: u32, secondary: bool) -> u32 {
-    let p = vec2<i32>(i32(x), i32(y));
+    let p = sraa_texel(x, y);
     if secondary {
         return sraa_load_sec_shaded_shadow(p);
     }
@@ -147,17 +163,17 @@ fn sraa_shaded_shadow(x: u32, y: u32, secondary: bool) -> u32 {
 }
 
 fn sraa_shaded_albedo(x: u32, y: u32) -> vec3<f32> {
-    return sraa_load_shaded_albedo(vec2<i32>(i32(x), i32(y)));
+    return sraa_load_shaded_albedo(sraa_texel(x, y));
 }
 
 fn sraa_shaded_value(x: u32, y: u32, layer: u32) -> vec3<f32> {
-    return sraa_load_color(vec2<i32>(i32(x), i32(y)), layer);
+    return sraa_load_color(sraa_texel(x, y), layer);
 }
 
 // Subsample k of pixel (x, y), reconstructed: its primary layers, plus its
 // secondary layers where it sees a mirror (§3.3).
 fn sraa_reconstruct_subsample(x: u32, y: u32, k: u32) -> vec3<f32> {
-    let p = vec2<i32>(i32(x), i32(y));
+    let p = sraa_texel(x, y);
     var c = subcone_sraa_reconstruct_run(sraa_sub_geo(p, k), sraa_load_sub_shadow(p, k), sraa_load_sub_albedo(p, k), false, 0u, x, y, k);
     if SECONDARY {
         let tgt2 = sraa_secondary_geometry(sraa_load_sec_sub(p, k));
@@ -177,5 +193,13 @@ fn sraa_resolve_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let s1 = sraa_reconstruct_subsample(id.x, id.y, 1u);
     let s2 = sraa_reconstruct_subsample(id.x, id.y, 2u);
     let s3 = sraa_reconstruct_subsample(id.x, id.y, 3u);
-    sraa_store(vec2<i32>(i32(id.x), i32(id.y)), vec4<f32>(subcone_resolve_pixel(s0, s1, s2, s3), 1.0));
+    // sraa::ResolveSpace: the box (sraa::resolve_pixel) or Karis' weights
+    // (sraa::resolve_pixel_tone_mapped).
+    var c: vec3<f32>;
+    if TONE_MAPPED_RESOLVE {
+        c = subcone_resolve_pixel_tone_mapped(s0, s1, s2, s3, frame.exposure);
+    } else {
+        c = subcone_resolve_pixel(s0, s1, s2, s3);
+    }
+    sraa_store(sraa_texel(id.x, id.y), vec4<f32>(c, 1.0));
 }

@@ -15,8 +15,8 @@ use glam::Vec3;
 use subcone_kernels::ctss::CtssParams;
 use subcone_kernels::sraa::SraaParams;
 use subcone_passes::{
-    CtssCamera, CtssFrame, CtssPass, CtssPassDesc, FxaaPass, FxaaPassDesc, SraaInputs, SraaPass,
-    SraaPassDesc, SubsampleGeometry, UNIFORM_SLOTS,
+    CtssCamera, CtssFrame, CtssPass, CtssPassDesc, FxaaInput, FxaaPass, FxaaPassDesc, SraaInputs,
+    SraaPass, SraaPassDesc, SubsampleGeometry, UNIFORM_SLOTS,
 };
 
 /// Frames encoded by the allocation tests.
@@ -117,7 +117,13 @@ impl Host {
             sraa: SraaPass::new(device, &SraaPassDesc::msaa().with_params(SraaParams::PAPER))
                 .expect("sraa"),
             ctss: CtssPass::new(device, FIELD_WGSL, &CtssPassDesc::default()).expect("ctss"),
-            fxaa: FxaaPass::new(device, &FxaaPassDesc::default()).expect("fxaa"),
+            // FXAA reads the SRAA output, a float texture: declared tone
+            // mapped (the frame loop counts objects, not colours).
+            fxaa: FxaaPass::new(
+                device,
+                &FxaaPassDesc::default().with_input(FxaaInput::ToneMapped),
+            )
+            .expect("fxaa"),
             views,
             // Reversed Z, infinite far plane, near 0.05.
             projection: [

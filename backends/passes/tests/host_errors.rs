@@ -15,7 +15,8 @@ use std::sync::Arc;
 
 use subcone_kernels::sraa::SraaParams;
 use subcone_passes::{
-    FxaaPass, FxaaPassDesc, PassError, SraaInputs, SraaPass, SraaPassDesc, SubsampleGeometry,
+    FxaaInput, FxaaPass, FxaaPassDesc, PassError, SraaInputs, SraaPass, SraaPassDesc,
+    SubsampleGeometry,
 };
 
 use host_sraa::host::{self, texture};
@@ -89,7 +90,11 @@ fn the_hosts_uncaptured_error_handler_stays_the_hosts() {
     // The passes run (SRAA through the host example, FXAA on its output).
     let image = host_sraa::render(&device, &queue, SraaParams::PAPER, 16, 8).expect("host render");
     assert_eq!(image.len(), 16 * 8);
-    let fxaa = FxaaPass::new(&device, &FxaaPassDesc::default()).expect("fxaa");
+    let fxaa = FxaaPass::new(
+        &device,
+        &FxaaPassDesc::default().with_input(FxaaInput::ToneMapped),
+    )
+    .expect("fxaa");
     let read = wgpu::TextureUsages::TEXTURE_BINDING;
     let src = texture(
         &device,

@@ -148,7 +148,7 @@ fn host_ctss_matches_the_cpu_trace() {
 /// frame (edges are blended).
 #[test]
 fn fxaa_pass_matches_the_cpu_post_process() {
-    use subcone_passes::{FxaaPass, FxaaPassDesc};
+    use subcone_passes::{FxaaInput, FxaaPass, FxaaPassDesc};
     let Some((device, queue)) = common::device_or_skip("fxaa pass", host_sraa::open_device) else {
         return;
     };
@@ -181,8 +181,12 @@ fn fxaa_pass_matches_the_cpu_post_process() {
         },
         input.size(),
     );
-    let pass =
-        FxaaPass::new(&device, &FxaaPassDesc::default().with_output_format(format)).expect("pass");
+    // The CPU's NoAA frame in a float texture: display-referred colour
+    // (the kernel clamps it to [0, 1], as the CPU's post-process does).
+    let desc = FxaaPassDesc::default()
+        .with_output_format(format)
+        .with_input(FxaaInput::ToneMapped);
+    let pass = FxaaPass::new(&device, &desc).expect("pass");
     let mut enc = device.create_command_encoder(&Default::default());
     let (input_view, output_view) = (
         input.create_view(&Default::default()),

@@ -1,12 +1,12 @@
 //! The per-pixel antialiasing pass of SRAA (§3, pass 2), for a whole frame's
 //! slices: every layer of the four geometric subsamples of a pixel
 //! reconstructed from the shaded samples around it (eq. 1, gated by eq. 2 per
-//! light, §3.1–3.3), then the box resolve ([`resolve_pixel`]).
+//! light, §3.1–3.3), then the box resolve ([`resolve_pixel`](super::resolve_pixel)).
 //!
 //! [`Resolver::resolve`] gives, bit for bit, what the per-subsample,
 //! per-layer-group path gives ([`reconstruct_layers`] and
 //! [`reconstruct_layers_material`] over [`neighbourhood`], summed per
-//! subsample, then [`resolve_pixel`]); `kernels/tests/properties.rs` holds
+//! subsample, then [`resolve_pixel`](super::resolve_pixel)); `kernels/tests/properties.rs` holds
 //! the two together. What it does differently is only the order of the work:
 //! - the neighbourhood's geometry, shadow bits and colours are gathered once
 //!   per pixel, not once per subsample and layer group;
@@ -38,7 +38,7 @@ use glam::{Vec2, Vec3, Vec3A, Vec4};
 
 use super::{
     albedo_root, neighbourhood, reconstruct_layers, reconstruct_layers_material,
-    reconstruction_weight, resolve_pixel, root_difference, DepthMetric, Geometry, LayeredSample,
+    reconstruction_weight, root_difference, DepthMetric, Geometry, LayeredSample, ResolveSpace,
     SraaParams, WeightForm, MAX_LAYERS, NORMAL_COS_SNAP, SUBPIXEL_OFFSETS,
 };
 use crate::sum::WeightedSum4;
@@ -147,6 +147,9 @@ pub struct Resolver<'g> {
     /// [`reconstruction_weight`] computes it, in the lanes of
     /// [`Resolver::weights_product`].
     spatial: PairLanes,
+    /// How the four subsamples become the pixel ([`ResolveSpace::Linear`]
+    /// unless [`Resolver::with_resolve_space`] says otherwise).
+    space: ResolveSpace,
 }
 
 impl<'g> Resolver<'g> {
@@ -179,7 +182,15 @@ impl<'g> Resolver<'g> {
             tolerance,
             distance2,
             spatial: PairLanes::from_fn(|slot, k| spatial[slot][k]),
+            space: ResolveSpace::Linear,
         }
+    }
+
+    /// The same resolver, averaging each pixel's four subsamples in
+    /// `space` ([`ResolveSpace::resolve`]) instead of the linear box
+    /// ([`resolve_pixel`](super::resolve_pixel), the default).
+    pub fn with_resolve_space(self, space: ResolveSpace) -> Self {
+        Self { space, ..self }
     }
 
     /// The antialiased colour of pixel `(x, y)`: each subsample's primary
@@ -187,7 +198,8 @@ impl<'g> Resolver<'g> {
     /// when both `primary.albedo` and `frame.albedo` are given), plus, where
     /// its secondary depth is not NaN, its secondary layers on `secondary`
     /// from `frame.secondary`; each subsample's colour is the sum of its
-    /// layers, and the pixel the box resolve of the four ([`resolve_pixel`]).
+    /// layers, and the pixel the box resolve of the four ([`resolve_pixel`](super::resolve_pixel);
+    /// in another [`ResolveSpace`] with [`Resolver::with_resolve_space`]).
     ///
     /// Bit for bit what [`reconstruct_layers`] / [`reconstruct_layers_material`]
     /// give per subsample and group over [`neighbourhood`] (see the module
@@ -231,7 +243,7 @@ impl<'g> Resolver<'g> {
                 }
             }
         }
-        resolve_pixel(&subs)
+        self.space.resolve(&subs)
     }
 
     /// One group of layers for the four subsamples: `out[k]` is the sum of
@@ -446,7 +458,7 @@ impl<'g> Resolver<'g> {
                 }
             }
         }
-        resolve_pixel(&subs)
+        self.space.resolve(&subs)
     }
 
     /// One subsample's layers of one group, summed: [`reconstruct_layers`]

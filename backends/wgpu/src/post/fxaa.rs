@@ -9,7 +9,7 @@
 use std::sync::Arc;
 
 use subcone_kernels::fxaa::FxaaParams;
-use subcone_passes::{FxaaPass, FxaaPassDesc};
+use subcone_passes::{FxaaInput, FxaaPass, FxaaPassDesc};
 use subcone_scene::{PassTiming, RenderError};
 
 use crate::compute::{self, Allocate, Program};
@@ -38,7 +38,10 @@ impl CacheKey for FxaaPassKey {
 fn pass(ctx: &GpuContext, params: &FxaaParams) -> Result<Arc<FxaaPass>, RenderError> {
     let key = FxaaPassKey(bytemuck::cast(*params));
     ctx.cached_or_insert(key, |_| {
+        // The frame is FXAA's display-referred input (the kernel clamps
+        // it to [0, 1], as the CPU's post-process does).
         let desc = FxaaPassDesc::default()
+            .with_input(FxaaInput::ToneMapped)
             .with_params(*params)
             .with_output_format(FORMAT);
         ctx.scoped("fxaa", || FxaaPass::new(&ctx.device, &desc))?
