@@ -280,7 +280,9 @@ fn summary(a: Args) -> Result<()> {
     if pass_rows.is_empty() {
         md += "No pass was timed: see `passes.log`.\n";
     } else {
-        let trusted = passes.as_ref().is_some_and(|p| p["timestamps_trusted"] == true);
+        let trusted = passes
+            .as_ref()
+            .is_some_and(|p| p["timestamps_trusted"] == true);
         md += &format!(
             "Median ms of each `subcone-passes` pass encoded and submitted alone (`gpu_check passes`), \
              {} runs after a warm-up: the wall clock from submission to completion, and the GPU's \

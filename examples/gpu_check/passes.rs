@@ -15,8 +15,8 @@ use serde_json::{json, Value};
 use subcone_kernels::ctss::CtssParams;
 use subcone_kernels::sraa::SraaParams;
 use subcone_passes::{
-    CtssCamera, CtssFrame, CtssPass, CtssPassDesc, FxaaPass, FxaaPassDesc, SraaInputs, SraaPass,
-    SraaPassDesc, SubsampleGeometry, TaaInputs, TaaPass, TaaPassDesc,
+    CtssCamera, CtssFrame, CtssPass, CtssPassDesc, FxaaInput, FxaaPass, FxaaPassDesc, SraaInputs,
+    SraaPass, SraaPassDesc, SubsampleGeometry, TaaInputs, TaaPass, TaaPassDesc,
 };
 use subcone_wgpu::GpuContext;
 
@@ -86,7 +86,13 @@ fn pattern(ctx: &GpuContext, label: &str, (w, h): (u32, u32), velocity: bool) ->
     let data: Vec<u16> = (0..w * h)
         .flat_map(|i| {
             let on = ((i % w) / 7 + (i / w) / 7) % 2 == 1;
-            let v = if velocity { 0.0 } else if on { 0.9 } else { 0.1 };
+            let v = if velocity {
+                0.0
+            } else if on {
+                0.9
+            } else {
+                0.1
+            };
             let px = [v, v, v, 1.0];
             px.into_iter()
                 .take(channels)
@@ -163,7 +169,10 @@ type Encode<'a> = Box<
 
 /// Time `encode` alone: one warm-up, then `runs` submissions.
 fn time(ctx: &GpuContext, runs: u32, encode: &Encode<'_>) -> Result<(Vec<f64>, Vec<f64>)> {
-    let stamps = ctx.device.features().contains(wgpu::Features::TIMESTAMP_QUERY);
+    let stamps = ctx
+        .device
+        .features()
+        .contains(wgpu::Features::TIMESTAMP_QUERY);
     let queries = stamps.then(|| {
         let set = ctx.device.create_query_set(&wgpu::QuerySetDescriptor {
             label: Some("pass timestamps"),
@@ -181,11 +190,13 @@ fn time(ctx: &GpuContext, runs: u32, encode: &Encode<'_>) -> Result<(Vec<f64>, V
     let (mut wall, mut gpu) = (Vec::new(), Vec::new());
     for run in 0..=runs {
         let mut enc = ctx.device.create_command_encoder(&Default::default());
-        let writes = queries.as_ref().map(|(set, _)| wgpu::ComputePassTimestampWrites {
-            query_set: set,
-            beginning_of_pass_write_index: Some(0),
-            end_of_pass_write_index: Some(1),
-        });
+        let writes = queries
+            .as_ref()
+            .map(|(set, _)| wgpu::ComputePassTimestampWrites {
+                query_set: set,
+                beginning_of_pass_write_index: Some(0),
+                end_of_pass_write_index: Some(1),
+            });
         encode(&mut enc, writes)?;
         if let Some((set, resolve)) = &queries {
             enc.resolve_query_set(set, 0..2, resolve, 0);
@@ -196,7 +207,9 @@ fn time(ctx: &GpuContext, runs: u32, encode: &Encode<'_>) -> Result<(Vec<f64>, V
         let ms = start.elapsed().as_secs_f64() * 1e3;
         let ticks = match &queries {
             Some((_, resolve)) => {
-                let bytes = ctx.read_buffer(resolve, 0, 16).map_err(|e| anyhow!("{e}"))?;
+                let bytes = ctx
+                    .read_buffer(resolve, 0, 16)
+                    .map_err(|e| anyhow!("{e}"))?;
                 let t: &[u64] = bytemuck::cast_slice(&bytes);
                 Some(t[1].saturating_sub(t[0]))
             }
@@ -222,7 +235,14 @@ fn median(v: &[f64]) -> Value {
 fn at_size(ctx: &GpuContext, size: (u32, u32), runs: u32) -> Result<Vec<Value>> {
     let read = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT;
     let store = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
-    let depth = texture(ctx, "msaa depth", size, 4, wgpu::TextureFormat::Depth32Float, read);
+    let depth = texture(
+        ctx,
+        "msaa depth",
+        size,
+        4,
+        wgpu::TextureFormat::Depth32Float,
+        read,
+    );
     let normal = texture(ctx, "msaa normal", size, 4, COLOR, read);
     clear_prepass(ctx, &depth, &normal);
     let colour = pattern(ctx, "shaded colour", size, false);
@@ -233,8 +253,13 @@ fn at_size(ctx: &GpuContext, size: (u32, u32), runs: u32) -> Result<Vec<Value>> 
     let pe = |what: &str, e: subcone_passes::PassError| anyhow!("{what}: {e}");
     let sraa = SraaPass::new(d, &SraaPassDesc::msaa().with_params(SraaParams::TUNED))
         .map_err(|e| pe("SraaPass", e))?;
-    let ctss = CtssPass::new(d, FIELD_WGSL, &CtssPassDesc::default()).map_err(|e| pe("CtssPass", e))?;
-    let fxaa = FxaaPass::new(d, &FxaaPassDesc::default()).map_err(|e| pe("FxaaPass", e))?;
+    let ctss =
+        CtssPass::new(d, FIELD_WGSL, &CtssPassDesc::default()).map_err(|e| pe("CtssPass", e))?;
+    let fxaa = FxaaPass::new(
+        d,
+        &FxaaPassDesc::default().with_input(FxaaInput::ToneMapped),
+    )
+    .map_err(|e| pe("FxaaPass", e))?;
     let taa = TaaPass::new(d, &TaaPassDesc::default()).map_err(|e| pe("TaaPass", e))?;
     let q = &ctx.queue;
     let fov = 0.8;
@@ -261,7 +286,8 @@ fn at_size(ctx: &GpuContext, size: (u32, u32), runs: u32) -> Result<Vec<Value>> 
                     secondary: None,
                     output: &out,
                 };
-                sraa.encode(d, q, enc, &inputs, ts).map_err(|e| pe("SraaPass", e))
+                sraa.encode(d, q, enc, &inputs, ts)
+                    .map_err(|e| pe("SraaPass", e))
             }),
         ),
         (
@@ -281,7 +307,8 @@ fn at_size(ctx: &GpuContext, size: (u32, u32), runs: u32) -> Result<Vec<Value>> 
                     host_group: None,
                     output: &out,
                 };
-                ctss.encode(d, q, enc, &frame, ts).map_err(|e| pe("CtssPass", e))
+                ctss.encode(d, q, enc, &frame, ts)
+                    .map_err(|e| pe("CtssPass", e))
             }),
         ),
         (
@@ -300,7 +327,8 @@ fn at_size(ctx: &GpuContext, size: (u32, u32), runs: u32) -> Result<Vec<Value>> 
                     history: &history,
                     history_frames: 4,
                 };
-                taa.encode(d, q, enc, &inputs, &out, ts).map_err(|e| pe("TaaPass", e))
+                taa.encode(d, q, enc, &inputs, &out, ts)
+                    .map_err(|e| pe("TaaPass", e))
             }),
         ),
     ];

@@ -75,8 +75,9 @@ pub const PHASES_KARIS: u32 = 8;
 /// Jitter phases that resolve a still image on as many positions as ssaa16.
 pub const PHASES_FINE: u32 = 16;
 
-/// The Rec. 709 luma weights of [`tonemap`] (linear RGB).
-pub const LUMA: Vec3 = Vec3::new(0.2126, 0.7152, 0.0722);
+/// The Rec. 709 luma weights of [`tonemap`] (linear RGB): the SRAA
+/// tone-mapped resolve's.
+pub const LUMA: Vec3 = crate::sraa::RESOLVE_LUMA;
 
 /// Variance clipping's `γ` (Salvi 2016: 1 is tight, and less ghosting; more
 /// lets the history keep more of the sub-pixel detail it gathered).
@@ -86,20 +87,10 @@ pub const CLIP_GAMMA: f32 = 1.25;
 /// exponential average after its first `1/α_min − 1` frames.
 pub const MIN_CURRENT_WEIGHT: f32 = 1.0 / 16.0;
 
-/// Where a TAA resolve clips and blends ([`TaaParams::tone_mapped`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub enum ResolveSpace {
-    /// Linear radiance: a still camera converges to the box filter of its
-    /// jittered samples (the default).
-    #[default]
-    Linear,
-    /// Karis' reversible tone map of the colour times `exposure` (positive
-    /// and finite; anything else reads as 1).
-    ToneMapped {
-        /// The exposure the display applies.
-        exposure: f32,
-    },
-}
+/// Where a TAA resolve clips and blends ([`TaaParams::tone_mapped`]): the
+/// SRAA resolve's choice, one type for both (linear radiance by default, or
+/// Karis' tone-mapped space with the display's exposure).
+pub use crate::sraa::ResolveSpace;
 
 /// What one TAA resolve runs with; `#[repr(C)]`, 32 bytes, uploaded
 /// unchanged (`subcone_TaaParams` in WGSL).

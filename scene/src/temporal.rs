@@ -76,10 +76,11 @@ impl TaaConfig {
         if self.phases == 0 {
             return bad("at least one jitter phase".into());
         }
-        if let ResolveSpace::ToneMapped { exposure } = self.space {
-            if !(exposure > 0.0 && exposure.is_finite()) {
-                return bad(format!("exposure {exposure} must be positive and finite"));
-            }
+        if !self.space.is_valid() {
+            return bad(format!(
+                "{:?}: the exposure must be positive and finite",
+                self.space
+            ));
         }
         if !(self.min_current_weight > 0.0 && self.min_current_weight <= 1.0) {
             return bad(format!(
