@@ -73,8 +73,9 @@ mod sraa;
 
 pub use bind::{BIND_GROUP_CACHE, UNIFORM_SLOTS};
 pub use ctss::{
-    CtssBuffers, CtssCamera, CtssFrame, CtssOutput, CtssPass, CtssPassDesc, CtssTrace,
-    CTSS_KERNELS, MAX_BATCH, MAX_SAMPLES_PER_SIDE, SPHERE_TRACE_HOOK,
+    CtssBackground, CtssBuffers, CtssCamera, CtssDepth, CtssFrame, CtssOutput, CtssPass,
+    CtssPassDesc, CtssProjection, CtssRect, CtssTrace, CtssView, CTSS_KERNELS, MAX_BATCH,
+    MAX_SAMPLES_PER_SIDE, SPHERE_TRACE_HOOK,
 };
 pub use fxaa::{FxaaPass, FxaaPassDesc};
 pub use sraa::{
