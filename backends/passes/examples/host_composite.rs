@@ -17,7 +17,7 @@
 //! the composite. The test `tests/host_composite.rs` reads back pixels on
 //! both sides of the intersection.
 
-use glam::{Mat4, Vec3};
+use glam::{Mat4, Vec3, Vec4};
 use subcone_kernels::cone::{cone_tan_theta, PixelFootprint};
 use subcone_kernels::ctss::{CtssParams, CONE_COVERAGE};
 use subcone_passes::{
@@ -77,10 +77,28 @@ struct Targets {
 }
 ";
 
-/// The camera's view and projection for a `width × height` image.
+/// The camera's view (right-handed: it looks down its −z) and projection
+/// (perspective, wgpu's depth range 0 to 1) for a `width × height` image,
+/// as a host's math library makes them.
 pub fn matrices(width: u32, height: u32) -> (Mat4, Mat4) {
-    let view = Mat4::look_at_rh(EYE, TARGET, Vec3::Y);
-    let projection = Mat4::perspective_rh(FOV_Y, width as f32 / height as f32, 0.1, 100.0);
+    let f = (TARGET - EYE).normalize();
+    let s = f.cross(Vec3::Y).normalize();
+    let u = s.cross(f);
+    let view = Mat4::from_rows(
+        s.extend(-s.dot(EYE)),
+        u.extend(-u.dot(EYE)),
+        (-f).extend(f.dot(EYE)),
+        Vec4::W,
+    );
+    let (near, far) = (0.1, 100.0);
+    let t = near * (0.5 * FOV_Y).tan();
+    let r = t * width as f32 / height as f32;
+    let projection = Mat4::from_rows(
+        Vec4::new(near / r, 0.0, 0.0, 0.0),
+        Vec4::new(0.0, near / t, 0.0, 0.0),
+        Vec4::new(0.0, 0.0, far / (near - far), near * far / (near - far)),
+        Vec4::new(0.0, 0.0, -1.0, 0.0),
+    );
     (view, projection)
 }
 
@@ -210,11 +228,11 @@ fn rasterise(
             module: &module,
             entry_point: Some("vs"),
             compilation_options: Default::default(),
-            buffers: &[wgpu::VertexBufferLayout {
+            buffers: &[Some(wgpu::VertexBufferLayout {
                 array_stride: 12,
                 step_mode: wgpu::VertexStepMode::Vertex,
                 attributes: &wgpu::vertex_attr_array![0 => Float32x3],
-            }],
+            })],
         },
         primitive: wgpu::PrimitiveState::default(),
         depth_stencil: Some(wgpu::DepthStencilState {
