@@ -36,11 +36,27 @@ fn black_over_the_background_is_the_background_resolve() {
             let x = 0.17 + 0.0004 * i as f32;
             let dir = Vec3::new(x, 0.013, 1.0).normalize();
             let (right, up) = cross_section_frame(dir, Vec3::Y);
-            let run = |bg| trace(&params, Vec3::ZERO, dir, right, up, sphere, normal, shade, bg);
+            let run = |bg| {
+                trace(
+                    &params,
+                    Vec3::ZERO,
+                    dir,
+                    right,
+                    up,
+                    sphere,
+                    normal,
+                    shade,
+                    bg,
+                )
+            };
             let (opaque, clear) = (run(background), run(Vec3::ZERO));
             let a = clear.alpha();
             assert!((0.0..=1.0).contains(&a));
-            assert_eq!(a, opaque.alpha(), "the coverage does not depend on the background");
+            assert_eq!(
+                a,
+                opaque.alpha(),
+                "the coverage does not depend on the background"
+            );
             let over = clear.color + (1.0 - a) * background;
             assert!(
                 (over - opaque.color).abs().max_element() < 1e-6,
@@ -60,11 +76,18 @@ fn black_over_the_background_is_the_background_resolve() {
                 // The group's sample lies on the sphere's near side, within
                 // a cone radius of it.
                 let p = clear.depth * dir;
-                assert!(sphere(p).abs() < 0.1 && p.z < 5.0, "x {x}: depth {}", clear.depth);
+                assert!(
+                    sphere(p).abs() < 0.1 && p.z < 5.0,
+                    "x {x}: depth {}",
+                    clear.depth
+                );
             }
         }
     }
-    assert!(partial > 20 && whole > 20 && none > 20, "{partial} {whole} {none}");
+    assert!(
+        partial > 20 && whole > 20 && none > 20,
+        "{partial} {whole} {none}"
+    );
     // A hard hit of the axis covers the pixel whatever the mask says.
     assert_eq!(
         subcone_kernels::ctss::coverage_alpha(0, StopReason::HardHit),

@@ -237,8 +237,8 @@ impl CtssProjection {
 /// The camera of one [`CtssPass`] frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum CtssView {
-    /// A pinhole: the rays of [`CtssCamera::ray`], bit for bit as before
-    /// [`CtssProjection`] existed (subcone's own SDF frames trace these).
+    /// A pinhole: the rays of [`CtssCamera::ray`], bit for bit (subcone's
+    /// own SDF frames trace these).
     Pinhole(CtssCamera),
     /// The host's view and projection matrices.
     Projection(CtssProjection),
@@ -348,7 +348,9 @@ pub enum CtssTrace {
     /// `fn subcone_trace(params: subcone_CtssParams, origin: vec3<f32>,
     /// dir: vec3<f32>, right: vec3<f32>, up: vec3<f32>, background:
     /// vec3<f32>) -> subcone_CtssTraceResult` (`color`, `samples` and
-    /// `steps` are read; `right` and `up` are the cone's cross-section
+    /// `steps` are read, `coverage` and `stop` with
+    /// [`CtssBackground::Transparent`], `depth` with [`CtssDepth::View`];
+    /// `right` and `up` are the cone's cross-section
     /// axes, `subcone_cross_section_frame`): for what the kernels' trace
     /// does not do, such as §5.3's semi-transparent objects with `K` masks,
     /// or a sphere-traced reference (NoAA, SSAA) through the same pixel
@@ -365,7 +367,8 @@ pub enum CtssOutput {
     #[default]
     Texture,
     /// Storage buffers ([`CtssPass::encode_buffers`]): the colour as
-    /// `array<vec4<f32>>`, row-major, alpha 1; with `counts`, also per
+    /// `array<vec4<f32>>`, row-major (alpha as [`CtssPassDesc::background`]
+    /// says); with `counts`, also per
     /// pixel `vec4<u32>(steps, shaded samples, c.x, c.y)`, the field
     /// evaluations and shaded hit groups of its cones and the host's two
     /// counters `c = subcone_counters()` (a `fn subcone_counters() ->
@@ -390,7 +393,8 @@ pub struct CtssPassDesc<'a> {
     /// not depend on it (eq. 6 adds the same terms in the same order).
     pub batch: u32,
     /// The output texture's format: `Rgba8Unorm`, `Rgba16Float` or
-    /// `Rgba32Float` (a storage texture; linear colour, alpha 1). Checked
+    /// `Rgba32Float` (a storage texture; linear colour, alpha as
+    /// [`Self::background`] says). Checked
     /// for the texture output only.
     pub output_format: wgpu::TextureFormat,
     /// The layout of the host's own bind group, which its WGSL declares as
@@ -742,8 +746,9 @@ impl CtssPass {
     }
 
     /// Record the trace of one frame into `encoder` (one compute pass), its
-    /// camera and parameters written through `queue`. Checks the output and
-    /// the host group first: on an error nothing is recorded or written.
+    /// camera and parameters written through `queue`. Checks the output, the
+    /// depth texture, the rectangle, the host group and the camera first: on
+    /// an error nothing is recorded or written.
     ///
     /// `timestamps`, when given, are written at the start and end of the
     /// compute pass: the host creates the query set (`QueryType::Timestamp`,

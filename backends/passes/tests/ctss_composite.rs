@@ -355,8 +355,7 @@ fn a_jittered_projection_is_the_jittered_pinhole() {
     // projection moves the scene by minus that.
     let shift = Vec3::new(-2.0 * jitter.x / W as f32, 2.0 * jitter.y / H as f32, 0.0);
     let aspect = W as f32 / H as f32;
-    let projection =
-        Mat4::from_translation(shift) * perspective(FOV_Y, aspect, 0.1, 100.0);
+    let projection = Mat4::from_translation(shift) * perspective(FOV_Y, aspect, 0.1, 100.0);
     let b = trace(
         &device,
         &queue,
@@ -450,10 +449,7 @@ fn an_orthographic_camera_sees_the_sphere_at_its_size() {
         return;
     };
     let (w, h) = (32, 24);
-    let ortho = CtssProjection::new(
-        view(),
-        orthographic(-2.0, 2.0, -1.5, 1.5, 0.1, 100.0),
-    );
+    let ortho = CtssProjection::new(view(), orthographic(-2.0, 2.0, -1.5, 1.5, 0.1, 100.0));
     let t = CtssBackground::Transparent;
     let img = trace(
         &device,
@@ -476,8 +472,14 @@ fn an_orthographic_camera_sees_the_sphere_at_its_size() {
         .count() as f32;
     let radius = (covered / std::f32::consts::PI).sqrt();
     println!("orthographic disc: {covered} pixels ({inside} centres in the predicted disc), radius {radius} (8 predicted)");
-    assert!((covered - inside).abs() <= 2.0, "{covered} pixels covered, {inside} predicted");
-    assert!((radius - 8.0).abs() < 0.25, "radius {radius} pixels, 8 predicted");
+    assert!(
+        (covered - inside).abs() <= 2.0,
+        "{covered} pixels covered, {inside} predicted"
+    );
+    assert!(
+        (radius - 8.0).abs() < 0.25,
+        "radius {radius} pixels, 8 predicted"
+    );
     let (_, d) = img.at(w / 2, h / 2);
     assert!((d - 3.0).abs() < 0.01, "centre depth {d}");
     // 4 × 4 rays a pixel antialias the edge, and the area stays.
