@@ -159,6 +159,9 @@ fn read_r32f(
     Ok(out)
 }
 
+/// The raster's colour and view depth (in `x`), read back.
+type RasterImages = (Vec<[f32; 4]>, Vec<[f32; 4]>);
+
 /// Rasterise the plane: colour and view depth, `Rgba32Float` each, with a
 /// `Depth32Float` depth buffer.
 fn rasterise(
@@ -166,7 +169,7 @@ fn rasterise(
     queue: &wgpu::Queue,
     view_projection: Mat4,
     (width, height): (u32, u32),
-) -> Result<(Vec<[f32; 4]>, Vec<[f32; 4]>), String> {
+) -> Result<RasterImages, String> {
     let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
     let f32x4 = wgpu::TextureFormat::Rgba32Float;
     let colour = host::texture(device, "raster colour", (width, height, 1), 1, f32x4, usage);
