@@ -2476,9 +2476,10 @@ fn check_ctss_trace(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
          let params = subcone_CtssParams(f(0u), f(1u), f(2u), f(3u), f(4u), f(5u), u(6u), u(7u), u(8u), u(9u), 0u, 0u);
          let r = subcone_ctss_trace(params, v3(12u), v3(15u), v3(18u), v3(21u), vec3<f32>(0.1, 0.2, 0.9));
          out[o] = bitcast<u32>(r.color.x); out[o + 1u] = bitcast<u32>(r.color.y); out[o + 2u] = bitcast<u32>(r.color.z);
-         out[o + 3u] = r.samples; out[o + 4u] = r.steps; out[o + 5u] = r.coverage; out[o + 6u] = r.stop;";
+         out[o + 3u] = r.samples; out[o + 4u] = r.steps; out[o + 5u] = r.coverage; out[o + 6u] = r.stop;
+         out[o + 7u] = bitcast<u32>(r.depth);";
     let library = [lib.ctss.as_str(), &lib.trace].concat();
-    let out = run(ctx, &library, body, 25, 7, &input)?;
+    let out = run(ctx, &library, body, 25, 8, &input)?;
     let stop_code = |s: subcone_kernels::ctss::StopReason| {
         use subcone_kernels::ctss::StopReason::*;
         match s {
@@ -2494,10 +2495,11 @@ fn check_ctss_trace(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
     };
     let mut colour = Report::new("subcone_ctss_trace");
     let mut decisions = Report::new("subcone_ctss_trace (counts, mask, stop)");
+    let mut depth = Report::new("subcone_ctss_trace (depth)");
     let mut flipped = Vec::new();
     let (mut split_rays, mut multi_group_rays) = (0usize, 0usize);
     for (k, (scene, params, ray)) in rays.iter().enumerate() {
-        let g = &out[7 * k..7 * k + 7];
+        let g = &out[8 * k..8 * k + 8];
         let r = trace_field(
             params,
             ray,
@@ -2507,7 +2509,7 @@ fn check_ctss_trace(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
         );
         let rust = [r.samples, r.steps, r.coverage, stop_code(r.stop)];
         let case = (scene, params.tan_theta, params.flags, ray.dir);
-        if rust[..] != g[3..] {
+        if rust[..] != g[3..7] {
             flipped.push((case, rust, [g[3], g[4], g[5], g[6]]));
             continue;
         }
@@ -2519,6 +2521,14 @@ fn check_ctss_trace(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
         }
         decisions.exact(&case, 1, 1);
         colour.floats(TOL_CTSS_TRACE, &case, &r.color.to_array(), &floats(&g[..3]));
+        // The nearest contributing group's depth: +∞ on both sides, or the
+        // same depth up to the rounding of the march.
+        let gpu_depth = f32::from_bits(g[7]);
+        if r.depth.is_infinite() || gpu_depth.is_infinite() {
+            depth.exact(&case, r.depth.to_bits(), g[7]);
+        } else {
+            depth.floats(TOL_CTSS_TRACE, &case, &[r.depth], &[gpu_depth]);
+        }
     }
     // Too many flips: every one is a failure.
     if flipped.len() * 200 > rays.len() * CTSS_TRACE_FLIPS_PER_200 {
@@ -2548,7 +2558,7 @@ fn check_ctss_trace(ctx: &GpuContext, lib: &Library) -> Result<String, String> {
             ));
         }
     }
-    join(d, colour.finish())
+    join(join(d, colour.finish()), depth.finish())
 }
 
 const CHECKS: [(&str, Check); 13] = [

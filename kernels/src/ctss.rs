@@ -1091,6 +1091,38 @@ pub struct TraceResult {
     pub coverage: u32,
     /// Why the trace ended.
     pub stop: StopReason,
+    /// Depth along the ray (from its origin, in units of its direction) of
+    /// the nearest hit group that adds to eq. 6 (weight above 0): that
+    /// group's sample depth `t` (the backtraced entry, eq. 10, or the
+    /// backtraced first hard hit, §3.6); `+∞` when no group does. A group the
+    /// cone grazed without covering a cell of the mask is not the pixel's
+    /// surface, so it gives no depth.
+    pub depth: f32,
+}
+
+impl TraceResult {
+    /// The pixel's coverage as an alpha ([`coverage_alpha`] of
+    /// [`Self::coverage`] and [`Self::stop`]).
+    pub fn alpha(&self) -> f32 {
+        coverage_alpha(self.coverage, self.stop)
+    }
+}
+
+/// The part of a pixel its hit groups cover, from the global mask `M`
+/// (§3.4–3.5): `bitCount(M)/32`, or 1 when the trace ended on a rule that
+/// gives the background no weight ([`StopReason::covers_pixel`]). With
+/// visibility weights and no minimum weight (the defaults), it is
+/// `1 − ConeStepper::background_weight()` and the hit weights of eq. 6 sum
+/// to it, so the colour resolved against a black background is the pixel's
+/// premultiplied colour and `premultiplied + (1 − alpha)·background` is the
+/// colour resolved against `background` (the `over` operator, Porter and
+/// Duff 1984), up to rounding.
+pub fn coverage_alpha(coverage: u32, stop: StopReason) -> f32 {
+    if stop.covers_pixel() {
+        1.0
+    } else {
+        crate::mask::mask_weight(coverage)
+    }
 }
 
 /// Trace one pixel's cone with CTSS (Algorithm 1) through closures.
@@ -1166,6 +1198,7 @@ where
     let mut field = ClosureField { sdf, normal };
     let mut stepper = ConeStepper::new(params);
     let mut agg = Aggregate::new();
+    let mut depth = f32::INFINITY;
     let stop = loop {
         let t = stepper.t();
         let d = field.sample(origin + t * dir).distance;
@@ -1177,6 +1210,9 @@ where
                 let (c, a) = shade(p, n);
                 let mask = group_mask(params, &ray, &s, n, &mut field);
                 let (_, w) = stepper.record_alpha_mask(mask, a);
+                if depth == f32::INFINITY && w > 0.0 {
+                    depth = s.t;
+                }
                 agg.add(w, c);
             }
             Event::Stop(r) => break r,
@@ -1188,6 +1224,7 @@ where
         steps: stepper.steps(),
         coverage: stepper.coverage(),
         stop,
+        depth,
     }
 }
 

@@ -201,11 +201,13 @@ pub fn render_gpu(
         queue,
         &mut enc,
         &CtssFrame {
-            camera: camera(),
+            camera: camera().into(),
             params: params(height),
             background: BACKGROUND,
             host_group: Some(&host_group),
             output: &output_view,
+            depth: None,
+            rect: None,
         },
         None,
     )

@@ -10,7 +10,8 @@
 //! the same image from both (the example `host_ctss` measures it).
 
 use bytemuck::{Pod, Zeroable};
-use glam::Vec3;
+use glam::{Mat4, Vec3, Vec4};
+use subcone_kernels::aggregate::Weighting;
 use subcone_kernels::camera::PinholeCamera;
 use subcone_kernels::ctss::CtssParams;
 
@@ -47,15 +48,38 @@ pub const MAX_SAMPLES_PER_SIDE: u32 = 64;
 pub const SPHERE_TRACE_HOOK: &str =
     "fn ctss_field(p: vec3<f32>) -> vec2<f32> { let f = subcone_field(p); return f.xy; }\n";
 
-/// The frame's camera and background; `CtssUniform` in `ctss.wgsl` (96
-/// bytes).
+/// The frame's camera, background and rectangle; `CtssUniform` in
+/// `ctss.wgsl` (192 bytes).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub(crate) struct CtssUniform {
+    /// The pinhole ([`CtssView::Pinhole`]), or the eye and frame of a
+    /// [`CtssProjection`]; its width and height are the rectangle's.
     pub(crate) camera: PinholeCamera,
     pub(crate) background: [f32; 3],
+    /// [`PROJECTION_PINHOLE`], [`PROJECTION_PERSPECTIVE`] or
+    /// [`PROJECTION_ORTHOGRAPHIC`].
+    pub(crate) projection: u32,
+    /// NDC to world, column-major (a [`CtssProjection`]; zero for a
+    /// pinhole).
+    pub(crate) inverse_view_projection: [[f32; 4]; 4],
+    /// The unit forward axis: view depth of `x` is `forward·x + depth_offset`.
+    pub(crate) forward: [f32; 3],
+    pub(crate) depth_offset: f32,
+    /// The rectangle's first pixel in the output.
+    pub(crate) origin: [u32; 2],
+    /// The output's width: a buffer row's length.
+    pub(crate) row_length: u32,
     pub(crate) _pad: u32,
 }
+
+/// [`CtssUniform::projection`]: the pinhole's rays (`subcone_pinhole_dir`).
+const PROJECTION_PINHOLE: u32 = 0;
+/// [`CtssUniform::projection`]: rays from the eye through the unprojected
+/// pixel.
+const PROJECTION_PERSPECTIVE: u32 = 1;
+/// [`CtssUniform::projection`]: parallel rays from the plane of view depth 0.
+const PROJECTION_ORTHOGRAPHIC: u32 = 2;
 
 /// A pinhole camera: the eye and an orthonormal frame. Pixel `(x, y)` of a
 /// `width × height` image (x right, y down) is the cone around the ray
@@ -116,6 +140,203 @@ impl CtssCamera {
     }
 }
 
+/// A camera given by the host's matrices, as its rasteriser uses them: a
+/// jittered projection (a temporal method's), an off-axis frustum (a tile of
+/// a larger image, a stereo eye) or an orthographic projection.
+///
+/// Pixel `(x, y)` of the pass's `w × h` rectangle (x right, y down) is the
+/// cone about the ray through NDC point `(2(x + ½)/w − 1, 1 − 2(y + ½)/h)`
+/// (the pixel centre as wgpu's viewport transform maps it), unprojected
+/// through `(projection · view)⁻¹`:
+///
+/// - **perspective** (the projection's last row is `(0, 0, ±1, 0)` up to
+///   scale: clip `w` is the view depth): from the eye (`view⁻¹ · (0, 0, 0,
+///   1)`) through the unprojected point at NDC depth ½, which any depth
+///   convention (`[0, 1]`, reversed, infinite far plane, `[−1, 1]`) places
+///   inside the frustum. With the pinhole's frame and a symmetric frustum
+///   this is [`CtssCamera`]'s ray, up to rounding; the cone's half angle is
+///   the parameters' `tan_theta` (CTSS eq. 3), as for the pinhole.
+/// - **orthographic** (the last row is `(0, 0, 0, w)`): parallel rays
+///   through the unprojected points at NDC depths ¼ and ¾, starting on the
+///   plane of view depth 0 (so that the parameters' range is in view depth,
+///   as for the pinhole). A pixel of an orthographic camera has a constant
+///   footprint, a cone of zero angle and non-zero radius; the kernels'
+///   cone has its apex at the ray's origin (eq. 3: `R_c = t·tan θ`) and no
+///   constant term, so the pass traces it with `tan_theta = 0`: one ray per
+///   cone, a hit or a miss (NoAA edges; `N × N` cones per pixel,
+///   [`CtssPassDesc::samples_per_side`], antialias it as SSAA does). A
+///   non-zero `tan_theta` is refused ([`PassError::Config`]).
+///
+/// Any other projection (a last row mixing both forms) is refused. The view
+/// matrix is rigid (a rotation and a translation) and the view space's
+/// forward axis is `±z`: the one of the two on which the frustum lies (the
+/// unprojected NDC point `(0, 0, ½)`), so right- and left-handed views and
+/// every depth convention work. View depth ([`CtssDepth::View`]) is the
+/// distance from the eye (perspective) or from the view's origin
+/// (orthographic) along that axis: `−z_view` for glam's `look_at_rh`,
+/// `perspective_rh` and `orthographic_rh`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CtssProjection {
+    /// World to view.
+    pub view: Mat4,
+    /// View to clip, as the host rasterises with it (jitter included).
+    pub projection: Mat4,
+}
+
+impl CtssProjection {
+    /// The camera of `view` and `projection`.
+    pub fn new(view: Mat4, projection: Mat4) -> Self {
+        CtssProjection { view, projection }
+    }
+
+    /// The pass's uniform fields for this camera over a `size` rectangle,
+    /// or why it cannot be traced with `params`.
+    fn uniform(
+        &self,
+        params: &CtssParams,
+        size: (u32, u32),
+    ) -> Result<(PinholeCamera, u32, Mat4, Vec3), PassError> {
+        let refuse = |why: &str| PassError::Config(format!("CtssProjection: {why}"));
+        let last = self.projection.row(3);
+        let projection = if last.truncate() == Vec3::ZERO && last.w != 0.0 {
+            PROJECTION_ORTHOGRAPHIC
+        } else if last.w == 0.0 && last.truncate() != Vec3::ZERO {
+            PROJECTION_PERSPECTIVE
+        } else {
+            return Err(refuse(
+                "the projection is neither perspective (last row (0, 0, ±1, 0)) nor \
+                 orthographic (last row (0, 0, 0, w))",
+            ));
+        };
+        if projection == PROJECTION_ORTHOGRAPHIC && params.tan_theta != 0.0 {
+            return Err(refuse(&format!(
+                "tan_theta {}: an orthographic pixel's cone has zero angle and a constant \
+                 radius, which the kernels' cone (R_c = t·tan θ, CTSS eq. 3) cannot trace; \
+                 trace it with tan_theta 0",
+                params.tan_theta
+            )));
+        }
+        let inverse_view = self.view.inverse();
+        let inverse = (self.projection * self.view).inverse();
+        let middle = self.projection.inverse() * Vec4::new(0.0, 0.0, 0.5, 1.0);
+        let side = if middle.z / middle.w < 0.0 { -1.0 } else { 1.0 };
+        let forward = inverse_view
+            .transform_vector3(Vec3::new(0.0, 0.0, side))
+            .normalize_or_zero();
+        let up = inverse_view.transform_vector3(Vec3::Y).normalize_or_zero();
+        let eye = inverse_view.transform_point3(Vec3::ZERO);
+        if !(inverse.is_finite() && eye.is_finite() && forward != Vec3::ZERO && up != Vec3::ZERO) {
+            return Err(refuse("the view or the view-projection is not invertible"));
+        }
+        let right = forward.cross(up);
+        let camera = PinholeCamera::new(eye, (forward, right, up), 0.0, size);
+        Ok((camera, projection, inverse, forward))
+    }
+}
+
+/// The camera of one [`CtssPass`] frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CtssView {
+    /// A pinhole: the rays of [`CtssCamera::ray`], bit for bit (subcone's
+    /// own SDF frames trace these).
+    Pinhole(CtssCamera),
+    /// The host's view and projection matrices.
+    Projection(CtssProjection),
+}
+
+impl From<CtssCamera> for CtssView {
+    fn from(camera: CtssCamera) -> Self {
+        CtssView::Pinhole(camera)
+    }
+}
+
+impl From<CtssProjection> for CtssView {
+    fn from(projection: CtssProjection) -> Self {
+        CtssView::Projection(projection)
+    }
+}
+
+/// The part of a frame's output a [`CtssPass`] writes: `size` pixels from
+/// `origin` (x right, y down), for dynamic resolution or split screen. The
+/// camera's image is the rectangle: its pixel `(x, y)` is the one a
+/// `size[0] × size[1]` output would hold at `(x, y)`, written at
+/// `origin + (x, y)`; pixels outside it are not written. `None` in a frame
+/// is the whole output.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct CtssRect {
+    /// The rectangle's first pixel.
+    pub origin: [u32; 2],
+    /// Its width and height, both above 0.
+    pub size: [u32; 2],
+}
+
+impl CtssRect {
+    /// The rectangle, checked against an output of `full` pixels.
+    fn within(rect: Option<CtssRect>, full: (u32, u32)) -> Result<CtssRect, PassError> {
+        let Some(r) = rect else {
+            return Ok(CtssRect {
+                origin: [0, 0],
+                size: [full.0, full.1],
+            });
+        };
+        let fits = |o: u32, s: u32, f: u32| s > 0 && o.checked_add(s).is_some_and(|e| e <= f);
+        if fits(r.origin[0], r.size[0], full.0) && fits(r.origin[1], r.size[1], full.1) {
+            Ok(r)
+        } else {
+            Err(PassError::Config(format!(
+                "CtssRect at ({}, {}) of {}×{} does not fit in the {}×{} output \
+                 (or is empty)",
+                r.origin[0], r.origin[1], r.size[0], r.size[1], full.0, full.1
+            )))
+        }
+    }
+}
+
+/// What a [`CtssPass`] writes for the part of a pixel no surface covers.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum CtssBackground {
+    /// The frame's background colour, weighted into eq. 6 as a sample of
+    /// its own; alpha 1.
+    #[default]
+    Opaque,
+    /// Nothing: premultiplied colour (eq. 6 resolved against black) and
+    /// alpha the pixel's coverage from the group masks (CTSS §3.4–3.5,
+    /// `subcone_kernels::ctss::coverage_alpha`: `bitCount(M)/32`, or 1 when
+    /// the trace ended on full occlusion, a hard hit of the axis or the
+    /// visibility threshold), the mean over a pixel's `N × N` cones. The
+    /// host composites it with `over` (`c + (1 − α)·background`), which
+    /// gives the [`Self::Opaque`] image up to rounding. The frame's
+    /// background is not read. Needs the parameters' default weighting
+    /// (visibility weights, `min_sample_weight` 0: then the hit weights sum
+    /// to the coverage); others are refused ([`PassError::Config`]). With
+    /// [`CtssTrace::Host`] the host's `subcone_trace` gives the coverage
+    /// (`coverage`, `stop`) and resolves against the black background it is
+    /// passed.
+    Transparent,
+}
+
+/// Whether a [`CtssPass`] also writes each pixel's view depth.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum CtssDepth {
+    /// No depth.
+    #[default]
+    None,
+    /// View depth, an `R32Float` storage texture ([`CtssFrame::depth`]) or
+    /// one `f32` a pixel ([`CtssBuffers::depth`]): the distance along the
+    /// camera's forward axis to the nearest hit group that adds to the
+    /// pixel's colour (weight above 0 in eq. 6; its sample depth, the
+    /// backtraced entry of eq. 10 or the backtraced hard hit of §3.6), the
+    /// least over the pixel's `N × N` cones; `+∞` where none does.
+    ///
+    /// The nearest group, not a coverage-weighted mean: an edge pixel's
+    /// fractional alpha belongs to the surface it partly shows, so a host
+    /// that depth-tests it against its raster scene and composites it with
+    /// `over` ([`CtssBackground::Transparent`]) puts the fringe in front of
+    /// what that surface is in front of; a mean of depths would lie between
+    /// surfaces (or be infinite) and match none of them.
+    View,
+}
+
 /// Which trace runs each cone of a [`CtssPass`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum CtssTrace {
@@ -127,7 +348,9 @@ pub enum CtssTrace {
     /// `fn subcone_trace(params: subcone_CtssParams, origin: vec3<f32>,
     /// dir: vec3<f32>, right: vec3<f32>, up: vec3<f32>, background:
     /// vec3<f32>) -> subcone_CtssTraceResult` (`color`, `samples` and
-    /// `steps` are read; `right` and `up` are the cone's cross-section
+    /// `steps` are read, `coverage` and `stop` with
+    /// [`CtssBackground::Transparent`], `depth` with [`CtssDepth::View`];
+    /// `right` and `up` are the cone's cross-section
     /// axes, `subcone_cross_section_frame`): for what the kernels' trace
     /// does not do, such as §5.3's semi-transparent objects with `K` masks,
     /// or a sphere-traced reference (NoAA, SSAA) through the same pixel
@@ -144,7 +367,8 @@ pub enum CtssOutput {
     #[default]
     Texture,
     /// Storage buffers ([`CtssPass::encode_buffers`]): the colour as
-    /// `array<vec4<f32>>`, row-major, alpha 1; with `counts`, also per
+    /// `array<vec4<f32>>`, row-major (alpha as [`CtssPassDesc::background`]
+    /// says); with `counts`, also per
     /// pixel `vec4<u32>(steps, shaded samples, c.x, c.y)`, the field
     /// evaluations and shaded hit groups of its cones and the host's two
     /// counters `c = subcone_counters()` (a `fn subcone_counters() ->
@@ -169,7 +393,8 @@ pub struct CtssPassDesc<'a> {
     /// not depend on it (eq. 6 adds the same terms in the same order).
     pub batch: u32,
     /// The output texture's format: `Rgba8Unorm`, `Rgba16Float` or
-    /// `Rgba32Float` (a storage texture; linear colour, alpha 1). Checked
+    /// `Rgba32Float` (a storage texture; linear colour, alpha as
+    /// [`Self::background`] says). Checked
     /// for the texture output only.
     pub output_format: wgpu::TextureFormat,
     /// The layout of the host's own bind group, which its WGSL declares as
@@ -186,11 +411,15 @@ pub struct CtssPassDesc<'a> {
     pub trace: CtssTrace,
     /// Where the pass writes.
     pub output: CtssOutput,
+    /// What the part of a pixel no surface covers becomes.
+    pub background: CtssBackground,
+    /// Whether view depth is written too.
+    pub depth: CtssDepth,
 }
 
 impl Default for CtssPassDesc<'_> {
     /// A batch of 8, one cone per pixel, the kernels' trace, `Rgba16Float`
-    /// texture output, no host bind group.
+    /// texture output, an opaque background, no depth, no host bind group.
     fn default() -> Self {
         CtssPassDesc {
             batch: 8,
@@ -199,6 +428,8 @@ impl Default for CtssPassDesc<'_> {
             samples_per_side: 1,
             trace: CtssTrace::Kernels,
             output: CtssOutput::Texture,
+            background: CtssBackground::Opaque,
+            depth: CtssDepth::None,
         }
     }
 }
@@ -216,6 +447,10 @@ impl<'a> CtssPassDesc<'a> {
         with_trace(trace: CtssTrace);
         /// Writing to `output` ([`Self::output`]).
         with_output(output: CtssOutput);
+        /// With `background` ([`Self::background`]).
+        with_background(background: CtssBackground);
+        /// Writing `depth` too ([`Self::depth`]).
+        with_depth(depth: CtssDepth);
     }
 
     /// With the host's own bind group `layout` as `@group(1)`
@@ -229,8 +464,8 @@ impl<'a> CtssPassDesc<'a> {
 /// One frame of a [`CtssPass`].
 #[derive(Clone, Copy, Debug)]
 pub struct CtssFrame<'a> {
-    /// The camera.
-    pub camera: CtssCamera,
+    /// The camera (a [`CtssCamera`] or a [`CtssProjection`], `.into()`).
+    pub camera: CtssView,
     /// The trace's parameters: `CtssParams::new(tan_theta)` with
     /// `tan_theta = subcone_kernels::cone::cone_tan_theta(fov_y, height,
     /// subcone_kernels::ctss::CONE_COVERAGE, PixelFootprint::Circumscribed)`
@@ -238,7 +473,8 @@ pub struct CtssFrame<'a> {
     /// `.with_max_steps(n)` (every trace ends within `n` field evaluations
     /// plus a few).
     pub params: CtssParams,
-    /// The colour of the part of a pixel no surface covers (linear RGB).
+    /// The colour of the part of a pixel no surface covers (linear RGB;
+    /// read with [`CtssBackground::Opaque`]).
     pub background: Vec3,
     /// The host's bind group: given exactly when the desc had a layout.
     pub host_group: Option<&'a wgpu::BindGroup>,
@@ -246,27 +482,39 @@ pub struct CtssFrame<'a> {
     /// of one layer, with `STORAGE_BINDING` (checked on
     /// `TextureView::texture`).
     pub output: &'a wgpu::TextureView,
+    /// Where view depth is written ([`CtssDepth::View`]): a texture as
+    /// `output`, of its size, `R32Float`; given exactly when the desc asks
+    /// for depth.
+    pub depth: Option<&'a wgpu::TextureView>,
+    /// The part of `output` (and `depth`) written; `None`: all of it.
+    pub rect: Option<CtssRect>,
 }
 
 /// One frame of a [`CtssPass`] that writes buffers
 /// ([`CtssOutput::Buffers`], [`CtssPass::encode_buffers`]).
 #[derive(Clone, Copy, Debug)]
 pub struct CtssBuffers<'a> {
-    /// The camera.
-    pub camera: CtssCamera,
+    /// The camera ([`CtssFrame::camera`]).
+    pub camera: CtssView,
     /// The trace's parameters ([`CtssFrame::params`]).
     pub params: CtssParams,
-    /// The colour of the part of a pixel no surface covers (linear RGB).
+    /// The colour of the part of a pixel no surface covers (linear RGB;
+    /// read with [`CtssBackground::Opaque`]).
     pub background: Vec3,
     /// The host's bind group: given exactly when the desc had a layout.
     pub host_group: Option<&'a wgpu::BindGroup>,
-    /// The image's width and height in pixels.
+    /// The image's width and height in pixels (the buffers' rows).
     pub size: (u32, u32),
+    /// The part of the image written; `None`: all of it.
+    pub rect: Option<CtssRect>,
     /// The colours: `width × height` `vec4<f32>`s, `STORAGE` usage.
     pub output: &'a wgpu::Buffer,
     /// The counts: `width × height` `vec4<u32>`s, `STORAGE` usage; given
     /// exactly when the desc asks for them.
     pub counts: Option<&'a wgpu::Buffer>,
+    /// The view depths ([`CtssDepth::View`]): `width × height` `f32`s,
+    /// `STORAGE` usage; given exactly when the desc asks for depth.
+    pub depth: Option<&'a wgpu::Buffer>,
 }
 
 /// CTSS of the host's field on the host's device.
@@ -322,11 +570,13 @@ pub struct CtssBuffers<'a> {
 /// let pass = CtssPass::new(device, host_wgsl, &CtssPassDesc::default())?;
 /// let camera = CtssCamera::new(Vec3::ZERO, Vec3::Z, Vec3::Y, 0.8);
 /// pass.encode(device, queue, encoder, &CtssFrame {
-///     camera,
+///     camera: camera.into(),
 ///     params: CtssParams::new(0.002).with_range(0.0, 100.0).with_max_steps(256),
 ///     background: Vec3::ZERO,
 ///     host_group: None,
 ///     output,
+///     depth: None,
+///     rect: None,
 /// }, None)?;
 /// # Ok(()) }
 /// ```
@@ -334,30 +584,46 @@ pub struct CtssBuffers<'a> {
 pub struct CtssPass {
     output_format: wgpu::TextureFormat,
     output: CtssOutput,
+    background: CtssBackground,
+    depth: CtssDepth,
     host_group: bool,
     pipeline: PassPipeline,
 }
 
 /// The shader's variant functions and constant, from the desc's typed
 /// choices: the cones per side (`subcone_pass_SIDE`), the trace
-/// (`subcone_pass_trace`) and where a pixel is stored
+/// (`subcone_pass_trace`), the pixel's colour (`subcone_pass_color`: alpha
+/// 1, or premultiplied with coverage) and where a pixel is stored
 /// (`subcone_pass_store`).
 fn variant_wgsl(desc: &CtssPassDesc<'_>) -> String {
     let trace = match desc.trace {
         CtssTrace::Kernels => "subcone_ctss_trace",
         CtssTrace::Host => "subcone_trace",
     };
-    let store = match desc.output {
-        CtssOutput::Texture => {
-            "textureStore(subcone_pass_output, vec2<i32>(p), vec4<f32>(color, 1.0));"
+    let color = match desc.background {
+        CtssBackground::Opaque => "vec4<f32>(color, 1.0)",
+        CtssBackground::Transparent => "vec4<f32>(color, alpha)",
+    };
+    let depth = desc.depth == CtssDepth::View;
+    let store = match (desc.output, depth) {
+        (CtssOutput::Texture, false) => {
+            "textureStore(subcone_pass_output, vec2<i32>(p), c);".to_string()
         }
-        CtssOutput::Buffers { counts: false } => {
-            "subcone_pass_output[subcone_pass_index(p)] = vec4<f32>(color, 1.0);"
-        }
-        CtssOutput::Buffers { counts: true } => {
-            "let i = subcone_pass_index(p);\n    \
-             subcone_pass_output[i] = vec4<f32>(color, 1.0);\n    \
-             subcone_pass_counts[i] = vec4<u32>(steps, samples, subcone_counters());"
+        (CtssOutput::Texture, true) => "textureStore(subcone_pass_output, vec2<i32>(p), c);\n    \
+             textureStore(subcone_pass_depth, vec2<i32>(p), vec4<f32>(depth, 0.0, 0.0, 1.0));"
+            .to_string(),
+        (CtssOutput::Buffers { counts }, _) => {
+            let mut s = "let i = subcone_pass_index(p);\n    \
+                         subcone_pass_output[i] = c;"
+                .to_string();
+            if counts {
+                s +=
+                    "\n    subcone_pass_counts[i] = vec4<u32>(steps, samples, subcone_counters());";
+            }
+            if depth {
+                s += "\n    subcone_pass_depth[i] = depth;";
+            }
+            s
         }
     };
     format!(
@@ -365,7 +631,9 @@ fn variant_wgsl(desc: &CtssPassDesc<'_>) -> String {
          fn subcone_pass_trace(params: subcone_CtssParams, origin: vec3<f32>, dir: vec3<f32>, \
          right: vec3<f32>, up: vec3<f32>, background: vec3<f32>) -> subcone_CtssTraceResult {{\n    \
          return {trace}(params, origin, dir, right, up, background);\n}}\n\
-         fn subcone_pass_store(p: vec2<u32>, color: vec3<f32>, steps: u32, samples: u32) {{\n    \
+         fn subcone_pass_color(color: vec3<f32>, alpha: f32) -> vec4<f32> {{\n    \
+         return {color};\n}}\n\
+         fn subcone_pass_store(p: vec2<u32>, c: vec4<f32>, depth: f32, steps: u32, samples: u32) {{\n    \
          {store}\n}}\n",
         side = desc.samples_per_side
     )
@@ -397,7 +665,7 @@ impl CtssPass {
                 desc.samples_per_side
             )));
         }
-        let group = Self::group(desc.output_format, desc.output)?;
+        let group = Self::group(desc.output_format, desc.output, desc.depth)?;
         let source = Self::source(host_wgsl, desc, &group);
         let pipeline = PassPipeline::new(
             device,
@@ -410,6 +678,8 @@ impl CtssPass {
         Ok(CtssPass {
             output_format: desc.output_format,
             output: desc.output,
+            background: desc.background,
+            depth: desc.depth,
             host_group: desc.host_layout.is_some(),
             pipeline,
         })
@@ -418,17 +688,27 @@ impl CtssPass {
     pub(crate) fn group(
         output_format: wgpu::TextureFormat,
         output: CtssOutput,
+        depth: CtssDepth,
     ) -> Result<Group, PassError> {
         let mut g = Group::default();
         g.ring_uniform::<CtssUniform>("subcone_pass_frame", "CtssUniform");
         g.ring_uniform::<CtssParams>("subcone_pass_params", "subcone_CtssParams");
+        let depth = depth == CtssDepth::View;
         match output {
-            CtssOutput::Texture => g.storage_texture("subcone_pass_output", output_format)?,
+            CtssOutput::Texture => {
+                g.storage_texture("subcone_pass_output", output_format)?;
+                if depth {
+                    g.storage_texture("subcone_pass_depth", wgpu::TextureFormat::R32Float)?;
+                }
+            }
             CtssOutput::Buffers { counts } => {
                 let rw = bind::BufferAccess::ReadWrite;
                 g.buffer("subcone_pass_output", "array<vec4<f32>>", rw);
                 if counts {
                     g.buffer("subcone_pass_counts", "array<vec4<u32>>", rw);
+                }
+                if depth {
+                    g.buffer("subcone_pass_depth", "array<f32>", rw);
                 }
             }
         }
@@ -466,8 +746,9 @@ impl CtssPass {
     }
 
     /// Record the trace of one frame into `encoder` (one compute pass), its
-    /// camera and parameters written through `queue`. Checks the output and
-    /// the host group first: on an error nothing is recorded or written.
+    /// camera and parameters written through `queue`. Checks the output, the
+    /// depth texture, the rectangle, the host group and the camera first: on
+    /// an error nothing is recorded or written.
     ///
     /// `timestamps`, when given, are written at the start and end of the
     /// compute pass: the host creates the query set (`QueryType::Timestamp`,
@@ -489,14 +770,38 @@ impl CtssPass {
         }
         let out = frame.output;
         let size = bind::check_output(out, self.output_format, "the desc's output_format")?;
+        let rect = CtssRect::within(frame.rect, size)?;
         let host = "host bind group";
         required(frame.host_group, self.host_group, host, host)?;
+        let depth = "depth texture";
+        required(frame.depth, self.depth == CtssDepth::View, depth, depth)?;
+        let mut bound = vec![("subcone_pass_output", Bound::Texture(out))];
+        if let Some(d) = frame.depth {
+            bind::check(
+                d,
+                &bind::Expect {
+                    what: "depth",
+                    size,
+                    samples: 1,
+                    layers: 1,
+                    usage: wgpu::TextureUsages::STORAGE_BINDING,
+                },
+            )?;
+            if d.texture().format() != wgpu::TextureFormat::R32Float {
+                return Err(PassError::Format {
+                    what: "depth",
+                    found: d.texture().format(),
+                    expected: "R32Float",
+                });
+            }
+            bound.push(("subcone_pass_depth", Bound::Texture(d)));
+        }
         self.record(
             device,
             queue,
             encoder,
-            (&frame.camera, &frame.params, frame.background, size),
-            &[("subcone_pass_output", Bound::Texture(out))],
+            (&frame.camera, &frame.params, frame.background, size, rect),
+            &bound,
             frame.host_group,
             timestamps,
         )
@@ -526,10 +831,14 @@ impl CtssPass {
                 "size {width}×{height}: nothing to trace"
             )));
         }
+        let rect = CtssRect::within(frame.rect, frame.size)?;
         let n = u64::from(width) * u64::from(height);
         check_buffer("output", frame.output, n, 16)?;
         let counts_buffer = "counts buffer";
         required(frame.counts, counts, counts_buffer, counts_buffer)?;
+        let depth_buffer = "depth buffer";
+        let depth = self.depth == CtssDepth::View;
+        required(frame.depth, depth, depth_buffer, depth_buffer)?;
         let host = "host bind group";
         required(frame.host_group, self.host_group, host, host)?;
         let mut bound = vec![("subcone_pass_output", Bound::Buffer(frame.output))];
@@ -537,39 +846,86 @@ impl CtssPass {
             check_buffer("counts", c, n, 16)?;
             bound.push(("subcone_pass_counts", Bound::Buffer(c)));
         }
+        if let Some(d) = frame.depth {
+            check_buffer("depth", d, n, 4)?;
+            bound.push(("subcone_pass_depth", Bound::Buffer(d)));
+        }
         self.record(
             device,
             queue,
             encoder,
-            (&frame.camera, &frame.params, frame.background, frame.size),
+            (
+                &frame.camera,
+                &frame.params,
+                frame.background,
+                frame.size,
+                rect,
+            ),
             &bound,
             frame.host_group,
             timestamps,
         )
     }
 
-    /// Write the frame's uniforms and record the dispatch over `size`.
+    /// Write the frame's uniforms and record the dispatch over `rect` of a
+    /// `size` output. Refuses a transparent background under weights that
+    /// do not sum to the coverage, and a projection the pass cannot trace.
     #[allow(clippy::too_many_arguments)]
     fn record(
         &self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
-        (camera, params, background, size): (&CtssCamera, &CtssParams, Vec3, (u32, u32)),
+        (view, params, background, size, rect): (
+            &CtssView,
+            &CtssParams,
+            Vec3,
+            (u32, u32),
+            CtssRect,
+        ),
         resources: &[(&'static str, Bound<'_>)],
         host_group: Option<&wgpu::BindGroup>,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), PassError> {
+        let background = match self.background {
+            CtssBackground::Opaque => background,
+            CtssBackground::Transparent => {
+                if params.weighting() != Weighting::Visibility || params.min_sample_weight > 0.0 {
+                    return Err(PassError::Config(
+                        "CtssBackground::Transparent: the hit weights must sum to the coverage \
+                         (visibility weighting, min_sample_weight 0)"
+                            .into(),
+                    ));
+                }
+                Vec3::ZERO
+            }
+        };
+        let rect_size = (rect.size[0], rect.size[1]);
+        let (camera, projection, inverse, forward) = match view {
+            CtssView::Pinhole(c) => (
+                c.uniform(rect_size),
+                PROJECTION_PINHOLE,
+                Mat4::ZERO,
+                c.forward,
+            ),
+            CtssView::Projection(p) => p.uniform(params, rect_size)?,
+        };
         let uniform = CtssUniform {
-            camera: camera.uniform(size),
+            camera,
             background: background.into(),
+            projection,
+            inverse_view_projection: inverse.to_cols_array_2d(),
+            forward: forward.into(),
+            depth_offset: -forward.dot(Vec3::from(camera.position)),
+            origin: rect.origin,
+            row_length: size.0,
             _pad: 0,
         };
         self.pipeline.encode(
             device,
             queue,
             encoder,
-            size,
+            rect_size,
             &[bytemuck::bytes_of(&uniform), bytemuck::bytes_of(params)],
             resources,
             host_group,

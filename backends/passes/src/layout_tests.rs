@@ -6,7 +6,10 @@
 
 use crate::layout_check::{assert_all_match, compare, Member};
 
-use crate::ctss::{CtssOutput, CtssPass, CtssPassDesc, CtssTrace, CtssUniform, CTSS_WGSL};
+use crate::ctss::{
+    CtssBackground, CtssDepth, CtssOutput, CtssPass, CtssPassDesc, CtssTrace, CtssUniform,
+    CTSS_WGSL,
+};
 use crate::fxaa::{FxaaFrame, FxaaPass, FXAA_WGSL};
 use crate::sraa::{SraaFrame, SRAA_WGSL};
 use crate::taa::TaaPass;
@@ -35,7 +38,17 @@ fn pass_gpu_structs_match_their_wgsl() {
             CTSS_WGSL,
             "CtssUniform",
             size_of::<CtssUniform>(),
-            members!(CtssUniform: camera, background, _pad),
+            members!(
+                CtssUniform: camera,
+                background,
+                projection,
+                inverse_view_projection,
+                forward,
+                depth_offset,
+                origin,
+                row_length,
+                _pad
+            ),
         ),
         (
             FXAA_WGSL,
@@ -133,17 +146,27 @@ fn every_pass_shader_validates() {
     let own_trace = format!(
         "{field}fn subcone_trace(params: subcone_CtssParams, origin: vec3<f32>, dir: vec3<f32>, \
          right: vec3<f32>, up: vec3<f32>, background: vec3<f32>) -> subcone_CtssTraceResult {{\n\
-         return subcone_CtssTraceResult(dir, 1u, 2u, 0u, 0u); }}\n\
+         return subcone_CtssTraceResult(dir, 1u, 2u, 0u, 0u, 0.0); }}\n\
          fn subcone_counters() -> vec2<u32> {{ return vec2<u32>(3u, 4u); }}\n"
     );
     for (host, normal) in [(field.to_string(), ""), (own_normal, ", host normal")] {
         for output in [CtssOutput::Texture, CtssOutput::Buffers { counts: false }] {
-            for side in [1, 3] {
+            for (side, background, depth) in [
+                (1, CtssBackground::Opaque, CtssDepth::None),
+                (3, CtssBackground::Opaque, CtssDepth::None),
+                (1, CtssBackground::Transparent, CtssDepth::View),
+                (2, CtssBackground::Transparent, CtssDepth::None),
+                (2, CtssBackground::Opaque, CtssDepth::View),
+            ] {
                 let desc = CtssPassDesc::default()
                     .with_output(output)
-                    .with_samples_per_side(side);
-                let g = CtssPass::group(desc.output_format, output).expect("an output format");
-                let label = format!("ctss{normal}, {output:?}, side {side}");
+                    .with_samples_per_side(side)
+                    .with_background(background)
+                    .with_depth(depth);
+                let g =
+                    CtssPass::group(desc.output_format, output, depth).expect("an output format");
+                let label =
+                    format!("ctss{normal}, {output:?}, side {side}, {background:?}, {depth:?}");
                 if let Err(e) = validate(&label, &CtssPass::source(&host, &desc, &g)) {
                     errors.push(e);
                 }
@@ -158,8 +181,9 @@ fn every_pass_shader_validates() {
         let desc = CtssPassDesc::default()
             .with_trace(CtssTrace::Host)
             .with_output(output)
-            .with_samples_per_side(2);
-        let g = CtssPass::group(desc.output_format, output).expect("an output format");
+            .with_samples_per_side(2)
+            .with_depth(CtssDepth::View);
+        let g = CtssPass::group(desc.output_format, output, desc.depth).expect("an output format");
         let label = format!("ctss, host trace, {output:?}");
         if let Err(e) = validate(&label, &CtssPass::source(&own_trace, &desc, &g)) {
             errors.push(e);
@@ -185,7 +209,7 @@ fn the_wgsl_no_object_is_the_kernels_constant() {
     let host = "fn subcone_field(p: vec3<f32>) -> vec3<f32> { let d = length(p) - 1.0; return vec3<f32>(d, d, 0.0); }\n\
                 fn subcone_shade(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> vec3<f32> { return n; }\n";
     let desc = CtssPassDesc::default();
-    let g = CtssPass::group(desc.output_format, desc.output).expect("an output format");
+    let g = CtssPass::group(desc.output_format, desc.output, desc.depth).expect("an output format");
     let source = CtssPass::source(host, &desc, &g);
     let module = naga::front::wgsl::parse_str(&source).expect("the CTSS pass's shader parses");
     let (_, constant) = module

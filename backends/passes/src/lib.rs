@@ -77,8 +77,9 @@ mod taa;
 
 pub use bind::{Rect, BIND_GROUP_CACHE, UNIFORM_SLOTS};
 pub use ctss::{
-    CtssBuffers, CtssCamera, CtssFrame, CtssOutput, CtssPass, CtssPassDesc, CtssTrace,
-    CTSS_KERNELS, MAX_BATCH, MAX_SAMPLES_PER_SIDE, SPHERE_TRACE_HOOK,
+    CtssBackground, CtssBuffers, CtssCamera, CtssDepth, CtssFrame, CtssOutput, CtssPass,
+    CtssPassDesc, CtssProjection, CtssRect, CtssTrace, CtssView, CTSS_KERNELS, MAX_BATCH,
+    MAX_SAMPLES_PER_SIDE, SPHERE_TRACE_HOOK,
 };
 pub use fxaa::{FxaaInput, FxaaPass, FxaaPassDesc};
 pub use sraa::{

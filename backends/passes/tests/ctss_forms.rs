@@ -35,7 +35,7 @@ fn subcone_counters() -> vec2<u32> {
 /// three steps, so the pixel loop's rays can be read back.
 const AXIS_TRACE: &str = "
 fn subcone_trace(params: subcone_CtssParams, origin: vec3<f32>, dir: vec3<f32>, right: vec3<f32>, up: vec3<f32>, background: vec3<f32>) -> subcone_CtssTraceResult {
-    return subcone_CtssTraceResult(dir, 1u, 3u, 0u, 0u);
+    return subcone_CtssTraceResult(dir, 1u, 3u, 0u, 0u, 0.0);
 }
 ";
 
@@ -89,13 +89,15 @@ fn trace_buffers(
     let (output, counts) = (storage(device, n * 16), storage(device, n * 16));
     let mut enc = device.create_command_encoder(&Default::default());
     let frame = CtssBuffers {
-        camera: camera(),
+        camera: camera().into(),
         params: params(),
         background: Vec3::new(0.0, 0.0, 0.1),
         host_group: None,
         size: (W, H),
         output: &output,
         counts: Some(&counts),
+        depth: None,
+        rect: None,
     };
     pass.encode_buffers(device, queue, &mut enc, &frame, None)
         .expect("encode");
@@ -140,11 +142,13 @@ fn buffers_hold_the_texture_image_and_the_counts() {
     let view = tex.create_view(&Default::default());
     let mut enc = device.create_command_encoder(&Default::default());
     let frame = CtssFrame {
-        camera: camera(),
+        camera: camera().into(),
         params: params(),
         background: Vec3::new(0.0, 0.0, 0.1),
         host_group: None,
         output: &view,
+        depth: None,
+        rect: None,
     };
     pass.encode(&device, &queue, &mut enc, &frame, None)
         .expect("encode");
@@ -224,13 +228,15 @@ fn forms_that_do_not_fit_are_typed_errors() {
     let n = u64::from(W * H);
     let (output, counts) = (storage(&device, n * 16), storage(&device, n * 16));
     let frame = |output, counts| CtssBuffers {
-        camera: camera(),
+        camera: camera().into(),
         params: params(),
         background: Vec3::ZERO,
         host_group: None,
         size: (W, H),
         output,
         counts,
+        depth: None,
+        rect: None,
     };
     let mut enc = device.create_command_encoder(&Default::default());
     let counted = CtssPass::new(
@@ -297,11 +303,13 @@ fn forms_that_do_not_fit_are_typed_errors() {
             &queue,
             &mut enc,
             &CtssFrame {
-                camera: camera(),
+                camera: camera().into(),
                 params: params(),
                 background: Vec3::ZERO,
                 host_group: None,
                 output: &view,
+                depth: None,
+                rect: None,
             },
             None,
         )

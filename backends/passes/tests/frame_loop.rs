@@ -184,13 +184,15 @@ impl Host {
                 queue,
                 enc,
                 &CtssFrame {
-                    camera: Self::camera(x),
+                    camera: Self::camera(x).into(),
                     params: CtssParams::new(0.002)
                         .with_range(0.0, 100.0)
                         .with_max_steps(64),
                     background: Vec3::new(0.1, 0.2, 0.3),
                     host_group: None,
                     output: &v[4],
+                    depth: None,
+                    rect: None,
                 },
                 writes(1),
             )
@@ -283,13 +285,15 @@ fn encodes_in_one_submission_each_read_their_own_uniforms() {
             &mut enc,
             &CtssFrame {
                 // Looking away from the sphere.
-                camera: CtssCamera::new(Vec3::ZERO, -Vec3::Z, Vec3::Y, 0.8),
+                camera: CtssCamera::new(Vec3::ZERO, -Vec3::Z, Vec3::Y, 0.8).into(),
                 params: CtssParams::new(0.002)
                     .with_range(0.0, 100.0)
                     .with_max_steps(64),
                 background: background(i),
                 host_group: None,
                 output: &view,
+                depth: None,
+                rect: None,
             },
             None,
         )

@@ -369,7 +369,11 @@ where
 {
     let mut agg = Aggregate::new();
     let (mut extra_steps, mut extra_samples) = (0u32, 0u32);
+    let mut depth = f32::INFINITY;
     let stepper = march(params, ray, field, |field, hit| {
+        if depth == f32::INFINITY && hit.weight > 0.0 {
+            depth = hit.sample.t;
+        }
         if params.splits_groups() {
             if let Some((steps, parts)) = shade_split(params, ray, field, hit, &mut shade, &mut agg)
             {
@@ -389,6 +393,7 @@ where
         stop: stepper
             .stop_reason()
             .unwrap_or(super::StopReason::StepBudget),
+        depth,
     }
 }
 

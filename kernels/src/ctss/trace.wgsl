@@ -84,13 +84,24 @@ struct subcone_SplitRay {
     up: vec3<f32>,
 }
 
-// subcone_kernels::ctss::TraceResult; stop is a subcone_STOP_* code.
+// subcone_kernels::ctss::TraceResult; stop is a subcone_STOP_* code, depth
+// the sample depth of the nearest group of weight above 0 (+inf: none).
 struct subcone_CtssTraceResult {
     color: vec3<f32>,
     samples: u32,
     steps: u32,
     coverage: u32,
     stop: u32,
+    depth: f32,
+}
+
+// subcone_kernels::ctss::coverage_alpha — bitCount(M)/32 (§3.4–3.5), or 1
+// when the trace ended on a rule that gives the background no weight.
+fn subcone_ctss_coverage_alpha(coverage: u32, stop: u32) -> f32 {
+    if subcone_covers_pixel(stop) {
+        return 1.0;
+    }
+    return subcone_mask_weight(coverage);
 }
 
 // subcone_kernels::ctss::GroupHit: a closed group waiting to be shaded.
@@ -426,6 +437,10 @@ fn subcone_ctss_trace(params: subcone_CtssParams, origin: vec3<f32>, dir: vec3<f
     var agg = subcone_aggregate_new();
     var extra_steps = 0u;
     var extra_samples = 0u;
+    // +inf until a group adds to eq. 6 (a flag, not a comparison with +inf,
+    // which a compiler assuming finite values may fold).
+    var depth = subcone_inf();
+    var have_depth = false;
     // advance_object evaluates at most max_steps times and stops within a
     // few more calls: the bounds never cut a trace short.
     let budget = min(params.max_steps, 0x7fffffffu) + 4u;
@@ -459,6 +474,10 @@ fn subcone_ctss_trace(params: subcone_CtssParams, origin: vec3<f32>, dir: vec3<f
             }
         }
         for (var j = 0u; j < k; j++) {
+            if !have_depth && pending[j].weight > 0.0 {
+                depth = pending[j].sample.t;
+                have_depth = true;
+            }
             let extra = subcone_ctss_shade_hit(params, ray, pending[j], &agg);
             extra_steps = subcone_saturating_add(extra_steps, extra.x);
             extra_samples = subcone_saturating_add(extra_samples, extra.y);
@@ -474,5 +493,6 @@ fn subcone_ctss_trace(params: subcone_CtssParams, origin: vec3<f32>, dir: vec3<f
         subcone_saturating_add(st.steps, extra_steps),
         st.covered,
         stop,
+        depth,
     );
 }

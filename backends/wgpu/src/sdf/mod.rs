@@ -155,7 +155,7 @@ fn subcone_trace(params: subcone_CtssParams, origin: vec3<f32>, dir: vec3<f32>, 
     var shadow = 0u;
     let c = noaa_sample(origin, dir, background, &steps, &samples, &shadow);
     shadow_rays_traced += shadow;
-    return subcone_CtssTraceResult(c, samples, steps, 0u, 0u);
+    return subcone_CtssTraceResult(c, samples, steps, 0u, 0u, subcone_inf());
 }
 ";
 
@@ -172,7 +172,7 @@ fn subcone_trace(params: subcone_CtssParams, origin: vec3<f32>, dir: vec3<f32>, 
         c = noaa_translucent_sample(origin, dir, background, &steps, &samples, &shadow);
     }
     shadow_rays_traced += shadow;
-    return subcone_CtssTraceResult(c, samples, steps, 0u, 0u);
+    return subcone_CtssTraceResult(c, samples, steps, 0u, 0u, subcone_inf());
 }
 ";
 
@@ -333,13 +333,16 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
             up: camera.up,
             fov_y: camera.fov_y,
             jitter: camera.jitter,
-        },
+        }
+        .into(),
         params,
         background: scene.background,
         host_group: Some(&group),
         size: (w, h),
         output: out.get("color_out")?,
         counts: Some(out.get("counts_out")?),
+        depth: None,
+        rect: None,
     };
     let name = if cone {
         "cone tracing"
