@@ -12,7 +12,7 @@ use crate::ctss::{
 };
 use crate::fxaa::{FxaaFrame, FxaaPass, FXAA_WGSL};
 use crate::sraa::{SraaFrame, SRAA_WGSL};
-use crate::taa::TaaPass;
+use crate::taa::{TaaOrigin, TaaPass, TAA_WGSL};
 
 #[test]
 fn pass_gpu_structs_match_their_wgsl() {
@@ -55,6 +55,12 @@ fn pass_gpu_structs_match_their_wgsl() {
             "FxaaFrame",
             size_of::<FxaaFrame>(),
             members!(FxaaFrame: width, height, _pad[2 as u32]),
+        ),
+        (
+            TAA_WGSL,
+            "TaaOrigin",
+            size_of::<TaaOrigin>(),
+            members!(TaaOrigin: x, y, _pad[2 as u32]),
         ),
     ]);
 }

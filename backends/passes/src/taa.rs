@@ -4,10 +4,23 @@
 
 use subcone_kernels::taa::{self, ResolveSpace, TaaParams};
 
-use crate::bind::{self, Bound, Expect, Group, PassPipeline};
+use bytemuck::{Pod, Zeroable};
+
+use crate::bind::{self, Bound, Expect, Group, PassPipeline, Rect};
 use crate::PassError;
 
 pub(crate) const TAA_WGSL: &str = include_str!("taa.wgsl");
+
+/// Where the resolved image lies in the textures; `TaaOrigin` in `taa.wgsl`
+/// (16 bytes): the top-left pixel of the rect ([`TaaPass::encode_rect`]),
+/// `(0, 0)` for whole textures.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub(crate) struct TaaOrigin {
+    pub(crate) x: u32,
+    pub(crate) y: u32,
+    pub(crate) _pad: [u32; 2],
+}
 
 /// The configuration of a [`TaaPass`], fixed for its life. Start from
 /// `TaaPassDesc::default()` and change what differs with the `with_`
@@ -186,6 +199,7 @@ impl TaaPass {
     pub(crate) fn group(output_format: wgpu::TextureFormat) -> Result<Group, PassError> {
         let mut g = Group::default();
         g.ring_uniform::<TaaParams>("taa_params", "subcone_TaaParams");
+        g.ring_uniform::<TaaOrigin>("taa_origin", "TaaOrigin");
         for name in ["taa_current_tex", "taa_velocity", "taa_history_tex"] {
             g.texture(
                 name,
@@ -210,7 +224,8 @@ impl TaaPass {
 
     /// Record the resolve of `inputs` into `output` (one compute pass), the
     /// parameters written through `queue`. Checks every view first: on an
-    /// error nothing is recorded or written.
+    /// error nothing is recorded or written. Every texture is the output's
+    /// size.
     ///
     /// `timestamps`, when given, are written at the start and end of the
     /// compute pass (the host's query set, which it resolves).
@@ -223,21 +238,73 @@ impl TaaPass {
         output: &wgpu::TextureView,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), PassError> {
-        let size = bind::check_output(output, self.desc.output_format, "the desc's output_format")?;
+        self.encode_region(device, queue, encoder, inputs, output, None, timestamps)
+    }
+
+    /// Record the resolve of `rect` of the textures (a viewport: dynamic
+    /// resolution, split screen): every input is read, and the output
+    /// written, at the rect's pixels, and the output's pixels outside it are
+    /// left as they were. Each texture must hold the rect (a
+    /// [`PassError::Rect`] otherwise, also for an empty rect). The rect is
+    /// the image: the 3×3 neighbourhood and the history's taps are clamped
+    /// to it, and a point reprojected off it has no history, so the rect's
+    /// pixels are exactly those of the pass over textures of the rect's size
+    /// holding the same inputs.
+    #[allow(clippy::too_many_arguments)]
+    pub fn encode_rect(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        inputs: &TaaInputs<'_>,
+        output: &wgpu::TextureView,
+        rect: Rect,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<(), PassError> {
+        self.encode_region(
+            device,
+            queue,
+            encoder,
+            inputs,
+            output,
+            Some(&rect),
+            timestamps,
+        )
+    }
+
+    /// [`Self::encode`] of `rect` (the whole output for `None`).
+    #[allow(clippy::too_many_arguments)]
+    fn encode_region(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        inputs: &TaaInputs<'_>,
+        output: &wgpu::TextureView,
+        rect: Option<&Rect>,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<(), PassError> {
+        let region = bind::check_output_region(
+            output,
+            self.desc.output_format,
+            "the desc's output_format",
+            rect,
+        )?;
         for (what, view) in [
             ("current", inputs.current),
             ("velocity", inputs.velocity),
             ("history", inputs.history),
         ] {
-            bind::check(
+            bind::check_region(
                 view,
                 &Expect {
                     what,
-                    size,
+                    size: region.size(),
                     samples: 1,
                     layers: 1,
                     usage: wgpu::TextureUsages::TEXTURE_BINDING,
                 },
+                rect,
             )?;
             bind::check_float_color(what, view)?;
             if view.texture() == output.texture() {
@@ -249,16 +316,21 @@ impl TaaPass {
         let params = TaaParams {
             min_current_weight: self.desc.min_current_weight,
             clip_gamma: self.desc.clip_gamma,
-            ..TaaParams::new(size)
+            ..TaaParams::new(region.size())
                 .with_history_frames(inputs.history_frames)
                 .with_space(self.desc.space)
+        };
+        let origin = TaaOrigin {
+            x: region.x,
+            y: region.y,
+            _pad: [0; 2],
         };
         self.pipeline.encode(
             device,
             queue,
             encoder,
-            size,
-            &[bytemuck::bytes_of(&params)],
+            region.size(),
+            &[bytemuck::bytes_of(&params), bytemuck::bytes_of(&origin)],
             &[
                 ("taa_current_tex", Bound::Texture(inputs.current)),
                 ("taa_velocity", Bound::Texture(inputs.velocity)),

@@ -4,14 +4,27 @@
 // subcone_kernels::taa::WGSL and the declarations taa.rs generates
 // (taa_params, taa_current, taa_velocity, taa_history, taa_dst).
 //
-// The bindings are named after the hooks' textures; the hooks read them.
+// The kernel's image is the rect (taa_params' size); the hooks read the
+// textures at the rect's origin (taa_origin).
+
+// taa.rs `TaaOrigin` (16 bytes).
+struct TaaOrigin {
+    x: u32,
+    y: u32,
+    _pad0: u32,
+    _pad1: u32,
+}
+
+fn taa_at(x: i32, y: i32) -> vec2<i32> {
+    return vec2<i32>(x + i32(taa_origin.x), y + i32(taa_origin.y));
+}
 
 fn taa_current(x: i32, y: i32) -> vec3<f32> {
-    return textureLoad(taa_current_tex, vec2<i32>(x, y), 0).xyz;
+    return textureLoad(taa_current_tex, taa_at(x, y), 0).xyz;
 }
 
 fn taa_history(x: i32, y: i32) -> vec3<f32> {
-    return textureLoad(taa_history_tex, vec2<i32>(x, y), 0).xyz;
+    return textureLoad(taa_history_tex, taa_at(x, y), 0).xyz;
 }
 
 @compute @workgroup_size(8, 8)
@@ -20,7 +33,7 @@ fn taa_main(@builtin(global_invocation_id) gid: vec3<u32>) {
         return;
     }
     let xy = vec2<i32>(i32(gid.x), i32(gid.y));
-    let velocity = textureLoad(taa_velocity, xy, 0).xy;
+    let velocity = textureLoad(taa_velocity, taa_at(xy.x, xy.y), 0).xy;
     let c = subcone_taa_resolve_pixel(xy, velocity, taa_params);
-    textureStore(taa_dst, xy, vec4<f32>(c, 1.0));
+    textureStore(taa_dst, taa_at(xy.x, xy.y), vec4<f32>(c, 1.0));
 }
