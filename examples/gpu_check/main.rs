@@ -390,7 +390,7 @@ fn summary(a: Args) -> Result<()> {
         "software_adapter": software,
         "passes": pass_rows.iter().map(|r| json!({
             "pass": r["pass"], "width": r["width"], "height": r["height"],
-            "wall_ms_median": r["wall_ms_median"], "timestamp_ms_median": r["timestamp_ms_median"],
+            "ms_median": r["ms_median"], "timed_by": r["timed_by"],
         })).collect::<Vec<_>>(),
     });
     std::fs::write(a.out.join("summary.md"), md)?;

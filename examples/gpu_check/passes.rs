@@ -1,13 +1,11 @@
 //! `gpu_check passes FILE --sizes WxH,WxH --runs N`: each pass of
 //! `subcone-passes` alone (SraaPass, CtssPass, FxaaPass, TaaPass) on the
 //! adapter the wgpu backend opens, at each size: one warm-up, then `runs`
-//! submissions of the pass alone, each waited for. Every run's wall time
-//! (submission to completion) is kept, and its GPU timestamps where the
-//! device has them; which of the two means anything is the adapter's
-//! business (`timestamps_trusted`), recorded beside them.
+//! submissions of the pass alone, each waited for and timed as the backend
+//! times its passes (trusted GPU timestamps, else the wall clock from
+//! submission to completion, and which of the two, recorded beside them).
 
 use std::path::Path;
-use std::time::Instant;
 
 use anyhow::{anyhow, bail, Context, Result};
 use glam::Vec3;
@@ -167,62 +165,30 @@ type Encode<'a> = Box<
         + 'a,
 >;
 
-/// Time `encode` alone: one warm-up, then `runs` submissions.
-fn time(ctx: &GpuContext, runs: u32, encode: &Encode<'_>) -> Result<(Vec<f64>, Vec<f64>)> {
-    let stamps = ctx
-        .device
-        .features()
-        .contains(wgpu::Features::TIMESTAMP_QUERY);
-    let queries = stamps.then(|| {
-        let set = ctx.device.create_query_set(&wgpu::QuerySetDescriptor {
-            label: Some("pass timestamps"),
-            ty: wgpu::QueryType::Timestamp,
-            count: 2,
-        });
-        let resolve = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("timestamp resolve"),
-            size: 16,
-            usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
-        (set, resolve)
-    });
-    let (mut wall, mut gpu) = (Vec::new(), Vec::new());
-    for run in 0..=runs {
-        let mut enc = ctx.device.create_command_encoder(&Default::default());
-        let writes = queries
-            .as_ref()
-            .map(|(set, _)| wgpu::ComputePassTimestampWrites {
-                query_set: set,
-                beginning_of_pass_write_index: Some(0),
-                end_of_pass_write_index: Some(1),
-            });
-        encode(&mut enc, writes)?;
-        if let Some((set, resolve)) = &queries {
-            enc.resolve_query_set(set, 0..2, resolve, 0);
-        }
-        let start = Instant::now();
-        ctx.queue.submit([enc.finish()]);
-        ctx.wait("pass timing").map_err(|e| anyhow!("{e}"))?;
-        let ms = start.elapsed().as_secs_f64() * 1e3;
-        let ticks = match &queries {
-            Some((_, resolve)) => {
-                let bytes = ctx
-                    .read_buffer(resolve, 0, 16)
-                    .map_err(|e| anyhow!("{e}"))?;
-                let t: &[u64] = bytemuck::cast_slice(&bytes);
-                Some(t[1].saturating_sub(t[0]))
+/// Time `encode` alone: one warm-up, then `runs` submissions, each timed
+/// as the wgpu backend times its passes (`GpuContext::timed_pass`: trusted
+/// GPU timestamps, else the wall clock from submission to completion). The
+/// times in ms and how they were taken.
+fn time(ctx: &GpuContext, runs: u32, encode: &Encode<'_>) -> Result<(Vec<f64>, String)> {
+    let mut timings = Vec::new();
+    let mut encoded = Ok(());
+    for _ in 0..=runs {
+        ctx.timed_pass("pass", &mut timings, |enc| {
+            if encoded.is_ok() {
+                encoded = encode(enc, None);
             }
-            None => None,
-        };
-        if run > 0 {
-            wall.push(ms);
-            if let Some(t) = ticks {
-                gpu.push(t as f64 * f64::from(ctx.queue.get_timestamp_period()) / 1e6);
-            }
-        }
+        })
+        .map_err(|e| anyhow!("{e}"))?;
     }
-    Ok((wall, gpu))
+    encoded?;
+    let ms = timings[1..]
+        .iter()
+        .map(|t| t.time.as_secs_f64() * 1e3)
+        .collect();
+    let source = timings
+        .last()
+        .map_or(String::new(), |t| t.source.to_string());
+    Ok((ms, source))
 }
 
 fn median(v: &[f64]) -> Value {
@@ -294,7 +260,7 @@ fn at_size(ctx: &GpuContext, size: (u32, u32), runs: u32) -> Result<Vec<Value>> 
             "CtssPass",
             Box::new(|enc, ts| {
                 let frame = CtssFrame {
-                    camera: CtssCamera::new(Vec3::ZERO, Vec3::Z, Vec3::Y, fov),
+                    camera: CtssCamera::new(Vec3::ZERO, Vec3::Z, Vec3::Y, fov).into(),
                     params: CtssParams::new(subcone_kernels::cone::cone_tan_theta(
                         fov,
                         size.1,
@@ -306,6 +272,8 @@ fn at_size(ctx: &GpuContext, size: (u32, u32), runs: u32) -> Result<Vec<Value>> 
                     background: Vec3::new(0.1, 0.2, 0.3),
                     host_group: None,
                     output: &out,
+                    depth: None,
+                    rect: None,
                 };
                 ctss.encode(d, q, enc, &frame, ts)
                     .map_err(|e| pe("CtssPass", e))
@@ -334,18 +302,17 @@ fn at_size(ctx: &GpuContext, size: (u32, u32), runs: u32) -> Result<Vec<Value>> 
     ];
     let mut rows = Vec::new();
     for (name, encode) in &passes {
-        let (wall, gpu) = time(ctx, runs, encode).with_context(|| format!("{name} at {size:?}"))?;
+        let (ms, timed_by) =
+            time(ctx, runs, encode).with_context(|| format!("{name} at {size:?}"))?;
         println!(
-            "{name:>9} at {}x{}: wall median {} ms, timestamps median {} ms",
+            "{name:>9} at {}x{}: median {} ms ({timed_by})",
             size.0,
             size.1,
-            median(&wall),
-            median(&gpu)
+            median(&ms)
         );
         rows.push(json!({
             "pass": name, "width": size.0, "height": size.1, "runs": runs,
-            "wall_ms_median": median(&wall), "timestamp_ms_median": median(&gpu),
-            "wall_ms": wall, "timestamp_ms": gpu,
+            "ms_median": median(&ms), "ms": ms, "timed_by": timed_by,
         }));
     }
     Ok(rows)

@@ -92,6 +92,103 @@ pub const MIN_CURRENT_WEIGHT: f32 = 1.0 / 16.0;
 /// Karis' tone-mapped space with the display's exposure).
 pub use crate::sraa::ResolveSpace;
 
+/// A TAA sequence's settings, checked in one place for every form that
+/// runs one (`subcone_scene::temporal::TaaConfig`,
+/// `subcone_passes::TaaPassDesc`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TaaSettings {
+    /// Jitter phases of [`jitter`]: 8 ([`PHASES_KARIS`]) or 16
+    /// ([`PHASES_FINE`], the default); at least 1.
+    pub phases: u32,
+    /// Where the resolve clips and blends ([`ResolveSpace::Linear`] by
+    /// default).
+    pub space: ResolveSpace,
+    /// The smallest weight of the current frame, in `(0, 1]`
+    /// ([`MIN_CURRENT_WEIGHT`]).
+    pub min_current_weight: f32,
+    /// Variance clipping's `γ`, non-negative and finite ([`CLIP_GAMMA`]).
+    pub clip_gamma: f32,
+}
+
+impl Default for TaaSettings {
+    fn default() -> Self {
+        TaaSettings {
+            phases: PHASES_FINE,
+            space: ResolveSpace::Linear,
+            min_current_weight: MIN_CURRENT_WEIGHT,
+            clip_gamma: CLIP_GAMMA,
+        }
+    }
+}
+
+/// Why [`TaaSettings`] are refused.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TaaSettingsError {
+    /// No jitter phase.
+    NoPhases,
+    /// A tone-mapped resolve's exposure that is not positive and finite.
+    Exposure(f32),
+    /// A smallest current weight outside `(0, 1]`.
+    MinCurrentWeight(f32),
+    /// A clip `γ` that is negative or not finite.
+    ClipGamma(f32),
+}
+
+impl core::fmt::Display for TaaSettingsError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            TaaSettingsError::NoPhases => f.write_str("at least one jitter phase"),
+            TaaSettingsError::Exposure(e) => write!(f, "exposure {e} must be positive and finite"),
+            TaaSettingsError::MinCurrentWeight(w) => {
+                write!(
+                    f,
+                    "the current frame's smallest weight {w} must be in (0, 1]"
+                )
+            }
+            TaaSettingsError::ClipGamma(g) => {
+                write!(f, "clip gamma {g} must be non-negative and finite")
+            }
+        }
+    }
+}
+
+impl TaaSettings {
+    /// Check every setting against its domain.
+    pub fn validate(&self) -> Result<(), TaaSettingsError> {
+        if self.phases == 0 {
+            return Err(TaaSettingsError::NoPhases);
+        }
+        if let ResolveSpace::ToneMapped { exposure } = self.space {
+            if !self.space.is_valid() {
+                return Err(TaaSettingsError::Exposure(exposure));
+            }
+        }
+        if !(self.min_current_weight > 0.0 && self.min_current_weight <= 1.0) {
+            return Err(TaaSettingsError::MinCurrentWeight(self.min_current_weight));
+        }
+        if !(self.clip_gamma >= 0.0 && self.clip_gamma.is_finite()) {
+            return Err(TaaSettingsError::ClipGamma(self.clip_gamma));
+        }
+        Ok(())
+    }
+
+    /// The resolve's parameters for a `size` frame with `history_frames`
+    /// frames in its history.
+    pub const fn params(&self, size: (u32, u32), history_frames: u32) -> TaaParams {
+        let mut p = TaaParams::new(size)
+            .with_history_frames(history_frames)
+            .with_space(self.space);
+        p.min_current_weight = self.min_current_weight;
+        p.clip_gamma = self.clip_gamma;
+        p
+    }
+
+    /// Frame `frame`'s jitter over these phases ([`jitter`]).
+    pub fn jitter(&self, frame: u32) -> Vec2 {
+        jitter(frame, self.phases)
+    }
+}
+
 /// What one TAA resolve runs with; `#[repr(C)]`, 32 bytes, uploaded
 /// unchanged (`subcone_TaaParams` in WGSL).
 #[repr(C)]

@@ -33,7 +33,7 @@
 
 use glam::{Vec2, Vec3};
 use subcone_kernels::passes::Technique;
-use subcone_kernels::taa::{self, ResolveSpace, TaaParams, PHASES_FINE};
+use subcone_kernels::taa::{self, TaaSettings};
 
 use crate::backend::{Backend, RenderSettings};
 use crate::camera::Camera;
@@ -43,60 +43,10 @@ use crate::history::TaaInput;
 use crate::method::Method;
 use crate::scene::Scene;
 
-/// The settings of a TAA sequence.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TaaConfig {
-    /// Jitter phases: 8 (Karis) or 16 (`PHASES_FINE`, the default); any
-    /// count from 1 is accepted.
-    pub phases: u32,
-    /// Where the resolve clips and blends: linear (the default) or Karis'
-    /// tone-mapped space with an exposure (positive and finite).
-    pub space: ResolveSpace,
-    /// The smallest weight of the current frame, in `(0, 1]`.
-    pub min_current_weight: f32,
-    /// Variance clipping's `γ` (non-negative).
-    pub clip_gamma: f32,
-}
-
-impl Default for TaaConfig {
-    fn default() -> Self {
-        TaaConfig {
-            phases: PHASES_FINE,
-            space: ResolveSpace::Linear,
-            min_current_weight: taa::MIN_CURRENT_WEIGHT,
-            clip_gamma: taa::CLIP_GAMMA,
-        }
-    }
-}
-
-impl TaaConfig {
-    /// Check every setting against its domain.
-    pub fn validate(&self) -> Result<(), RenderError> {
-        let bad = |what: String| Err(RenderError::Method(format!("TAA: {what}")));
-        if self.phases == 0 {
-            return bad("at least one jitter phase".into());
-        }
-        if !self.space.is_valid() {
-            return bad(format!(
-                "{:?}: the exposure must be positive and finite",
-                self.space
-            ));
-        }
-        if !(self.min_current_weight > 0.0 && self.min_current_weight <= 1.0) {
-            return bad(format!(
-                "the current frame's smallest weight {} must be in (0, 1]",
-                self.min_current_weight
-            ));
-        }
-        if !(self.clip_gamma >= 0.0 && self.clip_gamma.is_finite()) {
-            return bad(format!(
-                "clip gamma {} must be non-negative and finite",
-                self.clip_gamma
-            ));
-        }
-        Ok(())
-    }
-}
+/// The settings of a TAA sequence: the kernels' [`TaaSettings`] (jitter
+/// phases, resolve space, smallest current weight, clip `γ`), the same
+/// struct `subcone_passes::TaaPassDesc` holds.
+pub type TaaConfig = TaaSettings;
 
 /// A temporal method's sequence: its history, the previous camera and the
 /// frame count since the last reset.
@@ -120,7 +70,9 @@ impl Taa {
                 "{method} is not a temporal method: name one with +taa (or taa)"
             )));
         }
-        config.validate()?;
+        config
+            .validate()
+            .map_err(|e| RenderError::Method(format!("TAA: {e}")))?;
         Ok(Taa {
             method,
             config,
@@ -152,7 +104,7 @@ impl Taa {
         if self.method.technique() == Technique::SraaRt {
             taa::subsample_rotation(self.frame, self.method.sraa().shaded_offset())
         } else {
-            taa::jitter(self.frame, self.config.phases)
+            self.config.jitter(self.frame)
         }
     }
 
@@ -198,13 +150,7 @@ impl Taa {
             ),
             None => vec![Vec2::ZERO; frame.color.len()],
         };
-        let params = TaaParams {
-            min_current_weight: self.config.min_current_weight,
-            clip_gamma: self.config.clip_gamma,
-            ..TaaParams::new(size)
-                .with_history_frames(self.frame)
-                .with_space(self.config.space)
-        };
+        let params = self.config.params(size, self.frame);
         let input = TaaInput {
             params,
             current: &frame.color,

@@ -657,20 +657,18 @@ pub fn against_taa(rows: &[&MotionRow]) -> String {
                 judge(format!("{c} instability ({a:.4} vs {b:.4})"), a < b);
             }
         }
-        let list = |v: &[String]| {
-            if v.is_empty() {
-                "nothing".to_string()
-            } else {
-                v.join(", ")
-            }
+        let verdict = match (wins.is_empty(), losses.is_empty()) {
+            (false, true) => format!("better on every measure: {}", wins.join(", ")),
+            (true, false) => format!("better on no measure: {}", losses.join(", ")),
+            _ => format!(
+                "better on {}; not better on {}",
+                wins.join(", "),
+                losses.join(", ")
+            ),
         };
         out.push(format!(
-            "**{}** against taa alone: better on {}; not better on {}; {:.1} against {:.1} ms/frame.",
-            r.method,
-            list(&wins),
-            list(&losses),
-            r.ms_per_frame,
-            taa.ms_per_frame
+            "**{}** against taa alone: {verdict}; {:.1} against {:.1} ms/frame.",
+            r.method, r.ms_per_frame, taa.ms_per_frame
         ));
     }
     out.join("\n")

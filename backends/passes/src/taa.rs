@@ -2,7 +2,7 @@
 //! "High Quality Temporal Supersampling", 2014, with Salvi's variance
 //! clipping, 2016) of the host's jittered frame against its history.
 
-use subcone_kernels::taa::{self, ResolveSpace, TaaParams};
+use subcone_kernels::taa::{TaaParams, TaaSettings};
 
 use bytemuck::{Pod, Zeroable};
 
@@ -29,20 +29,13 @@ pub(crate) struct TaaOrigin {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct TaaPassDesc {
-    /// Jitter phases of [`TaaPass::jitter`]: 8 (Karis) or 16
-    /// (`subcone_kernels::taa::PHASES_FINE`, the default); at least 1.
-    pub phases: u32,
-    /// Where the resolve clips and blends: linear radiance (the default, a
-    /// still camera converges to the box filter of its samples) or Karis'
-    /// tone-mapped space with the display's exposure (HDR content: a sample
-    /// beside a highlight weighs what it weighs on screen).
-    pub space: ResolveSpace,
-    /// The smallest weight of the current frame, in `(0, 1]`
-    /// (`subcone_kernels::taa::MIN_CURRENT_WEIGHT`).
-    pub min_current_weight: f32,
-    /// Variance clipping's `γ`, non-negative and finite
-    /// (`subcone_kernels::taa::CLIP_GAMMA`).
-    pub clip_gamma: f32,
+    /// The sequence's settings (`subcone_kernels::taa::TaaSettings`):
+    /// jitter phases of [`TaaPass::jitter`], where the resolve clips and
+    /// blends (linear radiance by default, where a still camera converges to
+    /// the box filter of its samples, or Karis' tone-mapped space with the
+    /// display's exposure, for HDR content), the current frame's smallest
+    /// weight and variance clipping's `γ`.
+    pub settings: TaaSettings,
     /// The output texture's format: `Rgba16Float` (the default) or
     /// `Rgba32Float` (a storage texture; linear radiance, alpha 1). The
     /// output is the next frame's history, so an 8-bit format would
@@ -53,10 +46,7 @@ pub struct TaaPassDesc {
 impl Default for TaaPassDesc {
     fn default() -> Self {
         TaaPassDesc {
-            phases: taa::PHASES_FINE,
-            space: ResolveSpace::Linear,
-            min_current_weight: taa::MIN_CURRENT_WEIGHT,
-            clip_gamma: taa::CLIP_GAMMA,
+            settings: TaaSettings::default(),
             output_format: wgpu::TextureFormat::Rgba16Float,
         }
     }
@@ -64,42 +54,17 @@ impl Default for TaaPassDesc {
 
 impl TaaPassDesc {
     with_setters! {
-        /// With `phases` jitter phases ([`Self::phases`]).
-        with_phases(phases: u32);
-        /// Resolving in `space` ([`Self::space`]).
-        with_space(space: ResolveSpace);
-        /// With the current frame's smallest weight ([`Self::min_current_weight`]).
-        with_min_current_weight(min_current_weight: f32);
-        /// With variance clipping's `γ` ([`Self::clip_gamma`]).
-        with_clip_gamma(clip_gamma: f32);
+        /// With the sequence's `settings` ([`Self::settings`]).
+        with_settings(settings: TaaSettings);
         /// Writing `output_format` ([`Self::output_format`]).
         with_output_format(output_format: wgpu::TextureFormat);
     }
 
     /// Check every field against its domain.
     fn validate(&self) -> Result<(), PassError> {
-        let bad = |what: String| Err(PassError::Config(format!("TaaPassDesc: {what}")));
-        if self.phases == 0 {
-            return bad("at least one jitter phase".into());
-        }
-        if !self.space.is_valid() {
-            return bad(format!(
-                "{:?}: the exposure must be positive and finite",
-                self.space
-            ));
-        }
-        if !(self.min_current_weight > 0.0 && self.min_current_weight <= 1.0) {
-            return bad(format!(
-                "min_current_weight {} must be in (0, 1]",
-                self.min_current_weight
-            ));
-        }
-        if !(self.clip_gamma >= 0.0 && self.clip_gamma.is_finite()) {
-            return bad(format!(
-                "clip_gamma {} must be non-negative and finite",
-                self.clip_gamma
-            ));
-        }
+        self.settings
+            .validate()
+            .map_err(|e| PassError::Config(format!("TaaPassDesc: {e}")))?;
         if !matches!(
             self.output_format,
             wgpu::TextureFormat::Rgba16Float | wgpu::TextureFormat::Rgba32Float
@@ -192,7 +157,7 @@ impl TaaPass {
     /// (`subcone_kernels::taa::jitter`). For a projection matrix, add
     /// `(2·x / width, −2·y / height)` to its third column's NDC offsets.
     pub fn jitter(&self, frame: u32) -> glam::Vec2 {
-        taa::jitter(frame, self.desc.phases)
+        self.desc.settings.jitter(frame)
     }
 
     /// The bindings, writing `output_format`.
@@ -313,13 +278,10 @@ impl TaaPass {
                 )));
             }
         }
-        let params = TaaParams {
-            min_current_weight: self.desc.min_current_weight,
-            clip_gamma: self.desc.clip_gamma,
-            ..TaaParams::new(region.size())
-                .with_history_frames(inputs.history_frames)
-                .with_space(self.desc.space)
-        };
+        let params: TaaParams = self
+            .desc
+            .settings
+            .params(region.size(), inputs.history_frames);
         let origin = TaaOrigin {
             x: region.x,
             y: region.y,

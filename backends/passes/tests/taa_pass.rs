@@ -16,7 +16,7 @@ mod common;
 mod host;
 
 use glam::{Vec2, Vec3};
-use subcone_kernels::taa::{resolve_pixel, ResolveSpace, TaaParams};
+use subcone_kernels::taa::{resolve_pixel, ResolveSpace, TaaParams, TaaSettings};
 use subcone_passes::{PassError, Rect, TaaInputs, TaaPass, TaaPassDesc};
 
 const F32: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
@@ -136,7 +136,10 @@ fn the_pass_is_the_kernel_resolve() {
         ResolveSpace::ToneMapped { exposure: 0.5 },
     ] {
         let desc = TaaPassDesc::default()
-            .with_space(space)
+            .with_settings(TaaSettings {
+                space,
+                ..TaaSettings::default()
+            })
             .with_output_format(F32);
         let pass = TaaPass::new(&device, &desc).expect("pass");
         let got = run(&device, &queue, &pass, (w, h), (&cur, &hist, &vel), None);
@@ -245,12 +248,23 @@ fn bad_descs_and_inputs_are_refused() {
     let Some((device, queue)) = open() else {
         return;
     };
-    for desc in [
-        TaaPassDesc::default().with_phases(0),
-        TaaPassDesc::default().with_min_current_weight(0.0),
-        TaaPassDesc::default().with_clip_gamma(f32::NAN),
-        TaaPassDesc::default().with_space(ResolveSpace::ToneMapped { exposure: -1.0 }),
+    let d = TaaSettings::default();
+    for settings in [
+        TaaSettings { phases: 0, ..d },
+        TaaSettings {
+            min_current_weight: 0.0,
+            ..d
+        },
+        TaaSettings {
+            clip_gamma: f32::NAN,
+            ..d
+        },
+        TaaSettings {
+            space: ResolveSpace::ToneMapped { exposure: -1.0 },
+            ..d
+        },
     ] {
+        let desc = TaaPassDesc::default().with_settings(settings);
         assert!(
             matches!(TaaPass::new(&device, &desc), Err(PassError::Config(_))),
             "{desc:?}"

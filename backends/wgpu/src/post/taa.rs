@@ -8,7 +8,7 @@
 use std::sync::Arc;
 
 use glam::Vec3;
-use subcone_kernels::taa::ResolveSpace;
+use subcone_kernels::taa::{ResolveSpace, TaaSettings};
 use subcone_passes::{TaaInputs, TaaPass, TaaPassDesc};
 use subcone_scene::history::TaaInput;
 use subcone_scene::{PassTiming, RenderError};
@@ -18,8 +18,8 @@ use crate::context::{err, CacheKey, GpuContext};
 const COLOR: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 const VELOCITY: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
 
-/// The TAA pass's cache key: the bits of the desc's numbers (tone mapped,
-/// exposure, smallest current weight, clip γ); [`pass`] fixes the rest.
+/// The TAA pass's cache key: the bits of the settings the resolve reads
+/// (tone mapped, exposure, smallest current weight, clip γ).
 #[derive(PartialEq, Eq, Hash)]
 struct TaaPassKey([u32; 4]);
 
@@ -45,10 +45,14 @@ fn pass(ctx: &GpuContext, input: &TaaInput<'_>) -> Result<Arc<TaaPass>, RenderEr
         } else {
             ResolveSpace::Linear
         };
+        let settings = TaaSettings {
+            space,
+            min_current_weight: p.min_current_weight,
+            clip_gamma: p.clip_gamma,
+            ..TaaSettings::default()
+        };
         let desc = TaaPassDesc::default()
-            .with_space(space)
-            .with_min_current_weight(p.min_current_weight)
-            .with_clip_gamma(p.clip_gamma)
+            .with_settings(settings)
             .with_output_format(COLOR);
         ctx.scoped("taa", || TaaPass::new(&ctx.device, &desc))?
             .map_err(|e| err(format!("TAA: {e}")))
