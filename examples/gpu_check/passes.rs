@@ -217,7 +217,10 @@ fn at_size(ctx: &GpuContext, size: (u32, u32), runs: u32) -> Result<Vec<Value>> 
     let out = texture(ctx, "output", size, 1, COLOR, store);
     let d = &ctx.device;
     let pe = |what: &str, e: subcone_passes::PassError| anyhow!("{what}: {e}");
-    let sraa = SraaPass::new(d, &SraaPassDesc::msaa().with_params(SraaParams::TUNED))
+    // The paper's preset shades one of the four MSAA samples, so the pass
+    // needs no centre geometry beside the prepass (the tuned preset shades
+    // the pixel centre and would).
+    let sraa = SraaPass::new(d, &SraaPassDesc::msaa().with_params(SraaParams::PAPER))
         .map_err(|e| pe("SraaPass", e))?;
     let ctss =
         CtssPass::new(d, FIELD_WGSL, &CtssPassDesc::default()).map_err(|e| pe("CtssPass", e))?;

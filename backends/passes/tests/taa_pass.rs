@@ -78,6 +78,13 @@ fn frame(w: u32, h: u32) -> (Vec<Vec3>, Vec<Vec3>, Vec<Vec2>) {
     (cur, hist, vel)
 }
 
+/// Views of three zero 4×4 textures: a colour, a velocity, an output.
+fn tiny(device: &wgpu::Device, queue: &wgpu::Queue) -> [wgpu::TextureView; 3] {
+    [(F32, 64), (RG, 32), (F32, 64)]
+        .map(|(format, n)| upload(device, queue, (4, 4), format, &vec![0.0; n]))
+        .map(|t| t.create_view(&Default::default()))
+}
+
 fn rgba(c: &[Vec3]) -> Vec<f32> {
     c.iter().flat_map(|v| [v.x, v.y, v.z, 1.0]).collect()
 }
@@ -218,14 +225,11 @@ fn a_rect_is_the_pass_on_the_rect_alone() {
         }
     }
     // A rect outside the textures is refused before anything is recorded.
-    let t = upload(&device, &queue, (4, 4), F32, &[0.0; 64]);
-    let out = upload(&device, &queue, (4, 4), F32, &[0.0; 64]);
-    let v = upload(&device, &queue, (4, 4), RG, &[0.0; 32]);
-    let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+    let [t, v, out] = tiny(&device, &queue);
     let inputs = TaaInputs {
-        current: &view(&t),
-        velocity: &view(&v),
-        history: &view(&t),
+        current: &t,
+        velocity: &v,
+        history: &t,
         history_frames: 1,
     };
     let mut enc = device.create_command_encoder(&Default::default());
@@ -235,7 +239,7 @@ fn a_rect_is_the_pass_on_the_rect_alone() {
             &queue,
             &mut enc,
             &inputs,
-            &view(&out),
+            &out,
             Rect::new(2, 2, 3, 3),
             None,
         )
@@ -277,19 +281,16 @@ fn bad_descs_and_inputs_are_refused() {
     ));
     let pass =
         TaaPass::new(&device, &TaaPassDesc::default().with_output_format(F32)).expect("pass");
-    let t = upload(&device, &queue, (4, 4), F32, &[0.0; 64]);
-    let out = upload(&device, &queue, (4, 4), F32, &[0.0; 64]);
-    let v = upload(&device, &queue, (4, 4), RG, &[0.0; 32]);
-    let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+    let [t, v, out] = tiny(&device, &queue);
     let inputs = TaaInputs {
-        current: &view(&t),
-        velocity: &view(&v),
-        history: &view(&out),
+        current: &t,
+        velocity: &v,
+        history: &out,
         history_frames: 1,
     };
     let mut enc = device.create_command_encoder(&Default::default());
     let e = pass
-        .encode(&device, &queue, &mut enc, &inputs, &view(&out), None)
+        .encode(&device, &queue, &mut enc, &inputs, &out, None)
         .unwrap_err();
     assert!(matches!(e, PassError::Config(_)), "{e:?}");
     // The encoder is still good to submit.
