@@ -280,29 +280,20 @@ fn summary(a: Args) -> Result<()> {
     if pass_rows.is_empty() {
         md += "No pass was timed: see `passes.log`.\n";
     } else {
-        let trusted = passes
-            .as_ref()
-            .is_some_and(|p| p["timestamps_trusted"] == true);
         md += &format!(
             "Median ms of each `subcone-passes` pass encoded and submitted alone (`gpu_check passes`), \
-             {} runs after a warm-up: the wall clock from submission to completion, and the GPU's \
-             timestamps where the device has them ({}).\n\n",
+             {} runs after a warm-up, timed as the wgpu backend times its passes.\n\n",
             pass_rows[0]["runs"],
-            if trusted {
-                "trusted on this adapter"
-            } else {
-                "not trusted on this adapter: read the wall clock"
-            }
         );
-        md += "| pass | size | wall ms | timestamp ms |\n|---|---|--:|--:|\n";
+        md += "| pass | size | ms | timed by |\n|---|---|--:|---|\n";
         for r in &pass_rows {
             md += &format!(
                 "| {} | {}x{} | {} | {} |\n",
                 r["pass"].as_str().unwrap_or("?"),
                 r["width"],
                 r["height"],
-                cell(&r["wall_ms_median"], 2),
-                cell(&r["timestamp_ms_median"], 2)
+                cell(&r["ms_median"], 1),
+                r["timed_by"].as_str().unwrap_or("?")
             );
         }
     }
