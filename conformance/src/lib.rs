@@ -55,7 +55,10 @@ use subcone_scene::{
 
 mod temporal;
 mod thin_slab;
-pub use temporal::{check_taa_reset, check_taa_still, check_temporal_matches_cpu, TEMPORAL_CASES};
+pub use temporal::{
+    check_taa_reset, check_taa_still, check_temporal_matches_cpu, RESET_FRAMES, SEQUENCE_FRAMES,
+    STILL_FRAMES, STILL_RATIO, TEMPORAL_CASES,
+};
 pub use thin_slab::{check_thin_slab, thin_slab_scene, THIN_SLAB_METHODS, THIN_SLAB_TOLERANCE};
 
 #[doc(hidden)]

@@ -13,7 +13,7 @@ use crate::{flip, save_failure, FRAME_TOLERANCE, H, REFERENCE_METHOD, W};
 /// Frames of the still-camera case: one Halton (2, 3) cycle of 16 phases.
 pub const STILL_FRAMES: u32 = 16;
 /// How close to ssaa16's FLIP a still camera's TAA must come after
-/// [`STILL_FRAMES`] frames (issue acceptance: within 1.1×).
+/// [`STILL_FRAMES`](crate::STILL_FRAMES) frames (issue acceptance: within 1.1×).
 pub const STILL_RATIO: f64 = 1.1;
 /// Frames after a cut within which TAA's error must be back below NoAA's.
 pub const RESET_FRAMES: u32 = 4;
@@ -70,8 +70,8 @@ fn panned(base: &Camera, t: u32, step: f32) -> Camera {
     .expect("panned camera")
 }
 
-/// A still camera: after [`STILL_FRAMES`] frames, `taa` on cornell is within
-/// [`STILL_RATIO`] of ssaa16's FLIP against the ssaa64 reference.
+/// A still camera: after [`STILL_FRAMES`](crate::STILL_FRAMES) frames, `taa` on cornell is within
+/// [`STILL_RATIO`](crate::STILL_RATIO) of ssaa16's FLIP against the ssaa64 reference.
 pub fn check_taa_still(backend: &dyn Backend) {
     let scene = scene("cornell");
     let reference = render_one(backend, &scene, &scene.camera, REFERENCE_METHOD);
@@ -106,7 +106,7 @@ pub fn check_taa_still(backend: &dyn Backend) {
 }
 
 /// A cut: a sequence panning over cornell, then a reset to a camera turned
-/// away by a quarter of the field of view; within [`RESET_FRAMES`] frames
+/// away by a quarter of the field of view; within [`RESET_FRAMES`](crate::RESET_FRAMES) frames
 /// the error against the new view's reference is below NoAA's there.
 pub fn check_taa_reset(backend: &dyn Backend) {
     let scene = scene("cornell");
@@ -141,7 +141,7 @@ pub fn check_taa_reset(backend: &dyn Backend) {
     );
 }
 
-/// Every frame of each of [`TEMPORAL_CASES`] over a panning camera matches
+/// Every frame of each of [`TEMPORAL_CASES`](crate::TEMPORAL_CASES) over a panning camera matches
 /// the CPU backend's within [`FRAME_TOLERANCE`] (for the CPU backend itself
 /// there is nothing to compare).
 pub fn check_temporal_matches_cpu(backend: &dyn Backend) {
