@@ -120,45 +120,6 @@ pub struct Composite {
     pub image: Vec<Vec3>,
 }
 
-/// Read an `R32Float` texture back after `enc`.
-fn read_r32f(
-    device: &wgpu::Device,
-    queue: &wgpu::Queue,
-    mut enc: wgpu::CommandEncoder,
-    texture: &wgpu::Texture,
-) -> Result<Vec<f32>, String> {
-    let (w, h) = (texture.width(), texture.height());
-    let row = (w * 4).div_ceil(256) * 256;
-    let buf = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("depth read-back"),
-        size: (row * h) as u64,
-        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-        mapped_at_creation: false,
-    });
-    enc.copy_texture_to_buffer(
-        texture.as_image_copy(),
-        wgpu::TexelCopyBufferInfo {
-            buffer: &buf,
-            layout: wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(row),
-                rows_per_image: Some(h),
-            },
-        },
-        texture.size(),
-    );
-    queue.submit([enc.finish()]);
-    let data = host::read_buffer(device, &buf)?;
-    let mut out = Vec::with_capacity((w * h) as usize);
-    for y in 0..h {
-        for x in 0..w {
-            let o = (y * row + x * 4) as usize;
-            out.push(bytemuck::pod_read_unaligned(&data[o..o + 4]));
-        }
-    }
-    Ok(out)
-}
-
 /// The raster's colour and view depth (in `x`), read back.
 type RasterImages = (Vec<[f32; 4]>, Vec<[f32; 4]>);
 
@@ -369,7 +330,7 @@ pub fn render(
     )
     .map_err(|e| e.to_string())?;
     let sdf = host::read_rgba32f(device, queue, enc, &out)?;
-    let sdf_depth = read_r32f(
+    let sdf_depth = host::read_texels::<f32>(
         device,
         queue,
         device.create_command_encoder(&Default::default()),

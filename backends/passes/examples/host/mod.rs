@@ -146,11 +146,24 @@ pub fn read_buffer(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<Vec<u
 pub fn read_rgba32f(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
-    mut enc: wgpu::CommandEncoder,
+    enc: wgpu::CommandEncoder,
     texture: &wgpu::Texture,
 ) -> Result<Vec<[f32; 4]>, String> {
+    read_texels(device, queue, enc, texture)
+}
+
+/// Submit `enc` with a copy of `texture` and read it back, one `T` per
+/// texel (`T` the texel's size: `[f32; 4]` for `Rgba32Float`, `f32` for
+/// `R32Float`).
+pub fn read_texels<T: bytemuck::Pod>(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    mut enc: wgpu::CommandEncoder,
+    texture: &wgpu::Texture,
+) -> Result<Vec<T>, String> {
+    let texel = size_of::<T>() as u32;
     let (w, h) = (texture.width(), texture.height());
-    let row = (w * 16).div_ceil(256) * 256;
+    let row = (w * texel).div_ceil(256) * 256;
     let buf = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("read-back"),
         size: (row * h) as u64,
@@ -174,8 +187,8 @@ pub fn read_rgba32f(
     let mut out = Vec::with_capacity((w * h) as usize);
     for y in 0..h {
         for x in 0..w {
-            let o = (y * row + x * 16) as usize;
-            out.push(bytemuck::pod_read_unaligned(&data[o..o + 16]));
+            let o = (y * row + x * texel) as usize;
+            out.push(bytemuck::pod_read_unaligned(&data[o..o + texel as usize]));
         }
     }
     Ok(out)
