@@ -13,6 +13,7 @@
 #![deny(missing_docs)]
 
 pub mod cli;
+pub mod shaders;
 pub mod vectors;
 
 pub use subcone_kernels as kernels;

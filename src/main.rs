@@ -43,6 +43,22 @@ enum Command {
         #[arg(long, value_name = "DIR")]
         out: PathBuf,
     },
+    /// Write every GPU pass as SPIR-V, HLSL, GLSL and MSL with its resource
+    /// table (the files of `shaders/`), cross-compiled from the passes' WGSL.
+    Shaders {
+        /// The directory to write into (created if missing).
+        #[arg(long, value_name = "DIR", default_value = "shaders")]
+        out: PathBuf,
+        /// Compare with DIR instead of writing: exit with an error naming
+        /// each stale, missing or extra file.
+        #[arg(long)]
+        check: bool,
+        /// Also compile `CtssPass` over this WGSL field (it defines
+        /// `subcone_field` and `subcone_shade`, as `CtssPass::new` takes),
+        /// as the variants `ctss/host-buffers` and `ctss/host-texture`.
+        #[arg(long, value_name = "FILE.wgsl")]
+        ctss_field: Option<PathBuf>,
+    },
     /// Render one scene with one method.
     Render {
         /// A built-in scene name, `sponza`/`sponza-mirror`, or a path to an .obj, .gltf, .glb or .sdf.ron (SDF scene) file (the names: --help).
@@ -143,6 +159,11 @@ fn run() -> Result<()> {
             );
             Ok(())
         }
+        Command::Shaders {
+            out,
+            check,
+            ctss_field,
+        } => shaders(&out, check, ctss_field.as_deref()),
         Command::Render {
             scene,
             method,
@@ -221,4 +242,47 @@ fn scene_help() -> String {
 /// `scene --export`'s long help: the built-in SDF scenes.
 fn scene_export_help() -> String {
     subcone_scene::builtin::scene_help("The built-in SDF scene to write.", true, "")
+}
+
+/// `subcone shaders`.
+fn shaders(out: &std::path::Path, check: bool, ctss_field: Option<&std::path::Path>) -> Result<()> {
+    use subcone_passes::standalone;
+    let mut list = standalone::catalog().context("the passes' catalog")?;
+    if let Some(path) = ctss_field {
+        let field = std::fs::read_to_string(path)
+            .with_context(|| format!("cannot read the CTSS field {}", path.display()))?;
+        for (variant, desc) in [
+            (
+                "host-buffers",
+                subcone_passes::CtssPassDesc::default()
+                    .with_output(subcone_passes::CtssOutput::Buffers { counts: false }),
+            ),
+            ("host-texture", subcone_passes::CtssPassDesc::default()),
+        ] {
+            let mut s = standalone::ctss(&field, &desc)?;
+            s.variant = variant.to_owned();
+            s.summary = format!("CtssPass over {}", path.display());
+            list.push(s);
+        }
+    }
+    let files = subcone::shaders::generate(&list)?;
+    if check {
+        let stale = subcone::shaders::stale(out, &files);
+        if !stale.is_empty() {
+            anyhow::bail!(
+                "{} is not what `subcone shaders` writes ({} problems; regenerate with \
+                 `cargo run --release -- shaders --out {}`):\n  {}",
+                out.display(),
+                stale.len(),
+                out.display(),
+                stale.join("\n  ")
+            );
+        }
+        println!("{}: {} files, all up to date", out.display(), files.len());
+    } else {
+        subcone::shaders::write(out, &files)
+            .with_context(|| format!("cannot write shaders to {}", out.display()))?;
+        println!("wrote {} files to {}", files.len(), out.display());
+    }
+    Ok(())
 }

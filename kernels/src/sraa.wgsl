@@ -331,6 +331,15 @@ struct subcone_LayerState {
     any: bool,
 }
 
+// Every gate's state of subcone_sraa_reconstruct_run (eq. 2: the ungated
+// layer and one per light, at most 9).
+// Held in a struct, not a bare local array: naga writes a local array's
+// zero value in HLSL as `(T[N])0`, which glslang's HLSL front end cannot
+// parse, and a struct's as `(S)0`, which every HLSL compiler reads.
+struct subcone_LayerStates {
+    at: array<subcone_LayerState, 9>,
+}
+
 // sraa::reconstruct_layers, before the loop over neighbours.
 fn subcone_reconstruct_layers_begin() -> subcone_LayerState {
     return subcone_LayerState(subcone_weighted_sum_zero(), vec3<f32>(0.0), subcone_inf(), false);
@@ -435,15 +444,22 @@ fn subcone_tone_map_weight(c: vec3<f32>, exposure: f32) -> f32 {
 // Summed in f32, where the Rust sums in f64: a few ulps apart, and where
 // every finite subsample's exposed luma overflows f32 (weights all 0) or
 // the mean is not finite, this takes the box where the Rust still weighs.
+// The four subsamples of subcone_resolve_pixel_tone_mapped, held in a struct, not a bare local array: naga writes a local array's
+// zero value in HLSL as `(T[N])0`, which glslang's HLSL front end cannot
+// parse, and a struct's as `(S)0`, which every HLSL compiler reads.
+struct subcone_Subsamples4 {
+    at: array<vec3<f32>, 4>,
+}
+
 fn subcone_resolve_pixel_tone_mapped(s0: vec3<f32>, s1: vec3<f32>, s2: vec3<f32>, s3: vec3<f32>, exposure: f32) -> vec3<f32> {
     if !(exposure > 0.0) || !subcone_is_finite(exposure) {
         return subcone_resolve_pixel(s0, s1, s2, s3);
     }
     var sum = vec3<f32>(0.0);
     var weight = 0.0;
-    var subs = array<vec3<f32>, 4>(s0, s1, s2, s3);
+    var subs = subcone_Subsamples4(array<vec3<f32>, 4>(s0, s1, s2, s3));
     for (var k = 0u; k < 4u; k++) {
-        let c = subs[k];
+        let c = subs.at[k];
         if subcone_sraa_is_finite3(c) {
             let w = subcone_tone_map_weight(c, exposure);
             sum = sum + w * c;

@@ -650,21 +650,7 @@ impl CtssPass {
         host_wgsl: &str,
         desc: &CtssPassDesc<'_>,
     ) -> Result<Self, PassError> {
-        if desc.output == CtssOutput::Texture {
-            bind::check_output_format(desc.output_format)?;
-        }
-        if !(1..=MAX_BATCH).contains(&desc.batch) {
-            return Err(PassError::Config(format!(
-                "batch {}: subcone_CTSS_BATCH must be in 1..={MAX_BATCH}",
-                desc.batch
-            )));
-        }
-        if !(1..=MAX_SAMPLES_PER_SIDE).contains(&desc.samples_per_side) {
-            return Err(PassError::Config(format!(
-                "samples_per_side {}: must be in 1..={MAX_SAMPLES_PER_SIDE}",
-                desc.samples_per_side
-            )));
-        }
+        Self::check_desc(desc)?;
         let group = Self::group(desc.output_format, desc.output, desc.depth)?;
         let source = Self::source(host_wgsl, desc, &group);
         let pipeline = PassPipeline::new(
@@ -683,6 +669,27 @@ impl CtssPass {
             host_group: desc.host_layout.is_some(),
             pipeline,
         })
+    }
+
+    /// Refuse what [`Self::new`] refuses before compiling: a batch or
+    /// cones per side out of range, a texture format it cannot write.
+    pub(crate) fn check_desc(desc: &CtssPassDesc<'_>) -> Result<(), PassError> {
+        if desc.output == CtssOutput::Texture {
+            bind::check_output_format(desc.output_format)?;
+        }
+        if !(1..=MAX_BATCH).contains(&desc.batch) {
+            return Err(PassError::Config(format!(
+                "batch {}: subcone_CTSS_BATCH must be in 1..={MAX_BATCH}",
+                desc.batch
+            )));
+        }
+        if !(1..=MAX_SAMPLES_PER_SIDE).contains(&desc.samples_per_side) {
+            return Err(PassError::Config(format!(
+                "samples_per_side {}: must be in 1..={MAX_SAMPLES_PER_SIDE}",
+                desc.samples_per_side
+            )));
+        }
+        Ok(())
     }
 
     pub(crate) fn group(

@@ -73,6 +73,7 @@ mod layout_check;
 #[cfg(test)]
 mod layout_tests;
 mod sraa;
+pub mod standalone;
 mod taa;
 
 pub use bind::{Rect, BIND_GROUP_CACHE, UNIFORM_SLOTS};
@@ -88,6 +89,10 @@ pub use sraa::{
     RECONSTRUCT_WGSL,
 };
 pub use taa::{TaaInputs, TaaPass, TaaPassDesc};
+/// The wgpu this release's passes take (`wgpu::Device`, `TextureView`…):
+/// build the host's objects with `subcone_passes::wgpu` and the versions
+/// cannot disagree.
+pub use wgpu;
 
 /// README.md's code blocks (its "Embedding" section), compiled as doctests.
 #[cfg(doctest)]

@@ -57,6 +57,18 @@ pub(crate) struct SraaFrame {
     pub(crate) _pad: u32,
 }
 
+/// How a shader declares a hardware depth texture ([`DepthKind::Hardware`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum DepthBinding {
+    /// A depth texture (`texture_depth_*`), as wgpu binds it.
+    Depth,
+    /// A float texture whose `.x` is the depth: what GLSL reads, since it
+    /// has no texel fetch from a depth (shadow) sampler and naga's GLSL
+    /// back end refuses `textureLoad` of a depth texture. Vulkan and OpenGL
+    /// bind a depth image to a float sampler, depth in the red channel.
+    Float,
+}
+
 /// How the four geometric subsamples of a pixel are stored.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum GeometryLayout {
@@ -728,7 +740,12 @@ impl SraaPass {
     }
 
     /// The bindings, in order.
-    fn group(desc: &SraaPassDesc) -> Result<Group, PassError> {
+    pub(crate) fn group(desc: &SraaPassDesc) -> Result<Group, PassError> {
+        Self::group_with(desc, DepthBinding::Depth)
+    }
+
+    /// The bindings, hardware depth declared as `depth`.
+    pub(crate) fn group_with(desc: &SraaPassDesc, depth: DepthBinding) -> Result<Group, PassError> {
         use wgpu::TextureViewDimension::{D2Array, D2};
         if desc.geometry == GeometryLayout::Buffers {
             return Ok(Self::buffer_group(desc));
@@ -740,7 +757,7 @@ impl SraaPass {
             GeometryLayout::Multisampled => (D2, true),
             _ => (D2Array, false),
         };
-        let depth_sample = if hw {
+        let depth_sample = if hw && depth == DepthBinding::Depth {
             wgpu::TextureSampleType::Depth
         } else {
             float_sample()
@@ -784,7 +801,15 @@ impl SraaPass {
 
     /// The shader: the kernels, the generated header (constants, loaders),
     /// `sraa.wgsl`; the declarations are appended by [`Self::new`].
-    fn source(desc: &SraaPassDesc) -> Result<String, PassError> {
+    pub(crate) fn source(desc: &SraaPassDesc) -> Result<String, PassError> {
+        Self::source_with(desc, DepthBinding::Depth)
+    }
+
+    /// The shader, hardware depth read as `depth` declares it.
+    pub(crate) fn source_with(
+        desc: &SraaPassDesc,
+        depth: DepthBinding,
+    ) -> Result<String, PassError> {
         if desc.lights as usize > MAX_LIGHTS {
             return Err(PassError::Config(format!(
                 "{} lights: SRAA's eq. 2 gates at most {MAX_LIGHTS}",
@@ -827,7 +852,7 @@ impl SraaPass {
         h += &if buffers {
             Self::buffer_loaders(desc)
         } else {
-            Self::texture_loaders(desc)
+            Self::texture_loaders(desc, depth)
         };
         Ok([
             subcone_kernels::wgsl::PARAMS,
@@ -840,13 +865,17 @@ impl SraaPass {
     }
 
     /// The loaders of the texture layouts (see `sraa.wgsl`'s header).
-    fn texture_loaders(desc: &SraaPassDesc) -> String {
+    fn texture_loaders(desc: &SraaPassDesc, depth: DepthBinding) -> String {
         let packed = desc.geometry == GeometryLayout::Packed;
         let hw = desc.depth.is_hardware();
         let ms = desc.geometry == GeometryLayout::Multisampled;
         // textureLoad's trailing arguments: sample index, or layer and level.
         let sub_at = if ms { "i32(k)" } else { "i32(k), 0" };
-        let scalar = if hw { "" } else { ".x" };
+        let scalar = if hw && depth == DepthBinding::Depth {
+            ""
+        } else {
+            ".x"
+        };
         let mut h = String::from(
             "fn sraa_store(p: vec2<i32>, c: vec4<f32>) { textureStore(sraa_output, p, c); }\n",
         );

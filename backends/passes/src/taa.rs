@@ -61,7 +61,7 @@ impl TaaPassDesc {
     }
 
     /// Check every field against its domain.
-    fn validate(&self) -> Result<(), PassError> {
+    pub(crate) fn validate(&self) -> Result<(), PassError> {
         self.settings
             .validate()
             .map_err(|e| PassError::Config(format!("TaaPassDesc: {e}")))?;

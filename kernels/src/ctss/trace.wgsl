@@ -47,7 +47,9 @@ const subcone_SPLIT_LENGTH_RATIO: f32 = 8.0;
 // subcone_kernels::ctss::SPLIT_MAX_STEPS
 const subcone_SPLIT_MAX_STEPS: u32 = 32u;
 // subcone_kernels::ctss::SPLIT_QUADRANTS: (−x, −y), (+x, −y), (−x, +y), (+x, +y).
-const subcone_SPLIT_QUADRANTS: array<u32, 4> = array<u32, 4>(0x00001C73u, 0x0000E38Cu, 0x31C70000u, 0xCE380000u);
+// A vector, not an array: naga writes a constant array in HLSL through a
+// constructor function that glslang's HLSL front end takes for recursion.
+const subcone_SPLIT_QUADRANTS: vec4<u32> = vec4<u32>(0x00001C73u, 0x0000E38Cu, 0x31C70000u, 0xCE380000u);
 // subcone_kernels::ctss::SPLIT_OFFSETS: ±(11/8)·GRID_SCALE/3 in both axes, in
 // the order of the quadrants (evaluated in f32 as the Rust const is).
 const subcone_SPLIT_OFFSET: f32 = 1.375 * subcone_GRID_SCALE / 3.0;
@@ -111,6 +113,14 @@ struct subcone_GroupHit {
     normal: vec3<f32>,
     visible: u32,
     weight: f32,
+}
+
+// The hit groups marched ahead of shading (subcone_CTSS_BATCH of them).
+// Held in a struct, not a bare local array: naga writes a local array's
+// zero value in HLSL as `(T[N])0`, which glslang's HLSL front end cannot
+// parse, and a struct's as `(S)0`, which every HLSL compiler reads.
+struct subcone_PendingHits {
+    at: array<subcone_GroupHit, subcone_CTSS_BATCH>,
 }
 
 // subcone_kernels::ctss::normal_step — a quarter of the cone radius, never
@@ -444,7 +454,7 @@ fn subcone_ctss_trace(params: subcone_CtssParams, origin: vec3<f32>, dir: vec3<f
     // advance_object evaluates at most max_steps times and stops within a
     // few more calls: the bounds never cut a trace short.
     let budget = min(params.max_steps, 0x7fffffffu) + 4u;
-    var pending: array<subcone_GroupHit, subcone_CTSS_BATCH>;
+    var pending: subcone_PendingHits;
     var done = false;
     for (var round_i = 0u; round_i < budget && !done; round_i++) {
         var k = 0u;
@@ -466,7 +476,7 @@ fn subcone_ctss_trace(params: subcone_CtssParams, origin: vec3<f32>, dir: vec3<f
                     mask = subcone_group_mask(params, ray, s, normal);
                 }
                 let rec = subcone_cone_stepper_record_mask(&st, mask);
-                pending[k] = subcone_GroupHit(s, point, normal, rec.x, bitcast<f32>(rec.y));
+                pending.at[k] = subcone_GroupHit(s, point, normal, rec.x, bitcast<f32>(rec.y));
                 k += 1u;
                 if k >= subcone_CTSS_BATCH {
                     break;
@@ -474,11 +484,11 @@ fn subcone_ctss_trace(params: subcone_CtssParams, origin: vec3<f32>, dir: vec3<f
             }
         }
         for (var j = 0u; j < k; j++) {
-            if !have_depth && pending[j].weight > 0.0 {
-                depth = pending[j].sample.t;
+            if !have_depth && pending.at[j].weight > 0.0 {
+                depth = pending.at[j].sample.t;
                 have_depth = true;
             }
-            let extra = subcone_ctss_shade_hit(params, ray, pending[j], &agg);
+            let extra = subcone_ctss_shade_hit(params, ray, pending.at[j], &agg);
             extra_steps = subcone_saturating_add(extra_steps, extra.x);
             extra_samples = subcone_saturating_add(extra_samples, extra.y);
         }

@@ -41,9 +41,9 @@
 fn subcone_sraa_reconstruct_run(tgt: subcone_Geometry, target_shadow: u32, ta: vec3<f32>, secondary: bool, first: u32, x: u32, y: u32, k: u32) -> vec3<f32> {
     let params = sraa_params();
     let size = sraa_size();
-    var st: array<subcone_LayerState, 9>;
+    var st: subcone_LayerStates;
     for (var i = 0u; i < SRAA_GATES; i++) {
-        st[i] = subcone_reconstruct_layers_begin();
+        st.at[i] = subcone_reconstruct_layers_begin();
     }
     let nb = subcone_neighbourhood(x, y, k, subcone_sraa_shaded_offset(params), subcone_sraa_radius(params), size.x, size.y);
     for (var py = nb.y0; py < nb.y1; py++) {
@@ -60,15 +60,15 @@ fn subcone_sraa_reconstruct_run(tgt: subcone_Geometry, target_shadow: u32, ta: v
             for (var i = 0u; i < SRAA_GATES; i++) {
                 // Through a local: naga's SPIR-V writer cannot pass a pointer
                 // to an array element as an argument.
-                var layer = st[i];
+                var layer = st.at[i];
                 subcone_reconstruct_layers_add(&layer, w, i > 0u, i - 1u, target_shadow, s, d2, sraa_shaded_value(px, py, first + i));
-                st[i] = layer;
+                st.at[i] = layer;
             }
         }
     }
     var sum = vec3<f32>(0.0);
     for (var i = 0u; i < SRAA_GATES; i++) {
-        sum = sum + subcone_reconstruct_layers_end(st[i]);
+        sum = sum + subcone_reconstruct_layers_end(st.at[i]);
     }
     return sum;
 }

@@ -1,0 +1,701 @@
+//! `subcone shaders`: every pass of `subcone-passes` as SPIR-V, HLSL, GLSL
+//! and MSL, cross-compiled by naga from the one WGSL the wgpu pass runs,
+//! each with a resource table an engine binds from.
+//!
+//! For every [`StandaloneShader`] (the catalog of
+//! [`subcone_passes::standalone::catalog`], plus a host's own CTSS field
+//! with `--ctss-field`) it writes, under `<out>/<pass>/`:
+//!
+//! | file | what |
+//! |---|---|
+//! | `<variant>.wgsl` | the source, bindings declared |
+//! | `<variant>.spv` | SPIR-V 1.0, entry point as named in the table |
+//! | `<variant>.hlsl` | HLSL, shader model 6.0 |
+//! | `<variant>.comp` | GLSL 450 |
+//! | `<variant>.es.comp` | GLSL ES 310, where naga can express the shader in it |
+//! | `<variant>.metal` | MSL 2.1 |
+//!
+//! and `<out>/<pass>.json` and `<out>/<pass>.md`: per variant, the entry
+//! point, the workgroup size and dispatch, each binding's set, binding,
+//! kind, format and access with its register, binding or slot in each
+//! language, and every struct the host fills or reads (uniforms, buffer
+//! elements) with its members' offsets from naga's layouter: the layout
+//! the shader reads. `<out>/README.md` lists them all.
+//!
+//! Every output is a pure function of the WGSL, so the committed
+//! `shaders/` is checked by regenerating it (`--check`, and the test
+//! `tests/shaders.rs`).
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use naga::back::{glsl, hlsl, msl, spv};
+use naga::proc::{BoundsCheckPolicies, BoundsCheckPolicy};
+use subcone_passes::bind::{BindingEntry, BindingKind};
+use subcone_passes::standalone::StandaloneShader;
+
+/// A shader that naga could not parse, validate or translate.
+#[derive(Debug)]
+pub struct ShaderError {
+    /// `pass/variant`.
+    pub shader: String,
+    /// The stage and naga's message.
+    pub message: String,
+}
+
+impl std::fmt::Display for ShaderError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: {}", self.shader, self.message)
+    }
+}
+
+impl std::error::Error for ShaderError {}
+
+/// One file of the output: its path under the output directory and bytes.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct OutputFile {
+    /// Relative path (`sraa/buffers.spv`).
+    pub path: PathBuf,
+    /// Contents.
+    pub bytes: Vec<u8>,
+}
+
+/// Bounds checks of every translation: out-of-range indices and texel
+/// loads read zero and writes are skipped, as wgpu's own translation does
+/// by default, so no language's output reads memory the WGSL could not.
+const POLICIES: BoundsCheckPolicies = BoundsCheckPolicies {
+    index: BoundsCheckPolicy::ReadZeroSkipWrite,
+    buffer: BoundsCheckPolicy::ReadZeroSkipWrite,
+    image_load: BoundsCheckPolicy::ReadZeroSkipWrite,
+    binding_array: BoundsCheckPolicy::Unchecked,
+};
+
+/// The GLSL versions written: desktop 450 always, ES 310 where naga can.
+const GLSL_CORE: u16 = 450;
+const GLSL_ES: u16 = 310;
+/// The MSL version written.
+const MSL_VERSION: (u8, u8) = (2, 1);
+
+/// Where one binding lands in each language.
+struct Slots {
+    /// HLSL `register(<letter><n>, space<g>)`.
+    hlsl: String,
+    /// GLSL `layout(binding = n)`.
+    glsl: u32,
+    /// MSL `[[buffer(n)]]` or `[[texture(n)]]`.
+    msl: String,
+}
+
+/// HLSL's register class of a binding: constant buffers `b`, what the
+/// shader only reads `t`, what it writes `u`.
+fn hlsl_register(kind: &BindingKind) -> char {
+    match kind {
+        BindingKind::Uniform { .. } => 'b',
+        BindingKind::Storage { read_only: true } | BindingKind::Texture { .. } => 't',
+        BindingKind::Storage { read_only: false } | BindingKind::StorageTexture { .. } => 'u',
+    }
+}
+
+fn is_buffer(kind: &BindingKind) -> bool {
+    matches!(
+        kind,
+        BindingKind::Uniform { .. } | BindingKind::Storage { .. }
+    )
+}
+
+/// The slots of every binding, and the MSL slot of the buffer of runtime
+/// array sizes (naga's `_buffer_sizes`: one `u32` per runtime-sized
+/// storage buffer, in binding order), after the last buffer.
+fn slots(bindings: &[BindingEntry]) -> (Vec<Slots>, u8) {
+    let (mut buffers, mut textures) = (0u8, 0u8);
+    let list = bindings
+        .iter()
+        .map(|b| {
+            let msl = if is_buffer(&b.kind) {
+                buffers += 1;
+                format!("buffer({})", buffers - 1)
+            } else {
+                textures += 1;
+                format!("texture({})", textures - 1)
+            };
+            Slots {
+                hlsl: format!(
+                    "register({}{}, space{})",
+                    hlsl_register(&b.kind),
+                    b.binding,
+                    b.group
+                ),
+                glsl: b.binding,
+                msl,
+            }
+        })
+        .collect();
+    (list, buffers)
+}
+
+fn resource_binding(b: &BindingEntry) -> naga::ResourceBinding {
+    naga::ResourceBinding {
+        group: b.group,
+        binding: b.binding,
+    }
+}
+
+/// Parse and validate `wgsl`.
+fn module(wgsl: &str) -> Result<(naga::Module, naga::valid::ModuleInfo), String> {
+    let module = naga::front::wgsl::parse_str(wgsl).map_err(|e| e.emit_to_string(wgsl))?;
+    let info = naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::empty(),
+    )
+    .validate(&module)
+    .map_err(|e| e.emit_to_string(wgsl))?;
+    Ok((module, info))
+}
+
+fn spirv(
+    m: &naga::Module,
+    info: &naga::valid::ModuleInfo,
+    s: &StandaloneShader,
+) -> Result<Vec<u8>, String> {
+    let options = spv::Options {
+        lang_version: (1, 0),
+        flags: spv::WriterFlags::empty(),
+        bounds_check_policies: POLICIES,
+        ..Default::default()
+    };
+    let pipeline = spv::PipelineOptions {
+        shader_stage: naga::ShaderStage::Compute,
+        entry_point: s.entry_point.to_owned(),
+    };
+    let words = spv::write_vec(m, info, &options, Some(&pipeline)).map_err(|e| e.to_string())?;
+    Ok(words.iter().flat_map(|w| w.to_le_bytes()).collect())
+}
+
+fn hlsl_source(
+    m: &naga::Module,
+    info: &naga::valid::ModuleInfo,
+    s: &StandaloneShader,
+) -> Result<String, String> {
+    let options = hlsl::Options {
+        shader_model: hlsl::ShaderModel::V6_0,
+        // Register = binding, space = group (the table's `hlsl` column).
+        fake_missing_bindings: true,
+        ..Default::default()
+    };
+    let pipeline = hlsl::PipelineOptions {
+        entry_point: Some((naga::ShaderStage::Compute, s.entry_point.to_owned())),
+    };
+    let mut out = String::new();
+    hlsl::Writer::new(&mut out, &options, &pipeline)
+        .write(m, info, None)
+        .map_err(|e| e.to_string())?;
+    Ok(out)
+}
+
+fn glsl_source(
+    m: &naga::Module,
+    info: &naga::valid::ModuleInfo,
+    s: &StandaloneShader,
+    version: glsl::Version,
+) -> Result<String, String> {
+    let binding_map = s
+        .bindings
+        .iter()
+        .map(|b| (resource_binding(b), b.binding as u8))
+        .collect();
+    let options = glsl::Options {
+        version,
+        writer_flags: glsl::WriterFlags::empty(),
+        binding_map,
+        zero_initialize_workgroup_memory: true,
+    };
+    let pipeline = glsl::PipelineOptions {
+        shader_stage: naga::ShaderStage::Compute,
+        entry_point: s.entry_point.to_owned(),
+        multiview: None,
+    };
+    let mut out = String::new();
+    glsl::Writer::new(&mut out, m, info, &options, &pipeline, POLICIES)
+        .and_then(|mut w| w.write().map(|_| ()))
+        .map_err(|e| e.to_string())?;
+    Ok(out)
+}
+
+fn msl_source(
+    m: &naga::Module,
+    info: &naga::valid::ModuleInfo,
+    s: &StandaloneShader,
+    slots: &[Slots],
+    sizes_slot: u8,
+) -> Result<String, String> {
+    let resources = s
+        .bindings
+        .iter()
+        .zip(slots)
+        .map(|(b, slot)| {
+            let index: u8 = slot.msl[slot.msl.find('(').unwrap_or(0) + 1..slot.msl.len() - 1]
+                .parse()
+                .unwrap_or(0);
+            let target = if is_buffer(&b.kind) {
+                msl::BindTarget {
+                    buffer: Some(index),
+                    mutable: matches!(b.kind, BindingKind::Storage { read_only: false }),
+                    ..Default::default()
+                }
+            } else {
+                msl::BindTarget {
+                    texture: Some(index),
+                    mutable: matches!(b.kind, BindingKind::StorageTexture { .. }),
+                    ..Default::default()
+                }
+            };
+            (resource_binding(b), target)
+        })
+        .collect();
+    let mut per_entry_point_map = BTreeMap::new();
+    per_entry_point_map.insert(
+        s.entry_point.to_owned(),
+        msl::EntryPointResources {
+            resources,
+            sizes_buffer: Some(sizes_slot),
+            ..Default::default()
+        },
+    );
+    let options = msl::Options {
+        lang_version: MSL_VERSION,
+        per_entry_point_map,
+        fake_missing_bindings: false,
+        bounds_check_policies: POLICIES,
+        ..Default::default()
+    };
+    let pipeline = msl::PipelineOptions {
+        entry_point: Some((naga::ShaderStage::Compute, s.entry_point.to_owned())),
+        ..Default::default()
+    };
+    msl::write_string(m, info, &options, &pipeline)
+        .map(|(source, _)| source)
+        .map_err(|e| e.to_string())
+}
+
+/// A struct's members, flattened (`sraa.sigma_z`), with offsets from
+/// naga's layouter.
+fn struct_members(
+    m: &naga::Module,
+    layouter: &naga::proc::Layouter,
+    ty: naga::Handle<naga::Type>,
+    prefix: &str,
+    base: u32,
+    out: &mut Vec<serde_json::Value>,
+) {
+    match &m.types[ty].inner {
+        naga::TypeInner::Struct { members, .. } => {
+            for member in members {
+                let name = format!("{prefix}{}", member.name.as_deref().unwrap_or("?"));
+                if let naga::TypeInner::Struct { .. } = m.types[member.ty].inner {
+                    let nested = format!("{name}.");
+                    struct_members(m, layouter, member.ty, &nested, base + member.offset, out);
+                } else {
+                    out.push(serde_json::json!({
+                        "name": name,
+                        "offset": base + member.offset,
+                        "size": layouter[member.ty].size,
+                        "type": type_name(m, member.ty),
+                    }));
+                }
+            }
+        }
+        _ => out.push(serde_json::json!({
+            "name": prefix.trim_end_matches('.'),
+            "offset": base,
+            "size": layouter[ty].size,
+            "type": type_name(m, ty),
+        })),
+    }
+}
+
+/// WGSL's spelling of a member's type (scalars, vectors, matrices, fixed
+/// arrays of them).
+fn type_name(m: &naga::Module, ty: naga::Handle<naga::Type>) -> String {
+    let scalar = |s: naga::Scalar| match (s.kind, s.width) {
+        (naga::ScalarKind::Float, 4) => "f32",
+        (naga::ScalarKind::Uint, 4) => "u32",
+        (naga::ScalarKind::Sint, 4) => "i32",
+        (naga::ScalarKind::Bool, _) => "bool",
+        _ => "?",
+    };
+    match &m.types[ty].inner {
+        naga::TypeInner::Scalar(s) => scalar(*s).to_owned(),
+        naga::TypeInner::Vector { size, scalar: s } => {
+            format!("vec{}<{}>", *size as u8, scalar(*s))
+        }
+        naga::TypeInner::Matrix {
+            columns,
+            rows,
+            scalar: s,
+        } => format!("mat{}x{}<{}>", *columns as u8, *rows as u8, scalar(*s)),
+        naga::TypeInner::Array { base, size, .. } => match size {
+            naga::ArraySize::Constant(n) => format!("array<{}, {n}>", type_name(m, *base)),
+            _ => format!("array<{}>", type_name(m, *base)),
+        },
+        naga::TypeInner::Struct { .. } => m.types[ty].name.clone().unwrap_or_default(),
+        _ => "?".to_owned(),
+    }
+}
+
+/// The host-visible layout of the binding named `name`: a uniform's struct,
+/// or a storage buffer's element (its stride and, for a struct, members).
+fn binding_layout(
+    m: &naga::Module,
+    layouter: &naga::proc::Layouter,
+    name: &str,
+) -> Option<serde_json::Value> {
+    let (_, var) = m
+        .global_variables
+        .iter()
+        .find(|(_, v)| v.name.as_deref() == Some(name))?;
+    let (ty, stride) = match &m.types[var.ty].inner {
+        naga::TypeInner::Array { base, stride, .. } => (*base, Some(*stride)),
+        naga::TypeInner::Struct { .. } => (var.ty, None),
+        _ => return None,
+    };
+    let mut members = Vec::new();
+    struct_members(m, layouter, ty, "", 0, &mut members);
+    Some(serde_json::json!({
+        "type": type_name(m, ty),
+        "size": layouter[ty].size,
+        "array_stride": stride,
+        "members": members,
+    }))
+}
+
+fn kind_fields(kind: &BindingKind) -> (&'static str, String, &'static str) {
+    match kind {
+        BindingKind::Uniform { .. } => ("uniform buffer", String::new(), "read"),
+        BindingKind::Storage { read_only } => (
+            "storage buffer",
+            String::new(),
+            if *read_only { "read" } else { "read_write" },
+        ),
+        BindingKind::Texture {
+            sample,
+            array,
+            multisampled,
+        } => {
+            let shape = match (array, multisampled) {
+                (_, true) => "2d multisampled",
+                (true, false) => "2d array",
+                (false, false) => "2d",
+            };
+            ("sampled texture", format!("{sample}, {shape}"), "read")
+        }
+        BindingKind::StorageTexture { format } => {
+            ("storage texture", format!("{format}, 2d"), "write")
+        }
+    }
+}
+
+/// Everything written for one shader: its files and its table row.
+fn translate(s: &StandaloneShader) -> Result<(Vec<OutputFile>, serde_json::Value), ShaderError> {
+    let id = format!("{}/{}", s.pass, s.variant);
+    let fail = |stage: &str, message: String| ShaderError {
+        shader: id.clone(),
+        message: format!("{stage}: {message}"),
+    };
+    let (m, info) = module(&s.wgsl).map_err(|e| fail("WGSL", e))?;
+    let glsl_module = match &s.glsl_wgsl {
+        Some(wgsl) => Some(module(wgsl).map_err(|e| fail("WGSL for GLSL", e))?),
+        None => None,
+    };
+    let (gm, ginfo) = glsl_module.as_ref().map_or((&m, &info), |(m, i)| (m, i));
+    let (slots, sizes_slot) = slots(&s.bindings);
+    let base = PathBuf::from(s.pass);
+    let file = |ext: &str, bytes: Vec<u8>| OutputFile {
+        path: base.join(format!("{}.{ext}", s.variant)),
+        bytes,
+    };
+    let mut files = vec![
+        file("wgsl", s.wgsl.clone().into_bytes()),
+        file("spv", spirv(&m, &info, s).map_err(|e| fail("SPIR-V", e))?),
+        file(
+            "hlsl",
+            hlsl_source(&m, &info, s)
+                .map_err(|e| fail("HLSL", e))?
+                .into_bytes(),
+        ),
+        file(
+            "comp",
+            glsl_source(gm, ginfo, s, glsl::Version::Desktop(GLSL_CORE))
+                .map_err(|e| fail("GLSL 450", e))?
+                .into_bytes(),
+        ),
+        file(
+            "metal",
+            msl_source(&m, &info, s, &slots, sizes_slot)
+                .map_err(|e| fail("MSL", e))?
+                .into_bytes(),
+        ),
+    ];
+    // GLSL ES 3.10 lacks some of what desktop GLSL has (multisampled
+    // arrays, some storage formats): written where naga can, the reason
+    // recorded where it cannot.
+    let es = match glsl_source(gm, ginfo, s, glsl::Version::new_gles(GLSL_ES)) {
+        Ok(src) => {
+            files.push(file("es.comp", src.into_bytes()));
+            serde_json::json!({ "file": format!("{}.es.comp", s.variant) })
+        }
+        Err(e) => serde_json::json!({ "file": null, "not_expressible": e }),
+    };
+    let mut layouter = naga::proc::Layouter::default();
+    layouter
+        .update(m.to_ctx())
+        .map_err(|e| fail("layout", e.to_string()))?;
+    let bindings: Vec<_> = s
+        .bindings
+        .iter()
+        .zip(&slots)
+        .map(|(b, slot)| {
+            let (kind, format, access) = kind_fields(&b.kind);
+            let glsl_float_depth = s.glsl_wgsl.is_some()
+                && matches!(b.kind, BindingKind::Texture { sample: "depth", .. });
+            serde_json::json!({
+                "set": b.group,
+                "binding": b.binding,
+                "name": b.name,
+                "kind": kind,
+                "format": format,
+                "access": access,
+                "wgsl_type": b.wgsl_type,
+                "hlsl": slot.hlsl,
+                "glsl_binding": slot.glsl,
+                "glsl_note": if glsl_float_depth {
+                    "a float sampler: bind the depth image, depth in .r (GLSL has no texel fetch of depth)"
+                } else {
+                    ""
+                },
+                "msl": slot.msl,
+                "layout": binding_layout(&m, &layouter, &b.name),
+            })
+        })
+        .collect();
+    let runtime_arrays = s
+        .bindings
+        .iter()
+        .filter(|b| matches!(b.kind, BindingKind::Storage { .. }))
+        .count();
+    let row = serde_json::json!({
+        "variant": s.variant,
+        "summary": s.summary,
+        "entry_point": s.entry_point,
+        "workgroup_size": s.workgroup_size,
+        "dispatch": s.dispatch,
+        "files": {
+            "wgsl": format!("{}.wgsl", s.variant),
+            "spirv": format!("{}.spv", s.variant),
+            "hlsl": format!("{}.hlsl", s.variant),
+            "glsl": format!("{}.comp", s.variant),
+            "glsl_es": es,
+            "msl": format!("{}.metal", s.variant),
+        },
+        "bindings": bindings,
+        "msl_buffer_sizes": if runtime_arrays > 0 {
+            serde_json::json!({
+                "slot": format!("buffer({sizes_slot})"),
+                "what": "one u32 per storage buffer, in binding order: its size in bytes",
+            })
+        } else {
+            serde_json::Value::Null
+        },
+    });
+    Ok((files, row))
+}
+
+/// The Markdown table of one pass's variants.
+fn markdown(pass: &str, rows: &[serde_json::Value]) -> String {
+    let mut md = format!(
+        "# `{pass}`: resource tables\n\nGenerated by `subcone shaders --out shaders`; do not edit. \
+         Set = `@group`, binding = `@binding` (SPIR-V and Vulkan GLSL); HLSL registers; \
+         GLSL `layout(binding = n)`; MSL argument slots. Offsets are bytes, from naga's layouter \
+         (std140 for uniforms, std430 for storage buffers).\n"
+    );
+    for row in rows {
+        let s = |k: &str| row[k].as_str().unwrap_or_default().to_owned();
+        let _ = write!(
+            md,
+            "\n## `{pass}/{}`\n\n{}\n\n- entry point `{}`, workgroup size {}, dispatch {}\n",
+            s("variant"),
+            s("summary"),
+            s("entry_point"),
+            row["workgroup_size"],
+            s("dispatch"),
+        );
+        let es = &row["files"]["glsl_es"];
+        let _ = writeln!(
+            md,
+            "- files: `{0}.wgsl`, `{0}.spv`, `{0}.hlsl`, `{0}.comp` (GLSL 450), {1}`{0}.metal`\n",
+            s("variant"),
+            match es["file"].as_str() {
+                Some(f) => format!("`{f}` (GLSL ES 310), "),
+                None => format!(
+                    "no GLSL ES 310 ({}), ",
+                    es["not_expressible"].as_str().unwrap_or_default()
+                ),
+            }
+        );
+        md += "| set | binding | name | kind | format | access | HLSL | GLSL | MSL |\n";
+        md += "|--:|--:|---|---|---|---|---|--:|---|\n";
+        for b in row["bindings"].as_array().into_iter().flatten() {
+            let f = |k: &str| match &b[k] {
+                serde_json::Value::String(v) => v.clone(),
+                v => v.to_string(),
+            };
+            let _ = writeln!(
+                md,
+                "| {} | {} | `{}` | {} | {} | {} | `{}` | {} | `{}` |",
+                f("set"),
+                f("binding"),
+                f("name"),
+                f("kind"),
+                f("format"),
+                f("access"),
+                f("hlsl"),
+                f("glsl_binding"),
+                f("msl"),
+            );
+        }
+        if let Some(sizes) = row["msl_buffer_sizes"].as_object() {
+            let _ = writeln!(
+                md,
+                "\nMSL also reads `{}`: {}.",
+                sizes["slot"].as_str().unwrap_or_default(),
+                sizes["what"].as_str().unwrap_or_default()
+            );
+        }
+        for b in row["bindings"].as_array().into_iter().flatten() {
+            let Some(layout) = b["layout"].as_object() else {
+                continue;
+            };
+            let _ = write!(
+                md,
+                "\n`{}`: `{}`, {} bytes",
+                b["name"].as_str().unwrap_or_default(),
+                layout["type"].as_str().unwrap_or_default(),
+                layout["size"]
+            );
+            if let Some(stride) = layout["array_stride"].as_u64() {
+                let _ = write!(md, ", an array of stride {stride}");
+            }
+            md += "\n\n| offset | size | member | type |\n|--:|--:|---|---|\n";
+            for m in layout["members"].as_array().into_iter().flatten() {
+                let _ = writeln!(
+                    md,
+                    "| {} | {} | `{}` | `{}` |",
+                    m["offset"],
+                    m["size"],
+                    m["name"].as_str().unwrap_or_default(),
+                    m["type"].as_str().unwrap_or_default()
+                );
+            }
+        }
+    }
+    md
+}
+
+/// Every file `subcone shaders` writes for `shaders`, in a fixed order.
+pub fn generate(shaders: &[StandaloneShader]) -> Result<Vec<OutputFile>, ShaderError> {
+    let mut files = Vec::new();
+    let mut passes: BTreeMap<&str, Vec<serde_json::Value>> = BTreeMap::new();
+    for s in shaders {
+        let (f, row) = translate(s)?;
+        files.extend(f);
+        passes.entry(s.pass).or_default().push(row);
+    }
+    let mut index = String::from(
+        "# Shaders\n\nEvery pass of `subcone-passes` in SPIR-V, HLSL, GLSL and MSL, \
+         cross-compiled by naga from the WGSL the wgpu pass runs. Generated by \
+         `cargo run --release -- shaders --out shaders`; do not edit (CI regenerates them \
+         and fails on a difference). Bind them from the resource tables.\n\n\
+         | pass | variant | configuration | table |\n|---|---|---|---|\n",
+    );
+    for (pass, rows) in &passes {
+        for row in rows {
+            let _ = writeln!(
+                index,
+                "| {pass} | `{}` | {} | [{pass}.md]({pass}.md), [{pass}.json]({pass}.json) |",
+                row["variant"].as_str().unwrap_or_default(),
+                row["summary"].as_str().unwrap_or_default(),
+            );
+        }
+        let mut json = serde_json::to_string_pretty(&serde_json::json!({
+            "pass": pass,
+            "generator": format!("subcone {} (naga {})", env!("CARGO_PKG_VERSION"), NAGA_VERSION),
+            "variants": rows,
+        }))
+        .map_err(|e| ShaderError {
+            shader: (*pass).to_owned(),
+            message: e.to_string(),
+        })?;
+        json.push('\n');
+        files.push(OutputFile {
+            path: PathBuf::from(format!("{pass}.json")),
+            bytes: json.into_bytes(),
+        });
+        files.push(OutputFile {
+            path: PathBuf::from(format!("{pass}.md")),
+            bytes: markdown(pass, rows).into_bytes(),
+        });
+    }
+    files.push(OutputFile {
+        path: PathBuf::from("README.md"),
+        bytes: index.into_bytes(),
+    });
+    Ok(files)
+}
+
+/// The naga the translations come from (the major wgpu pairs with).
+pub const NAGA_VERSION: &str = "30";
+
+/// Write `files` under `out`.
+pub fn write(out: &Path, files: &[OutputFile]) -> std::io::Result<()> {
+    for f in files {
+        let path = out.join(&f.path);
+        if let Some(dir) = path.parent() {
+            std::fs::create_dir_all(dir)?;
+        }
+        std::fs::write(path, &f.bytes)?;
+    }
+    Ok(())
+}
+
+/// What differs between `files` and the directory `out`: files missing or
+/// different, and files under `out` that `files` does not hold.
+pub fn stale(out: &Path, files: &[OutputFile]) -> Vec<String> {
+    let mut problems = Vec::new();
+    for f in files {
+        match std::fs::read(out.join(&f.path)) {
+            Ok(bytes) if bytes == f.bytes => {}
+            Ok(_) => problems.push(format!("{} differs", f.path.display())),
+            Err(_) => problems.push(format!("{} is missing", f.path.display())),
+        }
+    }
+    let expected: std::collections::BTreeSet<PathBuf> =
+        files.iter().map(|f| f.path.clone()).collect();
+    let mut stack = vec![out.to_path_buf()];
+    while let Some(dir) = stack.pop() {
+        let Ok(entries) = std::fs::read_dir(&dir) else {
+            continue;
+        };
+        for e in entries.flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if let Ok(rel) = p.strip_prefix(out) {
+                if !expected.contains(rel) {
+                    problems.push(format!("{} is not generated", rel.display()));
+                }
+            }
+        }
+    }
+    problems.sort();
+    problems
+}
