@@ -16,6 +16,18 @@
 
 #define SPIRV_MAGIC 0x07230203u
 
+/* What one dispatch creates and destroys. Every handle starts as
+ * VK_NULL_HANDLE, which the destroy calls accept. */
+typedef struct DispatchObjects {
+    VkDescriptorSetLayout set_layout;
+    VkPipelineLayout pipeline_layout;
+    VkShaderModule module;
+    VkPipeline pipeline;
+    VkDescriptorPool descriptor_pool;
+    VkCommandBuffer cmd;
+    VkFence fence;
+} DispatchObjects;
+
 struct VkcContext {
     VkInstance instance;
     VkPhysicalDevice physical;
@@ -30,10 +42,24 @@ struct VkcContext {
     VkQueryPool timestamps;
     uint32_t timestamp_bits;
     double last_ms;
-    /* Set when a fence wait timed out: work may still be running on objects
-     * that were leaked on purpose, so no further submission is safe. */
+    /* Set when a fence wait timed out: the device may still be running the
+     * dispatch whose objects are parked in `pending`, so no further
+     * submission is made, and buffers and the context wait for the device
+     * before they are freed. */
     int wedged;
+    DispatchObjects pending;
 };
+
+static void release_objects(VkcContext *ctx, DispatchObjects *o) {
+    vkDestroyFence(ctx->device, o->fence, NULL);
+    if (o->cmd != VK_NULL_HANDLE) vkFreeCommandBuffers(ctx->device, ctx->pool, 1, &o->cmd);
+    vkDestroyDescriptorPool(ctx->device, o->descriptor_pool, NULL);
+    vkDestroyPipeline(ctx->device, o->pipeline, NULL);
+    vkDestroyShaderModule(ctx->device, o->module, NULL);
+    vkDestroyPipelineLayout(ctx->device, o->pipeline_layout, NULL);
+    vkDestroyDescriptorSetLayout(ctx->device, o->set_layout, NULL);
+    memset(o, 0, sizeof *o);
+}
 
 /* Writes a formatted one-line reason into err, tolerating a NULL or empty
  * buffer so callers never have to check before reporting. */
@@ -148,7 +174,8 @@ static int pick_device(VkcContext *ctx, char *err, size_t err_len) {
         return 1;
     }
     if (n == 0) {
-        fail(err, err_len, "vkEnumeratePhysicalDevices found no Vulkan device (is a driver such as lavapipe installed?)");
+        fail(err, err_len, "vkEnumeratePhysicalDevices found no Vulkan device (is a driver such as lavapipe "
+             "installed?)");
         return 1;
     }
     devices = (VkPhysicalDevice *)malloc(n * sizeof *devices);
@@ -246,7 +273,13 @@ int vkc_create(VkcContext **out, char *err, size_t err_len) {
     if (r != VK_SUCCESS) {
         /* A failed vkCreateInstance leaves the handle undefined. */
         ctx->instance = VK_NULL_HANDLE;
-        fail_vk(err, err_len, "vkCreateInstance", r);
+        /* The loader's answer when it finds no driver at all, which is what
+         * a user needs to hear. */
+        if (r == VK_ERROR_INCOMPATIBLE_DRIVER)
+            fail(err, err_len, "vkCreateInstance failed: %s (%d): no usable Vulkan driver (ICD) was found",
+                 result_name(r), (int)r);
+        else
+            fail_vk(err, err_len, "vkCreateInstance", r);
         goto fail;
     }
 
@@ -310,6 +343,7 @@ void vkc_destroy(VkcContext *ctx) {
          * result is ignored because there is nothing left to do on failure
          * (a lost device is idle by definition). */
         (void)vkDeviceWaitIdle(ctx->device);
+        release_objects(ctx, &ctx->pending);
         vkDestroyQueryPool(ctx->device, ctx->timestamps, NULL);
         vkDestroyCommandPool(ctx->device, ctx->pool, NULL);
         vkDestroyDevice(ctx->device, NULL);
@@ -416,6 +450,9 @@ fail:
 
 void vkc_buffer_destroy(VkcContext *ctx, VkcBuffer *buf) {
     if (ctx == NULL || buf == NULL) return;
+    /* After a timed-out dispatch the device may still be using any buffer.
+     * The result is ignored: a lost device is idle. */
+    if (ctx->wedged && ctx->device != VK_NULL_HANDLE) (void)vkDeviceWaitIdle(ctx->device);
     if (buf->mapped != NULL) vkUnmapMemory(ctx->device, buf->memory);
     vkDestroyBuffer(ctx->device, buf->buffer, NULL);
     vkFreeMemory(ctx->device, buf->memory, NULL);
@@ -493,19 +530,14 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
     VkDescriptorSetLayoutBinding *layout_bindings = NULL;
     VkDescriptorBufferInfo *buffer_infos = NULL;
     VkWriteDescriptorSet *writes = NULL;
-    VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
-    VkPipelineLayout pipeline_layout = VK_NULL_HANDLE;
-    VkShaderModule module = VK_NULL_HANDLE;
-    VkPipeline pipeline = VK_NULL_HANDLE;
-    VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
+    DispatchObjects o;
     VkDescriptorSet set = VK_NULL_HANDLE;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    VkFence fence = VK_NULL_HANDLE;
     uint32_t uniform_count = 0, storage_count = 0, i;
     double elapsed_ms = -1.0;
     int rc = 1;
     VkResult r;
 
+    memset(&o, 0, sizeof o);
     if (err != NULL && err_len > 0) err[0] = '\0';
     if (ctx == NULL) {
         fail(err, err_len, "vkc_dispatch: ctx is NULL");
@@ -545,9 +577,9 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
         ci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
         ci.bindingCount = binding_count;
         ci.pBindings = layout_bindings;
-        r = vkCreateDescriptorSetLayout(ctx->device, &ci, NULL, &set_layout);
+        r = vkCreateDescriptorSetLayout(ctx->device, &ci, NULL, &o.set_layout);
         if (r != VK_SUCCESS) {
-            set_layout = VK_NULL_HANDLE;
+            o.set_layout = VK_NULL_HANDLE;
             fail_vk(err, err_len, "vkCreateDescriptorSetLayout", r);
             goto cleanup;
         }
@@ -557,10 +589,10 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
         memset(&ci, 0, sizeof ci);
         ci.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
         ci.setLayoutCount = 1;
-        ci.pSetLayouts = &set_layout;
-        r = vkCreatePipelineLayout(ctx->device, &ci, NULL, &pipeline_layout);
+        ci.pSetLayouts = &o.set_layout;
+        r = vkCreatePipelineLayout(ctx->device, &ci, NULL, &o.pipeline_layout);
         if (r != VK_SUCCESS) {
-            pipeline_layout = VK_NULL_HANDLE;
+            o.pipeline_layout = VK_NULL_HANDLE;
             fail_vk(err, err_len, "vkCreatePipelineLayout", r);
             goto cleanup;
         }
@@ -571,9 +603,9 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
         ci.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
         ci.codeSize = spirv_bytes;
         ci.pCode = spirv;
-        r = vkCreateShaderModule(ctx->device, &ci, NULL, &module);
+        r = vkCreateShaderModule(ctx->device, &ci, NULL, &o.module);
         if (r != VK_SUCCESS) {
-            module = VK_NULL_HANDLE;
+            o.module = VK_NULL_HANDLE;
             fail_vk(err, err_len, "vkCreateShaderModule", r);
             goto cleanup;
         }
@@ -584,13 +616,13 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
         ci.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
         ci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
         ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-        ci.stage.module = module;
+        ci.stage.module = o.module;
         ci.stage.pName = entry;
-        ci.layout = pipeline_layout;
+        ci.layout = o.pipeline_layout;
         ci.basePipelineIndex = -1;
-        r = vkCreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &ci, NULL, &pipeline);
+        r = vkCreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &ci, NULL, &o.pipeline);
         if (r != VK_SUCCESS) {
-            pipeline = VK_NULL_HANDLE;
+            o.pipeline = VK_NULL_HANDLE;
             fail(err, err_len, "vkCreateComputePipelines (entry point \"%s\") failed: %s (%d)", entry,
                  result_name(r), (int)r);
             goto cleanup;
@@ -619,17 +651,17 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
         ci.maxSets = 1;
         ci.poolSizeCount = size_count;
         ci.pPoolSizes = sizes;
-        r = vkCreateDescriptorPool(ctx->device, &ci, NULL, &descriptor_pool);
+        r = vkCreateDescriptorPool(ctx->device, &ci, NULL, &o.descriptor_pool);
         if (r != VK_SUCCESS) {
-            descriptor_pool = VK_NULL_HANDLE;
+            o.descriptor_pool = VK_NULL_HANDLE;
             fail_vk(err, err_len, "vkCreateDescriptorPool", r);
             goto cleanup;
         }
         memset(&ai, 0, sizeof ai);
         ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
-        ai.descriptorPool = descriptor_pool;
+        ai.descriptorPool = o.descriptor_pool;
         ai.descriptorSetCount = 1;
-        ai.pSetLayouts = &set_layout;
+        ai.pSetLayouts = &o.set_layout;
         r = vkAllocateDescriptorSets(ctx->device, &ai, &set);
         if (r != VK_SUCCESS) {
             set = VK_NULL_HANDLE;
@@ -657,9 +689,9 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
         ai.commandPool = ctx->pool;
         ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
         ai.commandBufferCount = 1;
-        r = vkAllocateCommandBuffers(ctx->device, &ai, &cmd);
+        r = vkAllocateCommandBuffers(ctx->device, &ai, &o.cmd);
         if (r != VK_SUCCESS) {
-            cmd = VK_NULL_HANDLE;
+            o.cmd = VK_NULL_HANDLE;
             fail_vk(err, err_len, "vkAllocateCommandBuffers", r);
             goto cleanup;
         }
@@ -670,7 +702,7 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
         memset(&bi, 0, sizeof bi);
         bi.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
         bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        r = vkBeginCommandBuffer(cmd, &bi);
+        r = vkBeginCommandBuffer(o.cmd, &bi);
         if (r != VK_SUCCESS) {
             fail_vk(err, err_len, "vkBeginCommandBuffer", r);
             goto cleanup;
@@ -678,24 +710,24 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
         /* Queries must be reset before each use; doing it in the command
          * buffer avoids needing 1.2's host reset. */
         if (ctx->timestamps != VK_NULL_HANDLE) {
-            vkCmdResetQueryPool(cmd, ctx->timestamps, 0, 2);
-            vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, ctx->timestamps, 0);
+            vkCmdResetQueryPool(o.cmd, ctx->timestamps, 0, 2);
+            vkCmdWriteTimestamp(o.cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, ctx->timestamps, 0);
         }
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+        vkCmdBindPipeline(o.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, o.pipeline);
         if (set != VK_NULL_HANDLE)
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_layout, 0, 1, &set, 0, NULL);
-        vkCmdDispatch(cmd, gx, gy, gz);
+            vkCmdBindDescriptorSets(o.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, o.pipeline_layout, 0, 1, &set, 0, NULL);
+        vkCmdDispatch(o.cmd, gx, gy, gz);
         if (ctx->timestamps != VK_NULL_HANDLE)
-            vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, ctx->timestamps, 1);
+            vkCmdWriteTimestamp(o.cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, ctx->timestamps, 1);
         /* A signalled fence does not by itself make device writes visible to
          * the host, even in coherent memory; this barrier does. */
         memset(&to_host, 0, sizeof to_host);
         to_host.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
         to_host.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
         to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host,
+        vkCmdPipelineBarrier(o.cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host,
                              0, NULL, 0, NULL);
-        r = vkEndCommandBuffer(cmd);
+        r = vkEndCommandBuffer(o.cmd);
         if (r != VK_SUCCESS) {
             fail_vk(err, err_len, "vkEndCommandBuffer", r);
             goto cleanup;
@@ -706,9 +738,9 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
         VkSubmitInfo si;
         memset(&fi, 0, sizeof fi);
         fi.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
-        r = vkCreateFence(ctx->device, &fi, NULL, &fence);
+        r = vkCreateFence(ctx->device, &fi, NULL, &o.fence);
         if (r != VK_SUCCESS) {
-            fence = VK_NULL_HANDLE;
+            o.fence = VK_NULL_HANDLE;
             fail_vk(err, err_len, "vkCreateFence", r);
             goto cleanup;
         }
@@ -717,17 +749,19 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
         memset(&si, 0, sizeof si);
         si.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
         si.commandBufferCount = 1;
-        si.pCommandBuffers = &cmd;
-        r = vkQueueSubmit(ctx->queue, 1, &si, fence);
+        si.pCommandBuffers = &o.cmd;
+        r = vkQueueSubmit(ctx->queue, 1, &si, o.fence);
         if (r != VK_SUCCESS) {
             fail_vk(err, err_len, "vkQueueSubmit", r);
             goto cleanup;
         }
-        r = vkWaitForFences(ctx->device, 1, &fence, VK_TRUE, VKC_FENCE_TIMEOUT_NS);
+        r = vkWaitForFences(ctx->device, 1, &o.fence, VK_TRUE, VKC_FENCE_TIMEOUT_NS);
         if (r == VK_TIMEOUT) {
             /* The device may still be executing with these objects; freeing
-             * them would be undefined behaviour, so they are leaked. */
+             * them now would be undefined behaviour, so they are parked for
+             * vkc_destroy, which waits for the device first. */
             ctx->wedged = 1;
+            ctx->pending = o;
             fail(err, err_len, "vkWaitForFences timed out after %llu s (VK_TIMEOUT); the context is unusable",
                  (unsigned long long)(VKC_FENCE_TIMEOUT_NS / 1000000000ull));
             free(layout_bindings);
@@ -760,14 +794,7 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
     rc = 0;
 
 cleanup:
-    /* Destroy calls accept VK_NULL_HANDLE, so one path serves every exit. */
-    vkDestroyFence(ctx->device, fence, NULL);
-    if (cmd != VK_NULL_HANDLE) vkFreeCommandBuffers(ctx->device, ctx->pool, 1, &cmd);
-    vkDestroyDescriptorPool(ctx->device, descriptor_pool, NULL);
-    vkDestroyPipeline(ctx->device, pipeline, NULL);
-    vkDestroyShaderModule(ctx->device, module, NULL);
-    vkDestroyPipelineLayout(ctx->device, pipeline_layout, NULL);
-    vkDestroyDescriptorSetLayout(ctx->device, set_layout, NULL);
+    release_objects(ctx, &o);
     free(layout_bindings);
     free(buffer_infos);
     free(writes);

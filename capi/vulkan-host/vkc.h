@@ -23,8 +23,11 @@
 
 /* How long vkc_dispatch waits for its fence before giving up, in
  * nanoseconds: long enough for a software rasteriser on a large grid, short
- * enough that a hung device is reported rather than waited on forever. */
+ * enough that a hung device is reported rather than waited on forever.
+ * Overridable with -D when compiling vkc.c (e.g. to test the timeout path). */
+#ifndef VKC_FENCE_TIMEOUT_NS
 #define VKC_FENCE_TIMEOUT_NS (60ull * 1000ull * 1000ull * 1000ull)
+#endif
 
 typedef struct VkcContext VkcContext; /* opaque */
 
@@ -62,8 +65,9 @@ typedef struct VkcBuffer {
 int vkc_buffer_create(VkcContext *ctx, VkDeviceSize size, VkcBuffer *out, char *err, size_t err_len);
 
 /* Unmaps and frees a buffer and zeroes *buf. A zeroed buffer or NULL is a
- * no-op, so it is safe on a buffer whose creation failed. The buffer must not
- * be in use by a dispatch (vkc_dispatch waits, so it never is afterwards). */
+ * no-op, so it is safe on a buffer whose creation failed. vkc_dispatch waits
+ * for its work, so no buffer is in use between calls (after a timeout this
+ * waits for the device first). */
 void vkc_buffer_destroy(VkcContext *ctx, VkcBuffer *buf);
 
 /* One descriptor of set 0: `type` is VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER or
@@ -83,8 +87,9 @@ typedef struct VkcBinding {
  * must be within the device's maxComputeWorkGroupCount.
  *
  * If the wait times out, the objects the device may still be reading are
- * deliberately leaked, and every later vkc_dispatch on the context fails:
- * destroy it. */
+ * kept until vkc_destroy, every later vkc_dispatch on the context fails, and
+ * vkc_buffer_destroy and vkc_destroy first wait for the device to go idle
+ * (or be lost): destroy the buffers and the context. */
 int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, const char *entry,
                  const VkcBinding *bindings, uint32_t binding_count, uint32_t gx, uint32_t gy, uint32_t gz,
                  char *err, size_t err_len);
