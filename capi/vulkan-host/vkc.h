@@ -1,0 +1,107 @@
+/*
+ * vkc: the smallest Vulkan compute host that can run subcone's generated
+ * SPIR-V: one device, one compute queue, host-visible buffers, one dispatch
+ * at a time, waited on before the call returns. C99, no global state, no
+ * layers or extensions.
+ *
+ * Every function that can fail returns 0 on success and nonzero on failure,
+ * and then writes a one-line reason (naming the failing Vulkan call and its
+ * VkResult where there is one) into `err` (at most `err_len` bytes, always
+ * NUL-terminated; `err` may be NULL). Nothing aborts on bad input; whatever a
+ * failing call created is released before it returns.
+ *
+ * A context must be used from one thread at a time (the queue and the command
+ * pool are not internally synchronised).
+ */
+#ifndef VKC_H
+#define VKC_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include <vulkan/vulkan.h>
+
+/* How long vkc_dispatch waits for its fence before giving up, in
+ * nanoseconds: long enough for a software rasteriser on a large grid, short
+ * enough that a hung device is reported rather than waited on forever.
+ * Overridable with -D when compiling vkc.c (e.g. to test the timeout path). */
+#ifndef VKC_FENCE_TIMEOUT_NS
+#define VKC_FENCE_TIMEOUT_NS (60ull * 1000ull * 1000ull * 1000ull)
+#endif
+
+typedef struct VkcContext VkcContext; /* opaque */
+
+/* Creates an instance (API 1.1 when the loader has it, else 1.0), picks a
+ * physical device with a compute queue (a discrete or integrated GPU before
+ * any other kind, a CPU device last; the environment variable
+ * VKC_DEVICE=<index into vkEnumeratePhysicalDevices> overrides the choice),
+ * and creates a logical device, its first compute queue and a command pool.
+ * On success *out owns all of them; on failure *out is NULL. */
+int vkc_create(VkcContext **out, char *err, size_t err_len);
+
+/* Waits for the device to go idle, then destroys everything the context
+ * owns. Buffers must have been destroyed first. NULL is a no-op. */
+void vkc_destroy(VkcContext *ctx);
+
+/* VkPhysicalDeviceProperties::deviceName of the chosen device ("" for NULL). */
+const char *vkc_device_name(const VkcContext *ctx);
+
+/* Whether the chosen device is VK_PHYSICAL_DEVICE_TYPE_CPU (lavapipe,
+ * SwiftShader), so a caller can tell a software run from a GPU one. */
+int vkc_device_is_cpu(const VkcContext *ctx);
+
+/* A buffer in host-visible, host-coherent memory, mapped for its lifetime:
+ * the host writes inputs and reads outputs through `mapped` with no flushes
+ * or copies. Usage: STORAGE_BUFFER | UNIFORM_BUFFER | TRANSFER_SRC |
+ * TRANSFER_DST. */
+typedef struct VkcBuffer {
+    VkBuffer buffer;
+    VkDeviceMemory memory;
+    void *mapped;
+    VkDeviceSize size;
+} VkcBuffer;
+
+/* Creates a buffer of `size` bytes (nonzero). On failure *out is zeroed. */
+int vkc_buffer_create(VkcContext *ctx, VkDeviceSize size, VkcBuffer *out, char *err, size_t err_len);
+
+/* Unmaps and frees a buffer and zeroes *buf. A zeroed buffer or NULL is a
+ * no-op, so it is safe on a buffer whose creation failed. vkc_dispatch waits
+ * for its work, so no buffer is in use between calls (after a timeout this
+ * waits for the device first). */
+void vkc_buffer_destroy(VkcContext *ctx, VkcBuffer *buf);
+
+/* One descriptor of set 0: `type` is VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER or
+ * VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, bound over the whole of `buffer`. */
+typedef struct VkcBinding {
+    uint32_t binding;
+    VkDescriptorType type;
+    const VkcBuffer *buffer;
+} VkcBinding;
+
+/* Runs one compute dispatch and waits for it: builds descriptor set 0 from
+ * `bindings` (binding numbers unique), a compute pipeline from the SPIR-V
+ * words (`spirv_bytes` a nonzero multiple of 4) and the entry point `entry`,
+ * records vkCmdDispatch(gx, gy, gz) followed by a barrier that makes shader
+ * writes visible to the host, submits, waits on a fence for at most
+ * VKC_FENCE_TIMEOUT_NS, and destroys the pipeline objects. The group counts
+ * must be within the device's maxComputeWorkGroupCount.
+ *
+ * If the wait times out, the objects the device may still be reading are
+ * kept until vkc_destroy, every later vkc_dispatch on the context fails, and
+ * vkc_buffer_destroy and vkc_destroy first wait for the device to go idle
+ * (or be lost): destroy the buffers and the context. */
+int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, const char *entry,
+                 const VkcBinding *bindings, uint32_t binding_count, uint32_t gx, uint32_t gy, uint32_t gz,
+                 char *err, size_t err_len);
+
+/* Device time of the last successful vkc_dispatch in milliseconds, measured
+ * with timestamp queries around the dispatch; negative when the queue has no
+ * timestamp support, or before the first (and after a failed) dispatch. */
+double vkc_last_dispatch_ms(const VkcContext *ctx);
+
+/* Reads a whole file (a SPIR-V module) into malloc'd memory, to be released
+ * with free(). Fails on an empty file or one whose size is not a multiple of
+ * 4; on failure *words is NULL and *bytes 0. */
+int vkc_read_file(const char *path, uint32_t **words, size_t *bytes, char *err, size_t err_len);
+
+#endif /* VKC_H */
