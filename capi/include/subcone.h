@@ -200,6 +200,80 @@ typedef struct SubconeCtssResult {
   uint32_t stop;
 } SubconeCtssResult;
 
+// The uniform of the SRAA pass's shaders (`SraaFrame`, binding `frame` of
+// every `shaders/sraa/*` variant; 80 bytes, its layout checked against
+// naga's). Fill it with [`subcone_sraa_pass_uniform`].
+typedef struct SubconeSraaPassUniform {
+  // The weights' parameters.
+  struct SubconeSraaParams sraa;
+  // Column-major `m[2][2], m[3][2], m[2][3], m[3][3]` of the projection
+  // that wrote hardware depth (zero for linear view depth).
+  float projection[4];
+  // The image's (or rect's) width in pixels.
+  uint32_t width;
+  // Its height.
+  uint32_t height;
+  // The hardware depth of a miss (0 for reversed Z).
+  float depth_miss;
+  // The material gate's tolerance (the kernels' `ALBEDO_TOLERANCE`).
+  float albedo_tolerance;
+  // The rect's first pixel (0 for a whole image and for buffers).
+  uint32_t origin_x;
+  // The rect's first row.
+  uint32_t origin_y;
+  // The tone-mapped resolve's exposure (read only by a tone-mapped
+  // variant).
+  float exposure;
+  // Padding; write 0.
+  uint32_t pad;
+} SubconeSraaPassUniform;
+
+// The uniform of the CTSS pass's shaders (`CtssUniform`, binding
+// `subcone_pass_frame` of every `shaders/ctss/*` variant; 192 bytes, its
+// layout checked against naga's). Fill it with
+// [`subcone_ctss_pass_uniform`]; the trace's parameters are a
+// [`SubconeCtssParams`] at `subcone_pass_params`.
+typedef struct SubconeCtssPassUniform {
+  // The eye.
+  float position[3];
+  // The image's width in pixels.
+  uint32_t width;
+  // Unit view direction.
+  float forward[3];
+  // The image's height in pixels.
+  uint32_t height;
+  // Unit right vector.
+  float right[3];
+  // `tan(fov_y / 2)`.
+  float tan_half_fov;
+  // Unit up vector.
+  float up[3];
+  // Padding; write 0.
+  uint32_t pad0;
+  // Sub-pixel offset of every cone's axis, in pixels (a temporal
+  // method's jitter; 0 otherwise).
+  float jitter[2];
+  // Padding; write 0.
+  uint32_t pad1[2];
+  // The colour of what no surface covers (linear RGB).
+  float background[3];
+  // 0: the pinhole above; 1 and 2: a projection matrix (written by the
+  // Rust pass's `CtssProjection`).
+  uint32_t projection;
+  // NDC to world, column-major (zero for the pinhole).
+  float inverse_view_projection[16];
+  // The unit forward axis of view depth (`forward·x + depth_offset`).
+  float depth_axis[3];
+  // View depth's offset.
+  float depth_offset;
+  // The first pixel written.
+  uint32_t origin[2];
+  // The output's width: a buffer row's length.
+  uint32_t row_length;
+  // Padding; write 0.
+  uint32_t pad2;
+} SubconeCtssPassUniform;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -408,6 +482,50 @@ enum SubconeStatus subcone_ctss_trace(const struct SubconeCtssParams *params,
                                       void *user,
                                       struct SubconeVec3 background,
                                       struct SubconeCtssResult *out);
+
+// The SRAA pass's uniform for a `width × height` image resolved with
+// `params`: geometry of linear view depth (`shaders/sraa/packed`,
+// `buffers*`) when `projection` is null, else hardware depth written by
+// `projection` (16 floats, column-major, the host's projection matrix;
+// `shaders/sraa/msaa*`) with `depth_miss` the depth of a miss. `exposure`
+// is the tone-mapped resolve's (0 for the linear one). The same values
+// the Rust `SraaPass` writes.
+//
+// Errors: null `params` or `out`; a zero size; non-finite parameters,
+// projection or `depth_miss`; a negative or non-finite `exposure`.
+//
+// # Safety
+// `params` and `out` are null or valid; `projection` is null or points to
+// 16 floats.
+enum SubconeStatus subcone_sraa_pass_uniform(const struct SubconeSraaParams *params,
+                                             uint32_t width,
+                                             uint32_t height,
+                                             const float *projection,
+                                             float depth_miss,
+                                             float exposure,
+                                             struct SubconeSraaPassUniform *out);
+
+// The CTSS pass's uniform for a pinhole camera at `eye` looking along
+// `forward` (`up_hint` roughly up, not parallel to it), vertical field of
+// view `fov_y` radians, a `width × height` image and `background`: pixel
+// `(x, y)` is the cone around the ray through `(x + ½, y + ½)`, exactly the
+// rays of the Rust `CtssCamera` (the kernels' `PinholeCamera`), which
+// [`subcone_ctss_trace`] takes as `origin`, `dir` and `up_hint`.
+//
+// Errors: null `out`; a zero size; non-finite or degenerate camera
+// vectors (zero, or `forward` parallel to `up_hint`); `fov_y` outside
+// `(0, π)`; a non-finite background.
+//
+// # Safety
+// `out` is null or writable.
+enum SubconeStatus subcone_ctss_pass_uniform(struct SubconeVec3 eye,
+                                             struct SubconeVec3 forward,
+                                             struct SubconeVec3 up_hint,
+                                             float fov_y,
+                                             uint32_t width,
+                                             uint32_t height,
+                                             struct SubconeVec3 background,
+                                             struct SubconeCtssPassUniform *out);
 
 #ifdef __cplusplus
 }  // extern "C"

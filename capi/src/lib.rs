@@ -42,6 +42,7 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use glam::{Vec2, Vec3};
 use subcone_kernels::aggregate::{sample_weight, Weighting};
+use subcone_kernels::camera::PinholeCamera;
 use subcone_kernels::cone::{
     advance, backtrace_cone_entry, backtrace_hard_hit, cone_occlusion, cone_radius, cone_tan_theta,
     PixelFootprint,
@@ -1032,3 +1033,231 @@ pub unsafe extern "C" fn subcone_ctss_trace(
         })())
     })
 }
+
+/// The uniform of the SRAA pass's shaders (`SraaFrame`, binding `frame` of
+/// every `shaders/sraa/*` variant; 80 bytes, its layout checked against
+/// naga's). Fill it with [`subcone_sraa_pass_uniform`].
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SubconeSraaPassUniform {
+    /// The weights' parameters.
+    pub sraa: SubconeSraaParams,
+    /// Column-major `m[2][2], m[3][2], m[2][3], m[3][3]` of the projection
+    /// that wrote hardware depth (zero for linear view depth).
+    pub projection: [f32; 4],
+    /// The image's (or rect's) width in pixels.
+    pub width: u32,
+    /// Its height.
+    pub height: u32,
+    /// The hardware depth of a miss (0 for reversed Z).
+    pub depth_miss: f32,
+    /// The material gate's tolerance (the kernels' `ALBEDO_TOLERANCE`).
+    pub albedo_tolerance: f32,
+    /// The rect's first pixel (0 for a whole image and for buffers).
+    pub origin_x: u32,
+    /// The rect's first row.
+    pub origin_y: u32,
+    /// The tone-mapped resolve's exposure (read only by a tone-mapped
+    /// variant).
+    pub exposure: f32,
+    /// Padding; write 0.
+    pub pad: u32,
+}
+
+/// The uniform of the CTSS pass's shaders (`CtssUniform`, binding
+/// `subcone_pass_frame` of every `shaders/ctss/*` variant; 192 bytes, its
+/// layout checked against naga's). Fill it with
+/// [`subcone_ctss_pass_uniform`]; the trace's parameters are a
+/// [`SubconeCtssParams`] at `subcone_pass_params`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SubconeCtssPassUniform {
+    /// The eye.
+    pub position: [f32; 3],
+    /// The image's width in pixels.
+    pub width: u32,
+    /// Unit view direction.
+    pub forward: [f32; 3],
+    /// The image's height in pixels.
+    pub height: u32,
+    /// Unit right vector.
+    pub right: [f32; 3],
+    /// `tan(fov_y / 2)`.
+    pub tan_half_fov: f32,
+    /// Unit up vector.
+    pub up: [f32; 3],
+    /// Padding; write 0.
+    pub pad0: u32,
+    /// Sub-pixel offset of every cone's axis, in pixels (a temporal
+    /// method's jitter; 0 otherwise).
+    pub jitter: [f32; 2],
+    /// Padding; write 0.
+    pub pad1: [u32; 2],
+    /// The colour of what no surface covers (linear RGB).
+    pub background: [f32; 3],
+    /// 0: the pinhole above; 1 and 2: a projection matrix (written by the
+    /// Rust pass's `CtssProjection`).
+    pub projection: u32,
+    /// NDC to world, column-major (zero for the pinhole).
+    pub inverse_view_projection: [f32; 16],
+    /// The unit forward axis of view depth (`forward·x + depth_offset`).
+    pub depth_axis: [f32; 3],
+    /// View depth's offset.
+    pub depth_offset: f32,
+    /// The first pixel written.
+    pub origin: [u32; 2],
+    /// The output's width: a buffer row's length.
+    pub row_length: u32,
+    /// Padding; write 0.
+    pub pad2: u32,
+}
+
+/// The SRAA pass's uniform for a `width × height` image resolved with
+/// `params`: geometry of linear view depth (`shaders/sraa/packed`,
+/// `buffers*`) when `projection` is null, else hardware depth written by
+/// `projection` (16 floats, column-major, the host's projection matrix;
+/// `shaders/sraa/msaa*`) with `depth_miss` the depth of a miss. `exposure`
+/// is the tone-mapped resolve's (0 for the linear one). The same values
+/// the Rust `SraaPass` writes.
+///
+/// Errors: null `params` or `out`; a zero size; non-finite parameters,
+/// projection or `depth_miss`; a negative or non-finite `exposure`.
+///
+/// # Safety
+/// `params` and `out` are null or valid; `projection` is null or points to
+/// 16 floats.
+#[no_mangle]
+pub unsafe extern "C" fn subcone_sraa_pass_uniform(
+    params: *const SubconeSraaParams,
+    width: u32,
+    height: u32,
+    projection: *const f32,
+    depth_miss: f32,
+    exposure: f32,
+    out: *mut SubconeSraaPassUniform,
+) -> SubconeStatus {
+    guard(|| {
+        status((|| {
+            let p = sraa_params(params)?;
+            if width == 0 || height == 0 {
+                return Err(SubconeStatus::SizeMismatch);
+            }
+            finite(&[depth_miss, exposure])?;
+            if exposure < 0.0 {
+                return Err(SubconeStatus::InvalidArgument);
+            }
+            // SAFETY: forwarded contract (null: linear depth).
+            let m = unsafe { slice(projection, if projection.is_null() { 0 } else { 16 }) }?;
+            finite(m)?;
+            // The column-major entries (2,2), (2,3) of column 2 and 3 as the
+            // pass's `[m[2][2], m[3][2], m[2][3], m[3][3]]`.
+            let (coefficients, miss) = match m {
+                [] => ([0.0; 4], 0.0),
+                m => ([m[10], m[14], m[11], m[15]], depth_miss),
+            };
+            let uniform = SubconeSraaPassUniform {
+                sraa: p.into(),
+                projection: coefficients,
+                width,
+                height,
+                depth_miss: miss,
+                albedo_tolerance: ALBEDO_TOLERANCE,
+                origin_x: 0,
+                origin_y: 0,
+                exposure,
+                pad: 0,
+            };
+            // SAFETY: forwarded contract.
+            Ok(unsafe { write(out, uniform) })
+        })())
+    })
+}
+
+/// The CTSS pass's uniform for a pinhole camera at `eye` looking along
+/// `forward` (`up_hint` roughly up, not parallel to it), vertical field of
+/// view `fov_y` radians, a `width × height` image and `background`: pixel
+/// `(x, y)` is the cone around the ray through `(x + ½, y + ½)`, exactly the
+/// rays of the Rust `CtssCamera` (the kernels' `PinholeCamera`), which
+/// [`subcone_ctss_trace`] takes as `origin`, `dir` and `up_hint`.
+///
+/// Errors: null `out`; a zero size; non-finite or degenerate camera
+/// vectors (zero, or `forward` parallel to `up_hint`); `fov_y` outside
+/// `(0, π)`; a non-finite background.
+///
+/// # Safety
+/// `out` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn subcone_ctss_pass_uniform(
+    eye: SubconeVec3,
+    forward: SubconeVec3,
+    up_hint: SubconeVec3,
+    fov_y: f32,
+    width: u32,
+    height: u32,
+    background: SubconeVec3,
+    out: *mut SubconeCtssPassUniform,
+) -> SubconeStatus {
+    guard(|| {
+        status((|| {
+            if width == 0 || height == 0 {
+                return Err(SubconeStatus::SizeMismatch);
+            }
+            let (eye, forward, up_hint, background) = (
+                Vec3::from(eye),
+                Vec3::from(forward),
+                Vec3::from(up_hint),
+                Vec3::from(background),
+            );
+            finite(&[fov_y])?;
+            for v in [eye, forward, up_hint, background] {
+                finite(&v.to_array())?;
+            }
+            if !(fov_y > 0.0 && fov_y < std::f32::consts::PI) {
+                return Err(SubconeStatus::InvalidArgument);
+            }
+            // The Rust `CtssCamera::new`'s frame: right = forward × up.
+            let forward = in_normal_range(forward).normalize_or_zero();
+            let right = forward.cross(in_normal_range(up_hint)).normalize_or_zero();
+            if forward == Vec3::ZERO || right == Vec3::ZERO {
+                return Err(SubconeStatus::InvalidArgument);
+            }
+            let up = right.cross(forward);
+            let camera = PinholeCamera::new(
+                eye,
+                (forward, right, up),
+                (0.5 * fov_y).tan(),
+                (width, height),
+            );
+            let uniform = SubconeCtssPassUniform {
+                position: camera.position,
+                width: camera.width,
+                forward: camera.forward,
+                height: camera.height,
+                right: camera.right,
+                tan_half_fov: camera.tan_half_fov,
+                up: camera.up,
+                pad0: 0,
+                jitter: camera.jitter,
+                pad1: [0; 2],
+                background: background.to_array(),
+                projection: 0,
+                inverse_view_projection: [0.0; 16],
+                depth_axis: forward.to_array(),
+                depth_offset: -forward.dot(eye),
+                origin: [0, 0],
+                row_length: width,
+                pad2: 0,
+            };
+            // SAFETY: forwarded contract.
+            Ok(unsafe { write(out, uniform) })
+        })())
+    })
+}
+
+// The pass uniforms have the layouts of the shaders' (the test
+// `pass_uniforms` compares every member with naga's layout of the WGSL).
+const _: () = {
+    use std::mem::size_of;
+    assert!(size_of::<SubconeSraaPassUniform>() == 80);
+    assert!(size_of::<SubconeCtssPassUniform>() == 192);
+};

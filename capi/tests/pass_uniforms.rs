@@ -1,0 +1,191 @@
+//! The C header's pass uniforms (`SubconeSraaPassUniform`,
+//! `SubconeCtssPassUniform`) against naga's layout of the uniform each
+//! shader of `shaders/` declares: every member's offset and size, in order
+//! (nested structs flattened), and the total size.
+
+use std::mem::{offset_of, size_of};
+
+use subcone_capi::*;
+use subcone_passes::standalone;
+
+/// (offset, size) of every scalar, vector or matrix member of `ty`, nested
+/// structs flattened, in declaration order.
+fn flatten(
+    m: &naga::Module,
+    l: &naga::proc::Layouter,
+    ty: naga::Handle<naga::Type>,
+    base: u32,
+    out: &mut Vec<(usize, usize)>,
+) {
+    match &m.types[ty].inner {
+        naga::TypeInner::Struct { members, .. } => {
+            for member in members {
+                flatten(m, l, member.ty, base + member.offset, out);
+            }
+        }
+        _ => out.push((base as usize, l[ty].size as usize)),
+    }
+}
+
+/// The flattened layout of the uniform bound as `binding` in `wgsl`, and
+/// its size.
+fn uniform_layout(wgsl: &str, binding: &str) -> (Vec<(usize, usize)>, usize) {
+    let m = naga::front::wgsl::parse_str(wgsl).expect("WGSL parses");
+    let mut l = naga::proc::Layouter::default();
+    l.update(m.to_ctx()).expect("layout");
+    let (_, var) = m
+        .global_variables
+        .iter()
+        .find(|(_, v)| v.name.as_deref() == Some(binding))
+        .expect("binding declared");
+    let mut out = Vec::new();
+    flatten(&m, &l, var.ty, 0, &mut out);
+    (out, l[var.ty].size as usize)
+}
+
+/// (offset, size) of each field, arrays of scalars split into their
+/// elements as naga's vectors are not: `[f32; 3]` is one `vec3<f32>`.
+macro_rules! fields {
+    ($t:ty: $($f:ident $(: $n:literal x $e:ty)?),+ $(,)?) => {{
+        let mut v: Vec<(usize, usize)> = Vec::new();
+        $(
+            fields!(@one v, $t, $f $(, $n, $e)?);
+        )+
+        v
+    }};
+    (@one $v:ident, $t:ty, $f:ident) => {{
+        let probe = |s: &$t| std::mem::size_of_val(&s.$f);
+        $v.push((offset_of!($t, $f), probe(&<$t>::default())));
+    }};
+    (@one $v:ident, $t:ty, $f:ident, $n:literal, $e:ty) => {{
+        for i in 0..$n {
+            $v.push((offset_of!($t, $f) + i * size_of::<$e>(), size_of::<$e>()));
+        }
+    }};
+}
+
+#[test]
+fn sraa_pass_uniform_matches_every_sraa_shader() {
+    let c = {
+        let mut v = Vec::new();
+        let p = offset_of!(SubconeSraaPassUniform, sraa);
+        for (o, s) in fields!(SubconeSraaParams: sigma_z, sigma_n, scale, packed, sigma_s, shading, pad: 2 x u32)
+        {
+            v.push((p + o, s));
+        }
+        v.extend(
+            fields!(SubconeSraaPassUniform: projection, width, height, depth_miss,
+            albedo_tolerance, origin_x, origin_y, exposure, pad),
+        );
+        v
+    };
+    let catalog = standalone::catalog().expect("catalog");
+    let sraa: Vec<_> = catalog.iter().filter(|s| s.pass == "sraa").collect();
+    assert!(sraa.len() >= 4);
+    for s in sraa {
+        let (naga, size) = uniform_layout(&s.wgsl, "frame");
+        assert_eq!(naga, c, "sraa/{}", s.variant);
+        assert_eq!(
+            size,
+            size_of::<SubconeSraaPassUniform>(),
+            "sraa/{}",
+            s.variant
+        );
+    }
+}
+
+#[test]
+fn ctss_pass_uniform_and_params_match_every_ctss_shader() {
+    let c = fields!(SubconeCtssPassUniform: position, width, forward, height, right,
+        tan_half_fov, up, pad0, jitter, pad1: 2 x u32, background, projection,
+        inverse_view_projection, depth_axis, depth_offset, origin, row_length, pad2);
+    // naga lays out the matrix and the jitter as one member each, the
+    // padding pair as one vec2<u32>: merge the C side's split elements.
+    let merge = |v: Vec<(usize, usize)>| -> Vec<(usize, usize)> {
+        let mut out: Vec<(usize, usize)> = Vec::new();
+        for (o, s) in v {
+            match out.last_mut() {
+                // pad1's two u32 are naga's one vec2<u32>.
+                Some(last) if last.0 == 72 && o == 76 => last.1 += s,
+                _ => out.push((o, s)),
+            }
+        }
+        out
+    };
+    let c = merge(c);
+    let params = fields!(SubconeCtssParams: tan_theta, alpha, eps, t_min, t_max,
+        min_sample_weight, max_steps, max_samples, visibility_k, flags, pad: 2 x u32);
+    let catalog = standalone::catalog().expect("catalog");
+    let ctss: Vec<_> = catalog.iter().filter(|s| s.pass == "ctss").collect();
+    assert!(!ctss.is_empty());
+    for s in ctss {
+        let (naga, size) = uniform_layout(&s.wgsl, "subcone_pass_frame");
+        assert_eq!(naga, c, "ctss/{}", s.variant);
+        assert_eq!(size, size_of::<SubconeCtssPassUniform>());
+        let (naga, size) = uniform_layout(&s.wgsl, "subcone_pass_params");
+        assert_eq!(naga, params, "ctss/{}", s.variant);
+        assert_eq!(size, size_of::<SubconeCtssParams>());
+    }
+}
+
+#[test]
+fn pass_uniforms_refuse_bad_input() {
+    let mut params = SubconeSraaParams::default();
+    let mut u = SubconeSraaPassUniform::default();
+    // SAFETY: valid pointers or null.
+    unsafe {
+        assert_eq!(subcone_sraa_params_default(&mut params), SubconeStatus::Ok);
+        let m = std::ptr::null();
+        assert_eq!(
+            subcone_sraa_pass_uniform(&params, 0, 4, m, 0.0, 0.0, &mut u),
+            SubconeStatus::SizeMismatch
+        );
+        assert_eq!(
+            subcone_sraa_pass_uniform(&params, 4, 4, m, 0.0, -1.0, &mut u),
+            SubconeStatus::InvalidArgument
+        );
+        assert_eq!(
+            subcone_sraa_pass_uniform(std::ptr::null(), 4, 4, m, 0.0, 0.0, &mut u),
+            SubconeStatus::NullPointer
+        );
+        let nan = [f32::NAN; 16];
+        assert_eq!(
+            subcone_sraa_pass_uniform(&params, 4, 4, nan.as_ptr(), 0.0, 0.0, &mut u),
+            SubconeStatus::InvalidArgument
+        );
+        let mut proj = [0.0f32; 16];
+        (proj[10], proj[14], proj[11], proj[15]) = (1.0, 2.0, 3.0, 4.0);
+        assert_eq!(
+            subcone_sraa_pass_uniform(&params, 4, 3, proj.as_ptr(), 0.5, 0.0, &mut u),
+            SubconeStatus::Ok
+        );
+        assert_eq!(u.projection, [1.0, 2.0, 3.0, 4.0]);
+        assert_eq!((u.width, u.height, u.depth_miss), (4, 3, 0.5));
+
+        let v = |x, y, z| SubconeVec3 { x, y, z };
+        let mut c = SubconeCtssPassUniform::default();
+        let (eye, fwd, up) = (v(0.0, 0.0, 0.0), v(0.0, 0.0, 1.0), v(0.0, 1.0, 0.0));
+        assert_eq!(
+            subcone_ctss_pass_uniform(eye, fwd, fwd, 0.8, 4, 4, eye, &mut c),
+            SubconeStatus::InvalidArgument,
+            "forward parallel to up"
+        );
+        assert_eq!(
+            subcone_ctss_pass_uniform(eye, fwd, up, 4.0, 4, 4, eye, &mut c),
+            SubconeStatus::InvalidArgument,
+            "fov beyond π"
+        );
+        assert_eq!(
+            subcone_ctss_pass_uniform(v(f32::NAN, 0.0, 0.0), fwd, up, 0.8, 4, 4, eye, &mut c),
+            SubconeStatus::InvalidArgument
+        );
+        assert_eq!(
+            subcone_ctss_pass_uniform(eye, fwd, up, 0.8, 8, 6, v(0.1, 0.2, 0.3), &mut c),
+            SubconeStatus::Ok
+        );
+        assert_eq!((c.width, c.height, c.row_length), (8, 6, 8));
+        assert_eq!(c.forward, [0.0, 0.0, 1.0]);
+        assert_eq!(c.depth_axis, [0.0, 0.0, 1.0]);
+        assert!((c.tan_half_fov - 0.4f32.tan()).abs() < 1e-7);
+    }
+}
