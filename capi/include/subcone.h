@@ -527,6 +527,23 @@ enum SubconeStatus subcone_ctss_pass_uniform(struct SubconeVec3 eye,
                                              struct SubconeVec3 background,
                                              struct SubconeCtssPassUniform *out);
 
+// The unit direction of the ray through image point `(x, y)` (pixels, y
+// down; a pixel's centre is `(x + ½, y + ½)`) of the pinhole camera in
+// `uniform`: the direction the CTSS shaders trace (`subcone_pinhole_dir`),
+// to the bit on the CPU, for a host that traces the same pixel with
+// [`subcone_ctss_trace`] (`origin` the uniform's `position`, `up_hint` its
+// `up`).
+//
+// Errors: null pointers; a uniform that is not a pinhole (`projection`
+// not 0); non-finite `x`, `y` or camera.
+//
+// # Safety
+// `uniform` and `out` are null or valid.
+enum SubconeStatus subcone_pinhole_ray(const struct SubconeCtssPassUniform *uniform,
+                                       float x,
+                                       float y,
+                                       struct SubconeVec3 *out);
+
 #ifdef __cplusplus
 }  // extern "C"
 #endif  // __cplusplus

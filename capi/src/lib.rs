@@ -1254,6 +1254,54 @@ pub unsafe extern "C" fn subcone_ctss_pass_uniform(
     })
 }
 
+/// The unit direction of the ray through image point `(x, y)` (pixels, y
+/// down; a pixel's centre is `(x + ½, y + ½)`) of the pinhole camera in
+/// `uniform`: the direction the CTSS shaders trace (`subcone_pinhole_dir`),
+/// to the bit on the CPU, for a host that traces the same pixel with
+/// [`subcone_ctss_trace`] (`origin` the uniform's `position`, `up_hint` its
+/// `up`).
+///
+/// Errors: null pointers; a uniform that is not a pinhole (`projection`
+/// not 0); non-finite `x`, `y` or camera.
+///
+/// # Safety
+/// `uniform` and `out` are null or valid.
+#[no_mangle]
+pub unsafe extern "C" fn subcone_pinhole_ray(
+    uniform: *const SubconeCtssPassUniform,
+    x: f32,
+    y: f32,
+    out: *mut SubconeVec3,
+) -> SubconeStatus {
+    guard(|| {
+        status((|| {
+            // SAFETY: forwarded contract.
+            let u = unsafe { read(uniform) }?;
+            if u.projection != 0 {
+                return Err(SubconeStatus::InvalidArgument);
+            }
+            finite(&[x, y, u.tan_half_fov])?;
+            for v in [u.forward, u.right, u.up] {
+                finite(&v)?;
+            }
+            finite(&u.jitter)?;
+            let camera = PinholeCamera::new(
+                Vec3::from(u.position),
+                (
+                    Vec3::from(u.forward),
+                    Vec3::from(u.right),
+                    Vec3::from(u.up),
+                ),
+                u.tan_half_fov,
+                (u.width, u.height),
+            )
+            .with_jitter(Vec2::from(u.jitter));
+            // SAFETY: forwarded contract.
+            Ok(unsafe { write(out, camera.ray_dir(Vec2::new(x, y)).into()) })
+        })())
+    })
+}
+
 // The pass uniforms have the layouts of the shaders' (the test
 // `pass_uniforms` compares every member with naga's layout of the WGSL).
 const _: () = {
