@@ -1287,11 +1287,7 @@ pub unsafe extern "C" fn subcone_pinhole_ray(
             finite(&u.jitter)?;
             let camera = PinholeCamera::new(
                 Vec3::from(u.position),
-                (
-                    Vec3::from(u.forward),
-                    Vec3::from(u.right),
-                    Vec3::from(u.up),
-                ),
+                (Vec3::from(u.forward), Vec3::from(u.right), Vec3::from(u.up)),
                 u.tan_half_fov,
                 (u.width, u.height),
             )
