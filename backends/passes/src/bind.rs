@@ -24,6 +24,16 @@
 
 use std::borrow::Cow;
 
+/// The host's wgpu types, named once. The passes take these from the host
+/// and no other module of the crate names an item of wgpu (the test
+/// `tests/wgpu_in_one_module.rs` fails when one does), and every wgpu call
+/// is made here, so a wgpu upgrade touches this module (and `Cargo.toml`).
+pub(crate) use wgpu::{
+    BindGroup, BindGroupLayout, Buffer, BufferUsages, CommandEncoder, ComputePassTimestampWrites,
+    Device, Queue, TextureDimension, TextureFormat, TextureSampleType, TextureUsages, TextureView,
+    TextureViewDimension,
+};
+
 use crate::PassError;
 
 /// How a shader accesses a buffer binding.

@@ -16,6 +16,10 @@ use subcone_kernels::camera::PinholeCamera;
 use subcone_kernels::ctss::CtssParams;
 
 use crate::bind::{self, check_buffer, required, Bound, Group, PassPipeline};
+use crate::bind::{
+    BindGroup, BindGroupLayout, Buffer, CommandEncoder, ComputePassTimestampWrites, Device, Queue,
+    TextureFormat, TextureUsages, TextureView,
+};
 use crate::PassError;
 
 pub(crate) const CTSS_WGSL: &str = include_str!("ctss.wgsl");
@@ -396,11 +400,11 @@ pub struct CtssPassDesc<'a> {
     /// `Rgba32Float` (a storage texture; linear colour, alpha as
     /// [`Self::background`] says). Checked
     /// for the texture output only.
-    pub output_format: wgpu::TextureFormat,
+    pub output_format: TextureFormat,
     /// The layout of the host's own bind group, which its WGSL declares as
     /// `@group(1)` (uniforms, textures its field or shading reads). The pass
     /// owns `@group(0)`.
-    pub host_layout: Option<&'a wgpu::BindGroupLayout>,
+    pub host_layout: Option<&'a BindGroupLayout>,
     /// Cones per pixel side, in `1..=MAX_SAMPLES_PER_SIDE`: pixel `(x, y)`
     /// averages the `N × N` cones through the image points
     /// `(x + (i + ½)/N, y + (j + ½)/N)` (SSAA over CTSS; 1 is the papers'
@@ -423,7 +427,7 @@ impl Default for CtssPassDesc<'_> {
     fn default() -> Self {
         CtssPassDesc {
             batch: 8,
-            output_format: wgpu::TextureFormat::Rgba16Float,
+            output_format: TextureFormat::Rgba16Float,
             host_layout: None,
             samples_per_side: 1,
             trace: CtssTrace::Kernels,
@@ -439,7 +443,7 @@ impl<'a> CtssPassDesc<'a> {
         /// With `batch` hit groups marched ahead of shading ([`Self::batch`]).
         with_batch(batch: u32);
         /// Writing `output_format` ([`Self::output_format`]).
-        with_output_format(output_format: wgpu::TextureFormat);
+        with_output_format(output_format: TextureFormat);
         /// With `samples_per_side × samples_per_side` cones per pixel
         /// ([`Self::samples_per_side`]).
         with_samples_per_side(samples_per_side: u32);
@@ -455,7 +459,7 @@ impl<'a> CtssPassDesc<'a> {
 
     /// With the host's own bind group `layout` as `@group(1)`
     /// ([`Self::host_layout`]).
-    pub fn with_host_layout(mut self, layout: &'a wgpu::BindGroupLayout) -> Self {
+    pub fn with_host_layout(mut self, layout: &'a BindGroupLayout) -> Self {
         self.host_layout = Some(layout);
         self
     }
@@ -477,15 +481,15 @@ pub struct CtssFrame<'a> {
     /// read with [`CtssBackground::Opaque`]).
     pub background: Vec3,
     /// The host's bind group: given exactly when the desc had a layout.
-    pub host_group: Option<&'a wgpu::BindGroup>,
+    pub host_group: Option<&'a BindGroup>,
     /// Where the image is written: a view of a whole one-sample 2D texture
     /// of one layer, with `STORAGE_BINDING` (checked on
     /// `TextureView::texture`).
-    pub output: &'a wgpu::TextureView,
+    pub output: &'a TextureView,
     /// Where view depth is written ([`CtssDepth::View`]): a texture as
     /// `output`, of its size, `R32Float`; given exactly when the desc asks
     /// for depth.
-    pub depth: Option<&'a wgpu::TextureView>,
+    pub depth: Option<&'a TextureView>,
     /// The part of `output` (and `depth`) written; `None`: all of it.
     pub rect: Option<CtssRect>,
 }
@@ -502,19 +506,19 @@ pub struct CtssBuffers<'a> {
     /// read with [`CtssBackground::Opaque`]).
     pub background: Vec3,
     /// The host's bind group: given exactly when the desc had a layout.
-    pub host_group: Option<&'a wgpu::BindGroup>,
+    pub host_group: Option<&'a BindGroup>,
     /// The image's width and height in pixels (the buffers' rows).
     pub size: (u32, u32),
     /// The part of the image written; `None`: all of it.
     pub rect: Option<CtssRect>,
     /// The colours: `width × height` `vec4<f32>`s, `STORAGE` usage.
-    pub output: &'a wgpu::Buffer,
+    pub output: &'a Buffer,
     /// The counts: `width × height` `vec4<u32>`s, `STORAGE` usage; given
     /// exactly when the desc asks for them.
-    pub counts: Option<&'a wgpu::Buffer>,
+    pub counts: Option<&'a Buffer>,
     /// The view depths ([`CtssDepth::View`]): `width × height` `f32`s,
     /// `STORAGE` usage; given exactly when the desc asks for depth.
-    pub depth: Option<&'a wgpu::Buffer>,
+    pub depth: Option<&'a Buffer>,
 }
 
 /// CTSS of the host's field on the host's device.
@@ -582,7 +586,7 @@ pub struct CtssBuffers<'a> {
 /// ```
 #[derive(Debug)]
 pub struct CtssPass {
-    output_format: wgpu::TextureFormat,
+    output_format: TextureFormat,
     output: CtssOutput,
     background: CtssBackground,
     depth: CtssDepth,
@@ -646,7 +650,7 @@ impl CtssPass {
     /// host source that does not compile is a validation error on the
     /// host's device, reported through the host's own error handling.
     pub fn new(
-        device: &wgpu::Device,
+        device: &Device,
         host_wgsl: &str,
         desc: &CtssPassDesc<'_>,
     ) -> Result<Self, PassError> {
@@ -693,7 +697,7 @@ impl CtssPass {
     }
 
     pub(crate) fn group(
-        output_format: wgpu::TextureFormat,
+        output_format: TextureFormat,
         output: CtssOutput,
         depth: CtssDepth,
     ) -> Result<Group, PassError> {
@@ -705,7 +709,7 @@ impl CtssPass {
             CtssOutput::Texture => {
                 g.storage_texture("subcone_pass_output", output_format)?;
                 if depth {
-                    g.storage_texture("subcone_pass_depth", wgpu::TextureFormat::R32Float)?;
+                    g.storage_texture("subcone_pass_depth", TextureFormat::R32Float)?;
                 }
             }
             CtssOutput::Buffers { counts } => {
@@ -763,11 +767,11 @@ impl CtssPass {
     /// it back.
     pub fn encode(
         &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        encoder: &mut wgpu::CommandEncoder,
+        device: &Device,
+        queue: &Queue,
+        encoder: &mut CommandEncoder,
         frame: &CtssFrame<'_>,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        timestamps: Option<ComputePassTimestampWrites<'_>>,
     ) -> Result<(), PassError> {
         if self.output != CtssOutput::Texture {
             return Err(PassError::Config(format!(
@@ -791,10 +795,10 @@ impl CtssPass {
                     size,
                     samples: 1,
                     layers: 1,
-                    usage: wgpu::TextureUsages::STORAGE_BINDING,
+                    usage: TextureUsages::STORAGE_BINDING,
                 },
             )?;
-            if d.texture().format() != wgpu::TextureFormat::R32Float {
+            if d.texture().format() != TextureFormat::R32Float {
                 return Err(PassError::Format {
                     what: "depth",
                     found: d.texture().format(),
@@ -821,11 +825,11 @@ impl CtssPass {
     /// recorded or written.
     pub fn encode_buffers(
         &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        encoder: &mut wgpu::CommandEncoder,
+        device: &Device,
+        queue: &Queue,
+        encoder: &mut CommandEncoder,
         frame: &CtssBuffers<'_>,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        timestamps: Option<ComputePassTimestampWrites<'_>>,
     ) -> Result<(), PassError> {
         let CtssOutput::Buffers { counts } = self.output else {
             return Err(PassError::Config(
@@ -880,9 +884,9 @@ impl CtssPass {
     #[allow(clippy::too_many_arguments)]
     fn record(
         &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        encoder: &mut wgpu::CommandEncoder,
+        device: &Device,
+        queue: &Queue,
+        encoder: &mut CommandEncoder,
         (view, params, background, size, rect): (
             &CtssView,
             &CtssParams,
@@ -891,8 +895,8 @@ impl CtssPass {
             CtssRect,
         ),
         resources: &[(&'static str, Bound<'_>)],
-        host_group: Option<&wgpu::BindGroup>,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        host_group: Option<&BindGroup>,
+        timestamps: Option<ComputePassTimestampWrites<'_>>,
     ) -> Result<(), PassError> {
         let background = match self.background {
             CtssBackground::Opaque => background,

@@ -14,6 +14,10 @@ use bytemuck::{Pod, Zeroable};
 use subcone_kernels::fxaa::FxaaParams;
 
 use crate::bind::{self, Bound, Expect, Group, PassPipeline};
+use crate::bind::{
+    CommandEncoder, ComputePassTimestampWrites, Device, Queue, TextureFormat, TextureSampleType,
+    TextureUsages, TextureView, TextureViewDimension,
+};
 use crate::PassError;
 
 pub(crate) const FXAA_WGSL: &str = include_str!("fxaa.wgsl");
@@ -62,7 +66,7 @@ pub struct FxaaPassDesc {
     /// The output texture's format: `Rgba8Unorm`, `Rgba16Float` or
     /// `Rgba32Float` (a storage texture; display-referred linear RGB in
     /// `[0, 1]`, alpha 1, whatever the format).
-    pub output_format: wgpu::TextureFormat,
+    pub output_format: TextureFormat,
     /// What the input holds, and so which formats it may have
     /// ([`FxaaInput::Unorm`] by default: float formats are refused).
     pub input: FxaaInput,
@@ -74,7 +78,7 @@ impl Default for FxaaPassDesc {
     fn default() -> Self {
         FxaaPassDesc {
             params: FxaaParams::QUALITY,
-            output_format: wgpu::TextureFormat::Rgba16Float,
+            output_format: TextureFormat::Rgba16Float,
             input: FxaaInput::Unorm,
         }
     }
@@ -85,7 +89,7 @@ impl FxaaPassDesc {
         /// With FXAA's thresholds `params` ([`Self::params`]).
         with_params(params: FxaaParams);
         /// Writing `output_format` ([`Self::output_format`]).
-        with_output_format(output_format: wgpu::TextureFormat);
+        with_output_format(output_format: TextureFormat);
         /// Reading an input that holds `input` ([`Self::input`]).
         with_input(input: FxaaInput);
     }
@@ -118,7 +122,7 @@ pub struct FxaaPass {
 impl FxaaPass {
     /// Build the pass (compile its pipeline, make its uniform buffers) for
     /// `desc`. Refuses an output format it cannot write.
-    pub fn new(device: &wgpu::Device, desc: &FxaaPassDesc) -> Result<Self, PassError> {
+    pub fn new(device: &Device, desc: &FxaaPassDesc) -> Result<Self, PassError> {
         bind::check_output_format(desc.output_format)?;
         let group = Self::group(desc.output_format)?;
         let source = Self::source(&group);
@@ -135,14 +139,14 @@ impl FxaaPass {
     }
 
     /// The bindings, writing `output_format`.
-    pub(crate) fn group(output_format: wgpu::TextureFormat) -> Result<Group, PassError> {
+    pub(crate) fn group(output_format: TextureFormat) -> Result<Group, PassError> {
         let mut g = Group::default();
         g.ring_uniform::<FxaaParams>("fxaa_params", "subcone_FxaaParams");
         g.ring_uniform::<FxaaFrame>("fxaa_frame", "FxaaFrame");
         g.texture(
             "fxaa_src",
-            wgpu::TextureSampleType::Float { filterable: false },
-            wgpu::TextureViewDimension::D2,
+            TextureSampleType::Float { filterable: false },
+            TextureViewDimension::D2,
             false,
         );
         g.storage_texture("fxaa_dst", output_format)?;
@@ -169,12 +173,12 @@ impl FxaaPass {
     /// it back.
     pub fn encode(
         &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        encoder: &mut wgpu::CommandEncoder,
-        input: &wgpu::TextureView,
-        output: &wgpu::TextureView,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        device: &Device,
+        queue: &Queue,
+        encoder: &mut CommandEncoder,
+        input: &TextureView,
+        output: &TextureView,
+        timestamps: Option<ComputePassTimestampWrites<'_>>,
     ) -> Result<(), PassError> {
         let size = bind::check_output(output, self.desc.output_format, "the desc's output_format")?;
         bind::check(
@@ -184,7 +188,7 @@ impl FxaaPass {
                 size,
                 samples: 1,
                 layers: 1,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING,
+                usage: TextureUsages::TEXTURE_BINDING,
             },
         )?;
         bind::check_float_color("input", input)?;
@@ -232,8 +236,8 @@ impl FxaaPass {
 
 /// Whether a colour texture of `format` can hold values above 1 (a float
 /// format: scene-referred radiance before tone mapping).
-fn holds_hdr(format: wgpu::TextureFormat) -> bool {
-    use wgpu::TextureFormat as F;
+fn holds_hdr(format: TextureFormat) -> bool {
+    use TextureFormat as F;
     matches!(
         format,
         F::R16Float

@@ -6,6 +6,7 @@
 
 use crate::layout_check::{assert_all_match, compare, Member};
 
+use crate::bind::TextureFormat;
 use crate::ctss::{
     CtssBackground, CtssDepth, CtssOutput, CtssPass, CtssPassDesc, CtssTrace, CtssUniform,
     CTSS_WGSL,
@@ -195,11 +196,11 @@ fn every_pass_shader_validates() {
             errors.push(e);
         }
     }
-    let g = FxaaPass::group(wgpu::TextureFormat::Rgba8Unorm).expect("an output format");
+    let g = FxaaPass::group(TextureFormat::Rgba8Unorm).expect("an output format");
     if let Err(e) = validate("fxaa", &FxaaPass::source(&g)) {
         errors.push(e);
     }
-    let g = TaaPass::group(wgpu::TextureFormat::Rgba16Float).expect("an output format");
+    let g = TaaPass::group(TextureFormat::Rgba16Float).expect("an output format");
     if let Err(e) = validate("taa", &TaaPass::source(&g)) {
         errors.push(e);
     }

@@ -76,6 +76,7 @@ mod sraa;
 pub mod standalone;
 mod taa;
 
+use bind::{BufferUsages, TextureDimension, TextureFormat, TextureUsages};
 pub use bind::{Rect, BIND_GROUP_CACHE, UNIFORM_SLOTS};
 pub use ctss::{
     CtssBackground, CtssBuffers, CtssCamera, CtssDepth, CtssFrame, CtssOutput, CtssPass,
@@ -119,7 +120,7 @@ pub enum PassError {
         /// Which input.
         what: &'static str,
         /// The texture's dimension.
-        found: wgpu::TextureDimension,
+        found: TextureDimension,
     },
     /// A texture has the wrong sample count.
     SampleCount {
@@ -144,7 +145,7 @@ pub enum PassError {
         /// Which input.
         what: &'static str,
         /// The texture's format.
-        found: wgpu::TextureFormat,
+        found: TextureFormat,
         /// What the role accepts.
         expected: &'static str,
     },
@@ -154,7 +155,7 @@ pub enum PassError {
         /// Which input.
         what: &'static str,
         /// The usage it lacks.
-        missing: wgpu::TextureUsages,
+        missing: TextureUsages,
     },
     /// An input the configuration needs was not given.
     Missing(&'static str),
@@ -177,7 +178,7 @@ pub enum PassError {
         /// Which input.
         what: &'static str,
         /// The usage it lacks.
-        missing: wgpu::BufferUsages,
+        missing: BufferUsages,
     },
     /// The rect a pass was given ([`bind::Rect`]) is empty or does not lie
     /// inside a texture it reads or writes.
@@ -203,7 +204,7 @@ pub enum PassError {
         /// Which input.
         what: &'static str,
         /// The texture's format.
-        found: wgpu::TextureFormat,
+        found: TextureFormat,
     },
 }
 

@@ -22,6 +22,10 @@ use subcone_kernels::passes::MAX_LIGHTS;
 use subcone_kernels::sraa::{ResolveSpace, ShadedPosition, SraaParams, ALBEDO_TOLERANCE};
 
 use crate::bind::{self, check_buffer, required, Bound, Expect, Group, PassPipeline, Rect};
+use crate::bind::{
+    Buffer, CommandEncoder, ComputePassTimestampWrites, Device, Queue, TextureFormat,
+    TextureSampleType, TextureUsages, TextureView, TextureViewDimension,
+};
 use crate::PassError;
 
 pub(crate) const SRAA_WGSL: &str = include_str!("sraa.wgsl");
@@ -188,7 +192,7 @@ pub struct SraaPassDesc {
     pub normal: NormalEncoding,
     /// The output texture's format: `Rgba8Unorm`, `Rgba16Float` or
     /// `Rgba32Float` (written as a storage texture, linear values, alpha 1).
-    pub output_format: wgpu::TextureFormat,
+    pub output_format: TextureFormat,
     /// The space each pixel's four reconstructed subsamples are averaged
     /// in: `ResolveSpace::Linear` (the default in every preset: the box of
     /// `sraa::resolve_pixel`, SRAA §3) or `ResolveSpace::ToneMapped {
@@ -224,7 +228,7 @@ impl SraaPassDesc {
             geometry: GeometryLayout::Multisampled,
             depth: DepthKind::Hardware { miss: 0.0 },
             normal: NormalEncoding::Signed,
-            output_format: wgpu::TextureFormat::Rgba16Float,
+            output_format: TextureFormat::Rgba16Float,
             resolve: ResolveSpace::Linear,
         }
     }
@@ -242,7 +246,7 @@ impl SraaPassDesc {
             geometry: GeometryLayout::Packed,
             depth: DepthKind::LinearView,
             normal: NormalEncoding::Signed,
-            output_format: wgpu::TextureFormat::Rgba32Float,
+            output_format: TextureFormat::Rgba32Float,
             resolve: ResolveSpace::Linear,
         }
     }
@@ -274,7 +278,7 @@ impl SraaPassDesc {
         /// With normals stored as `normal` ([`Self::normal`]).
         with_normal(normal: NormalEncoding);
         /// Writing `output_format` ([`Self::output_format`]).
-        with_output_format(output_format: wgpu::TextureFormat);
+        with_output_format(output_format: TextureFormat);
         /// Averaging the subsamples in `resolve` ([`Self::resolve`]).
         with_resolve(resolve: ResolveSpace);
     }
@@ -304,9 +308,9 @@ impl SraaPassDesc {
 #[derive(Clone, Copy, Debug)]
 pub struct CentreGeometry<'a> {
     /// Depth at the pixel centres.
-    pub depth: &'a wgpu::TextureView,
+    pub depth: &'a TextureView,
     /// Normals at the pixel centres.
-    pub normal: &'a wgpu::TextureView,
+    pub normal: &'a TextureView,
 }
 
 /// One input read at each pixel's shaded sample and at its four geometric
@@ -336,17 +340,17 @@ pub struct Samples<R> {
 #[derive(Clone, Copy, Debug)]
 pub struct SecondaryInputs<'a> {
     /// At the shaded sample of each pixel (one sample, one layer).
-    pub shaded_depth: &'a wgpu::TextureView,
+    pub shaded_depth: &'a TextureView,
     /// Normals at the shaded sample.
-    pub shaded_normal: &'a wgpu::TextureView,
+    pub shaded_normal: &'a TextureView,
     /// At each geometric subsample: 4x multisampled for
     /// [`GeometryLayout::Multisampled`], else a 4-layer array.
-    pub subsample_depth: &'a wgpu::TextureView,
+    pub subsample_depth: &'a TextureView,
     /// Normals at each geometric subsample, in the same layout.
-    pub subsample_normal: &'a wgpu::TextureView,
+    pub subsample_normal: &'a TextureView,
     /// The secondary hits' shadow bits, as [`SraaInputs::shadows`]:
     /// required exactly when `lights > 0`.
-    pub shadows: Option<Samples<&'a wgpu::TextureView>>,
+    pub shadows: Option<Samples<&'a TextureView>>,
 }
 
 /// The geometric subsamples of one frame, in the desc's
@@ -359,12 +363,12 @@ pub enum SubsampleGeometry<'a> {
     /// [`SraaPassDesc::normal`]) in two textures.
     Separate {
         /// Subsample depth.
-        depth: &'a wgpu::TextureView,
+        depth: &'a TextureView,
         /// Subsample normals.
-        normal: &'a wgpu::TextureView,
+        normal: &'a TextureView,
     },
     /// Normals in `.xyz` and linear view depth in `.w` of one texture.
-    Packed(&'a wgpu::TextureView),
+    Packed(&'a TextureView),
 }
 
 /// One frame's views for [`SraaPass::encode`]. Each view is of a whole
@@ -392,22 +396,22 @@ pub struct SraaInputs<'a> {
     /// [`SraaPassDesc::params`]). With 0 lights and no secondary shading
     /// one layer (a 2D texture); else a 2D array of exactly `1 + L` layers,
     /// `2·(1 + L)` with secondary shading.
-    pub color: &'a wgpu::TextureView,
+    pub color: &'a TextureView,
     /// Shadow states for eq. 2, required exactly when `lights > 0`:
     /// `R32Uint`, bit `l` set where light `l`'s shadow ray is blocked; the
     /// subsamples a one-sample 2D array of exactly 4 layers, layer `k`
     /// subsample `k`, whatever the geometry layout (integer formats cannot
     /// be multisampled everywhere).
-    pub shadows: Option<Samples<&'a wgpu::TextureView>>,
+    pub shadows: Option<Samples<&'a TextureView>>,
     /// Diffuse albedo for the material gate, required exactly when the
     /// albedo gate is on: `.xyz` linear RGB, any float format; the
     /// subsamples in the geometry's layout (4x multisampled for
     /// [`GeometryLayout::Multisampled`], else a 4-layer array).
-    pub albedo: Option<Samples<&'a wgpu::TextureView>>,
+    pub albedo: Option<Samples<&'a TextureView>>,
     /// The secondary hits: required exactly when the desc has `secondary`.
     pub secondary: Option<SecondaryInputs<'a>>,
     /// Where the antialiased colour is written (level 0, layer 0).
-    pub output: &'a wgpu::TextureView,
+    pub output: &'a TextureView,
 }
 
 /// The secondary hits (§3.3) in buffers, for [`SraaBuffers`]: geometry as
@@ -416,10 +420,10 @@ pub struct SraaInputs<'a> {
 #[derive(Clone, Copy, Debug)]
 pub struct SecondaryBuffers<'a> {
     /// The secondary hits' geometry.
-    pub geometry: Samples<&'a wgpu::Buffer>,
+    pub geometry: Samples<&'a Buffer>,
     /// The secondary hits' shadow bits, as [`SraaBuffers::shadows`]:
     /// required exactly when `lights > 0`.
-    pub shadows: Option<Samples<&'a wgpu::Buffer>>,
+    pub shadows: Option<Samples<&'a Buffer>>,
 }
 
 /// One frame's storage buffers for [`SraaPass::encode_buffers`]
@@ -434,22 +438,22 @@ pub struct SraaBuffers<'a> {
     /// The geometry, `array<subcone_Geometry>`: of the shaded samples
     /// (wherever the preset shades) and of the geometric subsamples
     /// (subsample `k` at `SUBPIXEL_OFFSETS[k]`).
-    pub geometry: Samples<&'a wgpu::Buffer>,
+    pub geometry: Samples<&'a Buffer>,
     /// The shaded colour's layers, `array<vec4<f32>>` (`.xyz`), layer `l`
     /// of pixel `j` at `j · layers + l` (`1 + L` layers, twice that with
     /// secondary shading).
-    pub color: &'a wgpu::Buffer,
+    pub color: &'a Buffer,
     /// Shadow bits, `array<u32>` (bit `l` set where light `l`'s shadow
     /// ray is blocked): required exactly when `lights > 0`.
-    pub shadows: Option<Samples<&'a wgpu::Buffer>>,
+    pub shadows: Option<Samples<&'a Buffer>>,
     /// Albedo, `array<vec4<f32>>` (linear RGB in `.xyz`): required exactly
     /// when the albedo gate is on.
-    pub albedo: Option<Samples<&'a wgpu::Buffer>>,
+    pub albedo: Option<Samples<&'a Buffer>>,
     /// The secondary hits: required exactly when the desc has `secondary`.
     pub secondary: Option<SecondaryBuffers<'a>>,
     /// Where the antialiased colour is written, `array<vec4<f32>>`, one per
     /// pixel (alpha 1).
-    pub output: &'a wgpu::Buffer,
+    pub output: &'a Buffer,
 }
 
 /// The secondary hits' loaders of a pass without them (never read).
@@ -471,7 +475,7 @@ fn no_shadow_loaders(g: &str) -> String {
     )
 }
 
-impl Samples<&wgpu::Buffer> {
+impl Samples<&Buffer> {
     /// Check both buffers (named `[shaded, subsamples]`) for `pixels`
     /// pixels: one element of `element` bytes per pixel at the shaded
     /// sample, four at the subsamples.
@@ -508,7 +512,7 @@ struct InputRules<'a> {
 
 impl InputRules<'_> {
     /// Check `v` against `e` and the rules' size or rect.
-    fn check(&self, v: &wgpu::TextureView, e: &Expect) -> Result<(), PassError> {
+    fn check(&self, v: &TextureView, e: &Expect) -> Result<(), PassError> {
         bind::check_region(v, e, self.rect)
     }
 
@@ -521,7 +525,7 @@ impl InputRules<'_> {
             size: self.size,
             samples: if ms { 4 } else { 1 },
             layers: if ms { 1 } else { 4 },
-            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            usage: TextureUsages::TEXTURE_BINDING,
         }
     }
 
@@ -532,24 +536,24 @@ impl InputRules<'_> {
             size: self.size,
             samples: 1,
             layers,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            usage: TextureUsages::TEXTURE_BINDING,
         }
     }
 
     /// A float texture of the geometric subsamples ([`Self::sub`]).
-    fn float_sub(&self, what: &'static str, v: &wgpu::TextureView) -> Result<(), PassError> {
+    fn float_sub(&self, what: &'static str, v: &TextureView) -> Result<(), PassError> {
         self.check(v, &self.sub(what))?;
         bind::check_float_color(what, v)
     }
 
     /// A one-sample, one-layer float texture.
-    fn float_one(&self, what: &'static str, v: &wgpu::TextureView) -> Result<(), PassError> {
+    fn float_one(&self, what: &'static str, v: &TextureView) -> Result<(), PassError> {
         self.check(v, &self.one(what, 1))?;
         bind::check_float_color(what, v)
     }
 
     /// A depth texture's format for the desc's [`DepthKind`].
-    fn depth_format(&self, what: &'static str, v: &wgpu::TextureView) -> Result<(), PassError> {
+    fn depth_format(&self, what: &'static str, v: &TextureView) -> Result<(), PassError> {
         let format = v.texture().format();
         let ok = match self.desc.depth {
             DepthKind::Hardware { .. } => format.has_depth_aspect(),
@@ -601,13 +605,13 @@ impl InputRules<'_> {
 
     /// A pair of shadow textures: `R32Uint`, one layer at the shaded
     /// sample, four at the subsamples.
-    fn shadows(&self, s: &Samples<&wgpu::TextureView>) -> Result<(), PassError> {
+    fn shadows(&self, s: &Samples<&TextureView>) -> Result<(), PassError> {
         for (what, t, layers) in [
             ("shaded shadows", s.shaded, 1),
             ("subsample shadows", s.subsamples, 4),
         ] {
             self.check(t, &self.one(what, layers))?;
-            if t.texture().format() != wgpu::TextureFormat::R32Uint {
+            if t.texture().format() != TextureFormat::R32Uint {
                 return Err(PassError::Format {
                     what,
                     found: t.texture().format(),
@@ -635,7 +639,7 @@ impl InputRules<'_> {
     }
 
     /// The albedo textures (given exactly when the albedo gate is on).
-    fn albedo(&self, a: &Samples<&wgpu::TextureView>) -> Result<(), PassError> {
+    fn albedo(&self, a: &Samples<&TextureView>) -> Result<(), PassError> {
         self.float_one("shaded albedo", a.shaded)?;
         self.float_sub("subsample albedo", a.subsamples)
     }
@@ -676,8 +680,8 @@ pub struct SraaPass {
     pipeline: PassPipeline,
 }
 
-fn float_sample() -> wgpu::TextureSampleType {
-    wgpu::TextureSampleType::Float { filterable: false }
+fn float_sample() -> TextureSampleType {
+    TextureSampleType::Float { filterable: false }
 }
 
 impl SraaPass {
@@ -685,7 +689,7 @@ impl SraaPass {
     /// more than `MAX_LIGHTS` lights, an output format
     /// it cannot write, and [`GeometryLayout::Packed`] with hardware depth
     /// or unsigned normals.
-    pub fn new(device: &wgpu::Device, desc: &SraaPassDesc) -> Result<Self, PassError> {
+    pub fn new(device: &Device, desc: &SraaPassDesc) -> Result<Self, PassError> {
         let source = Self::source(desc)?;
         let group = Self::group(desc)?;
         let source = [source, group.declarations()].concat();
@@ -746,7 +750,7 @@ impl SraaPass {
 
     /// The bindings, hardware depth declared as `depth`.
     pub(crate) fn group_with(desc: &SraaPassDesc, depth: DepthBinding) -> Result<Group, PassError> {
-        use wgpu::TextureViewDimension::{D2Array, D2};
+        use TextureViewDimension::{D2Array, D2};
         if desc.geometry == GeometryLayout::Buffers {
             return Ok(Self::buffer_group(desc));
         }
@@ -758,7 +762,7 @@ impl SraaPass {
             _ => (D2Array, false),
         };
         let depth_sample = if hw && depth == DepthBinding::Depth {
-            wgpu::TextureSampleType::Depth
+            TextureSampleType::Depth
         } else {
             float_sample()
         };
@@ -775,7 +779,7 @@ impl SraaPass {
         } else {
             g.texture("color", float_sample(), D2Array, false);
         }
-        let u = wgpu::TextureSampleType::Uint;
+        let u = TextureSampleType::Uint;
         if desc.lights > 0 {
             g.texture("shaded_shadow", u, D2, false);
             g.texture("sub_shadow", u, D2Array, false);
@@ -1038,11 +1042,11 @@ impl SraaPass {
     /// (`CommandEncoder::resolve_query_set`) and reads it back.
     pub fn encode(
         &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        encoder: &mut wgpu::CommandEncoder,
+        device: &Device,
+        queue: &Queue,
+        encoder: &mut CommandEncoder,
         inputs: &SraaInputs<'_>,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        timestamps: Option<ComputePassTimestampWrites<'_>>,
     ) -> Result<(), PassError> {
         self.encode_region(device, queue, encoder, inputs, None, timestamps)
     }
@@ -1064,12 +1068,12 @@ impl SraaPass {
     /// the same inputs.
     pub fn encode_rect(
         &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        encoder: &mut wgpu::CommandEncoder,
+        device: &Device,
+        queue: &Queue,
+        encoder: &mut CommandEncoder,
         inputs: &SraaInputs<'_>,
         rect: Rect,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        timestamps: Option<ComputePassTimestampWrites<'_>>,
     ) -> Result<(), PassError> {
         self.encode_region(device, queue, encoder, inputs, Some(&rect), timestamps)
     }
@@ -1077,12 +1081,12 @@ impl SraaPass {
     /// [`Self::encode`] of `rect` (the whole output for `None`).
     fn encode_region(
         &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        encoder: &mut wgpu::CommandEncoder,
+        device: &Device,
+        queue: &Queue,
+        encoder: &mut CommandEncoder,
         inputs: &SraaInputs<'_>,
         rect: Option<&Rect>,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        timestamps: Option<ComputePassTimestampWrites<'_>>,
     ) -> Result<(), PassError> {
         if self.desc.geometry == GeometryLayout::Buffers {
             return Err(PassError::Config(
@@ -1144,11 +1148,11 @@ impl SraaPass {
     /// is recorded or written.
     pub fn encode_buffers(
         &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        encoder: &mut wgpu::CommandEncoder,
+        device: &Device,
+        queue: &Queue,
+        encoder: &mut CommandEncoder,
         inputs: &SraaBuffers<'_>,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        timestamps: Option<ComputePassTimestampWrites<'_>>,
     ) -> Result<(), PassError> {
         let d = &self.desc;
         if d.geometry != GeometryLayout::Buffers {
@@ -1232,13 +1236,13 @@ impl SraaPass {
     #[allow(clippy::too_many_arguments)]
     fn record(
         &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        encoder: &mut wgpu::CommandEncoder,
+        device: &Device,
+        queue: &Queue,
+        encoder: &mut CommandEncoder,
         rect: Rect,
         (projection, depth_miss): ([f32; 4], f32),
         bound: &[(&'static str, Bound<'_>)],
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        timestamps: Option<ComputePassTimestampWrites<'_>>,
     ) -> Result<(), PassError> {
         let exposure = match self.desc.resolve {
             ResolveSpace::ToneMapped { exposure } => exposure,

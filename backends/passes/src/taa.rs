@@ -7,6 +7,10 @@ use subcone_kernels::taa::{TaaParams, TaaSettings};
 use bytemuck::{Pod, Zeroable};
 
 use crate::bind::{self, Bound, Expect, Group, PassPipeline, Rect};
+use crate::bind::{
+    CommandEncoder, ComputePassTimestampWrites, Device, Queue, TextureFormat, TextureSampleType,
+    TextureUsages, TextureView, TextureViewDimension,
+};
 use crate::PassError;
 
 pub(crate) const TAA_WGSL: &str = include_str!("taa.wgsl");
@@ -40,14 +44,14 @@ pub struct TaaPassDesc {
     /// `Rgba32Float` (a storage texture; linear radiance, alpha 1). The
     /// output is the next frame's history, so an 8-bit format would
     /// quantise what accumulates and is refused.
-    pub output_format: wgpu::TextureFormat,
+    pub output_format: TextureFormat,
 }
 
 impl Default for TaaPassDesc {
     fn default() -> Self {
         TaaPassDesc {
             settings: TaaSettings::default(),
-            output_format: wgpu::TextureFormat::Rgba16Float,
+            output_format: TextureFormat::Rgba16Float,
         }
     }
 }
@@ -57,7 +61,7 @@ impl TaaPassDesc {
         /// With the sequence's `settings` ([`Self::settings`]).
         with_settings(settings: TaaSettings);
         /// Writing `output_format` ([`Self::output_format`]).
-        with_output_format(output_format: wgpu::TextureFormat);
+        with_output_format(output_format: TextureFormat);
     }
 
     /// Check every field against its domain.
@@ -67,7 +71,7 @@ impl TaaPassDesc {
             .map_err(|e| PassError::Config(format!("TaaPassDesc: {e}")))?;
         if !matches!(
             self.output_format,
-            wgpu::TextureFormat::Rgba16Float | wgpu::TextureFormat::Rgba32Float
+            TextureFormat::Rgba16Float | TextureFormat::Rgba32Float
         ) {
             return Err(PassError::Format {
                 what: "the desc's output_format",
@@ -86,14 +90,14 @@ impl TaaPassDesc {
 pub struct TaaInputs<'a> {
     /// This frame's colour (`.xyz`, linear radiance), rendered through the
     /// projection jittered by [`TaaPass::jitter`] of the frame.
-    pub current: &'a wgpu::TextureView,
+    pub current: &'a TextureView,
     /// Each pixel's motion in pixels (`.xy`), current minus previous
     /// position of the surface it shows, for the un-jittered projections
     /// (engines' motion-vector buffers; `+x` right, `+y` down).
-    pub velocity: &'a wgpu::TextureView,
+    pub velocity: &'a TextureView,
     /// The previous frame's output (read only when `history_frames > 0`,
     /// but always bound). Not the output's texture: the host ping-pongs two.
-    pub history: &'a wgpu::TextureView,
+    pub history: &'a TextureView,
     /// Frames accumulated in the history: 0 on the first frame and after a
     /// cut (a reset: the output is the current frame), then the host
     /// counts up (it sets how fast the running mean becomes an exponential
@@ -135,7 +139,7 @@ pub struct TaaPass {
 impl TaaPass {
     /// Build the pass (compile its pipeline, make its uniform buffers) for
     /// `desc`. Refuses a desc outside its domain.
-    pub fn new(device: &wgpu::Device, desc: &TaaPassDesc) -> Result<Self, PassError> {
+    pub fn new(device: &Device, desc: &TaaPassDesc) -> Result<Self, PassError> {
         desc.validate()?;
         bind::check_output_format(desc.output_format)?;
         let group = Self::group(desc.output_format)?;
@@ -161,15 +165,15 @@ impl TaaPass {
     }
 
     /// The bindings, writing `output_format`.
-    pub(crate) fn group(output_format: wgpu::TextureFormat) -> Result<Group, PassError> {
+    pub(crate) fn group(output_format: TextureFormat) -> Result<Group, PassError> {
         let mut g = Group::default();
         g.ring_uniform::<TaaParams>("taa_params", "subcone_TaaParams");
         g.ring_uniform::<TaaOrigin>("taa_origin", "TaaOrigin");
         for name in ["taa_current_tex", "taa_velocity", "taa_history_tex"] {
             g.texture(
                 name,
-                wgpu::TextureSampleType::Float { filterable: false },
-                wgpu::TextureViewDimension::D2,
+                TextureSampleType::Float { filterable: false },
+                TextureViewDimension::D2,
                 false,
             );
         }
@@ -196,12 +200,12 @@ impl TaaPass {
     /// compute pass (the host's query set, which it resolves).
     pub fn encode(
         &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        encoder: &mut wgpu::CommandEncoder,
+        device: &Device,
+        queue: &Queue,
+        encoder: &mut CommandEncoder,
         inputs: &TaaInputs<'_>,
-        output: &wgpu::TextureView,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        output: &TextureView,
+        timestamps: Option<ComputePassTimestampWrites<'_>>,
     ) -> Result<(), PassError> {
         self.encode_region(device, queue, encoder, inputs, output, None, timestamps)
     }
@@ -218,13 +222,13 @@ impl TaaPass {
     #[allow(clippy::too_many_arguments)]
     pub fn encode_rect(
         &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        encoder: &mut wgpu::CommandEncoder,
+        device: &Device,
+        queue: &Queue,
+        encoder: &mut CommandEncoder,
         inputs: &TaaInputs<'_>,
-        output: &wgpu::TextureView,
+        output: &TextureView,
         rect: Rect,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        timestamps: Option<ComputePassTimestampWrites<'_>>,
     ) -> Result<(), PassError> {
         self.encode_region(
             device,
@@ -241,13 +245,13 @@ impl TaaPass {
     #[allow(clippy::too_many_arguments)]
     fn encode_region(
         &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        encoder: &mut wgpu::CommandEncoder,
+        device: &Device,
+        queue: &Queue,
+        encoder: &mut CommandEncoder,
         inputs: &TaaInputs<'_>,
-        output: &wgpu::TextureView,
+        output: &TextureView,
         rect: Option<&Rect>,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        timestamps: Option<ComputePassTimestampWrites<'_>>,
     ) -> Result<(), PassError> {
         let region = bind::check_output_region(
             output,
@@ -267,7 +271,7 @@ impl TaaPass {
                     size: region.size(),
                     samples: 1,
                     layers: 1,
-                    usage: wgpu::TextureUsages::TEXTURE_BINDING,
+                    usage: TextureUsages::TEXTURE_BINDING,
                 },
                 rect,
             )?;
