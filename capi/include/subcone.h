@@ -274,6 +274,53 @@ typedef struct SubconeCtssPassUniform {
   uint32_t pad2;
 } SubconeCtssPassUniform;
 
+// FXAA 3.11's parameters, the layout of the kernels' `FxaaParams` (16
+// bytes; `fxaa_params` of `shaders/fxaa/*`). Fill it with
+// [`subcone_fxaa_params_quality`].
+typedef struct SubconeFxaaParams {
+  // `fxaaQualitySubpix`, in `[0, 1]`.
+  float subpix;
+  // `fxaaQualityEdgeThreshold`.
+  float edge_threshold;
+  // `fxaaQualityEdgeThresholdMin`.
+  float edge_threshold_min;
+  // Padding; write 0.
+  float pad;
+} SubconeFxaaParams;
+
+// The FXAA pass's frame (`FxaaFrame`, binding `fxaa_frame` of
+// `shaders/fxaa/*`; 16 bytes). Fill it with [`subcone_fxaa_pass_frame`].
+typedef struct SubconeFxaaPassFrame {
+  // The image's width in pixels.
+  uint32_t width;
+  // Its height.
+  uint32_t height;
+  // Padding; write 0.
+  uint32_t pad[2];
+} SubconeFxaaPassFrame;
+
+// One TAA resolve's parameters, the layout of the kernels' `TaaParams`
+// (32 bytes; `taa_params` of `shaders/taa/*`). Fill it with
+// [`subcone_taa_params`].
+typedef struct SubconeTaaParams {
+  // The tone-mapped resolve's exposure.
+  float exposure;
+  // The smallest weight of the current frame, in `(0, 1]`.
+  float min_current_weight;
+  // Variance clipping's `γ`.
+  float clip_gamma;
+  // Frames the history holds: 0 after a reset (a camera cut).
+  uint32_t history_frames;
+  // The image's width in pixels.
+  uint32_t width;
+  // Its height.
+  uint32_t height;
+  // 1: clip and blend in Karis' tone-mapped space; 0: linear.
+  uint32_t tone_mapped;
+  // Padding; write 0.
+  uint32_t pad;
+} SubconeTaaParams;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -543,6 +590,51 @@ enum SubconeStatus subcone_pinhole_ray(const struct SubconeCtssPassUniform *unif
                                        float x,
                                        float y,
                                        struct SubconeVec3 *out);
+
+// FXAA 3.11's quality defaults (subpix 0.75, edge threshold 0.166, edge
+// threshold min 0.0833; the Rust `FxaaParams::QUALITY`).
+//
+// # Safety
+// `out` is null or writable.
+enum SubconeStatus subcone_fxaa_params_quality(struct SubconeFxaaParams *out);
+
+// The FXAA pass's frame for a `width × height` image.
+//
+// Errors: a zero size; null `out`.
+//
+// # Safety
+// `out` is null or writable.
+enum SubconeStatus subcone_fxaa_pass_frame(uint32_t width,
+                                           uint32_t height,
+                                           struct SubconeFxaaPassFrame *out);
+
+// The TAA resolve's parameters for a `width × height` image whose history
+// holds `history_frames` frames (0 after a reset), with the kernels'
+// defaults (`MIN_CURRENT_WEIGHT`, `CLIP_GAMMA`), resolved in linear
+// radiance when `exposure` is 0 and in Karis' tone-mapped space at
+// `exposure` otherwise: the Rust `TaaParams::new(size).with_space(..)
+// .with_history_frames(..)`, what the Rust `TaaPass` writes.
+//
+// Errors: a zero size; a negative or non-finite `exposure`; null `out`.
+//
+// # Safety
+// `out` is null or writable.
+enum SubconeStatus subcone_taa_params(uint32_t width,
+                                      uint32_t height,
+                                      uint32_t history_frames,
+                                      float exposure,
+                                      struct SubconeTaaParams *out);
+
+// Frame `frame`'s sub-pixel jitter of a TAA sequence of `phases` phases
+// (Halton (2, 3), in `[-½, ½)` pixels; 8 is Karis', 16 the Rust default):
+// the offset a host adds to every pixel's sample position of that frame,
+// `(*x, *y)`.
+//
+// Errors: `phases` 0; null `x` or `y`.
+//
+// # Safety
+// `x` and `y` are null or writable.
+enum SubconeStatus subcone_taa_jitter(uint32_t frame, uint32_t phases, float *x, float *y);
 
 #ifdef __cplusplus
 }  // extern "C"

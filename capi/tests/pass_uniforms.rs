@@ -129,6 +129,67 @@ fn ctss_pass_uniform_and_params_match_every_ctss_shader() {
 }
 
 #[test]
+fn fxaa_and_taa_uniforms_match_their_shaders() {
+    let catalog = standalone::catalog().expect("catalog");
+    let fxaa = catalog.iter().find(|s| s.pass == "fxaa").expect("fxaa");
+    let params = fields!(SubconeFxaaParams: subpix, edge_threshold, edge_threshold_min, pad);
+    assert_eq!(uniform_layout(&fxaa.wgsl, "fxaa_params"), (params, 16));
+    let frame = fields!(SubconeFxaaPassFrame: width, height, pad: 2 x u32);
+    assert_eq!(uniform_layout(&fxaa.wgsl, "fxaa_frame"), (frame, 16));
+    let taa = catalog.iter().find(|s| s.pass == "taa").expect("taa");
+    let params = fields!(SubconeTaaParams: exposure, min_current_weight, clip_gamma,
+        history_frames, width, height, tone_mapped, pad);
+    assert_eq!(uniform_layout(&taa.wgsl, "taa_params"), (params, 32));
+    let origin = fields!(SubconeTaaPassOrigin: x, y, pad: 2 x u32);
+    assert_eq!(uniform_layout(&taa.wgsl, "taa_origin"), (origin, 16));
+}
+
+#[test]
+fn fxaa_and_taa_fills_are_the_rust_ones() {
+    use subcone_kernels::taa::{jitter, ResolveSpace, TaaParams};
+    // SAFETY: valid pointers or null.
+    unsafe {
+        let mut f = SubconeFxaaParams::default();
+        assert_eq!(subcone_fxaa_params_quality(&mut f), SubconeStatus::Ok);
+        assert_eq!(
+            (f.subpix, f.edge_threshold, f.edge_threshold_min),
+            (0.75, 0.166, 0.0833)
+        );
+        let mut frame = SubconeFxaaPassFrame::default();
+        assert_eq!(
+            subcone_fxaa_pass_frame(0, 2, &mut frame),
+            SubconeStatus::SizeMismatch
+        );
+        assert_eq!(subcone_fxaa_pass_frame(3, 2, &mut frame), SubconeStatus::Ok);
+        assert_eq!((frame.width, frame.height), (3, 2));
+
+        let mut t = SubconeTaaParams::default();
+        assert_eq!(
+            subcone_taa_params(8, 6, 3, -1.0, &mut t),
+            SubconeStatus::InvalidArgument
+        );
+        assert_eq!(subcone_taa_params(8, 6, 3, 0.0, &mut t), SubconeStatus::Ok);
+        let rust = TaaParams::new((8, 6)).with_history_frames(3);
+        assert_eq!(TaaParams::from(t), rust);
+        assert_eq!(subcone_taa_params(8, 6, 0, 2.0, &mut t), SubconeStatus::Ok);
+        let rust = TaaParams::new((8, 6)).with_space(ResolveSpace::ToneMapped { exposure: 2.0 });
+        assert_eq!(TaaParams::from(t), rust);
+
+        let (mut x, mut y) = (0.0f32, 0.0f32);
+        assert_eq!(
+            subcone_taa_jitter(5, 0, &mut x, &mut y),
+            SubconeStatus::InvalidArgument
+        );
+        assert_eq!(
+            subcone_taa_jitter(5, 16, &mut x, std::ptr::null_mut()),
+            SubconeStatus::NullPointer
+        );
+        assert_eq!(subcone_taa_jitter(5, 16, &mut x, &mut y), SubconeStatus::Ok);
+        assert_eq!((x, y), jitter(5, 16).into());
+    }
+}
+
+#[test]
 fn pass_uniforms_refuse_bad_input() {
     let mut params = SubconeSraaParams::default();
     let mut u = SubconeSraaPassUniform::default();
@@ -187,5 +248,15 @@ fn pass_uniforms_refuse_bad_input() {
         assert_eq!(c.forward, [0.0, 0.0, 1.0]);
         assert_eq!(c.depth_axis, [0.0, 0.0, 1.0]);
         assert!((c.tan_half_fov - 0.4f32.tan()).abs() < 1e-7);
+        // forward × up_hint of subnormal squared length (a fuzzing find):
+        // the frame is still orthonormal.
+        let up_hint = v(1.0, 1e-20, 1e-20);
+        assert_eq!(
+            subcone_ctss_pass_uniform(eye, v(-1.0, 0.0, 0.0), up_hint, 0.8, 2, 2, eye, &mut c),
+            SubconeStatus::Ok
+        );
+        let len = |a: [f32; 3]| (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+        assert!((len(c.right) - 1.0).abs() < 1e-6, "{:?}", c.right);
+        assert!((len(c.up) - 1.0).abs() < 1e-6, "{:?}", c.up);
     }
 }

@@ -384,6 +384,54 @@ struct Trace {
 #[derive(Arbitrary, Debug)]
 enum Call {
     Version,
+    SraaPassUniform {
+        params: Option<SraaParams>,
+        width: Size,
+        height: Size,
+        projection: Option<[F; 16]>,
+        depth_miss: F,
+        exposure: F,
+        out: bool,
+    },
+    CtssPassUniform {
+        eye: [F; 3],
+        forward: [F; 3],
+        up_hint: [F; 3],
+        fov_y: F,
+        width: Size,
+        height: Size,
+        background: [F; 3],
+        out: bool,
+    },
+    FxaaParamsQuality {
+        out: bool,
+    },
+    FxaaPassFrame {
+        width: Size,
+        height: Size,
+        out: bool,
+    },
+    TaaParams {
+        width: Size,
+        height: Size,
+        history_frames: u32,
+        exposure: F,
+        out: bool,
+    },
+    TaaJitter {
+        frame: u32,
+        phases: Size,
+        x: bool,
+        y: bool,
+    },
+    PinholeRay {
+        /// A uniform from `subcone_ctss_pass_uniform`'s arguments, then
+        /// any field overwritten: (`tan_half_fov`, jitter, projection code).
+        uniform: Option<([F; 3], [F; 3], F, [F; 2], u32)>,
+        x: F,
+        y: F,
+        out: bool,
+    },
     SraaParamsDefault {
         out: bool,
     },
@@ -920,6 +968,246 @@ fn ctss_trace(t: Trace) {
 
 fn call(c: Call) {
     match c {
+        Call::SraaPassUniform {
+            params,
+            width,
+            height,
+            projection,
+            depth_miss,
+            exposure,
+            out,
+        } => {
+            let what = "subcone_sraa_pass_uniform";
+            let p = params.map(SraaParams::get);
+            let m = projection.map(|m| m.map(|f| f.0));
+            let mut o = Out::new(
+                out,
+                SubconeSraaPassUniform {
+                    width: 0xDEAD_BEEF,
+                    ..Default::default()
+                },
+            );
+            let mptr = m.as_ref().map_or(std::ptr::null(), |m| m.as_ptr());
+            let s = unsafe {
+                subcone_sraa_pass_uniform(
+                    opt_ptr(&p),
+                    width.0,
+                    height.0,
+                    mptr,
+                    depth_miss.0,
+                    exposure.0,
+                    o.ptr(),
+                )
+            };
+            Defects {
+                null: p.is_none() || o.is_null(),
+                invalid: p.as_ref().is_some_and(|p| !sraa_params_valid(p))
+                    || !depth_miss.0.is_finite()
+                    || !(exposure.0.is_finite() && exposure.0 >= 0.0)
+                    || m.is_some_and(|m| !m.iter().all(|v| v.is_finite())),
+                size: width.0 == 0 || height.0 == 0,
+            }
+            .check(s, what);
+            if let Some(u) = o.after(s, what) {
+                assert_eq!((u.width, u.height), (width.0, height.0), "{what}");
+            }
+        }
+        Call::CtssPassUniform {
+            eye,
+            forward,
+            up_hint,
+            fov_y,
+            width,
+            height,
+            background,
+            out,
+        } => {
+            let what = "subcone_ctss_pass_uniform";
+            let mut o = Out::new(
+                out,
+                SubconeCtssPassUniform {
+                    width: 0xDEAD_BEEF,
+                    ..Default::default()
+                },
+            );
+            let s = unsafe {
+                subcone_ctss_pass_uniform(
+                    v3(eye),
+                    v3(forward),
+                    v3(up_hint),
+                    fov_y.0,
+                    width.0,
+                    height.0,
+                    v3(background),
+                    o.ptr(),
+                )
+            };
+            let nonfinite = ![v3(eye), v3(forward), v3(up_hint), v3(background)]
+                .into_iter()
+                .all(finite3)
+                || !(fov_y.0 > 0.0 && fov_y.0 < std::f32::consts::PI);
+            // A zero forward, or one parallel to up_hint, has no frame: in
+            // f64, the two directions' sine is tiny or a length is 0.
+            let degenerate = {
+                let f = [forward[0].0, forward[1].0, forward[2].0].map(f64::from);
+                let u = [up_hint[0].0, up_hint[1].0, up_hint[2].0].map(f64::from);
+                let len = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+                let c = [
+                    f[1] * u[2] - f[2] * u[1],
+                    f[2] * u[0] - f[0] * u[2],
+                    f[0] * u[1] - f[1] * u[0],
+                ];
+                let (lf, lu) = (len(f), len(u));
+                !(lf > 0.0 && lu > 0.0 && len(c) / (lf * lu) > 1e-6)
+            };
+            let defects = Defects {
+                null: o.is_null(),
+                invalid: nonfinite,
+                size: width.0 == 0 || height.0 == 0,
+            };
+            if s == SubconeStatus::InvalidArgument && !nonfinite {
+                assert!(degenerate, "{what}: refused a camera with a frame");
+            } else if !(degenerate && s == SubconeStatus::Ok) {
+                defects.check(s, what);
+            }
+            if let Some(u) = o.after(s, what) {
+                let unit =
+                    |v: [f32; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2] - 1.0).abs() < 1e-3;
+                assert!(
+                    unit(u.forward) && unit(u.right) && unit(u.up),
+                    "{what}: {u:?}"
+                );
+            }
+        }
+        Call::FxaaParamsQuality { out } => {
+            let p = plain(
+                "subcone_fxaa_params_quality",
+                out,
+                SubconeFxaaParams::default(),
+                |o| unsafe { subcone_fxaa_params_quality(o) },
+            );
+            if let Some(p) = p {
+                assert!(p.subpix > 0.0 && p.edge_threshold > 0.0, "{p:?}");
+            }
+        }
+        Call::FxaaPassFrame { width, height, out } => {
+            let what = "subcone_fxaa_pass_frame";
+            let mut o = Out::new(
+                out,
+                SubconeFxaaPassFrame {
+                    width: 0xDEAD_BEEF,
+                    ..Default::default()
+                },
+            );
+            let s = unsafe { subcone_fxaa_pass_frame(width.0, height.0, o.ptr()) };
+            Defects {
+                null: o.is_null(),
+                invalid: false,
+                size: width.0 == 0 || height.0 == 0,
+            }
+            .check(s, what);
+            if let Some(f) = o.after(s, what) {
+                assert_eq!((f.width, f.height), (width.0, height.0), "{what}");
+            }
+        }
+        Call::TaaParams {
+            width,
+            height,
+            history_frames,
+            exposure,
+            out,
+        } => {
+            let what = "subcone_taa_params";
+            let mut o = Out::new(
+                out,
+                SubconeTaaParams {
+                    width: 0xDEAD_BEEF,
+                    ..Default::default()
+                },
+            );
+            let s = unsafe {
+                subcone_taa_params(width.0, height.0, history_frames, exposure.0, o.ptr())
+            };
+            Defects {
+                null: o.is_null(),
+                invalid: !(exposure.0.is_finite() && exposure.0 >= 0.0),
+                size: width.0 == 0 || height.0 == 0,
+            }
+            .check(s, what);
+            if let Some(p) = o.after(s, what) {
+                assert_eq!(p.history_frames, history_frames, "{what}");
+                assert_eq!(p.tone_mapped, u32::from(exposure.0 > 0.0), "{what}");
+            }
+        }
+        Call::TaaJitter {
+            frame,
+            phases,
+            x,
+            y,
+        } => {
+            let what = "subcone_taa_jitter";
+            let mut ox = Out::new(x, SENTINEL_F32);
+            let mut oy = Out::new(y, SENTINEL_F32);
+            let s = unsafe { subcone_taa_jitter(frame, phases.0, ox.ptr(), oy.ptr()) };
+            Defects {
+                null: ox.is_null() || oy.is_null(),
+                invalid: phases.0 == 0,
+                size: false,
+            }
+            .check(s, what);
+            if let (Some(jx), Some(jy)) = (ox.after(s, what), oy.after(s, what)) {
+                assert!(
+                    (-0.5..0.5).contains(&jx) && (-0.5..0.5).contains(&jy),
+                    "{what}: {jx} {jy}"
+                );
+            }
+        }
+        Call::PinholeRay { uniform, x, y, out } => {
+            let what = "subcone_pinhole_ray";
+            let u = uniform.map(|(eye, forward, tan, jitter, projection)| {
+                let mut u = SubconeCtssPassUniform::default();
+                let yaxis = SubconeVec3 {
+                    x: 0.0,
+                    y: 1.0,
+                    z: 0.1,
+                };
+                unsafe {
+                    subcone_ctss_pass_uniform(
+                        v3(eye),
+                        v3(forward),
+                        yaxis,
+                        0.8,
+                        64,
+                        48,
+                        yaxis,
+                        &mut u,
+                    )
+                };
+                u.tan_half_fov = tan.0;
+                u.jitter = jitter.map(|j| j.0);
+                u.projection = projection % 4;
+                u
+            });
+            let mut o = Out::new(out, SENTINEL_V3);
+            let s = unsafe { subcone_pinhole_ray(opt_ptr(&u), x.0, y.0, o.ptr()) };
+            let finite_u = |u: &SubconeCtssPassUniform| {
+                [u.forward, u.right, u.up]
+                    .iter()
+                    .flatten()
+                    .chain(&u.jitter)
+                    .chain([&u.tan_half_fov])
+                    .all(|v| v.is_finite())
+            };
+            Defects {
+                null: u.is_none() || o.is_null(),
+                invalid: !(x.0.is_finite() && y.0.is_finite())
+                    || u.as_ref()
+                        .is_some_and(|u| u.projection != 0 || !finite_u(u)),
+                size: false,
+            }
+            .check(s, what);
+            o.after(s, what);
+        }
         Call::Version => {
             let v = subcone_version();
             assert_eq!(
