@@ -71,6 +71,21 @@ const POLICIES: BoundsCheckPolicies = BoundsCheckPolicies {
     binding_array: BoundsCheckPolicy::Unchecked,
 };
 
+/// GLSL ES 3.10 cannot query a texture's levels or samples, so naga cannot
+/// bounds-check a texel load's level or sample index there: its texel
+/// loads are unchecked. Every pass clamps its texel coordinates to the
+/// size in its uniform and loads level 0 and samples `0..4`, so a host that
+/// binds textures of that size and of the table's sample count stays in
+/// bounds (the table says so on each ES file).
+const POLICIES_ES: BoundsCheckPolicies = BoundsCheckPolicies {
+    image_load: BoundsCheckPolicy::Unchecked,
+    ..POLICIES
+};
+
+/// What the table says of a GLSL ES file.
+const ES_NOTE: &str = "texel loads are not bounds-checked (ES 3.10 cannot query levels or \
+     samples): bind textures of the uniform's size and the table's sample count";
+
 /// The GLSL versions written: desktop 450 always, ES 310 where naga can.
 const GLSL_CORE: u16 = 450;
 const GLSL_ES: u16 = 310;
@@ -198,6 +213,7 @@ fn glsl_source(
     info: &naga::valid::ModuleInfo,
     s: &StandaloneShader,
     version: glsl::Version,
+    policies: BoundsCheckPolicies,
 ) -> Result<String, String> {
     let binding_map = s
         .bindings
@@ -216,7 +232,7 @@ fn glsl_source(
         multiview: None,
     };
     let mut out = String::new();
-    glsl::Writer::new(&mut out, m, info, &options, &pipeline, POLICIES)
+    glsl::Writer::new(&mut out, m, info, &options, &pipeline, policies)
         .and_then(|mut w| w.write().map(|_| ()))
         .map_err(|e| e.to_string())?;
     Ok(out)
@@ -306,7 +322,11 @@ fn struct_members(
             }
         }
         _ => out.push(serde_json::json!({
-            "name": prefix.trim_end_matches('.'),
+            // A buffer of scalars or vectors: its element, unnamed.
+            "name": match prefix.trim_end_matches('.') {
+                "" => "(element)",
+                name => name,
+            },
             "offset": base,
             "size": layouter[ty].size,
             "type": type_name(m, ty),
@@ -425,7 +445,7 @@ fn translate(s: &StandaloneShader) -> Result<(Vec<OutputFile>, serde_json::Value
         ),
         file(
             "comp",
-            glsl_source(gm, ginfo, s, glsl::Version::Desktop(GLSL_CORE))
+            glsl_source(gm, ginfo, s, glsl::Version::Desktop(GLSL_CORE), POLICIES)
                 .map_err(|e| fail("GLSL 450", e))?
                 .into_bytes(),
         ),
@@ -439,10 +459,17 @@ fn translate(s: &StandaloneShader) -> Result<(Vec<OutputFile>, serde_json::Value
     // GLSL ES 3.10 lacks some of what desktop GLSL has (multisampled
     // arrays, some storage formats): written where naga can, the reason
     // recorded where it cannot.
-    let es = match glsl_source(gm, ginfo, s, glsl::Version::new_gles(GLSL_ES)) {
+    let es = match glsl_source(gm, ginfo, s, glsl::Version::new_gles(GLSL_ES), POLICIES_ES) {
         Ok(src) => {
             files.push(file("es.comp", src.into_bytes()));
-            serde_json::json!({ "file": format!("{}.es.comp", s.variant) })
+            let samples_textures = s
+                .bindings
+                .iter()
+                .any(|b| matches!(b.kind, BindingKind::Texture { .. }));
+            serde_json::json!({
+                "file": format!("{}.es.comp", s.variant),
+                "note": if samples_textures { ES_NOTE } else { "" },
+            })
         }
         Err(e) => serde_json::json!({ "file": null, "not_expressible": e }),
     };
@@ -535,6 +562,10 @@ fn markdown(pass: &str, rows: &[serde_json::Value]) -> String {
             "- files: `{0}.wgsl`, `{0}.spv`, `{0}.hlsl`, `{0}.comp` (GLSL 450), {1}`{0}.metal`\n",
             s("variant"),
             match es["file"].as_str() {
+                Some(f) if es["note"].as_str().is_some_and(|n| !n.is_empty()) => format!(
+                    "`{f}` (GLSL ES 310: {}), ",
+                    es["note"].as_str().unwrap_or_default()
+                ),
                 Some(f) => format!("`{f}` (GLSL ES 310), "),
                 None => format!(
                     "no GLSL ES 310 ({}), ",

@@ -45,7 +45,7 @@ fn every_pass_has_four_languages_and_a_table() {
     let files = generate(&shaders).expect("every pass translates");
     let has = |p: &str| files.iter().any(|f| f.path == Path::new(p));
     for s in &shaders {
-        for ext in ["wgsl", "spv", "hlsl", "comp", "metal"] {
+        for ext in ["wgsl", "spv", "hlsl", "comp", "es.comp", "metal"] {
             let p = format!("{}/{}.{ext}", s.pass, s.variant);
             assert!(has(&p), "{p} is not written");
         }
