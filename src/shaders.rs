@@ -505,11 +505,20 @@ fn translate(s: &StandaloneShader) -> Result<(Vec<OutputFile>, serde_json::Value
             })
         })
         .collect();
-    let runtime_arrays = s
-        .bindings
+    // naga's `_mslBufferSizes`: one `uint size<N>` per global holding a
+    // runtime-sized array, in the module's order of globals (not binding
+    // order), N the global's index: each buffer's size in bytes.
+    let msl_sizes: Vec<_> = m
+        .global_variables
         .iter()
-        .filter(|b| matches!(b.kind, BindingKind::Storage { .. }))
-        .count();
+        .filter(|(_, v)| m.types[v.ty].inner.is_dynamically_sized(&m.types))
+        .map(|(h, v)| {
+            serde_json::json!({
+                "member": format!("size{}", h.index()),
+                "binding": v.name.clone().unwrap_or_default(),
+            })
+        })
+        .collect();
     let row = serde_json::json!({
         "variant": s.variant,
         "summary": s.summary,
@@ -525,10 +534,12 @@ fn translate(s: &StandaloneShader) -> Result<(Vec<OutputFile>, serde_json::Value
             "msl": format!("{}.metal", s.variant),
         },
         "bindings": bindings,
-        "msl_buffer_sizes": if runtime_arrays > 0 {
+        "msl_buffer_sizes": if !msl_sizes.is_empty() {
             serde_json::json!({
                 "slot": format!("buffer({sizes_slot})"),
-                "what": "one u32 per storage buffer, in binding order: its size in bytes",
+                "what": "struct _mslBufferSizes: one uint per storage buffer, its size in bytes, \
+                         in this order",
+                "members": msl_sizes,
             })
         } else {
             serde_json::Value::Null
@@ -595,11 +606,23 @@ fn markdown(pass: &str, rows: &[serde_json::Value]) -> String {
             );
         }
         if let Some(sizes) = row["msl_buffer_sizes"].as_object() {
+            let members: Vec<String> = sizes["members"]
+                .as_array()
+                .into_iter()
+                .flatten()
+                .map(|m| {
+                    format!(
+                        "`{}` = bytes of `{}`",
+                        m["member"].as_str().unwrap_or_default(),
+                        m["binding"].as_str().unwrap_or_default()
+                    )
+                })
+                .collect();
             let _ = writeln!(
                 md,
-                "\nMSL also reads `{}`: {}.",
+                "\nMSL also reads `{}`, `struct _mslBufferSizes {{ uint … }}`: {}.",
                 sizes["slot"].as_str().unwrap_or_default(),
-                sizes["what"].as_str().unwrap_or_default()
+                members.join(", ")
             );
         }
         for b in row["bindings"].as_array().into_iter().flatten() {

@@ -80,3 +80,45 @@ fn every_pass_has_four_languages_and_a_table() {
         0x0723_0203u32.to_le_bytes()
     );
 }
+
+/// The table's `_mslBufferSizes` members are the ones, in the order, of
+/// the struct the MSL declares (naga orders them by global, not binding).
+#[test]
+fn msl_buffer_sizes_are_listed_as_the_msl_declares_them() {
+    let shaders = catalog().expect("catalog");
+    let files = generate(&shaders).expect("every pass translates");
+    let file = |p: String| {
+        let f = files.iter().find(|f| f.path == Path::new(&p)).expect(&p);
+        String::from_utf8(f.bytes.clone()).expect("text")
+    };
+    let mut checked = 0;
+    for pass in ["sraa", "ctss", "fxaa", "taa"] {
+        let json: serde_json::Value =
+            serde_json::from_str(&file(format!("{pass}.json"))).expect("valid JSON");
+        for v in json["variants"].as_array().expect("variants") {
+            let metal = file(format!(
+                "{pass}/{}.metal",
+                v["variant"].as_str().expect("name")
+            ));
+            let declared: Vec<String> = match metal.split_once("struct _mslBufferSizes {") {
+                Some((_, rest)) => rest
+                    .split_once("};")
+                    .expect("struct end")
+                    .0
+                    .split(';')
+                    .filter_map(|m| m.trim().strip_prefix("uint ").map(str::to_owned))
+                    .collect(),
+                None => Vec::new(),
+            };
+            let listed: Vec<String> = v["msl_buffer_sizes"]["members"]
+                .as_array()
+                .into_iter()
+                .flatten()
+                .map(|m| m["member"].as_str().expect("member").to_owned())
+                .collect();
+            assert_eq!(listed, declared, "{pass}/{}", v["variant"]);
+            checked += usize::from(!declared.is_empty());
+        }
+    }
+    assert!(checked >= 3, "only {checked} variants declare buffer sizes");
+}
