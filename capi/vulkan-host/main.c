@@ -1,7 +1,8 @@
 /*
  * A C engine running subcone's generated shaders on Vulkan, with no Rust in
- * its build: the SPIR-V of shaders/sraa/buffers*.spv and
- * shaders/ctss/testfield-buffers.spv, bound as shaders/sraa.md and
+ * its build: the SPIR-V of shaders/sraa/buffers*.spv, shaders/sraa/packed.spv
+ * and shaders/ctss/testfield-*.spv (storage buffers, sampled textures and
+ * storage images), bound as shaders/sraa.md and
  * shaders/ctss.md list, their uniforms filled through the C ABI
  * (subcone.h), dispatched on the first Vulkan device, and compared with the
  * same frames computed on the CPU by the C ABI (subcone_sraa_resolve,
@@ -82,65 +83,141 @@ static SubconeGeometry geometry_at(float x, float y, uint32_t width) {
 static const float SUB_OFFSETS[4][2] = {
     {-0.125f, -0.375f}, {0.375f, -0.125f}, {-0.375f, 0.125f}, {0.125f, 0.375f}};
 
-/* SRAA of one synthetic frame on the GPU (`spv`, the buffers variant with
- * `lights` lights) and on the CPU; 0 when they agree. */
-static int run_sraa(Host *h, const char *dir, const char *spv, uint32_t lights, uint32_t width,
-                    uint32_t height) {
-    const uint32_t layers = 1 + lights;
-    const size_t n = (size_t)width * height;
-    int rc = 2;
-    uint32_t *code = NULL;
-    size_t code_bytes = 0;
-    VkcBuffer bufs[7];
-    int made = 0;
-    SubconeVec3 *cpu_colors = malloc(n * layers * sizeof *cpu_colors);
-    SubconeVec3 *cpu_out = malloc(n * sizeof *cpu_out);
-    SubconeGeometry *shaded = malloc(n * sizeof *shaded);
-    SubconeGeometry *subs = malloc(4 * n * sizeof *subs);
-    uint32_t *shaded_shadow = malloc(n * sizeof *shaded_shadow);
-    uint32_t *sub_shadow = malloc(4 * n * sizeof *sub_shadow);
-    if (!cpu_colors || !cpu_out || !shaded || !subs || !shaded_shadow || !sub_shadow) {
-        snprintf(h->err, sizeof h->err, "out of memory");
-        goto done;
-    }
-    if (load_spirv(dir, spv, &code, &code_bytes, h->err, sizeof h->err)) goto done;
+/* One synthetic SRAA frame and its CPU resolve. */
+typedef struct SraaFrameData {
+    uint32_t width, height, layers;
+    size_t n;
+    SubconeSraaParams params;
+    SubconeSraaPassUniform uniform;
+    SubconeVec3 *colors;     /* n·layers, pixel by pixel */
+    SubconeGeometry *shaded; /* n, at the pixel centres */
+    SubconeGeometry *subs;   /* 4n, at SUB_OFFSETS */
+    uint32_t *shaded_shadow, *sub_shadow;
+    SubconeVec3 *cpu; /* n: subcone_sraa_resolve's */
+} SraaFrameData;
 
-    /* The frame: geometry at the pixel centres (the tuned preset shades
-     * there) and at the subsamples, a colour per layer, shadow bits. */
+static void sraa_data_free(SraaFrameData *d) {
+    free(d->colors);
+    free(d->shaded);
+    free(d->subs);
+    free(d->shaded_shadow);
+    free(d->sub_shadow);
+    free(d->cpu);
+    memset(d, 0, sizeof *d);
+}
+
+/* The frame: geometry at the pixel centres (the tuned preset shades there)
+ * and at the subsamples, a colour per layer, shadow bits; the uniform; and
+ * the CPU's resolve of it (layer 0 ungated, layer 1 + l gated by light l,
+ * eq. 2). */
+static int sraa_data_make(Host *h, uint32_t width, uint32_t height, uint32_t lights, SraaFrameData *d) {
+    memset(d, 0, sizeof *d);
+    d->width = width;
+    d->height = height;
+    d->layers = 1 + lights;
+    d->n = (size_t)width * height;
+    const size_t n = d->n;
+    d->colors = malloc(n * d->layers * sizeof *d->colors);
+    d->shaded = malloc(n * sizeof *d->shaded);
+    d->subs = malloc(4 * n * sizeof *d->subs);
+    d->shaded_shadow = malloc(n * sizeof *d->shaded_shadow);
+    d->sub_shadow = malloc(4 * n * sizeof *d->sub_shadow);
+    d->cpu = malloc(n * sizeof *d->cpu);
+    if (!d->colors || !d->shaded || !d->subs || !d->shaded_shadow || !d->sub_shadow || !d->cpu) {
+        snprintf(h->err, sizeof h->err, "out of memory");
+        return 2;
+    }
     uint32_t seed = 12345u;
     for (uint32_t y = 0; y < height; y++) {
         for (uint32_t x = 0; x < width; x++) {
             size_t p = (size_t)y * width + x;
-            shaded[p] = geometry_at((float)x + 0.5f, (float)y + 0.5f, width);
-            shaded_shadow[p] = next_unit(&seed) < 0.3f ? 1u : 0u;
+            d->shaded[p] = geometry_at((float)x + 0.5f, (float)y + 0.5f, width);
+            d->shaded_shadow[p] = next_unit(&seed) < 0.3f ? 1u : 0u;
             for (uint32_t k = 0; k < 4; k++) {
-                subs[4 * p + k] = geometry_at((float)x + 0.5f + SUB_OFFSETS[k][0],
-                                              (float)y + 0.5f + SUB_OFFSETS[k][1], width);
-                sub_shadow[4 * p + k] = next_unit(&seed) < 0.3f ? 1u : 0u;
+                d->subs[4 * p + k] = geometry_at((float)x + 0.5f + SUB_OFFSETS[k][0],
+                                                 (float)y + 0.5f + SUB_OFFSETS[k][1], width);
+                d->sub_shadow[4 * p + k] = next_unit(&seed) < 0.3f ? 1u : 0u;
             }
-            for (uint32_t l = 0; l < layers; l++) {
+            for (uint32_t l = 0; l < d->layers; l++) {
                 SubconeVec3 c = {next_unit(&seed), next_unit(&seed), next_unit(&seed)};
-                cpu_colors[p * layers + l] = c;
+                d->colors[p * d->layers + l] = c;
             }
         }
     }
-
-    SubconeSraaParams params;
-    SubconeSraaPassUniform uniform;
-    if (subcone_sraa_params_default(&params) != SUBCONE_STATUS_OK ||
-        subcone_sraa_pass_uniform(&params, width, height, NULL, 0.0f, 0.0f, &uniform) !=
+    if (subcone_sraa_params_default(&d->params) != SUBCONE_STATUS_OK ||
+        subcone_sraa_pass_uniform(&d->params, width, height, NULL, 0.0f, 0.0f, &d->uniform) !=
             SUBCONE_STATUS_OK) {
         snprintf(h->err, sizeof h->err, "the C ABI refused the SRAA uniform");
-        goto done;
+        return 2;
     }
+    int8_t layer_lights[2] = {-1, 0};
+    SubconeSraaFrame frame;
+    memset(&frame, 0, sizeof frame);
+    frame.width = width;
+    frame.height = height;
+    frame.layers = d->layers;
+    frame.colors = d->colors;
+    frame.colors_len = n * d->layers;
+    frame.layer_lights = lights ? layer_lights : NULL;
+    frame.shaded_geometry = d->shaded;
+    frame.shaded_geometry_len = n;
+    frame.shaded_shadow = lights ? d->shaded_shadow : NULL;
+    frame.shaded_shadow_len = lights ? n : 0;
+    frame.subsample_geometry = d->subs;
+    frame.subsample_geometry_len = 4 * n;
+    frame.subsample_shadow = lights ? d->sub_shadow : NULL;
+    frame.subsample_shadow_len = lights ? 4 * n : 0;
+    SubconeStatus st = subcone_sraa_resolve(&d->params, &frame, d->cpu, n);
+    if (st != SUBCONE_STATUS_OK) {
+        snprintf(h->err, sizeof h->err, "subcone_sraa_resolve: status %d", (int)st);
+        return 2;
+    }
+    return 0;
+}
 
-    /* The bindings of shaders/sraa.md: frame, shaded_geo, sub_geo,
-     * [shaded_shadow, sub_shadow,] color, sraa_output. Geometry is the C
-     * ABI's SubconeGeometry (16 bytes, the shader's subcone_Geometry),
-     * colours vec4<f32>. */
+/* The GPU's resolve (`gpu`, RGBA per pixel) against the CPU's. */
+static int sraa_compare(Host *h, const char *spv, const SraaFrameData *d, const float *gpu, double ms) {
+    double max_abs = 0.0, max_rel = 0.0;
+    size_t outside = 0;
+    for (size_t p = 0; p < d->n; p++) {
+        const float cpu[3] = {d->cpu[p].x, d->cpu[p].y, d->cpu[p].z};
+        for (int c = 0; c < 3; c++) {
+            float a = gpu[4 * p + c], b = cpu[c];
+            float e = fabsf(a - b);
+            float scale = fmaxf(fabsf(a), fabsf(b));
+            if (!(e <= SRAA_REL * scale + SRAA_ABS)) outside++;
+            if (e > max_abs) max_abs = e;
+            if (scale > 0.0f && e / scale > max_rel) max_rel = e / scale;
+        }
+    }
+    printf("sraa  %-26s %ux%u, %u layer(s): max |gpu-cpu| %.3g, max relative %.3g, "
+           "%zu of %zu channels outside %.0e relative + %.0e; one dispatch %.3f ms\n",
+           spv, d->width, d->height, d->layers, max_abs, max_rel, outside, 3 * d->n, (double)SRAA_REL,
+           (double)SRAA_ABS, ms);
+    if (outside) snprintf(h->err, sizeof h->err, "%s: %zu channels outside the tolerance", spv, outside);
+    return outside == 0 ? 0 : 1;
+}
+
+/* SRAA from storage buffers (shaders/sraa/buffers*.spv, `lights` lights):
+ * the bindings of shaders/sraa.md, frame, shaded_geo, sub_geo,
+ * [shaded_shadow, sub_shadow,] color, sraa_output. Geometry is the C ABI's
+ * SubconeGeometry (16 bytes, the shader's subcone_Geometry), colours
+ * vec4<f32>. */
+static int run_sraa_buffers(Host *h, const char *dir, const char *spv, uint32_t lights, uint32_t width,
+                            uint32_t height) {
+    SraaFrameData d;
+    uint32_t *code = NULL;
+    size_t code_bytes = 0;
+    VkcBuffer bufs[7];
+    int made = 0;
+    int rc = sraa_data_make(h, width, height, lights, &d);
+    if (rc) goto done;
+    rc = 2;
+    if (load_spirv(dir, spv, &code, &code_bytes, h->err, sizeof h->err)) goto done;
+    const size_t n = d.n;
     const VkDeviceSize sizes[7] = {
-        sizeof uniform, n * sizeof(SubconeGeometry), 4 * n * sizeof(SubconeGeometry),
-        n * sizeof(uint32_t), 4 * n * sizeof(uint32_t), n * layers * 16, n * 16};
+        sizeof d.uniform, n * sizeof(SubconeGeometry), 4 * n * sizeof(SubconeGeometry),
+        n * sizeof(uint32_t), 4 * n * sizeof(uint32_t), n * d.layers * 16, n * 16};
     const int order_lit[7] = {0, 1, 2, 3, 4, 5, 6};
     const int order_unlit[5] = {0, 1, 2, 5, 6};
     const int *order = lights ? order_lit : order_unlit;
@@ -149,19 +226,20 @@ static int run_sraa(Host *h, const char *dir, const char *spv, uint32_t lights, 
         if (vkc_buffer_create(h->vk, sizes[i], &bufs[i], h->err, sizeof h->err)) goto done;
         made = i + 1;
     }
-    memcpy(bufs[0].mapped, &uniform, sizeof uniform);
-    memcpy(bufs[1].mapped, shaded, n * sizeof *shaded);
-    memcpy(bufs[2].mapped, subs, 4 * n * sizeof *subs);
-    memcpy(bufs[3].mapped, shaded_shadow, n * sizeof *shaded_shadow);
-    memcpy(bufs[4].mapped, sub_shadow, 4 * n * sizeof *sub_shadow);
-    float *gpu_colors = bufs[5].mapped;
-    for (size_t i = 0; i < n * layers; i++) {
-        gpu_colors[4 * i + 0] = cpu_colors[i].x;
-        gpu_colors[4 * i + 1] = cpu_colors[i].y;
-        gpu_colors[4 * i + 2] = cpu_colors[i].z;
-        gpu_colors[4 * i + 3] = 1.0f;
+    memcpy(bufs[0].mapped, &d.uniform, sizeof d.uniform);
+    memcpy(bufs[1].mapped, d.shaded, n * sizeof *d.shaded);
+    memcpy(bufs[2].mapped, d.subs, 4 * n * sizeof *d.subs);
+    memcpy(bufs[3].mapped, d.shaded_shadow, n * sizeof *d.shaded_shadow);
+    memcpy(bufs[4].mapped, d.sub_shadow, 4 * n * sizeof *d.sub_shadow);
+    float *colors = bufs[5].mapped;
+    for (size_t i = 0; i < n * d.layers; i++) {
+        colors[4 * i + 0] = d.colors[i].x;
+        colors[4 * i + 1] = d.colors[i].y;
+        colors[4 * i + 2] = d.colors[i].z;
+        colors[4 * i + 3] = 1.0f;
     }
     VkcBinding bindings[7];
+    memset(bindings, 0, sizeof bindings);
     for (uint32_t i = 0; i < count; i++) {
         bindings[i].binding = i;
         bindings[i].type =
@@ -171,62 +249,102 @@ static int run_sraa(Host *h, const char *dir, const char *spv, uint32_t lights, 
     if (vkc_dispatch(h->vk, code, code_bytes, "sraa_resolve_main", bindings, count,
                      (width + 7) / 8, (height + 7) / 8, 1, h->err, sizeof h->err))
         goto done;
-    double ms = vkc_last_dispatch_ms(h->vk);
-
-    /* The CPU: layer 0 ungated, layer 1 + l gated by light l (eq. 2). */
-    int8_t layer_lights[2] = {-1, 0};
-    SubconeSraaFrame frame;
-    memset(&frame, 0, sizeof frame);
-    frame.width = width;
-    frame.height = height;
-    frame.layers = layers;
-    frame.colors = cpu_colors;
-    frame.colors_len = n * layers;
-    frame.layer_lights = lights ? layer_lights : NULL;
-    frame.shaded_geometry = shaded;
-    frame.shaded_geometry_len = n;
-    frame.shaded_shadow = lights ? shaded_shadow : NULL;
-    frame.shaded_shadow_len = lights ? n : 0;
-    frame.subsample_geometry = subs;
-    frame.subsample_geometry_len = 4 * n;
-    frame.subsample_shadow = lights ? sub_shadow : NULL;
-    frame.subsample_shadow_len = lights ? 4 * n : 0;
-    SubconeStatus st = subcone_sraa_resolve(&params, &frame, cpu_out, n);
-    if (st != SUBCONE_STATUS_OK) {
-        snprintf(h->err, sizeof h->err, "subcone_sraa_resolve: status %d", (int)st);
-        goto done;
-    }
-
-    const float *gpu = bufs[6].mapped;
-    double max_abs = 0.0, max_rel = 0.0;
-    size_t outside = 0;
-    for (size_t p = 0; p < n; p++) {
-        const float cpu[3] = {cpu_out[p].x, cpu_out[p].y, cpu_out[p].z};
-        for (int c = 0; c < 3; c++) {
-            float a = gpu[4 * p + c], b = cpu[c];
-            float d = fabsf(a - b);
-            float scale = fmaxf(fabsf(a), fabsf(b));
-            if (!(d <= SRAA_REL * scale + SRAA_ABS)) outside++;
-            if (d > max_abs) max_abs = d;
-            if (scale > 0.0f && d / scale > max_rel) max_rel = d / scale;
-        }
-    }
-    printf("sraa  %-22s %ux%u, %u layer(s): max |gpu-cpu| %.3g, max relative %.3g, "
-           "%zu of %zu channels outside %.0e relative + %.0e; GPU %.3f ms\n",
-           spv, width, height, layers, max_abs, max_rel, outside, 3 * n, (double)SRAA_REL,
-           (double)SRAA_ABS, ms);
-    rc = outside == 0 ? 0 : 1;
-    if (rc) snprintf(h->err, sizeof h->err, "%s: %zu channels outside the tolerance", spv, outside);
-
+    rc = sraa_compare(h, spv, &d, bufs[6].mapped, vkc_last_dispatch_ms(h->vk));
 done:
     for (int i = 0; i < made; i++) vkc_buffer_destroy(h->vk, &bufs[i]);
     free(code);
-    free(cpu_colors);
-    free(cpu_out);
-    free(shaded);
-    free(subs);
-    free(shaded_shadow);
-    free(sub_shadow);
+    sraa_data_free(&d);
+    return rc;
+}
+
+/* SRAA from textures (shaders/sraa/packed.spv): the bindings of
+ * shaders/sraa.md, frame; sub_depth, four layers of (normal, linear view
+ * depth); centre_depth (.x) and centre_normal (.xyz) at the pixel centres;
+ * color; sraa_output, an Rgba32Float storage image. Every texture here is
+ * Rgba32Float, uploaded through a staging buffer. */
+static int run_sraa_packed(Host *h, const char *dir, uint32_t width, uint32_t height) {
+    const char *spv = "sraa/packed.spv";
+    const VkFormat rgba32f = VK_FORMAT_R32G32B32A32_SFLOAT;
+    SraaFrameData d;
+    uint32_t *code = NULL;
+    size_t code_bytes = 0;
+    VkcImage img[5];
+    VkcBuffer uniform, staging;
+    int images = 0, have_uniform = 0, have_staging = 0;
+    memset(img, 0, sizeof img);
+    int rc = sraa_data_make(h, width, height, 0, &d);
+    if (rc) goto done;
+    rc = 2;
+    if (load_spirv(dir, spv, &code, &code_bytes, h->err, sizeof h->err)) goto done;
+    const size_t n = d.n;
+    /* sub_depth (4 layers), centre_depth, centre_normal, color, output. */
+    const uint32_t layers[5] = {4, 1, 1, 1, 1};
+    for (int i = 0; i < 5; i++) {
+        if (vkc_image_create(h->vk, width, height, layers[i], i == 0, rgba32f, 16, &img[i], h->err,
+                             sizeof h->err))
+            goto done;
+        images = i + 1;
+    }
+    if (vkc_buffer_create(h->vk, sizeof d.uniform, &uniform, h->err, sizeof h->err)) goto done;
+    have_uniform = 1;
+    memcpy(uniform.mapped, &d.uniform, sizeof d.uniform);
+    if (vkc_buffer_create(h->vk, 4 * n * 16, &staging, h->err, sizeof h->err)) goto done;
+    have_staging = 1;
+    float *t = staging.mapped;
+    /* Layer k of sub_depth holds every pixel's subsample k. */
+    for (uint32_t k = 0; k < 4; k++) {
+        for (size_t p = 0; p < n; p++) {
+            const SubconeGeometry g = d.subs[4 * p + k];
+            float *texel = t + 4 * (k * n + p);
+            texel[0] = g.normal.x;
+            texel[1] = g.normal.y;
+            texel[2] = g.normal.z;
+            texel[3] = g.depth;
+        }
+    }
+    if (vkc_image_copy(h->vk, &img[0], &staging, 1, h->err, sizeof h->err)) goto done;
+    for (int which = 1; which <= 3; which++) {
+        for (size_t p = 0; p < n; p++) {
+            float *texel = t + 4 * p;
+            if (which == 1) {
+                texel[0] = d.shaded[p].depth;
+                texel[1] = texel[2] = texel[3] = 0.0f;
+            } else if (which == 2) {
+                texel[0] = d.shaded[p].normal.x;
+                texel[1] = d.shaded[p].normal.y;
+                texel[2] = d.shaded[p].normal.z;
+                texel[3] = 0.0f;
+            } else {
+                texel[0] = d.colors[p].x;
+                texel[1] = d.colors[p].y;
+                texel[2] = d.colors[p].z;
+                texel[3] = 1.0f;
+            }
+        }
+        if (vkc_image_copy(h->vk, &img[which], &staging, 1, h->err, sizeof h->err)) goto done;
+    }
+    VkcBinding bindings[6];
+    memset(bindings, 0, sizeof bindings);
+    bindings[0].binding = 0;
+    bindings[0].type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    bindings[0].buffer = &uniform;
+    for (uint32_t i = 1; i < 6; i++) {
+        bindings[i].binding = i;
+        bindings[i].type = i == 5 ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
+        bindings[i].image = &img[i - 1];
+    }
+    if (vkc_dispatch(h->vk, code, code_bytes, "sraa_resolve_main", bindings, 6, (width + 7) / 8,
+                     (height + 7) / 8, 1, h->err, sizeof h->err))
+        goto done;
+    double ms = vkc_last_dispatch_ms(h->vk);
+    if (vkc_image_copy(h->vk, &img[4], &staging, 0, h->err, sizeof h->err)) goto done;
+    rc = sraa_compare(h, spv, &d, staging.mapped, ms);
+done:
+    for (int i = 0; i < images; i++) vkc_image_destroy(h->vk, &img[i]);
+    if (have_uniform) vkc_buffer_destroy(h->vk, &uniform);
+    if (have_staging) vkc_buffer_destroy(h->vk, &staging);
+    free(code);
+    sraa_data_free(&d);
     return rc;
 }
 
@@ -270,18 +388,37 @@ static int compare_floats(const void *a, const void *b) {
     return (x > y) - (x < y);
 }
 
-/* CTSS of the test field on the GPU (testfield-buffers.spv) and on the CPU
- * (subcone_ctss_trace per pixel, the same rays); 0 when they agree. */
-static int run_ctss(Host *h, const char *dir, uint32_t width, uint32_t height) {
+/* An IEEE 754 binary16 value as a float. */
+static float half_to_float(uint16_t h) {
+    const uint32_t sign = (uint32_t)(h >> 15) << 31;
+    const uint32_t exponent = (h >> 10) & 0x1f, mantissa = h & 0x3ff;
+    float magnitude;
+    if (exponent == 0)
+        magnitude = ldexpf((float)mantissa, -24);
+    else if (exponent == 31)
+        magnitude = mantissa ? NAN : INFINITY;
+    else
+        magnitude = ldexpf((float)(mantissa | 0x400), (int)exponent - 25);
+    return sign ? -magnitude : magnitude;
+}
+
+/* CTSS of the test field on the GPU and on the CPU (subcone_ctss_trace per
+ * pixel, the same rays); 0 when they agree. `texture`: the variant writing
+ * an Rgba16Float storage image (testfield-texture.spv), else the one
+ * writing a storage buffer (testfield-buffers.spv). */
+static int run_ctss(Host *h, const char *dir, uint32_t width, uint32_t height, int texture) {
     const size_t n = (size_t)width * height;
-    const char *spv = "ctss/testfield-buffers.spv";
+    const char *spv = texture ? "ctss/testfield-texture.spv" : "ctss/testfield-buffers.spv";
     int rc = 2;
     uint32_t *code = NULL;
     size_t code_bytes = 0;
     VkcBuffer bufs[3];
-    int made = 0;
+    VkcImage out_image;
+    int made = 0, have_image = 0;
     double *diffs = malloc(n * sizeof *diffs);
-    if (!diffs) {
+    float *gpu = malloc(4 * n * sizeof *gpu);
+    memset(&out_image, 0, sizeof out_image);
+    if (!diffs || !gpu) {
         snprintf(h->err, sizeof h->err, "out of memory");
         goto done;
     }
@@ -293,7 +430,7 @@ static int run_ctss(Host *h, const char *dir, uint32_t width, uint32_t height) {
     SubconeCtssPassUniform uniform;
     SubconeCtssParams params;
     float tan_theta;
-    /* subcone's default cone (ctss::CONE_COVERAGE, the circumscribed footprint). */
+    /* subcone's default cone (CONE_COVERAGE, the circumscribed footprint). */
     if (subcone_ctss_pass_uniform(eye, forward, up, fov_y, width, height, background, &uniform) !=
             SUBCONE_STATUS_OK ||
         subcone_cone_tan_theta(fov_y, height, CONE_COVERAGE, 0, &tan_theta) != SUBCONE_STATUS_OK ||
@@ -305,7 +442,8 @@ static int run_ctss(Host *h, const char *dir, uint32_t width, uint32_t height) {
     params.max_steps = 256;
 
     /* The bindings of shaders/ctss.md: subcone_pass_frame,
-     * subcone_pass_params, subcone_pass_output (vec4<f32> per pixel). */
+     * subcone_pass_params, subcone_pass_output (a vec4<f32> buffer, or an
+     * Rgba16Float storage image read back through the third buffer). */
     const VkDeviceSize sizes[3] = {sizeof uniform, sizeof params, n * 16};
     for (int i = 0; i < 3; i++) {
         if (vkc_buffer_create(h->vk, sizes[i], &bufs[i], h->err, sizeof h->err)) goto done;
@@ -313,15 +451,34 @@ static int run_ctss(Host *h, const char *dir, uint32_t width, uint32_t height) {
     }
     memcpy(bufs[0].mapped, &uniform, sizeof uniform);
     memcpy(bufs[1].mapped, &params, sizeof params);
-    VkcBinding bindings[3] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &bufs[0]},
-                              {1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &bufs[1]},
-                              {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &bufs[2]}};
-    if (vkc_dispatch(h->vk, code, code_bytes, "subcone_pass_ctss_main", bindings, 3,
-                     (width + 7) / 8, (height + 7) / 8, 1, h->err, sizeof h->err))
+    VkcBinding bindings[3];
+    memset(bindings, 0, sizeof bindings);
+    for (uint32_t i = 0; i < 3; i++) {
+        bindings[i].binding = i;
+        bindings[i].type = i < 2 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        bindings[i].buffer = &bufs[i];
+    }
+    if (texture) {
+        if (vkc_image_create(h->vk, width, height, 1, 0, VK_FORMAT_R16G16B16A16_SFLOAT, 8, &out_image, h->err,
+                             sizeof h->err))
+            goto done;
+        have_image = 1;
+        bindings[2].type = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+        bindings[2].buffer = NULL;
+        bindings[2].image = &out_image;
+    }
+    if (vkc_dispatch(h->vk, code, code_bytes, "subcone_pass_ctss_main", bindings, 3, (width + 7) / 8,
+                     (height + 7) / 8, 1, h->err, sizeof h->err))
         goto done;
     double ms = vkc_last_dispatch_ms(h->vk);
+    if (texture) {
+        if (vkc_image_copy(h->vk, &out_image, &bufs[2], 0, h->err, sizeof h->err)) goto done;
+        const uint16_t *halves = bufs[2].mapped;
+        for (size_t i = 0; i < 4 * n; i++) gpu[i] = half_to_float(halves[i]);
+    } else {
+        memcpy(gpu, bufs[2].mapped, 4 * n * sizeof *gpu);
+    }
 
-    const float *gpu = bufs[2].mapped;
     SubconeVec3 origin = {uniform.position[0], uniform.position[1], uniform.position[2]};
     SubconeVec3 up_axis = {uniform.up[0], uniform.up[1], uniform.up[2]};
     double sum = 0.0, max = 0.0;
@@ -352,16 +509,19 @@ static int run_ctss(Host *h, const char *dir, uint32_t width, uint32_t height) {
     double mean = sum / (double)n, p99 = diffs[(size_t)(0.99 * (double)(n - 1))];
     size_t differ = 0;
     for (size_t p = 0; p < n; p++) differ += diffs[p] > 1e-4;
-    printf("ctss  %-22s %ux%u: per-pixel max-channel |gpu-cpu| mean %.3g (bound %.0e), "
-           "p99 %.3g (bound %.0e), max %.3g, %zu of %zu pixels beyond 1e-4; GPU %.3f ms\n",
-           spv, width, height, mean, CTSS_MEAN, p99, CTSS_P99, max, differ, n, ms);
+    printf("ctss  %-26s %ux%u: per-pixel max-channel |gpu-cpu| mean %.3g (bound %.0e), "
+           "p99 %.3g (bound %.0e), max %.3g, %zu of %zu pixels beyond 1e-4%s; one dispatch %.3f ms\n",
+           spv, width, height, mean, CTSS_MEAN, p99, CTSS_P99, max, differ, n,
+           texture ? " (binary16 output)" : "", ms);
     rc = (mean <= CTSS_MEAN && p99 <= CTSS_P99) ? 0 : 1;
     if (rc) snprintf(h->err, sizeof h->err, "%s: outside the tolerance", spv);
 
 done:
+    if (have_image) vkc_image_destroy(h->vk, &out_image);
     for (int i = 0; i < made; i++) vkc_buffer_destroy(h->vk, &bufs[i]);
     free(code);
     free(diffs);
+    free(gpu);
     return rc;
 }
 
@@ -400,13 +560,18 @@ int main(int argc, char **argv) {
         uint32_t lights;
     } sraa[2] = {{"sraa/buffers.spv", 0}, {"sraa/buffers-lights1.spv", 1}};
     for (int i = 0; i < 2; i++) {
-        int rc = run_sraa(&h, argv[1], sraa[i].spv, sraa[i].lights, width, height);
+        int rc = run_sraa_buffers(&h, argv[1], sraa[i].spv, sraa[i].lights, width, height);
         if (rc) fprintf(stderr, "vulkan-host: %s\n", h.err);
         if (rc > worst) worst = rc;
     }
-    int rc = run_ctss(&h, argv[1], width, height);
+    int rc = run_sraa_packed(&h, argv[1], width, height);
     if (rc) fprintf(stderr, "vulkan-host: %s\n", h.err);
     if (rc > worst) worst = rc;
+    for (int texture = 0; texture < 2; texture++) {
+        rc = run_ctss(&h, argv[1], width, height, texture);
+        if (rc) fprintf(stderr, "vulkan-host: %s\n", h.err);
+        if (rc > worst) worst = rc;
+    }
     vkc_destroy(h.vk);
     printf("vulkan-host: %s\n", worst == 0 ? "every pass matches the CPU" : "FAILED");
     return worst;

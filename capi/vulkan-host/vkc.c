@@ -492,13 +492,27 @@ static int check_dispatch_args(const VkcContext *ctx, const uint32_t *spirv, siz
     for (i = 0; i < binding_count; i++) {
         const VkcBinding *b = &bindings[i];
         VkDeviceSize range_limit;
+        if (b->type == VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE || b->type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE) {
+            if (b->image == NULL || b->image->view == VK_NULL_HANDLE) {
+                fail(err, err_len, "vkc_dispatch: binding %u has no image", (unsigned)b->binding);
+                return 1;
+            }
+            for (j = 0; j < i; j++) {
+                if (bindings[j].binding == b->binding) {
+                    fail(err, err_len, "vkc_dispatch: binding %u appears twice", (unsigned)b->binding);
+                    return 1;
+                }
+            }
+            continue;
+        }
         if (b->type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER) {
             range_limit = lim->maxUniformBufferRange;
         } else if (b->type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) {
             range_limit = lim->maxStorageBufferRange;
         } else {
-            fail(err, err_len, "vkc_dispatch: binding %u has descriptor type %d (only UNIFORM_BUFFER and "
-                 "STORAGE_BUFFER are supported)", (unsigned)b->binding, (int)b->type);
+            fail(err, err_len, "vkc_dispatch: binding %u has descriptor type %d (only UNIFORM_BUFFER, "
+                 "STORAGE_BUFFER, SAMPLED_IMAGE and STORAGE_IMAGE are supported)", (unsigned)b->binding,
+                 (int)b->type);
             return 1;
         }
         if (b->buffer == NULL || b->buffer->buffer == VK_NULL_HANDLE || b->buffer->size == 0) {
@@ -532,7 +546,8 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
     VkWriteDescriptorSet *writes = NULL;
     DispatchObjects o;
     VkDescriptorSet set = VK_NULL_HANDLE;
-    uint32_t uniform_count = 0, storage_count = 0, i;
+    VkDescriptorImageInfo *image_infos = NULL;
+    uint32_t uniform_count = 0, storage_count = 0, sampled_count = 0, storage_image_count = 0, i;
     double elapsed_ms = -1.0;
     int rc = 1;
     VkResult r;
@@ -554,8 +569,9 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
     if (binding_count > 0) {
         layout_bindings = (VkDescriptorSetLayoutBinding *)calloc(binding_count, sizeof *layout_bindings);
         buffer_infos = (VkDescriptorBufferInfo *)calloc(binding_count, sizeof *buffer_infos);
+        image_infos = (VkDescriptorImageInfo *)calloc(binding_count, sizeof *image_infos);
         writes = (VkWriteDescriptorSet *)calloc(binding_count, sizeof *writes);
-        if (layout_bindings == NULL || buffer_infos == NULL || writes == NULL) {
+        if (layout_bindings == NULL || buffer_infos == NULL || image_infos == NULL || writes == NULL) {
             fail(err, err_len, "vkc_dispatch: out of host memory for %u bindings", (unsigned)binding_count);
             goto cleanup;
         }
@@ -567,8 +583,12 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
         layout_bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
         if (bindings[i].type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER)
             uniform_count++;
-        else
+        else if (bindings[i].type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)
             storage_count++;
+        else if (bindings[i].type == VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE)
+            sampled_count++;
+        else
+            storage_image_count++;
     }
 
     {
@@ -632,7 +652,7 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
     /* A pool needs a nonzero descriptorCount per size entry, so an empty set
      * gets no pool and is simply not bound. */
     if (binding_count > 0) {
-        VkDescriptorPoolSize sizes[2];
+        VkDescriptorPoolSize sizes[4];
         VkDescriptorPoolCreateInfo ci;
         VkDescriptorSetAllocateInfo ai;
         uint32_t size_count = 0;
@@ -644,6 +664,16 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
         if (storage_count > 0) {
             sizes[size_count].type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
             sizes[size_count].descriptorCount = storage_count;
+            size_count++;
+        }
+        if (sampled_count > 0) {
+            sizes[size_count].type = VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
+            sizes[size_count].descriptorCount = sampled_count;
+            size_count++;
+        }
+        if (storage_image_count > 0) {
+            sizes[size_count].type = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+            sizes[size_count].descriptorCount = storage_image_count;
             size_count++;
         }
         memset(&ci, 0, sizeof ci);
@@ -669,15 +699,22 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
             goto cleanup;
         }
         for (i = 0; i < binding_count; i++) {
-            buffer_infos[i].buffer = bindings[i].buffer->buffer;
-            buffer_infos[i].offset = 0;
-            buffer_infos[i].range = VK_WHOLE_SIZE;
             writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
             writes[i].dstSet = set;
             writes[i].dstBinding = bindings[i].binding;
             writes[i].descriptorCount = 1;
             writes[i].descriptorType = bindings[i].type;
-            writes[i].pBufferInfo = &buffer_infos[i];
+            if (bindings[i].image != NULL && (bindings[i].type == VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE ||
+                                              bindings[i].type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)) {
+                image_infos[i].imageView = bindings[i].image->view;
+                image_infos[i].imageLayout = VK_IMAGE_LAYOUT_GENERAL;
+                writes[i].pImageInfo = &image_infos[i];
+            } else {
+                buffer_infos[i].buffer = bindings[i].buffer->buffer;
+                buffer_infos[i].offset = 0;
+                buffer_infos[i].range = VK_WHOLE_SIZE;
+                writes[i].pBufferInfo = &buffer_infos[i];
+            }
         }
         vkUpdateDescriptorSets(ctx->device, binding_count, writes, 0, NULL);
     }
@@ -724,9 +761,10 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
         memset(&to_host, 0, sizeof to_host);
         to_host.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
         to_host.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-        to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-        vkCmdPipelineBarrier(o.cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host,
-                             0, NULL, 0, NULL);
+        to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT;
+        vkCmdPipelineBarrier(o.cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                             VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &to_host, 0, NULL, 0,
+                             NULL);
         r = vkEndCommandBuffer(o.cmd);
         if (r != VK_SUCCESS) {
             fail_vk(err, err_len, "vkEndCommandBuffer", r);
@@ -766,6 +804,7 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
                  (unsigned long long)(VKC_FENCE_TIMEOUT_NS / 1000000000ull));
             free(layout_bindings);
             free(buffer_infos);
+            free(image_infos);
             free(writes);
             return 1;
         }
@@ -797,8 +836,272 @@ cleanup:
     release_objects(ctx, &o);
     free(layout_bindings);
     free(buffer_infos);
+    free(image_infos);
     free(writes);
     return rc;
+}
+
+/* Records `record(cmd, user)` into a one-time command buffer, submits it and
+ * waits, as vkc_dispatch does (a timeout parks the command buffer and fence
+ * in the context and wedges it). */
+static int one_shot(VkcContext *ctx, void (*record)(VkCommandBuffer, const void *), const void *user,
+                    const char *what, char *err, size_t err_len) {
+    DispatchObjects o;
+    VkCommandBufferAllocateInfo ai;
+    VkCommandBufferBeginInfo bi;
+    VkFenceCreateInfo fi;
+    VkSubmitInfo si;
+    VkResult r;
+    int rc = 1;
+
+    memset(&o, 0, sizeof o);
+    if (ctx->wedged) {
+        fail(err, err_len, "%s: an earlier submission timed out; destroy the context", what);
+        return 1;
+    }
+    memset(&ai, 0, sizeof ai);
+    ai.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
+    ai.commandPool = ctx->pool;
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = 1;
+    r = vkAllocateCommandBuffers(ctx->device, &ai, &o.cmd);
+    if (r != VK_SUCCESS) {
+        o.cmd = VK_NULL_HANDLE;
+        fail_vk(err, err_len, "vkAllocateCommandBuffers", r);
+        goto cleanup;
+    }
+    memset(&bi, 0, sizeof bi);
+    bi.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    r = vkBeginCommandBuffer(o.cmd, &bi);
+    if (r != VK_SUCCESS) {
+        fail_vk(err, err_len, "vkBeginCommandBuffer", r);
+        goto cleanup;
+    }
+    record(o.cmd, user);
+    r = vkEndCommandBuffer(o.cmd);
+    if (r != VK_SUCCESS) {
+        fail_vk(err, err_len, "vkEndCommandBuffer", r);
+        goto cleanup;
+    }
+    memset(&fi, 0, sizeof fi);
+    fi.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
+    r = vkCreateFence(ctx->device, &fi, NULL, &o.fence);
+    if (r != VK_SUCCESS) {
+        o.fence = VK_NULL_HANDLE;
+        fail_vk(err, err_len, "vkCreateFence", r);
+        goto cleanup;
+    }
+    memset(&si, 0, sizeof si);
+    si.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &o.cmd;
+    r = vkQueueSubmit(ctx->queue, 1, &si, o.fence);
+    if (r != VK_SUCCESS) {
+        fail_vk(err, err_len, "vkQueueSubmit", r);
+        goto cleanup;
+    }
+    r = vkWaitForFences(ctx->device, 1, &o.fence, VK_TRUE, VKC_FENCE_TIMEOUT_NS);
+    if (r == VK_TIMEOUT) {
+        ctx->wedged = 1;
+        ctx->pending = o;
+        fail(err, err_len, "%s: vkWaitForFences timed out (VK_TIMEOUT); the context is unusable", what);
+        return 1;
+    }
+    if (r != VK_SUCCESS) {
+        fail_vk(err, err_len, "vkWaitForFences", r);
+        goto cleanup;
+    }
+    rc = 0;
+cleanup:
+    release_objects(ctx, &o);
+    return rc;
+}
+
+static VkImageSubresourceRange all_layers(uint32_t layers) {
+    VkImageSubresourceRange range;
+    memset(&range, 0, sizeof range);
+    range.aspectMask = VK_IMAGE_ASPECT_COLOR_BIT;
+    range.levelCount = 1;
+    range.layerCount = layers;
+    return range;
+}
+
+/* UNDEFINED to GENERAL, once, after creation. */
+static void record_to_general(VkCommandBuffer cmd, const void *user) {
+    const VkcImage *img = (const VkcImage *)user;
+    VkImageMemoryBarrier b;
+    memset(&b, 0, sizeof b);
+    b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
+    b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT |
+                      VK_ACCESS_TRANSFER_WRITE_BIT;
+    b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+    b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = img->image;
+    b.subresourceRange = all_layers(img->layers);
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
+                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, NULL, 0, NULL,
+                         1, &b);
+}
+
+int vkc_image_create(VkcContext *ctx, uint32_t width, uint32_t height, uint32_t layers, int array_view,
+                     VkFormat format, VkDeviceSize texel_bytes, VkcImage *out, char *err, size_t err_len) {
+    VkImageCreateInfo ici;
+    VkImageViewCreateInfo vci;
+    VkMemoryRequirements req;
+    VkMemoryAllocateInfo mai;
+    VkResult r;
+    int type;
+
+    if (err != NULL && err_len > 0) err[0] = '\0';
+    if (out == NULL || ctx == NULL) {
+        fail(err, err_len, "vkc_image_create: %s is NULL", out == NULL ? "out" : "ctx");
+        return 1;
+    }
+    memset(out, 0, sizeof *out);
+    if (width == 0 || height == 0 || layers == 0 || texel_bytes == 0) {
+        fail(err, err_len, "vkc_image_create: a zero size (%ux%u, %u layers, %llu bytes a texel)", (unsigned)width,
+             (unsigned)height, (unsigned)layers, (unsigned long long)texel_bytes);
+        return 1;
+    }
+    memset(&ici, 0, sizeof ici);
+    ici.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
+    ici.imageType = VK_IMAGE_TYPE_2D;
+    ici.format = format;
+    ici.extent.width = width;
+    ici.extent.height = height;
+    ici.extent.depth = 1;
+    ici.mipLevels = 1;
+    ici.arrayLayers = layers;
+    ici.samples = VK_SAMPLE_COUNT_1_BIT;
+    ici.tiling = VK_IMAGE_TILING_OPTIMAL;
+    ici.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    ici.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    ici.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    r = vkCreateImage(ctx->device, &ici, NULL, &out->image);
+    if (r != VK_SUCCESS) {
+        out->image = VK_NULL_HANDLE;
+        fail(err, err_len, "vkCreateImage (format %d, %ux%u, %u layers) failed: %s (%d)", (int)format,
+             (unsigned)width, (unsigned)height, (unsigned)layers, result_name(r), (int)r);
+        goto fail;
+    }
+    vkGetImageMemoryRequirements(ctx->device, out->image, &req);
+    type = find_memory_type(&ctx->memory, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    if (type < 0) type = find_memory_type(&ctx->memory, req.memoryTypeBits, 0);
+    if (type < 0) {
+        fail(err, err_len, "no memory type for an image (memoryTypeBits 0x%x)", (unsigned)req.memoryTypeBits);
+        goto fail;
+    }
+    memset(&mai, 0, sizeof mai);
+    mai.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
+    mai.allocationSize = req.size;
+    mai.memoryTypeIndex = (uint32_t)type;
+    r = vkAllocateMemory(ctx->device, &mai, NULL, &out->memory);
+    if (r != VK_SUCCESS) {
+        out->memory = VK_NULL_HANDLE;
+        fail_vk(err, err_len, "vkAllocateMemory (image)", r);
+        goto fail;
+    }
+    r = vkBindImageMemory(ctx->device, out->image, out->memory, 0);
+    if (r != VK_SUCCESS) {
+        fail_vk(err, err_len, "vkBindImageMemory", r);
+        goto fail;
+    }
+    memset(&vci, 0, sizeof vci);
+    vci.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
+    vci.image = out->image;
+    vci.viewType = array_view ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
+    vci.format = format;
+    vci.subresourceRange = all_layers(layers);
+    r = vkCreateImageView(ctx->device, &vci, NULL, &out->view);
+    if (r != VK_SUCCESS) {
+        out->view = VK_NULL_HANDLE;
+        fail_vk(err, err_len, "vkCreateImageView", r);
+        goto fail;
+    }
+    out->format = format;
+    out->width = width;
+    out->height = height;
+    out->layers = layers;
+    out->texel_bytes = texel_bytes;
+    if (one_shot(ctx, record_to_general, out, "vkc_image_create", err, err_len) != 0) goto fail;
+    return 0;
+fail:
+    vkc_image_destroy(ctx, out);
+    return 1;
+}
+
+void vkc_image_destroy(VkcContext *ctx, VkcImage *img) {
+    if (ctx == NULL || img == NULL) return;
+    if (ctx->wedged && ctx->device != VK_NULL_HANDLE) (void)vkDeviceWaitIdle(ctx->device);
+    vkDestroyImageView(ctx->device, img->view, NULL);
+    vkDestroyImage(ctx->device, img->image, NULL);
+    vkFreeMemory(ctx->device, img->memory, NULL);
+    memset(img, 0, sizeof *img);
+}
+
+typedef struct CopyJob {
+    const VkcImage *img;
+    const VkcBuffer *buffer;
+    int to_image;
+} CopyJob;
+
+/* Earlier writes (a dispatch, a copy) before the copy; the copy's writes
+ * before what follows (a dispatch reads the image, the host the buffer). */
+static void record_copy(VkCommandBuffer cmd, const void *user) {
+    const CopyJob *job = (const CopyJob *)user;
+    VkMemoryBarrier before, after;
+    VkBufferImageCopy region;
+    memset(&before, 0, sizeof before);
+    before.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+    before.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_HOST_WRITE_BIT;
+    before.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+    vkCmdPipelineBarrier(cmd,
+                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
+                             VK_PIPELINE_STAGE_HOST_BIT,
+                         VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &before, 0, NULL, 0, NULL);
+    memset(&region, 0, sizeof region);
+    region.imageSubresource.aspectMask = VK_IMAGE_ASPECT_COLOR_BIT;
+    region.imageSubresource.layerCount = job->img->layers;
+    region.imageExtent.width = job->img->width;
+    region.imageExtent.height = job->img->height;
+    region.imageExtent.depth = 1;
+    if (job->to_image)
+        vkCmdCopyBufferToImage(cmd, job->buffer->buffer, job->img->image, VK_IMAGE_LAYOUT_GENERAL, 1, &region);
+    else
+        vkCmdCopyImageToBuffer(cmd, job->img->image, VK_IMAGE_LAYOUT_GENERAL, job->buffer->buffer, 1, &region);
+    memset(&after, 0, sizeof after);
+    after.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+    after.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    after.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &after, 0, NULL, 0,
+                         NULL);
+}
+
+int vkc_image_copy(VkcContext *ctx, const VkcImage *img, const VkcBuffer *buffer, int to_image, char *err,
+                   size_t err_len) {
+    CopyJob job;
+    VkDeviceSize need;
+    if (err != NULL && err_len > 0) err[0] = '\0';
+    if (ctx == NULL || img == NULL || buffer == NULL || img->image == VK_NULL_HANDLE ||
+        buffer->buffer == VK_NULL_HANDLE) {
+        fail(err, err_len, "vkc_image_copy: a NULL or destroyed context, image or buffer");
+        return 1;
+    }
+    need = (VkDeviceSize)img->width * img->height * img->layers * img->texel_bytes;
+    if (buffer->size < need) {
+        fail(err, err_len, "vkc_image_copy: the buffer holds %llu bytes, the image %llu",
+             (unsigned long long)buffer->size, (unsigned long long)need);
+        return 1;
+    }
+    job.img = img;
+    job.buffer = buffer;
+    job.to_image = to_image;
+    return one_shot(ctx, record_copy, &job, "vkc_image_copy", err, err_len);
 }
 
 int vkc_read_file(const char *path, uint32_t **words, size_t *bytes, char *err, size_t err_len) {

@@ -70,19 +70,52 @@ int vkc_buffer_create(VkcContext *ctx, VkDeviceSize size, VkcBuffer *out, char *
  * waits for the device first). */
 void vkc_buffer_destroy(VkcContext *ctx, VkcBuffer *buf);
 
+/* A 2D image of `layers` layers, one mip level, one sample, in device
+ * memory, with a view of all its layers (VK_IMAGE_VIEW_TYPE_2D_ARRAY when
+ * created with `array_view`, else 2D). It stays in VK_IMAGE_LAYOUT_GENERAL,
+ * where a shader may sample it, store to it and a copy may read or write it. */
+typedef struct VkcImage {
+    VkImage image;
+    VkDeviceMemory memory;
+    VkImageView view;
+    VkFormat format;
+    uint32_t width;
+    uint32_t height;
+    uint32_t layers;
+    VkDeviceSize texel_bytes;
+} VkcImage;
+
+/* Creates an image of `format` (`texel_bytes` bytes a texel), usable as a
+ * sampled image, a storage image and a copy source and destination. On
+ * failure *out is zeroed. */
+int vkc_image_create(VkcContext *ctx, uint32_t width, uint32_t height, uint32_t layers, int array_view,
+                     VkFormat format, VkDeviceSize texel_bytes, VkcImage *out, char *err, size_t err_len);
+
+/* Frees an image and zeroes *img; a zeroed image or NULL is a no-op. */
+void vkc_image_destroy(VkcContext *ctx, VkcImage *img);
+
+/* Copies `buffer` (texels tightly packed, row after row, layer after layer;
+ * at least width·height·layers·texel_bytes bytes) into the image when
+ * `to_image`, else the image into `buffer`, and waits. */
+int vkc_image_copy(VkcContext *ctx, const VkcImage *img, const VkcBuffer *buffer, int to_image, char *err,
+                   size_t err_len);
+
 /* One descriptor of set 0: `type` is VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER or
- * VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, bound over the whole of `buffer`. */
+ * VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, bound over the whole of `buffer`, or
+ * VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE or VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+ * bound to `image`'s view (in VK_IMAGE_LAYOUT_GENERAL). */
 typedef struct VkcBinding {
     uint32_t binding;
     VkDescriptorType type;
     const VkcBuffer *buffer;
+    const VkcImage *image;
 } VkcBinding;
 
 /* Runs one compute dispatch and waits for it: builds descriptor set 0 from
  * `bindings` (binding numbers unique), a compute pipeline from the SPIR-V
  * words (`spirv_bytes` a nonzero multiple of 4) and the entry point `entry`,
  * records vkCmdDispatch(gx, gy, gz) followed by a barrier that makes shader
- * writes visible to the host, submits, waits on a fence for at most
+ * writes visible to the host and to later copies, submits, waits on a fence for at most
  * VKC_FENCE_TIMEOUT_NS, and destroys the pipeline objects. The group counts
  * must be within the device's maxComputeWorkGroupCount.
  *
