@@ -560,8 +560,10 @@ enum SubconeStatus subcone_sraa_pass_uniform(const struct SubconeSraaParams *par
 // [`subcone_ctss_trace`] takes as `origin`, `dir` and `up_hint`.
 //
 // Errors: null `out`; a zero size; non-finite or degenerate camera
-// vectors (zero, or `forward` parallel to `up_hint`); `fov_y` outside
-// `(0, π)`; a non-finite background.
+// vectors (zero, or `forward` within a sine of 10⁻⁴ of parallel to
+// `up_hint`, the kernels' `LOOK_FRAME_MIN_SINE`, where the cross product
+// cancels too much to give a frame); `fov_y` outside `(0, π)`; a
+// non-finite background.
 //
 // # Safety
 // `out` is null or writable.

@@ -42,7 +42,7 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use glam::{Vec2, Vec3};
 use subcone_kernels::aggregate::{sample_weight, Weighting};
-use subcone_kernels::camera::PinholeCamera;
+use subcone_kernels::camera::{in_normal_range, look_frame, PinholeCamera};
 use subcone_kernels::cone::{
     advance, backtrace_cone_entry, backtrace_hard_hit, cone_occlusion, cone_radius, cone_tan_theta,
     PixelFootprint,
@@ -383,21 +383,6 @@ fn finite(values: &[f32]) -> Result<(), SubconeStatus> {
         Ok(())
     } else {
         Err(SubconeStatus::InvalidArgument)
-    }
-}
-
-/// `v`, or, when its squared length overflows f32 or is subnormal (a
-/// component of 10²⁰ or 10⁻²⁰), `v` divided by its largest component: the
-/// same direction, whose length then normalises (`(10³⁰, 0, 0)` normalised
-/// as it is gives the zero vector, `(10⁻³⁰, 0, 0)` a division by zero).
-/// Vectors of ordinary length are returned unchanged, so their bits are the
-/// renderers'.
-fn in_normal_range(v: Vec3) -> Vec3 {
-    let m = v.abs().max_element();
-    if v.length_squared().is_normal() || !(m > 0.0 && m.is_finite()) {
-        v
-    } else {
-        v / m
     }
 }
 
@@ -1183,8 +1168,10 @@ pub unsafe extern "C" fn subcone_sraa_pass_uniform(
 /// [`subcone_ctss_trace`] takes as `origin`, `dir` and `up_hint`.
 ///
 /// Errors: null `out`; a zero size; non-finite or degenerate camera
-/// vectors (zero, or `forward` parallel to `up_hint`); `fov_y` outside
-/// `(0, π)`; a non-finite background.
+/// vectors (zero, or `forward` within a sine of 10⁻⁴ of parallel to
+/// `up_hint`, the kernels' `LOOK_FRAME_MIN_SINE`, where the cross product
+/// cancels too much to give a frame); `fov_y` outside `(0, π)`; a
+/// non-finite background.
 ///
 /// # Safety
 /// `out` is null or writable.
@@ -1218,15 +1205,10 @@ pub unsafe extern "C" fn subcone_ctss_pass_uniform(
                 return Err(SubconeStatus::InvalidArgument);
             }
             // The Rust `CtssCamera::new`'s frame: right = forward × up.
-            let forward = in_normal_range(forward).normalize_or_zero();
-            // The cross product of nearly parallel or tiny vectors may have a
-            // subnormal length, which normalises inexactly: scale it first.
-            let right =
-                in_normal_range(forward.cross(in_normal_range(up_hint))).normalize_or_zero();
+            let (forward, right, up) = look_frame(forward, up_hint);
             if forward == Vec3::ZERO || right == Vec3::ZERO {
                 return Err(SubconeStatus::InvalidArgument);
             }
-            let up = right.cross(forward);
             let camera = PinholeCamera::new(
                 eye,
                 (forward, right, up),

@@ -248,15 +248,23 @@ fn pass_uniforms_refuse_bad_input() {
         assert_eq!(c.forward, [0.0, 0.0, 1.0]);
         assert_eq!(c.depth_axis, [0.0, 0.0, 1.0]);
         assert!((c.tan_half_fov - 0.4f32.tan()).abs() < 1e-7);
-        // forward × up_hint of subnormal squared length (a fuzzing find):
-        // the frame is still orthonormal.
-        let up_hint = v(1.0, 1e-20, 1e-20);
+        // A tiny up_hint, whose cross product with forward has a subnormal
+        // squared length (a fuzzing find): the frame is still orthonormal.
+        let up_hint = v(0.0, 1e-20, 1e-20);
         assert_eq!(
             subcone_ctss_pass_uniform(eye, v(-1.0, 0.0, 0.0), up_hint, 0.8, 2, 2, eye, &mut c),
             SubconeStatus::Ok
         );
+        assert_eq!(c.right, [0.0, 0.70710677, -0.70710677]);
         let len = |a: [f32; 3]| (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
         assert!((len(c.right) - 1.0).abs() < 1e-6, "{:?}", c.right);
         assert!((len(c.up) - 1.0).abs() < 1e-6, "{:?}", c.up);
+        // Within 10⁻⁴ of parallel the cross product cancels too much to be
+        // orthogonal to forward (a second fuzzing find): no frame.
+        let nearly = v(1.0, 1e-5, 0.0);
+        assert_eq!(
+            subcone_ctss_pass_uniform(eye, v(1.0, 0.0, 0.0), nearly, 0.8, 2, 2, eye, &mut c),
+            SubconeStatus::InvalidArgument
+        );
     }
 }

@@ -1046,8 +1046,10 @@ fn call(c: Call) {
                 .into_iter()
                 .all(finite3)
                 || !(fov_y.0 > 0.0 && fov_y.0 < std::f32::consts::PI);
-            // A zero forward, or one parallel to up_hint, has no frame: in
-            // f64, the two directions' sine is tiny or a length is 0.
+            // A zero forward, or one within LOOK_FRAME_MIN_SINE (1e-4) of
+            // parallel to up_hint, has no frame: in f64, the two directions'
+            // sine is below twice that (rounding decides near it), or a
+            // length is 0.
             let degenerate = {
                 let f = [forward[0].0, forward[1].0, forward[2].0].map(f64::from);
                 let u = [up_hint[0].0, up_hint[1].0, up_hint[2].0].map(f64::from);
@@ -1058,7 +1060,7 @@ fn call(c: Call) {
                     f[0] * u[1] - f[1] * u[0],
                 ];
                 let (lf, lu) = (len(f), len(u));
-                !(lf > 0.0 && lu > 0.0 && len(c) / (lf * lu) > 1e-6)
+                !(lf > 0.0 && lu > 0.0 && len(c) / (lf * lu) > 2e-4)
             };
             let defects = Defects {
                 null: o.is_null(),

@@ -13,6 +13,53 @@
 
 use glam::{Vec2, Vec3};
 
+/// `v`, or, when its squared length overflows f32 or is subnormal (a
+/// component of 10²⁰ or 10⁻²⁰), `v` divided by its largest component: the
+/// same direction, whose length then normalises (`(10³⁰, 0, 0)` normalised
+/// as it is gives the zero vector, `(10⁻³⁰, 0, 0)` a division by zero).
+/// Vectors of ordinary length, and zero or non-finite ones, are returned
+/// unchanged, so their bits are the renderers'.
+pub fn in_normal_range(v: Vec3) -> Vec3 {
+    let m = v.abs().max_element();
+    if v.length_squared().is_normal() || !(m > 0.0 && m.is_finite()) {
+        v
+    } else {
+        v / m
+    }
+}
+
+/// The smallest sine of the angle between a camera's `forward` and
+/// `up_hint` that [`look_frame`] makes a frame of: below it the f32 cross
+/// product cancels too much to be orthogonal to `forward` (its error is
+/// about 10⁻⁷ over the sine), so there is no frame.
+pub const LOOK_FRAME_MIN_SINE: f32 = 1e-4;
+
+/// The orthonormal frame `(forward, right, up)` of a camera looking along
+/// `forward` with `up_hint` roughly up: `forward` normalised, `right` the
+/// normalised `forward × up_hint`, `up = right × forward`. Vectors and the
+/// cross product whose lengths leave f32's normal range are scaled first
+/// ([`in_normal_range`]), so a frame is unit to rounding for tiny or huge
+/// vectors too; `right` is orthogonal to `forward` to within about 10⁻⁷
+/// over the sine of their angle. For ordinary vectors this is the plain
+/// expression, bit for bit.
+///
+/// Outside the domain: a zero or non-finite `forward` gives a zero
+/// `forward`; an `up_hint` within [`LOOK_FRAME_MIN_SINE`] of parallel to
+/// it, zero or non-finite gives zero `right` and `up`. Callers that need a
+/// frame check for zero.
+pub fn look_frame(forward: Vec3, up_hint: Vec3) -> (Vec3, Vec3, Vec3) {
+    let forward = in_normal_range(forward).normalize_or_zero();
+    let up_hint = in_normal_range(up_hint);
+    // The sine of the angle, from unit vectors (a check only: `right` is
+    // the plain expression's).
+    let sine = forward.cross(up_hint.normalize_or_zero()).length();
+    if !(sine >= LOOK_FRAME_MIN_SINE) {
+        return (forward, Vec3::ZERO, Vec3::ZERO);
+    }
+    let right = in_normal_range(forward.cross(up_hint)).normalize_or_zero();
+    (forward, right, right.cross(forward))
+}
+
 /// A pinhole camera and its image size, as shaders read it (80 bytes,
 /// `subcone_PinholeCamera` in WGSL, checked by `tests/wgsl_layout.rs`).
 ///

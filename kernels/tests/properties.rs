@@ -52,6 +52,49 @@ fn rotated(n: Vec3, towards: Vec3, angle: f32) -> Vec3 {
 proptest! {
     #![proptest_config(config())]
 
+    /// `look_frame` gives a unit, orthogonal, right-handed frame whenever
+    /// `forward` and `up_hint` are at least `LOOK_FRAME_MIN_SINE` from
+    /// parallel, whatever their lengths (10⁻³⁰ to 10³⁰: a cross product of
+    /// subnormal length included), orthogonal to within the f32 cross
+    /// product's cancellation, about 10⁻⁷ over the sine; closer to parallel
+    /// it gives no frame (zero `right` and `up`), never a skewed one.
+    #[test]
+    fn look_frame_is_orthonormal(
+        forward_dir in unit(),
+        up_dir in unit(),
+        (forward_exp, up_exp) in (-30.0f32..30.0, -30.0f32..30.0),
+        tilt in (-6.0f32..0.0).prop_map(|e| 10f32.powf(e)),
+        nearly_parallel in any::<bool>(),
+    ) {
+        let up_dir = if nearly_parallel {
+            (forward_dir + tilt * up_dir.cross(forward_dir)).normalize()
+        } else {
+            up_dir
+        };
+        let sine = forward_dir.cross(up_dir).length();
+        let forward = forward_dir * 10f32.powf(forward_exp);
+        let up = up_dir * 10f32.powf(up_exp);
+        let (f, r, u) = subcone_kernels::camera::look_frame(forward, up);
+        prop_assert!((f.length() - 1.0).abs() < 1e-5, "forward {:?}", f);
+        if r == Vec3::ZERO {
+            // No frame: only near the threshold (the sine from f32 unit
+            // vectors, within rounding of this one) or below it.
+            prop_assert!(sine < 1.01 * subcone_kernels::camera::LOOK_FRAME_MIN_SINE, "sine {}", sine);
+            prop_assert_eq!(u, Vec3::ZERO);
+            return Ok(());
+        }
+        prop_assert!(sine > 0.99 * subcone_kernels::camera::LOOK_FRAME_MIN_SINE, "a frame at sine {}", sine);
+        let orthogonal = 1e-5 + 2e-7 / sine;
+        for (name, v) in [("forward", f), ("right", r), ("up", u)] {
+            prop_assert!((v.length() - 1.0).abs() < 1e-5, "{} {:?}", name, v);
+        }
+        prop_assert!(
+            f.dot(r).abs() < orthogonal && f.dot(u).abs() < 1e-5 && r.dot(u).abs() < 1e-5,
+            "{} {} {} (sine {})", f.dot(r), f.dot(u), r.dot(u), sine
+        );
+        prop_assert!(r.cross(u).dot(f) < -0.999, "right × up is −forward (right = forward × up)");
+    }
+
     #[test]
     fn weights_in_unit_interval(p in params(), ni in unit(), nj in unit(), zi in depth(), zj in depth()) {
         let w = bilateral_weight(&p, &Geometry::new(ni, zi), &Geometry::new(nj, zj));

@@ -110,11 +110,10 @@ pub struct CtssCamera {
 impl CtssCamera {
     /// A camera at `position` looking along `forward`, `up_hint` roughly up
     /// (not parallel to `forward`); the frame is orthonormalised, right =
-    /// forward × up.
+    /// forward × up (`subcone_kernels::camera::look_frame`: unit even for
+    /// tiny, huge or nearly parallel vectors; zero where there is no frame).
     pub fn new(position: Vec3, forward: Vec3, up_hint: Vec3, fov_y: f32) -> Self {
-        let forward = forward.normalize_or_zero();
-        let right = forward.cross(up_hint).normalize_or_zero();
-        let up = right.cross(forward);
+        let (forward, right, up) = subcone_kernels::camera::look_frame(forward, up_hint);
         CtssCamera {
             position,
             forward,
