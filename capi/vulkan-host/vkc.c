@@ -537,6 +537,120 @@ static int check_dispatch_args(const VkcContext *ctx, const uint32_t *spirv, siz
     return 0;
 }
 
+/* Records `record(cmd, user)` into a one-time command buffer (o->cmd),
+ * submits it with a fence (o->fence) and waits for at most
+ * VKC_FENCE_TIMEOUT_NS. The caller releases `o` (release_objects) either
+ * way: on a timeout the device may still be using everything in `o`, so it
+ * is parked in the context for vkc_destroy (which waits for the device),
+ * `o` is zeroed, and the context is wedged: no later submission. */
+static int submit_and_wait(VkcContext *ctx, DispatchObjects *o, void (*record)(VkCommandBuffer, const void *),
+                           const void *user, const char *what, char *err, size_t err_len) {
+    VkCommandBufferAllocateInfo ai;
+    VkCommandBufferBeginInfo bi;
+    VkFenceCreateInfo fi;
+    VkSubmitInfo si;
+    VkResult r;
+
+    if (ctx->wedged) {
+        fail(err, err_len, "%s: an earlier submission timed out; destroy the context", what);
+        return 1;
+    }
+    memset(&ai, 0, sizeof ai);
+    ai.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
+    ai.commandPool = ctx->pool;
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = 1;
+    r = vkAllocateCommandBuffers(ctx->device, &ai, &o->cmd);
+    if (r != VK_SUCCESS) {
+        o->cmd = VK_NULL_HANDLE;
+        fail_vk(err, err_len, "vkAllocateCommandBuffers", r);
+        return 1;
+    }
+    memset(&bi, 0, sizeof bi);
+    bi.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    r = vkBeginCommandBuffer(o->cmd, &bi);
+    if (r != VK_SUCCESS) {
+        fail_vk(err, err_len, "vkBeginCommandBuffer", r);
+        return 1;
+    }
+    record(o->cmd, user);
+    r = vkEndCommandBuffer(o->cmd);
+    if (r != VK_SUCCESS) {
+        fail_vk(err, err_len, "vkEndCommandBuffer", r);
+        return 1;
+    }
+    memset(&fi, 0, sizeof fi);
+    fi.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
+    r = vkCreateFence(ctx->device, &fi, NULL, &o->fence);
+    if (r != VK_SUCCESS) {
+        o->fence = VK_NULL_HANDLE;
+        fail_vk(err, err_len, "vkCreateFence", r);
+        return 1;
+    }
+    /* Host writes to coherent memory made before this call are visible to
+     * the device without a barrier: vkQueueSubmit guarantees it. */
+    memset(&si, 0, sizeof si);
+    si.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &o->cmd;
+    r = vkQueueSubmit(ctx->queue, 1, &si, o->fence);
+    if (r != VK_SUCCESS) {
+        fail_vk(err, err_len, "vkQueueSubmit", r);
+        return 1;
+    }
+    r = vkWaitForFences(ctx->device, 1, &o->fence, VK_TRUE, VKC_FENCE_TIMEOUT_NS);
+    if (r == VK_TIMEOUT) {
+        ctx->wedged = 1;
+        ctx->pending = *o;
+        memset(o, 0, sizeof *o);
+        fail(err, err_len, "%s: vkWaitForFences timed out after %llu s (VK_TIMEOUT); the context is unusable",
+             what, (unsigned long long)(VKC_FENCE_TIMEOUT_NS / 1000000000ull));
+        return 1;
+    }
+    if (r != VK_SUCCESS) {
+        fail_vk(err, err_len, "vkWaitForFences", r);
+        return 1;
+    }
+    return 0;
+}
+
+/* What the dispatch's command buffer binds and runs. */
+typedef struct DispatchJob {
+    const VkcContext *ctx;
+    VkPipeline pipeline;
+    VkPipelineLayout layout;
+    VkDescriptorSet set;
+    uint32_t groups[3];
+} DispatchJob;
+
+static void record_dispatch(VkCommandBuffer cmd, const void *user) {
+    const DispatchJob *job = (const DispatchJob *)user;
+    VkMemoryBarrier to_host;
+    /* Queries must be reset before each use; doing it in the command
+     * buffer avoids needing 1.2's host reset. */
+    if (job->ctx->timestamps != VK_NULL_HANDLE) {
+        vkCmdResetQueryPool(cmd, job->ctx->timestamps, 0, 2);
+        vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, job->ctx->timestamps, 0);
+    }
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, job->pipeline);
+    if (job->set != VK_NULL_HANDLE)
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, job->layout, 0, 1, &job->set, 0, NULL);
+    vkCmdDispatch(cmd, job->groups[0], job->groups[1], job->groups[2]);
+    if (job->ctx->timestamps != VK_NULL_HANDLE)
+        vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, job->ctx->timestamps, 1);
+    /* A signalled fence does not by itself make device writes visible to
+     * the host, even in coherent memory; this barrier does (and to later
+     * copies). */
+    memset(&to_host, 0, sizeof to_host);
+    to_host.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+    to_host.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+    to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                         VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &to_host, 0, NULL, 0,
+                         NULL);
+}
+
 int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, const char *entry,
                  const VkcBinding *bindings, uint32_t binding_count, uint32_t gx, uint32_t gy, uint32_t gz,
                  char *err, size_t err_len) {
@@ -704,8 +818,10 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
             writes[i].dstBinding = bindings[i].binding;
             writes[i].descriptorCount = 1;
             writes[i].descriptorType = bindings[i].type;
-            if (bindings[i].image != NULL && (bindings[i].type == VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE ||
-                                              bindings[i].type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)) {
+            /* `image` is read only for image types: a caller that binds a
+             * buffer need not set it. */
+            if (bindings[i].type == VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE ||
+                bindings[i].type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE) {
                 image_infos[i].imageView = bindings[i].image->view;
                 image_infos[i].imageLayout = VK_IMAGE_LAYOUT_GENERAL;
                 writes[i].pImageInfo = &image_infos[i];
@@ -720,98 +836,13 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
     }
 
     {
-        VkCommandBufferAllocateInfo ai;
-        memset(&ai, 0, sizeof ai);
-        ai.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
-        ai.commandPool = ctx->pool;
-        ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-        ai.commandBufferCount = 1;
-        r = vkAllocateCommandBuffers(ctx->device, &ai, &o.cmd);
-        if (r != VK_SUCCESS) {
-            o.cmd = VK_NULL_HANDLE;
-            fail_vk(err, err_len, "vkAllocateCommandBuffers", r);
-            goto cleanup;
-        }
-    }
-    {
-        VkCommandBufferBeginInfo bi;
-        VkMemoryBarrier to_host;
-        memset(&bi, 0, sizeof bi);
-        bi.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
-        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        r = vkBeginCommandBuffer(o.cmd, &bi);
-        if (r != VK_SUCCESS) {
-            fail_vk(err, err_len, "vkBeginCommandBuffer", r);
-            goto cleanup;
-        }
-        /* Queries must be reset before each use; doing it in the command
-         * buffer avoids needing 1.2's host reset. */
-        if (ctx->timestamps != VK_NULL_HANDLE) {
-            vkCmdResetQueryPool(o.cmd, ctx->timestamps, 0, 2);
-            vkCmdWriteTimestamp(o.cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, ctx->timestamps, 0);
-        }
-        vkCmdBindPipeline(o.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, o.pipeline);
-        if (set != VK_NULL_HANDLE)
-            vkCmdBindDescriptorSets(o.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, o.pipeline_layout, 0, 1, &set, 0, NULL);
-        vkCmdDispatch(o.cmd, gx, gy, gz);
-        if (ctx->timestamps != VK_NULL_HANDLE)
-            vkCmdWriteTimestamp(o.cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, ctx->timestamps, 1);
-        /* A signalled fence does not by itself make device writes visible to
-         * the host, even in coherent memory; this barrier does. */
-        memset(&to_host, 0, sizeof to_host);
-        to_host.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
-        to_host.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-        to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT;
-        vkCmdPipelineBarrier(o.cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                             VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &to_host, 0, NULL, 0,
-                             NULL);
-        r = vkEndCommandBuffer(o.cmd);
-        if (r != VK_SUCCESS) {
-            fail_vk(err, err_len, "vkEndCommandBuffer", r);
-            goto cleanup;
-        }
-    }
-    {
-        VkFenceCreateInfo fi;
-        VkSubmitInfo si;
-        memset(&fi, 0, sizeof fi);
-        fi.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
-        r = vkCreateFence(ctx->device, &fi, NULL, &o.fence);
-        if (r != VK_SUCCESS) {
-            o.fence = VK_NULL_HANDLE;
-            fail_vk(err, err_len, "vkCreateFence", r);
-            goto cleanup;
-        }
-        /* Host writes to coherent memory made before this call are visible to
-         * the device without a barrier: vkQueueSubmit guarantees it. */
-        memset(&si, 0, sizeof si);
-        si.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
-        si.commandBufferCount = 1;
-        si.pCommandBuffers = &o.cmd;
-        r = vkQueueSubmit(ctx->queue, 1, &si, o.fence);
-        if (r != VK_SUCCESS) {
-            fail_vk(err, err_len, "vkQueueSubmit", r);
-            goto cleanup;
-        }
-        r = vkWaitForFences(ctx->device, 1, &o.fence, VK_TRUE, VKC_FENCE_TIMEOUT_NS);
-        if (r == VK_TIMEOUT) {
-            /* The device may still be executing with these objects; freeing
-             * them now would be undefined behaviour, so they are parked for
-             * vkc_destroy, which waits for the device first. */
-            ctx->wedged = 1;
-            ctx->pending = o;
-            fail(err, err_len, "vkWaitForFences timed out after %llu s (VK_TIMEOUT); the context is unusable",
-                 (unsigned long long)(VKC_FENCE_TIMEOUT_NS / 1000000000ull));
-            free(layout_bindings);
-            free(buffer_infos);
-            free(image_infos);
-            free(writes);
-            return 1;
-        }
-        if (r != VK_SUCCESS) {
-            fail_vk(err, err_len, "vkWaitForFences", r);
-            goto cleanup;
-        }
+        DispatchJob job;
+        job.ctx = ctx;
+        job.pipeline = o.pipeline;
+        job.layout = o.pipeline_layout;
+        job.set = set;
+        memcpy(job.groups, groups, sizeof job.groups);
+        if (submit_and_wait(ctx, &o, record_dispatch, &job, "vkc_dispatch", err, err_len) != 0) goto cleanup;
     }
 
     if (ctx->timestamps != VK_NULL_HANDLE) {
@@ -838,83 +869,6 @@ cleanup:
     free(buffer_infos);
     free(image_infos);
     free(writes);
-    return rc;
-}
-
-/* Records `record(cmd, user)` into a one-time command buffer, submits it and
- * waits, as vkc_dispatch does (a timeout parks the command buffer and fence
- * in the context and wedges it). */
-static int one_shot(VkcContext *ctx, void (*record)(VkCommandBuffer, const void *), const void *user,
-                    const char *what, char *err, size_t err_len) {
-    DispatchObjects o;
-    VkCommandBufferAllocateInfo ai;
-    VkCommandBufferBeginInfo bi;
-    VkFenceCreateInfo fi;
-    VkSubmitInfo si;
-    VkResult r;
-    int rc = 1;
-
-    memset(&o, 0, sizeof o);
-    if (ctx->wedged) {
-        fail(err, err_len, "%s: an earlier submission timed out; destroy the context", what);
-        return 1;
-    }
-    memset(&ai, 0, sizeof ai);
-    ai.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
-    ai.commandPool = ctx->pool;
-    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    ai.commandBufferCount = 1;
-    r = vkAllocateCommandBuffers(ctx->device, &ai, &o.cmd);
-    if (r != VK_SUCCESS) {
-        o.cmd = VK_NULL_HANDLE;
-        fail_vk(err, err_len, "vkAllocateCommandBuffers", r);
-        goto cleanup;
-    }
-    memset(&bi, 0, sizeof bi);
-    bi.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
-    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    r = vkBeginCommandBuffer(o.cmd, &bi);
-    if (r != VK_SUCCESS) {
-        fail_vk(err, err_len, "vkBeginCommandBuffer", r);
-        goto cleanup;
-    }
-    record(o.cmd, user);
-    r = vkEndCommandBuffer(o.cmd);
-    if (r != VK_SUCCESS) {
-        fail_vk(err, err_len, "vkEndCommandBuffer", r);
-        goto cleanup;
-    }
-    memset(&fi, 0, sizeof fi);
-    fi.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
-    r = vkCreateFence(ctx->device, &fi, NULL, &o.fence);
-    if (r != VK_SUCCESS) {
-        o.fence = VK_NULL_HANDLE;
-        fail_vk(err, err_len, "vkCreateFence", r);
-        goto cleanup;
-    }
-    memset(&si, 0, sizeof si);
-    si.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
-    si.commandBufferCount = 1;
-    si.pCommandBuffers = &o.cmd;
-    r = vkQueueSubmit(ctx->queue, 1, &si, o.fence);
-    if (r != VK_SUCCESS) {
-        fail_vk(err, err_len, "vkQueueSubmit", r);
-        goto cleanup;
-    }
-    r = vkWaitForFences(ctx->device, 1, &o.fence, VK_TRUE, VKC_FENCE_TIMEOUT_NS);
-    if (r == VK_TIMEOUT) {
-        ctx->wedged = 1;
-        ctx->pending = o;
-        fail(err, err_len, "%s: vkWaitForFences timed out (VK_TIMEOUT); the context is unusable", what);
-        return 1;
-    }
-    if (r != VK_SUCCESS) {
-        fail_vk(err, err_len, "vkWaitForFences", r);
-        goto cleanup;
-    }
-    rc = 0;
-cleanup:
-    release_objects(ctx, &o);
     return rc;
 }
 
@@ -1027,7 +981,14 @@ int vkc_image_create(VkcContext *ctx, uint32_t width, uint32_t height, uint32_t 
     out->height = height;
     out->layers = layers;
     out->texel_bytes = texel_bytes;
-    if (one_shot(ctx, record_to_general, out, "vkc_image_create", err, err_len) != 0) goto fail;
+    {
+        DispatchObjects o;
+        int rc;
+        memset(&o, 0, sizeof o);
+        rc = submit_and_wait(ctx, &o, record_to_general, out, "vkc_image_create", err, err_len);
+        release_objects(ctx, &o);
+        if (rc != 0) goto fail;
+    }
     return 0;
 fail:
     vkc_image_destroy(ctx, out);
@@ -1101,7 +1062,14 @@ int vkc_image_copy(VkcContext *ctx, const VkcImage *img, const VkcBuffer *buffer
     job.img = img;
     job.buffer = buffer;
     job.to_image = to_image;
-    return one_shot(ctx, record_copy, &job, "vkc_image_copy", err, err_len);
+    {
+        DispatchObjects o;
+        int rc;
+        memset(&o, 0, sizeof o);
+        rc = submit_and_wait(ctx, &o, record_copy, &job, "vkc_image_copy", err, err_len);
+        release_objects(ctx, &o);
+        return rc;
+    }
 }
 
 int vkc_read_file(const char *path, uint32_t **words, size_t *bytes, char *err, size_t err_len) {

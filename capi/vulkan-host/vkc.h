@@ -103,7 +103,8 @@ int vkc_image_copy(VkcContext *ctx, const VkcImage *img, const VkcBuffer *buffer
 /* One descriptor of set 0: `type` is VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER or
  * VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, bound over the whole of `buffer`, or
  * VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE or VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
- * bound to `image`'s view (in VK_IMAGE_LAYOUT_GENERAL). */
+ * bound to `image`'s view (in VK_IMAGE_LAYOUT_GENERAL). Only the member the
+ * type names is read. */
 typedef struct VkcBinding {
     uint32_t binding;
     VkDescriptorType type;

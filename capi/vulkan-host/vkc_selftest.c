@@ -42,6 +42,7 @@ static int run_once(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, 
     memcpy(params->mapped, &p, sizeof p);
     for (i = 0; i < OUT_LEN; i++) o[i] = SENTINEL;
 
+    memset(bindings, 0, sizeof bindings);
     bindings[0].binding = 0;
     bindings[0].type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
     bindings[0].buffer = params;
