@@ -89,6 +89,7 @@ static int bad_input(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes,
     VkcBinding b[2];
     uint32_t not_spirv[8] = {0};
 
+    memset(b, 0, sizeof b);
     b[0].binding = 0;
     b[0].type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
     b[0].buffer = params;
@@ -119,6 +120,11 @@ static int bad_input(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes,
         return 1;
     b[1].binding = 1;
     b[1].type = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    msg[0] = '\0';
+    if (expect_failure(vkc_dispatch(ctx, spirv, spirv_bytes, "main", b, 2, 1, 1, 1, msg, sizeof msg),
+                       "an image binding without an image", msg, err, err_len))
+        return 1;
+    b[1].type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     msg[0] = '\0';
     if (expect_failure(vkc_dispatch(ctx, spirv, spirv_bytes, "main", b, 2, 1, 1, 1, msg, sizeof msg),
                        "an unsupported descriptor type", msg, err, err_len))
