@@ -201,8 +201,9 @@ typedef struct SubconeCtssResult {
 } SubconeCtssResult;
 
 // The uniform of the SRAA pass's shaders (`SraaFrame`, binding `frame` of
-// every `shaders/sraa/*` variant; 80 bytes, its layout checked against
-// naga's). Fill it with [`subcone_sraa_pass_uniform`].
+// every `shaders/sraa/*` variant; the kernels' `uniforms::SraaFrame`, 80
+// bytes, its layout checked against naga's). Fill it with
+// [`subcone_sraa_pass_uniform`].
 typedef struct SubconeSraaPassUniform {
   // The weights' parameters.
   struct SubconeSraaParams sraa;
@@ -228,12 +229,11 @@ typedef struct SubconeSraaPassUniform {
   uint32_t pad;
 } SubconeSraaPassUniform;
 
-// The uniform of the CTSS pass's shaders (`CtssUniform`, binding
-// `subcone_pass_frame` of every `shaders/ctss/*` variant; 192 bytes, its
-// layout checked against naga's). Fill it with
-// [`subcone_ctss_pass_uniform`]; the trace's parameters are a
-// [`SubconeCtssParams`] at `subcone_pass_params`.
-typedef struct SubconeCtssPassUniform {
+// The pinhole camera every CTSS shader traces through, the layout of the
+// kernels' `PinholeCamera` (80 bytes, `subcone_PinholeCamera` in WGSL):
+// pixel `(x, y)` of a `width × height` image is the ray through image
+// point `(x + ½, y + ½) + jitter` ([`subcone_pinhole_ray`]).
+typedef struct SubconePinholeCamera {
   // The eye.
   float position[3];
   // The image's width in pixels.
@@ -242,7 +242,7 @@ typedef struct SubconeCtssPassUniform {
   float forward[3];
   // The image's height in pixels.
   uint32_t height;
-  // Unit right vector.
+  // Unit right vector (forward × up).
   float right[3];
   // `tan(fov_y / 2)`.
   float tan_half_fov;
@@ -250,28 +250,38 @@ typedef struct SubconeCtssPassUniform {
   float up[3];
   // Padding; write 0.
   uint32_t pad0;
-  // Sub-pixel offset of every cone's axis, in pixels (a temporal
-  // method's jitter; 0 otherwise).
+  // Sub-pixel offset of every ray, in pixels (a temporal method's
+  // jitter; 0 otherwise).
   float jitter[2];
   // Padding; write 0.
   uint32_t pad1[2];
+} SubconePinholeCamera;
+
+// The uniform of the CTSS pass's shaders (`CtssUniform`, binding
+// `subcone_pass_frame` of every `shaders/ctss/*` variant; the kernels'
+// `uniforms::CtssUniform`, 192 bytes, its layout checked against naga's).
+// Fill it with [`subcone_ctss_pass_uniform`]; the trace's parameters are a
+// [`SubconeCtssParams`] at `subcone_pass_params`.
+typedef struct SubconeCtssPassUniform {
+  // The camera.
+  struct SubconePinholeCamera camera;
   // The colour of what no surface covers (linear RGB).
   float background[3];
-  // 0: the pinhole above; 1 and 2: a projection matrix (written by the
-  // Rust pass's `CtssProjection`).
+  // 0: the pinhole `camera`; 1 and 2: a projection matrix (written by
+  // the Rust pass's `CtssProjection`).
   uint32_t projection;
   // NDC to world, column-major (zero for the pinhole).
-  float inverse_view_projection[16];
-  // The unit forward axis of view depth (`forward·x + depth_offset`).
-  float depth_axis[3];
-  // View depth's offset.
+  float inverse_view_projection[4][4];
+  // The unit axis of view depth (`forward·x + depth_offset`).
+  float forward[3];
+  // View depth's offset (the eye at depth 0).
   float depth_offset;
   // The first pixel written.
   uint32_t origin[2];
   // The output's width: a buffer row's length.
   uint32_t row_length;
   // Padding; write 0.
-  uint32_t pad2;
+  uint32_t pad;
 } SubconeCtssPassUniform;
 
 // FXAA 3.11's parameters, the layout of the kernels' `FxaaParams` (16
@@ -535,8 +545,8 @@ enum SubconeStatus subcone_ctss_trace(const struct SubconeCtssParams *params,
 // `buffers*`) when `projection` is null, else hardware depth written by
 // `projection` (16 floats, column-major, the host's projection matrix;
 // `shaders/sraa/msaa*`) with `depth_miss` the depth of a miss. `exposure`
-// is the tone-mapped resolve's (0 for the linear one). The same values
-// the Rust `SraaPass` writes.
+// is the tone-mapped resolve's (0 for the linear one). The values the
+// Rust `SraaPass` writes (the kernels' `SraaFrame::new`).
 //
 // Errors: null `params` or `out`; a zero size; non-finite parameters,
 // projection or `depth_miss`; a negative or non-finite `exposure`.
@@ -557,7 +567,8 @@ enum SubconeStatus subcone_sraa_pass_uniform(const struct SubconeSraaParams *par
 // view `fov_y` radians, a `width × height` image and `background`: pixel
 // `(x, y)` is the cone around the ray through `(x + ½, y + ½)`, exactly the
 // rays of the Rust `CtssCamera` (the kernels' `PinholeCamera`), which
-// [`subcone_ctss_trace`] takes as `origin`, `dir` and `up_hint`.
+// [`subcone_ctss_trace`] takes as `origin`, `dir` and `up_hint`. The values
+// the Rust `CtssPass` writes (the kernels' `CtssUniform::pinhole`).
 //
 // Errors: null `out`; a zero size; non-finite or degenerate camera
 // vectors (zero, or `forward` within a sine of 10⁻⁴ of parallel to
@@ -577,10 +588,10 @@ enum SubconeStatus subcone_ctss_pass_uniform(struct SubconeVec3 eye,
                                              struct SubconeCtssPassUniform *out);
 
 // The unit direction of the ray through image point `(x, y)` (pixels, y
-// down; a pixel's centre is `(x + ½, y + ½)`) of the pinhole camera in
+// down; a pixel's centre is `(x + ½, y + ½)`) of the pinhole camera of
 // `uniform`: the direction the CTSS shaders trace (`subcone_pinhole_dir`),
 // to the bit on the CPU, for a host that traces the same pixel with
-// [`subcone_ctss_trace`] (`origin` the uniform's `position`, `up_hint` its
+// [`subcone_ctss_trace`] (`origin` the camera's `position`, `up_hint` its
 // `up`).
 //
 // Errors: null pointers; a uniform that is not a pinhole (`projection`

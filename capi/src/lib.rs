@@ -58,6 +58,7 @@ use subcone_kernels::sraa::{
     MAX_LAYERS,
 };
 use subcone_kernels::taa::{jitter, ResolveSpace, TaaParams};
+use subcone_kernels::uniforms::{CtssUniform, SraaFrame};
 
 /// Major version of this library (the crate's; see [`subcone_version`]).
 pub const SUBCONE_VERSION_MAJOR: u32 = 0;
@@ -1022,8 +1023,9 @@ pub unsafe extern "C" fn subcone_ctss_trace(
 }
 
 /// The uniform of the SRAA pass's shaders (`SraaFrame`, binding `frame` of
-/// every `shaders/sraa/*` variant; 80 bytes, its layout checked against
-/// naga's). Fill it with [`subcone_sraa_pass_uniform`].
+/// every `shaders/sraa/*` variant; the kernels' `uniforms::SraaFrame`, 80
+/// bytes, its layout checked against naga's). Fill it with
+/// [`subcone_sraa_pass_uniform`].
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SubconeSraaPassUniform {
@@ -1051,14 +1053,30 @@ pub struct SubconeSraaPassUniform {
     pub pad: u32,
 }
 
-/// The uniform of the CTSS pass's shaders (`CtssUniform`, binding
-/// `subcone_pass_frame` of every `shaders/ctss/*` variant; 192 bytes, its
-/// layout checked against naga's). Fill it with
-/// [`subcone_ctss_pass_uniform`]; the trace's parameters are a
-/// [`SubconeCtssParams`] at `subcone_pass_params`.
+impl From<SraaFrame> for SubconeSraaPassUniform {
+    fn from(f: SraaFrame) -> Self {
+        SubconeSraaPassUniform {
+            sraa: f.sraa.into(),
+            projection: f.projection,
+            width: f.width,
+            height: f.height,
+            depth_miss: f.depth_miss,
+            albedo_tolerance: f.albedo_tolerance,
+            origin_x: f.origin_x,
+            origin_y: f.origin_y,
+            exposure: f.exposure,
+            pad: f._pad,
+        }
+    }
+}
+
+/// The pinhole camera every CTSS shader traces through, the layout of the
+/// kernels' `PinholeCamera` (80 bytes, `subcone_PinholeCamera` in WGSL):
+/// pixel `(x, y)` of a `width × height` image is the ray through image
+/// point `(x + ½, y + ½) + jitter` ([`subcone_pinhole_ray`]).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct SubconeCtssPassUniform {
+pub struct SubconePinholeCamera {
     /// The eye.
     pub position: [f32; 3],
     /// The image's width in pixels.
@@ -1067,7 +1085,7 @@ pub struct SubconeCtssPassUniform {
     pub forward: [f32; 3],
     /// The image's height in pixels.
     pub height: u32,
-    /// Unit right vector.
+    /// Unit right vector (forward × up).
     pub right: [f32; 3],
     /// `tan(fov_y / 2)`.
     pub tan_half_fov: f32,
@@ -1075,28 +1093,69 @@ pub struct SubconeCtssPassUniform {
     pub up: [f32; 3],
     /// Padding; write 0.
     pub pad0: u32,
-    /// Sub-pixel offset of every cone's axis, in pixels (a temporal
-    /// method's jitter; 0 otherwise).
+    /// Sub-pixel offset of every ray, in pixels (a temporal method's
+    /// jitter; 0 otherwise).
     pub jitter: [f32; 2],
     /// Padding; write 0.
     pub pad1: [u32; 2],
+}
+
+mirror_conversions!(SubconePinholeCamera <=> PinholeCamera {
+    position: position,
+    width: width,
+    forward: forward,
+    height: height,
+    right: right,
+    tan_half_fov: tan_half_fov,
+    up: up,
+    pad0: _pad,
+    jitter: jitter,
+    pad1: _pad2,
+});
+
+/// The uniform of the CTSS pass's shaders (`CtssUniform`, binding
+/// `subcone_pass_frame` of every `shaders/ctss/*` variant; the kernels'
+/// `uniforms::CtssUniform`, 192 bytes, its layout checked against naga's).
+/// Fill it with [`subcone_ctss_pass_uniform`]; the trace's parameters are a
+/// [`SubconeCtssParams`] at `subcone_pass_params`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SubconeCtssPassUniform {
+    /// The camera.
+    pub camera: SubconePinholeCamera,
     /// The colour of what no surface covers (linear RGB).
     pub background: [f32; 3],
-    /// 0: the pinhole above; 1 and 2: a projection matrix (written by the
-    /// Rust pass's `CtssProjection`).
+    /// 0: the pinhole `camera`; 1 and 2: a projection matrix (written by
+    /// the Rust pass's `CtssProjection`).
     pub projection: u32,
     /// NDC to world, column-major (zero for the pinhole).
-    pub inverse_view_projection: [f32; 16],
-    /// The unit forward axis of view depth (`forward·x + depth_offset`).
-    pub depth_axis: [f32; 3],
-    /// View depth's offset.
+    pub inverse_view_projection: [[f32; 4]; 4],
+    /// The unit axis of view depth (`forward·x + depth_offset`).
+    pub forward: [f32; 3],
+    /// View depth's offset (the eye at depth 0).
     pub depth_offset: f32,
     /// The first pixel written.
     pub origin: [u32; 2],
     /// The output's width: a buffer row's length.
     pub row_length: u32,
     /// Padding; write 0.
-    pub pad2: u32,
+    pub pad: u32,
+}
+
+impl From<CtssUniform> for SubconeCtssPassUniform {
+    fn from(u: CtssUniform) -> Self {
+        SubconeCtssPassUniform {
+            camera: u.camera.into(),
+            background: u.background,
+            projection: u.projection,
+            inverse_view_projection: u.inverse_view_projection,
+            forward: u.forward,
+            depth_offset: u.depth_offset,
+            origin: u.origin,
+            row_length: u.row_length,
+            pad: u._pad,
+        }
+    }
 }
 
 /// The SRAA pass's uniform for a `width × height` image resolved with
@@ -1104,8 +1163,8 @@ pub struct SubconeCtssPassUniform {
 /// `buffers*`) when `projection` is null, else hardware depth written by
 /// `projection` (16 floats, column-major, the host's projection matrix;
 /// `shaders/sraa/msaa*`) with `depth_miss` the depth of a miss. `exposure`
-/// is the tone-mapped resolve's (0 for the linear one). The same values
-/// the Rust `SraaPass` writes.
+/// is the tone-mapped resolve's (0 for the linear one). The values the
+/// Rust `SraaPass` writes (the kernels' `SraaFrame::new`).
 ///
 /// Errors: null `params` or `out`; a zero size; non-finite parameters,
 /// projection or `depth_miss`; a negative or non-finite `exposure`.
@@ -1136,26 +1195,19 @@ pub unsafe extern "C" fn subcone_sraa_pass_uniform(
             // SAFETY: forwarded contract (null: linear depth).
             let m = unsafe { slice(projection, if projection.is_null() { 0 } else { 16 }) }?;
             finite(m)?;
-            // The column-major entries (2,2), (2,3) of column 2 and 3 as the
-            // pass's `[m[2][2], m[3][2], m[2][3], m[3][3]]`.
-            let (coefficients, miss) = match m {
-                [] => ([0.0; 4], 0.0),
-                m => ([m[10], m[14], m[11], m[15]], depth_miss),
+            // Column c of the column-major matrix is m[4c..4c + 4].
+            let hardware_depth = (!m.is_empty()).then(|| {
+                let column = |c: usize| [m[4 * c], m[4 * c + 1], m[4 * c + 2], m[4 * c + 3]];
+                ([column(0), column(1), column(2), column(3)], depth_miss)
+            });
+            let resolve = if exposure > 0.0 {
+                ResolveSpace::ToneMapped { exposure }
+            } else {
+                ResolveSpace::Linear
             };
-            let uniform = SubconeSraaPassUniform {
-                sraa: p.into(),
-                projection: coefficients,
-                width,
-                height,
-                depth_miss: miss,
-                albedo_tolerance: ALBEDO_TOLERANCE,
-                origin_x: 0,
-                origin_y: 0,
-                exposure,
-                pad: 0,
-            };
+            let frame = SraaFrame::new(p, (0, 0), (width, height), hardware_depth, resolve);
             // SAFETY: forwarded contract.
-            Ok(unsafe { write(out, uniform) })
+            Ok(unsafe { write(out, frame.into()) })
         })())
     })
 }
@@ -1165,7 +1217,8 @@ pub unsafe extern "C" fn subcone_sraa_pass_uniform(
 /// view `fov_y` radians, a `width × height` image and `background`: pixel
 /// `(x, y)` is the cone around the ray through `(x + ½, y + ½)`, exactly the
 /// rays of the Rust `CtssCamera` (the kernels' `PinholeCamera`), which
-/// [`subcone_ctss_trace`] takes as `origin`, `dir` and `up_hint`.
+/// [`subcone_ctss_trace`] takes as `origin`, `dir` and `up_hint`. The values
+/// the Rust `CtssPass` writes (the kernels' `CtssUniform::pinhole`).
 ///
 /// Errors: null `out`; a zero size; non-finite or degenerate camera
 /// vectors (zero, or `forward` within a sine of 10⁻⁴ of parallel to
@@ -1215,37 +1268,18 @@ pub unsafe extern "C" fn subcone_ctss_pass_uniform(
                 (0.5 * fov_y).tan(),
                 (width, height),
             );
-            let uniform = SubconeCtssPassUniform {
-                position: camera.position,
-                width: camera.width,
-                forward: camera.forward,
-                height: camera.height,
-                right: camera.right,
-                tan_half_fov: camera.tan_half_fov,
-                up: camera.up,
-                pad0: 0,
-                jitter: camera.jitter,
-                pad1: [0; 2],
-                background: background.to_array(),
-                projection: 0,
-                inverse_view_projection: [0.0; 16],
-                depth_axis: forward.to_array(),
-                depth_offset: -forward.dot(eye),
-                origin: [0, 0],
-                row_length: width,
-                pad2: 0,
-            };
+            let uniform = CtssUniform::pinhole(camera, background, [0, 0], width);
             // SAFETY: forwarded contract.
-            Ok(unsafe { write(out, uniform) })
+            Ok(unsafe { write(out, uniform.into()) })
         })())
     })
 }
 
 /// The unit direction of the ray through image point `(x, y)` (pixels, y
-/// down; a pixel's centre is `(x + ½, y + ½)`) of the pinhole camera in
+/// down; a pixel's centre is `(x + ½, y + ½)`) of the pinhole camera of
 /// `uniform`: the direction the CTSS shaders trace (`subcone_pinhole_dir`),
 /// to the bit on the CPU, for a host that traces the same pixel with
-/// [`subcone_ctss_trace`] (`origin` the uniform's `position`, `up_hint` its
+/// [`subcone_ctss_trace`] (`origin` the camera's `position`, `up_hint` its
 /// `up`).
 ///
 /// Errors: null pointers; a uniform that is not a pinhole (`projection`
@@ -1267,18 +1301,12 @@ pub unsafe extern "C" fn subcone_pinhole_ray(
             if u.projection != 0 {
                 return Err(SubconeStatus::InvalidArgument);
             }
-            finite(&[x, y, u.tan_half_fov])?;
-            for v in [u.forward, u.right, u.up] {
+            let camera = PinholeCamera::from(u.camera);
+            finite(&[x, y, camera.tan_half_fov])?;
+            for v in [camera.forward, camera.right, camera.up] {
                 finite(&v)?;
             }
-            finite(&u.jitter)?;
-            let camera = PinholeCamera::new(
-                Vec3::from(u.position),
-                (Vec3::from(u.forward), Vec3::from(u.right), Vec3::from(u.up)),
-                u.tan_half_fov,
-                (u.width, u.height),
-            )
-            .with_jitter(Vec2::from(u.jitter));
+            finite(&camera.jitter)?;
             // SAFETY: forwarded contract.
             Ok(unsafe { write(out, camera.ray_dir(Vec2::new(x, y)).into()) })
         })())

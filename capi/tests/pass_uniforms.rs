@@ -96,9 +96,17 @@ fn sraa_pass_uniform_matches_every_sraa_shader() {
 
 #[test]
 fn ctss_pass_uniform_and_params_match_every_ctss_shader() {
-    let c = fields!(SubconeCtssPassUniform: position, width, forward, height, right,
-        tan_half_fov, up, pad0, jitter, pad1: 2 x u32, background, projection,
-        inverse_view_projection, depth_axis, depth_offset, origin, row_length, pad2);
+    // The camera's members at its offset, then the uniform's own.
+    let at = offset_of!(SubconeCtssPassUniform, camera);
+    let mut c: Vec<(usize, usize)> = fields!(SubconePinholeCamera: position, width, forward,
+        height, right, tan_half_fov, up, pad0, jitter, pad1: 2 x u32)
+    .into_iter()
+    .map(|(o, s)| (at + o, s))
+    .collect();
+    c.extend(
+        fields!(SubconeCtssPassUniform: background, projection, inverse_view_projection,
+        forward, depth_offset, origin, row_length, pad),
+    );
     // naga lays out the matrix and the jitter as one member each, the
     // padding pair as one vec2<u32>: merge the C side's split elements.
     let merge = |v: Vec<(usize, usize)>| -> Vec<(usize, usize)> {
@@ -244,10 +252,10 @@ fn pass_uniforms_refuse_bad_input() {
             subcone_ctss_pass_uniform(eye, fwd, up, 0.8, 8, 6, v(0.1, 0.2, 0.3), &mut c),
             SubconeStatus::Ok
         );
-        assert_eq!((c.width, c.height, c.row_length), (8, 6, 8));
+        assert_eq!((c.camera.width, c.camera.height, c.row_length), (8, 6, 8));
+        assert_eq!(c.camera.forward, [0.0, 0.0, 1.0]);
         assert_eq!(c.forward, [0.0, 0.0, 1.0]);
-        assert_eq!(c.depth_axis, [0.0, 0.0, 1.0]);
-        assert!((c.tan_half_fov - 0.4f32.tan()).abs() < 1e-7);
+        assert!((c.camera.tan_half_fov - 0.4f32.tan()).abs() < 1e-7);
         // A tiny up_hint, whose cross product with forward has a subnormal
         // squared length (a fuzzing find): the frame is still orthonormal.
         let up_hint = v(0.0, 1e-20, 1e-20);
@@ -255,10 +263,14 @@ fn pass_uniforms_refuse_bad_input() {
             subcone_ctss_pass_uniform(eye, v(-1.0, 0.0, 0.0), up_hint, 0.8, 2, 2, eye, &mut c),
             SubconeStatus::Ok
         );
-        assert_eq!(c.right, [0.0, 0.70710677, -0.70710677]);
+        assert_eq!(c.camera.right, [0.0, 0.70710677, -0.70710677]);
         let len = |a: [f32; 3]| (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
-        assert!((len(c.right) - 1.0).abs() < 1e-6, "{:?}", c.right);
-        assert!((len(c.up) - 1.0).abs() < 1e-6, "{:?}", c.up);
+        assert!(
+            (len(c.camera.right) - 1.0).abs() < 1e-6,
+            "{:?}",
+            c.camera.right
+        );
+        assert!((len(c.camera.up) - 1.0).abs() < 1e-6, "{:?}", c.camera.up);
         // Within 10⁻⁴ of parallel the cross product cancels too much to be
         // orthogonal to forward (a second fuzzing find): no frame.
         let nearly = v(1.0, 1e-5, 0.0);

@@ -479,8 +479,9 @@ static int run_ctss(Host *h, const char *dir, uint32_t width, uint32_t height, i
         memcpy(gpu, bufs[2].mapped, 4 * n * sizeof *gpu);
     }
 
-    SubconeVec3 origin = {uniform.position[0], uniform.position[1], uniform.position[2]};
-    SubconeVec3 up_axis = {uniform.up[0], uniform.up[1], uniform.up[2]};
+    const SubconePinholeCamera *cam = &uniform.camera;
+    SubconeVec3 origin = {cam->position[0], cam->position[1], cam->position[2]};
+    SubconeVec3 up_axis = {cam->up[0], cam->up[1], cam->up[2]};
     double sum = 0.0, max = 0.0;
     for (uint32_t y = 0; y < height; y++) {
         for (uint32_t x = 0; x < width; x++) {

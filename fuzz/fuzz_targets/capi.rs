@@ -1026,7 +1026,7 @@ fn call(c: Call) {
             let mut o = Out::new(
                 out,
                 SubconeCtssPassUniform {
-                    width: 0xDEAD_BEEF,
+                    row_length: 0xDEAD_BEEF,
                     ..Default::default()
                 },
             );
@@ -1076,7 +1076,7 @@ fn call(c: Call) {
                 let unit =
                     |v: [f32; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2] - 1.0).abs() < 1e-3;
                 assert!(
-                    unit(u.forward) && unit(u.right) && unit(u.up),
+                    unit(u.camera.forward) && unit(u.camera.right) && unit(u.camera.up),
                     "{what}: {u:?}"
                 );
             }
@@ -1185,19 +1185,19 @@ fn call(c: Call) {
                         &mut u,
                     )
                 };
-                u.tan_half_fov = tan.0;
-                u.jitter = jitter.map(|j| j.0);
+                u.camera.tan_half_fov = tan.0;
+                u.camera.jitter = jitter.map(|j| j.0);
                 u.projection = projection % 4;
                 u
             });
             let mut o = Out::new(out, SENTINEL_V3);
             let s = unsafe { subcone_pinhole_ray(opt_ptr(&u), x.0, y.0, o.ptr()) };
             let finite_u = |u: &SubconeCtssPassUniform| {
-                [u.forward, u.right, u.up]
+                [u.camera.forward, u.camera.right, u.camera.up]
                     .iter()
                     .flatten()
-                    .chain(&u.jitter)
-                    .chain([&u.tan_half_fov])
+                    .chain(&u.camera.jitter)
+                    .chain([&u.camera.tan_half_fov])
                     .all(|v| v.is_finite())
             };
             Defects {

@@ -19,6 +19,8 @@
 //!   axis; not from either paper).
 //! - [`camera`]: the pinhole camera GPU shaders trace through, one uniform
 //!   and one ray rule.
+//! - [`uniforms`]: the uniforms of the GPU passes (SRAA, CTSS) and the
+//!   one way to fill them, shared by `subcone-passes` and the C ABI.
 //! - [`passes`]: which passes a technique needs on a scene, so nothing a scene does
 //!   not need is computed or allocated.
 //!
@@ -65,6 +67,7 @@ pub mod sraa;
 mod sum;
 pub mod taa;
 pub mod transparency;
+pub mod uniforms;
 pub mod wgsl;
 
 pub use glam;

@@ -9,7 +9,6 @@
 //! that writes its field once in Rust (a `ConeField`) and once in WGSL gets
 //! the same image from both (the example `host_ctss` measures it).
 
-use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3, Vec4};
 use subcone_kernels::aggregate::Weighting;
 use subcone_kernels::camera::PinholeCamera;
@@ -54,36 +53,8 @@ pub const SPHERE_TRACE_HOOK: &str =
 
 /// The frame's camera, background and rectangle; `CtssUniform` in
 /// `ctss.wgsl` (192 bytes).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-pub(crate) struct CtssUniform {
-    /// The pinhole ([`CtssView::Pinhole`]), or the eye and frame of a
-    /// [`CtssProjection`]; its width and height are the rectangle's.
-    pub(crate) camera: PinholeCamera,
-    pub(crate) background: [f32; 3],
-    /// [`PROJECTION_PINHOLE`], [`PROJECTION_PERSPECTIVE`] or
-    /// [`PROJECTION_ORTHOGRAPHIC`].
-    pub(crate) projection: u32,
-    /// NDC to world, column-major (a [`CtssProjection`]; zero for a
-    /// pinhole).
-    pub(crate) inverse_view_projection: [[f32; 4]; 4],
-    /// The unit forward axis: view depth of `x` is `forward·x + depth_offset`.
-    pub(crate) forward: [f32; 3],
-    pub(crate) depth_offset: f32,
-    /// The rectangle's first pixel in the output.
-    pub(crate) origin: [u32; 2],
-    /// The output's width: a buffer row's length.
-    pub(crate) row_length: u32,
-    pub(crate) _pad: u32,
-}
-
-/// [`CtssUniform::projection`]: the pinhole's rays (`subcone_pinhole_dir`).
-const PROJECTION_PINHOLE: u32 = 0;
-/// [`CtssUniform::projection`]: rays from the eye through the unprojected
-/// pixel.
-const PROJECTION_PERSPECTIVE: u32 = 1;
-/// [`CtssUniform::projection`]: parallel rays from the plane of view depth 0.
-const PROJECTION_ORTHOGRAPHIC: u32 = 2;
+pub(crate) use subcone_kernels::uniforms::CtssUniform;
+use subcone_kernels::uniforms::{PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE};
 
 /// A pinhole camera: the eye and an orthonormal frame. Pixel `(x, y)` of a
 /// `width × height` image (x right, y down) is the cone around the ray
@@ -911,25 +882,22 @@ impl CtssPass {
             }
         };
         let rect_size = (rect.size[0], rect.size[1]);
-        let (camera, projection, inverse, forward) = match view {
-            CtssView::Pinhole(c) => (
-                c.uniform(rect_size),
-                PROJECTION_PINHOLE,
-                Mat4::ZERO,
-                c.forward,
-            ),
-            CtssView::Projection(p) => p.uniform(params, rect_size)?,
-        };
-        let uniform = CtssUniform {
-            camera,
-            background: background.into(),
-            projection,
-            inverse_view_projection: inverse.to_cols_array_2d(),
-            forward: forward.into(),
-            depth_offset: -forward.dot(Vec3::from(camera.position)),
-            origin: rect.origin,
-            row_length: size.0,
-            _pad: 0,
+        let uniform = match view {
+            CtssView::Pinhole(c) => {
+                CtssUniform::pinhole(c.uniform(rect_size), background, rect.origin, size.0)
+            }
+            CtssView::Projection(p) => {
+                let (camera, projection, inverse, forward) = p.uniform(params, rect_size)?;
+                CtssUniform::new(
+                    camera,
+                    projection,
+                    inverse.to_cols_array_2d(),
+                    forward,
+                    background,
+                    rect.origin,
+                    size.0,
+                )
+            }
         };
         self.pipeline.encode(
             device,

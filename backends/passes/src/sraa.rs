@@ -17,9 +17,8 @@
 //! reconstruction loop, `subcone_kernels::sraa::RECONSTRUCT_WGSL`); this
 //! module binds the host's textures to it (`sraa.wgsl`).
 
-use bytemuck::{Pod, Zeroable};
 use subcone_kernels::passes::MAX_LIGHTS;
-use subcone_kernels::sraa::{ResolveSpace, ShadedPosition, SraaParams, ALBEDO_TOLERANCE};
+use subcone_kernels::sraa::{ResolveSpace, ShadedPosition, SraaParams};
 
 use crate::bind::{self, check_buffer, required, Bound, Expect, Group, PassPipeline, Rect};
 use crate::bind::{
@@ -40,26 +39,7 @@ pub(crate) const SRAA_WGSL: &str = include_str!("sraa.wgsl");
 pub use subcone_kernels::sraa::RECONSTRUCT_WGSL;
 
 /// The pass's constants; `SraaFrame` in `sraa.wgsl` (80 bytes).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-pub(crate) struct SraaFrame {
-    pub(crate) sraa: SraaParams,
-    /// Column-major `m[2][2], m[3][2], m[2][3], m[3][3]` of the projection.
-    pub(crate) projection: [f32; 4],
-    pub(crate) width: u32,
-    pub(crate) height: u32,
-    pub(crate) depth_miss: f32,
-    pub(crate) albedo_tolerance: f32,
-    /// The top-left pixel of the rect resolved ([`SraaPass::encode_rect`];
-    /// 0 for the whole texture and for buffers); `width` and `height` are
-    /// the rect's.
-    pub(crate) origin_x: u32,
-    pub(crate) origin_y: u32,
-    /// The tone-mapped resolve's exposure (read only with
-    /// [`ResolveSpace::ToneMapped`]).
-    pub(crate) exposure: f32,
-    pub(crate) _pad: u32,
-}
+pub(crate) use subcone_kernels::uniforms::SraaFrame;
 
 /// How a shader declares a hardware depth texture ([`DepthKind::Hardware`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -1094,10 +1074,9 @@ impl SraaPass {
             ));
         }
         let region = self.check(inputs, rect)?;
-        let m = inputs.projection;
-        let (projection, depth_miss) = match self.desc.depth {
-            DepthKind::LinearView => ([0.0; 4], 0.0),
-            DepthKind::Hardware { miss } => ([m[2][2], m[3][2], m[2][3], m[3][3]], miss),
+        let hardware_depth = match self.desc.depth {
+            DepthKind::LinearView => None,
+            DepthKind::Hardware { miss } => Some((inputs.projection, miss)),
         };
         let mut views: Vec<(&'static str, Bound<'_>)> = Vec::with_capacity(16);
         match inputs.geometry {
@@ -1133,7 +1112,7 @@ impl SraaPass {
             queue,
             encoder,
             region,
-            (projection, depth_miss),
+            hardware_depth,
             &views,
             timestamps,
         )
@@ -1224,15 +1203,15 @@ impl SraaPass {
             queue,
             encoder,
             Rect::whole(inputs.size),
-            ([0.0; 4], 0.0),
+            None,
             &bound,
             timestamps,
         )
     }
 
     /// Record one frame's `rect` over the `bound` resources, with the
-    /// projection's z and w rows and the depth of a miss for hardware depth
-    /// (`([0.0; 4], 0.0)` for linear view depth).
+    /// projection and the depth of a miss for hardware depth (`None` for
+    /// linear view depth).
     #[allow(clippy::too_many_arguments)]
     fn record(
         &self,
@@ -1240,26 +1219,17 @@ impl SraaPass {
         queue: &Queue,
         encoder: &mut CommandEncoder,
         rect: Rect,
-        (projection, depth_miss): ([f32; 4], f32),
+        hardware_depth: Option<([[f32; 4]; 4], f32)>,
         bound: &[(&'static str, Bound<'_>)],
         timestamps: Option<ComputePassTimestampWrites<'_>>,
     ) -> Result<(), PassError> {
-        let exposure = match self.desc.resolve {
-            ResolveSpace::ToneMapped { exposure } => exposure,
-            ResolveSpace::Linear => 0.0,
-        };
-        let frame = SraaFrame {
-            sraa: self.desc.params,
-            projection,
-            width: rect.width,
-            height: rect.height,
-            depth_miss,
-            albedo_tolerance: ALBEDO_TOLERANCE,
-            origin_x: rect.x,
-            origin_y: rect.y,
-            exposure,
-            _pad: 0,
-        };
+        let frame = SraaFrame::new(
+            self.desc.params,
+            (rect.x, rect.y),
+            (rect.width, rect.height),
+            hardware_depth,
+            self.desc.resolve,
+        );
         self.pipeline.encode(
             device,
             queue,
