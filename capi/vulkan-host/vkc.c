@@ -492,16 +492,16 @@ static int check_dispatch_args(const VkcContext *ctx, const uint32_t *spirv, siz
     for (i = 0; i < binding_count; i++) {
         const VkcBinding *b = &bindings[i];
         VkDeviceSize range_limit;
+        for (j = 0; j < i; j++) {
+            if (bindings[j].binding == b->binding) {
+                fail(err, err_len, "vkc_dispatch: binding %u appears twice", (unsigned)b->binding);
+                return 1;
+            }
+        }
         if (b->type == VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE || b->type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE) {
             if (b->image == NULL || b->image->view == VK_NULL_HANDLE) {
                 fail(err, err_len, "vkc_dispatch: binding %u has no image", (unsigned)b->binding);
                 return 1;
-            }
-            for (j = 0; j < i; j++) {
-                if (bindings[j].binding == b->binding) {
-                    fail(err, err_len, "vkc_dispatch: binding %u appears twice", (unsigned)b->binding);
-                    return 1;
-                }
             }
             continue;
         }
@@ -526,12 +526,6 @@ static int check_dispatch_args(const VkcContext *ctx, const uint32_t *spirv, siz
                  b->type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ? "uniform" : "storage",
                  (unsigned long long)range_limit);
             return 1;
-        }
-        for (j = 0; j < i; j++) {
-            if (bindings[j].binding == b->binding) {
-                fail(err, err_len, "vkc_dispatch: binding %u appears twice", (unsigned)b->binding);
-                return 1;
-            }
         }
     }
     return 0;
