@@ -98,8 +98,15 @@ struct Slots {
     hlsl: String,
     /// GLSL `layout(binding = n)`.
     glsl: u32,
-    /// MSL `[[buffer(n)]]` or `[[texture(n)]]`.
-    msl: String,
+    /// MSL `[[buffer(n)]]` for a buffer, `[[texture(n)]]` for a texture
+    /// ([`msl_slot`]): each kind counts its own slots.
+    msl: u8,
+}
+
+/// MSL's spelling of a binding's slot.
+fn msl_slot(kind: &BindingKind, index: u8) -> String {
+    let space = if is_buffer(kind) { "buffer" } else { "texture" };
+    format!("{space}({index})")
 }
 
 /// HLSL's register class of a binding: constant buffers `b`, what the
@@ -120,20 +127,19 @@ fn is_buffer(kind: &BindingKind) -> bool {
 }
 
 /// The slots of every binding, and the MSL slot of the buffer of runtime
-/// array sizes (naga's `_buffer_sizes`: one `u32` per runtime-sized
-/// storage buffer, in binding order), after the last buffer.
+/// array sizes (naga's `_buffer_sizes`), after the last buffer.
 fn slots(bindings: &[BindingEntry]) -> (Vec<Slots>, u8) {
     let (mut buffers, mut textures) = (0u8, 0u8);
     let list = bindings
         .iter()
         .map(|b| {
-            let msl = if is_buffer(&b.kind) {
-                buffers += 1;
-                format!("buffer({})", buffers - 1)
+            let counter = if is_buffer(&b.kind) {
+                &mut buffers
             } else {
-                textures += 1;
-                format!("texture({})", textures - 1)
+                &mut textures
             };
+            let msl = *counter;
+            *counter += 1;
             Slots {
                 hlsl: format!(
                     "register({}{}, space{})",
@@ -250,18 +256,15 @@ fn msl_source(
         .iter()
         .zip(slots)
         .map(|(b, slot)| {
-            let index: u8 = slot.msl[slot.msl.find('(').unwrap_or(0) + 1..slot.msl.len() - 1]
-                .parse()
-                .unwrap_or(0);
             let target = if is_buffer(&b.kind) {
                 msl::BindTarget {
-                    buffer: Some(index),
+                    buffer: Some(slot.msl),
                     mutable: matches!(b.kind, BindingKind::Storage { read_only: false }),
                     ..Default::default()
                 }
             } else {
                 msl::BindTarget {
-                    texture: Some(index),
+                    texture: Some(slot.msl),
                     mutable: matches!(b.kind, BindingKind::StorageTexture { .. }),
                     ..Default::default()
                 }
@@ -500,7 +503,7 @@ fn translate(s: &StandaloneShader) -> Result<(Vec<OutputFile>, serde_json::Value
                 } else {
                     ""
                 },
-                "msl": slot.msl,
+                "msl": msl_slot(&b.kind, slot.msl),
                 "layout": binding_layout(&m, &layouter, &b.name),
             })
         })
