@@ -14,7 +14,8 @@
 //!
 //! Asserted inside the documented domain of `SdfNode` ("for finite `p`, with
 //! `|p|` and every size well inside f32 range, say below 10¹⁸"): `eval` and
-//! both values of `eval_split` are finite, and the split's step never exceeds
+//! the split's step are finite, its surface distance finite or +∞ (no object
+//! evaluated: a scatter's empty cell), and the split's step never exceeds
 //! its surface distance; a point outside the bounding box is outside the
 //! surface; an exact tree is 1-Lipschitz. The harness decides "inside the
 //! domain" conservatively from every parameter the program used: the sum of
@@ -472,8 +473,10 @@ fn check_tree(node: &SdfNode, input: &Input, dom: &Domain) {
             d.is_finite(),
             "eval({p}) = {d} inside the domain (magnitude {mag:e})"
         );
+        // The surface distance is +∞ where no object is evaluated (a
+        // scatter's empty cell, `SplitDistance::surface`), never NaN or −∞.
         assert!(
-            safe.is_finite() && surface.is_finite(),
+            safe.is_finite() && (surface.is_finite() || surface == f32::INFINITY),
             "eval_split({p}) = ({safe}, {surface}) inside the domain"
         );
         // Rounding: a few ulps of the largest magnitude involved.

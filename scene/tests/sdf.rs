@@ -519,6 +519,40 @@ fn scatter_validation() {
     assert!(SdfNode::scatter(c, vec![SdfNode::plane(Vec3::Y, 0.0).unwrap()]).is_err());
 }
 
+/// `eval_split` in a scatter's empty cell: no surface (`+∞`), a finite
+/// step bound; a full scatter has a surface in every cell.
+#[test]
+fn an_empty_scatter_cell_has_no_surface_and_a_finite_step() {
+    let t = || vec![SdfNode::cuboid(Vec3::splat(0.5)).unwrap()];
+    let centres =
+        || (0..8).flat_map(|x| (0..8).map(move |z| Vec3::new(2.0 * x as f32, 0.0, 2.0 * z as f32)));
+    let mut sparse = ScatterConfig::new(Vec3::splat(2.0), [0, 0, 0], [7, 0, 7], 3);
+    sparse.fill = 0.3;
+    let node = SdfNode::scatter(sparse, t()).unwrap();
+    let (mut empty, mut full) = (0, 0);
+    for p in centres() {
+        let s = node.eval_split(p);
+        assert!(s.safe.is_finite() && s.safe <= s.surface, "{p}: {s:?}");
+        assert_eq!(s.safe, node.eval(p).0, "{p}");
+        if s.surface == f32::INFINITY {
+            empty += 1;
+        } else {
+            assert!(s.surface.is_finite(), "{p}: {s:?}");
+            full += 1;
+        }
+    }
+    assert!(
+        empty > 0 && full > 0,
+        "{empty} empty and {full} occupied cells"
+    );
+    let dense = ScatterConfig::new(Vec3::splat(2.0), [0, 0, 0], [7, 0, 7], 3);
+    let node = SdfNode::scatter(dense, t()).unwrap();
+    for p in centres() {
+        let s = node.eval_split(p);
+        assert!(s.safe.is_finite() && s.surface.is_finite(), "{p}: {s:?}");
+    }
+}
+
 #[test]
 fn arbitrary_parameters_never_panic() {
     let mut rng = Rng(7);

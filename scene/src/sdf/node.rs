@@ -26,6 +26,9 @@ pub struct SplitDistance {
     /// capped at repetition cell walls (plus their margin).
     pub safe: f32,
     /// The distance to the surface itself: occlusion, hits and normals use it.
+    /// `+∞` where no object is evaluated (a scatter's empty cell, which has
+    /// no surface of its own; the step bound is finite there), never NaN or
+    /// `−∞` for a point in [`SdfNode`]'s domain.
     pub surface: f32,
     /// The material of the nearest object.
     pub material: u32,
