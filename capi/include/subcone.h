@@ -331,6 +331,18 @@ typedef struct SubconeTaaParams {
   uint32_t pad;
 } SubconeTaaParams;
 
+// The TAA pass's origin (`TaaOrigin`, binding `taa_origin` of
+// `shaders/taa/*`; 16 bytes): the first pixel of the rect resolved, zero
+// for whole textures.
+typedef struct SubconeTaaPassOrigin {
+  // The rect's first column.
+  uint32_t x;
+  // Its first row.
+  uint32_t y;
+  // Padding; write 0.
+  uint32_t pad[2];
+} SubconeTaaPassOrigin;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -648,6 +660,56 @@ enum SubconeStatus subcone_taa_params(uint32_t width,
 // # Safety
 // `x` and `y` are null or writable.
 enum SubconeStatus subcone_taa_jitter(uint32_t frame, uint32_t phases, float *x, float *y);
+
+// FXAA 3.11 (quality preset 12, `subcone_kernels::fxaa`) over a whole
+// `width × height` image on the CPU: what `shaders/fxaa/*` computes, and
+// the same loop as the Rust CPU backend's post-process. `src` and `dst` are
+// `4·width·height` floats, RGBA row by row, linear colour (alpha ignored
+// on input, written as 1). Each texel is clamped to `[0, 1]` (NaN reads as
+// 0) and sRGB-encoded with its luma before it is filtered, as the shader
+// does through its fetch; reads outside the image clamp to its edge. Every
+// output is finite and in `[0, 1]`.
+//
+// Errors: null pointers; a zero size or lengths that do not match it;
+// non-finite parameters.
+//
+// # Safety
+// `params` is null or valid; `src` is null or holds `src_len` floats;
+// `dst` is null or holds `dst_len` writable floats that do not overlap
+// `src`.
+enum SubconeStatus subcone_fxaa_image(const struct SubconeFxaaParams *params,
+                                      uint32_t width,
+                                      uint32_t height,
+                                      const float *src,
+                                      size_t src_len,
+                                      float *dst,
+                                      size_t dst_len);
+
+// One TAA resolve (`subcone_kernels::taa::resolve_pixel`: Karis 2014 with
+// Salvi's variance clipping) of every pixel of a `params.width ×
+// params.height` image on the CPU: what `shaders/taa/*` computes for a
+// whole texture. `current` and `history` are `4·width·height` floats (RGBA
+// row by row, linear radiance, alpha ignored), `velocity` `2·width·height`
+// (each pixel's motion in pixels, current minus previous); `out` receives
+// `4·width·height` floats, alpha 1. With `params.history_frames == 0` the
+// history is not read and may be null with length 0. Every output is
+// finite and non-negative, whatever the colours and velocities hold.
+//
+// Errors: null pointers where data is required; a zero size or lengths
+// that do not match it; non-finite parameters.
+//
+// # Safety
+// Every pointer is null or points to as many valid floats as its length
+// says; `out` does not overlap the inputs.
+enum SubconeStatus subcone_taa_resolve(const struct SubconeTaaParams *params,
+                                       const float *current,
+                                       size_t current_len,
+                                       const float *velocity,
+                                       size_t velocity_len,
+                                       const float *history,
+                                       size_t history_len,
+                                       float *out,
+                                       size_t out_len);
 
 #ifdef __cplusplus
 }  // extern "C"

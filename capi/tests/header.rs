@@ -43,3 +43,25 @@ fn the_version_constants_are_the_crate_version() {
         SUBCONE_VERSION_MAJOR << 16 | SUBCONE_VERSION_MINOR << 8 | SUBCONE_VERSION_PATCH
     );
 }
+
+/// Every public `#[repr(C)]` struct of `src/lib.rs` is in the header: a C
+/// host cannot fill a struct it cannot name (cbindgen writes only what an
+/// exported function reaches, unless `cbindgen.toml` includes it).
+#[test]
+fn every_public_struct_is_in_the_header() {
+    let crate_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let src = std::fs::read_to_string(crate_dir.join("src/lib.rs")).unwrap();
+    let header = std::fs::read_to_string(crate_dir.join("include/subcone.h")).unwrap();
+    let structs: Vec<&str> = src
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix("pub struct "))
+        .filter_map(|rest| rest.split([' ', '{', '<', '(']).next())
+        .collect();
+    assert!(structs.len() > 10, "found only {structs:?}");
+    for name in structs {
+        assert!(
+            header.contains(&format!("typedef struct {name} {{")),
+            "{name} is not in capi/include/subcone.h: add it to `include` in cbindgen.toml"
+        );
+    }
+}

@@ -531,6 +531,35 @@ enum Call {
         frame: Option<Frame>,
     },
     CtssTrace(Trace),
+    FxaaImage(FxaaImage),
+    TaaResolve(TaaResolve),
+}
+
+/// A `subcone_fxaa_image` call.
+#[derive(Arbitrary, Debug)]
+struct FxaaImage {
+    /// `(subpix, edge_threshold, edge_threshold_min)`, or a null pointer.
+    params: Option<[F; 3]>,
+    width: Size,
+    height: Size,
+    /// Every buffer of the length the size requires, none null.
+    consistent: bool,
+    src: Buf<F>,
+    dst: Buf<u8>,
+}
+
+/// A `subcone_taa_resolve` call.
+#[derive(Arbitrary, Debug)]
+struct TaaResolve {
+    /// `(exposure, min_current_weight, clip_gamma)`, `history_frames`,
+    /// width, height and `tone_mapped`, or a null pointer.
+    params: Option<([F; 3], u32, Size, Size, u32)>,
+    /// Every buffer of the length the size requires, none null.
+    consistent: bool,
+    current: Buf<F>,
+    velocity: Buf<F>,
+    history: Buf<F>,
+    out: Buf<u8>,
 }
 
 /// What a call's inputs allow it to return: `Ok` only when nothing is wrong,
@@ -1425,7 +1454,193 @@ fn call(c: Call) {
         }
         Call::SraaResolve { params, frame } => sraa_resolve(params, frame),
         Call::CtssTrace(t) => ctss_trace(t),
+        Call::FxaaImage(c) => fxaa_image(c),
+        Call::TaaResolve(c) => taa_resolve(c),
     }
+}
+
+/// Make every buffer of `bufs` the length the sizes require, not null.
+fn make_consistent(bufs: &mut [&mut Len], nulls: &mut [&mut Rarely]) {
+    for len in bufs.iter_mut() {
+        **len = Len::Needed;
+    }
+    for null in nulls.iter_mut() {
+        null.0 = false;
+    }
+}
+
+/// An output of `len` floats set to the sentinel, or null (when asked, or
+/// when too long to allocate).
+fn sentinel_out(buf: &Buf<u8>, needed: Option<usize>) -> (Option<Vec<f32>>, usize) {
+    let len = buf.len.get(needed);
+    let out = (!buf.null.0 && len <= MAX_ALLOC).then(|| vec![SENTINEL_F32; len]);
+    (out, len)
+}
+
+/// `out` untouched unless `s` is `Ok`; when it is, every value passes `ok`.
+fn check_out(
+    out: &Option<Vec<f32>>,
+    s: SubconeStatus,
+    what: &str,
+    ok: impl Fn(usize, f32) -> bool,
+) {
+    for (i, &v) in out.iter().flatten().enumerate() {
+        if s == SubconeStatus::Ok {
+            assert!(ok(i, v), "{what}: value {i} is {v}");
+        } else {
+            assert_eq!(
+                v.to_bits(),
+                SENTINEL_F32.to_bits(),
+                "{what}: wrote on {s:?}"
+            );
+        }
+    }
+}
+
+/// The pointer of an optional output.
+fn out_ptr(out: &mut Option<Vec<f32>>) -> *mut f32 {
+    out.as_mut()
+        .map_or(std::ptr::null_mut(), |o| o.as_mut_ptr())
+}
+
+/// A null pointer passed with a positive length: a null-pointer defect (a
+/// null pointer with length 0 is an empty buffer).
+fn null_with_data<T: Copy>(b: &Passed<T>) -> bool {
+    b.is_null() && b.len > 0
+}
+
+fn fxaa_image(mut c: FxaaImage) {
+    let what = "subcone_fxaa_image";
+    if c.consistent {
+        make_consistent(
+            &mut [&mut c.src.len, &mut c.dst.len],
+            &mut [&mut c.src.null, &mut c.dst.null],
+        );
+    }
+    let params = c.params.map(|[a, b, d]| SubconeFxaaParams {
+        subpix: a.0,
+        edge_threshold: b.0,
+        edge_threshold_min: d.0,
+        pad: 0.0,
+    });
+    let (w, h) = (c.width.0 as usize, c.height.0 as usize);
+    let needed = w.checked_mul(h).and_then(|n| n.checked_mul(4));
+    let src = c.src.pass(needed, |v| v.0);
+    let (mut dst, dst_len) = sentinel_out(&c.dst, needed);
+    let s = unsafe {
+        subcone_fxaa_image(
+            opt_ptr(&params),
+            c.width.0,
+            c.height.0,
+            src.ptr(),
+            src.len,
+            out_ptr(&mut dst),
+            dst_len,
+        )
+    };
+    let lengths_ok = w > 0 && h > 0 && needed == Some(src.len) && needed == Some(dst_len);
+    Defects {
+        null: params.is_none() || dst.is_none() || null_with_data(&src),
+        invalid: params.is_some_and(|p| {
+            ![p.subpix, p.edge_threshold, p.edge_threshold_min]
+                .iter()
+                .all(|v| v.is_finite())
+        }),
+        size: !lengths_ok,
+    }
+    .check(s, what);
+    // Colour in [0, 1], alpha 1.
+    check_out(&dst, s, what, |i, v| {
+        if i % 4 == 3 {
+            v == 1.0
+        } else {
+            (0.0..=1.0).contains(&v)
+        }
+    });
+}
+
+fn taa_resolve(mut c: TaaResolve) {
+    let what = "subcone_taa_resolve";
+    if c.consistent {
+        make_consistent(
+            &mut [
+                &mut c.current.len,
+                &mut c.velocity.len,
+                &mut c.history.len,
+                &mut c.out.len,
+            ],
+            &mut [
+                &mut c.current.null,
+                &mut c.velocity.null,
+                &mut c.history.null,
+                &mut c.out.null,
+            ],
+        );
+    }
+    let params = c.params.map(
+        |([exposure, min_weight, gamma], history_frames, w, h, tone_mapped)| SubconeTaaParams {
+            exposure: exposure.0,
+            min_current_weight: min_weight.0,
+            clip_gamma: gamma.0,
+            history_frames,
+            width: w.0,
+            height: h.0,
+            tone_mapped,
+            pad: 0,
+        },
+    );
+    let (w, h) = params.map_or((0, 0), |p| (p.width as usize, p.height as usize));
+    let n = w.checked_mul(h);
+    let rgba = n.and_then(|n| n.checked_mul(4));
+    let current = c.current.pass(rgba, |v| v.0);
+    let velocity = c.velocity.pass(n.and_then(|n| n.checked_mul(2)), |v| v.0);
+    let history = c.history.pass(rgba, |v| v.0);
+    let (mut out, out_len) = sentinel_out(&c.out, rgba);
+    let s = unsafe {
+        subcone_taa_resolve(
+            opt_ptr(&params),
+            current.ptr(),
+            current.len,
+            velocity.ptr(),
+            velocity.len,
+            history.ptr(),
+            history.len,
+            out_ptr(&mut out),
+            out_len,
+        )
+    };
+    let reads_history = params.is_some_and(|p| p.history_frames != 0);
+    let lengths_ok = w > 0
+        && h > 0
+        && rgba == Some(current.len)
+        && n.and_then(|n| n.checked_mul(2)) == Some(velocity.len)
+        && rgba == Some(out_len)
+        && (history.len == 0 && !reads_history || rgba == Some(history.len));
+    Defects {
+        null: params.is_none()
+            || out.is_none()
+            || [
+                null_with_data(&current),
+                null_with_data(&velocity),
+                null_with_data(&history),
+            ]
+            .contains(&true),
+        invalid: params.is_some_and(|p| {
+            ![p.exposure, p.min_current_weight, p.clip_gamma]
+                .iter()
+                .all(|v| v.is_finite())
+        }),
+        size: params.is_some() && !lengths_ok,
+    }
+    .check(s, what);
+    // Finite and non-negative colour, alpha 1.
+    check_out(&out, s, what, |i, v| {
+        if i % 4 == 3 {
+            v == 1.0
+        } else {
+            v.is_finite() && v >= 0.0
+        }
+    });
 }
 
 fuzz_target!(|calls: Vec<Call>| {
