@@ -22,6 +22,10 @@ typedef struct DispatchObjects {
     VkDescriptorSetLayout set_layout;
     VkPipelineLayout pipeline_layout;
     VkShaderModule module;
+    /* A draw's fragment shader, render pass and framebuffer. */
+    VkShaderModule fragment_module;
+    VkRenderPass render_pass;
+    VkFramebuffer framebuffer;
     VkPipeline pipeline;
     VkDescriptorPool descriptor_pool;
     VkCommandBuffer cmd;
@@ -35,6 +39,8 @@ struct VkcContext {
     VkPhysicalDeviceMemoryProperties memory;
     VkDevice device;
     uint32_t queue_family;
+    /* Whether the queue family supports graphics (vkc_draw needs it). */
+    int graphics;
     VkQueue queue;
     VkCommandPool pool;
     /* Two timestamps around the dispatch; VK_NULL_HANDLE when the queue
@@ -56,6 +62,9 @@ static void release_objects(VkcContext *ctx, DispatchObjects *o) {
     vkDestroyDescriptorPool(ctx->device, o->descriptor_pool, NULL);
     vkDestroyPipeline(ctx->device, o->pipeline, NULL);
     vkDestroyShaderModule(ctx->device, o->module, NULL);
+    vkDestroyShaderModule(ctx->device, o->fragment_module, NULL);
+    vkDestroyFramebuffer(ctx->device, o->framebuffer, NULL);
+    vkDestroyRenderPass(ctx->device, o->render_pass, NULL);
     vkDestroyPipelineLayout(ctx->device, o->pipeline_layout, NULL);
     vkDestroyDescriptorSetLayout(ctx->device, o->set_layout, NULL);
     memset(o, 0, sizeof *o);
@@ -128,7 +137,9 @@ static int device_rank(VkPhysicalDeviceType t) {
 
 /* The first queue family with compute, or -1. Any such family will do: one
  * dispatch at a time gains nothing from a dedicated compute queue. */
-static int compute_family(VkPhysicalDevice pd, uint32_t *family, uint32_t *timestamp_bits) {
+/* The first queue family with compute, preferring one that also has
+ * graphics (vkc_draw's raster pass runs on the same queue). */
+static int compute_family(VkPhysicalDevice pd, uint32_t *family, uint32_t *timestamp_bits, int *graphics) {
     VkQueueFamilyProperties *props;
     uint32_t n = 0, i;
     int found = -1;
@@ -138,12 +149,13 @@ static int compute_family(VkPhysicalDevice pd, uint32_t *family, uint32_t *times
     if (props == NULL) return -1;
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, props);
     for (i = 0; i < n; i++) {
-        if ((props[i].queueFlags & VK_QUEUE_COMPUTE_BIT) && props[i].queueCount > 0) {
-            *family = i;
-            *timestamp_bits = props[i].timestampValidBits;
-            found = 0;
-            break;
-        }
+        const VkQueueFlags flags = props[i].queueFlags;
+        if (!(flags & VK_QUEUE_COMPUTE_BIT) || props[i].queueCount == 0) continue;
+        if (found == 0 && (*graphics || !(flags & VK_QUEUE_GRAPHICS_BIT))) continue;
+        *family = i;
+        *timestamp_bits = props[i].timestampValidBits;
+        *graphics = (flags & VK_QUEUE_GRAPHICS_BIT) != 0;
+        found = 0;
     }
     free(props);
     return found;
@@ -166,7 +178,7 @@ static uint32_t instance_api_version(void) {
 static int pick_device(VkcContext *ctx, char *err, size_t err_len) {
     VkPhysicalDevice *devices = NULL;
     uint32_t n = 0, i, family = 0, bits = 0;
-    int best = -1, best_rank = 0, rc = 1;
+    int best = -1, best_rank = 0, rc = 1, graphics = 0;
     const char *override = getenv("VKC_DEVICE");
     VkResult r = vkEnumeratePhysicalDevices(ctx->instance, &n, NULL);
     if (r != VK_SUCCESS) {
@@ -201,7 +213,7 @@ static int pick_device(VkcContext *ctx, char *err, size_t err_len) {
             goto done;
         }
         vkGetPhysicalDeviceProperties(devices[index], &ctx->properties);
-        if (compute_family(devices[index], &family, &bits) != 0) {
+        if (compute_family(devices[index], &family, &bits, &graphics) != 0) {
             fail(err, err_len, "VKC_DEVICE=%lu (%s, %s) has no compute queue", index, ctx->properties.deviceName,
                  device_type_name(ctx->properties.deviceType));
             goto done;
@@ -211,8 +223,8 @@ static int pick_device(VkcContext *ctx, char *err, size_t err_len) {
         for (i = 0; i < n; i++) {
             VkPhysicalDeviceProperties p;
             uint32_t f, b;
-            int rank;
-            if (compute_family(devices[i], &f, &b) != 0) continue;
+            int rank, g = 0;
+            if (compute_family(devices[i], &f, &b, &g) != 0) continue;
             vkGetPhysicalDeviceProperties(devices[i], &p);
             rank = device_rank(p.deviceType);
             if (best < 0 || rank < best_rank) {
@@ -220,6 +232,7 @@ static int pick_device(VkcContext *ctx, char *err, size_t err_len) {
                 best_rank = rank;
                 family = f;
                 bits = b;
+                graphics = g;
             }
         }
         if (best < 0) {
@@ -230,6 +243,7 @@ static int pick_device(VkcContext *ctx, char *err, size_t err_len) {
     }
     ctx->physical = devices[best];
     ctx->queue_family = family;
+    ctx->graphics = graphics;
     ctx->timestamp_bits = bits;
     vkGetPhysicalDeviceMemoryProperties(ctx->physical, &ctx->memory);
     rc = 0;
@@ -354,6 +368,10 @@ void vkc_destroy(VkcContext *ctx) {
 
 const char *vkc_device_name(const VkcContext *ctx) {
     return ctx == NULL ? "" : ctx->properties.deviceName;
+}
+
+int vkc_standard_sample_locations(const VkcContext *ctx) {
+    return ctx != NULL && ctx->properties.limits.standardSampleLocations == VK_TRUE;
 }
 
 int vkc_device_is_cpu(const VkcContext *ctx) {
@@ -866,10 +884,10 @@ cleanup:
     return rc;
 }
 
-static VkImageSubresourceRange all_layers(uint32_t layers) {
+static VkImageSubresourceRange all_layers(VkImageAspectFlags aspect, uint32_t layers) {
     VkImageSubresourceRange range;
     memset(&range, 0, sizeof range);
-    range.aspectMask = VK_IMAGE_ASPECT_COLOR_BIT;
+    range.aspectMask = aspect;
     range.levelCount = 1;
     range.layerCount = layers;
     return range;
@@ -888,14 +906,18 @@ static void record_to_general(VkCommandBuffer cmd, const void *user) {
     b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     b.image = img->image;
-    b.subresourceRange = all_layers(img->layers);
+    b.subresourceRange = all_layers(img->aspect, img->layers);
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, NULL, 0, NULL,
                          1, &b);
 }
 
-int vkc_image_create(VkcContext *ctx, uint32_t width, uint32_t height, uint32_t layers, int array_view,
-                     VkFormat format, VkDeviceSize texel_bytes, VkcImage *out, char *err, size_t err_len) {
+/* The image of vkc_image_create (one sample, a colour aspect) and of
+ * vkc_image_create_attachment. */
+static int image_create(VkcContext *ctx, uint32_t width, uint32_t height, uint32_t layers, int array_view,
+                        VkFormat format, VkDeviceSize texel_bytes, VkSampleCountFlagBits samples,
+                        VkImageUsageFlags usage, VkImageAspectFlags aspect, VkcImage *out, char *err,
+                        size_t err_len) {
     VkImageCreateInfo ici;
     VkImageViewCreateInfo vci;
     VkMemoryRequirements req;
@@ -923,17 +945,16 @@ int vkc_image_create(VkcContext *ctx, uint32_t width, uint32_t height, uint32_t 
     ici.extent.depth = 1;
     ici.mipLevels = 1;
     ici.arrayLayers = layers;
-    ici.samples = VK_SAMPLE_COUNT_1_BIT;
+    ici.samples = samples;
     ici.tiling = VK_IMAGE_TILING_OPTIMAL;
-    ici.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
-                VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    ici.usage = usage;
     ici.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     ici.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     r = vkCreateImage(ctx->device, &ici, NULL, &out->image);
     if (r != VK_SUCCESS) {
         out->image = VK_NULL_HANDLE;
-        fail(err, err_len, "vkCreateImage (format %d, %ux%u, %u layers) failed: %s (%d)", (int)format,
-             (unsigned)width, (unsigned)height, (unsigned)layers, result_name(r), (int)r);
+        fail(err, err_len, "vkCreateImage (format %d, %ux%u, %u layers, %u samples) failed: %s (%d)", (int)format,
+             (unsigned)width, (unsigned)height, (unsigned)layers, (unsigned)samples, result_name(r), (int)r);
         goto fail;
     }
     vkGetImageMemoryRequirements(ctx->device, out->image, &req);
@@ -963,7 +984,7 @@ int vkc_image_create(VkcContext *ctx, uint32_t width, uint32_t height, uint32_t 
     vci.image = out->image;
     vci.viewType = array_view ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
     vci.format = format;
-    vci.subresourceRange = all_layers(layers);
+    vci.subresourceRange = all_layers(aspect, layers);
     r = vkCreateImageView(ctx->device, &vci, NULL, &out->view);
     if (r != VK_SUCCESS) {
         out->view = VK_NULL_HANDLE;
@@ -975,6 +996,8 @@ int vkc_image_create(VkcContext *ctx, uint32_t width, uint32_t height, uint32_t 
     out->height = height;
     out->layers = layers;
     out->texel_bytes = texel_bytes;
+    out->samples = samples;
+    out->aspect = aspect;
     {
         DispatchObjects o;
         int rc;
@@ -987,6 +1010,28 @@ int vkc_image_create(VkcContext *ctx, uint32_t width, uint32_t height, uint32_t 
 fail:
     vkc_image_destroy(ctx, out);
     return 1;
+}
+
+int vkc_image_create(VkcContext *ctx, uint32_t width, uint32_t height, uint32_t layers, int array_view,
+                     VkFormat format, VkDeviceSize texel_bytes, VkcImage *out, char *err, size_t err_len) {
+    return image_create(ctx, width, height, layers, array_view, format, texel_bytes, VK_SAMPLE_COUNT_1_BIT,
+                        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                            VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                        VK_IMAGE_ASPECT_COLOR_BIT, out, err, err_len);
+}
+
+static int is_depth_format(VkFormat format) {
+    return format == VK_FORMAT_D16_UNORM || format == VK_FORMAT_X8_D24_UNORM_PACK32 || format == VK_FORMAT_D32_SFLOAT;
+}
+
+int vkc_image_create_attachment(VkcContext *ctx, uint32_t width, uint32_t height, VkFormat format,
+                                VkSampleCountFlagBits samples, VkcImage *out, char *err, size_t err_len) {
+    const int depth = is_depth_format(format);
+    /* texel_bytes only sizes copies, which an attachment refuses. */
+    return image_create(ctx, width, height, 1, 0, format, 1, samples,
+                        VK_IMAGE_USAGE_SAMPLED_BIT | (depth ? VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT
+                                                            : VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT),
+                        depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT, out, err, err_len);
 }
 
 void vkc_image_destroy(VkcContext *ctx, VkcImage *img) {
@@ -1045,6 +1090,10 @@ int vkc_image_copy(VkcContext *ctx, const VkcImage *img, const VkcBuffer *buffer
     if (ctx == NULL || img == NULL || buffer == NULL || img->image == VK_NULL_HANDLE ||
         buffer->buffer == VK_NULL_HANDLE) {
         fail(err, err_len, "vkc_image_copy: a NULL or destroyed context, image or buffer");
+        return 1;
+    }
+    if (img->samples != VK_SAMPLE_COUNT_1_BIT || img->aspect != VK_IMAGE_ASPECT_COLOR_BIT) {
+        fail(err, err_len, "vkc_image_copy: a multisampled or depth attachment cannot be copied; read it in a shader");
         return 1;
     }
     need = (VkDeviceSize)img->width * img->height * img->layers * img->texel_bytes;
@@ -1132,4 +1181,298 @@ fail:
     fclose(f);
     free(data);
     return 1;
+}
+
+typedef struct DrawJob {
+    const VkcDraw *draw;
+    VkPipeline pipeline;
+    VkPipelineLayout layout;
+    VkRenderPass render_pass;
+    VkFramebuffer framebuffer;
+} DrawJob;
+
+static void record_draw(VkCommandBuffer cmd, const void *user) {
+    const DrawJob *job = (const DrawJob *)user;
+    const VkcDraw *d = job->draw;
+    VkRenderPassBeginInfo bi;
+    VkClearValue clears[2];
+    VkMemoryBarrier after;
+    memset(clears, 0, sizeof clears);
+    memcpy(clears[0].color.float32, d->clear_color, sizeof d->clear_color);
+    clears[1].depthStencil.depth = d->clear_depth;
+    memset(&bi, 0, sizeof bi);
+    bi.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
+    bi.renderPass = job->render_pass;
+    bi.framebuffer = job->framebuffer;
+    bi.renderArea.extent.width = d->color->width;
+    bi.renderArea.extent.height = d->color->height;
+    bi.clearValueCount = 2;
+    bi.pClearValues = clears;
+    vkCmdBeginRenderPass(cmd, &bi, VK_SUBPASS_CONTENTS_INLINE);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, job->pipeline);
+    if (d->push_bytes > 0)
+        vkCmdPushConstants(cmd, job->layout, VK_SHADER_STAGE_VERTEX_BIT, 0, d->push_bytes, d->push);
+    vkCmdDraw(cmd, d->vertex_count, 1, 0, 0);
+    vkCmdEndRenderPass(cmd);
+    /* The attachments' writes before the next dispatch samples them. */
+    memset(&after, 0, sizeof after);
+    after.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+    after.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+    after.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+    vkCmdPipelineBarrier(cmd,
+                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
+                             VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &after, 0, NULL, 0, NULL);
+}
+
+static int check_draw_args(const VkcContext *ctx, const VkcDraw *d, char *err, size_t err_len) {
+    if (!ctx->graphics) {
+        fail(err, err_len, "vkc_draw: the device's compute queue (family %u) has no graphics",
+             (unsigned)ctx->queue_family);
+        return 1;
+    }
+    if (d->vertex_spirv == NULL || d->fragment_spirv == NULL || d->vertex_bytes == 0 || d->fragment_bytes == 0 ||
+        d->vertex_bytes % 4 != 0 || d->fragment_bytes % 4 != 0 || d->vertex_spirv[0] != SPIRV_MAGIC ||
+        d->fragment_spirv[0] != SPIRV_MAGIC) {
+        fail(err, err_len, "vkc_draw: a shader is missing or not SPIR-V");
+        return 1;
+    }
+    if (d->color == NULL || d->depth == NULL || d->color->image == VK_NULL_HANDLE ||
+        d->depth->image == VK_NULL_HANDLE) {
+        fail(err, err_len, "vkc_draw: a NULL or destroyed attachment");
+        return 1;
+    }
+    if (d->color->aspect != VK_IMAGE_ASPECT_COLOR_BIT || d->depth->aspect != VK_IMAGE_ASPECT_DEPTH_BIT ||
+        d->color->width != d->depth->width || d->color->height != d->depth->height ||
+        d->color->samples != d->depth->samples) {
+        fail(err, err_len, "vkc_draw: the attachments are not a colour and a depth image of one size and sample count");
+        return 1;
+    }
+    if (d->push_bytes % 4 != 0 || d->push_bytes > 128 || (d->push_bytes > 0 && d->push == NULL)) {
+        fail(err, err_len, "vkc_draw: push constants of %u bytes (a multiple of 4, at most 128)",
+             (unsigned)d->push_bytes);
+        return 1;
+    }
+    return 0;
+}
+
+int vkc_draw(VkcContext *ctx, const VkcDraw *d, char *err, size_t err_len) {
+    DispatchObjects o;
+    VkResult r;
+    int rc = 1;
+    memset(&o, 0, sizeof o);
+    if (err != NULL && err_len > 0) err[0] = '\0';
+    if (ctx == NULL || d == NULL) {
+        fail(err, err_len, "vkc_draw: %s is NULL", ctx == NULL ? "ctx" : "draw");
+        return 1;
+    }
+    if (check_draw_args(ctx, d, err, err_len) != 0) return 1;
+    {
+        /* Both attachments stay in GENERAL: loaded by a clear, stored for
+         * the dispatch that samples them. */
+        VkAttachmentDescription att[2];
+        VkAttachmentReference color_ref, depth_ref;
+        VkSubpassDescription sub;
+        VkSubpassDependency dep;
+        VkRenderPassCreateInfo ci;
+        memset(att, 0, sizeof att);
+        att[0].format = d->color->format;
+        att[1].format = d->depth->format;
+        for (int i = 0; i < 2; i++) {
+            att[i].samples = d->color->samples;
+            att[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+            att[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+            att[i].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+            att[i].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+            att[i].initialLayout = VK_IMAGE_LAYOUT_GENERAL;
+            att[i].finalLayout = VK_IMAGE_LAYOUT_GENERAL;
+        }
+        color_ref.attachment = 0;
+        color_ref.layout = VK_IMAGE_LAYOUT_GENERAL;
+        depth_ref.attachment = 1;
+        depth_ref.layout = VK_IMAGE_LAYOUT_GENERAL;
+        memset(&sub, 0, sizeof sub);
+        sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+        sub.colorAttachmentCount = 1;
+        sub.pColorAttachments = &color_ref;
+        sub.pDepthStencilAttachment = &depth_ref;
+        /* Earlier shader reads and transfers of the images (an earlier
+         * dispatch sampled them) before the clear writes them. */
+        memset(&dep, 0, sizeof dep);
+        dep.srcSubpass = VK_SUBPASS_EXTERNAL;
+        dep.dstSubpass = 0;
+        dep.srcStageMask = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
+        dep.dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
+                           VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+        dep.srcAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+        dep.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
+                            VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+        memset(&ci, 0, sizeof ci);
+        ci.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
+        ci.attachmentCount = 2;
+        ci.pAttachments = att;
+        ci.subpassCount = 1;
+        ci.pSubpasses = &sub;
+        ci.dependencyCount = 1;
+        ci.pDependencies = &dep;
+        r = vkCreateRenderPass(ctx->device, &ci, NULL, &o.render_pass);
+        if (r != VK_SUCCESS) {
+            o.render_pass = VK_NULL_HANDLE;
+            fail_vk(err, err_len, "vkCreateRenderPass", r);
+            goto cleanup;
+        }
+    }
+    {
+        VkImageView views[2];
+        VkFramebufferCreateInfo ci;
+        views[0] = d->color->view;
+        views[1] = d->depth->view;
+        memset(&ci, 0, sizeof ci);
+        ci.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
+        ci.renderPass = o.render_pass;
+        ci.attachmentCount = 2;
+        ci.pAttachments = views;
+        ci.width = d->color->width;
+        ci.height = d->color->height;
+        ci.layers = 1;
+        r = vkCreateFramebuffer(ctx->device, &ci, NULL, &o.framebuffer);
+        if (r != VK_SUCCESS) {
+            o.framebuffer = VK_NULL_HANDLE;
+            fail_vk(err, err_len, "vkCreateFramebuffer", r);
+            goto cleanup;
+        }
+    }
+    {
+        VkPushConstantRange range;
+        VkPipelineLayoutCreateInfo ci;
+        range.stageFlags = VK_SHADER_STAGE_VERTEX_BIT;
+        range.offset = 0;
+        range.size = d->push_bytes;
+        memset(&ci, 0, sizeof ci);
+        ci.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+        ci.pushConstantRangeCount = d->push_bytes > 0 ? 1 : 0;
+        ci.pPushConstantRanges = &range;
+        r = vkCreatePipelineLayout(ctx->device, &ci, NULL, &o.pipeline_layout);
+        if (r != VK_SUCCESS) {
+            o.pipeline_layout = VK_NULL_HANDLE;
+            fail_vk(err, err_len, "vkCreatePipelineLayout", r);
+            goto cleanup;
+        }
+    }
+    {
+        VkShaderModuleCreateInfo ci;
+        memset(&ci, 0, sizeof ci);
+        ci.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
+        ci.codeSize = d->vertex_bytes;
+        ci.pCode = d->vertex_spirv;
+        r = vkCreateShaderModule(ctx->device, &ci, NULL, &o.module);
+        if (r != VK_SUCCESS) {
+            o.module = VK_NULL_HANDLE;
+            fail_vk(err, err_len, "vkCreateShaderModule (vertex)", r);
+            goto cleanup;
+        }
+        ci.codeSize = d->fragment_bytes;
+        ci.pCode = d->fragment_spirv;
+        r = vkCreateShaderModule(ctx->device, &ci, NULL, &o.fragment_module);
+        if (r != VK_SUCCESS) {
+            o.fragment_module = VK_NULL_HANDLE;
+            fail_vk(err, err_len, "vkCreateShaderModule (fragment)", r);
+            goto cleanup;
+        }
+    }
+    {
+        VkPipelineShaderStageCreateInfo stages[2];
+        VkPipelineVertexInputStateCreateInfo vi;
+        VkPipelineInputAssemblyStateCreateInfo ia;
+        VkViewport viewport;
+        VkRect2D scissor;
+        VkPipelineViewportStateCreateInfo vp;
+        VkPipelineRasterizationStateCreateInfo rs;
+        VkPipelineMultisampleStateCreateInfo ms;
+        VkPipelineDepthStencilStateCreateInfo ds;
+        VkPipelineColorBlendAttachmentState blend;
+        VkPipelineColorBlendStateCreateInfo cb;
+        VkGraphicsPipelineCreateInfo ci;
+        memset(stages, 0, sizeof stages);
+        for (int i = 0; i < 2; i++) {
+            stages[i].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+            stages[i].pName = "main";
+        }
+        stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+        stages[0].module = o.module;
+        stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+        stages[1].module = o.fragment_module;
+        memset(&vi, 0, sizeof vi);
+        vi.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
+        memset(&ia, 0, sizeof ia);
+        ia.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
+        ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+        memset(&viewport, 0, sizeof viewport);
+        viewport.width = (float)d->color->width;
+        viewport.height = (float)d->color->height;
+        viewport.maxDepth = 1.0f;
+        memset(&scissor, 0, sizeof scissor);
+        scissor.extent.width = d->color->width;
+        scissor.extent.height = d->color->height;
+        memset(&vp, 0, sizeof vp);
+        vp.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
+        vp.viewportCount = 1;
+        vp.pViewports = &viewport;
+        vp.scissorCount = 1;
+        vp.pScissors = &scissor;
+        memset(&rs, 0, sizeof rs);
+        rs.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
+        rs.polygonMode = VK_POLYGON_MODE_FILL;
+        rs.cullMode = VK_CULL_MODE_NONE;
+        rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+        rs.lineWidth = 1.0f;
+        memset(&ms, 0, sizeof ms);
+        ms.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
+        ms.rasterizationSamples = d->color->samples;
+        memset(&ds, 0, sizeof ds);
+        ds.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
+        ds.depthTestEnable = VK_TRUE;
+        ds.depthWriteEnable = VK_TRUE;
+        ds.depthCompareOp = d->depth_compare;
+        memset(&blend, 0, sizeof blend);
+        blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
+                               VK_COLOR_COMPONENT_A_BIT;
+        memset(&cb, 0, sizeof cb);
+        cb.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
+        cb.attachmentCount = 1;
+        cb.pAttachments = &blend;
+        memset(&ci, 0, sizeof ci);
+        ci.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
+        ci.stageCount = 2;
+        ci.pStages = stages;
+        ci.pVertexInputState = &vi;
+        ci.pInputAssemblyState = &ia;
+        ci.pViewportState = &vp;
+        ci.pRasterizationState = &rs;
+        ci.pMultisampleState = &ms;
+        ci.pDepthStencilState = &ds;
+        ci.pColorBlendState = &cb;
+        ci.layout = o.pipeline_layout;
+        ci.renderPass = o.render_pass;
+        ci.basePipelineIndex = -1;
+        r = vkCreateGraphicsPipelines(ctx->device, VK_NULL_HANDLE, 1, &ci, NULL, &o.pipeline);
+        if (r != VK_SUCCESS) {
+            o.pipeline = VK_NULL_HANDLE;
+            fail_vk(err, err_len, "vkCreateGraphicsPipelines", r);
+            goto cleanup;
+        }
+    }
+    {
+        DrawJob job;
+        job.draw = d;
+        job.pipeline = o.pipeline;
+        job.layout = o.pipeline_layout;
+        job.render_pass = o.render_pass;
+        job.framebuffer = o.framebuffer;
+        if (submit_and_wait(ctx, &o, record_draw, &job, "vkc_draw", err, err_len) != 0) goto cleanup;
+    }
+    rc = 0;
+cleanup:
+    release_objects(ctx, &o);
+    return rc;
 }

@@ -50,6 +50,11 @@ const char *vkc_device_name(const VkcContext *ctx);
  * SwiftShader), so a caller can tell a software run from a GPU one. */
 int vkc_device_is_cpu(const VkcContext *ctx);
 
+/* VkPhysicalDeviceLimits::standardSampleLocations: whether a multisampled
+ * attachment's samples sit at the standard positions (for 4 samples,
+ * (0.375, 0.125), (0.875, 0.375), (0.125, 0.625), (0.625, 0.875)). */
+int vkc_standard_sample_locations(const VkcContext *ctx);
+
 /* A buffer in host-visible, host-coherent memory, mapped for its lifetime:
  * the host writes inputs and reads outputs through `mapped` with no flushes
  * or copies. Usage: STORAGE_BUFFER | UNIFORM_BUFFER | TRANSFER_SRC |
@@ -83,6 +88,10 @@ typedef struct VkcImage {
     uint32_t height;
     uint32_t layers;
     VkDeviceSize texel_bytes;
+    /* VK_SAMPLE_COUNT_1_BIT, or an attachment's count. */
+    VkSampleCountFlagBits samples;
+    /* VK_IMAGE_ASPECT_COLOR_BIT, or DEPTH for a depth attachment. */
+    VkImageAspectFlags aspect;
 } VkcImage;
 
 /* Creates an image of `format` (`texel_bytes` bytes a texel), usable as a
@@ -90,6 +99,16 @@ typedef struct VkcImage {
  * failure *out is zeroed. */
 int vkc_image_create(VkcContext *ctx, uint32_t width, uint32_t height, uint32_t layers, int array_view,
                      VkFormat format, VkDeviceSize texel_bytes, VkcImage *out, char *err, size_t err_len);
+
+/* An image a draw renders into and a dispatch then samples: a colour
+ * attachment, or a depth attachment when `format` is a depth format
+ * (VK_FORMAT_D32_SFLOAT, ...), of `samples` samples (a multisampled image
+ * is a texture_multisampled_2d / texture_depth_multisampled_2d to a
+ * shader), one layer, in VK_IMAGE_LAYOUT_GENERAL. It cannot be copied
+ * (vkc_image_copy refuses it): a shader reads it. On failure *out is
+ * zeroed. */
+int vkc_image_create_attachment(VkcContext *ctx, uint32_t width, uint32_t height, VkFormat format,
+                                VkSampleCountFlagBits samples, VkcImage *out, char *err, size_t err_len);
 
 /* Frees an image and zeroes *img; a zeroed image or NULL is a no-op. */
 void vkc_image_destroy(VkcContext *ctx, VkcImage *img);
@@ -127,6 +146,33 @@ typedef struct VkcBinding {
 int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, const char *entry,
                  const VkcBinding *bindings, uint32_t binding_count, uint32_t gx, uint32_t gy, uint32_t gz,
                  char *err, size_t err_len);
+
+/* One draw: a raster pass of `vertex_count` vertices (no vertex buffer:
+ * the vertex shader makes them from gl_VertexIndex; triangle list, no
+ * culling) into `color` and `depth`, two attachments of one size and
+ * sample count made by vkc_image_create_attachment, cleared to
+ * `clear_color` and `clear_depth` first, depth tested with `depth_compare`
+ * and written. `push` (`push_bytes`, a multiple of 4 up to 128) is the
+ * vertex shader's push constants; both shaders' entry point is "main".
+ * Afterwards both attachments are in VK_IMAGE_LAYOUT_GENERAL with their
+ * writes visible to the next dispatch. The context's queue must support
+ * graphics (vkc_create prefers such a queue). Waits as vkc_dispatch does. */
+typedef struct VkcDraw {
+    const uint32_t *vertex_spirv;
+    size_t vertex_bytes;
+    const uint32_t *fragment_spirv;
+    size_t fragment_bytes;
+    const void *push;
+    uint32_t push_bytes;
+    uint32_t vertex_count;
+    const VkcImage *color;
+    const VkcImage *depth;
+    float clear_color[4];
+    float clear_depth;
+    VkCompareOp depth_compare;
+} VkcDraw;
+
+int vkc_draw(VkcContext *ctx, const VkcDraw *draw, char *err, size_t err_len);
 
 /* Device time of the last successful vkc_dispatch in milliseconds, measured
  * with timestamp queries around the dispatch; negative when the queue has no
