@@ -80,6 +80,51 @@ static int expect_failure(int rc, const char *what, const char *msg, char *err, 
     return 0;
 }
 
+/* The attachments and draws vkc refuses: a copy of a multisampled
+ * attachment, a draw without a draw, a draw whose attachments differ in
+ * sample count. Each attachment made is destroyed. */
+static int bad_draws(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, VkcBuffer *in, char *err,
+                     size_t err_len) {
+    char msg[256];
+    VkcImage color, depth;
+    VkcDraw draw;
+    int rc = 1;
+    memset(&color, 0, sizeof color);
+    memset(&depth, 0, sizeof depth);
+    if (vkc_image_create_attachment(ctx, 4, 4, VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLE_COUNT_4_BIT, &color, err,
+                                    err_len) ||
+        vkc_image_create_attachment(ctx, 4, 4, VK_FORMAT_D32_SFLOAT, VK_SAMPLE_COUNT_1_BIT, &depth, err, err_len))
+        goto done;
+    msg[0] = '\0';
+    if (expect_failure(vkc_image_copy(ctx, &color, in, 0, msg, sizeof msg), "a copy of a multisampled attachment",
+                       msg, err, err_len))
+        goto done;
+    msg[0] = '\0';
+    if (expect_failure(vkc_draw(ctx, NULL, msg, sizeof msg), "a NULL draw", msg, err, err_len)) goto done;
+    memset(&draw, 0, sizeof draw);
+    /* Any SPIR-V passes the argument checks; the attachments do not. */
+    draw.vertex_spirv = draw.fragment_spirv = spirv;
+    draw.vertex_bytes = draw.fragment_bytes = spirv_bytes;
+    draw.vertex_count = 3;
+    draw.color = &color;
+    draw.depth = &depth;
+    draw.depth_compare = VK_COMPARE_OP_ALWAYS;
+    msg[0] = '\0';
+    if (expect_failure(vkc_draw(ctx, &draw, msg, sizeof msg), "attachments of different sample counts", msg, err,
+                       err_len))
+        goto done;
+    draw.depth = &color;
+    msg[0] = '\0';
+    if (expect_failure(vkc_draw(ctx, &draw, msg, sizeof msg), "a colour image as the depth attachment", msg, err,
+                       err_len))
+        goto done;
+    rc = 0;
+done:
+    vkc_image_destroy(ctx, &color);
+    vkc_image_destroy(ctx, &depth);
+    return rc;
+}
+
 static int bad_input(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, VkcBuffer *params, VkcBuffer *in,
                      char *err, size_t err_len) {
     char msg[256];
@@ -129,7 +174,7 @@ static int bad_input(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes,
     if (expect_failure(vkc_dispatch(ctx, spirv, spirv_bytes, "main", b, 2, 1, 1, 1, msg, sizeof msg),
                        "an unsupported descriptor type", msg, err, err_len))
         return 1;
-    return 0;
+    return bad_draws(ctx, spirv, spirv_bytes, in, err, err_len);
 }
 
 int main(int argc, char **argv) {
