@@ -137,6 +137,9 @@ fn taa_resolve_is_the_scenes_cpu_resolve() {
     }
 }
 
+/// One `subcone_fxaa_image` call, given the output pointer.
+type FxaaCall<'a> = Box<dyn Fn(*mut f32) -> SubconeStatus + 'a>;
+
 #[test]
 fn the_image_functions_refuse_bad_input_and_leave_the_output() {
     let mut fxaa = SubconeFxaaParams::default();
@@ -149,7 +152,7 @@ fn the_image_functions_refuse_bad_input_and_leave_the_output() {
         edge_threshold: f32::NAN,
         ..fxaa
     };
-    let cases: [(&str, SubconeStatus, Box<dyn Fn(*mut f32) -> SubconeStatus>); 6] = [
+    let cases: [(&str, SubconeStatus, FxaaCall); 6] = [
         (
             "null params",
             SubconeStatus::NullPointer,
