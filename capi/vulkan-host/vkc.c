@@ -663,6 +663,51 @@ static void record_dispatch(VkCommandBuffer cmd, const void *user) {
                          NULL);
 }
 
+/* A shader module of `bytes` bytes of SPIR-V (`what` names it in errors).
+ * On failure *out stays VK_NULL_HANDLE. */
+static int shader_module(VkcContext *ctx, const uint32_t *words, size_t bytes, const char *what,
+                         VkShaderModule *out, char *err, size_t err_len) {
+    VkShaderModuleCreateInfo ci;
+    VkResult r;
+    memset(&ci, 0, sizeof ci);
+    ci.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
+    ci.codeSize = bytes;
+    ci.pCode = words;
+    r = vkCreateShaderModule(ctx->device, &ci, NULL, out);
+    if (r != VK_SUCCESS) {
+        *out = VK_NULL_HANDLE;
+        fail(err, err_len, "vkCreateShaderModule (%s) failed: %s (%d)", what, result_name(r), (int)r);
+        return 1;
+    }
+    return 0;
+}
+
+/* A pipeline layout of one descriptor set layout (or none, for
+ * VK_NULL_HANDLE) and `push_bytes` bytes of vertex push constants (0 for
+ * none). On failure *out stays VK_NULL_HANDLE. */
+static int pipeline_layout(VkcContext *ctx, VkDescriptorSetLayout set_layout, uint32_t push_bytes,
+                           VkPipelineLayout *out, char *err, size_t err_len) {
+    VkPushConstantRange range;
+    VkPipelineLayoutCreateInfo ci;
+    VkResult r;
+    range.stageFlags = VK_SHADER_STAGE_VERTEX_BIT;
+    range.offset = 0;
+    range.size = push_bytes;
+    memset(&ci, 0, sizeof ci);
+    ci.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+    ci.setLayoutCount = set_layout != VK_NULL_HANDLE ? 1 : 0;
+    ci.pSetLayouts = &set_layout;
+    ci.pushConstantRangeCount = push_bytes > 0 ? 1 : 0;
+    ci.pPushConstantRanges = &range;
+    r = vkCreatePipelineLayout(ctx->device, &ci, NULL, out);
+    if (r != VK_SUCCESS) {
+        *out = VK_NULL_HANDLE;
+        fail_vk(err, err_len, "vkCreatePipelineLayout", r);
+        return 1;
+    }
+    return 0;
+}
+
 int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, const char *entry,
                  const VkcBinding *bindings, uint32_t binding_count, uint32_t gx, uint32_t gy, uint32_t gz,
                  char *err, size_t err_len) {
@@ -730,32 +775,8 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
             goto cleanup;
         }
     }
-    {
-        VkPipelineLayoutCreateInfo ci;
-        memset(&ci, 0, sizeof ci);
-        ci.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
-        ci.setLayoutCount = 1;
-        ci.pSetLayouts = &o.set_layout;
-        r = vkCreatePipelineLayout(ctx->device, &ci, NULL, &o.pipeline_layout);
-        if (r != VK_SUCCESS) {
-            o.pipeline_layout = VK_NULL_HANDLE;
-            fail_vk(err, err_len, "vkCreatePipelineLayout", r);
-            goto cleanup;
-        }
-    }
-    {
-        VkShaderModuleCreateInfo ci;
-        memset(&ci, 0, sizeof ci);
-        ci.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
-        ci.codeSize = spirv_bytes;
-        ci.pCode = spirv;
-        r = vkCreateShaderModule(ctx->device, &ci, NULL, &o.module);
-        if (r != VK_SUCCESS) {
-            o.module = VK_NULL_HANDLE;
-            fail_vk(err, err_len, "vkCreateShaderModule", r);
-            goto cleanup;
-        }
-    }
+    if (pipeline_layout(ctx, o.set_layout, 0, &o.pipeline_layout, err, err_len) != 0) goto cleanup;
+    if (shader_module(ctx, spirv, spirv_bytes, "compute", &o.module, err, err_len) != 0) goto cleanup;
     {
         VkComputePipelineCreateInfo ci;
         memset(&ci, 0, sizeof ci);
@@ -1342,44 +1363,10 @@ int vkc_draw(VkcContext *ctx, const VkcDraw *d, char *err, size_t err_len) {
             goto cleanup;
         }
     }
-    {
-        VkPushConstantRange range;
-        VkPipelineLayoutCreateInfo ci;
-        range.stageFlags = VK_SHADER_STAGE_VERTEX_BIT;
-        range.offset = 0;
-        range.size = d->push_bytes;
-        memset(&ci, 0, sizeof ci);
-        ci.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
-        ci.pushConstantRangeCount = d->push_bytes > 0 ? 1 : 0;
-        ci.pPushConstantRanges = &range;
-        r = vkCreatePipelineLayout(ctx->device, &ci, NULL, &o.pipeline_layout);
-        if (r != VK_SUCCESS) {
-            o.pipeline_layout = VK_NULL_HANDLE;
-            fail_vk(err, err_len, "vkCreatePipelineLayout", r);
-            goto cleanup;
-        }
-    }
-    {
-        VkShaderModuleCreateInfo ci;
-        memset(&ci, 0, sizeof ci);
-        ci.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
-        ci.codeSize = d->vertex_bytes;
-        ci.pCode = d->vertex_spirv;
-        r = vkCreateShaderModule(ctx->device, &ci, NULL, &o.module);
-        if (r != VK_SUCCESS) {
-            o.module = VK_NULL_HANDLE;
-            fail_vk(err, err_len, "vkCreateShaderModule (vertex)", r);
-            goto cleanup;
-        }
-        ci.codeSize = d->fragment_bytes;
-        ci.pCode = d->fragment_spirv;
-        r = vkCreateShaderModule(ctx->device, &ci, NULL, &o.fragment_module);
-        if (r != VK_SUCCESS) {
-            o.fragment_module = VK_NULL_HANDLE;
-            fail_vk(err, err_len, "vkCreateShaderModule (fragment)", r);
-            goto cleanup;
-        }
-    }
+    if (pipeline_layout(ctx, VK_NULL_HANDLE, d->push_bytes, &o.pipeline_layout, err, err_len) != 0 ||
+        shader_module(ctx, d->vertex_spirv, d->vertex_bytes, "vertex", &o.module, err, err_len) != 0 ||
+        shader_module(ctx, d->fragment_spirv, d->fragment_bytes, "fragment", &o.fragment_module, err, err_len) != 0)
+        goto cleanup;
     {
         VkPipelineShaderStageCreateInfo stages[2];
         VkPipelineVertexInputStateCreateInfo vi;
