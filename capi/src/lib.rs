@@ -50,7 +50,7 @@ use subcone_kernels::cone::{
 use subcone_kernels::ctss::{
     cross_section_frame, trace_field, ConeField, CtssParams, FieldSample, SplitRay, StopReason,
 };
-use subcone_kernels::fxaa::{fxaa_decode, fxaa_encode, fxaa_pixel, FxaaParams};
+use subcone_kernels::fxaa::{edge_clamped, fxaa_decode, fxaa_encode, fxaa_pixel, FxaaParams};
 use subcone_kernels::mask::{project_normal, visibility_mask, MaskPlacement};
 use subcone_kernels::sraa::{
     albedo_difference, bilateral_weight, reconstruction_weight, resolve_pixel, shadow_gated_weight,
@@ -1567,17 +1567,14 @@ pub unsafe extern "C" fn subcone_fxaa_image(
             exact_len(dst_len, len)?;
             // SAFETY: lengths checked against the size; pointers per contract.
             let (src, dst) = unsafe { (slice(src, src_len)?, slice_mut(dst, dst_len)?) };
-            let (w, h) = (width as i32, height as i32);
             let encoded: Vec<Vec4> = src
                 .chunks_exact(4)
                 .map(|t| fxaa_encode(Vec3::new(t[0], t[1], t[2])))
                 .collect();
-            let fetch = |x: i32, y: i32| {
-                let (x, y) = (x.clamp(0, w - 1), y.clamp(0, h - 1));
-                encoded[(y * w + x) as usize]
-            };
+            let fetch = edge_clamped(&encoded, width, height);
+            let w = width as usize;
             for (i, out) in dst.chunks_exact_mut(4).enumerate() {
-                let (x, y) = (i as i32 % w, i as i32 / w);
+                let (x, y) = ((i % w) as i32, (i / w) as i32);
                 let c = fxaa_decode(fxaa_pixel(&fetch, x, y, &p));
                 out.copy_from_slice(&[c.x, c.y, c.z, 1.0]);
             }

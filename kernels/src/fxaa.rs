@@ -153,6 +153,26 @@ pub fn fxaa_encode(linear: Vec3) -> Vec4 {
     c.extend(quantize8(luma))
 }
 
+/// The fetch [`fxaa_pixel`] needs over a row-major `width × height` image of
+/// pixels already encoded by [`fxaa_encode`]: coordinates outside the image
+/// are clamped to its edge (the original's clamp-to-edge sampler; in WGSL
+/// the including shader's `fxaa_fetch` hook does the same on its texture).
+///
+/// Domain: `encoded` holds `width·height` pixels, both sizes ≥ 1. A zero size
+/// reads as 1, and a pixel past the end of a shorter slice reads as zero
+/// (black), so no input panics.
+#[inline]
+pub fn edge_clamped(encoded: &[Vec4], width: u32, height: u32) -> impl Fn(i32, i32) -> Vec4 + '_ {
+    let (w, h) = (width.max(1) as i32, height.max(1) as i32);
+    move |x: i32, y: i32| {
+        let (x, y) = (x.clamp(0, w - 1) as usize, y.clamp(0, h - 1) as usize);
+        encoded
+            .get(y * w as usize + x)
+            .copied()
+            .unwrap_or(Vec4::ZERO)
+    }
+}
+
 /// A filtered sRGB colour back to linear RGB ([`srgb_to_linear`] per channel).
 #[inline]
 pub fn fxaa_decode(srgb: Vec3) -> Vec3 {

@@ -206,3 +206,18 @@ fn an_axis_aligned_step_is_barely_touched() {
         }
     }
 }
+
+/// `edge_clamped` reads the pixel inside the image, the nearest edge pixel
+/// outside it, and never panics: a zero size reads as 1, a short slice
+/// reads black past its end.
+#[test]
+fn edge_clamped_reads_the_nearest_pixel_of_the_image() {
+    let encoded: Vec<Vec4> = (0..12).map(|i| Vec4::splat(i as f32)).collect();
+    let fetch = edge_clamped(&encoded, 4, 3);
+    assert_eq!(fetch(1, 2), Vec4::splat(9.0));
+    assert_eq!(fetch(-5, -5), Vec4::splat(0.0));
+    assert_eq!(fetch(9, 1), Vec4::splat(7.0));
+    assert_eq!(fetch(2, i32::MAX), Vec4::splat(10.0));
+    assert_eq!(edge_clamped(&encoded, 0, 0)(3, 3), Vec4::splat(0.0));
+    assert_eq!(edge_clamped(&encoded[..5], 4, 3)(3, 2), Vec4::ZERO);
+}

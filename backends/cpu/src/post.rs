@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use glam::Vec4;
 use rayon::prelude::*;
-use subcone_kernels::fxaa::{fxaa_decode, fxaa_encode, fxaa_pixel, FxaaParams};
+use subcone_kernels::fxaa::{edge_clamped, fxaa_decode, fxaa_encode, fxaa_pixel, FxaaParams};
 use subcone_scene::{Frame, PassTiming};
 
 /// Run FXAA over `frame.color` in place, as an engine runs it on the image it
@@ -23,11 +23,7 @@ pub fn fxaa(frame: &mut Frame, params: &FxaaParams) {
     }
     let start = Instant::now();
     let encoded: Vec<Vec4> = frame.color.par_iter().map(|&c| fxaa_encode(c)).collect();
-    let fetch = |x: i32, y: i32| {
-        let x = x.clamp(0, w as i32 - 1) as usize;
-        let y = y.clamp(0, h as i32 - 1) as usize;
-        encoded[y * w + x]
-    };
+    let fetch = edge_clamped(&encoded, frame.width, frame.height);
     frame
         .color
         .par_chunks_mut(w)
