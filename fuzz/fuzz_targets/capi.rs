@@ -735,22 +735,24 @@ fn sraa_resolve(params: Option<SraaParams>, frame: Option<Frame>) {
     };
     let mut fr = fr;
     if fr.consistent {
-        fr.colors.len = Len::Needed;
-        fr.shaded_geometry.len = Len::Needed;
-        fr.shaded_shadow.len = Len::Needed;
-        fr.subsample_geometry.len = Len::Needed;
-        fr.subsample_shadow.len = Len::Needed;
-        fr.out.len = Len::Needed;
-        for null in [
-            &mut fr.colors.null,
-            &mut fr.shaded_geometry.null,
-            &mut fr.shaded_shadow.null,
-            &mut fr.subsample_geometry.null,
-            &mut fr.subsample_shadow.null,
-            &mut fr.out.null,
-        ] {
-            null.0 = false;
-        }
+        make_consistent(
+            &mut [
+                &mut fr.colors.len,
+                &mut fr.shaded_geometry.len,
+                &mut fr.shaded_shadow.len,
+                &mut fr.subsample_geometry.len,
+                &mut fr.subsample_shadow.len,
+                &mut fr.out.len,
+            ],
+            &mut [
+                &mut fr.colors.null,
+                &mut fr.shaded_geometry.null,
+                &mut fr.shaded_shadow.null,
+                &mut fr.subsample_geometry.null,
+                &mut fr.subsample_shadow.null,
+                &mut fr.out.null,
+            ],
+        );
     }
     let (w, h, layers) = (
         fr.width.0 as usize,
@@ -813,15 +815,11 @@ fn sraa_resolve(params: Option<SraaParams>, frame: Option<Frame>) {
         && optional(sub_shadow.len, sub_needed);
     let null = p.is_none()
         || out.is_none()
-        || [
-            (colors.is_null(), colors.len),
-            (geometry.is_null(), geometry.len),
-            (shadow.is_null(), shadow.len),
-            (sub_geometry.is_null(), sub_geometry.len),
-            (sub_shadow.is_null(), sub_shadow.len),
-        ]
-        .iter()
-        .any(|&(null, len)| null && len > 0);
+        || null_with_data(&colors)
+        || null_with_data(&geometry)
+        || null_with_data(&shadow)
+        || null_with_data(&sub_geometry)
+        || null_with_data(&sub_shadow);
     let gates_ok = lights.as_ref().is_none_or(|l| l.iter().all(|&g| g < 32));
     let invalid = p.as_ref().is_some_and(|p| !sraa_params_valid(p)) || !gates_ok;
     Defects {
@@ -1619,12 +1617,9 @@ fn taa_resolve(mut c: TaaResolve) {
     Defects {
         null: params.is_none()
             || out.is_none()
-            || [
-                null_with_data(&current),
-                null_with_data(&velocity),
-                null_with_data(&history),
-            ]
-            .contains(&true),
+            || null_with_data(&current)
+            || null_with_data(&velocity)
+            || null_with_data(&history),
         invalid: params.is_some_and(|p| {
             ![p.exposure, p.min_current_weight, p.clip_gamma]
                 .iter()
