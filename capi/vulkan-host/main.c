@@ -85,6 +85,18 @@ static SubconeGeometry geometry_at(float x, float y, uint32_t width) {
     return g;
 }
 
+/* `count` colours, `stride` apart in `colors`, as RGBA texels (alpha 1, 4
+ * floats each) into `out`. */
+static void rgba_texels(const SubconeVec3 *colors, size_t count, size_t stride, float *out) {
+    for (size_t i = 0; i < count; i++) {
+        const SubconeVec3 c = colors[i * stride];
+        out[4 * i] = c.x;
+        out[4 * i + 1] = c.y;
+        out[4 * i + 2] = c.z;
+        out[4 * i + 3] = 1.0f;
+    }
+}
+
 /* The 4x MSAA subsample offsets, SUBPIXEL_OFFSETS. */
 static const float SUB_OFFSETS[4][2] = {
     {-0.125f, -0.375f}, {0.375f, -0.125f}, {-0.375f, 0.125f}, {0.125f, 0.375f}};
@@ -253,13 +265,7 @@ static int run_sraa_buffers(Host *h, const char *dir, const char *spv, uint32_t 
     memcpy(bufs[2].mapped, d.subs, 4 * n * sizeof *d.subs);
     memcpy(bufs[3].mapped, d.shaded_shadow, n * sizeof *d.shaded_shadow);
     memcpy(bufs[4].mapped, d.sub_shadow, 4 * n * sizeof *d.sub_shadow);
-    float *colors = bufs[5].mapped;
-    for (size_t i = 0; i < n * d.layers; i++) {
-        colors[4 * i + 0] = d.colors[i].x;
-        colors[4 * i + 1] = d.colors[i].y;
-        colors[4 * i + 2] = d.colors[i].z;
-        colors[4 * i + 3] = 1.0f;
-    }
+    rgba_texels(d.colors, n * d.layers, 1, bufs[5].mapped);
     VkcBinding bindings[7];
     memset(bindings, 0, sizeof bindings);
     for (uint32_t i = 0; i < count; i++) {
@@ -326,21 +332,16 @@ static int run_sraa_packed(Host *h, const char *dir, uint32_t width, uint32_t he
     }
     if (vkc_image_copy(h->vk, &img[0], &staging, 1, h->err, sizeof h->err)) goto done;
     for (int which = 1; which <= 3; which++) {
-        for (size_t p = 0; p < n; p++) {
-            float *texel = t + 4 * p;
-            if (which == 1) {
-                texel[0] = d.shaded[p].depth;
-                texel[1] = texel[2] = texel[3] = 0.0f;
-            } else if (which == 2) {
-                texel[0] = d.shaded[p].normal.x;
-                texel[1] = d.shaded[p].normal.y;
-                texel[2] = d.shaded[p].normal.z;
+        if (which == 3) {
+            rgba_texels(d.colors, n, 1, t);
+        } else {
+            for (size_t p = 0; p < n; p++) {
+                float *texel = t + 4 * p;
+                const SubconeGeometry g = d.shaded[p];
+                texel[0] = which == 1 ? g.depth : g.normal.x;
+                texel[1] = which == 1 ? 0.0f : g.normal.y;
+                texel[2] = which == 1 ? 0.0f : g.normal.z;
                 texel[3] = 0.0f;
-            } else {
-                texel[0] = d.colors[p].x;
-                texel[1] = d.colors[p].y;
-                texel[2] = d.colors[p].z;
-                texel[3] = 1.0f;
             }
         }
         if (vkc_image_copy(h->vk, &img[which], &staging, 1, h->err, sizeof h->err)) goto done;
@@ -424,6 +425,12 @@ static float half_to_float(uint16_t h) {
     return sign ? -magnitude : magnitude;
 }
 
+/* `count` binary16 values as floats. */
+static void halves_to_floats(const void *halves, size_t count, float *out) {
+    const uint16_t *h = halves;
+    for (size_t i = 0; i < count; i++) out[i] = half_to_float(h[i]);
+}
+
 /* CTSS of the test field on the GPU and on the CPU (subcone_ctss_trace per
  * pixel, the same rays); 0 when they agree. `texture`: the variant writing
  * an Rgba16Float storage image (testfield-texture.spv), else the one
@@ -495,8 +502,7 @@ static int run_ctss(Host *h, const char *dir, uint32_t width, uint32_t height, i
     double ms = vkc_last_dispatch_ms(h->vk);
     if (texture) {
         if (vkc_image_copy(h->vk, &out_image, &bufs[2], 0, h->err, sizeof h->err)) goto done;
-        const uint16_t *halves = bufs[2].mapped;
-        for (size_t i = 0; i < 4 * n; i++) gpu[i] = half_to_float(halves[i]);
+        halves_to_floats(bufs[2].mapped, 4 * n, gpu);
     } else {
         memcpy(gpu, bufs[2].mapped, 4 * n * sizeof *gpu);
     }
@@ -727,16 +733,7 @@ static int run_sraa_msaa(Host *h, const char *dir, const char *prepass_dir, uint
     /* Layer after layer: layer l of the color array holds every pixel's
      * layer l. */
     float *texels = staging.mapped;
-    for (uint32_t l = 0; l < d.layers; l++) {
-        for (size_t p = 0; p < n; p++) {
-            float *t = texels + 4 * (l * n + p);
-            const SubconeVec3 c = d.colors[p * d.layers + l];
-            t[0] = c.x;
-            t[1] = c.y;
-            t[2] = c.z;
-            t[3] = 1.0f;
-        }
-    }
+    for (uint32_t l = 0; l < d.layers; l++) rgba_texels(d.colors + l, n, d.layers, texels + 4 * l * n);
     if (vkc_image_copy(h->vk, &color, &staging, 1, h->err, sizeof h->err)) goto done;
     if (lights) {
         uint32_t *bits = staging.mapped;
@@ -770,8 +767,7 @@ static int run_sraa_msaa(Host *h, const char *dir, const char *prepass_dir, uint
         snprintf(h->err, sizeof h->err, "out of memory");
         goto done;
     }
-    const uint16_t *halves = staging.mapped;
-    for (size_t i = 0; i < 4 * n; i++) gpu[i] = half_to_float(halves[i]);
+    halves_to_floats(staging.mapped, 4 * n, gpu);
     /* Pixels the resolve changed (away from the sum of their own layers):
      * the comparison covers edges, not copies. */
     size_t blended = 0;
@@ -864,8 +860,7 @@ static int run_post(Host *h, const char *dir, const PostPass *pass, uint32_t wid
         goto done;
     *ms = vkc_last_dispatch_ms(h->vk);
     if (vkc_image_copy(h->vk, &img[k], &buf[2], 0, h->err, sizeof h->err)) goto done;
-    const uint16_t *halves = buf[2].mapped;
-    for (size_t i = 0; i < 4 * n; i++) gpu[i] = half_to_float(halves[i]);
+    halves_to_floats(buf[2].mapped, 4 * n, gpu);
     rc = 0;
 done:
     for (int i = 0; i < images; i++) vkc_image_destroy(h->vk, &img[i]);
