@@ -110,6 +110,60 @@ impl SplitLanes {
 
 // ------------------------------------------------------------------ lanes
 
+/// `[e(0), e(1), …, e(7)]`: an expression per lane, written out. Not a loop
+/// (`for` or `core::array::from_fn`): the interpreter inlines thousands of
+/// lane-wise operations, and as loops each was a loop for LLVM's loop passes
+/// to rotate and unroll before vectorising, a cost that grew with the
+/// interpreter's size (loop rotation alone was two thirds of the CPU
+/// backend's build). Written out, the eight operations are straight-line code
+/// that the SLP vectoriser packs into one vector operation, as the unrolled
+/// loops were: the same operations lane by lane, so the same bits.
+macro_rules! each_lane {
+    (|$k:pat_param| $e:expr) => {{
+        const _: () = assert!(LANES == 8);
+        [
+            {
+                let $k = 0usize;
+                $e
+            },
+            {
+                let $k = 1usize;
+                $e
+            },
+            {
+                let $k = 2usize;
+                $e
+            },
+            {
+                let $k = 3usize;
+                $e
+            },
+            {
+                let $k = 4usize;
+                $e
+            },
+            {
+                let $k = 5usize;
+                $e
+            },
+            {
+                let $k = 6usize;
+                $e
+            },
+            {
+                let $k = 7usize;
+                $e
+            },
+        ]
+    }};
+}
+
+macro_rules! lanewise {
+    ($a:expr, |$k:ident| $e:expr) => {{
+        F8(each_lane!(|$k| $e))
+    }};
+}
+
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[repr(C, align(32))]
 struct F8([f32; LANES]);
@@ -128,59 +182,48 @@ impl W8 {
     /// The lanes of `bits`.
     #[inline(always)]
     fn of_bits(bits: LaneMask) -> W8 {
-        W8(core::array::from_fn(|k| {
+        W8(each_lane!(|k| {
             0u32.wrapping_sub(((bits >> k) & 1) as u32)
         }))
     }
     /// Lane-wise `cond`.
     #[inline(always)]
     fn from_fn(cond: impl Fn(usize) -> bool) -> W8 {
-        W8(core::array::from_fn(|k| 0u32.wrapping_sub(cond(k) as u32)))
+        W8(each_lane!(|k| 0u32.wrapping_sub(cond(k) as u32)))
     }
     #[inline(always)]
     fn and(self, o: W8) -> W8 {
-        W8(core::array::from_fn(|k| self.0[k] & o.0[k]))
+        W8(each_lane!(|k| self.0[k] & o.0[k]))
     }
     #[inline(always)]
     fn and_not(self, o: W8) -> W8 {
-        W8(core::array::from_fn(|k| self.0[k] & !o.0[k]))
+        W8(each_lane!(|k| self.0[k] & !o.0[k]))
     }
     /// Whether any lane is set.
     #[inline(always)]
     fn any(self) -> bool {
-        self.0.iter().fold(0, |a, &b| a | b) != 0
+        let w = self.0;
+        ((w[0] | w[1]) | (w[2] | w[3])) | ((w[4] | w[5]) | (w[6] | w[7])) != 0
     }
     /// The lanes as bits.
     #[inline(always)]
     fn bits(self) -> LaneMask {
-        let mut b = 0;
-        for (k, w) in self.0.iter().enumerate() {
-            b |= ((w & 1) as LaneMask) << k;
-        }
-        b
+        let w = self.0;
+        let bit = |k: usize| ((w[k] & 1) as LaneMask) << k;
+        ((bit(0) | bit(1)) | (bit(2) | bit(3))) | ((bit(4) | bit(5)) | (bit(6) | bit(7)))
     }
     /// `a` in the set lanes, `b` elsewhere, bit for bit.
     #[inline(always)]
     fn select(self, a: F8, b: F8) -> F8 {
-        F8(core::array::from_fn(|k| {
+        F8(each_lane!(|k| {
             f32::from_bits((a.0[k].to_bits() & self.0[k]) | (b.0[k].to_bits() & !self.0[k]))
         }))
     }
     /// [`select`](W8::select) for materials.
     #[inline(always)]
     fn select_u(self, a: [u32; LANES], b: [u32; LANES]) -> [u32; LANES] {
-        core::array::from_fn(|k| (a[k] & self.0[k]) | (b[k] & !self.0[k]))
+        each_lane!(|k| (a[k] & self.0[k]) | (b[k] & !self.0[k]))
     }
-}
-
-macro_rules! lanewise {
-    ($a:expr, |$k:ident| $e:expr) => {{
-        let mut r = [0.0f32; LANES];
-        for $k in 0..LANES {
-            r[$k] = $e;
-        }
-        F8(r)
-    }};
 }
 
 impl F8 {
@@ -308,7 +351,7 @@ impl Lane for F8 {
     }
     #[inline(always)]
     fn or(a: M8, b: M8) -> M8 {
-        W8(core::array::from_fn(|k| a.0[k] | b.0[k]))
+        W8(each_lane!(|k| a.0[k] | b.0[k]))
     }
     #[inline(always)]
     fn select(m: M8, a: F8, b: F8) -> F8 {
@@ -573,10 +616,15 @@ impl Leaf {
 
     /// The distance at `p`: the transform's then the shape's operations, as
     /// the tree does them.
+    ///
+    /// The shape's distance is written once, after the transform (not once
+    /// per case): every primitive is compiled into the interpreter once per
+    /// leaf site, and a copy of every primitive on eight lanes is most of
+    /// what LLVM spends on an interpreter.
     #[inline(always)]
     fn distance(&self, p: &V3) -> F8 {
-        match &self.transform {
-            None => shape_distance(&self.shape, *p),
+        let q = match &self.transform {
+            None => *p,
             Some(t) => {
                 let mut q = p
                     .sub(V3::splat(t.translation))
@@ -584,8 +632,13 @@ impl Leaf {
                 if let Some(r) = t.inv_rotation {
                     q = q.rotate(r);
                 }
-                shape_distance(&self.shape, q) * t.scale
+                q
             }
+        };
+        let d = shape_distance(&self.shape, q);
+        match &self.transform {
+            None => d,
+            Some(t) => d * t.scale,
         }
     }
 }
@@ -900,31 +953,43 @@ fn compile(root: &SdfNode, split: bool, nested: bool) -> SdfProgram<'_> {
 // `ws` walls kept), then the instruction's fields. Those that may skip a
 // subtree also take `pc`, and `continue` the loop themselves.
 
+/// The two leaf instructions: `Leaf` pushes the shape's value; `UnionLeaf`
+/// folds it into the union's accumulator in the lanes its bound does not
+/// cull (`lanes`, with the union's `split`). Both reach this one expansion
+/// (see [`SdfProgram::run`]), so every primitive is compiled once per
+/// interpreter, not once per instruction.
 macro_rules! leaf {
-    ($s:ident, $vs:ident, $ps:ident; $leaf:ident) => {{
+    ($s:ident, $vs:ident, $ps:ident; $leaf:ident, $fold:ident) => {{
         let d = $leaf.distance(&$s.points[$ps]);
-        $s.values[$vs] = Value::both(d, [$leaf.material; LANES]);
-        $vs += 1;
+        match $fold {
+            None => {
+                $s.values[$vs] = Value::both(d, [$leaf.material; LANES]);
+                $vs += 1;
+            }
+            Some((lanes, split)) => {
+                let acc = &mut $s.values[$vs - 1];
+                if split {
+                    acc.safe = lanes.select(acc.safe.min(d), acc.safe);
+                }
+                let better = lanes.and(W8::from_fn(|k| d.0[k] < acc.surf.0[k]));
+                acc.surf = better.select(d, acc.surf);
+                acc.mat = better.select_u([$leaf.material; LANES], acc.mat);
+                if !split {
+                    acc.safe = acc.surf;
+                }
+            }
+        }
     }};
 }
 
+/// `UnionLeaf`'s cull: `Some` (the leaf, the lanes that evaluate it and the
+/// union's split) when any lane needs the leaf, for [`leaf!`].
 macro_rules! union_leaf {
     ($s:ident, $vs:ident, $ps:ident, $ms:ident; $sphere:ident, $leaf:ident, $split:ident) => {{
         let p = &$s.points[$ps];
         let acc = &mut $s.values[$vs - 1];
         let lanes = cull($sphere, p, acc, $s.masks[$ms], *$split);
-        if lanes.any() {
-            let d = $leaf.distance(p);
-            if *$split {
-                acc.safe = lanes.select(acc.safe.min(d), acc.safe);
-            }
-            let better = lanes.and(W8::from_fn(|k| d.0[k] < acc.surf.0[k]));
-            acc.surf = better.select(d, acc.surf);
-            acc.mat = better.select_u([$leaf.material; LANES], acc.mat);
-            if !*$split {
-                acc.safe = acc.surf;
-            }
-        }
+        lanes.any().then_some(($leaf, Some((lanes, *$split))))
     }};
 }
 
@@ -1283,8 +1348,10 @@ impl<'a> SdfProgram<'a> {
         let code = &self.code;
         let mut pc = 0;
         while pc < code.len() {
-            match &code[pc] {
-                Inst::Leaf(leaf) => leaf!(s, vs, ps; leaf),
+            // Every arm but the two leaf instructions does its step and
+            // gives `None`; those give the leaf to evaluate, at one site.
+            let leaf = match &code[pc] {
+                Inst::Leaf(leaf) => Some((leaf, None)),
                 Inst::UnionLeaf {
                     sphere,
                     leaf,
@@ -1294,63 +1361,125 @@ impl<'a> SdfProgram<'a> {
                     translation,
                     inv_scale,
                     inv_rotation,
-                } => push_transform!(s, ps; translation, inv_scale, inv_rotation),
-                Inst::PopTransform { scale } => pop_transform!(s, vs, ps; scale),
-                Inst::PushMirror { axes } => push_mirror!(s, ps; axes),
-                Inst::PopPoint => ps -= 1,
+                } => {
+                    push_transform!(s, ps; translation, inv_scale, inv_rotation);
+                    None
+                }
+                Inst::PopTransform { scale } => {
+                    pop_transform!(s, vs, ps; scale);
+                    None
+                }
+                Inst::PushMirror { axes } => {
+                    push_mirror!(s, ps; axes);
+                    None
+                }
+                Inst::PopPoint => {
+                    ps -= 1;
+                    None
+                }
                 Inst::PushRepeat {
                     period,
                     lo,
                     hi,
                     guard,
-                } => push_repeat!(s, ps, ws; period, lo, hi, guard),
-                Inst::PopRepeat { margin, split } => pop_repeat!(s, vs, ps, ws; margin, split),
-                Inst::UnionBegin { material } => union_begin!(s, vs; material),
+                } => {
+                    push_repeat!(s, ps, ws; period, lo, hi, guard);
+                    None
+                }
+                Inst::PopRepeat { margin, split } => {
+                    pop_repeat!(s, vs, ps, ws; margin, split);
+                    None
+                }
+                Inst::UnionBegin { material } => {
+                    union_begin!(s, vs; material);
+                    None
+                }
                 Inst::UnionChild {
                     sphere,
                     skip,
                     split,
-                } => union_child!(s, vs, ps, ms, pc; sphere, skip, split),
-                Inst::UnionMerge { split } => union_merge!(s, vs, ms; split),
-                Inst::UnionEnd { split } => union_end!(s, vs; split),
+                } => {
+                    union_child!(s, vs, ps, ms, pc; sphere, skip, split);
+                    None
+                }
+                Inst::UnionMerge { split } => {
+                    union_merge!(s, vs, ms; split);
+                    None
+                }
+                Inst::UnionEnd { split } => {
+                    union_end!(s, vs; split);
+                    None
+                }
                 Inst::IntersectionBegin { material } => {
                     s.values[vs] = Value::both(F8::splat(f32::NEG_INFINITY), [*material; LANES]);
                     vs += 1;
+                    None
                 }
-                Inst::IntersectionMerge => intersection_merge!(s, vs),
-                Inst::SmoothMerge { k, first } => smooth_merge!(s, vs; k, first),
-                Inst::SubtractMerge => subtract_merge!(s, vs),
+                Inst::IntersectionMerge => {
+                    intersection_merge!(s, vs);
+                    None
+                }
+                Inst::SmoothMerge { k, first } => {
+                    smooth_merge!(s, vs; k, first);
+                    None
+                }
+                Inst::SubtractMerge => {
+                    subtract_merge!(s, vs);
+                    None
+                }
                 Inst::Round { radius } => {
                     let v = &mut s.values[vs - 1];
                     *v = Value::both(v.surf - *radius, v.mat);
+                    None
                 }
                 Inst::Onion { thickness } => {
                     let v = &mut s.values[vs - 1];
                     *v = Value::both(v.surf.abs() - *thickness, v.mat);
+                    None
                 }
                 Inst::ScaleDistance { factor } => {
                     let v = &mut s.values[vs - 1];
                     *v = Value::both(v.surf * *factor, v.mat);
+                    None
                 }
                 Inst::BoundedBegin {
                     bounds,
                     pad,
                     material,
                     skip,
-                } => bounded_begin!(s, vs, ps, ms, pc; bounds, pad, material, skip),
-                Inst::BoundedMerge => bounded_merge!(s, vs, ms),
+                } => {
+                    bounded_begin!(s, vs, ps, ms, pc; bounds, pad, material, skip);
+                    None
+                }
+                Inst::BoundedMerge => {
+                    bounded_merge!(s, vs, ms);
+                    None
+                }
                 Inst::BoundedSplitBegin { bounds } => {
                     let p = s.points[ps];
                     s.walls[ws] = aabb_distance(bounds, p);
                     ws += 1;
+                    None
                 }
-                Inst::BoundedSplitEnd { pad } => bounded_split_end!(s, vs, ws; pad),
+                Inst::BoundedSplitEnd { pad } => {
+                    bounded_split_end!(s, vs, ws; pad);
+                    None
+                }
                 Inst::Scatter {
                     scatter,
                     templates,
                     split,
-                } => scatter!(s, vs, ps, ms, NESTED; scatter, templates, split),
-                Inst::Tree { node, split } => tree!(s, vs, ps, ms; node, split),
+                } => {
+                    scatter!(s, vs, ps, ms, NESTED; scatter, templates, split);
+                    None
+                }
+                Inst::Tree { node, split } => {
+                    tree!(s, vs, ps, ms; node, split);
+                    None
+                }
+            };
+            if let Some((leaf, fold)) = leaf {
+                leaf!(s, vs, ps; leaf, fold);
             }
             pc += 1;
         }
@@ -1418,7 +1547,7 @@ fn scatter_lanes(
     // so every term is an integer below 2¹⁸ and exact in `f32`.
     let idx: [i32; LANES] = {
         let f = i.x + sc.dims[0] as f32 * (i.y + sc.dims[1] as f32 * i.z);
-        core::array::from_fn(|k| f.0[k] as i32)
+        each_lane!(|k| f.0[k] as i32)
     };
     // Gather each lane's instance: a lane with none (inactive, outside the
     // table, or an unknown template) reads `NONE`, whose zeros are what the
@@ -1446,7 +1575,7 @@ fn scatter_lanes(
     let shared = (0..LANES).all(|k| active & (1 << k) == 0 || idx[k] == idx[lead]);
     let one = shared.then(|| lookup(lead));
     let act = W8::of_bits(active);
-    let inst: [&Instance; LANES] = core::array::from_fn(|k| {
+    let inst: [&Instance; LANES] = each_lane!(|k| {
         if active & (1 << k) == 0 {
             &NONE
         } else if let Some(i) = one {
@@ -1457,7 +1586,7 @@ fn scatter_lanes(
     });
     let field = |f: fn(&Instance) -> f32| match one {
         Some(i) => act.select(F8::splat(f(i)), F8::splat(f(&NONE))),
-        None => F8(core::array::from_fn(|k| f(inst[k]))),
+        None => F8(each_lane!(|k| f(inst[k]))),
     };
     let off = [
         field(|i| i.offset.x),
@@ -1475,9 +1604,9 @@ fn scatter_lanes(
         field(|i| i.scale),
         field(|i| i.inv_scale),
     );
-    let template: [u32; LANES] = core::array::from_fn(|k| inst[k].template);
-    let inst_mat: [u32; LANES] = core::array::from_fn(|k| inst[k].material);
-    let own: [u32; LANES] = core::array::from_fn(|k| {
+    let template: [u32; LANES] = each_lane!(|k| inst[k].template);
+    let inst_mat: [u32; LANES] = each_lane!(|k| inst[k].material);
+    let own: [u32; LANES] = each_lane!(|k| {
         if inst_mat[k] != EMPTY {
             inst_mat[k]
         } else {
