@@ -189,6 +189,27 @@ pub(super) struct Packets<'v, 'a, F: SdfField> {
     to_shade: Vec<usize>,
     normal_at: Vec<(Vec3, f32)>,
     normal_values: Vec<Vec3>,
+    /// [`shade_samples`](Self::shade_samples)' working rows.
+    shading: ShadingRow,
+    /// A row's samples to shade: points, normals, ray directions; their
+    /// colours.
+    points: Vec<Vec3>,
+    normals: Vec<Vec3>,
+    directions: Vec<Vec3>,
+    shaded: Vec<Vec3>,
+}
+
+/// The per-sample state of [`Packets::shade_samples`], kept from one row to
+/// the next: each sample's albedo and normal turned to face its ray, and
+/// per light the shadow rays with the sample, cosine and irradiance each
+/// belongs to, and their answers.
+#[derive(Default)]
+struct ShadingRow {
+    albedo: Vec<Vec3>,
+    facing: Vec<Vec3>,
+    rays: Vec<ShadowRay>,
+    lit_by: Vec<(usize, f32, Vec3)>,
+    blocked: Vec<bool>,
 }
 
 impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
@@ -207,6 +228,11 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
             to_shade: Vec::new(),
             normal_at: Vec::new(),
             normal_values: Vec::new(),
+            shading: ShadingRow::default(),
+            points: Vec::new(),
+            normals: Vec::new(),
+            directions: Vec::new(),
+            shaded: Vec::new(),
         }
     }
 
@@ -371,59 +397,149 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
         }
     }
 
-    /// The scalar path's `shade` for each active lane: Lambert with hard
-    /// shadows (each light's shadow rays as one packet) and ambient light.
+    /// Which of `rays` are blocked, into `blocked` (one answer per ray):
+    /// the rays marched eight at a time with every lane kept busy, a lane
+    /// that finishes its ray taking the next one at once. [`shadowed`]
+    /// marches a packet's rays until the last of them ends, with fewer and
+    /// fewer lanes active; a stream loses no lanes until its last rays. Each
+    /// ray sees the field values it sees alone (a lane's evaluation does not
+    /// depend on the other lanes), so each answer is the scalar path's.
+    ///
+    /// [`shadowed`]: Self::shadowed
+    #[inline(never)]
+    fn shadowed_stream(&mut self, rays: &mut [ShadowRay], blocked: &mut [bool]) {
+        let isa = self.view.isa;
+        isa.run(
+            #[inline(always)]
+            || self.shadowed_stream_here(rays, blocked),
+        )
+    }
+
     #[inline(always)]
-    fn shade(
-        &mut self,
-        q: &[Vec3; LANES],
-        n: &[Vec3; LANES],
-        dir: &[Vec3; LANES],
-        active: LaneMask,
-        tally: &mut Tally,
-    ) -> [Vec3; LANES] {
-        let view = self.view;
+    fn shadowed_stream_here(&mut self, rays: &mut [ShadowRay], blocked: &mut [bool]) {
+        let max_steps = self.view.max_steps;
         let mut pts = Points::default();
-        for k in lanes(active) {
-            pts.set(k, q[k]);
+        // The ray each lane marches, and the next ray to start.
+        let mut slot = [0usize; LANES];
+        let mut next = 0;
+        let mut active: LaneMask = 0;
+        loop {
+            for (k, sk) in slot.iter_mut().enumerate() {
+                loop {
+                    if active & (1 << k) == 0 {
+                        if next == rays.len() {
+                            break;
+                        }
+                        *sk = next;
+                        next += 1;
+                        active |= 1 << k;
+                    }
+                    match rays[*sk].next(max_steps) {
+                        Ok(p) => {
+                            pts.set(k, p);
+                            break;
+                        }
+                        Err(b) => {
+                            blocked[*sk] = b;
+                            active &= !(1 << k);
+                        }
+                    }
+                }
+            }
+            if active == 0 {
+                return;
+            }
+            let r = self.eval(&pts, active);
+            for k in lanes(active) {
+                if let Some(b) = rays[slot[k]].feed(r.safe[k], r.surface[k]) {
+                    blocked[slot[k]] = b;
+                    active &= !(1 << k);
+                }
+            }
         }
-        let mats = self.eval(&pts, active).material;
-        let mut albedo = [Vec3::ZERO; LANES];
-        let mut c = [Vec3::ZERO; LANES];
-        let mut facing = [Vec3::ZERO; LANES];
-        for k in lanes(active) {
-            let mat = view.material(mats[k]);
-            albedo[k] = mat.albedo_at(q[k], Vec2::ZERO);
-            facing[k] = if n[k].dot(dir[k]) > 0.0 { -n[k] } else { n[k] };
-            c[k] = mat.emission + view.ambient * albedo[k];
+    }
+
+    /// The scalar path's `shade` (Lambert with hard shadows and ambient
+    /// light) for every sample of a row at once, into `out`: sample `i` at point `q[i]` with normal `n[i]`, seen along
+    /// `dir[i]`. The materials are read in packets of eight; each light's
+    /// shadow rays go through [`shadowed_stream`](Self::shadowed_stream)
+    /// together. Every sample's colour is `shade`'s, the same operations
+    /// in the same order (base, then each light in turn), so the same bits.
+    fn shade_samples(
+        &mut self,
+        q: &[Vec3],
+        n: &[Vec3],
+        dir: &[Vec3],
+        out: &mut [Vec3],
+        tally: &mut Tally,
+    ) {
+        let view = self.view;
+        let mut row = std::mem::take(&mut self.shading);
+        row.albedo.clear();
+        row.facing.clear();
+        for start in (0..q.len()).step_by(LANES) {
+            let end = (start + LANES).min(q.len());
+            let mut pts = Points::default();
+            for (k, qk) in q[start..end].iter().enumerate() {
+                pts.set(k, *qk);
+            }
+            let mats = self.eval(&pts, first(end - start)).material;
+            for (i, &m) in (start..end).zip(&mats) {
+                let mat = view.material(m);
+                let albedo = mat.albedo_at(q[i], Vec2::ZERO);
+                row.albedo.push(albedo);
+                row.facing
+                    .push(if n[i].dot(dir[i]) > 0.0 { -n[i] } else { n[i] });
+                out[i] = mat.emission + view.ambient * albedo;
+            }
         }
         for light in view.lights {
-            let mut need: LaneMask = 0;
-            let mut inc = [None; LANES];
-            let mut cos = [0.0f32; LANES];
-            let mut rays = [ShadowRay::default(); LANES];
-            for k in lanes(active) {
-                let Some(i) = light.incident(q[k]) else {
+            row.rays.clear();
+            row.lit_by.clear();
+            for (i, qi) in q.iter().enumerate() {
+                let Some(inc) = light.incident(*qi) else {
                     continue;
                 };
-                cos[k] = i.direction.dot(facing[k]);
-                if cos[k] <= 0.0 {
+                let cos = inc.direction.dot(row.facing[i]);
+                if cos <= 0.0 {
                     continue;
                 }
-                rays[k] =
-                    ShadowRay::new(q[k], facing[k], i.direction, i.distance, view.max_distance);
-                inc[k] = Some(i);
-                need |= 1 << k;
+                row.rays.push(ShadowRay::new(
+                    *qi,
+                    row.facing[i],
+                    inc.direction,
+                    inc.distance,
+                    view.max_distance,
+                ));
+                row.lit_by.push((i, cos, inc.irradiance));
             }
-            tally.shadow += need.count_ones() as u64;
-            let blocked = self.shadowed(&mut rays, need);
-            for k in lanes(need & !blocked) {
-                if let Some(i) = inc[k] {
-                    c[k] += albedo[k] * std::f32::consts::FRAC_1_PI * cos[k] * i.irradiance;
+            tally.shadow += row.rays.len() as u64;
+            row.blocked.clear();
+            row.blocked.resize(row.rays.len(), false);
+            self.shadowed_stream(&mut row.rays, &mut row.blocked);
+            for (&(i, cos, irradiance), &b) in row.lit_by.iter().zip(&row.blocked) {
+                if !b {
+                    out[i] += row.albedo[i] * std::f32::consts::FRAC_1_PI * cos * irradiance;
                 }
             }
         }
-        c
+        self.shading = row;
+    }
+
+    /// The row buffers of the samples to shade, emptied (kept allocated from
+    /// one row to the next; [`put_samples`](Self::put_samples) returns them).
+    fn take_samples(&mut self) -> (Vec<Vec3>, Vec<Vec3>, Vec<Vec3>) {
+        let mut q = std::mem::take(&mut self.points);
+        let mut n = std::mem::take(&mut self.normals);
+        let mut dir = std::mem::take(&mut self.directions);
+        q.clear();
+        n.clear();
+        dir.clear();
+        (q, n, dir)
+    }
+
+    fn put_samples(&mut self, q: Vec<Vec3>, n: Vec<Vec3>, dir: Vec<Vec3>) {
+        (self.points, self.normals, self.directions) = (q, n, dir);
     }
 
     /// One NoAA or SSAA row (the scalar path's pixel loop with `noaa`):
@@ -442,23 +558,38 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
     ) -> u64 {
         self.row_rays(y, side, s);
         let rays = std::mem::take(&mut self.rays);
-        self.colors.clear();
         self.hits.clear();
+        let (mut q, mut n, mut dir) = self.take_samples();
         for chunk in rays.chunks(LANES) {
             // `shade` turns the normals towards the ray again: no change.
             let surf = self.surfaces(chunk, params, tally);
             let hit = surf.hit;
-            let dir = std::array::from_fn(|k| chunk.get(k).map_or(Vec3::Z, |r| r.1));
             tally.samples += hit.count_ones() as u64;
-            let c = self.shade(&surf.q, &surf.n, &dir, hit, tally);
-            for (k, ck) in c.iter().enumerate().take(chunk.len()) {
+            for (k, ray) in chunk.iter().enumerate() {
                 let on = hit & (1 << k) != 0;
-                self.colors
-                    .push(if on { *ck } else { self.view.background });
+                if on {
+                    q.push(surf.q[k]);
+                    n.push(surf.n[k]);
+                    dir.push(ray.1);
+                }
                 self.hits.push(on);
             }
         }
         self.rays = rays;
+        // The row's hits shaded together (their shadow rays as one stream),
+        // then each sample's colour in the row's order.
+        let mut shaded = std::mem::take(&mut self.shaded);
+        shaded.clear();
+        shaded.resize(q.len(), Vec3::ZERO);
+        self.shade_samples(&q, &n, &dir, &mut shaded, tally);
+        self.colors.clear();
+        let mut next = shaded.iter();
+        for &on in &self.hits {
+            let c = if on { next.next() } else { None };
+            self.colors.push(c.copied().unwrap_or(self.view.background));
+        }
+        self.shaded = shaded;
+        self.put_samples(q, n, dir);
         let per_pixel = side * side;
         let mut multi = 0;
         for (x, (colors, hits)) in self
@@ -689,16 +820,23 @@ impl<'v, 'a, F: SdfField> Packets<'v, 'a, F> {
         to_shade.extend((0..batch.len()).filter(|&i| batch[i].reuse == 0));
         self.colors.clear();
         self.colors.resize(batch.len(), Vec3::ZERO);
-        for idx in to_shade.chunks(LANES) {
-            let at = |k: usize| idx.get(k).map(|&i| batch[i]);
-            let q = std::array::from_fn(|k| at(k).map_or(Vec3::ZERO, |p| p.q));
-            let n = std::array::from_fn(|k| at(k).map_or(Vec3::Y, |p| p.n));
-            let dir = std::array::from_fn(|k| at(k).map_or(Vec3::Z, |p| p.dir));
-            let c = self.shade(&q, &n, &dir, first(idx.len()), tally);
-            for (&i, c) in idx.iter().zip(c) {
-                self.colors[i] = c;
-            }
+        // The row's samples shaded together (their shadow rays as one
+        // stream).
+        let (mut q, mut n, mut dir) = self.take_samples();
+        for &i in &to_shade {
+            q.push(batch[i].q);
+            n.push(batch[i].n);
+            dir.push(batch[i].dir);
         }
+        let mut shaded = std::mem::take(&mut self.shaded);
+        shaded.clear();
+        shaded.resize(q.len(), Vec3::ZERO);
+        self.shade_samples(&q, &n, &dir, &mut shaded, tally);
+        for (&i, c) in to_shade.iter().zip(&shaded) {
+            self.colors[i] = *c;
+        }
+        self.shaded = shaded;
+        self.put_samples(q, n, dir);
         for (i, p) in batch.iter().enumerate() {
             if p.reuse > 0 {
                 self.colors[i] = self.colors[i - p.reuse as usize];
