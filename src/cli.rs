@@ -106,6 +106,12 @@ impl RenderReport {
             r.secondary as f64 / px,
             r.ao as f64 / px
         );
+        if s.raster_samples > 0 {
+            out += &format!(
+                "raster samples per pixel: {:.2} (primary visibility rasterised; a sample whose triangle the tracer's test misses is traced, and counted above)\n",
+                s.raster_samples as f64 / px
+            );
+        }
         out += &format!("buffers: {} bytes\n", s.buffer_bytes());
         for (name, bytes) in &s.buffers {
             out += &format!("  {name:<34} {bytes:>12} bytes\n");
@@ -206,6 +212,14 @@ pub fn render(opts: &RenderOptions) -> Result<RenderReport> {
     settings
         .validate()
         .map_err(|e| ao_context(e, settings.ao_rays))?;
+    if opts.method.is_hybrid() && scene.sdf_geometry().is_some() {
+        eprintln!(
+            "note: {} is an SDF scene, with no triangles to rasterise: {} traces its rays as {} does",
+            scene.name,
+            opts.method,
+            opts.method.traced()
+        );
+    }
     let (frame, wall_ms) = if opts.method.is_temporal() {
         if opts.frames == 0 {
             return Err(anyhow!(

@@ -45,6 +45,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 use subcone_kernels::passes::Technique;
 use subcone_kernels::passes::{required_passes, Passes, SceneFeatures};
+use subcone_scene::backend::RASTER_PRIMARY;
 use subcone_scene::builtin::builtin;
 use subcone_scene::builtin::{SDF_SCENES, STIFF_SCENES, TRANSPARENT_SCENES};
 use subcone_scene::method::{Preset, METHOD_NAMES};
@@ -119,7 +120,8 @@ pub fn left_out() -> [(Method, LeftOutOf, &'static str); 4] {
 
 /// The methods the per-scene cases run on `scene`: every name of
 /// [`METHOD_NAMES`] whose technique applies to it, but those [`left_out`]
-/// of it.
+/// of it and, on SDF scenes, the hybrids (`-hybrid`: with no triangles to
+/// rasterise, each is its traced method, which runs).
 pub fn methods_for(scene: &Scene) -> Vec<&'static str> {
     let sdf = scene.features().contains(SceneFeatures::IS_SDF);
     METHOD_NAMES
@@ -127,6 +129,7 @@ pub fn methods_for(scene: &Scene) -> Vec<&'static str> {
         .filter(|m| {
             let method: Method = m.parse().expect("METHOD_NAMES parse");
             required_passes(method.technique(), scene.features()).is_ok()
+                && !(sdf && method.is_hybrid())
                 && !left_out()
                     .iter()
                     .any(|(n, o, _)| *n == method && (sdf || *o == LeftOutOf::Everywhere))
@@ -518,6 +521,9 @@ pub fn check_scene(backend: &dyn Backend, scene_name: &str) {
                             "{u}"
                         );
                     }
+                    // Rasterised primary visibility is the CPU backend's.
+                    UnsupportedReason::CpuOnly { what, .. }
+                        if method.is_hybrid() && *what == RASTER_PRIMARY => {}
                     // Every other method of the suite renders on every backend.
                     _ => panic!("{name}: {scene_name} {m} refused: {u}"),
                 }
@@ -767,8 +773,12 @@ pub fn check_supports(backend: &dyn Backend) {
                     "{name}: refused as a technique that does not apply, but it does: {u}"
                 );
             }
-            UnsupportedReason::CpuOnly { .. } => {
-                panic!("{name}: refused as CPU-only, which no method is: {u}");
+            UnsupportedReason::CpuOnly { what, .. } => {
+                let method: Method = u.method.parse().expect("method name");
+                assert!(
+                    method.is_hybrid() && *what == RASTER_PRIMARY,
+                    "{name}: refused as CPU-only, which no method but the hybrids is: {u}"
+                );
             }
             _ => {}
         }

@@ -155,9 +155,17 @@ pub struct Capabilities {
     pub sdf_subpixel_geometry: Result<(), &'static str>,
     /// Most samples per pixel side on SDF scenes (`None`: no limit).
     pub max_sdf_side_samples: Option<u32>,
+    /// Rasterised primary visibility on triangle scenes (`-hybrid`,
+    /// [`Method::is_hybrid`]): `Ok`, or what the backend lacks for it. On
+    /// SDF scenes a hybrid method is traced as the method without it.
+    pub raster_primary: Result<(), &'static str>,
 }
 
 pub use crate::registry::SDF_SUBPIXEL_GEOMETRY;
+
+/// What [`UnsupportedReason::CpuOnly`] names when a backend lacks
+/// rasterised primary visibility ([`Capabilities::raster_primary`]).
+pub const RASTER_PRIMARY: &str = "rasterised primary visibility (-hybrid)";
 
 /// The passes of `method` on `scene` for a backend with `caps`, or why it
 /// cannot render them: the one support plan behind every backend's
@@ -183,6 +191,7 @@ pub use crate::registry::SDF_SUBPIXEL_GEOMETRY;
 ///     max_lights_sdf: None,
 ///     sdf_subpixel_geometry: Err("no sphere-traced subsamples yet"),
 ///     max_sdf_side_samples: Some(8),
+///     raster_primary: Err("no rasteriser"),
 /// };
 /// let cornell = builtin("cornell").unwrap();
 /// let sraa_rt = Method::new(Technique::SraaRt);
@@ -231,6 +240,12 @@ pub fn plan_forced(
             return refuse(UnsupportedReason::Translucency {
                 what: "ray tracing triangles".into(),
                 instead: "they render on SDF scenes only".into(),
+            });
+        }
+        if let (true, Err(why)) = (method.is_hybrid(), caps.raster_primary) {
+            return refuse(UnsupportedReason::CpuOnly {
+                what: RASTER_PRIMARY,
+                why,
             });
         }
         return Ok(passes);

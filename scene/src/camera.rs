@@ -204,6 +204,21 @@ impl CameraRays {
         (1.0 - 2.0 * y / self.h) * self.half
     }
 
+    /// The camera's position and its (forward, right, up) vectors: every ray
+    /// [`Self::through`] makes is `position + t·(forward + u·right + v·up)`
+    /// normalised, which a rasteriser projects against.
+    pub fn frame(&self) -> (Vec3, [Vec3; 3]) {
+        (self.position, [self.forward, self.right, self.up])
+    }
+
+    /// The image point (pixels) whose [`Self::u`] and [`Self::v`] are `(u,
+    /// v)`: their inverse, up to rounding (for bounds, not for rays).
+    pub fn pixel_of(&self, u: f32, v: f32) -> Vec2 {
+        let x = (u / (self.half * (self.w / self.h)) + 1.0) * 0.5 * self.w;
+        let y = (1.0 - v / self.half) * 0.5 * self.h;
+        Vec2::new(x, y) - self.jitter
+    }
+
     /// The ray through image-plane point `(u, v)`: `ray(p)` is
     /// `through(u(p.x), v(p.y))`, bit for bit.
     #[inline]

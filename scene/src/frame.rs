@@ -113,6 +113,11 @@ pub struct FrameStats {
     pub sdf_evaluations: u64,
     /// Pixels that took more than one shaded sample (the CTSS paper's Fig. 9).
     pub multi_sample_pixels: u64,
+    /// Primary samples (pixel centres, supersamples, SRAA's shaded samples
+    /// and subsamples) whose visible triangle the rasteriser found
+    /// (`-hybrid` methods); a sample where the tracer's test on that
+    /// triangle missed is traced as well, and counted in [`Self::rays`].
+    pub raster_samples: u64,
 }
 
 impl FrameStats {

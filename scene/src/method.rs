@@ -34,8 +34,8 @@ use subcone_kernels::sraa::SraaParams;
 use crate::camera::Camera;
 
 use crate::registry::{
-    self, info, EdgeClass, CTSS_SUFFIX, DELAYED, EDGES, MATERIAL_GATE, PAPER, SSAA_PREFIX, TAA,
-    TAA_SUFFIX,
+    self, info, EdgeClass, CTSS_SUFFIX, DELAYED, EDGES, HYBRID, MATERIAL_GATE, PAPER, SSAA_PREFIX,
+    TAA, TAA_SUFFIX,
 };
 pub use crate::registry::{METHOD_NAMES, SSAA_COUNTS};
 
@@ -98,6 +98,7 @@ pub struct Method {
     cone_coverage: f32,
     visibility_k: u32,
     temporal: bool,
+    hybrid: bool,
 }
 
 impl Method {
@@ -125,6 +126,7 @@ impl Method {
             },
             visibility_k: 32,
             temporal: false,
+            hybrid: false,
         }
     }
 
@@ -307,6 +309,43 @@ impl Method {
         })
     }
 
+    /// The method with rasterised primary visibility (`-hybrid`, SRAA §3.1
+    /// and §4.2): on triangle scenes every primary sample (the pixel
+    /// centre, SSAA's grid, SRAA's shaded sample and subsamples) finds its
+    /// triangle by rasterisation, and the hit on it is the tracer's; shadow,
+    /// reflection and ambient-occlusion rays stay rays. SDF scenes have no
+    /// triangles to rasterise: a backend traces them as the method without
+    /// it. NoAA, SSAA, SRAA, SRAA-RT and FXAA.
+    pub fn with_hybrid(self) -> Result<Self, MethodError> {
+        if !info(self.technique).modifiers.hybrid {
+            return Err(self.refuse(
+                HYBRID,
+                "only the triangle methods (noaa, ssaaN, sraa, sraa-rt, fxaa) rasterise",
+            ));
+        }
+        if self.hybrid {
+            return Err(self.refuse(HYBRID, "it is already hybrid"));
+        }
+        Ok(Method {
+            hybrid: true,
+            ..self
+        })
+    }
+
+    /// Whether primary visibility is rasterised (`-hybrid`).
+    pub const fn is_hybrid(&self) -> bool {
+        self.hybrid
+    }
+
+    /// The method with its primary visibility traced: itself without
+    /// `-hybrid`.
+    pub const fn traced(&self) -> Self {
+        Method {
+            hybrid: false,
+            ..*self
+        }
+    }
+
     /// Whether the method runs under temporal antialiasing (`+taa`): it
     /// renders a sequence ([`crate::temporal::Taa`]), not one frame.
     pub const fn is_temporal(&self) -> bool {
@@ -478,6 +517,9 @@ impl Method {
         if self.material_gate {
             f.write_str(MATERIAL_GATE)?;
         }
+        if self.hybrid {
+            f.write_str(HYBRID)?;
+        }
         if self.temporal {
             f.write_str(TAA_SUFFIX)?;
         }
@@ -535,6 +577,10 @@ impl FromStr for Method {
             Some(r) if r != "noaa" => (r, true),
             _ => (lower.as_str(), false),
         };
+        let (name, hybrid) = match name.strip_suffix(HYBRID) {
+            Some(r) => (r, true),
+            None => (name, false),
+        };
         let (rest, mat) = match name.strip_suffix(MATERIAL_GATE) {
             Some(r) => (r, true),
             None => (name, false),
@@ -556,6 +602,9 @@ impl FromStr for Method {
         }
         if mat {
             m = m.with_material_gate().map_err(|_| unknown())?;
+        }
+        if hybrid {
+            m = m.with_hybrid().map_err(|_| unknown())?;
         }
         if temporal {
             m = m.with_taa().map_err(|_| unknown())?;
@@ -585,6 +634,19 @@ mod tests {
             assert!(m.ctss_paper() && m.cone_coverage() == 1.0, "{name}");
             assert_eq!(m.to_string(), name);
         }
+        for name in [
+            "noaa-hybrid",
+            "ssaa16-hybrid",
+            "sraa-rt-paper+mat-hybrid",
+            "sraa-hybrid",
+            "fxaa-hybrid",
+            "sraa-rt-hybrid+taa",
+        ] {
+            let m: Method = name.parse().unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert!(m.is_hybrid() && !m.traced().is_hybrid(), "{name}");
+            assert_eq!(m.to_string(), name);
+            assert_eq!(m.traced().with_hybrid(), Ok(m));
+        }
         for bad in [
             "ctss-paper-paper",
             "noaa-paper",
@@ -594,6 +656,10 @@ mod tests {
             "sraa-rt+mat+mat",
             "ctss-r+edges",
             "ssaa4+ctss+edges",
+            "ctss-hybrid",
+            "noaa-hybrid-hybrid",
+            "sraa-hybrid+mat",
+            "sraa-rt+taa-hybrid",
         ] {
             assert!(bad.parse::<Method>().is_err(), "{bad}");
         }

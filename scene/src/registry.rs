@@ -132,6 +132,10 @@ pub struct Modifiers {
     /// `+taa`: the method under temporal antialiasing
     /// ([`crate::temporal`]); NoAA under it is `taa`.
     pub temporal: bool,
+    /// `-hybrid`: primary visibility (every primary sample and SRAA
+    /// subsample) rasterised instead of traced, on triangle scenes (SRAA
+    /// §3.1, §4.2).
+    pub hybrid: bool,
 }
 
 impl Modifiers {
@@ -143,6 +147,7 @@ impl Modifiers {
         delayed: false,
         edges: false,
         temporal: false,
+        hybrid: false,
     };
 }
 
@@ -203,6 +208,7 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
         family: Family::NoAa,
         claims: &[],
         modifiers: Modifiers {
+            hybrid: true,
             temporal: true,
             ..Modifiers::NONE
         },
@@ -217,6 +223,7 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
         family: Family::Supersampling,
         claims: SUPERSAMPLING_CLAIMS,
         modifiers: Modifiers {
+            hybrid: true,
             samples: true,
             ..Modifiers::NONE
         },
@@ -234,6 +241,7 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
         family: Family::Sraa,
         claims: &[EdgeClass::Silhouette, EdgeClass::Crease],
         modifiers: Modifiers {
+            hybrid: true,
             paper: true,
             material_gate: true,
             ..Modifiers::NONE
@@ -254,6 +262,7 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
             EdgeClass::Reflection,
         ],
         modifiers: Modifiers {
+            hybrid: true,
             paper: true,
             material_gate: true,
             temporal: true,
@@ -323,7 +332,10 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
         grammar: "fxaa",
         family: Family::PostProcess,
         claims: POST_PROCESS_CLAIMS,
-        modifiers: Modifiers::NONE,
+        modifiers: Modifiers {
+            hybrid: true,
+            ..Modifiers::NONE
+        },
         carries_opacity: true,
         needs: Needs::NONE,
         description: "FXAA 3.11 over the NoAA frame (the post-process baseline)",
@@ -341,10 +353,11 @@ pub fn info(technique: Technique) -> &'static TechniqueInfo {
 /// The methods of the default comparison, by the names [`Method`](crate::method::Method) parses
 /// and prints, in table order: the one list the report, the CLI's help and
 /// the backend contract's checks read. Every other accepted name is an
-/// `ssaaN`/`ssaaN+ctss` with another `N`, a `-delayed` variant of a CTSS
+/// `ssaaN`/`ssaaN+ctss` with another `N`, a `-hybrid` variant of another
+/// triangle method (`sraa+mat-hybrid`), a `-delayed` variant of a CTSS
 /// method, or a `-paper` variant of one (`ctss-r-paper`,
 /// `ctss+edges-paper`, `ssaa4+ctss-paper`, `ctss-delayed-paper`).
-pub const METHOD_NAMES: [&str; 18] = [
+pub const METHOD_NAMES: [&str; 26] = [
     "noaa",
     "ssaa4",
     "ssaa16",
@@ -356,6 +369,13 @@ pub const METHOD_NAMES: [&str; 18] = [
     "sraa-rt-paper",
     "sraa-paper+mat",
     "sraa-rt-paper+mat",
+    "noaa-hybrid",
+    "ssaa4-hybrid",
+    "ssaa16-hybrid",
+    "sraa-hybrid",
+    "sraa-rt-hybrid",
+    "sraa-paper-hybrid",
+    "sraa-rt-paper-hybrid",
     "ctss",
     "ctss-paper",
     "ctss-delayed",
@@ -363,6 +383,7 @@ pub const METHOD_NAMES: [&str; 18] = [
     "ctss-r",
     "ssaa4+ctss",
     "fxaa",
+    "fxaa-hybrid",
 ];
 
 /// Suffix of the paper's preset (`sraa-paper`, `ctss-paper`).
@@ -373,6 +394,9 @@ pub(crate) const MATERIAL_GATE: &str = "+mat";
 pub(crate) const DELAYED: &str = "-delayed";
 /// Suffix of CTSS hit-group subdivision (`ctss+edges`).
 pub(crate) const EDGES: &str = "+edges";
+/// Suffix of rasterised primary visibility (`sraa-rt-hybrid`), before
+/// `+taa`.
+pub(crate) const HYBRID: &str = "-hybrid";
 /// Suffix of a method under temporal antialiasing (`sraa-rt+taa`), always
 /// last.
 pub(crate) const TAA_SUFFIX: &str = "+taa";
@@ -400,12 +424,14 @@ pub fn grammar() -> String {
     format!(
         "{}; the SRAA paper's preset {} and the material gate {}, both as {}{PAPER}{MATERIAL_GATE}; \
          {} optionally with {DELAYED} (not ctss{EDGES}); any of these CTSS names optionally with {PAPER} last; \
+         rasterised primary visibility on triangle scenes as {HYBRID} after any of {} (before +taa); \
          temporal antialiasing as {TAA}, or {} after any other of their names",
         bases.join(", "),
         with(|m| m.material_gate, PAPER).join(", "),
         with(|m| m.material_gate, MATERIAL_GATE).join(", "),
         gated.first().map_or("", String::as_str),
         with(|m| m.delayed, "").join(", "),
+        with(|m| m.hybrid, "").join(", "),
         with(|m| m.temporal && !m.samples, TAA_SUFFIX)
             .into_iter()
             .filter(|n| !n.starts_with("noaa"))

@@ -1619,6 +1619,11 @@ fn applicable(
                 skipped.push(skip(job, m.to_string(), "*", "left out of the default run on SDF scenes (minutes per frame at 1280x720; pass --method to include it)".into()));
                 continue;
             }
+            // No triangles to rasterise: a hybrid is its traced method there.
+            if job.sdf && m.is_hybrid() {
+                skipped.push(skip(job, m.to_string(), "*", format!("an SDF scene has no triangles to rasterise: {m} would trace its rays as {} does", m.traced())));
+                continue;
+            }
             let mut able = Vec::new();
             let mut refused = Vec::new();
             for (bi, (bname, backend)) in plan.backends.iter().enumerate() {

@@ -212,6 +212,49 @@ impl SceneBvh {
         &self.shading[slot as usize]
     }
 
+    /// Triangles in the BVH.
+    pub fn len(&self) -> usize {
+        self.prepared.len()
+    }
+
+    /// Whether the BVH holds no triangle.
+    pub fn is_empty(&self) -> bool {
+        self.prepared.is_empty()
+    }
+
+    /// The vertices of triangle `slot` (BVH order). Panics if `slot ≥
+    /// len()`.
+    pub fn vertices(&self, slot: u32) -> [Vec3; 3] {
+        let t = &self.triangles[slot as usize];
+        [t.v0.into(), t.v1.into(), t.v2.into()]
+    }
+
+    /// The hit of `origin + t·dir`, `t ≥ 0`, on triangle `slot` alone (BVH
+    /// order), by the intersector [`Self::closest`] runs: when the traversal
+    /// finds this triangle, the same [`Hit`], bit for bit. `None` on a miss
+    /// or for a slot out of range. The rasteriser's hits
+    /// ([`crate::raster::primary_hit`]).
+    #[inline(always)]
+    pub fn hit_on(&self, slot: u32, origin: Vec3, dir: Vec3) -> Option<Hit> {
+        let tri = self.prepared.get(slot as usize)?;
+        // The intersector reads the origin, the direction and the range,
+        // not the inverse direction (the traversal's).
+        let ray = Ray {
+            origin: origin.into(),
+            direction: dir.into(),
+            inv_direction: Vec3A::ZERO,
+            tmin: 0.0,
+            tmax: f32::INFINITY,
+        };
+        let (t, u, v) = tri.intersect(&ray);
+        (t < ray.tmax).then(|| Hit {
+            t,
+            triangle: self.bvh.primitive_indices[slot as usize],
+            slot,
+            barycentrics: Vec2::new(u, v),
+        })
+    }
+
     /// Closest hit along `origin + t·dir`, `t` in `(tmin, tmax]`.
     ///
     /// obvhs' `CwBvh::ray_traverse`, written out here from its `traverse!`

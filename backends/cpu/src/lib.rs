@@ -30,6 +30,7 @@
 pub mod bvh;
 pub mod isa;
 pub mod post;
+pub mod raster;
 mod render;
 pub mod shade;
 pub mod sphere;
@@ -169,6 +170,7 @@ pub const CAPABILITIES: Capabilities = Capabilities {
     max_lights_sdf: Some(MAX_LIGHTS),
     sdf_subpixel_geometry: Ok(()),
     max_sdf_side_samples: None,
+    raster_primary: Ok(()),
 };
 
 impl Backend for CpuBackend {

@@ -44,6 +44,8 @@ pub struct Counts {
     pub shaded: u64,
     /// Ambient-occlusion rays.
     pub ao: u64,
+    /// Primary samples whose visibility the rasteriser decided (`-hybrid`).
+    pub raster: u64,
 }
 
 impl std::ops::Add for Counts {
@@ -56,6 +58,7 @@ impl std::ops::Add for Counts {
             secondary: self.secondary + o.secondary,
             shaded: self.shaded + o.shaded,
             ao: self.ao + o.ao,
+            raster: self.raster + o.raster,
         }
     }
 }

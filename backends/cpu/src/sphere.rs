@@ -618,6 +618,7 @@ impl<F: SdfField> SdfView<'_, F> {
             shaded_samples: tally.samples,
             sdf_evaluations: tally.steps,
             multi_sample_pixels: 0,
+            raster_samples: 0,
         };
         if s.aovs {
             self.centre_aovs(&mut frame, s);
@@ -1004,6 +1005,7 @@ impl<F: SdfField> SdfView<'_, F> {
             shaded_samples: tally.samples,
             sdf_evaluations: tally.steps,
             multi_sample_pixels: tally.multi,
+            raster_samples: 0,
         };
         if s.aovs {
             frame.samples_per_pixel = Some(spp);

@@ -95,6 +95,9 @@ pub const CAPABILITIES: Capabilities = Capabilities {
     max_lights_sdf: None,
     sdf_subpixel_geometry: Ok(()),
     max_sdf_side_samples: Some(sdf::MAX_SIDE_SAMPLES),
+    raster_primary: Err(
+        "its sraa already rasterises the subsample G-buffers (the MSAA prepass); -hybrid names the CPU backend's rasteriser",
+    ),
 };
 
 impl Backend for WgpuBackend {

@@ -398,6 +398,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         shaded_samples: totals.samples,
         sdf_evaluations: totals.steps,
         multi_sample_pixels: totals.multi,
+        raster_samples: 0,
     };
     Ok(frame)
 }

@@ -212,6 +212,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         shaded_samples: totals.samples,
         sdf_evaluations: totals.steps,
         multi_sample_pixels: 0,
+        raster_samples: 0,
     };
     Ok(out)
 }

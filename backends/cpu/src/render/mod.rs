@@ -1,6 +1,6 @@
 //! The methods of the SRAA family on the CPU: NoAA, SSAA, SRAA and SRAA-RT.
 
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
@@ -15,6 +15,12 @@ use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderSett
 use crate::bvh::Hit;
 use crate::isa::Isa;
 use crate::shade::{Counts, Surface, Tracer, MAX_LIGHTS};
+
+mod supersample;
+use crate::raster::{self, PixelRect, Raster};
+use supersample::centre_aovs;
+pub use supersample::supersample;
+use supersample::HybridScratch;
 
 /// Rows per rayon task: a band of the image, so neighbouring rays stay coherent.
 pub(crate) const BAND: usize = 4;
@@ -38,159 +44,6 @@ fn to_ray_counts(c: Counts) -> RayCounts {
         secondary: c.secondary,
         ao: c.ao,
     }
-}
-
-/// NoAA (one ray through each pixel centre) and SSAA (a regular n×n grid).
-pub fn supersample(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes) -> Frame {
-    let (w, h) = (s.width as usize, s.height as usize);
-    let n = if method.technique() == Technique::Ssaa {
-        method.ssaa_side().max(1)
-    } else {
-        1
-    };
-    let mut frame = Frame::new(s.width, s.height);
-    let start = Instant::now();
-    let rays = t.camera.rays(s.width, s.height);
-    let counts = frame
-        .color
-        .par_chunks_mut(w * BAND)
-        .enumerate()
-        .map(|(band, rows)| {
-            // The band's rays on the instruction-set path (`isa`).
-            t.isa.run(
-                #[inline(always)]
-                || supersample_band(t, &rays, band, rows, w, n),
-            )
-        })
-        .reduce(Counts::default, |a, b| a + b);
-    frame.stats = FrameStats {
-        passes,
-        timings: vec![PassTiming::cpu("shading", start.elapsed())],
-        buffers: vec![("color", frame.color.len() * std::mem::size_of::<Vec3>())],
-        rays: to_ray_counts(counts),
-        shaded_samples: counts.shaded,
-        ..Default::default()
-    };
-    if s.aovs {
-        frame.samples_per_pixel = Some(vec![(n * n) as f32; w * h]);
-        centre_aovs(t, s, &mut frame);
-    }
-    frame
-}
-
-/// Samples traced together in [`supersample_band`]: the rays of a batch are
-/// generated, then traversed, then their hits reconstructed, then shaded, each
-/// step as its own loop, so that the processor overlaps the long division and
-/// square-root chains of neighbouring rays instead of waiting on each.
-const BATCH: usize = 64;
-
-/// One band of [`supersample`]: `n`×`n` rays per pixel of `rows`, the rows
-/// from `band · BAND` on. Per ray the same operations as [`Tracer::radiance`]
-/// on each sample in turn, and each pixel's sum in the same order, so the
-/// same bits.
-#[inline(always)]
-fn supersample_band(
-    t: &Tracer,
-    rays: &CameraRays,
-    band: usize,
-    rows: &mut [Vec3],
-    w: usize,
-    n: u32,
-) -> Counts {
-    let mut c = Counts::default();
-    let n = n.max(1) as usize;
-    let spp = n * n;
-    let mut ray = [(Vec3::ZERO, Vec3::ZERO); BATCH];
-    let mut hit: [Option<Hit>; BATCH] = [None; BATCH];
-    let mut surface: [Option<Surface>; BATCH] = [None; BATCH];
-    for (r, row) in rows.chunks_mut(w).enumerate() {
-        let y = band * BAND + r;
-        // Each sub-row's image-plane coordinate (`n` ≤ 16 for every SSAA
-        // the methods name; more sub-rows are computed per ray).
-        let mut row_v = [0.0f32; 16];
-        for (sy, v) in row_v.iter_mut().enumerate().take(n) {
-            let off_y = (sy as f32 + 0.5) / n as f32;
-            *v = rays.v(y as f32 + off_y);
-        }
-        // The next sample to generate: pixel `x`, sub-sample (`sx`, `sy`).
-        let (mut x, mut sx, mut sy) = (0usize, 0usize, 0usize);
-        // The pixel being summed and its samples so far.
-        let (mut px, mut taken, mut sum) = (0usize, 0usize, Vec3::ZERO);
-        let total = row.len() * spp;
-        let mut done = 0;
-        while done < total {
-            let m = BATCH.min(total - done);
-            for slot in &mut ray[..m] {
-                // `rays.ray(p)` with the row's coordinate computed once per
-                // sub-row: the same operations, so the same ray.
-                let off = Vec2::new((sx as f32 + 0.5) / n as f32, (sy as f32 + 0.5) / n as f32);
-                let p = Vec2::new(x as f32, y as f32) + off;
-                let v = row_v.get(sy).copied().unwrap_or_else(|| rays.v(p.y));
-                *slot = rays.through(rays.u(p.x), v);
-                sx += 1;
-                if sx == n {
-                    sx = 0;
-                    sy += 1;
-                    if sy == n {
-                        sy = 0;
-                        x += 1;
-                    }
-                }
-            }
-            for (h, (o, d)) in hit[..m].iter_mut().zip(&ray[..m]) {
-                *h = t.bvh.closest(*o, *d, 0.0, f32::INFINITY);
-            }
-            for ((s, h), (o, d)) in surface[..m].iter_mut().zip(&hit[..m]).zip(&ray[..m]) {
-                *s = h.map(|h| t.surface(*o, *d, h));
-            }
-            for (s, (_, d)) in surface[..m].iter().zip(&ray[..m]) {
-                c.primary += 1;
-                sum += t.radiance_at(*d, s.as_ref(), 0, &mut c);
-                taken += 1;
-                if taken == spp {
-                    // `x / 1 = x`: NoAA's pixels skip the division.
-                    row[px] = if spp == 1 { sum } else { sum / spp as f32 };
-                    (px, taken, sum) = (px + 1, 0, Vec3::ZERO);
-                }
-            }
-            done += m;
-        }
-    }
-    c
-}
-
-/// The AOVs of the ray through each pixel centre (not timed): view depth,
-/// normal, albedo, per-light visibility and mirror reflectance.
-fn centre_aovs(t: &Tracer, s: &RenderSettings, frame: &mut Frame) {
-    let w = s.width as usize;
-    let lights = t.scene.lights.len().min(MAX_LIGHTS);
-    let cam = t.camera.rays(s.width, s.height);
-    let g: Vec<(Geometry, Vec3, u32, f32)> = (0..w * s.height as usize)
-        .into_par_iter()
-        .map(|i| {
-            let (o, d) = cam.ray(pixel_centre(i % w, i / w));
-            let hit = t.intersect(o, d, 0.0);
-            let (visible, mirror) = match &hit {
-                Some(h) => (
-                    t.light_visibility(h),
-                    t.scene.materials[h.material as usize].mirror,
-                ),
-                None => (0, 0.0),
-            };
-            let visible = visible & ((1u64 << lights) - 1) as u32;
-            (
-                t.primary_geometry(hit.as_ref()),
-                t.primary_albedo(hit.as_ref()),
-                visible,
-                mirror,
-            )
-        })
-        .collect();
-    frame.depth = Some(g.iter().map(|g| g.0.depth).collect());
-    frame.normal = Some(g.iter().map(|g| g.0.normal).collect());
-    frame.albedo = Some(g.iter().map(|g| g.1).collect());
-    frame.light_visibility = Some(g.iter().map(|g| g.2).collect());
-    frame.mirror = Some(g.iter().map(|g| g.3).collect());
 }
 
 /// Buffers of one frame (SRAA-RT on SDF scenes, `sphere.rs`, which leaves the
@@ -377,6 +230,8 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
     let mut frame = Frame::new(s.width, s.height);
 
     let start = Instant::now();
+    // `-hybrid`: the triangles set up and binned once per frame.
+    let raster = method.is_hybrid().then(|| Raster::new(t.bvh, &cam, w, h));
     let side = plan.tile;
     // Every tile, with its pixels' rows of the frame (disjoint borrows), so
     // that the tiles, not just the tile rows, are rayon's tasks: a 1024²
@@ -406,12 +261,17 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
         .into_par_iter()
         // Buffers reused from tile to tile within a rayon job.
         .map_init(
-            || plan.tile_buffers(),
-            |b, (tile, mut out)| {
+            || (plan.tile_buffers(), HybridScratch::default()),
+            |(b, scratch), (tile, mut out)| {
                 let mut work = TileWork::default();
+                let raster = raster.as_ref().map(|r| (r, &mut *scratch));
                 t.isa.run(
                     #[inline(always)]
-                    || subpixel_tile(t, &plan, &cam, &resolver, b, tile, &mut out, &mut work),
+                    || {
+                        subpixel_tile(
+                            t, &plan, &cam, &resolver, b, raster, tile, &mut out, &mut work,
+                        )
+                    },
                 );
                 work
             },
@@ -420,7 +280,22 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
     let wall = start.elapsed();
 
     let mut timings = Vec::new();
-    let busy = work.shading + work.geometry + work.antialiasing;
+    // The raster's setup is its own; the tiles' time is split as the
+    // threads spent it.
+    let setup = raster.as_ref().map_or(Duration::ZERO, |r| r.setup_time);
+    let wall = wall.saturating_sub(setup);
+    let busy = work.raster + work.shading + work.geometry + work.antialiasing;
+    if let Some(r) = &raster {
+        let share = if busy.is_zero() {
+            0.0
+        } else {
+            work.raster.as_secs_f64() / busy.as_secs_f64()
+        };
+        timings.push(PassTiming::cpu(
+            "raster",
+            r.setup_time + wall.mul_f64(share),
+        ));
+    }
     for (name, d) in [
         ("shading", work.shading),
         ("geometry", work.geometry),
@@ -436,7 +311,7 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
 
     let counts = work.counts;
     // What is allocated at once: one tile's buffers per thread.
-    let buffers = plan
+    let mut buffers: Vec<(&'static str, usize)> = plan
         .tile_buffers()
         .list(&frame.color)
         .into_iter()
@@ -448,12 +323,16 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
             }
         })
         .collect();
+    if let Some(r) = &raster {
+        buffers.push(("raster", r.bytes()));
+    }
     frame.stats = FrameStats {
         passes,
         timings,
         buffers,
         rays: to_ray_counts(counts),
         shaded_samples: counts.shaded,
+        raster_samples: counts.raster,
         ..Default::default()
     };
     if s.aovs {
@@ -489,6 +368,16 @@ impl Rect {
         self.width() * self.height()
     }
 
+    /// The same rectangle as the rasteriser's [`PixelRect`].
+    fn pixels(&self) -> PixelRect {
+        PixelRect {
+            x0: self.x0,
+            y0: self.y0,
+            x1: self.x1,
+            y1: self.y1,
+        }
+    }
+
     /// Grown by `r` pixels on every side, clipped to a `w × h` image.
     fn grown(&self, r: usize, w: usize, h: usize) -> Rect {
         Rect {
@@ -504,6 +393,7 @@ impl Rect {
 #[derive(Clone, Copy, Default)]
 struct TileWork {
     counts: Counts,
+    raster: std::time::Duration,
     shading: std::time::Duration,
     geometry: std::time::Duration,
     antialiasing: std::time::Duration,
@@ -514,6 +404,7 @@ impl std::ops::Add for TileWork {
     fn add(self, o: TileWork) -> TileWork {
         TileWork {
             counts: self.counts + o.counts,
+            raster: self.raster + o.raster,
             shading: self.shading + o.shading,
             geometry: self.geometry + o.geometry,
             antialiasing: self.antialiasing + o.antialiasing,
@@ -543,6 +434,7 @@ fn subpixel_tile(
     cam: &CameraRays,
     resolver: &Resolver,
     b: &mut Buffers,
+    mut raster: Option<(&Raster, &mut HybridScratch)>,
     tile: Rect,
     out: &mut [&mut [Vec3]],
     work: &mut TileWork,
@@ -550,7 +442,17 @@ fn subpixel_tile(
     let region = tile.grown(plan.radius as usize, plan.w, plan.h);
     let (n, nl) = (region.len(), plan.nl);
 
+    // `-hybrid`: the shaded samples' triangles over the region.
+    let raster_start = Instant::now();
+    if let Some((r, scratch)) = raster.as_mut() {
+        let offset = plan.shaded_offset;
+        scratch.rasterise(r, cam, region.pixels(), 1, |x, y, _| {
+            pixel_centre(x, y) + offset
+        });
+        work.counts.raster += region.len() as u64;
+    }
     let start = Instant::now();
+    work.raster += start - raster_start;
     let mut shaded = ShadedRegion {
         geo: first(&mut b.geo, n),
         values: first(&mut b.values, n * nl),
@@ -559,9 +461,22 @@ fn subpixel_tile(
         shadow2: first(&mut b.shadow2, n),
         albedo: first(&mut b.albedo, n),
     };
-    shade_region(t, plan, cam, &mut shaded, region, &mut work.counts);
+    let ids = raster.as_ref().map(|(_, s)| s.ids.as_slice());
+    shade_region(t, plan, cam, &mut shaded, ids, region, &mut work.counts);
+    let raster_start = Instant::now();
+    work.shading += raster_start - start;
+    // `-hybrid`: the subsamples' triangles over the tile.
+    if let Some((r, scratch)) = raster.as_mut() {
+        scratch.rasterise(r, cam, tile.pixels(), 4, |x, y, k| {
+            pixel_centre(x, y) + SUBPIXEL_OFFSETS[k]
+        });
+        // The subsample that is the shaded sample is copied, not looked up.
+        let copied = plan.shaded_subsample.is_some() as usize;
+        work.counts.raster += ((4 - copied) * tile.len()) as u64;
+    }
     let geometry_start = Instant::now();
-    work.shading += geometry_start - start;
+    work.raster += geometry_start - raster_start;
+    let ids = raster.as_ref().map(|(_, s)| s.ids.as_slice());
 
     let m = tile.len();
     let samples = ShadedSamples {
@@ -585,6 +500,7 @@ fn subpixel_tile(
         cam,
         &samples,
         &mut subs,
+        ids,
         tile,
         region,
         &mut work.counts,
@@ -604,6 +520,7 @@ fn shade_region(
     plan: &SubpixelPlan,
     cam: &CameraRays,
     out: &mut ShadedRegion,
+    ids: Option<&[u32]>,
     region: Rect,
     c: &mut Counts,
 ) {
@@ -625,7 +542,8 @@ fn shade_region(
             *a = Vec3::ZERO;
         }
         let (x, y) = (region.x0 + i % rw, region.y0 + i / rw);
-        shade_pixel(t, plan, cam, out, i, x, y, c);
+        let id = ids.map(|ids| ids[i]);
+        shade_pixel(t, plan, cam, out, (i, id), x, y, c);
     }
 }
 
@@ -821,7 +739,7 @@ fn shade_pixel(
     plan: &SubpixelPlan,
     cam: &CameraRays,
     out: &mut ShadedRegion,
-    i: usize,
+    (i, id): (usize, Option<u32>),
     x: usize,
     y: usize,
     c: &mut Counts,
@@ -829,9 +747,8 @@ fn shade_pixel(
     let (layout, nl, lights) = (&plan.layout, plan.nl, plan.lights);
     let p = pixel_centre(x, y) + plan.shaded_offset;
     let (o, d) = cam.ray(p);
-    c.primary += 1;
     let v = &mut out.values[i * nl..(i + 1) * nl];
-    let Some(sf) = t.intersect(o, d, 0.0) else {
+    let Some(sf) = primary_hit(t, id, o, d, c) else {
         out.geo[i] = Geometry::MISS;
         v[0] = t.scene.background;
         if let Some(g2) = out.geo2.get_mut(i) {
@@ -883,6 +800,25 @@ fn shade_pixel(
     let rd = Tracer::reflect(d, sf.n);
     let secondary = (&mut *out.geo2, &mut *out.shadow2);
     shade_reflection(t, plan, (&sf, rd, m), v, secondary, i, c);
+}
+
+/// The shaded sample's surface along `(o, d)`: traced, or on the
+/// rasteriser's triangle `id` (`-hybrid`, [`raster::primary_hit`]). Counts
+/// the rays it casts.
+#[inline(always)]
+fn primary_hit(t: &Tracer, id: Option<u32>, o: Vec3, d: Vec3, c: &mut Counts) -> Option<Surface> {
+    let hit = match id {
+        None => {
+            c.primary += 1;
+            t.bvh.closest(o, d, 0.0, f32::INFINITY)
+        }
+        Some(id) => {
+            let (hit, traced) = raster::primary_hit(t.bvh, id, o, d);
+            c.primary += traced as u64;
+            hit
+        }
+    };
+    hit.map(|h| t.surface(o, d, h))
 }
 
 /// SRAA-RT's secondary layers of a shaded sample on a mirror `sf` of
@@ -998,6 +934,7 @@ fn trace_tile_subsamples(
     cam: &CameraRays,
     shaded: &ShadedSamples,
     out: &mut TileSubsamples,
+    ids: Option<&[u32]>,
     tile: Rect,
     region: Rect,
     c: &mut Counts,
@@ -1080,10 +1017,23 @@ fn trace_tile_subsamples(
             ray[m] = cam.ray(pixel_centre(x, y) + SUBPIXEL_OFFSETS[k]);
             m += 1;
         }
-        c.geometry += m as u64;
-        // Traverse.
-        for (h, (o, d)) in hit[..m].iter_mut().zip(&ray[..m]) {
-            *h = t.bvh.closest(*o, *d, 0.0, f32::INFINITY);
+        // Traverse, or take the rasteriser's triangle (`-hybrid`).
+        match ids {
+            None => {
+                c.geometry += m as u64;
+                for (h, (o, d)) in hit[..m].iter_mut().zip(&ray[..m]) {
+                    *h = t.bvh.closest(*o, *d, 0.0, f32::INFINITY);
+                }
+            }
+            Some(ids) => {
+                for (q, (h, (o, d))) in hit[..m].iter_mut().zip(&ray[..m]).enumerate() {
+                    let (i, k) = job[q];
+                    let id = ids[(k * tile.height() + i / tw) * tw + i % tw];
+                    let (found, traced) = raster::primary_hit(t.bvh, id, *o, *d);
+                    c.geometry += traced as u64;
+                    *h = found;
+                }
+            }
         }
         // Surfaces, geometry and albedo.
         for q in 0..m {
