@@ -17,7 +17,12 @@
 //! - shadow, raw: `ray_traverse_miss` on the shadow rays of the primary hits
 //!   towards the scene's first light;
 //! - shadow, pipeline: the pipeline's shadow test of the same hits (which also
-//!   skips emitters and back-facing lights).
+//!   skips emitters and back-facing lights);
+//! - primary, raster: the rasteriser's primary visibility (`-hybrid`,
+//!   [`crate::raster`]) of the same pixel centres: the triangles' setup and
+//!   binning, then every bin's coverage, which decides each sample's
+//!   triangle (no hit reconstruction, no shading), timed against the raw
+//!   traversal.
 //!
 //! Every pass runs on the backend's instruction-set path
 //! ([`CpuBackend::isa`]), so raw and pipeline are compared on the same one.
@@ -32,6 +37,7 @@
 //! let t = w.measure(3);
 //! assert_eq!(t.primary_rays, 32 * 32);
 //! assert!(t.primary_ratio() > 0.0);
+//! assert!(t.raster_ratio() > 0.0);
 //! ```
 
 use std::sync::Arc;
@@ -41,6 +47,7 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use subcone_scene::{Backend, Camera, Method, RenderError, RenderSettings, Scene};
 
+use crate::raster::{sample_coordinates, PixelRect, Raster, Samples, BIN, NONE};
 use crate::shade::{Surface, Tracer};
 use crate::{CpuBackend, SceneBvh};
 
@@ -85,12 +92,26 @@ pub struct RayThroughput {
     pub raw_shadow: Option<f64>,
     /// The pipeline's shadow test (`None` without lights).
     pub pipeline_shadow: Option<f64>,
+    /// The rasteriser's primary visibility, in samples per second (one
+    /// sample per pixel centre).
+    pub raster_primary: f64,
+    /// The raw traversal's rate in the rounds that alternated with the
+    /// rasteriser's (the ratio's other side).
+    pub raw_beside_raster: f64,
+    /// Threads the passes ran on (rayon's), for rates per core.
+    pub threads: usize,
 }
 
 impl RayThroughput {
     /// Pipeline rate over raw rate, primary rays.
     pub fn primary_ratio(&self) -> f64 {
         self.pipeline_primary / self.raw_primary
+    }
+
+    /// The rasteriser's samples per second over the raw traversal's rays
+    /// per second, measured alternating.
+    pub fn raster_ratio(&self) -> f64 {
+        self.raster_primary / self.raw_beside_raster
     }
 
     /// Pipeline rate over raw rate, shadow rays.
@@ -208,6 +229,52 @@ impl<'a> RayWorkload<'a> {
             .sum()
     }
 
+    /// The rasteriser's triangle at every pixel centre: the setup and bins
+    /// ([`Raster::new`]), then each [`BIN`]-row band's coverage on the
+    /// backend's instruction-set path; returns how many samples found a
+    /// triangle.
+    pub fn raster_primary_pass(&self) -> usize {
+        let (w, h) = (self.width as usize, self.height as usize);
+        let cam = self.camera.rays(self.width, self.height);
+        let raster = Raster::new(&self.bvh, &cam, w, h);
+        let isa = self.backend.isa();
+        (0..h.div_ceil(BIN))
+            .into_par_iter()
+            .map(|band| {
+                isa.run(
+                    #[inline(always)]
+                    || {
+                        let (mut u, mut v, mut depth, mut ids) =
+                            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+                        let mut covered = 0;
+                        for x0 in (0..w).step_by(BIN) {
+                            let rect = PixelRect {
+                                x0,
+                                y0: band * BIN,
+                                x1: (x0 + BIN).min(w),
+                                y1: ((band + 1) * BIN).min(h),
+                            };
+                            let centre = |x: usize, y: usize, _| {
+                                Vec2::new(x as f32 + 0.5, y as f32 + 0.5)
+                            };
+                            sample_coordinates(&cam, rect, 1, centre, &mut u, &mut v);
+                            let samples = Samples {
+                                count: 1,
+                                u: &u,
+                                v: &v,
+                            };
+                            raster.rasterise(rect, samples, &mut depth, &mut ids);
+                            for id in &ids {
+                                covered += usize::from(*id != NONE);
+                            }
+                        }
+                        covered
+                    },
+                )
+            })
+            .sum()
+    }
+
     /// The pipeline's NoAA frame of the unlit scene; returns its pixel count.
     pub fn pipeline_primary_pass(&self) -> Result<usize, RenderError> {
         let noaa = Method::new(subcone_kernels::passes::Technique::NoAa);
@@ -268,6 +335,22 @@ impl<'a> RayWorkload<'a> {
             .sum())
     }
 
+    /// The raw traversal and the rasteriser alone ([`Self::measure`]'s
+    /// `raw_beside_raster` and `raster_primary`): `(rays per second,
+    /// samples per second)`, alternating, `runs` rounds (at least one) after a
+    /// warm-up. For measuring the rasteriser on each instruction-set path
+    /// (a backend [`CpuBackend::with_isa`] each).
+    pub fn measure_raster(&self, runs: usize) -> (f64, f64) {
+        let ok = std::cell::Cell::new(true);
+        alternating(
+            self.rays.len(),
+            runs,
+            &ok,
+            || self.raw_primary_pass(),
+            || Ok::<_, ()>(self.raster_primary_pass()),
+        )
+    }
+
     /// Time each pass `runs` times (at least once, after one warm-up pass each) and return
     /// the median rates. A raw pass and its pipeline pass alternate (raw,
     /// pipeline, raw, pipeline, …), so that the machine's drift during the
@@ -294,6 +377,7 @@ impl<'a> RayWorkload<'a> {
             );
             (Some(raw), Some(pipeline))
         };
+        let (raw_beside_raster, raster_primary) = self.measure_raster(runs);
         let fail = |r: f64| if ok.get() { r } else { 0.0 };
         RayThroughput {
             primary_rays: self.rays.len(),
@@ -302,6 +386,9 @@ impl<'a> RayWorkload<'a> {
             pipeline_primary: fail(pipeline_primary),
             raw_shadow,
             pipeline_shadow: pipeline_shadow.map(fail),
+            raster_primary,
+            raw_beside_raster,
+            threads: rayon::current_num_threads(),
         }
     }
 }
