@@ -254,9 +254,8 @@ impl<'a> RayWorkload<'a> {
                                 x1: (x0 + BIN).min(w),
                                 y1: ((band + 1) * BIN).min(h),
                             };
-                            let centre = |x: usize, y: usize, _| {
-                                Vec2::new(x as f32 + 0.5, y as f32 + 0.5)
-                            };
+                            let centre =
+                                |x: usize, y: usize, _| Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
                             sample_coordinates(&cam, rect, 1, centre, &mut u, &mut v);
                             let samples = Samples {
                                 count: 1,

@@ -34,6 +34,8 @@ fn every_tile_size_renders_the_whole_frame_image() {
             "sraa-rt",
             "sraa-rt+mat",
             "sraa-paper+mat",
+            "sraa-hybrid",
+            "sraa-rt-paper+mat-hybrid",
         ] {
             for exhaustive in [false, true] {
                 let b = |tile| {

@@ -6,8 +6,8 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use subcone_kernels::passes::{LayerLayout, Passes, Technique};
 use subcone_kernels::sraa::{
-    neighbourhood, Geometry, Resolver, ShadedFrame, ShadedGroup, SraaParams, Subsamples,
-    ALBEDO_TOLERANCE, SHADED_SAMPLE, SUBPIXEL_OFFSETS,
+    Geometry, Resolver, ShadedFrame, ShadedGroup, SraaParams, Subsamples, ALBEDO_TOLERANCE,
+    SUBPIXEL_OFFSETS,
 };
 use subcone_scene::camera::CameraRays;
 use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderSettings};
@@ -1122,6 +1122,7 @@ pub(crate) fn bands<T: Send>(v: &mut [T], band: usize, nb: usize) -> Vec<&mut [T
 /// The free answers ([`Tracer::shadow_states_masked`]: no incident light,
 /// facing away) are still taken from the subsample's own surface.
 #[allow(clippy::too_many_arguments)]
+#[inline(always)]
 pub fn shadow_agreement(
     bits: &[u32],
     values: &[Vec3],
@@ -1140,24 +1141,24 @@ pub fn shadow_agreement(
         (1u32 << lights) - 1
     };
     let (mut all_shadowed, mut any_shadowed, mut dark) = (u32::MAX, 0u32, all_lights);
-    // Only which pixels: the distances (and so the shaded position) are
-    // not read.
-    for np in neighbourhood(
-        x as u32,
-        y as u32,
-        SHADED_SAMPLE,
-        Vec2::ZERO,
-        radius,
-        w as u32,
-        h as u32,
-    ) {
-        let jj = np.y as usize * w + np.x as usize;
-        let b = bits.get(jj).copied().unwrap_or(0);
-        all_shadowed &= b;
-        any_shadowed |= b;
-        for l in 0..lights {
-            if values.get(jj * nl + first + 1 + l) != Some(&Vec3::ZERO) {
-                dark &= !(1 << l);
+    // Only which pixels: the window `neighbourhood` visits (the square of
+    // `radius` around the pixel, inside the image), in plain loops; the
+    // result does not depend on the order.
+    let r = radius as usize;
+    let (x1, y1) = (
+        x.saturating_add(r).saturating_add(1).min(w),
+        y.saturating_add(r).saturating_add(1).min(h),
+    );
+    for yy in y.saturating_sub(r)..y1 {
+        for xx in x.saturating_sub(r)..x1 {
+            let jj = yy * w + xx;
+            let b = bits.get(jj).copied().unwrap_or(0);
+            all_shadowed &= b;
+            any_shadowed |= b;
+            for l in 0..lights {
+                if values.get(jj * nl + first + 1 + l) != Some(&Vec3::ZERO) {
+                    dark &= !(1 << l);
+                }
             }
         }
     }
