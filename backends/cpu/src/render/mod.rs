@@ -461,8 +461,8 @@ fn subpixel_tile(
         shadow2: first(&mut b.shadow2, n),
         albedo: first(&mut b.albedo, n),
     };
-    let ids = raster.as_ref().map(|(_, s)| s.ids.as_slice());
-    shade_region(t, plan, cam, &mut shaded, ids, region, &mut work.counts);
+    let found = raster.as_ref().map(|(_, s)| Rasterised::of(s, region));
+    shade_region(t, plan, cam, &mut shaded, found, region, &mut work.counts);
     let raster_start = Instant::now();
     work.shading += raster_start - start;
     // `-hybrid`: the subsamples' triangles over the tile.
@@ -476,7 +476,7 @@ fn subpixel_tile(
     }
     let geometry_start = Instant::now();
     work.raster += geometry_start - raster_start;
-    let ids = raster.as_ref().map(|(_, s)| s.ids.as_slice());
+    let found = raster.as_ref().map(|(_, s)| Rasterised::of(s, tile));
 
     let m = tile.len();
     let samples = ShadedSamples {
@@ -500,7 +500,7 @@ fn subpixel_tile(
         cam,
         &samples,
         &mut subs,
-        ids,
+        found,
         tile,
         region,
         &mut work.counts,
@@ -520,7 +520,7 @@ fn shade_region(
     plan: &SubpixelPlan,
     cam: &CameraRays,
     out: &mut ShadedRegion,
-    ids: Option<&[u32]>,
+    found: Option<Rasterised>,
     region: Rect,
     c: &mut Counts,
 ) {
@@ -542,8 +542,8 @@ fn shade_region(
             *a = Vec3::ZERO;
         }
         let (x, y) = (region.x0 + i % rw, region.y0 + i / rw);
-        let id = ids.map(|ids| ids[i]);
-        shade_pixel(t, plan, cam, out, (i, id), x, y, c);
+        let found = found.map(|r| r.at(0, i % rw, i / rw));
+        shade_pixel(t, plan, cam, out, (i, found), x, y, c);
     }
 }
 
@@ -739,14 +739,19 @@ fn shade_pixel(
     plan: &SubpixelPlan,
     cam: &CameraRays,
     out: &mut ShadedRegion,
-    (i, id): (usize, Option<u32>),
+    (i, found): (usize, Option<(u32, f32, f32)>),
     x: usize,
     y: usize,
     c: &mut Counts,
 ) {
     let (layout, nl, lights) = (&plan.layout, plan.nl, plan.lights);
-    let p = pixel_centre(x, y) + plan.shaded_offset;
-    let (o, d) = cam.ray(p);
+    // `-hybrid`: the raster's triangle and the coordinates it computed for
+    // the ray (`cam.ray(p)` is `cam.through(u(p.x), v(p.y))`).
+    let (o, d) = match found {
+        Some((_, u, v)) => cam.through(u, v),
+        None => cam.ray(pixel_centre(x, y) + plan.shaded_offset),
+    };
+    let id = found.map(|f| f.0);
     let v = &mut out.values[i * nl..(i + 1) * nl];
     let Some(sf) = primary_hit(t, id, o, d, c) else {
         out.geo[i] = Geometry::MISS;
@@ -800,6 +805,40 @@ fn shade_pixel(
     let rd = Tracer::reflect(d, sf.n);
     let secondary = (&mut *out.geo2, &mut *out.shadow2);
     shade_reflection(t, plan, (&sf, rd, m), v, secondary, i, c);
+}
+
+/// The rasteriser's answer over a rectangle (`-hybrid`): each sample's
+/// triangle and the image-plane coordinates of its ray, in
+/// [`Raster::rasterise`]'s layout.
+#[derive(Clone, Copy)]
+struct Rasterised<'a> {
+    ids: &'a [u32],
+    u: &'a [f32],
+    v: &'a [f32],
+    cols: usize,
+    rows: usize,
+}
+
+impl<'a> Rasterised<'a> {
+    fn of(s: &'a HybridScratch, rect: Rect) -> Self {
+        Rasterised {
+            ids: &s.ids,
+            u: &s.u,
+            v: &s.v,
+            cols: rect.width(),
+            rows: rect.height(),
+        }
+    }
+
+    /// Sample `k` of the rectangle's pixel `(x, y)`: its triangle and `(u, v)`.
+    #[inline(always)]
+    fn at(&self, k: usize, x: usize, y: usize) -> (u32, f32, f32) {
+        (
+            self.ids[(k * self.rows + y) * self.cols + x],
+            self.u[k * self.cols + x],
+            self.v[k * self.rows + y],
+        )
+    }
 }
 
 /// The shaded sample's surface along `(o, d)`: traced, or on the
@@ -934,7 +973,7 @@ fn trace_tile_subsamples(
     cam: &CameraRays,
     shaded: &ShadedSamples,
     out: &mut TileSubsamples,
-    ids: Option<&[u32]>,
+    found: Option<Rasterised>,
     tile: Rect,
     region: Rect,
     c: &mut Counts,
@@ -1014,21 +1053,27 @@ fn trace_tile_subsamples(
             }
             let (x, y) = (tile.x0 + i % tw, tile.y0 + i / tw);
             job[m] = (i, k);
-            ray[m] = cam.ray(pixel_centre(x, y) + SUBPIXEL_OFFSETS[k]);
+            ray[m] = match found {
+                Some(r) => {
+                    let (_, u, v) = r.at(k, i % tw, i / tw);
+                    cam.through(u, v)
+                }
+                None => cam.ray(pixel_centre(x, y) + SUBPIXEL_OFFSETS[k]),
+            };
             m += 1;
         }
         // Traverse, or take the rasteriser's triangle (`-hybrid`).
-        match ids {
+        match found {
             None => {
                 c.geometry += m as u64;
                 for (h, (o, d)) in hit[..m].iter_mut().zip(&ray[..m]) {
                     *h = t.bvh.closest(*o, *d, 0.0, f32::INFINITY);
                 }
             }
-            Some(ids) => {
+            Some(r) => {
                 for (q, (h, (o, d))) in hit[..m].iter_mut().zip(&ray[..m]).enumerate() {
                     let (i, k) = job[q];
-                    let id = ids[(k * tile.height() + i / tw) * tw + i % tw];
+                    let id = r.at(k, i % tw, i / tw).0;
                     let (found, traced) = raster::primary_hit(t.bvh, id, *o, *d);
                     c.geometry += traced as u64;
                     *h = found;

@@ -137,8 +137,8 @@ fn supersample_hybrid(t: &Tracer, s: &RenderSettings, n: u32, frame: &mut Frame)
 /// image-plane coordinates, the depth buffer and the triangles found.
 #[derive(Default)]
 pub(super) struct HybridScratch {
-    u: Vec<f32>,
-    v: Vec<f32>,
+    pub(super) u: Vec<f32>,
+    pub(super) v: Vec<f32>,
     depth: Vec<f32>,
     pub(super) ids: Vec<u32>,
 }
