@@ -6,18 +6,24 @@
 //! directions of `subcone_kernels::ao`) makes shading as expensive as asked:
 //! `ssaa4` casts the AO rays at four samples per pixel, `sraa-rt` at its one
 //! shaded sample. The section sweeps [`AO_SWEEP`] on [`AO_SWEEP_SCENES`] at
-//! [`AO_SWEEP_SIZE`], times `noaa`, `ssaa4` and `sraa-rt` and measures their
-//! FLIP on the silhouette, crease and shadow pixels (the report's edge
-//! classes) against a reference rendered with the same AO, and sets the
-//! ray-count ratio `ssaa4 / sraa-rt` beside the measured time ratio, and
-//! the crossover ([`crossover`]): the fewest AO rays at which `sraa-rt`
-//! takes less time than `ssaa4`.
+//! [`AO_SWEEP_SIZE`], times two triples of methods ([`Pair`]): the traced
+//! `noaa`, `ssaa4` and `sraa-rt`, and their `-hybrid` twins, whose primary
+//! samples find their triangles by rasterisation (SRAA §3.1 and §4.2: the
+//! way the paper runs SRAA; AO, shadow and reflection rays stay rays). It
+//! measures their FLIP on the silhouette, crease and shadow pixels (the
+//! report's edge classes) against a reference rendered with the same AO,
+//! and sets the ray-count ratio `ssaa4 / sraa-rt` beside the measured time
+//! ratio, and per pair the crossover ([`crossover`]): the fewest AO rays at
+//! which `sraa-rt` takes less time than `ssaa4` (hybrid against hybrid,
+//! traced against traced). A backend that refuses a method
+//! ([`Backend::supports`](subcone_scene::Backend::supports): the wgpu
+//! backend has no rasteriser) skips it, listed in the section.
 //!
 //! Two sizes of it ([`SweepSpec`]): the default report runs
-//! [`SweepSpec::default_report`] (atrium, AO 0, 4 and 16, its AO rows judged
-//! against a smaller reference so that the section stays short); `--sraa-sweep`
-//! runs [`SweepSpec::full`] (atrium and Sponza, AO 0 to 64, the run's
-//! reference). The quick report runs neither.
+//! [`SweepSpec::default_report`] (atrium, AO 0, 1, 4 and 16, its AO rows
+//! judged against a smaller reference so that the section stays short);
+//! `--sraa-sweep` runs [`SweepSpec::full`] (atrium and Sponza, AO 0 to 64,
+//! the run's reference). The quick report runs neither.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -26,21 +32,30 @@ use anyhow::{Context, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
+pub use crate::ao_crossover::{
+    crossover, crossover_sentence, crossovers, hybrid_crossover_judged, Crossover, FirstFaster,
+    Pair, HYBRID_CROSSOVER_AO,
+};
 use crate::classes::{Class, ClassError};
-use crate::named::{NOAA, SRAA_RT, SSAA4};
+use crate::named::{SRAA_RT, SSAA4};
 use crate::plot::{legend, method_line, save_chart, Chart, FAMILY, PLOT_SIZE};
 use crate::timing::Timings;
 use crate::{file_safe, render, Failure, Runner, SceneJob};
 use subcone_metrics::{self as metrics, Rgb8};
 use subcone_scene::{Method, RenderSettings};
 
-/// Ambient-occlusion rays per shaded point swept.
-pub const AO_SWEEP: [u32; 4] = [0, 4, 16, 64];
+/// Ambient-occlusion rays per shaded point swept. AO 1 is there so that a
+/// crossover at one ray ([`HYBRID_CROSSOVER_AO`]) can be judged.
+pub const AO_SWEEP: [u32; 5] = [0, 1, 4, 16, 64];
 /// The scenes swept, when the run has them: the atrium (a paper scene) and
 /// Sponza (add `--scene sponza`; read from `$SUBCONE_DATA_DIR`).
 pub const AO_SWEEP_SCENES: [&str; 2] = ["atrium", "sponza"];
-/// The methods swept.
-pub const AO_SWEEP_METHODS: [Method; 3] = [NOAA, SSAA4, SRAA_RT];
+/// The methods swept: each [`Pair`]'s NoAA, SSAA4 and SRAA-RT, traced
+/// first.
+pub fn sweep_methods() -> Vec<Method> {
+    Pair::ALL.iter().flat_map(|p| p.methods()).collect()
+}
+
 /// Timing and error size of the sweep.
 pub const AO_SWEEP_SIZE: (u32, u32) = (512, 512);
 /// The classes whose pooled FLIP the sweep reports: those an antialiasing
@@ -86,134 +101,15 @@ impl SweepSpec {
         }
     }
 
-    /// The default report's: atrium with AO 0, 4 and 16; the AO rows are
-    /// judged against SSAA64 (8×8 samples per pixel), not the run's SSAA256,
-    /// which with AO would take minutes.
+    /// The default report's: atrium with AO 0, 1, 4 and 16 (1 for
+    /// [`HYBRID_CROSSOVER_AO`]); the AO rows are judged against SSAA64 (8×8
+    /// samples per pixel), not the run's SSAA256, which with AO would take
+    /// minutes.
     pub fn default_report() -> Self {
         Self {
-            aos: vec![0, 4, 16],
+            aos: vec![0, HYBRID_CROSSOVER_AO, 4, 16],
             scenes: vec!["atrium"],
             ao_reference: Some(Method::ssaa_grid(8)),
-        }
-    }
-}
-
-/// The crossover on one scene and backend: where `sraa-rt` starts to take
-/// less time than `ssaa4`.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Crossover {
-    /// Scene.
-    pub scene: String,
-    /// Backend.
-    pub backend: String,
-    /// The fewest swept AO rays at which sraa-rt is faster, with both
-    /// methods' rows there; `None` when it is faster at no swept count.
-    pub first_faster: Option<FirstFaster>,
-    /// The AO ray count where the two times meet, by linear interpolation of
-    /// `ssaa4 − sraa-rt` between the last swept count where sraa-rt is slower
-    /// and the first where it is faster (`None` when they do not cross
-    /// inside the sweep, or sraa-rt is faster from the first count on).
-    pub interpolated: Option<f64>,
-}
-
-/// Where sraa-rt first takes less time than ssaa4 ([`Crossover`]).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FirstFaster {
-    /// AO rays per shaded point.
-    pub ao: u32,
-    /// sraa-rt's median time there, ms.
-    pub sraa_rt_ms: f64,
-    /// ssaa4's median time there, ms.
-    pub ssaa4_ms: f64,
-    /// sraa-rt's edge FLIP there.
-    pub sraa_rt_edge_flip: Option<f64>,
-    /// ssaa4's edge FLIP there.
-    pub ssaa4_edge_flip: Option<f64>,
-}
-
-/// The crossover of every scene and backend of the sweep.
-pub fn crossovers(sweep: &AoSweep) -> Vec<Crossover> {
-    groups(&sweep.rows)
-        .into_iter()
-        .map(|(scene, backend)| crossover(sweep, &scene, &backend))
-        .collect()
-}
-
-/// The crossover on `scene` and `backend` (see [`Crossover`]).
-pub fn crossover(sweep: &AoSweep, scene: &str, backend: &str) -> Crossover {
-    // (ao, ssaa4 − sraa-rt in ms) where both were timed.
-    let mut gaps: Vec<(u32, f64)> = Vec::new();
-    let mut first_faster = None;
-    let mut aos: Vec<u32> = sweep
-        .rows
-        .iter()
-        .filter(|r| r.scene == scene && r.backend == backend)
-        .map(|r| r.ao)
-        .collect();
-    aos.sort_unstable();
-    aos.dedup();
-    for ao in aos {
-        let (Some(a), Some(b)) = (
-            find(&sweep.rows, scene, backend, SSAA4, ao),
-            find(&sweep.rows, scene, backend, SRAA_RT, ao),
-        ) else {
-            continue;
-        };
-        gaps.push((ao, a.ms_median - b.ms_median));
-        if first_faster.is_none() && b.ms_median < a.ms_median {
-            first_faster = Some(FirstFaster {
-                ao,
-                sraa_rt_ms: b.ms_median,
-                ssaa4_ms: a.ms_median,
-                sraa_rt_edge_flip: b.edge_flip,
-                ssaa4_edge_flip: a.edge_flip,
-            });
-        }
-    }
-    let interpolated = first_faster.and_then(|f| {
-        let at = gaps.iter().position(|g| g.0 == f.ao)?;
-        let (lo, hi) = (gaps.get(at.checked_sub(1)?)?, gaps[at]);
-        // lo.1 ≤ 0 < hi.1: the gap crosses 0 between them.
-        let f = -lo.1 / (hi.1 - lo.1);
-        Some(lo.0 as f64 + f * (hi.0 - lo.0) as f64)
-    });
-    Crossover {
-        scene: scene.into(),
-        backend: backend.into(),
-        first_faster,
-        interpolated,
-    }
-}
-
-/// The crossover as a sentence of the report.
-pub fn crossover_sentence(c: &Crossover) -> String {
-    let flip = |v: Option<f64>| opt(v, 4);
-    match c.first_faster {
-        None => format!(
-            "**Crossover, {} ({}):** sraa-rt is faster than ssaa4 at no swept AO ray count.",
-            c.scene, c.backend
-        ),
-        Some(FirstFaster {
-            ao,
-            sraa_rt_ms: rt_ms,
-            ssaa4_ms: ss_ms,
-            sraa_rt_edge_flip: rt_f,
-            ssaa4_edge_flip: ss_f,
-        }) => {
-            let meet = match c.interpolated {
-                Some(x) => format!(
-                    " The two times meet at about {x:.1} AO rays per shaded point (linear between the swept counts)."
-                ),
-                None if ao == 0 => " It is faster without any AO.".into(),
-                None => String::new(),
-            };
-            format!(
-                "**Crossover, {} ({}):** sraa-rt is faster than ssaa4 from {ao} AO rays per shaded point on (the fewest swept): {rt_ms:.1} ms against {ss_ms:.1} ms, with edge FLIP {} against ssaa4's {}.{meet}",
-                c.scene,
-                c.backend,
-                flip(rt_f),
-                flip(ss_f),
-            )
         }
     }
 }
@@ -255,6 +151,20 @@ pub fn pooled_flip(k: &ClassError, classes: &[Class]) -> Option<f64> {
     (px > 0).then(|| sum / px as f64)
 }
 
+/// A method a backend did not sweep because it refuses it
+/// ([`Backend::supports`](subcone_scene::Backend::supports)).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Refused {
+    /// Scene.
+    pub scene: String,
+    /// Backend.
+    pub backend: String,
+    /// Method.
+    pub method: Method,
+    /// The backend's reason.
+    pub reason: String,
+}
+
 /// What the section has: its rows and the scenes it could not sweep.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct AoSweep {
@@ -268,10 +178,12 @@ pub struct AoSweep {
     pub rows: Vec<AoSweepRow>,
     /// Scenes of [`AO_SWEEP_SCENES`] not swept, with the reason.
     pub missing: Vec<(String, String)>,
+    /// Methods a backend refuses, not swept there (no failure).
+    pub refused: Vec<Refused>,
 }
 
 /// The row of `method` at `ao` on `scene` and `backend`.
-fn find<'a>(
+pub(crate) fn find<'a>(
     rows: &'a [AoSweepRow],
     scene: &str,
     backend: &str,
@@ -282,10 +194,16 @@ fn find<'a>(
         .find(|r| r.scene == scene && r.backend == backend && r.method == method && r.ao == ao)
 }
 
-/// `(ray-count ratio, time ratio)` of ssaa4 over sraa-rt.
-pub fn ratios(rows: &[AoSweepRow], scene: &str, backend: &str, ao: u32) -> Option<(f64, f64)> {
-    let ss = find(rows, scene, backend, SSAA4, ao)?;
-    let rt = find(rows, scene, backend, SRAA_RT, ao)?;
+/// `(ray-count ratio, time ratio)` of the pair's ssaa4 over its sraa-rt.
+pub fn ratios(
+    rows: &[AoSweepRow],
+    scene: &str,
+    backend: &str,
+    pair: Pair,
+    ao: u32,
+) -> Option<(f64, f64)> {
+    let ss = find(rows, scene, backend, pair.ssaa4(), ao)?;
+    let rt = find(rows, scene, backend, pair.sraa_rt(), ao)?;
     (rt.rays_per_pixel > 0.0 && rt.ms_median > 0.0).then(|| {
         (
             ss.rays_per_pixel / rt.rays_per_pixel,
@@ -295,7 +213,7 @@ pub fn ratios(rows: &[AoSweepRow], scene: &str, backend: &str, ao: u32) -> Optio
 }
 
 /// Scenes and backends in the order the rows have them.
-fn groups(rows: &[AoSweepRow]) -> Vec<(String, String)> {
+pub(crate) fn groups(rows: &[AoSweepRow]) -> Vec<(String, String)> {
     let mut out: Vec<(String, String)> = Vec::new();
     for r in rows {
         if !out.iter().any(|(s, b)| *s == r.scene && *b == r.backend) {
@@ -305,7 +223,7 @@ fn groups(rows: &[AoSweepRow]) -> Vec<(String, String)> {
     out
 }
 
-fn opt(v: Option<f64>, digits: usize) -> String {
+pub(crate) fn opt(v: Option<f64>, digits: usize) -> String {
     v.map_or("–".into(), |v| format!("{v:.digits$}"))
 }
 
@@ -317,19 +235,26 @@ pub fn section(sweep: &AoSweep, reference: Option<&str>) -> String {
         return md;
     }
     let _ = writeln!(md, "## Where SRAA pays\n");
+    let names = |p: Pair| p.methods().map(|m| m.to_string()).join(", ");
+    let [noaa, ssaa4, sraa_rt] = Pair::Traced.methods();
     let _ = writeln!(
         md,
         "Ambient occlusion as a shading cost: each shaded point casts N any-hit rays over {} of \
 the scene's bounding diagonal, in one fixed stratified cosine-weighted set of directions (a \
 noise-free function of position and normal), and the ambient term is multiplied by the \
-unoccluded fraction (not at mirror hits). ssaa4 shades 4 points per pixel, sraa-rt 1. \
-At {}x{}, {}{}; *edge FLIP* is the mean FLIP \
+unoccluded fraction (not at mirror hits). {ssaa4} shades 4 points per pixel, {sraa_rt} 1. Two \
+triples, each compared within itself: *traced* ({}) and *hybrid* ({}), whose primary samples \
+(pixel centres, supersamples, SRAA's shaded sample and subsamples) find their triangle by \
+rasterisation, as the SRAA paper runs it (§3.1, §4.2), while AO, shadow and reflection rays \
+stay rays. At {}x{}{}; *edge FLIP* is the mean FLIP \
 over the silhouette, crease and shadow pixels together. *rays* ratio is ssaa4's rays per \
-pixel over sraa-rt's, *time* ratio the same for the median time.\n",
+pixel over sraa-rt's, *time* ratio the same for the median time, each within the row's pair \
+(the method columns name the traced methods; a *hybrid* row holds their `-hybrid` twins).\n",
         subcone_scene::backend::AO_RADIUS_FRACTION,
+        names(Pair::Traced),
+        names(Pair::Hybrid),
         AO_SWEEP_SIZE.0,
         AO_SWEEP_SIZE.1,
-        AO_SWEEP_METHODS.map(|m| m.to_string()).join(", "),
         match (reference, &sweep.ao_reference) {
             (Some(r), Some(ao_r)) => format!(
                 " against {r} at N = 0 and {ao_r} rendered with the same N above (a smaller \
@@ -345,37 +270,48 @@ reference, so that the section takes seconds, not minutes)"
     for (scene, why) in &sweep.missing {
         let _ = writeln!(md, "- `{scene}` not swept: {why}");
     }
-    if !sweep.missing.is_empty() {
+    for r in &sweep.refused {
+        let _ = writeln!(
+            md,
+            "- {} on {} not swept on `{}`: {}",
+            r.method, r.backend, r.scene, r.reason
+        );
+    }
+    if !sweep.missing.is_empty() || !sweep.refused.is_empty() {
         let _ = writeln!(md);
     }
     for (scene, backend) in groups(&sweep.rows) {
         let _ = writeln!(md, "### {scene} ({backend})\n");
         let _ = writeln!(
             md,
-            "| AO rays | noaa ms | ssaa4 ms | sraa-rt ms | noaa edge FLIP | ssaa4 edge FLIP | sraa-rt edge FLIP | rays ratio | time ratio | time / rays |"
+            "| AO rays | pair | {noaa} ms | {ssaa4} ms | {sraa_rt} ms | {noaa} edge FLIP | {ssaa4} edge FLIP | {sraa_rt} edge FLIP | rays ratio | time ratio | time / rays |"
         );
-        let _ = writeln!(md, "|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
+        let _ = writeln!(md, "|--:|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
         for &ao in &sweep.aos {
-            let get = |m: Method| find(&sweep.rows, &scene, &backend, m, ao);
-            if AO_SWEEP_METHODS.iter().all(|m| get(*m).is_none()) {
-                continue;
+            for pair in Pair::ALL {
+                let get = |m: Method| find(&sweep.rows, &scene, &backend, m, ao);
+                let [n, ss, rt] = pair.methods();
+                if [n, ss, rt].iter().all(|m| get(*m).is_none()) {
+                    continue;
+                }
+                let ms = |m: Method| get(m).map_or("–".into(), |r| format!("{:.1}", r.ms_median));
+                let ef = |m: Method| opt(get(m).and_then(|r| r.edge_flip), 4);
+                let rat = ratios(&sweep.rows, &scene, &backend, pair, ao);
+                let _ = writeln!(
+                    md,
+                    "| {ao} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+                    pair.name(),
+                    ms(n),
+                    ms(ss),
+                    ms(rt),
+                    ef(n),
+                    ef(ss),
+                    ef(rt),
+                    opt(rat.map(|r| r.0), 2),
+                    opt(rat.map(|r| r.1), 2),
+                    opt(rat.map(|r| r.1 / r.0), 2),
+                );
             }
-            let ms = |m: Method| get(m).map_or("–".into(), |r| format!("{:.1}", r.ms_median));
-            let ef = |m: Method| opt(get(m).and_then(|r| r.edge_flip), 4);
-            let rat = ratios(&sweep.rows, &scene, &backend, ao);
-            let _ = writeln!(
-                md,
-                "| {ao} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
-                ms(NOAA),
-                ms(SSAA4),
-                ms(SRAA_RT),
-                ef(NOAA),
-                ef(SSAA4),
-                ef(SRAA_RT),
-                opt(rat.map(|r| r.0), 2),
-                opt(rat.map(|r| r.1), 2),
-                opt(rat.map(|r| r.1 / r.0), 2),
-            );
         }
         let _ = writeln!(
             md,
@@ -392,9 +328,10 @@ reference, so that the section takes seconds, not minutes)"
 pub fn target_rows(sweep: &AoSweep) -> String {
     let mut md = String::new();
     let yes = |ok: bool| if ok { "met" } else { "**not met**" };
+    let traced = Pair::Traced;
     for (scene, backend) in groups(&sweep.rows) {
         for ao in AO_TIME_SHARE_AT {
-            if let Some((rays, time)) = ratios(&sweep.rows, &scene, &backend, ao) {
+            if let Some((rays, time)) = ratios(&sweep.rows, &scene, &backend, traced, ao) {
                 let share = time / rays;
                 let _ = writeln!(
                     md,
@@ -407,7 +344,7 @@ pub fn target_rows(sweep: &AoSweep) -> String {
                 );
             }
         }
-        if let Some((_, time)) = ratios(&sweep.rows, &scene, &backend, AO_SPEEDUP_AT) {
+        if let Some((_, time)) = ratios(&sweep.rows, &scene, &backend, traced, AO_SPEEDUP_AT) {
             let _ = writeln!(
                 md,
                 "| sraa-rt ≥ {AO_SPEEDUP}x faster than ssaa4 at AO {AO_SPEEDUP_AT} | {backend} | {scene} ({}x{}) | {time:.2}x | {} |",
@@ -429,6 +366,19 @@ pub fn target_rows(sweep: &AoSweep) -> String {
                 yes(factor <= AO_EDGE_FACTOR)
             );
         }
+    }
+    for c in crossovers(sweep).iter().filter(|c| c.pair == Pair::Hybrid) {
+        let (rt, ss) = (c.pair.sraa_rt(), c.pair.ssaa4());
+        let (figure, met) = hybrid_crossover_judged(c);
+        let _ = writeln!(
+            md,
+            "| hybrid crossover ({rt} faster than {ss}) at ≤ {HYBRID_CROSSOVER_AO} AO ray per shaded point | {} | {} ({}x{}) | {figure} | {} |",
+            c.backend,
+            c.scene,
+            AO_SWEEP_SIZE.0,
+            AO_SWEEP_SIZE.1,
+            met.map_or_else(|why| why, |ok| yes(ok).to_string())
+        );
     }
     md
 }
@@ -476,7 +426,7 @@ where
         .axis_desc_style((FAMILY, size - 2))
         .draw()
         .map_err(pe)?;
-    for m in AO_SWEEP_METHODS {
+    for m in sweep_methods() {
         let mut pts: Vec<(f64, f64)> = rows
             .iter()
             .filter(|r| r.method == m)
@@ -579,7 +529,8 @@ impl Runner<'_> {
             ao_reference: spec.ao_reference.map(|m| m.to_string()),
             ..Default::default()
         };
-        let methods: Vec<Method> = AO_SWEEP_METHODS.to_vec();
+        let methods: Vec<Method> = sweep_methods();
+        let names: Vec<String> = methods.iter().map(Method::to_string).collect();
         let quality = plan.mode != crate::Mode::TimingOnly;
         for &name in &spec.scenes {
             let Some(base) = jobs.iter().find(|j| j.arg == name && !j.sdf) else {
@@ -598,9 +549,28 @@ impl Runner<'_> {
                 quality_size: AO_SWEEP_SIZE,
             };
             self.progress.note(&format!(
-                "{}: where SRAA pays (noaa, ssaa4, sraa-rt with AO {:?} at {}x{})",
-                job.name, spec.aos, AO_SWEEP_SIZE.0, AO_SWEEP_SIZE.1
+                "{}: where SRAA pays ({} with AO {:?} at {}x{})",
+                job.name,
+                names.join(", "),
+                spec.aos,
+                AO_SWEEP_SIZE.0,
+                AO_SWEEP_SIZE.1
             ));
+            // What each backend refuses is skipped, not failed.
+            let mut able: Vec<(usize, Method)> = Vec::new();
+            for (bi, (bname, backend)) in plan.backends.iter().enumerate() {
+                for m in &methods {
+                    match backend.supports(&job.scene, m) {
+                        Ok(()) => able.push((bi, *m)),
+                        Err(u) => sweep.refused.push(Refused {
+                            scene: job.name.to_string(),
+                            backend: bname.clone(),
+                            method: *m,
+                            reason: u.reason.to_string(),
+                        }),
+                    }
+                }
+            }
             let masks = if quality {
                 Some(self.classes(&job)?)
             } else {
@@ -617,8 +587,8 @@ impl Runner<'_> {
                     }
                     None => None,
                 };
-                for (bname, backend) in &plan.backends {
-                    for m in &methods {
+                for (bi, (bname, backend)) in plan.backends.iter().enumerate() {
+                    for m in able.iter().filter(|a| a.0 == bi).map(|a| &a.1) {
                         self.progress.bar.set_message(format!(
                             "where SRAA pays, {}: {m} with AO {ao} on {bname}",
                             job.name
@@ -706,8 +676,12 @@ mod tests {
                 row("sraa-rt", 64, 300.0, 70.0, 0.055),
             ],
             missing: vec![],
+            refused: vec![],
         };
-        assert_eq!(ratios(&sweep.rows, "atrium", "cpu", 16), Some((4.0, 2.0)));
+        assert_eq!(
+            ratios(&sweep.rows, "atrium", "cpu", Pair::Traced, 16),
+            Some((4.0, 2.0))
+        );
         let t = target_rows(&sweep);
         // AO 16: 2.0 of 4.0 is 50 %: not met. AO 64: 4.0 of 3.71: met;
         // 4x faster: met; 0.055 / 0.05 = 1.1x: met.
@@ -721,54 +695,28 @@ mod tests {
         assert!(section(&AoSweep::default(), Some("ssaa256")).is_empty());
     }
 
+    /// The default report's sweep: AO 1 is swept, so that the hybrid
+    /// crossover target can be judged.
     #[test]
-    fn the_crossover_is_computed_from_the_rows() {
-        let sweep = |rows| AoSweep {
-            ran: true,
-            aos: vec![0, 4, 16],
-            ao_reference: None,
-            rows,
-            missing: vec![],
-        };
-        // sraa-rt 40 ms slower at AO 0, 120 ms faster at AO 4: the gap
-        // crosses 0 a quarter of the way, at AO 1.
-        let s = sweep(vec![
-            row("ssaa4", 0, 100.0, 8.0, 0.07),
-            row("sraa-rt", 0, 140.0, 6.0, 0.08),
-            row("ssaa4", 4, 300.0, 20.0, 0.08),
-            row("sraa-rt", 4, 180.0, 9.0, 0.09),
-            row("ssaa4", 16, 800.0, 70.0, 0.08),
-            row("sraa-rt", 16, 300.0, 20.0, 0.09),
-        ]);
-        let c = crossover(&s, "atrium", "cpu");
-        let f = c.first_faster.unwrap();
-        assert_eq!((f.ao, f.sraa_rt_ms, f.ssaa4_ms), (4, 180.0, 300.0));
+    fn the_default_sweep_has_one_ao_ray() {
+        assert!(SweepSpec::default_report()
+            .aos
+            .contains(&HYBRID_CROSSOVER_AO));
+        assert!(SweepSpec::full().aos.contains(&HYBRID_CROSSOVER_AO));
+        let names: Vec<String> = sweep_methods().iter().map(Method::to_string).collect();
         assert_eq!(
-            (f.sraa_rt_edge_flip, f.ssaa4_edge_flip),
-            (Some(0.09), Some(0.08))
+            names,
+            [
+                "noaa",
+                "ssaa4",
+                "sraa-rt",
+                "noaa-hybrid",
+                "ssaa4-hybrid",
+                "sraa-rt-hybrid"
+            ]
         );
-        assert_eq!(c.interpolated, Some(1.0));
-        let text = crossover_sentence(&c);
-        assert!(
-            text.contains("from 4 AO rays") && text.contains("about 1.0 AO rays"),
-            "{text}"
-        );
-        assert!(section(&s, Some("ssaa256")).contains("**Crossover, atrium (cpu):**"));
-
-        // Faster from the first count: no interpolation; never faster: none.
-        let s = sweep(vec![
-            row("ssaa4", 0, 100.0, 8.0, 0.07),
-            row("sraa-rt", 0, 90.0, 6.0, 0.08),
-        ]);
-        let c = crossover(&s, "atrium", "cpu");
-        assert_eq!((c.first_faster.unwrap().ao, c.interpolated), (0, None));
-        let s = sweep(vec![
-            row("ssaa4", 0, 100.0, 8.0, 0.07),
-            row("sraa-rt", 0, 190.0, 6.0, 0.08),
-        ]);
-        let c = crossover(&s, "atrium", "cpu");
-        assert!(c.first_faster.is_none());
-        assert!(crossover_sentence(&c).contains("at no swept AO ray count"));
+        assert_eq!(Pair::of(Pair::Hybrid.sraa_rt()), Pair::Hybrid);
+        assert_eq!(Pair::of(SRAA_RT), Pair::Traced);
     }
 
     #[test]

@@ -60,6 +60,7 @@
 #![deny(missing_docs)]
 
 pub mod answer;
+pub mod ao_crossover;
 pub mod ao_sweep;
 mod args;
 pub mod classes;
@@ -67,6 +68,7 @@ pub mod context;
 pub mod crops;
 pub mod files;
 pub mod html;
+pub mod hybrid;
 pub mod kernel_timing;
 pub mod key;
 pub mod load;
@@ -90,7 +92,7 @@ use std::time::{Duration, Instant};
 use anyhow::{anyhow, bail, Context, Result};
 use glam::Vec3;
 use indicatif::{ProgressBar, ProgressStyle};
-use subcone_kernels::passes::{SceneFeatures, Technique};
+use subcone_kernels::passes::SceneFeatures;
 use subcone_scene::{
     Albedo, Backend, Frame, Method, RenderSettings, Scene, Unsupported, UnsupportedReason,
 };
@@ -198,6 +200,10 @@ pub struct ResultRow {
     pub samples_per_pixel: f64,
     /// Rays of every kind per pixel (timing frame).
     pub rays_per_pixel: f64,
+    /// Primary samples whose triangle the rasteriser found, per pixel
+    /// (timing frame, [`FrameStats::raster_samples`](subcone_scene::FrameStats::raster_samples)):
+    /// 0 for a method that traces its primary rays.
+    pub raster_samples_per_pixel: f64,
     /// MiB of frame buffers the backend allocated (timing frame): what leaving
     /// out passes a scene does not need saves shows here.
     pub buffer_mib: f64,
@@ -263,6 +269,7 @@ impl ResultRow {
             errors_at: Vec::new(),
             samples_per_pixel: 0.0,
             rays_per_pixel: 0.0,
+            raster_samples_per_pixel: 0.0,
             buffer_mib: 0.0,
             quality_width: None,
             quality_height: None,
@@ -1364,6 +1371,7 @@ fn post_measured(
     };
     row.samples_per_pixel = base.samples_per_pixel;
     row.rays_per_pixel = base.rays_per_pixel;
+    row.raster_samples_per_pixel = base.raster_samples_per_pixel;
     row.buffer_mib = base.buffer_mib;
     let mut quality = None;
     let noaa_quality = noaa.noaa.as_ref().and_then(|f| f.quality.as_ref());
@@ -1710,6 +1718,8 @@ struct FrameFigures {
     spp: f64,
     /// Rays of every kind per pixel.
     rays_per_pixel: f64,
+    /// Rasterised primary samples per pixel.
+    raster_spp: f64,
     /// Frame buffers, MiB.
     buffer_mib: f64,
 }
@@ -1720,6 +1730,7 @@ impl FrameFigures {
         FrameFigures {
             spp: f.stats.shaded_samples as f64 / px,
             rays_per_pixel: f.stats.rays.total() as f64 / px,
+            raster_spp: f.stats.raster_samples as f64 / px,
             buffer_mib: f.stats.buffer_bytes() as f64 / (1u64 << 20) as f64,
         }
     }
@@ -1799,7 +1810,9 @@ impl Runner<'_> {
             self.rounds(job, bi, backend.as_ref(), &mut contenders)?;
             let mut noaa: Option<Measured> = None;
             for c in contenders.into_iter().filter(|c| !c.dropped) {
-                let is_noaa = c.method.technique() == Technique::NoAa;
+                // `noaa` itself: its hybrid twin and TAA share its
+                // technique, but the post-process rows filter NoAA's frame.
+                let is_noaa = c.method == NOAA;
                 let done = self.finish(job, bi, backend.as_ref(), c, sq.as_ref(), &img_dir)?;
                 if let (0, Some(img)) = (bi, &done.quality) {
                     crop_images.push((done.row.method.clone(), img.clone()));
@@ -1976,7 +1989,7 @@ impl Runner<'_> {
                         .filter(|s| !s.is_empty())
                         .map(|s| s.iter().map(|&v| v as f64).sum::<f64>() / s.len() as f64);
                     quality = Some(Rgb8::from_frame(&qf)?);
-                    if m.technique() == Technique::NoAa && !plan.post.is_empty() {
+                    if *m == NOAA && !plan.post.is_empty() {
                         noaa_quality = Some(qf);
                     }
                 }
@@ -2052,7 +2065,7 @@ impl Runner<'_> {
                     Ok((f, wall)) => {
                         c.timings.push(wall, &f);
                         c.figures = Some(FrameFigures::of(&f));
-                        if c.method.technique() == Technique::NoAa {
+                        if c.method == NOAA {
                             c.last_noaa = Some(f);
                         }
                     }
@@ -2098,6 +2111,7 @@ impl Runner<'_> {
         row.round_ms = c.timings.wall_ms.clone();
         row.samples_per_pixel = c.quality_spp.unwrap_or(fig.spp);
         row.rays_per_pixel = fig.rays_per_pixel;
+        row.raster_samples_per_pixel = fig.raster_spp;
         row.buffer_mib = fig.buffer_mib;
         let mut noaa = c.last_noaa.map(|timing| NoaaFrames {
             timing,
@@ -2136,7 +2150,7 @@ impl Runner<'_> {
     ) -> Result<Vec<Frame>> {
         let start = Instant::now();
         let plan = self.plan;
-        let keep = method.technique() == Technique::NoAa && !plan.post.is_empty();
+        let keep = *method == NOAA && !plan.post.is_empty();
         let mut frames = Vec::new();
         for oq in &q.offsets {
             self.progress.bar.set_message(format!(
@@ -2493,7 +2507,7 @@ mod tests {
             ..Default::default()
         };
         let plan = Plan::new(&args).unwrap();
-        let noaa = Method::new(Technique::NoAa);
+        let noaa = NOAA;
         // Scene 0: two methods on backend 0; scene 1: nothing applies.
         let work = vec![(0, vec![(noaa, vec![0]), (noaa, vec![0])]), (1, vec![])];
         // 2 methods × (1 warm-up + 4 rounds) + reference and masks, then

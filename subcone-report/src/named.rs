@@ -2,8 +2,13 @@
 //! the ambient-occlusion sweep, the cost targets, the verdict lines), as
 //! typed methods: their names come from the registry
 //! ([`subcone_scene::registry`]) through `Display`, never from a literal.
+//!
+//! The `-hybrid` methods (primary visibility rasterised, SRAA §3.1 and
+//! §4.2) are built by [`hybrid`] in functions: the modifier is checked at
+//! run time ([`Method::with_hybrid`]).
 
 use subcone_kernels::passes::Technique;
+use subcone_scene::method::Preset;
 use subcone_scene::Method;
 
 /// One sample per pixel: the baseline of every ratio and verdict.
@@ -28,6 +33,61 @@ pub const TAA: Method = Method::temporal(Technique::NoAa);
 pub const SRAA_RT_TAA: Method = Method::temporal(Technique::SraaRt);
 /// CTSS under TAA.
 pub const CTSS_TAA: Method = Method::temporal(Technique::Ctss);
+/// FXAA on the NoAA frame.
+pub const FXAA: Method = Method::new(Technique::Fxaa);
+
+/// `method` with rasterised primary visibility (`-hybrid`). Panics for a
+/// method the modifier does not apply to: every caller passes one of
+/// [`hybrid_bases`].
+pub fn hybrid(method: Method) -> Method {
+    method
+        .with_hybrid()
+        .unwrap_or_else(|e| panic!("{method} has no hybrid: {e}"))
+}
+
+/// `noaa-hybrid`: NoAA with its primary visibility rasterised.
+pub fn noaa_hybrid() -> Method {
+    hybrid(NOAA)
+}
+
+/// `ssaa4-hybrid`.
+pub fn ssaa4_hybrid() -> Method {
+    hybrid(SSAA4)
+}
+
+/// `ssaa16-hybrid`: the paper's 16x SSAA baseline of Fig. 3, rasterised.
+pub fn ssaa16_hybrid() -> Method {
+    hybrid(SSAA16)
+}
+
+/// `sraa-rt-hybrid`: SRAA as its paper runs it (§3.1, §4.2, Fig. 3), the
+/// shaded sample and the geometric subsamples rasterised.
+pub fn sraa_rt_hybrid() -> Method {
+    hybrid(SRAA_RT)
+}
+
+/// A method with the paper's preset (`-paper`).
+fn paper(method: Method) -> Method {
+    method
+        .with_preset(Preset::Paper)
+        .unwrap_or_else(|e| panic!("{method} has no paper preset: {e}"))
+}
+
+/// The traced methods of the default comparison that have a `-hybrid`
+/// twin there, in table order: the rows the report sets side by side
+/// (traced against hybrid, per triangle scene).
+pub fn hybrid_bases() -> [Method; 8] {
+    [
+        NOAA,
+        SSAA4,
+        SSAA16,
+        SRAA,
+        SRAA_RT,
+        paper(SRAA),
+        paper(SRAA_RT),
+        FXAA,
+    ]
+}
 
 #[cfg(test)]
 mod tests {
@@ -49,10 +109,35 @@ mod tests {
             (TAA, "taa"),
             (SRAA_RT_TAA, "sraa-rt+taa"),
             (CTSS_TAA, "ctss+taa"),
+            (FXAA, "fxaa"),
+            (noaa_hybrid(), "noaa-hybrid"),
+            (ssaa4_hybrid(), "ssaa4-hybrid"),
+            (ssaa16_hybrid(), "ssaa16-hybrid"),
+            (sraa_rt_hybrid(), "sraa-rt-hybrid"),
         ];
         for (m, name) in names {
             assert_eq!(m.to_string(), name);
             assert_eq!(name.parse::<Method>().unwrap(), m);
         }
+    }
+
+    /// Every base's hybrid is a method of the default comparison, and so
+    /// is the base: the traced-against-hybrid table has both rows.
+    #[test]
+    fn every_hybrid_base_has_its_hybrid_in_the_default_comparison() {
+        let names = subcone_scene::method::METHOD_NAMES;
+        for m in hybrid_bases() {
+            assert!(!m.is_hybrid());
+            assert!(names.contains(&m.to_string().as_str()), "{m}");
+            let h = hybrid(m);
+            assert!(h.is_hybrid() && h.traced() == m);
+            assert!(names.contains(&h.to_string().as_str()), "{h}");
+        }
+        // And no hybrid of the default comparison is left out.
+        let hybrids = names
+            .iter()
+            .filter(|n| n.parse::<Method>().unwrap().is_hybrid())
+            .count();
+        assert_eq!(hybrids, hybrid_bases().len());
     }
 }

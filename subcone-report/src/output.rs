@@ -13,7 +13,9 @@
 //! smallest and largest value over the offsets (empty with one offset);
 //! `px_<class>` is the class's smallest pixel count over the offsets. The
 //! near-edge band (`flip_near_edge`, `px_near_edge`, `dssim_near_edge`) is
-//! measured like a class but not judged.
+//! measured like a class but not judged. `raster_samples_per_pixel` counts
+//! the primary samples a `-hybrid` method's rasteriser resolved (0 for a
+//! traced method); its rasteriser's time is the `ms_raster` pass column.
 //!
 //! Time ratios to NoAA are medians of per-round ratios (the methods of a
 //! scene and backend are timed in interleaved rounds, see [`timing`]);
@@ -34,7 +36,7 @@ use crate::{crops, file_safe, kernel_timing, timing, Mode, ReportSummary, Result
 use subcone_scene::Method;
 
 /// The columns every results file has, in order.
-pub const BASE_COLUMNS: [&str; 78] = [
+pub const BASE_COLUMNS: [&str; 79] = [
     "scene",
     "method",
     "backend",
@@ -113,6 +115,7 @@ pub const BASE_COLUMNS: [&str; 78] = [
     "dssim_flat_max",
     "dssim_near_edge_min",
     "dssim_near_edge_max",
+    "raster_samples_per_pixel",
 ];
 
 pub use crate::papers::{CTSS_TABLE1, SRAA_SPEEDUP_OVER_SSAA16, SRAA_TABLE1};
@@ -230,6 +233,7 @@ fn row_cells(r: &ResultRow, passes: &[String]) -> Vec<Cell> {
             c.push(opt(range.map(|x| x.1)));
         }
     }
+    c.push(Cell::Num(r.raster_samples_per_pixel));
     for p in passes {
         c.push(opt(r.pass(p.trim_start_matches("ms_"))));
     }
@@ -408,7 +412,8 @@ pub fn json(s: &ReportSummary, ctx: &Context) -> Value {
         "sweep": sweep,
         "motion": crate::motion::json(&s.motion),
         "ao_crossover": crate::ao_sweep::crossovers(&s.ao_sweep).iter().map(|c| json!({
-            "scene": c.scene, "backend": c.backend,
+            "scene": c.scene, "backend": c.backend, "pair": c.pair.name(),
+            "ssaa4": c.pair.ssaa4().to_string(), "sraa_rt": c.pair.sraa_rt().to_string(),
             "first_faster_ao": c.first_faster.map(|f| f.ao),
             "sraa_rt_ms": c.first_faster.map(|f| f.sraa_rt_ms),
             "ssaa4_ms": c.first_faster.map(|f| f.ssaa4_ms),
@@ -418,6 +423,7 @@ pub fn json(s: &ReportSummary, ctx: &Context) -> Value {
         })).collect::<Vec<_>>(),
         "ao_sweep": s.ao_sweep.rows.iter().map(|r| json!({
             "scene": r.scene, "method": r.method.to_string(), "backend": r.backend, "ao_rays": r.ao,
+            "pair": crate::ao_sweep::Pair::of(r.method).name(),
             "ms_median": r.ms_median, "rays_per_pixel": r.rays_per_pixel,
             "ao_rays_per_pixel": r.ao_rays_per_pixel, "edge_flip": r.edge_flip,
             "flip_mean": r.flip_mean,
@@ -624,6 +630,7 @@ fn scene_section(md: &mut String, s: &ReportSummary, sc: &SceneInfo) {
                 r.post_process.as_deref().unwrap_or("?")
             );
         }
+        md.push_str(&crate::hybrid::scene_table(&rows));
         let stem = file_safe(&sc.name);
         if rows.iter().any(|r| r.flip_mean.is_some()) {
             let _ = writeln!(
@@ -1674,6 +1681,7 @@ lowest or its highest round.\n",
         }
     }
     md.push_str(&crate::ao_sweep::target_rows(&s.ao_sweep));
+    md.push_str(&crate::hybrid::target_rows(&s.rows, ctx));
     let pct = |x: f64| format!("{:.1}%", 100.0 * x);
     for t in &s.throughput {
         let r = &t.rates;
@@ -1728,6 +1736,7 @@ lowest or its highest round.\n",
             let _ = writeln!(md, "| {} | {:.2} |", k.name, k.ns_per_call);
         }
     }
+    md.push_str(&crate::hybrid::raster_throughput(&s.throughput));
     let _ = writeln!(md);
     md
 }
@@ -1809,6 +1818,7 @@ ssaa16's median time over sraa-rt's.\n"
             "\nPaper: ssaa16 / SRAA ≈ {SRAA_SPEEDUP_OVER_SSAA16:.0} (GPU hybrid, Fig. 3).\n"
         );
     }
+    md.push_str(&crate::hybrid::paper_section(&s.rows, ctx));
 
     let _ = writeln!(md, "### CTSS, Table 1 (average frame-time ratio to NoAA)\n");
     let sdf = ctx.sdf_scenes();
@@ -1957,6 +1967,7 @@ mod tests {
             errors_at: Vec::new(),
             samples_per_pixel: 1.0,
             rays_per_pixel: 2.0,
+            raster_samples_per_pixel: 0.0,
             buffer_mib: 0.5,
             quality_width: Some(4),
             quality_height: Some(2),
@@ -2036,16 +2047,19 @@ mod tests {
         let header = lines.next().unwrap();
         assert!(header.starts_with("scene,method,backend,width,height,runs,ms_median"));
         assert!(header.contains(",dssim_flat,post_process,timed_by,offsets,flip_min,"));
-        assert!(header.ends_with(",dssim_near_edge_min,dssim_near_edge_max,ms_geometry,ms_shading"));
+        assert!(header.ends_with(
+            ",dssim_near_edge_min,dssim_near_edge_max,raster_samples_per_pixel,ms_geometry,ms_shading"
+        ));
         assert!(header.contains(",ms_max,ratio_to_noaa,ratio_min,ratio_max,flip_mean,"));
         let first = lines.next().unwrap();
         // No ratios, no SSIM, no classes (18 empty columns), no post-process
         // adapter: 19 empty fields between the reference and the timing
-        // source; then no geometry pass, and the shading pass.
+        // source; no offsets; no rasterised sample (a traced method); then
+        // no geometry pass, and the shading pass.
         let expected = format!(
-            "\"s,1\",noaa,cpu,4,2,3,2.5,2,3,,,,0.125,inf,,,1,2,0.5,4,2,ssaa64{}cpu{},1",
+            "\"s,1\",noaa,cpu,4,2,3,2.5,2,3,,,,0.125,inf,,,1,2,0.5,4,2,ssaa64{}cpu{}0,,1",
             ",".repeat(20),
-            ",".repeat(BASE_COLUMNS.len() - 42 + 1)
+            ",".repeat(BASE_COLUMNS.len() - 42)
         );
         assert_eq!(first, expected);
         let second = lines.next().unwrap();

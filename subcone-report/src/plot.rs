@@ -53,7 +53,9 @@ pub const PLOT_SIZE: (u32, u32) = (960, 640);
 pub type LineChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
 /// One method's line through `pts` in its colour ([`method_colour`]), a dot
-/// of radius `dot` at each point, and its legend entry.
+/// of radius `dot` at each point, and its legend entry. A `-hybrid`
+/// method's line is dashed, in its traced twin's colour, so that the two
+/// read as one method with two primary visibilities.
 pub fn method_line<DB: DrawingBackend>(
     chart: &mut LineChart<'_, DB>,
     method: &str,
@@ -65,11 +67,32 @@ where
 {
     let pe = |e: DrawingAreaErrorKind<DB::ErrorType>| anyhow!("plot of {method}: {e:?}");
     let c = method_colour(method);
-    chart
-        .draw_series(LineSeries::new(pts.to_vec(), c.stroke_width(3)))
-        .map_err(pe)?
-        .label(method)
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(3)));
+    let hybrid = method.parse::<Method>().is_ok_and(|m| m.is_hybrid());
+    if hybrid {
+        chart
+            .draw_series(DashedLineSeries::new(
+                pts.to_vec(),
+                12,
+                8,
+                c.stroke_width(3),
+            ))
+            .map_err(pe)?
+            .label(method)
+            .legend(move |(x, y)| {
+                plotters::element::DashedPathElement::new(
+                    vec![(x, y), (x + 20, y)],
+                    6,
+                    4,
+                    c.stroke_width(3),
+                )
+            });
+    } else {
+        chart
+            .draw_series(LineSeries::new(pts.to_vec(), c.stroke_width(3)))
+            .map_err(pe)?
+            .label(method)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(3)));
+    }
     chart
         .draw_series(pts.iter().map(|&p| Circle::new(p, dot, c.filled())))
         .map_err(pe)?;

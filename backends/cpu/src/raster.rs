@@ -404,6 +404,9 @@ fn setup(
 ) -> Option<RasterTriangle> {
     let [f, r, up] = basis;
     let [v0, v1, v2] = v;
+    // Bounds first: most triangles of a large scene are off screen or
+    // behind the camera, and need nothing else.
+    let bounds = bounds(p.map(|q| to_camera * q), near, cam, (width, height))?;
     // The orientation as seen from the camera: the sign of
     // `(v0 − o) · ((v1 − v0) × (v2 − v0))`, which a ray hitting the triangle in
     // front of the camera gives its three edge functions.
@@ -439,7 +442,6 @@ fn setup(
     if !(depth.iter().all(|x| x.is_finite())) {
         return None;
     }
-    let bounds = bounds(p.map(|q| to_camera * q), near, cam, (width, height))?;
     Some(RasterTriangle {
         edges,
         ties,
