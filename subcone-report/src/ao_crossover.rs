@@ -266,21 +266,8 @@ pub fn hybrid_crossover_judged(c: &Crossover) -> (String, Result<bool, String>) 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::ao_sweep::tests::row;
     use crate::ao_sweep::{ratios, section, target_rows, AoSweepRow};
-
-    fn row(method: &str, ao: u32, ms: f64, rays: f64, edge: f64) -> AoSweepRow {
-        AoSweepRow {
-            scene: "atrium".into(),
-            method: method.parse().unwrap(),
-            backend: "cpu".into(),
-            ao,
-            ms_median: ms,
-            rays_per_pixel: rays,
-            ao_rays_per_pixel: 0.0,
-            edge_flip: Some(edge),
-            flip_mean: None,
-        }
-    }
 
     #[test]
     fn the_crossover_is_computed_from_the_rows() {

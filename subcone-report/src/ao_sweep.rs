@@ -646,10 +646,11 @@ impl Runner<'_> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    fn row(method: &str, ao: u32, ms: f64, rays: f64, edge: f64) -> AoSweepRow {
+    /// A sweep row of atrium on the CPU (shared with the crossover tests).
+    pub(crate) fn row(method: &str, ao: u32, ms: f64, rays: f64, edge: f64) -> AoSweepRow {
         AoSweepRow {
             scene: "atrium".into(),
             method: method.parse().unwrap(),

@@ -395,7 +395,8 @@ impl Rect {
     }
 }
 
-/// What a task of [`subpixel`] did: its rays and the time of each pass.
+/// What a task of [`subpixel`] or of the hybrid [`supersample`] did: its
+/// rays and the time of each pass (the passes it does not run stay zero).
 #[derive(Clone, Copy, Default)]
 struct TileWork {
     counts: Counts,

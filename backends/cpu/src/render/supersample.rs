@@ -1,7 +1,7 @@
 //! NoAA and SSAA on triangle scenes: each sample's primary hit traced, or
 //! found by the rasteriser (`-hybrid`, [`crate::raster`]), then shaded.
 
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
@@ -10,7 +10,7 @@ use subcone_kernels::sraa::Geometry;
 use subcone_scene::camera::CameraRays;
 use subcone_scene::{Frame, FrameStats, Method, PassTiming, RenderSettings};
 
-use super::{pixel_centre, to_ray_counts, BAND};
+use super::{pixel_centre, to_ray_counts, TileWork, BAND};
 use crate::bvh::Hit;
 use crate::raster::{self, sample_coordinates, PixelRect, Raster, Samples, BIN};
 use crate::shade::{Counts, Surface, Tracer, MAX_LIGHTS};
@@ -63,26 +63,6 @@ fn supersample_traced(t: &Tracer, s: &RenderSettings, n: u32, frame: &mut Frame)
     };
 }
 
-/// What a task of [`supersample_hybrid`] did: its counts and the time it
-/// spent rasterising and shading.
-#[derive(Clone, Copy, Default)]
-struct HybridWork {
-    counts: Counts,
-    raster: Duration,
-    shading: Duration,
-}
-
-impl std::ops::Add for HybridWork {
-    type Output = HybridWork;
-    fn add(self, o: HybridWork) -> HybridWork {
-        HybridWork {
-            counts: self.counts + o.counts,
-            raster: self.raster + o.raster,
-            shading: self.shading + o.shading,
-        }
-    }
-}
-
 /// [`supersample`] with primary visibility rasterised (`-hybrid`): the
 /// triangles set up and binned once ([`Raster::new`]), then each
 /// [`BIN`]-row band of the image, bin by bin: every sample's triangle, then
@@ -104,7 +84,7 @@ fn supersample_hybrid(t: &Tracer, s: &RenderSettings, n: u32, frame: &mut Frame)
                 || supersample_hybrid_band(t, &cam, &raster, scratch, band, rows, w, n),
             )
         })
-        .reduce(HybridWork::default, |a, b| a + b);
+        .reduce(TileWork::default, |a, b| a + b);
     let wall = start.elapsed();
     // The setup is the raster's; the bands' time is split as the threads
     // spent it.
@@ -178,8 +158,8 @@ fn supersample_hybrid_band(
     rows: &mut [Vec3],
     w: usize,
     n: u32,
-) -> HybridWork {
-    let mut work = HybridWork::default();
+) -> TileWork {
+    let mut work = TileWork::default();
     let c = &mut work.counts;
     let n = n.max(1) as usize;
     let spp = n * n;
