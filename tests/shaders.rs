@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use subcone::shaders::{generate, stale, write};
+use subcone::shaders::{generate, stale, write, GENERATED};
 use subcone_passes::standalone::catalog;
 
 #[test]
@@ -121,4 +121,58 @@ fn msl_buffer_sizes_are_listed_as_the_msl_declares_them() {
         }
     }
     assert!(checked >= 3, "only {checked} variants declare buffer sizes");
+}
+
+/// Every text file says on its first line, in its own comment syntax, that
+/// it is generated (GLSL on its second, after `#version`, which GLSL ES
+/// wants first); JSON (no comments) and SPIR-V (binary) are written as
+/// they are.
+#[test]
+fn every_text_file_says_it_is_generated() {
+    let files = generate(&catalog().expect("catalog")).expect("every pass translates");
+    let mut marked = 0;
+    for f in &files {
+        let name = f.path.display().to_string();
+        let ext = f.path.extension().and_then(|e| e.to_str()).unwrap_or("");
+        let text = || String::from_utf8(f.bytes.clone()).expect("text");
+        match ext {
+            "wgsl" | "hlsl" | "metal" => {
+                assert_eq!(
+                    text().lines().next(),
+                    Some(&*format!("// {GENERATED}")),
+                    "{name}"
+                );
+            }
+            "md" => {
+                let expected = format!("<!-- {GENERATED} -->");
+                assert_eq!(text().lines().next(), Some(&*expected), "{name}");
+            }
+            "comp" => {
+                let text = text();
+                let mut lines = text.lines();
+                assert!(
+                    lines.next().is_some_and(|l| l.starts_with("#version ")),
+                    "{name}"
+                );
+                assert_eq!(lines.next(), Some(&*format!("// {GENERATED}")), "{name}");
+            }
+            "json" | "spv" => {
+                let head = &f.bytes[..f.bytes.len().min(200)];
+                assert!(!String::from_utf8_lossy(head).contains(GENERATED), "{name}");
+                continue;
+            }
+            other => panic!("{name}: no header rule for .{other}"),
+        }
+        marked += 1;
+    }
+    assert_eq!(
+        marked,
+        files
+            .iter()
+            .filter(|f| !f
+                .path
+                .extension()
+                .is_some_and(|e| e == "json" || e == "spv"))
+            .count()
+    );
 }
