@@ -8,6 +8,7 @@ use subcone_scene::builtin::builtin;
 use subcone_scene::temporal::{Taa, TaaConfig};
 use subcone_scene::{Backend, Camera, Frame, Method, RenderSettings, Scene};
 
+use crate::named::{NOAA, SSAA16};
 use crate::{flip, save_failure, FRAME_TOLERANCE, H, REFERENCE_METHOD, W};
 
 /// Frames of the still-camera case: one Halton (2, 3) cycle of 16 phases.
@@ -32,10 +33,9 @@ fn scene(name: &str) -> Scene {
     builtin(name).unwrap_or_else(|e| panic!("built-in scene {name}: {e}"))
 }
 
-fn render_one(backend: &dyn Backend, scene: &Scene, camera: &Camera, method: &str) -> Frame {
-    let m: Method = method.parse().expect("method name");
+fn render_one(backend: &dyn Backend, scene: &Scene, camera: &Camera, method: &Method) -> Frame {
     backend
-        .render(scene, camera, &m, &RenderSettings::new(W, H))
+        .render(scene, camera, method, &RenderSettings::new(W, H))
         .unwrap_or_else(|e| panic!("{}: {} {method}: {e}", backend.name(), scene.name))
 }
 
@@ -74,15 +74,15 @@ fn panned(base: &Camera, t: u32, step: f32) -> Camera {
 /// [`STILL_RATIO`](crate::STILL_RATIO) of ssaa16's FLIP against the ssaa64 reference.
 pub fn check_taa_still(backend: &dyn Backend) {
     let scene = scene("cornell");
-    let reference = render_one(backend, &scene, &scene.camera, REFERENCE_METHOD);
+    let reference = render_one(backend, &scene, &scene.camera, &REFERENCE_METHOD);
     let ssaa16 = flip(
         &reference,
-        &render_one(backend, &scene, &scene.camera, "ssaa16"),
+        &render_one(backend, &scene, &scene.camera, &SSAA16),
     )
     .mean;
     let noaa = flip(
         &reference,
-        &render_one(backend, &scene, &scene.camera, "noaa"),
+        &render_one(backend, &scene, &scene.camera, &NOAA),
     )
     .mean;
     let frames = sequence(
@@ -121,8 +121,8 @@ pub fn check_taa_reset(backend: &dyn Backend) {
     }
     let cut = panned(&base, 1, base.fov_y * 0.25);
     taa.reset();
-    let reference = render_one(backend, &scene, &cut, REFERENCE_METHOD);
-    let noaa = flip(&reference, &render_one(backend, &scene, &cut, "noaa")).mean;
+    let reference = render_one(backend, &scene, &cut, &REFERENCE_METHOD);
+    let noaa = flip(&reference, &render_one(backend, &scene, &cut, &NOAA)).mean;
     let mut errors = Vec::new();
     for t in 0..RESET_FRAMES {
         let f = taa

@@ -9,22 +9,28 @@
 //! pixels: every interior pixel (two pixels inside its projected edge)
 //! equals NoAA's within 1/255 in every channel. `ctss-paper` fails it (on
 //! the CPU its interior is the wall's colour: off by 0.9), so the `-paper`
-//! methods are not in the list.
+//! methods are not in the list ([`thin_slab_methods`]).
 
 use subcone_kernels::glam::Vec3;
 use subcone_scene::sdf::{SdfNode, SdfScene};
 use subcone_scene::{Backend, Camera, Material, Method, RenderSettings, Scene};
 
-/// The CTSS methods that must draw the slab opaque: every default one.
-pub const THIN_SLAB_METHODS: [&str; 7] = [
-    "ctss",
-    "ctss-delayed",
-    "ctss+edges",
-    "ctss-r",
-    "ctss-r-delayed",
-    "ssaa4+ctss",
-    "ssaa4+ctss-delayed",
-];
+use crate::named::{delayed, split_groups, CTSS, CTSS_R, NOAA, SSAA4_CTSS};
+
+/// The CTSS methods that must draw the slab opaque: every default one
+/// (`ctss`, `ctss-delayed`, `ctss+edges`, `ctss-r`, `ctss-r-delayed`,
+/// `ssaa4+ctss`, `ssaa4+ctss-delayed`).
+pub fn thin_slab_methods() -> [Method; 7] {
+    [
+        CTSS,
+        delayed(CTSS),
+        split_groups(CTSS),
+        CTSS_R,
+        delayed(CTSS_R),
+        SSAA4_CTSS,
+        delayed(SSAA4_CTSS),
+    ]
+}
 
 /// Largest difference from NoAA on an interior pixel, per channel.
 pub const THIN_SLAB_TOLERANCE: f32 = 1.0 / 255.0;
@@ -35,7 +41,7 @@ const HALF: f32 = 1.0;
 
 /// The slab (material 0, white) 6 units in front of the camera, the wall
 /// (material 1, red) 2 units behind it; the slab's thickness is a tenth of
-/// the narrowest cone's diameter among [`THIN_SLAB_METHODS`] at its depth.
+/// the narrowest cone's diameter among [`thin_slab_methods`] at its depth.
 pub fn thin_slab_scene() -> Scene {
     let cam = Camera::look_at(
         Vec3::new(0.0, 0.0, DISTANCE),
@@ -44,12 +50,9 @@ pub fn thin_slab_scene() -> Scene {
         30f32.to_radians(),
     )
     .expect("camera");
-    let narrowest = THIN_SLAB_METHODS
+    let narrowest = thin_slab_methods()
         .iter()
-        .map(|m| {
-            let m: Method = m.parse().expect("method");
-            m.cone_tan_theta(&cam, SIZE)
-        })
+        .map(|m| m.cone_tan_theta(&cam, SIZE))
         .fold(f32::INFINITY, f32::min);
     let thickness = 2.0 * DISTANCE * narrowest / 10.0;
     let slab = SdfNode::cuboid(Vec3::new(HALF, HALF, 0.5 * thickness)).expect("slab");
@@ -68,19 +71,18 @@ pub fn thin_slab_scene() -> Scene {
     Scene::sdf(s).expect("scene")
 }
 
-/// Renders [`thin_slab_scene`] with NoAA and every [`THIN_SLAB_METHODS`]
+/// Renders [`thin_slab_scene`] with NoAA and every [`thin_slab_methods`]
 /// method on `backend`, and requires each interior pixel within
 /// [`THIN_SLAB_TOLERANCE`] of NoAA's.
 pub fn check_thin_slab(backend: &dyn Backend) {
     let scene = thin_slab_scene();
     let settings = RenderSettings::new(SIZE, SIZE);
-    let render = |m: &str| {
-        let method: Method = m.parse().expect("method");
+    let render = |m: &Method| {
         backend
-            .render(&scene, &scene.camera, &method, &settings)
+            .render(&scene, &scene.camera, m, &settings)
             .unwrap_or_else(|e| panic!("{}: thin slab {m}: {e}", backend.name()))
     };
-    let noaa = render("noaa");
+    let noaa = render(&NOAA);
     // The slab's projected half-size in pixels: HALF at DISTANCE with a 30°
     // vertical field of view.
     let half_px = HALF / (DISTANCE * 15f32.to_radians().tan()) * SIZE as f32 / 2.0;
@@ -99,8 +101,8 @@ pub fn check_thin_slab(backend: &dyn Backend) {
         "NoAA draws the slab"
     );
     let mut failures = Vec::new();
-    for m in THIN_SLAB_METHODS {
-        let f = render(m);
+    for m in thin_slab_methods() {
+        let f = render(&m);
         let worst = interior
             .iter()
             .map(|&i| (f.color[i] - noaa.color[i]).abs().max_element())
