@@ -1,6 +1,7 @@
 //! No import circle between the top-level modules of the contract crate
 //! (`subcone-scene`), the report (`subcone-report`) and the other crates
-//! listed in `LAYERED` below: one reader and one cycle finder for all.
+//! listed in `LAYERED` below, nor between the files of one folder inside
+//! them: one reader and one cycle finder for all.
 //!
 //! Every `crate::<module>` reference in `src/**/*.rs` (code, not comments or
 //! strings: a doc link may point up a layer) is an edge from the module the
@@ -8,6 +9,16 @@
 //! same. A cycle of such edges is a failure that names the modules in order.
 //! A reference through a root re-export (`crate::Scene`) hides which module
 //! it needs, so code names the module (`crate::scene::Scene`).
+//!
+//! Inside a folder module (`sdf/mod.rs` and the files of `sdf/`) the same
+//! rule holds between its children, one level down at a time: a reference
+//! from a file under child `a` (`super::b::X`, `crate::sdf::b::X`) to child
+//! `b` is an edge `a -> b` of the folder's graph, and the folder's own file
+//! is above its children, as the crate root is above the top-level
+//! modules: what it declares itself (`super::Exactness`) is no edge, while a
+//! name it only re-exports from a child (`super::SdfNode`, `pub use
+//! node::SdfNode`) is an edge to that child, so that a re-export cannot hide
+//! a circle.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -29,7 +40,7 @@ fn sources(src: &Path) -> Vec<(String, Vec<String>, String)> {
                 rel.pop();
             } else if let Some(stem) = name.strip_suffix(".rs") {
                 // The file's own module path: `sdf/mod.rs` is `sdf`,
-                // `sdf/node.rs` is `sdf::node`, `lib.rs` is the root.
+                // `sdf/shape.rs` is `sdf::shape`, `lib.rs` is the root.
                 let mut module = rel.clone();
                 if stem != "mod" && stem != "lib" {
                     module.push(stem.to_string());
@@ -446,4 +457,298 @@ fn a_root_re_export_is_reported() {
     ]);
     let (_, through_root) = module_graph(&files);
     assert_eq!(through_root, vec!["a: crate::Scene".to_string()]);
+}
+
+/// A path as written, one segment per item (`["node", "SdfNode"]` for
+/// `node::SdfNode`), and the name a `use … as name` gives it.
+type WrittenPath = (Vec<String>, Option<String>);
+
+/// The items of a `{…}` group, split at its top-level commas, after the
+/// opening brace.
+fn group_items(s: &str) -> Vec<&str> {
+    let mut items = Vec::new();
+    let (mut depth, mut start) = (0usize, 0usize);
+    for (i, c) in s.char_indices() {
+        match c {
+            '{' => depth += 1,
+            '}' if depth == 0 => {
+                items.push(&s[start..i]);
+                return items;
+            }
+            '}' => depth -= 1,
+            ',' if depth == 0 => {
+                items.push(&s[start..i]);
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
+    items.push(&s[start..]);
+    items
+}
+
+/// The paths written at the start of `s` (`a::b::{c, d::{self, e}}` is
+/// `a::b::c`, `a::b::d` and `a::b::d::e`), each with its `as` name.
+fn written_paths(s: &str) -> Vec<WrittenPath> {
+    let mut segments = Vec::new();
+    let mut rest = s;
+    loop {
+        let trimmed = rest.trim_start();
+        if let Some(group) = trimmed.strip_prefix('{') {
+            let mut out = Vec::new();
+            for item in group_items(group) {
+                for (tail, alias) in written_paths(item) {
+                    let mut full = segments.clone();
+                    if tail != ["self"] {
+                        full.extend(tail);
+                    }
+                    out.push((full, alias));
+                }
+            }
+            return out;
+        }
+        let id = ident(trimmed);
+        if id.is_empty() {
+            break;
+        }
+        segments.push(id.to_string());
+        rest = &trimmed[id.len()..];
+        match rest.strip_prefix("::") {
+            Some(r) => rest = r,
+            None => break,
+        }
+    }
+    let alias = rest
+        .trim_start()
+        .strip_prefix("as ")
+        .map(|a| ident(a.trim_start()).to_string());
+    vec![(segments, alias)]
+}
+
+/// Every path the code of a file in `module` names from the crate root,
+/// as absolute segments: `crate::…`, and `super::…` resolved from the
+/// file's module (inside an inline `mod tests { … }`, the first `super` is
+/// the file's own module). Paths that stay in the file are left out.
+fn absolute_paths(module: &[String], code: &str) -> Vec<Vec<String>> {
+    let inline = inline_mods(code);
+    let mut out = Vec::new();
+    for (at, _) in code.match_indices("crate::") {
+        let before = code[..at].chars().next_back();
+        if before.is_some_and(|c| c.is_ascii_alphanumeric() || c == '_' || c == '$') {
+            continue;
+        }
+        out.extend(
+            written_paths(&code[at + "crate::".len()..])
+                .into_iter()
+                .map(|(p, _)| p),
+        );
+    }
+    for (at, _) in code.match_indices("super::") {
+        let before = code[..at].chars().next_back();
+        if before.is_some_and(|c| c.is_ascii_alphanumeric() || c == '_' || c == ':') {
+            continue;
+        }
+        let mut rest = &code[at..];
+        let mut up = 0;
+        while let Some(r) = rest.strip_prefix("super::") {
+            up += 1;
+            rest = r;
+        }
+        let enclosing = inline
+            .iter()
+            .filter(|(open, close)| *open < at && at < *close)
+            .count();
+        if up <= enclosing || up - enclosing > module.len() {
+            continue;
+        }
+        let base = &module[..module.len() - (up - enclosing)];
+        out.extend(written_paths(rest).into_iter().map(|(p, _)| {
+            let mut full = base.to_vec();
+            full.extend(p);
+            full
+        }));
+    }
+    out
+}
+
+/// What each module re-exports: `(module, name)` to the absolute path the
+/// name stands for, from its `pub use`, `pub(crate) use` and `pub(super)
+/// use` lines (globs aside).
+fn re_exports(
+    files: &[(String, Vec<String>, String)],
+) -> BTreeMap<(Vec<String>, String), Vec<String>> {
+    let mut map = BTreeMap::new();
+    for (_, module, text) in files {
+        let code = code_only(text);
+        for prefix in ["pub use ", "pub(crate) use ", "pub(super) use "] {
+            for (at, _) in code.match_indices(prefix) {
+                for (path, alias) in written_paths(&code[at + prefix.len()..]) {
+                    let Some(name) = alias.or_else(|| path.last().cloned()) else {
+                        continue;
+                    };
+                    let absolute = match path.first().map(String::as_str) {
+                        Some("crate") => path[1..].to_vec(),
+                        Some("self") => [module.as_slice(), &path[1..]].concat(),
+                        Some("super") => {
+                            let up = path.iter().take_while(|s| *s == "super").count();
+                            if up > module.len() {
+                                continue;
+                            }
+                            [&module[..module.len() - up], &path[up..]].concat()
+                        }
+                        Some(_) => [module.as_slice(), &path].concat(),
+                        None => continue,
+                    };
+                    map.insert((module.clone(), name), absolute);
+                }
+            }
+        }
+    }
+    map
+}
+
+/// The graph between the children of every folder module below the crate
+/// root (keyed by the folder's module path), by the rule in the module's
+/// doc.
+fn folder_graphs(files: &[(String, Vec<String>, String)]) -> BTreeMap<Vec<String>, Graph> {
+    let modules: BTreeSet<Vec<String>> = files
+        .iter()
+        .flat_map(|(_, m, _)| (0..=m.len()).map(move |n| m[..n].to_vec()))
+        .collect();
+    let exports = re_exports(files);
+    // The module a path names (its longest prefix that is a module), and the
+    // item after it, with re-exports followed.
+    let resolve = |path: &[String]| -> Vec<String> {
+        let mut path = path.to_vec();
+        for _ in 0..8 {
+            let n = (0..=path.len())
+                .rev()
+                .find(|&n| modules.contains(&path[..n]))
+                .unwrap_or(0);
+            let (module, rest) = path.split_at(n);
+            match rest
+                .first()
+                .and_then(|item| exports.get(&(module.to_vec(), item.clone())))
+            {
+                Some(target) if target.as_slice() != path.as_slice() => {
+                    path = [target.as_slice(), &rest[1..]].concat();
+                }
+                _ => return module.to_vec(),
+            }
+        }
+        path
+    };
+    let mut graphs: BTreeMap<Vec<String>, Graph> = BTreeMap::new();
+    for (_, module, text) in files {
+        if module.len() < 2 {
+            continue; // the crate root and its top-level modules: `module_graph`.
+        }
+        let code = code_only(text);
+        for path in absolute_paths(module, &code) {
+            let target = resolve(&path);
+            let common = module
+                .iter()
+                .zip(&target)
+                .take_while(|(a, b)| a == b)
+                .count();
+            if common == 0 || common >= module.len() || common >= target.len() {
+                // Another top-level module, the file's own module or an
+                // ancestor, or a descendant.
+                continue;
+            }
+            let folder = module[..common].to_vec();
+            let (from, to) = (module[common].clone(), target[common].clone());
+            graphs
+                .entry(folder)
+                .or_default()
+                .entry(from)
+                .or_default()
+                .insert(to);
+        }
+    }
+    graphs
+}
+
+fn check_folders(crate_dir: &str) -> Result<String, String> {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join(crate_dir)
+        .join("src");
+    let (mut rendered, mut circles) = (Vec::new(), Vec::new());
+    for (folder, graph) in folder_graphs(&sources(&src)) {
+        if let Some(cycle) = find_cycle(&graph) {
+            circles.push(format!(
+                "import circle between the files of {crate_dir}/src/{}: {}\n\nthe graph:\n{}",
+                folder.join("/"),
+                cycle.join(" -> "),
+                render(&graph)
+            ));
+        }
+        rendered.push(format!("{}:\n{}", folder.join("::"), render(&graph)));
+    }
+    if circles.is_empty() {
+        Ok(rendered.join("\n"))
+    } else {
+        Err(circles.join("\n\n"))
+    }
+}
+
+#[test]
+fn no_import_circle_between_the_files_of_a_folder() {
+    let mut failures = Vec::new();
+    for (dir, _, _) in LAYERED {
+        match check_folders(dir) {
+            Ok(graphs) => println!("{dir}:\n{graphs}\n"),
+            Err(e) => failures.push(e),
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+}
+
+#[test]
+fn the_folder_check_follows_paths_groups_and_re_exports() {
+    // sdf/mod.rs re-exports `Shape` from `shape`; `lane` names it through
+    // the folder (an edge), `shape` names `lane` by path, `node` names an
+    // item the folder declares itself (no edge) and reaches `shape` from
+    // the crate root inside a group.
+    let files = synthetic(&[
+        (
+            "sdf",
+            &["sdf"],
+            "mod lane;\nmod node;\nmod shape;\npub use shape::Shape;\npub enum Exactness {}",
+        ),
+        ("sdf", &["sdf", "lane"], "use super::Shape;"),
+        ("sdf", &["sdf", "shape"], "fn d() { super::lane::f() }"),
+        (
+            "sdf",
+            &["sdf", "node"],
+            "use super::Exactness;\nuse crate::{sdf::{shape::Shape as S}, scene::X};\n#[cfg(test)]\nmod tests {\n    use super::*;\n}",
+        ),
+    ]);
+    let graphs = folder_graphs(&files);
+    let sdf = &graphs[&vec!["sdf".to_string()]];
+    assert_eq!(sdf["lane"], BTreeSet::from(["shape".to_string()]));
+    assert_eq!(sdf["shape"], BTreeSet::from(["lane".to_string()]));
+    assert_eq!(sdf["node"], BTreeSet::from(["shape".to_string()]));
+    let cycle = find_cycle(sdf).expect("lane -> shape -> lane");
+    assert_eq!(cycle.len(), 3, "{cycle:?}");
+    assert_eq!(
+        written_paths("a::b::{c, d::{self, e as f}}"),
+        vec![
+            (
+                vec!["a", "b", "c"].into_iter().map(String::from).collect(),
+                None
+            ),
+            (
+                vec!["a", "b", "d"].into_iter().map(String::from).collect(),
+                None
+            ),
+            (
+                vec!["a", "b", "d", "e"]
+                    .into_iter()
+                    .map(String::from)
+                    .collect(),
+                Some("f".to_string())
+            ),
+        ]
+    );
 }

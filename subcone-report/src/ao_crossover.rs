@@ -1,4 +1,5 @@
-//! The crossover of "Where SRAA pays" ([`crate::ao_sweep`]): per scene,
+//! The rows of "Where SRAA pays" ([`crate::ao_sweep`], which renders them)
+//! and their crossover: per scene,
 //! backend and [`Pair`], the fewest ambient-occlusion rays per shaded point
 //! at which the pair's `sraa-rt` takes less time than its `ssaa4`.
 //!
@@ -11,9 +12,108 @@
 //! primary hits; the hybrid one is judged against
 //! [`HYBRID_CROSSOVER_AO`].
 
-use crate::ao_sweep::{find, groups, opt, AoSweep};
 use crate::named::{hybrid, NOAA, SRAA_RT, SSAA4};
 use subcone_scene::Method;
+
+/// One method at one AO ray count on one scene and backend.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AoSweepRow {
+    /// Scene name.
+    pub scene: String,
+    /// Method.
+    pub method: Method,
+    /// Backend.
+    pub backend: String,
+    /// AO rays per shaded point.
+    pub ao: u32,
+    /// Median wall time of the timed runs, ms.
+    pub ms_median: f64,
+    /// Every ray cast, per pixel.
+    pub rays_per_pixel: f64,
+    /// AO rays cast, per pixel.
+    pub ao_rays_per_pixel: f64,
+    /// Mean FLIP over the silhouette, crease and shadow pixels together
+    /// (`None` without a reference, or when the scene has none).
+    pub edge_flip: Option<f64>,
+    /// Mean FLIP of the whole image.
+    pub flip_mean: Option<f64>,
+}
+
+/// A method a backend did not sweep because it refuses it
+/// ([`Backend::supports`](subcone_scene::Backend::supports)).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Refused {
+    /// Scene.
+    pub scene: String,
+    /// Backend.
+    pub backend: String,
+    /// Method.
+    pub method: Method,
+    /// The backend's reason.
+    pub reason: String,
+}
+
+/// What the section has: its rows and the scenes it could not sweep.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct AoSweep {
+    /// Whether it ran (the default report, or `--sraa-sweep`).
+    pub ran: bool,
+    /// The AO ray counts swept, increasing.
+    pub aos: Vec<u32>,
+    /// The reference of the rows with AO, when it is not the run's.
+    pub ao_reference: Option<String>,
+    /// One row per scene, backend, method and AO ray count.
+    pub rows: Vec<AoSweepRow>,
+    /// Scenes of [`AO_SWEEP_SCENES`](crate::ao_sweep::AO_SWEEP_SCENES) not swept, with the reason.
+    pub missing: Vec<(String, String)>,
+    /// Methods a backend refuses, not swept there (no failure).
+    pub refused: Vec<Refused>,
+}
+
+/// The row of `method` at `ao` on `scene` and `backend`.
+pub(crate) fn find<'a>(
+    rows: &'a [AoSweepRow],
+    scene: &str,
+    backend: &str,
+    method: Method,
+    ao: u32,
+) -> Option<&'a AoSweepRow> {
+    rows.iter()
+        .find(|r| r.scene == scene && r.backend == backend && r.method == method && r.ao == ao)
+}
+
+/// `(ray-count ratio, time ratio)` of the pair's ssaa4 over its sraa-rt.
+pub fn ratios(
+    rows: &[AoSweepRow],
+    scene: &str,
+    backend: &str,
+    pair: Pair,
+    ao: u32,
+) -> Option<(f64, f64)> {
+    let ss = find(rows, scene, backend, pair.ssaa4(), ao)?;
+    let rt = find(rows, scene, backend, pair.sraa_rt(), ao)?;
+    (rt.rays_per_pixel > 0.0 && rt.ms_median > 0.0).then(|| {
+        (
+            ss.rays_per_pixel / rt.rays_per_pixel,
+            ss.ms_median / rt.ms_median,
+        )
+    })
+}
+
+/// Scenes and backends in the order the rows have them.
+pub(crate) fn groups(rows: &[AoSweepRow]) -> Vec<(String, String)> {
+    let mut out: Vec<(String, String)> = Vec::new();
+    for r in rows {
+        if !out.iter().any(|(s, b)| *s == r.scene && *b == r.backend) {
+            out.push((r.scene.clone(), r.backend.clone()));
+        }
+    }
+    out
+}
+
+pub(crate) fn opt(v: Option<f64>, digits: usize) -> String {
+    v.map_or("–".into(), |v| format!("{v:.digits$}"))
+}
 
 /// How a triple of the sweep finds its primary samples' triangles. Each
 /// crossover compares methods of one pair: hybrid with hybrid, traced with
@@ -261,172 +361,4 @@ pub fn hybrid_crossover_judged(c: &Crossover) -> (String, Result<bool, String>) 
         )),
     };
     (figure, met)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::ao_sweep::tests::row;
-    use crate::ao_sweep::{ratios, section, target_rows, AoSweepRow};
-
-    #[test]
-    fn the_crossover_is_computed_from_the_rows() {
-        let sweep = |rows| AoSweep {
-            ran: true,
-            aos: vec![0, 4, 16],
-            ao_reference: None,
-            rows,
-            missing: vec![],
-            refused: vec![],
-        };
-        // sraa-rt 40 ms slower at AO 0, 120 ms faster at AO 4: the gap
-        // crosses 0 a quarter of the way, at AO 1.
-        let s = sweep(vec![
-            row("ssaa4", 0, 100.0, 8.0, 0.07),
-            row("sraa-rt", 0, 140.0, 6.0, 0.08),
-            row("ssaa4", 4, 300.0, 20.0, 0.08),
-            row("sraa-rt", 4, 180.0, 9.0, 0.09),
-            row("ssaa4", 16, 800.0, 70.0, 0.08),
-            row("sraa-rt", 16, 300.0, 20.0, 0.09),
-        ]);
-        let c = crossover(&s, "atrium", "cpu", Pair::Traced);
-        let f = c.first_faster.unwrap();
-        assert_eq!((f.ao, f.sraa_rt_ms, f.ssaa4_ms), (4, 180.0, 300.0));
-        assert_eq!(
-            (f.sraa_rt_edge_flip, f.ssaa4_edge_flip),
-            (Some(0.09), Some(0.08))
-        );
-        assert_eq!(c.interpolated, Some(1.0));
-        let text = crossover_sentence(&c);
-        assert!(
-            text.contains("from 4 AO rays") && text.contains("about 1.0 AO rays"),
-            "{text}"
-        );
-        assert!(section(&s, Some("ssaa256")).contains("**Crossover, atrium (cpu), traced:**"));
-
-        // Faster from the first count: no interpolation; never faster: none.
-        let s = sweep(vec![
-            row("ssaa4", 0, 100.0, 8.0, 0.07),
-            row("sraa-rt", 0, 90.0, 6.0, 0.08),
-        ]);
-        let c = crossover(&s, "atrium", "cpu", Pair::Traced);
-        assert_eq!((c.first_faster.unwrap().ao, c.interpolated), (0, None));
-        let s = sweep(vec![
-            row("ssaa4", 0, 100.0, 8.0, 0.07),
-            row("sraa-rt", 0, 190.0, 6.0, 0.08),
-        ]);
-        let c = crossover(&s, "atrium", "cpu", Pair::Traced);
-        assert!(c.first_faster.is_none());
-        assert!(crossover_sentence(&c).contains("at no swept AO ray count"));
-    }
-
-    #[test]
-    fn each_pair_has_its_own_crossover() {
-        let sweep = |rows| AoSweep {
-            ran: true,
-            aos: vec![0, 1, 4, 16],
-            ao_reference: None,
-            rows,
-            missing: vec![],
-            refused: vec![],
-        };
-        // Traced: sraa-rt slower at 0 and 1, faster from 4 on. Hybrid:
-        // slower at 0, faster from 1 on (gap −20 at 0, +60 at 1: they
-        // meet at 0.25). A hybrid ssaa4 row alone at 16 changes nothing.
-        let rows = vec![
-            row("ssaa4", 0, 100.0, 8.0, 0.07),
-            row("sraa-rt", 0, 140.0, 6.0, 0.08),
-            row("ssaa4", 1, 150.0, 12.0, 0.07),
-            row("sraa-rt", 1, 160.0, 7.0, 0.08),
-            row("ssaa4", 4, 300.0, 20.0, 0.08),
-            row("sraa-rt", 4, 180.0, 9.0, 0.09),
-            row("ssaa4-hybrid", 0, 60.0, 4.0, 0.07),
-            row("sraa-rt-hybrid", 0, 80.0, 2.0, 0.08),
-            row("ssaa4-hybrid", 1, 150.0, 8.0, 0.07),
-            row("sraa-rt-hybrid", 1, 90.0, 3.0, 0.08),
-            row("ssaa4-hybrid", 16, 700.0, 68.0, 0.07),
-        ];
-        let s = sweep(rows.clone());
-        let all = crossovers(&s);
-        assert_eq!(
-            all.iter().map(|c| c.pair).collect::<Vec<_>>(),
-            [Pair::Traced, Pair::Hybrid]
-        );
-        let (traced, hybrid) = (&all[0], &all[1]);
-        assert_eq!(traced.first_faster.unwrap().ao, 4);
-        assert_eq!(traced.timed_at, [0, 1, 4]);
-        let f = hybrid.first_faster.unwrap();
-        assert_eq!((f.ao, f.sraa_rt_ms, f.ssaa4_ms), (1, 90.0, 150.0));
-        assert_eq!(hybrid.timed_at, [0, 1]);
-        assert_eq!(hybrid.interpolated, Some(0.25));
-        let text = crossover_sentence(hybrid);
-        assert!(
-            text.starts_with(
-                "**Crossover, atrium (cpu), hybrid:** sraa-rt-hybrid is faster than ssaa4-hybrid from 1 AO rays"
-            ),
-            "{text}"
-        );
-        // The pair's rows only: the hybrid ratios at AO 1.
-        assert_eq!(
-            ratios(&s.rows, "atrium", "cpu", Pair::Hybrid, 1),
-            Some((8.0 / 3.0, 150.0 / 90.0))
-        );
-        assert_eq!(ratios(&s.rows, "atrium", "cpu", Pair::Hybrid, 16), None);
-        // The table: a row per AO count and pair, the pair named.
-        let md = section(&s, Some("ssaa256"));
-        assert!(md.contains("| 1 | hybrid | – | 150.0 | 90.0 |"), "{md}");
-        assert!(md.contains("| 1 | traced | – | 150.0 | 160.0 |"), "{md}");
-        assert!(md.contains("| 16 | hybrid | – | 700.0 | – |"), "{md}");
-        assert!(!md.contains("| 16 | traced |"), "{md}");
-        // The target: met at AO 1.
-        let t = target_rows(&s);
-        let line = t
-            .lines()
-            .find(|l| {
-                l.starts_with(
-                    "| hybrid crossover (sraa-rt-hybrid faster than ssaa4-hybrid) at ≤ 1 AO ray",
-                )
-            })
-            .unwrap_or_else(|| panic!("{t}"));
-        assert!(
-            line.contains("faster from AO 1: 90.0 vs 150.0 ms, the times meet at about 0.2"),
-            "{line}"
-        );
-        assert!(line.ends_with("| met |"), "{line}");
-
-        // Hybrid slower at 0 and 1, faster at 16: not met.
-        let mut late = rows.clone();
-        late[9] = row("sraa-rt-hybrid", 1, 200.0, 3.0, 0.08);
-        late.push(row("sraa-rt-hybrid", 16, 300.0, 20.0, 0.08));
-        let c = crossover(&sweep(late.clone()), "atrium", "cpu", Pair::Hybrid);
-        assert_eq!(c.first_faster.unwrap().ao, 16);
-        assert_eq!(hybrid_crossover_judged(&c).1, Ok(false));
-        assert!(target_rows(&sweep(late)).contains("**not met** |"));
-        // Never faster: the figure says so, not met.
-        let mut never = rows.clone();
-        never[9] = row("sraa-rt-hybrid", 1, 200.0, 3.0, 0.08);
-        let c = crossover(&sweep(never), "atrium", "cpu", Pair::Hybrid);
-        let (figure, met) = hybrid_crossover_judged(&c);
-        assert_eq!(
-            (figure.as_str(), met),
-            ("slower at every swept AO (0, 1)", Ok(false))
-        );
-        // Not timed at AO 1 and not faster at 0: not judged.
-        let no_one: Vec<AoSweepRow> = rows
-            .iter()
-            .filter(|r| !(r.ao == 1 && r.method.is_hybrid()))
-            .cloned()
-            .collect();
-        let c = crossover(&sweep(no_one), "atrium", "cpu", Pair::Hybrid);
-        assert!(hybrid_crossover_judged(&c).1.is_err());
-        // A backend without hybrids: no hybrid crossover, no target row.
-        let traced_only: Vec<AoSweepRow> = rows
-            .iter()
-            .filter(|r| !r.method.is_hybrid())
-            .cloned()
-            .collect();
-        let s = sweep(traced_only);
-        assert_eq!(crossovers(&s).len(), 1);
-        assert!(!target_rows(&s).contains("hybrid crossover"));
-    }
 }

@@ -5,6 +5,11 @@ use glam::Vec3;
 
 use super::SdfError;
 
+/// How far from 1 the length of a rotation quaternion or a plane normal may be
+/// for it to be taken as unit and kept as given (a few f32 ulps): normalising
+/// again would move its last bits.
+pub const UNIT_TOLERANCE: f64 = 4.0 * f32::EPSILON as f64;
+
 /// `Ok` when `finite` (the caller's test of a scalar, vector or quaternion
 /// parameter), else the error that `param` of `node` is not finite.
 pub(super) fn all_finite(

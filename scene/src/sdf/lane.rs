@@ -233,6 +233,25 @@ pub fn shape_distance<L: Lane>(shape: &Shape, x: L, y: L, z: L) -> L {
     }
 }
 
+/// The tree's evaluation of a primitive: [`shape_distance`] on one `f32`
+/// lane. Here, beside the function it runs, rather than with the shape's
+/// data and checks (`shape.rs`), which then need nothing of this module.
+impl Shape {
+    /// Signed distance at `p` (a bound for the ellipsoid).
+    #[inline]
+    pub fn distance(&self, p: Vec3) -> f32 {
+        self.distance_xyz(p.x, p.y, p.z)
+    }
+
+    /// [`Shape::distance`] with the point as scalars: they travel in registers,
+    /// where a `Vec3` argument goes through memory and its reload can miss
+    /// store forwarding (a stall of a dozen cycles per call).
+    #[inline(never)]
+    fn distance_xyz(&self, x: f32, y: f32, z: f32) -> f32 {
+        shape_distance(self, x, y, z)
+    }
+}
+
 #[inline(always)]
 fn sd_box<L: Lane>(x: L, y: L, z: L, half: Vec3) -> L {
     let zero = L::splat(0.0);

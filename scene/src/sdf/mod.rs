@@ -57,18 +57,17 @@ mod bounds;
 mod check;
 pub mod lane;
 mod node;
-mod scatter;
 mod scenes;
 mod shape;
 mod stiff;
 
 pub use crate::error::SdfError;
 pub use bounds::Aabb;
+pub use check::UNIT_TOLERANCE;
+pub use node::scatter::{Instance, Scatter, ScatterConfig, MAX_SCATTER_CELLS};
 pub use node::{
     tetra_normal_from, tetra_taps, Op, Repeat, SdfNode, SplitDistance, Transform, MAX_DEPTH,
-    UNIT_TOLERANCE,
 };
-pub use scatter::{Instance, Scatter, ScatterConfig, MAX_SCATTER_CELLS};
 pub use scenes::{atrium, glass, primitives, random_box, random_shape, sparse_shape};
 pub use shape::Shape;
 pub use stiff::{far, grazing, non_eikonal, thin, FAR_ORIGIN_SHIFT};

@@ -13,7 +13,7 @@ use glam::Vec3;
 use subcone_kernels::math::Euclidean;
 
 use super::bounds::Aabb;
-use super::check::{all_finite, at_most, finite, nonneg, nonneg3};
+use super::check::{all_finite, at_most, finite, nonneg, nonneg3, UNIT_TOLERANCE};
 use super::{Exactness, SdfError};
 
 /// A primitive shape. Build a node from it with
@@ -269,7 +269,7 @@ impl Shape {
                     });
                 }
                 // Kept as given when already unit (see `UNIT_TOLERANCE`).
-                let unit = (f64::from(len) - 1.0).abs() <= super::node::UNIT_TOLERANCE;
+                let unit = (f64::from(len) - 1.0).abs() <= UNIT_TOLERANCE;
                 return Ok(Shape::Plane {
                     normal: if unit { normal } else { normal / len },
                     offset,
@@ -360,19 +360,5 @@ impl Shape {
             Shape::Plane { normal, .. } => [normal.x == 0.0, normal.y == 0.0, normal.z == 0.0],
             _ => [true; 3],
         }
-    }
-
-    /// Signed distance at `p` (a bound for the ellipsoid).
-    #[inline]
-    pub fn distance(&self, p: Vec3) -> f32 {
-        self.distance_xyz(p.x, p.y, p.z)
-    }
-
-    /// [`Shape::distance`] with the point as scalars: they travel in registers,
-    /// where a `Vec3` argument goes through memory and its reload can miss
-    /// store forwarding (a stall of a dozen cycles per call).
-    #[inline(never)]
-    fn distance_xyz(&self, x: f32, y: f32, z: f32) -> f32 {
-        super::lane::shape_distance(self, x, y, z)
     }
 }

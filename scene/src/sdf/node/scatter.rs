@@ -5,10 +5,10 @@
 use glam::{Quat, Vec3};
 use subcone_kernels::math::Euclidean;
 
-use super::bounds::{round_cell, Aabb};
-use super::check::{all_finite, nonneg, positive};
-use super::node::SdfNode;
-use super::SdfError;
+use super::SdfNode;
+use crate::sdf::bounds::{round_cell, Aabb};
+use crate::sdf::check::{all_finite, nonneg, positive};
+use crate::sdf::SdfError;
 
 /// The most cells a scatter may have (the per-cell table is 48 bytes a cell).
 pub const MAX_SCATTER_CELLS: u64 = 1 << 18;
