@@ -6,6 +6,7 @@
 //! without an adapter when `SUBCONE_REQUIRE_GPU` is set.
 
 use subcone_conformance::plan_scenes;
+use subcone_scene::backend::RASTER_PRIMARY;
 use subcone_scene::builtin::{builtin, names};
 use subcone_scene::method::METHOD_NAMES;
 use subcone_scene::{Backend, Method, RenderError, RenderSettings, UnsupportedReason};
@@ -32,8 +33,19 @@ fn refuses_what_it_lacks() {
         |pred: &dyn Fn(&UnsupportedReason) -> bool| refusals.iter().any(|u| pred(&u.reason));
     use UnsupportedReason as R;
     assert!(refused(&|r| matches!(r, R::Technique(_))));
-    // SRAA-RT on SDF scenes renders here too: nothing is CPU-only.
-    assert!(!refused(&|r| matches!(r, R::CpuOnly { .. })));
+    // SRAA-RT on SDF scenes renders here too: nothing is CPU-only but the
+    // hybrids' rasterised primary visibility (this backend's SRAA
+    // rasterises its subsamples in its own prepass), refused on triangle
+    // scenes.
+    assert!(refusals.iter().all(|u| match &u.reason {
+        R::CpuOnly { what, .. } => {
+            *what == RASTER_PRIMARY && u.method.parse::<Method>().unwrap().is_hybrid()
+        }
+        _ => true,
+    }));
+    assert!(refused(
+        &|r| matches!(r, R::CpuOnly { what, .. } if *what == RASTER_PRIMARY)
+    ));
     assert_eq!(subcone_wgpu::CAPABILITIES.sdf_subpixel_geometry, Ok(()));
     assert!(refused(&|r| matches!(
         r,
@@ -90,7 +102,8 @@ fn semi_transparent_scenes_are_planned_as_on_the_cpu() {
 
 /// Every method the wgpu backend refuses on an opaque built-in scene is one
 /// the CPU reference refuses there too, for the same reason, when the
-/// technique itself does not apply; no refusal is CPU-only.
+/// technique itself does not apply; no refusal is CPU-only but the hybrids'
+/// (`-hybrid`, [`RASTER_PRIMARY`]), and those only on triangle scenes.
 #[test]
 fn no_refusal_is_cpu_only() {
     let Some(gpu) = gpu() else { return };
@@ -102,10 +115,12 @@ fn no_refusal_is_cpu_only() {
             let Err(u) = gpu.supports(&scene, &method) else {
                 continue;
             };
-            assert!(
-                !matches!(u.reason, UnsupportedReason::CpuOnly { .. }),
-                "{name} {m}: {u}"
-            );
+            if let UnsupportedReason::CpuOnly { what, .. } = u.reason {
+                assert!(
+                    method.is_hybrid() && what == RASTER_PRIMARY && scene.sdf_geometry().is_none(),
+                    "{name} {m}: {u}"
+                );
+            }
             if let UnsupportedReason::Technique(_) = u.reason {
                 let c = cpu.supports(&scene, &method).unwrap_err();
                 assert_eq!(c.reason, u.reason, "{name} {m}");
