@@ -5,13 +5,16 @@
 //!
 //! 1. [`exclusions`]: rows that add no point of their own to a time–error
 //!    plane. A row whose quality image is byte-identical to another row's of
-//!    the same scene and backend is *same image as* the fastest of them (it
-//!    would repeat that row's error); a row part of whose
+//!    the same scene and backend is *same image as* the one that stands for
+//!    the image (it would repeat that row's error); a row part of whose
 //!    time was measured by a timing source that NoAA's row of the same scene
 //!    and backend does not use (the SMAA post-process on a GPU adapter,
 //!    beside CPU rows) is *timed on another device*, and its time does not
-//!    share the axis with the others. Both are left out of the fronts and the
-//!    picks, and the report says so where it leaves them out.
+//!    share the axis with the others. Both are left out of the fronts, and
+//!    the report says so where it leaves them out; a repeated image stays a
+//!    candidate for the picks (its error is its twin's, its time its own:
+//!    a `-hybrid` is the same image sooner), a row timed on another device
+//!    does not.
 //! 2. [`front`]: per scene, backend and metric, the Pareto front of median
 //!    time against error: in time order, every row with less error than
 //!    every faster row.
@@ -38,8 +41,8 @@ use crate::{Mode, ResultRow};
 pub const BUDGETS: [Option<f64>; 3] = [Some(1.5), Some(4.0), None];
 
 /// How a pick is made, as the report states it.
-pub const RULE: &str = "of the methods that ran on every scene of the kind, were not left out \
-there, and whose time over NoAA's (the median of its per-round ratios) is within the budget on \
+pub const RULE: &str = "of the methods that ran on every scene of the kind, were not timed on another \
+device there, and whose time over NoAA's (the median of its per-round ratios) is within the budget on \
 every one of those scenes, the one with the lowest mean over the scenes of its error over NoAA's; \
 on a tie, the one with the lower worst time over NoAA's. NoAA itself (1.00×, error ratio 1) is \
 always a candidate, so a pick of noaa means that nothing within the budget lowers the error on \
@@ -63,7 +66,8 @@ pub fn error_name(metric: Metric) -> &'static str {
     }
 }
 
-/// Why a row is left out of the fronts and the picks.
+/// Why a row is left out of the fronts (and, [`Why::OtherDevice`], of the
+/// picks).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Why {
     /// Its image is byte-identical to `as_method`'s (same scene and
@@ -82,7 +86,8 @@ pub enum Why {
     },
 }
 
-/// A row left out of the fronts and the picks.
+/// A row left out of the fronts (and, timed on another device, of the
+/// picks).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Excluded {
     /// Scene.
@@ -109,7 +114,7 @@ impl Excluded {
     pub fn reason(&self) -> String {
         match &self.why {
             Why::SameImage { as_method } => format!(
-                "its image is byte-identical to {as_method}'s, so it adds no error of its own (its time is in the scene's table)"
+                "its image is byte-identical to {as_method}'s, so it adds no point of its own (its time is in the scene's table, and it stays a candidate for the picks)"
             ),
             Why::OtherDevice { sources, noaa } => format!(
                 "part of its time is measured by {}, not by the {} every {} row without a post-process is timed by, so its time is not on their axis",
@@ -138,11 +143,14 @@ pub fn digest(width: u32, height: u32, data: &[u8]) -> u64 {
     h.finish()
 }
 
-/// The rows of `rows` left out of the fronts and the picks, in row order.
-/// A row that repeats another's image is named after the first row of its
-/// group in table order (a row timed on another device last), whatever else
-/// is true of it: the name stays the same from scene to scene, whichever of
-/// the two the clock favoured.
+/// The rows of `rows` left out of the fronts (and, timed on another device,
+/// of the picks), in row order. A group of rows with byte-identical images
+/// is named after the row that every timed round tells apart as the fastest
+/// (its slowest round faster than every other's fastest: a `-hybrid` beside
+/// its traced twin), else after the first row of the group in table order
+/// (a row timed on another device last): the name does not change with the
+/// clock's noise from scene to scene, and a front never shows a point at a
+/// time its image's fastest method beats in every round.
 pub fn exclusions(rows: &[&ResultRow]) -> Vec<Excluded> {
     let base = |r: &ResultRow| {
         rows.iter()
@@ -162,12 +170,23 @@ pub fn exclusions(rows: &[&ResultRow]) -> Vec<Excluded> {
     let mut out = Vec::new();
     for (i, r) in rows.iter().enumerate() {
         let twin = r.image_digest.and_then(|d| {
-            rows.iter()
+            let group: Vec<(usize, &&ResultRow)> = rows
+                .iter()
                 .enumerate()
                 .filter(|(_, x)| {
                     x.scene == r.scene && x.backend == r.backend && x.image_digest == Some(d)
                 })
-                .min_by_key(|(j, x)| (other(x).is_some(), *j))
+                .collect();
+            let clearly_fastest = group.iter().find(|(j, x)| {
+                other(x).is_none()
+                    && x.ms_max.is_finite()
+                    && group
+                        .iter()
+                        .filter(|(k, _)| k != j)
+                        .all(|(_, y)| x.ms_max < y.ms_min)
+            });
+            clearly_fastest
+                .or_else(|| group.iter().min_by_key(|(j, x)| (other(x).is_some(), *j)))
                 .filter(|(j, _)| *j != i)
                 .map(|(_, x)| x.method.clone())
         });
@@ -329,7 +348,7 @@ pub struct Pick {
     pub on_front: usize,
 }
 
-/// A method that ran (and was not left out) on some scenes of a kind but
+/// A method that ran (and was not timed on another device) on some scenes of a kind but
 /// not all: no candidate for that kind's picks.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Partial {
@@ -435,7 +454,9 @@ pub fn picks(
             let usable = |scene: &str, method: &RowKey, metric: Metric| {
                 rows.iter()
                     .find(|r| r.scene == scene && r.backend == b && r.method == *method)
-                    .filter(|r| excluded(ex, r).is_none())
+                    .filter(|r| {
+                        !matches!(excluded(ex, r).map(|e| &e.why), Some(Why::OtherDevice { .. }))
+                    })
                     .and_then(|r| Some((*r, error(r, metric)?)))
             };
             let mut methods: Vec<RowKey> = Vec::new();
@@ -521,7 +542,15 @@ pub fn picks(
                                         f.scene == *sc
                                             && f.backend == b
                                             && f.metric == metric
-                                            && f.points.iter().any(|p| p.method == *m)
+                                            && f.points.iter().any(|p| {
+                                                p.method == *m
+                                                    || ex.iter().any(|e| {
+                                                        e.scene == *sc
+                                                            && e.backend == b
+                                                            && e.method == *m
+                                                            && matches!(&e.why, Why::SameImage { as_method } if *as_method == p.method)
+                                                    })
+                                            })
                                     })
                                 })
                                 .count();
@@ -741,7 +770,7 @@ pub fn section(a: &Answer, rows: &[ResultRow], ctx: &Context) -> String {
     if !notes.is_empty() {
         let _ = writeln!(
             md,
-            "Left out of the fronts and picks: {}.\n",
+            "Left out of the fronts: {}.\n",
             notes.join("; ")
         );
     }
@@ -761,7 +790,7 @@ pub fn section(a: &Answer, rows: &[ResultRow], ctx: &Context) -> String {
     if !partial.is_empty() {
         let _ = writeln!(
             md,
-            "No candidate for a kind because it did not run (or was left out) on every scene of it: {}.\n",
+            "No candidate for a kind because it did not run (or was timed on another device) on every scene of it: {}.\n",
             partial.join("; ")
         );
     }
@@ -869,6 +898,8 @@ mod tests {
             &Timings::default(),
         );
         r.ms_median = ms;
+        // Rounds within 10 % of the median, as on a quiet machine.
+        (r.ms_min, r.ms_max) = (ms * 0.9, ms * 1.1);
         r.timed_by = vec![TimingSource::Cpu];
         r.flip_mean = Some(flip);
         r.ssim_mean = Some(ssim);
@@ -1014,8 +1045,9 @@ mod tests {
             })),
             ["noaa", "ctss"]
         );
-        // Were the delayed one faster, the name would not change with the
-        // clock: ctss, first in table order, stands for the image.
+        // Were the delayed one faster within the rounds' noise, the name
+        // would not change with the clock: ctss, first in table order,
+        // stands for the image.
         rows[2].ms_median = 1.1;
         let all: Vec<&ResultRow> = rows.iter().collect();
         let ex = exclusions(&all);
@@ -1028,6 +1060,40 @@ mod tests {
             md.contains("ctss-delayed (same image as ctss) on cpu (s): its image is byte-identical to ctss's"),
             "{md}"
         );
+    }
+
+    #[test]
+    fn a_repeated_image_faster_in_every_round_stands_for_it_and_stays_a_candidate() {
+        // A hybrid gives its traced twin's image sooner in every round: the
+        // front shows the hybrid's time, and the picks may take either.
+        let mut rows = vec![
+            timed("s", "noaa", 1.0, 0.10, 0.90),
+            timed("s", "ssaa4", 3.0, 0.05, 0.95),
+            timed("s", "ssaa4-hybrid", 2.0, 0.05, 0.95),
+        ];
+        rows[0].image_digest = Some(8);
+        rows[1].image_digest = Some(7);
+        rows[2].image_digest = Some(7);
+        let a = Answer::of(&rows, &[scene("s", false)]);
+        assert_eq!(a.excluded.len(), 1);
+        assert_eq!(a.excluded[0].mark(), "(same image as ssaa4-hybrid)");
+        assert_eq!(
+            methods(a.front("s", "cpu", Metric::Flip)),
+            ["noaa", "ssaa4-hybrid"]
+        );
+        // Same error, lower worst time: the hybrid is the pick; and the
+        // traced twin, no longer left out of the picks, is no partial.
+        assert_eq!(picked(&a, Kind::Triangles, Metric::Flip, Some(4.0)), "ssaa4-hybrid");
+        assert!(a.partial.is_empty(), "{:?}", a.partial);
+        let p = a.pick(Kind::Triangles, "cpu", Metric::Flip, None).unwrap();
+        assert_eq!(p.on_front, 1);
+        // Within a budget only the traced twin meets, the traced twin is
+        // picked, and counted on the front through the hybrid that stands
+        // for its image.
+        rows[2].ratio_to_noaa = Some(5.0);
+        let a = Answer::of(&rows, &[scene("s", false)]);
+        let p = a.pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0)).unwrap();
+        assert_eq!((p.method.to_string(), p.on_front), ("ssaa4".into(), 1));
     }
 
     #[test]
