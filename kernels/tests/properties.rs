@@ -480,7 +480,19 @@ proptest! {
         let mirrors = r.below(2) == 1;
         let material = r.below(3) == 0;
         let layers = gates.len() * if mirrors { 2 } else { 1 };
-        let colors: Vec<Vec3> = (0..n * layers).map(|_| r.color()).collect();
+        let mut colors: Vec<Vec3> = (0..n * layers).map(|_| r.color()).collect();
+        // Some layers one colour nearly everywhere (a lit wall, a black
+        // layer), so that the uniform shortcut and its flags are reached.
+        for l in 0..layers {
+            if r.below(2) == 0 {
+                let c = r.color();
+                for j in 0..n {
+                    if r.below(8) != 0 {
+                        colors[j * layers + l] = c;
+                    }
+                }
+            }
+        }
         let geo: Vec<Geometry> = (0..n).map(|_| r.geometry()).collect();
         let geo2: Vec<Geometry> = (0..n).map(|_| r.geometry()).collect();
         let shadow: Vec<u32> = (0..n).map(|_| r.below(4)).collect();
@@ -496,6 +508,16 @@ proptest! {
             secondary: mirrors.then_some(ShadedGroup { geometry: &geo2, shadow: &shadow2, first_layer: gates.len() }),
         };
         let resolver = Resolver::new(&p, gates, ALBEDO_TOLERANCE);
+        let mut flags = vec![LayerFlags::default(); n];
+        let mut flags2 = vec![LayerFlags::default(); n];
+        // Filled in two parts, as threads fill bands of rows.
+        let half = r.below(n as u32 + 1) as usize;
+        resolver.layer_flags(&frame, &frame.primary, 0, &mut flags[..half]);
+        resolver.layer_flags(&frame, &frame.primary, half, &mut flags[half..]);
+        if let Some(g) = frame.secondary.as_ref() {
+            resolver.layer_flags(&frame, g, 0, &mut flags2);
+        }
+        let flags = FrameFlags { primary: &flags, secondary: if mirrors { &flags2 } else { &[] } };
         for i in 0..n as u32 {
             let (x, y) = (i % w, i / w);
             // Targets near the frame's own samples, so that weights are often 1.
@@ -512,6 +534,9 @@ proptest! {
             let want = per_subsample_path(&p, gates, &frame, x, y, &primary, secondary);
             prop_assert_eq!(got.to_array().map(f32::to_bits), want.to_array().map(f32::to_bits),
                 "pixel ({}, {}): {} against {}", x, y, got, want);
+            let flagged = resolver.resolve_flagged(&frame, &flags, x, y, &primary, secondary);
+            prop_assert_eq!(flagged.to_array().map(f32::to_bits), want.to_array().map(f32::to_bits),
+                "pixel ({}, {}) from the flags: {} against {}", x, y, flagged, want);
         }
     }
 }

@@ -24,7 +24,7 @@ use subcone_kernels::ctss::{
     CtssParams, FieldSample, SplitRay,
 };
 use subcone_kernels::passes::{LayerLayout, Passes, Technique, MAX_LIGHTS};
-use subcone_kernels::sraa::{Geometry, SUBPIXEL_OFFSETS};
+use subcone_kernels::sraa::{Geometry, LayerFlags, SUBPIXEL_OFFSETS};
 use subcone_scene::sdf::SplitDistance;
 use subcone_scene::{
     Camera, Frame, FrameStats, Light, Material, Method, PassTiming, RayCounts, RenderError,
@@ -225,6 +225,8 @@ fn sraa_rt_buffers(n: usize, nl: usize, split: bool, sub_shadows: bool) -> Buffe
         // `+mat` is refused on SDF scenes before this point.
         albedo: Vec::new(),
         sub_albedo: Vec::new(),
+        flags: vec![LayerFlags::default(); n],
+        flags2: Vec::new(),
     }
 }
 
@@ -594,7 +596,7 @@ impl<F: SdfField> SdfView<'_, F> {
         let mut frame = Frame::new(s.width, s.height);
         reconstruct_frame_on(
             self.isa,
-            &b,
+            &mut b,
             &layout,
             &method.sraa(),
             &mut frame.color,

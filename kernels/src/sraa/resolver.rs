@@ -19,6 +19,10 @@
 //!   [`reconstruction_weight`], so to the same bits;
 //! - the spatial term's `d²/σs²` of each (subsample, neighbour) pair is a
 //!   table built once per frame ([`Resolver::new`]);
+//! - with [`Resolver::resolve_flagged`], which layers of a neighbourhood are
+//!   black, non-finite or one colour is read from [`LayerFlags`] computed
+//!   once per shaded sample ([`Resolver::layer_flags`]), not found again by
+//!   each of the nine neighbourhoods the sample is in;
 //! - what cannot change the sum is skipped: a neighbour whose weight is
 //!   exactly 0 (adding `0·C` to the f64 sum changes nothing), a layer whose
 //!   every neighbour colour is exactly black or not finite (it reconstructs
@@ -42,6 +46,10 @@ use super::{
     SraaParams, WeightForm, MAX_LAYERS, NORMAL_COS_SNAP, SUBPIXEL_OFFSETS,
 };
 use crate::sum::WeightedSum4;
+
+mod scan;
+use scan::{color_at, slots, Hood, LayerScan};
+pub use scan::{FrameFlags, LayerFlags};
 
 /// One group of shaded layers of a frame, reconstructed on one geometry:
 /// the primary hits' (layers `first_layer..`) or, on mirrors, the secondary
@@ -193,6 +201,19 @@ impl<'g> Resolver<'g> {
         Self { space, ..self }
     }
 
+    /// The [`LayerFlags`] of `frame`'s pixels `first..first + out.len()`
+    /// for `group` and this resolver's layers, into `out` (see
+    /// [`LayerFlags::fill`]), for [`Resolver::resolve_flagged`].
+    pub fn layer_flags(
+        &self,
+        frame: &ShadedFrame,
+        group: &ShadedGroup,
+        first: usize,
+        out: &mut [LayerFlags],
+    ) {
+        LayerFlags::fill(frame, group, self.gates.len(), first, out);
+    }
+
     /// The antialiased colour of pixel `(x, y)`: each subsample's primary
     /// layers reconstructed on `primary` from `frame.primary` (material-gated
     /// when both `primary.albedo` and `frame.albedo` are given), plus, where
@@ -221,6 +242,30 @@ impl<'g> Resolver<'g> {
         primary: &Subsamples,
         secondary: Option<&Subsamples>,
     ) -> Vec3 {
+        self.resolve_flagged(frame, &FrameFlags::default(), x, y, primary, secondary)
+    }
+
+    /// [`Resolver::resolve`], bit for bit, reading which layers of a
+    /// neighbourhood can change a sum from `flags` (each group's
+    /// [`Resolver::layer_flags`], computed once per frame) instead of scanning
+    /// the nine colours of every layer at every pixel; a group whose flags do
+    /// not cover the frame, and the image's border pixels, are scanned as
+    /// [`Resolver::resolve`] scans them.
+    ///
+    /// Domain and out-of-domain behaviour: [`Resolver::resolve`]'s. Flags
+    /// filled for another frame or another resolver's layers are outside it:
+    /// the result is then some weighted mean of the neighbourhood's colours,
+    /// never a panic.
+    #[inline(always)]
+    pub fn resolve_flagged(
+        &self,
+        frame: &ShadedFrame,
+        flags: &FrameFlags,
+        x: u32,
+        y: u32,
+        primary: &Subsamples,
+        secondary: Option<&Subsamples>,
+    ) -> Vec3 {
         if self.params.radius() != 1 {
             return self.resolve_generic(frame, x, y, primary, secondary);
         }
@@ -231,11 +276,12 @@ impl<'g> Resolver<'g> {
             primary.albedo
         };
         let hood = Hood::new(frame, x, y);
-        self.add_group(frame, &hood, &frame.primary, primary, albedo, &mut subs);
+        let group = &frame.primary;
+        self.add_group(frame, &hood, group, flags.primary, primary, albedo, &mut subs);
         if let (Some(group), Some(targets)) = (frame.secondary.as_ref(), secondary) {
             if targets.geometry.iter().any(|g| !g.depth.is_nan()) {
                 let mut s2 = [Vec3::ZERO; 4];
-                self.add_group(frame, &hood, group, targets, None, &mut s2);
+                self.add_group(frame, &hood, group, flags.secondary, targets, None, &mut s2);
                 for k in 0..4 {
                     if !targets.geometry[k].depth.is_nan() {
                         subs[k] += s2[k];
@@ -256,26 +302,28 @@ impl<'g> Resolver<'g> {
     /// gated weighted mean ([`NeighbourWeights::gated_sum`]) or, where the
     /// weights underflowed, the nearest finite colour
     /// ([`Resolver::nearest_finite`]).
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn add_group(
         &self,
         frame: &ShadedFrame,
         hood: &Hood,
         group: &ShadedGroup,
+        flags: &[LayerFlags],
         targets: &Subsamples,
         albedo: Option<[Vec3; 4]>,
         out: &mut [Vec3; 4],
     ) {
         let n = self.gates.len();
-        let scan = LayerScan::new(frame, hood, group, n);
+        let scan = LayerScan::of(frame, hood, group, n, flags);
         if scan.live == 0 {
             return;
         }
         if scan.live & scan.varied == 0 {
             // Every layer that is not black is uniform: no weight needed.
-            for (i, &uniform) in scan.uniform[..n].iter().enumerate() {
+            for i in 0..n {
                 if scan.live & (1 << i) != 0 {
-                    add_to_each(out, uniform);
+                    add_to_each(out, scan.uniform(frame, i));
                 }
             }
             return;
@@ -286,7 +334,7 @@ impl<'g> Resolver<'g> {
                 continue;
             }
             if scan.varied & (1 << i) == 0 {
-                add_to_each(out, scan.uniform[i]);
+                add_to_each(out, scan.uniform(frame, i));
                 continue;
             }
             let bit = match *gate {
@@ -327,7 +375,7 @@ impl<'g> Resolver<'g> {
 
         // The weights of every neighbour for the four subsamples, one lane
         // each; `nonzero`: the slots with a weight above 0 in some lane.
-        let mut weights = [[0.0f64; 4]; SLOTS];
+        let mut weights = [[0.0f32; 4]; SLOTS];
         let mut nonzero = 0u32;
         let form = self.params.form();
         // The product form: all (slot, subsample) pairs at once; the slots
@@ -353,7 +401,7 @@ impl<'g> Resolver<'g> {
                 let aj = frame.albedo.get(hood.index[slot]).copied();
                 w *= Vec4::from_array(KEEP_LANES[gate.gated(aj)].map(|k| k as f32));
             }
-            weights[slot] = w.to_array().map(|w| w as f64);
+            weights[slot] = w.to_array();
             if w.cmpgt(Vec4::ZERO).any() {
                 nonzero |= 1 << slot;
             }
@@ -528,77 +576,12 @@ fn add_to_each(out: &mut [Vec3; 4], c: Vec3A) {
     }
 }
 
-/// One pass over a group's colours in the 3×3 neighbourhood, before any
-/// weight: which layers can change a subsample's sum of layers and which
-/// reconstruct to one colour whatever the weights.
-///
-/// A layer without a colour that is finite and not exactly black anywhere
-/// in the neighbourhood (`live` clear) reconstructs to black. A layer with
-/// one colour, bit for bit, wherever it is finite (`varied` clear)
-/// reconstructs to that colour: each product `w·C` is exact in f64 and the
-/// normalised sum is within a few f64 ulps of `C`, which rounds back to `C`
-/// in f32; the fallback is `C` too.
-struct LayerScan {
-    /// Bit `i`: layer `i` has a finite colour that is not black.
-    live: u32,
-    /// Bit `i`: layer `i`'s finite colours are not all one colour.
-    varied: u32,
-    /// Layer `i`'s colour, where `varied` is clear.
-    uniform: [Vec3A; MAX_LAYERS],
-    /// Each slot's index, in `frame.colors`, of the group's first layer.
-    base: [usize; SLOTS],
-    /// Bit `i` of a slot: its colour of layer `i` is finite.
-    finite: [u32; SLOTS],
-}
-
-impl LayerScan {
-    /// The scan of layers `0..n` of `group` over the valid slots of `hood`.
-    // Layer `i` indexes bit masks and the per-layer arrays alike.
-    #[allow(clippy::needless_range_loop)]
-    #[inline(always)]
-    fn new(frame: &ShadedFrame, hood: &Hood, group: &ShadedGroup, n: usize) -> Self {
-        let mut live = 0u32;
-        let mut varied = 0u32;
-        let mut seen = 0u32;
-        let mut uniform = [Vec3A::ZERO; MAX_LAYERS];
-        let mut base = [0usize; SLOTS];
-        let mut finite = [0u32; SLOTS];
-        for slot in hood.slots() {
-            base[slot] = hood.index[slot] * frame.layers + group.first_layer;
-            for i in 0..n {
-                // In one vector register: three lanes compared at once.
-                let c = Vec3A::from(color_at(frame, base[slot] + i));
-                if c.is_finite_mask().all() {
-                    finite[slot] |= 1 << i;
-                    if c.cmpne(Vec3A::ZERO).any() {
-                        live |= 1 << i;
-                    }
-                    if seen & (1 << i) == 0 {
-                        seen |= 1 << i;
-                        uniform[i] = c;
-                    } else if c.cmpne(uniform[i]).any() {
-                        // (−0 and +0 count as one colour: either adds
-                        // nothing to a subsample's sum of layers.)
-                        varied |= 1 << i;
-                    }
-                }
-            }
-        }
-        Self {
-            live,
-            varied,
-            uniform,
-            base,
-            finite,
-        }
-    }
-}
-
 /// Every neighbour's weights for the four subsamples
 /// ([`Resolver::neighbour_weights`]) and its shadow bits.
 struct NeighbourWeights {
-    /// Slot by slot, one lane per subsample, widened to f64.
-    weights: [[f64; 4]; SLOTS],
+    /// Slot by slot, one lane per subsample (widened to f64, exactly, where
+    /// summed: half the bytes to fill and move).
+    weights: [[f32; 4]; SLOTS],
     /// The slots with a weight above 0 in some lane.
     nonzero: u32,
     /// Each slot's shadow bits (bit `b`: in light `b`'s shadow).
@@ -647,7 +630,7 @@ impl NeighbourWeights {
                     if differ == 0xf {
                         continue;
                     }
-                    let (w, keep) = (self.weights[slot], KEEP_LANES[differ]);
+                    let (w, keep) = (self.weights[slot].map(f64::from), KEEP_LANES[differ]);
                     [
                         w[0] * keep[0],
                         w[1] * keep[1],
@@ -655,7 +638,7 @@ impl NeighbourWeights {
                         w[3] * keep[3],
                     ]
                 }
-                None => self.weights[slot],
+                None => self.weights[slot].map(f64::from),
             };
             acc.add(w, color_at(frame, scan.base[slot] + i));
         }
@@ -726,54 +709,6 @@ impl MaterialGateLanes {
         }
         gated
     }
-}
-
-/// The in-image part of a pixel's 3×3 neighbourhood: a bit per slot
-/// (row-major) and each slot's pixel index.
-struct Hood {
-    valid: u32,
-    index: [usize; SLOTS],
-}
-
-impl Hood {
-    #[inline(always)]
-    fn new(frame: &ShadedFrame, x: u32, y: u32) -> Self {
-        let mut valid = 0;
-        let mut index = [0; SLOTS];
-        for (slot, i) in index.iter_mut().enumerate() {
-            let px = x as i64 + (slot % 3) as i64 - 1;
-            let py = y as i64 + (slot / 3) as i64 - 1;
-            if px >= 0 && py >= 0 && px < frame.width as i64 && py < frame.height as i64 {
-                valid |= 1 << slot;
-                *i = py as usize * frame.width as usize + px as usize;
-            }
-        }
-        Self { valid, index }
-    }
-
-    /// The valid slots in row-major order (that of [`neighbourhood`]).
-    fn slots(&self) -> impl Iterator<Item = usize> {
-        slots(self.valid)
-    }
-}
-
-/// Colour `i` of the frame's flat layer array; black past its end.
-#[inline]
-fn color_at(frame: &ShadedFrame, i: usize) -> Vec3 {
-    frame.colors.get(i).copied().unwrap_or(Vec3::ZERO)
-}
-
-/// The slots set in `mask`, in increasing (row-major) order.
-#[inline]
-fn slots(mut mask: u32) -> impl Iterator<Item = usize> {
-    core::iter::from_fn(move || {
-        if mask == 0 {
-            return None;
-        }
-        let slot = mask.trailing_zeros() as usize;
-        mask &= mask - 1;
-        Some(slot)
-    })
 }
 
 /// The four subsamples' geometry, one subsample per lane.

@@ -6,8 +6,8 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use subcone_kernels::passes::{LayerLayout, Passes, Technique};
 use subcone_kernels::sraa::{
-    Geometry, Resolver, ShadedFrame, ShadedGroup, SraaParams, Subsamples, ALBEDO_TOLERANCE,
-    SUBPIXEL_OFFSETS,
+    FrameFlags, Geometry, LayerFlags, Resolver, ShadedFrame, ShadedGroup, SraaParams, Subsamples,
+    ALBEDO_TOLERANCE, SUBPIXEL_OFFSETS,
 };
 use subcone_scene::camera::CameraRays;
 use subcone_scene::{Frame, FrameStats, Method, PassTiming, RayCounts, RenderSettings};
@@ -68,6 +68,11 @@ pub(crate) struct Buffers {
     /// `+mat` only: albedo of each shaded sample and of each subsample.
     pub(crate) albedo: Vec<Vec3>,
     pub(crate) sub_albedo: Vec<[Vec3; 4]>,
+    /// What the antialiasing pass reads of each shaded sample's layers before
+    /// any weight ([`LayerFlags`]), per group: filled once per region, not
+    /// scanned again by each of the nine neighbourhoods a sample is in.
+    pub(crate) flags: Vec<LayerFlags>,
+    pub(crate) flags2: Vec<LayerFlags>,
 }
 
 impl Buffers {
@@ -88,6 +93,8 @@ impl Buffers {
             ("subpixel secondary shadow states", bytes(&self.sub_shadow2)),
             ("albedo", bytes(&self.albedo)),
             ("subpixel albedo", bytes(&self.sub_albedo)),
+            ("layer flags", bytes(&self.flags)),
+            ("secondary layer flags", bytes(&self.flags2)),
         ] {
             if size > 0 {
                 buffers.push((name, size));
@@ -116,7 +123,7 @@ fn layer_gates(layout: &LayerLayout) -> Vec<Option<u8>> {
 /// kernels' [`Resolver`].
 pub(crate) fn reconstruct_frame_on(
     isa: Isa,
-    b: &Buffers,
+    b: &mut Buffers,
     layout: &LayerLayout,
     params: &SraaParams,
     color: &mut [Vec3],
@@ -125,7 +132,44 @@ pub(crate) fn reconstruct_frame_on(
 ) {
     let gates = layer_gates(layout);
     let resolver = Resolver::new(params, &gates, ALBEDO_TOLERANCE);
-    let frame = ShadedFrame {
+    // Each shaded sample's layers summarised once, band by band on every
+    // thread, for the nine neighbourhoods it is in.
+    let mut flags = std::mem::take(&mut b.flags);
+    let mut flags2 = std::mem::take(&mut b.flags2);
+    {
+        let frame = shaded_frame(b, layout, w, h);
+        let fill = |flags: &mut [LayerFlags], group: &ShadedGroup| {
+            flags
+                .par_chunks_mut(w * BAND)
+                .enumerate()
+                .for_each(|(band, out)| resolver.layer_flags(&frame, group, band * w * BAND, out));
+        };
+        fill(&mut flags, &frame.primary);
+        if let Some(group) = frame.secondary.as_ref() {
+            fill(&mut flags2, group);
+        }
+    }
+    (b.flags, b.flags2) = (flags, flags2);
+    let b = &*b;
+    let frame = shaded_frame(b, layout, w, h);
+    let flags = FrameFlags {
+        primary: &b.flags,
+        secondary: &b.flags2,
+    };
+    color
+        .par_chunks_mut(w * BAND)
+        .enumerate()
+        .for_each(|(band, rows)| {
+            isa.run(
+                #[inline(always)]
+                || reconstruct_band(b, layout, &resolver, &frame, &flags, band, rows, w),
+            )
+        });
+}
+
+/// The whole frame's shaded samples in `b`, as the resolver reads them.
+fn shaded_frame<'a>(b: &'a Buffers, layout: &LayerLayout, w: usize, h: usize) -> ShadedFrame<'a> {
+    ShadedFrame {
         width: w as u32,
         height: h as u32,
         colors: &b.values,
@@ -141,26 +185,19 @@ pub(crate) fn reconstruct_frame_on(
             shadow: &b.shadow2,
             first_layer: layout.secondary_base(),
         }),
-    };
-    color
-        .par_chunks_mut(w * BAND)
-        .enumerate()
-        .for_each(|(band, rows)| {
-            isa.run(
-                #[inline(always)]
-                || reconstruct_band(b, layout, &resolver, &frame, band, rows, w),
-            )
-        });
+    }
 }
 
 /// [`reconstruct_frame_on`] on one band of rows, inlined into the
 /// instruction-set path's function (which a profile shows as one function).
+#[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn reconstruct_band(
     b: &Buffers,
     layout: &LayerLayout,
     resolver: &Resolver,
     frame: &ShadedFrame,
+    flags: &FrameFlags,
     band: usize,
     rows: &mut [Vec3],
     w: usize,
@@ -178,7 +215,7 @@ fn reconstruct_band(
             shadow: b.sub_shadow2.get(j).copied().unwrap_or([0; 4]),
             albedo: None,
         });
-        *out = resolver.resolve(frame, x as u32, y as u32, &primary, secondary.as_ref());
+        *out = resolver.resolve_flagged(frame, flags, x as u32, y as u32, &primary, secondary.as_ref());
     }
 }
 
@@ -528,7 +565,26 @@ fn subpixel_tile(
 fn resolve_tile(
     plan: &SubpixelPlan,
     resolver: &Resolver,
+    b: &mut Buffers,
+    tile: Rect,
+    region: Rect,
+    out: &mut [&mut [Vec3]],
+) {
+    // The flags are written while the rest of the buffers are read.
+    let (mut flags, mut flags2) = (std::mem::take(&mut b.flags), std::mem::take(&mut b.flags2));
+    resolve_tile_with(plan, resolver, b, &mut flags, &mut flags2, tile, region, out);
+    (b.flags, b.flags2) = (flags, flags2);
+}
+
+/// [`resolve_tile`] with the region's flag buffers apart from the rest.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn resolve_tile_with(
+    plan: &SubpixelPlan,
+    resolver: &Resolver,
     b: &Buffers,
+    flags: &mut [LayerFlags],
+    flags2: &mut [LayerFlags],
     tile: Rect,
     region: Rect,
     out: &mut [&mut [Vec3]],
@@ -551,6 +607,18 @@ fn resolve_tile(
             first_layer: layout.secondary_base(),
         }),
     };
+    // Each shaded sample's layers summarised once for the nine
+    // neighbourhoods it is in (the same bits as scanning each).
+    let flags = first(flags, n);
+    resolver.layer_flags(&frame, &frame.primary, 0, flags);
+    let flags2 = first(flags2, n);
+    if let Some(group) = frame.secondary.as_ref() {
+        resolver.layer_flags(&frame, group, 0, flags2);
+    }
+    let flags = FrameFlags {
+        primary: flags,
+        secondary: flags2,
+    };
     let tw = tile.width();
     for i in 0..tile.len() {
         let (x, y) = (tile.x0 + i % tw, tile.y0 + i / tw);
@@ -566,7 +634,7 @@ fn resolve_tile(
         });
         let (lx, ly) = ((x - region.x0) as u32, (y - region.y0) as u32);
         out[y - tile.y0][x - tile.x0] =
-            resolver.resolve(&frame, lx, ly, &primary, secondary.as_ref());
+            resolver.resolve_flagged(&frame, &flags, lx, ly, &primary, secondary.as_ref());
     }
 }
 
@@ -664,6 +732,9 @@ impl SubpixelPlan {
             sub_shadow2: allocated_if(self.sub_secondary && lit, [0; 4], m),
             albedo: allocated_if(self.material, Vec3::ZERO, n),
             sub_albedo: allocated_if(self.material, [Vec3::ZERO; 4], m),
+            // The flags serve the 3×3 neighbourhood (radius 1) only.
+            flags: allocated_if(self.radius == 1, LayerFlags::default(), n),
+            flags2: allocated_if(self.radius == 1 && layout.secondary, LayerFlags::default(), n),
         }
     }
 
