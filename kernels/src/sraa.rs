@@ -16,9 +16,9 @@ use crate::sum::WeightedSum;
 
 mod resolver;
 pub use resolver::{
-    gaussian_sum_lanes, gaussian_sum_wide, weights_product_lanes, weights_product_wide,
-    FrameFlags, GeometryLanes, GeometryWide, LayerFlags, Resolver, ShadedFrame, ShadedGroup,
-    Subsamples, WIDE_LANES,
+    gaussian_sum_lanes, gaussian_sum_wide, weights_product_lanes, weights_product_wide, FrameFlags,
+    GeometryLanes, GeometryWide, LayerFlags, Resolver, ShadedFrame, ShadedGroup, Subsamples,
+    WIDE_LANES,
 };
 
 /// The WGSL mirror of this module's functions (same names; functions only, no

@@ -121,8 +121,7 @@ impl LayerScan {
         n: usize,
         flags: &[LayerFlags],
     ) -> Self {
-        if hood.valid == Hood::ALL && flags.len() == frame.width as usize * frame.height as usize
-        {
+        if hood.valid == Hood::ALL && flags.len() == frame.width as usize * frame.height as usize {
             Self::from_flags(frame, hood, group, n, flags)
         } else {
             Self::new(frame, hood, group, n)
