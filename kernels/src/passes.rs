@@ -102,6 +102,14 @@ impl Technique {
     pub const fn is_subpixel_reconstruction(self) -> bool {
         matches!(self, Technique::Sraa | Technique::SraaRt)
     }
+
+    /// Whether the technique is SRAA for ray tracing's form of SRAA
+    /// (Chiu et al., §3.2–3.3): its shading kept in layers reconstructed
+    /// apart, its subsamples carrying ray-traced shadow states and
+    /// reflections; plain SRAA (Chajdas et al.) reconstructs one colour.
+    pub const fn splits_layers(self) -> bool {
+        matches!(self, Technique::SraaRt)
+    }
 }
 
 bitflags! {
@@ -278,7 +286,7 @@ impl LayerLayout {
     /// (already capped at what the backend supports). Only SRAA-RT splits
     /// shading into layers; every other technique gets the single layer.
     pub const fn new(technique: Technique, passes: Passes, lights: usize) -> Self {
-        let rt = matches!(technique, Technique::SraaRt);
+        let rt = technique.splits_layers();
         LayerLayout {
             lights: if rt && passes.contains(Passes::SHADOW) {
                 lights
@@ -307,5 +315,61 @@ impl LayerLayout {
     /// Index of the first secondary layer.
     pub const fn secondary_base(&self) -> usize {
         1 + self.lights
+    }
+}
+
+/// What an SRAA frame computes beyond its primary visibility, decided once
+/// from its technique, planned passes, lights and material gate: the part of
+/// a frame's plan every backend reads its buffers and passes from (§3.1–3.3
+/// of SRAA for ray tracing; §4.1 for the material gate).
+///
+/// ```
+/// use subcone_kernels::passes::{required_passes, SceneFeatures, SubpixelPasses, Technique};
+///
+/// let lit = SceneFeatures::HAS_LIGHTS;
+/// let rt = SubpixelPasses::new(Technique::SraaRt, required_passes(Technique::SraaRt, lit)?, 1, false);
+/// assert!(rt.splits_layers && rt.sub_shadows && !rt.sub_secondary);
+/// assert_eq!(rt.layout.len(), 2); // the shadow-independent part and the light's
+/// let plain = SubpixelPasses::new(Technique::Sraa, required_passes(Technique::Sraa, lit)?, 1, false);
+/// assert!(!plain.splits_layers && !plain.sub_shadows && plain.layout.single);
+/// # Ok::<(), subcone_kernels::passes::Unsupported>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SubpixelPasses {
+    /// SRAA-RT's form ([`Technique::splits_layers`]): shading in layers,
+    /// subsamples with shadow states and reflections of their own.
+    pub splits_layers: bool,
+    /// The layers each shaded sample keeps.
+    pub layout: LayerLayout,
+    /// Shadow rays from the shaded samples ([`Passes::SHADOW`]).
+    pub shadows: bool,
+    /// The subsamples' shadow states (§3.2, [`Passes::SUBPIXEL_SHADOW`]).
+    pub sub_shadows: bool,
+    /// The subsamples' reflection geometry and its shadow states (§3.3,
+    /// [`Passes::SUBPIXEL_SECONDARY_GEOMETRY`]).
+    pub sub_secondary: bool,
+    /// Mirrors shade what they reflect ([`Passes::SECONDARY`]).
+    pub secondary_shading: bool,
+    /// `+mat`: the albedo of shaded samples and subsamples is kept for the
+    /// material gate.
+    pub material: bool,
+}
+
+impl SubpixelPasses {
+    /// The plan of a `technique` frame running `passes` with `lights`
+    /// lights (already capped at what the backend supports), gated by
+    /// material when `material`. A subpixel pass the technique does not
+    /// run is off whatever `passes` says.
+    pub const fn new(technique: Technique, passes: Passes, lights: usize, material: bool) -> Self {
+        let rt = technique.splits_layers();
+        SubpixelPasses {
+            splits_layers: rt,
+            layout: LayerLayout::new(technique, passes, lights),
+            shadows: passes.contains(Passes::SHADOW),
+            sub_shadows: rt && passes.contains(Passes::SUBPIXEL_SHADOW),
+            sub_secondary: rt && passes.contains(Passes::SUBPIXEL_SECONDARY_GEOMETRY),
+            secondary_shading: passes.contains(Passes::SECONDARY),
+            material,
+        }
     }
 }

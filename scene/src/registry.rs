@@ -192,8 +192,23 @@ pub struct TechniqueInfo {
     pub carries_opacity: bool,
     /// What a backend needs to run it.
     pub needs: Needs,
+    /// Where its `+taa` sequence puts each frame's sample (for a technique
+    /// without the temporal modifier, what it would be).
+    pub taa_jitter: TaaJitter,
     /// One line for help and the report.
     pub description: &'static str,
+}
+
+/// How a `+taa` sequence jitters its frames ([`Taa::jitter`](crate::temporal::Taa::jitter)).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TaaJitter {
+    /// The Halton (2, 3) point of the frame's phase
+    /// ([`subcone_kernels::taa::jitter`]).
+    Halton,
+    /// The shaded sample on geometric subsample `t mod 4` of SRAA's rotated
+    /// grid ([`subcone_kernels::taa::subsample_rotation`]), as SMAA T2x
+    /// rotates its subsample indices.
+    SubsampleRotation,
 }
 
 /// Sample counts `ssaaN` accepts: squares, so the grid is regular.
@@ -214,6 +229,7 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
         },
         carries_opacity: true,
         needs: Needs::NONE,
+        taa_jitter: TaaJitter::Halton,
         description: "one ray through each pixel centre: no antialiasing",
     },
     TechniqueInfo {
@@ -232,6 +248,7 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
             sdf_supersampling: true,
             ..Needs::NONE
         },
+        taa_jitter: TaaJitter::Halton,
         description: "N shaded samples per pixel on a regular grid, box-filtered",
     },
     TechniqueInfo {
@@ -248,6 +265,7 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
         },
         carries_opacity: false,
         needs: Needs::NONE,
+        taa_jitter: TaaJitter::Halton,
         description: "subpixel reconstruction (Chajdas et al.): one shaded sample, four geometric subsamples, eq. 1",
     },
     TechniqueInfo {
@@ -273,6 +291,7 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
             sdf_subpixel_geometry: true,
             ..Needs::NONE
         },
+        taa_jitter: TaaJitter::SubsampleRotation,
         description: "SRAA for ray tracing: plus shadow-gated weights (eq. 2) and secondary shading on secondary geometry (§3.3)",
     },
     TechniqueInfo {
@@ -290,6 +309,7 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
         },
         carries_opacity: true,
         needs: Needs::NONE,
+        taa_jitter: TaaJitter::Halton,
         description: "cone-traced supersampling: hit groups and a 32-bit visibility mask, traced to full occlusion",
     },
     TechniqueInfo {
@@ -305,6 +325,7 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
         },
         carries_opacity: true,
         needs: Needs::NONE,
+        taa_jitter: TaaJitter::Halton,
         description: "CTSS-R: cone tracing that stops at the first hard hit",
     },
     TechniqueInfo {
@@ -324,6 +345,7 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
             sdf_supersampling: true,
             ..Needs::NONE
         },
+        taa_jitter: TaaJitter::Halton,
         description: "N×N supersampling with a cone traced per sample (CTSS §4.2)",
     },
     TechniqueInfo {
@@ -338,6 +360,7 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
         },
         carries_opacity: true,
         needs: Needs::NONE,
+        taa_jitter: TaaJitter::Halton,
         description: "FXAA 3.11 over the NoAA frame (the post-process baseline)",
     },
 ];

@@ -32,7 +32,7 @@
 //! ```
 
 use glam::{Vec2, Vec3};
-use subcone_kernels::passes::Technique;
+use crate::registry::TaaJitter;
 use subcone_kernels::taa::{self, TaaSettings};
 
 use crate::backend::{Backend, RenderSettings};
@@ -101,10 +101,11 @@ impl Taa {
 
     /// The next frame's sub-pixel jitter, in pixels (see the module docs).
     pub fn jitter(&self) -> Vec2 {
-        if self.method.technique() == Technique::SraaRt {
-            taa::subsample_rotation(self.frame, self.method.sraa().shaded_offset())
-        } else {
-            self.config.jitter(self.frame)
+        match crate::registry::info(self.method.technique()).taa_jitter {
+            TaaJitter::SubsampleRotation => {
+                taa::subsample_rotation(self.frame, self.method.sraa().shaded_offset())
+            }
+            TaaJitter::Halton => self.config.jitter(self.frame),
         }
     }
 

@@ -203,7 +203,7 @@ pub(super) fn trace_tile_subsamples(
                 Some(h) => {
                     let s2 = t.surface(o, d, *h);
                     if !out.shadow2.is_empty() {
-                        let first = plan.layout.secondary_base();
+                        let first = plan.passes.layout.secondary_base();
                         let (cast, inherited) =
                             agreement(&mut secondary_agree, i, shaded.shadow2, first);
                         out.shadow2[i][k] = t.shadow_states_masked(&s2, cast, inherited, c);

@@ -4,7 +4,7 @@ use std::time::{Duration, Instant};
 
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
-use subcone_kernels::passes::{LayerLayout, Passes, Technique};
+use subcone_kernels::passes::{LayerLayout, Passes, SubpixelPasses};
 use subcone_kernels::sraa::{
     FrameFlags, Geometry, LayerFlags, Resolver, ShadedFrame, ShadedGroup, SraaParams, Subsamples,
     ALBEDO_TOLERANCE, SUBPIXEL_OFFSETS,
@@ -268,7 +268,7 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
     // `Camera::ray` bit for bit).
     let cam = t.camera.rays(s.width, s.height);
     let (w, h) = (plan.w, plan.h);
-    let gates = layer_gates(&plan.layout);
+    let gates = layer_gates(&plan.passes.layout);
     let resolver = Resolver::new(&method.sraa(), &gates, ALBEDO_TOLERANCE);
     let mut frame = Frame::new(s.width, s.height);
 
@@ -589,7 +589,7 @@ fn resolve_tile_with(
     region: Rect,
     out: &mut [&mut [Vec3]],
 ) {
-    let (n, nl, layout) = (region.len(), plan.nl, &plan.layout);
+    let (n, nl, layout) = (region.len(), plan.nl, &plan.passes.layout);
     let frame = ShadedFrame {
         width: region.width() as u32,
         height: region.height() as u32,
@@ -650,22 +650,11 @@ struct SubpixelPlan {
     tile: usize,
     /// Lights the shading reads (at most [`MAX_LIGHTS`]).
     lights: usize,
-    /// The layers each shaded sample keeps.
-    layout: LayerLayout,
-    /// `layout.len()`: layers per pixel in [`Buffers::values`].
+    /// What the frame computes beyond primary visibility (the plan every
+    /// backend shares).
+    passes: SubpixelPasses,
+    /// `passes.layout.len()`: layers per pixel in [`Buffers::values`].
     nl: usize,
-    /// Shadow rays from the shaded samples ([`Passes::SHADOW`]).
-    shadows: bool,
-    /// SRAA-RT's subpixel shadow rays (§3.2, [`Passes::SUBPIXEL_SHADOW`]).
-    sub_shadows: bool,
-    /// SRAA-RT's subpixel reflection rays (§3.3,
-    /// [`Passes::SUBPIXEL_SECONDARY_GEOMETRY`]).
-    sub_secondary: bool,
-    /// Mirrors shade what they reflect ([`Passes::SECONDARY`]).
-    secondary_shading: bool,
-    /// `+mat`: the albedo of shaded samples and subsamples is kept for the
-    /// material gate.
-    material: bool,
     /// Where the shaded sample lies from the pixel centre.
     shaded_offset: Vec2,
     /// The subsample that is also the shaded sample, if one is.
@@ -679,22 +668,16 @@ struct SubpixelPlan {
 
 impl SubpixelPlan {
     fn new(t: &Tracer, method: &Method, passes: Passes, s: &RenderSettings) -> Self {
-        let rt = method.technique() == Technique::SraaRt;
         let lights = t.scene.lights.len().min(MAX_LIGHTS);
-        let layout = LayerLayout::new(method.technique(), passes, lights);
+        let sp = SubpixelPasses::new(method.technique(), passes, lights, method.gates_material());
         let sraa = method.sraa();
         SubpixelPlan {
             w: s.width as usize,
             h: s.height as usize,
             tile: t.tile.max(1),
             lights,
-            layout,
-            nl: layout.len(),
-            shadows: passes.contains(Passes::SHADOW),
-            sub_shadows: rt && passes.contains(Passes::SUBPIXEL_SHADOW),
-            sub_secondary: rt && passes.contains(Passes::SUBPIXEL_SECONDARY_GEOMETRY),
-            secondary_shading: passes.contains(Passes::SECONDARY),
-            material: method.gates_material(),
+            passes: sp,
+            nl: sp.layout.len(),
             shaded_offset: sraa.shaded_offset(),
             shaded_subsample: sraa.shaded_subsample(),
             radius: sraa.radius(),
@@ -711,7 +694,7 @@ impl SubpixelPlan {
         let (tw, th) = (self.tile.min(self.w), self.tile.min(self.h));
         let n = (tw + apron).min(self.w) * (th + apron).min(self.h);
         let m = tw * th;
-        let layout = &self.layout;
+        let layout = &self.passes.layout;
         let lit = layout.lights > 0;
         fn allocated_if<T: Clone>(on: bool, value: T, n: usize) -> Vec<T> {
             if on {
@@ -727,11 +710,11 @@ impl SubpixelPlan {
             geo2: allocated_if(layout.secondary, NO_SECONDARY, n),
             shadow2: allocated_if(layout.secondary && lit, 0, n),
             sub_geo: vec![[Geometry::MISS; 4]; m],
-            sub_shadow: allocated_if(self.sub_shadows && lit, [0; 4], m),
-            sub_geo2: allocated_if(self.sub_secondary, [NO_SECONDARY; 4], m),
-            sub_shadow2: allocated_if(self.sub_secondary && lit, [0; 4], m),
-            albedo: allocated_if(self.material, Vec3::ZERO, n),
-            sub_albedo: allocated_if(self.material, [Vec3::ZERO; 4], m),
+            sub_shadow: allocated_if(self.passes.sub_shadows && lit, [0; 4], m),
+            sub_geo2: allocated_if(self.passes.sub_secondary, [NO_SECONDARY; 4], m),
+            sub_shadow2: allocated_if(self.passes.sub_secondary && lit, [0; 4], m),
+            albedo: allocated_if(self.passes.material, Vec3::ZERO, n),
+            sub_albedo: allocated_if(self.passes.material, [Vec3::ZERO; 4], m),
             // The flags serve the 3×3 neighbourhood (radius 1) only.
             flags: allocated_if(self.radius == 1, LayerFlags::default(), n),
             flags2: allocated_if(self.radius == 1 && layout.secondary, LayerFlags::default(), n),
@@ -754,7 +737,7 @@ impl SubpixelPlan {
         if !self.adaptive || bits.is_empty() {
             return (u32::MAX, 0);
         }
-        let (nl, lights, radius) = (self.nl, self.layout.lights, self.radius);
+        let (nl, lights, radius) = (self.nl, self.passes.layout.lights, self.radius);
         shadow_agreement(bits, values, nl, first, lights, x, y, radius, w, h)
     }
 }

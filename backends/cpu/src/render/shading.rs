@@ -68,7 +68,7 @@ fn shade_pixel(
     y: usize,
     c: &mut Counts,
 ) {
-    let (layout, nl, lights) = (&plan.layout, plan.nl, plan.lights);
+    let (layout, nl, lights) = (&plan.passes.layout, plan.nl, plan.lights);
     // `-hybrid`: the raster's triangle and the coordinates it computed for
     // the ray (`cam.ray(p)` is `cam.through(u(p.x), v(p.y))`).
     let (o, d) = match found {
@@ -90,7 +90,7 @@ fn shade_pixel(
     if let Some(a) = out.albedo.get_mut(i) {
         *a = t.primary_albedo(Some(&sf));
     }
-    let sh = if plan.shadows {
+    let sh = if plan.passes.shadows {
         t.shadow_states(&sf, c)
     } else {
         0
@@ -98,7 +98,7 @@ fn shade_pixel(
     let ao = t.ambient_occlusion(&sf, c);
     let parts = t.parts(&sf, sh, ao);
     let m = parts.mirror;
-    let reflects = m > 0.0 && plan.secondary_shading && t.reflection_depth > 0;
+    let reflects = m > 0.0 && plan.passes.secondary_shading && t.reflection_depth > 0;
     if layout.single {
         let diffuse = parts.diffuse(lights);
         v[0] = if reflects {
@@ -200,7 +200,7 @@ fn shade_reflection(
     i: usize,
     c: &mut Counts,
 ) {
-    let (layout, lights) = (&plan.layout, plan.lights);
+    let (layout, lights) = (&plan.passes.layout, plan.lights);
     let sb = layout.secondary_base();
     match t.intersect(sf.p + sf.ng * t.eps, rd, 0.0) {
         None => {
@@ -216,7 +216,7 @@ fn shade_reflection(
         }
         Some(s2) => {
             c.shaded += 1;
-            let sh2 = if plan.shadows {
+            let sh2 = if plan.passes.shadows {
                 t.shadow_states(&s2, c)
             } else {
                 0

@@ -17,7 +17,7 @@ use std::sync::Arc;
 
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
-use subcone_kernels::passes::{LayerLayout, Passes, Technique};
+use subcone_kernels::passes::{Passes, SubpixelPasses, Technique};
 use subcone_kernels::sraa::{Geometry, SraaParams};
 use subcone_scene::{
     Camera, Frame, FrameStats, Method, RayCounts, RenderError, RenderSettings, Scene,
@@ -435,40 +435,24 @@ fn supersample(f: &Setup) -> Result<Frame, RenderError> {
 }
 
 /// Which of SRAA's and SRAA-RT's frame buffers exist, from the frame's
-/// method and planned passes (render.rs `SubpixelPlan` on the CPU).
+/// method and planned passes: the kernels' [`SubpixelPasses`], which the
+/// CPU backend's plan holds too, and the frame's size.
 struct SubpixelPlan {
     /// Pixels.
     n: u64,
-    /// SRAA-RT: subsamples traced into buffers; else SRAA's raster pass.
-    rt: bool,
-    /// The layers of each shaded sample.
-    layout: LayerLayout,
-    /// Shadow rays from the shaded samples ([`Passes::SHADOW`]).
-    shadows: bool,
-    /// Subpixel shadow rays (§3.2).
-    sub_shadows: bool,
-    /// Subpixel reflection rays (§3.3).
-    sub_secondary: bool,
-    /// Mirrors shade what they reflect ([`Passes::SECONDARY`]).
-    secondary_shading: bool,
-    /// `+mat`: albedo kept for the material gate.
-    material: bool,
+    /// What the frame computes beyond primary visibility. With
+    /// `splits_layers` (SRAA-RT) the subsamples are traced into buffers;
+    /// without, SRAA's raster pass fills them.
+    passes: SubpixelPasses,
 }
 
 impl SubpixelPlan {
     fn new(f: &Setup) -> Self {
         let (scene, method, s, passes) = (f.job.scene, f.job.method, f.job.settings, f.job.passes);
-        let rt = method.technique() == Technique::SraaRt;
         let lights = scene.lights.len().min(MAX_LIGHTS);
         SubpixelPlan {
             n: (s.width as usize * s.height as usize) as u64,
-            rt,
-            layout: LayerLayout::new(method.technique(), passes, lights),
-            shadows: passes.contains(Passes::SHADOW),
-            sub_shadows: rt && passes.contains(Passes::SUBPIXEL_SHADOW),
-            sub_secondary: rt && passes.contains(Passes::SUBPIXEL_SECONDARY_GEOMETRY),
-            secondary_shading: passes.contains(Passes::SECONDARY),
-            material: method.gates_material(),
+            passes: SubpixelPasses::new(method.technique(), passes, lights, method.gates_material()),
         }
     }
 }
@@ -490,7 +474,7 @@ fn subpixel_bindings<'a>(
 ) -> Result<(Bindings, String, Option<Hybrid<'a>>), RenderError> {
     let plan = SubpixelPlan::new(f);
     let mut fb = Bindings::new(1);
-    let resolve = if plan.rt {
+    let resolve = if plan.passes.splits_layers {
         shaded_sample_buffers(f.ctx, &mut fb, &plan)?;
         None
     } else {
@@ -498,7 +482,7 @@ fn subpixel_bindings<'a>(
         let r = resolve::HybridResolve::new(
             f.ctx,
             &f.job.method.sraa(),
-            plan.material,
+            plan.passes.material,
             f.job.passes.contains(Passes::POST_PROCESS),
             s.width,
             s.height,
@@ -532,7 +516,7 @@ fn shaded_sample_buffers(
     fb: &mut Bindings,
     plan: &SubpixelPlan,
 ) -> Result<(), RenderError> {
-    let (n64, layout) = (plan.n, &plan.layout);
+    let (n64, layout) = (plan.n, &plan.passes.layout);
     let nl = layout.len();
     fb.storage(ctx, "color", "color", "array<vec4<f32>>", n64 * 16)?;
     fb.storage(ctx, "geometry", "geo", "array<subcone_Geometry>", n64 * 16)?;
@@ -576,7 +560,7 @@ fn subsample_geometry(
     plan: &SubpixelPlan,
 ) -> Result<Option<raster::Raster>, RenderError> {
     let (ctx, s, n64) = (f.ctx, f.job.settings, plan.n);
-    if plan.rt {
+    if plan.passes.splits_layers {
         fb.storage(
             ctx,
             "subpixel geometry",
@@ -587,7 +571,7 @@ fn subsample_geometry(
         fb.storage(ctx, "subsample index", "subsample", "array<u32>", 4)?;
         return Ok(None);
     }
-    let r = raster::Raster::new(ctx, &f.sg, &f.uniform, s.width, s.height, plan.material)?;
+    let r = raster::Raster::new(ctx, &f.sg, &f.uniform, s.width, s.height, plan.passes.material)?;
     fb.texture(
         "sub_tex",
         crate::compute::FLOAT,
@@ -618,10 +602,10 @@ fn gate_buffers(
     fb: &mut Bindings,
     plan: &SubpixelPlan,
 ) -> Result<(), RenderError> {
-    let (n64, lights) = (plan.n, plan.layout.lights);
+    let (n64, lights) = (plan.n, plan.passes.layout.lights);
     // Hybrid SRAA's shaded albedo is the resolve's texture, its
     // subsamples' the raster pass's layers.
-    if plan.material && plan.rt {
+    if plan.passes.material && plan.passes.splits_layers {
         fb.storage(ctx, "albedo", "albedo_buf", "array<vec4<f32>>", n64 * 16)?;
         fb.storage(
             ctx,
@@ -631,7 +615,7 @@ fn gate_buffers(
             n64 * 64,
         )?;
     }
-    if plan.sub_shadows && lights > 0 {
+    if plan.passes.sub_shadows && lights > 0 {
         fb.storage(
             ctx,
             "subpixel shadow states",
@@ -640,7 +624,7 @@ fn gate_buffers(
             n64 * 16,
         )?;
     }
-    if plan.sub_secondary {
+    if plan.passes.sub_secondary {
         fb.storage(
             ctx,
             "subpixel secondary geometry",
@@ -702,8 +686,8 @@ pub(crate) const SHADED_SAMPLE_ACCESSORS: &str =
 /// buffers; hybrid SRAA's accessors of them, and of its shaded albedo, are
 /// the resolve's (`HybridResolve::shading_accessors`).
 fn subpixel_header(fb: &Bindings, plan: &SubpixelPlan) -> String {
-    let (layout, rt, material) = (&plan.layout, plan.rt, plan.material);
-    let (nl, shadows, secondary_shading) = (layout.len(), plan.shadows, plan.secondary_shading);
+    let (layout, rt, material) = (&plan.passes.layout, plan.passes.splits_layers, plan.passes.material);
+    let (nl, shadows, secondary_shading) = (layout.len(), plan.passes.shadows, plan.passes.secondary_shading);
     let mut header = String::new();
     header += &format!(
         "const NL: u32 = {nl}u;\nconst LAYER_LIGHTS: u32 = {}u;\nconst SINGLE: bool = {};\n\
@@ -795,10 +779,10 @@ fn subpixel(f: &Setup) -> Result<Frame, RenderError> {
             let resolve = resolve::BufferResolve::new(
                 ctx,
                 &f.job.method.sraa(),
-                plan.material,
+                plan.passes.material,
                 resolve::BufferLayers {
-                    lights: plan.layout.lights as u32,
-                    secondary: plan.layout.secondary,
+                    lights: plan.passes.layout.lights as u32,
+                    secondary: plan.passes.layout.secondary,
                 },
             )?;
             let subsamples = indices(ctx, "subsample indices", 4)?;
