@@ -76,6 +76,24 @@ pub(crate) struct Buffers {
 }
 
 impl Buffers {
+    /// Subsample buffer entry `j`'s four subsamples as the resolver reads
+    /// them, and their secondary hits' where the frame has `secondary`
+    /// layers.
+    #[inline(always)]
+    fn subsamples(&self, secondary: bool, j: usize) -> (Subsamples, Option<Subsamples>) {
+        let primary = Subsamples {
+            geometry: self.sub_geo[j],
+            shadow: self.sub_shadow.get(j).copied().unwrap_or([0; 4]),
+            albedo: self.sub_albedo.get(j).copied(),
+        };
+        let secondary = secondary.then(|| Subsamples {
+            geometry: self.sub_geo2.get(j).copied().unwrap_or([NO_SECONDARY; 4]),
+            shadow: self.sub_shadow2.get(j).copied().unwrap_or([0; 4]),
+            albedo: None,
+        });
+        (primary, secondary)
+    }
+
     /// The frame's buffers by name, the allocated ones only, after `color`.
     pub(crate) fn list(&self, color: &[Vec3]) -> Vec<(&'static str, usize)> {
         let mut buffers = vec![
@@ -167,22 +185,24 @@ pub(crate) fn reconstruct_frame_on(
         });
 }
 
-/// The whole frame's shaded samples in `b`, as the resolver reads them.
+/// The shaded samples of a `w × h` frame or region in `b` (the first
+/// `w·h` of each buffer), as the resolver reads them.
 fn shaded_frame<'a>(b: &'a Buffers, layout: &LayerLayout, w: usize, h: usize) -> ShadedFrame<'a> {
+    let n = w * h;
     ShadedFrame {
         width: w as u32,
         height: h as u32,
-        colors: &b.values,
+        colors: head(&b.values, n * layout.len()),
         layers: layout.len(),
-        albedo: &b.albedo,
+        albedo: head(&b.albedo, n),
         primary: ShadedGroup {
-            geometry: &b.geo,
-            shadow: &b.shadow,
+            geometry: head(&b.geo, n),
+            shadow: head(&b.shadow, n),
             first_layer: 0,
         },
-        secondary: layout.secondary.then_some(ShadedGroup {
-            geometry: &b.geo2,
-            shadow: &b.shadow2,
+        secondary: layout.secondary.then(|| ShadedGroup {
+            geometry: head(&b.geo2, n),
+            shadow: head(&b.shadow2, n),
             first_layer: layout.secondary_base(),
         }),
     }
@@ -204,18 +224,15 @@ fn reconstruct_band(
 ) {
     for (i, out) in rows.iter_mut().enumerate() {
         let (x, y) = (i % w, band * BAND + i / w);
-        let j = y * w + x;
-        let primary = Subsamples {
-            geometry: b.sub_geo[j],
-            shadow: b.sub_shadow.get(j).copied().unwrap_or([0; 4]),
-            albedo: b.sub_albedo.get(j).copied(),
-        };
-        let secondary = layout.secondary.then(|| Subsamples {
-            geometry: b.sub_geo2.get(j).copied().unwrap_or([NO_SECONDARY; 4]),
-            shadow: b.sub_shadow2.get(j).copied().unwrap_or([0; 4]),
-            albedo: None,
-        });
-        *out = resolver.resolve_flagged(frame, flags, x as u32, y as u32, &primary, secondary.as_ref());
+        let (primary, secondary) = b.subsamples(layout.secondary, y * w + x);
+        *out = resolver.resolve_flagged(
+            frame,
+            flags,
+            x as u32,
+            y as u32,
+            &primary,
+            secondary.as_ref(),
+        );
     }
 }
 
@@ -572,7 +589,16 @@ fn resolve_tile(
 ) {
     // The flags are written while the rest of the buffers are read.
     let (mut flags, mut flags2) = (std::mem::take(&mut b.flags), std::mem::take(&mut b.flags2));
-    resolve_tile_with(plan, resolver, b, &mut flags, &mut flags2, tile, region, out);
+    resolve_tile_with(
+        plan,
+        resolver,
+        b,
+        &mut flags,
+        &mut flags2,
+        tile,
+        region,
+        out,
+    );
     (b.flags, b.flags2) = (flags, flags2);
 }
 
@@ -589,24 +615,8 @@ fn resolve_tile_with(
     region: Rect,
     out: &mut [&mut [Vec3]],
 ) {
-    let (n, nl, layout) = (region.len(), plan.nl, &plan.passes.layout);
-    let frame = ShadedFrame {
-        width: region.width() as u32,
-        height: region.height() as u32,
-        colors: head(&b.values, n * nl),
-        layers: layout.len(),
-        albedo: head(&b.albedo, n),
-        primary: ShadedGroup {
-            geometry: head(&b.geo, n),
-            shadow: head(&b.shadow, n),
-            first_layer: 0,
-        },
-        secondary: layout.secondary.then(|| ShadedGroup {
-            geometry: head(&b.geo2, n),
-            shadow: head(&b.shadow2, n),
-            first_layer: layout.secondary_base(),
-        }),
-    };
+    let (n, layout) = (region.len(), &plan.passes.layout);
+    let frame = shaded_frame(b, layout, region.width(), region.height());
     // Each shaded sample's layers summarised once for the nine
     // neighbourhoods it is in (the same bits as scanning each).
     let flags = first(flags, n);
@@ -622,16 +632,7 @@ fn resolve_tile_with(
     let tw = tile.width();
     for i in 0..tile.len() {
         let (x, y) = (tile.x0 + i % tw, tile.y0 + i / tw);
-        let primary = Subsamples {
-            geometry: b.sub_geo[i],
-            shadow: b.sub_shadow.get(i).copied().unwrap_or([0; 4]),
-            albedo: b.sub_albedo.get(i).copied(),
-        };
-        let secondary = layout.secondary.then(|| Subsamples {
-            geometry: b.sub_geo2.get(i).copied().unwrap_or([NO_SECONDARY; 4]),
-            shadow: b.sub_shadow2.get(i).copied().unwrap_or([0; 4]),
-            albedo: None,
-        });
+        let (primary, secondary) = b.subsamples(layout.secondary, i);
         let (lx, ly) = ((x - region.x0) as u32, (y - region.y0) as u32);
         out[y - tile.y0][x - tile.x0] =
             resolver.resolve_flagged(&frame, &flags, lx, ly, &primary, secondary.as_ref());
@@ -717,7 +718,11 @@ impl SubpixelPlan {
             sub_albedo: allocated_if(self.passes.material, [Vec3::ZERO; 4], m),
             // The flags serve the 3×3 neighbourhood (radius 1) only.
             flags: allocated_if(self.radius == 1, LayerFlags::default(), n),
-            flags2: allocated_if(self.radius == 1 && layout.secondary, LayerFlags::default(), n),
+            flags2: allocated_if(
+                self.radius == 1 && layout.secondary,
+                LayerFlags::default(),
+                n,
+            ),
         }
     }
 
