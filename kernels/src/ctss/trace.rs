@@ -26,10 +26,11 @@
 use crate::math::Euclidean;
 use glam::{Vec2, Vec3};
 
-use super::{
-    coarse_normal_step, group_needs_split, split_group, tetra_normal, ConeStepper, CtssParams,
-    Event, GroupSample, SplitRay, TraceResult, NO_OBJECT,
-};
+use super::normals::{coarse_normal_step, normal_step, tetra_normal};
+use super::params::CtssParams;
+use super::split::{group_needs_split, split_group, SplitRay};
+use super::stepper::{ConeStepper, Event, GroupSample, NO_OBJECT};
+use super::TraceResult;
 use crate::aggregate::Aggregate;
 use crate::cone::cone_radius;
 use crate::mask::{needs_normal, project_normal, visibility_mask, FULL_MASK};
@@ -75,21 +76,6 @@ pub trait ConeField {
     /// [`normal`](Self::normal).
     fn coarse_normal(&mut self, p: Vec3, h: f32) -> Vec3 {
         self.normal(p, h)
-    }
-}
-
-/// Step of the shading normal at depth `t`: a quarter of the cone radius,
-/// never below `10⁻⁵` of the depth (or of 1), so the differences resolve
-/// the pixel's footprint and never vanish in rounding. Non-finite or
-/// negative inputs give the floor `10⁻⁵`.
-#[inline]
-pub fn normal_step(t: f32, tan_theta: f32) -> f32 {
-    let floor = 1e-5 * if t > 1.0 { t } else { 1.0 };
-    let h = 0.25 * t * tan_theta;
-    if h > floor {
-        h
-    } else {
-        floor
     }
 }
 

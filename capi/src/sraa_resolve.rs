@@ -1,0 +1,169 @@
+//! SRAA's antialiasing pass over a whole frame in CPU buffers.
+
+use glam::Vec3;
+use subcone_kernels::sraa::{
+    Geometry, Resolver, ShadedFrame, ShadedGroup, Subsamples, ALBEDO_TOLERANCE, MAX_LAYERS,
+};
+
+use crate::checks::{read, slice, slice_mut};
+use crate::geometry::{SubconeGeometry, SubconeVec3};
+use crate::params::{sraa_params, SubconeSraaParams};
+use crate::status::{guard, status, SubconeStatus};
+
+/// A frame's worth of SRAA input for [`subcone_sraa_resolve`], in
+/// caller-owned CPU buffers (row-major, `width × height` pixels).
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct SubconeSraaFrame {
+    /// Image width in pixels (> 0).
+    pub width: u32,
+    /// Image height in pixels (> 0).
+    pub height: u32,
+    /// Shaded layers per pixel, 1..=16 (`layer_lights` gives each its gate).
+    pub layers: u32,
+    /// `width·height·layers` linear RGB colours: every pixel's shaded sample,
+    /// one colour per layer (e.g. layer 0 ambient and indirect, layer `1 + l`
+    /// light `l`'s direct light).
+    pub colors: *const SubconeVec3,
+    /// Length of `colors`.
+    pub colors_len: usize,
+    /// `layers` entries: the light whose shadow gates each layer (eq. 2), or
+    /// −1 for an ungated layer (eq. 1). Null: every layer ungated.
+    pub layer_lights: *const i8,
+    /// `width·height` geometries of the shaded samples.
+    pub shaded_geometry: *const SubconeGeometry,
+    /// Length of `shaded_geometry`.
+    pub shaded_geometry_len: usize,
+    /// `width·height` shadow bit sets of the shaded samples (bit `l`: in light
+    /// `l`'s shadow), or null for none.
+    pub shaded_shadow: *const u32,
+    /// Length of `shaded_shadow` (0 when null).
+    pub shaded_shadow_len: usize,
+    /// `4·width·height` geometries of the four subsamples of every pixel, at
+    /// `SUBPIXEL_OFFSETS` (the 4× MSAA pattern: (−⅛,−⅜), (⅜,−⅛), (−⅜,⅛),
+    /// (⅛,⅜)), pixel by pixel.
+    pub subsample_geometry: *const SubconeGeometry,
+    /// Length of `subsample_geometry`.
+    pub subsample_geometry_len: usize,
+    /// `4·width·height` shadow bit sets of the subsamples, or null for none.
+    pub subsample_shadow: *const u32,
+    /// Length of `subsample_shadow` (0 when null).
+    pub subsample_shadow_len: usize,
+}
+
+/// SRAA's antialiasing pass (§3, pass 2) over a whole frame: every layer of
+/// every subsample reconstructed from the 3×3 neighbourhood's shaded samples
+/// (eq. 1, gated by eq. 2 per light), then the box resolve, written to `out`
+/// (`width·height` colours). The same loop, to the bit, as the CPU backend's
+/// (the kernels' `sraa::Resolver`). Primary hits only: reconstruct the
+/// reflections on their own geometry with a second call and add.
+///
+/// Errors: null pointers where data is required, a zero size or more than 16
+/// layers, lengths that do not match the sizes, a gate naming a light above
+/// 31, non-finite parameters.
+///
+/// # Safety
+/// Every pointer is null or points to as many valid values as its length says.
+#[no_mangle]
+pub unsafe extern "C" fn subcone_sraa_resolve(
+    params: *const SubconeSraaParams,
+    frame: *const SubconeSraaFrame,
+    out: *mut SubconeVec3,
+    out_len: usize,
+) -> SubconeStatus {
+    // SAFETY: forwarded contract.
+    guard(|| status(unsafe { sraa_resolve(params, frame, out, out_len) }))
+}
+
+/// # Safety
+/// As [`subcone_sraa_resolve`].
+unsafe fn sraa_resolve(
+    params: *const SubconeSraaParams,
+    frame: *const SubconeSraaFrame,
+    out: *mut SubconeVec3,
+    out_len: usize,
+) -> Result<SubconeStatus, SubconeStatus> {
+    let p = sraa_params(params)?;
+    // SAFETY: forwarded contract.
+    let f = unsafe { read(frame) }?;
+    let (w, h, layers) = (f.width as usize, f.height as usize, f.layers as usize);
+    if w == 0 || h == 0 || layers == 0 || layers > MAX_LAYERS {
+        return Err(SubconeStatus::SizeMismatch);
+    }
+    let n = w.checked_mul(h).ok_or(SubconeStatus::SizeMismatch)?;
+    let exact = |len: usize, want: Option<usize>| match want {
+        Some(want) if len == want => Ok(()),
+        _ => Err(SubconeStatus::SizeMismatch),
+    };
+    exact(f.colors_len, n.checked_mul(layers))?;
+    exact(f.shaded_geometry_len, Some(n))?;
+    exact(f.subsample_geometry_len, n.checked_mul(4))?;
+    exact(out_len, Some(n))?;
+    let optional = |len: usize, want: usize| {
+        if len == 0 || len == want {
+            Ok(())
+        } else {
+            Err(SubconeStatus::SizeMismatch)
+        }
+    };
+    optional(f.shaded_shadow_len, n)?;
+    optional(f.subsample_shadow_len, 4 * n)?;
+    // SAFETY: lengths checked above against the sizes; pointers per contract.
+    let (colors, geometry, shadow, sub_geometry, sub_shadow, gates) = unsafe {
+        (
+            slice(f.colors, f.colors_len)?,
+            slice(f.shaded_geometry, f.shaded_geometry_len)?,
+            slice(f.shaded_shadow, f.shaded_shadow_len)?,
+            slice(f.subsample_geometry, f.subsample_geometry_len)?,
+            slice(f.subsample_shadow, f.subsample_shadow_len)?,
+            if f.layer_lights.is_null() {
+                &[][..]
+            } else {
+                slice(f.layer_lights, layers)?
+            },
+        )
+    };
+    // SAFETY: `out` is null or holds `out_len` values (the caller's
+    // contract), and `out_len` is `n` (checked above).
+    let out = unsafe { slice_mut(out, out_len) }?;
+    let mut layer_gates = [None; MAX_LAYERS];
+    for (g, &l) in layer_gates.iter_mut().zip(gates) {
+        *g = match l {
+            l if l < 0 => None,
+            l if l < 32 => Some(l as u8),
+            _ => return Err(SubconeStatus::InvalidArgument),
+        };
+    }
+    // The kernels take glam types: the same layouts (checked above), copied
+    // rather than reinterpreted.
+    let colors: Vec<Vec3> = colors.iter().map(|&c| c.into()).collect();
+    let geometry: Vec<Geometry> = geometry.iter().map(|&g| g.into()).collect();
+    let resolver = Resolver::new(&p, &layer_gates[..layers], ALBEDO_TOLERANCE);
+    let shaded = ShadedFrame {
+        width: f.width,
+        height: f.height,
+        colors: &colors,
+        layers,
+        albedo: &[],
+        primary: ShadedGroup {
+            geometry: &geometry,
+            shadow,
+            first_layer: 0,
+        },
+        secondary: None,
+    };
+    for (j, o) in out.iter_mut().enumerate() {
+        let g = &sub_geometry[4 * j..4 * j + 4];
+        let subsamples = Subsamples {
+            geometry: [g[0].into(), g[1].into(), g[2].into(), g[3].into()],
+            shadow: match sub_shadow.get(4 * j..4 * j + 4) {
+                Some(s) => [s[0], s[1], s[2], s[3]],
+                None => [0; 4],
+            },
+            albedo: None,
+        };
+        let (x, y) = ((j % w) as u32, (j / w) as u32);
+        *o = resolver.resolve(&shaded, x, y, &subsamples, None).into();
+    }
+    Ok(SubconeStatus::Ok)
+}
