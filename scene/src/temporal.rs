@@ -31,8 +31,8 @@
 //! # Ok::<(), subcone_scene::RenderError>(())
 //! ```
 
-use glam::{Vec2, Vec3};
 use crate::registry::TaaJitter;
+use glam::{Vec2, Vec3};
 use subcone_kernels::taa::{self, TaaSettings};
 
 use crate::backend::{Backend, RenderSettings};

@@ -455,7 +455,10 @@ pub fn picks(
                 rows.iter()
                     .find(|r| r.scene == scene && r.backend == b && r.method == *method)
                     .filter(|r| {
-                        !matches!(excluded(ex, r).map(|e| &e.why), Some(Why::OtherDevice { .. }))
+                        !matches!(
+                            excluded(ex, r).map(|e| &e.why),
+                            Some(Why::OtherDevice { .. })
+                        )
                     })
                     .and_then(|r| Some((*r, error(r, metric)?)))
             };
@@ -768,11 +771,7 @@ pub fn section(a: &Answer, rows: &[ResultRow], ctx: &Context) -> String {
         ));
     }
     if !notes.is_empty() {
-        let _ = writeln!(
-            md,
-            "Left out of the fronts: {}.\n",
-            notes.join("; ")
-        );
+        let _ = writeln!(md, "Left out of the fronts: {}.\n", notes.join("; "));
     }
     let partial: Vec<String> = a
         .partial
@@ -1083,7 +1082,10 @@ mod tests {
         );
         // Same error, lower worst time: the hybrid is the pick; and the
         // traced twin, no longer left out of the picks, is no partial.
-        assert_eq!(picked(&a, Kind::Triangles, Metric::Flip, Some(4.0)), "ssaa4-hybrid");
+        assert_eq!(
+            picked(&a, Kind::Triangles, Metric::Flip, Some(4.0)),
+            "ssaa4-hybrid"
+        );
         assert!(a.partial.is_empty(), "{:?}", a.partial);
         let p = a.pick(Kind::Triangles, "cpu", Metric::Flip, None).unwrap();
         assert_eq!(p.on_front, 1);
@@ -1092,7 +1094,9 @@ mod tests {
         // for its image.
         rows[2].ratio_to_noaa = Some(5.0);
         let a = Answer::of(&rows, &[scene("s", false)]);
-        let p = a.pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0)).unwrap();
+        let p = a
+            .pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0))
+            .unwrap();
         assert_eq!((p.method.to_string(), p.on_front), ("ssaa4".into(), 1));
     }
 

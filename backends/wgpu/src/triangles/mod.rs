@@ -452,7 +452,12 @@ impl SubpixelPlan {
         let lights = scene.lights.len().min(MAX_LIGHTS);
         SubpixelPlan {
             n: (s.width as usize * s.height as usize) as u64,
-            passes: SubpixelPasses::new(method.technique(), passes, lights, method.gates_material()),
+            passes: SubpixelPasses::new(
+                method.technique(),
+                passes,
+                lights,
+                method.gates_material(),
+            ),
         }
     }
 }
@@ -571,7 +576,14 @@ fn subsample_geometry(
         fb.storage(ctx, "subsample index", "subsample", "array<u32>", 4)?;
         return Ok(None);
     }
-    let r = raster::Raster::new(ctx, &f.sg, &f.uniform, s.width, s.height, plan.passes.material)?;
+    let r = raster::Raster::new(
+        ctx,
+        &f.sg,
+        &f.uniform,
+        s.width,
+        s.height,
+        plan.passes.material,
+    )?;
     fb.texture(
         "sub_tex",
         crate::compute::FLOAT,
@@ -686,8 +698,16 @@ pub(crate) const SHADED_SAMPLE_ACCESSORS: &str =
 /// buffers; hybrid SRAA's accessors of them, and of its shaded albedo, are
 /// the resolve's (`HybridResolve::shading_accessors`).
 fn subpixel_header(fb: &Bindings, plan: &SubpixelPlan) -> String {
-    let (layout, rt, material) = (&plan.passes.layout, plan.passes.splits_layers, plan.passes.material);
-    let (nl, shadows, secondary_shading) = (layout.len(), plan.passes.shadows, plan.passes.secondary_shading);
+    let (layout, rt, material) = (
+        &plan.passes.layout,
+        plan.passes.splits_layers,
+        plan.passes.material,
+    );
+    let (nl, shadows, secondary_shading) = (
+        layout.len(),
+        plan.passes.shadows,
+        plan.passes.secondary_shading,
+    );
     let mut header = String::new();
     header += &format!(
         "const NL: u32 = {nl}u;\nconst LAYER_LIGHTS: u32 = {}u;\nconst SINGLE: bool = {};\n\
