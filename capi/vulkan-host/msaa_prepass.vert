@@ -1,10 +1,11 @@
 #version 450
 // The host's rasterised G-buffer prepass that shaders/sraa/msaa*.spv read:
 // four triangles in view space (right-handed, looking down -z, +y up),
-// projected by the host's matrix (a push constant; main.c passes the same
-// matrix to subcone_sraa_pass_uniform). A tilted wall whose top edge leaves
-// the top of the image empty (a miss), and two triangles in front of it
-// crossing each other (depth edges, a crease, slanted silhouettes).
+// projected by the host's matrix (a push constant; host_sraa_msaa.c passes
+// the same matrix to subcone_sraa_pass_uniform). A tilted wall whose top
+// edge leaves the top of the image empty (a miss), and two triangles in
+// front of it crossing each other (depth edges, a crease, slanted
+// silhouettes).
 layout(push_constant) uniform Prepass {
     mat4 projection;
 } prepass;

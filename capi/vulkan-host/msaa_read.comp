@@ -1,8 +1,8 @@
 #version 450
 // Reads every sample of the prepass's multisampled attachments into a
 // buffer, (normal.xyz, hardware depth) per sample, pixel by pixel: the
-// geometry main.c's CPU resolve is given, the very values the resolve
-// shader samples.
+// geometry host_sraa_msaa.c's CPU resolve is given, the very values the
+// resolve shader samples.
 #extension GL_EXT_samplerless_texture_functions : require
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 0) uniform texture2DMS prepass_depth;

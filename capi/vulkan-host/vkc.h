@@ -24,7 +24,8 @@
 /* How long vkc_dispatch waits for its fence before giving up, in
  * nanoseconds: long enough for a software rasteriser on a large grid, short
  * enough that a hung device is reported rather than waited on forever.
- * Overridable with -D when compiling vkc.c (e.g. to test the timeout path). */
+ * Overridable with -D when compiling vkc's sources (vkc_submit.c waits; e.g.
+ * to test the timeout path). */
 #ifndef VKC_FENCE_TIMEOUT_NS
 #define VKC_FENCE_TIMEOUT_NS (60ull * 1000ull * 1000ull * 1000ull)
 #endif
