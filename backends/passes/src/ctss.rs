@@ -19,6 +19,7 @@ use crate::bind::{
     BindGroup, BindGroupLayout, Buffer, CommandEncoder, ComputePassTimestampWrites, Device, Queue,
     TextureFormat, TextureUsages, TextureView,
 };
+use crate::skeleton::{self, PassNames, PassShader};
 use crate::PassError;
 
 pub(crate) const CTSS_WGSL: &str = include_str!("ctss.wgsl");
@@ -624,17 +625,7 @@ impl CtssPass {
         host_wgsl: &str,
         desc: &CtssPassDesc<'_>,
     ) -> Result<Self, PassError> {
-        Self::check_desc(desc)?;
-        let group = Self::group(desc.output_format, desc.output, desc.depth)?;
-        let source = Self::source(host_wgsl, desc, &group);
-        let pipeline = PassPipeline::new(
-            device,
-            "subcone ctss",
-            group,
-            source,
-            desc.host_layout,
-            "subcone_pass_ctss_main",
-        )?;
+        let pipeline = skeleton::pipeline::<Self>(device, &CtssKey { host_wgsl, desc })?;
         Ok(CtssPass {
             output_format: desc.output_format,
             output: desc.output,
@@ -643,87 +634,6 @@ impl CtssPass {
             host_group: desc.host_layout.is_some(),
             pipeline,
         })
-    }
-
-    /// Refuse what [`Self::new`] refuses before compiling: a batch or
-    /// cones per side out of range, a texture format it cannot write.
-    pub(crate) fn check_desc(desc: &CtssPassDesc<'_>) -> Result<(), PassError> {
-        if desc.output == CtssOutput::Texture {
-            bind::check_output_format(desc.output_format)?;
-        }
-        if !(1..=MAX_BATCH).contains(&desc.batch) {
-            return Err(PassError::Config(format!(
-                "batch {}: subcone_CTSS_BATCH must be in 1..={MAX_BATCH}",
-                desc.batch
-            )));
-        }
-        if !(1..=MAX_SAMPLES_PER_SIDE).contains(&desc.samples_per_side) {
-            return Err(PassError::Config(format!(
-                "samples_per_side {}: must be in 1..={MAX_SAMPLES_PER_SIDE}",
-                desc.samples_per_side
-            )));
-        }
-        Ok(())
-    }
-
-    pub(crate) fn group(
-        output_format: TextureFormat,
-        output: CtssOutput,
-        depth: CtssDepth,
-    ) -> Result<Group, PassError> {
-        let mut g = Group::default();
-        g.ring_uniform::<CtssUniform>("subcone_pass_frame", "CtssUniform");
-        g.ring_uniform::<CtssParams>("subcone_pass_params", "subcone_CtssParams");
-        let depth = depth == CtssDepth::View;
-        match output {
-            CtssOutput::Texture => {
-                g.storage_texture("subcone_pass_output", output_format)?;
-                if depth {
-                    g.storage_texture("subcone_pass_depth", TextureFormat::R32Float)?;
-                }
-            }
-            CtssOutput::Buffers { counts } => {
-                let rw = bind::BufferAccess::ReadWrite;
-                g.buffer("subcone_pass_output", "array<vec4<f32>>", rw);
-                if counts {
-                    g.buffer("subcone_pass_counts", "array<vec4<u32>>", rw);
-                }
-                if depth {
-                    g.buffer("subcone_pass_depth", "array<f32>", rw);
-                }
-            }
-        }
-        Ok(g)
-    }
-
-    /// The whole shader: the kernels, the batch, the host's WGSL (and the
-    /// default normal), the desc's variant, the pass's entry point, the
-    /// declarations.
-    pub(crate) fn source(host_wgsl: &str, desc: &CtssPassDesc<'_>, group: &Group) -> String {
-        let normal = if host_wgsl.contains("fn subcone_normal") {
-            ""
-        } else {
-            "fn subcone_normal(p: vec3<f32>, h: f32) -> vec3<f32> { return subcone_tetra_normal(p, h); }\n"
-        };
-        let [cone, mask, aggregate, transparency, ctss, trace] = CTSS_KERNELS;
-        [
-            subcone_kernels::wgsl::PARAMS,
-            cone,
-            mask,
-            aggregate,
-            transparency,
-            ctss,
-            trace,
-            &format!("const subcone_CTSS_BATCH: u32 = {}u;\n", desc.batch),
-            SPHERE_TRACE_HOOK,
-            host_wgsl,
-            "\n",
-            normal,
-            &variant_wgsl(desc),
-            CTSS_WGSL,
-            &group.declarations(),
-        ]
-        .concat()
     }
 
     /// Record the trace of one frame into `encoder` (one compute pass), its
@@ -915,5 +825,103 @@ impl CtssPass {
     /// with them the pass's clones of those views.
     pub fn release_views(&self) {
         self.pipeline.release_views();
+    }
+}
+
+/// What a [`CtssPass`] is built for: the host's WGSL and the desc (what
+/// [`CtssPass::new`] and `standalone::ctss` take).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct CtssKey<'a> {
+    /// The host's field, shading and optional hooks.
+    pub(crate) host_wgsl: &'a str,
+    /// The configuration.
+    pub(crate) desc: &'a CtssPassDesc<'a>,
+}
+
+impl PassShader for CtssPass {
+    const NAMES: PassNames = PassNames::new("ctss", "subcone ctss", "subcone_pass_ctss_main");
+    type Key<'a> = CtssKey<'a>;
+
+    /// Refuse what [`CtssPass::new`] refuses before compiling: a batch
+    /// or cones per side out of range, a texture format it cannot write.
+    fn check(&CtssKey { desc, .. }: &CtssKey<'_>) -> Result<(), PassError> {
+        if desc.output == CtssOutput::Texture {
+            bind::check_output_format(desc.output_format)?;
+        }
+        if !(1..=MAX_BATCH).contains(&desc.batch) {
+            return Err(PassError::Config(format!(
+                "batch {}: subcone_CTSS_BATCH must be in 1..={MAX_BATCH}",
+                desc.batch
+            )));
+        }
+        if !(1..=MAX_SAMPLES_PER_SIDE).contains(&desc.samples_per_side) {
+            return Err(PassError::Config(format!(
+                "samples_per_side {}: must be in 1..={MAX_SAMPLES_PER_SIDE}",
+                desc.samples_per_side
+            )));
+        }
+        Ok(())
+    }
+
+    fn group(&CtssKey { desc, .. }: &CtssKey<'_>) -> Result<Group, PassError> {
+        let mut g = Group::default();
+        g.ring_uniform::<CtssUniform>("subcone_pass_frame", "CtssUniform");
+        g.ring_uniform::<CtssParams>("subcone_pass_params", "subcone_CtssParams");
+        let depth = desc.depth == CtssDepth::View;
+        match desc.output {
+            CtssOutput::Texture => {
+                g.storage_texture("subcone_pass_output", desc.output_format)?;
+                if depth {
+                    g.storage_texture("subcone_pass_depth", TextureFormat::R32Float)?;
+                }
+            }
+            CtssOutput::Buffers { counts } => {
+                let rw = bind::BufferAccess::ReadWrite;
+                g.buffer("subcone_pass_output", "array<vec4<f32>>", rw);
+                if counts {
+                    g.buffer("subcone_pass_counts", "array<vec4<u32>>", rw);
+                }
+                if depth {
+                    g.buffer("subcone_pass_depth", "array<f32>", rw);
+                }
+            }
+        }
+        Ok(g)
+    }
+
+    /// The kernels, the batch, the host's WGSL (and the default normal),
+    /// the desc's variant, the pass's entry point.
+    fn wgsl(&CtssKey { host_wgsl, desc }: &CtssKey<'_>) -> String {
+        let normal = if host_wgsl.contains("fn subcone_normal") {
+            ""
+        } else {
+            "fn subcone_normal(p: vec3<f32>, h: f32) -> vec3<f32> { return subcone_tetra_normal(p, h); }\n"
+        };
+        let [cone, mask, aggregate, transparency, ctss, trace] = CTSS_KERNELS;
+        [
+            cone,
+            mask,
+            aggregate,
+            transparency,
+            ctss,
+            trace,
+            &format!("const subcone_CTSS_BATCH: u32 = {}u;\n", desc.batch),
+            SPHERE_TRACE_HOOK,
+            host_wgsl,
+            "\n",
+            normal,
+            &variant_wgsl(desc),
+            CTSS_WGSL,
+        ]
+        .concat()
+    }
+
+    fn host_layout<'a>(key: &Self::Key<'a>) -> Option<&'a BindGroupLayout> {
+        key.desc.host_layout
+    }
+
+    /// The desc alone: the host's WGSL is in the shader.
+    fn summary(key: &CtssKey<'_>) -> String {
+        format!("{:?}", key.desc)
     }
 }

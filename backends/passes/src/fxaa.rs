@@ -15,9 +15,10 @@ use subcone_kernels::fxaa::FxaaParams;
 
 use crate::bind::{self, Bound, Expect, Group, PassPipeline};
 use crate::bind::{
-    CommandEncoder, ComputePassTimestampWrites, Device, Queue, TextureFormat, TextureSampleType,
-    TextureUsages, TextureView, TextureViewDimension,
+    CommandEncoder, ComputePassTimestampWrites, Device, Queue, TextureFormat, TextureUsages,
+    TextureView,
 };
+use crate::skeleton::{self, PassNames, PassShader};
 use crate::PassError;
 
 pub(crate) const FXAA_WGSL: &str = include_str!("fxaa.wgsl");
@@ -123,10 +124,7 @@ impl FxaaPass {
     /// Build the pass (compile its pipeline, make its uniform buffers) for
     /// `desc`. Refuses an output format it cannot write.
     pub fn new(device: &Device, desc: &FxaaPassDesc) -> Result<Self, PassError> {
-        bind::check_output_format(desc.output_format)?;
-        let group = Self::group(desc.output_format)?;
-        let source = Self::source(&group);
-        let pipeline = PassPipeline::new(device, "subcone fxaa", group, source, None, "fxaa_main")?;
+        let pipeline = skeleton::pipeline::<Self>(device, desc)?;
         Ok(FxaaPass {
             desc: *desc,
             pipeline,
@@ -136,31 +134,6 @@ impl FxaaPass {
     /// The configuration.
     pub fn desc(&self) -> &FxaaPassDesc {
         &self.desc
-    }
-
-    /// The bindings, writing `output_format`.
-    pub(crate) fn group(output_format: TextureFormat) -> Result<Group, PassError> {
-        let mut g = Group::default();
-        g.ring_uniform::<FxaaParams>("fxaa_params", "subcone_FxaaParams");
-        g.ring_uniform::<FxaaFrame>("fxaa_frame", "FxaaFrame");
-        g.texture(
-            "fxaa_src",
-            TextureSampleType::Float { filterable: false },
-            TextureViewDimension::D2,
-            false,
-        );
-        g.storage_texture("fxaa_dst", output_format)?;
-        Ok(g)
-    }
-
-    pub(crate) fn source(group: &Group) -> String {
-        [
-            subcone_kernels::wgsl::PARAMS,
-            subcone_kernels::fxaa::WGSL,
-            FXAA_WGSL,
-            &group.declarations(),
-        ]
-        .concat()
     }
 
     /// Record FXAA of `input` into `output` (one compute pass), the frame's
@@ -231,6 +204,29 @@ impl FxaaPass {
     /// the pass's clones of those views.
     pub fn release_views(&self) {
         self.pipeline.release_views();
+    }
+}
+
+impl PassShader for FxaaPass {
+    const NAMES: PassNames = PassNames::new("fxaa", "subcone fxaa", "fxaa_main");
+    type Key<'a> = FxaaPassDesc;
+
+    /// Refuses an output format it cannot write.
+    fn check(desc: &FxaaPassDesc) -> Result<(), PassError> {
+        bind::check_output_format(desc.output_format)
+    }
+
+    /// The bindings, writing the desc's output format.
+    fn group(desc: &FxaaPassDesc) -> Result<Group, PassError> {
+        let mut g = Group::default();
+        g.ring_uniform::<FxaaParams>("fxaa_params", "subcone_FxaaParams");
+        g.ring_uniform::<FxaaFrame>("fxaa_frame", "FxaaFrame");
+        skeleton::filter_textures(g, &["fxaa_src"], "fxaa_dst", desc.output_format)
+    }
+
+    /// The kernels' FXAA and `fxaa.wgsl`.
+    fn wgsl(_desc: &FxaaPassDesc) -> String {
+        [subcone_kernels::fxaa::WGSL, FXAA_WGSL].concat()
     }
 }
 

@@ -8,12 +8,13 @@ use crate::layout_check::{assert_all_match, compare, Member};
 
 use crate::bind::TextureFormat;
 use crate::ctss::{
-    CtssBackground, CtssDepth, CtssOutput, CtssPass, CtssPassDesc, CtssTrace, CtssUniform,
+    CtssBackground, CtssDepth, CtssKey, CtssOutput, CtssPass, CtssPassDesc, CtssTrace, CtssUniform,
     CTSS_WGSL,
 };
-use crate::fxaa::{FxaaFrame, FxaaPass, FXAA_WGSL};
+use crate::fxaa::{FxaaFrame, FxaaPass, FxaaPassDesc, FXAA_WGSL};
+use crate::skeleton;
 use crate::sraa::{SraaFrame, SRAA_WGSL};
-use crate::taa::{TaaOrigin, TaaPass, TAA_WGSL};
+use crate::taa::{TaaOrigin, TaaPass, TaaPassDesc, TAA_WGSL};
 
 #[test]
 fn pass_gpu_structs_match_their_wgsl() {
@@ -96,6 +97,12 @@ fn validate(label: &str, source: &str) -> Result<(), String> {
     Ok(())
 }
 
+/// The CTSS pass's whole shader over `host_wgsl` for `desc`.
+fn ctss_source(host_wgsl: &str, desc: &CtssPassDesc<'_>) -> String {
+    let key = CtssKey { host_wgsl, desc };
+    skeleton::shader::<CtssPass>(&key).expect("a valid desc").1
+}
+
 /// Every SRAA configuration's shader (layout, textures or buffers × depth ×
 /// normals × centre or subsample shading × lights × albedo gate × secondary
 /// shading) validates, and so do the
@@ -170,11 +177,9 @@ fn every_pass_shader_validates() {
                     .with_samples_per_side(side)
                     .with_background(background)
                     .with_depth(depth);
-                let g =
-                    CtssPass::group(desc.output_format, output, depth).expect("an output format");
                 let label =
                     format!("ctss{normal}, {output:?}, side {side}, {background:?}, {depth:?}");
-                if let Err(e) = validate(&label, &CtssPass::source(&host, &desc, &g)) {
+                if let Err(e) = validate(&label, &ctss_source(&host, &desc)) {
                     errors.push(e);
                 }
             }
@@ -190,18 +195,18 @@ fn every_pass_shader_validates() {
             .with_output(output)
             .with_samples_per_side(2)
             .with_depth(CtssDepth::View);
-        let g = CtssPass::group(desc.output_format, output, desc.depth).expect("an output format");
         let label = format!("ctss, host trace, {output:?}");
-        if let Err(e) = validate(&label, &CtssPass::source(&own_trace, &desc, &g)) {
+        if let Err(e) = validate(&label, &ctss_source(&own_trace, &desc)) {
             errors.push(e);
         }
     }
-    let g = FxaaPass::group(TextureFormat::Rgba8Unorm).expect("an output format");
-    if let Err(e) = validate("fxaa", &FxaaPass::source(&g)) {
+    let fxaa = FxaaPassDesc::default().with_output_format(TextureFormat::Rgba8Unorm);
+    let (_, source) = skeleton::shader::<FxaaPass>(&fxaa).expect("a valid desc");
+    if let Err(e) = validate("fxaa", &source) {
         errors.push(e);
     }
-    let g = TaaPass::group(TextureFormat::Rgba16Float).expect("an output format");
-    if let Err(e) = validate("taa", &TaaPass::source(&g)) {
+    let (_, source) = skeleton::shader::<TaaPass>(&TaaPassDesc::default()).expect("a valid desc");
+    if let Err(e) = validate("taa", &source) {
         errors.push(e);
     }
     assert!(errors.is_empty(), "{}", errors.join("\n\n"));
@@ -216,8 +221,7 @@ fn the_wgsl_no_object_is_the_kernels_constant() {
     let host = "fn subcone_field(p: vec3<f32>) -> vec3<f32> { let d = length(p) - 1.0; return vec3<f32>(d, d, 0.0); }\n\
                 fn subcone_shade(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> vec3<f32> { return n; }\n";
     let desc = CtssPassDesc::default();
-    let g = CtssPass::group(desc.output_format, desc.output, desc.depth).expect("an output format");
-    let source = CtssPass::source(host, &desc, &g);
+    let source = ctss_source(host, &desc);
     let module = naga::front::wgsl::parse_str(&source).expect("the CTSS pass's shader parses");
     let (_, constant) = module
         .constants

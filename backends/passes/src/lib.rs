@@ -72,6 +72,7 @@ mod fxaa;
 mod layout_check;
 #[cfg(test)]
 mod layout_tests;
+mod skeleton;
 mod sraa;
 pub mod standalone;
 mod taa;

@@ -25,8 +25,9 @@
 
 use subcone_kernels::sraa::SraaParams;
 
-use crate::bind::{BindingEntry, Group, WORKGROUP};
-use crate::sraa::DepthBinding;
+use crate::bind::BindingEntry;
+use crate::ctss::CtssKey;
+use crate::skeleton;
 use crate::{
     CtssOutput, CtssPass, CtssPassDesc, FxaaPass, FxaaPassDesc, PassError, SraaPass, SraaPassDesc,
     TaaPass, TaaPassDesc,
@@ -61,107 +62,30 @@ pub struct StandaloneShader {
 }
 
 /// The dispatch of every pass: one invocation per pixel of the rect.
-const DISPATCH: &str = "(ceil(width / 8), ceil(height / 8), 1) workgroups for a width × height \
+pub(crate) const DISPATCH: &str =
+    "(ceil(width / 8), ceil(height / 8), 1) workgroups for a width × height \
      image (or rect): one invocation per pixel, those outside return at once";
-
-fn shader(
-    pass: &'static str,
-    variant: &str,
-    summary: String,
-    wgsl: String,
-    entry_point: &'static str,
-    group: &Group,
-) -> StandaloneShader {
-    StandaloneShader {
-        pass,
-        variant: variant.to_owned(),
-        summary,
-        wgsl,
-        glsl_wgsl: None,
-        entry_point,
-        workgroup_size: [WORKGROUP, WORKGROUP, 1],
-        bindings: group.entries(),
-        dispatch: DISPATCH,
-    }
-}
 
 /// [`crate::SraaPass`] built for `desc`.
 pub fn sraa(desc: &SraaPassDesc) -> Result<StandaloneShader, PassError> {
-    let group = SraaPass::group(desc)?;
-    let wgsl = [SraaPass::source(desc)?, group.declarations()].concat();
-    let mut s = shader(
-        "sraa",
-        "custom",
-        format!("{desc:?}"),
-        wgsl,
-        "sraa_resolve_main",
-        &group,
-    );
-    if group.entries().iter().any(|b| {
-        matches!(
-            b.kind,
-            crate::bind::BindingKind::Texture {
-                sample: "depth",
-                ..
-            }
-        )
-    }) {
-        let float = SraaPass::group_with(desc, DepthBinding::Float)?;
-        s.glsl_wgsl = Some(
-            [
-                SraaPass::source_with(desc, DepthBinding::Float)?,
-                float.declarations(),
-            ]
-            .concat(),
-        );
-    }
-    Ok(s)
+    skeleton::standalone::<SraaPass>(desc)
 }
 
 /// [`crate::CtssPass`] built for the host's field `host_wgsl` (what
 /// [`crate::CtssPass::new`] takes) and `desc`. The host layout
 /// (`@group(1)`) is the host's own: its WGSL declares it.
 pub fn ctss(host_wgsl: &str, desc: &CtssPassDesc<'_>) -> Result<StandaloneShader, PassError> {
-    CtssPass::check_desc(desc)?;
-    let group = CtssPass::group(desc.output_format, desc.output, desc.depth)?;
-    let wgsl = CtssPass::source(host_wgsl, desc, &group);
-    Ok(shader(
-        "ctss",
-        "custom",
-        format!("{desc:?}"),
-        wgsl,
-        "subcone_pass_ctss_main",
-        &group,
-    ))
+    skeleton::standalone::<CtssPass>(&CtssKey { host_wgsl, desc })
 }
 
 /// [`crate::FxaaPass`] built for `desc`.
 pub fn fxaa(desc: &FxaaPassDesc) -> Result<StandaloneShader, PassError> {
-    let group = FxaaPass::group(desc.output_format)?;
-    let wgsl = FxaaPass::source(&group);
-    Ok(shader(
-        "fxaa",
-        "custom",
-        format!("{desc:?}"),
-        wgsl,
-        "fxaa_main",
-        &group,
-    ))
+    skeleton::standalone::<FxaaPass>(desc)
 }
 
 /// [`crate::TaaPass`] built for `desc`.
 pub fn taa(desc: &TaaPassDesc) -> Result<StandaloneShader, PassError> {
-    desc.validate()?;
-    let group = TaaPass::group(desc.output_format)?;
-    let wgsl = TaaPass::source(&group);
-    Ok(shader(
-        "taa",
-        "custom",
-        format!("{desc:?}"),
-        wgsl,
-        "taa_main",
-        &group,
-    ))
+    skeleton::standalone::<TaaPass>(desc)
 }
 
 /// The test field of the catalog's CTSS shaders, and of the C host that

@@ -8,9 +8,10 @@ use bytemuck::{Pod, Zeroable};
 
 use crate::bind::{self, Bound, Expect, Group, PassPipeline, Rect};
 use crate::bind::{
-    CommandEncoder, ComputePassTimestampWrites, Device, Queue, TextureFormat, TextureSampleType,
-    TextureUsages, TextureView, TextureViewDimension,
+    CommandEncoder, ComputePassTimestampWrites, Device, Queue, TextureFormat, TextureUsages,
+    TextureView,
 };
+use crate::skeleton::{self, PassNames, PassShader};
 use crate::PassError;
 
 pub(crate) const TAA_WGSL: &str = include_str!("taa.wgsl");
@@ -140,11 +141,7 @@ impl TaaPass {
     /// Build the pass (compile its pipeline, make its uniform buffers) for
     /// `desc`. Refuses a desc outside its domain.
     pub fn new(device: &Device, desc: &TaaPassDesc) -> Result<Self, PassError> {
-        desc.validate()?;
-        bind::check_output_format(desc.output_format)?;
-        let group = Self::group(desc.output_format)?;
-        let source = Self::source(&group);
-        let pipeline = PassPipeline::new(device, "subcone taa", group, source, None, "taa_main")?;
+        let pipeline = skeleton::pipeline::<Self>(device, desc)?;
         Ok(TaaPass {
             desc: *desc,
             pipeline,
@@ -162,33 +159,6 @@ impl TaaPass {
     /// `(2·x / width, −2·y / height)` to its third column's NDC offsets.
     pub fn jitter(&self, frame: u32) -> glam::Vec2 {
         self.desc.settings.jitter(frame)
-    }
-
-    /// The bindings, writing `output_format`.
-    pub(crate) fn group(output_format: TextureFormat) -> Result<Group, PassError> {
-        let mut g = Group::default();
-        g.ring_uniform::<TaaParams>("taa_params", "subcone_TaaParams");
-        g.ring_uniform::<TaaOrigin>("taa_origin", "TaaOrigin");
-        for name in ["taa_current_tex", "taa_velocity", "taa_history_tex"] {
-            g.texture(
-                name,
-                TextureSampleType::Float { filterable: false },
-                TextureViewDimension::D2,
-                false,
-            );
-        }
-        g.storage_texture("taa_dst", output_format)?;
-        Ok(g)
-    }
-
-    pub(crate) fn source(group: &Group) -> String {
-        [
-            subcone_kernels::wgsl::PARAMS,
-            subcone_kernels::taa::WGSL,
-            TAA_WGSL,
-            &group.declarations(),
-        ]
-        .concat()
     }
 
     /// Record the resolve of `inputs` into `output` (one compute pass), the
@@ -312,5 +282,30 @@ impl TaaPass {
     /// the pass's clones of those views.
     pub fn release_views(&self) {
         self.pipeline.release_views();
+    }
+}
+
+impl PassShader for TaaPass {
+    const NAMES: PassNames = PassNames::new("taa", "subcone taa", "taa_main");
+    type Key<'a> = TaaPassDesc;
+
+    /// Refuses a desc outside its domain.
+    fn check(desc: &TaaPassDesc) -> Result<(), PassError> {
+        desc.validate()?;
+        bind::check_output_format(desc.output_format)
+    }
+
+    /// The bindings, writing the desc's output format.
+    fn group(desc: &TaaPassDesc) -> Result<Group, PassError> {
+        let mut g = Group::default();
+        g.ring_uniform::<TaaParams>("taa_params", "subcone_TaaParams");
+        g.ring_uniform::<TaaOrigin>("taa_origin", "TaaOrigin");
+        let inputs = ["taa_current_tex", "taa_velocity", "taa_history_tex"];
+        skeleton::filter_textures(g, &inputs, "taa_dst", desc.output_format)
+    }
+
+    /// The kernels' TAA and `taa.wgsl`.
+    fn wgsl(_desc: &TaaPassDesc) -> String {
+        [subcone_kernels::taa::WGSL, TAA_WGSL].concat()
     }
 }

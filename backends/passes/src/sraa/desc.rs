@@ -4,9 +4,11 @@
 //!
 //! [`SraaPass`]: super::SraaPass
 
+use subcone_kernels::passes::MAX_LIGHTS;
 use subcone_kernels::sraa::{ResolveSpace, ShadedPosition, SraaParams};
 
-use crate::bind::TextureFormat;
+use crate::bind::{self, TextureFormat};
+use crate::PassError;
 
 /// How the four geometric subsamples of a pixel are stored.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -241,6 +243,41 @@ impl SraaPassDesc {
         with_output_format(output_format: TextureFormat);
         /// Averaging the subsamples in `resolve` ([`Self::resolve`]).
         with_resolve(resolve: ResolveSpace);
+    }
+
+    /// Refuse what [`SraaPass::new`] refuses before compiling: more than
+    /// `MAX_LIGHTS` lights, an output format it cannot write, a tone-mapped
+    /// resolve without a valid exposure, and [`GeometryLayout::Packed`] or
+    /// [`GeometryLayout::Buffers`] with hardware depth or unsigned normals.
+    ///
+    /// [`SraaPass::new`]: super::SraaPass::new
+    pub(super) fn validate(&self) -> Result<(), PassError> {
+        if self.lights as usize > MAX_LIGHTS {
+            return Err(PassError::Config(format!(
+                "{} lights: SRAA's eq. 2 gates at most {MAX_LIGHTS}",
+                self.lights
+            )));
+        }
+
+        bind::check_output_format(self.output_format)?;
+        if let ResolveSpace::ToneMapped { exposure } = self.resolve {
+            if !self.resolve.is_valid() {
+                return Err(PassError::Exposure {
+                    found_bits: exposure.to_bits(),
+                });
+            }
+        }
+        if matches!(
+            self.geometry,
+            GeometryLayout::Packed | GeometryLayout::Buffers
+        ) && (self.depth != DepthKind::LinearView || self.normal != NormalEncoding::Signed)
+        {
+            return Err(PassError::Config(format!(
+                "GeometryLayout::{:?} holds linear view depth and signed normals",
+                self.geometry
+            )));
+        }
+        Ok(())
     }
 
     /// Colour layers: `1 + lights`, twice that with secondary shading.

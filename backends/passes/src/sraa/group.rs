@@ -57,12 +57,7 @@ impl SraaPass {
         g
     }
 
-    /// The bindings, in order.
-    pub(crate) fn group(desc: &SraaPassDesc) -> Result<Group, PassError> {
-        Self::group_with(desc, DepthBinding::Depth)
-    }
-
-    /// The bindings, hardware depth declared as `depth`.
+    /// The bindings, in order, hardware depth declared as `depth`.
     pub(crate) fn group_with(desc: &SraaPassDesc, depth: DepthBinding) -> Result<Group, PassError> {
         use TextureViewDimension::{D2Array, D2};
         if desc.geometry == GeometryLayout::Buffers {

@@ -25,14 +25,16 @@
 //!
 //! - `desc.rs`: the configuration, [`SraaPassDesc`] and how the host
 //!   stores its geometry ([`GeometryLayout`], [`DepthKind`],
-//!   [`NormalEncoding`]);
+//!   [`NormalEncoding`]), and what the pass refuses of it;
 //! - `inputs.rs`: one frame's views ([`SraaInputs`]) or buffers
 //!   ([`SraaBuffers`]);
 //! - `checks.rs`: those inputs checked against the configuration;
 //! - `pass.rs`: [`SraaPass`], its `new` and its encodes;
 //! - `group.rs`: the pass's bindings for a configuration;
 //! - `shader.rs`: the pass's WGSL for a configuration (the kernels, a
-//!   generated header of constants and loaders, `sraa.wgsl`).
+//!   generated header of constants and loaders, `sraa.wgsl`), and the
+//!   pass on the crate's pass skeleton (`skeleton.rs`): its checks,
+//!   bindings and shader, with the float-depth variant GLSL reads.
 //!
 //! The impl blocks of [`SraaPass`] that build its bindings and its shader
 //! live in `group.rs` and `shader.rs`; a file above names the ones below,
@@ -58,7 +60,6 @@ pub use subcone_kernels::sraa::RECONSTRUCT_WGSL;
 pub(crate) use subcone_kernels::uniforms::SraaFrame;
 
 pub use desc::{DepthKind, GeometryLayout, NormalEncoding, SraaPassDesc};
-pub(crate) use group::DepthBinding;
 pub use inputs::{
     CentreGeometry, Samples, SecondaryBuffers, SecondaryInputs, SraaBuffers, SraaInputs,
     SubsampleGeometry,

@@ -6,6 +6,7 @@ use super::inputs::{Samples, SraaBuffers, SraaInputs, SubsampleGeometry};
 use super::SraaFrame;
 use crate::bind::{self, check_buffer, required, Bound, PassPipeline, Rect};
 use crate::bind::{CommandEncoder, ComputePassTimestampWrites, Device, Queue};
+use crate::skeleton;
 use crate::PassError;
 
 /// Bind the shaded samples' resource of `s` as `shaded` and the
@@ -60,17 +61,7 @@ impl SraaPass {
     /// it cannot write, and [`GeometryLayout::Packed`] with hardware depth
     /// or unsigned normals.
     pub fn new(device: &Device, desc: &SraaPassDesc) -> Result<Self, PassError> {
-        let source = Self::source(desc)?;
-        let group = Self::group(desc)?;
-        let source = [source, group.declarations()].concat();
-        let pipeline = PassPipeline::new(
-            device,
-            "subcone sraa resolve",
-            group,
-            source,
-            None,
-            "sraa_resolve_main",
-        )?;
+        let pipeline = skeleton::pipeline::<Self>(device, desc)?;
         Ok(SraaPass {
             desc: *desc,
             pipeline,

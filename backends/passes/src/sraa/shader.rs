@@ -1,15 +1,16 @@
 //! The pass's shader: the kernels' WGSL, a header generated for the
 //! configuration (its constants and the loaders of its layout) and
-//! `sraa.wgsl`.
+//! `sraa.wgsl`; and the pass's `PassShader`, which the crate's skeleton
+//! builds its pipeline and its standalone shader from.
 
-use subcone_kernels::passes::MAX_LIGHTS;
 use subcone_kernels::sraa::ResolveSpace;
 
-use super::desc::{DepthKind, GeometryLayout, NormalEncoding, SraaPassDesc};
+use super::desc::{GeometryLayout, NormalEncoding, SraaPassDesc};
 use super::group::DepthBinding;
 use super::pass::SraaPass;
 use super::RECONSTRUCT_WGSL;
-use crate::bind;
+use crate::bind::{BindingKind, Group};
+use crate::skeleton::{PassNames, PassShader};
 use crate::PassError;
 
 pub(crate) const SRAA_WGSL: &str = include_str!("../sraa.wgsl");
@@ -34,43 +35,12 @@ fn no_shadow_loaders(g: &str) -> String {
 }
 
 impl SraaPass {
-    /// The shader: the kernels, the generated header (constants, loaders),
-    /// `sraa.wgsl`; the declarations are appended by [`Self::new`].
-    pub(crate) fn source(desc: &SraaPassDesc) -> Result<String, PassError> {
-        Self::source_with(desc, DepthBinding::Depth)
-    }
-
-    /// The shader, hardware depth read as `depth` declares it.
-    pub(crate) fn source_with(
-        desc: &SraaPassDesc,
-        depth: DepthBinding,
-    ) -> Result<String, PassError> {
-        if desc.lights as usize > MAX_LIGHTS {
-            return Err(PassError::Config(format!(
-                "{} lights: SRAA's eq. 2 gates at most {MAX_LIGHTS}",
-                desc.lights
-            )));
-        }
-
-        bind::check_output_format(desc.output_format)?;
-        if let ResolveSpace::ToneMapped { exposure } = desc.resolve {
-            if !desc.resolve.is_valid() {
-                return Err(PassError::Exposure {
-                    found_bits: exposure.to_bits(),
-                });
-            }
-        }
+    /// The shader, hardware depth read as `depth` declares it: the
+    /// kernels, the generated header (constants, loaders), `sraa.wgsl`
+    /// (the skeleton adds the prelude and the declarations). The desc is
+    /// valid ([`PassShader::check`]).
+    fn wgsl_with(desc: &SraaPassDesc, depth: DepthBinding) -> String {
         let buffers = desc.geometry == GeometryLayout::Buffers;
-        if matches!(
-            desc.geometry,
-            GeometryLayout::Packed | GeometryLayout::Buffers
-        ) && (desc.depth != DepthKind::LinearView || desc.normal != NormalEncoding::Signed)
-        {
-            return Err(PassError::Config(format!(
-                "GeometryLayout::{:?} holds linear view depth and signed normals",
-                desc.geometry
-            )));
-        }
         let hw = desc.depth.is_hardware();
         let mut h = format!(
             "const LIGHTS: u32 = {}u;\nconst MATERIAL: bool = {};\nconst HARDWARE_DEPTH: bool = {hw};\n\
@@ -89,14 +59,7 @@ impl SraaPass {
         } else {
             Self::texture_loaders(desc, depth)
         };
-        Ok([
-            subcone_kernels::wgsl::PARAMS,
-            subcone_kernels::sraa::WGSL,
-            &h,
-            SRAA_WGSL,
-            RECONSTRUCT_WGSL,
-        ]
-        .concat())
+        [subcone_kernels::sraa::WGSL, &h, SRAA_WGSL, RECONSTRUCT_WGSL].concat()
     }
 
     /// The loaders of the texture layouts (see `sraa.wgsl`'s header).
@@ -205,12 +168,48 @@ impl SraaPass {
     }
 }
 
+impl PassShader for SraaPass {
+    const NAMES: PassNames = PassNames::new("sraa", "subcone sraa resolve", "sraa_resolve_main");
+    type Key<'a> = SraaPassDesc;
+
+    fn check(desc: &SraaPassDesc) -> Result<(), PassError> {
+        desc.validate()
+    }
+
+    fn group(desc: &SraaPassDesc) -> Result<Group, PassError> {
+        Self::group_with(desc, DepthBinding::Depth)
+    }
+
+    fn wgsl(desc: &SraaPassDesc) -> String {
+        Self::wgsl_with(desc, DepthBinding::Depth)
+    }
+
+    /// Where the group binds a depth texture: the group and shader with
+    /// hardware depth declared as a float texture ([`DepthBinding::Float`]).
+    fn glsl_variant(
+        desc: &SraaPassDesc,
+        group: &Group,
+    ) -> Result<Option<(Group, String)>, PassError> {
+        let depth_texture = group.entries().iter().any(|b| {
+            matches!(
+                b.kind,
+                BindingKind::Texture {
+                    sample: "depth",
+                    ..
+                }
+            )
+        });
+        if !depth_texture {
+            return Ok(None);
+        }
+        let float = Self::group_with(desc, DepthBinding::Float)?;
+        Ok(Some((float, Self::wgsl_with(desc, DepthBinding::Float))))
+    }
+}
+
 #[cfg(test)]
 pub(crate) fn test_source(desc: &SraaPassDesc) -> String {
-    let group = SraaPass::group(desc).expect("valid desc");
-    [
-        SraaPass::source(desc).expect("valid desc"),
-        group.declarations(),
-    ]
-    .concat()
+    crate::skeleton::shader::<SraaPass>(desc)
+        .expect("valid desc")
+        .1
 }
