@@ -1,0 +1,278 @@
+//! The answer as the report writes it: the section of `report.md` and the
+//! answer in `results.json`.
+
+use std::fmt::Write as _;
+
+use serde_json::{json, Value};
+
+use super::excluded::{same_image_twins, Excluded, Why};
+use super::front::Point;
+use super::pick::{backends, Answer, Kind, Pick};
+use super::{BUDGETS, RULE};
+use crate::classes::Metric;
+use crate::context::{cpu_model, ms, Context, SceneInfo};
+use crate::key::RowKey;
+use crate::{Mode, ResultRow};
+
+fn budget_name(b: Option<f64>) -> String {
+    match b {
+        Some(x) => format!("≤ {x}× NoAA"),
+        None => "any".into(),
+    }
+}
+
+/// The sizes of `kind`'s scenes, `96x64 (errors at 96x64)`, distinct ones
+/// joined.
+fn sizes(scenes: &[SceneInfo], kind: Kind) -> Option<String> {
+    let mut s: Vec<String> = Vec::new();
+    for sc in scenes.iter().filter(|sc| Kind::of(sc) == kind) {
+        let t = format!(
+            "{}x{}{}",
+            sc.timing_size.0,
+            sc.timing_size.1,
+            match sc.quality_size {
+                Some(q) => format!(" (errors at {}x{})", q.0, q.1),
+                None => String::new(),
+            }
+        );
+        if !s.contains(&t) {
+            s.push(t);
+        }
+    }
+    (!s.is_empty()).then(|| s.join(", "))
+}
+
+/// The regime of the run in one sentence: backend, machine, threads,
+/// sizes, shading cost.
+pub fn regime(ctx: &Context) -> String {
+    let threads = std::thread::available_parallelism()
+        .map(|n| n.get())
+        .unwrap_or(1);
+    let mut sz = Vec::new();
+    for kind in Kind::ALL {
+        if let Some(s) = sizes(&ctx.scenes, kind) {
+            sz.push(format!("{} scenes timed at {s}", kind.name()));
+        }
+    }
+    format!(
+        "**Regime:** backend {} on {}, {threads} hardware threads; {}; shading with {} ambient-occlusion rays per shaded point on triangle scenes (none on SDF scenes); {} timed rounds{}.",
+        ctx.backend_descriptions.join(", "),
+        cpu_model(),
+        sz.join("; "),
+        ctx.ao,
+        ctx.runs,
+        if ctx.mode == Mode::TimingOnly {
+            String::new()
+        } else {
+            format!(", errors against {}", ctx.reference)
+        }
+    )
+}
+
+fn point(p: &Point, twins: &[RowKey]) -> String {
+    let name = if twins.is_empty() {
+        p.method.to_string()
+    } else {
+        let twins: Vec<String> = twins.iter().map(RowKey::to_string).collect();
+        format!("{} (= {})", p.method, twins.join(", "))
+    };
+    format!("{name} {} ms · {:.4}", ms(p.ms), p.error)
+}
+
+/// The section of `report.md`: the regime, the picks per kind and budget
+/// under both metrics and where they disagree, the fronts per scene, and
+/// what was left out.
+pub fn section(a: &Answer, rows: &[ResultRow], ctx: &Context) -> String {
+    let mut md = String::new();
+    let _ = writeln!(md, "## The answer: what to use at each cost\n");
+    let _ = writeln!(md, "{}\n", regime(ctx));
+    if a.fronts.is_empty() {
+        let _ = writeln!(
+            md,
+            "No errors were measured, so there is no front and no pick.\n"
+        );
+        return md;
+    }
+    let twins_of = |scene: &str, backend: &str, method: &RowKey| -> Vec<RowKey> {
+        rows.iter()
+            .find(|r| r.scene == scene && r.backend == backend && r.method == *method)
+            .map(|r| same_image_twins(&a.excluded, r))
+            .unwrap_or_default()
+    };
+    if !a.picks.is_empty() {
+        let _ = writeln!(
+            md,
+            "Which method to use per kind of scene and budget of time over NoAA's, under each metric (FLIP, and 1 − SSIM so that lower is better under both): {RULE}. In brackets: that mean error ratio, and on how many of the scenes the method is on the front below.\n"
+        );
+        let _ = writeln!(
+            md,
+            "| scenes | backend | budget | use (FLIP) | use (SSIM) | the metrics |"
+        );
+        let _ = writeln!(md, "|---|---|---|---|---|---|");
+        for kind in Kind::ALL {
+            for b in backends(&rows.iter().collect::<Vec<_>>()) {
+                for budget in BUDGETS {
+                    let fl = a.pick(kind, &b, Metric::Flip, budget);
+                    let ss = a.pick(kind, &b, Metric::Ssim, budget);
+                    if fl.is_none() && ss.is_none() {
+                        continue;
+                    }
+                    let cell = |p: Option<&Pick>| match p {
+                        Some(p) => format!(
+                            "{} ({:.2}, {}/{})",
+                            p.method,
+                            p.mean_error_ratio,
+                            p.on_front,
+                            p.scenes.len()
+                        ),
+                        None => "–".into(),
+                    };
+                    let n = fl.or(ss).map_or(0, |p| p.scenes.len());
+                    let agree = match (fl, ss) {
+                        (Some(x), Some(y)) if x.method == y.method => "agree".to_string(),
+                        (Some(x), Some(y)) => {
+                            format!("**disagree**: {} or {}", x.method, y.method)
+                        }
+                        _ => "–".into(),
+                    };
+                    let _ = writeln!(
+                        md,
+                        "| {} ({n}) | {b} | {} | {} | {} | {agree} |",
+                        kind.name(),
+                        budget_name(budget),
+                        cell(fl),
+                        cell(ss),
+                    );
+                }
+            }
+        }
+        let _ = writeln!(md);
+    }
+    let _ = writeln!(
+        md,
+        "Pareto fronts per scene: methods in time order with their median ms at the timing size and their error; a method is on the front when every faster method has a higher error.\n"
+    );
+    let _ = writeln!(
+        md,
+        "| scene | backend | FLIP front (ms · FLIP) | SSIM front (ms · 1 − SSIM) |"
+    );
+    let _ = writeln!(md, "|---|---|---|---|");
+    let mut keys: Vec<(&str, &str)> = Vec::new();
+    for f in &a.fronts {
+        if !keys.contains(&(f.scene.as_str(), f.backend.as_str())) {
+            keys.push((f.scene.as_str(), f.backend.as_str()));
+        }
+    }
+    for (scene, b) in keys {
+        let show = |metric: Metric| match a.front(scene, b, metric) {
+            Some(f) => f
+                .points
+                .iter()
+                .map(|p| point(p, &twins_of(scene, b, &p.method)))
+                .collect::<Vec<_>>()
+                .join(" → "),
+            None => "–".into(),
+        };
+        let _ = writeln!(
+            md,
+            "| {scene} | {b} | {} | {} |",
+            show(Metric::Flip),
+            show(Metric::Ssim)
+        );
+    }
+    let _ = writeln!(md);
+    let mut notes: Vec<String> = Vec::new();
+    // One line per method, backend and reason, naming the scenes.
+    let mut groups: Vec<(&Excluded, Vec<&str>)> = Vec::new();
+    for e in &a.excluded {
+        match groups.iter_mut().find(|(g, _)| {
+            g.method == e.method && g.backend == e.backend && g.reason() == e.reason()
+        }) {
+            Some((_, s)) => s.push(&e.scene),
+            None => groups.push((e, vec![&e.scene])),
+        }
+    }
+    for (e, scenes) in groups {
+        let label = match &e.why {
+            Why::SameImage { as_method } => {
+                format!("{} (same image as {as_method})", e.method)
+            }
+            Why::OtherDevice { .. } => format!("{} †", e.method),
+        };
+        notes.push(format!(
+            "{label} on {} ({}): {}",
+            e.backend,
+            scenes.join(", "),
+            e.reason()
+        ));
+    }
+    if !notes.is_empty() {
+        let _ = writeln!(md, "Left out of the fronts: {}.\n", notes.join("; "));
+    }
+    let partial: Vec<String> = a
+        .partial
+        .iter()
+        .map(|p| {
+            format!(
+                "{} on {} scenes ({}; not on {})",
+                p.method,
+                p.kind.name(),
+                p.backend,
+                p.missing.join(", ")
+            )
+        })
+        .collect();
+    if !partial.is_empty() {
+        let _ = writeln!(
+            md,
+            "No candidate for a kind because it did not run (or was timed on another device) on every scene of it: {}.\n",
+            partial.join("; ")
+        );
+    }
+    md
+}
+
+/// The answer in `results.json`: the budgets, the rule, the fronts, the
+/// picks and what was left out.
+pub fn json(a: &Answer) -> Value {
+    let metric = |m: Metric| match m {
+        Metric::Flip => "flip",
+        Metric::Ssim => "ssim",
+    };
+    json!({
+        "error": {"flip": "mean FLIP", "ssim": "1 - mean SSIM"},
+        "budgets": BUDGETS,
+        "rule": RULE,
+        "fronts": a.fronts.iter().map(|f| json!({
+            "scene": f.scene,
+            "backend": f.backend,
+            "metric": metric(f.metric),
+            "points": f.points.iter().map(|p| json!({
+                "method": p.method, "ms_median": p.ms, "ratio_to_noaa": p.ratio, "error": p.error,
+            })).collect::<Vec<_>>(),
+        })).collect::<Vec<_>>(),
+        "picks": a.picks.iter().map(|p| json!({
+            "kind": match p.kind { Kind::Triangles => "triangles", Kind::Sdf => "sdf" },
+            "backend": p.backend,
+            "metric": metric(p.metric),
+            "budget": p.budget,
+            "scenes": p.scenes,
+            "method": p.method,
+            "mean_error_ratio": p.mean_error_ratio,
+            "worst_time_ratio": if p.worst_time_ratio.is_finite() { json!(p.worst_time_ratio) } else { Value::Null },
+            "on_front": p.on_front,
+        })).collect::<Vec<_>>(),
+        "excluded": a.excluded.iter().map(|e| json!({
+            "scene": e.scene,
+            "backend": e.backend,
+            "method": e.method,
+            "same_image_as": match &e.why { Why::SameImage { as_method } => json!(as_method), _ => Value::Null },
+            "other_device": matches!(e.why, Why::OtherDevice { .. }),
+            "reason": e.reason(),
+        })).collect::<Vec<_>>(),
+        "partial": a.partial.iter().map(|p| json!({
+            "kind": match p.kind { Kind::Triangles => "triangles", Kind::Sdf => "sdf" },
+            "backend": p.backend, "method": p.method, "missing": p.missing,
+        })).collect::<Vec<_>>(),
+    })
+}
