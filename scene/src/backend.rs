@@ -204,6 +204,22 @@ pub fn plan(scene: &Scene, method: &Method, caps: &Capabilities) -> Result<Passe
     plan_forced(scene, method, caps, Passes::empty())
 }
 
+/// What every backend's [`Backend::render`] checks before it renders: the
+/// settings and the camera are valid, and the method runs on the scene with
+/// `caps`, the passes `settings.force_passes` asks for included
+/// ([`plan_forced`]). The frame's passes, or the first refusal.
+pub fn render_passes(
+    scene: &Scene,
+    camera: &Camera,
+    method: &Method,
+    settings: &RenderSettings,
+    caps: &Capabilities,
+) -> Result<Passes, RenderError> {
+    settings.validate()?;
+    camera.validate()?;
+    Ok(plan_forced(scene, method, caps, settings.force_passes)?)
+}
+
 /// [`plan`] with `force` added to the planned passes (the passes
 /// [`RenderSettings::force_passes`] asks for) before the rules that read
 /// them: forcing the secondary passes on an SDF scene is refused as its

@@ -40,7 +40,7 @@ use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
 use subcone_kernels::passes::{Passes, Technique};
-use subcone_scene::backend::{plan, plan_forced, Capabilities};
+use subcone_scene::backend::{plan, render_passes, Capabilities};
 use subcone_scene::{
     Backend, Camera, Frame, Method, RenderError, RenderSettings, Scene, Unsupported,
 };
@@ -199,11 +199,7 @@ impl Backend for CpuBackend {
         method: &Method,
         settings: &RenderSettings,
     ) -> Result<Frame, RenderError> {
-        settings.validate()?;
-        camera.validate()?;
-        // Forced passes go through the same plan: forcing the secondary
-        // passes on an SDF scene is refused as its mirrors would be.
-        let passes = plan_forced(scene, method, &CAPABILITIES, settings.force_passes)?;
+        let passes = render_passes(scene, camera, method, settings, &CAPABILITIES)?;
         if let Some(g) = scene.sdf_geometry() {
             let of_scene = SdfView::of_scene(scene, camera).expect("an SDF scene");
             let view = SdfView {

@@ -37,7 +37,7 @@ pub(crate) mod triangles;
 use std::sync::Arc;
 
 use subcone_kernels::passes::{Passes, MAX_LIGHTS};
-use subcone_scene::backend::{plan, plan_forced, Capabilities};
+use subcone_scene::backend::{plan, render_passes, Capabilities};
 use subcone_scene::{
     Backend, Camera, Frame, Method, RenderError, RenderSettings, Scene, Unsupported,
 };
@@ -75,7 +75,7 @@ impl WgpuBackend {
 pub use subcone_scene::conformance::gpu_required;
 
 /// One frame as [`Backend::render`] was asked for it, with the passes
-/// [`plan_forced`] planned for it: what every render path takes.
+/// [`render_passes`] planned for it: what every render path takes.
 pub(crate) struct Job<'a> {
     pub(crate) scene: &'a Scene,
     pub(crate) camera: &'a Camera,
@@ -133,16 +133,12 @@ impl Backend for WgpuBackend {
         method: &Method,
         settings: &RenderSettings,
     ) -> Result<Frame, RenderError> {
-        settings.validate()?;
-        camera.validate()?;
-        // Forced passes go through the same plan: forcing the secondary
-        // passes on an SDF scene is refused as its mirrors would be.
         let job = Job {
             scene,
             camera,
             method,
             settings,
-            passes: plan_forced(scene, method, &CAPABILITIES, settings.force_passes)?,
+            passes: render_passes(scene, camera, method, settings, &CAPABILITIES)?,
         };
         if scene.sdf_geometry().is_some() {
             sdf::render(&self.ctx, &job)
