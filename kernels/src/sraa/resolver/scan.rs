@@ -33,6 +33,10 @@ impl LayerFlags {
     /// share a frame. Entries past the frame's last pixel are left alone;
     /// colours missing from a short `frame.colors` read as black, as the
     /// resolver reads them.
+    ///
+    /// Not `#[inline]`, unlike the resolver: it runs once per region, and a
+    /// copy inlined into an instruction-set path's resolve measured slower
+    /// (old and new binaries alternating) than this one function.
     pub fn fill(
         frame: &ShadedFrame,
         group: &ShadedGroup,
