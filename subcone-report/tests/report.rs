@@ -93,17 +93,38 @@ fn claimed(method: &str) -> Vec<&'static str> {
 /// The verdict a class gets from its paired per-offset errors `pairs`
 /// (the method's, NoAA's) and its fewest pixels, restated from the rules
 /// section: too few pixels under 64; else, per offset, a win or a loss
-/// (`call`), and the class beats (wins everywhere), loses (loses
-/// everywhere), ties (neither anywhere) or is a tie within noise.
-fn outcome(pairs: &[(f64, f64)], px: u64, call: impl Fn(f64, f64) -> Option<bool>) -> &'static str {
+/// (`call`), and the class beats (wins everywhere) or loses (loses
+/// everywhere); on one side of NoAA at every offset, it leans that way
+/// (a call at some offset) or ties on that side (none); otherwise it ties
+/// (no call anywhere) or is a tie within noise. Flat never "leans better"
+/// (a better flat offset holds).
+fn outcome(
+    pairs: &[(f64, f64)],
+    px: u64,
+    flat: bool,
+    call: impl Fn(f64, f64) -> Option<bool>,
+) -> &'static str {
     let calls: Vec<Option<bool>> = pairs.iter().map(|&(a, n)| call(a, n)).collect();
+    let no_call = calls.iter().all(|c| c.is_none());
     if px < 64 {
         "few"
     } else if calls.iter().all(|c| *c == Some(true)) {
         "win"
     } else if calls.iter().all(|c| *c == Some(false)) {
         "loss"
-    } else if calls.iter().all(|c| c.is_none()) {
+    } else if !flat && pairs.iter().all(|&(a, n)| a < n) {
+        if no_call {
+            "tie-better"
+        } else {
+            "better"
+        }
+    } else if pairs.iter().all(|&(a, n)| a > n) {
+        if no_call {
+            "tie-worse"
+        } else {
+            "worse"
+        }
+    } else if no_call {
         "tie"
     } else {
         "noise"
@@ -215,7 +236,7 @@ fn check_verdicts(results: &serde_json::Value, md: &str) {
                 if p.is_empty() {
                     continue;
                 }
-                let o = outcome(&p, px, |a, n| {
+                let o = outcome(&p, px, false, |a, n| {
                     if a <= 0.95 * n && n - a >= floor {
                         Some(true)
                     } else if a >= n / 0.95 && a - n >= floor && a > n {
@@ -229,7 +250,11 @@ fn check_verdicts(results: &serde_json::Value, md: &str) {
             }
             for (o, head) in [
                 ("win", "beats NoAA on "),
+                ("better", "better than NoAA at every offset, not always by the margin, on "),
+                ("tie-better", "ties (consistently better, within the margin) on "),
                 ("tie", "ties NoAA on "),
+                ("tie-worse", "ties (consistently worse, within the margin) on "),
+                ("worse", "worse than NoAA at every offset, not always by the margin, on "),
                 ("noise", "tie (within noise) on "),
                 ("few", "too few pixels for a verdict on "),
             ] {
@@ -242,11 +267,12 @@ fn check_verdicts(results: &serde_json::Value, md: &str) {
             assert_eq!(lost, e, "losses: {line}");
             let (p, px) = pairs("flat");
             if !p.is_empty() {
-                let o = outcome(&p, px, |a, n| Some(a <= 1.02 * n || a - n < floor));
+                let o = outcome(&p, px, true, |a, n| Some(a <= 1.02 * n || a - n < floor));
                 let word = match o {
                     "win" => "flat: holds",
                     "loss" => "flat: loses by ",
                     "few" => "flat: too few pixels",
+                    "worse" => "flat: worse at every offset, not always by the margin",
                     _ => "flat: tie (within noise)",
                 };
                 assert!(line.contains(word), "{word}: {line}");

@@ -143,8 +143,18 @@ fn a_verdict_needs_every_offset_to_agree() {
     use Outcome::*;
     // Wins at every offset: beats; flat holds (at most 1.02×) too.
     assert_eq!(outcome([0.9, 0.8, 0.95, 0.7], 100), (Beats, Holds));
-    // One offset short of the factor: a tie within noise, not a win.
-    assert_eq!(outcome([0.9, 0.8, 0.96, 0.7], 100), (Noise, Holds));
+    // One offset short of the factor, all four better: it leans better,
+    // it is not a win, and not noise either (the offsets agree in
+    // direction).
+    assert_eq!(outcome([0.9, 0.8, 0.96, 0.7], 100), (LeansBetter, Holds));
+    // Better at every offset, never by the margin: a consistent tie.
+    assert_eq!(outcome([0.99, 0.97, 0.96, 0.98], 100), (TiesBetter, Holds));
+    // Worse at every offset, by the margin at some: leans worse; flat,
+    // past 1.02× at two offsets and worse at all four, leans worse too.
+    assert_eq!(outcome([1.01, 1.06, 1.03, 1.1], 100), (LeansWorse, LeansWorse));
+    // Worse at every offset, never by the margin: a consistent tie; flat
+    // holds (at most 1.02×) at every offset.
+    assert_eq!(outcome([1.01, 1.02, 1.01, 1.02], 100), (TiesWorse, Holds));
     // Worse beyond 1/0.95 at every offset: a loss, on flat too.
     assert_eq!(outcome([1.3, 1.25, 1.4, 1.06], 100), (Loses, Loses));
     // Inside the band at every offset: a tie; flat straddles 1.02×.

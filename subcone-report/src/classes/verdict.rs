@@ -134,14 +134,29 @@ impl ClassError {
 }
 
 /// A verdict on one class (or on flat pixels) against NoAA, over the
-/// camera offsets.
+/// camera offsets. Each word means its rule: a call that changes with the
+/// offset is *noise* only when the offsets disagree in direction (better
+/// at one, worse at another); a method on one side of NoAA at every offset
+/// that does not clear the margin at every one *leans* that way, or *ties*
+/// consistently on that side when it clears it at none.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Outcome {
     /// Beats NoAA at every offset ([`Metric::beats`]).
     Beats,
-    /// Neither beats nor loses at any offset.
+    /// Better than NoAA at every offset, beyond the margin at some of them
+    /// but not all.
+    LeansBetter,
+    /// Better than NoAA at every offset, within the margin at every one.
+    TiesBetter,
+    /// Within the margin at every offset, on both sides of NoAA (or equal).
     Ties,
-    /// The offsets disagree: the margin does not clear the spread.
+    /// Worse than NoAA at every offset, within the margin at every one.
+    TiesWorse,
+    /// Worse than NoAA at every offset, beyond the margin at some of them
+    /// but not all (on flat: holds at some offsets, not at others).
+    LeansWorse,
+    /// The offsets disagree in direction, and the margin is cleared at one
+    /// of them at least: the spread is larger than the difference.
     Noise,
     /// Loses at every offset ([`Metric::loses`]; on flat, does not hold).
     Loses,
@@ -149,6 +164,74 @@ pub enum Outcome {
     Holds,
     /// Fewer than [`MIN_VERDICT_PIXELS`] pixels at some offset: no verdict.
     FewPixels,
+}
+
+impl Outcome {
+    /// Every outcome, in the order the verdict lines list them.
+    pub const ALL: [Outcome; 10] = [
+        Outcome::Beats,
+        Outcome::LeansBetter,
+        Outcome::TiesBetter,
+        Outcome::Ties,
+        Outcome::TiesWorse,
+        Outcome::LeansWorse,
+        Outcome::Noise,
+        Outcome::Loses,
+        Outcome::Holds,
+        Outcome::FewPixels,
+    ];
+
+    /// The outcome of per-offset `calls` (`Some(true)` a win or a hold,
+    /// `Some(false)` a loss, `None` neither) and per-offset `directions`
+    /// (`Some(true)` lower error than NoAA's, `Some(false)` higher, `None`
+    /// equal), on a class with `px` pixels at the fewest. `flat` turns an
+    /// all-win into [`Outcome::Holds`].
+    pub fn of(calls: &[Option<bool>], directions: &[Option<bool>], px: u64, flat: bool) -> Outcome {
+        let all = |v: &[Option<bool>], x: Option<bool>| v.iter().all(|c| *c == x);
+        if px < MIN_VERDICT_PIXELS {
+            Outcome::FewPixels
+        } else if all(calls, Some(true)) {
+            if flat {
+                Outcome::Holds
+            } else {
+                Outcome::Beats
+            }
+        } else if all(calls, Some(false)) {
+            Outcome::Loses
+        } else if all(directions, Some(true)) && !flat {
+            if all(calls, None) {
+                Outcome::TiesBetter
+            } else {
+                Outcome::LeansBetter
+            }
+        } else if all(directions, Some(false)) {
+            if all(calls, None) {
+                Outcome::TiesWorse
+            } else {
+                Outcome::LeansWorse
+            }
+        } else if all(calls, None) {
+            Outcome::Ties
+        } else {
+            Outcome::Noise
+        }
+    }
+
+    /// The word the verdict lines lead a list of classes with, e.g.
+    /// `beats NoAA on`; `None` for the outcomes written otherwise (losses,
+    /// holds, too few pixels).
+    pub fn lead(self) -> Option<&'static str> {
+        Some(match self {
+            Outcome::Beats => "beats NoAA on",
+            Outcome::LeansBetter => "better than NoAA at every offset, not always by the margin, on",
+            Outcome::TiesBetter => "ties (consistently better, within the margin) on",
+            Outcome::Ties => "ties NoAA on",
+            Outcome::TiesWorse => "ties (consistently worse, within the margin) on",
+            Outcome::LeansWorse => "worse than NoAA at every offset, not always by the margin, on",
+            Outcome::Noise => "tie (within noise) on",
+            Outcome::Loses | Outcome::Holds | Outcome::FewPixels => return None,
+        })
+    }
 }
 
 /// One judged class: the outcome and its figures.
@@ -247,21 +330,11 @@ fn judge_class(
         (lo.min(r), hi.max(r))
     });
     let calls: Vec<Option<bool>> = pairs.iter().map(|&(a, b)| per(a, b)).collect();
-    let outcome = if px < MIN_VERDICT_PIXELS {
-        Outcome::FewPixels
-    } else if calls.iter().all(|c| *c == Some(true)) {
-        if flat {
-            Outcome::Holds
-        } else {
-            Outcome::Beats
-        }
-    } else if calls.iter().all(|c| *c == Some(false)) {
-        Outcome::Loses
-    } else if calls.iter().all(|c| c.is_none()) {
-        Outcome::Ties
-    } else {
-        Outcome::Noise
-    };
+    let directions: Vec<Option<bool>> = pairs
+        .iter()
+        .map(|&(a, b)| (a != b).then_some(a < b))
+        .collect();
+    let outcome = Outcome::of(&calls, &directions, px, flat);
     Judged {
         class,
         outcome,
@@ -319,14 +392,18 @@ impl Verdict {
     /// offset (`it[k]` and `noaa[k]` measured at offset `k`; offsets past
     /// the shorter of the two are left out).
     ///
-    /// Per class, paired by offset: it **beats** NoAA when it beats at
-    /// every offset ([`Metric::beats`]), **loses** when it loses at every
-    /// offset ([`Metric::loses`]), **ties** when it does neither at any
-    /// offset, and is a **tie within noise** otherwise; flat pixels
-    /// **hold** when they hold at every offset ([`Metric::holds`]), **lose**
-    /// when they hold at none, and are a tie within noise otherwise. A class
-    /// with fewer than [`MIN_VERDICT_PIXELS`] pixels at some offset gets no
-    /// verdict.
+    /// Per class, paired by offset ([`Outcome::of`]): it **beats** NoAA
+    /// when it beats at every offset ([`Metric::beats`]), **loses** when it
+    /// loses at every offset ([`Metric::loses`]); when it is on one side of
+    /// NoAA at every offset otherwise, it **leans** that way (the margin
+    /// cleared at some offsets) or **ties consistently** on that side (at
+    /// none); with the offsets on both sides, it **ties** when it does
+    /// neither at any offset and is a **tie within noise** otherwise. Flat
+    /// pixels **hold** when they hold at every offset ([`Metric::holds`]),
+    /// **lose** when they hold at none, **lean worse** when they hold at
+    /// some and are worse at every one, and are a tie within noise
+    /// otherwise. A class with fewer than [`MIN_VERDICT_PIXELS`] pixels at
+    /// some offset gets no verdict.
     pub fn judge_claims(
         method: RowKey,
         claims: Vec<Class>,
@@ -425,11 +502,10 @@ impl Verdict {
         if self.claims.is_empty() {
             parts.push("claims no class".to_string());
         }
-        for (o, lead) in [
-            (Outcome::Beats, "beats NoAA on"),
-            (Outcome::Ties, "ties NoAA on"),
-            (Outcome::Noise, "tie (within noise) on"),
-        ] {
+        for (o, lead) in Outcome::ALL
+            .iter()
+            .filter_map(|&o| Some((o, o.lead()?)))
+        {
             let l = list(o);
             if !l.is_empty() {
                 parts.push(format!("{lead} {}", l.join(", ")));
@@ -478,7 +554,11 @@ impl Verdict {
 pub fn outcome_word(j: &Judged) -> String {
     match j.outcome {
         Outcome::Beats => "beats".into(),
+        Outcome::LeansBetter => "better at every offset, not always by the margin".into(),
+        Outcome::TiesBetter => "ties (consistently better, within the margin)".into(),
         Outcome::Ties => "ties".into(),
+        Outcome::TiesWorse => "ties (consistently worse, within the margin)".into(),
+        Outcome::LeansWorse => "worse at every offset, not always by the margin".into(),
         Outcome::Noise => "tie (within noise)".into(),
         Outcome::Loses => format!("loses by {}", loss_text(j.mean_ratio())),
         Outcome::Holds => "holds".into(),

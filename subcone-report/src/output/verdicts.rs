@@ -57,10 +57,15 @@ at the same offset. On a claimed class, at one offset, the method *wins* when it
 (FLIP, or 1 − SSIM) is at most {b} × NoAA's and *loses* when it is at least {l:.4} × (1/{b}) \
 NoAA's. It **beats** NoAA on the class when it wins at every offset, **loses by N×** when it \
 loses at every offset (N the ratio of its mean error to NoAA's), **ties** when it neither wins nor \
-loses at any offset, and is a **tie (within noise)** when the offsets disagree: the margin does \
-not clear the spread over the offsets. On flat pixels, at one offset, it *holds* when its flat \
-error is at most {f} × NoAA's; it **holds** when it holds at every offset, **loses by N×** when \
-it holds at none, and is a **tie (within noise)** otherwise. A class (or flat) with fewer than \
+loses at any offset. When its error is on one side of NoAA's at every offset without winning (or \
+losing) at every one, it is **better (or worse) than NoAA at every offset, not always by the \
+margin** where it wins (loses) at some offsets, and **ties (consistently better, or worse, within \
+the margin)** where it does neither at any. It is a **tie (within noise)** only when the offsets \
+disagree in direction (better at one, worse at another) and the margin is cleared at one of them: \
+the spread over the offsets is larger than the difference. On flat pixels, at one offset, it \
+*holds* when its flat error is at most {f} × NoAA's; it **holds** when it holds at every offset, \
+**loses by N×** when it holds at none, is **worse at every offset, not always by the margin** when \
+it holds at some and is worse than NoAA at every one, and is a **tie (within noise)** otherwise. A class (or flat) with fewer than \
 {min_px} pixels at some offset gets no verdict (**too few pixels**). Under SSIM a difference of \
 mean 1 − SSIM below {floor} does not count either way (to win, a method must also be at least \
 that much lower; to lose, at least that much higher): that is what rounding to 8 bits alone does \
@@ -162,8 +167,10 @@ pub fn verdict_summary(s: &ReportSummary, ctx: &Context) -> String {
         md,
         "## Verdicts at a glance\n\n\
 Per scene and metric: how many of the claimed classes with a verdict the method beats NoAA on \
-(*b*/*n*), then how many it ties, ties within noise or loses, and how many have too few pixels \
-for a verdict; then its flat verdict (holds, **loses N×**, tie (noise), few px). The lines under \
+(*b*/*n*), then how many it is better than NoAA on at every offset without the margin at every \
+one (better), ties on one side (tie, better; tie, worse) or on both, is worse on at every offset \
+(worse), ties within noise (the offsets disagree in direction) or loses, and how many have too \
+few pixels for a verdict; then its flat verdict (holds, **loses N×**, worse, tie (noise), few px). The lines under \
 each scene give the classes and figures, and where the two metrics disagree, with the cause.\n"
     );
     let _ = writeln!(md, "| method | backend | metric | {} |", scenes.join(" | "));
@@ -229,7 +236,11 @@ pub fn glance_cell(v: &Verdict) -> String {
         .count();
     let mut cell = format!("{}/{judged}", v.beats.len());
     for (o, word) in [
+        (Outcome::LeansBetter, "better"),
+        (Outcome::TiesBetter, "tie, better"),
         (Outcome::Ties, "tie"),
+        (Outcome::TiesWorse, "tie, worse"),
+        (Outcome::LeansWorse, "worse"),
         (Outcome::Noise, "noise"),
         (Outcome::Loses, "**lost**"),
         (Outcome::FewPixels, "few px"),
@@ -245,6 +256,7 @@ pub fn glance_cell(v: &Verdict) -> String {
             Outcome::Holds => "holds".into(),
             Outcome::Loses => format!("**loses {}**", classes::loss_text(j.mean_ratio())),
             Outcome::Noise => "tie (noise)".into(),
+            Outcome::LeansWorse => "worse".into(),
             _ => "few px".into(),
         },
     };
@@ -407,7 +419,12 @@ fn disagreement(flip: &Verdict, ssim: &Verdict) -> Vec<(String, String)> {
         };
         let noisy: Vec<String> = [(f, "FLIP"), (s, "SSIM")]
             .iter()
-            .filter(|(j, _)| j.outcome == Outcome::Noise)
+            .filter(|(j, _)| {
+                matches!(
+                    j.outcome,
+                    Outcome::Noise | Outcome::LeansBetter | Outcome::LeansWorse
+                )
+            })
             .map(|(j, m)| format!("{m}'s ({})", range(j)))
             .collect();
         let cause = if !noisy.is_empty() {
