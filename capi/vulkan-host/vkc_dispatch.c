@@ -113,22 +113,210 @@ static void record_dispatch(VkCommandBuffer cmd, const void *user) {
                          NULL);
 }
 
+/* The host-side arrays one dispatch's descriptors are built from, one entry
+ * per binding, and how many descriptors of each type the pool needs. */
+typedef struct DispatchScratch {
+    VkDescriptorSetLayoutBinding *layout_bindings;
+    VkDescriptorBufferInfo *buffer_infos;
+    VkDescriptorImageInfo *image_infos;
+    VkWriteDescriptorSet *writes;
+    uint32_t uniform_count, storage_count, sampled_count, storage_image_count;
+} DispatchScratch;
+
+/* Frees the scratch arrays (NULL ones too). */
+static void free_scratch(DispatchScratch *s) {
+    free(s->layout_bindings);
+    free(s->buffer_infos);
+    free(s->image_infos);
+    free(s->writes);
+}
+
+/* Allocates the scratch arrays and fills the layout bindings and the
+ * per-type counts; on failure the caller still frees what was allocated. */
+static int prepare_bindings(const VkcBinding *bindings, uint32_t binding_count, DispatchScratch *s, char *err,
+                            size_t err_len) {
+    uint32_t i;
+    if (binding_count > 0) {
+        s->layout_bindings = (VkDescriptorSetLayoutBinding *)calloc(binding_count, sizeof *s->layout_bindings);
+        s->buffer_infos = (VkDescriptorBufferInfo *)calloc(binding_count, sizeof *s->buffer_infos);
+        s->image_infos = (VkDescriptorImageInfo *)calloc(binding_count, sizeof *s->image_infos);
+        s->writes = (VkWriteDescriptorSet *)calloc(binding_count, sizeof *s->writes);
+        if (s->layout_bindings == NULL || s->buffer_infos == NULL || s->image_infos == NULL || s->writes == NULL) {
+            vkci_fail(err, err_len, "vkc_dispatch: out of host memory for %u bindings", (unsigned)binding_count);
+            return 1;
+        }
+    }
+    for (i = 0; i < binding_count; i++) {
+        s->layout_bindings[i].binding = bindings[i].binding;
+        s->layout_bindings[i].descriptorType = bindings[i].type;
+        s->layout_bindings[i].descriptorCount = 1;
+        s->layout_bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+        if (bindings[i].type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER)
+            s->uniform_count++;
+        else if (bindings[i].type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)
+            s->storage_count++;
+        else if (bindings[i].type == VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE)
+            s->sampled_count++;
+        else
+            s->storage_image_count++;
+    }
+    return 0;
+}
+
+/* The descriptor set layout of the bindings. On failure o->set_layout
+ * stays VK_NULL_HANDLE. */
+static int create_set_layout(VkcContext *ctx, const DispatchScratch *s, uint32_t binding_count, DispatchObjects *o,
+                             char *err, size_t err_len) {
+    VkDescriptorSetLayoutCreateInfo ci;
+    VkResult r;
+    memset(&ci, 0, sizeof ci);
+    ci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
+    ci.bindingCount = binding_count;
+    ci.pBindings = s->layout_bindings;
+    r = vkCreateDescriptorSetLayout(ctx->device, &ci, NULL, &o->set_layout);
+    if (r != VK_SUCCESS) {
+        o->set_layout = VK_NULL_HANDLE;
+        vkci_fail_vk(err, err_len, "vkCreateDescriptorSetLayout", r);
+        return 1;
+    }
+    return 0;
+}
+
+/* The compute pipeline of o's module at `entry`. On failure o->pipeline
+ * stays VK_NULL_HANDLE. */
+static int create_compute_pipeline(VkcContext *ctx, const char *entry, DispatchObjects *o, char *err,
+                                   size_t err_len) {
+    VkComputePipelineCreateInfo ci;
+    VkResult r;
+    memset(&ci, 0, sizeof ci);
+    ci.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
+    ci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    ci.stage.module = o->module;
+    ci.stage.pName = entry;
+    ci.layout = o->pipeline_layout;
+    ci.basePipelineIndex = -1;
+    r = vkCreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &ci, NULL, &o->pipeline);
+    if (r != VK_SUCCESS) {
+        o->pipeline = VK_NULL_HANDLE;
+        vkci_fail(err, err_len, "vkCreateComputePipelines (entry point \"%s\") failed: %s (%d)", entry,
+                  vkci_result_name(r), (int)r);
+        return 1;
+    }
+    return 0;
+}
+
+/* The descriptor pool (o->descriptor_pool) and its one set, written with
+ * the bindings; binding_count must be nonzero. On failure the pool, if
+ * made, is left in `o` for the caller to release and *set stays
+ * VK_NULL_HANDLE. */
+static int write_descriptor_set(VkcContext *ctx, const VkcBinding *bindings, uint32_t binding_count,
+                                DispatchScratch *s, DispatchObjects *o, VkDescriptorSet *set, char *err,
+                                size_t err_len) {
+    VkDescriptorPoolSize sizes[4];
+    VkDescriptorPoolCreateInfo ci;
+    VkDescriptorSetAllocateInfo ai;
+    uint32_t size_count = 0, i;
+    VkResult r;
+    if (s->uniform_count > 0) {
+        sizes[size_count].type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+        sizes[size_count].descriptorCount = s->uniform_count;
+        size_count++;
+    }
+    if (s->storage_count > 0) {
+        sizes[size_count].type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        sizes[size_count].descriptorCount = s->storage_count;
+        size_count++;
+    }
+    if (s->sampled_count > 0) {
+        sizes[size_count].type = VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
+        sizes[size_count].descriptorCount = s->sampled_count;
+        size_count++;
+    }
+    if (s->storage_image_count > 0) {
+        sizes[size_count].type = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+        sizes[size_count].descriptorCount = s->storage_image_count;
+        size_count++;
+    }
+    memset(&ci, 0, sizeof ci);
+    ci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+    ci.maxSets = 1;
+    ci.poolSizeCount = size_count;
+    ci.pPoolSizes = sizes;
+    r = vkCreateDescriptorPool(ctx->device, &ci, NULL, &o->descriptor_pool);
+    if (r != VK_SUCCESS) {
+        o->descriptor_pool = VK_NULL_HANDLE;
+        vkci_fail_vk(err, err_len, "vkCreateDescriptorPool", r);
+        return 1;
+    }
+    memset(&ai, 0, sizeof ai);
+    ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+    ai.descriptorPool = o->descriptor_pool;
+    ai.descriptorSetCount = 1;
+    ai.pSetLayouts = &o->set_layout;
+    r = vkAllocateDescriptorSets(ctx->device, &ai, set);
+    if (r != VK_SUCCESS) {
+        *set = VK_NULL_HANDLE;
+        vkci_fail_vk(err, err_len, "vkAllocateDescriptorSets", r);
+        return 1;
+    }
+    for (i = 0; i < binding_count; i++) {
+        s->writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+        s->writes[i].dstSet = *set;
+        s->writes[i].dstBinding = bindings[i].binding;
+        s->writes[i].descriptorCount = 1;
+        s->writes[i].descriptorType = bindings[i].type;
+        /* `image` is read only for image types: a caller that binds a
+         * buffer need not set it. */
+        if (bindings[i].type == VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE ||
+            bindings[i].type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE) {
+            s->image_infos[i].imageView = bindings[i].image->view;
+            s->image_infos[i].imageLayout = VK_IMAGE_LAYOUT_GENERAL;
+            s->writes[i].pImageInfo = &s->image_infos[i];
+        } else {
+            s->buffer_infos[i].buffer = bindings[i].buffer->buffer;
+            s->buffer_infos[i].offset = 0;
+            s->buffer_infos[i].range = VK_WHOLE_SIZE;
+            s->writes[i].pBufferInfo = &s->buffer_infos[i];
+        }
+    }
+    vkUpdateDescriptorSets(ctx->device, binding_count, s->writes, 0, NULL);
+    return 0;
+}
+
+/* The device time between the two timestamps of the last submission, in
+ * *elapsed_ms (left as it is when the queue has no timestamps). */
+static int read_elapsed_ms(VkcContext *ctx, double *elapsed_ms, char *err, size_t err_len) {
+    uint64_t ticks[2];
+    uint64_t delta;
+    VkResult r;
+    if (ctx->timestamps == VK_NULL_HANDLE) return 0;
+    r = vkGetQueryPoolResults(ctx->device, ctx->timestamps, 0, 2, sizeof ticks, ticks, sizeof ticks[0],
+                              VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
+    if (r != VK_SUCCESS) {
+        vkci_fail_vk(err, err_len, "vkGetQueryPoolResults", r);
+        return 1;
+    }
+    delta = ticks[1] - ticks[0];
+    /* Only the low timestampValidBits count; masking the difference
+     * survives one wrap of the counter. */
+    if (ctx->timestamp_bits < 64) delta &= (1ull << ctx->timestamp_bits) - 1ull;
+    *elapsed_ms = (double)delta * (double)ctx->properties.limits.timestampPeriod / 1.0e6;
+    return 0;
+}
+
 int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, const char *entry,
                  const VkcBinding *bindings, uint32_t binding_count, uint32_t gx, uint32_t gy, uint32_t gz,
                  char *err, size_t err_len) {
     const uint32_t groups[3] = {gx, gy, gz};
-    VkDescriptorSetLayoutBinding *layout_bindings = NULL;
-    VkDescriptorBufferInfo *buffer_infos = NULL;
-    VkWriteDescriptorSet *writes = NULL;
+    DispatchScratch scratch;
     DispatchObjects o;
     VkDescriptorSet set = VK_NULL_HANDLE;
-    VkDescriptorImageInfo *image_infos = NULL;
-    uint32_t uniform_count = 0, storage_count = 0, sampled_count = 0, storage_image_count = 0, i;
     double elapsed_ms = -1.0;
     int rc = 1;
-    VkResult r;
 
     memset(&o, 0, sizeof o);
+    memset(&scratch, 0, sizeof scratch);
     if (err != NULL && err_len > 0) err[0] = '\0';
     if (ctx == NULL) {
         vkci_fail(err, err_len, "vkc_dispatch: ctx is NULL");
@@ -142,136 +330,16 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
     if (check_dispatch_args(ctx, spirv, spirv_bytes, entry, bindings, binding_count, groups, err, err_len) != 0)
         return 1;
 
-    if (binding_count > 0) {
-        layout_bindings = (VkDescriptorSetLayoutBinding *)calloc(binding_count, sizeof *layout_bindings);
-        buffer_infos = (VkDescriptorBufferInfo *)calloc(binding_count, sizeof *buffer_infos);
-        image_infos = (VkDescriptorImageInfo *)calloc(binding_count, sizeof *image_infos);
-        writes = (VkWriteDescriptorSet *)calloc(binding_count, sizeof *writes);
-        if (layout_bindings == NULL || buffer_infos == NULL || image_infos == NULL || writes == NULL) {
-            vkci_fail(err, err_len, "vkc_dispatch: out of host memory for %u bindings", (unsigned)binding_count);
-            goto cleanup;
-        }
-    }
-    for (i = 0; i < binding_count; i++) {
-        layout_bindings[i].binding = bindings[i].binding;
-        layout_bindings[i].descriptorType = bindings[i].type;
-        layout_bindings[i].descriptorCount = 1;
-        layout_bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
-        if (bindings[i].type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER)
-            uniform_count++;
-        else if (bindings[i].type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)
-            storage_count++;
-        else if (bindings[i].type == VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE)
-            sampled_count++;
-        else
-            storage_image_count++;
-    }
-
-    {
-        VkDescriptorSetLayoutCreateInfo ci;
-        memset(&ci, 0, sizeof ci);
-        ci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
-        ci.bindingCount = binding_count;
-        ci.pBindings = layout_bindings;
-        r = vkCreateDescriptorSetLayout(ctx->device, &ci, NULL, &o.set_layout);
-        if (r != VK_SUCCESS) {
-            o.set_layout = VK_NULL_HANDLE;
-            vkci_fail_vk(err, err_len, "vkCreateDescriptorSetLayout", r);
-            goto cleanup;
-        }
-    }
+    if (prepare_bindings(bindings, binding_count, &scratch, err, err_len) != 0) goto cleanup;
+    if (create_set_layout(ctx, &scratch, binding_count, &o, err, err_len) != 0) goto cleanup;
     if (vkci_pipeline_layout(ctx, o.set_layout, 0, &o.pipeline_layout, err, err_len) != 0) goto cleanup;
     if (vkci_shader_module(ctx, spirv, spirv_bytes, "compute", &o.module, err, err_len) != 0) goto cleanup;
-    {
-        VkComputePipelineCreateInfo ci;
-        memset(&ci, 0, sizeof ci);
-        ci.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
-        ci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-        ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-        ci.stage.module = o.module;
-        ci.stage.pName = entry;
-        ci.layout = o.pipeline_layout;
-        ci.basePipelineIndex = -1;
-        r = vkCreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &ci, NULL, &o.pipeline);
-        if (r != VK_SUCCESS) {
-            o.pipeline = VK_NULL_HANDLE;
-            vkci_fail(err, err_len, "vkCreateComputePipelines (entry point \"%s\") failed: %s (%d)", entry,
-                      vkci_result_name(r), (int)r);
-            goto cleanup;
-        }
-    }
-
+    if (create_compute_pipeline(ctx, entry, &o, err, err_len) != 0) goto cleanup;
     /* A pool needs a nonzero descriptorCount per size entry, so an empty set
      * gets no pool and is simply not bound. */
-    if (binding_count > 0) {
-        VkDescriptorPoolSize sizes[4];
-        VkDescriptorPoolCreateInfo ci;
-        VkDescriptorSetAllocateInfo ai;
-        uint32_t size_count = 0;
-        if (uniform_count > 0) {
-            sizes[size_count].type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-            sizes[size_count].descriptorCount = uniform_count;
-            size_count++;
-        }
-        if (storage_count > 0) {
-            sizes[size_count].type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-            sizes[size_count].descriptorCount = storage_count;
-            size_count++;
-        }
-        if (sampled_count > 0) {
-            sizes[size_count].type = VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
-            sizes[size_count].descriptorCount = sampled_count;
-            size_count++;
-        }
-        if (storage_image_count > 0) {
-            sizes[size_count].type = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-            sizes[size_count].descriptorCount = storage_image_count;
-            size_count++;
-        }
-        memset(&ci, 0, sizeof ci);
-        ci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-        ci.maxSets = 1;
-        ci.poolSizeCount = size_count;
-        ci.pPoolSizes = sizes;
-        r = vkCreateDescriptorPool(ctx->device, &ci, NULL, &o.descriptor_pool);
-        if (r != VK_SUCCESS) {
-            o.descriptor_pool = VK_NULL_HANDLE;
-            vkci_fail_vk(err, err_len, "vkCreateDescriptorPool", r);
-            goto cleanup;
-        }
-        memset(&ai, 0, sizeof ai);
-        ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
-        ai.descriptorPool = o.descriptor_pool;
-        ai.descriptorSetCount = 1;
-        ai.pSetLayouts = &o.set_layout;
-        r = vkAllocateDescriptorSets(ctx->device, &ai, &set);
-        if (r != VK_SUCCESS) {
-            set = VK_NULL_HANDLE;
-            vkci_fail_vk(err, err_len, "vkAllocateDescriptorSets", r);
-            goto cleanup;
-        }
-        for (i = 0; i < binding_count; i++) {
-            writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-            writes[i].dstSet = set;
-            writes[i].dstBinding = bindings[i].binding;
-            writes[i].descriptorCount = 1;
-            writes[i].descriptorType = bindings[i].type;
-            /* `image` is read only for image types: a caller that binds a
-             * buffer need not set it. */
-            if (bindings[i].type == VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE ||
-                bindings[i].type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE) {
-                image_infos[i].imageView = bindings[i].image->view;
-                image_infos[i].imageLayout = VK_IMAGE_LAYOUT_GENERAL;
-                writes[i].pImageInfo = &image_infos[i];
-            } else {
-                buffer_infos[i].buffer = bindings[i].buffer->buffer;
-                buffer_infos[i].offset = 0;
-                buffer_infos[i].range = VK_WHOLE_SIZE;
-                writes[i].pBufferInfo = &buffer_infos[i];
-            }
-        }
-        vkUpdateDescriptorSets(ctx->device, binding_count, writes, 0, NULL);
-    }
+    if (binding_count > 0 &&
+        write_descriptor_set(ctx, bindings, binding_count, &scratch, &o, &set, err, err_len) != 0)
+        goto cleanup;
 
     {
         DispatchJob job;
@@ -283,30 +351,13 @@ int vkc_dispatch(VkcContext *ctx, const uint32_t *spirv, size_t spirv_bytes, con
         if (vkci_submit_and_wait(ctx, &o, record_dispatch, &job, "vkc_dispatch", err, err_len) != 0) goto cleanup;
     }
 
-    if (ctx->timestamps != VK_NULL_HANDLE) {
-        uint64_t ticks[2];
-        uint64_t delta;
-        r = vkGetQueryPoolResults(ctx->device, ctx->timestamps, 0, 2, sizeof ticks, ticks, sizeof ticks[0],
-                                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
-        if (r != VK_SUCCESS) {
-            vkci_fail_vk(err, err_len, "vkGetQueryPoolResults", r);
-            goto cleanup;
-        }
-        delta = ticks[1] - ticks[0];
-        /* Only the low timestampValidBits count; masking the difference
-         * survives one wrap of the counter. */
-        if (ctx->timestamp_bits < 64) delta &= (1ull << ctx->timestamp_bits) - 1ull;
-        elapsed_ms = (double)delta * (double)ctx->properties.limits.timestampPeriod / 1.0e6;
-    }
+    if (read_elapsed_ms(ctx, &elapsed_ms, err, err_len) != 0) goto cleanup;
     ctx->last_ms = elapsed_ms;
     rc = 0;
 
 cleanup:
     vkci_release_objects(ctx, &o);
-    free(layout_bindings);
-    free(buffer_infos);
-    free(image_infos);
-    free(writes);
+    free_scratch(&scratch);
     return rc;
 }
 
