@@ -15,12 +15,19 @@
 //!    candidate for the picks (its error is its twin's, its time its own:
 //!    a `-hybrid` is the same image sooner), a row timed on another device
 //!    does not.
-//! 2. [`front`]: per scene, backend and metric, the Pareto front of median
-//!    time against error: in time order, every row with less error than
-//!    every faster row.
+//! 2. [`front`]: per scene, backend and metric, the Pareto front of time
+//!    over NoAA's (the median of the per-round ratios, the statistic the
+//!    budgets use) against error: in time order, every row with less error
+//!    than every faster row. Each step (a row against the faster one before
+//!    it) holds when its error is lower at every camera offset and its time
+//!    higher in every round ([`Step`]); otherwise the front marks it within
+//!    noise.
 //! 3. [`picks`]: per kind of scene (triangle or SDF), backend, metric and
 //!    budget of time over NoAA's ([`BUDGETS`]), the method to use, by the
-//!    rule [`RULE`] states.
+//!    rule [`RULE`] states, with its runner-up, the margin, and whether the
+//!    decision stays inside the noise ([`Pick::noise`]): the order against
+//!    the runner-up at every camera offset, and the budget's admissions
+//!    across the rounds.
 //!
 //! The error under FLIP is the mean FLIP; under SSIM it is 1 − mean SSIM,
 //! so that lower is better under both ([`error`]).
@@ -33,7 +40,7 @@ mod section;
 mod tests;
 
 pub use excluded::{digest, excluded, exclusions, same_image_twins, Excluded, Why};
-pub use front::{front, pareto_by, Front, Point};
+pub use front::{front, pareto_by, Front, Point, Step};
 pub use pick::{picks, Answer, Kind, Partial, Pick};
 pub use section::{json, regime, section};
 
@@ -60,6 +67,18 @@ pub fn error(r: &ResultRow, metric: Metric) -> Option<f64> {
         Metric::Ssim => r.ssim_mean.map(|s| 1.0 - s),
     }
     .filter(|e| e.is_finite())
+}
+
+/// The error of `r` under `metric` at each camera offset it was measured
+/// at, in offset order (empty without per-offset errors).
+pub fn errors_at(r: &ResultRow, metric: Metric) -> Vec<f64> {
+    r.errors_at
+        .iter()
+        .map(|e| match metric {
+            Metric::Flip => e.flip,
+            Metric::Ssim => 1.0 - e.ssim,
+        })
+        .collect()
 }
 
 /// The name the report gives the error of `metric`.

@@ -3,7 +3,7 @@
 
 use super::excluded::{excluded, exclusions, Excluded, Why};
 use super::front::{front, Front};
-use super::{error, BUDGETS};
+use super::{error, errors_at, BUDGETS};
 use crate::classes::Metric;
 use crate::context::SceneInfo;
 use crate::key::RowKey;
@@ -61,6 +61,57 @@ pub struct Pick {
     pub worst_time_ratio: f64,
     /// On how many of the scenes it is on the front.
     pub on_front: usize,
+    /// The next method by the same rule within the budget, with its mean
+    /// error ratio (`None` when it is the only candidate).
+    pub runner_up: Option<(RowKey, f64)>,
+    /// Why the decision is within noise, one clause each: the runner-up
+    /// with less error at some camera offset, the pick over the budget in
+    /// some round, a method with less error out of the budget by its
+    /// median but within it in some round. Empty when the pick holds.
+    pub noise: Vec<String>,
+}
+
+impl Pick {
+    /// The runner-up's mean error ratio over the pick's, less one: how much
+    /// more error the next choice has (`None` without a runner-up).
+    pub fn margin(&self) -> Option<f64> {
+        self.runner_up
+            .as_ref()
+            .map(|(_, e)| e / self.mean_error_ratio - 1.0)
+    }
+}
+
+/// A method's figures over the scenes of a kind, for the picks.
+struct Candidate<'a> {
+    method: &'a RowKey,
+    /// Mean over the scenes of its error over NoAA's.
+    mean: f64,
+    /// Per scene: the scene, its time over NoAA's (median of the rounds)
+    /// and the smallest and largest per-round one.
+    times: Vec<(&'a str, Option<f64>, Option<(f64, f64)>)>,
+    /// Per camera offset, the mean over the scenes of its error over
+    /// NoAA's at that offset (empty unless every row has the same offsets).
+    at_offsets: Vec<f64>,
+}
+
+impl Candidate<'_> {
+    /// Whether its median time over NoAA's is within `budget` on every
+    /// scene (any time without a budget).
+    fn within(&self, budget: Option<f64>) -> bool {
+        match budget {
+            None => true,
+            Some(lim) => self.times.iter().all(|(_, t, _)| t.is_some_and(|t| t <= lim)),
+        }
+    }
+
+    /// Its largest median time over NoAA's over the scenes (NaN without
+    /// one).
+    fn worst(&self) -> f64 {
+        self.times
+            .iter()
+            .map(|(_, t, _)| t.unwrap_or(f64::NAN))
+            .fold(0.0, f64::max)
+    }
 }
 
 /// A method that ran (and was not timed on another device) on some scenes of a kind but
@@ -217,78 +268,209 @@ pub fn picks(
                         }
                     }
                 }
+                let noaa_rows: Vec<&ResultRow> = kind_scenes
+                    .iter()
+                    .filter_map(|(sc, _)| Some(usable(sc, &noaa, metric)?.0))
+                    .collect();
+                let candidates: Vec<Candidate> = methods
+                    .iter()
+                    .filter_map(|m| {
+                        let got: Vec<(&ResultRow, f64)> = kind_scenes
+                            .iter()
+                            .map(|(sc, _)| usable(sc, m, metric))
+                            .collect::<Option<_>>()?;
+                        Some(candidate(m, *m == noaa, &got, &kind_scenes, &noaa_rows, metric))
+                    })
+                    .collect();
                 for budget in BUDGETS {
-                    let mut best: Option<Pick> = None;
-                    for m in &methods {
-                        let mut sum = 0.0;
-                        let mut worst: f64 = 0.0;
-                        let mut ok = true;
-                        for (sc, e_noaa) in &kind_scenes {
-                            let Some((r, e)) = usable(sc, m, metric) else {
-                                ok = false;
-                                break;
-                            };
-                            let ratio = if *m == noaa {
-                                Some(r.ratio_to_noaa.unwrap_or(1.0))
-                            } else {
-                                r.ratio_to_noaa
-                            };
-                            match (budget, ratio) {
-                                (Some(lim), Some(t)) if t <= lim => worst = worst.max(t),
-                                (Some(_), _) => {
-                                    ok = false;
-                                    break;
-                                }
-                                (None, t) => worst = worst.max(t.unwrap_or(f64::NAN)),
-                            }
-                            sum += e / e_noaa;
-                        }
-                        if !ok {
-                            continue;
-                        }
-                        let mean = sum / kind_scenes.len() as f64;
-                        let better = best.as_ref().is_none_or(|p| {
-                            mean < p.mean_error_ratio
-                                || (mean == p.mean_error_ratio
-                                    && worst.total_cmp(&p.worst_time_ratio).is_lt())
-                        });
-                        if better {
-                            let on_front = kind_scenes
-                                .iter()
-                                .filter(|(sc, _)| {
-                                    fronts.iter().any(|f| {
-                                        f.scene == *sc
-                                            && f.backend == b
-                                            && f.metric == metric
-                                            && f.points.iter().any(|p| {
-                                                p.method == *m
-                                                    || ex.iter().any(|e| {
-                                                        e.scene == *sc
-                                                            && e.backend == b
-                                                            && e.method == *m
-                                                            && matches!(&e.why, Why::SameImage { as_method } if *as_method == p.method)
-                                                    })
-                                            })
-                                    })
-                                })
-                                .count();
-                            best = Some(Pick {
-                                kind,
-                                backend: b.clone(),
-                                metric,
-                                budget,
-                                scenes: kind_scenes.iter().map(|(s, _)| s.to_string()).collect(),
-                                method: m.clone(),
-                                mean_error_ratio: mean,
-                                worst_time_ratio: worst,
-                                on_front,
-                            });
-                        }
-                    }
-                    out.extend(best);
+                    let mut admitted: Vec<&Candidate> =
+                        candidates.iter().filter(|c| c.within(budget)).collect();
+                    // Stable: on equal figures, the first in table order.
+                    admitted.sort_by(|x, y| {
+                        x.mean
+                            .total_cmp(&y.mean)
+                            .then(x.worst().total_cmp(&y.worst()))
+                    });
+                    let Some(best) = admitted.first() else {
+                        continue;
+                    };
+                    let runner = admitted.get(1);
+                    let on_front = kind_scenes
+                        .iter()
+                        .filter(|(sc, _)| on_the_front(fronts, ex, sc, &b, metric, best.method))
+                        .count();
+                    out.push(Pick {
+                        kind,
+                        backend: b.clone(),
+                        metric,
+                        budget,
+                        scenes: kind_scenes.iter().map(|(s, _)| s.to_string()).collect(),
+                        method: best.method.clone(),
+                        mean_error_ratio: best.mean,
+                        worst_time_ratio: best.worst(),
+                        on_front,
+                        runner_up: runner.map(|r| (r.method.clone(), r.mean)),
+                        noise: noise(best, runner.copied(), &candidates, budget),
+                    });
                 }
             }
         }
     }
     (out, partial)
+}
+
+/// The figures of method `m` (NoAA itself when `is_noaa`) over the scenes
+/// of a kind: `got[i]` its row and error on `kind_scenes[i]`, whose NoAA
+/// error is the denominator; `noaa_rows` NoAA's rows, for the per-offset
+/// errors.
+fn candidate<'a>(
+    m: &'a RowKey,
+    is_noaa: bool,
+    got: &[(&'a ResultRow, f64)],
+    kind_scenes: &[(&'a str, f64)],
+    noaa_rows: &[&ResultRow],
+    metric: Metric,
+) -> Candidate<'a> {
+    let mean = got
+        .iter()
+        .zip(kind_scenes)
+        .map(|((_, e), (_, n))| e / n)
+        .sum::<f64>()
+        / kind_scenes.len() as f64;
+    let times = got
+        .iter()
+        .zip(kind_scenes)
+        .map(|((r, _), (sc, _))| {
+            let t = if is_noaa {
+                Some(r.ratio_to_noaa.unwrap_or(1.0))
+            } else {
+                r.ratio_to_noaa
+            };
+            (*sc, t, r.ratio_min.zip(r.ratio_max))
+        })
+        .collect();
+    // Per offset: the mean over the scenes of its error over NoAA's at the
+    // same offset; only when every row has the same offsets, NoAA's all
+    // non-zero.
+    let mine: Vec<Vec<f64>> = got.iter().map(|(r, _)| errors_at(r, metric)).collect();
+    let theirs: Vec<Vec<f64>> = noaa_rows.iter().map(|r| errors_at(r, metric)).collect();
+    let k = mine.first().map_or(0, Vec::len);
+    let paired = k > 1
+        && theirs.len() == mine.len()
+        && mine.iter().chain(&theirs).all(|v| v.len() == k)
+        && theirs.iter().flatten().all(|&e| e > 0.0);
+    let at_offsets = if paired {
+        (0..k)
+            .map(|o| {
+                mine.iter().zip(&theirs).map(|(a, n)| a[o] / n[o]).sum::<f64>()
+                    / mine.len() as f64
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    Candidate {
+        method: m,
+        mean,
+        times,
+        at_offsets,
+    }
+}
+
+/// Whether `method` (or a row whose image it repeats) is on the front of
+/// `scene`, `backend` and `metric`.
+fn on_the_front(
+    fronts: &[Front],
+    ex: &[Excluded],
+    scene: &str,
+    backend: &str,
+    metric: Metric,
+    method: &RowKey,
+) -> bool {
+    fronts.iter().any(|f| {
+        f.scene == scene
+            && f.backend == backend
+            && f.metric == metric
+            && f.points.iter().any(|p| {
+                p.method == *method
+                    || ex.iter().any(|e| {
+                        e.scene == scene
+                            && e.backend == backend
+                            && e.method == *method
+                            && matches!(&e.why, Why::SameImage { as_method } if *as_method == p.method)
+                    })
+            })
+    })
+}
+
+/// Why the pick `best` (with `runner` next) is within noise under
+/// `budget`, one clause each ([`Pick::noise`]).
+fn noise(
+    best: &Candidate,
+    runner: Option<&Candidate>,
+    all: &[Candidate],
+    budget: Option<f64>,
+) -> Vec<String> {
+    let mut why = Vec::new();
+    if let Some(r) = runner {
+        if best.at_offsets.len() == r.at_offsets.len() {
+            let flips: Vec<String> = best
+                .at_offsets
+                .iter()
+                .zip(&r.at_offsets)
+                .enumerate()
+                .filter(|(_, (b, r))| r <= b)
+                .map(|(k, _)| k.to_string())
+                .collect();
+            if !flips.is_empty() {
+                why.push(format!(
+                    "{} has the lower mean error ratio at camera offset {} of {}",
+                    r.method,
+                    flips.join(", "),
+                    best.at_offsets.len()
+                ));
+            }
+        }
+    }
+    let Some(lim) = budget else {
+        return why;
+    };
+    for (sc, _, range) in &best.times {
+        if let Some((_, hi)) = range.filter(|(_, hi)| *hi > lim) {
+            why.push(format!(
+                "its own time over NoAA's on {sc} reaches {hi:.2}× in a round, over the {lim}× budget"
+            ));
+        }
+    }
+    for c in all.iter().filter(|c| c.mean < best.mean && !c.within(Some(lim))) {
+        // Out of the budget by its median on some scenes: within it in a
+        // round on every one of them?
+        let out: Vec<&(&str, Option<f64>, Option<(f64, f64)>)> = c
+            .times
+            .iter()
+            .filter(|(_, t, _)| !t.is_some_and(|t| t <= lim))
+            .collect();
+        let in_a_round = out
+            .iter()
+            .all(|(_, _, range)| range.is_some_and(|(lo, _)| lo <= lim));
+        if in_a_round {
+            let spans: Vec<String> = out
+                .iter()
+                .map(|(sc, t, range)| {
+                    let (lo, hi) = range.unwrap_or((f64::NAN, f64::NAN));
+                    format!(
+                        "{:.2}× on {sc} (rounds {lo:.2}–{hi:.2}×)",
+                        t.unwrap_or(f64::NAN)
+                    )
+                })
+                .collect();
+            why.push(format!(
+                "{} (mean error ratio {:.2}) is out of the {lim}× budget by its median, {}, but within it in a round",
+                c.method,
+                c.mean,
+                spans.join(", ")
+            ));
+        }
+    }
+    why
 }

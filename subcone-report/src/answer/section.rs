@@ -8,7 +8,7 @@ use serde_json::{json, Value};
 use super::excluded::{same_image_twins, Excluded, Why};
 use super::front::Point;
 use super::pick::{backends, Answer, Kind, Pick};
-use super::{BUDGETS, RULE};
+use super::{error_name, BUDGETS, RULE};
 use crate::classes::Metric;
 use crate::context::{cpu_model, ms, Context, SceneInfo};
 use crate::key::RowKey;
@@ -69,6 +69,9 @@ pub fn regime(ctx: &Context) -> String {
     )
 }
 
+/// A point of a front as the table shows it: its name (and the rows that
+/// repeat its image), its time over NoAA's with the per-round range, its
+/// median ms and its error; after a step that does not hold, why.
 fn point(p: &Point, twins: &[RowKey]) -> String {
     let name = if twins.is_empty() {
         p.method.to_string()
@@ -76,7 +79,41 @@ fn point(p: &Point, twins: &[RowKey]) -> String {
         let twins: Vec<String> = twins.iter().map(RowKey::to_string).collect();
         format!("{} (= {})", p.method, twins.join(", "))
     };
-    format!("{name} {} ms · {:.4}", ms(p.ms), p.error)
+    let time = match (p.ratio, p.ratio_range) {
+        (Some(t), Some((lo, hi))) if lo != hi => {
+            format!("{t:.2}× ({lo:.2}–{hi:.2}), {} ms", ms(p.ms))
+        }
+        (Some(t), _) => format!("{t:.2}×, {} ms", ms(p.ms)),
+        (None, _) => format!("{} ms", ms(p.ms)),
+    };
+    let mark = match p.step.and_then(|s| s.noise()) {
+        Some(why) => format!(" ({why})"),
+        None => String::new(),
+    };
+    format!("{name} {time} · {:.4}{mark}", p.error)
+}
+
+/// A pick as its cell shows it: the method, its mean error ratio, on how
+/// many scenes it is on the front, the runner-up with the margin, and a
+/// mark when the decision is within noise.
+fn pick_cell(p: Option<&Pick>) -> String {
+    let Some(p) = p else {
+        return "–".into();
+    };
+    let mut cell = format!(
+        "{} ({:.2}, {}/{})",
+        p.method,
+        p.mean_error_ratio,
+        p.on_front,
+        p.scenes.len()
+    );
+    if let (Some((next, e)), Some(m)) = (&p.runner_up, p.margin()) {
+        let _ = write!(cell, "; next {next} ({e:.2}, {:+.1} %)", 100.0 * m);
+    }
+    if !p.noise.is_empty() {
+        cell.push_str("; **within noise**");
+    }
+    cell
 }
 
 /// The section of `report.md`: the regime, the picks per kind and budget
@@ -102,7 +139,7 @@ pub fn section(a: &Answer, rows: &[ResultRow], ctx: &Context) -> String {
     if !a.picks.is_empty() {
         let _ = writeln!(
             md,
-            "Which method to use per kind of scene and budget of time over NoAA's, under each metric (FLIP, and 1 − SSIM so that lower is better under both): {RULE}. In brackets: that mean error ratio, and on how many of the scenes the method is on the front below.\n"
+            "Which method to use per kind of scene and budget of time over NoAA's, under each metric (FLIP, and 1 − SSIM so that lower is better under both): {RULE}. In brackets: that mean error ratio, and on how many of the scenes the method is on the front below; then the runner-up by the same rule, its mean error ratio and how much more that is. A pick is **within noise** when the runner-up has the lower error ratio at some camera offset, when the pick's own time goes over the budget in a round, or when a method with less error is out of the budget by its median but within it in a round; the notes under the table say which.\n"
         );
         let _ = writeln!(
             md,
@@ -117,16 +154,6 @@ pub fn section(a: &Answer, rows: &[ResultRow], ctx: &Context) -> String {
                     if fl.is_none() && ss.is_none() {
                         continue;
                     }
-                    let cell = |p: Option<&Pick>| match p {
-                        Some(p) => format!(
-                            "{} ({:.2}, {}/{})",
-                            p.method,
-                            p.mean_error_ratio,
-                            p.on_front,
-                            p.scenes.len()
-                        ),
-                        None => "–".into(),
-                    };
                     let n = fl.or(ss).map_or(0, |p| p.scenes.len());
                     let agree = match (fl, ss) {
                         (Some(x), Some(y)) if x.method == y.method => "agree".to_string(),
@@ -140,21 +167,44 @@ pub fn section(a: &Answer, rows: &[ResultRow], ctx: &Context) -> String {
                         "| {} ({n}) | {b} | {} | {} | {} | {agree} |",
                         kind.name(),
                         budget_name(budget),
-                        cell(fl),
-                        cell(ss),
+                        pick_cell(fl),
+                        pick_cell(ss),
                     );
                 }
             }
         }
         let _ = writeln!(md);
+        let noisy: Vec<String> = a
+            .picks
+            .iter()
+            .filter(|p| !p.noise.is_empty())
+            .map(|p| {
+                format!(
+                    "{} scenes, {}, {}, {} ({}): {}",
+                    p.kind.name(),
+                    p.backend,
+                    budget_name(p.budget),
+                    error_name(p.metric),
+                    p.method,
+                    p.noise.join("; ")
+                )
+            })
+            .collect();
+        if !noisy.is_empty() {
+            let _ = writeln!(md, "Within noise:\n");
+            for n in noisy {
+                let _ = writeln!(md, "- {n}.");
+            }
+            let _ = writeln!(md);
+        }
     }
     let _ = writeln!(
         md,
-        "Pareto fronts per scene: methods in time order with their median ms at the timing size and their error; a method is on the front when every faster method has a higher error.\n"
+        "Pareto fronts per scene: methods in order of time over NoAA's (the median of the per-round ratios, as the budgets; in brackets the range over the rounds, then the median ms at the timing size) with their error (the mean over the camera offsets); a method is on the front when every faster method has a higher error. A step to a method holds when its error is lower than the faster method's at every camera offset and its time higher in every round; otherwise the front says it is within noise.\n"
     );
     let _ = writeln!(
         md,
-        "| scene | backend | FLIP front (ms · FLIP) | SSIM front (ms · 1 − SSIM) |"
+        "| scene | backend | FLIP front (× NoAA · FLIP) | SSIM front (× NoAA · 1 − SSIM) |"
     );
     let _ = writeln!(md, "|---|---|---|---|");
     let mut keys: Vec<(&str, &str)> = Vec::new();
@@ -248,7 +298,14 @@ pub fn json(a: &Answer) -> Value {
             "backend": f.backend,
             "metric": metric(f.metric),
             "points": f.points.iter().map(|p| json!({
-                "method": p.method, "ms_median": p.ms, "ratio_to_noaa": p.ratio, "error": p.error,
+                "method": p.method, "ms_median": p.ms, "ratio_to_noaa": p.ratio,
+                "ratio_min": p.ratio_range.map(|r| r.0), "ratio_max": p.ratio_range.map(|r| r.1),
+                "error": p.error,
+                "step": p.step.map(|s| json!({
+                    "error_at_every_offset": s.error_at_every_offset,
+                    "time_in_every_round": s.time_in_every_round,
+                    "holds": s.holds(),
+                })),
             })).collect::<Vec<_>>(),
         })).collect::<Vec<_>>(),
         "picks": a.picks.iter().map(|p| json!({
@@ -261,6 +318,9 @@ pub fn json(a: &Answer) -> Value {
             "mean_error_ratio": p.mean_error_ratio,
             "worst_time_ratio": if p.worst_time_ratio.is_finite() { json!(p.worst_time_ratio) } else { Value::Null },
             "on_front": p.on_front,
+            "runner_up": p.runner_up.as_ref().map(|(m, e)| json!({"method": m, "mean_error_ratio": e})),
+            "margin": p.margin(),
+            "within_noise": p.noise,
         })).collect::<Vec<_>>(),
         "excluded": a.excluded.iter().map(|e| json!({
             "scene": e.scene,

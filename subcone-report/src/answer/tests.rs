@@ -128,7 +128,7 @@ fn a_row_slower_changes_the_front_and_the_pick() {
     assert_eq!(picked(&b, Kind::Triangles, Metric::Flip, Some(4.0)), "fxaa");
     let md = section(&b, &rows, &context(&scenes));
     assert!(
-        md.contains("noaa 1.00 ms · 0.1000 → fxaa 1.20 ms · 0.0900 → sraa 5.00 ms · 0.0600"),
+        md.contains("noaa 1.00×, 1.00 ms · 0.1000 → fxaa 1.20×, 1.20 ms · 0.0900 → sraa 5.00×, 5.00 ms · 0.0600"),
         "{md}"
     );
 }
@@ -214,7 +214,7 @@ fn a_repeated_image_is_named_and_plotted_once() {
     assert_eq!(ex[0].method.to_string(), "ctss-delayed");
     let a = Answer::of(&rows, &[scene("s", true)]);
     let md = section(&a, &rows, &context(&[scene("s", true)]));
-    assert!(md.contains("ctss (= ctss-delayed) 1.20 ms"), "{md}");
+    assert!(md.contains("ctss (= ctss-delayed) 1.20×, 1.20 ms"), "{md}");
     assert!(
         md.contains(
             "ctss-delayed (same image as ctss) on cpu (s): its image is byte-identical to ctss's"
@@ -328,4 +328,108 @@ fn no_errors_no_front() {
     let a = Answer::of(&rows, &[scene("t", false)]);
     assert!(a.fronts.is_empty() && a.picks.is_empty());
     assert!(section(&a, &rows, &context(&[scene("t", false)])).contains("no front"));
+}
+
+/// `r` with its error under both metrics at four camera offsets (FLIP
+/// `flip[k]`, SSIM 1 − `flip[k]`), its means set from them.
+fn at_offsets(mut r: ResultRow, flip: [f64; 4]) -> ResultRow {
+    r.errors_at = flip
+        .iter()
+        .map(|&f| crate::row::OffsetError {
+            offset: (0.0, 0.0),
+            flip: f,
+            ssim: 1.0 - f,
+            classes: Default::default(),
+            classes_ssim: Default::default(),
+        })
+        .collect();
+    r.settle_offsets();
+    r
+}
+
+#[test]
+fn a_front_step_holds_only_at_every_offset_and_in_every_round() {
+    let scenes = [scene("t", false)];
+    let mut rows = vec![
+        at_offsets(timed("t", "noaa", 1.0, 0.1, 0.9), [0.10; 4]),
+        // Lower error at every offset than noaa: holds.
+        at_offsets(timed("t", "ssaa4", 3.0, 0.0, 0.0), [0.05, 0.06, 0.05, 0.06]),
+        // Lower by the mean, higher at offset 1: within noise.
+        at_offsets(timed("t", "sraa", 4.0, 0.0, 0.0), [0.03, 0.07, 0.03, 0.04]),
+    ];
+    for (r, rounds) in rows.iter_mut().zip([[1.0, 1.0, 1.0], [3.0, 3.1, 2.9], [4.0, 4.2, 3.8]]) {
+        r.round_ms = rounds.to_vec();
+    }
+    let a = Answer::of(&rows, &scenes);
+    let f = a.front("t", "cpu", Metric::Flip).unwrap();
+    assert_eq!(methods(Some(f)), ["noaa", "ssaa4", "sraa"]);
+    assert_eq!(f.points[0].step, None);
+    assert!(f.points[1].step.unwrap().holds());
+    let s = f.points[2].step.unwrap();
+    assert!(!s.error_at_every_offset && s.time_in_every_round);
+    let md = section(&a, &rows, &context(&scenes));
+    assert!(
+        md.contains("sraa 4.00×, 4.00 ms · 0.0425 (within noise: the error order changes with the camera offset)"),
+        "{md}"
+    );
+    // sraa faster than ssaa4 in one round: the time order is noise too.
+    rows[2].round_ms = vec![4.0, 3.0, 3.8];
+    let a = Answer::of(&rows, &scenes);
+    let s = a.front("t", "cpu", Metric::Flip).unwrap().points[2].step.unwrap();
+    assert!(!s.time_in_every_round);
+    assert!(!s.holds());
+}
+
+#[test]
+fn a_pick_names_its_runner_up_and_says_when_it_is_within_noise() {
+    let scenes = [scene("t", false)];
+    let mut rows = vec![
+        at_offsets(timed("t", "noaa", 1.0, 0.0, 0.0), [0.10; 4]),
+        at_offsets(timed("t", "fxaa", 1.2, 0.0, 0.0), [0.09; 4]),
+        at_offsets(timed("t", "ssaa4", 3.0, 0.0, 0.0), [0.05, 0.05, 0.05, 0.05]),
+        // Less error than ssaa4 on the mean, more at offset 2.
+        at_offsets(timed("t", "sraa", 3.5, 0.0, 0.0), [0.03, 0.04, 0.06, 0.04]),
+        at_offsets(timed("t", "ssaa16", 12.0, 0.0, 0.0), [0.02; 4]),
+    ];
+    let a = Answer::of(&rows, &scenes);
+    let p = a.pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0)).unwrap();
+    assert_eq!(p.method.to_string(), "sraa");
+    let (next, e) = p.runner_up.clone().unwrap();
+    assert_eq!(next.to_string(), "ssaa4");
+    assert!((e - 0.5).abs() < 1e-12);
+    assert!((p.margin().unwrap() - (0.5 / 0.425 - 1.0)).abs() < 1e-12);
+    assert_eq!(
+        p.noise,
+        ["ssaa4 has the lower mean error ratio at camera offset 2 of 4"]
+    );
+    // Without the flip, the pick holds.
+    rows[3] = at_offsets(timed("t", "sraa", 3.5, 0.0, 0.0), [0.03, 0.04, 0.045, 0.04]);
+    let a = Answer::of(&rows, &scenes);
+    let p = a.pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0)).unwrap();
+    assert!(p.noise.is_empty(), "{:?}", p.noise);
+    // ssaa16 out of the 4× budget by its median (4.01×) but within it in a
+    // round: the 4.01× call is marked.
+    rows[4].ratio_to_noaa = Some(4.01);
+    (rows[4].ratio_min, rows[4].ratio_max) = (Some(3.72), Some(4.43));
+    let a = Answer::of(&rows, &scenes);
+    let p = a.pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0)).unwrap();
+    assert_eq!(p.method.to_string(), "sraa");
+    assert_eq!(p.noise.len(), 1, "{:?}", p.noise);
+    assert!(
+        p.noise[0].starts_with("ssaa16 (mean error ratio 0.20) is out of the 4× budget by its median, 4.01× on t (rounds 3.72–4.43×)"),
+        "{}",
+        p.noise[0]
+    );
+    // The pick's own rounds over the budget.
+    (rows[3].ratio_min, rows[3].ratio_max) = (Some(3.2), Some(4.2));
+    let a = Answer::of(&rows, &scenes);
+    let p = a.pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0)).unwrap();
+    assert!(p.noise.iter().any(|n| n.contains("reaches 4.20× in a round")), "{:?}", p.noise);
+    let md = section(&a, &rows, &context(&scenes));
+    assert!(md.contains("sraa (0.39, 1/1); next ssaa4 (0.50, +29.0 %); **within noise**"), "{md}");
+    assert!(md.contains("Within noise:\n\n- triangle scenes, cpu, ≤ 4× NoAA, FLIP (sraa): "), "{md}");
+    let j = json(&a);
+    let picks = j["picks"].as_array().unwrap();
+    assert!(picks.iter().any(|p| p["runner_up"]["method"] == "ssaa4"
+        && p["within_noise"].as_array().is_some_and(|w| !w.is_empty())));
 }
