@@ -193,6 +193,31 @@ impl Flip {
     }
 }
 
+/// The pixels per degree every FLIP of the workspace is computed at: the
+/// FLIP paper's default viewing condition (Andersson et al. 2020, §5: a
+/// 0.7 m wide 4K monitor seen from 0.7 m).
+pub const FLIP_PIXELS_PER_DEGREE: f32 = nv_flip::DEFAULT_PIXELS_PER_DEGREE;
+
+/// How far, in pixels, FLIP's filters reach at `ppd` pixels per degree:
+/// the larger of the colour pipeline's spatial filter radius,
+/// `⌈3 √(b_max / (2π²)) · ppd⌉` with the largest of its Gaussians' scale
+/// parameters `b_max = 0.04` (the blue–yellow channel's `b1`), and the
+/// feature filter's, `⌈3 σ⌉` with `σ = ½ · 0.082 · ppd` (the constants
+/// and formulas of FLIP's reference code, `calculateSpatialFilterRadius`
+/// and the feature filter; Andersson et al. 2020, §4.1 and §4.2). An
+/// edge's error spreads this far onto its neighbours. 10 at 67 ppd (the
+/// feature filter alone reaches 9). `ppd` not finite or not positive: 0.
+pub fn flip_filter_radius(ppd: f32) -> u32 {
+    if !(ppd.is_finite() && ppd > 0.0) {
+        return 0;
+    }
+    let pi_sq = core::f64::consts::PI * core::f64::consts::PI;
+    let ppd = f64::from(ppd);
+    let colour = (3.0 * (0.04 / (2.0 * pi_sq)).sqrt() * ppd).ceil();
+    let feature = (3.0 * 0.5 * 0.082 * ppd).ceil();
+    colour.max(feature).min(f64::from(u32::MAX)) as u32
+}
+
 /// LDR-FLIP of `test` against `reference` at the default 67 pixels per
 /// degree: the one call of `nv-flip` in the workspace.
 pub fn flip(reference: &Rgb8, test: &Rgb8) -> Result<Flip, MetricError> {
@@ -200,7 +225,7 @@ pub fn flip(reference: &Rgb8, test: &Rgb8) -> Result<Flip, MetricError> {
     let (w, h) = (reference.width, reference.height);
     let r = nv_flip::FlipImageRgb8::with_data(w, h, &reference.data);
     let t = nv_flip::FlipImageRgb8::with_data(w, h, &test.data);
-    let error = nv_flip::flip(r, t, nv_flip::DEFAULT_PIXELS_PER_DEGREE);
+    let error = nv_flip::flip(r, t, FLIP_PIXELS_PER_DEGREE);
     let map = error.to_vec();
     let mean = map.iter().map(|&v| v as f64).sum::<f64>() / map.len() as f64;
     let magma = Rgb8 {
@@ -250,6 +275,16 @@ pub fn psnr(reference: &Rgb8, test: &Rgb8) -> Result<f64, MetricError> {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn flip_reaches_ten_pixels_at_its_default_viewing_condition() {
+        // Colour filter ⌈9.05⌉, feature filter ⌈8.24⌉.
+        assert_eq!(super::flip_filter_radius(super::FLIP_PIXELS_PER_DEGREE), 10);
+        assert_eq!(super::flip_filter_radius(30.0), 5);
+        for bad in [0.0, -1.0, f32::NAN, f32::INFINITY] {
+            assert_eq!(super::flip_filter_radius(bad), 0);
+        }
+    }
+
     use super::*;
 
     #[test]

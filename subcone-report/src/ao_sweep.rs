@@ -534,7 +534,10 @@ impl Runner<'_> {
                             let fl = metrics::flip(r, &Rgb8::from_frame(&frame)?)?;
                             row.flip_mean = Some(fl.mean);
                             row.edge_flip =
-                                pooled_flip(&ClassError::measure(&fl.map, k), &AO_SWEEP_CLASSES);
+                                pooled_flip(
+                                    &ClassError::measure(&fl.map, k, crate::classes::Metric::Flip),
+                                    &AO_SWEEP_CLASSES,
+                                );
                         }
                         sweep.rows.push(row);
                     }

@@ -19,13 +19,15 @@
 //! | shadow | no silhouette or crease in the pixel, and the per-light visibility of its surface sub-samples differs (some see a light that others do not) |
 //! | texture | no silhouette or crease in the pixel, and the albedo of its surface sub-samples differs by more than [`TEXTURE_ALBEDO`] in some channel of `√albedo` |
 //! | reflection | a sub-sample sees a mirror (reflectance above 0) |
-//! | flat | none of the above, and no pixel of the above within [`NEAR_EDGE_RADIUS`] pixels (Chebyshev distance: the 5×5 square around it) |
+//! | flat | none of the above, and no pixel of the above within [`near_edge_radius`] pixels of the metric (Chebyshev distance: 10 under FLIP, the 21×21 square around it; 5 under SSIM) |
 //!
-//! A pixel in none of the five classes but within [`NEAR_EDGE_RADIUS`] of
-//! one is in the *near edge* band ([`ClassMasks::near_edge`]), not flat: an
-//! error metric with a spatial filter (FLIP's) spreads an edge's error onto
-//! its neighbours, so a method that changes the edge changes the error
-//! there too. The band is measured and reported but not judged.
+//! A pixel in none of the five classes but within [`near_edge_radius`] of
+//! one is in the metric's *near edge* band ([`ClassMasks::near`]), not
+//! flat: an error metric with a spatial filter (FLIP's filters, SSIM's
+//! window) spreads an edge's error onto its neighbours as far as the
+//! filter reaches, so a method that changes the edge changes the error
+//! there too. The band is measured and reported but not judged; flat is
+//! judged on what remains beyond it.
 
 mod masks;
 #[cfg(test)]
@@ -52,8 +54,18 @@ pub const CREASE_COS: f32 = 0.9;
 pub const TEXTURE_ALBEDO: f32 = 0.05;
 /// Pixels in none of the classes within this Chebyshev distance of a
 /// classed pixel (silhouette, crease, shadow, texture or reflection) are in
-/// the near-edge band, not flat.
-pub const NEAR_EDGE_RADIUS: u32 = 2;
+/// `metric`'s near-edge band, not flat: as far as the metric carries an
+/// edge's error onto its neighbours. Under FLIP, its filters' reach at the
+/// pixels per degree it is computed at
+/// ([`flip_filter_radius`](subcone_metrics::flip_filter_radius), 10 px at
+/// 67 ppd); under SSIM, its window's half-width
+/// ([`ssim::RADIUS`](subcone_metrics::ssim::RADIUS), 5 px).
+pub fn near_edge_radius(metric: Metric) -> u32 {
+    match metric {
+        Metric::Flip => subcone_metrics::flip_filter_radius(subcone_metrics::FLIP_PIXELS_PER_DEGREE),
+        Metric::Ssim => subcone_metrics::ssim::RADIUS as u32,
+    }
+}
 /// A class with fewer pixels than this (at some camera offset) gets no
 /// verdict: a mean over a handful of pixels moves with a sub-pixel shift of
 /// the camera by more than the thresholds the verdicts use.

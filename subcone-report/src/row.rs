@@ -258,8 +258,12 @@ impl OffsetError {
             offset,
             flip: fl.mean,
             ssim: ss.mean,
-            classes: classes::ClassError::measure(&fl.map, masks),
-            classes_ssim: classes::ClassError::measure(&ss.dissimilarity(), masks),
+            classes: classes::ClassError::measure(&fl.map, masks, classes::Metric::Flip),
+            classes_ssim: classes::ClassError::measure(
+                &ss.dissimilarity(),
+                masks,
+                classes::Metric::Ssim,
+            ),
         }
     }
 }

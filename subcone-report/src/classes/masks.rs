@@ -4,7 +4,7 @@ use anyhow::{bail, Result};
 use glam::Vec3;
 use subcone_scene::Frame;
 
-use super::{Class, CLASSES, CREASE_COS, NEAR_EDGE_RADIUS, SILHOUETTE_DEPTH, TEXTURE_ALBEDO};
+use super::{near_edge_radius, Class, Metric, CREASE_COS, SILHOUETTE_DEPTH, TEXTURE_ALBEDO};
 
 /// One mask per class over a `width × height` image.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -15,9 +15,15 @@ pub struct ClassMasks {
     pub height: u32,
     /// The masks, indexed by [`Class::index`], row-major.
     pub masks: [Vec<bool>; 6],
-    /// The near-edge band, row-major: pixels in none of the classes within
-    /// [`NEAR_EDGE_RADIUS`] of a classed pixel (and so not flat).
+    /// The near-edge band under FLIP, row-major: pixels in none of the
+    /// classes within [`near_edge_radius`]`(Metric::Flip)` of a classed
+    /// pixel (and so not flat). `masks[Class::Flat]` is FLIP's flat: the
+    /// rest.
     pub near_edge: Vec<bool>,
+    /// The near-edge band under SSIM (its window's reach), row-major.
+    pub ssim_near_edge: Vec<bool>,
+    /// Flat under SSIM: in no class and not in SSIM's near-edge band.
+    pub ssim_flat: Vec<bool>,
 }
 
 impl ClassMasks {
@@ -31,24 +37,70 @@ impl ClassMasks {
         self.mask(class).iter().filter(|&&m| m).count() as u64
     }
 
-    /// Split the pixels in no class into the near-edge band (within
-    /// [`NEAR_EDGE_RADIUS`] of a classed pixel, Chebyshev) and flat (the
-    /// rest): sets [`ClassMasks::near_edge`] and clears those pixels from
-    /// the flat mask.
-    fn split_near_edge(&mut self) {
-        let (w, h) = (self.width as usize, self.height as usize);
-        let r = NEAR_EDGE_RADIUS as usize;
-        if w == 0 || h == 0 {
-            self.near_edge = Vec::new();
-            return;
+    /// The flat mask under `metric`: in no class and out of the metric's
+    /// near-edge band.
+    pub fn flat(&self, metric: Metric) -> &[bool] {
+        match metric {
+            Metric::Flip => self.mask(Class::Flat),
+            Metric::Ssim => &self.ssim_flat,
         }
-        let classed: Vec<bool> = (0..w * h)
-            .map(|p| {
-                CLASSES
-                    .iter()
-                    .any(|&c| c != Class::Flat && self.masks[c.index()][p])
-            })
+    }
+
+    /// The near-edge band under `metric`.
+    pub fn near(&self, metric: Metric) -> &[bool] {
+        match metric {
+            Metric::Flip => &self.near_edge,
+            Metric::Ssim => &self.ssim_near_edge,
+        }
+    }
+
+    /// The mask of `class` under `metric`: flat is the metric's own
+    /// ([`ClassMasks::flat`]), the other classes the same under both.
+    pub fn mask_for(&self, class: Class, metric: Metric) -> &[bool] {
+        match class {
+            Class::Flat => self.flat(metric),
+            c => self.mask(c),
+        }
+    }
+
+    /// These masks with FLIP's near-edge band (and flat) `radius` pixels
+    /// wide instead of its filters' reach: to judge flat as a target was
+    /// stated before the band followed the metric (2 px).
+    pub fn with_flip_band(&self, radius: u32) -> ClassMasks {
+        let mut out = self.clone();
+        let classed: Vec<bool> = self
+            .mask(Class::Flat)
+            .iter()
+            .zip(&self.near_edge)
+            .map(|(&f, &n)| !f && !n)
             .collect();
+        let (near, flat) = self.band(&classed, radius);
+        out.masks[Class::Flat.index()] = flat;
+        out.near_edge = near;
+        out
+    }
+
+    /// Split the pixels in no class into each metric's near-edge band
+    /// (within [`near_edge_radius`] of a classed pixel, Chebyshev) and
+    /// flat (the rest): sets the bands and the two flat masks.
+    fn split_near_edge(&mut self) {
+        let classed: Vec<bool> = self.masks[Class::Flat.index()].iter().map(|f| !f).collect();
+        let (flip_near, flip_flat) = self.band(&classed, near_edge_radius(Metric::Flip));
+        let (ssim_near, ssim_flat) = self.band(&classed, near_edge_radius(Metric::Ssim));
+        self.masks[Class::Flat.index()] = flip_flat;
+        self.near_edge = flip_near;
+        self.ssim_near_edge = ssim_near;
+        self.ssim_flat = ssim_flat;
+    }
+
+    /// The near-edge band of radius `r` around the `classed` pixels and
+    /// the flat pixels outside it (both empty for an empty image).
+    fn band(&self, classed: &[bool], r: u32) -> (Vec<bool>, Vec<bool>) {
+        let (w, h) = (self.width as usize, self.height as usize);
+        let r = r as usize;
+        if w == 0 || h == 0 {
+            return (Vec::new(), Vec::new());
+        }
         // Separable dilation by a (2r+1)² square: rows, then columns.
         let mut rows = vec![false; w * h];
         for y in 0..h {
@@ -64,11 +116,12 @@ impl ClassMasks {
                 near[y * w + x] = !classed[y * w + x] && (a..=b).any(|yy| rows[yy * w + x]);
             }
         }
-        let flat = &mut self.masks[Class::Flat.index()];
-        for (f, &n) in flat.iter_mut().zip(&near) {
-            *f &= !n;
-        }
-        self.near_edge = near;
+        let flat = classed
+            .iter()
+            .zip(&near)
+            .map(|(&c, &n)| !c && !n)
+            .collect();
+        (near, flat)
     }
 
     /// One byte per pixel, row-major, bit `i` set when the pixel is in
@@ -236,6 +289,8 @@ pub fn classify(sub: &Frame, side: u32) -> Result<ClassMasks> {
         height: h as u32,
         masks,
         near_edge: Vec::new(),
+        ssim_near_edge: Vec::new(),
+        ssim_flat: Vec::new(),
     };
     out.split_near_edge();
     Ok(out)

@@ -17,6 +17,8 @@ fn bits_hold_each_pixels_classes() {
         height: 8,
         masks,
         near_edge: vec![false; 64],
+        ssim_near_edge: vec![false; 64],
+        ssim_flat: vec![false; 64],
     };
     assert_eq!(c.bits(), (0..64u8).collect::<Vec<_>>());
 }
@@ -239,39 +241,47 @@ fn errors_over_offsets_average_and_keep_the_fewest_pixels() {
 }
 
 #[test]
-fn pixels_within_two_of_a_class_are_near_edge_not_flat() {
-    // 7×7 pixels, a one-sub-sample pole in the centre pixel only.
-    let (pw, s) = (7usize, 4usize);
+fn pixels_within_each_metrics_reach_of_a_class_are_near_edge_not_flat() {
+    // 31×31 pixels, a one-sub-sample pole in the centre pixel only.
+    let (pw, s, c) = (31usize, 4usize, 15usize);
     let mut f = uniform((pw * s) as u32, (pw * s) as u32);
     let w = pw * s;
     let mut depth = vec![2.0f32; w * w];
     for j in 0..s {
-        depth[(3 * s + j) * w + 3 * s + 1] = 1.0;
+        depth[(c * s + j) * w + c * s + 1] = 1.0;
     }
     f.depth = Some(depth);
     let m = classify(&f, s as u32).unwrap();
     let at = |x: usize, y: usize| y * pw + x;
-    assert!(m.mask(Class::Silhouette)[at(3, 3)]);
+    assert!(m.mask(Class::Silhouette)[at(c, c)]);
     assert_eq!(m.count(Class::Silhouette), 1);
-    // Chebyshev: the 5×5 square around it, corners included.
-    for (x, y) in [(2, 3), (1, 3), (5, 5), (1, 1), (5, 1)] {
-        assert!(m.near_edge[at(x, y)], "({x}, {y}) is within 2");
-        assert!(!m.mask(Class::Flat)[at(x, y)]);
+    // FLIP's filters reach 10 px, SSIM's window 5: Chebyshev squares,
+    // corners included.
+    assert_eq!((near_edge_radius(Metric::Flip), near_edge_radius(Metric::Ssim)), (10, 5));
+    for (metric, r) in [(Metric::Flip, 10usize), (Metric::Ssim, 5)] {
+        let (near, flat) = (m.near(metric), m.flat(metric));
+        for (x, y) in [(c - r, c), (c + r, c + r), (c - r, c - r), (c + 1, c)] {
+            assert!(near[at(x, y)], "{metric:?}: ({x}, {y}) is within {r}");
+            assert!(!flat[at(x, y)]);
+        }
+        for (x, y) in [(c - r - 1, c), (c + r + 1, c + r + 1), (c, c - r - 1)] {
+            assert!(!near[at(x, y)], "{metric:?}: ({x}, {y}) is {} away", r + 1);
+            assert!(flat[at(x, y)]);
+        }
+        assert!(!near[at(c, c)], "a classed pixel is not in the band");
+        let side = 2 * r + 1;
+        assert_eq!(near.iter().filter(|&&b| b).count(), side * side - 1);
+        assert_eq!(flat.iter().filter(|&&b| b).count(), pw * pw - side * side);
+        // The band's error is measured apart from flat's.
+        let map: Vec<f32> = (0..pw * pw)
+            .map(|p| if near[p] { 0.5 } else { 0.1 })
+            .collect();
+        let e = ClassError::measure(&map, &m, metric);
+        assert_eq!((e.near_edge, e.near_edge_px), (Some(0.5), (side * side - 1) as u64));
+        assert!((e.mean[Class::Flat.index()].unwrap() - 0.1).abs() < 1e-7);
+        assert_eq!(e.px[Class::Flat.index()], (pw * pw - side * side) as u64);
     }
-    for (x, y) in [(0, 3), (6, 6), (3, 0), (6, 2)] {
-        assert!(!m.near_edge[at(x, y)], "({x}, {y}) is 3 away");
-        assert!(m.mask(Class::Flat)[at(x, y)]);
-    }
-    assert!(!m.near_edge[at(3, 3)], "a classed pixel is not in the band");
-    assert_eq!(m.near_edge.iter().filter(|&&b| b).count(), 24);
-    assert_eq!(m.count(Class::Flat), 49 - 25);
-    // The band's error is measured apart from flat's.
-    let map: Vec<f32> = (0..49)
-        .map(|p| if m.near_edge[p] { 0.5 } else { 0.1 })
-        .collect();
-    let e = ClassError::measure(&map, &m);
-    assert_eq!((e.near_edge, e.near_edge_px), (Some(0.5), 24));
-    assert!((e.mean[Class::Flat.index()].unwrap() - 0.1).abs() < 1e-7);
+    assert_eq!(m.mask(Class::Flat), m.flat(Metric::Flip));
 }
 
 #[test]

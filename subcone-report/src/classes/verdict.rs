@@ -91,15 +91,18 @@ pub struct ClassError {
 }
 
 impl ClassError {
-    /// Mean error map values per class.
-    pub fn measure(map: &[f32], masks: &ClassMasks) -> Self {
+    /// Mean error map values per class, `map` being `metric`'s (flat and
+    /// the near-edge band are the metric's own, [`ClassMasks::flat`]).
+    pub fn measure(map: &[f32], masks: &ClassMasks, metric: Metric) -> Self {
         let mut out = ClassError::default();
         for c in CLASSES {
-            out.mean[c.index()] = crate::metrics::masked_mean(map, masks.mask(c));
-            out.px[c.index()] = masks.count(c);
+            let mask = masks.mask_for(c, metric);
+            out.mean[c.index()] = crate::metrics::masked_mean(map, mask);
+            out.px[c.index()] = mask.iter().filter(|&&m| m).count() as u64;
         }
-        out.near_edge = crate::metrics::masked_mean(map, &masks.near_edge);
-        out.near_edge_px = masks.near_edge.iter().filter(|&&m| m).count() as u64;
+        let near = masks.near(metric);
+        out.near_edge = crate::metrics::masked_mean(map, near);
+        out.near_edge_px = near.iter().filter(|&&m| m).count() as u64;
         out
     }
 

@@ -29,10 +29,14 @@ seen by a sub-sample. The classes may overlap; *flat* is a pixel in none of the 
 | shadow | no silhouette or crease in the pixel, and the per-light visibility of its surface sub-samples differs (a light that faces away counts as visible) |\n\
 | texture | no silhouette or crease in the pixel, and its surface sub-samples' albedo differs by more than {t} in some channel of √albedo |\n\
 | reflection | a sub-sample sees a mirror (reflectance above 0) |\n\
-| near edge | none of the above, but within {r} px of a pixel that is (Chebyshev distance: in the {side}×{side} square around it); measured and reported, not judged |\n\
-| flat | none of the above, and not near edge |\n\n\
-The near-edge band holds the pixels an error metric with a spatial filter (FLIP's) charges with \
-a neighbouring edge's error; flat is judged without them. \
+| near edge | none of the above, but within the metric's reach of a pixel that is (Chebyshev distance): {r} px under FLIP (the {side}×{side} square around it), {rs} px under SSIM ({sides}×{sides}); measured and reported, not judged |\n\
+| flat | none of the above, and not near edge (under each metric, its own band) |\n\n\
+The near-edge band holds the pixels an error metric with a spatial filter charges with a \
+neighbouring edge's error, as far as the filter reaches: FLIP's filters at the {ppd} pixels per \
+degree it is computed at reach {r} px (its colour filter's radius ⌈3 √(0.04 / 2π²) · {ppd}⌉, \
+its feature filter's ⌈3 · ½ · 0.082 · {ppd}⌉ = {rf}; Andersson et al. 2020), SSIM's window {rs} px. \
+Flat is judged without them, on what remains beyond them; each scene's section says how much \
+that is. \
 `flip_<class>` is the mean FLIP over the class's pixels and `px_<class>` their count (in \
 `results.csv` and `results.json`; the band's columns are `flip_near_edge`, `px_near_edge`, \
 `dssim_near_edge`).\n\n\
@@ -81,8 +85,12 @@ line; a claimed class with no pixel in the scene is listed as having none.\n",
         l = classes::LOSE_FACTOR,
         f = classes::FLAT_FACTOR,
         floor = classes::DSSIM_FLOOR,
-        r = classes::NEAR_EDGE_RADIUS,
-        side = 2 * classes::NEAR_EDGE_RADIUS + 1,
+        r = classes::near_edge_radius(Metric::Flip),
+        side = 2 * classes::near_edge_radius(Metric::Flip) + 1,
+        rs = classes::near_edge_radius(Metric::Ssim),
+        sides = 2 * classes::near_edge_radius(Metric::Ssim) + 1,
+        ppd = subcone_metrics::FLIP_PIXELS_PER_DEGREE,
+        rf = (3.0 * 0.5 * 0.082 * f64::from(subcone_metrics::FLIP_PIXELS_PER_DEGREE)).ceil(),
         min_px = classes::MIN_VERDICT_PIXELS,
         offsets_text = offsets_text(offsets, elapsed),
     );
@@ -264,6 +272,29 @@ pub fn glance_cell(v: &Verdict) -> String {
     cell
 }
 
+/// How much of the image is flat beyond each metric's reach (the pixels
+/// the flat verdicts are judged on), from the first measured row: its
+/// fewest flat pixels over the offsets over the quality size. `None`
+/// without a quality size.
+fn flat_remaining(rows: &[&&ResultRow]) -> Option<String> {
+    let r = rows.first()?;
+    let px = u64::from(r.quality_width?) * u64::from(r.quality_height?);
+    if px == 0 {
+        return None;
+    }
+    let share = |m: Metric| {
+        let k = r.class_error(m)?;
+        Some(100.0 * k.px[Class::Flat.index()] as f64 / px as f64)
+    };
+    Some(format!(
+        "Flat beyond the metrics' reach (what \"flat\" is judged on): {:.1} % of the pixels under FLIP (more than {} px from any class), {:.1} % under SSIM (more than {} px).",
+        share(Metric::Flip)?,
+        classes::near_edge_radius(Metric::Flip),
+        share(Metric::Ssim)?,
+        classes::near_edge_radius(Metric::Ssim),
+    ))
+}
+
 /// A table of one metric's per-class error, a row per measured method.
 fn class_table(md: &mut String, rows: &[&&ResultRow], metric: Metric) {
     let Some(first) = rows.first().and_then(|r| r.class_error(metric)) else {
@@ -332,6 +363,9 @@ pub(super) fn class_section(scene: &str, rows: &[&ResultRow]) -> String {
         file_safe(scene)
     );
     class_table(&mut md, &with, Metric::Ssim);
+    if let Some(line) = flat_remaining(&with) {
+        let _ = writeln!(md, "{line}\n");
+    }
     let flip = verdicts(rows, Metric::Flip);
     let ssim = verdicts(rows, Metric::Ssim);
     if !flip.is_empty() || !ssim.is_empty() {

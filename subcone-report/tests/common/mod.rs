@@ -41,11 +41,22 @@ impl<'a> Judged<'a> {
         }
     }
 
+    /// The same judgement with FLIP's near-edge band `radius` pixels wide
+    /// ([`ClassMasks::with_flip_band`]).
+    pub fn with_flip_band(&self, radius: u32) -> Judged<'a> {
+        Judged {
+            scene: self.scene,
+            settings: self.settings.clone(),
+            reference: self.reference.clone(),
+            masks: self.masks.with_flip_band(radius),
+        }
+    }
+
     /// The whole-image mean FLIP of `method` against the reference, and its
     /// FLIP per class.
     pub fn measure(&self, method: &str) -> (f64, ClassError) {
         let image = Rgb8::from_frame(&render(self.scene, method, &self.settings)).unwrap();
         let f = metrics::flip(&self.reference, &image).unwrap();
-        (f.mean, ClassError::measure(&f.map, &self.masks))
+        (f.mean, ClassError::measure(&f.map, &self.masks, classes::Metric::Flip))
     }
 }
