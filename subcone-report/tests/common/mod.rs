@@ -42,7 +42,9 @@ impl<'a> Judged<'a> {
     }
 
     /// The same judgement with FLIP's near-edge band `radius` pixels wide
-    /// ([`ClassMasks::with_flip_band`]).
+    /// ([`ClassMasks::with_flip_band`]). Only some of the tests that share
+    /// this module call it.
+    #[allow(dead_code)]
     pub fn with_flip_band(&self, radius: u32) -> Judged<'a> {
         Judged {
             scene: self.scene,
