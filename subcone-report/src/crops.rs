@@ -145,26 +145,13 @@ pub fn choose_regions(r: &RegionInputs<'_>) -> Result<Vec<Region>> {
     {
         bail!("region inputs do not match the image size");
     }
-    let side = window_side(r.width, r.height);
-    let err = |i: usize| r.noaa_error[i] as f64;
-    let none = |_: &Window| false;
+    let c = RegionSearch {
+        r,
+        n,
+        side: window_side(r.width, r.height),
+    };
     let mut out = Vec::new();
-
-    // Geometric edges count 4× gradient-only ones (texture, shadow edges), so
-    // the window shows silhouettes rather than a minified texture.
-    let score: Vec<f64> = (0..n)
-        .map(|i| {
-            let e = if r.geometric[i] {
-                1.0
-            } else if r.edges[i] {
-                0.25
-            } else {
-                0.0
-            };
-            e + 1e-3 * err(i)
-        })
-        .collect();
-    if let Some((w, _)) = best_window(&score, r.width, r.height, side, none) {
+    if let Some(w) = c.edge_window() {
         out.push(Region {
             kind: "edge",
             window: w,
@@ -172,67 +159,14 @@ pub fn choose_regions(r: &RegionInputs<'_>) -> Result<Vec<Region>> {
         });
     }
 
-    let reflective = |i: usize| r.reflective.is_some_and(|m| m[i]);
-
     // Reflection on reflective pixels first, so the shadow window can avoid it.
-    let mut reflection = None;
-    if let Some(m) = r.reflective {
-        if m.iter().any(|&c| c) {
-            let score: Vec<f64> = (0..n)
-                .map(|i| {
-                    if m[i] && !r.geometric[i] {
-                        err(i) + 0.02
-                    } else {
-                        0.0
-                    }
-                })
-                .collect();
-            reflection = best_window(&score, r.width, r.height, side, none)
-                .map(|(w, _)| (w, "most NoAA error on reflective pixels"));
-        }
-    }
+    let mut reflection = c.reflective_window();
     let rw = reflection.map(|r: (Window, &str)| r.0);
     let away = |w: &Window| rw.is_some_and(|r| r.overlaps(w));
-    // Prefer a window that does not overlap `avoid`; take any if none is left.
-    let pick = |score: &[f64], avoid: &dyn Fn(&Window) -> bool| {
-        best_window(score, r.width, r.height, side, avoid)
-            .or_else(|| best_window(score, r.width, r.height, side, none))
-    };
 
-    let mut shadow = None;
-    if let Some(cand) = r.shadow {
-        if cand.iter().any(|&c| c) {
-            let score: Vec<f64> = (0..n)
-                .map(|i| {
-                    if cand[i] && !reflective(i) {
-                        err(i) + 0.02
-                    } else {
-                        0.0
-                    }
-                })
-                .collect();
-            if score.iter().any(|&v| v > 0.0) {
-                shadow = pick(&score, &away).map(|(w, _)| {
-                    (
-                        w,
-                        "most NoAA error on shadow boundaries (untextured render)",
-                    )
-                });
-            }
-        }
-    }
+    let mut shadow = c.shadow_boundary_window(&away);
     if shadow.is_none() {
-        let score: Vec<f64> = (0..n)
-            .map(|i| {
-                if r.geometric[i] || reflective(i) {
-                    0.0
-                } else {
-                    err(i)
-                }
-            })
-            .collect();
-        shadow = pick(&score, &away)
-            .map(|(w, _)| (w, "most NoAA error on smooth, non-reflective geometry"));
+        shadow = c.smooth_window(&away);
     }
     if let Some((w, rule)) = shadow {
         out.push(Region {
@@ -243,16 +177,7 @@ pub fn choose_regions(r: &RegionInputs<'_>) -> Result<Vec<Region>> {
     }
 
     if reflection.is_none() {
-        let score: Vec<f64> = (0..n)
-            .map(|i| if r.edges[i] { 0.0 } else { err(i) })
-            .collect();
-        let sw = shadow.map(|s| s.0);
-        reflection = pick(&score, &|w: &Window| sw.is_some_and(|s| s.overlaps(w))).map(|(w, _)| {
-            (
-                w,
-                "no reflective pixels: most NoAA error off the edge mask, away from the shadow window",
-            )
-        });
+        reflection = c.off_edge_window(shadow.map(|s| s.0));
     }
     if let Some((w, rule)) = reflection {
         out.push(Region {
@@ -262,6 +187,144 @@ pub fn choose_regions(r: &RegionInputs<'_>) -> Result<Vec<Region>> {
         });
     }
     Ok(out)
+}
+
+/// A window found by one of the region heuristics, with the rule that
+/// found it.
+type Found = (Window, &'static str);
+
+/// The searches of [`choose_regions`] over inputs already checked to hold
+/// `n` pixels each, every window `side` pixels square.
+struct RegionSearch<'r, 'a> {
+    r: &'r RegionInputs<'a>,
+    n: usize,
+    side: u32,
+}
+
+impl RegionSearch<'_, '_> {
+    /// NoAA's error at pixel `i`.
+    fn err(&self, i: usize) -> f64 {
+        self.r.noaa_error[i] as f64
+    }
+
+    /// Whether pixel `i` is reflective (never, without a reflection mask).
+    fn reflective(&self, i: usize) -> bool {
+        self.r.reflective.is_some_and(|m| m[i])
+    }
+
+    /// The best window for `score`, any position allowed.
+    fn best(&self, score: &[f64]) -> Option<(Window, f64)> {
+        best_window(score, self.r.width, self.r.height, self.side, |_| false)
+    }
+
+    /// Prefer a window that does not overlap `avoid`; take any if none is left.
+    fn pick(&self, score: &[f64], avoid: &dyn Fn(&Window) -> bool) -> Option<(Window, f64)> {
+        best_window(score, self.r.width, self.r.height, self.side, avoid)
+            .or_else(|| self.best(score))
+    }
+
+    /// The edge window: the most edge-mask pixels, ties broken by NoAA's
+    /// error.
+    fn edge_window(&self) -> Option<Window> {
+        let r = self.r;
+        // Geometric edges count 4× gradient-only ones (texture, shadow edges), so
+        // the window shows silhouettes rather than a minified texture.
+        let score: Vec<f64> = (0..self.n)
+            .map(|i| {
+                let e = if r.geometric[i] {
+                    1.0
+                } else if r.edges[i] {
+                    0.25
+                } else {
+                    0.0
+                };
+                e + 1e-3 * self.err(i)
+            })
+            .collect();
+        self.best(&score).map(|(w, _)| w)
+    }
+
+    /// The reflection window on reflective pixels off geometric edges;
+    /// `None` when the scene has none.
+    fn reflective_window(&self) -> Option<Found> {
+        let m = self.r.reflective?;
+        if !m.iter().any(|&c| c) {
+            return None;
+        }
+        let score: Vec<f64> = (0..self.n)
+            .map(|i| {
+                if m[i] && !self.r.geometric[i] {
+                    self.err(i) + 0.02
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        self.best(&score)
+            .map(|(w, _)| (w, "most NoAA error on reflective pixels"))
+    }
+
+    /// The shadow window on the shadow-boundary candidates that are not
+    /// reflective, away from `away` if it can be; `None` without such a
+    /// candidate.
+    fn shadow_boundary_window(&self, away: &dyn Fn(&Window) -> bool) -> Option<Found> {
+        let cand = self.r.shadow?;
+        if !cand.iter().any(|&c| c) {
+            return None;
+        }
+        let score: Vec<f64> = (0..self.n)
+            .map(|i| {
+                if cand[i] && !self.reflective(i) {
+                    self.err(i) + 0.02
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        if !score.iter().any(|&v| v > 0.0) {
+            return None;
+        }
+        self.pick(&score, away).map(|(w, _)| {
+            (
+                w,
+                "most NoAA error on shadow boundaries (untextured render)",
+            )
+        })
+    }
+
+    /// The shadow window without boundary candidates: NoAA's error on
+    /// geometrically smooth, non-reflective pixels, away from `away` if it
+    /// can be.
+    fn smooth_window(&self, away: &dyn Fn(&Window) -> bool) -> Option<Found> {
+        let r = self.r;
+        let score: Vec<f64> = (0..self.n)
+            .map(|i| {
+                if r.geometric[i] || self.reflective(i) {
+                    0.0
+                } else {
+                    self.err(i)
+                }
+            })
+            .collect();
+        self.pick(&score, away)
+            .map(|(w, _)| (w, "most NoAA error on smooth, non-reflective geometry"))
+    }
+
+    /// The reflection window of a scene without reflective pixels: NoAA's
+    /// error off the edge mask, not overlapping the shadow window `sw` if
+    /// it can be.
+    fn off_edge_window(&self, sw: Option<Window>) -> Option<Found> {
+        let score: Vec<f64> = (0..self.n)
+            .map(|i| if self.r.edges[i] { 0.0 } else { self.err(i) })
+            .collect();
+        self.pick(&score, &|w: &Window| sw.is_some_and(|s| s.overlaps(w)))
+            .map(|(w, _)| {
+                (
+                    w,
+                    "no reflective pixels: most NoAA error off the edge mask, away from the shadow window",
+                )
+            })
+    }
 }
 
 /// The window of `image`, zoomed `ZOOM`× nearest-neighbour.

@@ -398,25 +398,40 @@ impl Runner<'_> {
         aov.aovs = true;
         let (first, _) = render_from(cpu, &job.scene, &job.scene.camera, &NOAA, &aov)?;
         let path = camera_path(&job.scene.camera, frames, (w, h), subject_distance(&first))?;
+        let mut followed = followers(cpu, job)?;
+        let (references, masks) = self.render_path(cpu, job, &path, (w, h), &mut followed)?;
+        let mut rows: Vec<MotionRow> = Vec::new();
+        let mut noaa_unstable = vec![0.0f32; (w * h) as usize];
+        for f in &followed {
+            rows.push(motion_row(job, f, &references, &masks, &mut noaa_unstable)?);
+        }
+        set_frames_to_beat_noaa(&mut rows);
+        let crop = worst_window(&noaa_unstable, w, h, CROP_SIDE.min(w / 3).min(h / 3));
+        save_animation(
+            &dir.join(file_safe(&job.name)),
+            &followed,
+            &references,
+            crop,
+        )?;
+        Ok((rows, crop))
+    }
+
+    /// Renders every camera of `path`: its reference and classes, and each
+    /// followed method's frame (a temporal one through its sequence) with
+    /// its wall time. Returns the references and the classes, frame by
+    /// frame.
+    fn render_path(
+        &self,
+        cpu: &(dyn Backend + Send + Sync),
+        job: &SceneJob,
+        path: &[Camera],
+        (w, h): (u32, u32),
+        followed: &mut [Followed],
+    ) -> Result<(Vec<Rgb8>, Vec<ClassMasks>)> {
+        let frames = path.len();
         let plain = RenderSettings::new(w, h);
         let mut references = Vec::new();
         let mut masks = Vec::new();
-        let mut followed: Vec<Followed> = MOTION_METHODS
-            .iter()
-            .filter(|m| cpu.supports(&job.scene, &m.single_frame()).is_ok())
-            .map(|&method| -> Result<Followed> {
-                let taa = method
-                    .is_temporal()
-                    .then(|| Taa::new(method, TaaConfig::default()))
-                    .transpose()?;
-                Ok(Followed {
-                    method,
-                    taa,
-                    images: Vec::new(),
-                    ms: Vec::new(),
-                })
-            })
-            .collect::<Result<_>>()?;
         for (t, cam) in path.iter().enumerate() {
             self.progress
                 .bar
@@ -424,7 +439,7 @@ impl Runner<'_> {
             let (r, _) = render_from(cpu, &job.scene, cam, &MOTION_REFERENCE, &plain)?;
             references.push(Rgb8::from_frame(&r)?);
             masks.push(classes_at(cpu, &job.scene, cam, (w, h))?);
-            for f in &mut followed {
+            for f in followed.iter_mut() {
                 let (img, wall) = match &mut f.taa {
                     Some(taa) => {
                         let start = Instant::now();
@@ -439,76 +454,118 @@ impl Runner<'_> {
                 f.ms.push(wall.as_secs_f64() * 1e3);
             }
         }
-        let mut rows: Vec<MotionRow> = Vec::new();
-        let mut noaa_unstable = vec![0.0f32; (w * h) as usize];
-        for f in &followed {
-            let mut pooled = Pooled::default();
-            for t in 1..f.images.len() {
-                let map = instability(
-                    (&f.images[t - 1], &f.images[t]),
-                    (&references[t - 1], &references[t]),
-                )?;
-                pooled.add(&map, &masks[t]);
-                if f.method == NOAA {
-                    noaa_unstable
-                        .iter_mut()
-                        .zip(&map)
-                        .for_each(|(a, b)| *a += b);
-                }
-            }
-            let flip = f
-                .images
-                .iter()
-                .zip(&references)
-                .map(|(i, r)| metrics::flip(r, i).map(|fl| fl.mean))
-                .collect::<Result<Vec<f64>, _>>()?;
-            let ssim = f
-                .images
-                .iter()
-                .zip(&references)
-                .map(|(i, r)| metrics::ssim::ssim(r, i).map(|s| s.mean))
-                .collect::<Result<Vec<f64>, _>>()?;
-            let mut ms = f.ms.clone();
-            ms.sort_by(f64::total_cmp);
-            rows.push(MotionRow {
-                scene: job.name.to_string(),
-                method: f.method.to_string(),
-                flip,
-                ssim,
-                frames_to_beat_noaa: None,
-                instability: pooled.mean(),
-                ms_per_frame: ms[ms.len() / 2],
-            });
-        }
-        let noaa_name = NOAA.to_string();
-        if let Some(noaa) = rows
-            .iter()
-            .find(|r| r.method == noaa_name)
-            .map(|r| r.flip.clone())
-        {
-            for r in rows.iter_mut().filter(|r| r.method != noaa_name) {
-                r.frames_to_beat_noaa = frames_to_beat(&r.flip, &noaa);
-            }
-        }
-        let crop = worst_window(&noaa_unstable, w, h, CROP_SIDE.min(w / 3).min(h / 3));
-        let mut names: Vec<String> = followed.iter().map(|f| f.method.to_string()).collect();
-        names.push("reference".into());
-        let names: Vec<&str> = names.iter().map(String::as_str).collect();
-        let n = references.len();
-        let strips: Vec<Rgb8> = ping_pong(n)
-            .into_iter()
-            .map(|t| {
-                let mut images: Vec<&Rgb8> = followed.iter().map(|f| &f.images[t]).collect();
-                images.push(&references[t]);
-                strip(&images, &names, &format!("frame {} of {n}", t + 1), crop)
-            })
-            .collect::<Result<_>>()?;
-        let scene_dir = dir.join(file_safe(&job.name));
-        std::fs::create_dir_all(&scene_dir)
-            .with_context(|| format!("cannot create {}", scene_dir.display()))?;
-        save_apng(&scene_dir.join("motion.png"), &strips)?;
-        Ok((rows, crop))
+        Ok((references, masks))
     }
+}
+
+/// The methods followed on `job`'s scene: those of [`MOTION_METHODS`] the
+/// cpu backend renders there, each temporal one with a fresh sequence.
+fn followers(cpu: &(dyn Backend + Send + Sync), job: &SceneJob) -> Result<Vec<Followed>> {
+    MOTION_METHODS
+        .iter()
+        .filter(|m| cpu.supports(&job.scene, &m.single_frame()).is_ok())
+        .map(|&method| -> Result<Followed> {
+            let taa = method
+                .is_temporal()
+                .then(|| Taa::new(method, TaaConfig::default()))
+                .transpose()?;
+            Ok(Followed {
+                method,
+                taa,
+                images: Vec::new(),
+                ms: Vec::new(),
+            })
+        })
+        .collect()
+}
+
+/// The row of one followed method: its FLIP and SSIM per frame, its
+/// instability pooled per class, its median frame time. NoAA's instability
+/// maps are also summed into `noaa_unstable`, where the crop is chosen.
+fn motion_row(
+    job: &SceneJob,
+    f: &Followed,
+    references: &[Rgb8],
+    masks: &[ClassMasks],
+    noaa_unstable: &mut [f32],
+) -> Result<MotionRow> {
+    let mut pooled = Pooled::default();
+    for t in 1..f.images.len() {
+        let map = instability(
+            (&f.images[t - 1], &f.images[t]),
+            (&references[t - 1], &references[t]),
+        )?;
+        pooled.add(&map, &masks[t]);
+        if f.method == NOAA {
+            noaa_unstable
+                .iter_mut()
+                .zip(&map)
+                .for_each(|(a, b)| *a += b);
+        }
+    }
+    let flip = f
+        .images
+        .iter()
+        .zip(references)
+        .map(|(i, r)| metrics::flip(r, i).map(|fl| fl.mean))
+        .collect::<Result<Vec<f64>, _>>()?;
+    let ssim = f
+        .images
+        .iter()
+        .zip(references)
+        .map(|(i, r)| metrics::ssim::ssim(r, i).map(|s| s.mean))
+        .collect::<Result<Vec<f64>, _>>()?;
+    let mut ms = f.ms.clone();
+    ms.sort_by(f64::total_cmp);
+    Ok(MotionRow {
+        scene: job.name.to_string(),
+        method: f.method.to_string(),
+        flip,
+        ssim,
+        frames_to_beat_noaa: None,
+        instability: pooled.mean(),
+        ms_per_frame: ms[ms.len() / 2],
+    })
+}
+
+/// Each row's [`MotionRow::frames_to_beat_noaa`] against NoAA's row, where
+/// there is one (NoAA's own stays `None`).
+fn set_frames_to_beat_noaa(rows: &mut [MotionRow]) {
+    let noaa_name = NOAA.to_string();
+    if let Some(noaa) = rows
+        .iter()
+        .find(|r| r.method == noaa_name)
+        .map(|r| r.flip.clone())
+    {
+        for r in rows.iter_mut().filter(|r| r.method != noaa_name) {
+            r.frames_to_beat_noaa = frames_to_beat(&r.flip, &noaa);
+        }
+    }
+}
+
+/// Writes `scene_dir/motion.png`: the crop of every followed method and of
+/// the reference side by side, frame after frame, played forth and back.
+fn save_animation(
+    scene_dir: &Path,
+    followed: &[Followed],
+    references: &[Rgb8],
+    crop: MotionCrop,
+) -> Result<()> {
+    let mut names: Vec<String> = followed.iter().map(|f| f.method.to_string()).collect();
+    names.push("reference".into());
+    let names: Vec<&str> = names.iter().map(String::as_str).collect();
+    let n = references.len();
+    let strips: Vec<Rgb8> = ping_pong(n)
+        .into_iter()
+        .map(|t| {
+            let mut images: Vec<&Rgb8> = followed.iter().map(|f| &f.images[t]).collect();
+            images.push(&references[t]);
+            strip(&images, &names, &format!("frame {} of {n}", t + 1), crop)
+        })
+        .collect::<Result<_>>()?;
+    std::fs::create_dir_all(scene_dir)
+        .with_context(|| format!("cannot create {}", scene_dir.display()))?;
+    save_apng(&scene_dir.join("motion.png"), &strips)
 }
 
 fn opt(v: Option<f64>) -> String {

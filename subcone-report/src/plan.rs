@@ -168,47 +168,120 @@ pub(crate) fn parse_method(s: &str, what: &str) -> Result<Method> {
     s.parse::<Method>().map_err(|e| anyhow!("{what}: {e}"))
 }
 
-impl Plan {
-    pub(crate) fn new(args: &ReportArgs) -> Result<Plan> {
-        let mode = match (args.quick, args.timing_only) {
-            (_, true) => Mode::TimingOnly,
-            (true, false) => Mode::Quick,
-            (false, false) => Mode::Full,
-        };
-        let backends = parse_backends(&args.backend)?;
-        let names: Vec<String> = if args.methods.is_empty() {
-            default_methods().into_iter().map(String::from).collect()
+/// The run mode `args` asks for: `--timing-only` wins over `--quick`.
+fn mode_of(args: &ReportArgs) -> Mode {
+    match (args.quick, args.timing_only) {
+        (_, true) => Mode::TimingOnly,
+        (true, false) => Mode::Quick,
+        (false, false) => Mode::Full,
+    }
+}
+
+/// The names `--method` gives, trimmed, blanks dropped ([`default_methods`]
+/// when none is given); an error when only blanks are.
+fn method_names(args: &ReportArgs) -> Result<Vec<String>> {
+    let names: Vec<String> = if args.methods.is_empty() {
+        default_methods().into_iter().map(String::from).collect()
+    } else {
+        args.methods
+            .iter()
+            .map(|s| s.trim().to_string())
+            .filter(|s| !s.is_empty())
+            .collect()
+    };
+    if names.is_empty() {
+        bail!("--method names no method");
+    }
+    Ok(names)
+}
+
+/// The methods the run renders, in the order named, once each: every name
+/// that is not a post-process row, and NoAA first when a post-process
+/// needs its frame but `names` does not ask for it.
+fn methods_of(names: &[String], post: &[PostPlan]) -> Result<Vec<Method>> {
+    let mut methods: Vec<Method> = Vec::new();
+    if !post.is_empty()
+        && !names
+            .iter()
+            .any(|n| n.parse::<Method>().is_ok_and(|m| m == NOAA))
+    {
+        // A post-process filters the NoAA frame and is judged against it.
+        methods.push(NOAA);
+    }
+    let is_post = |n: &String| {
+        post.iter()
+            .any(|p| matches!(p, PostPlan::On(p) if p.name() == n.as_str()))
+            || n == SMAA
+    };
+    for n in names.iter().filter(|n| !is_post(n)) {
+        let m = parse_method(n, "--method")?;
+        if !methods.contains(&m) {
+            methods.push(m);
+        }
+    }
+    Ok(methods)
+}
+
+/// The `--size` asked for, checked to be a size renders accept.
+fn size_of(args: &ReportArgs) -> Result<Option<(u32, u32)>> {
+    Ok(match &args.size {
+        Some(s) => {
+            let (w, h) = setup::parse_size(s)?;
+            RenderSettings::new(w, h)
+                .validate()
+                .map_err(|e| anyhow!("--size {s}: {e}"))?;
+            Some((w, h))
+        }
+        None => None,
+    })
+}
+
+/// The frames of the motion section when it runs (asked with `--motion`,
+/// always in quick mode): `--motion-frames` or the mode's default, 2 to
+/// 1000. An error with `--timing-only`, which has no references to compare
+/// with.
+fn motion_frames_of(args: &ReportArgs, mode: Mode) -> Result<Option<u32>> {
+    if args.motion || mode == Mode::Quick {
+        if mode == Mode::TimingOnly {
+            bail!("--motion compares frames with references: it cannot run with --timing-only");
+        }
+        let default = if mode == Mode::Quick {
+            motion::QUICK_FRAMES
         } else {
-            args.methods
-                .iter()
-                .map(|s| s.trim().to_string())
-                .filter(|s| !s.is_empty())
-                .collect()
+            motion::FRAMES
         };
-        if names.is_empty() {
-            bail!("--method names no method");
+        let frames = args.motion_frames.unwrap_or(default);
+        if !(2..=1000).contains(&frames) {
+            bail!("--motion-frames {frames}: a path needs 2 to 1000 frames");
         }
-        let mut methods: Vec<Method> = Vec::new();
+        Ok(Some(frames))
+    } else {
+        Ok(None)
+    }
+}
+
+/// The camera offsets the error is measured at: the first `--error-offsets`
+/// of [`offsets::ERROR_OFFSETS`] (all by default), none in timing-only mode.
+fn error_offsets_of(args: &ReportArgs, mode: Mode) -> Result<Vec<(f32, f32)>> {
+    Ok(match (mode, args.error_offsets) {
+        (Mode::TimingOnly, _) => Vec::new(),
+        (_, Some(k)) if !(1..=offsets::ERROR_OFFSETS.len()).contains(&k) => bail!(
+            "--error-offsets {k}: expected 1 to {}",
+            offsets::ERROR_OFFSETS.len()
+        ),
+        (_, k) => offsets::ERROR_OFFSETS[..k.unwrap_or(offsets::ERROR_OFFSETS.len())].to_vec(),
+    })
+}
+
+impl Plan {
+    /// The plan `args` asks for, resolved and validated, flag by flag in
+    /// the order below: the first bad one is the error.
+    pub(crate) fn new(args: &ReportArgs) -> Result<Plan> {
+        let mode = mode_of(args);
+        let backends = parse_backends(&args.backend)?;
+        let names = method_names(args)?;
         let post = PostPlan::all(&names, args)?;
-        if !post.is_empty()
-            && !names
-                .iter()
-                .any(|n| n.parse::<Method>().is_ok_and(|m| m == NOAA))
-        {
-            // A post-process filters the NoAA frame and is judged against it.
-            methods.push(NOAA);
-        }
-        let is_post = |n: &String| {
-            post.iter()
-                .any(|p| matches!(p, PostPlan::On(p) if p.name() == n.as_str()))
-                || n == SMAA
-        };
-        for n in names.iter().filter(|n| !is_post(n)) {
-            let m = parse_method(n, "--method")?;
-            if !methods.contains(&m) {
-                methods.push(m);
-            }
-        }
+        let methods = methods_of(&names, &post)?;
         let runs = match args.runs {
             Some(0) => bail!("--runs must be at least 1"),
             Some(n) if n > 1000 => bail!("--runs {n} is more than 1000"),
@@ -220,37 +293,12 @@ impl Plan {
             None if args.quick => Method::ssaa_grid(8),
             None => Method::ssaa_grid(16),
         };
-        let size = match &args.size {
-            Some(s) => {
-                let (w, h) = setup::parse_size(s)?;
-                RenderSettings::new(w, h)
-                    .validate()
-                    .map_err(|e| anyhow!("--size {s}: {e}"))?;
-                Some((w, h))
-            }
-            None => None,
-        };
+        let size = size_of(args)?;
         if args.no_paper_scenes && args.scenes.is_empty() {
             bail!("--no-paper-scenes leaves no scene: add at least one --scene");
         }
         let cache = args.cache.clone().unwrap_or_else(|| args.out.join("cache"));
-        let motion_frames = if args.motion || mode == Mode::Quick {
-            if mode == Mode::TimingOnly {
-                bail!("--motion compares frames with references: it cannot run with --timing-only");
-            }
-            let default = if mode == Mode::Quick {
-                motion::QUICK_FRAMES
-            } else {
-                motion::FRAMES
-            };
-            let frames = args.motion_frames.unwrap_or(default);
-            if !(2..=1000).contains(&frames) {
-                bail!("--motion-frames {frames}: a path needs 2 to 1000 frames");
-            }
-            Some(frames)
-        } else {
-            None
-        };
+        let motion_frames = motion_frames_of(args, mode)?;
         let sweep =
             mode != Mode::Quick && size.is_none() && !args.no_sweep && methods.contains(&SRAA_RT);
         // "Where SRAA pays": the full sweep when asked; otherwise a short one
@@ -262,6 +310,7 @@ impl Plan {
         } else {
             None
         };
+        let offsets = error_offsets_of(args, mode)?;
         Ok(Plan {
             mode,
             out: args.out.clone(),
@@ -278,16 +327,7 @@ impl Plan {
             ao: args.ao,
             sraa_sweep,
             motion_frames,
-            offsets: match (mode, args.error_offsets) {
-                (Mode::TimingOnly, _) => Vec::new(),
-                (_, Some(k)) if !(1..=offsets::ERROR_OFFSETS.len()).contains(&k) => bail!(
-                    "--error-offsets {k}: expected 1 to {}",
-                    offsets::ERROR_OFFSETS.len()
-                ),
-                (_, k) => {
-                    offsets::ERROR_OFFSETS[..k.unwrap_or(offsets::ERROR_OFFSETS.len())].to_vec()
-                }
-            },
+            offsets,
             offset_divisor: if mode == Mode::Full && size.is_none() {
                 offsets::FULL_OFFSET_DIVISOR
             } else {

@@ -194,6 +194,19 @@ fn label(r: &ResultRow, backends: usize) -> String {
     }
 }
 
+/// A point of the error-against-time plot: the row, its median time per
+/// frame (ms) and its mean FLIP.
+type TimedPoint<'r> = (&'r ResultRow, f64, f64);
+
+/// The error-against-time chart: a log-scale time axis against a linear
+/// error axis.
+type ErrorTimeChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<LogCoord<f64>, RangedCoordf64>>;
+
+/// Names the error-against-time plot in errors.
+const ERROR_TIME: &str = "error-against-time plot";
+
+/// The error-against-time plot of `scene`: each row's mean FLIP against its
+/// median time, labelled, over the staircase of the Pareto front.
 fn draw_error_time<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     scene: &str,
@@ -202,16 +215,37 @@ fn draw_error_time<DB: DrawingBackend>(
 where
     DB::ErrorType: 'static,
 {
-    let e = "error-against-time plot";
+    let e = ERROR_TIME;
     root.fill(&WHITE).map_err(pe(e))?;
-    // A row repeating another's image adds no point (the other's label names
-    // it); a row timed on another device is drawn hollow, off the front.
     let left_out = crate::answer::exclusions(rows);
-    let pts: Vec<(&ResultRow, f64, f64)> = rows
-        .iter()
+    let pts = error_time_points(rows, &left_out);
+    let backends = backend_count(rows);
+    let size = (PLOT_SIZE.1 / 32) as i32;
+    let mut chart = error_time_chart(root, scene, &pts, size)?;
+    let front: Vec<(f64, f64)> =
+        crate::answer::front(rows, &left_out, crate::classes::Metric::Flip)
+            .iter()
+            .map(|p| (p.ms, p.error))
+            .collect();
+    draw_front_staircase(&mut chart, &front)?;
+    draw_error_time_points(&mut chart, &pts, &front, &left_out, backends, size - 4)?;
+    legend(&mut chart, SeriesLabelPosition::UpperRight, size - 4, e)?;
+    root.present().map_err(pe(e))?;
+    Ok(())
+}
+
+/// The rows the error-against-time plot draws, with their time and error.
+/// A row repeating another's image adds no point (the other's label names
+/// it); a row timed on another device is kept, to be drawn hollow, off the
+/// front.
+fn error_time_points<'r>(
+    rows: &[&'r ResultRow],
+    left_out: &[crate::answer::Excluded],
+) -> Vec<TimedPoint<'r>> {
+    rows.iter()
         .filter(|r| {
             !matches!(
-                crate::answer::excluded(&left_out, r).map(|e| &e.why),
+                crate::answer::excluded(left_out, r).map(|e| &e.why),
                 Some(crate::answer::Why::SameImage { .. })
             )
         })
@@ -223,8 +257,22 @@ where
                 f,
             ))
         })
-        .collect();
-    let backends = backend_count(rows);
+        .collect()
+}
+
+/// The error-against-time chart's caption, axes and mesh on `root`, its
+/// ranges wide enough for `pts` (a log-scale margin of 1.6× either side in
+/// time, 20 % above the largest error).
+fn error_time_chart<'a, DB: DrawingBackend>(
+    root: &'a DrawingArea<DB, Shift>,
+    scene: &str,
+    pts: &[TimedPoint<'_>],
+    size: i32,
+) -> Result<ErrorTimeChart<'a, DB>>
+where
+    DB::ErrorType: 'static,
+{
+    let e = ERROR_TIME;
     let tmin = pts.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
     let tmax = pts.iter().map(|p| p.1).fold(0.0, f64::max);
     let fmax = pts.iter().map(|p| p.2).fold(0.0, f64::max);
@@ -234,7 +282,6 @@ where
         (tmin / 1.6, tmax * 1.6)
     };
     let y1 = if fmax > 0.0 { fmax * 1.2 } else { 0.1 };
-    let size = (PLOT_SIZE.1 / 32) as i32;
     let mut chart = ChartBuilder::on(root)
         .caption(
             format!("{scene}: mean FLIP against median time"),
@@ -254,11 +301,18 @@ where
         .x_label_formatter(&|v| format_ms(*v))
         .draw()
         .map_err(pe(e))?;
-    let front: Vec<(f64, f64)> =
-        crate::answer::front(rows, &left_out, crate::classes::Metric::Flip)
-            .iter()
-            .map(|p| (p.ms, p.error))
-            .collect();
+    Ok(chart)
+}
+
+/// The Pareto front (time, error) as a staircase, with its legend entry;
+/// nothing for a front of fewer than two points.
+fn draw_front_staircase<DB: DrawingBackend>(
+    chart: &mut ErrorTimeChart<'_, DB>,
+    front: &[(f64, f64)],
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
     if front.len() > 1 {
         // A staircase: no method is better than the front between its points.
         let mut stairs = Vec::new();
@@ -269,49 +323,90 @@ where
         stairs.extend(front.last().copied());
         chart
             .draw_series(LineSeries::new(stairs, BLACK.mix(0.6).stroke_width(2)))
-            .map_err(pe(e))?
+            .map_err(pe(ERROR_TIME))?
             .label("Pareto front")
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
     }
+    Ok(())
+}
+
+/// The label of a point: the method (and backend when there are several),
+/// the rows sharing its image, and a dagger when it was timed on another
+/// device.
+fn error_time_label(
+    r: &ResultRow,
+    backends: usize,
+    left_out: &[crate::answer::Excluded],
+) -> String {
+    let mut text = label(r, backends);
+    let twins = crate::answer::same_image_twins(left_out, r);
+    if !twins.is_empty() {
+        let twins: Vec<String> = twins.iter().map(|t| t.to_string()).collect();
+        text = format!("{text} (= {})", twins.join(", "));
+    }
+    if crate::answer::excluded(left_out, r).is_some() {
+        text = format!("{text} † other device");
+    }
+    text
+}
+
+/// Where a `w × h` label goes beside its point at (`px`, `py`): the offset of
+/// the first of four places (then one higher up) whose box does not collide
+/// with one in `placed`, else the first; the chosen box joins `placed`.
+fn place_label(
+    placed: &mut Vec<(i32, i32, i32, i32)>,
+    px: i32,
+    py: i32,
+    w: i32,
+    h: i32,
+) -> (i32, i32) {
+    let candidates = [
+        (9, -h - 2),
+        (9, 4),
+        (-w - 9, -h - 2),
+        (-w - 9, 4),
+        (9, -2 * h - 6),
+    ];
+    let collides = |dx: i32, dy: i32| {
+        let (x0, y0) = (px + dx, py + dy);
+        placed
+            .iter()
+            .any(|&(a, b, c, d)| x0 < c && a < x0 + w && y0 < d && b < y0 + h)
+    };
+    let (dx, dy) = candidates
+        .iter()
+        .copied()
+        .find(|&(dx, dy)| !collides(dx, dy))
+        .unwrap_or(candidates[0]);
+    placed.push((px + dx, py + dy, px + dx + w, py + dy + h));
+    (dx, dy)
+}
+
+/// Each point as a dot in its method's colour (larger on the front, hollow
+/// when timed on another device) with its label beside it.
+fn draw_error_time_points<DB: DrawingBackend>(
+    chart: &mut ErrorTimeChart<'_, DB>,
+    pts: &[TimedPoint<'_>],
+    front: &[(f64, f64)],
+    left_out: &[crate::answer::Excluded],
+    backends: usize,
+    font_px: i32,
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
     // Labels go beside their point, at the first of four places that does not
     // collide with a label already placed (boxes estimated from the font size).
-    let font_px = size - 4;
     let mut placed: Vec<(i32, i32, i32, i32)> = Vec::new();
-    for (r, t, f) in &pts {
+    for (r, t, f) in pts {
         let c = method_colour(&r.method.to_string());
         let on_front = front.iter().any(|p| p.0 == *t && p.1 == *f);
-        let other_device = crate::answer::excluded(&left_out, r).is_some();
-        let mut text = label(r, backends);
-        let twins = crate::answer::same_image_twins(&left_out, r);
-        if !twins.is_empty() {
-            let twins: Vec<String> = twins.iter().map(|t| t.to_string()).collect();
-            text = format!("{text} (= {})", twins.join(", "));
-        }
-        if other_device {
-            text = format!("{text} † other device");
-        }
+        let other_device = crate::answer::excluded(left_out, r).is_some();
+        let text = error_time_label(r, backends, left_out);
         let (px, py) = chart.backend_coord(&(*t, *f));
         let w = (text.chars().count() as i32 * font_px * 6) / 10 + 2;
         let h = font_px + 2;
-        let candidates = [
-            (9, -h - 2),
-            (9, 4),
-            (-w - 9, -h - 2),
-            (-w - 9, 4),
-            (9, -2 * h - 6),
-        ];
-        let collides = |dx: i32, dy: i32| {
-            let (x0, y0) = (px + dx, py + dy);
-            placed
-                .iter()
-                .any(|&(a, b, c, d)| x0 < c && a < x0 + w && y0 < d && b < y0 + h)
-        };
-        let (dx, dy) = candidates
-            .iter()
-            .copied()
-            .find(|&(dx, dy)| !collides(dx, dy))
-            .unwrap_or(candidates[0]);
-        placed.push((px + dx, py + dy, px + dx + w, py + dy + h));
+        let (dx, dy) = place_label(&mut placed, px, py, w, h);
         chart
             .draw_series(std::iter::once(
                 EmptyElement::at((*t, *f))
@@ -326,10 +421,8 @@ where
                     )
                     + Text::new(text, (dx, dy), (FAMILY, font_px).into_font().color(&c)),
             ))
-            .map_err(pe(e))?;
+            .map_err(pe(ERROR_TIME))?;
     }
-    legend(&mut chart, SeriesLabelPosition::UpperRight, size - 4, e)?;
-    root.present().map_err(pe(e))?;
     Ok(())
 }
 

@@ -101,11 +101,32 @@ struct State {
     output_view: wgpu::TextureView,
 }
 
+impl State {
+    /// The frame's size as a copy extent.
+    fn extent(&self) -> wgpu::Extent3d {
+        wgpu::Extent3d {
+            width: self.width,
+            height: self.height,
+            depth_or_array_layers: 1,
+        }
+    }
+}
+
 /// Bytes per row of the read-back buffer: `4 · width` rounded up to
 /// [`wgpu::COPY_BYTES_PER_ROW_ALIGNMENT`], as texture-to-buffer copies demand.
 fn padded_row(width: u32) -> u64 {
     let align = wgpu::COPY_BYTES_PER_ROW_ALIGNMENT as u64;
     (4 * width as u64).div_ceil(align) * align
+}
+
+/// The RGB bytes of `image` as RGBA, alpha opaque, for the `Rgba8Unorm`
+/// input texture (there is no three-channel texture format).
+fn rgba_of(image: &Rgb8) -> Vec<u8> {
+    image
+        .data
+        .chunks_exact(3)
+        .flat_map(|p| [p[0], p[1], p[2], 255])
+        .collect()
 }
 
 /// Refuse an image the GPU must never see: empty, or whose bytes do not
@@ -247,6 +268,38 @@ impl SmaaPost {
     pub fn apply(&self, image: &Rgb8) -> Result<(Rgb8, PassTiming)> {
         check_input(image)?;
         let (w, h) = (image.width, image.height);
+        let (row, readback_size) = self.readback_layout(w, h)?;
+
+        let mut guard = self.state.lock().unwrap_or_else(|e| e.into_inner());
+        let state = self.prepare(&mut guard, w, h)?;
+
+        let start = Instant::now();
+        let rgba = rgba_of(image);
+        let readback = self
+            .ctx
+            .scoped("SMAA", || {
+                self.upload(state, &rgba);
+                self.blit_and_smaa(state);
+                self.copy_out(state, row, readback_size)
+            })
+            .map_err(|e| anyhow!("{e}"))?;
+        let data = self.read_back(&readback, w, h, row, image.data.len())?;
+        let wall = start.elapsed();
+        let timing = self.timing(wall)?;
+        Ok((
+            Rgb8 {
+                width: w,
+                height: h,
+                data,
+            },
+            timing,
+        ))
+    }
+
+    /// The read-back buffer's padded row and total size for a `w × h` frame,
+    /// refusing a size past the device's texture or buffer limits before any
+    /// GPU work.
+    fn readback_layout(&self, w: u32, h: u32) -> Result<(u64, u64)> {
         let ctx = &self.ctx;
         ctx.check_texture_size(w, h).map_err(|e| anyhow!("{e}"))?;
         let row = padded_row(w);
@@ -258,118 +311,128 @@ impl SmaaPost {
                  buffer limit of {max_buffer}"
             );
         }
+        Ok((row, readback_size))
+    }
 
-        let mut guard = self.state.lock().unwrap_or_else(|e| e.into_inner());
-        let state = self.prepare(&mut guard, w, h)?;
+    /// Writes the RGBA bytes into the input texture.
+    fn upload(&self, state: &State, rgba: &[u8]) {
+        self.ctx.queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &state.input,
+                mip_level: 0,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            rgba,
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(4 * state.width),
+                rows_per_image: Some(state.height),
+            },
+            state.extent(),
+        );
+    }
 
-        let start = Instant::now();
-        let rgba: Vec<u8> = image
-            .data
-            .chunks_exact(3)
-            .flat_map(|p| [p[0], p[1], p[2], 255])
-            .collect();
-        let device = &ctx.device;
-        let queue = &ctx.queue;
-        let extent = wgpu::Extent3d {
-            width: w,
-            height: h,
-            depth_or_array_layers: 1,
-        };
-        let readback = ctx
-            .scoped("SMAA", || {
-                queue.write_texture(
-                    wgpu::TexelCopyTextureInfo {
-                        texture: &state.input,
-                        mip_level: 0,
-                        origin: wgpu::Origin3d::ZERO,
-                        aspect: wgpu::TextureAspect::All,
+    /// Submits the blit of the input into SMAA's colour buffer (after the
+    /// first timestamp), then SMAA's three passes into the output texture.
+    fn blit_and_smaa(&self, state: &mut State) {
+        let device = &self.ctx.device;
+        let queue = &self.ctx.queue;
+        let frame = state.smaa.start_frame(device, queue, &state.output_view);
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("smaa blit"),
+        });
+        if let Some((set, _)) = &self.timestamps {
+            encoder.write_timestamp(set, 0);
+        }
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("smaa blit"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &frame,
+                    resolve_target: None,
+                    depth_slice: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                        store: wgpu::StoreOp::Store,
                     },
-                    &rgba,
-                    wgpu::TexelCopyBufferLayout {
-                        offset: 0,
-                        bytes_per_row: Some(4 * w),
-                        rows_per_image: Some(h),
-                    },
-                    extent,
-                );
-                let frame = state.smaa.start_frame(device, queue, &state.output_view);
-                let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("smaa blit"),
-                });
-                if let Some((set, _)) = &self.timestamps {
-                    encoder.write_timestamp(set, 0);
-                }
-                {
-                    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                        label: Some("smaa blit"),
-                        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                            view: &frame,
-                            resolve_target: None,
-                            depth_slice: None,
-                            ops: wgpu::Operations {
-                                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                                store: wgpu::StoreOp::Store,
-                            },
-                        })],
-                        depth_stencil_attachment: None,
-                        timestamp_writes: None,
-                        occlusion_query_set: None,
-                        multiview_mask: None,
-                    });
-                    pass.set_pipeline(&self.blit);
-                    pass.set_bind_group(0, &state.blit_group, &[]);
-                    pass.draw(0..3, 0..1);
-                }
-                queue.submit([encoder.finish()]);
-                // Submits edge detection, blending weights and neighbourhood
-                // blending into `output_view`, after the blit above.
-                frame.resolve();
-                let readback = device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("smaa read-back"),
-                    size: readback_size,
-                    usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-                    mapped_at_creation: false,
-                });
-                let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("smaa read-back"),
-                });
-                if let Some((set, resolve)) = &self.timestamps {
-                    encoder.write_timestamp(set, 1);
-                    encoder.resolve_query_set(set, 0..2, resolve, 0);
-                }
-                encoder.copy_texture_to_buffer(
-                    wgpu::TexelCopyTextureInfo {
-                        texture: &state.output,
-                        mip_level: 0,
-                        origin: wgpu::Origin3d::ZERO,
-                        aspect: wgpu::TextureAspect::All,
-                    },
-                    wgpu::TexelCopyBufferInfo {
-                        buffer: &readback,
-                        layout: wgpu::TexelCopyBufferLayout {
-                            offset: 0,
-                            bytes_per_row: Some(row as u32),
-                            rows_per_image: Some(h),
-                        },
-                    },
-                    extent,
-                );
-                queue.submit([encoder.finish()]);
-                readback
-            })
-            .map_err(|e| anyhow!("{e}"))?;
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.blit);
+            pass.set_bind_group(0, &state.blit_group, &[]);
+            pass.draw(0..3, 0..1);
+        }
+        queue.submit([encoder.finish()]);
+        // Submits edge detection, blending weights and neighbourhood
+        // blending into `output_view`, after the blit above.
+        frame.resolve();
+    }
 
+    /// Submits the second timestamp (and the resolve of both) and the copy
+    /// of the output texture into a new read-back buffer of `row`-byte rows,
+    /// which it returns.
+    fn copy_out(&self, state: &State, row: u64, readback_size: u64) -> wgpu::Buffer {
+        let device = &self.ctx.device;
+        let readback = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("smaa read-back"),
+            size: readback_size,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("smaa read-back"),
+        });
+        if let Some((set, resolve)) = &self.timestamps {
+            encoder.write_timestamp(set, 1);
+            encoder.resolve_query_set(set, 0..2, resolve, 0);
+        }
+        encoder.copy_texture_to_buffer(
+            wgpu::TexelCopyTextureInfo {
+                texture: &state.output,
+                mip_level: 0,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            wgpu::TexelCopyBufferInfo {
+                buffer: &readback,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(row as u32),
+                    rows_per_image: Some(state.height),
+                },
+            },
+            state.extent(),
+        );
+        self.ctx.queue.submit([encoder.finish()]);
+        readback
+    }
+
+    /// Waits for the GPU, maps `readback` and returns its `w × h` pixels as
+    /// RGB bytes (`capacity` of them), dropping alpha and each row's padding
+    /// to `row` bytes.
+    fn read_back(
+        &self,
+        readback: &wgpu::Buffer,
+        w: u32,
+        h: u32,
+        row: u64,
+        capacity: usize,
+    ) -> Result<Vec<u8>> {
         let (tx, rx) = std::sync::mpsc::channel();
         readback.map_async(wgpu::MapMode::Read, .., move |r| {
             let _ = tx.send(r);
         });
-        ctx.wait("SMAA").map_err(|e| anyhow!("{e}"))?;
+        self.ctx.wait("SMAA").map_err(|e| anyhow!("{e}"))?;
         match rx.recv_timeout(Duration::from_secs(1)) {
             Ok(Ok(())) => {}
             Ok(Err(e)) => bail!("SMAA read-back failed: {e}"),
             Err(_) => bail!("SMAA read-back did not complete"),
         }
-        let mut data = Vec::with_capacity(image.data.len());
+        let mut data = Vec::with_capacity(capacity);
         {
             let mapped = readback
                 .get_mapped_range(..)
@@ -380,8 +443,15 @@ impl SmaaPost {
             }
         }
         readback.unmap();
-        let wall = start.elapsed();
-        let timing = match &self.timestamps {
+        Ok(data)
+    }
+
+    /// The frame's time: from the two GPU timestamps where the device has
+    /// them, falling back to `wall` (marked why) when they read zero; the
+    /// wall time elsewhere.
+    fn timing(&self, wall: Duration) -> Result<PassTiming> {
+        let ctx = &self.ctx;
+        Ok(match &self.timestamps {
             Some((_, resolve)) => {
                 let bytes = ctx
                     .read_buffer(resolve, 0, 16)
@@ -415,15 +485,7 @@ impl SmaaPost {
                 time: wall,
                 source: ctx.timing_source(),
             },
-        };
-        Ok((
-            Rgb8 {
-                width: w,
-                height: h,
-                data,
-            },
-            timing,
-        ))
+        })
     }
 
     /// The state for a `w × h` frame: kept if the size is unchanged, else

@@ -222,6 +222,26 @@ fn ctss_targets(s: &ReportSummary, b: &str, md: &mut String) {
 /// The performance targets, each met or not met, with its figure.
 pub fn targets(s: &ReportSummary, ctx: &Context) -> String {
     let mut md = String::new();
+    targets_intro(&mut md);
+    let sdf = ctx.sdf_scenes();
+    for b in &ctx.backends {
+        ctss_overhead_targets(s, &sdf, b, &mut md);
+        ctss_targets(s, b, &mut md);
+        sraa_targets(s, &sdf, b, &mut md);
+        sraa_rt_ssaa16_targets(s, &sdf, b, &mut md);
+    }
+    md.push_str(&crate::ao_sweep::target_rows(&s.ao_sweep));
+    md.push_str(&crate::hybrid::target_rows(&s.rows, ctx));
+    throughput_targets(s, &mut md);
+    kernel_targets(s, &mut md);
+    md.push_str(&crate::hybrid::raster_throughput(&s.throughput));
+    let _ = writeln!(md);
+    md
+}
+
+/// The section's heading, the paragraph on how each target is measured and
+/// judged, and the table's header.
+fn targets_intro(md: &mut String) {
     let _ = writeln!(md, "## Performance targets\n");
     let _ = writeln!(
         md,
@@ -247,68 +267,79 @@ lowest or its highest round.\n",
     );
     let _ = writeln!(md, "| target | backend | scenes | figure | met |");
     let _ = writeln!(md, "|---|---|---|--:|---|");
-    let sdf = ctx.sdf_scenes();
-    for b in &ctx.backends {
-        for (method, limit) in CTSS_TARGETS {
-            let Some(avg) = MeanRatio::of(s.rows.iter().filter(|r| {
-                &r.backend == b && r.method == method && sdf.contains(&r.scene.as_str())
-            })) else {
-                continue;
-            };
-            // Judged on the medians; a limit inside the range is worth a word.
-            let close = match avg.range {
-                Some((lo, hi)) if lo <= limit && limit <= hi => ", the limit inside the range",
-                _ => "",
-            };
-            let _ = writeln!(
-                md,
-                "| {method} ≤ {limit:.2}x NoAA (mean time ratio) | {b} | {} SDF scenes | {}{close} | {} |",
-                avg.n,
-                avg.show(3, true),
-                yes(avg.mean <= limit)
-            );
-        }
-        ctss_targets(s, b, &mut md);
-        sraa_targets(s, &sdf, b, &mut md);
-        // The SRAA-RT target is the paper's, on triangle scenes.
-        for rt in rows_for(&s.rows, SRAA_RT, b)
-            .into_iter()
-            .filter(|r| !sdf.contains(&r.scene.as_str()))
-        {
-            let Some(ss) = s
-                .rows
-                .iter()
-                .find(|x| x.method == SSAA16 && &x.backend == b && x.scene == rt.scene)
-            else {
-                continue;
-            };
-            // Per round where both were timed in the same rounds; else the
-            // ratio of medians.
-            let per_round = timing::round_ratios(&rt.round_ms, &ss.round_ms);
-            let share = per_round.map_or(rt.ms_median / ss.ms_median, |p| p.median);
-            let range = per_round
-                .filter(|p| p.min != p.max)
-                .map(|p| format!(" (1/{:.2}–1/{:.2})", 1.0 / p.max, 1.0 / p.min))
-                .unwrap_or_default();
-            let edge = match (rt.edge_flip_mean, ss.edge_flip_mean) {
-                (Some(a), Some(e)) if e > 0.0 => Some(a / e),
-                _ => None,
-            };
-            let met = share <= SRAA_RT_TIME_SHARE && edge.is_some_and(|e| e <= SRAA_RT_EDGE_FACTOR);
-            let _ = writeln!(
-                md,
-                "| sraa-rt ≤ 1/6 of ssaa16's time, edge FLIP ≤ {SRAA_RT_EDGE_FACTOR}x ssaa16's | {b} | {} ({}x{}) | 1/{:.2}{range} of the time, edge FLIP {}x | {} |",
-                rt.scene,
-                rt.width,
-                rt.height,
-                1.0 / share,
-                f(edge, 2),
-                yes(met)
-            );
-        }
+}
+
+/// The rows of the CTSS overhead targets ([`CTSS_TARGETS`]) for backend
+/// `b`: each method's mean time ratio to NoAA over the SDF scenes.
+fn ctss_overhead_targets(s: &ReportSummary, sdf: &[&str], b: &str, md: &mut String) {
+    for (method, limit) in CTSS_TARGETS {
+        let Some(avg) =
+            MeanRatio::of(s.rows.iter().filter(|r| {
+                r.backend == b && r.method == method && sdf.contains(&r.scene.as_str())
+            }))
+        else {
+            continue;
+        };
+        // Judged on the medians; a limit inside the range is worth a word.
+        let close = match avg.range {
+            Some((lo, hi)) if lo <= limit && limit <= hi => ", the limit inside the range",
+            _ => "",
+        };
+        let _ = writeln!(
+            md,
+            "| {method} ≤ {limit:.2}x NoAA (mean time ratio) | {b} | {} SDF scenes | {}{close} | {} |",
+            avg.n,
+            avg.show(3, true),
+            yes(avg.mean <= limit)
+        );
     }
-    md.push_str(&crate::ao_sweep::target_rows(&s.ao_sweep));
-    md.push_str(&crate::hybrid::target_rows(&s.rows, ctx));
+}
+
+/// The rows of the SRAA-RT target against `ssaa16` for backend `b`: its
+/// share of the time and its edge FLIP ratio, per triangle scene.
+fn sraa_rt_ssaa16_targets(s: &ReportSummary, sdf: &[&str], b: &str, md: &mut String) {
+    // The SRAA-RT target is the paper's, on triangle scenes.
+    for rt in rows_for(&s.rows, SRAA_RT, b)
+        .into_iter()
+        .filter(|r| !sdf.contains(&r.scene.as_str()))
+    {
+        let Some(ss) = s
+            .rows
+            .iter()
+            .find(|x| x.method == SSAA16 && x.backend == b && x.scene == rt.scene)
+        else {
+            continue;
+        };
+        // Per round where both were timed in the same rounds; else the
+        // ratio of medians.
+        let per_round = timing::round_ratios(&rt.round_ms, &ss.round_ms);
+        let share = per_round.map_or(rt.ms_median / ss.ms_median, |p| p.median);
+        let range = per_round
+            .filter(|p| p.min != p.max)
+            .map(|p| format!(" (1/{:.2}–1/{:.2})", 1.0 / p.max, 1.0 / p.min))
+            .unwrap_or_default();
+        let edge = match (rt.edge_flip_mean, ss.edge_flip_mean) {
+            (Some(a), Some(e)) if e > 0.0 => Some(a / e),
+            _ => None,
+        };
+        let met = share <= SRAA_RT_TIME_SHARE && edge.is_some_and(|e| e <= SRAA_RT_EDGE_FACTOR);
+        let _ = writeln!(
+            md,
+            "| sraa-rt ≤ 1/6 of ssaa16's time, edge FLIP ≤ {SRAA_RT_EDGE_FACTOR}x ssaa16's | {b} | {} ({}x{}) | 1/{:.2}{range} of the time, edge FLIP {}x | {} |",
+            rt.scene,
+            rt.width,
+            rt.height,
+            1.0 / share,
+            f(edge, 2),
+            yes(met)
+        );
+    }
+}
+
+/// The rows of the ray-throughput targets: per instruction-set path and
+/// scene, the pipeline's primary (and shadow) ray rate against raw
+/// traversal's.
+fn throughput_targets(s: &ReportSummary, md: &mut String) {
     let pct = |x: f64| format!("{:.1}%", 100.0 * x);
     for t in &s.throughput {
         let r = &t.rates;
@@ -344,6 +375,11 @@ lowest or its highest round.\n",
             );
         }
     }
+}
+
+/// The rows of the kernels' ns-per-call targets, then (after the table) the
+/// ns per call of every timed kernel.
+fn kernel_targets(s: &ReportSummary, md: &mut String) {
     for k in &s.kernels {
         let Some(target) = k.target_ns else { continue };
         let _ = writeln!(
@@ -363,9 +399,6 @@ lowest or its highest round.\n",
             let _ = writeln!(md, "| {} | {:.2} |", k.name, k.ns_per_call);
         }
     }
-    md.push_str(&crate::hybrid::raster_throughput(&s.throughput));
-    let _ = writeln!(md);
-    md
 }
 
 #[cfg(test)]
