@@ -1,16 +1,23 @@
 //! `report.html`: the report as one interactive page beside `report.md`.
 //!
 //! At the top, report.md's first section (the report's answer), converted
-//! from its Markdown here (`SECTIONS`); below the plots, its "Verdicts at a
-//! glance". Per scene, a viewer of any two of its images, each labelled with
-//! its kind (render, FLIP map, 1 − SSIM map): a draggable split, one alone,
-//! or their difference (`|A − B|` or signed, times a scale), zoom 1× to 16×
-//! by nearest neighbour, pan, a colour bar per map shown, and under the
+//! from its Markdown here (`SECTIONS`) and laid out by the page to be seen
+//! whole on the first screen (its tables in a small font, the picks with
+//! its prose folded beside them, the fronts below; the font shrinks a step
+//! at a time when longer cells would push the last row out of the window);
+//! below the plots, its "Verdicts at a glance". Per scene, a viewer of any
+//! two of its images, each labelled with its kind (render, FLIP map,
+//! 1 − SSIM map), with a line on what they are (camera offset 0 at the
+//! quality size, where the table's errors are means over the offsets): a
+//! draggable split, one alone, or their difference (`|A − B|` or signed,
+//! times a scale), zoom 1× to 16× by nearest neighbour, pan, a colour bar
+//! with its range for each map shown and for the difference, and under the
 //! cursor the pixel's coordinates, edge classes, A's and B's RGB and their
 //! methods' FLIP and 1 − SSIM there; then the scene's results table (the
 //! columns a reader needs, with the verdict cells of report.md's verdict
-//! table and a mark on the FLIP-time Pareto front, every column behind a
-//! toggle), sortable by any column, its motion animation and its plots.
+//! table and a mark on each Pareto front of report.md's answer, FLIP and
+//! 1 − SSIM against time, every column behind a toggle), sortable by any
+//! column, its motion animation and its plots.
 //!
 //! The page is one file that works from `file://` with no network: its
 //! script and style are inline (`html/page.js`, `html/page.css`), the data is
@@ -84,8 +91,9 @@ const VERDICTS: &str = "Verdicts at a glance";
 
 /// The columns of the page's results table (the rest stays in the raw
 /// table behind a toggle and in `results.csv`): key in the row's data, and
-/// title. `pareto` and `verdict_<metric>` are the page's own.
-const SUMMARY_COLUMNS: [(&str, &str); 11] = [
+/// title. `pareto_<metric>` ([`FRONTS`]) and `verdict_<metric>` are the
+/// page's own.
+const SUMMARY_COLUMNS: [(&str, &str); 12] = [
     ("method", "method"),
     ("backend", "backend"),
     ("ms_median", "ms"),
@@ -93,10 +101,19 @@ const SUMMARY_COLUMNS: [(&str, &str); 11] = [
     ("flip_mean", "FLIP"),
     ("ssim_mean", "SSIM"),
     ("edge_flip_mean", "edge FLIP"),
-    ("pareto", "Pareto front (FLIP, time)"),
+    ("pareto_flip", "FLIP front (ms, FLIP)"),
+    ("pareto_ssim", "SSIM front (ms, 1 − SSIM)"),
     ("verdict_flip", "verdict, FLIP"),
     ("verdict_ssim", "verdict, SSIM"),
     ("timed_by", "timed by"),
+];
+
+/// The Pareto fronts the results table marks, those of report.md's answer:
+/// per metric, the column (in [`SUMMARY_COLUMNS`]) and the mark of a method
+/// on the front, which names the metric so that either column reads alone.
+const FRONTS: [(Metric, &str, &str); 2] = [
+    (Metric::Flip, "pareto_flip", "◆ FLIP"),
+    (Metric::Ssim, "pareto_ssim", "◆ SSIM"),
 ];
 
 /// Columns of `results.json` left out of the page's raw table: the scene (one
@@ -209,15 +226,16 @@ fn data(s: &ReportSummary, ctx: &Context, md: &str) -> Value {
                 s.rows.iter().filter(|r| r.scene == sc.name).collect();
             let (width, height) = sc.quality_size.unwrap_or(sc.timing_size);
             let masks = s.classes.iter().find(|c| c.scene == sc.name);
-            // The answer section's fronts: per backend, without the rows
-            // it leaves out (timed on another device, a repeated image).
-            let front = |r: &ResultRow| {
+            // The answer section's fronts: per backend and metric, without
+            // the rows it leaves out (timed on another device, a repeated
+            // image).
+            let front = |r: &ResultRow, metric: Metric| {
                 let same_backend: Vec<&ResultRow> = scene_rows
                     .iter()
                     .copied()
                     .filter(|x| x.backend == r.backend)
                     .collect();
-                answer::front(&same_backend, &left_out, Metric::Flip)
+                answer::front(&same_backend, &left_out, metric)
             };
             let rows: Vec<Value> = s
                 .rows
@@ -226,12 +244,10 @@ fn data(s: &ReportSummary, ctx: &Context, md: &str) -> Value {
                 .filter(|(r, _)| r.scene == sc.name)
                 .map(|(r, v)| {
                     let mut v = v.clone();
-                    let on_front = front(r).iter().any(|p| p.method == r.method);
-                    v["pareto"] = if on_front {
-                        json!("◆ front")
-                    } else {
-                        Value::Null
-                    };
+                    for (metric, column, mark) in FRONTS {
+                        let on_front = front(r, metric).iter().any(|p| p.method == r.method);
+                        v[column] = if on_front { json!(mark) } else { Value::Null };
+                    }
                     if let Some(t) = &verdicts {
                         for (metric, cell) in
                             t.verdicts(&r.method.to_string(), &r.backend, &sc.name)

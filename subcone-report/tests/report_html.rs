@@ -2,8 +2,10 @@
 //! methods) opened in headless Chromium, put into a state by its URL
 //! fragment; the screenshot's pixels and the dumped DOM are checked against
 //! the report's own images, rows, edge classes and error maps (the values
-//! under the cursor, the difference modes), its report.md sections, its
-//! Pareto front and its motion animation.
+//! under the cursor, the difference modes and their colour bars), its
+//! report.md sections, its Pareto fronts and its motion animation; and at a
+//! laptop's window, the answer whole on the first screen, with the report's
+//! own cells and with longer ones.
 //!
 //! Apart from the browser, a check that the committed screenshot
 //! `docs/quick/report-html.png` is of the committed page: the build recorded
@@ -25,6 +27,9 @@ use subcone_report::{self as report, ReportArgs, ReportSummary};
 /// Browser window size in CSS pixels (and screenshot pixels: scale 1): tall
 /// enough for the viewer below report.md's first section.
 const WINDOW: (u32, u32) = (1100, 1400);
+/// A laptop's window, in which the answer (every pick, every front) must be
+/// seen whole without scrolling.
+const LAPTOP: (u32, u32) = (1280, 800);
 /// Largest difference per 8-bit channel between a screenshot pixel and the
 /// image pixel it shows: the page draws the PNG unscaled in colour (sRGB
 /// profile forced) and by nearest neighbour, so any difference is the
@@ -71,6 +76,8 @@ struct Browser {
     page: String,
     /// Scratch directory: the browser profile and the screenshots.
     tmp: PathBuf,
+    /// Window size.
+    window: (u32, u32),
 }
 
 impl Browser {
@@ -88,7 +95,7 @@ impl Browser {
             "--no-first-run",
             "--allow-file-access-from-files",
         ])
-        .arg(format!("--window-size={},{}", WINDOW.0, WINDOW.1))
+        .arg(format!("--window-size={},{}", self.window.0, self.window.1))
         .arg(format!("--user-data-dir={}", profile.display()))
         .args(extra)
         .arg(format!("{}#{fragment}", self.page));
@@ -149,7 +156,7 @@ impl Browser {
         let img = image::open(&path)
             .unwrap_or_else(|e| panic!("screenshot {}: {e}", path.display()))
             .to_rgb8();
-        assert_eq!(img.dimensions(), WINDOW, "screenshot size");
+        assert_eq!(img.dimensions(), self.window, "screenshot size");
         img
     }
 }
@@ -317,6 +324,7 @@ fn report_page_in_a_browser() {
         bin,
         page: file_url(&summary.report_html),
         tmp: dir.path().join("browser"),
+        window: WINDOW,
     };
     let (width, height) = report::QUICK_SIZE;
 
@@ -485,6 +493,27 @@ fn report_page_in_a_browser() {
             "1 − SSIM at ({x}, {y}): decoded {ssim_decoded}, measured {dssim}"
         );
     }
+    // The line on what the images are: offset 0 at the quality size, where
+    // the table's errors are means over the offsets.
+    let n = summary
+        .rows
+        .iter()
+        .find(|r| r.scene == SCENE && r.method.to_string() == "sraa")
+        .expect("the sraa row")
+        .errors_at
+        .len();
+    let note = text_of(&dom, "images-note");
+    assert_eq!(
+        attr(tag(&dom, "id=\"images-note\""), "data-offsets"),
+        Some(n.to_string()),
+        "the offsets the errors are means over"
+    );
+    assert!(
+        note.starts_with(&format!(
+            "Images: camera offset 0 (the scene's camera) at the quality size, {width}×{height}; "
+        )) && (n < 2 || note.contains(&format!("means over {n} camera offsets"))),
+        "{note}"
+    );
     // Every label names the kind of image; a FLIP map and a 1 − SSIM map
     // side by side show both colour bars, a render none.
     assert!(text_of(&dom, "label-a").ends_with("sraa · render"));
@@ -508,17 +537,24 @@ fn report_page_in_a_browser() {
     );
 
     // (6) The difference modes at scale 4: the viewer's centre shows
-    // 4 |A − B|, and 128 + 4 (A − B) / 2, of the PNGs' pixel, per channel.
+    // 4 |A − B|, and 128 + 4 (A − B) / 2, of the PNGs' pixel, per channel,
+    // with the colour bar of that scaling: black to white over 0 to 255 / 4
+    // levels, and −256 / 4 to 254 / 4.
     let (a, b) = (sraa.get_pixel(x, y).0, reference.get_pixel(x, y).0);
     let scale = 4;
-    for (mode, f) in [
+    for (mode, f, scaling, ends) in [
         (
             "diff",
             (|d: i32, k: i32| k * d.abs()) as fn(i32, i32) -> i32,
+            "|A − B| × 4",
+            ["0", "≥ 63.75"],
         ),
-        ("signed", |d: i32, k: i32| {
-            (128.0 + f64::from(k * d) / 2.0).round() as i32
-        }),
+        (
+            "signed",
+            |d: i32, k: i32| (128.0 + f64::from(k * d) / 2.0).round() as i32,
+            "128 + 4 (A − B) / 2",
+            ["≤ −64", "≥ +63.5"],
+        ),
     ] {
         let want: [u8; 3] = std::array::from_fn(|c| {
             f(i32::from(a[c]) - i32::from(b[c]), scale).clamp(0, 255) as u8
@@ -532,6 +568,25 @@ fn report_page_in_a_browser() {
             Some("1"),
             "the {mode} mode draws no difference"
         );
+        assert_eq!(
+            attr(tag(&dom, "id=\"bars\""), "data-shown").as_deref(),
+            Some(mode),
+            "the colour bar of the {mode} mode"
+        );
+        let bar = tag(&dom, &format!("id=\"bar-{mode}\""));
+        assert!(!bar.contains(" hidden"), "{bar}");
+        let bar_html = &dom[dom.find(bar).unwrap()..];
+        let bar_html = &bar_html[..bar_html.find("</div>").unwrap()];
+        for (class, value) in ["bar-lo", "bar-hi"].into_iter().zip(ends) {
+            assert!(
+                bar_html.contains(&format!("<span class=\"{class}\">{value}</span>")),
+                "the {mode} bar's {class} is not {value}: {bar_html}"
+            );
+        }
+        assert!(
+            bar_html.contains(scaling),
+            "the {mode} bar names {scaling:?}: {bar_html}"
+        );
         let shot = browser.screenshot_with(&[settle()], &fragment, &format!("{mode}.png"));
         check_colour(
             shown(&shot, bx, 0),
@@ -540,16 +595,27 @@ fn report_page_in_a_browser() {
         );
     }
 
-    // (7) The table: the Pareto mark on the methods of the scene's FLIP-time
-    // front, a verdict cell for every method but NoAA, and report.md's
-    // answer and verdict sections on the page.
+    // (7) The table: a mark on the methods of each of the scene's Pareto
+    // fronts (FLIP and 1 − SSIM against time), a verdict cell for every
+    // method but NoAA, and report.md's answer and verdict sections on the
+    // page.
     let dom = browser.dom(&format!("scene={SCENE}"));
     let rows: Vec<&report::ResultRow> = summary.rows.iter().filter(|r| r.scene == SCENE).collect();
-    // The answer section's FLIP front (one backend here), without the rows it
+    // The answer section's fronts (one backend here), without the rows it
     // leaves out.
     let all: Vec<&report::ResultRow> = summary.rows.iter().collect();
     let left_out = report::answer::exclusions(&all);
-    let front = report::answer::front(&rows, &left_out, report::classes::Metric::Flip);
+    let fronts = [
+        (report::classes::Metric::Flip, "pareto_flip", "◆ FLIP"),
+        (report::classes::Metric::Ssim, "pareto_ssim", "◆ SSIM"),
+    ]
+    .map(|(metric, column, mark)| {
+        (
+            report::answer::front(&rows, &left_out, metric),
+            column,
+            mark,
+        )
+    });
     let tbody = results_body(&dom);
     for tr in tbody.split("<tr ").skip(1) {
         let key = attr(&format!(" {tr}"), "data-key").unwrap();
@@ -557,12 +623,14 @@ fn report_page_in_a_browser() {
             .iter()
             .find(|r| format!("{}/{}", r.method, r.backend) == key)
             .unwrap();
-        let on_front = front.iter().any(|p| p.method == r.method);
-        assert_eq!(
-            tr.contains("data-column=\"pareto\">◆ front<"),
-            on_front,
-            "Pareto mark of {key}"
-        );
+        for (front, column, mark) in &fronts {
+            let on_front = front.iter().any(|p| p.method == r.method);
+            assert_eq!(
+                tr.contains(&format!("data-column=\"{column}\">{mark}<")),
+                on_front,
+                "{column} mark of {key}"
+            );
+        }
         let verdict = tr
             .split("data-column=\"verdict_flip\">")
             .nth(1)
@@ -574,7 +642,12 @@ fn report_page_in_a_browser() {
             "FLIP verdict of {key}: {verdict:?}"
         );
     }
-    assert!(front.len() >= 2, "a front of one point checks little");
+    for (front, column, _) in &fronts {
+        assert!(
+            front.len() >= 2,
+            "a {column} front of one point checks little"
+        );
+    }
     let body = tag(&dom, "<body");
     assert_eq!(
         attr(body, "data-missing-sections"),
@@ -591,6 +664,61 @@ fn report_page_in_a_browser() {
         let motion = tag(&dom, "id=\"motion\"");
         assert!(!motion.contains(" hidden"), "the motion section is hidden");
         assert!(text_of(&dom, "motion-caption").contains("left to right noaa"));
+    }
+
+    // (8) At a laptop's window, the answer whole without scrolling: the last
+    // row of the picks and of the fronts (both columns, FLIP and SSIM)
+    // within the window; on the report's page, and on one whose answer has
+    // the quick report's number of rows (6 picks, 9 scenes' fronts) and
+    // longer cells than it writes (`longer_cell`).
+    let page = std::fs::read_to_string(&summary.report_html).unwrap();
+    let long = out.join("report-long-answer.html");
+    std::fs::write(&long, longer_answer(&page)).unwrap();
+    for (file, rows) in [(&summary.report_html, None), (&long, Some((6, 9)))] {
+        let laptop = Browser {
+            bin: browser.bin.clone(),
+            page: file_url(file),
+            tmp: dir.path().join("laptop"),
+            window: LAPTOP,
+        };
+        let dom = laptop.dom(&format!("scene={SCENE}"));
+        let answer = &dom[dom.find("<div id=\"answer\"").expect("the answer")..];
+        let answer = &answer[..answer
+            .find("<nav id=\"scenes\"")
+            .expect("the scene buttons")];
+        assert_eq!(
+            attr(tag(answer, "<div"), "data-fit").as_deref(),
+            Some("1280 800"),
+            "the answer is fitted to the window"
+        );
+        let tables: Vec<&str> = answer
+            .match_indices("<table")
+            .map(|(at, _)| &answer[at..])
+            .collect();
+        assert!(tables.len() >= 2, "the picks and the fronts");
+        for (k, t) in tables.iter().enumerate() {
+            let end = numbers(tag(t, "<table"), "data-last-row");
+            assert!(
+                end[0] <= i64::from(LAPTOP.0) && end[1] <= i64::from(LAPTOP.1),
+                "{}: the last row of the answer's table {k} ends at {end:?}, out of the {LAPTOP:?} window",
+                file.display()
+            );
+            if let (Some((picks, fronts)), 0..=1) = (rows, k) {
+                let body = &t[..t.find("</table>").unwrap()];
+                let n = body.matches("<tr>").count() - 1;
+                assert_eq!(n, if k == 0 { picks } else { fronts }, "rows of table {k}");
+            }
+        }
+        let fronts = &tables[1][..tables[1].find("</thead>").unwrap()];
+        assert!(
+            fronts.contains("FLIP front") && fronts.contains("SSIM front"),
+            "the fronts of both metrics: {fronts}"
+        );
+        let name = format!(
+            "laptop-{}.png",
+            if rows.is_some() { "long" } else { "page" }
+        );
+        laptop.screenshot(&format!("scene={SCENE}"), &name);
     }
 
     // (4) Every control changes the view (the page's own self-test works
@@ -613,6 +741,87 @@ fn report_page_in_a_browser() {
         browser.bin.display(),
         start.elapsed().as_secs_f64() - report_s
     );
+}
+
+/// `page` with a longer answer: its first section's tables with at least as
+/// many rows as the quick report's answer (6 picks, the fronts of 9
+/// scenes; rows repeated) and longer cells ([`longer_cell`]).
+fn longer_answer(page: &str) -> String {
+    let open = "<script type=\"application/json\" id=\"report-data\">";
+    let at = page.find(open).expect("the page's data") + open.len();
+    let end = at + page[at..].find("</script>").unwrap();
+    let mut data: serde_json::Value = serde_json::from_str(&page[at..end]).expect("JSON data");
+    let html = data["sections"][0]["html"]
+        .as_str()
+        .expect("the answer")
+        .to_string();
+    let mut longer = String::new();
+    let mut rest = html.as_str();
+    for want in [6, 9] {
+        let Some(from) = rest.find("<tbody>") else {
+            break;
+        };
+        let from = from + "<tbody>".len();
+        let to = rest.find("</tbody>").unwrap();
+        longer.push_str(&rest[..from]);
+        let rows: Vec<String> = rest[from..to]
+            .split("</tr>")
+            .filter(|r| r.contains("<tr>"))
+            .map(|r| longer_row(r.trim()))
+            .collect();
+        for i in 0..want.max(rows.len()) {
+            longer.push_str(&rows[i % rows.len()]);
+            longer.push('\n');
+        }
+        longer.push_str("</tbody>");
+        rest = &rest[to + "</tbody>".len()..];
+    }
+    longer.push_str(rest);
+    data["sections"][0]["html"] = serde_json::Value::String(longer);
+    let data = data.to_string().replace('<', "\\u003c");
+    format!("{}{data}{}", &page[..at], &page[end..])
+}
+
+/// A table row `<tr><td>…</td>…` of the answer with each cell longer.
+fn longer_row(row: &str) -> String {
+    let mut out = String::new();
+    let cells: Vec<&str> = row.split("</td>").collect();
+    for (i, piece) in cells.iter().enumerate() {
+        if i + 1 == cells.len() {
+            out.push_str(piece);
+            break;
+        }
+        let open = piece.rfind("<td").expect("a cell");
+        let gt = open + piece[open..].find('>').unwrap() + 1;
+        out.push_str(&piece[..gt]);
+        out.push_str(&longer_cell(&piece[gt..]));
+        out.push_str("</td>");
+    }
+    out.push_str("</tr>");
+    out
+}
+
+/// A cell longer than the answer writes it: a front's steps (`… ms · …`)
+/// each marked " (within noise)" and repeated to 450 characters and more
+/// (the quick report's fronts have some 360 on average, 550 at most), a
+/// pick (`name (…, n/m)` and what follows) with a further runner-up and
+/// margin.
+fn longer_cell(cell: &str) -> String {
+    if cell.contains(" ms") {
+        let steps: Vec<String> = cell
+            .split(" → ")
+            .map(|s| format!("{s} (within noise)"))
+            .collect();
+        let mut out: Vec<&str> = Vec::new();
+        while out.iter().map(|s| s.chars().count() + 3).sum::<usize>() < 450 {
+            out.push(&steps[out.len() % steps.len()]);
+        }
+        out.join(" → ")
+    } else if cell.contains('(') && cell.contains('/') {
+        format!("{cell}; runner-up ssaa4 (0.61, 2/3), margin 7 %, within noise")
+    } else {
+        cell.to_string()
+    }
 }
 
 /// The committed screenshot is of the committed page: the build recorded

@@ -1,7 +1,9 @@
-// The report page: report.md's answer and verdict sections; per scene, a
-// viewer of any two of its images (split, alone or their difference, zoom,
-// pan, the classes and values of the pixel under the cursor, a colour bar
-// per map), the sortable results table, the motion animation and the plots.
+// The report page: report.md's answer (laid out to be seen whole on the
+// first screen) and verdict sections; per scene, a viewer of any two of its
+// images (split, alone or their difference, zoom, pan, the classes and
+// values of the pixel under the cursor, a colour bar per map and for the
+// difference, a line on what the images are), the sortable results table,
+// the motion animation and the plots.
 // The whole state lives in the URL fragment, so a link (or a headless
 // browser) opens any view. Plain DOM, no build step.
 "use strict";
@@ -92,7 +94,9 @@
     if (Number.isFinite(x)) state.cx = clamp(x, 0, sc.width - 1) + 0.5;
     if (Number.isFinite(y)) state.cy = clamp(y, 0, sc.height - 1) + 0.5;
     state.highlight = R.classes.includes(p.get("highlight")) ? p.get("highlight") : "";
-    const [col, dir] = (p.get("sort") || "").split(":");
+    // `pareto`, the one front column of earlier pages, is the FLIP front's.
+    const [given, dir] = (p.get("sort") || "").split(":");
+    const col = given === "pareto" ? "pareto_flip" : given;
     state.sort = allColumns().includes(col) ? col + ":" + (dir === "asc" ? "asc" : "desc") : "";
     state.selftest = p.get("selftest") === "1";
   }
@@ -450,16 +454,36 @@
     diffCanvas.dataset.ready = "1";
   }
 
-  // --- Colour bars --------------------------------------------------------
+  // --- Colour bars ---------------------------------------------------------
 
-  // One bar per kind of map: FLIP's colour map over 0 to 1, 1 − SSIM's grey
-  // over 0 to R.ssim_white; shown while a visible layer is such a map.
+  // A colour bar for each kind of image the viewer may show whose colours
+  // stand for values: FLIP's map (magma, 0 to 1) and 1 − SSIM's (grey, 0 to
+  // R.ssim_white), shown while a visible layer is such a map; and in a
+  // difference mode the difference's own scaling, per 8-bit channel (0 to
+  // 255), as drawDiff computes it: |A − B| × scale is black at 0 and white
+  // from 255 / scale on; 128 + scale (A − B) / 2 is black at −256 / scale,
+  // mid-grey (128) at 0 and white at 254 / scale. Each bar's colours are
+  // drawn from the same mapping, and its ends name the values.
+  const BAR_KINDS = ["flip", "ssim", "diff", "signed"];
+  const levels = (v) => String(+v.toFixed(2));
+
+  function barLabels(kind) {
+    const k = state.scale;
+    const w = R.ssim_white;
+    return {
+      flip: ["FLIP map (magma colour map):", "0", "1", "middle 0.5"],
+      ssim: ["1 \u2212 SSIM map (grey):", "0", "\u2265 " + w, "middle " + w / 2],
+      diff: ["|A \u2212 B| \u00d7 " + k + ", per channel (8-bit levels):", "0",
+        "\u2265 " + levels(255 / k), "middle " + levels(127.5 / k)],
+      signed: ["A \u2212 B, drawn 128 + " + k + " (A \u2212 B) / 2, per channel (8-bit levels):",
+        "\u2264 \u2212" + levels(256 / k), "\u2265 +" + levels(254 / k), "mid-grey 0"],
+    }[kind];
+  }
+
   function buildBars() {
-    const bars = [
-      ["flip", "FLIP", "0", "1", (t) => LUT[Math.round(t * 255)]],
-      ["ssim", "1 \u2212 SSIM", "0", "\u2265 " + R.ssim_white, (t) => [0, 1, 2].map(() => Math.round(t * 255))],
-    ];
-    for (const [kind, name, lo, hi, colour] of bars) {
+    const grey = (t) => [0, 1, 2].map(() => Math.round(t * 255));
+    const colours = { flip: (t) => LUT[Math.round(t * 255)], ssim: grey, diff: grey, signed: grey };
+    for (const kind of BAR_KINDS) {
       const div = document.createElement("div");
       div.className = "bar";
       div.id = "bar-" + kind;
@@ -469,21 +493,59 @@
       c.height = 1;
       const ctx = c.getContext("2d");
       const img = ctx.createImageData(256, 1);
-      for (let i = 0; i < 256; i++) img.data.set([...colour(i / 255), 255], 4 * i);
+      for (let i = 0; i < 256; i++) img.data.set([...colours[kind](i / 255), 255], 4 * i);
       ctx.putImageData(img, 0, 0);
-      const mid = kind === "flip" ? "0.5" : String(R.ssim_white / 2);
-      div.append(name + " map: ", lo + " ", c, " " + hi, " (middle " + mid + ")");
+      const part = (cls) => {
+        const s = document.createElement("span");
+        s.className = cls;
+        return s;
+      };
+      div.append(part("bar-name"), " ", part("bar-lo"), " ", c, " ", part("bar-hi"), " (", part("bar-note"), ")");
+      div.hidden = true;
       $("bars").appendChild(div);
     }
   }
 
+  // The bars of what the viewer shows: in a difference mode the
+  // difference's, otherwise one per map among the visible layers.
   function showBars(sc) {
     const visible = [];
     if (state.mode === "split" || state.mode === "a") visible.push(layerOf(sc, state.a));
     if (state.mode === "split" || state.mode === "b") visible.push(layerOf(sc, state.b));
-    const kinds = visible.filter(Boolean).map((l) => l.kind);
-    for (const bar of $("bars").children) bar.hidden = !kinds.includes(bar.dataset.kind);
-    $("bars").dataset.shown = ["flip", "ssim"].filter((k) => kinds.includes(k)).join(" ");
+    const kinds = isDiff() ? [state.mode] : visible.filter(Boolean).map((l) => l.kind);
+    for (const bar of $("bars").children) {
+      const kind = bar.dataset.kind;
+      bar.hidden = !kinds.includes(kind);
+      if (bar.hidden) continue;
+      const [name, lo, hi, note] = barLabels(kind);
+      bar.querySelector(".bar-name").textContent = name;
+      bar.querySelector(".bar-lo").textContent = lo;
+      bar.querySelector(".bar-hi").textContent = hi;
+      bar.querySelector(".bar-note").textContent = note;
+    }
+    $("bars").dataset.shown = BAR_KINDS.filter((k) => kinds.includes(k)).join(" ");
+  }
+
+  // What the viewer's images are, beside the table's errors: the images
+  // are camera offset 0 (the scene's camera) at the quality size, the
+  // table's FLIP and SSIM means over the camera offsets each row was
+  // measured at (its `offsets`), its edge FLIP offset 0's like the images.
+  function showImagesNote(sc) {
+    const counts = [...new Set(sc.rows.map((r) => r.offsets).filter((v) => typeof v === "number"))]
+      .sort((p, q) => p - q);
+    const note = $("images-note");
+    note.dataset.offsets = counts.join(" ");
+    let table;
+    if (!counts.length || counts[counts.length - 1] <= 1) {
+      table = "the table's errors are of the same offset, the only one measured";
+    } else {
+      const n = counts.length === 1 ? String(counts[0]) :
+        counts[0] + " to " + counts[counts.length - 1] + " (per row: its offsets column)";
+      table = "the table's FLIP and SSIM are means over " + n + " camera offsets" +
+        (columnsOf(sc).includes("edge_flip_mean") ? " (its edge FLIP is offset 0's, like the images)" : "");
+    }
+    note.textContent = "Images: camera offset 0 (the scene's camera) at the quality size, " +
+      sc.width + "\u00d7" + sc.height + "; " + table + ".";
   }
 
   function showCentre() {
@@ -509,6 +571,7 @@
       $("scale").disabled = !isDiff();
       drawDiff(sc);
       showBars(sc);
+      showImagesNote(sc);
       for (const b of document.querySelectorAll("[data-mode]")) {
         b.setAttribute("aria-pressed", String(b.dataset.mode === state.mode));
       }
@@ -711,6 +774,112 @@
     $("motion-caption").textContent = sc.motion.caption;
   }
 
+  // The answer at a glance: its tables one under the other at the full
+  // width, in a small font that wraps long cells; its prose folded into
+  // <details> whose summaries sit on the heading's line. The prose before
+  // the first table (the regime and the rule) is "how picks are made"; a
+  // single short paragraph before a later table (a line on what it holds)
+  // stays as its caption, other prose there is folded under the topics
+  // its paragraphs begin with, and so is the prose after the last table
+  // ("notes: ..."). The text is report.md's, unchanged.
+  function compactAnswer(h, div) {
+    const groups = [{ prose: [], table: null }];
+    for (const el of [...div.children]) {
+      if (el.classList.contains("table-wrap")) {
+        groups[groups.length - 1].table = el;
+        groups.push({ prose: [], table: null });
+      } else {
+        groups[groups.length - 1].prose.push(el);
+      }
+    }
+    const tables = groups.filter((g) => g.table);
+    if (!tables.length) return;
+    const folds = [];
+    const fold = (summary, els, name) => {
+      const d = document.createElement("details");
+      d.className = "answer-fold";
+      d.dataset.fold = name;
+      const s = document.createElement("summary");
+      s.textContent = summary;
+      d.append(s, ...els);
+      folds.push(d);
+    };
+    const items = tables.map((g, i) => {
+      const item = document.createElement("div");
+      item.className = "glance-item";
+      item.dataset.table = String(i);
+      const text = g.prose.map((el) => el.textContent).join(" ");
+      if (i === 0) {
+        if (g.prose.length) fold("how picks are made", g.prose, "rule");
+      } else if (g.prose.length === 1 && g.prose[0].tagName === "P" && text.length <= 300) {
+        g.prose[0].classList.add("caption");
+        item.appendChild(g.prose[0]);
+      } else if (g.prose.length) {
+        fold(noteTopics(g.prose) || "about the table below", g.prose, "table-" + (i + 1));
+      }
+      item.appendChild(g.table);
+      return item;
+    });
+    const after = groups[groups.length - 1].prose;
+    if (after.length) fold("notes" + (noteTopics(after) ? ": " + noteTopics(after) : ""), after, "notes");
+    const head = document.createElement("div");
+    head.className = "answer-head";
+    h.replaceWith(head);
+    head.append(h, ...folds);
+    const glance = document.createElement("div");
+    glance.className = "glance";
+    glance.append(...items);
+    div.textContent = "";
+    div.append(glance);
+  }
+
+  // What prose is about, from how its paragraphs begin: each one's words
+  // up to a colon near its start ("Left out of the fronts"), or its first
+  // few words.
+  function noteTopics(els) {
+    return els.filter((el) => el.tagName === "P").map((el) => {
+      const t = el.textContent.trim().replace(/\s+/g, " ");
+      const colon = t.indexOf(":");
+      if (colon > 0 && colon <= 40) return t.slice(0, colon);
+      const words = t.split(" ");
+      return words.slice(0, 4).join(" ") + (words.length > 4 ? "\u2026" : "");
+    }).join("; ");
+  }
+
+  // The answer's font, from 12 px down to 9 px: the largest at which
+  // the answer, its folds closed, ends within the window when the page is
+  // at its top (so longer cells still leave every pick and front row in
+  // sight); the smallest when none does. A window less than FIT_HEIGHT
+  // tall (a laptop's 1280x800) is fitted as if it were that tall: no font
+  // shrinks below what that needs, and the layout above the viewer is the
+  // same in a headless browser's DOM dump (whose window is shorter than it
+  // is told) as in its screenshot. `data-font` on #answer says which.
+  const ANSWER_FONTS = [12, 11.5, 11, 10.5, 10, 9.5, 9];
+  const FIT_HEIGHT = 800;
+  function fitAnswer() {
+    const box = $("answer");
+    const open = [...box.querySelectorAll("details[open]")];
+    for (const d of open) d.open = false;
+    const height = Math.max(window.innerHeight, FIT_HEIGHT);
+    const bottom = () => box.getBoundingClientRect().bottom + window.scrollY;
+    let font = ANSWER_FONTS[0];
+    for (font of ANSWER_FONTS) {
+      box.style.setProperty("--answer-font", font + "px");
+      if (bottom() <= height) break;
+    }
+    box.dataset.font = String(font);
+    // Where each of the answer's tables ends (its last row's right and
+    // bottom edges on the page, folds closed) and the size fitted to, for
+    // checks in a headless browser.
+    box.dataset.fit = window.innerWidth + " " + height;
+    for (const t of box.querySelectorAll("table")) {
+      if (!t.rows.length) continue;
+      const r = t.rows[t.rows.length - 1].getBoundingClientRect();
+      t.dataset.lastRow = [r.right + window.scrollX, r.bottom + window.scrollY].map(Math.ceil).join(" ");
+    }
+    for (const d of open) d.open = true;
+  }
+
   // The first section (the report's answer) at the top, the others below
   // the plots; a section asked for that report.md lacks is named.
   function buildSections() {
@@ -723,6 +892,7 @@
       const div = document.createElement("div");
       div.innerHTML = s.html;
       sec.append(h, div);
+      if (i === 0) compactAnswer(h, div);
       $(i === 0 ? "answer" : "sections").appendChild(sec);
     });
     body.dataset.sections = R.sections.map((s) => s.heading).join("|");
@@ -809,10 +979,13 @@
     $("mode-diff").click();
     check(state.mode === "diff" && clipA.style.width === "0px" && imgB.style.visibility === "hidden" &&
       !diffCanvas.hidden && location.hash.includes("mode=diff"), "difference button");
+    check(!$("bar-diff").hidden && $("bars").dataset.shown === "diff", "difference colour bar");
     select("scale", "8");
-    check(state.scale === 8 && location.hash.includes("scale=8"), "scale");
+    check(state.scale === 8 && location.hash.includes("scale=8") &&
+      $("bar-diff").querySelector(".bar-hi").textContent === "\u2265 " + levels(255 / 8), "scale");
     $("mode-signed").click();
-    check(state.mode === "signed" && location.hash.includes("mode=signed"), "signed difference button");
+    check(state.mode === "signed" && location.hash.includes("mode=signed") &&
+      !$("bar-signed").hidden && $("bar-diff").hidden, "signed difference button");
     $("mode-split").click();
     const narrow = $("results-table").tHead.rows[0].cells.length;
     $("raw").click();
@@ -847,6 +1020,7 @@
     $("build").textContent = "build " + R.code;
     body.dataset.code = R.code;
     buildSections();
+    fitAnswer();
     buildBars();
     buildSceneButtons();
     for (const c of R.classes) $("highlight").appendChild(new Option(c, c));
@@ -856,7 +1030,7 @@
     readHash();
     render();
     window.addEventListener("hashchange", () => { readHash(); render(); });
-    window.addEventListener("resize", () => { if (!$("viewer").hidden) layout(); });
+    window.addEventListener("resize", () => { fitAnswer(); if (!$("viewer").hidden) layout(); });
     if (state.selftest) selftest();
     body.dataset.ready = "1";
   } catch (e) {
