@@ -4,9 +4,21 @@
  *
  * Every function returns a SubconeStatus (or a plain value where it cannot
  * fail), never panics across the boundary and never reads a null pointer.
+ * On an error, subcone_last_error_message() says what was wrong (the
+ * function, the parameter, its value and what it must be); the text stays
+ * valid until the next call into the library on the same thread:
+ *
+ *     SubconeSraaFrame frame;
+ *     memset(&frame, 0, sizeof frame);
+ *     frame.size = sizeof frame;  // its first field: the struct's size
+ *     ...
+ *     SubconeStatus s = subcone_sraa_resolve(&params, &frame, out, out_len);
+ *     if (s != SUBCONE_STATUS_OK)
+ *         fprintf(stderr, "subcone: error %d: %s\n", (int)s, subcone_last_error_message());
+ *
  * Thread safety: every function is reentrant and thread-safe (no global
- * state); subcone_ctss_trace calls its callbacks synchronously, on the
- * calling thread, before it returns.
+ * state; the last error message is per thread); subcone_ctss_trace calls
+ * its callbacks synchronously, on the calling thread, before it returns.
  */
 
 #ifndef SUBCONE_H
@@ -27,7 +39,8 @@
 // Patch version.
 #define SUBCONE_VERSION_PATCH 0
 
-// What a call did.
+// What a call did. On any status but `Ok`, [`subcone_last_error_message`]
+// says what was wrong.
 typedef enum SubconeStatus {
   // Success: the out-pointers were written.
   SUBCONE_STATUS_OK = 0,
@@ -41,10 +54,15 @@ typedef enum SubconeStatus {
   // An internal error was caught before it crossed the boundary (a bug:
   // please report it).
   SUBCONE_STATUS_PANIC = 4,
+  // A parameter struct's leading `size` field is not the `sizeof` of the
+  // struct this library was built with (a host compiled against another
+  // version of the header, or one that did not set it).
+  SUBCONE_STATUS_STRUCT_SIZE = 5,
 } SubconeStatus;
 
 // The SRAA weight parameters, the layout of the kernels' `SraaParams`
-// (32 bytes). Fill it with [`subcone_sraa_params_default`] or
+// (32 bytes; no leading `size`, as the shaders read these bytes as they
+// are). Fill it with [`subcone_sraa_params_default`] or
 // [`subcone_sraa_params_paper`] and adjust the σs.
 typedef struct SubconeSraaParams {
   // σz of eq. 1 (relative depth difference by default).
@@ -68,7 +86,8 @@ typedef struct SubconeSraaParams {
 } SubconeSraaParams;
 
 // The CTSS trace parameters, the layout of the kernels' `CtssParams`
-// (48 bytes). Fill it with [`subcone_ctss_params_default`].
+// (48 bytes; no leading `size`, as the shaders read these bytes as they
+// are). Fill it with [`subcone_ctss_params_default`].
 typedef struct SubconeCtssParams {
   // `tan θ` of the pixel's cone (eq. 3, [`subcone_cone_tan_theta`]).
   float tan_theta;
@@ -119,8 +138,21 @@ typedef struct SubconeGeometry {
 } SubconeGeometry;
 
 // A frame's worth of SRAA input for [`subcone_sraa_resolve`], in
-// caller-owned CPU buffers (row-major, `width × height` pixels).
+// caller-owned CPU buffers (row-major, `width × height` pixels). Set
+// `size` to `sizeof(SubconeSraaFrame)`:
+//
+// ```c
+// SubconeSraaFrame frame;
+// memset(&frame, 0, sizeof frame);
+// frame.size = sizeof frame;
+// frame.width = width;
+// /* ... */
+// ```
 typedef struct SubconeSraaFrame {
+  // `sizeof(SubconeSraaFrame)`, which the library checks against its own
+  // (`SUBCONE_STATUS_STRUCT_SIZE` when they differ): a host built with a
+  // header of another version is refused rather than misread.
+  uint32_t size;
   // Image width in pixels (> 0).
   uint32_t width;
   // Image height in pixels (> 0).
@@ -351,6 +383,27 @@ extern "C" {
 // with the header's `SUBCONE_VERSION_*` to catch a mismatched library.
 uint32_t subcone_version(void);
 
+// The calling thread's last error message: what the last call on this
+// thread that returned a [`SubconeStatus`] found wrong, naming the
+// function, the parameter (`frame->colors_len`, say), its value and what
+// it must be, as one line of UTF-8 text. An empty string, never NULL, when
+// that call returned `SUBCONE_STATUS_OK` or no such call was made.
+//
+// Every function that returns a `SubconeStatus` sets the message when it
+// fails and clears it when it succeeds, so read it right after the failing
+// call. The pointer is owned by the library and stays valid until the next
+// call into the library on the same thread (other than this function, and
+// `subcone_version`); copy the text to keep it longer. Each thread has its
+// own message.
+//
+// ```c
+// SubconeStatus s = subcone_sraa_resolve(&params, &frame, out, out_len);
+// if (s != SUBCONE_STATUS_OK) {
+//     fprintf(stderr, "SRAA resolve failed (%d): %s\n", (int)s, subcone_last_error_message());
+// }
+// ```
+const char *subcone_last_error_message(void);
+
 // The default SRAA parameters (σz 10, σn 1, σs 0.4 px, shaded sample at the
 // pixel centre; the Rust `SraaParams::TUNED`).
 //
@@ -513,9 +566,10 @@ enum SubconeStatus subcone_sample_weight(uint32_t visible,
 // (the kernels' `sraa::Resolver`). Primary hits only: reconstruct the
 // reflections on their own geometry with a second call and add.
 //
-// Errors: null pointers where data is required, a zero size or more than 16
-// layers, lengths that do not match the sizes, a gate naming a light above
-// 31, non-finite parameters.
+// Errors: null pointers where data is required, a `frame->size` that is
+// not `sizeof(SubconeSraaFrame)` (`SUBCONE_STATUS_STRUCT_SIZE`), a zero
+// size or more than 16 layers, lengths that do not match the sizes, a gate
+// naming a light above 31, non-finite parameters.
 //
 // # Safety
 // Every pointer is null or points to as many valid values as its length says.

@@ -10,9 +10,9 @@ use subcone_kernels::cone::{
 };
 use subcone_kernels::mask::{project_normal, visibility_mask, MaskPlacement};
 
-use crate::checks::write;
+use crate::checks::{finite, write};
 use crate::geometry::SubconeVec3;
-use crate::status::{guard, SubconeStatus};
+use crate::status::{call, Refusal, SubconeStatus};
 
 /// CTSS eq. 3: `tan θ` of a pixel's cone for a vertical field of view `fov_y`
 /// (radians, in `(0, π)`), an image `height` in pixels (> 0), a `coverage`
@@ -29,19 +29,33 @@ pub unsafe extern "C" fn subcone_cone_tan_theta(
     footprint: u32,
     out: *mut f32,
 ) -> SubconeStatus {
-    guard(|| {
+    call("subcone_cone_tan_theta", || {
         let fp = match footprint {
             0 => PixelFootprint::Circumscribed,
             1 => PixelFootprint::Balanced,
             2 => PixelFootprint::Inscribed,
-            _ => return SubconeStatus::InvalidArgument,
+            _ => {
+                return Err(Refusal::invalid(format!(
+                    "footprint is {footprint}; it must be 0 (circumscribed), 1 (balanced) or 2 \
+                     (inscribed)"
+                )))
+            }
         };
-        let fov_ok = fov_y > 0.0 && fov_y < std::f32::consts::PI;
-        if !fov_ok || height == 0 || !(coverage.is_finite() && coverage > 0.0) {
-            return SubconeStatus::InvalidArgument;
+        if !(fov_y > 0.0 && fov_y < std::f32::consts::PI) {
+            return Err(Refusal::invalid(format!(
+                "fov_y is {fov_y}; it must be in (0, π) radians"
+            )));
+        }
+        if height == 0 {
+            return Err(Refusal::invalid("height is 0; it must be at least 1 pixel"));
+        }
+        if !(coverage.is_finite() && coverage > 0.0) {
+            return Err(Refusal::invalid(format!(
+                "coverage is {coverage}; it must be finite and positive"
+            )));
         }
         // SAFETY: forwarded contract.
-        unsafe { write(out, cone_tan_theta(fov_y, height, coverage, fp)) }
+        unsafe { write(out, cone_tan_theta(fov_y, height, coverage, fp), "out") }
     })
 }
 
@@ -56,7 +70,9 @@ pub unsafe extern "C" fn subcone_cone_radius(
     out: *mut f32,
 ) -> SubconeStatus {
     // SAFETY: forwarded contract.
-    guard(|| unsafe { write(out, cone_radius(t, tan_theta)) })
+    call("subcone_cone_radius", || unsafe {
+        write(out, cone_radius(t, tan_theta), "out")
+    })
 }
 
 /// CTSS eq. 5: the cone occlusion `ω = (1 − d/rc)/2` of a surface at
@@ -71,7 +87,9 @@ pub unsafe extern "C" fn subcone_cone_radius(
 #[no_mangle]
 pub unsafe extern "C" fn subcone_cone_occlusion(d: f32, rc: f32, out: *mut f32) -> SubconeStatus {
     // SAFETY: forwarded contract.
-    guard(|| unsafe { write(out, cone_occlusion(d, rc)) })
+    call("subcone_cone_occlusion", || unsafe {
+        write(out, cone_occlusion(d, rc), "out")
+    })
 }
 
 /// The next depth of the cone march from `t`: `t + max(d, α·R_c)` (§3.1).
@@ -87,7 +105,9 @@ pub unsafe extern "C" fn subcone_advance(
     out: *mut f32,
 ) -> SubconeStatus {
     // SAFETY: forwarded contract.
-    guard(|| unsafe { write(out, advance(t, d, alpha, rc)) })
+    call("subcone_advance", || unsafe {
+        write(out, advance(t, d, alpha, rc), "out")
+    })
 }
 
 /// CTSS eq. 9–10: the depth where the cone first met the surface, backtraced
@@ -102,7 +122,9 @@ pub unsafe extern "C" fn subcone_backtrace_cone_entry(
     out: *mut f32,
 ) -> SubconeStatus {
     // SAFETY: forwarded contract.
-    guard(|| unsafe { write(out, backtrace_cone_entry(t_i, tan_theta)) })
+    call("subcone_backtrace_cone_entry", || unsafe {
+        write(out, backtrace_cone_entry(t_i, tan_theta), "out")
+    })
 }
 
 /// CTSS §3.6: the depth of the first hard hit, between `t_prev` and `t_i`.
@@ -117,7 +139,9 @@ pub unsafe extern "C" fn subcone_backtrace_hard_hit(
     out: *mut f32,
 ) -> SubconeStatus {
     // SAFETY: forwarded contract.
-    guard(|| unsafe { write(out, backtrace_hard_hit(t_prev, d_prev, t_i)) })
+    call("subcone_backtrace_hard_hit", || unsafe {
+        write(out, backtrace_hard_hit(t_prev, d_prev, t_i), "out")
+    })
 }
 
 /// The surface normal projected on the cone's cross-section, `(n̂·r, n̂·u)`:
@@ -132,10 +156,10 @@ pub unsafe extern "C" fn subcone_project_normal(
     up: SubconeVec3,
     out: *mut f32,
 ) -> SubconeStatus {
-    guard(|| {
+    call("subcone_project_normal", || {
         let n = project_normal(normal.into(), right.into(), up.into());
         // SAFETY: forwarded contract (2 floats).
-        unsafe { write(out.cast::<[f32; 2]>(), n.to_array()) }
+        unsafe { write(out.cast::<[f32; 2]>(), n.to_array(), "out") }
     })
 }
 
@@ -153,9 +177,12 @@ pub unsafe extern "C" fn subcone_visibility_mask(
     placement: u32,
     out: *mut u32,
 ) -> SubconeStatus {
-    guard(|| {
+    call("subcone_visibility_mask", || {
         if placement > 2 {
-            return SubconeStatus::InvalidArgument;
+            return Err(Refusal::invalid(format!(
+                "placement is {placement}; it must be 0 (derived), 1 (the authors' code) or 2 \
+                 (the paper's eq. 8)"
+            )));
         }
         let m = visibility_mask(
             occlusion,
@@ -163,7 +190,7 @@ pub unsafe extern "C" fn subcone_visibility_mask(
             MaskPlacement::from_u32(placement),
         );
         // SAFETY: forwarded contract.
-        unsafe { write(out, m) }
+        unsafe { write(out, m, "out") }
     })
 }
 
@@ -179,12 +206,15 @@ pub unsafe extern "C" fn subcone_sample_weight(
     min_weight: f32,
     out: *mut f32,
 ) -> SubconeStatus {
-    guard(|| {
-        if weighting > 1 || !min_weight.is_finite() {
-            return SubconeStatus::InvalidArgument;
+    call("subcone_sample_weight", || {
+        if weighting > 1 {
+            return Err(Refusal::invalid(format!(
+                "weighting is {weighting}; it must be 0 (visibility) or 1 (uniform)"
+            )));
         }
+        finite(&[("min_weight", min_weight)])?;
         let w = sample_weight(visible, Weighting::from_u32(weighting), min_weight);
         // SAFETY: forwarded contract.
-        unsafe { write(out, w) }
+        unsafe { write(out, w, "out") }
     })
 }

@@ -9,10 +9,10 @@ use subcone_kernels::ctss::{
     cross_section_frame, trace_field, ConeField, CtssParams, FieldSample, SplitRay, StopReason,
 };
 
-use crate::checks::{finite, read, write};
+use crate::checks::{finite, finite_vec, read, write};
 use crate::geometry::SubconeVec3;
 use crate::params::SubconeCtssParams;
-use crate::status::{guard, status, SubconeStatus};
+use crate::status::{call, Refusal, SubconeStatus};
 
 /// What a field callback says about a point (see [`SubconeDistanceFn`]).
 #[repr(C)]
@@ -122,77 +122,89 @@ pub unsafe extern "C" fn subcone_ctss_trace(
     background: SubconeVec3,
     out: *mut SubconeCtssResult,
 ) -> SubconeStatus {
-    guard(|| {
-        status((|| {
-            // SAFETY: forwarded contract.
-            let p: CtssParams = unsafe { read(params) }?.into();
-            let (Some(distance), Some(shade)) = (distance, shade) else {
-                return Err(SubconeStatus::NullPointer);
-            };
-            if out.is_null() {
-                return Err(SubconeStatus::NullPointer);
-            }
-            finite(&[
-                p.tan_theta,
-                p.alpha,
-                p.eps,
-                p.t_min,
-                p.t_max,
-                p.min_sample_weight,
-            ])?;
-            let (origin, dir, up_hint) = (Vec3::from(origin), Vec3::from(dir), Vec3::from(up_hint));
-            if !(origin.is_finite() && dir.is_finite() && up_hint.is_finite())
-                || dir == Vec3::ZERO
-                || p.tan_theta < 0.0
-                || !(1..=32).contains(&p.visibility_k)
-            {
-                return Err(SubconeStatus::InvalidArgument);
-            }
-            // A unit direction is used as given (as the renderers pass it).
-            let dir = if (dir.length_squared() - 1.0).abs() > 4.0 * f32::EPSILON {
-                in_normal_range(dir).normalize()
-            } else {
-                dir
-            };
-            let up_hint = in_normal_range(up_hint);
-            let (right, up) = cross_section_frame(dir, up_hint);
-            let ray = SplitRay {
-                origin,
-                dir,
-                right,
-                up,
-            };
-            let mut field = Callbacks {
-                distance,
-                normal,
-                user,
-            };
-            let r = trace_field(
-                &p,
-                &ray,
-                &mut field,
-                |q, n, d| shade(user, q.into(), n.into(), d.into()).into(),
-                background.into(),
-            );
-            let stop = match r.stop {
-                StopReason::FullOcclusion => 0,
-                StopReason::HardHit => 1,
-                StopReason::VisibilityThreshold => 2,
-                StopReason::SampleCap => 3,
-                StopReason::MaxDistance => 4,
-                StopReason::StepBudget => 5,
-                StopReason::InvalidDistance => 6,
-                _ => 7,
-            };
-            let result = SubconeCtssResult {
-                color: r.color.into(),
-                samples: r.samples,
-                steps: r.steps,
-                coverage: r.coverage,
-                stop,
-            };
-            // SAFETY: checked non-null; forwarded contract.
-            Ok(unsafe { write(out, result) })
-        })())
+    call("subcone_ctss_trace", || {
+        // SAFETY: forwarded contract.
+        let p: CtssParams = unsafe { read(params, "params") }?.into();
+        let Some(distance) = distance else {
+            return Err(Refusal::null("distance"));
+        };
+        let Some(shade) = shade else {
+            return Err(Refusal::null("shade"));
+        };
+        if out.is_null() {
+            return Err(Refusal::null("out"));
+        }
+        finite(&[
+            ("params->tan_theta", p.tan_theta),
+            ("params->alpha", p.alpha),
+            ("params->eps", p.eps),
+            ("params->t_min", p.t_min),
+            ("params->t_max", p.t_max),
+            ("params->min_sample_weight", p.min_sample_weight),
+        ])?;
+        let (origin, dir, up_hint) = (Vec3::from(origin), Vec3::from(dir), Vec3::from(up_hint));
+        finite_vec("origin", origin)?;
+        finite_vec("dir", dir)?;
+        finite_vec("up_hint", up_hint)?;
+        if dir == Vec3::ZERO {
+            return Err(Refusal::invalid("dir is (0, 0, 0); it must not be zero"));
+        }
+        if p.tan_theta < 0.0 {
+            return Err(Refusal::invalid(format!(
+                "params->tan_theta is {}; it must not be negative",
+                p.tan_theta
+            )));
+        }
+        if !(1..=32).contains(&p.visibility_k) {
+            return Err(Refusal::invalid(format!(
+                "params->visibility_k is {}; it must be in 1..=32",
+                p.visibility_k
+            )));
+        }
+        // A unit direction is used as given (as the renderers pass it).
+        let dir = if (dir.length_squared() - 1.0).abs() > 4.0 * f32::EPSILON {
+            in_normal_range(dir).normalize()
+        } else {
+            dir
+        };
+        let up_hint = in_normal_range(up_hint);
+        let (right, up) = cross_section_frame(dir, up_hint);
+        let ray = SplitRay {
+            origin,
+            dir,
+            right,
+            up,
+        };
+        let mut field = Callbacks {
+            distance,
+            normal,
+            user,
+        };
+        let r = trace_field(
+            &p,
+            &ray,
+            &mut field,
+            |q, n, d| shade(user, q.into(), n.into(), d.into()).into(),
+            background.into(),
+        );
+        let stop = match r.stop {
+            StopReason::FullOcclusion => 0,
+            StopReason::HardHit => 1,
+            StopReason::VisibilityThreshold => 2,
+            StopReason::SampleCap => 3,
+            StopReason::MaxDistance => 4,
+            StopReason::StepBudget => 5,
+            StopReason::InvalidDistance => 6,
+            _ => 7,
+        };
+        let result = SubconeCtssResult {
+            color: r.color.into(),
+            samples: r.samples,
+            steps: r.steps,
+            coverage: r.coverage,
+            stop,
+        };
+        // SAFETY: checked non-null; forwarded contract.
+        unsafe { write(out, result, "out") }
     })
 }

@@ -7,29 +7,33 @@ use subcone_kernels::taa::{resolve_pixel as taa_resolve_pixel, TaaParams};
 
 use crate::checks::{finite, read, slice, slice_mut};
 use crate::post::{SubconeFxaaParams, SubconeTaaParams};
-use crate::status::{guard, status, SubconeStatus};
+use crate::status::{call, Checked, Refusal, SubconeStatus};
 
 /// The pixel count of a `width × height` image and the length of a buffer
 /// of `per_pixel` floats per pixel: errors on a zero size or an overflow.
-fn image_len(width: u32, height: u32, per_pixel: usize) -> Result<(usize, usize), SubconeStatus> {
+/// `size` names the size in messages (`width × height`, say).
+fn image_len(width: u32, height: u32, per_pixel: usize, size: &str) -> Checked<(usize, usize)> {
     if width == 0 || height == 0 {
-        return Err(SubconeStatus::SizeMismatch);
+        return Err(Refusal::size(format!(
+            "{size} is {width} × {height}; both must be at least 1"
+        )));
     }
+    let overflow = || Refusal::size(format!("{size} ({width} × {height}) overflows size_t"));
     let n = (width as usize)
         .checked_mul(height as usize)
-        .ok_or(SubconeStatus::SizeMismatch)?;
-    let len = n
-        .checked_mul(per_pixel)
-        .ok_or(SubconeStatus::SizeMismatch)?;
+        .ok_or_else(overflow)?;
+    let len = n.checked_mul(per_pixel).ok_or_else(overflow)?;
     Ok((n, len))
 }
 
-/// `len` must be `want`.
-fn exact_len(len: usize, want: usize) -> Result<(), SubconeStatus> {
+/// `len`, the length of `name`, must be `want` (`what` says what that is).
+fn exact_len(name: &str, len: usize, want: usize, what: &str) -> Checked<()> {
     if len == want {
         Ok(())
     } else {
-        Err(SubconeStatus::SizeMismatch)
+        Err(Refusal::size(format!(
+            "{name} is {len}; it must be {what} = {want}"
+        )))
     }
 }
 
@@ -59,30 +63,32 @@ pub unsafe extern "C" fn subcone_fxaa_image(
     dst: *mut f32,
     dst_len: usize,
 ) -> SubconeStatus {
-    guard(|| {
-        status((|| {
-            // SAFETY: forwarded contract.
-            let p = unsafe { read(params) }?;
-            finite(&[p.subpix, p.edge_threshold, p.edge_threshold_min])?;
-            let p = FxaaParams::from(p);
-            let (_, len) = image_len(width, height, 4)?;
-            exact_len(src_len, len)?;
-            exact_len(dst_len, len)?;
-            // SAFETY: lengths checked against the size; pointers per contract.
-            let (src, dst) = unsafe { (slice(src, src_len)?, slice_mut(dst, dst_len)?) };
-            let encoded: Vec<Vec4> = src
-                .chunks_exact(4)
-                .map(|t| fxaa_encode(Vec3::new(t[0], t[1], t[2])))
-                .collect();
-            let fetch = edge_clamped(&encoded, width, height);
-            let w = width as usize;
-            for (i, out) in dst.chunks_exact_mut(4).enumerate() {
-                let (x, y) = ((i % w) as i32, (i / w) as i32);
-                let c = fxaa_decode(fxaa_pixel(&fetch, x, y, &p));
-                out.copy_from_slice(&[c.x, c.y, c.z, 1.0]);
-            }
-            Ok(SubconeStatus::Ok)
-        })())
+    call("subcone_fxaa_image", || {
+        // SAFETY: forwarded contract.
+        let p = unsafe { read(params, "params") }?;
+        finite(&[
+            ("params->subpix", p.subpix),
+            ("params->edge_threshold", p.edge_threshold),
+            ("params->edge_threshold_min", p.edge_threshold_min),
+        ])?;
+        let p = FxaaParams::from(p);
+        let (_, len) = image_len(width, height, 4, "width × height")?;
+        exact_len("src_len", src_len, len, "4·width·height")?;
+        exact_len("dst_len", dst_len, len, "4·width·height")?;
+        // SAFETY: lengths checked against the size; pointers per contract.
+        let (src, dst) = unsafe { (slice(src, src_len, "src")?, slice_mut(dst, dst_len, "dst")?) };
+        let encoded: Vec<Vec4> = src
+            .chunks_exact(4)
+            .map(|t| fxaa_encode(Vec3::new(t[0], t[1], t[2])))
+            .collect();
+        let fetch = edge_clamped(&encoded, width, height);
+        let w = width as usize;
+        for (i, out) in dst.chunks_exact_mut(4).enumerate() {
+            let (x, y) = ((i % w) as i32, (i / w) as i32);
+            let c = fxaa_decode(fxaa_pixel(&fetch, x, y, &p));
+            out.copy_from_slice(&[c.x, c.y, c.z, 1.0]);
+        }
+        Ok(())
     })
 }
 
@@ -114,45 +120,52 @@ pub unsafe extern "C" fn subcone_taa_resolve(
     out: *mut f32,
     out_len: usize,
 ) -> SubconeStatus {
-    guard(|| {
-        status((|| {
-            // SAFETY: forwarded contract.
-            let p = unsafe { read(params) }?;
-            finite(&[p.exposure, p.min_current_weight, p.clip_gamma])?;
-            let p = TaaParams::from(p);
-            let (n, len) = image_len(p.width, p.height, 4)?;
-            exact_len(current_len, len)?;
-            exact_len(velocity_len, 2 * n)?;
-            exact_len(out_len, len)?;
-            // The history may be empty only when it is not read.
-            if p.history_frames != 0 || history_len != 0 {
-                exact_len(history_len, len)?;
-            }
-            // SAFETY: lengths checked against the size; pointers per contract.
-            let (current, velocity, history, out) = unsafe {
-                (
-                    slice(current, current_len)?,
-                    slice(velocity, velocity_len)?,
-                    slice(history, history_len)?,
-                    slice_mut(out, out_len)?,
-                )
+    call("subcone_taa_resolve", || {
+        // SAFETY: forwarded contract.
+        let p = unsafe { read(params, "params") }?;
+        finite(&[
+            ("params->exposure", p.exposure),
+            ("params->min_current_weight", p.min_current_weight),
+            ("params->clip_gamma", p.clip_gamma),
+        ])?;
+        let p = TaaParams::from(p);
+        let (n, len) = image_len(p.width, p.height, 4, "params->width × params->height")?;
+        exact_len("current_len", current_len, len, "4·width·height")?;
+        exact_len("velocity_len", velocity_len, 2 * n, "2·width·height")?;
+        exact_len("out_len", out_len, len, "4·width·height")?;
+        // The history may be empty only when it is not read.
+        if p.history_frames != 0 || history_len != 0 {
+            let what = if p.history_frames != 0 {
+                "4·width·height (params->history_frames is not 0)"
+            } else {
+                "0 or 4·width·height"
             };
-            let w = p.width as usize;
-            let rgb = |b: &[f32], x: i32, y: i32| {
-                let i = 4 * (y as usize * w + x as usize);
-                Vec3::new(b[i], b[i + 1], b[i + 2])
-            };
-            let current_at = |x: i32, y: i32| rgb(current, x, y);
-            // Never called when the history is empty: the kernel reads it
-            // only when `history_frames > 0`, and then its length is checked.
-            let history_at = |x: i32, y: i32| rgb(history, x, y);
-            for (i, o) in out.chunks_exact_mut(4).enumerate() {
-                let (x, y) = ((i % w) as i32, (i / w) as i32);
-                let v = Vec2::new(velocity[2 * i], velocity[2 * i + 1]);
-                let c = taa_resolve_pixel(&current_at, &history_at, (x, y), v, &p);
-                o.copy_from_slice(&[c.x, c.y, c.z, 1.0]);
-            }
-            Ok(SubconeStatus::Ok)
-        })())
+            exact_len("history_len", history_len, len, what)?;
+        }
+        // SAFETY: lengths checked against the size; pointers per contract.
+        let (current, velocity, history, out) = unsafe {
+            (
+                slice(current, current_len, "current")?,
+                slice(velocity, velocity_len, "velocity")?,
+                slice(history, history_len, "history")?,
+                slice_mut(out, out_len, "out")?,
+            )
+        };
+        let w = p.width as usize;
+        let rgb = |b: &[f32], x: i32, y: i32| {
+            let i = 4 * (y as usize * w + x as usize);
+            Vec3::new(b[i], b[i + 1], b[i + 2])
+        };
+        let current_at = |x: i32, y: i32| rgb(current, x, y);
+        // Never called when the history is empty: the kernel reads it
+        // only when `history_frames > 0`, and then its length is checked.
+        let history_at = |x: i32, y: i32| rgb(history, x, y);
+        for (i, o) in out.chunks_exact_mut(4).enumerate() {
+            let (x, y) = ((i % w) as i32, (i / w) as i32);
+            let v = Vec2::new(velocity[2 * i], velocity[2 * i + 1]);
+            let c = taa_resolve_pixel(&current_at, &history_at, (x, y), v, &p);
+            o.copy_from_slice(&[c.x, c.y, c.z, 1.0]);
+        }
+        Ok(())
     })
 }

@@ -7,7 +7,16 @@
 //! # Contract
 //!
 //! - Every fallible function returns a [`SubconeStatus`] and writes its result
-//!   through an out-pointer only on [`SubconeStatus::Ok`].
+//!   through an out-pointer only on [`SubconeStatus::Ok`]. On any other
+//!   status, [`subcone_last_error_message`] says what was wrong (the
+//!   function, the parameter, its value and what it must be), until the
+//!   next call into the library on the same thread.
+//! - A parameter struct the library only reads on the host
+//!   ([`SubconeSraaFrame`]) begins with a `size` field the host sets to
+//!   `sizeof` the struct; any other value is refused with
+//!   [`SubconeStatus::StructSize`]. The structs whose bytes the shaders
+//!   read as they are (the parameters and pass uniforms) have the shaders'
+//!   layouts and no such field.
 //! - Null pointers, zero sizes, mismatched lengths and non-finite parameters
 //!   (the fields of the parameter structs, camera and cone settings, a ray's
 //!   origin and direction) are refused with an error code, never undefined
@@ -18,8 +27,9 @@
 //!   `catch_unwind`, and an unexpected panic becomes
 //!   [`SubconeStatus::Panic`].
 //! - Thread safety: every function is reentrant and thread-safe; there is no
-//!   global state. [`subcone_ctss_trace`] calls its callbacks synchronously on
-//!   the calling thread; they must not unwind (a C callback cannot).
+//!   global state (the last error message is per thread).
+//!   [`subcone_ctss_trace`] calls its callbacks synchronously on the calling
+//!   thread; they must not unwind (a C callback cannot).
 //!
 //! ```
 //! use subcone_capi::*;
@@ -30,9 +40,11 @@
 //! let mut w = 0.0;
 //! assert_eq!(unsafe { subcone_bilateral_weight(&params, &g, &g, &mut w) }, SubconeStatus::Ok);
 //! assert_eq!(w, 1.0);
-//! // A null pointer is an error, not a crash.
+//! // A null pointer is an error, not a crash, and the message names it.
 //! let e = unsafe { subcone_bilateral_weight(&params, &g, std::ptr::null(), &mut w) };
 //! assert_eq!(e, SubconeStatus::NullPointer);
+//! let message = unsafe { std::ffi::CStr::from_ptr(subcone_last_error_message()) };
+//! assert_eq!(message.to_str(), Ok("subcone_bilateral_weight: gj is NULL"));
 //! ```
 #![deny(unsafe_op_in_unsafe_fn)]
 #![deny(missing_docs)]
@@ -52,10 +64,14 @@ pub use version::{
     subcone_version, SUBCONE_VERSION_MAJOR, SUBCONE_VERSION_MINOR, SUBCONE_VERSION_PATCH,
 };
 
-// The status codes, and the guard that keeps a panic from crossing the
-// boundary.
+// The status codes, the refusals, and the wrapper that keeps a panic from
+// crossing the boundary.
 mod status;
 pub use status::SubconeStatus;
+
+// The calling thread's last error message and `subcone_last_error_message`.
+mod last_error;
+pub use last_error::subcone_last_error_message;
 
 // Checked reads of the caller's pointers, slices and parameters.
 mod checks;

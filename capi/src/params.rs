@@ -5,13 +5,14 @@ use subcone_kernels::ctss::CtssParams;
 use subcone_kernels::sraa::SraaParams;
 
 use crate::checks::{finite, read, write};
-use crate::status::{guard, SubconeStatus};
+use crate::status::{call, Checked, Refusal, SubconeStatus};
 // The functions the structs' documentation names.
 #[cfg(doc)]
 use crate::ctss_cone::{subcone_cone_tan_theta, subcone_sample_weight, subcone_visibility_mask};
 
 /// The SRAA weight parameters, the layout of the kernels' `SraaParams`
-/// (32 bytes). Fill it with [`subcone_sraa_params_default`] or
+/// (32 bytes; no leading `size`, as the shaders read these bytes as they
+/// are). Fill it with [`subcone_sraa_params_default`] or
 /// [`subcone_sraa_params_paper`] and adjust the σs.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -47,7 +48,8 @@ mirror_conversions!(SubconeSraaParams <=> SraaParams {
 });
 
 /// The CTSS trace parameters, the layout of the kernels' `CtssParams`
-/// (48 bytes). Fill it with [`subcone_ctss_params_default`].
+/// (48 bytes; no leading `size`, as the shaders read these bytes as they
+/// are). Fill it with [`subcone_ctss_params_default`].
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SubconeCtssParams {
@@ -105,10 +107,17 @@ const _: () = {
     assert!(offset_of!(SubconeCtssParams, flags) == offset_of!(CtssParams, flags));
 };
 
-pub(crate) fn sraa_params(p: *const SubconeSraaParams) -> Result<SraaParams, SubconeStatus> {
+/// The SRAA parameters at `p` (the argument `params`), every σ and the
+/// scale finite.
+pub(crate) fn sraa_params(p: *const SubconeSraaParams) -> Checked<SraaParams> {
     // SAFETY: `p` comes from the caller's contract on the exported function.
-    let p = unsafe { read(p) }?;
-    finite(&[p.sigma_z, p.sigma_n, p.scale, p.sigma_s])?;
+    let p = unsafe { read(p, "params") }?;
+    finite(&[
+        ("params->sigma_z", p.sigma_z),
+        ("params->sigma_n", p.sigma_n),
+        ("params->scale", p.scale),
+        ("params->sigma_s", p.sigma_s),
+    ])?;
     Ok(p.into())
 }
 
@@ -120,7 +129,9 @@ pub(crate) fn sraa_params(p: *const SubconeSraaParams) -> Result<SraaParams, Sub
 #[no_mangle]
 pub unsafe extern "C" fn subcone_sraa_params_default(out: *mut SubconeSraaParams) -> SubconeStatus {
     // SAFETY: forwarded contract.
-    guard(|| unsafe { write(out, SraaParams::TUNED.into()) })
+    call("subcone_sraa_params_default", || unsafe {
+        write(out, SraaParams::TUNED.into(), "out")
+    })
 }
 
 /// The SRAA paper's parameters (§3.1: σz 10, σn 0.25, eq. 1 as published,
@@ -131,7 +142,9 @@ pub unsafe extern "C" fn subcone_sraa_params_default(out: *mut SubconeSraaParams
 #[no_mangle]
 pub unsafe extern "C" fn subcone_sraa_params_paper(out: *mut SubconeSraaParams) -> SubconeStatus {
     // SAFETY: forwarded contract.
-    guard(|| unsafe { write(out, SraaParams::PAPER.into()) })
+    call("subcone_sraa_params_paper", || unsafe {
+        write(out, SraaParams::PAPER.into(), "out")
+    })
 }
 
 /// The default CTSS parameters for a cone of `tan_theta` (α 0.5, ε 0.01, up
@@ -145,11 +158,13 @@ pub unsafe extern "C" fn subcone_ctss_params_default(
     tan_theta: f32,
     out: *mut SubconeCtssParams,
 ) -> SubconeStatus {
-    guard(|| {
+    call("subcone_ctss_params_default", || {
         if !(tan_theta.is_finite() && tan_theta >= 0.0) {
-            return SubconeStatus::InvalidArgument;
+            return Err(Refusal::invalid(format!(
+                "tan_theta is {tan_theta}; it must be finite and not negative"
+            )));
         }
         // SAFETY: forwarded contract.
-        unsafe { write(out, CtssParams::new(tan_theta).into()) }
+        unsafe { write(out, CtssParams::new(tan_theta).into(), "out") }
     })
 }

@@ -6,10 +6,10 @@ use subcone_kernels::camera::{look_frame, PinholeCamera};
 use subcone_kernels::taa::ResolveSpace;
 use subcone_kernels::uniforms::{CtssUniform, SraaFrame};
 
-use crate::checks::{finite, read, slice, write};
+use crate::checks::{finite, finite_array, finite_vec, read, slice, write};
 use crate::geometry::SubconeVec3;
 use crate::params::{sraa_params, SubconeSraaParams};
-use crate::status::{guard, status, SubconeStatus};
+use crate::status::{call, Refusal, SubconeStatus};
 // What the documentation names.
 #[cfg(doc)]
 use crate::{ctss_trace::subcone_ctss_trace, params::SubconeCtssParams};
@@ -174,33 +174,41 @@ pub unsafe extern "C" fn subcone_sraa_pass_uniform(
     exposure: f32,
     out: *mut SubconeSraaPassUniform,
 ) -> SubconeStatus {
-    guard(|| {
-        status((|| {
-            let p = sraa_params(params)?;
-            if width == 0 || height == 0 {
-                return Err(SubconeStatus::SizeMismatch);
-            }
-            finite(&[depth_miss, exposure])?;
-            if exposure < 0.0 {
-                return Err(SubconeStatus::InvalidArgument);
-            }
-            // SAFETY: forwarded contract (null: linear depth).
-            let m = unsafe { slice(projection, if projection.is_null() { 0 } else { 16 }) }?;
-            finite(m)?;
-            // Column c of the column-major matrix is m[4c..4c + 4].
-            let hardware_depth = (!m.is_empty()).then(|| {
-                let column = |c: usize| [m[4 * c], m[4 * c + 1], m[4 * c + 2], m[4 * c + 3]];
-                ([column(0), column(1), column(2), column(3)], depth_miss)
-            });
-            let resolve = if exposure > 0.0 {
-                ResolveSpace::ToneMapped { exposure }
-            } else {
-                ResolveSpace::Linear
-            };
-            let frame = SraaFrame::new(p, (0, 0), (width, height), hardware_depth, resolve);
-            // SAFETY: forwarded contract.
-            Ok(unsafe { write(out, frame.into()) })
-        })())
+    call("subcone_sraa_pass_uniform", || {
+        let p = sraa_params(params)?;
+        if width == 0 || height == 0 {
+            return Err(Refusal::size(format!(
+                "width × height is {width} × {height}; both must be at least 1"
+            )));
+        }
+        finite(&[("depth_miss", depth_miss), ("exposure", exposure)])?;
+        if exposure < 0.0 {
+            return Err(Refusal::invalid(format!(
+                "exposure is {exposure}; it must not be negative (0 for the linear resolve)"
+            )));
+        }
+        // SAFETY: forwarded contract (null: linear depth).
+        let m = unsafe {
+            slice(
+                projection,
+                if projection.is_null() { 0 } else { 16 },
+                "projection",
+            )
+        }?;
+        finite_array("projection", m)?;
+        // Column c of the column-major matrix is m[4c..4c + 4].
+        let hardware_depth = (!m.is_empty()).then(|| {
+            let column = |c: usize| [m[4 * c], m[4 * c + 1], m[4 * c + 2], m[4 * c + 3]];
+            ([column(0), column(1), column(2), column(3)], depth_miss)
+        });
+        let resolve = if exposure > 0.0 {
+            ResolveSpace::ToneMapped { exposure }
+        } else {
+            ResolveSpace::Linear
+        };
+        let frame = SraaFrame::new(p, (0, 0), (width, height), hardware_depth, resolve);
+        // SAFETY: forwarded contract.
+        unsafe { write(out, frame.into(), "out") }
     })
 }
 
@@ -231,39 +239,51 @@ pub unsafe extern "C" fn subcone_ctss_pass_uniform(
     background: SubconeVec3,
     out: *mut SubconeCtssPassUniform,
 ) -> SubconeStatus {
-    guard(|| {
-        status((|| {
-            if width == 0 || height == 0 {
-                return Err(SubconeStatus::SizeMismatch);
-            }
-            let (eye, forward, up_hint, background) = (
-                Vec3::from(eye),
-                Vec3::from(forward),
-                Vec3::from(up_hint),
-                Vec3::from(background),
-            );
-            finite(&[fov_y])?;
-            for v in [eye, forward, up_hint, background] {
-                finite(&v.to_array())?;
-            }
-            if !(fov_y > 0.0 && fov_y < std::f32::consts::PI) {
-                return Err(SubconeStatus::InvalidArgument);
-            }
-            // The Rust `CtssCamera::new`'s frame: right = forward × up.
-            let (forward, right, up) = look_frame(forward, up_hint);
-            if forward == Vec3::ZERO || right == Vec3::ZERO {
-                return Err(SubconeStatus::InvalidArgument);
-            }
-            let camera = PinholeCamera::new(
-                eye,
-                (forward, right, up),
-                (0.5 * fov_y).tan(),
-                (width, height),
-            );
-            let uniform = CtssUniform::pinhole(camera, background, [0, 0], width);
-            // SAFETY: forwarded contract.
-            Ok(unsafe { write(out, uniform.into()) })
-        })())
+    call("subcone_ctss_pass_uniform", || {
+        if width == 0 || height == 0 {
+            return Err(Refusal::size(format!(
+                "width × height is {width} × {height}; both must be at least 1"
+            )));
+        }
+        let (eye, forward, up_hint, background) = (
+            Vec3::from(eye),
+            Vec3::from(forward),
+            Vec3::from(up_hint),
+            Vec3::from(background),
+        );
+        finite(&[("fov_y", fov_y)])?;
+        for (name, v) in [
+            ("eye", eye),
+            ("forward", forward),
+            ("up_hint", up_hint),
+            ("background", background),
+        ] {
+            finite_vec(name, v)?;
+        }
+        if !(fov_y > 0.0 && fov_y < std::f32::consts::PI) {
+            return Err(Refusal::invalid(format!(
+                "fov_y is {fov_y}; it must be in (0, π) radians"
+            )));
+        }
+        // The Rust `CtssCamera::new`'s frame: right = forward × up.
+        let (frame_forward, right, up) = look_frame(forward, up_hint);
+        if frame_forward == Vec3::ZERO || right == Vec3::ZERO {
+            return Err(Refusal::invalid(format!(
+                "forward ({}, {}, {}) and up_hint ({}, {}, {}) give no camera frame: one is \
+                     zero, or they are within a sine of 1e-4 of parallel",
+                forward.x, forward.y, forward.z, up_hint.x, up_hint.y, up_hint.z
+            )));
+        }
+        let forward = frame_forward;
+        let camera = PinholeCamera::new(
+            eye,
+            (forward, right, up),
+            (0.5 * fov_y).tan(),
+            (width, height),
+        );
+        let uniform = CtssUniform::pinhole(camera, background, [0, 0], width);
+        // SAFETY: forwarded contract.
+        unsafe { write(out, uniform.into(), "out") }
     })
 }
 
@@ -286,22 +306,27 @@ pub unsafe extern "C" fn subcone_pinhole_ray(
     y: f32,
     out: *mut SubconeVec3,
 ) -> SubconeStatus {
-    guard(|| {
-        status((|| {
-            // SAFETY: forwarded contract.
-            let u = unsafe { read(uniform) }?;
-            if u.projection != 0 {
-                return Err(SubconeStatus::InvalidArgument);
-            }
-            let camera = PinholeCamera::from(u.camera);
-            finite(&[x, y, camera.tan_half_fov])?;
-            for v in [camera.forward, camera.right, camera.up] {
-                finite(&v)?;
-            }
-            finite(&camera.jitter)?;
-            // SAFETY: forwarded contract.
-            Ok(unsafe { write(out, camera.ray_dir(Vec2::new(x, y)).into()) })
-        })())
+    call("subcone_pinhole_ray", || {
+        // SAFETY: forwarded contract.
+        let u = unsafe { read(uniform, "uniform") }?;
+        if u.projection != 0 {
+            return Err(Refusal::invalid(format!(
+                "uniform->projection is {}; the ray needs a pinhole uniform (projection 0)",
+                u.projection
+            )));
+        }
+        let camera = PinholeCamera::from(u.camera);
+        finite(&[
+            ("x", x),
+            ("y", y),
+            ("uniform->camera.tan_half_fov", camera.tan_half_fov),
+        ])?;
+        finite_array("uniform->camera.forward", &camera.forward)?;
+        finite_array("uniform->camera.right", &camera.right)?;
+        finite_array("uniform->camera.up", &camera.up)?;
+        finite_array("uniform->camera.jitter", &camera.jitter)?;
+        // SAFETY: forwarded contract.
+        unsafe { write(out, camera.ray_dir(Vec2::new(x, y)).into(), "out") }
     })
 }
 

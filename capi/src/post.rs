@@ -5,7 +5,7 @@ use subcone_kernels::fxaa::FxaaParams;
 use subcone_kernels::taa::{jitter, ResolveSpace, TaaParams};
 
 use crate::checks::write;
-use crate::status::{guard, SubconeStatus};
+use crate::status::{call, Refusal, SubconeStatus};
 
 /// FXAA 3.11's parameters, the layout of the kernels' `FxaaParams` (16
 /// bytes; `fxaa_params` of `shaders/fxaa/*`). Fill it with
@@ -100,7 +100,9 @@ pub struct SubconeTaaPassOrigin {
 #[no_mangle]
 pub unsafe extern "C" fn subcone_fxaa_params_quality(out: *mut SubconeFxaaParams) -> SubconeStatus {
     // SAFETY: forwarded contract.
-    guard(|| unsafe { write(out, FxaaParams::QUALITY.into()) })
+    call("subcone_fxaa_params_quality", || unsafe {
+        write(out, FxaaParams::QUALITY.into(), "out")
+    })
 }
 
 /// The FXAA pass's frame for a `width × height` image.
@@ -115,9 +117,11 @@ pub unsafe extern "C" fn subcone_fxaa_pass_frame(
     height: u32,
     out: *mut SubconeFxaaPassFrame,
 ) -> SubconeStatus {
-    guard(|| {
+    call("subcone_fxaa_pass_frame", || {
         if width == 0 || height == 0 {
-            return SubconeStatus::SizeMismatch;
+            return Err(Refusal::size(format!(
+                "width × height is {width} × {height}; both must be at least 1"
+            )));
         }
         let frame = SubconeFxaaPassFrame {
             width,
@@ -125,7 +129,7 @@ pub unsafe extern "C" fn subcone_fxaa_pass_frame(
             pad: [0; 2],
         };
         // SAFETY: forwarded contract.
-        unsafe { write(out, frame) }
+        unsafe { write(out, frame, "out") }
     })
 }
 
@@ -148,12 +152,17 @@ pub unsafe extern "C" fn subcone_taa_params(
     exposure: f32,
     out: *mut SubconeTaaParams,
 ) -> SubconeStatus {
-    guard(|| {
+    call("subcone_taa_params", || {
         if width == 0 || height == 0 {
-            return SubconeStatus::SizeMismatch;
+            return Err(Refusal::size(format!(
+                "width × height is {width} × {height}; both must be at least 1"
+            )));
         }
         if !(exposure.is_finite() && exposure >= 0.0) {
-            return SubconeStatus::InvalidArgument;
+            return Err(Refusal::invalid(format!(
+                "exposure is {exposure}; it must be finite and not negative (0 for the linear \
+                 resolve)"
+            )));
         }
         let space = if exposure > 0.0 {
             ResolveSpace::ToneMapped { exposure }
@@ -164,7 +173,7 @@ pub unsafe extern "C" fn subcone_taa_params(
             .with_space(space)
             .with_history_frames(history_frames);
         // SAFETY: forwarded contract.
-        unsafe { write(out, p.into()) }
+        unsafe { write(out, p.into(), "out") }
     })
 }
 
@@ -184,18 +193,21 @@ pub unsafe extern "C" fn subcone_taa_jitter(
     x: *mut f32,
     y: *mut f32,
 ) -> SubconeStatus {
-    guard(|| {
-        if x.is_null() || y.is_null() {
-            return SubconeStatus::NullPointer;
+    call("subcone_taa_jitter", || {
+        if x.is_null() {
+            return Err(Refusal::null("x"));
+        }
+        if y.is_null() {
+            return Err(Refusal::null("y"));
         }
         if phases == 0 {
-            return SubconeStatus::InvalidArgument;
+            return Err(Refusal::invalid("phases is 0; it must be at least 1"));
         }
         let j = jitter(frame, phases);
         // SAFETY: forwarded contract; both checked non-null.
         unsafe {
-            write(x, j.x);
-            write(y, j.y)
+            write(x, j.x, "x")?;
+            write(y, j.y, "y")
         }
     })
 }

@@ -5,16 +5,29 @@ use subcone_kernels::sraa::{
     Geometry, Resolver, ShadedFrame, ShadedGroup, Subsamples, ALBEDO_TOLERANCE, MAX_LAYERS,
 };
 
-use crate::checks::{read, slice, slice_mut};
+use crate::checks::{read_sized, slice, slice_mut};
 use crate::geometry::{SubconeGeometry, SubconeVec3};
 use crate::params::{sraa_params, SubconeSraaParams};
-use crate::status::{guard, status, SubconeStatus};
+use crate::status::{call, Checked, Refusal, SubconeStatus};
 
 /// A frame's worth of SRAA input for [`subcone_sraa_resolve`], in
-/// caller-owned CPU buffers (row-major, `width × height` pixels).
+/// caller-owned CPU buffers (row-major, `width × height` pixels). Set
+/// `size` to `sizeof(SubconeSraaFrame)`:
+///
+/// ```c
+/// SubconeSraaFrame frame;
+/// memset(&frame, 0, sizeof frame);
+/// frame.size = sizeof frame;
+/// frame.width = width;
+/// /* ... */
+/// ```
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct SubconeSraaFrame {
+    /// `sizeof(SubconeSraaFrame)`, which the library checks against its own
+    /// (`SUBCONE_STATUS_STRUCT_SIZE` when they differ): a host built with a
+    /// header of another version is refused rather than misread.
+    pub size: u32,
     /// Image width in pixels (> 0).
     pub width: u32,
     /// Image height in pixels (> 0).
@@ -51,6 +64,30 @@ pub struct SubconeSraaFrame {
     pub subsample_shadow_len: usize,
 }
 
+/// An empty frame whose `size` is set: every pointer null, every size and
+/// length 0.
+impl Default for SubconeSraaFrame {
+    fn default() -> Self {
+        SubconeSraaFrame {
+            size: size_of::<SubconeSraaFrame>() as u32,
+            width: 0,
+            height: 0,
+            layers: 0,
+            colors: std::ptr::null(),
+            colors_len: 0,
+            layer_lights: std::ptr::null(),
+            shaded_geometry: std::ptr::null(),
+            shaded_geometry_len: 0,
+            shaded_shadow: std::ptr::null(),
+            shaded_shadow_len: 0,
+            subsample_geometry: std::ptr::null(),
+            subsample_geometry_len: 0,
+            subsample_shadow: std::ptr::null(),
+            subsample_shadow_len: 0,
+        }
+    }
+}
+
 /// SRAA's antialiasing pass (§3, pass 2) over a whole frame: every layer of
 /// every subsample reconstructed from the 3×3 neighbourhood's shaded samples
 /// (eq. 1, gated by eq. 2 per light), then the box resolve, written to `out`
@@ -58,9 +95,10 @@ pub struct SubconeSraaFrame {
 /// (the kernels' `sraa::Resolver`). Primary hits only: reconstruct the
 /// reflections on their own geometry with a second call and add.
 ///
-/// Errors: null pointers where data is required, a zero size or more than 16
-/// layers, lengths that do not match the sizes, a gate naming a light above
-/// 31, non-finite parameters.
+/// Errors: null pointers where data is required, a `frame->size` that is
+/// not `sizeof(SubconeSraaFrame)` (`SUBCONE_STATUS_STRUCT_SIZE`), a zero
+/// size or more than 16 layers, lengths that do not match the sizes, a gate
+/// naming a light above 31, non-finite parameters.
 ///
 /// # Safety
 /// Every pointer is null or points to as many valid values as its length says.
@@ -72,7 +110,34 @@ pub unsafe extern "C" fn subcone_sraa_resolve(
     out_len: usize,
 ) -> SubconeStatus {
     // SAFETY: forwarded contract.
-    guard(|| status(unsafe { sraa_resolve(params, frame, out, out_len) }))
+    call("subcone_sraa_resolve", || unsafe {
+        sraa_resolve(params, frame, out, out_len)
+    })
+}
+
+/// `len`, the length of `name`, must be `want` (`what` says what that is);
+/// `None`: the requirement overflows `size_t`.
+fn exact(name: &str, len: usize, want: Option<usize>, what: &str) -> Checked<()> {
+    match want {
+        Some(want) if len == want => Ok(()),
+        Some(want) => Err(Refusal::size(format!(
+            "{name} is {len}; it must be {what} = {want}"
+        ))),
+        None => Err(Refusal::size(format!(
+            "{what} overflows size_t, so no {name} ({len}) can match it"
+        ))),
+    }
+}
+
+/// `len`, the length of the optional buffer `name`, must be 0 or `want`.
+fn optional(name: &str, len: usize, want: usize, what: &str) -> Checked<()> {
+    if len == 0 || len == want {
+        Ok(())
+    } else {
+        Err(Refusal::size(format!(
+            "{name} is {len}; it must be 0 (none) or {what} = {want}"
+        )))
+    }
 }
 
 /// # Safety
@@ -82,56 +147,98 @@ unsafe fn sraa_resolve(
     frame: *const SubconeSraaFrame,
     out: *mut SubconeVec3,
     out_len: usize,
-) -> Result<SubconeStatus, SubconeStatus> {
+) -> Checked<()> {
     let p = sraa_params(params)?;
     // SAFETY: forwarded contract.
-    let f = unsafe { read(frame) }?;
+    let f = unsafe { read_sized(frame, "frame", "SubconeSraaFrame") }?;
     let (w, h, layers) = (f.width as usize, f.height as usize, f.layers as usize);
-    if w == 0 || h == 0 || layers == 0 || layers > MAX_LAYERS {
-        return Err(SubconeStatus::SizeMismatch);
+    if w == 0 || h == 0 {
+        return Err(Refusal::size(format!(
+            "frame->width × frame->height is {w} × {h}; both must be at least 1"
+        )));
     }
-    let n = w.checked_mul(h).ok_or(SubconeStatus::SizeMismatch)?;
-    let exact = |len: usize, want: Option<usize>| match want {
-        Some(want) if len == want => Ok(()),
-        _ => Err(SubconeStatus::SizeMismatch),
-    };
-    exact(f.colors_len, n.checked_mul(layers))?;
-    exact(f.shaded_geometry_len, Some(n))?;
-    exact(f.subsample_geometry_len, n.checked_mul(4))?;
-    exact(out_len, Some(n))?;
-    let optional = |len: usize, want: usize| {
-        if len == 0 || len == want {
-            Ok(())
-        } else {
-            Err(SubconeStatus::SizeMismatch)
-        }
-    };
-    optional(f.shaded_shadow_len, n)?;
-    optional(f.subsample_shadow_len, 4 * n)?;
+    if layers == 0 || layers > MAX_LAYERS {
+        return Err(Refusal::size(format!(
+            "frame->layers is {layers}; it must be in 1..={MAX_LAYERS}"
+        )));
+    }
+    let n = w.checked_mul(h).ok_or_else(|| {
+        Refusal::size(format!(
+            "frame->width × frame->height ({w} × {h}) overflows size_t"
+        ))
+    })?;
+    exact(
+        "frame->colors_len",
+        f.colors_len,
+        n.checked_mul(layers),
+        "width·height·layers",
+    )?;
+    exact(
+        "frame->shaded_geometry_len",
+        f.shaded_geometry_len,
+        Some(n),
+        "width·height",
+    )?;
+    exact(
+        "frame->subsample_geometry_len",
+        f.subsample_geometry_len,
+        n.checked_mul(4),
+        "4·width·height",
+    )?;
+    exact("out_len", out_len, Some(n), "width·height")?;
+    optional(
+        "frame->shaded_shadow_len",
+        f.shaded_shadow_len,
+        n,
+        "width·height",
+    )?;
+    optional(
+        "frame->subsample_shadow_len",
+        f.subsample_shadow_len,
+        4 * n,
+        "4·width·height",
+    )?;
     // SAFETY: lengths checked above against the sizes; pointers per contract.
     let (colors, geometry, shadow, sub_geometry, sub_shadow, gates) = unsafe {
         (
-            slice(f.colors, f.colors_len)?,
-            slice(f.shaded_geometry, f.shaded_geometry_len)?,
-            slice(f.shaded_shadow, f.shaded_shadow_len)?,
-            slice(f.subsample_geometry, f.subsample_geometry_len)?,
-            slice(f.subsample_shadow, f.subsample_shadow_len)?,
+            slice(f.colors, f.colors_len, "frame->colors")?,
+            slice(
+                f.shaded_geometry,
+                f.shaded_geometry_len,
+                "frame->shaded_geometry",
+            )?,
+            slice(f.shaded_shadow, f.shaded_shadow_len, "frame->shaded_shadow")?,
+            slice(
+                f.subsample_geometry,
+                f.subsample_geometry_len,
+                "frame->subsample_geometry",
+            )?,
+            slice(
+                f.subsample_shadow,
+                f.subsample_shadow_len,
+                "frame->subsample_shadow",
+            )?,
             if f.layer_lights.is_null() {
                 &[][..]
             } else {
-                slice(f.layer_lights, layers)?
+                slice(f.layer_lights, layers, "frame->layer_lights")?
             },
         )
     };
     // SAFETY: `out` is null or holds `out_len` values (the caller's
     // contract), and `out_len` is `n` (checked above).
-    let out = unsafe { slice_mut(out, out_len) }?;
+    let out = unsafe { slice_mut(out, out_len, "out") }?;
     let mut layer_gates = [None; MAX_LAYERS];
-    for (g, &l) in layer_gates.iter_mut().zip(gates) {
+    for (i, (g, &l)) in layer_gates.iter_mut().zip(gates).enumerate() {
         *g = match l {
             l if l < 0 => None,
             l if l < 32 => Some(l as u8),
-            _ => return Err(SubconeStatus::InvalidArgument),
+            _ => {
+                return Err(Refusal::invalid(format!(
+                    "frame->layer_lights[{i}] is {l}; a gate must name a light below 32, or be \
+                     negative for an ungated layer"
+                )))
+            }
         };
     }
     // The kernels take glam types: the same layouts (checked above), copied
@@ -165,5 +272,5 @@ unsafe fn sraa_resolve(
         let (x, y) = ((j % w) as u32, (j / w) as u32);
         *o = resolver.resolve(&shaded, x, y, &subsamples, None).into();
     }
-    Ok(SubconeStatus::Ok)
+    Ok(())
 }

@@ -8,7 +8,7 @@ use subcone_kernels::sraa::{
 use crate::checks::{read, slice, write};
 use crate::geometry::{SubconeGeometry, SubconeVec3};
 use crate::params::{sraa_params, SubconeSraaParams};
-use crate::status::{guard, status, SubconeStatus};
+use crate::status::{call, SubconeStatus};
 
 /// SRAA eq. 1: the bilateral weight of sample `gj` for target `gi`, in
 /// `[0, 1]`. Geometry outside the domain (a NaN depth, a zero normal) gives
@@ -23,14 +23,12 @@ pub unsafe extern "C" fn subcone_bilateral_weight(
     gj: *const SubconeGeometry,
     out: *mut f32,
 ) -> SubconeStatus {
-    guard(|| {
-        status((|| {
-            let p = sraa_params(params)?;
-            // SAFETY: forwarded contract.
-            let (gi, gj) = unsafe { (read(gi)?, read(gj)?) };
-            // SAFETY: forwarded contract.
-            Ok(unsafe { write(out, bilateral_weight(&p, &gi.into(), &gj.into())) })
-        })())
+    call("subcone_bilateral_weight", || {
+        let p = sraa_params(params)?;
+        // SAFETY: forwarded contract.
+        let (gi, gj) = unsafe { (read(gi, "gi")?, read(gj, "gj")?) };
+        // SAFETY: forwarded contract.
+        unsafe { write(out, bilateral_weight(&p, &gi.into(), &gj.into()), "out") }
     })
 }
 
@@ -48,15 +46,13 @@ pub unsafe extern "C" fn subcone_shadow_gated_weight(
     sj: u32,
     out: *mut f32,
 ) -> SubconeStatus {
-    guard(|| {
-        status((|| {
-            let p = sraa_params(params)?;
-            // SAFETY: forwarded contract.
-            let (gi, gj) = unsafe { (read(gi)?, read(gj)?) };
-            let w = shadow_gated_weight(&p, &gi.into(), &gj.into(), si != 0, sj != 0);
-            // SAFETY: forwarded contract.
-            Ok(unsafe { write(out, w) })
-        })())
+    call("subcone_shadow_gated_weight", || {
+        let p = sraa_params(params)?;
+        // SAFETY: forwarded contract.
+        let (gi, gj) = unsafe { (read(gi, "gi")?, read(gj, "gj")?) };
+        let w = shadow_gated_weight(&p, &gi.into(), &gj.into(), si != 0, sj != 0);
+        // SAFETY: forwarded contract.
+        unsafe { write(out, w, "out") }
     })
 }
 
@@ -74,15 +70,13 @@ pub unsafe extern "C" fn subcone_reconstruction_weight(
     distance2: f32,
     out: *mut f32,
 ) -> SubconeStatus {
-    guard(|| {
-        status((|| {
-            let p = sraa_params(params)?;
-            // SAFETY: forwarded contract.
-            let (gi, gj) = unsafe { (read(gi)?, read(gj)?) };
-            let w = reconstruction_weight(&p, &gi.into(), &gj.into(), distance2);
-            // SAFETY: forwarded contract.
-            Ok(unsafe { write(out, w) })
-        })())
+    call("subcone_reconstruction_weight", || {
+        let p = sraa_params(params)?;
+        // SAFETY: forwarded contract.
+        let (gi, gj) = unsafe { (read(gi, "gi")?, read(gj, "gj")?) };
+        let w = reconstruction_weight(&p, &gi.into(), &gj.into(), distance2);
+        // SAFETY: forwarded contract.
+        unsafe { write(out, w, "out") }
     })
 }
 
@@ -98,7 +92,9 @@ pub unsafe extern "C" fn subcone_albedo_difference(
     out: *mut f32,
 ) -> SubconeStatus {
     // SAFETY: forwarded contract.
-    guard(|| unsafe { write(out, albedo_difference(a.into(), b.into())) })
+    call("subcone_albedo_difference", || unsafe {
+        write(out, albedo_difference(a.into(), b.into()), "out")
+    })
 }
 
 /// The box resolve of a pixel's four reconstructed subsamples (a plain mean;
@@ -111,13 +107,11 @@ pub unsafe extern "C" fn subcone_resolve_pixel(
     subsamples: *const SubconeVec3,
     out: *mut SubconeVec3,
 ) -> SubconeStatus {
-    guard(|| {
-        status((|| {
-            // SAFETY: forwarded contract (4 values).
-            let s = unsafe { slice(subsamples, 4) }?;
-            let c = resolve_pixel(&[s[0].into(), s[1].into(), s[2].into(), s[3].into()]);
-            // SAFETY: forwarded contract.
-            Ok(unsafe { write(out, c.into()) })
-        })())
+    call("subcone_resolve_pixel", || {
+        // SAFETY: forwarded contract (4 values).
+        let s = unsafe { slice(subsamples, 4, "subsamples") }?;
+        let c = resolve_pixel(&[s[0].into(), s[1].into(), s[2].into(), s[3].into()]);
+        // SAFETY: forwarded contract.
+        unsafe { write(out, c.into(), "out") }
     })
 }

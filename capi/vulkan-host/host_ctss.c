@@ -88,7 +88,8 @@ int run_ctss(Host *h, const char *dir, uint32_t width, uint32_t height, int text
             SUBCONE_STATUS_OK ||
         subcone_cone_tan_theta(fov_y, height, CONE_COVERAGE, 0, &tan_theta) != SUBCONE_STATUS_OK ||
         subcone_ctss_params_default(tan_theta, &params) != SUBCONE_STATUS_OK) {
-        snprintf(h->err, sizeof h->err, "the C ABI refused the CTSS camera or parameters");
+        snprintf(h->err, sizeof h->err, "the C ABI refused the CTSS camera or parameters: %s",
+                 subcone_last_error_message());
         goto done;
     }
     params.t_max = 100.0f;
@@ -144,7 +145,8 @@ int run_ctss(Host *h, const char *dir, uint32_t width, uint32_t height, int text
                     SUBCONE_STATUS_OK ||
                 subcone_ctss_trace(&params, origin, d, up_axis, test_field, NULL, test_shade, NULL,
                                    background, &r) != SUBCONE_STATUS_OK) {
-                snprintf(h->err, sizeof h->err, "the CPU trace of pixel (%u, %u) failed", x, y);
+                snprintf(h->err, sizeof h->err, "the CPU trace of pixel (%u, %u) failed: %s", x, y,
+                         subcone_last_error_message());
                 goto done;
             }
             const float cpu[3] = {r.color.x, r.color.y, r.color.z};

@@ -131,7 +131,8 @@ int run_fxaa(Host *h, const char *dir, uint32_t width, uint32_t height) {
     if (subcone_fxaa_params_quality(&params) != SUBCONE_STATUS_OK ||
         subcone_fxaa_pass_frame(width, height, &frame) != SUBCONE_STATUS_OK ||
         subcone_fxaa_image(&params, width, height, input, 4 * n, cpu, 4 * n) != SUBCONE_STATUS_OK) {
-        snprintf(h->err, sizeof h->err, "the C ABI refused the FXAA frame");
+        snprintf(h->err, sizeof h->err, "the C ABI refused the FXAA frame: %s",
+                 subcone_last_error_message());
         goto done;
     }
     PostPass pass = {"fxaa/default.spv", "fxaa_main", {&params, &frame}, {sizeof params, sizeof frame},
@@ -202,7 +203,8 @@ int run_taa(Host *h, const char *dir, uint32_t width, uint32_t height, float exp
     if (subcone_taa_params(width, height, 3, exposure, &params) != SUBCONE_STATUS_OK ||
         subcone_taa_resolve(&params, current, 4 * n, motion, 2 * n, history, 4 * n, cpu, 4 * n) !=
             SUBCONE_STATUS_OK) {
-        snprintf(h->err, sizeof h->err, "the C ABI refused the TAA frame");
+        snprintf(h->err, sizeof h->err, "the C ABI refused the TAA frame: %s",
+                 subcone_last_error_message());
         goto done;
     }
     PostPass pass = {"taa/default.spv", "taa_main", {&params, &origin}, {sizeof params, sizeof origin},

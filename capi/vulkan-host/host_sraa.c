@@ -74,6 +74,7 @@ int sraa_data_resolve(Host *h, SraaFrameData *d) {
     int8_t layer_lights[2] = {-1, 0};
     SubconeSraaFrame frame;
     memset(&frame, 0, sizeof frame);
+    frame.size = sizeof frame;
     frame.width = d->width;
     frame.height = d->height;
     frame.layers = d->layers;
@@ -90,7 +91,7 @@ int sraa_data_resolve(Host *h, SraaFrameData *d) {
     frame.subsample_shadow_len = lights ? 4 * n : 0;
     SubconeStatus st = subcone_sraa_resolve(&d->params, &frame, d->cpu, n);
     if (st != SUBCONE_STATUS_OK) {
-        snprintf(h->err, sizeof h->err, "subcone_sraa_resolve: status %d", (int)st);
+        snprintf(h->err, sizeof h->err, "status %d: %s", (int)st, subcone_last_error_message());
         return 2;
     }
     return 0;
@@ -122,7 +123,8 @@ static int sraa_data_make(Host *h, uint32_t width, uint32_t height, uint32_t lig
     if (subcone_sraa_params_default(&d->params) != SUBCONE_STATUS_OK ||
         subcone_sraa_pass_uniform(&d->params, width, height, NULL, 0.0f, 0.0f, &d->uniform) !=
             SUBCONE_STATUS_OK) {
-        snprintf(h->err, sizeof h->err, "the C ABI refused the SRAA uniform");
+        snprintf(h->err, sizeof h->err, "the C ABI refused the SRAA uniform: %s",
+                 subcone_last_error_message());
         return 2;
     }
     return sraa_data_resolve(h, d);

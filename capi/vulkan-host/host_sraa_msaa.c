@@ -313,7 +313,8 @@ int run_sraa_msaa(Host *h, const char *dir, const char *prepass_dir, uint32_t li
     if (subcone_sraa_params_paper(&d.params) != SUBCONE_STATUS_OK ||
         subcone_sraa_pass_uniform(&d.params, width, height, projection, 0.0f, 0.0f, &d.uniform) !=
             SUBCONE_STATUS_OK) {
-        snprintf(h->err, sizeof h->err, "the C ABI refused the SRAA uniform");
+        snprintf(h->err, sizeof h->err, "the C ABI refused the SRAA uniform: %s",
+                 subcone_last_error_message());
         goto done;
     }
     rc = sraa_data_resolve(h, &d);

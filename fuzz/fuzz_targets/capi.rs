@@ -10,8 +10,13 @@
 //! Each call must return a documented status: `Ok` exactly when every input
 //! is valid, otherwise one of the errors its defects allow (never `Panic`,
 //! which means bad input reached a panic), and the out-pointers untouched
-//! unless `Ok`. `capi/tests/fuzz_target.rs` fails when an exported function
-//! is not called here.
+//! unless `Ok`; `subcone_last_error_message` must then be empty after `Ok`
+//! and otherwise one line of UTF-8 naming the function. A
+//! `SubconeSraaFrame` carries any `size` now and then, or is only that
+//! `u32` (a smaller struct of another header): a wrong size must give
+//! `StructSize`, read nothing past the `size`, and be named in the message.
+//! `capi/tests/fuzz_target.rs` fails when an exported function is not
+//! called here.
 #![no_main]
 
 use std::ffi::c_void;
@@ -335,11 +340,38 @@ impl<T> Buf<T> {
     }
 }
 
+/// The `size` a host writes in a [`SubconeSraaFrame`].
+#[derive(Clone, Copy, Debug)]
+enum StructSize {
+    /// `sizeof(SubconeSraaFrame)`.
+    Right,
+    /// Any value (the right one only by chance).
+    Any(u32),
+    /// Any value but the right one, in a struct that is only that `u32`
+    /// (a host of an older, smaller header): the library must refuse it
+    /// from the `size` alone, reading nothing past it.
+    Short(u32),
+}
+
+impl<'a> Arbitrary<'a> for StructSize {
+    fn arbitrary(u: &mut Unstructured<'a>) -> arbitrary::Result<Self> {
+        Ok(match u.int_in_range(0u8..=15)? {
+            0 => StructSize::Any(u.arbitrary()?),
+            1 => StructSize::Any(
+                size_of::<SubconeSraaFrame>() as u32 ^ (1 << u.int_in_range(0..=31)?),
+            ),
+            2 => StructSize::Short(u.arbitrary()?),
+            _ => StructSize::Right,
+        })
+    }
+}
+
 #[derive(Arbitrary, Debug)]
 struct Frame {
     /// Every buffer of the length the sizes require, none null: the resolve
     /// itself runs whenever the sizes and gates are valid.
     consistent: bool,
+    size: StructSize,
     width: Size,
     height: Size,
     layers: Size,
@@ -569,24 +601,57 @@ struct Defects {
     null: bool,
     invalid: bool,
     size: bool,
+    /// A parameter struct's `size` field is not its `sizeof`.
+    struct_size: bool,
 }
 
 impl Defects {
+    /// `s`, the status of the call of `what` just made, is one the defects
+    /// allow, and the thread's last error message says so: empty after
+    /// `Ok`, else one line naming `what`.
     fn check(&self, s: SubconeStatus, what: &str) {
-        assert_ne!(s, SubconeStatus::Panic, "{what}: a panic was caught");
+        let message = last_error_message();
+        assert_ne!(
+            s,
+            SubconeStatus::Panic,
+            "{what}: a panic was caught: {message}"
+        );
         let allowed = match s {
-            SubconeStatus::Ok => !(self.null || self.invalid || self.size),
+            SubconeStatus::Ok => !(self.null || self.invalid || self.size || self.struct_size),
             SubconeStatus::NullPointer => self.null,
             SubconeStatus::InvalidArgument => self.invalid,
             SubconeStatus::SizeMismatch => self.size,
+            SubconeStatus::StructSize => self.struct_size,
             SubconeStatus::Panic => false,
         };
         assert!(
             allowed,
-            "{what}: returned {s:?} for null {}, invalid {}, size {}",
-            self.null, self.invalid, self.size
+            "{what}: returned {s:?} ({message}) for null {}, invalid {}, size {}, struct size {}",
+            self.null, self.invalid, self.size, self.struct_size
         );
+        if s == SubconeStatus::Ok {
+            assert_eq!(message, "", "{what}: a message after Ok");
+        } else {
+            assert!(
+                message.starts_with(&format!("{what}: ")) && message.len() > what.len() + 2,
+                "{what}: returned {s:?} with the message {message:?}"
+            );
+            assert!(!message.contains('\n'), "{what}: {message:?}");
+        }
     }
+}
+
+/// The calling thread's last error message: never null, NUL-terminated
+/// UTF-8.
+fn last_error_message() -> String {
+    let p = subcone_last_error_message();
+    assert!(!p.is_null(), "subcone_last_error_message returned NULL");
+    // SAFETY: a NUL-terminated string the library owns until its next call
+    // on this thread.
+    let m = unsafe { std::ffi::CStr::from_ptr(p) };
+    m.to_str()
+        .unwrap_or_else(|e| panic!("the last error message is not UTF-8: {e}: {m:?}"))
+        .to_string()
 }
 
 /// An out-pointer: null, or a value pre-set to a sentinel that must survive
@@ -669,6 +734,7 @@ fn weight(
         null: p.is_none() || gi.is_none() || gj.is_none() || o.is_null(),
         invalid: p.as_ref().is_some_and(|p| !sraa_params_valid(p)),
         size: false,
+        struct_size: false,
     }
     .check(s, what);
     if let Some(w) = o.after(s, what) {
@@ -701,6 +767,7 @@ fn scalar<T: Copy + std::fmt::Debug>(
         null: o.is_null(),
         invalid,
         size: false,
+        struct_size: false,
     }
     .check(s, what);
     o.after(s, what)
@@ -728,6 +795,7 @@ fn sraa_resolve(params: Option<SraaParams>, frame: Option<Frame>) {
             null: true,
             invalid: p.as_ref().is_some_and(|p| !sraa_params_valid(p)),
             size: false,
+            struct_size: false,
         }
         .check(s, what);
         assert_eq!(bytes(&o[0]), bytes(&SENTINEL_V3), "{what}: wrote on {s:?}");
@@ -783,6 +851,11 @@ fn sraa_resolve(params: Option<SraaParams>, frame: Option<Frame>) {
     let mut out: Option<Vec<SubconeVec3>> =
         (!fr.out.null.0 && out_len <= MAX_ALLOC).then(|| vec![SENTINEL_V3; out_len]);
     let frame = SubconeSraaFrame {
+        size: match fr.size {
+            StructSize::Right => size_of::<SubconeSraaFrame>() as u32,
+            StructSize::Any(s) => s,
+            StructSize::Short(_) => 0,
+        },
         width: fr.width.0,
         height: fr.height.0,
         layers: fr.layers.0,
@@ -801,7 +874,35 @@ fn sraa_resolve(params: Option<SraaParams>, frame: Option<Frame>) {
     let out_ptr = out
         .as_mut()
         .map_or(std::ptr::null_mut(), |o| o.as_mut_ptr());
-    let s = unsafe { subcone_sraa_resolve(opt_ptr(&p), &frame, out_ptr, out_len) };
+    // A short struct: only its `u32` size, never the right one.
+    let short = match fr.size {
+        StructSize::Short(s) if s as usize == size_of::<SubconeSraaFrame>() => Some(Box::new(0u32)),
+        StructSize::Short(s) => Some(Box::new(s)),
+        _ => None,
+    };
+    let frame_ptr = short
+        .as_deref()
+        .map_or(&frame as *const SubconeSraaFrame, |s| {
+            (s as *const u32).cast::<SubconeSraaFrame>()
+        });
+    let struct_size = short.is_some() || frame.size as usize != size_of::<SubconeSraaFrame>();
+    let s = unsafe { subcone_sraa_resolve(opt_ptr(&p), frame_ptr, out_ptr, out_len) };
+    let params_ok = p.as_ref().is_some_and(sraa_params_valid);
+    if struct_size && params_ok {
+        // The size is checked right after the parameters, before any field
+        // it would misread.
+        assert_eq!(
+            s,
+            SubconeStatus::StructSize,
+            "{what}: {}",
+            last_error_message()
+        );
+        assert!(
+            last_error_message().contains("SubconeSraaFrame"),
+            "{what}: {}",
+            last_error_message()
+        );
+    }
 
     // The documented refusals.
     let size_ok = w > 0 && h > 0 && (1..=16).contains(&layers);
@@ -826,6 +927,7 @@ fn sraa_resolve(params: Option<SraaParams>, frame: Option<Frame>) {
         null,
         invalid,
         size: !(size_ok && lengths_ok),
+        struct_size,
     }
     .check(s, what);
     if let Some(out) = &out {
@@ -975,6 +1077,7 @@ fn ctss_trace(t: Trace) {
         null: p.is_none() || t.no_distance.0 || t.no_shade.0 || o.is_null(),
         invalid,
         size: false,
+        struct_size: false,
     }
     .check(s, what);
     if s != SubconeStatus::Ok {
@@ -1033,6 +1136,7 @@ fn call(c: Call) {
                     || !(exposure.0.is_finite() && exposure.0 >= 0.0)
                     || m.is_some_and(|m| !m.iter().all(|v| v.is_finite())),
                 size: width.0 == 0 || height.0 == 0,
+                struct_size: false,
             }
             .check(s, what);
             if let Some(u) = o.after(s, what) {
@@ -1093,6 +1197,7 @@ fn call(c: Call) {
                 null: o.is_null(),
                 invalid: nonfinite,
                 size: width.0 == 0 || height.0 == 0,
+                struct_size: false,
             };
             if s == SubconeStatus::InvalidArgument && !nonfinite {
                 assert!(degenerate, "{what}: refused a camera with a frame");
@@ -1133,6 +1238,7 @@ fn call(c: Call) {
                 null: o.is_null(),
                 invalid: false,
                 size: width.0 == 0 || height.0 == 0,
+                struct_size: false,
             }
             .check(s, what);
             if let Some(f) = o.after(s, what) {
@@ -1161,6 +1267,7 @@ fn call(c: Call) {
                 null: o.is_null(),
                 invalid: !(exposure.0.is_finite() && exposure.0 >= 0.0),
                 size: width.0 == 0 || height.0 == 0,
+                struct_size: false,
             }
             .check(s, what);
             if let Some(p) = o.after(s, what) {
@@ -1182,6 +1289,7 @@ fn call(c: Call) {
                 null: ox.is_null() || oy.is_null(),
                 invalid: phases.0 == 0,
                 size: false,
+                struct_size: false,
             }
             .check(s, what);
             if let (Some(jx), Some(jy)) = (ox.after(s, what), oy.after(s, what)) {
@@ -1233,6 +1341,7 @@ fn call(c: Call) {
                     || u.as_ref()
                         .is_some_and(|u| u.projection != 0 || !finite_u(u)),
                 size: false,
+                struct_size: false,
             }
             .check(s, what);
             o.after(s, what);
@@ -1545,6 +1654,7 @@ fn fxaa_image(mut c: FxaaImage) {
                 .all(|v| v.is_finite())
         }),
         size: !lengths_ok,
+        struct_size: false,
     }
     .check(s, what);
     // Colour in [0, 1], alpha 1.
@@ -1626,6 +1736,7 @@ fn taa_resolve(mut c: TaaResolve) {
                 .all(|v| v.is_finite())
         }),
         size: params.is_some() && !lengths_ok,
+        struct_size: false,
     }
     .check(s, what);
     // Finite and non-negative colour, alpha 1.

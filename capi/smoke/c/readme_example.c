@@ -1,4 +1,6 @@
 #include <math.h>
+#include <stdio.h>
+#include <string.h>
 
 #include "subcone.h"
 
@@ -21,6 +23,14 @@ static SubconeVec3 white(void *user, SubconeVec3 p, SubconeVec3 n, SubconeVec3 d
     return c;
 }
 
+/* Whether a call failed; if so, says why (the library's message names the
+ * function, the parameter and its value). */
+static int failed(SubconeStatus s) {
+    if (s == SUBCONE_STATUS_OK) return 0;
+    fprintf(stderr, "subcone error %d: %s\n", (int)s, subcone_last_error_message());
+    return 1;
+}
+
 int subcone_readme_example(void) {
     float tan_theta;
     SubconeCtssParams params;
@@ -29,11 +39,15 @@ int subcone_readme_example(void) {
 
     if (subcone_version() >> 16 != SUBCONE_VERSION_MAJOR) return 1;
     /* The cone of one pixel of a 720-pixel-high image, 45° field of view. */
-    if (subcone_cone_tan_theta(0.785398f, 720, 1.0f, 0, &tan_theta) != SUBCONE_STATUS_OK) return 2;
-    if (subcone_ctss_params_default(tan_theta, &params) != SUBCONE_STATUS_OK) return 3;
-    if (subcone_ctss_trace(&params, origin, dir, up, ball, NULL, white, NULL, black, &pixel)
-        != SUBCONE_STATUS_OK) return 4;
+    if (failed(subcone_cone_tan_theta(0.785398f, 720, 1.0f, 0, &tan_theta))) return 2;
+    if (failed(subcone_ctss_params_default(tan_theta, &params))) return 3;
+    if (failed(subcone_ctss_trace(&params, origin, dir, up, ball, NULL, white, NULL, black, &pixel))) return 4;
     /* The ray grazes the sphere: the pixel is partly white, partly black. */
-    return pixel.color.x > 0 && pixel.color.x < 1 ? 0 : 5;
+    if (!(pixel.color.x > 0 && pixel.color.x < 1)) return 5;
+    /* A zero direction is refused, and the message says so:
+     * "subcone_ctss_trace: dir is (0, 0, 0); it must not be zero". */
+    if (subcone_ctss_trace(&params, origin, black, up, ball, NULL, white, NULL, black, &pixel)
+        != SUBCONE_STATUS_INVALID_ARGUMENT) return 6;
+    return strstr(subcone_last_error_message(), "dir is (0, 0, 0)") != NULL ? 0 : 7;
 }
 /* README: end */

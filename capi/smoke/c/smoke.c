@@ -77,6 +77,20 @@ static void expect(Check *c, SubconeStatus got, SubconeStatus want, const char *
 
 #define OK(call) expect(check, (call), SUBCONE_STATUS_OK, #call)
 
+/* The last error message holds `part` (or, for NULL, is empty). */
+static void expect_message(Check *c, const char *part, const char *what) {
+    const char *m = subcone_last_error_message();
+    if (m == NULL || (part == NULL ? m[0] != 0 : strstr(m, part) == NULL)) {
+        int n = snprintf(c->at, c->left, "%s: last error message \"%s\", expected %s%s\n", what,
+                         m == NULL ? "(NULL)" : m, part == NULL ? "none" : "one naming ", part == NULL ? "" : part);
+        if (n > 0 && (size_t)n < c->left) {
+            c->at += n;
+            c->left -= (size_t)n;
+        }
+        c->failures++;
+    }
+}
+
 /* What the phases share: the SRAA parameters, two geometries and four
  * colours, the 3×2 frame and the arrays it points into, the CTSS
  * parameters, and the shade callback's count. */
@@ -151,6 +165,7 @@ static void smoke_sraa_frame(Check *check, SmokeInputs *in, SmokeOutputs *o) {
         }
     }
     memset(&frame, 0, sizeof frame);
+    frame.size = sizeof frame;
     frame.width = 3;
     frame.height = 2;
     frame.layers = 2;
@@ -166,6 +181,7 @@ static void smoke_sraa_frame(Check *check, SmokeInputs *in, SmokeOutputs *o) {
     frame.subsample_shadow = in->subshadow;
     frame.subsample_shadow_len = 24;
     OK(subcone_sraa_resolve(&params, &frame, o->sraa, 6));
+    expect_message(check, NULL, "after a success");
     in->frame = frame;
 }
 
@@ -225,9 +241,17 @@ static void smoke_bad_frame(Check *check, const SmokeInputs *in, SmokeOutputs *o
     b = frame;
     b.colors = NULL;
     expect(check, subcone_sraa_resolve(&params, &b, o->sraa, 6), SUBCONE_STATUS_NULL_POINTER, "null colours");
+    expect_message(check, "frame->colors", "null colours");
     b = frame;
     b.layers = 17;
     expect(check, subcone_sraa_resolve(&params, &b, o->sraa, 6), SUBCONE_STATUS_SIZE_MISMATCH, "17 layers");
+    expect_message(check, "frame->layers is 17", "17 layers");
+    b = frame;
+    b.size = (uint32_t)sizeof frame - 8;
+    expect(check, subcone_sraa_resolve(&params, &b, o->sraa, 6), SUBCONE_STATUS_STRUCT_SIZE, "short frame size");
+    expect_message(check, "sizeof(SubconeSraaFrame)", "short frame size");
+    b.size = 0;
+    expect(check, subcone_sraa_resolve(&params, &b, o->sraa, 6), SUBCONE_STATUS_STRUCT_SIZE, "zero frame size");
     expect(check, subcone_sraa_resolve(&params, &frame, o->sraa, 5), SUBCONE_STATUS_SIZE_MISMATCH, "short out");
     expect(check, subcone_sraa_resolve(&params, &frame, NULL, 6), SUBCONE_STATUS_NULL_POINTER, "null out");
     expect(check, subcone_sraa_resolve(&params, NULL, o->sraa, 6), SUBCONE_STATUS_NULL_POINTER, "null frame");
