@@ -330,6 +330,9 @@ pub fn render(
     )
     .map_err(|e| e.to_string())?;
     let sdf = host::read_rgba32f(device, queue, enc, &out)?;
+    // The encoder is submitted: tell the pass, as a frame loop does after
+    // each submit, so its uniform slots are free for the next frame.
+    pass.end_submission();
     let sdf_depth = host::read_texels::<f32>(
         device,
         queue,

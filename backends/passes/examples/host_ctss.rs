@@ -213,6 +213,9 @@ pub fn render_gpu(
     )
     .map_err(|e| e.to_string())?;
     let pixels = host::read_rgba32f(device, queue, enc, &output)?;
+    // The encoder is submitted: tell the pass, as a frame loop does after
+    // each submit, so its uniform slots are free for the next frame.
+    pass.end_submission();
     Ok(pixels
         .iter()
         .map(|p| Vec4::from_array(*p).truncate())

@@ -504,6 +504,9 @@ pub fn render(
     )
     .map_err(|e| e.to_string())?;
     let pixels = read_rgba32f(device, queue, enc, &output)?;
+    // The encoder is submitted: tell the pass, as a frame loop does after
+    // each submit, so its uniform slots are free for the next frame.
+    sraa.end_submission();
     Ok(pixels.iter().map(|p| Vec3::new(p[0], p[1], p[2])).collect())
 }
 

@@ -525,7 +525,10 @@ pub struct CtssBuffers<'a> {
 /// output view, `encode` creates no buffer, texture, bind group or
 /// pipeline (the camera and parameters go into slots of uniform buffers
 /// made in `new`, [`crate::UNIFORM_SLOTS`]; the bind group of the output
-/// view is cached, [`crate::BIND_GROUP_CACHE`]).
+/// view is cached, [`crate::BIND_GROUP_CACHE`]). Many encodes in one
+/// submission (viewports, [`CtssRect`]s) each read their own camera: a
+/// slot an unsubmitted encode binds is never rewritten (the ring grows
+/// instead); call [`CtssPass::end_submission`] after each submit.
 ///
 /// ```no_run
 /// # fn f(device: &wgpu::Device, queue: &wgpu::Queue, encoder: &mut wgpu::CommandEncoder,
@@ -553,6 +556,8 @@ pub struct CtssBuffers<'a> {
 ///     depth: None,
 ///     rect: None,
 /// }, None)?;
+/// // After the host's `queue.submit(…)` of this encoder:
+/// pass.end_submission();
 /// # Ok(()) }
 /// ```
 #[derive(Debug)]
@@ -825,6 +830,25 @@ impl CtssPass {
     /// with them the pass's clones of those views.
     pub fn release_views(&self) {
         self.pipeline.release_views();
+    }
+
+    /// Tell the pass that every command buffer it was encoded into so far
+    /// has been submitted (`Queue::submit`), so its uniform slots may be
+    /// rewritten: call it after each submit that holds this pass's encodes.
+    ///
+    /// Why: `encode` writes its uniforms with `Queue::write_buffer`, which
+    /// lands before *any* command of the next submission runs, so a slot
+    /// still bound by an unsubmitted encode is never rewritten; a new value
+    /// takes a free slot, or the ring grows ([`crate::UNIFORM_SLOTS`] to
+    /// [`crate::MAX_UNIFORM_SLOTS`]). Without this call a slot is freed only
+    /// once its command buffer has run on the GPU and the host polled the
+    /// device (or submitted again): still correct, but the ring may grow
+    /// further, and a host that never submits gets
+    /// [`PassError::UniformSlotsExhausted`]. Calling it while an encode of
+    /// this pass is recorded but not submitted breaks that encode: it may
+    /// read a later encode's values.
+    pub fn end_submission(&self) {
+        self.pipeline.end_submission();
     }
 }
 

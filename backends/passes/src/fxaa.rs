@@ -113,7 +113,9 @@ impl FxaaPassDesc {
 ///
 /// Built once, encoded every frame: after the first frame with given views,
 /// `encode` creates no buffer, texture, bind group or pipeline
-/// ([`crate::UNIFORM_SLOTS`], [`crate::BIND_GROUP_CACHE`]).
+/// ([`crate::UNIFORM_SLOTS`], [`crate::BIND_GROUP_CACHE`]); call its
+/// `end_submission` after each submit that holds its encodes, so that its
+/// uniform slots are free for the next.
 #[derive(Debug)]
 pub struct FxaaPass {
     desc: FxaaPassDesc,
@@ -204,6 +206,25 @@ impl FxaaPass {
     /// the pass's clones of those views.
     pub fn release_views(&self) {
         self.pipeline.release_views();
+    }
+
+    /// Tell the pass that every command buffer it was encoded into so far
+    /// has been submitted (`Queue::submit`), so its uniform slots may be
+    /// rewritten: call it after each submit that holds this pass's encodes.
+    ///
+    /// Why: `encode` writes its uniforms with `Queue::write_buffer`, which
+    /// lands before *any* command of the next submission runs, so a slot
+    /// still bound by an unsubmitted encode is never rewritten; a new value
+    /// takes a free slot, or the ring grows ([`crate::UNIFORM_SLOTS`] to
+    /// [`crate::MAX_UNIFORM_SLOTS`]). Without this call a slot is freed only
+    /// once its command buffer has run on the GPU and the host polled the
+    /// device (or submitted again): still correct, but the ring may grow
+    /// further, and a host that never submits gets
+    /// [`PassError::UniformSlotsExhausted`]. Calling it while an encode of
+    /// this pass is recorded but not submitted breaks that encode: it may
+    /// read a later encode's values.
+    pub fn end_submission(&self) {
+        self.pipeline.end_submission();
     }
 }
 

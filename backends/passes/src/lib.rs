@@ -3,18 +3,30 @@
 //! Each pass works on the host's `wgpu::Device`, `wgpu::Queue` and texture
 //! views and never opens a device of its own, never installs a device-lost or
 //! uncaptured-error callback and never waits on the GPU: it records into the
-//! host's `wgpu::CommandEncoder` and the host submits. Like the `smaa` crate,
+//! host's `wgpu::CommandEncoder` and the host submits. (The one callback it
+//! registers is on that encoder, `on_submitted_work_done`, to take its
+//! uniform slots back once the work ran; wgpu calls it from the host's own
+//! poll or submit.) Like the `smaa` crate,
 //! a pass is built once for a configuration (`new`, which compiles its
 //! pipeline and makes its uniform buffers) and recorded every frame
 //! (`encode(&device, &queue, &mut encoder, inputs, timestamps)`).
 //!
 //! A pass lives in the host's frame loop: after the first frame with given
 //! views, `encode` creates no buffer, texture, bind group or pipeline. Its
-//! per-frame constants are written with `Queue::write_buffer` into one of
-//! [`UNIFORM_SLOTS`] slots (so a submission may hold many encodes of a pass,
-//! with up to that many distinct values of each constant), and its bind
-//! groups are cached per set of input views, at most [`BIND_GROUP_CACHE`]
-//! of them. Each `encode` takes optional `wgpu::ComputePassTimestampWrites`
+//! per-frame constants are written with `Queue::write_buffer` into slots of
+//! a ring per constant, and its bind groups are cached per set of input
+//! views, at most [`BIND_GROUP_CACHE`] of them. A write lands before *any*
+//! command of the next submission runs, so a slot that an encode not yet
+//! submitted binds is never rewritten: a submission may hold any number of
+//! encodes of a pass, each reading its own values, and one with more
+//! distinct values of a constant than the ring has ([`UNIFORM_SLOTS`] at
+//! first) grows it (an allocation, that once), up to [`MAX_UNIFORM_SLOTS`]
+//! waiting for one submission; past that `encode` returns
+//! [`PassError::UniformSlotsExhausted`]. After each `Queue::submit` a host
+//! calls the pass's `end_submission` (e.g. [`CtssPass::end_submission`]) to
+//! give the slots back at once; without it they come back once the work
+//! has run and the host polled the device or submitted again, which is
+//! correct but may grow the ring. Each `encode` takes optional `wgpu::ComputePassTimestampWrites`
 //! for a host that times the pass on the GPU (its own query set, which it
 //! resolves).
 //!
@@ -78,7 +90,7 @@ pub mod standalone;
 mod taa;
 
 use bind::{BufferUsages, TextureDimension, TextureFormat, TextureUsages};
-pub use bind::{Rect, BIND_GROUP_CACHE, UNIFORM_SLOTS};
+pub use bind::{Rect, BIND_GROUP_CACHE, MAX_UNIFORM_SLOTS, UNIFORM_SLOTS};
 pub use ctss::{
     CtssBackground, CtssBuffers, CtssCamera, CtssDepth, CtssFrame, CtssOutput, CtssPass,
     CtssPassDesc, CtssProjection, CtssRect, CtssTrace, CtssView, CTSS_KERNELS, MAX_BATCH,
@@ -207,6 +219,18 @@ pub enum PassError {
         /// The texture's format.
         found: TextureFormat,
     },
+    /// An encode needs a uniform slot for a new value, but every slot of the
+    /// pass's ring may still be read by an encode not yet submitted, and
+    /// the ring has grown to its bound ([`MAX_UNIFORM_SLOTS`]): more
+    /// distinct values (cameras, rects, parameters) are waiting for one
+    /// submission than a pass holds. Rewriting a slot would make an earlier
+    /// encode read this one's value, so nothing was written or recorded.
+    UniformSlotsExhausted {
+        /// The pass (its wgpu label).
+        pass: &'static str,
+        /// The slots of the ring, all held for unsubmitted encodes.
+        slots: usize,
+    },
 }
 
 impl std::fmt::Display for PassError {
@@ -272,6 +296,14 @@ impl std::fmt::Display for PassError {
                  FXAA 3.11 runs on display-referred colour, so tone map first (into a unorm \
                  texture such as Rgba8Unorm), or, if this texture already holds tone-mapped \
                  colour in [0, 1], build the pass with FxaaInput::ToneMapped"
+            ),
+            PassError::UniformSlotsExhausted { pass, slots } => write!(
+                f,
+                "{pass}: all {slots} uniform slots hold values of encodes not yet submitted, \
+                 the most a pass keeps (MAX_UNIFORM_SLOTS): submit the command buffers \
+                 encoded so far (Queue::submit) and call the pass's end_submission before \
+                 encoding more, or encode fewer distinct cameras, rects or parameters per \
+                 submission"
             ),
         }
     }

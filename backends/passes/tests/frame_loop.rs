@@ -2,9 +2,9 @@
 //! creates no buffer, texture, view, bind group or pipeline for views it
 //! has seen (wgpu's internal resource counters, the `counters` feature,
 //! stay where the first frame left them); several encodes of one pass in
-//! one submission each read their own uniforms, up to `UNIFORM_SLOTS`
-//! distinct values; and each pass can be timed with the host's timestamp
-//! queries.
+//! one submission each read their own uniforms (`UNIFORM_SLOTS` distinct
+//! values here, the ring as `new` makes it; `uniform_slots.rs` goes past
+//! it); and each pass can be timed with the host's timestamp queries.
 
 mod common;
 

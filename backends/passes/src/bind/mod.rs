@@ -43,7 +43,8 @@
 //!   - `rect.rs`: [`Rect`], the pixels a pass reads and writes;
 //!   - `checks.rs`: the checks of the host's views, buffers, timestamps
 //!     and required inputs;
-//!   - `uniform_ring.rs`: a pass's uniform slots ([`UNIFORM_SLOTS`]);
+//!   - `uniform_ring.rs`: a pass's uniform slots ([`UNIFORM_SLOTS`],
+//!     [`MAX_UNIFORM_SLOTS`]), and when one may be rewritten;
 //!   - `pass_pipeline.rs`: `PassPipeline`, its cache of bind groups
 //!     ([`BIND_GROUP_CACHE`]) and the resources it binds.
 
@@ -79,4 +80,4 @@ pub use pass_pipeline::BIND_GROUP_CACHE;
 pub(crate) use pass_pipeline::{Bound, PassPipeline, WORKGROUP};
 pub use pipeline::{compute_pipeline, pipeline_layout};
 pub use rect::Rect;
-pub use uniform_ring::UNIFORM_SLOTS;
+pub use uniform_ring::{MAX_UNIFORM_SLOTS, UNIFORM_SLOTS};

@@ -7,7 +7,7 @@ use super::bindings::Resource;
 use super::checks::check_timestamps;
 use super::group::Group;
 use super::pipeline::{compute_pipeline, pipeline_layout};
-use super::uniform_ring::{Slot, UniformRing, UNIFORM_SLOTS};
+use super::uniform_ring::{self, Placement, SharedSlots, SlotTable, UniformRing, UNIFORM_SLOTS};
 use crate::PassError;
 
 /// Pixels per side of every pass's workgroup: `@workgroup_size(8, 8)` in
@@ -33,13 +33,13 @@ struct CachedGroup {
     used: u64,
 }
 
-/// What `encode` updates: the slots' contents and the bind groups.
-#[derive(Default)]
+/// What `encode` updates besides the slot table: the uniform rings'
+/// buffers (replaced when a ring grows) and the bind groups.
 struct State {
-    /// A counter of encodes, for least-recently-used choices.
+    /// A counter of encodes, for the least recently used bind group.
     clock: u64,
-    /// `slots[u][s]`: slot `s` of uniform `u`.
-    slots: Vec<Vec<Slot>>,
+    /// One ring per uniform of the group, in binding order.
+    uniforms: Vec<UniformRing>,
     groups: Vec<CachedGroup>,
 }
 
@@ -49,14 +49,19 @@ struct State {
 /// by the pass's `new`; each frame's `encode` writes its uniforms into
 /// slots, binds its views (a cached bind group after the first frame) and
 /// dispatches one invocation per output pixel, creating no GPU object for
-/// views it has seen ([`UNIFORM_SLOTS`], [`BIND_GROUP_CACHE`]).
+/// views it has seen ([`UNIFORM_SLOTS`], [`BIND_GROUP_CACHE`]) unless a
+/// submission holds more distinct uniform values than any before
+/// (`uniform_ring.rs`: the ring grows).
 pub(crate) struct PassPipeline {
     label: &'static str,
     group: Group,
     layout: wgpu::BindGroupLayout,
     pipeline: wgpu::ComputePipeline,
-    /// One ring per uniform of `group`, in binding order.
-    uniforms: Vec<UniformRing>,
+    /// Bytes of each uniform of `group`, in binding order.
+    sizes: Vec<u64>,
+    /// Which slot holds what, shared with the encodes' work-done callbacks.
+    /// Locked after `state`, and never while calling wgpu.
+    slots: SharedSlots,
     state: std::sync::Mutex<State>,
 }
 
@@ -101,34 +106,29 @@ impl PassPipeline {
             .filter_map(|d| d.ring)
             .map(|size| {
                 let stride = size.div_ceil(align) * align;
-                let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some(label),
-                    size: stride * UNIFORM_SLOTS as u64,
-                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                    mapped_at_creation: false,
-                });
-                UniformRing {
-                    buffer,
-                    size,
-                    stride,
-                }
+                UniformRing::new(device, label, size, stride, UNIFORM_SLOTS)
             })
             .collect();
-        let state = State {
-            slots: uniforms
-                .iter()
-                .map(|_| (0..UNIFORM_SLOTS).map(|_| Slot::default()).collect())
-                .collect(),
-            ..State::default()
-        };
         Ok(PassPipeline {
             label,
             group,
             layout,
             pipeline,
-            uniforms,
-            state: std::sync::Mutex::new(state),
+            sizes: uniforms.iter().map(|r| r.size).collect(),
+            slots: std::sync::Arc::new(std::sync::Mutex::new(SlotTable::new(uniforms.len()))),
+            state: std::sync::Mutex::new(State {
+                clock: 0,
+                uniforms,
+                groups: Vec::new(),
+            }),
         })
+    }
+
+    /// The host has submitted every command buffer encoded into so far: no
+    /// uniform slot is read by an unsubmitted encode any more, so every slot
+    /// may be rewritten (`uniform_ring.rs`).
+    pub(crate) fn end_submission(&self) {
+        uniform_ring::lock(&self.slots).end_submission();
     }
 
     /// Drop every cached bind group, and with them the pass's clones of the
@@ -182,11 +182,11 @@ impl PassPipeline {
         }) {
             return Err(PassError::Unexpected(n));
         }
-        if uniforms.len() != self.uniforms.len()
+        if uniforms.len() != self.sizes.len()
             || uniforms
                 .iter()
-                .zip(&self.uniforms)
-                .any(|(u, r)| u.len() as u64 != r.size)
+                .zip(&self.sizes)
+                .any(|(u, &size)| u.len() as u64 != size)
         {
             return Err(PassError::Config(format!(
                 "{}: uniforms do not match the pass's layout",
@@ -197,26 +197,54 @@ impl PassPipeline {
             check_timestamps(device, t)?;
         }
         let mut state = self.lock();
-        state.clock += 1;
-        let now = state.clock;
-        let mut offsets = Vec::with_capacity(uniforms.len());
-        for (u, (value, ring)) in uniforms.iter().zip(&self.uniforms).enumerate() {
-            let slots = &mut state.slots[u];
-            let held = slots
+        // Where each value goes, decided under the table's lock and applied
+        // to it at once (so a work-done callback sees either all or none of
+        // this encode's slots); the wgpu calls come after the lock.
+        let (placements, held) = {
+            let mut table = uniform_ring::lock(&self.slots);
+            let mut placements = Vec::with_capacity(uniforms.len());
+            for (u, value) in uniforms.iter().enumerate() {
+                let max = state.uniforms[u].max_slots(device);
+                let p = table
+                    .place(u, value, max)
+                    .ok_or(PassError::UniformSlotsExhausted {
+                        pass: self.label,
+                        slots: table.len(u),
+                    })?;
+                placements.push(p);
+            }
+            table.tick();
+            let held: Vec<_> = placements
                 .iter()
-                .position(|s| s.value.as_deref() == Some(*value));
-            let s = match held {
-                Some(s) => s,
-                None => {
-                    let lru = (0..slots.len()).min_by_key(|&s| slots[s].used).unwrap_or(0);
-                    queue.write_buffer(&ring.buffer, lru as u64 * ring.stride, value);
-                    slots[lru].value = Some(value.to_vec());
-                    lru
-                }
-            };
-            slots[s].used = now;
+                .zip(uniforms)
+                .enumerate()
+                .map(|(u, (&p, value))| table.bind(u, p, value))
+                .collect();
+            (placements, held)
+        };
+        let mut offsets = Vec::with_capacity(uniforms.len());
+        for (u, (placement, value)) in placements.iter().zip(uniforms).enumerate() {
+            let s = held[u].1;
+            if let Placement::Grow(count) = *placement {
+                // Encodes already recorded keep the old buffer alive (wgpu
+                // holds what a command buffer binds); the cached bind groups
+                // bind it, so they go.
+                let (size, stride) = (state.uniforms[u].size, state.uniforms[u].stride);
+                state.uniforms[u] = UniformRing::new(device, self.label, size, stride, count);
+                state.groups.clear();
+            }
+            let ring = &state.uniforms[u];
+            if !matches!(placement, Placement::Held(_)) {
+                queue.write_buffer(&ring.buffer, s as u64 * ring.stride, value);
+            }
             offsets.push((s as u64 * ring.stride) as u32);
         }
+        // The safety net for a host that never calls `end_submission`: the
+        // slots are released once this command buffer has run.
+        let slots = std::sync::Arc::clone(&self.slots);
+        encoder.on_submitted_work_done(move || uniform_ring::lock(&slots).release(&held));
+        state.clock += 1;
+        let now = state.clock;
         let cached = state.groups.iter().position(|g| {
             g.resources.len() == ordered.len()
                 && g.resources.iter().zip(&ordered).all(|(a, b)| b.is(a))
@@ -224,7 +252,7 @@ impl PassPipeline {
         let index = match cached {
             Some(i) => i,
             None => {
-                let group = self.bind_group(device, &ordered);
+                let group = self.bind_group(device, &state.uniforms, &ordered);
                 let entry = CachedGroup {
                     resources: ordered.iter().map(|b| b.to_resource()).collect(),
                     group,
@@ -258,8 +286,13 @@ impl PassPipeline {
 
     /// The bind group of the uniform rings (one slot each, at a dynamic
     /// offset) and `resources`, in binding order.
-    fn bind_group(&self, device: &wgpu::Device, resources: &[Bound<'_>]) -> wgpu::BindGroup {
-        let mut rings = self.uniforms.iter();
+    fn bind_group(
+        &self,
+        device: &wgpu::Device,
+        uniforms: &[UniformRing],
+        resources: &[Bound<'_>],
+    ) -> wgpu::BindGroup {
+        let mut rings = uniforms.iter();
         let mut resources = resources.iter();
         let bound = self.group.list.iter().filter_map(|d| {
             if d.ring.is_some() {
