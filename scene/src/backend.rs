@@ -159,6 +159,9 @@ pub struct Capabilities {
     /// [`Method::is_hybrid`]): `Ok`, or what the backend lacks for it. On
     /// SDF scenes a hybrid method is traced as the method without it.
     pub raster_primary: Result<(), &'static str>,
+    /// `ssaa2` on triangle scenes ([`Method::SSAA2`], the diagonal of the
+    /// 2×2 grid): `Ok`, or what the backend lacks for it.
+    pub diagonal_ssaa: Result<(), &'static str>,
 }
 
 pub use crate::registry::SDF_SUBPIXEL_GEOMETRY;
@@ -166,6 +169,10 @@ pub use crate::registry::SDF_SUBPIXEL_GEOMETRY;
 /// What [`UnsupportedReason::CpuOnly`] names when a backend lacks
 /// rasterised primary visibility ([`Capabilities::raster_primary`]).
 pub const RASTER_PRIMARY: &str = "rasterised primary visibility (-hybrid)";
+
+/// What [`UnsupportedReason::CpuOnly`] names when a backend lacks `ssaa2`
+/// ([`Capabilities::diagonal_ssaa`]).
+pub const DIAGONAL_SSAA: &str = "ssaa2 (the 2×2 grid's diagonal)";
 
 /// The passes of `method` on `scene` for a backend with `caps`, or why it
 /// cannot render them: the one support plan behind every backend's
@@ -192,6 +199,7 @@ pub const RASTER_PRIMARY: &str = "rasterised primary visibility (-hybrid)";
 ///     sdf_subpixel_geometry: Err("no sphere-traced subsamples yet"),
 ///     max_sdf_side_samples: Some(8),
 ///     raster_primary: Err("no rasteriser"),
+///     diagonal_ssaa: Ok(()),
 /// };
 /// let cornell = builtin("cornell").unwrap();
 /// let sraa_rt = Method::new(Technique::SraaRt);
@@ -264,7 +272,16 @@ pub fn plan_forced(
                 why,
             });
         }
+        if let (true, Err(why)) = (method.ssaa_diagonal(), caps.diagonal_ssaa) {
+            return refuse(UnsupportedReason::CpuOnly {
+                what: DIAGONAL_SSAA,
+                why,
+            });
+        }
         return Ok(passes);
+    }
+    if method.ssaa_diagonal() {
+        return refuse(UnsupportedReason::DiagonalSsaaOnSdf);
     }
     if passes.intersects(Passes::SECONDARY) {
         return refuse(UnsupportedReason::SdfReflections);

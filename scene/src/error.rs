@@ -220,6 +220,9 @@ pub enum UnsupportedReason {
     /// A temporal method (`taa`, `+taa`) asked of one frame's render: it
     /// renders a sequence, through [`crate::temporal::Taa`].
     Temporal,
+    /// `ssaa2` (the diagonal of the 2×2 grid) asked for on an SDF scene:
+    /// it runs on triangle scenes only.
+    DiagonalSsaaOnSdf,
     /// More samples per pixel side than the backend traces.
     TooManySamples {
         /// Samples per pixel side asked for.
@@ -236,6 +239,9 @@ impl fmt::Display for UnsupportedReason {
             UnsupportedReason::SdfReflections => {
                 f.write_str("mirror reflections in SDF scenes are not implemented")
             }
+            UnsupportedReason::DiagonalSsaaOnSdf => f.write_str(
+                "ssaa2 (the 2×2 grid's diagonal) is not implemented on SDF scenes: it runs on triangle scenes",
+            ),
             UnsupportedReason::MaterialGateOnSdf => f.write_str(
                 "the material gate (+mat) is not implemented on SDF scenes: it runs on triangle scenes",
             ),

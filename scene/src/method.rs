@@ -37,7 +37,7 @@ use crate::registry::{
     self, info, EdgeClass, CTSS_SUFFIX, DELAYED, EDGES, HYBRID, MATERIAL_GATE, PAPER, SSAA_PREFIX,
     TAA, TAA_SUFFIX,
 };
-pub use crate::registry::{METHOD_NAMES, SSAA_COUNTS};
+pub use crate::registry::{METHOD_NAMES, SSAA_COUNTS, SSAA_DIAGONAL};
 
 /// Which parameters a method runs with.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -99,6 +99,8 @@ pub struct Method {
     visibility_k: u32,
     temporal: bool,
     hybrid: bool,
+    /// `ssaa2`: of the 2×2 grid (`side` 2), only the diagonal samples.
+    diagonal: bool,
 }
 
 impl Method {
@@ -127,6 +129,7 @@ impl Method {
             visibility_k: 32,
             temporal: false,
             hybrid: false,
+            diagonal: false,
         }
     }
 
@@ -157,9 +160,31 @@ impl Method {
         }
     }
 
-    /// `ssaaN`, `N` one of [`SSAA_COUNTS`].
+    /// `ssaaN`, `N` one of [`SSAA_COUNTS`], or 2 ([`Method::SSAA2`]).
     pub fn ssaa(samples: u32) -> Result<Self, MethodError> {
+        if samples == SSAA_DIAGONAL {
+            return Ok(Method::SSAA2);
+        }
         Ok(Method::ssaa_grid(side_of(samples)?))
+    }
+
+    /// `ssaa2`: two samples per pixel on the diagonal of the 2×2 grid, at
+    /// (¼, ¼) and (¾, ¾) of the pixel, box-filtered (the 2-sample rotated
+    /// grid of 2× MSAA, Direct3D's standard pattern), so that the SSAA
+    /// family has a member between NoAA and `ssaa4` in cost and error.
+    /// Triangle scenes only: on SDF scenes, and on a backend without it
+    /// ([`Capabilities::diagonal_ssaa`](crate::backend::Capabilities::diagonal_ssaa)),
+    /// it is refused, never rendered as its 2×2 grid.
+    pub const SSAA2: Method = Method {
+        side: 2,
+        diagonal: true,
+        ..Method::new(Technique::Ssaa)
+    };
+
+    /// Whether the supersampling takes only the diagonal of its
+    /// `side × side` grid ([`Method::SSAA2`]).
+    pub const fn ssaa_diagonal(&self) -> bool {
+        self.diagonal
     }
 
     /// `ssaaN+ctss`, `N` one of [`SSAA_COUNTS`].
@@ -394,9 +419,14 @@ impl Method {
         self.side
     }
 
-    /// Samples per pixel of the supersampling grid (1 without supersampling).
+    /// Samples per pixel of the supersampling (1 without supersampling):
+    /// the grid's, or its diagonal's ([`Method::SSAA2`]).
     pub const fn supersamples(&self) -> u32 {
-        self.side * self.side
+        if self.diagonal {
+            self.side
+        } else {
+            self.side * self.side
+        }
     }
 
     /// The cone coverage (1 for methods that trace no cone).

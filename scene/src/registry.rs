@@ -211,8 +211,13 @@ pub enum TaaJitter {
     SubsampleRotation,
 }
 
-/// Sample counts `ssaaN` accepts: squares, so the grid is regular.
+/// Sample counts of the regular grids `ssaaN` and `ssaaN+ctss` accept:
+/// squares.
 pub const SSAA_COUNTS: [u32; 5] = [4, 9, 16, 64, 256];
+
+/// The one count `ssaaN` also accepts that is not a square: `ssaa2`, the
+/// diagonal of the 2×2 grid ([`Method::SSAA2`](crate::Method::SSAA2)).
+pub const SSAA_DIAGONAL: u32 = 2;
 
 /// Every technique, in [`Technique::ALL`] order.
 pub const TECHNIQUES: [TechniqueInfo; 8] = [
@@ -235,7 +240,7 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
     TechniqueInfo {
         technique: Technique::Ssaa,
         name: "ssaa",
-        grammar: "ssaaN (N in 4, 9, 16, 64, 256)",
+        grammar: "ssaaN (N in 2, 4, 9, 16, 64, 256; ssaa2 on triangle scenes)",
         family: Family::Supersampling,
         claims: SUPERSAMPLING_CLAIMS,
         modifiers: Modifiers {
@@ -249,7 +254,7 @@ pub const TECHNIQUES: [TechniqueInfo; 8] = [
             ..Needs::NONE
         },
         taa_jitter: TaaJitter::Halton,
-        description: "N shaded samples per pixel on a regular grid, box-filtered",
+        description: "N shaded samples per pixel on a regular grid (ssaa2: the 2×2 grid's diagonal), box-filtered",
     },
     TechniqueInfo {
         technique: Technique::Sraa,
@@ -380,8 +385,9 @@ pub fn info(technique: Technique) -> &'static TechniqueInfo {
 /// triangle method (`sraa+mat-hybrid`), a `-delayed` variant of a CTSS
 /// method, or a `-paper` variant of one (`ctss-r-paper`,
 /// `ctss+edges-paper`, `ssaa4+ctss-paper`, `ctss-delayed-paper`).
-pub const METHOD_NAMES: [&str; 26] = [
+pub const METHOD_NAMES: [&str; 28] = [
     "noaa",
+    "ssaa2",
     "ssaa4",
     "ssaa16",
     "sraa",
@@ -393,6 +399,7 @@ pub const METHOD_NAMES: [&str; 26] = [
     "sraa-paper+mat",
     "sraa-rt-paper+mat",
     "noaa-hybrid",
+    "ssaa2-hybrid",
     "ssaa4-hybrid",
     "ssaa16-hybrid",
     "sraa-hybrid",
@@ -434,8 +441,21 @@ pub(crate) const CTSS_SUFFIX: &str = "+ctss";
 /// help): the grammars of [`TECHNIQUES`] and their modifiers.
 pub fn grammar() -> String {
     let bases: Vec<&str> = TECHNIQUES.iter().map(|t| t.grammar).collect();
-    // A technique's plain name: the first of its grammar's alternatives.
-    let plain = |t: &TechniqueInfo| t.grammar.split(", ").next().unwrap_or(t.grammar);
+    // A technique's plain name: the first of its grammar's alternatives
+    // (split at a comma outside brackets: `ssaaN (N in 2, 4, …)` is one).
+    let plain = |t: &TechniqueInfo| {
+        let mut depth = 0i32;
+        let b = t.grammar.as_bytes();
+        let cut = (0..b.len()).find(|&i| {
+            match b[i] {
+                b'(' => depth += 1,
+                b')' => depth -= 1,
+                _ => {}
+            }
+            depth == 0 && b[i] == b',' && b.get(i + 1) == Some(&b' ')
+        });
+        &t.grammar[..cut.unwrap_or(b.len())]
+    };
     let with = |pick: fn(&Modifiers) -> bool, suffix: &str| -> Vec<String> {
         TECHNIQUES
             .iter()

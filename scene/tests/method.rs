@@ -5,8 +5,10 @@ use subcone_kernels::passes::Technique;
 use subcone_scene::method::ParseMethodError;
 use subcone_scene::Method;
 
-const WORDS: [&str; 18] = [
+const WORDS: [&str; 20] = [
     "noaa",
+    "ssaa2",
+    "ssaa2-hybrid",
     "ssaa4",
     "ssaa9",
     "ssaa16",
@@ -40,6 +42,7 @@ fn every_word_parses_and_round_trips() {
 fn parsed_methods_have_the_right_technique_and_samples() {
     let cases = [
         ("noaa", Technique::NoAa, 1),
+        ("ssaa2", Technique::Ssaa, 2),
         ("ssaa4", Technique::Ssaa, 4),
         ("ssaa9", Technique::Ssaa, 9),
         ("ssaa16", Technique::Ssaa, 16),
@@ -123,4 +126,35 @@ fn only_ctss_edges_splits_groups() {
         let m: Method = word.parse().unwrap();
         assert_eq!(m.split_groups(), word == "ctss+edges", "{word}");
     }
+}
+
+#[test]
+fn ssaa2_is_the_diagonal_of_the_2x2_grid_on_triangle_scenes_only() {
+    use subcone_scene::backend::{plan, Capabilities};
+    use subcone_scene::builtin::builtin;
+    use subcone_scene::UnsupportedReason;
+    let m: Method = "ssaa2".parse().unwrap();
+    assert_eq!(m, Method::SSAA2);
+    assert_eq!((m.ssaa_side(), m.supersamples(), m.ssaa_diagonal()), (2, 2, true));
+    assert!(!Method::ssaa(4).unwrap().ssaa_diagonal());
+    // No 2-sample cone tracing per supersample.
+    assert!("ssaa2+ctss".parse::<Method>().is_err());
+    let caps = |diagonal_ssaa| Capabilities {
+        backend: "test",
+        max_lights_triangles: None,
+        max_lights_sdf: None,
+        sdf_subpixel_geometry: Ok(()),
+        max_sdf_side_samples: None,
+        raster_primary: Ok(()),
+        diagonal_ssaa,
+    };
+    let cornell = builtin("cornell").unwrap();
+    assert!(plan(&cornell, &m, &caps(Ok(()))).is_ok());
+    // A backend without it refuses, rather than render the 2×2 grid.
+    let e = plan(&cornell, &m, &caps(Err("no diagonal"))).unwrap_err();
+    assert!(matches!(e.reason, UnsupportedReason::CpuOnly { why: "no diagonal", .. }), "{e}");
+    // SDF scenes refuse it on any backend.
+    let primitives = builtin("primitives").unwrap();
+    let e = plan(&primitives, &m, &caps(Ok(()))).unwrap_err();
+    assert_eq!(e.reason, UnsupportedReason::DiagonalSsaaOnSdf);
 }

@@ -12,7 +12,7 @@
 //! primary hits; the hybrid one is judged against
 //! [`HYBRID_CROSSOVER_AO`].
 
-use crate::named::{hybrid, NOAA, SRAA_RT, SSAA4};
+use crate::named::{hybrid, NOAA, SRAA_RT, SSAA2, SSAA4};
 use subcone_scene::Method;
 
 /// One method at one AO ray count on one scene and backend.
@@ -28,6 +28,8 @@ pub struct AoSweepRow {
     pub ao: u32,
     /// Median wall time of the timed runs, ms.
     pub ms_median: f64,
+    /// Fastest and slowest timed run, ms.
+    pub ms_range: (f64, f64),
     /// Every ray cast, per pixel.
     pub rays_per_pixel: f64,
     /// AO rays cast, per pixel.
@@ -162,6 +164,11 @@ impl Pair {
         self.with(NOAA)
     }
 
+    /// The pair's 2-sample supersampling (the 2×2 grid's diagonal).
+    pub fn ssaa2(self) -> Method {
+        self.with(SSAA2)
+    }
+
     /// The pair's 2×2 supersampling.
     pub fn ssaa4(self) -> Method {
         self.with(SSAA4)
@@ -172,9 +179,10 @@ impl Pair {
         self.with(SRAA_RT)
     }
 
-    /// NoAA, SSAA4 and SRAA-RT of the pair.
-    pub fn methods(self) -> [Method; 3] {
-        [self.noaa(), self.ssaa4(), self.sraa_rt()]
+    /// NoAA, SSAA2, SSAA4 and SRAA-RT of the pair: SRAA-RT with an SSAA
+    /// neighbour on either side in error.
+    pub fn methods(self) -> [Method; 4] {
+        [self.noaa(), self.ssaa2(), self.ssaa4(), self.sraa_rt()]
     }
 }
 
@@ -205,6 +213,13 @@ pub struct Crossover {
     /// The AO ray counts at which both methods of the pair were timed,
     /// increasing.
     pub timed_at: Vec<u32>,
+    /// Where the times meet when each side's runs are taken at their most
+    /// and least favourable to sraa-rt (its fastest run against ssaa4's
+    /// slowest, then the other way round), by the same interpolation: the
+    /// earliest and latest crossing the runs allow. `None` where either
+    /// does not cross inside the sweep; an end at the first swept count
+    /// when sraa-rt is faster there already.
+    pub interpolated_range: Option<(f64, f64)>,
 }
 
 /// Where the pair's sraa-rt first takes less time than its ssaa4
@@ -221,6 +236,14 @@ pub struct FirstFaster {
     pub sraa_rt_edge_flip: Option<f64>,
     /// ssaa4's edge FLIP there.
     pub ssaa4_edge_flip: Option<f64>,
+    /// sraa-rt's fastest and slowest run there, ms.
+    pub sraa_rt_ms_range: (f64, f64),
+    /// ssaa4's fastest and slowest run there, ms.
+    pub ssaa4_ms_range: (f64, f64),
+    /// sraa-rt's whole-image FLIP there.
+    pub sraa_rt_flip: Option<f64>,
+    /// ssaa4's whole-image FLIP there.
+    pub ssaa4_flip: Option<f64>,
 }
 
 /// The crossover of every scene, backend and pair of the sweep: a pair
@@ -242,11 +265,27 @@ pub fn crossovers(sweep: &AoSweep) -> Vec<Crossover> {
     out
 }
 
+/// Where a gap `ssaa4 − sraa-rt` (by AO count, increasing) first turns
+/// positive: the index of that count, and the count where the gap crosses
+/// zero by linear interpolation from the count before (`None` when it is
+/// positive from the first count on).
+fn meet(gaps: &[(u32, f64)]) -> Option<(usize, Option<f64>)> {
+    let at = gaps.iter().position(|g| g.1 > 0.0)?;
+    let crossing = at.checked_sub(1).map(|i| {
+        let (lo, hi) = (gaps[i], gaps[at]);
+        // lo.1 ≤ 0 < hi.1: the gap crosses 0 between them.
+        let f = -lo.1 / (hi.1 - lo.1);
+        lo.0 as f64 + f * (hi.0 - lo.0) as f64
+    });
+    Some((at, crossing))
+}
+
 /// The crossover of `pair` on `scene` and `backend` (see [`Crossover`]).
 pub fn crossover(sweep: &AoSweep, scene: &str, backend: &str, pair: Pair) -> Crossover {
-    // (ao, ssaa4 − sraa-rt in ms) where both were timed.
-    let mut gaps: Vec<(u32, f64)> = Vec::new();
-    let mut first_faster = None;
+    // (ao, ssaa4 − sraa-rt in ms) where both were timed: by the medians,
+    // and by the runs most and least favourable to sraa-rt.
+    let (mut gaps, mut best, mut worst) = (Vec::new(), Vec::new(), Vec::new());
+    let mut both: Vec<(&AoSweepRow, &AoSweepRow)> = Vec::new();
     let (ssaa4, sraa_rt) = (pair.ssaa4(), pair.sraa_rt());
     let mut aos: Vec<u32> = sweep
         .rows
@@ -264,31 +303,79 @@ pub fn crossover(sweep: &AoSweep, scene: &str, backend: &str, pair: Pair) -> Cro
             continue;
         };
         gaps.push((ao, a.ms_median - b.ms_median));
-        if first_faster.is_none() && b.ms_median < a.ms_median {
-            first_faster = Some(FirstFaster {
-                ao,
-                sraa_rt_ms: b.ms_median,
-                ssaa4_ms: a.ms_median,
-                sraa_rt_edge_flip: b.edge_flip,
-                ssaa4_edge_flip: a.edge_flip,
-            });
-        }
+        best.push((ao, a.ms_range.1 - b.ms_range.0));
+        worst.push((ao, a.ms_range.0 - b.ms_range.1));
+        both.push((a, b));
     }
-    let interpolated = first_faster.and_then(|f| {
-        let at = gaps.iter().position(|g| g.0 == f.ao)?;
-        let (lo, hi) = (gaps.get(at.checked_sub(1)?)?, gaps[at]);
-        // lo.1 ≤ 0 < hi.1: the gap crosses 0 between them.
-        let f = -lo.1 / (hi.1 - lo.1);
-        Some(lo.0 as f64 + f * (hi.0 - lo.0) as f64)
+    let median = meet(&gaps);
+    let first_faster = median.map(|(at, _)| {
+        let (a, b) = both[at];
+        FirstFaster {
+            ao: gaps[at].0,
+            sraa_rt_ms: b.ms_median,
+            ssaa4_ms: a.ms_median,
+            sraa_rt_edge_flip: b.edge_flip,
+            ssaa4_edge_flip: a.edge_flip,
+            sraa_rt_ms_range: b.ms_range,
+            ssaa4_ms_range: a.ms_range,
+            sraa_rt_flip: b.flip_mean,
+            ssaa4_flip: a.flip_mean,
+        }
     });
+    let end = |m: Option<(usize, Option<f64>)>| {
+        m.map(|(at, x)| x.unwrap_or(gaps[at].0 as f64))
+    };
+    let interpolated_range = end(meet(&best)).zip(end(meet(&worst)));
     Crossover {
         scene: scene.into(),
         backend: backend.into(),
         pair,
         first_faster,
-        interpolated,
+        interpolated: median.and_then(|m| m.1),
         timed_at: gaps.iter().map(|g| g.0).collect(),
+        interpolated_range,
     }
+}
+
+/// Where sraa-rt's edge FLIP falls among the pair's supersampling at `ao`
+/// (SRAA at equal quality): between ssaa2's and ssaa4's, or beyond one of
+/// them, with the three figures and the whole-image FLIP. `None` without
+/// the three rows' edge FLIP.
+pub fn equal_quality(
+    sweep: &AoSweep,
+    scene: &str,
+    backend: &str,
+    pair: Pair,
+    ao: u32,
+) -> Option<String> {
+    let get = |m: Method| find(&sweep.rows, scene, backend, m, ao);
+    let (s2, s4, rt) = (get(pair.ssaa2())?, get(pair.ssaa4())?, get(pair.sraa_rt())?);
+    let (e2, e4, er) = (s2.edge_flip?, s4.edge_flip?, rt.edge_flip?);
+    let place = if er <= e4 {
+        format!("at or below {}'s", pair.ssaa4())
+    } else if er <= e2 {
+        format!("between {}'s and {}'s", pair.ssaa2(), pair.ssaa4())
+    } else {
+        format!("above {}'s", pair.ssaa2())
+    };
+    let whole = |r: &AoSweepRow| opt(r.flip_mean, 4);
+    Some(format!(
+        "at AO {ao}, {}'s edge FLIP {er:.4} is {place} ({} {e2:.4}, {} {e4:.4}); whole-image FLIP {} against {} and {}, in {} ms against {} and {}",
+        pair.sraa_rt(),
+        pair.ssaa2(),
+        pair.ssaa4(),
+        whole(rt),
+        whole(s2),
+        whole(s4),
+        ms_with_range(rt),
+        ms_with_range(s2),
+        ms_with_range(s4),
+    ))
+}
+
+/// A row's median ms with its fastest and slowest run, `93.5 (91.0–97.2)`.
+fn ms_with_range(r: &AoSweepRow) -> String {
+    format!("{:.1} ({:.1}–{:.1})", r.ms_median, r.ms_range.0, r.ms_range.1)
 }
 
 /// The crossover as a sentence of the report.
@@ -306,24 +393,33 @@ pub fn crossover_sentence(c: &Crossover) -> String {
     }
     match c.first_faster {
         None => format!("{head} {rt} is faster than {ss} at no swept AO ray count."),
-        Some(FirstFaster {
-            ao,
-            sraa_rt_ms: rt_ms,
-            ssaa4_ms: ss_ms,
-            sraa_rt_edge_flip: rt_f,
-            ssaa4_edge_flip: ss_f,
-        }) => {
+        Some(f) => {
+            let range = match c.interpolated_range {
+                Some((lo, hi)) => format!(
+                    "; the runs allow {lo:.1} to {hi:.1} (each side's fastest and slowest run)"
+                ),
+                None => "; the runs do not bound it inside the sweep".into(),
+            };
             let meet = match c.interpolated {
                 Some(x) => format!(
-                    " The two times meet at about {x:.1} AO rays per shaded point (linear between the swept counts)."
+                    " The two times meet at about {x:.1} AO rays per shaded point (linear between the swept counts{range})."
                 ),
-                None if ao == 0 => " It is faster without any AO.".into(),
+                None if f.ao == 0 => " It is faster without any AO.".into(),
                 None => String::new(),
             };
             format!(
-                "{head} {rt} is faster than {ss} from {ao} AO rays per shaded point on (the fewest swept): {rt_ms:.1} ms against {ss_ms:.1} ms, with edge FLIP {} against {ss}'s {}.{meet}",
-                flip(rt_f),
-                flip(ss_f),
+                "{head} {rt} is faster than {ss} from {} AO rays per shaded point on (the fewest swept): {:.1} ms ({:.1}–{:.1}) against {:.1} ms ({:.1}–{:.1}), with edge FLIP {} against {ss}'s {} and whole-image FLIP {} against {}.{meet}",
+                f.ao,
+                f.sraa_rt_ms,
+                f.sraa_rt_ms_range.0,
+                f.sraa_rt_ms_range.1,
+                f.ssaa4_ms,
+                f.ssaa4_ms_range.0,
+                f.ssaa4_ms_range.1,
+                flip(f.sraa_rt_edge_flip),
+                flip(f.ssaa4_edge_flip),
+                flip(f.sraa_rt_flip),
+                flip(f.ssaa4_flip),
             )
         }
     }

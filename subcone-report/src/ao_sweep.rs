@@ -33,7 +33,8 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 pub use crate::ao_crossover::{
-    crossover, crossover_sentence, crossovers, hybrid_crossover_judged, ratios, AoSweep,
+    crossover, crossover_sentence, crossovers, equal_quality, hybrid_crossover_judged, ratios,
+    AoSweep,
     AoSweepRow, Crossover, FirstFaster, Pair, Refused, HYBRID_CROSSOVER_AO,
 };
 use crate::ao_crossover::{find, groups, opt};
@@ -102,13 +103,13 @@ impl SweepSpec {
         }
     }
 
-    /// The default report's: atrium with AO 0, 1, 4 and 16 (1 for
-    /// [`HYBRID_CROSSOVER_AO`]); the AO rows are judged against SSAA64 (8×8
+    /// The default report's: atrium with AO 0, 1, 2, 4 and 16 (1 for
+    /// [`HYBRID_CROSSOVER_AO`], 2 to measure near the crossings); the AO rows are judged against SSAA64 (8×8
     /// samples per pixel), not the run's SSAA256, which with AO would take
     /// minutes.
     pub fn default_report() -> Self {
         Self {
-            aos: vec![0, HYBRID_CROSSOVER_AO, 4, 16],
+            aos: vec![0, HYBRID_CROSSOVER_AO, 2, 4, 16],
             scenes: vec!["atrium"],
             ao_reference: Some(Method::ssaa_grid(8)),
         }
@@ -137,20 +138,22 @@ pub fn section(sweep: &AoSweep, reference: Option<&str>) -> String {
     }
     let _ = writeln!(md, "## Where SRAA pays\n");
     let names = |p: Pair| p.methods().map(|m| m.to_string()).join(", ");
-    let [noaa, ssaa4, sraa_rt] = Pair::Traced.methods();
+    let [noaa, ssaa2, ssaa4, sraa_rt] = Pair::Traced.methods();
     let _ = writeln!(
         md,
         "Ambient occlusion as a shading cost: each shaded point casts N any-hit rays over {} of \
 the scene's bounding diagonal, in one fixed stratified cosine-weighted set of directions (a \
 noise-free function of position and normal), and the ambient term is multiplied by the \
-unoccluded fraction (not at mirror hits). {ssaa4} shades 4 points per pixel, {sraa_rt} 1. Two \
-triples, each compared within itself: *traced* ({}) and *hybrid* ({}), whose primary samples \
+unoccluded fraction (not at mirror hits). {ssaa4} shades 4 points per pixel, {ssaa2} 2 (the 2×2 \
+grid's diagonal, so that {sraa_rt} has an SSAA neighbour on either side in error), {sraa_rt} 1. \
+Two sets, each compared within itself: *traced* ({}) and *hybrid* ({}), whose primary samples \
 (pixel centres, supersamples, SRAA's shaded sample and subsamples) find their triangle by \
 rasterisation, as the SRAA paper runs it (§3.1, §4.2), while AO, shadow and reflection rays \
 stay rays. At {}x{}{}; *edge FLIP* is the mean FLIP \
-over the silhouette, crease and shadow pixels together. *rays* ratio is ssaa4's rays per \
-pixel over sraa-rt's, *time* ratio the same for the median time, each within the row's pair \
-(the method columns name the traced methods; a *hybrid* row holds their `-hybrid` twins).\n",
+over the silhouette, crease and shadow pixels together, *FLIP* the whole image's. *rays* ratio \
+is ssaa4's rays per pixel over sraa-rt's, *time* ratio the same for the median time, each within \
+the row's pair (the method columns name the traced methods; a *hybrid* row holds their `-hybrid` \
+twins). Times are medians, with the fastest and slowest run in the crossover lines.\n",
         subcone_scene::backend::AO_RADIUS_FRACTION,
         names(Pair::Traced),
         names(Pair::Hybrid),
@@ -167,6 +170,21 @@ reference, so that the section takes seconds, not minutes)"
     );
     for c in crossovers(sweep) {
         let _ = writeln!(md, "{}\n", crossover_sentence(&c));
+        let at_equal: Vec<String> = sweep
+            .aos
+            .iter()
+            .filter_map(|&ao| equal_quality(sweep, &c.scene, &c.backend, c.pair, ao))
+            .collect();
+        if !at_equal.is_empty() {
+            let _ = writeln!(
+                md,
+                "SRAA at equal quality, {} ({}), {}: {}.\n",
+                c.scene,
+                c.backend,
+                c.pair.name(),
+                at_equal.join("; ")
+            );
+        }
     }
     for (scene, why) in &sweep.missing {
         let _ = writeln!(md, "- `{scene}` not swept: {why}");
@@ -185,29 +203,35 @@ reference, so that the section takes seconds, not minutes)"
         let _ = writeln!(md, "### {scene} ({backend})\n");
         let _ = writeln!(
             md,
-            "| AO rays | pair | {noaa} ms | {ssaa4} ms | {sraa_rt} ms | {noaa} edge FLIP | {ssaa4} edge FLIP | {sraa_rt} edge FLIP | rays ratio | time ratio | time / rays |"
+            "| AO rays | pair | {noaa} ms | {ssaa2} ms | {ssaa4} ms | {sraa_rt} ms | {noaa} edge FLIP | {ssaa2} edge FLIP | {ssaa4} edge FLIP | {sraa_rt} edge FLIP | {ssaa2} FLIP | {ssaa4} FLIP | {sraa_rt} FLIP | rays ratio | time ratio | time / rays |"
         );
-        let _ = writeln!(md, "|--:|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
+        let _ = writeln!(md, "|--:|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
         for &ao in &sweep.aos {
             for pair in Pair::ALL {
                 let get = |m: Method| find(&sweep.rows, &scene, &backend, m, ao);
-                let [n, ss, rt] = pair.methods();
-                if [n, ss, rt].iter().all(|m| get(*m).is_none()) {
+                let [n, s2, ss, rt] = pair.methods();
+                if [n, s2, ss, rt].iter().all(|m| get(*m).is_none()) {
                     continue;
                 }
                 let ms = |m: Method| get(m).map_or("–".into(), |r| format!("{:.1}", r.ms_median));
                 let ef = |m: Method| opt(get(m).and_then(|r| r.edge_flip), 4);
+                let wf = |m: Method| opt(get(m).and_then(|r| r.flip_mean), 4);
                 let rat = ratios(&sweep.rows, &scene, &backend, pair, ao);
                 let _ = writeln!(
                     md,
-                    "| {ao} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+                    "| {ao} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
                     pair.name(),
                     ms(n),
+                    ms(s2),
                     ms(ss),
                     ms(rt),
                     ef(n),
+                    ef(s2),
                     ef(ss),
                     ef(rt),
+                    wf(s2),
+                    wf(ss),
+                    wf(rt),
                     opt(rat.map(|r| r.0), 2),
                     opt(rat.map(|r| r.1), 2),
                     opt(rat.map(|r| r.1 / r.0), 2),
@@ -525,6 +549,7 @@ impl Runner<'_> {
                             backend: bname.clone(),
                             ao,
                             ms_median: t.median(),
+                            ms_range: (t.min(), t.max()),
                             rays_per_pixel: frame.stats.rays.total() as f64 / px,
                             ao_rays_per_pixel: frame.stats.rays.ao as f64 / px,
                             edge_flip: None,
@@ -561,6 +586,7 @@ pub(crate) mod tests {
             backend: "cpu".into(),
             ao,
             ms_median: ms,
+            ms_range: (ms, ms),
             rays_per_pixel: rays,
             ao_rays_per_pixel: 0.0,
             edge_flip: Some(edge),
@@ -613,9 +639,11 @@ pub(crate) mod tests {
             names,
             [
                 "noaa",
+                "ssaa2",
                 "ssaa4",
                 "sraa-rt",
                 "noaa-hybrid",
+                "ssaa2-hybrid",
                 "ssaa4-hybrid",
                 "sraa-rt-hybrid"
             ]
@@ -643,6 +671,53 @@ pub(crate) mod tests {
 mod crossover_tests {
     use super::tests::row;
     use super::*;
+
+    #[test]
+    fn the_crossover_states_its_range_and_sraa_at_equal_quality() {
+        // ssaa4 − sraa-rt by the medians: −20 at AO 0, +20 at AO 2: they
+        // meet at 1. The runs: ±10 ms each side.
+        let ranged = |m: &str, ao, ms: f64, edge, flip| {
+            let mut r = row(m, ao, ms, 1.0, edge);
+            r.ms_range = (ms - 10.0, ms + 10.0);
+            r.flip_mean = Some(flip);
+            r
+        };
+        let rows = vec![
+            ranged("ssaa2", 0, 70.0, 0.10, 0.030),
+            ranged("ssaa4", 0, 100.0, 0.06, 0.020),
+            ranged("sraa-rt", 0, 120.0, 0.08, 0.025),
+            ranged("ssaa2", 2, 110.0, 0.11, 0.031),
+            ranged("ssaa4", 2, 180.0, 0.07, 0.021),
+            ranged("sraa-rt", 2, 160.0, 0.12, 0.026),
+        ];
+        let s = AoSweep {
+            ran: true,
+            aos: vec![0, 2],
+            ao_reference: None,
+            rows,
+            missing: vec![],
+            refused: vec![],
+        };
+        let c = crossover(&s, "atrium", "cpu", Pair::Traced);
+        assert_eq!(c.interpolated, Some(1.0));
+        // The runs most favourable to sraa-rt: gaps 0 at AO 0 and +40 at
+        // 2, meeting at 0; least favourable: −40 and 0, faster nowhere. So
+        // the runs do not bound the crossing inside the sweep.
+        assert_eq!(c.interpolated_range, None);
+        let f = c.first_faster.unwrap();
+        assert_eq!((f.sraa_rt_ms_range, f.ssaa4_ms_range), ((150.0, 170.0), (170.0, 190.0)));
+        let text = crossover_sentence(&c);
+        assert!(text.contains("160.0 ms (150.0–170.0) against 180.0 ms (170.0–190.0)"), "{text}");
+        assert!(text.contains("whole-image FLIP 0.0260 against 0.0210"), "{text}");
+        assert!(text.contains("the runs do not bound it inside the sweep"), "{text}");
+        // Equal quality: between ssaa2 and ssaa4 at AO 0, above ssaa2 at 2.
+        let e0 = equal_quality(&s, "atrium", "cpu", Pair::Traced, 0).unwrap();
+        assert!(e0.starts_with("at AO 0, sraa-rt's edge FLIP 0.0800 is between ssaa2's and ssaa4's (ssaa2 0.1000, ssaa4 0.0600)"), "{e0}");
+        assert!(e0.contains("in 120.0 (110.0–130.0) ms against 70.0 (60.0–80.0) and 100.0 (90.0–110.0)"), "{e0}");
+        let e2 = equal_quality(&s, "atrium", "cpu", Pair::Traced, 2).unwrap();
+        assert!(e2.contains("is above ssaa2's"), "{e2}");
+        assert_eq!(equal_quality(&s, "atrium", "cpu", Pair::Hybrid, 0), None);
+    }
 
     #[test]
     fn the_crossover_is_computed_from_the_rows() {
@@ -749,9 +824,9 @@ mod crossover_tests {
         assert_eq!(ratios(&s.rows, "atrium", "cpu", Pair::Hybrid, 16), None);
         // The table: a row per AO count and pair, the pair named.
         let md = section(&s, Some("ssaa256"));
-        assert!(md.contains("| 1 | hybrid | – | 150.0 | 90.0 |"), "{md}");
-        assert!(md.contains("| 1 | traced | – | 150.0 | 160.0 |"), "{md}");
-        assert!(md.contains("| 16 | hybrid | – | 700.0 | – |"), "{md}");
+        assert!(md.contains("| 1 | hybrid | – | – | 150.0 | 90.0 |"), "{md}");
+        assert!(md.contains("| 1 | traced | – | – | 150.0 | 160.0 |"), "{md}");
+        assert!(md.contains("| 16 | hybrid | – | – | 700.0 | – |"), "{md}");
         assert!(!md.contains("| 16 | traced |"), "{md}");
         // The target: met at AO 1.
         let t = target_rows(&s);

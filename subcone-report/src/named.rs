@@ -13,6 +13,9 @@ use subcone_scene::Method;
 
 /// One sample per pixel: the baseline of every ratio and verdict.
 pub const NOAA: Method = Method::new(Technique::NoAa);
+/// Two samples per pixel, the 2×2 grid's diagonal: the SSAA between NoAA
+/// and `ssaa4`, so that SRAA has an SSAA neighbour on either side in error.
+pub const SSAA2: Method = Method::SSAA2;
 /// 2×2 supersampling.
 pub const SSAA4: Method = Method::ssaa_grid(2);
 /// 4×4 supersampling (SRAA's comparison, Fig. 3).
@@ -50,6 +53,11 @@ pub fn noaa_hybrid() -> Method {
     hybrid(NOAA)
 }
 
+/// `ssaa2-hybrid`.
+pub fn ssaa2_hybrid() -> Method {
+    hybrid(SSAA2)
+}
+
 /// `ssaa4-hybrid`.
 pub fn ssaa4_hybrid() -> Method {
     hybrid(SSAA4)
@@ -76,9 +84,10 @@ fn paper(method: Method) -> Method {
 /// The traced methods of the default comparison that have a `-hybrid`
 /// twin there, in table order: the rows the report sets side by side
 /// (traced against hybrid, per triangle scene).
-pub fn hybrid_bases() -> [Method; 8] {
+pub fn hybrid_bases() -> [Method; 9] {
     [
         NOAA,
+        SSAA2,
         SSAA4,
         SSAA16,
         SRAA,
@@ -99,6 +108,7 @@ mod tests {
     fn names_are_the_reports() {
         let names = [
             (NOAA, "noaa"),
+            (SSAA2, "ssaa2"),
             (SSAA4, "ssaa4"),
             (SSAA16, "ssaa16"),
             (SRAA, "sraa"),

@@ -171,6 +171,7 @@ pub const CAPABILITIES: Capabilities = Capabilities {
     sdf_subpixel_geometry: Ok(()),
     max_sdf_side_samples: None,
     raster_primary: Ok(()),
+    diagonal_ssaa: Ok(()),
 };
 
 impl Backend for CpuBackend {

@@ -46,7 +46,7 @@ macro_rules! same_bits_on_every_path {
 }
 
 same_bits_on_every_path! {
-    cornell: "cornell", ["noaa", "ssaa4", "sraa", "sraa-rt", "noaa-hybrid", "ssaa4-hybrid", "sraa-rt-hybrid"];
+    cornell: "cornell", ["noaa", "ssaa2", "ssaa4", "sraa", "sraa-rt", "noaa-hybrid", "ssaa2-hybrid", "ssaa4-hybrid", "sraa-rt-hybrid"];
     checker: "checker", ["noaa", "ssaa4", "sraa", "sraa-rt", "sraa-hybrid", "sraa-rt-paper+mat-hybrid"];
     primitives: "primitives", ["noaa", "ssaa4", "ctss"];
     random_box: "random-box", ["noaa", "ssaa4", "ctss"];

@@ -171,7 +171,7 @@ fn hybrid_images_are_within_flip_1e_3_of_the_traced_ones() {
     let s = RenderSettings::new(192, 192);
     let mut failures = Vec::new();
     for scene in scenes() {
-        for name in ["noaa", "ssaa4", "sraa", "sraa-rt", "sraa-rt-paper"] {
+        for name in ["noaa", "ssaa2", "ssaa4", "sraa", "sraa-rt", "sraa-rt-paper"] {
             let traced: Method = name.parse().unwrap();
             let hybrid = traced.with_hybrid().unwrap();
             let a = cpu.render(&scene, &scene.camera, &traced, &s).unwrap();

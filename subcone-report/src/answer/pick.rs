@@ -81,6 +81,10 @@ impl Pick {
     }
 }
 
+/// One scene's time over NoAA's for a candidate: the scene, the median of
+/// the per-round ratios, and their smallest and largest.
+type SceneTime<'a> = (&'a str, Option<f64>, Option<(f64, f64)>);
+
 /// A method's figures over the scenes of a kind, for the picks.
 struct Candidate<'a> {
     method: &'a RowKey,
@@ -88,7 +92,7 @@ struct Candidate<'a> {
     mean: f64,
     /// Per scene: the scene, its time over NoAA's (median of the rounds)
     /// and the smallest and largest per-round one.
-    times: Vec<(&'a str, Option<f64>, Option<(f64, f64)>)>,
+    times: Vec<SceneTime<'a>>,
     /// Per camera offset, the mean over the scenes of its error over
     /// NoAA's at that offset (empty unless every row has the same offsets).
     at_offsets: Vec<f64>,
@@ -445,7 +449,7 @@ fn noise(
     for c in all.iter().filter(|c| c.mean < best.mean && !c.within(Some(lim))) {
         // Out of the budget by its median on some scenes: within it in a
         // round on every one of them?
-        let out: Vec<&(&str, Option<f64>, Option<(f64, f64)>)> = c
+        let out: Vec<&SceneTime> = c
             .times
             .iter()
             .filter(|(_, t, _)| !t.is_some_and(|t| t <= lim))

@@ -139,7 +139,7 @@ pub fn section(a: &Answer, rows: &[ResultRow], ctx: &Context) -> String {
     if !a.picks.is_empty() {
         let _ = writeln!(
             md,
-            "Which method to use per kind of scene and budget of time over NoAA's, under each metric (FLIP, and 1 − SSIM so that lower is better under both): {RULE}. In brackets: that mean error ratio, and on how many of the scenes the method is on the front below; then the runner-up by the same rule, its mean error ratio and how much more that is. A pick is **within noise** when the runner-up has the lower error ratio at some camera offset, when the pick's own time goes over the budget in a round, or when a method with less error is out of the budget by its median but within it in a round; the notes under the table say which.\n"
+            "Which method to use per kind of scene and budget of time over NoAA's, under each metric (FLIP, and 1 − SSIM so that lower is better under both): {RULE}. In brackets: that mean error ratio, and on how many of the scenes the method is on the front below; then the runner-up by the same rule, its mean error ratio and how much more that is. A pick is **within noise** when the runner-up has the lower error ratio at some camera offset, when the pick's own time goes over the budget in a round, or when a method with less error is out of the budget by its median but within it in a round; the notes under the fronts say which.\n"
         );
         let _ = writeln!(
             md,
@@ -174,29 +174,6 @@ pub fn section(a: &Answer, rows: &[ResultRow], ctx: &Context) -> String {
             }
         }
         let _ = writeln!(md);
-        let noisy: Vec<String> = a
-            .picks
-            .iter()
-            .filter(|p| !p.noise.is_empty())
-            .map(|p| {
-                format!(
-                    "{} scenes, {}, {}, {} ({}): {}",
-                    p.kind.name(),
-                    p.backend,
-                    budget_name(p.budget),
-                    error_name(p.metric),
-                    p.method,
-                    p.noise.join("; ")
-                )
-            })
-            .collect();
-        if !noisy.is_empty() {
-            let _ = writeln!(md, "Within noise:\n");
-            for n in noisy {
-                let _ = writeln!(md, "- {n}.");
-            }
-            let _ = writeln!(md);
-        }
     }
     let _ = writeln!(
         md,
@@ -231,6 +208,29 @@ pub fn section(a: &Answer, rows: &[ResultRow], ctx: &Context) -> String {
         );
     }
     let _ = writeln!(md);
+    let noisy: Vec<String> = a
+        .picks
+        .iter()
+        .filter(|p| !p.noise.is_empty())
+        .map(|p| {
+            format!(
+                "{} scenes, {}, {}, {} ({}): {}",
+                p.kind.name(),
+                p.backend,
+                budget_name(p.budget),
+                error_name(p.metric),
+                p.method,
+                p.noise.join("; ")
+            )
+        })
+        .collect();
+    if !noisy.is_empty() {
+        let _ = writeln!(md, "Within noise:\n");
+        for n in noisy {
+            let _ = writeln!(md, "- {n}.");
+        }
+        let _ = writeln!(md);
+    }
     let mut notes: Vec<String> = Vec::new();
     // One line per method, backend and reason, naming the scenes.
     let mut groups: Vec<(&Excluded, Vec<&str>)> = Vec::new();

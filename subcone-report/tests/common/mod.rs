@@ -48,7 +48,7 @@ impl<'a> Judged<'a> {
     pub fn with_flip_band(&self, radius: u32) -> Judged<'a> {
         Judged {
             scene: self.scene,
-            settings: self.settings.clone(),
+            settings: self.settings,
             reference: self.reference.clone(),
             masks: self.masks.with_flip_band(radius),
         }

@@ -15,30 +15,39 @@ use crate::bvh::Hit;
 use crate::raster::{self, sample_coordinates, PixelRect, Raster, Samples, BIN};
 use crate::shade::{Counts, Surface, Tracer, MAX_LIGHTS};
 
-/// NoAA (one ray through each pixel centre) and SSAA (a regular n×n grid).
+/// NoAA (one ray through each pixel centre) and SSAA (a regular n×n grid,
+/// or for `ssaa2` its diagonal: samples `(k, k)`, so the positions are the
+/// grid's, by the same operations).
 pub fn supersample(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes) -> Frame {
     let (w, h) = (s.width as usize, s.height as usize);
-    let n = if method.technique() == Technique::Ssaa {
-        method.ssaa_side().max(1)
-    } else {
-        1
-    };
+    let ssaa = method.technique() == Technique::Ssaa;
+    let n = if ssaa { method.ssaa_side().max(1) } else { 1 };
+    let diagonal = ssaa && method.ssaa_diagonal();
     let mut frame = Frame::new(s.width, s.height);
-    if method.is_hybrid() {
-        supersample_hybrid(t, s, n, &mut frame);
-    } else {
-        supersample_traced(t, s, n, &mut frame);
+    // The pattern is a constant of each band's loop, so the grids' loops
+    // are the ones they were before the diagonal existed.
+    match (method.is_hybrid(), diagonal) {
+        (true, false) => supersample_hybrid::<false>(t, s, n, &mut frame),
+        (true, true) => supersample_hybrid::<true>(t, s, n, &mut frame),
+        (false, false) => supersample_traced::<false>(t, s, n, &mut frame),
+        (false, true) => supersample_traced::<true>(t, s, n, &mut frame),
     }
     frame.stats.passes = passes;
     if s.aovs {
-        frame.samples_per_pixel = Some(vec![(n * n) as f32; w * h]);
+        let spp = if diagonal { n } else { n * n };
+        frame.samples_per_pixel = Some(vec![spp as f32; w * h]);
         centre_aovs(t, s, &mut frame);
     }
     frame
 }
 
 /// [`supersample`] with every sample's ray traced, band by band.
-fn supersample_traced(t: &Tracer, s: &RenderSettings, n: u32, frame: &mut Frame) {
+fn supersample_traced<const DIAGONAL: bool>(
+    t: &Tracer,
+    s: &RenderSettings,
+    n: u32,
+    frame: &mut Frame,
+) {
     let w = s.width as usize;
     let start = Instant::now();
     let rays = t.camera.rays(s.width, s.height);
@@ -50,7 +59,7 @@ fn supersample_traced(t: &Tracer, s: &RenderSettings, n: u32, frame: &mut Frame)
             // The band's rays on the instruction-set path (`isa`).
             t.isa.run(
                 #[inline(always)]
-                || supersample_band(t, &rays, band, rows, w, n),
+                || supersample_band::<DIAGONAL>(t, &rays, band, rows, w, n),
             )
         })
         .reduce(Counts::default, |a, b| a + b);
@@ -69,7 +78,12 @@ fn supersample_traced(t: &Tracer, s: &RenderSettings, n: u32, frame: &mut Frame)
 /// the tracer's hit on it ([`raster::primary_hit`]), shaded as
 /// [`supersample_band`] shades it, each pixel's sum in the same order. A
 /// sample that finds the triangle the traversal finds gives the same bits.
-fn supersample_hybrid(t: &Tracer, s: &RenderSettings, n: u32, frame: &mut Frame) {
+fn supersample_hybrid<const DIAGONAL: bool>(
+    t: &Tracer,
+    s: &RenderSettings,
+    n: u32,
+    frame: &mut Frame,
+) {
     let (w, h) = (s.width as usize, s.height as usize);
     let start = Instant::now();
     let cam = t.camera.rays(s.width, s.height);
@@ -81,7 +95,9 @@ fn supersample_hybrid(t: &Tracer, s: &RenderSettings, n: u32, frame: &mut Frame)
         .map_init(HybridScratch::default, |scratch, (band, rows)| {
             t.isa.run(
                 #[inline(always)]
-                || supersample_hybrid_band(t, &cam, &raster, scratch, band, rows, w, n),
+                || {
+                    supersample_hybrid_band::<DIAGONAL>(t, &cam, &raster, scratch, band, rows, w, n)
+                },
             )
         })
         .reduce(TileWork::default, |a, b| a + b);
@@ -149,7 +165,7 @@ impl HybridScratch {
 /// One band of [`supersample_hybrid`]: rows `band · BIN` on, bin by bin.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn supersample_hybrid_band(
+fn supersample_hybrid_band<const DIAGONAL: bool>(
     t: &Tracer,
     cam: &CameraRays,
     raster: &Raster,
@@ -162,7 +178,7 @@ fn supersample_hybrid_band(
     let mut work = TileWork::default();
     let c = &mut work.counts;
     let n = n.max(1) as usize;
-    let spp = n * n;
+    let spp = if DIAGONAL { n } else { n * n };
     let y0 = band * BIN;
     let y1 = y0 + rows.len() / w.max(1);
     let mut ray = [(Vec3::ZERO, Vec3::ZERO); BATCH];
@@ -176,13 +192,12 @@ fn supersample_hybrid_band(
             x1: (x0 + BIN).min(w),
             y1,
         };
-        // Sample `k = sy·n + sx` at `(x, y) + ((sx + ½)/n, (sy + ½)/n)`:
-        // the traced band's point, by the same operations.
+        // Sample `k = sy·n + sx` at `(x, y) + ((sx + ½)/n, (sy + ½)/n)`
+        // (on the diagonal, `sx = sy = k`): the traced band's point, by the
+        // same operations.
         let off = |k: usize| {
-            Vec2::new(
-                ((k % n) as f32 + 0.5) / n as f32,
-                ((k / n) as f32 + 0.5) / n as f32,
-            )
+            let (sx, sy) = if DIAGONAL { (k, k) } else { (k % n, k / n) };
+            Vec2::new((sx as f32 + 0.5) / n as f32, (sy as f32 + 0.5) / n as f32)
         };
         let at = |x: usize, y: usize, k: usize| Vec2::new(x as f32, y as f32) + off(k);
         sample_coordinates(cam, rect, spp, at, &mut b.u, &mut b.v);
@@ -242,12 +257,12 @@ fn supersample_hybrid_band(
 /// square-root chains of neighbouring rays instead of waiting on each.
 const BATCH: usize = 64;
 
-/// One band of [`supersample`]: `n`×`n` rays per pixel of `rows`, the rows
-/// from `band · BAND` on. Per ray the same operations as [`Tracer::radiance`]
-/// on each sample in turn, and each pixel's sum in the same order, so the
-/// same bits.
+/// One band of [`supersample`]: `n`×`n` rays per pixel of `rows` (`n` on
+/// the grid's diagonal when `DIAGONAL`), the rows from `band · BAND` on.
+/// Per ray the same operations as [`Tracer::radiance`] on each sample in
+/// turn, and each pixel's sum in the same order, so the same bits.
 #[inline(always)]
-fn supersample_band(
+fn supersample_band<const DIAGONAL: bool>(
     t: &Tracer,
     rays: &CameraRays,
     band: usize,
@@ -257,7 +272,7 @@ fn supersample_band(
 ) -> Counts {
     let mut c = Counts::default();
     let n = n.max(1) as usize;
-    let spp = n * n;
+    let spp = if DIAGONAL { n } else { n * n };
     let mut ray = [(Vec3::ZERO, Vec3::ZERO); BATCH];
     let mut hit: [Option<Hit>; BATCH] = [None; BATCH];
     let mut surface: [Option<Surface>; BATCH] = [None; BATCH];
@@ -286,7 +301,14 @@ fn supersample_band(
                 let v = row_v.get(sy).copied().unwrap_or_else(|| rays.v(p.y));
                 *slot = rays.through(rays.u(p.x), v);
                 sx += 1;
-                if sx == n {
+                if DIAGONAL {
+                    // The next sample on the diagonal, or the next pixel.
+                    sy = sx;
+                    if sx == n {
+                        (sx, sy) = (0, 0);
+                        x += 1;
+                    }
+                } else if sx == n {
                     sx = 0;
                     sy += 1;
                     if sy == n {
