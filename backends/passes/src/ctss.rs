@@ -622,9 +622,11 @@ fn variant_wgsl(desc: &CtssPassDesc<'_>) -> String {
 impl CtssPass {
     /// Build the pass for the host's WGSL (compile its pipeline). Refuses a
     /// batch outside `1..=MAX_BATCH`, cones per side outside
-    /// `1..=MAX_SAMPLES_PER_SIDE` and a texture format it cannot write; a
-    /// host source that does not compile is a validation error on the
-    /// host's device, reported through the host's own error handling.
+    /// `1..=MAX_SAMPLES_PER_SIDE` and a texture format it cannot write. A
+    /// host source that does not compile (a syntax or type error, a missing
+    /// hook) is [`PassError::Shader`] with naga's message, caught in the
+    /// pass's own error scope: the device's uncaptured-error handler does
+    /// not see it, so the host learns it where it built the pass.
     pub fn new(
         device: &Device,
         host_wgsl: &str,

@@ -53,7 +53,10 @@
 //!
 //! Inputs are checked before anything is recorded: a view of a texture of the
 //! wrong size, format, sample count, layer count or usage is a [`PassError`],
-//! never a wgpu validation error raised on the host's device. (wgpu 30
+//! never a wgpu validation error raised on the host's device. So is host WGSL
+//! that does not compile ([`PassError::Shader`], with naga's message): a
+//! pass's `new` makes its shader and pipeline inside an error scope of its
+//! own and pops it before returning. (wgpu 30
 //! exposes a view's texture, `TextureView::texture`, but not the view's
 //! dimension, aspect or range: a view of the whole texture, as
 //! `create_view(&Default::default())` makes, is the host's part.)
@@ -231,6 +234,16 @@ pub enum PassError {
         /// The slots of the ring, all held for unsubmitted encodes.
         slots: usize,
     },
+    /// The pass's shader did not compile: the host's WGSL (a
+    /// [`CtssPass`]'s field, shading or trace) has a syntax or type error,
+    /// or does not fit the pass (a missing hook, a host layout the shader
+    /// does not match). Caught in the pass's own error scope, so the
+    /// device's uncaptured-error handler does not see it.
+    Shader {
+        /// wgpu's report, with naga's message and the offending line of
+        /// the whole shader (the kernels', the host's WGSL and the pass's).
+        message: String,
+    },
 }
 
 impl std::fmt::Display for PassError {
@@ -304,6 +317,11 @@ impl std::fmt::Display for PassError {
                  encoded so far (Queue::submit) and call the pass's end_submission before \
                  encoding more, or encode fewer distinct cameras, rects or parameters per \
                  submission"
+            ),
+            PassError::Shader { message } => write!(
+                f,
+                "the pass's shader, with the host WGSL it was given, does not compile: \
+                 {message}"
             ),
         }
     }

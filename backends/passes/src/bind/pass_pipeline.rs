@@ -79,7 +79,12 @@ impl PassPipeline {
     /// (group 1, when the host binds one), and make the uniform buffers.
     /// `source` is the whole shader, the group's declarations included.
     /// `label` names every object made. Refuses a group beyond the
-    /// device's limits ([`Group::check_limits`]) before creating anything.
+    /// device's limits ([`Group::check_limits`]) before creating anything,
+    /// and a source that does not compile with [`PassError::Shader`]:
+    /// the module and the pipeline are made inside an error scope of the
+    /// pass's own, so naga's message comes back to the host as a value of
+    /// its `new` rather than through its device's uncaptured-error handler
+    /// (which sees nothing).
     pub(crate) fn new(
         device: &wgpu::Device,
         label: &'static str,
@@ -90,6 +95,7 @@ impl PassPipeline {
     ) -> Result<Self, PassError> {
         group.check_limits(device)?;
         let layout = group.layout(device, label);
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(label),
             source: wgpu::ShaderSource::Wgsl(source.into()),
@@ -99,6 +105,14 @@ impl PassPipeline {
             None => pipeline_layout(device, label, &[&layout]),
         };
         let pipeline = compute_pipeline(device, label, &pl, &module, entry);
+        // The scope holds the first error: the module's (naga's parser or
+        // validator), else the pipeline's (e.g. a host group 1 layout the
+        // shader does not match).
+        if let Some(e) = ready(scope.pop()) {
+            return Err(PassError::Shader {
+                message: e.to_string().trim_end().to_owned(),
+            });
+        }
         let align = u64::from(device.limits().min_uniform_buffer_offset_alignment).max(1);
         let uniforms: Vec<UniformRing> = group
             .list
@@ -311,6 +325,23 @@ impl PassPipeline {
         });
         self.group
             .bind_group(device, self.label, &self.layout, bound)
+    }
+}
+
+/// The output of `future`, polled on this thread with a waker that does
+/// nothing, yielding while it is pending: the crate's one wait, for a
+/// popped error scope, whose future wgpu's native backends return ready
+/// (the errors were caught as the objects were made). A waker of our own
+/// rather than an executor keeps the crate's dependencies to the kernels,
+/// wgpu, bytemuck and glam (`tests/dependencies.rs`).
+fn ready<F: std::future::Future>(future: F) -> F::Output {
+    let mut future = std::pin::pin!(future);
+    let mut cx = std::task::Context::from_waker(std::task::Waker::noop());
+    loop {
+        if let std::task::Poll::Ready(out) = future.as_mut().poll(&mut cx) {
+            return out;
+        }
+        std::thread::yield_now();
     }
 }
 
