@@ -16,6 +16,9 @@ pub struct Context {
     pub runs: u32,
     /// Reference method.
     pub reference: String,
+    /// Camera offsets every error is measured at (each at the quality size,
+    /// against the reference).
+    pub offsets: Vec<(f32, f32)>,
     /// Scenes.
     pub scenes: Vec<SceneInfo>,
     /// Ambient-occlusion rays per shaded point of every render (`--ao`).

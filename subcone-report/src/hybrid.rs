@@ -578,6 +578,7 @@ mod tests {
             backend_descriptions: vec!["cpu".into()],
             runs: 3,
             reference: "ssaa256".into(),
+            offsets: vec![(0.0, 0.0)],
             scenes: scenes
                 .iter()
                 .map(|&(name, sdf)| SceneInfo {

@@ -217,8 +217,7 @@ pub fn run(args: &ReportArgs) -> Result<ReportSummary> {
         kernels,
         error_offsets: ErrorOffsets {
             offsets: plan.offsets.clone(),
-            divisor: plan.offset_divisor,
-            reference: plan.offset_reference.to_string(),
+            reference: plan.reference.to_string(),
             elapsed: runner.offsets_elapsed,
         },
         elapsed: start.elapsed(),
@@ -247,6 +246,7 @@ fn context(plan: &Plan, jobs: &[SceneJob], other_cpu: load::OtherCpu) -> context
         backend_descriptions: plan.backends.iter().map(|b| b.1.describe()).collect(),
         runs: plan.runs,
         reference: plan.reference.to_string(),
+        offsets: plan.offsets.clone(),
         ao: plan.ao,
         scenes: jobs
             .iter()

@@ -7,8 +7,10 @@
 //! by a fraction of a pixel's angle (as the motion section's pan turns it,
 //! [`motion::camera_path`](crate::motion::camera_path)), each offset against
 //! its own reference (cached, see [`reference`](crate::reference)) and with
-//! its own edge classes. Only the error is measured again; the timing rounds
-//! are not repeated.
+//! its own edge classes, every offset at the quality size and against the
+//! run's reference method, so that the offsets differ in where the pixel
+//! grid falls and in nothing else. Only the error is measured again; the
+//! timing rounds are not repeated.
 //!
 //! The verdicts compare a method with NoAA paired by offset
 //! ([`Verdict::judge_claims`](crate::classes::Verdict::judge_claims)): a win
@@ -60,19 +62,6 @@ pub fn describe(c: &Camera) -> String {
         c.fov_y
     )
 }
-
-/// In the default report (no `--size`), the offsets after the first are
-/// measured at the quality size divided by this on each side (a quarter of
-/// the pixels) against [`FULL_OFFSET_REFERENCE`] (a quarter of the
-/// samples): the references dominate the error's cost, and the default
-/// report has little time to spare. The quick report measures every offset
-/// at its quality size against its own reference.
-pub const FULL_OFFSET_DIVISOR: u32 = 2;
-
-/// The reference of the default report's offsets after the first (without
-/// `--reference`): the quick report's ssaa64. Each offset's method and NoAA
-/// are compared against the same reference, so the verdicts stay paired.
-pub const FULL_OFFSET_REFERENCE: subcone_scene::Method = subcone_scene::Method::ssaa_grid(8);
 
 #[cfg(test)]
 mod tests {

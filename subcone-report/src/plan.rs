@@ -10,7 +10,6 @@ use subcone_scene::{Backend, Method, RenderSettings};
 
 use crate::args::ReportArgs;
 use crate::named::{NOAA, SRAA_RT};
-use crate::scenes::SceneJob;
 use crate::{ao_sweep, motion, offsets, post, setup, smaa};
 
 /// The methods compared, in table order: every method of
@@ -83,13 +82,9 @@ pub(crate) struct Plan {
     /// Frames of the motion section, when it runs.
     pub(crate) motion_frames: Option<u32>,
     /// Camera offsets the error is measured at (a prefix of
-    /// [`offsets::ERROR_OFFSETS`]).
+    /// [`offsets::ERROR_OFFSETS`]), every one at the quality size against
+    /// the run's reference.
     pub(crate) offsets: Vec<(f32, f32)>,
-    /// The offsets after the first are measured at the quality size over
-    /// this on each side.
-    pub(crate) offset_divisor: u32,
-    /// The reference of the offsets after the first.
-    pub(crate) offset_reference: Method,
 }
 
 /// A method that some backend renders on a scene, with the indices (in the
@@ -328,24 +323,7 @@ impl Plan {
             sraa_sweep,
             motion_frames,
             offsets,
-            offset_divisor: if mode == Mode::Full && size.is_none() {
-                offsets::FULL_OFFSET_DIVISOR
-            } else {
-                1
-            },
-            offset_reference: if mode == Mode::Full && size.is_none() && args.reference.is_none() {
-                offsets::FULL_OFFSET_REFERENCE
-            } else {
-                reference
-            },
         })
-    }
-
-    /// The size the offsets after the first are measured at for `job`.
-    pub(crate) fn offset_size(&self, job: &SceneJob) -> (u32, u32) {
-        let (w, h) = job.quality_size;
-        let d = self.offset_divisor.max(1);
-        ((w / d).max(1), (h / d).max(1))
     }
 
     /// The settings of a `w × h` render of the run: the run's ambient
@@ -412,20 +390,16 @@ mod tests {
     #[test]
     fn errors_are_measured_at_the_offsets_asked() {
         let plan = |args: ReportArgs| Plan::new(&args);
-        // The default report: 4 offsets, the further ones at half size
-        // against ssaa64.
+        // The default report and the quick one: 4 offsets (each at the
+        // quality size, against the run's reference).
         let p = plan(ReportArgs::default()).unwrap();
         assert_eq!(p.offsets, offsets::ERROR_OFFSETS.to_vec());
-        assert_eq!(p.offset_divisor, offsets::FULL_OFFSET_DIVISOR);
-        assert_eq!(p.offset_reference, offsets::FULL_OFFSET_REFERENCE);
-        // The quick report: every offset at its size, its own reference.
         let quick = ReportArgs {
             quick: true,
             ..Default::default()
         };
         let p = plan(quick.clone()).unwrap();
-        assert_eq!((p.offsets.len(), p.offset_divisor), (4, 1));
-        assert_eq!(p.offset_reference, p.reference);
+        assert_eq!(p.offsets.len(), 4);
         let two = ReportArgs {
             error_offsets: Some(2),
             ..quick.clone()

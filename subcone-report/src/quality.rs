@@ -195,19 +195,18 @@ impl Runner<'_> {
         })
     }
 
-    /// The reference and classes at each camera offset after the first
-    /// ([`Plan::offset_size`](crate::plan::Plan::offset_size)); the time they take is added to
-    /// `offsets_elapsed`.
+    /// The reference and classes at each camera offset after the first, at
+    /// the quality size against the run's reference (as the first offset's);
+    /// the time they take is added to `offsets_elapsed`.
     pub(crate) fn offset_qualities(&mut self, job: &SceneJob) -> Result<Vec<OffsetQuality>> {
         let start = Instant::now();
         let plan = self.plan;
-        let size = plan.offset_size(job);
+        let size = job.quality_size;
         let mut out = Vec::new();
         for &offset in plan.offsets.iter().skip(1) {
             let camera = offsets::offset_camera(&job.scene.camera, offset, size.1)?;
             let settings = plan.settings(size.0, size.1, job.sdf);
-            let by = Some(plan.offset_reference);
-            let reference = self.reference_from(job, &settings, by, Some(&camera))?;
+            let reference = self.reference_from(job, &settings, None, Some(&camera))?;
             self.progress.bar.set_message(format!(
                 "{}: edge classes at offset {}",
                 job.name,

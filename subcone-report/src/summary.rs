@@ -15,10 +15,8 @@ use crate::{ao_sweep, classes, crops, kernel_timing, motion};
 pub struct ErrorOffsets {
     /// The offsets measured ([`offsets::ERROR_OFFSETS`](crate::offsets::ERROR_OFFSETS), a prefix).
     pub offsets: Vec<(f32, f32)>,
-    /// The offsets after the first are measured at the quality size divided
-    /// by this on each side.
-    pub divisor: u32,
-    /// The reference method of the offsets after the first.
+    /// The reference method every offset is measured against (the run's),
+    /// each at the quality size.
     pub reference: String,
     /// Wall time the offsets after the first took (their references,
     /// classes, renders and errors).

@@ -64,7 +64,19 @@ pub fn regime(ctx: &Context) -> String {
         if ctx.mode == Mode::TimingOnly {
             String::new()
         } else {
-            format!(", errors against {}", ctx.reference)
+            let list: Vec<String> = ctx
+                .offsets
+                .iter()
+                .map(|&(x, y)| format!("({x}, {y})"))
+                .collect();
+            format!(
+                ", errors against {} at the quality size, as the mean over {} camera offset{} of {} px (each offset at that size against its own {} frame; the images show the first)",
+                ctx.reference,
+                ctx.offsets.len(),
+                if ctx.offsets.len() == 1 { "" } else { "s" },
+                list.join(", "),
+                ctx.reference,
+            )
         }
     )
 }

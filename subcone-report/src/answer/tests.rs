@@ -140,6 +140,7 @@ fn context(scenes: &[SceneInfo]) -> Context {
         backend_descriptions: vec!["cpu (test)".into()],
         runs: 3,
         reference: "ssaa64".into(),
+        offsets: crate::offsets::ERROR_OFFSETS.to_vec(),
         scenes: scenes
             .iter()
             .map(|s| SceneInfo {

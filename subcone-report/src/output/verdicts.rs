@@ -120,19 +120,10 @@ offset's; `px_<class>` is the fewest pixels the class has at any offset. {size} 
 further offsets took {secs:.1} s of this run's {total:.1} s ({share:.1} %).",
         k = o.offsets.len(),
         list = list.join(", "),
-        size = if o.divisor > 1 {
-            format!(
-                "The offsets after the first are measured at 1/{d} of the quality size on each side \
-(1/{d2} of the pixels) against a {r} reference, so that they fit the run's time; the range over \
-the offsets includes the effect of that size and reference (a method and NoAA are always compared \
-at one size, against one reference).",
-                d = o.divisor,
-                d2 = o.divisor * o.divisor,
-                r = o.reference
-            )
-        } else {
-            "Every offset is measured at the quality size.".into()
-        },
+        size = format!(
+            "Every offset is measured at the quality size against the same {} reference.",
+            o.reference
+        ),
         extra = o.offsets.len() - 1,
         total = elapsed.as_secs_f64(),
         share = 100.0 * secs / elapsed.as_secs_f64().max(1e-9),
