@@ -34,8 +34,7 @@ use plotters::prelude::*;
 
 pub use crate::ao_crossover::{
     crossover, crossover_sentence, crossovers, equal_quality, hybrid_crossover_judged, ratios,
-    AoSweep,
-    AoSweepRow, Crossover, FirstFaster, Pair, Refused, HYBRID_CROSSOVER_AO,
+    AoSweep, AoSweepRow, Crossover, FirstFaster, Pair, Refused, HYBRID_CROSSOVER_AO,
 };
 use crate::ao_crossover::{find, groups, opt};
 use crate::classes::{Class, ClassError};
@@ -205,7 +204,10 @@ reference, so that the section takes seconds, not minutes)"
             md,
             "| AO rays | pair | {noaa} ms | {ssaa2} ms | {ssaa4} ms | {sraa_rt} ms | {noaa} edge FLIP | {ssaa2} edge FLIP | {ssaa4} edge FLIP | {sraa_rt} edge FLIP | {ssaa2} FLIP | {ssaa4} FLIP | {sraa_rt} FLIP | rays ratio | time ratio | time / rays |"
         );
-        let _ = writeln!(md, "|--:|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
+        let _ = writeln!(
+            md,
+            "|--:|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|"
+        );
         for &ao in &sweep.aos {
             for pair in Pair::ALL {
                 let get = |m: Method| find(&sweep.rows, &scene, &backend, m, ao);
@@ -514,63 +516,88 @@ impl Runner<'_> {
                 };
                 for (bi, (bname, backend)) in plan.backends.iter().enumerate() {
                     for m in able.iter().filter(|a| a.0 == bi).map(|a| &a.1) {
-                        self.progress.bar.set_message(format!(
-                            "where SRAA pays, {}: {m} with AO {ao} on {bname}",
-                            job.name
-                        ));
-                        let mut settings = RenderSettings::new(w, h);
-                        settings.ao_rays = ao;
-                        let mut t = Timings::default();
-                        let mut first = None;
-                        let mut failed = false;
-                        for k in 0..=plan.runs {
-                            match render(backend.as_ref(), &job.scene, m, &settings) {
-                                Ok((f, wall)) => {
-                                    if k > 0 {
-                                        t.push(wall, &f);
-                                    }
-                                    first.get_or_insert(f);
-                                }
-                                Err(e) => {
-                                    let what = format!("{m} (AO {ao})");
-                                    self.fail(Failure::new(&job.name, what, bname.clone(), &e))?;
-                                    failed = true;
-                                    break;
-                                }
-                            }
-                        }
-                        let Some(frame) = first.filter(|_| !failed) else {
-                            continue;
-                        };
-                        let px = (w as f64 * h as f64).max(1.0);
-                        let mut row = AoSweepRow {
-                            scene: job.name.to_string(),
-                            method: *m,
-                            backend: bname.clone(),
+                        let row = self.sweep_row(
+                            &job,
+                            (bname, backend.as_ref()),
+                            *m,
                             ao,
-                            ms_median: t.median(),
-                            ms_range: (t.min(), t.max()),
-                            rays_per_pixel: frame.stats.rays.total() as f64 / px,
-                            ao_rays_per_pixel: frame.stats.rays.ao as f64 / px,
-                            edge_flip: None,
-                            flip_mean: None,
-                        };
-                        if let (Some(r), Some(k)) = (&reference, &masks) {
-                            let fl = metrics::flip(r, &Rgb8::from_frame(&frame)?)?;
-                            row.flip_mean = Some(fl.mean);
-                            row.edge_flip =
-                                pooled_flip(
-                                    &ClassError::measure(&fl.map, k, crate::classes::Metric::Flip),
-                                    &AO_SWEEP_CLASSES,
-                                );
-                        }
-                        sweep.rows.push(row);
+                            reference.as_ref(),
+                            masks.as_ref(),
+                        )?;
+                        sweep.rows.extend(row);
                     }
                 }
             }
         }
         self.plots.extend(plots(&plan.out.join("plots"), &sweep)?);
         Ok(sweep)
+    }
+
+    /// One row of the sweep: `m` at `ao` AO rays on `job` with the backend
+    /// `(bname, backend)`, timed over the run's rounds after a warm-up, its
+    /// FLIP against `reference` with `masks`' classes when measured; `None`
+    /// when a render failed (the failure recorded).
+    #[allow(clippy::too_many_arguments)]
+    fn sweep_row(
+        &mut self,
+        job: &SceneJob,
+        (bname, backend): (&String, &dyn subcone_scene::Backend),
+        m: Method,
+        ao: u32,
+        reference: Option<&Rgb8>,
+        masks: Option<&crate::classes::ClassMasks>,
+    ) -> Result<Option<AoSweepRow>> {
+        let (w, h) = AO_SWEEP_SIZE;
+        self.progress.bar.set_message(format!(
+            "where SRAA pays, {}: {m} with AO {ao} on {bname}",
+            job.name
+        ));
+        let mut settings = RenderSettings::new(w, h);
+        settings.ao_rays = ao;
+        let mut t = Timings::default();
+        let mut first = None;
+        let mut failed = false;
+        for k in 0..=self.plan.runs {
+            match render(backend, &job.scene, &m, &settings) {
+                Ok((f, wall)) => {
+                    if k > 0 {
+                        t.push(wall, &f);
+                    }
+                    first.get_or_insert(f);
+                }
+                Err(e) => {
+                    let what = format!("{m} (AO {ao})");
+                    self.fail(Failure::new(&job.name, what, bname.clone(), &e))?;
+                    failed = true;
+                    break;
+                }
+            }
+        }
+        let Some(frame) = first.filter(|_| !failed) else {
+            return Ok(None);
+        };
+        let px = (w as f64 * h as f64).max(1.0);
+        let mut row = AoSweepRow {
+            scene: job.name.to_string(),
+            method: m,
+            backend: bname.clone(),
+            ao,
+            ms_median: t.median(),
+            ms_range: (t.min(), t.max()),
+            rays_per_pixel: frame.stats.rays.total() as f64 / px,
+            ao_rays_per_pixel: frame.stats.rays.ao as f64 / px,
+            edge_flip: None,
+            flip_mean: None,
+        };
+        if let (Some(r), Some(k)) = (reference, masks) {
+            let fl = metrics::flip(r, &Rgb8::from_frame(&frame)?)?;
+            row.flip_mean = Some(fl.mean);
+            row.edge_flip = pooled_flip(
+                &ClassError::measure(&fl.map, k, crate::classes::Metric::Flip),
+                &AO_SWEEP_CLASSES,
+            );
+        }
+        Ok(Some(row))
     }
 }
 
@@ -705,15 +732,32 @@ mod crossover_tests {
         // the runs do not bound the crossing inside the sweep.
         assert_eq!(c.interpolated_range, None);
         let f = c.first_faster.unwrap();
-        assert_eq!((f.sraa_rt_ms_range, f.ssaa4_ms_range), ((150.0, 170.0), (170.0, 190.0)));
+        assert_eq!(
+            (f.sraa_rt_ms_range, f.ssaa4_ms_range),
+            ((150.0, 170.0), (170.0, 190.0))
+        );
         let text = crossover_sentence(&c);
-        assert!(text.contains("160.0 ms (150.0–170.0) against 180.0 ms (170.0–190.0)"), "{text}");
-        assert!(text.contains("whole-image FLIP 0.0260 against 0.0210"), "{text}");
-        assert!(text.contains("the runs do not bound it inside the sweep"), "{text}");
+        assert!(
+            text.contains("160.0 ms (150.0–170.0) against 180.0 ms (170.0–190.0)"),
+            "{text}"
+        );
+        assert!(
+            text.contains("whole-image FLIP 0.0260 against 0.0210"),
+            "{text}"
+        );
+        assert!(
+            text.contains("the runs do not bound it inside the sweep"),
+            "{text}"
+        );
         // Equal quality: between ssaa2 and ssaa4 at AO 0, above ssaa2 at 2.
         let e0 = equal_quality(&s, "atrium", "cpu", Pair::Traced, 0).unwrap();
         assert!(e0.starts_with("at AO 0, sraa-rt's edge FLIP 0.0800 is between ssaa2's and ssaa4's (ssaa2 0.1000, ssaa4 0.0600)"), "{e0}");
-        assert!(e0.contains("in 120.0 (110.0–130.0) ms against 70.0 (60.0–80.0) and 100.0 (90.0–110.0)"), "{e0}");
+        assert!(
+            e0.contains(
+                "in 120.0 (110.0–130.0) ms against 70.0 (60.0–80.0) and 100.0 (90.0–110.0)"
+            ),
+            "{e0}"
+        );
         let e2 = equal_quality(&s, "atrium", "cpu", Pair::Traced, 2).unwrap();
         assert!(e2.contains("is above ssaa2's"), "{e2}");
         assert_eq!(equal_quality(&s, "atrium", "cpu", Pair::Hybrid, 0), None);
@@ -825,7 +869,10 @@ mod crossover_tests {
         // The table: a row per AO count and pair, the pair named.
         let md = section(&s, Some("ssaa256"));
         assert!(md.contains("| 1 | hybrid | – | – | 150.0 | 90.0 |"), "{md}");
-        assert!(md.contains("| 1 | traced | – | – | 150.0 | 160.0 |"), "{md}");
+        assert!(
+            md.contains("| 1 | traced | – | – | 150.0 | 160.0 |"),
+            "{md}"
+        );
         assert!(md.contains("| 16 | hybrid | – | – | 700.0 | – |"), "{md}");
         assert!(!md.contains("| 16 | traced |"), "{md}");
         // The target: met at AO 1.

@@ -142,12 +142,16 @@ pub fn section(a: &Answer, rows: &[ResultRow], ctx: &Context) -> String {
         );
         return md;
     }
-    let twins_of = |scene: &str, backend: &str, method: &RowKey| -> Vec<RowKey> {
-        rows.iter()
-            .find(|r| r.scene == scene && r.backend == backend && r.method == *method)
-            .map(|r| same_image_twins(&a.excluded, r))
-            .unwrap_or_default()
-    };
+    picks_table(&mut md, a, rows);
+    fronts_table(&mut md, a, rows);
+    noise_notes(&mut md, a);
+    left_out_notes(&mut md, a);
+    md
+}
+
+/// The picks table: a row per kind, backend and budget, both metrics'
+/// picks and whether they agree.
+fn picks_table(md: &mut String, a: &Answer, rows: &[ResultRow]) {
     if !a.picks.is_empty() {
         let _ = writeln!(
             md,
@@ -187,6 +191,17 @@ pub fn section(a: &Answer, rows: &[ResultRow], ctx: &Context) -> String {
         }
         let _ = writeln!(md);
     }
+}
+
+/// The fronts table: per scene and backend, both metrics' fronts in time
+/// order, each point with the rows that repeat its image.
+fn fronts_table(md: &mut String, a: &Answer, rows: &[ResultRow]) {
+    let twins_of = |scene: &str, backend: &str, method: &RowKey| -> Vec<RowKey> {
+        rows.iter()
+            .find(|r| r.scene == scene && r.backend == backend && r.method == *method)
+            .map(|r| same_image_twins(&a.excluded, r))
+            .unwrap_or_default()
+    };
     let _ = writeln!(
         md,
         "Pareto fronts per scene: methods in order of time over NoAA's (the median of the per-round ratios, as the budgets; in brackets the range over the rounds, then the median ms at the timing size) with their error (the mean over the camera offsets); a method is on the front when every faster method has a higher error. A step to a method holds when its error is lower than the faster method's at every camera offset and its time higher in every round; otherwise the front says it is within noise.\n"
@@ -220,6 +235,10 @@ pub fn section(a: &Answer, rows: &[ResultRow], ctx: &Context) -> String {
         );
     }
     let _ = writeln!(md);
+}
+
+/// Why each pick within noise is, one line each.
+fn noise_notes(md: &mut String, a: &Answer) {
     let noisy: Vec<String> = a
         .picks
         .iter()
@@ -243,6 +262,11 @@ pub fn section(a: &Answer, rows: &[ResultRow], ctx: &Context) -> String {
         }
         let _ = writeln!(md);
     }
+}
+
+/// The rows left out of the fronts, and the methods no candidate for a
+/// kind, with the reasons.
+fn left_out_notes(md: &mut String, a: &Answer) {
     let mut notes: Vec<String> = Vec::new();
     // One line per method, backend and reason, naming the scenes.
     let mut groups: Vec<(&Excluded, Vec<&str>)> = Vec::new();
@@ -291,7 +315,6 @@ pub fn section(a: &Answer, rows: &[ResultRow], ctx: &Context) -> String {
             partial.join("; ")
         );
     }
-    md
 }
 
 /// The answer in `results.json`: the budgets, the rule, the fronts, the

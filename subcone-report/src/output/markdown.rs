@@ -47,34 +47,7 @@ fn scene_section(md: &mut String, s: &ReportSummary, sc: &SceneInfo) {
     if rows.is_empty() {
         let _ = writeln!(md, "No method ran on this scene.\n");
     } else {
-        let _ = writeln!(
-            md,
-            "| method | backend | median ms | min–max ms | × NoAA | FLIP | SSIM | PSNR dB | edge FLIP | spp | rays/px | buffers MiB |"
-        );
-        let _ = writeln!(md, "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
-        let left_out = crate::answer::exclusions(&rows);
-        for r in &rows {
-            let _ = writeln!(
-                md,
-                "| {} | {} | {} | {}–{} | {} | {} | {} | {} | {} | {} | {} | {} |",
-                match crate::answer::excluded(&left_out, r) {
-                    Some(e) => format!("{} {}", r.method, e.mark()),
-                    None => r.method.to_string(),
-                },
-                r.backend,
-                ms(r.ms_median),
-                ms(r.ms_min),
-                ms(r.ms_max),
-                ratio_cell(r),
-                with_range(r.flip_mean, r.range(Metric::Flip)),
-                with_range(r.ssim_mean, r.range(Metric::Ssim)),
-                f(r.psnr_db, 2),
-                f(r.edge_flip_mean, 4),
-                f(Some(r.samples_per_pixel), 2),
-                f(Some(r.rays_per_pixel), 2),
-                f(Some(r.buffer_mib), 2),
-            );
-        }
+        let left_out = scene_table(md, &rows);
         let _ = writeln!(md);
         timed_by_lines(md, &rows);
         for e in &left_out {
@@ -125,6 +98,45 @@ fn scene_section(md: &mut String, s: &ReportSummary, sc: &SceneInfo) {
             .collect();
         let _ = writeln!(md, "Skipped: {}.\n", list.join("; "));
     }
+    crop_lines(md, s, sc);
+}
+
+/// The scene's table: a row per method and backend, with its marks; the
+/// rows left out of the fronts, returned.
+fn scene_table(md: &mut String, rows: &[&ResultRow]) -> Vec<crate::answer::Excluded> {
+    let _ = writeln!(
+        md,
+        "| method | backend | median ms | min–max ms | × NoAA | FLIP | SSIM | PSNR dB | edge FLIP | spp | rays/px | buffers MiB |"
+    );
+    let _ = writeln!(md, "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
+    let left_out = crate::answer::exclusions(rows);
+    for r in rows {
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {}–{} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            match crate::answer::excluded(&left_out, r) {
+                Some(e) => format!("{} {}", r.method, e.mark()),
+                None => r.method.to_string(),
+            },
+            r.backend,
+            ms(r.ms_median),
+            ms(r.ms_min),
+            ms(r.ms_max),
+            ratio_cell(r),
+            with_range(r.flip_mean, r.range(Metric::Flip)),
+            with_range(r.ssim_mean, r.range(Metric::Ssim)),
+            f(r.psnr_db, 2),
+            f(r.edge_flip_mean, 4),
+            f(Some(r.samples_per_pixel), 2),
+            f(Some(r.rays_per_pixel), 2),
+            f(Some(r.buffer_mib), 2),
+        );
+    }
+    left_out
+}
+
+/// The scene's crop lines, when its crops were written.
+fn crop_lines(md: &mut String, s: &ReportSummary, sc: &SceneInfo) {
     if let Some(c) = s.crops.iter().find(|c| c.scene == sc.name) {
         let _ = writeln!(
             md,
@@ -203,9 +215,9 @@ fn timed_by_lines(md: &mut String, rows: &[&ResultRow]) {
     let _ = writeln!(md, "Timed by: {}.\n", parts.join("; "));
 }
 
-/// `report.md`.
-pub fn markdown(s: &ReportSummary, ctx: &Context) -> String {
-    let mut md = String::new();
+/// The report's title and the run in one paragraph: mode, backends,
+/// rounds, code, machine, reference and AO.
+fn run_line(md: &mut String, ctx: &Context) {
     let threads = std::thread::available_parallelism()
         .map(|n| n.get())
         .unwrap_or(1);
@@ -245,37 +257,11 @@ alike. Code {}, {} hardware threads ({}).{}{} {}\n",
         },
         ctx.other_cpu.sentence()
     );
-    if let Some(w) = ctx.other_cpu.warning() {
-        let _ = writeln!(md, "{w}\n");
-    }
-    // The answer first; the definitions it rests on follow.
-    let answer = crate::answer::Answer::of(&s.rows, &ctx.scenes);
-    md.push_str(&crate::answer::section(&answer, &s.rows, ctx));
-    let _ = writeln!(
-        md,
-        "Times are the median (and range) over the rounds of the wall time of `Backend::render` at the \
-timing size; *× NoAA* is the median over the rounds of the method's time over NoAA's in the same \
-round, with the smallest and largest per-round ratio in brackets (the smaa row, whose post-process \
-is timed apart from the rounds, shows its median time over NoAA's, without a range); errors are measured on the tone-mapped 8-bit sRGB images at the quality size: mean FLIP (LDR-FLIP, \
-67 pixels per degree), PSNR, and *edge FLIP*, the mean FLIP over the edge mask (pixels where the \
-NoAA depth or normal changes across a 4-neighbour by more than 2 % (unless the inverse depth \
-continues linearly, as across a plane) or a cosine of 0.9, where a surface meets the background, or where the reference's luminance Sobel gradient exceeds 0.1). \
-*spp* is shaded samples per pixel (the mean of the samples-per-pixel AOV of the quality render, \
-or shading evaluations per pixel without one); *rays/px* counts every ray cast (primary, \
-geometry, shadow, secondary, ambient occlusion); *buffers MiB* is what the backend allocated for the frame, \
-which leaving out passes a scene does not need (shadows, reflections) keeps down. Lower FLIP is better; the Pareto front joins the methods that no \
-faster method beats.\n"
-    );
+}
 
-    if ctx.mode != Mode::TimingOnly {
-        md.push_str(&rules(&s.error_offsets, s.elapsed));
-        md.push_str(&verdict_summary(s, ctx));
-    }
-
-    for sc in &ctx.scenes {
-        scene_section(&mut md, s, sc);
-    }
-
+/// The Skipped section (every combination not rendered, grouped by method,
+/// backend and reason) and the Failures section when any render failed.
+fn skipped_and_failed(md: &mut String, s: &ReportSummary) {
     let _ = writeln!(md, "## Skipped\n");
     if s.skipped.is_empty() && s.unavailable_scenes.is_empty() {
         let _ = writeln!(md, "Nothing was skipped.\n");
@@ -325,6 +311,44 @@ faster method beats.\n"
         }
         let _ = writeln!(md);
     }
+}
+
+/// `report.md`.
+pub fn markdown(s: &ReportSummary, ctx: &Context) -> String {
+    let mut md = String::new();
+    run_line(&mut md, ctx);
+    if let Some(w) = ctx.other_cpu.warning() {
+        let _ = writeln!(md, "{w}\n");
+    }
+    // The answer first; the definitions it rests on follow.
+    let answer = crate::answer::Answer::of(&s.rows, &ctx.scenes);
+    md.push_str(&crate::answer::section(&answer, &s.rows, ctx));
+    let _ = writeln!(
+        md,
+        "Times are the median (and range) over the rounds of the wall time of `Backend::render` at the \
+timing size; *× NoAA* is the median over the rounds of the method's time over NoAA's in the same \
+round, with the smallest and largest per-round ratio in brackets (the smaa row, whose post-process \
+is timed apart from the rounds, shows its median time over NoAA's, without a range); errors are measured on the tone-mapped 8-bit sRGB images at the quality size: mean FLIP (LDR-FLIP, \
+67 pixels per degree), PSNR, and *edge FLIP*, the mean FLIP over the edge mask (pixels where the \
+NoAA depth or normal changes across a 4-neighbour by more than 2 % (unless the inverse depth \
+continues linearly, as across a plane) or a cosine of 0.9, where a surface meets the background, or where the reference's luminance Sobel gradient exceeds 0.1). \
+*spp* is shaded samples per pixel (the mean of the samples-per-pixel AOV of the quality render, \
+or shading evaluations per pixel without one); *rays/px* counts every ray cast (primary, \
+geometry, shadow, secondary, ambient occlusion); *buffers MiB* is what the backend allocated for the frame, \
+which leaving out passes a scene does not need (shadows, reflections) keeps down. Lower FLIP is better; the Pareto front joins the methods that no \
+faster method beats.\n"
+    );
+
+    if ctx.mode != Mode::TimingOnly {
+        md.push_str(&rules(&s.error_offsets, s.elapsed));
+        md.push_str(&verdict_summary(s, ctx));
+    }
+
+    for sc in &ctx.scenes {
+        scene_section(&mut md, s, sc);
+    }
+
+    skipped_and_failed(&mut md, s);
 
     md.push_str(&sdf_pick(s, ctx));
     md.push_str(&paper_comparison(s, ctx));
