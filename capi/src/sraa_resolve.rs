@@ -140,17 +140,10 @@ fn optional(name: &str, len: usize, want: usize, what: &str) -> Checked<()> {
     }
 }
 
-/// # Safety
-/// As [`subcone_sraa_resolve`].
-unsafe fn sraa_resolve(
-    params: *const SubconeSraaParams,
-    frame: *const SubconeSraaFrame,
-    out: *mut SubconeVec3,
-    out_len: usize,
-) -> Checked<()> {
-    let p = sraa_params(params)?;
-    // SAFETY: forwarded contract.
-    let f = unsafe { read_sized(frame, "frame", "SubconeSraaFrame") }?;
+/// The frame's sizes checked against each other and `out_len`: width and
+/// height at least 1, layers in `1..=MAX_LAYERS`, every buffer length what
+/// they make it. Returns the pixel count.
+fn check_frame_sizes(f: &SubconeSraaFrame, out_len: usize) -> Checked<usize> {
     let (w, h, layers) = (f.width as usize, f.height as usize, f.layers as usize);
     if w == 0 || h == 0 {
         return Err(Refusal::size(format!(
@@ -198,6 +191,41 @@ unsafe fn sraa_resolve(
         4 * n,
         "4·width·height",
     )?;
+    Ok(n)
+}
+
+/// The layers' shadow gates from `frame->layer_lights` (negative: ungated;
+/// a light below 32: gated by it; anything else refused).
+fn layer_gates(gates: &[i8]) -> Checked<[Option<u8>; MAX_LAYERS]> {
+    let mut layer_gates = [None; MAX_LAYERS];
+    for (i, (g, &l)) in layer_gates.iter_mut().zip(gates).enumerate() {
+        *g = match l {
+            l if l < 0 => None,
+            l if l < 32 => Some(l as u8),
+            _ => {
+                return Err(Refusal::invalid(format!(
+                    "frame->layer_lights[{i}] is {l}; a gate must name a light below 32, or be \
+                     negative for an ungated layer"
+                )))
+            }
+        };
+    }
+    Ok(layer_gates)
+}
+
+/// # Safety
+/// As [`subcone_sraa_resolve`].
+unsafe fn sraa_resolve(
+    params: *const SubconeSraaParams,
+    frame: *const SubconeSraaFrame,
+    out: *mut SubconeVec3,
+    out_len: usize,
+) -> Checked<()> {
+    let p = sraa_params(params)?;
+    // SAFETY: forwarded contract.
+    let f = unsafe { read_sized(frame, "frame", "SubconeSraaFrame") }?;
+    let (w, layers) = (f.width as usize, f.layers as usize);
+    check_frame_sizes(&f, out_len)?;
     // SAFETY: lengths checked above against the sizes; pointers per contract.
     let (colors, geometry, shadow, sub_geometry, sub_shadow, gates) = unsafe {
         (
@@ -228,19 +256,7 @@ unsafe fn sraa_resolve(
     // SAFETY: `out` is null or holds `out_len` values (the caller's
     // contract), and `out_len` is `n` (checked above).
     let out = unsafe { slice_mut(out, out_len, "out") }?;
-    let mut layer_gates = [None; MAX_LAYERS];
-    for (i, (g, &l)) in layer_gates.iter_mut().zip(gates).enumerate() {
-        *g = match l {
-            l if l < 0 => None,
-            l if l < 32 => Some(l as u8),
-            _ => {
-                return Err(Refusal::invalid(format!(
-                    "frame->layer_lights[{i}] is {l}; a gate must name a light below 32, or be \
-                     negative for an ungated layer"
-                )))
-            }
-        };
-    }
+    let layer_gates = layer_gates(gates)?;
     // The kernels take glam types: the same layouts (checked above), copied
     // rather than reinterpreted.
     let colors: Vec<Vec3> = colors.iter().map(|&c| c.into()).collect();
