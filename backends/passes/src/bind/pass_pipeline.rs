@@ -175,27 +175,7 @@ impl PassPipeline {
         host_group: Option<&wgpu::BindGroup>,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), PassError> {
-        // The resources in binding order.
-        let mut ordered: Vec<Bound<'_>> = Vec::with_capacity(resources.len());
-        for d in self.group.list.iter().filter(|d| d.ring.is_none()) {
-            let (_, r) = resources
-                .iter()
-                .find(|(n, _)| *n == d.name)
-                .ok_or(match &d.name {
-                    Cow::Borrowed(n) => PassError::Missing(n),
-                    Cow::Owned(_) => PassError::Missing("an input"),
-                })?;
-            ordered.push(*r);
-        }
-        if let Some((n, _)) = resources.iter().find(|(n, _)| {
-            !self
-                .group
-                .list
-                .iter()
-                .any(|d| d.ring.is_none() && d.name == *n)
-        }) {
-            return Err(PassError::Unexpected(n));
-        }
+        let ordered = self.in_binding_order(resources)?;
         if uniforms.len() != self.sizes.len()
             || uniforms
                 .iter()
@@ -259,14 +239,70 @@ impl PassPipeline {
         encoder.on_submitted_work_done(move || uniform_ring::lock(&slots).release(&held));
         state.clock += 1;
         let now = state.clock;
+        let index = self.cached_group(device, &mut state, &ordered, now);
+        state.groups[index].used = now;
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some(self.label),
+            timestamp_writes: timestamps,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &state.groups[index].group, &offsets);
+        if let Some(h) = host_group {
+            pass.set_bind_group(1, h, &[]);
+        }
+        pass.dispatch_workgroups(width.div_ceil(WORKGROUP), height.div_ceil(WORKGROUP), 1);
+        Ok(())
+    }
+
+    /// The host's `resources` in binding order: every declared binding but
+    /// the uniforms exactly once, by name; a missing or unexpected name is
+    /// an error.
+    fn in_binding_order<'r>(
+        &self,
+        resources: &[(&'static str, Bound<'r>)],
+    ) -> Result<Vec<Bound<'r>>, PassError> {
+        // The resources in binding order.
+        let mut ordered: Vec<Bound<'r>> = Vec::with_capacity(resources.len());
+        for d in self.group.list.iter().filter(|d| d.ring.is_none()) {
+            let (_, r) = resources
+                .iter()
+                .find(|(n, _)| *n == d.name)
+                .ok_or(match &d.name {
+                    Cow::Borrowed(n) => PassError::Missing(n),
+                    Cow::Owned(_) => PassError::Missing("an input"),
+                })?;
+            ordered.push(*r);
+        }
+        if let Some((n, _)) = resources.iter().find(|(n, _)| {
+            !self
+                .group
+                .list
+                .iter()
+                .any(|d| d.ring.is_none() && d.name == *n)
+        }) {
+            return Err(PassError::Unexpected(n));
+        }
+        Ok(ordered)
+    }
+
+    /// The index in `state`'s cache of the bind group of `ordered` (the
+    /// uniform rings as they are now): a cached one binding the same
+    /// resources, or a new one in a free entry or the least recently used.
+    fn cached_group(
+        &self,
+        device: &wgpu::Device,
+        state: &mut State,
+        ordered: &[Bound<'_>],
+        now: u64,
+    ) -> usize {
         let cached = state.groups.iter().position(|g| {
             g.resources.len() == ordered.len()
-                && g.resources.iter().zip(&ordered).all(|(a, b)| b.is(a))
+                && g.resources.iter().zip(ordered).all(|(a, b)| b.is(a))
         });
-        let index = match cached {
+        match cached {
             Some(i) => i,
             None => {
-                let group = self.bind_group(device, &state.uniforms, &ordered);
+                let group = self.bind_group(device, &state.uniforms, ordered);
                 let entry = CachedGroup {
                     resources: ordered.iter().map(|b| b.to_resource()).collect(),
                     group,
@@ -283,19 +319,7 @@ impl PassPipeline {
                     lru
                 }
             }
-        };
-        state.groups[index].used = now;
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some(self.label),
-            timestamp_writes: timestamps,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &state.groups[index].group, &offsets);
-        if let Some(h) = host_group {
-            pass.set_bind_group(1, h, &[]);
         }
-        pass.dispatch_workgroups(width.div_ceil(WORKGROUP), height.div_ceil(WORKGROUP), 1);
-        Ok(())
     }
 
     /// The bind group of the uniform rings (one slot each, at a dynamic
