@@ -509,7 +509,12 @@ fn quick_report_on_every_paper_scene() {
         let mean: f64 = r[col("flip_mean")].parse().unwrap();
         assert!(lo <= mean && mean <= hi, "{r:?}");
     }
-    assert!(md.contains("| near edge | none of the above, but within 2 px"));
+    // The band is as wide as each metric reaches, and each scene says how
+    // much flat remains beyond it.
+    assert!(md.contains(
+        "| near edge | none of the above, but within the metric's reach of a pixel that is (Chebyshev distance): 10 px under FLIP"
+    ));
+    assert!(md.contains("Flat beyond the metrics' reach (what \"flat\" is judged on): "));
     // SSIM beside FLIP: a mean in (-1, 1) for every measured row (no method
     // matches the reference exactly at this size), its map beside FLIP's,
     // and each scene says where the two metrics' verdicts disagree.

@@ -27,7 +27,8 @@ fn backend_gpu_structs_match_their_wgsl() {
             size_of::<FrameUniform>(),
             members!(FrameUniform: cam_pos, half, forward, aspect, right, eps, up, width_f,
                 ambient, height_f, background, ssaa_side, width, height, lights,
-                reflection_depth, node_count, near, ao_rays, ao_radius, sraa, jitter, _pad),
+                reflection_depth, node_count, near, ao_rays, ao_radius, sraa, jitter, ssaa_diagonal,
+                _pad),
         ),
         (
             TRACE_WGSL,

@@ -98,7 +98,7 @@ pub const CAPABILITIES: Capabilities = Capabilities {
     raster_primary: Err(
         "its sraa already rasterises the subsample G-buffers (the MSAA prepass); -hybrid names the CPU backend's rasteriser",
     ),
-    diagonal_ssaa: Err("its supersampling shader takes regular n×n grids only"),
+    diagonal_ssaa: Ok(()),
 };
 
 impl Backend for WgpuBackend {

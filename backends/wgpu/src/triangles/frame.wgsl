@@ -30,7 +30,9 @@ struct FrameUniform {
     sraa: subcone_SraaParams,
     // Camera::jitter: every primary ray's sub-pixel offset.
     jitter: vec2<f32>,
-    _pad: vec2<f32>,
+    // 1: only the diagonal of the ssaa_side grid (ssaa2); 0: the grid.
+    ssaa_diagonal: u32,
+    _pad: f32,
 }
 
 // The SRAA parameters the resolve's hooks (sraa.wgsl) read.

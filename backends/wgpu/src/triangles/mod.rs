@@ -71,7 +71,10 @@ pub(crate) struct FrameUniform {
     /// `Camera::jitter`: every primary ray's (and rasterised subsample's)
     /// sub-pixel offset.
     pub(crate) jitter: [f32; 2],
-    pub(crate) _pad: [f32; 2],
+    /// 1 for `ssaa2`: only the diagonal of the `ssaa_side` grid
+    /// (`Method::ssaa_diagonal`); 0 for the whole grid.
+    pub(crate) ssaa_diagonal: u32,
+    pub(crate) _pad: f32,
 }
 
 impl FrameUniform {
@@ -112,7 +115,10 @@ impl FrameUniform {
             ao_radius: sg.scale * subcone_kernels::ao::AO_RADIUS_FRACTION,
             sraa: method.sraa(),
             jitter: camera.jitter.to_array(),
-            _pad: [0.0; 2],
+            ssaa_diagonal: u32::from(
+                method.technique() == Technique::Ssaa && method.ssaa_diagonal(),
+            ),
+            _pad: 0.0,
         }
     }
 }
@@ -409,9 +415,11 @@ fn supersample(f: &Setup) -> Result<Frame, RenderError> {
     let mut prog = program(ctx, scene, &fb, "", &[SUPERSAMPLE_WGSL])?;
     let p = prog.pipeline("supersample_main")?;
     let groups = workgroups(ctx, s)?;
-    // The grid rows 0..side, one dispatch each.
+    // The grid rows 0..side, one dispatch each; the diagonal (`ssaa2`)
+    // takes its `side` samples in one.
     let side = f.uniform.ssaa_side.max(1);
-    let rows = indices(ctx, "sample rows", side)?;
+    let diagonal = f.uniform.ssaa_diagonal != 0;
+    let rows = indices(ctx, "sample rows", if diagonal { 1 } else { side })?;
     let row = fb.get("sample_row")?;
     let mut timings = Vec::new();
     ctx.timed_pass("shading", &mut timings, |enc| {
@@ -426,7 +434,8 @@ fn supersample(f: &Setup) -> Result<Frame, RenderError> {
     )?;
     if s.aovs {
         let side = f.uniform.ssaa_side as f32;
-        frame.samples_per_pixel = Some(vec![side * side; n]);
+        let spp = if diagonal { side } else { side * side };
+        frame.samples_per_pixel = Some(vec![spp; n]);
         let (d, nn) = centre_geometry(f)?;
         frame.depth = Some(d);
         frame.normal = Some(nn);

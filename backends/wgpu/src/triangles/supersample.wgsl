@@ -16,6 +16,20 @@ fn supersample_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let j = id.y * frame.width + id.x;
     var c = counts_zero();
     let n = max(frame.ssaa_side, 1u);
+    if frame.ssaa_diagonal != 0u {
+        // ssaa2: the grid's diagonal, samples (k, k), in one dispatch.
+        var diag = vec3<f32>(0.0);
+        for (var k = 0u; k < n; k++) {
+            let off = vec2<f32>((f32(k) + 0.5) / f32(n), (f32(k) + 0.5) / f32(n));
+            let p = vec2<f32>(f32(id.x), f32(id.y)) + off;
+            let d = camera_ray(p);
+            c.primary += 1u;
+            diag = diag + radiance(frame.cam_pos, d, 0u, &c);
+        }
+        color[j] = vec4<f32>(diag / f32(n), 0.0);
+        counts_flush(c);
+        return;
+    }
     let sy = sample_row[0];
     var sum = vec3<f32>(0.0);
     if sy > 0u {
