@@ -652,73 +652,111 @@ impl<F: SdfField> SdfView<'_, F> {
                         );
                         return t;
                     }
-                    for x in 0..w {
-                        let mut sum = Vec3::ZERO;
-                        let mut samples = 0;
-                        for sy in 0..side {
-                            for sx in 0..side {
-                                let off = Vec2::new(
-                                    (sx as f32 + 0.5) / side as f32,
-                                    (sy as f32 + 0.5) / side as f32,
-                                );
-                                let (o, d) = self.camera.ray(
-                                    Vec2::new(x as f32, y as f32) + off,
-                                    s.width,
-                                    s.height,
-                                );
-                                if cone {
-                                    let (c, n) = if translucent {
-                                        self.ctss_translucent(o, d, &params, &mut t)
-                                    } else {
-                                        self.ctss(o, d, &params, &mut t)
-                                    };
-                                    sum += c;
-                                    samples += n;
-                                } else {
-                                    let before = t.samples;
-                                    sum += if translucent {
-                                        self.noaa_translucent(o, d, &params, &mut t)
-                                    } else {
-                                        self.noaa(o, d, &params, &mut t)
-                                    };
-                                    samples += (t.samples - before) as u32;
-                                }
-                            }
-                        }
-                        row[x] = sum / (side * side) as f32;
-                        spp_row[x] = samples as f32;
-                        if samples > side * side {
-                            t.multi += 1;
-                        }
-                    }
+                    let path = (cone, translucent);
+                    self.sample_row(y, side, path, &params, s, row, spp_row, &mut t);
                     t
                 },
             )
             .reduce(Tally::default, |a, b| a + b);
-        let name = if cone {
-            "cone tracing"
-        } else {
-            "sphere tracing"
-        };
-        frame.stats = FrameStats {
-            passes,
-            timings: vec![PassTiming::cpu(name, start.elapsed())],
-            buffers: vec![("color", std::mem::size_of_val(frame.color.as_slice()))],
-            rays: RayCounts {
-                primary: (w * h) as u64 * (side * side) as u64,
-                shadow: tally.shadow,
-                ao: tally.ao,
-                ..Default::default()
-            },
-            shaded_samples: tally.samples,
-            sdf_evaluations: tally.steps,
-            multi_sample_pixels: tally.multi,
-            raster_samples: 0,
-        };
+        frame.stats = frame_stats(passes, cone, start.elapsed(), &frame, side, tally);
         if s.aovs {
             frame.samples_per_pixel = Some(spp);
             self.centre_aovs(&mut frame, s);
         }
         Ok(frame)
+    }
+
+    /// Row `y` of a frame traced one sample at a time, on the
+    /// semi-transparent path (CTSS §5.3) when `translucent`: each pixel's
+    /// `side × side` samples, a cone each when `cone` (the CTSS family), a
+    /// sphere-traced ray otherwise, box-filtered into `row`, with the
+    /// pixel's shaded samples in `spp_row`; a pixel with more samples than
+    /// rays is counted as multi-sample.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn sample_row(
+        &self,
+        y: usize,
+        side: u32,
+        (cone, translucent): (bool, bool),
+        params: &CtssParams,
+        s: &RenderSettings,
+        row: &mut [Vec3],
+        spp_row: &mut [f32],
+        t: &mut Tally,
+    ) {
+        let w = s.width as usize;
+        for x in 0..w {
+            let mut sum = Vec3::ZERO;
+            let mut samples = 0;
+            for sy in 0..side {
+                for sx in 0..side {
+                    let off = Vec2::new(
+                        (sx as f32 + 0.5) / side as f32,
+                        (sy as f32 + 0.5) / side as f32,
+                    );
+                    let (o, d) =
+                        self.camera
+                            .ray(Vec2::new(x as f32, y as f32) + off, s.width, s.height);
+                    if cone {
+                        let (c, n) = if translucent {
+                            self.ctss_translucent(o, d, params, t)
+                        } else {
+                            self.ctss(o, d, params, t)
+                        };
+                        sum += c;
+                        samples += n;
+                    } else {
+                        let before = t.samples;
+                        sum += if translucent {
+                            self.noaa_translucent(o, d, params, t)
+                        } else {
+                            self.noaa(o, d, params, t)
+                        };
+                        samples += (t.samples - before) as u32;
+                    }
+                }
+            }
+            row[x] = sum / (side * side) as f32;
+            spp_row[x] = samples as f32;
+            if samples > side * side {
+                t.multi += 1;
+            }
+        }
+    }
+}
+
+/// The statistics of a sphere-traced or cone-traced frame of
+/// [`SdfView::render_with`]: its one pass's `time`, its colour buffer, and
+/// the rays and samples its rows tallied (`side × side` primary rays per
+/// pixel).
+fn frame_stats(
+    passes: Passes,
+    cone: bool,
+    time: std::time::Duration,
+    frame: &Frame,
+    side: u32,
+    tally: Tally,
+) -> FrameStats {
+    let name = if cone {
+        "cone tracing"
+    } else {
+        "sphere tracing"
+    };
+    let (w, h) = (frame.width as usize, frame.height as usize);
+    FrameStats {
+        passes,
+        timings: vec![PassTiming::cpu(name, time)],
+        buffers: vec![("color", std::mem::size_of_val(frame.color.as_slice()))],
+        rays: RayCounts {
+            primary: (w * h) as u64 * (side * side) as u64,
+            shadow: tally.shadow,
+            ao: tally.ao,
+            ..Default::default()
+        },
+        shaded_samples: tally.samples,
+        sdf_evaluations: tally.steps,
+        multi_sample_pixels: tally.multi,
+        raster_samples: 0,
     }
 }

@@ -32,6 +32,22 @@ pub(super) struct TileSubsamples<'a> {
 /// Rays of [`trace_tile_subsamples`] traced together, as [`BATCH`] for SSAA.
 const GEO_BATCH: usize = 64;
 
+/// A group's adaptive subpixel shadow masks of the last pixel that needed
+/// them: the pixel and its `(cast, inherited)` light masks
+/// ([`shadow_agreement`]).
+type Agreement = Option<(usize, (u32, u32))>;
+
+/// The subsample each slot of a batch holds: pixel `i` of the tile,
+/// subsample `k`.
+type BatchJobs = [(usize, usize); GEO_BATCH];
+
+/// The ray of each slot of a batch: origin, direction.
+type BatchRays = [(Vec3, Vec3); GEO_BATCH];
+
+/// The reflection rays of a batch's mirror hits: batch slot, the mirror
+/// hit's distance, origin, direction.
+type BatchReflections = [(usize, f32, Vec3, Vec3); GEO_BATCH];
+
 /// Pass "geometry" (the paper's pass 1, "geometric information
 /// generation") on `tile`: the four subsamples of each of its pixels, at the
 /// tile's row-major index in `out`, each traced for geometry, albedo, shadow
@@ -67,29 +83,28 @@ pub(super) fn trace_tile_subsamples(
     };
     // The subsample each batch slot holds: pixel `i` of the tile, subsample
     // `k`.
-    let mut job = [(0usize, 0usize); GEO_BATCH];
-    let mut ray = [(Vec3::ZERO, Vec3::ZERO); GEO_BATCH];
+    let mut job: BatchJobs = [(0usize, 0usize); GEO_BATCH];
+    let mut ray: BatchRays = [(Vec3::ZERO, Vec3::ZERO); GEO_BATCH];
     let mut hit: [Option<Hit>; GEO_BATCH] = [None; GEO_BATCH];
     let mut surface: [Option<Surface>; GEO_BATCH] = [None; GEO_BATCH];
     // Reflection rays of the batch's mirror hits: batch slot, the mirror
     // hit's distance, origin, direction; their hits.
-    let mut reflection = [(0usize, 0.0f32, Vec3::ZERO, Vec3::ZERO); GEO_BATCH];
+    let mut reflection: BatchReflections = [(0usize, 0.0f32, Vec3::ZERO, Vec3::ZERO); GEO_BATCH];
     let mut hit2: [Option<Hit>; GEO_BATCH] = [None; GEO_BATCH];
     // Adaptive subpixel shadows: the last pixel's (cast, inherited) masks
     // per group, computed on first use (a pixel whose subsamples all miss
     // needs none); a pixel's subsamples are consecutive in the batches.
-    let mut primary_agree: Option<(usize, (u32, u32))> = None;
-    let mut secondary_agree: Option<(usize, (u32, u32))> = None;
-    let agreement =
-        |cache: &mut Option<(usize, (u32, u32))>, i: usize, bits: &[u32], first| match *cache {
-            Some((p, a)) if p == i => a,
-            _ => {
-                let (lx, ly, _) = local(i);
-                let a = plan.agreement(shaded.values, bits, first, (lx, ly), dims);
-                *cache = Some((i, a));
-                a
-            }
-        };
+    let mut primary_agree: Agreement = None;
+    let mut secondary_agree: Agreement = None;
+    let agreement = |cache: &mut Agreement, i: usize, bits: &[u32], first| match *cache {
+        Some((p, a)) if p == i => a,
+        _ => {
+            let (lx, ly, _) = local(i);
+            let a = plan.agreement(shaded.values, bits, first, (lx, ly), dims);
+            *cache = Some((i, a));
+            a
+        }
+    };
     let reflects = !out.geo2.is_empty() && t.reflection_depth > 0;
 
     let (mut next_i, mut next_k) = (0usize, 0usize);
@@ -105,32 +120,10 @@ pub(super) fn trace_tile_subsamples(
             }
             if Some(k) == plan.shaded_subsample {
                 let (_, _, j) = local(i);
-                out.geo[i][k] = shaded.geo[j];
-                if let Some(ss) = out.shadow.get_mut(i) {
-                    ss[k] = shaded.shadow[j];
-                }
-                if let Some(g2) = out.geo2.get_mut(i) {
-                    g2[k] = shaded.geo2.get(j).copied().unwrap_or(NO_SECONDARY);
-                }
-                if let Some(s2) = out.shadow2.get_mut(i) {
-                    s2[k] = shaded.shadow2.get(j).copied().unwrap_or(0);
-                }
-                if let Some(a) = out.albedo.get_mut(i) {
-                    a[k] = shaded.albedo[j];
-                }
+                copy_shaded_subsample(shaded, out, i, k, j);
                 continue;
             }
-            // What a subsample that misses, or hits no mirror, keeps (the
-            // buffers hold the previous tile's).
-            if let Some(ss) = out.shadow.get_mut(i) {
-                ss[k] = 0;
-            }
-            if let Some(g2) = out.geo2.get_mut(i) {
-                g2[k] = NO_SECONDARY;
-            }
-            if let Some(s2) = out.shadow2.get_mut(i) {
-                s2[k] = 0;
-            }
+            clear_traced_subsample(out, i, k);
             let (x, y) = (tile.x0 + i % tw, tile.y0 + i / tw);
             job[m] = (i, k);
             ray[m] = match found {
@@ -143,23 +136,7 @@ pub(super) fn trace_tile_subsamples(
             m += 1;
         }
         // Traverse, or take the rasteriser's triangle (`-hybrid`).
-        match found {
-            None => {
-                c.geometry += m as u64;
-                for (h, (o, d)) in hit[..m].iter_mut().zip(&ray[..m]) {
-                    *h = t.bvh.closest(*o, *d, 0.0, f32::INFINITY);
-                }
-            }
-            Some(r) => {
-                for (q, (h, (o, d))) in hit[..m].iter_mut().zip(&ray[..m]).enumerate() {
-                    let (i, k) = job[q];
-                    let id = r.at(k, i % tw, i / tw).0;
-                    let (found, traced) = raster::primary_hit(t.bvh, id, *o, *d);
-                    c.geometry += traced as u64;
-                    *h = found;
-                }
-            }
-        }
+        traverse_subsamples(t, found, tw, (&job, &ray, m), &mut hit, c);
         // Surfaces, geometry and albedo.
         for q in 0..m {
             let (i, k) = job[q];
@@ -182,36 +159,142 @@ pub(super) fn trace_tile_subsamples(
         if !reflects {
             continue;
         }
-        // Reflection rays of the mirror hits.
-        let mut r = 0;
-        for q in 0..m {
-            let Some(sf) = &surface[q] else { continue };
-            if t.scene.materials[sf.material as usize].mirror > 0.0 {
-                let rd = Tracer::reflect(ray[q].1, sf.n);
-                reflection[r] = (q, sf.t, sf.p + sf.ng * t.eps, rd);
-                r += 1;
+        // Reflection rays of the mirror hits and their shadow rays.
+        trace_reflections(
+            t,
+            plan,
+            shaded,
+            out,
+            (&job, &ray, &surface, m),
+            (&mut reflection, &mut hit2),
+            (&agreement, &mut secondary_agree),
+            c,
+        );
+    }
+}
+
+/// A subsample that is also the shaded sample (pixel `i`'s subsample `k`,
+/// the region's sample `j`): everything the geometry pass writes for it
+/// copied from the shading pass's outputs, not traced again.
+#[inline(always)]
+fn copy_shaded_subsample(
+    shaded: &ShadedSamples,
+    out: &mut TileSubsamples,
+    i: usize,
+    k: usize,
+    j: usize,
+) {
+    out.geo[i][k] = shaded.geo[j];
+    if let Some(ss) = out.shadow.get_mut(i) {
+        ss[k] = shaded.shadow[j];
+    }
+    if let Some(g2) = out.geo2.get_mut(i) {
+        g2[k] = shaded.geo2.get(j).copied().unwrap_or(NO_SECONDARY);
+    }
+    if let Some(s2) = out.shadow2.get_mut(i) {
+        s2[k] = shaded.shadow2.get(j).copied().unwrap_or(0);
+    }
+    if let Some(a) = out.albedo.get_mut(i) {
+        a[k] = shaded.albedo[j];
+    }
+}
+
+/// What a traced subsample (pixel `i`'s subsample `k`) that misses, or hits
+/// no mirror, keeps: the buffers hold the previous tile's, so they are
+/// cleared before it is traced.
+#[inline(always)]
+fn clear_traced_subsample(out: &mut TileSubsamples, i: usize, k: usize) {
+    if let Some(ss) = out.shadow.get_mut(i) {
+        ss[k] = 0;
+    }
+    if let Some(g2) = out.geo2.get_mut(i) {
+        g2[k] = NO_SECONDARY;
+    }
+    if let Some(s2) = out.shadow2.get_mut(i) {
+        s2[k] = 0;
+    }
+}
+
+/// The first `m` subsamples of a batch of [`trace_tile_subsamples`] (tile
+/// pixel and subsample of each slot, and its ray) traversed into `hit`, or,
+/// under `-hybrid`, on the rasteriser's triangle (`found`, over a tile `tw`
+/// pixels wide). Counts the rays it casts.
+#[inline(always)]
+fn traverse_subsamples(
+    t: &Tracer,
+    found: Option<Rasterised>,
+    tw: usize,
+    (job, ray, m): (&BatchJobs, &BatchRays, usize),
+    hit: &mut [Option<Hit>; GEO_BATCH],
+    c: &mut Counts,
+) {
+    match found {
+        None => {
+            c.geometry += m as u64;
+            for (h, (o, d)) in hit[..m].iter_mut().zip(&ray[..m]) {
+                *h = t.bvh.closest(*o, *d, 0.0, f32::INFINITY);
             }
         }
-        c.geometry += r as u64;
-        for (h, (_, _, o, d)) in hit2[..r].iter_mut().zip(&reflection[..r]) {
-            *h = t.bvh.closest(*o, *d, 0.0, f32::INFINITY);
+        Some(r) => {
+            for (q, (h, (o, d))) in hit[..m].iter_mut().zip(&ray[..m]).enumerate() {
+                let (i, k) = job[q];
+                let id = r.at(k, i % tw, i / tw).0;
+                let (found, traced) = raster::primary_hit(t.bvh, id, *o, *d);
+                c.geometry += traced as u64;
+                *h = found;
+            }
         }
-        for (h, &(q, t1, o, d)) in hit2[..r].iter().zip(&reflection[..r]) {
-            let (i, k) = job[q];
-            out.geo2[i][k] = match h {
-                None => Geometry::MISS,
-                Some(h) => {
-                    let s2 = t.surface(o, d, *h);
-                    if !out.shadow2.is_empty() {
-                        let first = plan.passes.layout.secondary_base();
-                        let (cast, inherited) =
-                            agreement(&mut secondary_agree, i, shaded.shadow2, first);
-                        out.shadow2[i][k] = t.shadow_states_masked(&s2, cast, inherited, c);
-                    }
-                    Geometry::new(s2.n, t1 + s2.t)
+    }
+}
+
+/// The reflection rays of a batch's mirror hits (§3.3), from the first `m`
+/// slots of the batch (tile pixel and subsample, primary ray, surface):
+/// generated into `reflection`, traversed into `hit2`, and their hits' geometry and,
+/// where the pass runs, shadow states written, the shadow rays cast as
+/// `agreement` finds the shaded samples' secondary shadow states disagree
+/// (through the secondary group's cache). Counts the rays it casts.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn trace_reflections(
+    t: &Tracer,
+    plan: &SubpixelPlan,
+    shaded: &ShadedSamples,
+    out: &mut TileSubsamples,
+    (job, ray, surface, m): (&BatchJobs, &BatchRays, &[Option<Surface>; GEO_BATCH], usize),
+    (reflection, hit2): (&mut BatchReflections, &mut [Option<Hit>; GEO_BATCH]),
+    (agreement, secondary_agree): (
+        &impl Fn(&mut Agreement, usize, &[u32], usize) -> (u32, u32),
+        &mut Agreement,
+    ),
+    c: &mut Counts,
+) {
+    let mut r = 0;
+    for q in 0..m {
+        let Some(sf) = &surface[q] else { continue };
+        if t.scene.materials[sf.material as usize].mirror > 0.0 {
+            let rd = Tracer::reflect(ray[q].1, sf.n);
+            reflection[r] = (q, sf.t, sf.p + sf.ng * t.eps, rd);
+            r += 1;
+        }
+    }
+    c.geometry += r as u64;
+    for (h, (_, _, o, d)) in hit2[..r].iter_mut().zip(&reflection[..r]) {
+        *h = t.bvh.closest(*o, *d, 0.0, f32::INFINITY);
+    }
+    for (h, &(q, t1, o, d)) in hit2[..r].iter().zip(&reflection[..r]) {
+        let (i, k) = job[q];
+        out.geo2[i][k] = match h {
+            None => Geometry::MISS,
+            Some(h) => {
+                let s2 = t.surface(o, d, *h);
+                if !out.shadow2.is_empty() {
+                    let first = plan.passes.layout.secondary_base();
+                    let (cast, inherited) = agreement(secondary_agree, i, shaded.shadow2, first);
+                    out.shadow2[i][k] = t.shadow_states_masked(&s2, cast, inherited, c);
                 }
-            };
-        }
+                Geometry::new(s2.n, t1 + s2.t)
+            }
+        };
     }
 }
 

@@ -292,30 +292,7 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
     let start = Instant::now();
     // `-hybrid`: the triangles set up and binned once per frame.
     let raster = method.is_hybrid().then(|| Raster::new(t.bvh, &cam, w, h));
-    let side = plan.tile;
-    // Every tile, with its pixels' rows of the frame (disjoint borrows), so
-    // that the tiles, not just the tile rows, are rayon's tasks: a 1024²
-    // frame has 256 tiles to balance over the threads, not 16 rows.
-    let mut tiles: Vec<(Rect, Vec<&mut [Vec3]>)> = Vec::new();
-    for (row, rows) in frame.color.chunks_mut(w * side).enumerate() {
-        let y0 = row * side;
-        let y1 = (y0 + side).min(h);
-        let first = tiles.len();
-        for x0 in (0..w).step_by(side) {
-            let tile = Rect {
-                x0,
-                y0,
-                x1: (x0 + side).min(w),
-                y1,
-            };
-            tiles.push((tile, Vec::with_capacity(y1 - y0)));
-        }
-        for line in rows.chunks_mut(w) {
-            for (k, piece) in line.chunks_mut(side).enumerate() {
-                tiles[first + k].1.push(piece);
-            }
-        }
-    }
+    let tiles = cut_tiles(&mut frame.color, w, h, plan.tile);
     let in_flight = rayon::current_num_threads().min(tiles.len()).max(1);
     let work = tiles
         .into_par_iter()
@@ -338,36 +315,7 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
         )
         .reduce(TileWork::default, |a, b| a + b);
     let wall = start.elapsed();
-
-    let mut timings = Vec::new();
-    // The raster's setup is its own; the tiles' time is split as the
-    // threads spent it.
-    let setup = raster.as_ref().map_or(Duration::ZERO, |r| r.setup_time);
-    let wall = wall.saturating_sub(setup);
-    let busy = work.raster + work.shading + work.geometry + work.antialiasing;
-    if let Some(r) = &raster {
-        let share = if busy.is_zero() {
-            0.0
-        } else {
-            work.raster.as_secs_f64() / busy.as_secs_f64()
-        };
-        timings.push(PassTiming::cpu(
-            "raster",
-            r.setup_time + wall.mul_f64(share),
-        ));
-    }
-    for (name, d) in [
-        ("shading", work.shading),
-        ("geometry", work.geometry),
-        ("antialiasing", work.antialiasing),
-    ] {
-        let share = if busy.is_zero() {
-            1.0 / 3.0
-        } else {
-            d.as_secs_f64() / busy.as_secs_f64()
-        };
-        timings.push(PassTiming::cpu(name, wall.mul_f64(share)));
-    }
+    let timings = pass_timings(&work, raster.as_ref(), wall);
 
     let counts = work.counts;
     // What is allocated at once: one tile's buffers per thread.
@@ -400,6 +348,69 @@ pub fn subpixel(t: &Tracer, method: &Method, s: &RenderSettings, passes: Passes)
         frame.samples_per_pixel = Some(vec![1.0; w * h]);
     }
     frame
+}
+
+/// The `side`×`side` tiles of a `w`×`h` frame (the last ones in a row or
+/// column cut by the image's edge), row by row, each with its pixels' rows of
+/// `color` (disjoint borrows), so that the tiles, not just the tile rows, are
+/// rayon's tasks: a 1024² frame has 256 tiles to balance over the threads,
+/// not 16 rows.
+fn cut_tiles(color: &mut [Vec3], w: usize, h: usize, side: usize) -> Vec<(Rect, Vec<&mut [Vec3]>)> {
+    let mut tiles: Vec<(Rect, Vec<&mut [Vec3]>)> = Vec::new();
+    for (row, rows) in color.chunks_mut(w * side).enumerate() {
+        let y0 = row * side;
+        let y1 = (y0 + side).min(h);
+        let first = tiles.len();
+        for x0 in (0..w).step_by(side) {
+            let tile = Rect {
+                x0,
+                y0,
+                x1: (x0 + side).min(w),
+                y1,
+            };
+            tiles.push((tile, Vec::with_capacity(y1 - y0)));
+        }
+        for line in rows.chunks_mut(w) {
+            for (k, piece) in line.chunks_mut(side).enumerate() {
+                tiles[first + k].1.push(piece);
+            }
+        }
+    }
+    tiles
+}
+
+/// Each pass's time of [`subpixel`]: the raster's setup is its own; the
+/// tiles' `wall` time (setup included) is split as the threads spent it
+/// (`work`), evenly over the three passes when no time was measured.
+fn pass_timings(work: &TileWork, raster: Option<&Raster>, wall: Duration) -> Vec<PassTiming> {
+    let mut timings = Vec::new();
+    let setup = raster.map_or(Duration::ZERO, |r| r.setup_time);
+    let wall = wall.saturating_sub(setup);
+    let busy = work.raster + work.shading + work.geometry + work.antialiasing;
+    if let Some(r) = raster {
+        let share = if busy.is_zero() {
+            0.0
+        } else {
+            work.raster.as_secs_f64() / busy.as_secs_f64()
+        };
+        timings.push(PassTiming::cpu(
+            "raster",
+            r.setup_time + wall.mul_f64(share),
+        ));
+    }
+    for (name, d) in [
+        ("shading", work.shading),
+        ("geometry", work.geometry),
+        ("antialiasing", work.antialiasing),
+    ] {
+        let share = if busy.is_zero() {
+            1.0 / 3.0
+        } else {
+            d.as_secs_f64() / busy.as_secs_f64()
+        };
+        timings.push(PassTiming::cpu(name, wall.mul_f64(share)));
+    }
+    timings
 }
 
 /// Side of [`subpixel`]'s tiles, in pixels: 64×64 pixels' subsamples and the
