@@ -37,49 +37,14 @@ pub(super) fn scatter_lanes(
     nested: &mut Option<Box<Scratch>>,
     split: bool,
 ) -> Value {
-    let rel = p.sub(V3::splat(sc.origin));
-    let f = rel.mul(V3::splat(sc.inv_cell));
-    let f = V3::new(round_cell(f.x), round_cell(f.y), round_cell(f.z));
-    // glam's `clamp`: `max(lo).min(hi)` by comparisons.
-    let lo = V3::splat(sc.lo);
-    let hi = V3::splat(sc.hi);
-    let f = {
-        let m = f.gmax(lo);
-        V3::new(m.x.gmin(hi.x), m.y.gmin(hi.y), m.z.gmin(hi.z))
-    };
-    let q = rel.sub(f.mul(V3::splat(sc.cell)));
-    let mut wall = F8::splat(f32::INFINITY);
-    let (fa, qa) = ([f.x, f.y, f.z], [q.x, q.y, q.z]);
-    for k in 0..3 {
-        let below = fa[k].lt(F8::splat(sc.hi[k]));
-        wall = F8::select(below, wall.min(0.5 * sc.cell[k] - qa[k]), wall);
-        let above = fa[k].gt(F8::splat(sc.lo[k]));
-        wall = F8::select(above, wall.min(0.5 * sc.cell[k] + qa[k]), wall);
-    }
-    let guard = wall + sc.margin;
-    let i = f.sub(lo);
-
-    // The cell's index: `i` is clamped to the grid (NaN to its first cell),
-    // so every term is an integer below 2¹⁸ and exact in `f32`.
-    let idx: [i32; LANES] = {
-        let f = i.x + sc.dims[0] as f32 * (i.y + sc.dims[1] as f32 * i.z);
-        each_lane!(|k| f.0[k] as i32)
-    };
+    let (q, guard, idx) = scatter_cell(sc, p);
     // Gather each lane's instance: a lane with none (inactive, outside the
     // table, or an unknown template) reads `NONE`, whose zeros are what the
     // lanes without an instance carry. Each field is built lane by lane in
     // registers, not stored per lane and reloaded as a vector (which stalls
-    // store forwarding).
-    const EMPTY: u32 = u32::MAX;
-    const NONE: Instance = Instance {
-        template: EMPTY,
-        material: EMPTY,
-        inv_rotation: Quat::from_xyzw(0.0, 0.0, 0.0, 0.0),
-        offset: Vec3::ZERO,
-        scale: 0.0,
-        inv_scale: 0.0,
-        radius: 0.0,
-    };
+    // store forwarding). The gather stays in this function: moved to a
+    // helper, even inlined, it changed the code of the interpreter loop
+    // this function is inlined into, and every SDF scene measured slower.
     let lookup = |k: usize| match sc.instances.get(idx[k] as usize) {
         Some(i) if (i.template as usize) < sc.templates.len() => i,
         _ => &NONE,
@@ -141,13 +106,7 @@ pub(super) fn scatter_lanes(
     let reach = active & has.and_not(sphere.ge(guard)).bits();
     if reach != 0 {
         let tp = local.rotate_lanes(rot).scale(inv_scale);
-        let scratch = nested.get_or_insert_with(|| {
-            let d = templates
-                .iter()
-                .map(|t| t.depth)
-                .fold([0; 4], |a, b| core::array::from_fn(|k| a[k].max(b[k])));
-            Box::new(Scratch::with_depth(d))
-        });
+        let scratch = nested.get_or_insert_with(|| templates_scratch(templates));
         let mut left = reach;
         while left != 0 {
             let first = left.trailing_zeros() as usize;
@@ -176,4 +135,67 @@ pub(super) fn scatter_lanes(
         out.surf = out.safe;
     }
     out
+}
+
+/// Each lane's cell of the scatter's grid: the point `p` relative to the
+/// cell's centre, the guard (how far the point may move without leaving the
+/// cell, through the walls it shares with other cells, plus the margin), and
+/// the cell's index in the instance table.
+#[inline(always)]
+fn scatter_cell(sc: &Scatter, p: V3) -> (V3, F8, [i32; LANES]) {
+    let rel = p.sub(V3::splat(sc.origin));
+    let f = rel.mul(V3::splat(sc.inv_cell));
+    let f = V3::new(round_cell(f.x), round_cell(f.y), round_cell(f.z));
+    // glam's `clamp`: `max(lo).min(hi)` by comparisons.
+    let lo = V3::splat(sc.lo);
+    let hi = V3::splat(sc.hi);
+    let f = {
+        let m = f.gmax(lo);
+        V3::new(m.x.gmin(hi.x), m.y.gmin(hi.y), m.z.gmin(hi.z))
+    };
+    let q = rel.sub(f.mul(V3::splat(sc.cell)));
+    let mut wall = F8::splat(f32::INFINITY);
+    let (fa, qa) = ([f.x, f.y, f.z], [q.x, q.y, q.z]);
+    for k in 0..3 {
+        let below = fa[k].lt(F8::splat(sc.hi[k]));
+        wall = F8::select(below, wall.min(0.5 * sc.cell[k] - qa[k]), wall);
+        let above = fa[k].gt(F8::splat(sc.lo[k]));
+        wall = F8::select(above, wall.min(0.5 * sc.cell[k] + qa[k]), wall);
+    }
+    let guard = wall + sc.margin;
+    let i = f.sub(lo);
+
+    // The cell's index: `i` is clamped to the grid (NaN to its first cell),
+    // so every term is an integer below 2¹⁸ and exact in `f32`.
+    let idx: [i32; LANES] = {
+        let f = i.x + sc.dims[0] as f32 * (i.y + sc.dims[1] as f32 * i.z);
+        each_lane!(|k| f.0[k] as i32)
+    };
+    (q, guard, idx)
+}
+
+/// A template or material index that names none.
+const EMPTY: u32 = u32::MAX;
+
+/// The instance a lane without one reads: its zeros are what such lanes
+/// carry.
+const NONE: Instance = Instance {
+    template: EMPTY,
+    material: EMPTY,
+    inv_rotation: Quat::from_xyzw(0.0, 0.0, 0.0, 0.0),
+    offset: Vec3::ZERO,
+    scale: 0.0,
+    inv_scale: 0.0,
+    radius: 0.0,
+};
+
+/// The scratch the templates of a scatter run in, deep enough for the
+/// deepest of them.
+#[inline(always)]
+fn templates_scratch(templates: &[SdfProgram<'_>]) -> Box<Scratch> {
+    let d = templates
+        .iter()
+        .map(|t| t.depth)
+        .fold([0; 4], |a, b| core::array::from_fn(|k| a[k].max(b[k])));
+    Box::new(Scratch::with_depth(d))
 }
