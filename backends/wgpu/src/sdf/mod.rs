@@ -284,66 +284,17 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     ctx.check_buffer_size("the colour buffer", px_bytes)?;
 
     let shadows = passes.contains(Passes::SHADOW) && !scene.lights.is_empty();
-    let batch = if cone && method.delayed_shading() {
-        DELAYED_BATCH
-    } else {
-        ASAP_BATCH
-    };
-    let trace = HostTrace::of(job);
     let frame_constants = SdfFrame::new(job, (max_distance, max_steps));
     let field = WgslField::compile(&g.root);
     let table = scatter_table(ctx, &field)?;
     let shading = shading::shading_wgsl(&scene.materials, &scene.lights, shadows)?;
     let host = host_bindings(ctx, 1, &frame_constants, &params, table.as_deref())?;
-    let mut host_wgsl = [
-        subcone_kernels::ao::WGSL,
-        field.source.as_str(),
-        &shading,
-        TRACE_WGSL,
-    ]
-    .concat();
-    if job.scene.has_translucency() {
-        host_wgsl += TRANSLUCENT_WGSL;
-    }
-    if let Some(t) = trace {
-        host_wgsl += t.wgsl();
-    }
-    host_wgsl += &host.declarations();
-    let layout = host.layout(&ctx.device, "sdf");
-    let pass = ctss_pass(
-        ctx,
-        SdfPassKey {
-            host_wgsl,
-            batch,
-            side,
-            trace,
-        },
-        &layout,
-    )?;
-    let group = host.bind_group(&ctx.device, "sdf", &layout);
+    let (pass, group) = frame_pass(ctx, job, (&field, &shading), &host)?;
     // The pass's outputs: allocated (and accounted) here, bound by the pass.
     let mut out = Bindings::new(0);
     out.storage(ctx, "color", "color_out", "array<vec4<f32>>", px_bytes)?;
     out.storage(ctx, "counts", "counts_out", "array<vec4<u32>>", px_bytes)?;
-    let inputs = CtssBuffers {
-        camera: CtssCamera {
-            position: camera.position,
-            forward: camera.forward,
-            right: camera.right(),
-            up: camera.up,
-            fov_y: camera.fov_y,
-            jitter: camera.jitter,
-        }
-        .into(),
-        params,
-        background: scene.background,
-        host_group: Some(&group),
-        size: (w, h),
-        output: out.get("color_out")?,
-        counts: Some(out.get("counts_out")?),
-        depth: None,
-        rect: None,
-    };
+    let inputs = ctss_inputs(job, params, &group, &out)?;
     let name = if cone {
         "cone tracing"
     } else {
@@ -360,10 +311,7 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     let (color_px, post_buffers) = final_colour(ctx, job, &out, &mut timings)?;
     let count_px: Vec<[u32; 4]> = compute::read(ctx, out.get("counts_out")?, pixels as usize)?;
 
-    let mut frame = Frame::new(w, h);
-    for (c, p) in frame.color.iter_mut().zip(&color_px) {
-        *c = glam::Vec3::new(p[0], p[1], p[2]);
-    }
+    let mut frame = colour_frame(w, h, &color_px);
     let per_pixel = side * side;
     let totals = Totals::of(&count_px, per_pixel);
     let mut buffers = out.accounts().to_vec();
@@ -385,22 +333,118 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         buffers.push(("aovs", px_bytes as usize));
     }
 
-    frame.stats = FrameStats {
-        passes,
-        timings,
-        buffers,
-        rays: RayCounts {
-            primary: pixels * per_pixel as u64,
-            shadow: totals.shadow,
-            ao: totals.ao,
-            ..Default::default()
-        },
-        shaded_samples: totals.samples,
-        sdf_evaluations: totals.steps,
-        multi_sample_pixels: totals.multi,
-        raster_samples: 0,
+    let rays = RayCounts {
+        primary: pixels * per_pixel as u64,
+        ..Default::default()
     };
+    frame.stats = totals.stats(passes, timings, buffers, rays, totals.multi);
     Ok(frame)
+}
+
+/// The [`CtssPass`] of `job`'s frame (compiled once per device and key) and
+/// its host group's bind group: `side × side` samples per pixel, traced by
+/// the kernels' CTSS trace or the host trace ([`HostTrace::of`]), cones
+/// marching [`ASAP_BATCH`] samples ahead of shading them, or
+/// [`DELAYED_BATCH`] under delayed shading.
+fn frame_pass(
+    ctx: &GpuContext,
+    job: &Job,
+    (field, shading): (&WgslField, &str),
+    host: &Bindings,
+) -> Result<(Arc<CtssPass>, wgpu::BindGroup), RenderError> {
+    let method = job.method;
+    let side = method.ssaa_side().max(1);
+    let cone = method.technique().is_cone_traced();
+    let batch = if cone && method.delayed_shading() {
+        DELAYED_BATCH
+    } else {
+        ASAP_BATCH
+    };
+    let trace = HostTrace::of(job);
+    let host_wgsl = host_source(job, field, shading, trace, host);
+    let layout = host.layout(&ctx.device, "sdf");
+    let pass = ctss_pass(
+        ctx,
+        SdfPassKey {
+            host_wgsl,
+            batch,
+            side,
+            trace,
+        },
+        &layout,
+    )?;
+    let group = host.bind_group(&ctx.device, "sdf", &layout);
+    Ok((pass, group))
+}
+
+/// The host WGSL of `job`'s [`CtssPass`]: the occlusion directions, the
+/// compiled `field`, its `shading` and `trace.wgsl`'s hooks, the
+/// semi-transparent samplers when the scene has translucency, the host
+/// trace when the kernels' CTSS trace does not trace the samples (`trace`),
+/// and the declarations of the `host` group.
+fn host_source(
+    job: &Job,
+    field: &WgslField,
+    shading: &str,
+    trace: Option<HostTrace>,
+    host: &Bindings,
+) -> String {
+    let mut host_wgsl = [
+        subcone_kernels::ao::WGSL,
+        field.source.as_str(),
+        shading,
+        TRACE_WGSL,
+    ]
+    .concat();
+    if job.scene.has_translucency() {
+        host_wgsl += TRANSLUCENT_WGSL;
+    }
+    if let Some(t) = trace {
+        host_wgsl += t.wgsl();
+    }
+    host_wgsl += &host.declarations();
+    host_wgsl
+}
+
+/// What the [`CtssPass`] of `job`'s frame reads and writes: the camera, the
+/// trace's `params`, the background, the host's bind `group`, and the
+/// colour and count buffers of `out`, over the whole image.
+fn ctss_inputs<'a>(
+    job: &Job,
+    params: subcone_kernels::ctss::CtssParams,
+    group: &'a wgpu::BindGroup,
+    out: &'a Bindings,
+) -> Result<CtssBuffers<'a>, RenderError> {
+    let camera = job.camera;
+    Ok(CtssBuffers {
+        camera: CtssCamera {
+            position: camera.position,
+            forward: camera.forward,
+            right: camera.right(),
+            up: camera.up,
+            fov_y: camera.fov_y,
+            jitter: camera.jitter,
+        }
+        .into(),
+        params,
+        background: job.scene.background,
+        host_group: Some(group),
+        size: (job.settings.width, job.settings.height),
+        output: out.get("color_out")?,
+        counts: Some(out.get("counts_out")?),
+        depth: None,
+        rect: None,
+    })
+}
+
+/// A `w × h` frame of the colours read back (`color_px`, RGBA: the alpha
+/// dropped).
+fn colour_frame(w: u32, h: u32, color_px: &[[f32; 4]]) -> Frame {
+    let mut frame = Frame::new(w, h);
+    for (c, p) in frame.color.iter_mut().zip(color_px) {
+        *c = glam::Vec3::new(p[0], p[1], p[2]);
+    }
+    frame
 }
 
 /// The field of `job`'s SDF scene and its march `(max_distance,
@@ -528,6 +572,8 @@ struct Totals {
 }
 
 impl Totals {
+    /// The totals of the per-pixel counters `count_px`, a pixel's `multi`
+    /// against `per_pixel` samples.
     fn of(count_px: &[[u32; 4]], per_pixel: u32) -> Self {
         let (mut steps, mut samples, mut shadow, mut ao, mut multi) =
             (0u64, 0u64, 0u64, 0u64, 0u64);
@@ -546,6 +592,34 @@ impl Totals {
             shadow,
             ao,
             multi,
+        }
+    }
+
+    /// The [`FrameStats`] of a frame with these totals: its `passes`,
+    /// `timings` and `buffers`, its `rays` with the totals' shadow and
+    /// occlusion rays, its shaded samples and field evaluations, and
+    /// `multi_sample_pixels` as the method counts them.
+    fn stats(
+        &self,
+        passes: Passes,
+        timings: Vec<PassTiming>,
+        buffers: BufferSizes,
+        rays: RayCounts,
+        multi_sample_pixels: u64,
+    ) -> FrameStats {
+        FrameStats {
+            passes,
+            timings,
+            buffers,
+            rays: RayCounts {
+                shadow: self.shadow,
+                ao: self.ao,
+                ..rays
+            },
+            shaded_samples: self.samples,
+            sdf_evaluations: self.steps,
+            multi_sample_pixels,
+            raster_samples: 0,
         }
     }
 }

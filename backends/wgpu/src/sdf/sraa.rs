@@ -17,11 +17,12 @@
 //! secondary passes.
 
 use subcone_kernels::passes::{LayerLayout, Passes, Technique, MAX_LIGHTS};
-use subcone_scene::{Frame, FrameStats, PassTiming, RayCounts, RenderError};
+use subcone_scene::{Frame, PassTiming, RayCounts, RenderError};
+use subcone_sdf::wgsl::WgslField;
 
 use super::{
-    centre_aovs, host_bindings, kernels, march, scatter_table, shading, SdfFrame, Totals,
-    ASAP_BATCH, TRACE_WGSL, WORKGROUP,
+    centre_aovs, colour_frame, host_bindings, kernels, march, scatter_table, shading, SdfFrame,
+    Totals, ASAP_BATCH, TRACE_WGSL, WORKGROUP,
 };
 use crate::compute::{self, Allocate, Program};
 use crate::context::GpuContext;
@@ -100,6 +101,78 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
     let table = scatter_table(ctx, &field)?;
     let mut b = host_bindings(ctx, 0, &frame, &params, table.as_deref())?;
     b.uniform(ctx, "sraa", "subcone_SraaParams", &method.sraa())?;
+    frame_buffers(ctx, &mut b, &layout, sub_shadows, n)?;
+
+    let shading = shading::shading_wgsl(&scene.materials, &scene.lights, shadows)?;
+    let mut program = sraa_program(ctx, job, &b, (&layout, shadows), (&field, &shading))?;
+    let shade = program.pipeline("sdf_sraa_shade")?;
+    let geometry = program.pipeline("sdf_sraa_geometry")?;
+    let resolve = BufferResolve::new(
+        ctx,
+        &method.sraa(),
+        false,
+        BufferLayers {
+            lights: layout.lights as u32,
+            secondary: false,
+        },
+    )?;
+    let mut timings: Vec<PassTiming> = Vec::new();
+    ctx.timed_pass("shading", &mut timings, |enc| {
+        program.dispatch(enc, &shade, groups)
+    })?;
+    ctx.timed_pass("geometry", &mut timings, |enc| {
+        program.dispatch(enc, &geometry, groups)
+    })?;
+    let mut recorded = Ok(());
+    ctx.timed_pass("antialiasing", &mut timings, |enc| {
+        recorded = resolve.record(ctx, enc, &b, (w, h));
+    })?;
+    recorded?;
+
+    let pixels = n as usize;
+    let color_px: Vec<[f32; 4]> = compute::read(ctx, b.get("color")?, pixels)?;
+    let count_px: Vec<[u32; 4]> = compute::read(ctx, b.get("counts_out")?, pixels)?;
+    let mut out = colour_frame(w, h, &color_px);
+    let totals = Totals::of(&count_px, 1);
+    let mut buffers = b.accounts().to_vec();
+    if settings.aovs {
+        // Depth and normal through each pixel centre (not timed, as on the
+        // CPU), over a host group of its own.
+        let host = host_bindings(ctx, 1, &frame, &params, table.as_deref())?;
+        centre_aovs(
+            ctx,
+            job,
+            (max_distance, max_steps),
+            (&field, &shading),
+            &host,
+            &mut out,
+        )?;
+        out.samples_per_pixel = Some(vec![1.0; pixels]);
+        buffers.push(("aovs", pixels * 16));
+    }
+    if table.is_some() {
+        buffers.push(("sdf scatter table", field.data.len() * 16));
+    }
+    let rays = RayCounts {
+        primary: n,
+        geometry: 3 * n,
+        ..Default::default()
+    };
+    out.stats = totals.stats(passes, timings, buffers, rays, 0);
+    Ok(out)
+}
+
+/// The frame's buffers of the three passes, for `n` pixels, bound in `b`:
+/// colours and counts, the shaded samples' geometry and shading layers
+/// (`layout`) and, with lights, shadow states, and the subsamples' geometry
+/// and, with `sub_shadows`, their shadow states.
+fn frame_buffers(
+    ctx: &GpuContext,
+    b: &mut Bindings,
+    layout: &LayerLayout,
+    sub_shadows: bool,
+    n: u64,
+) -> Result<(), RenderError> {
     b.storage(ctx, "color", "color", "array<vec4<f32>>", n * 16)?;
     b.storage(ctx, "counts", "counts_out", "array<vec4<u32>>", n * 16)?;
     b.storage(ctx, "geometry", "geo", "array<subcone_Geometry>", n * 16)?;
@@ -129,16 +202,28 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
             n * 16,
         )?;
     }
+    Ok(())
+}
 
-    let shading = shading::shading_wgsl(&scene.materials, &scene.lights, shadows)?;
-    let incident = shading::light_incident_wgsl(&scene.lights);
+/// The program of passes "shading" and "geometry" over the frame's
+/// bindings `b`: the kernels, the compiled `field` and its `shading`, the
+/// lights' incident radiance, the sphere trace's hooks, the header of the
+/// buffers (`layout`, `shadows`) and this module's entry points.
+fn sraa_program<'c>(
+    ctx: &'c GpuContext,
+    job: &Job,
+    b: &Bindings,
+    (layout, shadows): (&LayerLayout, bool),
+    (field, shading): (&WgslField, &str),
+) -> Result<Program<'c>, RenderError> {
+    let incident = shading::light_incident_wgsl(&job.scene.lights);
     let pending = format!("const subcone_CTSS_BATCH: u32 = {ASAP_BATCH}u;\n");
-    let head = header(&b, &layout, shadows);
+    let head = header(b, layout, shadows);
     let mut sources: Vec<&str> = kernels();
     sources.extend([
         subcone_kernels::sraa::WGSL,
         field.source.as_str(),
-        &shading,
+        shading,
         &incident,
         &pending,
         subcone_passes::SPHERE_TRACE_HOOK,
@@ -146,73 +231,5 @@ pub(crate) fn render(ctx: &GpuContext, job: &Job) -> Result<Frame, RenderError> 
         head.as_str(),
         SDF_SRAA_WGSL,
     ]);
-    let mut program = Program::new(ctx, "sdf sraa-rt", &sources, &[&b])?;
-    let shade = program.pipeline("sdf_sraa_shade")?;
-    let geometry = program.pipeline("sdf_sraa_geometry")?;
-    let resolve = BufferResolve::new(
-        ctx,
-        &method.sraa(),
-        false,
-        BufferLayers {
-            lights: layout.lights as u32,
-            secondary: false,
-        },
-    )?;
-    let mut timings: Vec<PassTiming> = Vec::new();
-    ctx.timed_pass("shading", &mut timings, |enc| {
-        program.dispatch(enc, &shade, groups)
-    })?;
-    ctx.timed_pass("geometry", &mut timings, |enc| {
-        program.dispatch(enc, &geometry, groups)
-    })?;
-    let mut recorded = Ok(());
-    ctx.timed_pass("antialiasing", &mut timings, |enc| {
-        recorded = resolve.record(ctx, enc, &b, (w, h));
-    })?;
-    recorded?;
-
-    let pixels = n as usize;
-    let color_px: Vec<[f32; 4]> = compute::read(ctx, b.get("color")?, pixels)?;
-    let count_px: Vec<[u32; 4]> = compute::read(ctx, b.get("counts_out")?, pixels)?;
-    let mut out = Frame::new(w, h);
-    for (c, p) in out.color.iter_mut().zip(&color_px) {
-        *c = glam::Vec3::new(p[0], p[1], p[2]);
-    }
-    let totals = Totals::of(&count_px, 1);
-    let mut buffers = b.accounts().to_vec();
-    if settings.aovs {
-        // Depth and normal through each pixel centre (not timed, as on the
-        // CPU), over a host group of its own.
-        let host = host_bindings(ctx, 1, &frame, &params, table.as_deref())?;
-        centre_aovs(
-            ctx,
-            job,
-            (max_distance, max_steps),
-            (&field, &shading),
-            &host,
-            &mut out,
-        )?;
-        out.samples_per_pixel = Some(vec![1.0; pixels]);
-        buffers.push(("aovs", pixels * 16));
-    }
-    if table.is_some() {
-        buffers.push(("sdf scatter table", field.data.len() * 16));
-    }
-    out.stats = FrameStats {
-        passes,
-        timings,
-        buffers,
-        rays: RayCounts {
-            primary: n,
-            geometry: 3 * n,
-            shadow: totals.shadow,
-            ao: totals.ao,
-            ..Default::default()
-        },
-        shaded_samples: totals.samples,
-        sdf_evaluations: totals.steps,
-        multi_sample_pixels: 0,
-        raster_samples: 0,
-    };
-    Ok(out)
+    Program::new(ctx, "sdf sraa-rt", &sources, &[b])
 }
