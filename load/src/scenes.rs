@@ -674,52 +674,78 @@ impl GltfCtx<'_> {
                 }
                 None => (0..positions.len() as u32).collect(),
             };
-            let tris: Vec<[u32; 3]> = match mode {
-                Mode::Triangles => indices
-                    .chunks_exact(3)
-                    .map(|t| [t[0], t[1], t[2]])
-                    .collect(),
-                Mode::TriangleStrip => indices
-                    .windows(3)
-                    .enumerate()
-                    .map(|(i, t)| {
-                        if i % 2 == 0 {
-                            [t[0], t[1], t[2]]
-                        } else {
-                            [t[1], t[0], t[2]]
-                        }
-                    })
-                    .collect(),
-                _ => (2..indices.len())
-                    .map(|i| [indices[0], indices[i - 1], indices[i]])
-                    .collect(),
-            };
+            let tris = triangles(mode, &indices);
             let material = prim
                 .material()
                 .index()
                 .map_or(self.default_material, |i| i as u32);
-            for t in tris {
-                let t = if flip { [t[0], t[2], t[1]] } else { t };
-                let get = |i: u32| positions.get(i as usize).copied();
-                let (Some(a), Some(b), Some(c)) = (get(t[0]), get(t[1]), get(t[2])) else {
-                    return Err(load_err(
-                        self.path,
-                        "an index refers to a vertex that does not exist",
-                    ));
-                };
-                let geo = (b - a).cross(c - a).unit_or_zero();
-                let n = match &normals {
-                    Some(ns) => t.map(|i| ns.get(i as usize).copied().unwrap_or(geo)),
-                    None => [geo; 3],
-                };
-                let uv = match &uvs {
-                    Some(us) => t.map(|i| us.get(i as usize).copied().unwrap_or(Vec2::ZERO)),
-                    None => [Vec2::ZERO; 3],
-                };
-                self.mesh.push([a, b, c], n, uv, material);
-            }
+            let attributes = (normals.as_deref(), uvs.as_deref());
+            self.push_triangles(tris, &positions, attributes, material, flip)?;
         }
         Ok(())
+    }
+
+    /// Triangles `tris` of a primitive's vertices (`positions`, in world
+    /// space; their `normals` and `uvs` where usable) added to the mesh with
+    /// `material`, their winding reversed when the transform mirrors
+    /// (`flip`). A vertex without a normal takes the triangle's geometric
+    /// normal, one without a uv zero; an index past the vertices is an
+    /// error.
+    fn push_triangles(
+        &mut self,
+        tris: Vec<[u32; 3]>,
+        positions: &[Vec3],
+        (normals, uvs): (Option<&[Vec3]>, Option<&[Vec2]>),
+        material: u32,
+        flip: bool,
+    ) -> Result<(), SceneError> {
+        for t in tris {
+            let t = if flip { [t[0], t[2], t[1]] } else { t };
+            let get = |i: u32| positions.get(i as usize).copied();
+            let (Some(a), Some(b), Some(c)) = (get(t[0]), get(t[1]), get(t[2])) else {
+                return Err(load_err(
+                    self.path,
+                    "an index refers to a vertex that does not exist",
+                ));
+            };
+            let geo = (b - a).cross(c - a).unit_or_zero();
+            let n = match normals {
+                Some(ns) => t.map(|i| ns.get(i as usize).copied().unwrap_or(geo)),
+                None => [geo; 3],
+            };
+            let uv = match uvs {
+                Some(us) => t.map(|i| us.get(i as usize).copied().unwrap_or(Vec2::ZERO)),
+                None => [Vec2::ZERO; 3],
+            };
+            self.mesh.push([a, b, c], n, uv, material);
+        }
+        Ok(())
+    }
+}
+
+/// The triangles of a primitive's `indices` in `mode` (triangles, a strip
+/// with every other triangle's winding restored, or a fan).
+fn triangles(mode: gltf::mesh::Mode, indices: &[u32]) -> Vec<[u32; 3]> {
+    use gltf::mesh::Mode;
+    match mode {
+        Mode::Triangles => indices
+            .chunks_exact(3)
+            .map(|t| [t[0], t[1], t[2]])
+            .collect(),
+        Mode::TriangleStrip => indices
+            .windows(3)
+            .enumerate()
+            .map(|(i, t)| {
+                if i % 2 == 0 {
+                    [t[0], t[1], t[2]]
+                } else {
+                    [t[1], t[0], t[2]]
+                }
+            })
+            .collect(),
+        _ => (2..indices.len())
+            .map(|i| [indices[0], indices[i - 1], indices[i]])
+            .collect(),
     }
 }
 

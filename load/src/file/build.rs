@@ -37,71 +37,7 @@ impl TryFrom<NodeDesc<Parsed>> for Parsed {
     type Error = SdfError;
 
     fn try_from(d: NodeDesc<Parsed>) -> Result<Self, SdfError> {
-        let shape =
-            |n: Result<SdfNode, SdfError>, material: u32| n.map(|n| n.with_material(material));
         let node = match d {
-            NodeDesc::Sphere { radius, material } => shape(SdfNode::sphere(radius), material),
-            NodeDesc::Box { half, material } => shape(SdfNode::cuboid(v(half)), material),
-            NodeDesc::RoundBox {
-                half,
-                radius,
-                material,
-            } => shape(SdfNode::round_box(v(half), radius), material),
-            NodeDesc::BoxFrame {
-                half,
-                thickness,
-                material,
-            } => shape(SdfNode::box_frame(v(half), thickness), material),
-            NodeDesc::Torus {
-                major,
-                minor,
-                material,
-            } => shape(SdfNode::torus(major, minor), material),
-            NodeDesc::Link {
-                half_length,
-                major,
-                minor,
-                material,
-            } => shape(SdfNode::link(half_length, major, minor), material),
-            NodeDesc::Capsule {
-                half_height,
-                radius,
-                material,
-            } => shape(SdfNode::capsule(half_height, radius), material),
-            NodeDesc::Cylinder {
-                radius,
-                half_height,
-                material,
-            } => shape(SdfNode::cylinder(radius, half_height), material),
-            NodeDesc::RoundedCylinder {
-                radius,
-                half_height,
-                rounding,
-                material,
-            } => shape(
-                SdfNode::rounded_cylinder(radius, half_height, rounding),
-                material,
-            ),
-            NodeDesc::CappedCone {
-                half_height,
-                bottom,
-                top,
-                material,
-            } => shape(SdfNode::capped_cone(half_height, bottom, top), material),
-            NodeDesc::Octahedron { size, material } => shape(SdfNode::octahedron(size), material),
-            NodeDesc::HexPrism {
-                apothem,
-                half_height,
-                material,
-            } => shape(SdfNode::hex_prism(apothem, half_height), material),
-            NodeDesc::Ellipsoid { radii, material } => {
-                shape(SdfNode::ellipsoid(v(radii)), material)
-            }
-            NodeDesc::Plane {
-                normal,
-                offset,
-                material,
-            } => shape(SdfNode::plane(v(normal), offset), material),
             NodeDesc::Union(c) => SdfNode::union(nodes(c)),
             NodeDesc::Intersection(c) => SdfNode::intersection(nodes(c)),
             NodeDesc::SmoothUnion { k, children } => SdfNode::smooth_union(k, nodes(children)),
@@ -180,8 +116,92 @@ impl TryFrom<NodeDesc<Parsed>> for Parsed {
                 SdfNode::scatter(config, nodes(templates))
             }
             NodeDesc::Material { index, child } => Ok(child.0.with_material(index)),
+            // Named, not a wildcard: a new node must be routed.
+            d @ (NodeDesc::Sphere { .. }
+            | NodeDesc::Box { .. }
+            | NodeDesc::RoundBox { .. }
+            | NodeDesc::BoxFrame { .. }
+            | NodeDesc::Torus { .. }
+            | NodeDesc::Link { .. }
+            | NodeDesc::Capsule { .. }
+            | NodeDesc::Cylinder { .. }
+            | NodeDesc::RoundedCylinder { .. }
+            | NodeDesc::CappedCone { .. }
+            | NodeDesc::Octahedron { .. }
+            | NodeDesc::HexPrism { .. }
+            | NodeDesc::Ellipsoid { .. }
+            | NodeDesc::Plane { .. }) => primitive(d),
         };
         node.map(Parsed)
+    }
+}
+
+/// A primitive shape's node, with its material. [`Parsed::try_from`]
+/// builds every other node and hands this only the primitives.
+fn primitive(d: NodeDesc<Parsed>) -> Result<SdfNode, SdfError> {
+    let shape = |n: Result<SdfNode, SdfError>, material: u32| n.map(|n| n.with_material(material));
+    match d {
+        NodeDesc::Sphere { radius, material } => shape(SdfNode::sphere(radius), material),
+        NodeDesc::Box { half, material } => shape(SdfNode::cuboid(v(half)), material),
+        NodeDesc::RoundBox {
+            half,
+            radius,
+            material,
+        } => shape(SdfNode::round_box(v(half), radius), material),
+        NodeDesc::BoxFrame {
+            half,
+            thickness,
+            material,
+        } => shape(SdfNode::box_frame(v(half), thickness), material),
+        NodeDesc::Torus {
+            major,
+            minor,
+            material,
+        } => shape(SdfNode::torus(major, minor), material),
+        NodeDesc::Link {
+            half_length,
+            major,
+            minor,
+            material,
+        } => shape(SdfNode::link(half_length, major, minor), material),
+        NodeDesc::Capsule {
+            half_height,
+            radius,
+            material,
+        } => shape(SdfNode::capsule(half_height, radius), material),
+        NodeDesc::Cylinder {
+            radius,
+            half_height,
+            material,
+        } => shape(SdfNode::cylinder(radius, half_height), material),
+        NodeDesc::RoundedCylinder {
+            radius,
+            half_height,
+            rounding,
+            material,
+        } => shape(
+            SdfNode::rounded_cylinder(radius, half_height, rounding),
+            material,
+        ),
+        NodeDesc::CappedCone {
+            half_height,
+            bottom,
+            top,
+            material,
+        } => shape(SdfNode::capped_cone(half_height, bottom, top), material),
+        NodeDesc::Octahedron { size, material } => shape(SdfNode::octahedron(size), material),
+        NodeDesc::HexPrism {
+            apothem,
+            half_height,
+            material,
+        } => shape(SdfNode::hex_prism(apothem, half_height), material),
+        NodeDesc::Ellipsoid { radii, material } => shape(SdfNode::ellipsoid(v(radii)), material),
+        NodeDesc::Plane {
+            normal,
+            offset,
+            material,
+        } => shape(SdfNode::plane(v(normal), offset), material),
+        _ => unreachable!("Parsed::try_from builds the nodes that are not primitives"),
     }
 }
 
