@@ -486,48 +486,8 @@ fn translate(s: &StandaloneShader) -> Result<(Vec<OutputFile>, serde_json::Value
     layouter
         .update(m.to_ctx())
         .map_err(|e| fail("layout", e.to_string()))?;
-    let bindings: Vec<_> = s
-        .bindings
-        .iter()
-        .zip(&slots)
-        .map(|(b, slot)| {
-            let (kind, format, access) = kind_fields(&b.kind);
-            let glsl_float_depth = s.glsl_wgsl.is_some()
-                && matches!(b.kind, BindingKind::Texture { sample: "depth", .. });
-            serde_json::json!({
-                "set": b.group,
-                "binding": b.binding,
-                "name": b.name,
-                "kind": kind,
-                "format": format,
-                "access": access,
-                "wgsl_type": b.wgsl_type,
-                "hlsl": slot.hlsl,
-                "glsl_binding": slot.glsl,
-                "glsl_note": if glsl_float_depth {
-                    "a float sampler: bind the depth image, depth in .r (GLSL has no texel fetch of depth)"
-                } else {
-                    ""
-                },
-                "msl": msl_slot(&b.kind, slot.msl),
-                "layout": binding_layout(&m, &layouter, &b.name),
-            })
-        })
-        .collect();
-    // naga's `_mslBufferSizes`: one `uint size<N>` per global holding a
-    // runtime-sized array, in the module's order of globals (not binding
-    // order), N the global's index: each buffer's size in bytes.
-    let msl_sizes: Vec<_> = m
-        .global_variables
-        .iter()
-        .filter(|(_, v)| m.types[v.ty].inner.is_dynamically_sized(&m.types))
-        .map(|(h, v)| {
-            serde_json::json!({
-                "member": format!("size{}", h.index()),
-                "binding": v.name.clone().unwrap_or_default(),
-            })
-        })
-        .collect();
+    let bindings = binding_rows(s, &slots, &m, &layouter);
+    let msl_sizes = msl_buffer_sizes(&m);
     let row = serde_json::json!({
         "variant": s.variant,
         "summary": s.summary,
@@ -555,6 +515,60 @@ fn translate(s: &StandaloneShader) -> Result<(Vec<OutputFile>, serde_json::Value
         },
     });
     Ok((files, row))
+}
+
+/// The table rows of `s`'s bindings, with their `slots` in each language
+/// and the layouts of their types in module `m`.
+fn binding_rows(
+    s: &StandaloneShader,
+    slots: &[Slots],
+    m: &naga::Module,
+    layouter: &naga::proc::Layouter,
+) -> Vec<serde_json::Value> {
+    s.bindings
+        .iter()
+        .zip(slots)
+        .map(|(b, slot)| {
+            let (kind, format, access) = kind_fields(&b.kind);
+            let glsl_float_depth = s.glsl_wgsl.is_some()
+                && matches!(b.kind, BindingKind::Texture { sample: "depth", .. });
+            serde_json::json!({
+                "set": b.group,
+                "binding": b.binding,
+                "name": b.name,
+                "kind": kind,
+                "format": format,
+                "access": access,
+                "wgsl_type": b.wgsl_type,
+                "hlsl": slot.hlsl,
+                "glsl_binding": slot.glsl,
+                "glsl_note": if glsl_float_depth {
+                    "a float sampler: bind the depth image, depth in .r (GLSL has no texel fetch of depth)"
+                } else {
+                    ""
+                },
+                "msl": msl_slot(&b.kind, slot.msl),
+                "layout": binding_layout(m, layouter, &b.name),
+            })
+        })
+        .collect()
+}
+
+/// The members of naga's `_mslBufferSizes` for module `m`: one `uint
+/// size<N>` per global holding a runtime-sized array, in the module's order
+/// of globals (not binding order), N the global's index: each buffer's size
+/// in bytes.
+fn msl_buffer_sizes(m: &naga::Module) -> Vec<serde_json::Value> {
+    m.global_variables
+        .iter()
+        .filter(|(_, v)| m.types[v.ty].inner.is_dynamically_sized(&m.types))
+        .map(|(h, v)| {
+            serde_json::json!({
+                "member": format!("size{}", h.index()),
+                "binding": v.name.clone().unwrap_or_default(),
+            })
+        })
+        .collect()
 }
 
 /// The Markdown table of one pass's variants.
