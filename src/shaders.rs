@@ -136,9 +136,11 @@ fn is_buffer(kind: &BindingKind) -> bool {
 /// array sizes (naga's `_buffer_sizes`), after the last buffer.
 fn slots(bindings: &[BindingEntry]) -> (Vec<Slots>, u8) {
     let (mut buffers, mut textures) = (0u8, 0u8);
+    let glsl = glsl_bindings(bindings);
     let list = bindings
         .iter()
-        .map(|b| {
+        .zip(glsl)
+        .map(|(b, glsl)| {
             let counter = if is_buffer(&b.kind) {
                 &mut buffers
             } else {
@@ -153,12 +155,174 @@ fn slots(bindings: &[BindingEntry]) -> (Vec<Slots>, u8) {
                     b.binding,
                     b.group
                 ),
-                glsl: b.binding,
+                glsl,
                 msl,
             }
         })
         .collect();
     (list, buffers)
+}
+
+/// Each binding's GLSL `layout(binding = n)`: GLSL has no sets, so a
+/// pass's own bindings (group 0) keep their numbers and a host's (group 1,
+/// a CTSS field's own resources) follow after the largest of them, in
+/// order.
+fn glsl_bindings(bindings: &[BindingEntry]) -> Vec<u32> {
+    let mut next = bindings
+        .iter()
+        .filter(|b| b.group == 0)
+        .map(|b| b.binding + 1)
+        .max()
+        .unwrap_or(0);
+    bindings
+        .iter()
+        .map(|b| {
+            if b.group == 0 {
+                b.binding
+            } else {
+                next += 1;
+                next - 1
+            }
+        })
+        .collect()
+}
+
+/// `s` with the resources its module declares beyond `s.bindings` (a host
+/// CTSS field's own `@group(1)` uniforms, storage buffers and textures)
+/// appended, so that every language's output binds them and the tables
+/// list them. A resource no table row can describe (a sampler, a binding
+/// array, a storage texture of a format the tables do not name) is an
+/// error naming it, rather than a shader that silently lacks its entry
+/// point or binding.
+fn with_module_bindings(
+    s: &StandaloneShader,
+    m: &naga::Module,
+) -> Result<StandaloneShader, String> {
+    let mut out = s.clone();
+    let mut layouter = naga::proc::Layouter::default();
+    layouter.update(m.to_ctx()).map_err(|e| e.to_string())?;
+    for (_, var) in m.global_variables.iter() {
+        let Some(rb) = var.binding else { continue };
+        if out
+            .bindings
+            .iter()
+            .any(|b| b.group == rb.group && b.binding == rb.binding)
+        {
+            continue;
+        }
+        let name = var.name.clone().unwrap_or_default();
+        let refuse = |what: &str| {
+            format!(
+                "@group({}) @binding({}) `{name}` is {what}: the standalone shaders' tables                  and every language's bindings describe uniform and storage buffers and                  textures read with textureLoad, so this field's resource cannot be                  expressed (read a texture with textureLoad instead)",
+                rb.group, rb.binding
+            )
+        };
+        let kind = match (var.space, &m.types[var.ty].inner) {
+            (naga::AddressSpace::Uniform, _) => BindingKind::Uniform {
+                size: Some(u64::from(layouter[var.ty].size)),
+            },
+            (naga::AddressSpace::Storage { access }, _) => BindingKind::Storage {
+                read_only: !access.contains(naga::StorageAccess::STORE),
+            },
+            (
+                naga::AddressSpace::Handle,
+                naga::TypeInner::Image {
+                    dim: naga::ImageDimension::D2,
+                    arrayed,
+                    class,
+                },
+            ) => match class {
+                naga::ImageClass::Sampled { kind, multi } => BindingKind::Texture {
+                    sample: match kind {
+                        naga::ScalarKind::Uint => "uint",
+                        naga::ScalarKind::Sint => "sint",
+                        _ => "float",
+                    },
+                    array: *arrayed,
+                    multisampled: *multi,
+                },
+                naga::ImageClass::Depth { multi } => BindingKind::Texture {
+                    sample: "depth",
+                    array: *arrayed,
+                    multisampled: *multi,
+                },
+                naga::ImageClass::Storage { format, .. } if !*arrayed => {
+                    BindingKind::StorageTexture {
+                        format: storage_format(*format)
+                            .ok_or_else(|| refuse(&format!("a storage texture of {format:?}")))?,
+                    }
+                }
+                _ => return Err(refuse("an arrayed storage texture")),
+            },
+            (naga::AddressSpace::Handle, naga::TypeInner::Sampler { .. }) => {
+                return Err(refuse("a sampler"))
+            }
+            (naga::AddressSpace::Handle, naga::TypeInner::BindingArray { .. }) => {
+                return Err(refuse("a binding array"))
+            }
+            _ => return Err(refuse("a resource of another kind")),
+        };
+        out.bindings.push(BindingEntry {
+            group: rb.group,
+            binding: rb.binding,
+            name,
+            wgsl_type: wgsl_type(m, var.ty),
+            kind,
+        });
+    }
+    out.bindings.sort_by_key(|b| (b.group, b.binding));
+    Ok(out)
+}
+
+/// WGSL's name of a storage texel format the tables can name.
+fn storage_format(f: naga::StorageFormat) -> Option<&'static str> {
+    use naga::StorageFormat as F;
+    Some(match f {
+        F::Rgba8Unorm => "rgba8unorm",
+        F::Rgba16Float => "rgba16float",
+        F::Rgba32Float => "rgba32float",
+        F::R32Float => "r32float",
+        F::R32Uint => "r32uint",
+        F::R32Sint => "r32sint",
+        F::Rg32Float => "rg32float",
+        _ => return None,
+    })
+}
+
+/// A binding's WGSL type as the tables print it: a buffer's type, or a
+/// texture's (`texture_2d<f32>`).
+fn wgsl_type(m: &naga::Module, ty: naga::Handle<naga::Type>) -> String {
+    match &m.types[ty].inner {
+        naga::TypeInner::Image {
+            arrayed,
+            class: naga::ImageClass::Sampled { kind, multi },
+            ..
+        } => {
+            let scalar = match kind {
+                naga::ScalarKind::Uint => "u32",
+                naga::ScalarKind::Sint => "i32",
+                _ => "f32",
+            };
+            let shape = match (multi, arrayed) {
+                (true, _) => "texture_multisampled_2d",
+                (false, true) => "texture_2d_array",
+                (false, false) => "texture_2d",
+            };
+            format!("{shape}<{scalar}>")
+        }
+        naga::TypeInner::Image {
+            class: naga::ImageClass::Depth { .. },
+            ..
+        } => "texture_depth_2d".into(),
+        naga::TypeInner::Image {
+            class: naga::ImageClass::Storage { format, .. },
+            ..
+        } => format!(
+            "texture_storage_2d<{}, write>",
+            storage_format(*format).unwrap_or("?")
+        ),
+        _ => type_name(m, ty),
+    }
 }
 
 fn resource_binding(b: &BindingEntry) -> naga::ResourceBinding {
@@ -230,7 +394,8 @@ fn glsl_source(
     let binding_map = s
         .bindings
         .iter()
-        .map(|b| (resource_binding(b), b.binding as u8))
+        .zip(glsl_bindings(&s.bindings))
+        .map(|(b, glsl)| (resource_binding(b), glsl as u8))
         .collect();
     let options = glsl::Options {
         version,
@@ -432,6 +597,8 @@ fn translate(s: &StandaloneShader) -> Result<(Vec<OutputFile>, serde_json::Value
         message: format!("{stage}: {message}"),
     };
     let (m, info) = module(&s.wgsl).map_err(|e| fail("WGSL", e))?;
+    let extended = with_module_bindings(s, &m).map_err(|e| fail("bindings", e))?;
+    let s = &extended;
     let glsl_module = match &s.glsl_wgsl {
         Some(wgsl) => Some(module(wgsl).map_err(|e| fail("WGSL for GLSL", e))?),
         None => None,

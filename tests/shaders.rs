@@ -176,3 +176,136 @@ fn every_text_file_says_it_is_generated() {
             .count()
     );
 }
+
+/// A host CTSS field that binds its own `@group(1)` resources: a uniform
+/// (a box's half size) and a texture read with `textureLoad`.
+const FIELD_WITH_RESOURCES: &str = "\
+struct HostBox { half: vec3<f32>, _pad: f32 }
+@group(1) @binding(0) var<uniform> host_box: HostBox;
+@group(1) @binding(1) var host_albedo: texture_2d<f32>;
+fn subcone_field(p: vec3<f32>) -> vec3<f32> {
+    let q = abs(p - vec3<f32>(0.0, 0.0, 4.0)) - host_box.half;
+    let d = length(max(q, vec3<f32>(0.0))) + min(max(q.x, max(q.y, q.z)), 0.0);
+    return vec3<f32>(d, d, 0.0);
+}
+fn subcone_shade(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> vec3<f32> {
+    let albedo = textureLoad(host_albedo, vec2<i32>(0, 0), 0).xyz;
+    return albedo * (0.15 + max(dot(n, vec3<f32>(0.48, 0.8, -0.36)), 0.0));
+}
+";
+
+/// The host field's shaders, as `subcone shaders --ctss-field` writes them.
+fn host_field_files(field: &str) -> Result<Vec<subcone::shaders::OutputFile>, String> {
+    let mut s = subcone_passes::standalone::ctss(field, &subcone_passes::CtssPassDesc::default())
+        .map_err(|e| e.to_string())?;
+    s.variant = "host-texture".into();
+    generate(&[s]).map_err(|e| e.to_string())
+}
+
+#[test]
+fn a_host_fields_own_bindings_reach_every_language_and_the_table() {
+    let files = host_field_files(FIELD_WITH_RESOURCES).expect("the field translates");
+    let text = |ext: &str| {
+        let f = files
+            .iter()
+            .find(|f| f.path.to_string_lossy().ends_with(ext))
+            .unwrap_or_else(|| panic!("no {ext}"));
+        String::from_utf8(f.bytes.clone()).unwrap()
+    };
+    // MSL: the kernel is there, with the host's buffer and texture.
+    let msl = text("host-texture.metal");
+    assert!(msl.contains("kernel void"), "{msl}");
+    assert!(msl.contains("host_box"), "{msl}");
+    assert!(msl.contains("host_albedo"), "{msl}");
+    // GLSL: the host's block and texture (naga names them by group and
+    // binding) have binding numbers of their own, after the pass's.
+    let glsl = text("host-texture.comp");
+    let line = |name: &str| {
+        glsl.lines()
+            .find(|l| l.contains(name) && l.contains("layout"))
+            .unwrap_or_else(|| panic!("no layout line for {name}:\n{glsl}"))
+            .to_string()
+    };
+    for name in ["_group_1_binding_0", "_group_1_binding_1"] {
+        assert!(line(name).contains("binding = "), "{}", line(name));
+    }
+    let numbers: Vec<&str> = glsl
+        .lines()
+        .filter_map(|l| l.split("binding = ").nth(1))
+        .map(|r| r.split(|c: char| !c.is_ascii_digit()).next().unwrap())
+        .collect();
+    let mut unique = numbers.clone();
+    unique.sort();
+    unique.dedup();
+    assert_eq!(unique.len(), numbers.len(), "GLSL bindings collide: {numbers:?}");
+    // The tables list the host's group-1 bindings with their types.
+    let json = text("ctss.json");
+    for needle in ["\"host_box\"", "\"host_albedo\"", "texture_2d<f32>"] {
+        assert!(json.contains(needle), "{needle} not in {json}");
+    }
+    let md = text("ctss.md");
+    assert!(md.contains("host_albedo"), "{md}");
+    validate_with_tools(&files);
+}
+
+/// The host field's SPIR-V through `spirv-val` (Vulkan 1.0) and its GLSL
+/// and HLSL through `glslangValidator`, where the tools are installed (CI
+/// installs them; elsewhere a `skipped:` line says they are not).
+fn validate_with_tools(files: &[subcone::shaders::OutputFile]) {
+    let have = |tool: &str| {
+        std::process::Command::new(tool)
+            .arg("--version")
+            .output()
+            .is_ok()
+    };
+    if !have("spirv-val") || !have("glslangValidator") {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "spirv-val and glslangValidator are required in CI"
+        );
+        println!("skipped: spirv-val or glslangValidator not installed");
+        return;
+    }
+    let dir = tempfile::tempdir().expect("temp dir");
+    write(dir.path(), files).expect("write");
+    let ctss = dir.path().join("ctss");
+    let run = |args: &[&str]| {
+        let out = std::process::Command::new(args[0])
+            .args(&args[1..])
+            .current_dir(&ctss)
+            .output()
+            .expect("run the tool");
+        assert!(
+            out.status.success(),
+            "{args:?}: {}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        );
+    };
+    run(&["spirv-val", "--target-env", "vulkan1.0", "host-texture.spv"]);
+    run(&["glslangValidator", "-V", "host-texture.comp", "-o", "glsl.spv"]);
+    run(&["glslangValidator", "-V", "host-texture.es.comp", "-o", "es.spv"]);
+    run(&[
+        "glslangValidator",
+        "-D",
+        "-V",
+        "-S",
+        "comp",
+        "-e",
+        "subcone_pass_ctss_main",
+        "host-texture.hlsl",
+        "-o",
+        "hlsl.spv",
+    ]);
+    run(&["spirv-val", "--target-env", "vulkan1.0", "hlsl.spv"]);
+}
+
+#[test]
+fn a_host_field_resource_no_language_can_bind_is_refused_by_name() {
+    let sampled = FIELD_WITH_RESOURCES.replace(
+        "fn subcone_field",
+        "@group(1) @binding(2) var host_sampler: sampler;\nfn subcone_field",
+    );
+    let e = host_field_files(&sampled).expect_err("a sampler has no table row");
+    assert!(e.contains("host_sampler") && e.contains("a sampler"), "{e}");
+}
