@@ -62,10 +62,19 @@ pub const TEXTURE_ALBEDO: f32 = 0.05;
 /// ([`ssim::RADIUS`](subcone_metrics::ssim::RADIUS), 5 px).
 pub fn near_edge_radius(metric: Metric) -> u32 {
     match metric {
-        Metric::Flip => subcone_metrics::flip_filter_radius(subcone_metrics::FLIP_PIXELS_PER_DEGREE),
-        Metric::Ssim => subcone_metrics::ssim::RADIUS as u32,
+        Metric::Flip => flip_near_edge_radius(),
+        Metric::Ssim => SSIM_NEAR_EDGE_RADIUS,
     }
 }
+
+/// [`near_edge_radius`] under FLIP: its filters' reach at the pixels per
+/// degree it is computed at (10 px at 67 ppd).
+pub fn flip_near_edge_radius() -> u32 {
+    subcone_metrics::flip_filter_radius(subcone_metrics::FLIP_PIXELS_PER_DEGREE)
+}
+
+/// [`near_edge_radius`] under SSIM: its window's half-width (5 px).
+pub const SSIM_NEAR_EDGE_RADIUS: u32 = subcone_metrics::ssim::RADIUS as u32;
 /// A class with fewer pixels than this (at some camera offset) gets no
 /// verdict: a mean over a handful of pixels moves with a sub-pixel shift of
 /// the camera by more than the thresholds the verdicts use.

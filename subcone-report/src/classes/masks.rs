@@ -4,7 +4,10 @@ use anyhow::{bail, Result};
 use glam::Vec3;
 use subcone_scene::Frame;
 
-use super::{near_edge_radius, Class, Metric, CREASE_COS, SILHOUETTE_DEPTH, TEXTURE_ALBEDO};
+use super::{
+    flip_near_edge_radius, Class, CREASE_COS, SILHOUETTE_DEPTH, SSIM_NEAR_EDGE_RADIUS,
+    TEXTURE_ALBEDO,
+};
 
 /// One mask per class over a `width × height` image.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -16,8 +19,8 @@ pub struct ClassMasks {
     /// The masks, indexed by [`Class::index`], row-major.
     pub masks: [Vec<bool>; 6],
     /// The near-edge band under FLIP, row-major: pixels in none of the
-    /// classes within [`near_edge_radius`]`(Metric::Flip)` of a classed
-    /// pixel (and so not flat). `masks[Class::Flat]` is FLIP's flat: the
+    /// classes within [`flip_near_edge_radius`] of a classed pixel (and so
+    /// not flat). `masks[Class::Flat]` is FLIP's flat: the
     /// rest.
     pub near_edge: Vec<bool>,
     /// The near-edge band under SSIM (its window's reach), row-major.
@@ -35,32 +38,6 @@ impl ClassMasks {
     /// Pixels in `class`.
     pub fn count(&self, class: Class) -> u64 {
         self.mask(class).iter().filter(|&&m| m).count() as u64
-    }
-
-    /// The flat mask under `metric`: in no class and out of the metric's
-    /// near-edge band.
-    pub fn flat(&self, metric: Metric) -> &[bool] {
-        match metric {
-            Metric::Flip => self.mask(Class::Flat),
-            Metric::Ssim => &self.ssim_flat,
-        }
-    }
-
-    /// The near-edge band under `metric`.
-    pub fn near(&self, metric: Metric) -> &[bool] {
-        match metric {
-            Metric::Flip => &self.near_edge,
-            Metric::Ssim => &self.ssim_near_edge,
-        }
-    }
-
-    /// The mask of `class` under `metric`: flat is the metric's own
-    /// ([`ClassMasks::flat`]), the other classes the same under both.
-    pub fn mask_for(&self, class: Class, metric: Metric) -> &[bool] {
-        match class {
-            Class::Flat => self.flat(metric),
-            c => self.mask(c),
-        }
     }
 
     /// These masks with FLIP's near-edge band (and flat) `radius` pixels
@@ -81,12 +58,13 @@ impl ClassMasks {
     }
 
     /// Split the pixels in no class into each metric's near-edge band
-    /// (within [`near_edge_radius`] of a classed pixel, Chebyshev) and
-    /// flat (the rest): sets the bands and the two flat masks.
+    /// (within [`flip_near_edge_radius`] or [`SSIM_NEAR_EDGE_RADIUS`] of a
+    /// classed pixel, Chebyshev) and flat (the rest): sets the bands and
+    /// the two flat masks.
     fn split_near_edge(&mut self) {
         let classed: Vec<bool> = self.masks[Class::Flat.index()].iter().map(|f| !f).collect();
-        let (flip_near, flip_flat) = self.band(&classed, near_edge_radius(Metric::Flip));
-        let (ssim_near, ssim_flat) = self.band(&classed, near_edge_radius(Metric::Ssim));
+        let (flip_near, flip_flat) = self.band(&classed, flip_near_edge_radius());
+        let (ssim_near, ssim_flat) = self.band(&classed, SSIM_NEAR_EDGE_RADIUS);
         self.masks[Class::Flat.index()] = flip_flat;
         self.near_edge = flip_near;
         self.ssim_near_edge = ssim_near;
@@ -116,11 +94,7 @@ impl ClassMasks {
                 near[y * w + x] = !classed[y * w + x] && (a..=b).any(|yy| rows[yy * w + x]);
             }
         }
-        let flat = classed
-            .iter()
-            .zip(&near)
-            .map(|(&c, &n)| !c && !n)
-            .collect();
+        let flat = classed.iter().zip(&near).map(|(&c, &n)| !c && !n).collect();
         (near, flat)
     }
 

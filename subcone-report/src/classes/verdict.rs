@@ -74,6 +74,36 @@ impl Metric {
     }
 }
 
+/// The masks as each metric judges them (here, beside [`Metric`], so that
+/// the masks' file does not depend on the verdicts').
+impl ClassMasks {
+    /// The flat mask under `metric`: in no class and out of the metric's
+    /// near-edge band.
+    pub fn flat(&self, metric: Metric) -> &[bool] {
+        match metric {
+            Metric::Flip => self.mask(Class::Flat),
+            Metric::Ssim => &self.ssim_flat,
+        }
+    }
+
+    /// The near-edge band under `metric`.
+    pub fn near(&self, metric: Metric) -> &[bool] {
+        match metric {
+            Metric::Flip => &self.near_edge,
+            Metric::Ssim => &self.ssim_near_edge,
+        }
+    }
+
+    /// The mask of `class` under `metric`: flat is the metric's own
+    /// ([`ClassMasks::flat`]), the other classes the same under both.
+    pub fn mask_for(&self, class: Class, metric: Metric) -> &[bool] {
+        match class {
+            Class::Flat => self.flat(metric),
+            c => self.mask(c),
+        }
+    }
+}
+
 /// The per-class error of one result under one metric: `mean[c]` is the
 /// mean of the error map (FLIP, or `1 − SSIM`) over the pixels of class `c`
 /// (`None` where the class has no pixel), `px[c]` their count, both indexed
