@@ -116,14 +116,12 @@ and down by {list} pixels' worth of angle at the image centre, each offset again
 reference and with its own classes (only the quality render is repeated; the timing rounds are \
 not). FLIP, SSIM and every class error are the mean over the offsets, with the smallest and \
 largest in brackets (`_min` and `_max` columns); PSNR, edge FLIP and the images are the first \
-offset's; `px_<class>` is the fewest pixels the class has at any offset. {size} The {extra} \
-further offsets took {secs:.1} s of this run's {total:.1} s ({share:.1} %).",
+offset's; `px_<class>` is the fewest pixels the class has at any offset. Every offset is \
+measured at the quality size against the same {reference} reference. The {extra} further \
+offsets took {secs:.1} s of this run's {total:.1} s ({share:.1} %).",
         k = o.offsets.len(),
         list = list.join(", "),
-        size = format!(
-            "Every offset is measured at the quality size against the same {} reference.",
-            o.reference
-        ),
+        reference = o.reference,
         extra = o.offsets.len() - 1,
         total = elapsed.as_secs_f64(),
         share = 100.0 * secs / elapsed.as_secs_f64().max(1e-9),
