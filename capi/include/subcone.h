@@ -342,8 +342,9 @@ typedef struct SubconeFxaaPassFrame {
 } SubconeFxaaPassFrame;
 
 // One TAA resolve's parameters, the layout of the kernels' `TaaParams`
-// (32 bytes; `taa_params` of `shaders/taa/*`). Fill it with
-// [`subcone_taa_params`].
+// (48 bytes; `taa_params` of `shaders/taa/*`). Fill it with
+// [`subcone_taa_params`], then set `motion_scale` for motion vectors that
+// are not pixels (current minus previous).
 typedef struct SubconeTaaParams {
   // The tone-mapped resolve's exposure.
   float exposure;
@@ -359,8 +360,19 @@ typedef struct SubconeTaaParams {
   uint32_t height;
   // 1: clip and blend in Karis' tone-mapped space; 0: linear.
   uint32_t tone_mapped;
+  // Closest-depth motion dilation: 0 off, 1 a smaller depth is nearer,
+  // 2 a larger one is (reversed Z), read by `shaders/taa/depth-dilation`.
+  // `subcone_taa_resolve` and `shaders/taa/default` have no depth input:
+  // the first refuses 1 and 2, the second ignores the field.
+  uint32_t depth_dilation;
+  // What each motion vector is multiplied by to be pixels, current minus
+  // previous, `+y` down: `{1, 1}` for such vectors (what
+  // [`subcone_taa_params`] writes), `{width, height}` for Bevy's (UV
+  // units, current minus previous), `{-1, -1}` for FSR2's pixel vectors
+  // (previous minus current). A component that is 0 reads as 1.
+  float motion_scale[2];
   // Padding; write 0.
-  uint32_t pad;
+  uint32_t pad[2];
 } SubconeTaaParams;
 
 // The TAA pass's origin (`TaaOrigin`, binding `taa_origin` of
@@ -691,7 +703,8 @@ enum SubconeStatus subcone_fxaa_pass_frame(uint32_t width,
 // holds `history_frames` frames (0 after a reset), with the kernels'
 // defaults (`MIN_CURRENT_WEIGHT`, `CLIP_GAMMA`), resolved in linear
 // radiance when `exposure` is 0 and in Karis' tone-mapped space at
-// `exposure` otherwise: the Rust `TaaParams::new(size).with_space(..)
+// `exposure` otherwise, motion vectors in pixels (`motion_scale` `{1, 1}`)
+// and no depth dilation: the Rust `TaaParams::new(size).with_space(..)
 // .with_history_frames(..)`, what the Rust `TaaPass` writes.
 //
 // Errors: a zero size; a negative or non-finite `exposure`; null `out`.
@@ -744,13 +757,15 @@ enum SubconeStatus subcone_fxaa_image(const struct SubconeFxaaParams *params,
 // params.height` image on the CPU: what `shaders/taa/*` computes for a
 // whole texture. `current` and `history` are `4·width·height` floats (RGBA
 // row by row, linear radiance, alpha ignored), `velocity` `2·width·height`
-// (each pixel's motion in pixels, current minus previous); `out` receives
+// (each pixel's motion vector, which times `params.motion_scale` is its
+// motion in pixels, current minus previous); `out` receives
 // `4·width·height` floats, alpha 1. With `params.history_frames == 0` the
 // history is not read and may be null with length 0. Every output is
 // finite and non-negative, whatever the colours and velocities hold.
 //
 // Errors: null pointers where data is required; a zero size or lengths
-// that do not match it; non-finite parameters.
+// that do not match it; non-finite parameters; a `depth_dilation` that
+// asks for a depth (1 or 2: this resolve takes none).
 //
 // # Safety
 // Every pointer is null or points to as many valid floats as its length

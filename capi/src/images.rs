@@ -3,7 +3,7 @@
 
 use glam::{Vec2, Vec3, Vec4};
 use subcone_kernels::fxaa::{edge_clamped, fxaa_decode, fxaa_encode, fxaa_pixel, FxaaParams};
-use subcone_kernels::taa::{resolve_pixel as taa_resolve_pixel, TaaParams};
+use subcone_kernels::taa::{resolve_pixel as taa_resolve_pixel, DepthDilation, TaaParams};
 
 use crate::checks::{finite, read, slice, slice_mut};
 use crate::post::{SubconeFxaaParams, SubconeTaaParams};
@@ -97,13 +97,15 @@ pub unsafe extern "C" fn subcone_fxaa_image(
 /// params.height` image on the CPU: what `shaders/taa/*` computes for a
 /// whole texture. `current` and `history` are `4·width·height` floats (RGBA
 /// row by row, linear radiance, alpha ignored), `velocity` `2·width·height`
-/// (each pixel's motion in pixels, current minus previous); `out` receives
+/// (each pixel's motion vector, which times `params.motion_scale` is its
+/// motion in pixels, current minus previous); `out` receives
 /// `4·width·height` floats, alpha 1. With `params.history_frames == 0` the
 /// history is not read and may be null with length 0. Every output is
 /// finite and non-negative, whatever the colours and velocities hold.
 ///
 /// Errors: null pointers where data is required; a zero size or lengths
-/// that do not match it; non-finite parameters.
+/// that do not match it; non-finite parameters; a `depth_dilation` that
+/// asks for a depth (1 or 2: this resolve takes none).
 ///
 /// # Safety
 /// Every pointer is null or points to as many valid floats as its length
@@ -127,7 +129,16 @@ pub unsafe extern "C" fn subcone_taa_resolve(
             ("params->exposure", p.exposure),
             ("params->min_current_weight", p.min_current_weight),
             ("params->clip_gamma", p.clip_gamma),
+            ("params->motion_scale[0]", p.motion_scale[0]),
+            ("params->motion_scale[1]", p.motion_scale[1]),
         ])?;
+        if DepthDilation::from_code(p.depth_dilation).is_on() {
+            return Err(Refusal::invalid(format!(
+                "params->depth_dilation is {}; subcone_taa_resolve has no depth input, so it \
+                 must be 0",
+                p.depth_dilation
+            )));
+        }
         let p = TaaParams::from(p);
         let (n, len) = image_len(p.width, p.height, 4, "params->width × params->height")?;
         exact_len("current_len", current_len, len, "4·width·height")?;

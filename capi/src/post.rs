@@ -44,8 +44,9 @@ pub struct SubconeFxaaPassFrame {
 }
 
 /// One TAA resolve's parameters, the layout of the kernels' `TaaParams`
-/// (32 bytes; `taa_params` of `shaders/taa/*`). Fill it with
-/// [`subcone_taa_params`].
+/// (48 bytes; `taa_params` of `shaders/taa/*`). Fill it with
+/// [`subcone_taa_params`], then set `motion_scale` for motion vectors that
+/// are not pixels (current minus previous).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SubconeTaaParams {
@@ -63,8 +64,19 @@ pub struct SubconeTaaParams {
     pub height: u32,
     /// 1: clip and blend in Karis' tone-mapped space; 0: linear.
     pub tone_mapped: u32,
+    /// Closest-depth motion dilation: 0 off, 1 a smaller depth is nearer,
+    /// 2 a larger one is (reversed Z), read by `shaders/taa/depth-dilation`.
+    /// `subcone_taa_resolve` and `shaders/taa/default` have no depth input:
+    /// the first refuses 1 and 2, the second ignores the field.
+    pub depth_dilation: u32,
+    /// What each motion vector is multiplied by to be pixels, current minus
+    /// previous, `+y` down: `{1, 1}` for such vectors (what
+    /// [`subcone_taa_params`] writes), `{width, height}` for Bevy's (UV
+    /// units, current minus previous), `{-1, -1}` for FSR2's pixel vectors
+    /// (previous minus current). A component that is 0 reads as 1.
+    pub motion_scale: [f32; 2],
     /// Padding; write 0.
-    pub pad: u32,
+    pub pad: [u32; 2],
 }
 
 mirror_conversions!(SubconeTaaParams <=> TaaParams {
@@ -75,6 +87,8 @@ mirror_conversions!(SubconeTaaParams <=> TaaParams {
     width: width,
     height: height,
     tone_mapped: tone_mapped,
+    depth_dilation: depth_dilation,
+    motion_scale: motion_scale,
     pad: _pad,
 });
 
@@ -137,7 +151,8 @@ pub unsafe extern "C" fn subcone_fxaa_pass_frame(
 /// holds `history_frames` frames (0 after a reset), with the kernels'
 /// defaults (`MIN_CURRENT_WEIGHT`, `CLIP_GAMMA`), resolved in linear
 /// radiance when `exposure` is 0 and in Karis' tone-mapped space at
-/// `exposure` otherwise: the Rust `TaaParams::new(size).with_space(..)
+/// `exposure` otherwise, motion vectors in pixels (`motion_scale` `{1, 1}`)
+/// and no depth dilation: the Rust `TaaParams::new(size).with_space(..)
 /// .with_history_frames(..)`, what the Rust `TaaPass` writes.
 ///
 /// Errors: a zero size; a negative or non-finite `exposure`; null `out`.

@@ -103,6 +103,7 @@ fn taa_resolve_is_the_scenes_cpu_resolve() {
                 .with_history_frames(frames),
             current: &current,
             velocity: &velocity,
+            depth: None,
             history: &history,
         })
         .expect("resolve");
@@ -222,6 +223,14 @@ fn the_image_functions_refuse_bad_input_and_leave_the_output() {
         ..taa
     };
     let zero = SubconeTaaParams { height: 0, ..taa };
+    let nan_scale = SubconeTaaParams {
+        motion_scale: [1.0, f32::NAN],
+        ..taa
+    };
+    let needs_depth = SubconeTaaParams {
+        depth_dilation: 1,
+        ..taa
+    };
     for (what, want, s) in [
         // The history is read (two frames): it must be there.
         (
@@ -248,6 +257,16 @@ fn the_image_functions_refuse_bad_input_and_leave_the_output() {
             "zero height",
             SubconeStatus::SizeMismatch,
             run(&zero, input.as_ptr(), n, vn, out.as_mut_ptr()),
+        ),
+        (
+            "NaN motion scale",
+            SubconeStatus::InvalidArgument,
+            run(&nan_scale, input.as_ptr(), n, vn, out.as_mut_ptr()),
+        ),
+        (
+            "depth dilation without a depth",
+            SubconeStatus::InvalidArgument,
+            run(&needs_depth, input.as_ptr(), n, vn, out.as_mut_ptr()),
         ),
     ] {
         assert_eq!(s, want, "taa: {what}");

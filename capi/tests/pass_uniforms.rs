@@ -146,8 +146,8 @@ fn fxaa_and_taa_uniforms_match_their_shaders() {
     assert_eq!(uniform_layout(&fxaa.wgsl, "fxaa_frame"), (frame, 16));
     let taa = catalog.iter().find(|s| s.pass == "taa").expect("taa");
     let params = fields!(SubconeTaaParams: exposure, min_current_weight, clip_gamma,
-        history_frames, width, height, tone_mapped, pad);
-    assert_eq!(uniform_layout(&taa.wgsl, "taa_params"), (params, 32));
+        history_frames, width, height, tone_mapped, depth_dilation, motion_scale, pad: 2 x u32);
+    assert_eq!(uniform_layout(&taa.wgsl, "taa_params"), (params, 48));
     let origin = fields!(SubconeTaaPassOrigin: x, y, pad: 2 x u32);
     assert_eq!(uniform_layout(&taa.wgsl, "taa_origin"), (origin, 16));
 }

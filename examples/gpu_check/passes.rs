@@ -292,12 +292,7 @@ fn at_size(ctx: &GpuContext, size: (u32, u32), runs: u32) -> Result<Vec<Value>> 
         (
             "TaaPass",
             Box::new(|enc, ts| {
-                let inputs = TaaInputs {
-                    current: &colour,
-                    velocity: &velocity,
-                    history: &history,
-                    history_frames: 4,
-                };
+                let inputs = TaaInputs::new(&colour, &velocity, &history, 4);
                 taa.encode(d, q, enc, &inputs, &out, ts)
                     .map_err(|e| pe("TaaPass", e))
             }),

@@ -1694,7 +1694,9 @@ fn taa_resolve(mut c: TaaResolve) {
             width: w.0,
             height: h.0,
             tone_mapped,
-            pad: 0,
+            depth_dilation: 0,
+            motion_scale: [1.0, 1.0],
+            pad: [0; 2],
         },
     );
     let (w, h) = params.map_or((0, 0), |p| (p.width as usize, p.height as usize));

@@ -61,7 +61,7 @@ struct subcone_PinholeCamera {
     _pad2: vec2<u32>,
 }
 
-// subcone_kernels::taa::TaaParams (32 bytes).
+// subcone_kernels::taa::TaaParams (48 bytes).
 struct subcone_TaaParams {
     exposure: f32,
     min_current_weight: f32,
@@ -70,7 +70,12 @@ struct subcone_TaaParams {
     width: u32,
     height: u32,
     tone_mapped: u32,
-    _pad: u32,
+    // 0 off, 1 a smaller depth is nearer, 2 a larger one is.
+    depth_dilation: u32,
+    // Host motion vector times this: pixels, current minus previous.
+    motion_scale: vec2<f32>,
+    _pad0: u32,
+    _pad1: u32,
 }
 
 // subcone_kernels::fxaa::FxaaParams (16 bytes).

@@ -13,10 +13,24 @@
 //!   a 4×4 grid). Each frame traces one sample per pixel at a new place.
 //! - **Reprojection.** Each pixel centre `p` finds where its surface was in the
 //!   previous frame, `p − velocity` (`velocity` in pixels, current minus
-//!   previous, the convention of engines' motion-vector buffers), and samples
-//!   the history there with a 4×4 Catmull-Rom filter ([`catmull_rom_weights`];
-//!   Karis: bilinear blurs the history a little more every frame). A point
-//!   outside the previous image has no history.
+//!   previous), and samples the history there with a 4×4 Catmull-Rom filter
+//!   ([`catmull_rom_weights`]; Karis: bilinear blurs the history a little
+//!   more every frame). A point outside the previous image has no history.
+//!   An engine's motion vectors come in its own units and sign: `velocity`
+//!   is the host's vector times [`TaaParams::motion_scale`] (see
+//!   [Engine conventions](#engine-conventions)).
+//! - **Closest-depth motion** (optional, [`TaaParams::depth_dilation`]). A
+//!   pixel on the silhouette of a moving object may show the background
+//!   while its neighbour shows the object; its own vector then says "still"
+//!   and the history it fetches holds the object that just left (the trail
+//!   Karis shows). With a depth buffer, the vector used at a pixel is the
+//!   one of the nearest surface in its 3×3 neighbourhood ([`dilated_motion`]:
+//!   Karis 2014 takes the velocity of the closest depth of the 3×3
+//!   neighbourhood; AMD FSR2's "Reconstruct & dilate" stage "looks at the
+//!   depth values for a 3x3 neighbourhood for each pixel and then selects
+//!   the depth values and motion vectors in that neighbourhood where the
+//!   depth value is nearest to the camera"), so the edge moves with the
+//!   object.
 //! - **Neighbourhood clipping.** The history is clipped, in YCoCg
 //!   ([`rgb_to_ycocg`]; Karis: the box is tighter along luma), toward the
 //!   centre of the box `mean ± γ·σ` of the current 3×3 neighbourhood's
@@ -47,6 +61,29 @@
 //! A reset (a camera cut) is `history_frames = 0`: the pixel is the current
 //! sample.
 //!
+//! # Engine conventions
+//!
+//! [`TaaParams::motion_scale`] multiplies the host's vectors, component by
+//! component, into pixels, current minus previous, `+y` down (the default
+//! `(1, 1)` is that convention itself):
+//!
+//! - **Bevy** (`MotionVectorPrepass`): "stored in the range -1,1, with +x
+//!   right and +y down. A value of (1.0,1.0) indicates a pixel moved from the
+//!   top left corner to the bottom right corner of the screen", i.e. UV units
+//!   (the whole image is 1), current minus previous (Bevy's prepass writes
+//!   `(clip − previous_clip) · (0.5, −0.5)`, and its TAA reads the history at
+//!   `uv − motion_vector`): `motion_scale = (width, height)`. Bevy's depth
+//!   prepass is reversed Z (1 at the near plane, 0 at infinity):
+//!   [`DepthDilation::NearestLargest`].
+//! - **AMD FSR2**: motion vectors "encode the motion from a pixel in the
+//!   current frame to the position of that same pixel in the previous
+//!   frame", in pixels (`<-width, -height>..<width, height>`), after its
+//!   `motionVectorScale`: previous minus current, so
+//!   `motion_scale = −motionVectorScale`, `(−1, −1)` for a buffer FSR2 reads
+//!   with scale 1. Its depth is reversed Z with `FFX_FSR2_ENABLE_DEPTH_INVERTED`
+//!   ([`DepthDilation::NearestLargest`]), standard Z otherwise
+//!   ([`DepthDilation::NearestSmallest`]).
+//!
 //! ```
 //! use glam::{Vec2, Vec3};
 //! use subcone_kernels::taa::{jitter, resolve_pixel, TaaParams};
@@ -69,6 +106,14 @@ use glam::{Vec2, Vec3};
 /// as [`resolve_pixel`]'s `current` and `history`). Needs
 /// [`crate::wgsl::PARAMS`].
 pub const WGSL: &str = include_str!("taa.wgsl");
+
+/// The WGSL mirror of [`dilated_motion`] (`subcone_taa_dilated_motion`),
+/// for a shader that has a depth buffer: it reads the motion vectors and
+/// depths through hooks `taa_motion(x: i32, y: i32) -> vec2<f32>` and
+/// `taa_depth(x: i32, y: i32) -> f32` the including shader defines (as
+/// [`dilated_motion`]'s `motion` and `depth`). Needs
+/// [`crate::wgsl::PARAMS`].
+pub const DILATION_WGSL: &str = include_str!("taa_dilation.wgsl");
 
 /// Jitter phases Karis' design uses.
 pub const PHASES_KARIS: u32 = 8;
@@ -108,6 +153,10 @@ pub struct TaaSettings {
     pub min_current_weight: f32,
     /// Variance clipping's `γ`, non-negative and finite ([`CLIP_GAMMA`]).
     pub clip_gamma: f32,
+    /// Closest-depth motion dilation ([`dilated_motion`]):
+    /// [`DepthDilation::Off`] by default (no depth is read, and the result
+    /// is the resolve without it, bit for bit).
+    pub depth_dilation: DepthDilation,
 }
 
 impl Default for TaaSettings {
@@ -117,7 +166,53 @@ impl Default for TaaSettings {
             space: ResolveSpace::Linear,
             min_current_weight: MIN_CURRENT_WEIGHT,
             clip_gamma: CLIP_GAMMA,
+            depth_dilation: DepthDilation::Off,
         }
+    }
+}
+
+/// Whether a TAA resolve dilates its motion vectors to the closest depth
+/// of each pixel's 3×3 neighbourhood ([`dilated_motion`]), and which depth
+/// is nearer: the order of the host's depth buffer.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum DepthDilation {
+    /// Each pixel's own vector; no depth is read.
+    #[default]
+    Off,
+    /// A smaller depth is nearer: view depth (a subcone `Frame::depth`),
+    /// linear distances, or standard `[0, 1]` device depth (0 at the near
+    /// plane).
+    NearestSmallest,
+    /// A larger depth is nearer: reversed-Z device depth (1 at the near
+    /// plane, 0 at infinity), as Bevy's depth prepass and FSR2 with
+    /// `FFX_FSR2_ENABLE_DEPTH_INVERTED` have it.
+    NearestLargest,
+}
+
+impl DepthDilation {
+    /// The code [`TaaParams::depth_dilation`] holds: 0 off, 1
+    /// [`Self::NearestSmallest`], 2 [`Self::NearestLargest`].
+    pub const fn code(self) -> u32 {
+        match self {
+            DepthDilation::Off => 0,
+            DepthDilation::NearestSmallest => 1,
+            DepthDilation::NearestLargest => 2,
+        }
+    }
+
+    /// The mode of a [`TaaParams::depth_dilation`] code; any code but 1 and
+    /// 2 is off.
+    pub const fn from_code(code: u32) -> Self {
+        match code {
+            1 => DepthDilation::NearestSmallest,
+            2 => DepthDilation::NearestLargest,
+            _ => DepthDilation::Off,
+        }
+    }
+
+    /// Whether a depth buffer is read.
+    pub const fn is_on(self) -> bool {
+        !matches!(self, DepthDilation::Off)
     }
 }
 
@@ -180,7 +275,7 @@ impl TaaSettings {
             .with_space(self.space);
         p.min_current_weight = self.min_current_weight;
         p.clip_gamma = self.clip_gamma;
-        p
+        p.with_depth_dilation(self.depth_dilation)
     }
 
     /// Frame `frame`'s jitter over these phases ([`jitter`]).
@@ -189,7 +284,7 @@ impl TaaSettings {
     }
 }
 
-/// What one TAA resolve runs with; `#[repr(C)]`, 32 bytes, uploaded
+/// What one TAA resolve runs with; `#[repr(C)]`, 48 bytes, uploaded
 /// unchanged (`subcone_TaaParams` in WGSL).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -217,8 +312,20 @@ pub struct TaaParams {
     /// a still camera's running mean is the box filter supersampling
     /// computes.
     pub tone_mapped: u32,
+    /// Closest-depth motion dilation ([`DepthDilation::code`]): 0 off (the
+    /// zero a host wrote here when this was padding), 1 a smaller depth is
+    /// nearer, 2 a larger one is; any other value is off. Read only where
+    /// a depth buffer is ([`dilated_motion`]).
+    pub depth_dilation: u32,
+    /// What each motion vector is multiplied by, component by component, to
+    /// be pixels, current minus previous, `+y` down: `(1, 1)` for such
+    /// vectors, `(width, height)` for Bevy's, `(−1, −1)` for FSR2's pixel
+    /// vectors (see the [module docs](self#engine-conventions)). A
+    /// component that is 0 or not finite reads as 1 (so a zero-filled
+    /// struct reads vectors in pixels).
+    pub motion_scale: [f32; 2],
     /// Padding to 16 bytes; zero.
-    pub _pad: u32,
+    pub _pad: [u32; 2],
 }
 
 impl TaaParams {
@@ -234,8 +341,31 @@ impl TaaParams {
             width,
             height,
             tone_mapped: 0,
-            _pad: 0,
+            depth_dilation: 0,
+            motion_scale: [1.0, 1.0],
+            _pad: [0; 2],
         }
+    }
+
+    /// The same parameters with motion vectors multiplied by `scale`
+    /// ([`Self::motion_scale`]).
+    pub const fn with_motion_scale(mut self, scale: [f32; 2]) -> Self {
+        self.motion_scale = scale;
+        self
+    }
+
+    /// The same parameters dilating motion as `dilation` says
+    /// ([`Self::depth_dilation`]).
+    pub const fn with_depth_dilation(mut self, dilation: DepthDilation) -> Self {
+        self.depth_dilation = dilation.code();
+        self
+    }
+
+    /// The motion scale in effect: [`Self::motion_scale`], each component
+    /// that is 0 or not finite read as 1.
+    pub fn motion_scale(&self) -> Vec2 {
+        let f = |s: f32| if s != 0.0 && s.is_finite() { s } else { 1.0 };
+        Vec2::new(f(self.motion_scale[0]), f(self.motion_scale[1]))
     }
 
     /// The same parameters resolving in `space`.
@@ -472,8 +602,10 @@ pub fn sample_history<F: Fn(i32, i32) -> Vec3>(
 /// `history(x, y)` the previous output's; both are called only with
 /// coordinates inside the image, and every colour they return is
 /// [`sanitize`]d. `(x, y)` is the pixel (clamped into the image),
-/// `velocity` its motion in pixels, current minus previous (a non-finite
-/// velocity means no history). With `history_frames == 0`, or when the
+/// `velocity` its motion vector as the host gives it (its own, or the one
+/// [`dilated_motion`] picks), which times [`TaaParams::motion_scale`] is
+/// its motion in pixels, current minus previous (a non-finite product
+/// means no history). With `history_frames == 0`, or when the
 /// reprojected point is off the previous image, the result is the
 /// sanitised current colour. The result is finite and non-negative for any
 /// input.
@@ -490,7 +622,9 @@ pub fn resolve_pixel<C: Fn(i32, i32) -> Vec3, H: Fn(i32, i32) -> Vec3>(
     if params.history_frames == 0 {
         return centre;
     }
-    let p = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) - velocity;
+    // A scale of exactly 1 (the default) leaves the vector's bits as they
+    // are: the resolve of pixel vectors is what it was before the scale.
+    let p = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) - velocity * params.motion_scale();
     let Some(past) = sample_history(history, p, (w as u32, h as u32)) else {
         return centre;
     };
@@ -533,4 +667,67 @@ pub fn resolve_pixel<C: Fn(i32, i32) -> Vec3, H: Fn(i32, i32) -> Vec3>(
     let a = params.current_weight();
     let out = clipped + (now - clipped) * a;
     sanitize(from_resolve_space(ycocg_to_rgb(out), params))
+}
+
+/// How near a depth is under dilation `code` ([`TaaParams::depth_dilation`]):
+/// larger is nearer. A depth that is not finite (nothing hit: a view depth
+/// of `+∞`; or a broken buffer) is never nearer than any other.
+#[inline]
+fn nearness(depth: f32, code: u32) -> f32 {
+    if !depth.is_finite() {
+        f32::NEG_INFINITY
+    } else if code == DepthDilation::NearestLargest.code() {
+        depth
+    } else {
+        -depth
+    }
+}
+
+/// The motion vector the resolve uses at pixel `(x, y)` (clamped into the
+/// image): with [`TaaParams::depth_dilation`] on, the vector of the pixel
+/// whose depth is nearest in the 3×3 neighbourhood (taps clamped to the
+/// image), the pixel's own on a tie (the neighbours are visited row by row
+/// and only a strictly nearer one wins); with it off, the pixel's own
+/// vector, and `depth` is not called.
+///
+/// Why: Karis 2014 takes the velocity of the closest depth in the 3×3
+/// neighbourhood so that the silhouette of a moving object moves with it (a
+/// background pixel next to it would otherwise keep the history the object
+/// left there), and FSR2's "Reconstruct & dilate" stage dilates its motion
+/// vectors to the nearest depth of the same neighbourhood before it
+/// reprojects anything.
+///
+/// `motion(x, y)` and `depth(x, y)` are the host's buffers, called only
+/// with coordinates inside the image. Any depth is accepted: a depth that
+/// is not finite is never the nearest (all of them not finite: the pixel's
+/// own vector). The vector is returned as the host gave it (the resolve
+/// scales it, [`resolve_pixel`]).
+pub fn dilated_motion<M: Fn(i32, i32) -> Vec2, D: Fn(i32, i32) -> f32>(
+    motion: &M,
+    depth: &D,
+    (x, y): (i32, i32),
+    params: &TaaParams,
+) -> Vec2 {
+    let (w, h) = (params.width.max(1) as i32, params.height.max(1) as i32);
+    let (x, y) = (x.clamp(0, w - 1), y.clamp(0, h - 1));
+    let code = params.depth_dilation;
+    if !DepthDilation::from_code(code).is_on() {
+        return motion(x, y);
+    }
+    let mut best = (x, y);
+    let mut near = nearness(depth(x, y), code);
+    for dy in -1..=1 {
+        for dx in -1..=1 {
+            if (dx, dy) == (0, 0) {
+                continue;
+            }
+            let (nx, ny) = ((x + dx).clamp(0, w - 1), (y + dy).clamp(0, h - 1));
+            let n = nearness(depth(nx, ny), code);
+            if n > near {
+                near = n;
+                best = (nx, ny);
+            }
+        }
+    }
+    motion(best.0, best.1)
 }

@@ -53,6 +53,18 @@ fn subcone_taa_current_weight(p: subcone_TaaParams) -> f32 {
     return max(mean, lo);
 }
 
+fn subcone_taa_scale1(s: f32) -> f32 {
+    if s != 0.0 && subcone_is_finite(s) {
+        return s;
+    }
+    return 1.0;
+}
+
+// TaaParams::motion_scale
+fn subcone_taa_motion_scale(p: subcone_TaaParams) -> vec2<f32> {
+    return vec2<f32>(subcone_taa_scale1(p.motion_scale.x), subcone_taa_scale1(p.motion_scale.y));
+}
+
 fn subcone_taa_sanitize1(x: f32) -> f32 {
     if x > 0.0 && subcone_is_finite(x) {
         return x;
@@ -177,7 +189,7 @@ fn subcone_taa_resolve_pixel(xy: vec2<i32>, velocity: vec2<f32>, params: subcone
     if params.history_frames == 0u {
         return centre;
     }
-    let p = vec2<f32>(f32(x) + 0.5, f32(y) + 0.5) - velocity;
+    let p = vec2<f32>(f32(x) + 0.5, f32(y) + 0.5) - velocity * subcone_taa_motion_scale(params);
     let past_s = subcone_taa_sample_history(p, u32(w), u32(h));
     if past_s.w == 0.0 {
         return centre;

@@ -72,6 +72,43 @@ proptest! {
         prop_assert!(out.is_finite() && out.min_element() >= 0.0, "{out:?}");
     }
 
+    /// Whatever the motion scale, the dilation code and the depths (NaN and
+    /// infinities included), the motion used is one of the neighbourhood's
+    /// vectors, no fetch leaves the image, and the resolve of it is finite
+    /// and non-negative.
+    #[test]
+    fn any_dilation_and_scale_give_a_finite_colour(
+        cur in image(colour()),
+        hist in image(colour()),
+        depth in proptest::collection::vec(any_f32(), (N * N) as usize),
+        (x, y) in (-3i32..9, -3i32..9),
+        scale in (any_f32(), any_f32()),
+        code in 0u32..5,
+        frames in 0u32..40,
+    ) {
+        let p = TaaParams {
+            depth_dilation: code,
+            motion_scale: [scale.0, scale.1],
+            ..params(frames)
+        };
+        let motion = |x: i32, y: i32| {
+            assert!((0..N as i32).contains(&x) && (0..N as i32).contains(&y), "motion fetch out of the image");
+            Vec2::new(x as f32 * 0.7 - 2.0, y as f32 * -0.4 + 1.0)
+        };
+        let depth_at = |x: i32, y: i32| {
+            assert!((0..N as i32).contains(&x) && (0..N as i32).contains(&y), "depth fetch out of the image");
+            depth[(y as u32 * N + x as u32) as usize]
+        };
+        let v = dilated_motion(&motion, &depth_at, (x, y), &p);
+        let (cx, cy) = (x.clamp(0, N as i32 - 1), y.clamp(0, N as i32 - 1));
+        let from_neighbour = (-1..=1).any(|dy| (-1..=1).any(|dx| {
+            motion((cx + dx).clamp(0, N as i32 - 1), (cy + dy).clamp(0, N as i32 - 1)) == v
+        }));
+        prop_assert!(from_neighbour, "{v:?} is no neighbour's vector");
+        let out = resolve_pixel(&fetch(&cur), &fetch(&hist), (x, y), v, &p);
+        prop_assert!(out.is_finite() && out.min_element() >= 0.0, "{out:?}");
+    }
+
     /// A reset returns the current colour, whatever the history.
     #[test]
     fn a_reset_is_the_current_frame(cur in image(colour()), hist in image(colour()), x in 0i32..6, y in 0i32..6) {
@@ -288,4 +325,149 @@ fn the_tone_mapped_resolve_averages_what_is_displayed() {
         (tone - displayed_mean).abs() < 0.5 * (linear - displayed_mean).abs(),
         "displayed mean {displayed_mean}: tone-mapped resolve shows {tone}, linear {linear}"
     );
+}
+
+/// A moving frame: a history of 8×8 distinct colours and a current frame,
+/// the pixel's motion `v` in pixels.
+fn moving_case() -> (Vec<Vec3>, Vec<Vec3>, Vec<Vec2>) {
+    let hist: Vec<Vec3> = (0..N * N)
+        .map(|i| Vec3::new((i % 7) as f32 * 0.1, (i % 5) as f32 * 0.2, 0.3))
+        .collect();
+    let cur: Vec<Vec3> = (0..N * N)
+        .map(|i| Vec3::new(0.2, (i % 3) as f32 * 0.3, (i % 4) as f32 * 0.25))
+        .collect();
+    let vel: Vec<Vec2> = (0..N * N)
+        .map(|i| Vec2::new((i % 5) as f32 * 0.45 - 0.9, (i % 3) as f32 * 0.7 - 0.7))
+        .collect();
+    (cur, hist, vel)
+}
+
+/// The resolve of every pixel of `moving_case` with `params`, the motion
+/// vectors `vel`.
+fn resolve_all(cur: &[Vec3], hist: &[Vec3], vel: &[Vec2], p: &TaaParams) -> Vec<Vec3> {
+    (0..N * N)
+        .map(|i| {
+            let (x, y) = ((i % N) as i32, (i / N) as i32);
+            resolve_pixel(&fetch(cur), &fetch(hist), (x, y), vel[i as usize], p)
+        })
+        .collect()
+}
+
+/// Bevy's motion vectors (`MotionVectorPrepass`: UV units, the image is 1,
+/// current minus previous, `+y` down) with `motion_scale = (width,
+/// height)` resolve as the same motion in pixels with the default scale.
+#[test]
+fn bevy_motion_vectors_resolve_as_pixels() {
+    let (cur, hist, px) = moving_case();
+    let size = Vec2::new(N as f32, N as f32);
+    let uv: Vec<Vec2> = px.iter().map(|v| *v / size).collect();
+    let want = resolve_all(&cur, &hist, &px, &params(3));
+    let bevy = params(3).with_motion_scale([N as f32, N as f32]);
+    let got = resolve_all(&cur, &hist, &uv, &bevy);
+    for (g, w) in got.iter().zip(&want) {
+        assert!((*g - *w).abs().max_element() <= 1e-5, "{g:?} {w:?}");
+    }
+    // Unscaled, the same UV vectors are a different (near-still) motion.
+    let wrong = resolve_all(&cur, &hist, &uv, &params(3));
+    assert!(wrong
+        .iter()
+        .zip(&want)
+        .any(|(a, b)| (*a - *b).abs().max_element() > 1e-3));
+}
+
+/// FSR2's motion vectors (pixels, from the current frame's pixel to the
+/// previous frame's position: previous minus current) with `motion_scale =
+/// (−1, −1)` resolve bit for bit as the pixel vectors with the default.
+#[test]
+fn fsr2_motion_vectors_resolve_as_pixels() {
+    let (cur, hist, px) = moving_case();
+    let fsr2: Vec<Vec2> = px.iter().map(|v| -*v).collect();
+    let want = resolve_all(&cur, &hist, &px, &params(3));
+    let got = resolve_all(
+        &cur,
+        &hist,
+        &fsr2,
+        &params(3).with_motion_scale([-1.0, -1.0]),
+    );
+    assert_eq!(got, want);
+    let wrong = resolve_all(&cur, &hist, &fsr2, &params(3));
+    assert_ne!(wrong, want);
+}
+
+/// A zero or non-finite scale component reads as 1 (a zero-filled struct
+/// reads pixels); any other is used as it is.
+#[test]
+fn the_motion_scale_domain() {
+    let p = |s: [f32; 2]| TaaParams::new((N, N)).with_motion_scale(s).motion_scale();
+    assert_eq!(TaaParams::new((N, N)).motion_scale(), Vec2::ONE);
+    assert_eq!(p([0.0, f32::NAN]), Vec2::ONE);
+    assert_eq!(p([f32::INFINITY, -0.0]), Vec2::ONE);
+    assert_eq!(p([-1.0, 1920.0]), Vec2::new(-1.0, 1920.0));
+}
+
+/// Closest-depth dilation: a pixel beside a nearer one takes its vector
+/// (in both depth orders); off, or with every neighbour farther, the
+/// pixel keeps its own; off reads no depth at all.
+#[test]
+fn dilation_takes_the_nearest_vector() {
+    let motion = |x: i32, y: i32| Vec2::new(x as f32, 10.0 * y as f32);
+    // A far background (view depth 10) with one near pixel (2) at (3, 3),
+    // and nothing hit (+∞) at (1, 1).
+    let view = |x: i32, y: i32| match (x, y) {
+        (3, 3) => 2.0,
+        (1, 1) => f32::INFINITY,
+        _ => 10.0,
+    };
+    let smallest = params(1).with_depth_dilation(DepthDilation::NearestSmallest);
+    assert_eq!(
+        dilated_motion(&motion, &view, (4, 4), &smallest),
+        motion(3, 3)
+    );
+    assert_eq!(
+        dilated_motion(&motion, &view, (2, 3), &smallest),
+        motion(3, 3)
+    );
+    // Two away: its own.
+    assert_eq!(
+        dilated_motion(&motion, &view, (5, 5), &smallest),
+        motion(5, 5)
+    );
+    // A tie keeps the pixel's own; +∞ is never nearest.
+    assert_eq!(
+        dilated_motion(&motion, &view, (0, 0), &smallest),
+        motion(0, 0)
+    );
+    assert_eq!(
+        dilated_motion(&motion, &view, (1, 1), &smallest),
+        motion(0, 0)
+    );
+    // Reversed Z: 1 − view / 20, larger nearer, the same pick.
+    let reversed = |x: i32, y: i32| 1.0 - view(x, y) / 20.0;
+    let largest = params(1).with_depth_dilation(DepthDilation::NearestLargest);
+    assert_eq!(
+        dilated_motion(&motion, &reversed, (4, 4), &largest),
+        motion(3, 3)
+    );
+    // Read in the other order, the near pixel is the farthest.
+    assert_eq!(
+        dilated_motion(&motion, &reversed, (4, 4), &smallest),
+        motion(4, 4)
+    );
+    // Off (and unknown codes): the own vector, and the depth is not read.
+    let unread = |_: i32, _: i32| -> f32 { panic!("depth read with dilation off") };
+    for code in [0, 3, u32::MAX] {
+        let p = TaaParams {
+            depth_dilation: code,
+            ..params(1)
+        };
+        assert_eq!(dilated_motion(&motion, &unread, (4, 4), &p), motion(4, 4));
+    }
+    // The codes round-trip.
+    for d in [
+        DepthDilation::Off,
+        DepthDilation::NearestSmallest,
+        DepthDilation::NearestLargest,
+    ] {
+        assert_eq!(DepthDilation::from_code(d.code()), d);
+    }
 }

@@ -48,7 +48,17 @@ const KERNELS: &[(&str, &str)] = &[
     // The fetches are the including shader's: constants stand in for them.
     ("the caller's taa fetches", TAA_FETCHES),
     ("taa::WGSL", subcone_kernels::taa::WGSL),
+    // The motion and depth fetches are the including shader's: constants
+    // stand in for them.
+    ("the caller's taa motion and depth", TAA_DILATION_FETCHES),
+    ("taa::DILATION_WGSL", subcone_kernels::taa::DILATION_WGSL),
 ];
+
+/// The hooks `taa_dilation.wgsl` expects its including shader to define.
+const TAA_DILATION_FETCHES: &str = "
+fn taa_motion(x: i32, y: i32) -> vec2<f32> { return vec2<f32>(f32(x), f32(y)); }
+fn taa_depth(x: i32, y: i32) -> f32 { return f32(x + y); }
+";
 
 /// The hooks `taa.wgsl` expects its including shader to define.
 const TAA_FETCHES: &str = "
@@ -155,7 +165,7 @@ fn shared_structs() -> Vec<Shared> {
         shared!(PinholeCamera: position, width, forward, height, right, tan_half_fov, up, _pad, jitter, _pad2),
         shared!(FxaaParams: subpix, edge_threshold, edge_threshold_min, _pad),
         shared!(TaaParams: exposure, min_current_weight, clip_gamma, history_frames, width,
-            height, tone_mapped, _pad),
+            height, tone_mapped, depth_dilation, motion_scale, _pad[2]),
     ]
 }
 
@@ -357,6 +367,8 @@ const HOOKS: &[&str] = &[
     "fxaa_fetch",
     "taa_current",
     "taa_history",
+    "taa_motion",
+    "taa_depth",
     "ctss_field",
     "SRAA_GATES",
     "SRAA_MATERIAL",

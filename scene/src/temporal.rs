@@ -9,6 +9,13 @@
 //! and the previous camera ([`velocities`]), and asks the backend to resolve
 //! it against the history ([`Backend::resolve_taa`]: the CPU kernel by
 //! default, `TaaPass` on the wgpu backend). [`Taa::reset`] is a camera cut.
+//! A scene whose objects move gives each frame's scene and where each
+//! visible point was a frame earlier ([`Taa::render_moving`],
+//! [`velocities_moving`]: the motion vectors of the object and the camera
+//! together, as an engine's motion-vector pass writes them). With
+//! [`TaaConfig::depth_dilation`] the resolve takes each pixel's motion from
+//! the nearest depth of its 3×3 neighbourhood (Karis 2014; the frame's view
+//! depth, so [`DepthDilation::NearestSmallest`]).
 //!
 //! The jitter of frame `t` after a reset:
 //! - `taa` and `ctss+taa`: the Halton (2, 3) point of phase `t mod phases`
@@ -33,7 +40,7 @@
 
 use crate::registry::TaaJitter;
 use glam::{Vec2, Vec3};
-use subcone_kernels::taa::{self, TaaSettings};
+use subcone_kernels::taa::{self, DepthDilation, TaaSettings};
 
 use crate::backend::{Backend, RenderSettings};
 use crate::camera::Camera;
@@ -63,7 +70,10 @@ pub struct Taa {
 
 impl Taa {
     /// The sequence of `method`, which must be temporal
-    /// ([`Method::is_temporal`]), with `config`.
+    /// ([`Method::is_temporal`]), with `config`. Its depth dilation is off
+    /// or [`DepthDilation::NearestSmallest`] (the frames' depth is view
+    /// depth: nearer is smaller); [`DepthDilation::NearestLargest`] is
+    /// refused.
     pub fn new(method: Method, config: TaaConfig) -> Result<Self, RenderError> {
         if !method.is_temporal() {
             return Err(RenderError::Method(format!(
@@ -73,6 +83,13 @@ impl Taa {
         config
             .validate()
             .map_err(|e| RenderError::Method(format!("TAA: {e}")))?;
+        if config.depth_dilation == DepthDilation::NearestLargest {
+            return Err(RenderError::Method(
+                "TAA: the sequence dilates by its frames' view depth, where nearer is smaller: \
+                 depth dilation NearestLargest (reversed Z) does not apply"
+                    .into(),
+            ));
+        }
         Ok(Taa {
             method,
             config,
@@ -122,6 +139,23 @@ impl Taa {
         camera: &Camera,
         settings: &RenderSettings,
     ) -> Result<Frame, RenderError> {
+        self.render_moving(backend, scene, camera, settings, &|p| p)
+    }
+
+    /// [`Self::render`] of a frame whose scene moved since the previous one:
+    /// `scene` is this frame's, and `previous_point(p)` is where the surface
+    /// point `p` of this frame (world space) was in the previous frame (`p`
+    /// itself where nothing moved). The velocities are those of the object
+    /// and the camera together ([`velocities_moving`]). `render` is this
+    /// with every point still.
+    pub fn render_moving(
+        &mut self,
+        backend: &dyn Backend,
+        scene: &Scene,
+        camera: &Camera,
+        settings: &RenderSettings,
+        previous_point: &dyn Fn(Vec3) -> Vec3,
+    ) -> Result<Frame, RenderError> {
         let size = (settings.width, settings.height);
         let still = camera.with_jitter(Vec2::ZERO);
         if self.previous.is_some_and(|(_, s)| s != size) {
@@ -143,19 +177,26 @@ impl Taa {
             frame.mirror = None;
         }
         let velocity = match self.previous {
-            Some((previous, _)) => velocities(
+            Some((previous, _)) => velocities_moving(
                 frame.depth.as_deref().unwrap_or(&[]),
                 &still,
                 &previous,
                 size,
+                previous_point,
             ),
             None => vec![Vec2::ZERO; frame.color.len()],
         };
         let params = self.config.params(size, self.frame);
+        let depth = self
+            .config
+            .depth_dilation
+            .is_on()
+            .then(|| frame.depth.as_deref().unwrap_or(&[]));
         let input = TaaInput {
             params,
             current: &frame.color,
             velocity: &velocity,
+            depth,
             history: &self.history,
         };
         let (resolved, timing) = backend.resolve_taa(&input)?;
@@ -181,7 +222,23 @@ pub fn velocities(
     depth: &[f32],
     camera: &Camera,
     previous: &Camera,
+    size: (u32, u32),
+) -> Vec<Vec2> {
+    velocities_moving(depth, camera, previous, size, &|p| p)
+}
+
+/// [`velocities`] of a scene that moved: each pixel's surface point `p`
+/// (from its depth, as there) was at `previous_point(p)` in the previous
+/// frame, which the previous camera projects. A pixel that hits nothing
+/// moves with the camera alone (nothing moves at infinity). With
+/// `previous_point` the identity, the result is [`velocities`]' bit for
+/// bit.
+pub fn velocities_moving(
+    depth: &[f32],
+    camera: &Camera,
+    previous: &Camera,
     (w, h): (u32, u32),
+    previous_point: &dyn Fn(Vec3) -> Vec3,
 ) -> Vec<Vec2> {
     let n = w as usize * h as usize;
     let rays = camera.with_jitter(Vec2::ZERO).rays(w, h);
@@ -199,7 +256,7 @@ pub fn velocities(
             let then = match d {
                 Some(d) => {
                     let point = camera.position + dir * (d / dir.dot(camera.forward));
-                    before.project(point, w, h)
+                    before.project(previous_point(point), w, h)
                 }
                 None => before.project_direction(dir, w, h),
             };

@@ -52,7 +52,10 @@ struct subcone_TaaParams {
     uint width;
     uint height;
     uint tone_mapped;
-    uint _pad;
+    uint depth_dilation;
+    vec2 motion_scale;
+    uint _pad0_;
+    uint _pad1_;
 };
 struct subcone_FxaaParams {
     float subpix;

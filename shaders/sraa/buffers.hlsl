@@ -51,7 +51,10 @@ struct subcone_TaaParams {
     uint width;
     uint height;
     uint tone_mapped;
-    uint _pad;
+    uint depth_dilation;
+    float2 motion_scale;
+    uint _pad0_;
+    uint _pad1_;
 };
 
 struct subcone_FxaaParams {

@@ -54,7 +54,10 @@ struct subcone_TaaParams {
     uint width;
     uint height;
     uint tone_mapped;
-    uint _pad;
+    uint depth_dilation;
+    vec2 motion_scale;
+    uint _pad0_;
+    uint _pad1_;
 };
 struct subcone_FxaaParams {
     float subpix;
@@ -77,9 +80,9 @@ layout(std140, binding = 1) uniform TaaOrigin_block_0Compute { TaaOrigin _group_
 
 layout(binding = 2) uniform highp sampler2D _group_0_binding_2_cs;
 
-layout(std140, binding = 0) uniform subcone_TaaParams_block_1Compute { subcone_TaaParams _group_0_binding_0_cs; };
-
 layout(binding = 3) uniform highp sampler2D _group_0_binding_3_cs;
+
+layout(std140, binding = 0) uniform subcone_TaaParams_block_1Compute { subcone_TaaParams _group_0_binding_0_cs; };
 
 layout(binding = 5,rgba16f) writeonly uniform highp image2D _group_0_binding_5_cs;
 
@@ -97,11 +100,11 @@ bool subcone_is_finite(float x_1) {
 }
 
 vec3 subcone_pinhole_dir(subcone_PinholeCamera c, vec2 p_in) {
-    vec2 p_5 = (p_in + c.jitter);
+    vec2 p_6 = (p_in + c.jitter);
     float w = float(max(c.width, 1u));
     float h_1 = float(max(c.height, 1u));
-    float u = (((((2.0 * p_5.x) / w) - 1.0) * c.tan_half_fov) * (w / h_1));
-    float v_1 = ((1.0 - ((2.0 * p_5.y) / h_1)) * c.tan_half_fov);
+    float u = (((((2.0 * p_6.x) / w) - 1.0) * c.tan_half_fov) * (w / h_1));
+    float v_1 = ((1.0 - ((2.0 * p_6.y) / h_1)) * c.tan_half_fov);
     vec3 d = ((c.forward + (u * c.right)) + (v_1 * c.up));
     return (d * (1.0 / length(d)));
 }
@@ -173,15 +176,36 @@ float subcone_taa_current_weight(subcone_TaaParams p_1) {
     return max(mean, _e19);
 }
 
-float subcone_taa_sanitize1_(float x_2) {
+float subcone_taa_scale1_(float s) {
     bool local_2 = false;
-    if ((x_2 > 0.0)) {
-        bool _e5 = subcone_is_finite(x_2);
+    if ((s != 0.0)) {
+        bool _e5 = subcone_is_finite(s);
         local_2 = _e5;
     } else {
         local_2 = false;
     }
     bool _e7 = local_2;
+    if (_e7) {
+        return s;
+    }
+    return 1.0;
+}
+
+vec2 subcone_taa_motion_scale(subcone_TaaParams p_2) {
+    float _e3 = subcone_taa_scale1_(p_2.motion_scale.x);
+    float _e6 = subcone_taa_scale1_(p_2.motion_scale.y);
+    return vec2(_e3, _e6);
+}
+
+float subcone_taa_sanitize1_(float x_2) {
+    bool local_3 = false;
+    if ((x_2 > 0.0)) {
+        bool _e5 = subcone_is_finite(x_2);
+        local_3 = _e5;
+    } else {
+        local_3 = false;
+    }
+    bool _e7 = local_3;
     if (_e7) {
         return x_2;
     }
@@ -205,18 +229,18 @@ vec3 subcone_taa_tonemap_inverse(vec3 t, float exposure_1) {
     return ((t / vec3(d_1)) / vec3(exposure_1));
 }
 
-vec3 subcone_taa_to_resolve_space(vec3 c_2, subcone_TaaParams p_2) {
-    if ((p_2.tone_mapped == 1u)) {
-        float _e5 = subcone_taa_exposure(p_2);
+vec3 subcone_taa_to_resolve_space(vec3 c_2, subcone_TaaParams p_3) {
+    if ((p_3.tone_mapped == 1u)) {
+        float _e5 = subcone_taa_exposure(p_3);
         vec3 _e6 = subcone_taa_tonemap(c_2, _e5);
         return _e6;
     }
     return c_2;
 }
 
-vec3 subcone_taa_from_resolve_space(vec3 t_1, subcone_TaaParams p_3) {
-    if ((p_3.tone_mapped == 1u)) {
-        float _e5 = subcone_taa_exposure(p_3);
+vec3 subcone_taa_from_resolve_space(vec3 t_1, subcone_TaaParams p_4) {
+    if ((p_4.tone_mapped == 1u)) {
+        float _e5 = subcone_taa_exposure(p_4);
         vec3 _e6 = subcone_taa_tonemap_inverse(t_1, _e5);
         return _e6;
     }
@@ -272,38 +296,38 @@ vec3 taa_history(int x_4, int y_1) {
     return _e5.xyz;
 }
 
-vec4 subcone_taa_sample_history(vec2 p_4, uint w_in, uint h_in) {
-    bool local_3 = false;
+vec4 subcone_taa_sample_history(vec2 p_5, uint w_in, uint h_in) {
     bool local_4 = false;
     bool local_5 = false;
+    bool local_6 = false;
     vec3 sum = vec3(0.0);
     int j = 0;
     vec3 row = vec3(0.0);
     int i = 0;
     int w_1 = int(max(w_in, 1u));
     int h_2 = int(max(h_in, 1u));
-    if ((p_4.x >= 0.0)) {
-        local_3 = (p_4.y >= 0.0);
-    } else {
-        local_3 = false;
-    }
-    bool _e18 = local_3;
-    if (_e18) {
-        local_4 = (p_4.x <= float(w_1));
+    if ((p_5.x >= 0.0)) {
+        local_4 = (p_5.y >= 0.0);
     } else {
         local_4 = false;
     }
-    bool _e25 = local_4;
-    if (_e25) {
-        local_5 = (p_4.y <= float(h_2));
+    bool _e18 = local_4;
+    if (_e18) {
+        local_5 = (p_5.x <= float(w_1));
     } else {
         local_5 = false;
     }
-    bool _e32 = local_5;
+    bool _e25 = local_5;
+    if (_e25) {
+        local_6 = (p_5.y <= float(h_2));
+    } else {
+        local_6 = false;
+    }
+    bool _e32 = local_6;
     if (!(_e32)) {
         return vec4(0.0);
     }
-    vec2 q = (p_4 - vec2(0.5));
+    vec2 q = (p_5 - vec2(0.5));
     float fx = floor(q.x);
     float fy = floor(q.y);
     vec4 _e45 = subcone_taa_catmull_rom_weights((q.x - fx));
@@ -324,7 +348,7 @@ vec4 subcone_taa_sample_history(vec2 p_4, uint w_in, uint h_in) {
         }
         {
             int _e63 = j;
-            int y_3 = min(max((y0_ + _e63), 0), (h_2 - 1));
+            int y_4 = min(max((y0_ + _e63), 0), (h_2 - 1));
             row = vec3(0.0);
             i = 0;
             bool loop_init_1 = true;
@@ -341,10 +365,10 @@ vec4 subcone_taa_sample_history(vec2 p_4, uint w_in, uint h_in) {
                 }
                 {
                     int _e77 = i;
-                    int x_6 = min(max((x0_ + _e77), 0), (w_1 - 1));
+                    int x_7 = min(max((x0_ + _e77), 0), (w_1 - 1));
                     vec3 _e83 = row;
                     int _e84 = i;
-                    vec3 _e86 = taa_history(x_6, y_3);
+                    vec3 _e86 = taa_history(x_7, y_4);
                     vec3 _e87 = subcone_taa_sanitize(_e86);
                     row = (_e83 + (_e45[_e84] * _e87));
                 }
@@ -372,31 +396,32 @@ vec3 subcone_taa_resolve_pixel(ivec2 xy, vec2 velocity, subcone_TaaParams params
     int dy = -1;
     int dx = 0;
     vec3 c_5 = vec3(0.0);
-    bool local_6 = false;
+    bool local_7 = false;
     float gamma = 0.0;
     int w_2 = int(max(params.width, 1u));
     int h_3 = int(max(params.height, 1u));
-    int x_7 = min(max(xy.x, 0), (w_2 - 1));
-    int y_4 = min(max(xy.y, 0), (h_3 - 1));
-    vec3 _e21 = taa_current(x_7, y_4);
+    int x_8 = min(max(xy.x, 0), (w_2 - 1));
+    int y_5 = min(max(xy.y, 0), (h_3 - 1));
+    vec3 _e21 = taa_current(x_8, y_5);
     vec3 _e22 = subcone_taa_sanitize(_e21);
     if ((params.history_frames == 0u)) {
         return _e22;
     }
-    vec2 p_6 = (vec2((float(x_7) + 0.5), (float(y_4) + 0.5)) - velocity);
-    vec4 _e36 = subcone_taa_sample_history(p_6, uint(w_2), uint(h_3));
-    if ((_e36.w == 0.0)) {
+    vec2 _e33 = subcone_taa_motion_scale(params);
+    vec2 p_7 = (vec2((float(x_8) + 0.5), (float(y_5) + 0.5)) - (velocity * _e33));
+    vec4 _e38 = subcone_taa_sample_history(p_7, uint(w_2), uint(h_3));
+    if ((_e38.w == 0.0)) {
         return _e22;
     }
     bool loop_init_2 = true;
     while(true) {
         if (!loop_init_2) {
-            int _e94 = dy;
-            dy = (_e94 + 1);
+            int _e96 = dy;
+            dy = (_e96 + 1);
         }
         loop_init_2 = false;
-        int _e48 = dy;
-        if ((_e48 <= 1)) {
+        int _e50 = dy;
+        if ((_e50 <= 1)) {
         } else {
             break;
         }
@@ -405,66 +430,77 @@ vec3 subcone_taa_resolve_pixel(ivec2 xy, vec2 velocity, subcone_TaaParams params
             bool loop_init_3 = true;
             while(true) {
                 if (!loop_init_3) {
-                    int _e91 = dx;
-                    dx = (_e91 + 1);
+                    int _e93 = dx;
+                    dx = (_e93 + 1);
                 }
                 loop_init_3 = false;
-                int _e53 = dx;
-                if ((_e53 <= 1)) {
+                int _e55 = dx;
+                if ((_e55 <= 1)) {
                 } else {
                     break;
                 }
                 {
                     c_5 = _e22;
-                    int _e57 = dx;
-                    if (!((_e57 != 0))) {
-                        int _e63 = dy;
-                        local_6 = (_e63 != 0);
+                    int _e59 = dx;
+                    if (!((_e59 != 0))) {
+                        int _e65 = dy;
+                        local_7 = (_e65 != 0);
                     } else {
-                        local_6 = true;
+                        local_7 = true;
                     }
-                    bool _e67 = local_6;
-                    if (_e67) {
-                        int _e68 = dx;
-                        int _e74 = dy;
-                        vec3 _e80 = taa_current(min(max((x_7 + _e68), 0), (w_2 - 1)), min(max((y_4 + _e74), 0), (h_3 - 1)));
-                        vec3 _e81 = subcone_taa_sanitize(_e80);
-                        c_5 = _e81;
+                    bool _e69 = local_7;
+                    if (_e69) {
+                        int _e70 = dx;
+                        int _e76 = dy;
+                        vec3 _e82 = taa_current(min(max((x_8 + _e70), 0), (w_2 - 1)), min(max((y_5 + _e76), 0), (h_3 - 1)));
+                        vec3 _e83 = subcone_taa_sanitize(_e82);
+                        c_5 = _e83;
                     }
-                    vec3 _e82 = c_5;
-                    vec3 _e83 = subcone_taa_to_resolve_space(_e82, params);
-                    vec3 _e84 = subcone_taa_rgb_to_ycocg(_e83);
-                    vec3 _e85 = m1_;
-                    m1_ = (_e85 + _e84);
-                    vec3 _e87 = m2_;
-                    m2_ = (_e87 + (_e84 * _e84));
+                    vec3 _e84 = c_5;
+                    vec3 _e85 = subcone_taa_to_resolve_space(_e84, params);
+                    vec3 _e86 = subcone_taa_rgb_to_ycocg(_e85);
+                    vec3 _e87 = m1_;
+                    m1_ = (_e87 + _e86);
+                    vec3 _e89 = m2_;
+                    m2_ = (_e89 + (_e86 * _e86));
                 }
             }
         }
     }
-    vec3 _e96 = m1_;
-    vec3 mean_1 = (_e96 / vec3(9.0));
-    vec3 _e100 = m2_;
-    vec3 var = max(((_e100 / vec3(9.0)) - (mean_1 * mean_1)), vec3(0.0));
+    vec3 _e98 = m1_;
+    vec3 mean_1 = (_e98 / vec3(9.0));
+    vec3 _e102 = m2_;
+    vec3 var = max(((_e102 / vec3(9.0)) - (mean_1 * mean_1)), vec3(0.0));
     vec3 sigma = sqrt(var);
     if ((params.clip_gamma > 0.0)) {
         gamma = min(params.clip_gamma, 1000000.0);
     }
-    vec3 _e118 = subcone_taa_to_resolve_space(_e22, params);
-    vec3 _e119 = subcone_taa_rgb_to_ycocg(_e118);
-    float _e120 = gamma;
-    vec3 lo_1 = min((mean_1 - (_e120 * sigma)), _e119);
-    float _e124 = gamma;
-    vec3 hi = max((mean_1 + (_e124 * sigma)), _e119);
-    vec3 _e129 = subcone_taa_to_resolve_space(_e36.xyz, params);
-    vec3 _e130 = subcone_taa_rgb_to_ycocg(_e129);
-    vec3 _e137 = subcone_taa_clip_towards(_e130, (0.5 * (lo_1 + hi)), (0.5 * (hi - lo_1)));
-    float _e138 = subcone_taa_current_weight(params);
-    vec3 out_ = (_e137 + ((_e119 - _e137) * _e138));
-    vec3 _e142 = subcone_taa_ycocg_to_rgb(out_);
-    vec3 _e143 = subcone_taa_from_resolve_space(_e142, params);
-    vec3 _e144 = subcone_taa_sanitize(_e143);
-    return _e144;
+    vec3 _e120 = subcone_taa_to_resolve_space(_e22, params);
+    vec3 _e121 = subcone_taa_rgb_to_ycocg(_e120);
+    float _e122 = gamma;
+    vec3 lo_1 = min((mean_1 - (_e122 * sigma)), _e121);
+    float _e126 = gamma;
+    vec3 hi = max((mean_1 + (_e126 * sigma)), _e121);
+    vec3 _e131 = subcone_taa_to_resolve_space(_e38.xyz, params);
+    vec3 _e132 = subcone_taa_rgb_to_ycocg(_e131);
+    vec3 _e139 = subcone_taa_clip_towards(_e132, (0.5 * (lo_1 + hi)), (0.5 * (hi - lo_1)));
+    float _e140 = subcone_taa_current_weight(params);
+    vec3 out_ = (_e139 + ((_e121 - _e139) * _e140));
+    vec3 _e144 = subcone_taa_ycocg_to_rgb(out_);
+    vec3 _e145 = subcone_taa_from_resolve_space(_e144, params);
+    vec3 _e146 = subcone_taa_sanitize(_e145);
+    return _e146;
+}
+
+vec2 taa_motion(int x_6, int y_3) {
+    ivec2 _e3 = taa_at(x_6, y_3);
+    vec4 _e5 = texelFetch(_group_0_binding_3_cs, _e3, 0);
+    return _e5.xy;
+}
+
+vec2 taa_pixel_motion(ivec2 xy_1) {
+    vec2 _e3 = taa_motion(xy_1.x, xy_1.y);
+    return _e3;
 }
 
 void main() {
@@ -481,14 +517,12 @@ void main() {
     if (_e15) {
         return;
     }
-    ivec2 xy_1 = ivec2(int(gid.x), int(gid.y));
-    ivec2 _e24 = taa_at(xy_1.x, xy_1.y);
-    vec4 _e26 = texelFetch(_group_0_binding_3_cs, _e24, 0);
-    vec2 velocity_1 = _e26.xy;
-    subcone_TaaParams _e29 = _group_0_binding_0_cs;
-    vec3 _e30 = subcone_taa_resolve_pixel(xy_1, velocity_1, _e29);
-    ivec2 _e34 = taa_at(xy_1.x, xy_1.y);
-    imageStore(_group_0_binding_5_cs, _e34, vec4(_e30, 1.0));
+    ivec2 xy_2 = ivec2(int(gid.x), int(gid.y));
+    vec2 _e21 = taa_pixel_motion(xy_2);
+    subcone_TaaParams _e23 = _group_0_binding_0_cs;
+    vec3 _e24 = subcone_taa_resolve_pixel(xy_2, _e21, _e23);
+    ivec2 _e28 = taa_at(xy_2.x, xy_2.y);
+    imageStore(_group_0_binding_5_cs, _e28, vec4(_e24, 1.0));
     return;
 }
 

@@ -51,7 +51,10 @@ struct subcone_TaaParams {
     uint width;
     uint height;
     uint tone_mapped;
-    uint _pad;
+    uint depth_dilation;
+    float2 motion_scale;
+    uint _pad0_;
+    uint _pad1_;
 };
 
 struct subcone_FxaaParams {
@@ -74,8 +77,8 @@ static const float3 subcone_TAA_LUMA = float3(0.2126, 0.7152, 0.0722);
 Texture2D<float4> taa_history_tex : register(t4);
 cbuffer taa_origin : register(b1) { TaaOrigin taa_origin; }
 Texture2D<float4> taa_current_tex : register(t2);
-cbuffer taa_params : register(b0) { subcone_TaaParams taa_params; }
 Texture2D<float4> taa_velocity : register(t3);
+cbuffer taa_params : register(b0) { subcone_TaaParams taa_params; }
 RWTexture2D<float4> taa_dst : register(u5);
 
 float subcone_inf()
@@ -95,11 +98,11 @@ bool subcone_is_finite(float x_1)
 
 float3 subcone_pinhole_dir(subcone_PinholeCamera c, float2 p_in)
 {
-    float2 p_5 = (p_in + c.jitter);
+    float2 p_6 = (p_in + c.jitter);
     float w = float(max(c.width, 1u));
     float h_1 = float(max(c.height, 1u));
-    float u = (((((2.0 * p_5.x) / w) - 1.0) * c.tan_half_fov) * (w / h_1));
-    float v_1 = ((1.0 - ((2.0 * p_5.y) / h_1)) * c.tan_half_fov);
+    float u = (((((2.0 * p_6.x) / w) - 1.0) * c.tan_half_fov) * (w / h_1));
+    float v_1 = ((1.0 - ((2.0 * p_6.y) / h_1)) * c.tan_half_fov);
     float3 d = ((c.forward + (u * c.right)) + (v_1 * c.up));
     return (d * (1.0 / length(d)));
 }
@@ -189,17 +192,41 @@ float subcone_taa_current_weight(subcone_TaaParams p_1)
     return max(mean, _e19);
 }
 
-float subcone_taa_sanitize1_(float x_2)
+float subcone_taa_scale1_(float s)
 {
     bool local_2 = (bool)0;
 
-    if ((x_2 > 0.0)) {
-        const bool _e5 = subcone_is_finite(x_2);
+    if ((s != 0.0)) {
+        const bool _e5 = subcone_is_finite(s);
         local_2 = _e5;
     } else {
         local_2 = false;
     }
     bool _e7 = local_2;
+    if (_e7) {
+        return s;
+    }
+    return 1.0;
+}
+
+float2 subcone_taa_motion_scale(subcone_TaaParams p_2)
+{
+    const float _e3 = subcone_taa_scale1_(p_2.motion_scale.x);
+    const float _e6 = subcone_taa_scale1_(p_2.motion_scale.y);
+    return float2(_e3, _e6);
+}
+
+float subcone_taa_sanitize1_(float x_2)
+{
+    bool local_3 = (bool)0;
+
+    if ((x_2 > 0.0)) {
+        const bool _e5 = subcone_is_finite(x_2);
+        local_3 = _e5;
+    } else {
+        local_3 = false;
+    }
+    bool _e7 = local_3;
     if (_e7) {
         return x_2;
     }
@@ -226,20 +253,20 @@ float3 subcone_taa_tonemap_inverse(float3 t, float exposure_1)
     return ((t / (d_1).xxx) / (exposure_1).xxx);
 }
 
-float3 subcone_taa_to_resolve_space(float3 c_2, subcone_TaaParams p_2)
+float3 subcone_taa_to_resolve_space(float3 c_2, subcone_TaaParams p_3)
 {
-    if ((p_2.tone_mapped == 1u)) {
-        const float _e5 = subcone_taa_exposure(p_2);
+    if ((p_3.tone_mapped == 1u)) {
+        const float _e5 = subcone_taa_exposure(p_3);
         const float3 _e6 = subcone_taa_tonemap(c_2, _e5);
         return _e6;
     }
     return c_2;
 }
 
-float3 subcone_taa_from_resolve_space(float3 t_1, subcone_TaaParams p_3)
+float3 subcone_taa_from_resolve_space(float3 t_1, subcone_TaaParams p_4)
 {
-    if ((p_3.tone_mapped == 1u)) {
-        const float _e5 = subcone_taa_exposure(p_3);
+    if ((p_4.tone_mapped == 1u)) {
+        const float _e5 = subcone_taa_exposure(p_4);
         const float3 _e6 = subcone_taa_tonemap_inverse(t_1, _e5);
         return _e6;
     }
@@ -306,11 +333,11 @@ int naga_f2i32(float value) {
     return int(clamp(value, -2147483600.0, 2147483500.0));
 }
 
-float4 subcone_taa_sample_history(float2 p_4, uint w_in, uint h_in)
+float4 subcone_taa_sample_history(float2 p_5, uint w_in, uint h_in)
 {
-    bool local_3 = (bool)0;
     bool local_4 = (bool)0;
     bool local_5 = (bool)0;
+    bool local_6 = (bool)0;
     float3 sum = (0.0).xxx;
     int j = int(0);
     float3 row = (float3)0;
@@ -318,28 +345,28 @@ float4 subcone_taa_sample_history(float2 p_4, uint w_in, uint h_in)
 
     int w_1 = int(max(w_in, 1u));
     int h_2 = int(max(h_in, 1u));
-    if ((p_4.x >= 0.0)) {
-        local_3 = (p_4.y >= 0.0);
-    } else {
-        local_3 = false;
-    }
-    bool _e18 = local_3;
-    if (_e18) {
-        local_4 = (p_4.x <= float(w_1));
+    if ((p_5.x >= 0.0)) {
+        local_4 = (p_5.y >= 0.0);
     } else {
         local_4 = false;
     }
-    bool _e25 = local_4;
-    if (_e25) {
-        local_5 = (p_4.y <= float(h_2));
+    bool _e18 = local_4;
+    if (_e18) {
+        local_5 = (p_5.x <= float(w_1));
     } else {
         local_5 = false;
     }
-    bool _e32 = local_5;
+    bool _e25 = local_5;
+    if (_e25) {
+        local_6 = (p_5.y <= float(h_2));
+    } else {
+        local_6 = false;
+    }
+    bool _e32 = local_6;
     if (!(_e32)) {
         return (0.0).xxxx;
     }
-    float2 q = (p_4 - (0.5).xx);
+    float2 q = (p_5 - (0.5).xx);
     float fx = floor(q.x);
     float fy = floor(q.y);
     const float4 _e45 = subcone_taa_catmull_rom_weights((q.x - fx));
@@ -363,7 +390,7 @@ float4 subcone_taa_sample_history(float2 p_4, uint w_in, uint h_in)
         }
         {
             int _e63 = j;
-            int y_3 = clamp(asint(asuint(y0_) + asuint(_e63)), int(0), asint(asuint(h_2) - asuint(int(1))));
+            int y_4 = clamp(asint(asuint(y0_) + asuint(_e63)), int(0), asint(asuint(h_2) - asuint(int(1))));
             row = (0.0).xxx;
             i = int(0);
             uint2 loop_bound_2 = uint2(4294967295u, 4294967295u);
@@ -383,10 +410,10 @@ float4 subcone_taa_sample_history(float2 p_4, uint w_in, uint h_in)
                 }
                 {
                     int _e77 = i;
-                    int x_6 = clamp(asint(asuint(x0_) + asuint(_e77)), int(0), asint(asuint(w_1) - asuint(int(1))));
+                    int x_7 = clamp(asint(asuint(x0_) + asuint(_e77)), int(0), asint(asuint(w_1) - asuint(int(1))));
                     float3 _e83 = row;
                     int _e84 = i;
-                    const float3 _e86 = taa_history(x_6, y_3);
+                    const float3 _e86 = taa_history(x_7, y_4);
                     const float3 _e87 = subcone_taa_sanitize(_e86);
                     row = (_e83 + (_e45[min(uint(_e84), 3u)] * _e87));
                 }
@@ -416,21 +443,22 @@ float3 subcone_taa_resolve_pixel(int2 xy, float2 velocity, subcone_TaaParams par
     int dy = int(-1);
     int dx = (int)0;
     float3 c_5 = (float3)0;
-    bool local_6 = (bool)0;
+    bool local_7 = (bool)0;
     float gamma = 0.0;
 
     int w_2 = int(max(params.width, 1u));
     int h_3 = int(max(params.height, 1u));
-    int x_7 = clamp(xy.x, int(0), asint(asuint(w_2) - asuint(int(1))));
-    int y_4 = clamp(xy.y, int(0), asint(asuint(h_3) - asuint(int(1))));
-    const float3 _e21 = taa_current(x_7, y_4);
+    int x_8 = clamp(xy.x, int(0), asint(asuint(w_2) - asuint(int(1))));
+    int y_5 = clamp(xy.y, int(0), asint(asuint(h_3) - asuint(int(1))));
+    const float3 _e21 = taa_current(x_8, y_5);
     const float3 _e22 = subcone_taa_sanitize(_e21);
     if ((params.history_frames == 0u)) {
         return _e22;
     }
-    float2 p_6 = (float2((float(x_7) + 0.5), (float(y_4) + 0.5)) - velocity);
-    const float4 _e36 = subcone_taa_sample_history(p_6, uint(w_2), uint(h_3));
-    if ((_e36.w == 0.0)) {
+    const float2 _e33 = subcone_taa_motion_scale(params);
+    float2 p_7 = (float2((float(x_8) + 0.5), (float(y_5) + 0.5)) - (velocity * _e33));
+    const float4 _e38 = subcone_taa_sample_history(p_7, uint(w_2), uint(h_3));
+    if ((_e38.w == 0.0)) {
         return _e22;
     }
     uint2 loop_bound_3 = uint2(4294967295u, 4294967295u);
@@ -439,12 +467,12 @@ float3 subcone_taa_resolve_pixel(int2 xy, float2 velocity, subcone_TaaParams par
         if (all(loop_bound_3 == uint2(0u, 0u))) { break; }
         loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
         if (!loop_init_2) {
-            int _e94 = dy;
-            dy = asint(asuint(_e94) + asuint(int(1)));
+            int _e96 = dy;
+            dy = asint(asuint(_e96) + asuint(int(1)));
         }
         loop_init_2 = false;
-        int _e48 = dy;
-        if ((_e48 <= int(1))) {
+        int _e50 = dy;
+        if ((_e50 <= int(1))) {
         } else {
             break;
         }
@@ -456,66 +484,79 @@ float3 subcone_taa_resolve_pixel(int2 xy, float2 velocity, subcone_TaaParams par
                 if (all(loop_bound_4 == uint2(0u, 0u))) { break; }
                 loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
                 if (!loop_init_3) {
-                    int _e91 = dx;
-                    dx = asint(asuint(_e91) + asuint(int(1)));
+                    int _e93 = dx;
+                    dx = asint(asuint(_e93) + asuint(int(1)));
                 }
                 loop_init_3 = false;
-                int _e53 = dx;
-                if ((_e53 <= int(1))) {
+                int _e55 = dx;
+                if ((_e55 <= int(1))) {
                 } else {
                     break;
                 }
                 {
                     c_5 = _e22;
-                    int _e57 = dx;
-                    if (!((_e57 != int(0)))) {
-                        int _e63 = dy;
-                        local_6 = (_e63 != int(0));
+                    int _e59 = dx;
+                    if (!((_e59 != int(0)))) {
+                        int _e65 = dy;
+                        local_7 = (_e65 != int(0));
                     } else {
-                        local_6 = true;
+                        local_7 = true;
                     }
-                    bool _e67 = local_6;
-                    if (_e67) {
-                        int _e68 = dx;
-                        int _e74 = dy;
-                        const float3 _e80 = taa_current(clamp(asint(asuint(x_7) + asuint(_e68)), int(0), asint(asuint(w_2) - asuint(int(1)))), clamp(asint(asuint(y_4) + asuint(_e74)), int(0), asint(asuint(h_3) - asuint(int(1)))));
-                        const float3 _e81 = subcone_taa_sanitize(_e80);
-                        c_5 = _e81;
+                    bool _e69 = local_7;
+                    if (_e69) {
+                        int _e70 = dx;
+                        int _e76 = dy;
+                        const float3 _e82 = taa_current(clamp(asint(asuint(x_8) + asuint(_e70)), int(0), asint(asuint(w_2) - asuint(int(1)))), clamp(asint(asuint(y_5) + asuint(_e76)), int(0), asint(asuint(h_3) - asuint(int(1)))));
+                        const float3 _e83 = subcone_taa_sanitize(_e82);
+                        c_5 = _e83;
                     }
-                    float3 _e82 = c_5;
-                    const float3 _e83 = subcone_taa_to_resolve_space(_e82, params);
-                    const float3 _e84 = subcone_taa_rgb_to_ycocg(_e83);
-                    float3 _e85 = m1_;
-                    m1_ = (_e85 + _e84);
-                    float3 _e87 = m2_;
-                    m2_ = (_e87 + (_e84 * _e84));
+                    float3 _e84 = c_5;
+                    const float3 _e85 = subcone_taa_to_resolve_space(_e84, params);
+                    const float3 _e86 = subcone_taa_rgb_to_ycocg(_e85);
+                    float3 _e87 = m1_;
+                    m1_ = (_e87 + _e86);
+                    float3 _e89 = m2_;
+                    m2_ = (_e89 + (_e86 * _e86));
                 }
             }
         }
     }
-    float3 _e96 = m1_;
-    float3 mean_1 = (_e96 / (9.0).xxx);
-    float3 _e100 = m2_;
-    float3 var = max(((_e100 / (9.0).xxx) - (mean_1 * mean_1)), (0.0).xxx);
+    float3 _e98 = m1_;
+    float3 mean_1 = (_e98 / (9.0).xxx);
+    float3 _e102 = m2_;
+    float3 var = max(((_e102 / (9.0).xxx) - (mean_1 * mean_1)), (0.0).xxx);
     float3 sigma = sqrt(var);
     if ((params.clip_gamma > 0.0)) {
         gamma = min(params.clip_gamma, 1000000.0);
     }
-    const float3 _e118 = subcone_taa_to_resolve_space(_e22, params);
-    const float3 _e119 = subcone_taa_rgb_to_ycocg(_e118);
-    float _e120 = gamma;
-    float3 lo_1 = min((mean_1 - (_e120 * sigma)), _e119);
-    float _e124 = gamma;
-    float3 hi = max((mean_1 + (_e124 * sigma)), _e119);
-    const float3 _e129 = subcone_taa_to_resolve_space(_e36.xyz, params);
-    const float3 _e130 = subcone_taa_rgb_to_ycocg(_e129);
-    const float3 _e137 = subcone_taa_clip_towards(_e130, (0.5 * (lo_1 + hi)), (0.5 * (hi - lo_1)));
-    const float _e138 = subcone_taa_current_weight(params);
-    float3 out_ = (_e137 + ((_e119 - _e137) * _e138));
-    const float3 _e142 = subcone_taa_ycocg_to_rgb(out_);
-    const float3 _e143 = subcone_taa_from_resolve_space(_e142, params);
-    const float3 _e144 = subcone_taa_sanitize(_e143);
-    return _e144;
+    const float3 _e120 = subcone_taa_to_resolve_space(_e22, params);
+    const float3 _e121 = subcone_taa_rgb_to_ycocg(_e120);
+    float _e122 = gamma;
+    float3 lo_1 = min((mean_1 - (_e122 * sigma)), _e121);
+    float _e126 = gamma;
+    float3 hi = max((mean_1 + (_e126 * sigma)), _e121);
+    const float3 _e131 = subcone_taa_to_resolve_space(_e38.xyz, params);
+    const float3 _e132 = subcone_taa_rgb_to_ycocg(_e131);
+    const float3 _e139 = subcone_taa_clip_towards(_e132, (0.5 * (lo_1 + hi)), (0.5 * (hi - lo_1)));
+    const float _e140 = subcone_taa_current_weight(params);
+    float3 out_ = (_e139 + ((_e121 - _e139) * _e140));
+    const float3 _e144 = subcone_taa_ycocg_to_rgb(out_);
+    const float3 _e145 = subcone_taa_from_resolve_space(_e144, params);
+    const float3 _e146 = subcone_taa_sanitize(_e145);
+    return _e146;
+}
+
+float2 taa_motion(int x_6, int y_3)
+{
+    const int2 _e3 = taa_at(x_6, y_3);
+    float4 _e5 = taa_velocity.Load(int3(_e3, int(0)));
+    return _e5.xy;
+}
+
+float2 taa_pixel_motion(int2 xy_1)
+{
+    const float2 _e3 = taa_motion(xy_1.x, xy_1.y);
+    return _e3;
 }
 
 [numthreads(8, 8, 1)]
@@ -534,13 +575,11 @@ void taa_main(uint3 gid : SV_DispatchThreadID)
     if (_e15) {
         return;
     }
-    int2 xy_1 = int2(int(gid.x), int(gid.y));
-    const int2 _e24 = taa_at(xy_1.x, xy_1.y);
-    float4 _e26 = taa_velocity.Load(int3(_e24, int(0)));
-    float2 velocity_1 = _e26.xy;
-    subcone_TaaParams _e29 = taa_params;
-    const float3 _e30 = subcone_taa_resolve_pixel(xy_1, velocity_1, _e29);
-    const int2 _e34 = taa_at(xy_1.x, xy_1.y);
-    taa_dst[_e34] = float4(_e30, 1.0);
+    int2 xy_2 = int2(int(gid.x), int(gid.y));
+    const float2 _e21 = taa_pixel_motion(xy_2);
+    subcone_TaaParams _e23 = taa_params;
+    const float3 _e24 = subcone_taa_resolve_pixel(xy_2, _e21, _e23);
+    const int2 _e28 = taa_at(xy_2.x, xy_2.y);
+    taa_dst[_e28] = float4(_e24, 1.0);
     return;
 }

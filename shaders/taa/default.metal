@@ -59,7 +59,10 @@ struct subcone_TaaParams {
     uint width;
     uint height;
     uint tone_mapped;
-    uint _pad;
+    uint depth_dilation;
+    metal::float2 motion_scale;
+    uint _pad0_;
+    uint _pad1_;
 };
 struct subcone_FxaaParams {
     float subpix;
@@ -97,11 +100,11 @@ metal::float3 subcone_pinhole_dir(
     subcone_PinholeCamera c,
     metal::float2 p_in
 ) {
-    metal::float2 p_5 = p_in + c.jitter;
+    metal::float2 p_6 = p_in + c.jitter;
     float w = static_cast<float>(metal::max(c.width, 1u));
     float h_1 = static_cast<float>(metal::max(c.height, 1u));
-    float u = ((((2.0 * p_5.x) / w) - 1.0) * c.tan_half_fov) * (w / h_1);
-    float v_1 = (1.0 - ((2.0 * p_5.y) / h_1)) * c.tan_half_fov;
+    float u = ((((2.0 * p_6.x) / w) - 1.0) * c.tan_half_fov) * (w / h_1);
+    float v_1 = (1.0 - ((2.0 * p_6.y) / h_1)) * c.tan_half_fov;
     metal::float3 d = (c.forward + (u * c.right)) + (v_1 * c.up);
     return d * (1.0 / metal::length(d));
 }
@@ -194,17 +197,42 @@ float subcone_taa_current_weight(
     return metal::max(mean, _e19);
 }
 
-float subcone_taa_sanitize1_(
-    float x_2
+float subcone_taa_scale1_(
+    float s
 ) {
     bool local_2 = {};
-    if (x_2 > 0.0) {
-        bool _e5 = subcone_is_finite(x_2);
+    if (s != 0.0) {
+        bool _e5 = subcone_is_finite(s);
         local_2 = _e5;
     } else {
         local_2 = false;
     }
     bool _e7 = local_2;
+    if (_e7) {
+        return s;
+    }
+    return 1.0;
+}
+
+metal::float2 subcone_taa_motion_scale(
+    subcone_TaaParams p_2
+) {
+    float _e3 = subcone_taa_scale1_(p_2.motion_scale.x);
+    float _e6 = subcone_taa_scale1_(p_2.motion_scale.y);
+    return metal::float2(_e3, _e6);
+}
+
+float subcone_taa_sanitize1_(
+    float x_2
+) {
+    bool local_3 = {};
+    if (x_2 > 0.0) {
+        bool _e5 = subcone_is_finite(x_2);
+        local_3 = _e5;
+    } else {
+        local_3 = false;
+    }
+    bool _e7 = local_3;
     if (_e7) {
         return x_2;
     }
@@ -238,10 +266,10 @@ metal::float3 subcone_taa_tonemap_inverse(
 
 metal::float3 subcone_taa_to_resolve_space(
     metal::float3 c_2,
-    subcone_TaaParams p_2
+    subcone_TaaParams p_3
 ) {
-    if (p_2.tone_mapped == 1u) {
-        float _e5 = subcone_taa_exposure(p_2);
+    if (p_3.tone_mapped == 1u) {
+        float _e5 = subcone_taa_exposure(p_3);
         metal::float3 _e6 = subcone_taa_tonemap(c_2, _e5);
         return _e6;
     }
@@ -250,10 +278,10 @@ metal::float3 subcone_taa_to_resolve_space(
 
 metal::float3 subcone_taa_from_resolve_space(
     metal::float3 t_1,
-    subcone_TaaParams p_3
+    subcone_TaaParams p_4
 ) {
-    if (p_3.tone_mapped == 1u) {
-        float _e5 = subcone_taa_exposure(p_3);
+    if (p_4.tone_mapped == 1u) {
+        float _e5 = subcone_taa_exposure(p_4);
         metal::float3 _e6 = subcone_taa_tonemap_inverse(t_1, _e5);
         return _e6;
     }
@@ -336,43 +364,43 @@ int naga_f2i32(float value) {
 }
 
 metal::float4 subcone_taa_sample_history(
-    metal::float2 p_4,
+    metal::float2 p_5,
     uint w_in,
     uint h_in,
     metal::texture2d<float, metal::access::sample> taa_history_tex,
     constant TaaOrigin& taa_origin
 ) {
-    bool local_3 = {};
     bool local_4 = {};
     bool local_5 = {};
+    bool local_6 = {};
     metal::float3 sum = metal::float3(0.0);
     int j = 0;
     metal::float3 row = {};
     int i = {};
     int w_1 = static_cast<int>(metal::max(w_in, 1u));
     int h_2 = static_cast<int>(metal::max(h_in, 1u));
-    if (p_4.x >= 0.0) {
-        local_3 = p_4.y >= 0.0;
-    } else {
-        local_3 = false;
-    }
-    bool _e18 = local_3;
-    if (_e18) {
-        local_4 = p_4.x <= static_cast<float>(w_1);
+    if (p_5.x >= 0.0) {
+        local_4 = p_5.y >= 0.0;
     } else {
         local_4 = false;
     }
-    bool _e25 = local_4;
-    if (_e25) {
-        local_5 = p_4.y <= static_cast<float>(h_2);
+    bool _e18 = local_4;
+    if (_e18) {
+        local_5 = p_5.x <= static_cast<float>(w_1);
     } else {
         local_5 = false;
     }
-    bool _e32 = local_5;
+    bool _e25 = local_5;
+    if (_e25) {
+        local_6 = p_5.y <= static_cast<float>(h_2);
+    } else {
+        local_6 = false;
+    }
+    bool _e32 = local_6;
     if (!(_e32)) {
         return metal::float4(0.0);
     }
-    metal::float2 q = p_4 - metal::float2(0.5);
+    metal::float2 q = p_5 - metal::float2(0.5);
     float fx = metal::floor(q.x);
     float fy = metal::floor(q.y);
     metal::float4 _e45 = subcone_taa_catmull_rom_weights(q.x - fx);
@@ -396,7 +424,7 @@ metal::float4 subcone_taa_sample_history(
         }
         {
             int _e63 = j;
-            int y_3 = metal::clamp(as_type<int>(as_type<uint>(y0_) + as_type<uint>(_e63)), 0, as_type<int>(as_type<uint>(h_2) - as_type<uint>(1)));
+            int y_4 = metal::clamp(as_type<int>(as_type<uint>(y0_) + as_type<uint>(_e63)), 0, as_type<int>(as_type<uint>(h_2) - as_type<uint>(1)));
             row = metal::float3(0.0);
             i = 0;
             uint2 loop_bound_2 = uint2(4294967295u);
@@ -416,10 +444,10 @@ metal::float4 subcone_taa_sample_history(
                 }
                 {
                     int _e77 = i;
-                    int x_6 = metal::clamp(as_type<int>(as_type<uint>(x0_) + as_type<uint>(_e77)), 0, as_type<int>(as_type<uint>(w_1) - as_type<uint>(1)));
+                    int x_7 = metal::clamp(as_type<int>(as_type<uint>(x0_) + as_type<uint>(_e77)), 0, as_type<int>(as_type<uint>(w_1) - as_type<uint>(1)));
                     metal::float3 _e83 = row;
                     int _e84 = i;
-                    metal::float3 _e86 = taa_history(x_6, y_3, taa_history_tex, taa_origin);
+                    metal::float3 _e86 = taa_history(x_7, y_4, taa_history_tex, taa_origin);
                     metal::float3 _e87 = subcone_taa_sanitize(_e86);
                     row = _e83 + ((uint(_e84) < 4 ? _e45[_e84] : DefaultConstructible()) * _e87);
                 }
@@ -459,20 +487,21 @@ metal::float3 subcone_taa_resolve_pixel(
     int dy = -1;
     int dx = {};
     metal::float3 c_5 = {};
-    bool local_6 = {};
+    bool local_7 = {};
     float gamma = 0.0;
     int w_2 = static_cast<int>(metal::max(params.width, 1u));
     int h_3 = static_cast<int>(metal::max(params.height, 1u));
-    int x_7 = metal::clamp(xy.x, 0, as_type<int>(as_type<uint>(w_2) - as_type<uint>(1)));
-    int y_4 = metal::clamp(xy.y, 0, as_type<int>(as_type<uint>(h_3) - as_type<uint>(1)));
-    metal::float3 _e21 = taa_current(x_7, y_4, taa_origin, taa_current_tex);
+    int x_8 = metal::clamp(xy.x, 0, as_type<int>(as_type<uint>(w_2) - as_type<uint>(1)));
+    int y_5 = metal::clamp(xy.y, 0, as_type<int>(as_type<uint>(h_3) - as_type<uint>(1)));
+    metal::float3 _e21 = taa_current(x_8, y_5, taa_origin, taa_current_tex);
     metal::float3 _e22 = subcone_taa_sanitize(_e21);
     if (params.history_frames == 0u) {
         return _e22;
     }
-    metal::float2 p_6 = metal::float2(static_cast<float>(x_7) + 0.5, static_cast<float>(y_4) + 0.5) - velocity;
-    metal::float4 _e36 = subcone_taa_sample_history(p_6, static_cast<uint>(w_2), static_cast<uint>(h_3), taa_history_tex, taa_origin);
-    if (_e36.w == 0.0) {
+    metal::float2 _e33 = subcone_taa_motion_scale(params);
+    metal::float2 p_7 = metal::float2(static_cast<float>(x_8) + 0.5, static_cast<float>(y_5) + 0.5) - (velocity * _e33);
+    metal::float4 _e38 = subcone_taa_sample_history(p_7, static_cast<uint>(w_2), static_cast<uint>(h_3), taa_history_tex, taa_origin);
+    if (_e38.w == 0.0) {
         return _e22;
     }
     uint2 loop_bound_3 = uint2(4294967295u);
@@ -481,12 +510,12 @@ metal::float3 subcone_taa_resolve_pixel(
         if (metal::all(loop_bound_3 == uint2(0u))) { break; }
         loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
         if (!loop_init_2) {
-            int _e94 = dy;
-            dy = as_type<int>(as_type<uint>(_e94) + as_type<uint>(1));
+            int _e96 = dy;
+            dy = as_type<int>(as_type<uint>(_e96) + as_type<uint>(1));
         }
         loop_init_2 = false;
-        int _e48 = dy;
-        if (_e48 <= 1) {
+        int _e50 = dy;
+        if (_e50 <= 1) {
         } else {
             break;
         }
@@ -498,66 +527,86 @@ metal::float3 subcone_taa_resolve_pixel(
                 if (metal::all(loop_bound_4 == uint2(0u))) { break; }
                 loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
                 if (!loop_init_3) {
-                    int _e91 = dx;
-                    dx = as_type<int>(as_type<uint>(_e91) + as_type<uint>(1));
+                    int _e93 = dx;
+                    dx = as_type<int>(as_type<uint>(_e93) + as_type<uint>(1));
                 }
                 loop_init_3 = false;
-                int _e53 = dx;
-                if (_e53 <= 1) {
+                int _e55 = dx;
+                if (_e55 <= 1) {
                 } else {
                     break;
                 }
                 {
                     c_5 = _e22;
-                    int _e57 = dx;
-                    if (!((_e57 != 0))) {
-                        int _e63 = dy;
-                        local_6 = _e63 != 0;
+                    int _e59 = dx;
+                    if (!((_e59 != 0))) {
+                        int _e65 = dy;
+                        local_7 = _e65 != 0;
                     } else {
-                        local_6 = true;
+                        local_7 = true;
                     }
-                    bool _e67 = local_6;
-                    if (_e67) {
-                        int _e68 = dx;
-                        int _e74 = dy;
-                        metal::float3 _e80 = taa_current(metal::clamp(as_type<int>(as_type<uint>(x_7) + as_type<uint>(_e68)), 0, as_type<int>(as_type<uint>(w_2) - as_type<uint>(1))), metal::clamp(as_type<int>(as_type<uint>(y_4) + as_type<uint>(_e74)), 0, as_type<int>(as_type<uint>(h_3) - as_type<uint>(1))), taa_origin, taa_current_tex);
-                        metal::float3 _e81 = subcone_taa_sanitize(_e80);
-                        c_5 = _e81;
+                    bool _e69 = local_7;
+                    if (_e69) {
+                        int _e70 = dx;
+                        int _e76 = dy;
+                        metal::float3 _e82 = taa_current(metal::clamp(as_type<int>(as_type<uint>(x_8) + as_type<uint>(_e70)), 0, as_type<int>(as_type<uint>(w_2) - as_type<uint>(1))), metal::clamp(as_type<int>(as_type<uint>(y_5) + as_type<uint>(_e76)), 0, as_type<int>(as_type<uint>(h_3) - as_type<uint>(1))), taa_origin, taa_current_tex);
+                        metal::float3 _e83 = subcone_taa_sanitize(_e82);
+                        c_5 = _e83;
                     }
-                    metal::float3 _e82 = c_5;
-                    metal::float3 _e83 = subcone_taa_to_resolve_space(_e82, params);
-                    metal::float3 _e84 = subcone_taa_rgb_to_ycocg(_e83);
-                    metal::float3 _e85 = m1_;
-                    m1_ = _e85 + _e84;
-                    metal::float3 _e87 = m2_;
-                    m2_ = _e87 + (_e84 * _e84);
+                    metal::float3 _e84 = c_5;
+                    metal::float3 _e85 = subcone_taa_to_resolve_space(_e84, params);
+                    metal::float3 _e86 = subcone_taa_rgb_to_ycocg(_e85);
+                    metal::float3 _e87 = m1_;
+                    m1_ = _e87 + _e86;
+                    metal::float3 _e89 = m2_;
+                    m2_ = _e89 + (_e86 * _e86);
                 }
             }
         }
     }
-    metal::float3 _e96 = m1_;
-    metal::float3 mean_1 = _e96 / metal::float3(9.0);
-    metal::float3 _e100 = m2_;
-    metal::float3 var = metal::max((_e100 / metal::float3(9.0)) - (mean_1 * mean_1), metal::float3(0.0));
+    metal::float3 _e98 = m1_;
+    metal::float3 mean_1 = _e98 / metal::float3(9.0);
+    metal::float3 _e102 = m2_;
+    metal::float3 var = metal::max((_e102 / metal::float3(9.0)) - (mean_1 * mean_1), metal::float3(0.0));
     metal::float3 sigma = metal::sqrt(var);
     if (params.clip_gamma > 0.0) {
         gamma = metal::min(params.clip_gamma, 1000000.0);
     }
-    metal::float3 _e118 = subcone_taa_to_resolve_space(_e22, params);
-    metal::float3 _e119 = subcone_taa_rgb_to_ycocg(_e118);
-    float _e120 = gamma;
-    metal::float3 lo_1 = metal::min(mean_1 - (_e120 * sigma), _e119);
-    float _e124 = gamma;
-    metal::float3 hi = metal::max(mean_1 + (_e124 * sigma), _e119);
-    metal::float3 _e129 = subcone_taa_to_resolve_space(_e36.xyz, params);
-    metal::float3 _e130 = subcone_taa_rgb_to_ycocg(_e129);
-    metal::float3 _e137 = subcone_taa_clip_towards(_e130, 0.5 * (lo_1 + hi), 0.5 * (hi - lo_1));
-    float _e138 = subcone_taa_current_weight(params);
-    metal::float3 out = _e137 + ((_e119 - _e137) * _e138);
-    metal::float3 _e142 = subcone_taa_ycocg_to_rgb(out);
-    metal::float3 _e143 = subcone_taa_from_resolve_space(_e142, params);
-    metal::float3 _e144 = subcone_taa_sanitize(_e143);
-    return _e144;
+    metal::float3 _e120 = subcone_taa_to_resolve_space(_e22, params);
+    metal::float3 _e121 = subcone_taa_rgb_to_ycocg(_e120);
+    float _e122 = gamma;
+    metal::float3 lo_1 = metal::min(mean_1 - (_e122 * sigma), _e121);
+    float _e126 = gamma;
+    metal::float3 hi = metal::max(mean_1 + (_e126 * sigma), _e121);
+    metal::float3 _e131 = subcone_taa_to_resolve_space(_e38.xyz, params);
+    metal::float3 _e132 = subcone_taa_rgb_to_ycocg(_e131);
+    metal::float3 _e139 = subcone_taa_clip_towards(_e132, 0.5 * (lo_1 + hi), 0.5 * (hi - lo_1));
+    float _e140 = subcone_taa_current_weight(params);
+    metal::float3 out = _e139 + ((_e121 - _e139) * _e140);
+    metal::float3 _e144 = subcone_taa_ycocg_to_rgb(out);
+    metal::float3 _e145 = subcone_taa_from_resolve_space(_e144, params);
+    metal::float3 _e146 = subcone_taa_sanitize(_e145);
+    return _e146;
+}
+
+metal::float2 taa_motion(
+    int x_6,
+    int y_3,
+    constant TaaOrigin& taa_origin,
+    metal::texture2d<float, metal::access::sample> taa_velocity
+) {
+    metal::int2 _e3 = taa_at(x_6, y_3, taa_origin);
+    metal::float4 _e5 = (uint(0) < taa_velocity.get_num_mip_levels() && metal::all(metal::uint2(_e3) < metal::uint2(taa_velocity.get_width(0), taa_velocity.get_height(0))) ? taa_velocity.read(metal::uint2(_e3), 0): DefaultConstructible());
+    return _e5.xy;
+}
+
+metal::float2 taa_pixel_motion(
+    metal::int2 xy_1,
+    constant TaaOrigin& taa_origin,
+    metal::texture2d<float, metal::access::sample> taa_velocity
+) {
+    metal::float2 _e3 = taa_motion(xy_1.x, xy_1.y, taa_origin, taa_velocity);
+    return _e3;
 }
 
 struct taa_mainInput {
@@ -567,8 +616,8 @@ struct taa_mainInput {
 , metal::texture2d<float, metal::access::sample> taa_history_tex [[texture(2)]]
 , constant TaaOrigin& taa_origin [[buffer(1)]]
 , metal::texture2d<float, metal::access::sample> taa_current_tex [[texture(0)]]
-, constant subcone_TaaParams& taa_params [[buffer(0)]]
 , metal::texture2d<float, metal::access::sample> taa_velocity [[texture(1)]]
+, constant subcone_TaaParams& taa_params [[buffer(0)]]
 , metal::texture2d<float, metal::access::write> taa_dst [[texture(3)]]
 ) {
     bool local = {};
@@ -583,13 +632,11 @@ struct taa_mainInput {
     if (_e15) {
         return;
     }
-    metal::int2 xy_1 = metal::int2(static_cast<int>(gid.x), static_cast<int>(gid.y));
-    metal::int2 _e24 = taa_at(xy_1.x, xy_1.y, taa_origin);
-    metal::float4 _e26 = (uint(0) < taa_velocity.get_num_mip_levels() && metal::all(metal::uint2(_e24) < metal::uint2(taa_velocity.get_width(0), taa_velocity.get_height(0))) ? taa_velocity.read(metal::uint2(_e24), 0): DefaultConstructible());
-    metal::float2 velocity_1 = _e26.xy;
-    subcone_TaaParams _e29 = taa_params;
-    metal::float3 _e30 = subcone_taa_resolve_pixel(xy_1, velocity_1, _e29, taa_history_tex, taa_origin, taa_current_tex);
-    metal::int2 _e34 = taa_at(xy_1.x, xy_1.y, taa_origin);
-    taa_dst.write(metal::float4(_e30, 1.0), metal::uint2(_e34));
+    metal::int2 xy_2 = metal::int2(static_cast<int>(gid.x), static_cast<int>(gid.y));
+    metal::float2 _e21 = taa_pixel_motion(xy_2, taa_origin, taa_velocity);
+    subcone_TaaParams _e23 = taa_params;
+    metal::float3 _e24 = subcone_taa_resolve_pixel(xy_2, _e21, _e23, taa_history_tex, taa_origin, taa_current_tex);
+    metal::int2 _e28 = taa_at(xy_2.x, xy_2.y, taa_origin);
+    taa_dst.write(metal::float4(_e24, 1.0), metal::uint2(_e28));
     return;
 }

@@ -62,7 +62,7 @@ struct subcone_PinholeCamera {
     _pad2: vec2<u32>,
 }
 
-// subcone_kernels::taa::TaaParams (32 bytes).
+// subcone_kernels::taa::TaaParams (48 bytes).
 struct subcone_TaaParams {
     exposure: f32,
     min_current_weight: f32,
@@ -71,7 +71,12 @@ struct subcone_TaaParams {
     width: u32,
     height: u32,
     tone_mapped: u32,
-    _pad: u32,
+    // 0 off, 1 a smaller depth is nearer, 2 a larger one is.
+    depth_dilation: u32,
+    // Host motion vector times this: pixels, current minus previous.
+    motion_scale: vec2<f32>,
+    _pad0: u32,
+    _pad1: u32,
 }
 
 // subcone_kernels::fxaa::FxaaParams (16 bytes).
@@ -167,6 +172,18 @@ fn subcone_taa_current_weight(p: subcone_TaaParams) -> f32 {
     }
     let mean = 1.0 / (f32(p.history_frames) + 1.0);
     return max(mean, lo);
+}
+
+fn subcone_taa_scale1(s: f32) -> f32 {
+    if s != 0.0 && subcone_is_finite(s) {
+        return s;
+    }
+    return 1.0;
+}
+
+// TaaParams::motion_scale
+fn subcone_taa_motion_scale(p: subcone_TaaParams) -> vec2<f32> {
+    return vec2<f32>(subcone_taa_scale1(p.motion_scale.x), subcone_taa_scale1(p.motion_scale.y));
 }
 
 fn subcone_taa_sanitize1(x: f32) -> f32 {
@@ -293,7 +310,7 @@ fn subcone_taa_resolve_pixel(xy: vec2<i32>, velocity: vec2<f32>, params: subcone
     if params.history_frames == 0u {
         return centre;
     }
-    let p = vec2<f32>(f32(x) + 0.5, f32(y) + 0.5) - velocity;
+    let p = vec2<f32>(f32(x) + 0.5, f32(y) + 0.5) - velocity * subcone_taa_motion_scale(params);
     let past_s = subcone_taa_sample_history(p, u32(w), u32(h));
     if past_s.w == 0.0 {
         return centre;
@@ -327,11 +344,18 @@ fn subcone_taa_resolve_pixel(xy: vec2<i32>, velocity: vec2<f32>, params: subcone
     let out = clipped + (now - clipped) * a;
     return subcone_taa_sanitize(subcone_taa_from_resolve_space(subcone_taa_ycocg_to_rgb(out), params));
 }
+
+// taa.rs: the pixel's own motion vector.
+fn taa_pixel_motion(xy: vec2<i32>) -> vec2<f32> {
+    return taa_motion(xy.x, xy.y);
+}
 // TaaPass (taa.rs): temporal antialiasing (subcone_kernels::taa: Karis 2014,
 // Salvi 2016's variance clipping) of a host frame against its history, one
 // compute pass. Follows subcone_kernels::wgsl::PARAMS,
-// subcone_kernels::taa::WGSL and the declarations taa.rs generates
-// (taa_params, taa_current, taa_velocity, taa_history, taa_dst).
+// subcone_kernels::taa::WGSL (and DILATION_WGSL with a depth input), the
+// motion fetch taa.rs writes (taa_pixel_motion) and the declarations it
+// generates (taa_params, taa_current, taa_velocity, taa_history,
+// taa_depth_tex with a depth input, taa_dst).
 //
 // The kernel's image is the rect (taa_params' size); the hooks read the
 // textures at the rect's origin (taa_origin).
@@ -356,13 +380,21 @@ fn taa_history(x: i32, y: i32) -> vec3<f32> {
     return textureLoad(taa_history_tex, taa_at(x, y), 0).xyz;
 }
 
+// The host's motion vector of a pixel (subcone_kernels::taa::resolve_pixel
+// scales it by taa_params.motion_scale).
+fn taa_motion(x: i32, y: i32) -> vec2<f32> {
+    return textureLoad(taa_velocity, taa_at(x, y), 0).xy;
+}
+
 @compute @workgroup_size(8, 8)
 fn taa_main(@builtin(global_invocation_id) gid: vec3<u32>) {
     if gid.x >= taa_params.width || gid.y >= taa_params.height {
         return;
     }
     let xy = vec2<i32>(i32(gid.x), i32(gid.y));
-    let velocity = textureLoad(taa_velocity, taa_at(xy.x, xy.y), 0).xy;
+    // taa.rs defines taa_pixel_motion: the pixel's own vector, or with a
+    // depth input the one of the nearest depth around it.
+    let velocity = taa_pixel_motion(xy);
     let c = subcone_taa_resolve_pixel(xy, velocity, taa_params);
     textureStore(taa_dst, taa_at(xy.x, xy.y), vec4<f32>(c, 1.0));
 }

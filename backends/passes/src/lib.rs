@@ -39,7 +39,10 @@
 //! - [`FxaaPass`]: FXAA 3.11 (`subcone_kernels::fxaa`) over a host texture.
 //! - [`TaaPass`]: temporal antialiasing (`subcone_kernels::taa`: Karis 2014
 //!   with Salvi's variance clipping) of the host's jittered frame against its
-//!   history, with the jitter sequence to render it with.
+//!   history, with the jitter sequence to render it with, the engine's
+//!   motion vectors scaled into pixels ([`TaaInputs::motion_scale`]) and,
+//!   optionally, closest-depth motion dilation from its depth
+//!   ([`TaaInputs::depth`]).
 //! - [`bind`]: bindings declared once, from which both the WGSL
 //!   declarations and the wgpu layouts and bind groups are made: what the
 //!   passes are built on, and what `subcone-wgpu` builds its own programs

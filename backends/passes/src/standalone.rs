@@ -24,6 +24,7 @@
 //! ```
 
 use subcone_kernels::sraa::SraaParams;
+use subcone_kernels::taa::{DepthDilation, TaaSettings};
 
 use crate::bind::BindingEntry;
 use crate::ctss::CtssKey;
@@ -177,6 +178,16 @@ pub fn catalog() -> Result<Vec<StandaloneShader>, PassError> {
             "default",
             "TaaPassDesc::default(): Karis 2014 with variance clipping, linear resolve, \
              Rgba16Float output",
+        ),
+        named(
+            taa(&TaaPassDesc::default().with_settings(TaaSettings {
+                depth_dilation: DepthDilation::NearestLargest,
+                ..TaaSettings::default()
+            }))?,
+            "depth-dilation",
+            "The default with a depth input (taa_depth_tex, after the history): each pixel \
+             takes the motion vector of the nearest depth of its 3×3 neighbourhood, reversed \
+             Z (taa_params.depth_dilation 2; write 1 for a depth where smaller is nearer)",
         ),
     ])
 }

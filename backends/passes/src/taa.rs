@@ -1,6 +1,12 @@
 //! [`TaaPass`]: temporal antialiasing (`subcone_kernels::taa`: Karis,
 //! "High Quality Temporal Supersampling", 2014, with Salvi's variance
 //! clipping, 2016) of the host's jittered frame against its history.
+//!
+//! An engine's motion vectors in other units or of the other sign
+//! ([`TaaInputs::motion_scale`]) and its depth (closest-depth dilation,
+//! `TaaSettings::depth_dilation` and [`TaaInputs::depth`]): the crate
+//! README's "TAA with an engine's motion vectors and depth" has the lines a
+//! Bevy- or FSR2-style host writes.
 
 use subcone_kernels::taa::{TaaParams, TaaSettings};
 
@@ -15,6 +21,29 @@ use crate::skeleton::{self, PassNames, PassShader};
 use crate::PassError;
 
 pub(crate) const TAA_WGSL: &str = include_str!("taa.wgsl");
+
+/// `taa_pixel_motion` without a depth input: the pixel's own vector.
+const TAA_OWN_MOTION: &str = "
+// taa.rs: the pixel's own motion vector.
+fn taa_pixel_motion(xy: vec2<i32>) -> vec2<f32> {
+    return taa_motion(xy.x, xy.y);
+}
+";
+
+/// `taa_pixel_motion` with a depth input: the vector of the nearest depth
+/// of the 3×3 neighbourhood (`subcone_kernels::taa::dilated_motion`), and
+/// the depth fetch it calls.
+const TAA_DILATED_MOTION: &str = "
+// taa.rs: the host's depth of a pixel.
+fn taa_depth(x: i32, y: i32) -> f32 {
+    return textureLoad(taa_depth_tex, taa_at(x, y), 0).x;
+}
+
+// taa.rs: the motion vector of the nearest depth around the pixel.
+fn taa_pixel_motion(xy: vec2<i32>) -> vec2<f32> {
+    return subcone_taa_dilated_motion(xy, taa_params);
+}
+";
 
 /// Where the resolved image lies in the textures; `TaaOrigin` in `taa.wgsl`
 /// (16 bytes): the top-left pixel of the rect ([`TaaPass::encode_rect`]),
@@ -39,7 +68,9 @@ pub struct TaaPassDesc {
     /// blends (linear radiance by default, where a still camera converges to
     /// the box filter of its samples, or Karis' tone-mapped space with the
     /// display's exposure, for HDR content), the current frame's smallest
-    /// weight and variance clipping's `γ`.
+    /// weight, variance clipping's `γ`, and closest-depth motion dilation
+    /// (off by default; on, the pass binds a depth input,
+    /// [`TaaInputs::depth`], and compiles the dilation into its shader).
     pub settings: TaaSettings,
     /// The output texture's format: `Rgba16Float` (the default) or
     /// `Rgba32Float` (a storage texture; linear radiance, alpha 1). The
@@ -86,16 +117,28 @@ impl TaaPassDesc {
 
 /// One frame's inputs of a [`TaaPass`]: views of whole one-sample textures
 /// of the output's size, each `TEXTURE_BINDING` with a float, unorm or
-/// snorm format.
+/// snorm format. [`TaaInputs::new`] fills the optional ones (no depth,
+/// vectors in pixels).
 #[derive(Clone, Copy, Debug)]
 pub struct TaaInputs<'a> {
     /// This frame's colour (`.xyz`, linear radiance), rendered through the
     /// projection jittered by [`TaaPass::jitter`] of the frame.
     pub current: &'a TextureView,
-    /// Each pixel's motion in pixels (`.xy`), current minus previous
-    /// position of the surface it shows, for the un-jittered projections
-    /// (engines' motion-vector buffers; `+x` right, `+y` down).
+    /// Each pixel's motion vector (`.xy`) for the un-jittered projections,
+    /// which times [`Self::motion_scale`] is its motion in pixels, current
+    /// minus previous position of the surface it shows (`+x` right, `+y`
+    /// down).
     pub velocity: &'a TextureView,
+    /// What each motion vector is multiplied by, component by component
+    /// (FSR2's `motionVectorScale`, with the sign that makes it current
+    /// minus previous): `[1.0, 1.0]` for pixel vectors, `[width, height]`
+    /// for Bevy's, `[-1.0, -1.0]` for FSR2's pixel vectors (see the crate
+    /// README). A component that is 0 or not finite reads as 1.
+    pub motion_scale: [f32; 2],
+    /// Each pixel's depth (`.x`), in the order the desc's
+    /// [`TaaSettings::depth_dilation`] says: given exactly when that
+    /// dilation is on (a [`PassError::Config`] otherwise).
+    pub depth: Option<&'a TextureView>,
     /// The previous frame's output (read only when `history_frames > 0`,
     /// but always bound). Not the output's texture: the host ping-pongs two.
     pub history: &'a TextureView,
@@ -106,12 +149,51 @@ pub struct TaaInputs<'a> {
     pub history_frames: u32,
 }
 
+impl<'a> TaaInputs<'a> {
+    /// The inputs of a frame whose motion vectors are pixels (current minus
+    /// previous) and that binds no depth.
+    pub fn new(
+        current: &'a TextureView,
+        velocity: &'a TextureView,
+        history: &'a TextureView,
+        history_frames: u32,
+    ) -> Self {
+        TaaInputs {
+            current,
+            velocity,
+            motion_scale: [1.0, 1.0],
+            depth: None,
+            history,
+            history_frames,
+        }
+    }
+
+    /// The same inputs with motion vectors multiplied by `scale`
+    /// ([`Self::motion_scale`]).
+    pub fn with_motion_scale(mut self, scale: [f32; 2]) -> Self {
+        self.motion_scale = scale;
+        self
+    }
+
+    /// The same inputs with `depth` ([`Self::depth`]).
+    pub fn with_depth(mut self, depth: &'a TextureView) -> Self {
+        self.depth = Some(depth);
+        self
+    }
+}
+
 /// TAA on the host's device: resolves this frame's jittered colour against
 /// the reprojected history into a storage texture, which is the next frame's
 /// history (`subcone_kernels::taa::resolve_pixel`, the CPU twin, computes
 /// the same per pixel). Neighbourhood and history taps are clamped to the
 /// image; a pixel whose reprojected point lies off the image takes the
-/// current colour.
+/// current colour. Motion vectors are scaled per frame
+/// ([`TaaInputs::motion_scale`]: Bevy's UV vectors by `(width, height)`,
+/// FSR2's by `(−1, −1)`); with `TaaSettings::depth_dilation` on, each pixel
+/// takes the vector of the nearest depth of its 3×3 neighbourhood
+/// (`subcone_kernels::taa::dilated_motion`, Karis 2014; FSR2's
+/// reconstruct & dilate) from the depth input ([`TaaInputs::depth`]).
+/// The crate README shows the lines an engine host writes.
 ///
 /// Built once, encoded every frame: after the first frame with given views,
 /// `encode` creates no buffer, texture, bind group or pipeline
@@ -129,7 +211,7 @@ pub struct TaaInputs<'a> {
 /// // Jitter the projection by `taa.jitter(frame_index)` pixels, render
 /// // `current` and `velocity`, then resolve, ping-ponging two histories.
 /// let (read, write) = (history[(frame_index % 2) as usize], history[((frame_index + 1) % 2) as usize]);
-/// let inputs = TaaInputs { current, velocity, history: read, history_frames: frame_index };
+/// let inputs = TaaInputs::new(current, velocity, read, frame_index);
 /// taa.encode(device, queue, encoder, &inputs, write, None)?;
 /// # Ok(()) }
 /// ```
@@ -231,11 +313,29 @@ impl TaaPass {
             "the desc's output_format",
             rect,
         )?;
-        for (what, view) in [
+        let dilation = self.desc.settings.depth_dilation;
+        match (dilation.is_on(), inputs.depth) {
+            (true, None) => {
+                return Err(PassError::Config(format!(
+                    "TAA with depth dilation {dilation:?} needs a depth: set TaaInputs::depth"
+                )))
+            }
+            (false, Some(_)) => {
+                return Err(PassError::Config(
+                    "TAA given a depth with depth dilation off: set the desc's \
+                     settings.depth_dilation, or give no depth"
+                        .into(),
+                ))
+            }
+            _ => {}
+        }
+        let mut views = vec![
             ("current", inputs.current),
             ("velocity", inputs.velocity),
             ("history", inputs.history),
-        ] {
+        ];
+        views.extend(inputs.depth.map(|d| ("depth", d)));
+        for &(what, view) in &views {
             bind::check_region(
                 view,
                 &Expect {
@@ -257,24 +357,27 @@ impl TaaPass {
         let params: TaaParams = self
             .desc
             .settings
-            .params(region.size(), inputs.history_frames);
+            .params(region.size(), inputs.history_frames)
+            .with_motion_scale(inputs.motion_scale);
         let origin = TaaOrigin {
             x: region.x,
             y: region.y,
             _pad: [0; 2],
         };
+        let mut bound = vec![
+            ("taa_current_tex", Bound::Texture(inputs.current)),
+            ("taa_velocity", Bound::Texture(inputs.velocity)),
+            ("taa_history_tex", Bound::Texture(inputs.history)),
+        ];
+        bound.extend(inputs.depth.map(|d| ("taa_depth_tex", Bound::Texture(d))));
+        bound.push(("taa_dst", Bound::Texture(output)));
         self.pipeline.encode(
             device,
             queue,
             encoder,
             region.size(),
             &[bytemuck::bytes_of(&params), bytemuck::bytes_of(&origin)],
-            &[
-                ("taa_current_tex", Bound::Texture(inputs.current)),
-                ("taa_velocity", Bound::Texture(inputs.velocity)),
-                ("taa_history_tex", Bound::Texture(inputs.history)),
-                ("taa_dst", Bound::Texture(output)),
-            ],
+            &bound,
             None,
             timestamps,
         )
@@ -316,17 +419,27 @@ impl PassShader for TaaPass {
         bind::check_output_format(desc.output_format)
     }
 
-    /// The bindings, writing the desc's output format.
+    /// The bindings, writing the desc's output format; with depth dilation,
+    /// the depth after the history.
     fn group(desc: &TaaPassDesc) -> Result<Group, PassError> {
         let mut g = Group::default();
         g.ring_uniform::<TaaParams>("taa_params", "subcone_TaaParams");
         g.ring_uniform::<TaaOrigin>("taa_origin", "TaaOrigin");
-        let inputs = ["taa_current_tex", "taa_velocity", "taa_history_tex"];
+        let mut inputs = vec!["taa_current_tex", "taa_velocity", "taa_history_tex"];
+        if desc.settings.depth_dilation.is_on() {
+            inputs.push("taa_depth_tex");
+        }
         skeleton::filter_textures(g, &inputs, "taa_dst", desc.output_format)
     }
 
-    /// The kernels' TAA and `taa.wgsl`.
-    fn wgsl(_desc: &TaaPassDesc) -> String {
-        [subcone_kernels::taa::WGSL, TAA_WGSL].concat()
+    /// The kernels' TAA, the pixel's motion fetch (with depth dilation, the
+    /// kernels' dilation over the depth input) and `taa.wgsl`.
+    fn wgsl(desc: &TaaPassDesc) -> String {
+        let motion = if desc.settings.depth_dilation.is_on() {
+            [subcone_kernels::taa::DILATION_WGSL, TAA_DILATED_MOTION].concat()
+        } else {
+            TAA_OWN_MOTION.to_string()
+        };
+        [subcone_kernels::taa::WGSL, &motion, TAA_WGSL].concat()
     }
 }

@@ -2,8 +2,12 @@
 //! - its output against the kernels' CPU resolve
 //!   (`subcone_kernels::taa::resolve_pixel`) on a small frame with edges, an
 //!   HDR highlight, motion and a point reprojected off the image, for the
-//!   linear and the tone-mapped resolve, within 1e-4 relative (the GPU's
-//!   `sqrt` and divisions may round differently);
+//!   linear and the tone-mapped resolve, and with closest-depth dilation
+//!   (`dilated_motion`) in both depth orders, within 1e-4 relative (the
+//!   GPU's `sqrt` and divisions may round differently);
+//! - Bevy's motion vectors (UV units) with `motion_scale = (width, height)`
+//!   and FSR2's (previous minus current) with `(−1, −1)` against the same
+//!   motion in pixels;
 //! - `encode_rect` on a rect of larger textures against `encode` on
 //!   textures of the rect's size holding the same inputs (bit for bit), the
 //!   pixels outside the rect untouched;
@@ -16,11 +20,14 @@ mod common;
 mod host;
 
 use glam::{Vec2, Vec3};
-use subcone_kernels::taa::{resolve_pixel, ResolveSpace, TaaParams, TaaSettings};
+use subcone_kernels::taa::{
+    dilated_motion, resolve_pixel, DepthDilation, ResolveSpace, TaaParams, TaaSettings,
+};
 use subcone_passes::{PassError, Rect, TaaInputs, TaaPass, TaaPassDesc};
 
 const F32: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 const RG: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
+const R: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 
 /// An input texture holding `data` (`channels` floats per pixel).
 fn upload(
@@ -93,6 +100,11 @@ fn open() -> Option<(wgpu::Device, wgpu::Queue)> {
     common::device_or_skip("taa pass", host::open_device)
 }
 
+/// A view of all of `t`.
+fn view(t: &wgpu::Texture) -> wgpu::TextureView {
+    t.create_view(&Default::default())
+}
+
 /// Run `pass` over `(cur, hist, vel)` at `size` into a fresh output (or the
 /// given rect of textures of `size`), read back.
 fn run(
@@ -100,13 +112,29 @@ fn run(
     queue: &wgpu::Queue,
     pass: &TaaPass,
     size: (u32, u32),
+    frame: (&[Vec3], &[Vec3], &[Vec2]),
+    rect: Option<Rect>,
+) -> Vec<[f32; 4]> {
+    run_with(device, queue, pass, size, frame, rect, [1.0, 1.0], None)
+}
+
+/// [`run`] with the motion vectors' scale and a depth input.
+#[allow(clippy::too_many_arguments)]
+fn run_with(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    pass: &TaaPass,
+    size: (u32, u32),
     (cur, hist, vel): (&[Vec3], &[Vec3], &[Vec2]),
     rect: Option<Rect>,
+    motion_scale: [f32; 2],
+    depth: Option<&[f32]>,
 ) -> Vec<[f32; 4]> {
     let c = upload(device, queue, size, F32, &rgba(cur));
     let h = upload(device, queue, size, F32, &rgba(hist));
     let v: Vec<f32> = vel.iter().flat_map(|v| [v.x, v.y]).collect();
     let v = upload(device, queue, size, RG, &v);
+    let d = depth.map(|d| view(&upload(device, queue, size, R, d)));
     // The output starts as a fill the pass must leave outside the rect.
     let out = upload(
         device,
@@ -115,13 +143,11 @@ fn run(
         F32,
         &vec![-7.0; (size.0 * size.1 * 4) as usize],
     );
-    let view = |t: &wgpu::Texture| t.create_view(&Default::default());
-    let inputs = TaaInputs {
-        current: &view(&c),
-        velocity: &view(&v),
-        history: &view(&h),
-        history_frames: 3,
-    };
+    let (cv, vv, hv) = (view(&c), view(&v), view(&h));
+    let mut inputs = TaaInputs::new(&cv, &vv, &hv, 3).with_motion_scale(motion_scale);
+    if let Some(d) = &d {
+        inputs = inputs.with_depth(d);
+    }
     let mut enc = device.create_command_encoder(&Default::default());
     match rect {
         None => pass.encode(device, queue, &mut enc, &inputs, &view(&out), None),
@@ -153,9 +179,6 @@ fn the_pass_is_the_kernel_resolve() {
         let params = TaaParams::new((w, h))
             .with_history_frames(3)
             .with_space(space);
-        fn at(b: &[Vec3], w: u32) -> impl Fn(i32, i32) -> Vec3 + '_ {
-            move |x, y| b[(y as u32 * w + x as u32) as usize]
-        }
         let mut worst = 0.0f32;
         for y in 0..h as i32 {
             for x in 0..w as i32 {
@@ -172,6 +195,163 @@ fn the_pass_is_the_kernel_resolve() {
             "{space:?}: the pass differs from the kernel by {worst}"
         );
     }
+}
+
+fn at<T: Copy>(b: &[T], w: u32) -> impl Fn(i32, i32) -> T + '_ {
+    move |x, y| b[(y as u32 * w + x as u32) as usize]
+}
+
+/// The largest relative difference of the pass's output from `want`.
+fn worst(got: &[[f32; 4]], want: &[Vec3]) -> f32 {
+    got.iter()
+        .zip(want)
+        .map(|(g, w)| {
+            let g = Vec3::new(g[0], g[1], g[2]);
+            ((g - *w).abs() / w.abs().max(Vec3::splat(1e-3))).max_element()
+        })
+        .fold(0.0, f32::max)
+}
+
+/// A depth of `w × h` with near blobs (a view depth of 2 against 10, a pixel
+/// with nothing hit, +∞), in the order `dilation` reads: the near blobs are
+/// the smallest for `NearestSmallest`, the largest (reversed Z) for
+/// `NearestLargest`.
+fn depth(w: u32, h: u32, dilation: DepthDilation) -> Vec<f32> {
+    (0..w * h)
+        .map(|i| {
+            let (x, y) = (i % w, i / w);
+            let view = if (x + 2 * y) % 7 == 0 {
+                2.0 + (x % 3) as f32 * 0.25
+            } else if (x, y) == (5, 5) {
+                f32::INFINITY
+            } else {
+                10.0 - (y % 2) as f32
+            };
+            match dilation {
+                DepthDilation::NearestLargest if view.is_finite() => 1.0 - view / 20.0,
+                DepthDilation::NearestLargest => 0.0,
+                _ => view,
+            }
+        })
+        .collect()
+}
+
+/// With closest-depth dilation (both depth orders) the pass is the
+/// kernels' `dilated_motion` then `resolve_pixel`, within the same 1e-4;
+/// and the dilation changes the output (the test would see a pass that
+/// ignored the depth).
+#[test]
+fn the_dilated_pass_is_the_kernel_resolve() {
+    let Some((device, queue)) = open() else {
+        return;
+    };
+    let (w, h) = (12, 8);
+    let (cur, hist, vel) = frame(w, h);
+    for dilation in [
+        DepthDilation::NearestSmallest,
+        DepthDilation::NearestLargest,
+    ] {
+        let desc = TaaPassDesc::default()
+            .with_settings(TaaSettings {
+                depth_dilation: dilation,
+                ..TaaSettings::default()
+            })
+            .with_output_format(F32);
+        let pass = TaaPass::new(&device, &desc).expect("pass");
+        let d = depth(w, h, dilation);
+        let got = run_with(
+            &device,
+            &queue,
+            &pass,
+            (w, h),
+            (&cur, &hist, &vel),
+            None,
+            [1.0, 1.0],
+            Some(&d),
+        );
+        let params = TaaParams::new((w, h))
+            .with_history_frames(3)
+            .with_depth_dilation(dilation);
+        let want: Vec<Vec3> = (0..(w * h) as i32)
+            .map(|i| {
+                let (x, y) = (i % w as i32, i / w as i32);
+                let v = dilated_motion(&at(&vel, w), &at(&d, w), (x, y), &params);
+                resolve_pixel(&at(&cur, w), &at(&hist, w), (x, y), v, &params)
+            })
+            .collect();
+        let own: Vec<Vec3> = (0..(w * h) as i32)
+            .map(|i| {
+                let (x, y) = (i % w as i32, i / w as i32);
+                resolve_pixel(
+                    &at(&cur, w),
+                    &at(&hist, w),
+                    (x, y),
+                    vel[i as usize],
+                    &params,
+                )
+            })
+            .collect();
+        let worst_dilated = worst(&got, &want);
+        eprintln!("{dilation:?}: worst relative difference {worst_dilated:.3e}");
+        assert!(
+            worst_dilated < 1e-4,
+            "{dilation:?}: the dilated pass differs from the kernel by {worst_dilated}"
+        );
+        assert!(
+            worst(&got, &own) > 1e-2,
+            "{dilation:?}: the dilation changed nothing"
+        );
+    }
+}
+
+/// An engine's motion vectors in its own convention, scaled by the pass,
+/// resolve as the same motion in pixels: Bevy's (UV units, current minus
+/// previous) with `motion_scale = (width, height)`, within 1e-5 relative
+/// (`uv · width` rounds), and FSR2's (previous minus current, pixels) with
+/// `(−1, −1)`, bit for bit.
+#[test]
+fn bevy_and_fsr2_motion_vectors_resolve_as_pixels() {
+    let Some((device, queue)) = open() else {
+        return;
+    };
+    let (w, h) = (12, 8);
+    let (cur, hist, px) = frame(w, h);
+    let pass =
+        TaaPass::new(&device, &TaaPassDesc::default().with_output_format(F32)).expect("pass");
+    let size = Vec2::new(w as f32, h as f32);
+    let pixels = run(&device, &queue, &pass, (w, h), (&cur, &hist, &px), None);
+    let go = |vel: &[Vec2], scale| {
+        run_with(
+            &device,
+            &queue,
+            &pass,
+            (w, h),
+            (&cur, &hist, vel),
+            None,
+            scale,
+            None,
+        )
+    };
+    let uv: Vec<Vec2> = px.iter().map(|v| *v / size).collect();
+    let bevy = go(&uv, [w as f32, h as f32]);
+    let pixels_rgb: Vec<Vec3> = pixels.iter().map(|p| Vec3::new(p[0], p[1], p[2])).collect();
+    let d = worst(&bevy, &pixels_rgb);
+    assert!(d < 1e-5, "Bevy's vectors differ from pixels by {d}");
+    let unscaled = go(&uv, [1.0, 1.0]);
+    assert!(
+        worst(&unscaled, &pixels_rgb) > 1e-2,
+        "the scale changed nothing"
+    );
+    let fsr2: Vec<Vec2> = px.iter().map(|v| -*v).collect();
+    let got = go(&fsr2, [-1.0, -1.0]);
+    assert_eq!(
+        got.iter().map(|p| p.map(f32::to_bits)).collect::<Vec<_>>(),
+        pixels
+            .iter()
+            .map(|p| p.map(f32::to_bits))
+            .collect::<Vec<_>>(),
+        "FSR2's vectors with scale (-1, -1)"
+    );
 }
 
 #[test]
@@ -226,12 +406,7 @@ fn a_rect_is_the_pass_on_the_rect_alone() {
     }
     // A rect outside the textures is refused before anything is recorded.
     let [t, v, out] = tiny(&device, &queue);
-    let inputs = TaaInputs {
-        current: &t,
-        velocity: &v,
-        history: &t,
-        history_frames: 1,
-    };
+    let inputs = TaaInputs::new(&t, &v, &t, 1);
     let mut enc = device.create_command_encoder(&Default::default());
     let e = pass
         .encode_rect(
@@ -282,17 +457,53 @@ fn bad_descs_and_inputs_are_refused() {
     let pass =
         TaaPass::new(&device, &TaaPassDesc::default().with_output_format(F32)).expect("pass");
     let [t, v, out] = tiny(&device, &queue);
-    let inputs = TaaInputs {
-        current: &t,
-        velocity: &v,
-        history: &out,
-        history_frames: 1,
-    };
+    let inputs = TaaInputs::new(&t, &v, &out, 1);
     let mut enc = device.create_command_encoder(&Default::default());
     let e = pass
         .encode(&device, &queue, &mut enc, &inputs, &out, None)
         .unwrap_err();
     assert!(matches!(e, PassError::Config(_)), "{e:?}");
+    // A depth with dilation off, and dilation without a depth, are refused;
+    // so is a depth of another size.
+    let d = view(&upload(&device, &queue, (4, 4), R, &[1.0; 16]));
+    let with_depth = TaaInputs::new(&t, &v, &t, 1).with_depth(&d);
+    let e = pass
+        .encode(&device, &queue, &mut enc, &with_depth, &out, None)
+        .unwrap_err();
+    assert!(matches!(e, PassError::Config(_)), "{e:?}");
+    let dilating = TaaPass::new(
+        &device,
+        &TaaPassDesc::default()
+            .with_output_format(F32)
+            .with_settings(TaaSettings {
+                depth_dilation: DepthDilation::NearestSmallest,
+                ..TaaSettings::default()
+            }),
+    )
+    .expect("pass");
+    let e = dilating
+        .encode(
+            &device,
+            &queue,
+            &mut enc,
+            &TaaInputs::new(&t, &v, &t, 1),
+            &out,
+            None,
+        )
+        .unwrap_err();
+    assert!(matches!(e, PassError::Config(_)), "{e:?}");
+    let small = view(&upload(&device, &queue, (2, 2), R, &[1.0; 4]));
+    let e = dilating
+        .encode(
+            &device,
+            &queue,
+            &mut enc,
+            &TaaInputs::new(&t, &v, &t, 1).with_depth(&small),
+            &out,
+            None,
+        )
+        .unwrap_err();
+    assert!(matches!(e, PassError::Size { .. }), "{e:?}");
     // The encoder is still good to submit.
     queue.submit([enc.finish()]);
 }

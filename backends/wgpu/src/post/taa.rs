@@ -1,14 +1,15 @@
 //! The TAA resolve (`subcone_kernels::taa`: Karis 2014 with Salvi's variance
 //! clipping) on the GPU through [`subcone_passes::TaaPass`], the pass a host
-//! renderer runs: the frame's colours, velocities and history are written
-//! into the pass's input textures, resolved into its output and read back,
-//! timed as the pass `"taa"`. What `subcone_scene::temporal::Taa` calls
-//! through `Backend::resolve_taa`.
+//! renderer runs: the frame's colours, velocities, depths (with
+//! closest-depth dilation) and history are written into the pass's input
+//! textures, resolved into its output and read back, timed as the pass
+//! `"taa"`. What `subcone_scene::temporal::Taa` calls through
+//! `Backend::resolve_taa`.
 
 use std::sync::Arc;
 
 use glam::Vec3;
-use subcone_kernels::taa::{ResolveSpace, TaaSettings};
+use subcone_kernels::taa::{DepthDilation, ResolveSpace, TaaSettings};
 use subcone_passes::{TaaInputs, TaaPass, TaaPassDesc};
 use subcone_scene::history::TaaInput;
 use subcone_scene::{PassTiming, RenderError};
@@ -17,11 +18,13 @@ use crate::context::{err, CacheKey, GpuContext};
 
 const COLOR: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 const VELOCITY: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
+const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 
 /// The TAA pass's cache key: the bits of the settings the resolve reads
-/// (tone mapped, exposure, smallest current weight, clip γ).
+/// (tone mapped, exposure, smallest current weight, clip γ, depth
+/// dilation).
 #[derive(PartialEq, Eq, Hash)]
-struct TaaPassKey([u32; 4]);
+struct TaaPassKey([u32; 5]);
 
 impl CacheKey for TaaPassKey {
     type Value = TaaPass;
@@ -36,6 +39,7 @@ fn pass(ctx: &GpuContext, input: &TaaInput<'_>) -> Result<Arc<TaaPass>, RenderEr
         p.exposure.to_bits(),
         p.min_current_weight.to_bits(),
         p.clip_gamma.to_bits(),
+        p.depth_dilation,
     ]);
     ctx.cached_or_insert(key, |_| {
         let space = if p.tone_mapped == 1 {
@@ -49,6 +53,7 @@ fn pass(ctx: &GpuContext, input: &TaaInput<'_>) -> Result<Arc<TaaPass>, RenderEr
             space,
             min_current_weight: p.min_current_weight,
             clip_gamma: p.clip_gamma,
+            depth_dilation: DepthDilation::from_code(p.depth_dilation),
             ..TaaSettings::default()
         };
         let desc = TaaPassDesc::default()
@@ -77,6 +82,9 @@ pub(crate) fn resolve(
         rgba(input.history)
     };
     let velocity: Vec<f32> = input.velocity.iter().flat_map(|v| [v.x, v.y]).collect();
+    // A pass without dilation binds no depth (and the key keeps it apart
+    // from one with).
+    let depth = input.depth.filter(|_| input.dilation().is_on());
     let read = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
     let textures = ctx.scoped("taa textures", || {
         let upload = |label, format, data: &[f32], texel: u32| {
@@ -93,7 +101,7 @@ pub(crate) fn resolve(
             );
             t
         };
-        [
+        let textures = [
             upload("taa current", COLOR, &current, 16),
             upload("taa velocity", VELOCITY, &velocity, 8),
             upload("taa history", COLOR, &history, 16),
@@ -103,19 +111,27 @@ pub(crate) fn resolve(
                 COLOR,
                 wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
             ),
-        ]
+        ];
+        let depth = depth.map(|d| upload("taa depth", DEPTH, d, 4));
+        (textures, depth)
     })?;
+    let (textures, depth) = textures;
     let [current, velocity, history, output] =
         textures.map(|t| (t.create_view(&Default::default()), t));
+    let depth = depth.map(|t| t.create_view(&Default::default()));
     let mut timings = Vec::new();
     let mut encoded = Ok(());
     ctx.timed_pass("taa", &mut timings, |enc| {
-        let inputs = TaaInputs {
-            current: &current.0,
-            velocity: &velocity.0,
-            history: &history.0,
-            history_frames: input.params.history_frames,
-        };
+        let mut inputs = TaaInputs::new(
+            &current.0,
+            &velocity.0,
+            &history.0,
+            input.params.history_frames,
+        )
+        .with_motion_scale(input.params.motion_scale);
+        if let Some(d) = &depth {
+            inputs = inputs.with_depth(d);
+        }
         encoded = taa.encode(&ctx.device, &ctx.queue, enc, &inputs, &output.0, None);
         // The textures are this frame's: the shared pass need not keep them.
         taa.release_views();
