@@ -63,8 +63,9 @@ use named::{default_methods, CTSS, CTSS_R, FXAA, NOAA, SRAA, SRAA_RT, SSAA16, SS
 mod temporal;
 mod thin_slab;
 pub use temporal::{
-    check_taa_reset, check_taa_still, check_temporal_matches_cpu, RESET_FRAMES, SEQUENCE_FRAMES,
-    STILL_FRAMES, STILL_RATIO, TEMPORAL_CASES,
+    check_taa_moving_object, check_taa_reset, check_taa_still, check_temporal_matches_cpu,
+    DISOCCLUSION_RATIO, MOVING_FRAMES, MOVING_JUDGED_AFTER, MOVING_PIXELS_PER_FRAME, MOVING_SIZE,
+    RESET_FRAMES, SEQUENCE_FRAMES, STILL_FRAMES, STILL_RATIO, TEMPORAL_CASES,
 };
 pub use thin_slab::{check_thin_slab, thin_slab_methods, thin_slab_scene, THIN_SLAB_TOLERANCE};
 
@@ -128,14 +129,15 @@ pub fn left_out() -> [(Method, LeftOutOf, &'static str); 4] {
 /// default comparison ([`default_methods`], the registry's `METHOD_NAMES`)
 /// whose technique applies to it, but those [`left_out`] of it and, on SDF
 /// scenes, the hybrids (`-hybrid`: with no triangles to rasterise, each is
-/// its traced method, which runs).
+/// its traced method, which runs) and `ssaa2` (the 2×2 grid's diagonal, a
+/// triangle-scene method every backend refuses there).
 pub fn methods_for(scene: &Scene) -> Vec<Method> {
     let sdf = scene.features().contains(SceneFeatures::IS_SDF);
     default_methods()
         .into_iter()
         .filter(|method| {
             required_passes(method.technique(), scene.features()).is_ok()
-                && !(sdf && method.is_hybrid())
+                && !(sdf && (method.is_hybrid() || method.ssaa_diagonal()))
                 && !left_out()
                     .iter()
                     .any(|(n, o, _)| n == method && (sdf || *o == LeftOutOf::Everywhere))
@@ -785,6 +787,7 @@ macro_rules! conformance_suite {
                 thin_slab_is_opaque_under_every_ctss_method => check_thin_slab,
                 taa_converges_on_a_still_camera => check_taa_still,
                 taa_recovers_after_a_cut => check_taa_reset,
+                taa_leaves_no_history_where_an_object_moved_away => check_taa_moving_object,
                 temporal_frames_match_the_cpu => check_temporal_matches_cpu,
             );
 

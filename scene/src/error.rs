@@ -42,6 +42,10 @@ pub enum SceneError {
     /// The camera is unusable.
     #[error("invalid camera: {0}")]
     Camera(String),
+    /// A moving object cannot move as asked
+    /// ([`MovingObject`](crate::moving::MovingObject)).
+    #[error("invalid moving object: {0}")]
+    Motion(String),
     /// An SDF scene is invalid.
     #[error(transparent)]
     Sdf(#[from] SdfError),
@@ -359,6 +363,10 @@ pub enum SdfError {
     /// The camera is unusable.
     #[error("invalid camera: {0}")]
     Camera(String),
+    /// A moving object cannot move as asked
+    /// ([`MovingObject`](crate::moving::MovingObject)).
+    #[error("invalid moving object: {0}")]
+    Motion(String),
     /// A scene-level setting is unusable.
     #[error("SDF scene {name:?}: {reason}")]
     Scene {

@@ -32,6 +32,7 @@ pub mod light;
 pub mod material;
 pub mod mesh;
 pub mod method;
+pub mod moving;
 pub mod registry;
 pub mod scene;
 pub mod sdf;
