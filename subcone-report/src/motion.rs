@@ -265,9 +265,19 @@ struct Pooled {
 }
 
 impl Pooled {
+    /// Add `map` over each class of `masks`. The instability is a
+    /// per-pixel measure with no filter to spread an edge's error, so its
+    /// flat is every pixel in no class ([`ClassMasks::unclassed`]), not
+    /// FLIP's flat beyond its filters' reach.
     fn add(&mut self, map: &[f32], masks: &ClassMasks) {
+        let unclassed = masks.unclassed();
         for c in CLASSES {
-            for (v, &m) in map.iter().zip(masks.mask(c)) {
+            let mask = if c == classes::Class::Flat {
+                &unclassed[..]
+            } else {
+                masks.mask(c)
+            };
+            for (v, &m) in map.iter().zip(mask) {
                 if m {
                     self.sum[c.index()] += f64::from(*v);
                     self.px[c.index()] += 1;
@@ -744,7 +754,8 @@ means over the frames. `taa` and the `+taa` methods (Karis 2014 with Salvi's var
 16 Halton (2, 3) jitter phases; `sraa-rt+taa` rotates its shaded subsample instead) start from a \
 reset at the path's first frame; *frames to beat noaa* counts the frames until the first whose FLIP \
 is below NoAA's on the same frame. *Instability* is, over frames 2 to {} and the pixels of each class (classes from each \
-frame's own sub-samples), the mean of |Δmethod − Δreference|, Δ being a pixel's change of \
+frame's own sub-samples; flat is every pixel in no class, as the measure is per pixel and \
+spreads no edge's error), the mean of |Δmethod − Δreference|, Δ being a pixel's change of \
 luminance (0 to 1) from the previous frame: 0 when a method changes exactly as the reference \
 does; the last row gives the pixels each class's instability is pooled over, summed over those \
 frames. *ms/frame* is the median wall time of one frame (for a temporal method, its jittered \

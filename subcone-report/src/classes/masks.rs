@@ -40,6 +40,17 @@ impl ClassMasks {
         self.mask(class).iter().filter(|&&m| m).count() as u64
     }
 
+    /// The pixels in no class, near-edge band included: flat for a
+    /// per-pixel measure, which carries no error onto a neighbour (the
+    /// motion section's instability).
+    pub fn unclassed(&self) -> Vec<bool> {
+        self.mask(Class::Flat)
+            .iter()
+            .zip(&self.near_edge)
+            .map(|(&f, &n)| f || n)
+            .collect()
+    }
+
     /// These masks with FLIP's near-edge band (and flat) `radius` pixels
     /// wide instead of its filters' reach: to judge flat as a target was
     /// stated before the band followed the metric (2 px).
