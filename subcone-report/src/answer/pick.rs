@@ -61,8 +61,9 @@ pub struct Pick {
     pub worst_time_ratio: f64,
     /// On how many of the scenes it is on the front.
     pub on_front: usize,
-    /// The next method by the same rule within the budget, with its mean
-    /// error ratio (`None` when it is the only candidate).
+    /// The next method by the same rule within the budget that renders
+    /// other images (a `-hybrid` and its traced twin are one choice), with
+    /// its mean error ratio (`None` when there is none).
     pub runner_up: Option<(RowKey, f64)>,
     /// Why the decision is within noise, one clause each: the runner-up
     /// with less error at some camera offset, the pick over the budget in
@@ -96,6 +97,21 @@ struct Candidate<'a> {
     /// Per camera offset, the mean over the scenes of its error over
     /// NoAA's at that offset (empty unless every row has the same offsets).
     at_offsets: Vec<f64>,
+    /// Its quality image's digest on each scene ([`ResultRow::image_digest`]).
+    digests: Vec<Option<u64>>,
+}
+
+impl Candidate<'_> {
+    /// Whether it rendered the same image as `other` on every scene (a
+    /// `-hybrid` and its traced twin): no alternative to it.
+    fn same_images(&self, other: &Candidate) -> bool {
+        self.digests.len() == other.digests.len()
+            && self
+                .digests
+                .iter()
+                .zip(&other.digests)
+                .all(|(a, b)| a.is_some() && a == b)
+    }
 }
 
 impl Candidate<'_> {
@@ -298,7 +314,9 @@ pub fn picks(
                     let Some(best) = admitted.first() else {
                         continue;
                     };
-                    let runner = admitted.get(1);
+                    // The runner-up: the next that renders other images
+                    // (a repeated image is no alternative).
+                    let runner = admitted.iter().skip(1).find(|c| !c.same_images(best)).copied();
                     let on_front = kind_scenes
                         .iter()
                         .filter(|(sc, _)| on_the_front(fronts, ex, sc, &b, metric, best.method))
@@ -314,7 +332,7 @@ pub fn picks(
                         worst_time_ratio: best.worst(),
                         on_front,
                         runner_up: runner.map(|r| (r.method.clone(), r.mean)),
-                        noise: noise(best, runner.copied(), &candidates, budget),
+                        noise: noise(best, runner, &candidates, budget),
                     });
                 }
             }
@@ -378,6 +396,7 @@ fn candidate<'a>(
         mean,
         times,
         at_offsets,
+        digests: got.iter().map(|(r, _)| r.image_digest).collect(),
     }
 }
 

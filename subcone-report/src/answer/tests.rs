@@ -434,3 +434,22 @@ fn a_pick_names_its_runner_up_and_says_when_it_is_within_noise() {
     assert!(picks.iter().any(|p| p["runner_up"]["method"] == "ssaa4"
         && p["within_noise"].as_array().is_some_and(|w| !w.is_empty())));
 }
+
+#[test]
+fn a_picks_runner_up_is_not_its_own_image_again() {
+    let scenes = [scene("t", false)];
+    let mut rows = vec![
+        timed("t", "noaa", 1.0, 0.10, 0.90),
+        timed("t", "ssaa4", 3.0, 0.05, 0.95),
+        timed("t", "ssaa4-hybrid", 2.0, 0.05, 0.95),
+        timed("t", "ssaa16", 12.0, 0.03, 0.99),
+    ];
+    for (r, d) in rows.iter_mut().zip([1, 2, 2, 3]) {
+        r.image_digest = Some(d);
+    }
+    let a = Answer::of(&rows, &scenes);
+    let p = a.pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0)).unwrap();
+    assert_eq!(p.method.to_string(), "ssaa4-hybrid");
+    // ssaa4 is the same image: the runner-up is the next other image.
+    assert_eq!(p.runner_up.as_ref().unwrap().0.to_string(), "noaa");
+}
