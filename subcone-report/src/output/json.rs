@@ -114,8 +114,9 @@ pub fn json(s: &ReportSummary, ctx: &Context) -> Value {
 /// A row's error at each camera offset, as `results.json` gives it beside
 /// the columns (`errors_at`): per offset its `offset` (pixels), `flip`,
 /// `ssim`, and per class (the near-edge band included) `flip_<class>`,
-/// `dssim_<class>` and `px_<class>`, so that every verdict can be derived
-/// again from the file.
+/// `dssim_<class>` and `px_<class>` (FLIP's flat and band; SSIM's, whose
+/// band is narrower, are `px_ssim_flat` and `px_ssim_near_edge`), so that
+/// every verdict can be derived again from the file.
 fn errors_at_json(r: &ResultRow) -> Value {
     let num = |v: Option<f64>| {
         v.filter(|x| x.is_finite())
@@ -138,6 +139,15 @@ fn errors_at_json(r: &ResultRow) -> Value {
                 m.insert("flip_near_edge".into(), num(e.classes.near_edge));
                 m.insert("dssim_near_edge".into(), num(e.classes_ssim.near_edge));
                 m.insert("px_near_edge".into(), json!(e.classes.near_edge_px));
+                // SSIM's flat and band are its own (its window's reach).
+                m.insert(
+                    "px_ssim_flat".into(),
+                    json!(e.classes_ssim.px[crate::classes::Class::Flat.index()]),
+                );
+                m.insert(
+                    "px_ssim_near_edge".into(),
+                    json!(e.classes_ssim.near_edge_px),
+                );
                 Value::Object(m)
             })
             .collect(),
