@@ -92,7 +92,9 @@ fn subcone_fxaa_bilinear(px: f32, py: f32) -> vec4<f32> {
     return top * (1.0 - fy) + bottom * fy;
 }
 
-// Mirrors fxaa::fxaa_pixel (see its doc comment for the domain).
+// Mirrors fxaa::fxaa_pixel (see its doc comment for the domain). One long
+// function on purpose: it follows FXAA 3.11's quality path and the Rust twin
+// statement for statement, so the two can be read side by side.
 fn subcone_fxaa_pixel(x: i32, y: i32, p: subcone_FxaaParams) -> vec3<f32> {
     let pos_m_x = f32(x);
     let pos_m_y = f32(y);

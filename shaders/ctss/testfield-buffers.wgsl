@@ -743,7 +743,10 @@ fn subcone_cone_stepper_advance_split(s: ptr<function, subcone_ConeStepper>, d: 
 
 // subcone_kernels::ctss::ConeStepper::advance_object — advance_split with the
 // nearest object's id: unless FLAG_PAPER, a group ends where it changes, or
-// where the occlusion rises by GROUP_DIP after a dip as deep.
+// where the occlusion rises by GROUP_DIP after a dip as deep. One long
+// function on purpose: it is the stepper of Algorithm 1 as the Rust twin
+// writes it, branch for branch, so the conformance suite's agreement can be
+// checked by reading.
 fn subcone_cone_stepper_advance_object(s: ptr<function, subcone_ConeStepper>, d: f32, step: f32, object: u32) -> subcone_CtssEvent {
     if (*s).stop != subcone_STOP_NONE {
         return subcone_ctss_event(subcone_EVENT_STOP, (*s).stop);
