@@ -237,7 +237,11 @@ fn a_host_fields_own_bindings_reach_every_language_and_the_table() {
     let mut unique = numbers.clone();
     unique.sort();
     unique.dedup();
-    assert_eq!(unique.len(), numbers.len(), "GLSL bindings collide: {numbers:?}");
+    assert_eq!(
+        unique.len(),
+        numbers.len(),
+        "GLSL bindings collide: {numbers:?}"
+    );
     // The tables list the host's group-1 bindings with their types.
     let json = text("ctss.json");
     for needle in ["\"host_box\"", "\"host_albedo\"", "texture_2d<f32>"] {
@@ -283,8 +287,20 @@ fn validate_with_tools(files: &[subcone::shaders::OutputFile]) {
         );
     };
     run(&["spirv-val", "--target-env", "vulkan1.0", "host-texture.spv"]);
-    run(&["glslangValidator", "-V", "host-texture.comp", "-o", "glsl.spv"]);
-    run(&["glslangValidator", "-V", "host-texture.es.comp", "-o", "es.spv"]);
+    run(&[
+        "glslangValidator",
+        "-V",
+        "host-texture.comp",
+        "-o",
+        "glsl.spv",
+    ]);
+    run(&[
+        "glslangValidator",
+        "-V",
+        "host-texture.es.comp",
+        "-o",
+        "es.spv",
+    ]);
     run(&[
         "glslangValidator",
         "-D",

@@ -135,7 +135,10 @@ fn ssaa2_is_the_diagonal_of_the_2x2_grid_on_triangle_scenes_only() {
     use subcone_scene::UnsupportedReason;
     let m: Method = "ssaa2".parse().unwrap();
     assert_eq!(m, Method::SSAA2);
-    assert_eq!((m.ssaa_side(), m.supersamples(), m.ssaa_diagonal()), (2, 2, true));
+    assert_eq!(
+        (m.ssaa_side(), m.supersamples(), m.ssaa_diagonal()),
+        (2, 2, true)
+    );
     assert!(!Method::ssaa(4).unwrap().ssaa_diagonal());
     // No 2-sample cone tracing per supersample.
     assert!("ssaa2+ctss".parse::<Method>().is_err());
@@ -152,7 +155,16 @@ fn ssaa2_is_the_diagonal_of_the_2x2_grid_on_triangle_scenes_only() {
     assert!(plan(&cornell, &m, &caps(Ok(()))).is_ok());
     // A backend without it refuses, rather than render the 2×2 grid.
     let e = plan(&cornell, &m, &caps(Err("no diagonal"))).unwrap_err();
-    assert!(matches!(e.reason, UnsupportedReason::CpuOnly { why: "no diagonal", .. }), "{e}");
+    assert!(
+        matches!(
+            e.reason,
+            UnsupportedReason::CpuOnly {
+                why: "no diagonal",
+                ..
+            }
+        ),
+        "{e}"
+    );
     // SDF scenes refuse it on any backend.
     let primitives = builtin("primitives").unwrap();
     let e = plan(&primitives, &m, &caps(Ok(()))).unwrap_err();

@@ -322,9 +322,7 @@ pub fn crossover(sweep: &AoSweep, scene: &str, backend: &str, pair: Pair) -> Cro
             ssaa4_flip: a.flip_mean,
         }
     });
-    let end = |m: Option<(usize, Option<f64>)>| {
-        m.map(|(at, x)| x.unwrap_or(gaps[at].0 as f64))
-    };
+    let end = |m: Option<(usize, Option<f64>)>| m.map(|(at, x)| x.unwrap_or(gaps[at].0 as f64));
     let interpolated_range = end(meet(&best)).zip(end(meet(&worst)));
     Crossover {
         scene: scene.into(),
@@ -375,7 +373,10 @@ pub fn equal_quality(
 
 /// A row's median ms with its fastest and slowest run, `93.5 (91.0–97.2)`.
 fn ms_with_range(r: &AoSweepRow) -> String {
-    format!("{:.1} ({:.1}–{:.1})", r.ms_median, r.ms_range.0, r.ms_range.1)
+    format!(
+        "{:.1} ({:.1}–{:.1})",
+        r.ms_median, r.ms_range.0, r.ms_range.1
+    )
 }
 
 /// The crossover as a sentence of the report.

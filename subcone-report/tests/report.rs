@@ -255,11 +255,23 @@ fn check_verdicts(results: &serde_json::Value, md: &str) {
             }
             for (o, head) in [
                 ("win", "beats NoAA on "),
-                ("better", "better than NoAA at every offset, not always by the margin, on "),
-                ("tie-better", "ties (consistently better, within the margin) on "),
+                (
+                    "better",
+                    "better than NoAA at every offset, not always by the margin, on ",
+                ),
+                (
+                    "tie-better",
+                    "ties (consistently better, within the margin) on ",
+                ),
                 ("tie", "ties NoAA on "),
-                ("tie-worse", "ties (consistently worse, within the margin) on "),
-                ("worse", "worse than NoAA at every offset, not always by the margin, on "),
+                (
+                    "tie-worse",
+                    "ties (consistently worse, within the margin) on ",
+                ),
+                (
+                    "worse",
+                    "worse than NoAA at every offset, not always by the margin, on ",
+                ),
                 ("noise", "tie (within noise) on "),
                 ("few", "too few pixels for a verdict on "),
             ] {

@@ -120,7 +120,10 @@ impl Candidate<'_> {
     fn within(&self, budget: Option<f64>) -> bool {
         match budget {
             None => true,
-            Some(lim) => self.times.iter().all(|(_, t, _)| t.is_some_and(|t| t <= lim)),
+            Some(lim) => self
+                .times
+                .iter()
+                .all(|(_, t, _)| t.is_some_and(|t| t <= lim)),
         }
     }
 
@@ -299,7 +302,14 @@ pub fn picks(
                             .iter()
                             .map(|(sc, _)| usable(sc, m, metric))
                             .collect::<Option<_>>()?;
-                        Some(candidate(m, *m == noaa, &got, &kind_scenes, &noaa_rows, metric))
+                        Some(candidate(
+                            m,
+                            *m == noaa,
+                            &got,
+                            &kind_scenes,
+                            &noaa_rows,
+                            metric,
+                        ))
                     })
                     .collect();
                 for budget in BUDGETS {
@@ -316,7 +326,11 @@ pub fn picks(
                     };
                     // The runner-up: the next that renders other images
                     // (a repeated image is no alternative).
-                    let runner = admitted.iter().skip(1).find(|c| !c.same_images(best)).copied();
+                    let runner = admitted
+                        .iter()
+                        .skip(1)
+                        .find(|c| !c.same_images(best))
+                        .copied();
                     let on_front = kind_scenes
                         .iter()
                         .filter(|(sc, _)| on_the_front(fronts, ex, sc, &b, metric, best.method))
@@ -384,7 +398,10 @@ fn candidate<'a>(
     let at_offsets = if paired {
         (0..k)
             .map(|o| {
-                mine.iter().zip(&theirs).map(|(a, n)| a[o] / n[o]).sum::<f64>()
+                mine.iter()
+                    .zip(&theirs)
+                    .map(|(a, n)| a[o] / n[o])
+                    .sum::<f64>()
                     / mine.len() as f64
             })
             .collect()
@@ -415,13 +432,12 @@ fn on_the_front(
             && f.backend == backend
             && f.metric == metric
             && f.points.iter().any(|p| {
-                p.method == *method
-                    || ex.iter().any(|e| {
-                        e.scene == scene
-                            && e.backend == backend
-                            && e.method == *method
-                            && matches!(&e.why, Why::SameImage { as_method } if *as_method == p.method)
-                    })
+                p.method == *method || ex.iter().any(|e| {
+                    e.scene == scene
+                        && e.backend == backend
+                        && e.method == *method
+                        && matches!(&e.why, Why::SameImage { as_method } if *as_method == p.method)
+                })
             })
     })
 }
@@ -465,7 +481,10 @@ fn noise(
             ));
         }
     }
-    for c in all.iter().filter(|c| c.mean < best.mean && !c.within(Some(lim))) {
+    for c in all
+        .iter()
+        .filter(|c| c.mean < best.mean && !c.within(Some(lim)))
+    {
         // Out of the budget by its median on some scenes: within it in a
         // round on every one of them?
         let out: Vec<&SceneTime> = c

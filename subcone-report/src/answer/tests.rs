@@ -358,7 +358,10 @@ fn a_front_step_holds_only_at_every_offset_and_in_every_round() {
         // Lower by the mean, higher at offset 1: within noise.
         at_offsets(timed("t", "sraa", 4.0, 0.0, 0.0), [0.03, 0.07, 0.03, 0.04]),
     ];
-    for (r, rounds) in rows.iter_mut().zip([[1.0, 1.0, 1.0], [3.0, 3.1, 2.9], [4.0, 4.2, 3.8]]) {
+    for (r, rounds) in rows
+        .iter_mut()
+        .zip([[1.0, 1.0, 1.0], [3.0, 3.1, 2.9], [4.0, 4.2, 3.8]])
+    {
         r.round_ms = rounds.to_vec();
     }
     let a = Answer::of(&rows, &scenes);
@@ -376,7 +379,9 @@ fn a_front_step_holds_only_at_every_offset_and_in_every_round() {
     // sraa faster than ssaa4 in one round: the time order is noise too.
     rows[2].round_ms = vec![4.0, 3.0, 3.8];
     let a = Answer::of(&rows, &scenes);
-    let s = a.front("t", "cpu", Metric::Flip).unwrap().points[2].step.unwrap();
+    let s = a.front("t", "cpu", Metric::Flip).unwrap().points[2]
+        .step
+        .unwrap();
     assert!(!s.time_in_every_round);
     assert!(!s.holds());
 }
@@ -393,7 +398,9 @@ fn a_pick_names_its_runner_up_and_says_when_it_is_within_noise() {
         at_offsets(timed("t", "ssaa16", 12.0, 0.0, 0.0), [0.02; 4]),
     ];
     let a = Answer::of(&rows, &scenes);
-    let p = a.pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0)).unwrap();
+    let p = a
+        .pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0))
+        .unwrap();
     assert_eq!(p.method.to_string(), "sraa");
     let (next, e) = p.runner_up.clone().unwrap();
     assert_eq!(next.to_string(), "ssaa4");
@@ -406,14 +413,18 @@ fn a_pick_names_its_runner_up_and_says_when_it_is_within_noise() {
     // Without the flip, the pick holds.
     rows[3] = at_offsets(timed("t", "sraa", 3.5, 0.0, 0.0), [0.03, 0.04, 0.045, 0.04]);
     let a = Answer::of(&rows, &scenes);
-    let p = a.pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0)).unwrap();
+    let p = a
+        .pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0))
+        .unwrap();
     assert!(p.noise.is_empty(), "{:?}", p.noise);
     // ssaa16 out of the 4× budget by its median (4.01×) but within it in a
     // round: the 4.01× call is marked.
     rows[4].ratio_to_noaa = Some(4.01);
     (rows[4].ratio_min, rows[4].ratio_max) = (Some(3.72), Some(4.43));
     let a = Answer::of(&rows, &scenes);
-    let p = a.pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0)).unwrap();
+    let p = a
+        .pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0))
+        .unwrap();
     assert_eq!(p.method.to_string(), "sraa");
     assert_eq!(p.noise.len(), 1, "{:?}", p.noise);
     assert!(
@@ -424,11 +435,25 @@ fn a_pick_names_its_runner_up_and_says_when_it_is_within_noise() {
     // The pick's own rounds over the budget.
     (rows[3].ratio_min, rows[3].ratio_max) = (Some(3.2), Some(4.2));
     let a = Answer::of(&rows, &scenes);
-    let p = a.pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0)).unwrap();
-    assert!(p.noise.iter().any(|n| n.contains("reaches 4.20× in a round")), "{:?}", p.noise);
+    let p = a
+        .pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0))
+        .unwrap();
+    assert!(
+        p.noise
+            .iter()
+            .any(|n| n.contains("reaches 4.20× in a round")),
+        "{:?}",
+        p.noise
+    );
     let md = section(&a, &rows, &context(&scenes));
-    assert!(md.contains("sraa (0.39, 1/1); next ssaa4 (0.50, +29.0 %); **within noise**"), "{md}");
-    assert!(md.contains("Within noise:\n\n- triangle scenes, cpu, ≤ 4× NoAA, FLIP (sraa): "), "{md}");
+    assert!(
+        md.contains("sraa (0.39, 1/1); next ssaa4 (0.50, +29.0 %); **within noise**"),
+        "{md}"
+    );
+    assert!(
+        md.contains("Within noise:\n\n- triangle scenes, cpu, ≤ 4× NoAA, FLIP (sraa): "),
+        "{md}"
+    );
     let j = json(&a);
     let picks = j["picks"].as_array().unwrap();
     assert!(picks.iter().any(|p| p["runner_up"]["method"] == "ssaa4"
@@ -448,7 +473,9 @@ fn a_picks_runner_up_is_not_its_own_image_again() {
         r.image_digest = Some(d);
     }
     let a = Answer::of(&rows, &scenes);
-    let p = a.pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0)).unwrap();
+    let p = a
+        .pick(Kind::Triangles, "cpu", Metric::Flip, Some(4.0))
+        .unwrap();
     assert_eq!(p.method.to_string(), "ssaa4-hybrid");
     // ssaa4 is the same image: the runner-up is the next other image.
     assert_eq!(p.runner_up.as_ref().unwrap().0.to_string(), "noaa");

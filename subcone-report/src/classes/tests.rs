@@ -153,7 +153,10 @@ fn a_verdict_needs_every_offset_to_agree() {
     assert_eq!(outcome([0.99, 0.97, 0.96, 0.98], 100), (TiesBetter, Holds));
     // Worse at every offset, by the margin at some: leans worse; flat,
     // past 1.02× at two offsets and worse at all four, leans worse too.
-    assert_eq!(outcome([1.01, 1.06, 1.03, 1.1], 100), (LeansWorse, LeansWorse));
+    assert_eq!(
+        outcome([1.01, 1.06, 1.03, 1.1], 100),
+        (LeansWorse, LeansWorse)
+    );
     // Worse at every offset, never by the margin: a consistent tie; flat
     // holds (at most 1.02×) at every offset.
     assert_eq!(outcome([1.01, 1.02, 1.01, 1.02], 100), (TiesWorse, Holds));
@@ -257,7 +260,13 @@ fn pixels_within_each_metrics_reach_of_a_class_are_near_edge_not_flat() {
     assert_eq!(m.count(Class::Silhouette), 1);
     // FLIP's filters reach 10 px, SSIM's window 5: Chebyshev squares,
     // corners included.
-    assert_eq!((near_edge_radius(Metric::Flip), near_edge_radius(Metric::Ssim)), (10, 5));
+    assert_eq!(
+        (
+            near_edge_radius(Metric::Flip),
+            near_edge_radius(Metric::Ssim)
+        ),
+        (10, 5)
+    );
     for (metric, r) in [(Metric::Flip, 10usize), (Metric::Ssim, 5)] {
         let (near, flat) = (m.near(metric), m.flat(metric));
         for (x, y) in [(c - r, c), (c + r, c + r), (c - r, c - r), (c + 1, c)] {
@@ -277,7 +286,10 @@ fn pixels_within_each_metrics_reach_of_a_class_are_near_edge_not_flat() {
             .map(|p| if near[p] { 0.5 } else { 0.1 })
             .collect();
         let e = ClassError::measure(&map, &m, metric);
-        assert_eq!((e.near_edge, e.near_edge_px), (Some(0.5), (side * side - 1) as u64));
+        assert_eq!(
+            (e.near_edge, e.near_edge_px),
+            (Some(0.5), (side * side - 1) as u64)
+        );
         assert!((e.mean[Class::Flat.index()].unwrap() - 0.1).abs() < 1e-7);
         assert_eq!(e.px[Class::Flat.index()], (pw * pw - side * side) as u64);
     }

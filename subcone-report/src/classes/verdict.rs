@@ -256,7 +256,9 @@ impl Outcome {
     pub fn lead(self) -> Option<&'static str> {
         Some(match self {
             Outcome::Beats => "beats NoAA on",
-            Outcome::LeansBetter => "better than NoAA at every offset, not always by the margin, on",
+            Outcome::LeansBetter => {
+                "better than NoAA at every offset, not always by the margin, on"
+            }
             Outcome::TiesBetter => "ties (consistently better, within the margin) on",
             Outcome::Ties => "ties NoAA on",
             Outcome::TiesWorse => "ties (consistently worse, within the margin) on",
@@ -535,10 +537,7 @@ impl Verdict {
         if self.claims.is_empty() {
             parts.push("claims no class".to_string());
         }
-        for (o, lead) in Outcome::ALL
-            .iter()
-            .filter_map(|&o| Some((o, o.lead()?)))
-        {
+        for (o, lead) in Outcome::ALL.iter().filter_map(|&o| Some((o, o.lead()?))) {
             let l = list(o);
             if !l.is_empty() {
                 parts.push(format!("{lead} {}", l.join(", ")));

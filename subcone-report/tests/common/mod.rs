@@ -59,6 +59,9 @@ impl<'a> Judged<'a> {
     pub fn measure(&self, method: &str) -> (f64, ClassError) {
         let image = Rgb8::from_frame(&render(self.scene, method, &self.settings)).unwrap();
         let f = metrics::flip(&self.reference, &image).unwrap();
-        (f.mean, ClassError::measure(&f.map, &self.masks, classes::Metric::Flip))
+        (
+            f.mean,
+            ClassError::measure(&f.map, &self.masks, classes::Metric::Flip),
+        )
     }
 }

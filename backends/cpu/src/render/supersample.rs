@@ -95,9 +95,7 @@ fn supersample_hybrid<const DIAGONAL: bool>(
         .map_init(HybridScratch::default, |scratch, (band, rows)| {
             t.isa.run(
                 #[inline(always)]
-                || {
-                    supersample_hybrid_band::<DIAGONAL>(t, &cam, &raster, scratch, band, rows, w, n)
-                },
+                || supersample_hybrid_band::<DIAGONAL>(t, &cam, &raster, scratch, band, rows, w, n),
             )
         })
         .reduce(TileWork::default, |a, b| a + b);
