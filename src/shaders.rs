@@ -197,10 +197,9 @@ fn glsl_bindings(bindings: &[BindingEntry]) -> Vec<u32> {
 fn with_module_bindings(
     s: &StandaloneShader,
     m: &naga::Module,
+    layouter: &naga::proc::Layouter,
 ) -> Result<StandaloneShader, String> {
     let mut out = s.clone();
-    let mut layouter = naga::proc::Layouter::default();
-    layouter.update(m.to_ctx()).map_err(|e| e.to_string())?;
     for (_, var) in m.global_variables.iter() {
         let Some(rb) = var.binding else { continue };
         if out
@@ -597,7 +596,11 @@ fn translate(s: &StandaloneShader) -> Result<(Vec<OutputFile>, serde_json::Value
         message: format!("{stage}: {message}"),
     };
     let (m, info) = module(&s.wgsl).map_err(|e| fail("WGSL", e))?;
-    let extended = with_module_bindings(s, &m).map_err(|e| fail("bindings", e))?;
+    let mut layouter = naga::proc::Layouter::default();
+    layouter
+        .update(m.to_ctx())
+        .map_err(|e| fail("layout", e.to_string()))?;
+    let extended = with_module_bindings(s, &m, &layouter).map_err(|e| fail("bindings", e))?;
     let s = &extended;
     let glsl_module = match &s.glsl_wgsl {
         Some(wgsl) => Some(module(wgsl).map_err(|e| fail("WGSL for GLSL", e))?),
@@ -649,10 +652,6 @@ fn translate(s: &StandaloneShader) -> Result<(Vec<OutputFile>, serde_json::Value
         }
         Err(e) => serde_json::json!({ "file": null, "not_expressible": e }),
     };
-    let mut layouter = naga::proc::Layouter::default();
-    layouter
-        .update(m.to_ctx())
-        .map_err(|e| fail("layout", e.to_string()))?;
     let bindings = binding_rows(s, &slots, &m, &layouter);
     let msl_sizes = msl_buffer_sizes(&m);
     let row = serde_json::json!({

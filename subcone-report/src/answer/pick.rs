@@ -82,6 +82,12 @@ impl Pick {
     }
 }
 
+/// Whether a median time over NoAA's `t` is within the budget `lim`
+/// (no time is not).
+fn within(t: Option<f64>, lim: f64) -> bool {
+    t.is_some_and(|t| t <= lim)
+}
+
 /// One scene's time over NoAA's for a candidate: the scene, the median of
 /// the per-round ratios, and their smallest and largest.
 type SceneTime<'a> = (&'a str, Option<f64>, Option<(f64, f64)>);
@@ -112,18 +118,13 @@ impl Candidate<'_> {
                 .zip(&other.digests)
                 .all(|(a, b)| a.is_some() && a == b)
     }
-}
 
-impl Candidate<'_> {
     /// Whether its median time over NoAA's is within `budget` on every
     /// scene (any time without a budget).
     fn within(&self, budget: Option<f64>) -> bool {
         match budget {
             None => true,
-            Some(lim) => self
-                .times
-                .iter()
-                .all(|(_, t, _)| t.is_some_and(|t| t <= lim)),
+            Some(lim) => self.times.iter().all(|(_, t, _)| within(*t, lim)),
         }
     }
 
@@ -490,7 +491,7 @@ fn noise(
         let out: Vec<&SceneTime> = c
             .times
             .iter()
-            .filter(|(_, t, _)| !t.is_some_and(|t| t <= lim))
+            .filter(|(_, t, _)| !within(*t, lim))
             .collect();
         let in_a_round = out
             .iter()
