@@ -208,14 +208,22 @@ pub const FLIP_PIXELS_PER_DEGREE: f32 = nv_flip::DEFAULT_PIXELS_PER_DEGREE;
 /// edge's error spreads this far onto its neighbours. 10 at 67 ppd (the
 /// feature filter alone reaches 9). `ppd` not finite or not positive: 0.
 pub fn flip_filter_radius(ppd: f32) -> u32 {
+    let (colour, feature) = flip_filter_radii(ppd);
+    colour.max(feature)
+}
+
+/// The radii behind [`flip_filter_radius`], `(colour, feature)`: 10 and 9
+/// at 67 ppd; both 0 for a `ppd` not finite or not positive.
+pub fn flip_filter_radii(ppd: f32) -> (u32, u32) {
     if !(ppd.is_finite() && ppd > 0.0) {
-        return 0;
+        return (0, 0);
     }
     let pi_sq = core::f64::consts::PI * core::f64::consts::PI;
     let ppd = f64::from(ppd);
     let colour = (3.0 * (0.04 / (2.0 * pi_sq)).sqrt() * ppd).ceil();
     let feature = (3.0 * 0.5 * 0.082 * ppd).ceil();
-    colour.max(feature).min(f64::from(u32::MAX)) as u32
+    let radius = |r: f64| r.min(f64::from(u32::MAX)) as u32;
+    (radius(colour), radius(feature))
 }
 
 /// LDR-FLIP of `test` against `reference` at the default 67 pixels per
@@ -279,6 +287,10 @@ mod tests {
     fn flip_reaches_ten_pixels_at_its_default_viewing_condition() {
         // Colour filter ⌈9.05⌉, feature filter ⌈8.24⌉.
         assert_eq!(super::flip_filter_radius(super::FLIP_PIXELS_PER_DEGREE), 10);
+        assert_eq!(
+            super::flip_filter_radii(super::FLIP_PIXELS_PER_DEGREE),
+            (10, 9)
+        );
         assert_eq!(super::flip_filter_radius(30.0), 5);
         for bad in [0.0, -1.0, f32::NAN, f32::INFINITY] {
             assert_eq!(super::flip_filter_radius(bad), 0);

@@ -90,7 +90,7 @@ line; a claimed class with no pixel in the scene is listed as having none.\n",
         rs = classes::near_edge_radius(Metric::Ssim),
         sides = 2 * classes::near_edge_radius(Metric::Ssim) + 1,
         ppd = subcone_metrics::FLIP_PIXELS_PER_DEGREE,
-        rf = (3.0 * 0.5 * 0.082 * f64::from(subcone_metrics::FLIP_PIXELS_PER_DEGREE)).ceil(),
+        rf = subcone_metrics::flip_filter_radii(subcone_metrics::FLIP_PIXELS_PER_DEGREE).1,
         min_px = classes::MIN_VERDICT_PIXELS,
         offsets_text = offsets_text(offsets, elapsed),
     );
